@@ -1,0 +1,52 @@
+# Fairlines — the two commands of the README, plus bench. Every target does its own set-up
+# on a fresh machine: system packages with apt-get, Python packages with pip into .venv.
+
+PYTHON ?= python3
+VENV := .venv
+PY := $(VENV)/bin/python
+PIP := $(PY) -m pip
+JOBS ?= 2
+OUT ?= out
+SYS_PACKAGES := libeigen3-dev libgtest-dev
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+.PHONY: setup sysdeps pydeps build cpp-test py-test test demo bench clean
+
+setup: sysdeps pydeps
+
+sysdeps:
+	@dpkg -s $(SYS_PACKAGES) >/dev/null 2>&1 || { \
+	  echo "installing system packages: $(SYS_PACKAGES)"; \
+	  $(SUDO) apt-get update -qq && $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(SYS_PACKAGES); }
+
+$(VENV)/.deps-stamp: requirements-dev.txt
+	$(PYTHON) -m venv $(VENV)
+	$(PIP) install -q --upgrade pip
+	$(PIP) install -q -r requirements-dev.txt
+	touch $@
+
+pydeps: $(VENV)/.deps-stamp
+
+# The Python package with its compiled engine (incremental: build/py-* is kept).
+build: setup
+	$(PIP) install -q --no-build-isolation --no-deps .
+
+cpp-test: sysdeps pydeps
+	$(VENV)/bin/cmake -S . -B build/cpp -G Ninja -DCMAKE_MAKE_PROGRAM=$(abspath $(VENV)/bin/ninja) \
+	  -DFAIRLINES_BUILD_TESTS=ON -DFAIRLINES_BUILD_PYTHON=OFF -DCMAKE_BUILD_TYPE=Release
+	$(VENV)/bin/cmake --build build/cpp -j $(JOBS)
+	cd build/cpp && $(abspath $(VENV)/bin/ctest) --output-on-failure -j $(JOBS)
+
+py-test: build
+	$(PY) -m pytest -q tests/python
+
+test: cpp-test py-test
+
+demo: build
+	$(PY) examples/demo.py --out $(OUT)
+
+bench: build
+	$(PY) bench/run_all.py
+
+clean:
+	rm -rf build $(OUT)

@@ -1,0 +1,21 @@
+// The one place where the engine meets Python: exception translation and the module
+// `fairlines._native`. Each bind_*.cpp file adds one area of the engine.
+#include <pybind11/pybind11.h>
+
+#include "fairlines/errors.hpp"
+
+namespace py = pybind11;
+
+namespace fairlines {
+void bind_nurbs(py::module_& m);
+}  // namespace fairlines
+
+PYBIND11_MODULE(_native, m) {
+  m.doc() = "Fairlines compiled engine (private; use the `fairlines` package).";
+  // Order matters: pybind11 tries translators newest first, so subclasses come last.
+  auto base = py::register_exception<fairlines::Error>(m, "FairlinesError", PyExc_RuntimeError);
+  auto invalid = py::register_exception<fairlines::InvalidInput>(m, "InvalidInput", PyExc_ValueError);
+  py::register_exception<fairlines::InfeasibleFormParameters>(m, "InfeasibleFormParameters", invalid.ptr());
+  py::register_exception<fairlines::ConvergenceError>(m, "ConvergenceError", base.ptr());
+  fairlines::bind_nurbs(m);
+}

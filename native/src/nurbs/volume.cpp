@@ -1,0 +1,66 @@
+#include "fairlines/volume.hpp"
+
+#include <algorithm>
+
+#include "checks.hpp"
+#include "fairlines/basis.hpp"
+#include "fairlines/knots.hpp"
+
+namespace fairlines {
+
+using detail::fail;
+
+NurbsVolume::NurbsVolume(std::array<int, 3> degrees, std::array<Eigen::VectorXd, 3> knots, std::array<int, 3> counts,
+                         Eigen::MatrixXd control_points, Eigen::VectorXd weights)
+    : degrees_(degrees), knots_(std::move(knots)), counts_(counts), points_(std::move(control_points)),
+      weights_(std::move(weights)) {
+  static const char* names[3] = {"knots_s", "knots_t", "knots_r"};
+  for (int a = 0; a < 3; ++a) {
+    detail::require_degree(degrees_[a], std::string("degrees[") + std::to_string(a) + "]");
+    validate_knots(knots_[a], degrees_[a], counts_[a], names[a]);
+  }
+  const Eigen::Index n = static_cast<Eigen::Index>(counts_[0]) * counts_[1] * counts_[2];
+  if (points_.rows() != n || points_.cols() != 3)
+    fail("control_points has shape (", points_.rows(), ", ", points_.cols(), "); expected (", n, ", 3)");
+  detail::require_finite(points_, "control_points");
+  if (weights_.size() == 0)
+    weights_ = Eigen::VectorXd::Ones(n);
+  else
+    detail::require_weights(weights_, n);
+}
+
+Eigen::MatrixXd NurbsVolume::evaluate(const Eigen::VectorXd& s, const Eigen::VectorXd& t, const Eigen::VectorXd& r) const {
+  if (s.size() != t.size() || s.size() != r.size())
+    fail("s, t, r have ", s.size(), ", ", t.size(), ", ", r.size(), " values; expected equal lengths");
+  detail::require_finite(s, "s");
+  detail::require_finite(t, "t");
+  detail::require_finite(r, "r");
+  const auto& [ps, pt, pr] = degrees_;
+  std::vector<double> Ns(ps + 1), Nt(pt + 1), Nr(pr + 1);
+  Eigen::MatrixXd out(s.size(), 3);
+  const int nt = counts_[1], nr = counts_[2];
+  for (Eigen::Index k = 0; k < s.size(); ++k) {
+    double x[3] = {s[k], t[k], r[k]};
+    int span[3];
+    double* N[3] = {Ns.data(), Nt.data(), Nr.data()};
+    for (int a = 0; a < 3; ++a) {
+      x[a] = std::clamp(x[a], knots_[a][degrees_[a]], knots_[a][counts_[a]]);
+      span[a] = find_span(degrees_[a], knots_[a], x[a]);
+      basis_functions(span[a], x[a], degrees_[a], knots_[a], N[a]);
+    }
+    Eigen::Vector4d acc = Eigen::Vector4d::Zero();
+    for (int i = 0; i <= ps; ++i)
+      for (int j = 0; j <= pt; ++j)
+        for (int l = 0; l <= pr; ++l) {
+          const Eigen::Index row =
+              (static_cast<Eigen::Index>(span[0] - ps + i) * nt + (span[1] - pt + j)) * nr + (span[2] - pr + l);
+          const double b = Ns[i] * Nt[j] * Nr[l] * weights_[row];
+          acc.head<3>() += b * points_.row(row).transpose();
+          acc[3] += b;
+        }
+    out.row(k) = (acc.head<3>() / acc[3]).transpose();
+  }
+  return out;
+}
+
+}  // namespace fairlines

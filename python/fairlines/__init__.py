@@ -1,0 +1,36 @@
+"""Fairlines: fair parametric hull design on a compiled NURBS engine.
+
+Conventions (SPEC §6): metres; x forward from the aft perpendicular, y half-breadth >= 0,
+z up from the baseline. Every geometric routine runs in the compiled module
+``fairlines._native``; this package re-exports it and adds thin Python conveniences.
+"""
+
+from ._native import (  # noqa: F401  (re-exported API)
+    ConvergenceError,
+    CurveFit,
+    FairlinesError,
+    InfeasibleFormParameters,
+    InvalidInput,
+    NurbsCurve,
+    NurbsSurface,
+    NurbsVolume,
+    SurfaceFit,
+    arc,
+    averaged_knots,
+    basis_functions,
+    circle,
+    clamped_uniform_knots,
+    cylinder,
+    ellipse,
+    fit_curve,
+    fit_surface,
+    greville_abscissae,
+    hartley_judd_knots,
+    parameterize,
+    revolve,
+    sphere,
+    unclamped_uniform_knots,
+    validate_knots,
+)
+
+__version__ = "0.1.0"
