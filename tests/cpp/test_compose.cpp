@@ -1,0 +1,127 @@
+// Surface-surface intersection, bulb from Kracht coefficients and the composed hull.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "compose_fixtures.hpp"
+#include "fairlines/bulb.hpp"
+#include "fairlines/compose.hpp"
+#include "fairlines/conics.hpp"
+#include "fairlines/errors.hpp"
+#include "fairlines/intersect.hpp"
+
+using namespace fairlines;
+using fairlines::test::Forebody;
+
+namespace {
+
+NurbsSurface plane_z(double z0, double half) {  // bilinear plane z = z0 over [-half, half]^2
+  Eigen::VectorXd k(4);
+  k << 0, 0, 1, 1;
+  Eigen::MatrixXd P(4, 3);
+  P << -half, -half, z0, -half, half, z0, half, -half, z0, half, half, z0;
+  return NurbsSurface(1, 1, k, k, 2, 2, P);
+}
+
+}  // namespace
+
+TEST(Intersect, SphereAndPlaneGiveTheCircle) {
+  // exact rational sphere of radius 3 cut by z = 1: circle of radius sqrt(8)
+  const NurbsSurface s = sphere(Eigen::Vector3d::Zero(), 3.0);
+  const auto curves = intersect_surfaces(s, plane_z(1.0, 5.0));
+  ASSERT_GE(curves.size(), 1u);
+  double max_r_err = 0.0, max_gap = 0.0;
+  size_t n = 0;
+  for (const auto& c : curves) {
+    max_gap = std::max(max_gap, c.max_gap);
+    for (const auto& p : c.points) {
+      max_r_err = std::max(max_r_err, std::abs(std::hypot(p.point.x(), p.point.y()) - std::sqrt(8.0)));
+      max_r_err = std::max(max_r_err, std::abs(p.point.z() - 1.0));
+      ++n;
+    }
+  }
+  EXPECT_GT(n, 20u);
+  EXPECT_LT(max_r_err, 1e-6);
+  EXPECT_LT(max_gap, 1e-6);
+}
+
+TEST(Intersect, DisjointSurfacesGiveNothing) {
+  const NurbsSurface s = sphere(Eigen::Vector3d::Zero(), 1.0);
+  EXPECT_TRUE(intersect_surfaces(s, plane_z(2.0, 5.0)).empty());
+}
+
+TEST(Bulb, AnalyticBodyMeetsTheKrachtQuantities) {
+  Forebody fb;
+  KrachtCoefficients k;
+  const BulbousBow b = make_bulbous_bow(k, fb.ship());
+  const ShipParticulars s = fb.ship();
+  EXPECT_NEAR(b.shape.length, k.c_lpr * s.lpp, 1e-12);
+  EXPECT_LT(b.max_fit_deviation, 0.02);
+  // nose pole: foremost point at FP + L_PR and height Z_B
+  const Eigen::Vector3d nose = b.surface.evaluate(1.0, 0.5);
+  EXPECT_NEAR(nose.x(), s.lpp + k.c_lpr * s.lpp, 1e-9);
+  EXPECT_NEAR(nose.z(), k.c_zb * s.draft_fp, 1e-9);
+}
+
+TEST(Bulb, ConflictingCoefficientsAreReported) {
+  Forebody fb;
+  KrachtCoefficients k;
+  k.c_vpr = 0.02;  // far more volume than the section and length allow
+  EXPECT_THROW(make_bulbous_bow(k, fb.ship()), InfeasibleFormParameters);
+  k = KrachtCoefficients{};
+  k.c_bb = -0.1;
+  EXPECT_THROW(make_bulbous_bow(k, fb.ship()), InvalidInput);
+}
+
+TEST(Compose, BareHullIsClosedAndHasTheQuadratureVolume) {
+  Forebody fb;
+  const NurbsSurface h = fb.surface();
+  const ComposedHull c = compose_hull(h, nullptr, ComposeOptions{});
+  const auto chk = fairlines::test::check_edges(c.mesh);
+  EXPECT_EQ(chk.open, 0);
+  EXPECT_EQ(chk.non_manifold, 0);
+  EXPECT_EQ(chk.misoriented, 0);
+  // analytic volume of the half forebody: int int y dz dx
+  // int_0^1 (1 - xi^4) dxi = 4/5; int_0^D (1 - (1 - z/D)^6) dz = 6 D / 7
+  const double exact = 0.5 * fb.B * (0.5 * fb.L) * 0.8 * fb.D * 6.0 / 7.0;
+  EXPECT_NEAR(mesh_volume(c.mesh) / exact, 1.0, 2e-3);
+}
+
+TEST(Compose, HullWithBulbIsWatertightOrientedAndSelfIntersectionFree) {
+  Forebody fb;
+  const NurbsSurface h = fb.surface();
+  const BulbousBow b = make_bulbous_bow(KrachtCoefficients{}, fb.ship());
+  const ComposedHull c = compose_hull(h, &b.surface, ComposeOptions{});
+  const auto chk = fairlines::test::check_edges(c.mesh);
+  EXPECT_EQ(chk.open, 0);
+  EXPECT_EQ(chk.non_manifold, 0);
+  EXPECT_EQ(chk.misoriented, 0);
+  EXPECT_EQ(fairlines::test::count_self_intersections(c.mesh), 0);
+  ASSERT_EQ(c.intersection_curves.size(), 1u);
+  EXPECT_LT(c.intersection_curves[0].max_gap, 1e-6);
+  // every seam vertex lies on both surfaces
+  for (const auto& p : c.intersection_curves[0].points) {
+    EXPECT_LT((c.hull.evaluate(p.uv_a.x(), p.uv_a.y()) - p.point).norm(), 1e-6);
+    EXPECT_LT((b.surface.evaluate(p.uv_b.x(), p.uv_b.y()) - p.point).norm(), 1e-6);
+  }
+  EXPECT_GT(mesh_volume(c.mesh), 0.0);
+  const TriMesh full = mirror_full_hull(c);
+  const auto fchk = fairlines::test::check_edges(full);
+  EXPECT_EQ(fchk.open, 0);
+  EXPECT_EQ(fchk.non_manifold, 0);
+  EXPECT_EQ(fchk.misoriented, 0);
+  EXPECT_NEAR(mesh_volume(full), 2.0 * mesh_volume(c.mesh), 1e-6 * mesh_volume(full));
+}
+
+TEST(Compose, BulbAwayFromTheHullIsAClearError) {
+  Forebody fb;
+  ShipParticulars s = fb.ship();
+  s.x_fp = s.lpp + 40.0;  // bulb entirely ahead of the stem
+  const BulbousBow b = make_bulbous_bow(KrachtCoefficients{}, s);
+  try {
+    compose_hull(fb.surface(), &b.surface, ComposeOptions{});
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("bulb cannot meet the hull"), std::string::npos) << e.what();
+  }
+}
