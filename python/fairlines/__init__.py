@@ -33,4 +33,15 @@ from ._native import (  # noqa: F401  (re-exported API)
     validate_knots,
 )
 
+from ._native import mesh_volume, orient_bare_hull, triangulate_polygon, write_obj, write_stl  # noqa: F401,E402
+from .compose import (  # noqa: F401,E402
+    KRACHT_NAMES,
+    BulbousBow,
+    ComposedHull,
+    Mesh,
+    compose,
+    intersect_surfaces,
+    measure_kracht,
+)
+
 __version__ = "0.1.0"
