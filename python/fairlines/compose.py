@@ -69,7 +69,7 @@ class BulbousBow:
     breadth and height follow a superelliptic outline (exponent ``nose_shape``) to the nose at
     height Z_B; the section height H, fullness and nose shape are solved so that A_BT, A_BL
     and V_PR hold. Behind FP the section runs on unchanged for ``aft_length`` metres (default
-    twice the protrusion) into the hull. Shape controls: ``nose_height_shift`` (m) lifts the
+    2 (L_PR + B_B)) into the hull. Shape controls: ``nose_height_shift`` (m) lifts the
     section centres behind a lower nose. ``surface`` is the fair-skinned NurbsSurface (u aft
     -> nose pole, v bottom -> top centre line, y >= 0).
     """
@@ -78,8 +78,8 @@ class BulbousBow:
                  displacement_volume: float, c_lpr: float = 0.025, c_bb: float = 0.18,
                  c_zb: float = 0.45, c_abt: float = 0.10, c_abl: float = 0.10,
                  c_vpr: float = 0.0022, x_fp: float | None = None, aft_length: float = 0.0,
-                 nose_height_shift: float = 0.0, sections: int = 41, section_points: int = 41,
-                 control_u: int = 14, control_v: int = 12):
+                 nose_height_shift: float = 0.0, sections: int = 81, section_points: int = 41,
+                 control_u: int = 24, control_v: int = 12):
         self.ship = dict(lpp=lpp, beam=beam, draft_fp=draft_fp, midship_area=midship_area,
                          displacement_volume=displacement_volume,
                          x_fp=lpp if x_fp is None else x_fp)

@@ -30,12 +30,12 @@ struct ShipParticulars {
 /// Shape controls and resolution of the bulb surface.
 struct BulbOptions {
   double aft_length = 0.0;  ///< length of the constant-section body aft of FP that runs into
-                            ///< the hull (m); 0: 2 * protrusion
+                            ///< the hull (m); 0: 2 * (protrusion + breadth)
   double nose_height_shift = 0.0;  ///< z of the section centres minus the nose height at FP
                                    ///< (m): > 0 lifts the bulb body behind a lower nose
-  int sections = 41;        ///< sampled sections along the bulb (>= 8)
+  int sections = 81;        ///< sampled sections along the bulb (>= 8)
   int section_points = 41;  ///< sampled points per half section (>= 8)
-  int control_u = 14;       ///< control points along (>= 4)
+  int control_u = 24;       ///< control points along (>= 4)
   int control_v = 12;       ///< control points around the half section (>= 4)
 };
 

@@ -1,7 +1,9 @@
 // Bulbous bow from Kracht coefficients, see fairlines/bulb.hpp.
 #include "fairlines/bulb.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 #include <functional>
 #include <sstream>
 
@@ -54,8 +56,9 @@ bool bisect(const std::function<double(double)>& g, double lo, double hi, double
   return true;
 }
 
-constexpr double kExponentMin = 1.0;   // below: a pointed (concave) outline
-constexpr double kExponentMax = 12.0;  // above: practically a box
+constexpr double kExponentMin = 1.0;         // nose outline: below, a pointed (concave) nose
+constexpr double kExponentMax = 12.0;        // above: practically a box
+constexpr double kSectionExponentMin = 1.6;  // sections: below, a diamond a fair skin cannot follow
 
 }  // namespace
 
@@ -73,7 +76,7 @@ BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& 
   detail::require_positive(k.c_vpr, "c_vpr");
   detail::require_finite(o.nose_height_shift, "nose_height_shift");
   if (o.aft_length < 0.0 || !std::isfinite(o.aft_length))
-    detail::fail("aft_length is ", o.aft_length, "; expected >= 0 metres (0: twice the protrusion)");
+    detail::fail("aft_length is ", o.aft_length, "; expected >= 0 metres (0: twice protrusion + breadth)");
   if (o.sections < 8) detail::fail("sections is ", o.sections, "; expected >= 8");
   if (o.section_points < 8) detail::fail("section_points is ", o.section_points, "; expected >= 8");
   if (o.control_u < 4 || o.control_u > o.sections)
@@ -102,10 +105,10 @@ BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& 
   s.height = s.lateral_area / (s.length * outline_integral(s.nose_shape, 1.0));
   // A_BT = B_B H kappa(n): the section fullness.
   const double kap = s.section_area / (s.breadth * s.height);
-  if (!bisect(kappa, kExponentMin, kExponentMax, kap, s.section_fullness)) {
+  if (!bisect(kappa, kSectionExponentMin, kExponentMax, kap, s.section_fullness)) {
     std::ostringstream os;
     os << "c_abt, c_bb and c_abl conflict: A_BT / (B_B H) = " << kap << " (H = " << s.height
-       << " m from c_abl) but a bulb section needs it in [" << kappa(kExponentMin) << ", " << kappa(kExponentMax)
+       << " m from c_abl) but a bulb section needs it in [" << kappa(kSectionExponentMin) << ", " << kappa(kExponentMax)
        << "]";
     throw InfeasibleFormParameters(os.str());
   }
@@ -116,7 +119,7 @@ BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& 
        << " m) reaches below the baseline";
     throw InfeasibleFormParameters(os.str());
   }
-  const double aft = o.aft_length > 0.0 ? o.aft_length : 2.0 * s.length;
+  const double aft = o.aft_length > 0.0 ? o.aft_length : 2.0 * (s.length + s.breadth);
   const double m = s.nose_shape, n = s.section_fullness;
 
   // Sample: sections along (aft part uniform in x, nose part uniform in the angle phi with
@@ -140,9 +143,29 @@ BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& 
   Eigen::MatrixXd grid(static_cast<Eigen::Index>(ns) * np, 3);
   Eigen::VectorXd pv(np);
   for (int j = 0; j < np; ++j) pv[j] = static_cast<double>(j) / (np - 1);
+  // Every section is a scaled copy of the one at FP, so one arc-length spacing of the angle
+  // theta serves them all (the superellipse's own angle crowds the centre-line ends).
+  auto sec_point = [&](double th) {
+    const double c = std::cos(th), sn = std::sin(th);
+    return Eigen::Vector2d(0.5 * s.breadth * std::pow(std::max(0.0, c), 2.0 / n),
+                           0.5 * s.height * (sn < 0 ? -1.0 : 1.0) * std::pow(std::abs(sn), 2.0 / n));
+  };
+  constexpr int kDense = 4000;
+  std::vector<double> arc(kDense + 1, 0.0);
+  for (int q = 1; q <= kDense; ++q)
+    arc[q] = arc[q - 1] + (sec_point(-0.5 * M_PI + M_PI * q / kDense) - sec_point(-0.5 * M_PI + M_PI * (q - 1) / kDense)).norm();
+  std::vector<double> theta(np);
+  for (int j = 0, q = 0; j < np; ++j) {
+    const double target = arc[kDense] * pv[j];
+    while (q < kDense - 1 && arc[q + 1] < target) ++q;
+    const double w = std::clamp((target - arc[q]) / (arc[q + 1] - arc[q]), 0.0, 1.0);
+    theta[j] = -0.5 * M_PI + M_PI * (q + w) / kDense;
+  }
+  theta[0] = -0.5 * M_PI;
+  theta[np - 1] = 0.5 * M_PI;
   for (int i = 0; i < ns; ++i)
     for (int j = 0; j < np; ++j) {
-      const double th = -0.5 * M_PI + M_PI * pv[j];
+      const double th = theta[j];
       const double c = std::cos(th), sn = std::sin(th);
       const double y = 0.5 * s.breadth * fs[i] * std::pow(std::max(0.0, c), 2.0 / n);
       const double z = zcs[i] + 0.5 * s.height * fs[i] * (sn < 0 ? -1.0 : 1.0) * std::pow(std::abs(sn), 2.0 / n);

@@ -1,0 +1,214 @@
+"""Issue 5: bulbous bow, surface-surface intersection and the composed watertight hull.
+
+Stand-ins (issue 4's bare hull lands later): a Wigley-type forebody y = B/2 (1 - xi^4)
+(1 - (1 - z/D)^6) fitted as a bicubic surface, with Panamax particulars. Every check below
+uses code of its own (numpy edge census, quadrature of the NURBS surfaces) rather than the
+engine's own checks.
+"""
+
+import numpy as np
+import pytest
+from matplotlib.path import Path
+
+import fairlines as fl
+
+L, B, T, D = 244.8, 32.25, 11.0, 19.0
+SHIP = dict(lpp=L, beam=B, draft_fp=T, midship_area=0.97 * B * T, displacement_volume=0.65 * L * B * T)
+KRACHT_TOL = 0.02      # issue 5: measured coefficients within 2 %
+VOLUME_TOL = 0.002     # issue 5: composed = bare + added within 0.2 %
+
+
+def forebody_surface(rows=41, cols=25):
+    r = np.arange(rows)[:, None]
+    c = np.arange(cols)[None, :]
+    x = 0.5 * L + 0.5 * L * (1 - np.cos(np.pi * 0.5 * r / (rows - 1))) + 0 * c
+    z = D * (1 - np.cos(np.pi * 0.5 * c / (cols - 1))) + 0 * r
+    xi = (x - 0.5 * L) / (0.5 * L)
+    y = 0.5 * B * (1 - xi**4) * (1 - (1 - z / D) ** 6)
+    return fl.fit_surface(np.stack([x, y, z], axis=-1), n_control_u=16, n_control_v=12).surface
+
+
+@pytest.fixture(scope="module")
+def hull():
+    return forebody_surface()
+
+
+@pytest.fixture(scope="module")
+def bulb():
+    return fl.BulbousBow(**SHIP)
+
+
+@pytest.fixture(scope="module")
+def composed(hull, bulb):
+    return fl.compose([hull, bulb])
+
+
+def edge_census(faces):
+    """(open, non-manifold, misoriented) edge counts, computed here with numpy."""
+    f = np.asarray(faces)
+    directed = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+    und = np.sort(directed, axis=1)
+    _, counts = np.unique(und, axis=0, return_counts=True)
+    _, dcounts = np.unique(directed, axis=0, return_counts=True)
+    return int((counts == 1).sum()), int((counts > 2).sum()), int((dcounts > 1).sum())
+
+
+def test_composed_half_hull_is_closed_manifold_and_oriented(composed):
+    m = composed.mesh
+    assert m.vertices.shape[1] == 3 and m.faces.shape[1] == 3
+    assert edge_census(m.faces) == (0, 0, 0)
+    assert not np.any(m.faces[:, 0] == m.faces[:, 1]) and not np.any(m.faces[:, 1] == m.faces[:, 2])
+    # outward: the signed volume (own divergence sum) is positive
+    t = m.vertices[m.faces]
+    vol = np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0
+    assert vol > 0 and vol == pytest.approx(composed.volume, rel=1e-12)
+    assert np.all(m.vertices[:, 1] >= 0.0)
+
+
+def test_full_hull_is_closed_and_twice_the_half(composed):
+    full = composed.full_mesh()
+    assert edge_census(full.faces) == (0, 0, 0)
+    assert full.volume == pytest.approx(2.0 * composed.volume, rel=1e-9)
+    assert full.vertices[:, 1].min() == pytest.approx(-full.vertices[:, 1].max())
+
+
+def test_seam_vertices_lie_on_both_surfaces_and_are_shared(composed, bulb):
+    hull_s = composed.trimmed_surfaces[0][0]
+    seam = composed.mesh.vertices[composed.seam_vertices]
+    for p in seam[:: max(1, len(seam) // 8)]:
+        assert np.linalg.norm(hull_s.closest_point(p)[2] - p) < 1e-6
+        assert np.linalg.norm(bulb.surface.closest_point(p)[2] - p) < 1e-6
+    (curve,) = composed.intersection_curves
+    assert curve["max_gap"] <= 1e-6
+    # each seam edge is used by one hull face and one bulb face
+    f, part = composed.mesh.faces, composed.face_part
+    for a, b in zip(composed.seam_vertices[:-1], composed.seam_vertices[1:]):
+        users = [i for i in np.nonzero(np.any(f == a, axis=1) & np.any(f == b, axis=1))[0]]
+        assert sorted(part[users].tolist()) == [0, 1]
+
+
+def test_intersection_of_sphere_and_plane_is_the_circle():
+    s = fl.sphere([0.0, 0.0, 0.0], 3.0)
+    plane = fl.NurbsSurface(1, 1, [0, 0, 1, 1], [0, 0, 1, 1],
+                            [[[-5, -5, 1], [-5, 5, 1]], [[5, -5, 1], [5, 5, 1]]])
+    curves = fl.intersect_surfaces(s, plane)
+    pts = np.concatenate([c["points"] for c in curves])
+    assert len(pts) > 20
+    assert np.abs(np.hypot(pts[:, 0], pts[:, 1]) - np.sqrt(8.0)).max() < 1e-6
+    assert max(c["max_gap"] for c in curves) <= 1e-6
+
+
+def test_kracht_coefficients_measured_back_within_two_percent(composed, bulb):
+    got = fl.measure_kracht(composed.mesh, x_fp=L, **SHIP)
+    for name in fl.KRACHT_NAMES:
+        assert got[name] == pytest.approx(bulb.kracht[name], rel=KRACHT_TOL), name
+
+
+def _flux_y(surface, loop=None, n=400):
+    """int y n_y dA over the surface (or the part inside a parameter-space loop), by the
+    midpoint rule on an n x n parameter grid with central-difference partials."""
+    ku, kv = surface.knots_u, surface.knots_v
+    u0, u1, v0, v1 = ku[0], ku[-1], kv[0], kv[-1]
+    if loop is not None:
+        u0, v0 = np.maximum(loop.min(axis=0), [u0, v0])
+        u1, v1 = np.minimum(loop.max(axis=0), [u1, v1])
+    du, dv = (u1 - u0) / n, (v1 - v0) / n
+    uc = u0 + du * (np.arange(n) + 0.5)
+    vc = v0 + dv * (np.arange(n) + 0.5)
+    U, V = [a.ravel() for a in np.meshgrid(uc, vc, indexing="ij")]
+    if loop is not None:
+        keep = Path(loop).contains_points(np.column_stack([U, V]))
+        U, V = U[keep], V[keep]
+    h = 1e-6
+    su = (surface.evaluate(np.minimum(U + h, u1), V) - surface.evaluate(np.maximum(U - h, u0), V)) / (
+        np.minimum(U + h, u1) - np.maximum(U - h, u0))[:, None]
+    sv = (surface.evaluate(U, np.minimum(V + h, v1)) - surface.evaluate(U, np.maximum(V - h, v0))) / (
+        np.minimum(V + h, v1) - np.maximum(V - h, v0))[:, None]
+    y = surface.evaluate(U, V)[:, 1]
+    return float(np.sum(y * np.cross(su, sv)[:, 1]) * du * dv)
+
+
+def test_composed_volume_is_bare_plus_bulb_two_independent_ways(hull, composed, bulb):
+    """Way 1: divergence theorem on the meshes. Way 2: quadrature of y n_y over the NURBS
+    surfaces (the caps add nothing: n_y = 0 on deck and aft cut, y = 0 on the centre plane):
+    bare = whole hull surface; added = kept bulb - hull hole, over their trimming loops."""
+    bare = fl.compose([hull])
+    hull_s = composed.trimmed_surfaces[0][0]
+    sign = -1.0 if _flux_y(hull_s, n=200) < 0 else 1.0  # u forward, v up: S_u x S_v points inward
+    v_bare_q = sign * _flux_y(hull_s, n=200)
+    (hole,) = [l for l in composed.trimmed_surfaces[0][1]]
+    seam_uv = composed.intersection_curves[0]["uv_a"]
+    hole_loop = np.vstack([seam_uv, [[hull_s.knots_u[-1], hull_s.knots_v[0]]]])
+    (bulb_loop,) = composed.trimmed_surfaces[1][1]
+    v_added_q = sign * (_flux_y(bulb.surface, bulb_loop) - _flux_y(hull_s, hole_loop))
+    v_added_mesh = composed.volume - bare.volume
+    assert bare.volume == pytest.approx(v_bare_q, rel=VOLUME_TOL)
+    assert composed.volume == pytest.approx(v_bare_q + v_added_q, rel=VOLUME_TOL)
+    assert v_added_mesh == pytest.approx(v_added_q, rel=0.05)
+    assert v_added_q > 0.5 * bulb.shape["volume"]  # the half bulb forward of FP at least
+
+
+@pytest.mark.parametrize("c_lpr", [0.018, 0.024, 0.031])
+@pytest.mark.parametrize("c_bb", [0.15, 0.18, 0.21])
+def test_sweep_of_bulb_length_and_breadth_composes(hull, c_lpr, c_bb):
+    # length and breadth swept at constant shape: areas and volume scale with them
+    sl, sb = c_lpr / 0.025, c_bb / 0.18
+    b = fl.BulbousBow(**SHIP, c_lpr=c_lpr, c_bb=c_bb, c_abt=0.10 * sb, c_abl=0.10 * sl, c_vpr=0.0022 * sl * sb)
+    c = fl.compose([hull, b])
+    assert edge_census(c.mesh.faces) == (0, 0, 0)
+    got = fl.measure_kracht(c.mesh, x_fp=L, **SHIP)
+    for name in fl.KRACHT_NAMES:
+        assert got[name] == pytest.approx(b.kracht[name], rel=KRACHT_TOL), (name, c_lpr, c_bb)
+
+
+def test_bulb_that_cannot_meet_the_hull_is_a_clear_error(hull):
+    far = fl.BulbousBow(**SHIP, x_fp=L + 30.0)
+    with pytest.raises(ValueError, match="bulb cannot meet the hull"):
+        fl.compose([hull, far])
+    short = fl.BulbousBow(**SHIP, aft_length=0.5)
+    with pytest.raises(ValueError, match="bulb cannot meet the hull"):
+        fl.compose([hull, short])
+
+
+def test_bad_input_names_the_value(hull, bulb):
+    with pytest.raises(ValueError, match="operation"):
+        fl.compose([hull, bulb], operation="difference")
+    with pytest.raises(ValueError, match="c_bb"):
+        fl.BulbousBow(**{**SHIP, "c_bb": -0.1})
+    with pytest.raises(fl.InfeasibleFormParameters, match="c_vpr"):
+        fl.BulbousBow(**SHIP, c_vpr=0.02)
+    with pytest.raises(fl.InfeasibleFormParameters, match="c_abt"):
+        fl.BulbousBow(**SHIP, c_abt=0.05)  # a diamond section
+    with pytest.raises(ValueError, match="hull_u"):
+        fl.compose([hull, bulb], hull_u=1)
+    with pytest.raises(ValueError, match="subdomains"):
+        fl.compose([hull, bulb, bulb, bulb])
+    with pytest.raises(ValueError, match="aft cut"):
+        fl.compose([bulb.surface])  # a bulb is not a bare hull
+
+
+def test_bulb_from_json_section():
+    b = fl.BulbousBow.from_dict({"kracht": {"c_lpr": 0.027}, "shape": {"aft_length": 10.0}}, SHIP)
+    assert b.shape["length"] == pytest.approx(0.027 * L)
+    with pytest.raises(ValueError, match="unknown keys"):
+        fl.BulbousBow.from_dict({"kracht": {"c_xx": 1.0}}, SHIP)
+
+
+def test_obj_and_stl_round_trip(composed, tmp_path):
+    m = composed.mesh
+    composed.write_obj(tmp_path / "hull.obj")
+    v, f = [], []
+    for line in (tmp_path / "hull.obj").read_text().splitlines():
+        if line.startswith("v "):
+            v.append([float(x) for x in line.split()[1:]])
+        elif line.startswith("f "):
+            f.append([int(x) - 1 for x in line.split()[1:]])
+    np.testing.assert_allclose(np.array(v), m.vertices, rtol=1e-9, atol=1e-7)
+    np.testing.assert_array_equal(np.array(f), m.faces)
+    composed.write_stl(tmp_path / "hull.stl", full=True)
+    raw = (tmp_path / "hull.stl").read_bytes()
+    n = int(np.frombuffer(raw[80:84], dtype="<u4")[0])
+    full = composed.full_mesh()
+    assert n == len(full.faces) and len(raw) == 84 + 50 * n
+    rec = np.frombuffer(raw[84:], dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]))
+    np.testing.assert_allclose(rec["v"], full.vertices[full.faces], rtol=1e-6, atol=1e-4)
