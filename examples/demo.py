@@ -13,6 +13,7 @@ HERE = pathlib.Path(__file__).resolve().parent
 # Pipeline steps in order; each is a script in examples/ taking --out.
 STEPS = [
     ("NURBS core: fit a surface to hull offsets", "fit_wigley_surface.py"),
+    ("Bulbous bow + Boolean union into a watertight hull (stand-in forebody)", "compose_forebody.py"),
 ]
 
 

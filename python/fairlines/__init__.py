@@ -33,7 +33,7 @@ from ._native import (  # noqa: F401  (re-exported API)
     validate_knots,
 )
 
-from ._native import mesh_volume, orient_bare_hull, triangulate_polygon, write_obj, write_stl  # noqa: F401,E402
+from ._native import mesh_volume, orient_bare_hull, triangulate_polygon  # noqa: F401,E402
 from .compose import (  # noqa: F401,E402
     KRACHT_NAMES,
     BulbousBow,
@@ -42,6 +42,7 @@ from .compose import (  # noqa: F401,E402
     compose,
     intersect_surfaces,
     measure_kracht,
+    mesh_hydrostatics,
 )
 
 __version__ = "0.1.0"

@@ -23,6 +23,7 @@ __all__ = [
     "compose",
     "intersect_surfaces",
     "measure_kracht",
+    "mesh_hydrostatics",
     "KRACHT_NAMES",
 ]
 
@@ -263,3 +264,40 @@ def measure_kracht(mesh: Mesh, *, x_fp: float, lpp: float, beam: float, draft_fp
         c_abl=lat / midship_area,
         c_vpr=2.0 * vol / displacement_volume,
     )
+
+
+def _clip_below(tri: np.ndarray, z0: float) -> list[np.ndarray]:
+    """Part of triangle tri (3, 3) with z <= z0, as a fan of triangles."""
+    poly = []
+    for k in range(3):
+        p, q = tri[k], tri[(k + 1) % 3]
+        if p[2] <= z0:
+            poly.append(p)
+        if (p[2] - z0) * (q[2] - z0) < 0:
+            t = (z0 - p[2]) / (q[2] - p[2])
+            poly.append(p + t * (q - p))
+    return [np.array([poly[0], poly[i], poly[i + 1]]) for i in range(1, len(poly) - 1)]
+
+
+def mesh_hydrostatics(mesh: Mesh, draft: float, *, half: bool = True) -> dict:
+    """Displaced volume (m^3), LCB and KB (m) of a closed, outward-oriented mesh floating at
+    z = draft, by the divergence theorem over the surface below the waterline with fields
+    that vanish on the waterplane: (0, 0, z - T) for the volume, (0, 0, x (z - T)) for the
+    x-moment and (0, 0, (z^2 - T^2) / 2) for the z-moment. ``half``: the mesh is the
+    starboard half (volume doubled, centroid unchanged)."""
+    tris = np.asarray(mesh.vertices, float)[np.asarray(mesh.faces)]
+    T = float(draft)
+    vol = mx = mz = 0.0
+    for t in tris[tris[:, :, 2].min(axis=1) < T]:
+        for p in _clip_below(t, T) if t[:, 2].max() > T else [t]:
+            nz = 0.5 * np.cross(p[1] - p[0], p[2] - p[0])[2]
+            # exact for linear integrands: mean over the vertices; quadratic z^2 and x z use
+            # the edge-midpoint rule (exact for quadratics on a triangle)
+            mid = 0.5 * (p + np.roll(p, -1, axis=0))
+            vol += (p[:, 2].mean() - T) * nz
+            mx += np.mean(mid[:, 0] * (mid[:, 2] - T)) * nz
+            mz += np.mean(0.5 * (mid[:, 2] ** 2 - T * T)) * nz
+    if vol <= 0.0:
+        raise ValueError(f"draft {draft} m gives no displaced volume; expected a draft above the keel")
+    f = 2.0 if half else 1.0
+    return dict(volume=f * vol, lcb=mx / vol, kb=mz / vol)

@@ -212,3 +212,32 @@ def test_obj_and_stl_round_trip(composed, tmp_path):
     assert n == len(full.faces) and len(raw) == 84 + 50 * n
     rec = np.frombuffer(raw[84:], dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]))
     np.testing.assert_allclose(rec["v"], full.vertices[full.faces], rtol=1e-6, atol=1e-4)
+
+
+def test_mesh_hydrostatics_of_the_bare_forebody_match_the_analytic_integrals(hull):
+    h = fl.mesh_hydrostatics(fl.compose([hull]).mesh, T)
+    # y = B/2 g(xi) k(z): V = 2 int int y dz dx with int_0^1 (1 - xi^4) = 4/5 and
+    # int_0^T (1 - (1 - z/D)^6) dz = T - D/7 (1 - (1 - T/D)^7)
+    kz = T - D / 7 * (1 - (1 - T / D) ** 7)
+    vol = 2 * 0.5 * B * 0.5 * L * 0.8 * kz
+    # LCB: x = L/2 + (L/2) xi, int xi (1 - xi^4) / int (1 - xi^4) = (1/2 - 1/6) / (4/5)
+    lcb = 0.5 * L + 0.5 * L * (1 / 2 - 1 / 6) / 0.8
+    zs = np.linspace(0, T, 20001)
+    w = 1 - (1 - zs / D) ** 6
+    trap = lambda f: float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(zs)))  # noqa: E731
+    kb = trap(zs * w) / trap(w)
+    assert h["volume"] == pytest.approx(vol, rel=3e-3)
+    assert h["lcb"] == pytest.approx(lcb, rel=1e-3)
+    assert h["kb"] == pytest.approx(kb, rel=3e-3)
+
+
+def test_compose_forebody_example_runs(tmp_path, monkeypatch, capsys):
+    import runpy
+    import sys
+    from pathlib import Path
+
+    script = Path(__file__).resolve().parents[2] / "examples" / "compose_forebody.py"
+    monkeypatch.setattr(sys, "argv", ["compose_forebody.py", "--out", str(tmp_path)])
+    runpy.run_path(str(script), run_name="__main__")
+    assert "c_vpr" in capsys.readouterr().out
+    assert (tmp_path / "panamax_standin_forebody_full.stl").stat().st_size > 84

@@ -1,0 +1,85 @@
+"""Issue 5: bulb + composition at the default resolution (goal <= 30 ms), against manifold3d
+(PyPI) doing the mesh union of the same two tessellated solids (full bare hull and full bulb)
+in the same run. The blending surface is not part of this branch yet, so it is not timed."""
+
+import sys
+
+import common  # noqa: F401  (sets single-thread BLAS before numpy loads)
+import numpy as np
+
+import fairlines as fl
+from common import median_time, report
+
+sys.path.insert(0, str(__import__("pathlib").Path(__file__).resolve().parents[1] / "examples"))
+from compose_forebody import stand_in_forebody  # noqa: E402
+
+GOAL_MS = 30.0
+L, B, T = 244.8, 32.25, 11.0
+SHIP = dict(lpp=L, beam=B, draft_fp=T, midship_area=0.97 * B * T, displacement_volume=0.65 * L * B * T)
+
+
+def bulb_solid(surface, nu=40, nv=24):
+    """Closed full bulb: the half surface on a grid, mirrored, welded on y = 0, the nose a
+    single pole vertex and the aft end capped by a fan."""
+    us = np.linspace(0, 1, nu + 1)[:-1]  # nose pole added separately
+    vs = np.linspace(0, 1, nv + 1)
+    P = surface.evaluate(np.repeat(us, nv + 1), np.tile(vs, nu)).reshape(nu, nv + 1, 3)
+    ring = np.concatenate([P[:, :, :], P[:, -2:0:-1, :] * [1, -1, 1]], axis=1)  # around, 2 nv
+    m = ring.shape[1]
+    verts = [ring.reshape(-1, 3), surface.evaluate(1.0, 0.5)[None, :], ring[0].mean(axis=0)[None, :]]
+    V = np.concatenate(verts)
+    pole, centre = nu * m, nu * m + 1
+    F = []
+    for i in range(nu - 1):
+        for j in range(m):
+            a, b, c, d = i * m + j, i * m + (j + 1) % m, (i + 1) * m + (j + 1) % m, (i + 1) * m + j
+            F += [[a, b, c], [a, c, d]]
+    for j in range(m):
+        F.append([(nu - 1) * m + j, (nu - 1) * m + (j + 1) % m, pole])
+        F.append([centre, (j + 1) % m, j])
+    F = np.array(F)
+    if fl.mesh_volume(V, F) < 0:
+        F = F[:, ::-1]
+    return V, F
+
+
+def main():
+    try:
+        import manifold3d
+    except ImportError:  # pragma: no cover - listed in requirements-dev.txt
+        sys.exit("manifold3d is not installed: pip install -r requirements-dev.txt")
+    hull = stand_in_forebody(L, B)
+
+    def ours():
+        bulb = fl.BulbousBow(**SHIP)
+        return fl.compose([hull, bulb])
+
+    t_ours = median_time(ours)
+    t_bulb = median_time(lambda: fl.BulbousBow(**SHIP))
+    c = ours()
+    report("bulb (Kracht -> skinned NurbsSurface)", 1e3 * t_bulb, "ms")
+    report("bulb + union -> closed half-hull mesh", 1e3 * t_ours, "ms",
+           f"goal <= {GOAL_MS:.0f} ms: {'met' if 1e3 * t_ours <= GOAL_MS else 'MISSED'}; "
+           f"{len(c.mesh.faces)} faces")
+
+    full_hull = fl.compose([hull]).full_mesh()
+    bv, bf = bulb_solid(fl.BulbousBow(**SHIP).surface)
+    mh = manifold3d.Manifold(manifold3d.Mesh(vert_properties=full_hull.vertices.astype(np.float32),
+                                             tri_verts=full_hull.faces.astype(np.uint32)))
+    mb = manifold3d.Manifold(manifold3d.Mesh(vert_properties=bv.astype(np.float32), tri_verts=bf.astype(np.uint32)))
+    if mh.status() != manifold3d.Error.NoError or mb.status() != manifold3d.Error.NoError:
+        sys.exit(f"manifold3d rejected the input meshes: {mh.status()}, {mb.status()}")
+
+    def peer():
+        return (mh + mb).to_mesh()
+
+    t_peer = median_time(peer)
+    out = (mh + mb)
+    report("manifold3d union of the tessellated full hull + full bulb", 1e3 * t_peer, "ms",
+           f"{out.num_tri()} triangles in, {len(full_hull.faces) + len(bf)} triangles")
+    report("ratio ours (bulb + exact-seam union, half hull) / manifold3d union", t_ours / t_peer, "x")
+    report("half-hull volume ours / half of manifold3d full volume", c.volume / (0.5 * out.volume()), "")
+
+
+if __name__ == "__main__":
+    main()
