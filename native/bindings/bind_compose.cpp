@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "fairlines/blend.hpp"
 #include "fairlines/bulb.hpp"
 #include "fairlines/compose.hpp"
 #include "fairlines/intersect.hpp"
@@ -146,6 +147,32 @@ void bind_compose(py::module_& m) {
       },
       "hull"_a, "bulb"_a = nullptr, "hull_u"_a = 48, "hull_v"_a = 20, "bulb_u"_a = 16, "bulb_v"_a = 24,
       "tolerance"_a = 1e-7, "margin"_a = 0.3);
+
+  m.def(
+      "_blend_surface",
+      [](const NurbsSurface& a, py::handle ba, const NurbsSurface& b, py::handle bb, int samples, double tension,
+         int check_samples) {
+        BlendOptions o;
+        o.samples = samples;
+        o.tension = tension;
+        o.check_samples = check_samples;
+        const BlendSurface r = blend_surface(a, py_convert::matrix(ba, "boundary_a", 2), b,
+                                             py_convert::matrix(bb, "boundary_b", 2), o);
+        auto cont = [](const BoundaryContinuity& c) {
+          return py::dict("max_angle_deg"_a = c.max_angle_deg, "max_gap"_a = c.max_gap);
+        };
+        return py::make_tuple(r.surface, cont(r.at_a), cont(r.at_b));
+      },
+      "a"_a, "boundary_a"_a, "b"_a, "boundary_b"_a, "samples"_a = 61, "tension"_a = 1.0, "check_samples"_a = 400);
+  m.def(
+      "boundary_continuity",
+      [](const NurbsSurface& blend, bool at_v1, const NurbsSurface& s, int samples) {
+        const BoundaryContinuity c = measure_boundary_continuity(blend, at_v1, s, samples);
+        return py::dict("max_angle_deg"_a = c.max_angle_deg, "max_gap"_a = c.max_gap);
+      },
+      "blend"_a, "at_v1"_a, "surface"_a, "samples"_a = 400,
+      "Max normal angle (deg) and gap (m) between a blend's v = 0 (or v = 1) edge and a surface, "
+      "by closest-point projection at `samples` points.");
 
   m.def("orient_bare_hull", &orient_bare_hull, "hull"_a, "plane_tolerance"_a = 1e-6,
         "The hull surface re-oriented to u aft->stem, v keel->deck (see compose.hpp).");

@@ -33,10 +33,12 @@ from ._native import (  # noqa: F401  (re-exported API)
     validate_knots,
 )
 
-from ._native import mesh_volume, orient_bare_hull, triangulate_polygon  # noqa: F401,E402
+from ._native import boundary_continuity, mesh_volume, orient_bare_hull, triangulate_polygon  # noqa: F401,E402
 from .compose import (  # noqa: F401,E402
     KRACHT_NAMES,
+    BlendSurface,
     BulbousBow,
+    blend_surface,
     ComposedHull,
     Mesh,
     compose,

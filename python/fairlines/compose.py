@@ -17,7 +17,9 @@ from . import _native
 from ._native import NurbsSurface
 
 __all__ = [
+    "BlendSurface",
     "BulbousBow",
+    "blend_surface",
     "ComposedHull",
     "Mesh",
     "compose",
@@ -301,3 +303,53 @@ def mesh_hydrostatics(mesh: Mesh, draft: float, *, half: bool = True) -> dict:
         raise ValueError(f"draft {draft} m gives no displaced volume; expected a draft above the keel")
     f = 2.0 if half else 1.0
     return dict(volume=f * vol, lcb=mx / vol, kb=mz / vol)
+
+
+def _boundary_uv(surface: NurbsSurface, boundary, what: str) -> np.ndarray:
+    if isinstance(boundary, tuple) and len(boundary) == 2 and isinstance(boundary[0], str):
+        which, value = boundary
+        t = np.linspace(0.0, 1.0, 129)
+        if which == "u":
+            kv = surface.knots_v
+            return np.column_stack([np.full_like(t, float(value)), kv[0] + (kv[-1] - kv[0]) * t])
+        if which == "v":
+            ku = surface.knots_u
+            return np.column_stack([ku[0] + (ku[-1] - ku[0]) * t, np.full_like(t, float(value))])
+        raise ValueError(f"{what} iso-line direction is {which!r}; expected 'u' or 'v'")
+    arr = np.asarray(boundary, dtype=float)
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise ValueError(f"{what} has shape {arr.shape}; expected (k, 2) (u, v) points or ('u'|'v', value)")
+    return arr
+
+
+@dataclass(frozen=True)
+class BlendSurface:
+    """A blending surface: ``surface`` (u along the boundaries, v = 0 on surface a, v = 1 on
+    b) and its measured continuity at each boundary (``at_a``, ``at_b``: max normal angle in
+    degrees and max gap in metres, by closest-point projection)."""
+
+    surface: NurbsSurface
+    at_a: dict
+    at_b: dict
+
+    @property
+    def max_angle_deg(self) -> float:
+        return max(self.at_a["max_angle_deg"], self.at_b["max_angle_deg"])
+
+
+def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, boundary_b, *,
+                  samples: int = 61, tension: float = 1.0, check_samples: int = 400) -> BlendSurface:
+    """Blending surface between two surfaces with C1 (tangent-plane) continuity along both
+    boundary curves (seed 000 step 4), by fair skinning of cubic Hermite sections.
+
+    boundary_a, boundary_b   curves on each surface: a (k, 2) polyline of (u, v) parameters, or
+                             an iso-line ``("u", value)`` / ``("v", value)``; both run the
+                             same way (first point to first point).
+    samples                  sections along the boundaries; tension: cross-boundary tangent
+                             length relative to a third of the gap.
+    """
+    ba = _boundary_uv(surface_a, boundary_a, "boundary_a")
+    bb = _boundary_uv(surface_b, boundary_b, "boundary_b")
+    s, at_a, at_b = _native._blend_surface(surface_a, ba, surface_b, bb, int(samples), float(tension),
+                                           int(check_samples))
+    return BlendSurface(s, dict(at_a), dict(at_b))

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "compose_fixtures.hpp"
+#include "fairlines/blend.hpp"
 #include "fairlines/bulb.hpp"
 #include "fairlines/compose.hpp"
 #include "fairlines/conics.hpp"
@@ -124,4 +125,30 @@ TEST(Compose, BulbAwayFromTheHullIsAClearError) {
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("bulb cannot meet the hull"), std::string::npos) << e.what();
   }
+}
+
+TEST(Blend, FilletFromPlaneToCylinderIsTangentPlaneContinuous) {
+  const NurbsSurface plane = plane_z(0.0, 5.0);  // (u, v) -> (-5 + 10 u, -5 + 10 v, 0)
+  const NurbsSurface cyl = cylinder(Eigen::Vector3d(0, 0, 2), Eigen::Vector3d(0, 0, 1), 1.0, 3.0);
+  const int k = 129;
+  Eigen::MatrixXd ca(k, 2), cb(k, 2);
+  for (int i = 0; i < k; ++i) {
+    const double a = 2.0 * M_PI * i / (k - 1);
+    ca.row(i) << 0.5 + 0.3 * std::cos(a), 0.5 + 0.3 * std::sin(a);
+    cb.row(i) << static_cast<double>(i) / (k - 1), 0.0;  // the cylinder's bottom circle
+  }
+  const BlendSurface b = blend_surface(plane, ca, cyl, cb);
+  EXPECT_LT(b.at_a.max_angle_deg, 0.5);
+  EXPECT_LT(b.at_b.max_angle_deg, 0.5);
+  EXPECT_LT(b.at_a.max_gap, 1e-3);
+  // independent check at the boundary: the blend's normal is vertical on the plane side
+  for (int i = 0; i <= 20; ++i) {
+    const Eigen::MatrixXd d = b.surface.derivatives(i / 20.0, 0.0, 1);
+    const Eigen::Vector3d su = d.row(2).transpose(), sv = d.row(1).transpose();
+    const Eigen::Vector3d n = su.cross(sv).normalized();
+    EXPECT_GT(std::abs(n.z()), std::cos(0.5 * M_PI / 180.0));
+  }
+  Eigen::MatrixXd one(1, 2);
+  one << 0.5, 0.5;
+  EXPECT_THROW(blend_surface(plane, one, cyl, cb), InvalidInput);
 }

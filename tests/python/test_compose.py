@@ -241,3 +241,55 @@ def test_compose_forebody_example_runs(tmp_path, monkeypatch, capsys):
     runpy.run_path(str(script), run_name="__main__")
     assert "c_vpr" in capsys.readouterr().out
     assert (tmp_path / "panamax_standin_forebody_full.stl").stat().st_size > 84
+
+
+MAX_BLEND_ANGLE_DEG = 0.5  # issue 5: normals across each blend boundary within 0.5 degrees
+
+
+def _normal_angle_profile(blend, at_v1, surface, n=300):
+    """Angles (deg) between blend and surface normals along a blend edge, computed here
+    with the public evaluation API (closest_point + normal) independently of the engine's
+    own measurement."""
+    out = []
+    for u in np.linspace(0.0, 1.0, n):
+        d = blend.derivatives(u, 1.0 if at_v1 else 0.0, 1)
+        nb = np.cross(d[1, 0], d[0, 1])
+        nb /= np.linalg.norm(nb)
+        su, sv, q = surface.closest_point(d[0, 0])
+        out.append(np.degrees(np.arccos(min(1.0, abs(float(nb @ surface.normal(su, sv)))))))
+        assert np.linalg.norm(q - d[0, 0]) < 1e-3
+    return np.array(out)
+
+
+def test_blend_between_hull_and_bulb_is_tangent_plane_continuous(composed, bulb):
+    hull_s = composed.trimmed_surfaces[0][0]
+    seam = composed.intersection_curves[0]
+    on_hull = seam["uv_a"] - [0.03, 0.0]  # a curve on the hull aft of the seam
+    on_bulb = ("u", float(seam["uv_b"][:, 0].max()) + 0.08)  # a bulb section ahead of it
+    bl = fl.blend_surface(hull_s, on_hull, bulb.surface, on_bulb)
+    assert bl.max_angle_deg <= MAX_BLEND_ANGLE_DEG
+    assert _normal_angle_profile(bl.surface, False, hull_s).max() <= MAX_BLEND_ANGLE_DEG
+    assert _normal_angle_profile(bl.surface, True, bulb.surface).max() <= MAX_BLEND_ANGLE_DEG
+    assert bl.at_a["max_gap"] < 1e-3 and bl.at_b["max_gap"] < 1e-3
+
+
+def test_blend_of_plane_and_cylinder_is_c1():
+    """A fillet from the deck-like plane z = 0 (circle of radius 3) up to the bottom circle of
+    a vertical cylinder of radius 1 at z = 2: normals must match the plane's (+-z) and the
+    cylinder's (radial) along the two circles."""
+    plane = fl.NurbsSurface(1, 1, [0, 0, 1, 1], [0, 0, 1, 1],
+                            [[[-5, -5, 0], [-5, 5, 0]], [[5, -5, 0], [5, 5, 0]]])
+    cyl = fl.cylinder([0.0, 0.0, 2.0], [0.0, 0.0, 1.0], 1.0, 3.0)
+    a = np.linspace(0.0, 2.0 * np.pi, 129)
+    circle_uv = np.column_stack([0.5 + 0.3 * np.cos(a), 0.5 + 0.3 * np.sin(a)])
+    bl = fl.blend_surface(plane, circle_uv, cyl, ("v", 0.0))
+    assert bl.max_angle_deg <= MAX_BLEND_ANGLE_DEG
+    assert _normal_angle_profile(bl.surface, False, plane).max() <= MAX_BLEND_ANGLE_DEG
+    assert _normal_angle_profile(bl.surface, True, cyl).max() <= MAX_BLEND_ANGLE_DEG
+    mid = bl.surface.evaluate(np.linspace(0, 1, 50), np.full(50, 0.5))
+    r = np.hypot(mid[:, 0], mid[:, 1])
+    assert np.all((r > 1.0) & (r < 3.0)) and np.all((mid[:, 2] > 0.0) & (mid[:, 2] < 2.0))
+    with pytest.raises(ValueError, match="boundary_a"):
+        fl.blend_surface(plane, [[0.5, 0.5]], cyl, ("v", 0.0))
+    with pytest.raises(ValueError, match="outside the surface domain"):
+        fl.blend_surface(plane, [[0.5, 0.5], [2.0, 0.5]], cyl, ("v", 0.0))
