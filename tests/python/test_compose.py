@@ -293,3 +293,17 @@ def test_blend_of_plane_and_cylinder_is_c1():
         fl.blend_surface(plane, [[0.5, 0.5]], cyl, ("v", 0.0))
     with pytest.raises(ValueError, match="outside the surface domain"):
         fl.blend_surface(plane, [[0.5, 0.5], [2.0, 0.5]], cyl, ("v", 0.0))
+
+
+def test_any_parameter_orientation_of_the_bare_hull_is_accepted(hull, composed):
+    """Issue 4's hull may run u/v the other way: transposed and reversed copies compose to
+    the same closed half hull volume."""
+    P = np.asarray(hull.control_points)
+    ku, kv = np.asarray(hull.knots_u), np.asarray(hull.knots_v)
+    swapped = fl.NurbsSurface(hull.degree_v, hull.degree_u, kv, ku, P.transpose(1, 0, 2))
+    reversed_u = fl.NurbsSurface(hull.degree_u, hull.degree_v, ku[-1] + ku[0] - ku[::-1], kv, P[::-1])
+    bulb = composed.trimmed_surfaces[1][0]
+    for h in (swapped, reversed_u):
+        c = fl.compose([h, bulb])
+        assert edge_census(c.mesh.faces) == (0, 0, 0)
+        assert c.volume == pytest.approx(composed.volume, rel=1e-9)
