@@ -126,6 +126,16 @@ void bind_compose(py::module_& m) {
       .def_property_readonly("x_aft", [](const ComposedHull& c) { return c.x_aft; })
       .def_property_readonly("z_deck", [](const ComposedHull& c) { return c.z_deck; })
       .def_property_readonly("hull", [](const ComposedHull& c) { return c.hull; })
+      .def_property_readonly("blend", [](const ComposedHull& c) -> py::object {
+        if (c.blend.empty()) return py::none();
+        return py::cast(c.blend[0]);
+      })
+      .def_property_readonly("blend_continuity", [](const ComposedHull& c) {
+        auto d = [](const BoundaryContinuity& x) {
+          return py::dict("max_angle_deg"_a = x.max_angle_deg, "max_gap"_a = x.max_gap);
+        };
+        return py::make_tuple(d(c.blend_at_hull), d(c.blend_at_bulb));
+      })
       .def("full_mesh", [](const ComposedHull& c) {
         const TriMesh f = mirror_full_hull(c);
         return py::make_tuple(to_array(f.vertices), faces_array(f.faces));
@@ -134,7 +144,8 @@ void bind_compose(py::module_& m) {
   m.def(
       "_compose_hull",
       [](const NurbsSurface& hull, const NurbsSurface* bulb, int hull_u, int hull_v, int bulb_u, int bulb_v,
-         double tolerance, double margin) {
+         double tolerance, double margin, py::handle blend_hull_uv, double blend_bulb_u, double blend_tension,
+         int blend_rows) {
         ComposeOptions o;
         o.hull_u = hull_u;
         o.hull_v = hull_v;
@@ -142,11 +153,20 @@ void bind_compose(py::module_& m) {
         o.bulb_v = bulb_v;
         o.tolerance = tolerance;
         o.margin = margin;
+        o.blend_rows = blend_rows;
+        BlendSpec spec;
+        const bool with_blend = !blend_hull_uv.is_none();
+        if (with_blend) {
+          spec.hull_uv = py_convert::matrix(blend_hull_uv, "blend hull boundary", 2);
+          spec.bulb_u = blend_bulb_u;
+          spec.tension = blend_tension;
+        }
         py::gil_scoped_release release;
-        return compose_hull(hull, bulb, o);
+        return compose_hull(hull, bulb, o, with_blend ? &spec : nullptr);
       },
       "hull"_a, "bulb"_a = nullptr, "hull_u"_a = 48, "hull_v"_a = 20, "bulb_u"_a = 16, "bulb_v"_a = 24,
-      "tolerance"_a = 1e-7, "margin"_a = 0.3);
+      "tolerance"_a = 1e-7, "margin"_a = 0.3, "blend_hull_uv"_a = py::none(), "blend_bulb_u"_a = 0.5,
+      "blend_tension"_a = 1.0, "blend_rows"_a = 8);
 
   m.def(
       "_blend_surface",

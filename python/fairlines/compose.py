@@ -139,7 +139,7 @@ class BulbousBow:
 
 
 #: Face labels of :attr:`ComposedHull.face_part`.
-FACE_PARTS = ("hull", "bulb", "centre_plane", "deck", "aft_cut")
+FACE_PARTS = ("hull", "bulb", "centre_plane", "deck", "aft_cut", "blend")
 
 
 class ComposedHull:
@@ -161,6 +161,12 @@ class ComposedHull:
         surf = [native.hull] + list(surfaces[1:])
         self.trimmed_surfaces = [(surf[i], [np.asarray(l) for l in loops])
                                  for i, loops in native.trimmed_surfaces]
+        #: The blending surface actually meshed (or None) and its measured continuity
+        #: ({max_angle_deg, max_gap} at the hull and at the bulb).
+        self.blend = native.blend
+        self.blend_continuity = tuple(dict(d) for d in native.blend_continuity) if native.blend is not None else None
+        if self.blend is not None:
+            self.trimmed_surfaces.append((self.blend, [np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])]))
         self.x_aft = float(native.x_aft)
         self.z_deck = float(native.z_deck)
 
@@ -183,13 +189,18 @@ class ComposedHull:
 
 def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int = 48,
             hull_v: int = 20, bulb_u: int = 16, bulb_v: int = 24, tolerance: float = 1e-7,
-            margin: float = 0.3) -> ComposedHull:
+            margin: float = 0.3, blend_rows: int = 8) -> ComposedHull:
     """Boolean composition of hull subdomains into one closed half hull.
 
-    subdomains  [bare_hull] or [bare_hull, bulb]: NurbsSurface (or :class:`BulbousBow` for
-                the bulb). The bare hull has one edge on an aft cut (x = const), one on the
-                deck (z = const) and two on the centre plane (keel and stem); any parameter
-                orientation is accepted.
+    subdomains  [bare_hull], [bare_hull, bulb] or [bare_hull, bulb, blend]: NurbsSurface (or
+                :class:`BulbousBow` for the bulb). The bare hull has one edge on an aft cut
+                (x = const), one on the deck (z = const) and two on the centre plane (keel and
+                stem); any parameter orientation is accepted without a blend. The blend is a
+                :class:`BlendSurface` from ``blend_surface(hull, boundary_on_hull, bulb,
+                ("u", u_b))`` (hull in the orient_bare_hull convention; the boundary on the
+                hull runs from centre-plane edge to centre-plane edge): the hull is trimmed
+                along its boundary, the bulb ahead of ``u_b``, and the blend (re-skinned at
+                the mesh resolution, C1 along both) joins them with shared vertices.
     operation   "union" (the only Boolean a hull needs: the bulb's part inside the hull is
                 removed, and the hull's part inside the bulb).
     hull_u, hull_v, bulb_u, bulb_v   tessellation cells; tolerance: intersection (m, <= 1e-6);
@@ -201,15 +212,26 @@ def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int 
     if operation != "union":
         raise ValueError(f"operation is {operation!r}; expected 'union'")
     subs = list(subdomains)
-    if not 1 <= len(subs) <= 2:
-        raise ValueError(f"subdomains has {len(subs)} entries; expected [bare_hull] or [bare_hull, bulb]")
+    if not 1 <= len(subs) <= 3:
+        raise ValueError(f"subdomains has {len(subs)} entries; expected [bare_hull], [bare_hull, bulb] "
+                         "or [bare_hull, bulb, blend]")
+    blend_kw = {}
+    if len(subs) == 3:
+        bl = subs.pop()
+        if not isinstance(bl, BlendSurface):
+            raise ValueError(f"subdomains[2] is {type(bl).__name__}; expected a BlendSurface from blend_surface()")
+        bb = bl.boundary_b
+        if not (isinstance(bb, tuple) and len(bb) == 2 and bb[0] == "u"):
+            raise ValueError(f"the blend's bulb boundary is {bb!r}; expected a bulb section ('u', value)")
+        blend_kw = dict(blend_hull_uv=np.asarray(bl.boundary_a, float), blend_bulb_u=float(bb[1]),
+                        blend_tension=float(bl.tension), blend_rows=int(blend_rows))
     surfaces = [s.surface if isinstance(s, BulbousBow) else s for s in subs]
     for i, s in enumerate(surfaces):
         if not isinstance(s, NurbsSurface):
             raise ValueError(f"subdomains[{i}] is {type(s).__name__}; expected a NurbsSurface or BulbousBow")
     native = _native._compose_hull(surfaces[0], surfaces[1] if len(surfaces) > 1 else None,
                                    int(hull_u), int(hull_v), int(bulb_u), int(bulb_v),
-                                   float(tolerance), float(margin))
+                                   float(tolerance), float(margin), **blend_kw)
     return ComposedHull(native, surfaces)
 
 
@@ -331,6 +353,9 @@ class BlendSurface:
     surface: NurbsSurface
     at_a: dict
     at_b: dict
+    boundary_a: Any = None  #: the boundary on surface a as given ((k, 2) (u, v) array)
+    boundary_b: Any = None  #: the boundary on surface b as given
+    tension: float = 1.0
 
     @property
     def max_angle_deg(self) -> float:
@@ -352,4 +377,4 @@ def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, 
     bb = _boundary_uv(surface_b, boundary_b, "boundary_b")
     s, at_a, at_b = _native._blend_surface(surface_a, ba, surface_b, bb, int(samples), float(tension),
                                            int(check_samples))
-    return BlendSurface(s, dict(at_a), dict(at_b))
+    return BlendSurface(s, dict(at_a), dict(at_b), ba, boundary_b, float(tension))

@@ -152,3 +152,39 @@ TEST(Blend, FilletFromPlaneToCylinderIsTangentPlaneContinuous) {
   one << 0.5, 0.5;
   EXPECT_THROW(blend_surface(plane, one, cyl, cb), InvalidInput);
 }
+
+TEST(Compose, HullBulbAndBlendComposeWatertightWithC1Boundaries) {
+  Forebody fb;
+  const NurbsSurface h = fb.surface();
+  const BulbousBow b = make_bulbous_bow(KrachtCoefficients{}, fb.ship());
+  const ComposedHull u = compose_hull(h, &b.surface, ComposeOptions{});
+  // hull boundary: a half ellipse in (u, v) around the union seam, ending on the stem edge
+  double umin = 1.0, tlo = 1.0, thi = 0.0, ubmax = 0.0;
+  for (const auto& p : u.intersection_curves[0].points) {
+    umin = std::min(umin, p.uv_a.x());
+    tlo = std::min(tlo, p.uv_a.y());
+    thi = std::max(thi, p.uv_a.y());
+    ubmax = std::max(ubmax, p.uv_b.x());
+  }
+  const double tc = 0.5 * (tlo + thi), R = 0.5 * (thi - tlo) + 0.03, du = 1.0 - umin + 0.02;
+  ASSERT_GT(tc - R, 0.0);
+  const int k = 65;
+  BlendSpec spec;
+  spec.hull_uv.resize(k, 2);
+  for (int i = 0; i < k; ++i) {
+    const double phi = M_PI * i / (k - 1);
+    spec.hull_uv.row(i) << 1.0 - du * std::sin(phi), tc - R * std::cos(phi);
+  }
+  spec.bulb_u = std::min(0.95, ubmax + 0.08);
+  const ComposedHull c = compose_hull(h, &b.surface, ComposeOptions{}, &spec);
+  const auto chk = fairlines::test::check_edges(c.mesh);
+  EXPECT_EQ(chk.open, 0);
+  EXPECT_EQ(chk.non_manifold, 0);
+  EXPECT_EQ(chk.misoriented, 0);
+  EXPECT_EQ(fairlines::test::count_self_intersections(c.mesh), 0);
+  EXPECT_LE(c.blend_at_hull.max_angle_deg, 0.5);
+  EXPECT_LE(c.blend_at_bulb.max_angle_deg, 0.5);
+  EXPECT_GT(mesh_volume(c.mesh), 0.0);
+  const auto fchk = fairlines::test::check_edges(mirror_full_hull(c));
+  EXPECT_EQ(fchk.open + fchk.non_manifold + fchk.misoriented, 0);
+}

@@ -307,3 +307,36 @@ def test_any_parameter_orientation_of_the_bare_hull_is_accepted(hull, composed):
         c = fl.compose([h, bulb])
         assert edge_census(c.mesh.faces) == (0, 0, 0)
         assert c.volume == pytest.approx(composed.volume, rel=1e-9)
+
+
+def _hull_boundary_around(composed, clearance_u=0.02, clearance_v=0.03, k=65):
+    """A curve on the hull around the union seam: a half ellipse in (u, v) from the stem edge
+    below the bulb to the stem edge above it."""
+    uv = composed.intersection_curves[0]["uv_a"]
+    tlo, thi = uv[:, 1].min(), uv[:, 1].max()
+    tc, R, du = 0.5 * (tlo + thi), 0.5 * (thi - tlo) + clearance_v, 1.0 - uv[:, 0].min() + clearance_u
+    phi = np.linspace(0.0, np.pi, k)
+    return np.column_stack([1.0 - du * np.sin(phi), tc - R * np.cos(phi)])
+
+
+def test_hull_bulb_and_blend_compose_into_one_watertight_c1_hull(composed, bulb):
+    hull_s = composed.trimmed_surfaces[0][0]
+    on_hull = _hull_boundary_around(composed)
+    # a bulb section just ahead of the seam: the blend then stays short and the Kracht
+    # quantities at FP stay the bulb's
+    on_bulb = ("u", float(composed.intersection_curves[0]["uv_b"][:, 0].max()) + 0.04)
+    blend = fl.blend_surface(hull_s, on_hull, bulb.surface, on_bulb)
+    c = fl.compose([hull_s, bulb, blend])
+    assert edge_census(c.mesh.faces) == (0, 0, 0)
+    assert edge_census(c.full_mesh().faces) == (0, 0, 0)
+    assert set(np.unique(c.face_part)) == {0, 1, 2, 3, 4, 5}
+    assert c.volume > composed.volume * 0.99
+    # C1 across both blend boundaries, measured densely here and by the engine
+    assert _normal_angle_profile(c.blend, False, hull_s).max() <= MAX_BLEND_ANGLE_DEG
+    assert _normal_angle_profile(c.blend, True, bulb.surface).max() <= MAX_BLEND_ANGLE_DEG
+    assert max(d["max_angle_deg"] for d in c.blend_continuity) <= MAX_BLEND_ANGLE_DEG
+    got = fl.measure_kracht(c.mesh, x_fp=L, **SHIP)
+    for name in fl.KRACHT_NAMES:
+        assert got[name] == pytest.approx(bulb.kracht[name], rel=KRACHT_TOL), name
+    with pytest.raises(ValueError, match="bulb section"):
+        fl.compose([hull_s, bulb, fl.blend_surface(hull_s, on_hull, bulb.surface, ("v", 0.5))])

@@ -12,6 +12,8 @@ struct BlendOptions {
   int samples = 61;       ///< sections skinned along the boundaries (>= 4)
   double tension = 1.0;   ///< cross-boundary tangent length / (|B - A| / 3), > 0
   int check_samples = 400;  ///< boundary points at which continuity is measured (>= 2)
+  bool centre_plane_ends = true;  ///< when both boundaries start (end) on y = 0, keep that end
+                                  ///< section in the centre plane so a half hull closes
 };
 
 /// Measured continuity of one blend boundary.
@@ -23,6 +25,9 @@ struct BoundaryContinuity {
 struct BlendSurface {
   NurbsSurface surface;  ///< s along the boundaries (u), t from boundary a (v = 0) to b (v = 1)
   BoundaryContinuity at_a, at_b;
+  Eigen::MatrixXd params_a;  ///< (samples, 2) (u, v) on a of the skinned sections
+  Eigen::MatrixXd params_b;  ///< (samples, 2) (u, v) on b
+  Eigen::VectorXd params_s;  ///< (samples) blend u of each section (v = 0 on a, 1 on b)
 };
 
 /// boundary_a, boundary_b  (k, 2) polylines in the (u, v) parameter space of a and b (k >= 2;

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "fairlines/blend.hpp"
 #include "fairlines/intersect.hpp"
 #include "fairlines/mesh.hpp"
 #include "fairlines/surface.hpp"
@@ -20,6 +21,16 @@ struct ComposeOptions {
   double tolerance = 1e-7;  ///< surface-surface intersection tolerance (metres, <= 1e-6)
   double margin = 0.3;      ///< clearance kept between the seam and whole hull cells (in cells)
   double plane_tolerance = 1e-6;  ///< relative tolerance of the centre plane / deck / aft checks
+  int blend_rows = 8;       ///< blend cells from the hull boundary to the bulb boundary (>= 1)
+};
+
+/// The blending subdomain of a composition: its boundary on the hull (a (k, 2) (u, v)
+/// polyline on orient_bare_hull(hull), from one centre-plane edge point to another) and on
+/// the bulb (the section u = bulb_u of the bulb, v from bottom to top).
+struct BlendSpec {
+  Eigen::MatrixXd hull_uv;
+  double bulb_u = 0.5;
+  double tension = 1.0;
 };
 
 /// A subdomain surface restricted by trimming loops in its own (u, v) parameter space.
@@ -29,7 +40,7 @@ struct TrimmedSurface {
 };
 
 /// Face labels of the composed mesh.
-enum class FacePart { Hull = 0, Bulb = 1, CentrePlane = 2, Deck = 3, AftCut = 4 };
+enum class FacePart { Hull = 0, Bulb = 1, CentrePlane = 2, Deck = 3, AftCut = 4, Blend = 5 };
 
 struct ComposedHull {
   TriMesh mesh;                                   ///< closed half hull, outward-oriented
@@ -40,6 +51,8 @@ struct ComposedHull {
   double x_aft = 0.0;                             ///< aft cut plane x (m)
   double z_deck = 0.0;                            ///< deck plane z (m)
   NurbsSurface hull;                              ///< the hull as used (re-oriented to the convention)
+  std::vector<NurbsSurface> blend;                ///< the blending surface, when composed with one
+  BoundaryContinuity blend_at_hull, blend_at_bulb;  ///< its measured continuity
 };
 
 /// Brings a bare hull surface to the convention used here by swapping / reversing its
@@ -52,7 +65,11 @@ NurbsSurface orient_bare_hull(const NurbsSurface& hull, double plane_tolerance =
 /// non-null, a bulb surface laid out as make_bulbous_bow makes it (u aft -> nose pole, v
 /// bottom -> top centre line). Throws InvalidInput when the bulb does not meet the hull in
 /// one seam from the keel/stem line around to the stem ("bulb cannot meet the hull").
-ComposedHull compose_hull(const NurbsSurface& hull, const NurbsSurface* bulb, const ComposeOptions& options = {});
+/// With `blend`, hull and bulb do not intersect: the hull is trimmed along blend->hull_uv,
+/// the bulb along u = blend->bulb_u, and a blending surface (blend_surface, C1 along both)
+/// joins them; the three meshes share the boundary vertices.
+ComposedHull compose_hull(const NurbsSurface& hull, const NurbsSurface* bulb, const ComposeOptions& options = {},
+                          const BlendSpec* blend = nullptr);
 
 /// Full hull: the half hull mirrored in y = 0 and welded along the centre plane, with the
 /// centre-plane faces dropped.

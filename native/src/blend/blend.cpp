@@ -169,6 +169,16 @@ BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundar
     rows[2].row(j) = (fb[j].p + h * db).transpose();
     rows[3].row(j) = fb[j].p.transpose();
   }
+  if (o.centre_plane_ends) {
+    const double tol = 1e-9 * std::max(1.0, (fb[0].p - fa[0].p).norm());
+    for (int j : {0, n - 1})
+      if (std::abs(fa[j].p.y()) <= tol && std::abs(fb[j].p.y()) <= tol) {
+        rows[1](j, 1) = 0.0;
+        rows[2](j, 1) = 0.0;
+        rows[0](j, 1) = 0.0;
+        rows[3](j, 1) = 0.0;
+      }
+  }
   // common parameters (averaged chord lengths of the rows) and knots; interpolate each row
   Eigen::VectorXd par = Eigen::VectorXd::Zero(n);
   for (int j = 1; j < n; ++j) {
@@ -187,7 +197,7 @@ BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundar
   Eigen::VectorXd kt(8);
   kt << 0, 0, 0, 0, 1, 1, 1, 1;
   NurbsSurface s(p, 3, K, kt, n, 4, ctrl);
-  BlendSurface out{s, {}, {}};
+  BlendSurface out{s, {}, {}, ua, ub, par};
   out.at_a = measure_boundary_continuity(s, false, a, o.check_samples);
   out.at_b = measure_boundary_continuity(s, true, b, o.check_samples);
   return out;

@@ -254,14 +254,17 @@ NurbsSurface orient_bare_hull(const NurbsSurface& hull, double tol_rel) {
                      "and the other two on the centre plane y = 0 (as given:" + why + ")");
 }
 
-ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb, const ComposeOptions& o) {
+ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb, const ComposeOptions& o,
+                          const BlendSpec* blend) {
   if (o.hull_u < 4) detail::fail("hull_u is ", o.hull_u, "; expected >= 4");
   if (o.hull_v < 4) detail::fail("hull_v is ", o.hull_v, "; expected >= 4");
   if (o.bulb_u < 2) detail::fail("bulb_u is ", o.bulb_u, "; expected >= 2");
   if (o.bulb_v < 4) detail::fail("bulb_v is ", o.bulb_v, "; expected >= 4");
   if (!(o.margin > 0.0) || o.margin > 1.0) detail::fail("margin is ", o.margin, "; expected a fraction of a cell in (0, 1]");
+  if (o.blend_rows < 1) detail::fail("blend_rows is ", o.blend_rows, "; expected >= 1");
+  if (blend && !bulb) detail::fail("a blend needs a bulb to blend into; got no bulb");
   const NurbsSurface H = orient_bare_hull(hull_in, o.plane_tolerance);
-  ComposedHull out{TriMesh{}, Eigen::VectorXi(), {}, {}, Eigen::VectorXi(), 0.0, 0.0, H};
+  ComposedHull out{TriMesh{}, Eigen::VectorXi(), {}, {}, Eigen::VectorXi(), 0.0, 0.0, H, {}, {}, {}};
   const auto [u0, u1] = H.domain_u();
   const auto [v0, v1] = H.domain_v();
   out.x_aft = edge_points(H, true, false).col(0).mean();
@@ -294,65 +297,98 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
     const NurbsSurface& B = *bulb;
     const auto [bu0, bu1] = B.domain_u();
     const auto [bv0, bv1] = B.domain_v();
-    IntersectOptions io;
-    io.tolerance = o.tolerance;
-    const std::vector<IntersectionCurve> curves = intersect_surfaces(H, B, io);
-    if (curves.empty())
-      throw InvalidInput("bulb cannot meet the hull: the bulb surface does not intersect the bare hull "
-                         "(move it aft / into the hull, or lengthen its aft body)");
-    const double vt = 1e-6 * (bv1 - bv0);
-    const IntersectionCurve* seam = nullptr;
-    for (const auto& c : curves) {
-      if (c.closed) continue;
-      const double va = c.points.front().uv_b.y(), vb = c.points.back().uv_b.y();
-      if (std::min(va, vb) <= bv0 + vt && std::max(va, vb) >= bv1 - vt) seam = &c;
-    }
-    if (!seam || curves.size() != 1) {
-      std::ostringstream os;
-      os << "bulb cannot meet the hull: the surfaces intersect in " << curves.size()
-         << " curve(s) but the union needs one seam running around the bulb from its bottom to its top centre line";
-      for (const auto& c : curves)
-        for (const auto& q : c.points)
-          if (q.uv_b.x() <= bu0 + 1e-6 * (bu1 - bu0)) {
-            os << "; the bulb's aft end is not inside the hull (lengthen aft_length)";
-            goto done;
-          }
-    done:
-      throw InvalidInput(os.str());
-    }
-    for (const auto& q : seam->points)
-      if (q.uv_b.x() <= bu0 + 1e-6 * (bu1 - bu0))
-        throw InvalidInput("bulb cannot meet the hull: the seam reaches the bulb's aft end, which is not inside the "
-                           "hull (lengthen aft_length or move the bulb aft)");
-    std::vector<IntersectionPoint> pts = seam->points;
-    if (pts.front().uv_b.y() > pts.back().uv_b.y()) std::reverse(pts.begin(), pts.end());
-    for (size_t k = 1; k < pts.size(); ++k)
-      if (pts[k].uv_b.y() < pts[k - 1].uv_b.y() - vt)
-        throw InvalidInput("bulb cannot meet the hull in a simple seam: the intersection turns back around the bulb");
-    // re-sample at the bulb columns
     const int NV = o.bulb_v, NU = o.bulb_u;
     std::vector<Eigen::Vector4d> sx(NV + 1);
     IntersectionCurve rs;
-    for (int j = 0; j <= NV; ++j) {
-      const double vj = j == NV ? bv1 : bv0 + (bv1 - bv0) * j / NV;
-      size_t k = 1;
-      while (k + 1 < pts.size() && pts[k].uv_b.y() < vj) ++k;
-      const auto& a = pts[k - 1];
-      const auto& c = pts[k];
-      const double dv = c.uv_b.y() - a.uv_b.y();
-      const double w = dv > 0 ? std::clamp((vj - a.uv_b.y()) / dv, 0.0, 1.0) : 0.0;
-      Eigen::Vector4d x;
-      x << (1 - w) * a.uv_a + w * c.uv_a, (1 - w) * a.uv_b.x() + w * c.uv_b.x(), vj;
-      const double r = seam_newton(H, B, x, o.tolerance);
-      if (r > 1e-6) {
-        std::ostringstream os;
-        os << "compose: seam point at bulb v = " << vj << " did not converge (gap " << r << " m)";
-        throw ConvergenceError(os.str());
+    std::vector<Eigen::Vector3d> blend_pts;  // blend mode: (NV + 1) x (rows - 1) interior points
+    const int NT = o.blend_rows;
+    if (!blend) {
+      IntersectOptions io;
+      io.tolerance = o.tolerance;
+      const std::vector<IntersectionCurve> curves = intersect_surfaces(H, B, io);
+      if (curves.empty())
+        throw InvalidInput("bulb cannot meet the hull: the bulb surface does not intersect the bare hull "
+                           "(move it aft / into the hull, or lengthen its aft body)");
+      const double vt = 1e-6 * (bv1 - bv0);
+      const IntersectionCurve* seam = nullptr;
+      for (const auto& c : curves) {
+        if (c.closed) continue;
+        const double va = c.points.front().uv_b.y(), vb = c.points.back().uv_b.y();
+        if (std::min(va, vb) <= bv0 + vt && std::max(va, vb) >= bv1 - vt) seam = &c;
       }
-      sx[j] = x;
-      const Eigen::Vector3d ph = H.evaluate(x[0], x[1]), pb = B.evaluate(x[2], x[3]);
-      rs.points.push_back({0.5 * (ph + pb), {x[0], x[1]}, {x[2], x[3]}});
-      rs.max_gap = std::max(rs.max_gap, (ph - pb).norm());
+      if (!seam || curves.size() != 1) {
+        std::ostringstream os;
+        os << "bulb cannot meet the hull: the surfaces intersect in " << curves.size()
+           << " curve(s) but the union needs one seam running around the bulb from its bottom to its top centre line";
+        for (const auto& c : curves)
+          for (const auto& q : c.points)
+            if (q.uv_b.x() <= bu0 + 1e-6 * (bu1 - bu0)) {
+              os << "; the bulb's aft end is not inside the hull (lengthen aft_length)";
+              goto done;
+            }
+      done:
+        throw InvalidInput(os.str());
+      }
+      for (const auto& q : seam->points)
+        if (q.uv_b.x() <= bu0 + 1e-6 * (bu1 - bu0))
+          throw InvalidInput("bulb cannot meet the hull: the seam reaches the bulb's aft end, which is not inside the "
+                             "hull (lengthen aft_length or move the bulb aft)");
+      std::vector<IntersectionPoint> pts = seam->points;
+      if (pts.front().uv_b.y() > pts.back().uv_b.y()) std::reverse(pts.begin(), pts.end());
+      for (size_t k = 1; k < pts.size(); ++k)
+        if (pts[k].uv_b.y() < pts[k - 1].uv_b.y() - vt)
+          throw InvalidInput("bulb cannot meet the hull in a simple seam: the intersection turns back around the bulb");
+      // re-sample at the bulb columns
+      for (int j = 0; j <= NV; ++j) {
+        const double vj = j == NV ? bv1 : bv0 + (bv1 - bv0) * j / NV;
+        size_t k = 1;
+        while (k + 1 < pts.size() && pts[k].uv_b.y() < vj) ++k;
+        const auto& a = pts[k - 1];
+        const auto& c = pts[k];
+        const double dv = c.uv_b.y() - a.uv_b.y();
+        const double w = dv > 0 ? std::clamp((vj - a.uv_b.y()) / dv, 0.0, 1.0) : 0.0;
+        Eigen::Vector4d x;
+        x << (1 - w) * a.uv_a + w * c.uv_a, (1 - w) * a.uv_b.x() + w * c.uv_b.x(), vj;
+        const double r = seam_newton(H, B, x, o.tolerance);
+        if (r > 1e-6) {
+          std::ostringstream os;
+          os << "compose: seam point at bulb v = " << vj << " did not converge (gap " << r << " m)";
+          throw ConvergenceError(os.str());
+        }
+        sx[j] = x;
+        const Eigen::Vector3d ph = H.evaluate(x[0], x[1]), pb = B.evaluate(x[2], x[3]);
+        rs.points.push_back({0.5 * (ph + pb), {x[0], x[1]}, {x[2], x[3]}});
+        rs.max_gap = std::max(rs.max_gap, (ph - pb).norm());
+      }
+    } else {
+      Eigen::MatrixXd hb = blend->hull_uv;
+      if (hb.cols() != 2 || hb.rows() < 2)
+        detail::fail("blend hull boundary has shape (", hb.rows(), ", ", hb.cols(), "); expected (k, 2), k >= 2");
+      if (!(blend->bulb_u > bu0 && blend->bulb_u < bu1))
+        detail::fail("blend bulb_u is ", blend->bulb_u, "; expected inside the bulb's u domain (", bu0, ", ", bu1, ")");
+      const Eigen::Vector3d first = H.evaluate(hb(0, 0), hb(0, 1)), last = H.evaluate(hb(hb.rows() - 1, 0), hb(hb.rows() - 1, 1));
+      if (first.z() > last.z()) hb = hb.colwise().reverse().eval();  // bottom -> top, like the bulb's v
+      Eigen::MatrixXd bb(129, 2);
+      for (int q = 0; q < 129; ++q) bb.row(q) << blend->bulb_u, bv0 + (bv1 - bv0) * q / 128.0;
+      BlendOptions bo;
+      constexpr int kSectionsPerColumn = 4;  // the skin is finer than the mesh columns
+      bo.samples = kSectionsPerColumn * NV + 1;
+      bo.tension = blend->tension;
+      const BlendSurface bs = blend_surface(H, hb, B, bb, bo);
+      out.blend.push_back(bs.surface);
+      out.blend_at_hull = bs.at_a;
+      out.blend_at_bulb = bs.at_b;
+      for (int j = 0; j <= NV; ++j) {
+        const int q = kSectionsPerColumn * j;
+        sx[j] << bs.params_a(q, 0), bs.params_a(q, 1), bs.params_b(q, 0), bs.params_b(q, 1);
+        const Eigen::Vector3d ph = H.evaluate(sx[j][0], sx[j][1]);
+        rs.points.push_back({ph, {sx[j][0], sx[j][1]}, {bs.params_s[q], 0.0}});
+        for (int k = 1; k < NT; ++k) {
+          Eigen::Vector3d p = bs.surface.evaluate(bs.params_s[q], static_cast<double>(k) / NT);
+          if (j == 0 || j == NV) p.y() = 0.0;
+          blend_pts.push_back(p);
+        }
+      }
     }
     // seam ends must sit on the hull's centre-plane edges
     auto perim = [&](const Eigen::Vector4d& x, double& p) {
@@ -369,11 +405,31 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
     const bool seam_reversed = pa > pb;  // walk the seam from lower to higher perimeter coordinate
     if (seam_reversed) std::swap(pa, pb);
     // bulb vertices
-    std::vector<int> seam_id(NV + 1);
+    std::vector<int> seam_id(NV + 1), bulb_seam_id(NV + 1);
     for (int j = 0; j <= NV; ++j) {
       Eigen::Vector3d p = rs.points[j].point;
       if (j == 0 || j == NV) p.y() = 0.0;
       seam_id[j] = mb.add(p);
+    }
+    if (!blend) {
+      bulb_seam_id = seam_id;
+    } else {
+      std::vector<int> col(NT + 1);
+      std::vector<int> prev;
+      for (int j = 0; j <= NV; ++j) {
+        Eigen::Vector3d pb = B.evaluate(sx[j][2], sx[j][3]);
+        if (j == 0 || j == NV) pb.y() = 0.0;
+        bulb_seam_id[j] = mb.add(pb);
+        col[0] = seam_id[j];
+        for (int k = 1; k < NT; ++k) col[k] = mb.add(blend_pts[static_cast<size_t>(j) * (NT - 1) + k - 1]);
+        col[NT] = bulb_seam_id[j];
+        if (j > 0)
+          for (int k = 0; k < NT; ++k) {
+            mb.tri(prev[k], col[k], col[k + 1], FacePart::Blend);
+            mb.tri(prev[k], col[k + 1], prev[k + 1], FacePart::Blend);
+          }
+        prev = col;
+      }
     }
     Eigen::Vector3d pole = B.evaluate(bu1, 0.5 * (bv0 + bv1));
     pole.y() = 0.0;
@@ -381,7 +437,7 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
     std::vector<int> bid((NV + 1) * NU);
     for (int j = 0; j <= NV; ++j) {
       const double vj = sx[j][3];
-      bid[j * NU] = seam_id[j];
+      bid[j * NU] = bulb_seam_id[j];
       for (int i = 1; i < NU; ++i) {
         const double ui = sx[j][2] + (bu1 - sx[j][2]) * i / NU;
         Eigen::Vector3d p = B.evaluate(ui, vj);
