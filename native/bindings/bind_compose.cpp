@@ -183,7 +183,7 @@ void bind_compose(py::module_& m) {
         };
         return py::make_tuple(r.surface, cont(r.at_a), cont(r.at_b));
       },
-      "a"_a, "boundary_a"_a, "b"_a, "boundary_b"_a, "samples"_a = 61, "tension"_a = 1.0, "check_samples"_a = 400);
+      "a"_a, "boundary_a"_a, "b"_a, "boundary_b"_a, "samples"_a = 61, "tension"_a = 1.0, "check_samples"_a = 200);
   m.def(
       "boundary_continuity",
       [](const NurbsSurface& blend, bool at_v1, const NurbsSurface& s, int samples) {

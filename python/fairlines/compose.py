@@ -363,7 +363,7 @@ class BlendSurface:
 
 
 def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, boundary_b, *,
-                  samples: int = 61, tension: float = 1.0, check_samples: int = 400) -> BlendSurface:
+                  samples: int = 61, tension: float = 1.0, check_samples: int = 200) -> BlendSurface:
     """Blending surface between two surfaces with C1 (tangent-plane) continuity along both
     boundary curves (seed 000 step 4), by fair skinning of cubic Hermite sections.
 
@@ -371,7 +371,8 @@ def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, 
                              an iso-line ``("u", value)`` / ``("v", value)``; both run the
                              same way (first point to first point).
     samples                  sections along the boundaries; tension: cross-boundary tangent
-                             length relative to a third of the gap.
+                             length relative to a third of the gap; check_samples: points per
+                             boundary at which the normal angle and gap are measured.
     """
     ba = _boundary_uv(surface_a, boundary_a, "boundary_a")
     bb = _boundary_uv(surface_b, boundary_b, "boundary_b")

@@ -11,7 +11,7 @@ namespace fairlines {
 struct BlendOptions {
   int samples = 61;       ///< sections skinned along the boundaries (>= 4)
   double tension = 1.0;   ///< cross-boundary tangent length / (|B - A| / 3), > 0
-  int check_samples = 400;  ///< boundary points at which continuity is measured (>= 2)
+  int check_samples = 200;  ///< boundary points at which continuity is measured (>= 2)
   bool centre_plane_ends = true;  ///< when both boundaries start (end) on y = 0, keep that end
                                   ///< section in the centre plane so a half hull closes
 };

@@ -190,10 +190,11 @@ BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundar
   const int p = 3;
   const Eigen::VectorXd K = averaged_knots(par, p, n);
   Eigen::MatrixXd ctrl(static_cast<Eigen::Index>(n) * 4, 3);
-  for (int r = 0; r < 4; ++r) {
-    const CurveFit f = fit_curve_with(rows[r], par, K, p);
-    for (int i = 0; i < n; ++i) ctrl.row(i * 4 + r) = f.curve.control_points().row(i);
-  }
+  Eigen::MatrixXd all(n, 12);  // the four rows share one interpolation matrix: one solve
+  for (int r = 0; r < 4; ++r) all.middleCols(3 * r, 3) = rows[r];
+  const Eigen::MatrixXd c = fit_curve_with(all, par, K, p).curve.control_points();
+  for (int r = 0; r < 4; ++r)
+    for (int i = 0; i < n; ++i) ctrl.row(i * 4 + r) = c.block<1, 3>(i, 3 * r);
   Eigen::VectorXd kt(8);
   kt << 0, 0, 0, 0, 1, 1, 1, 1;
   NurbsSurface s(p, 3, K, kt, n, 4, ctrl);

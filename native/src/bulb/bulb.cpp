@@ -183,24 +183,22 @@ BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& 
   const int p = 3;
   const Eigen::VectorXd Ku = averaged_knots(pu, p, o.control_u);
   const Eigen::VectorXd Kv = averaged_knots(pv, p, o.control_v);
-  // sections first (common knots), then the control columns along u
-  Eigen::MatrixXd sec_ctrl(static_cast<Eigen::Index>(ns) * o.control_v, 3);
-  for (int i = 0; i < ns; ++i) {
-    const CurveFit f = fit_curve_with(grid.middleRows(static_cast<Eigen::Index>(i) * np, np), pv, Kv, p);
-    sec_ctrl.middleRows(static_cast<Eigen::Index>(i) * o.control_v, o.control_v) = f.curve.control_points();
-  }
-  Eigen::MatrixXd ctrl(static_cast<Eigen::Index>(o.control_u) * o.control_v, 3);
-  for (int j = 0; j < o.control_v; ++j) {
-    Eigen::MatrixXd col(ns, 3);
-    for (int i = 0; i < ns; ++i) col.row(i) = sec_ctrl.row(i * o.control_v + j);
-    const CurveFit f = fit_curve_with(col, pu, Ku, p);
-    for (int i = 0; i < o.control_u; ++i) ctrl.row(i * o.control_v + j) = f.curve.control_points().row(i);
-  }
-  NurbsSurface surf(p, p, Ku, Kv, o.control_u, o.control_v, ctrl);
-  double dev = 0.0;
+  // sections first (common knots), then the control columns along u; every section (and
+  // then every control column) shares one collocation matrix, so each direction is one
+  // least-squares solve with all coordinates as right-hand sides
+  Eigen::MatrixXd sections(np, 3 * ns);
   for (int i = 0; i < ns; ++i)
-    for (int j = 0; j < np; ++j)
-      dev = std::max(dev, (surf.evaluate(pu[i], pv[j]) - grid.row(i * np + j).transpose()).norm());
+    for (int j = 0; j < np; ++j) sections.block<1, 3>(j, 3 * i) = grid.row(i * np + j);
+  const Eigen::MatrixXd sec_ctrl = fit_curve_with(sections, pv, Kv, p).curve.control_points();  // (cv, 3 ns)
+  Eigen::MatrixXd columns(ns, 3 * o.control_v);
+  for (int i = 0; i < ns; ++i)
+    for (int j = 0; j < o.control_v; ++j) columns.block<1, 3>(i, 3 * j) = sec_ctrl.block<1, 3>(j, 3 * i);
+  const Eigen::MatrixXd col_ctrl = fit_curve_with(columns, pu, Ku, p).curve.control_points();  // (cu, 3 cv)
+  Eigen::MatrixXd ctrl(static_cast<Eigen::Index>(o.control_u) * o.control_v, 3);
+  for (int i = 0; i < o.control_u; ++i)
+    for (int j = 0; j < o.control_v; ++j) ctrl.row(i * o.control_v + j) = col_ctrl.block<1, 3>(i, 3 * j);
+  NurbsSurface surf(p, p, Ku, Kv, o.control_u, o.control_v, ctrl);
+  const double dev = (surf.evaluate_grid(pu, pv) - grid).rowwise().norm().maxCoeff();
   return {std::move(surf), s, dev};
 }
 

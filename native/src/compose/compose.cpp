@@ -374,6 +374,7 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
       constexpr int kSectionsPerColumn = 4;  // the skin is finer than the mesh columns
       bo.samples = kSectionsPerColumn * NV + 1;
       bo.tension = blend->tension;
+      bo.check_samples = 200;  // continuity measured every half per cent of the boundary
       const BlendSurface bs = blend_surface(H, hb, B, bb, bo);
       out.blend.push_back(bs.surface);
       out.blend_at_hull = bs.at_a;
