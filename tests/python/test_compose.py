@@ -159,6 +159,12 @@ def test_sweep_of_bulb_length_and_breadth_composes(hull, c_lpr, c_bb):
     got = fl.measure_kracht(c.mesh, x_fp=L, **SHIP)
     for name in fl.KRACHT_NAMES:
         assert got[name] == pytest.approx(b.kracht[name], rel=KRACHT_TOL), (name, c_lpr, c_bb)
+    # and with a blending surface between hull and bulb
+    on_bulb = ("u", float(c.intersection_curves[0]["uv_b"][:, 0].max()) + 0.04)
+    bl = fl.blend_surface(hull, _hull_boundary_around(c), b.surface, on_bulb)
+    cb = fl.compose([hull, b, bl])
+    assert edge_census(cb.mesh.faces) == (0, 0, 0)
+    assert max(d["max_angle_deg"] for d in cb.blend_continuity) <= MAX_BLEND_ANGLE_DEG
 
 
 def test_bulb_that_cannot_meet_the_hull_is_a_clear_error(hull):
