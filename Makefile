@@ -10,7 +10,7 @@ OUT ?= out
 SYS_PACKAGES := libeigen3-dev libgtest-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup sysdeps pydeps build cpp-test py-test test demo bench clean
+.PHONY: setup sysdeps pydeps build cpp-test py-test test demo bench clean blender-deps addon blender-test blender-demo blender-bench
 
 setup: sysdeps pydeps
 
@@ -40,7 +40,7 @@ cpp-test: sysdeps pydeps
 py-test: build
 	$(PY) -m pytest -q tests/python
 
-test: cpp-test py-test
+test: cpp-test py-test blender-test
 
 demo: build
 	$(PY) examples/demo.py --out $(OUT)
@@ -49,4 +49,36 @@ bench: build
 	$(PY) bench/run_all.py
 
 clean:
-	rm -rf build $(OUT)
+	rm -rf build $(OUT) dist
+
+# ---- Blender add-on (issue 7) -------------------------------------------------------------
+# Two Blenders, both on CPython 3.11: the newest `bpy` module from PyPI (extension install,
+# into .venv-bpy) and Debian's `blender` package (3.4, legacy add-on install, system python3
+# with python3-numpy). xvfb is for the node-editor screenshot.
+BPY_VENV := .venv-bpy
+BPY_VERSION ?= 5.0.1
+BLENDER_SYS_PACKAGES := blender python3-numpy xvfb
+
+$(BPY_VENV)/.bpy-stamp:
+	$(PYTHON) -m venv $(BPY_VENV)
+	$(BPY_VENV)/bin/python -m pip install -q bpy==$(BPY_VERSION)
+	touch $@
+
+blender-deps: $(BPY_VENV)/.bpy-stamp
+	@dpkg -s $(BLENDER_SYS_PACKAGES) >/dev/null 2>&1 || { \
+	  echo "installing system packages: $(BLENDER_SYS_PACKAGES)"; \
+	  $(SUDO) apt-get update -qq && $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(BLENDER_SYS_PACKAGES); }
+
+# dist/fairlines_blender-<v>-extension.zip (4.2+) and -legacy.zip (3.4 .. 4.1), engine inside.
+addon: build
+	$(PY) tools/package_addon.py
+
+blender-test: build blender-deps
+	$(PY) -m pytest -q -p no:cacheprovider tests/blender
+
+blender-demo: addon blender-deps
+	BLENDER_USER_RESOURCES=$(abspath $(OUT))/blender/user $(BPY_VENV)/bin/python examples/blender_demo.py \
+	  --zip "$$(ls dist/fairlines_blender-*-extension.zip)" --out $(OUT)/blender
+
+blender-bench: build blender-deps
+	$(PY) bench/bench_blender_latency.py

@@ -140,8 +140,13 @@ def _show(node, state, message, ms, info=None):
     if state == "ERROR":
         node.use_custom_color = True
         node.color = ERROR_COLOUR
-    elif node.use_custom_color and tuple(node.color) == tuple(ERROR_COLOUR):
-        node.use_custom_color = False
+    elif node.use_custom_color and _is_error_colour(node.color):
+        node.use_custom_color = False  # only undo our own red, never a colour the user chose
+
+
+def _is_error_colour(colour):
+    # Stored in single precision (and as RGBA in newer releases): compare loosely.
+    return all(abs(a - b) < 1e-3 for a, b in zip(colour, ERROR_COLOUR))
 
 
 def _message(exc):
@@ -160,6 +165,10 @@ def evaluate(tree):
     t_start = time.perf_counter()
     ran = []
     try:
+        if not tree.use_fake_user:
+            # A node tree shown in an editor has no real user, and Blender drops data without
+            # users when saving: the design would vanish from the .blend.
+            tree.use_fake_user = True
         order, cyclic = _order(tree)
         for node in cyclic:
             _show(node, "ERROR", "Node is part of a cycle; links must flow one way", -1.0)

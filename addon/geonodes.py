@@ -14,7 +14,8 @@ import bpy
 
 from . import ids
 
-GROUP_VERSION = 3
+GROUP_VERSION = 4
+WELD = 1e-4  # metres
 
 INPUTS = [("NodeSocketGeometry", "Geometry"), ("NodeSocketBool", "Mirror"),
           ("NodeSocketBool", "Use Union"), ("NodeSocketCollection", "Union"),
@@ -56,6 +57,9 @@ def _switch(nodes, links, condition, false_geo, true_geo):
 def _boolean(nodes, operation):
     node = nodes.new("GeometryNodeMeshBoolean")
     node.operation = operation
+    # Exact: the float solver (default in newer releases) mis-classifies curved closed
+    # surfaces; exact is the one that is right for hull subdomains.
+    node.solver = "EXACT"
     return node
 
 
@@ -80,9 +84,10 @@ def ensure_group():
     gin = nodes.new("NodeGroupInput")
     gout = nodes.new("NodeGroupOutput")
     # Weld first: tessellated seams and poles repeat vertices, and the exact Boolean needs
-    # closed (manifold) meshes to tell inside from outside.
+    # closed (manifold) meshes to tell inside from outside. Mesh coordinates are single
+    # precision: at x ~ 250 m one step is 1.5e-5 m, so the tolerance is 0.1 mm.
     weld0 = nodes.new("GeometryNodeMergeByDistance")
-    _sock(weld0.inputs, "Distance").default_value = 1e-6
+    _sock(weld0.inputs, "Distance").default_value = WELD
     links.new(gin.outputs["Geometry"], weld0.inputs[0])
     geo = weld0.outputs[0]
 
@@ -97,7 +102,7 @@ def ensure_group():
     links.new(geo, join.inputs[0])
     links.new(flip.outputs[0], join.inputs[0])
     weld = nodes.new("GeometryNodeMergeByDistance")
-    _sock(weld.inputs, "Distance").default_value = 1e-5
+    _sock(weld.inputs, "Distance").default_value = WELD
     links.new(join.outputs[0], weld.inputs[0])
     stage = _switch(nodes, links, gin.outputs["Mirror"], geo, weld.outputs[0])
 

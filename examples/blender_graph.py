@@ -5,7 +5,7 @@ Until the hull operators land (design curves, fair skin, bulbous bow), the examp
 a fitted surface: an offsets grid (stations x waterlines) of a full-bodied forebody with the
 Panamax principal dimensions, fitted by the engine, refined by knot insertion, tessellated,
 analysed for curvature and drawn as iso-lines; plus a bulb, an ellipse revolved about its
-axis (length set on the Ellipse node), as its own subdomain object.
+axis (length set on the Ellipse node), half of it revolved, as its own subdomain object.
 """
 
 import bpy
@@ -85,14 +85,16 @@ def build(tree_name=TREE_NAME):
     ell.inputs["Center"].default_value = (LPP - 1.0, 0.0, 6.0)
     ell.inputs["Semi-axis A"].default_value = (8.0, 0.0, 0.0)    # bulb half-length (m)
     ell.inputs["Semi-axis B"].default_value = (0.0, 0.0, 4.2)    # bulb half-height (m)
-    rev = node(ids.NODE_REVOLVE, "Bulb", -650, -350)
+    half = node(ids.NODE_TRIM_CURVE, "Bulb Half Profile", -650, -350)  # nose, over the top, tail
+    half.inputs["Start"].default_value = 0.0
+    half.inputs["End"].default_value = 0.5
+    rev = node(ids.NODE_REVOLVE, "Bulb", -400, -350)
     rev.inputs["Axis Point"].default_value = (LPP - 1.0, 0.0, 6.0)
-    rev.inputs["Axis Direction"].default_value = (-1.0, 0.0, 0.0)
-    rev.inputs["Angle"].default_value = np.pi   # the closed profile sweeps both halves
-    btess = node(ids.NODE_TESSELLATE, "Tessellate Bulb", -400, -350)
+    rev.inputs["Axis Direction"].default_value = (-1.0, 0.0, 0.0)  # S_u x S_v outward
+    btess = node(ids.NODE_TESSELLATE, "Tessellate Bulb", -150, -350)
     btess.inputs["Resolution U"].default_value = 64
     btess.inputs["Resolution V"].default_value = 48
-    bulb_out = node(ids.NODE_MESH_OUTPUT, "Bulb Output", -150, -350, object_name="Bulb", mirror=False)
+    bulb_out = node(ids.NODE_MESH_OUTPUT, "Bulb Output", 100, -350, object_name="Bulb", mirror=False)
 
     L = tree.links.new
     L(pts.outputs["Points"], fit.inputs["Points"])
@@ -102,10 +104,27 @@ def build(tree_name=TREE_NAME):
     L(curv.outputs["Mesh"], hull_out.inputs["Mesh"])
     L(knot.outputs["Surface"], iso.inputs["Surface"])
     L(iso.outputs["Lines"], lines_out.inputs["Lines"])
-    L(ell.outputs["Curve"], rev.inputs["Profile"])
+    L(ell.outputs["Curve"], half.inputs["Curve"])
+    L(half.outputs["Curve"], rev.inputs["Profile"])
     L(rev.outputs["Surface"], btess.inputs["Surface"])
     L(btess.outputs["Mesh"], bulb_out.inputs["Mesh"])
     return tree
+
+
+def enable_addon(zip_path, tmp_user_dir=None):
+    """Install and enable the packaged add-on the way a user does: as an extension on
+    Blender 4.2+, as a legacy add-on before. Returns the add-on's module name."""
+    import addon_utils
+
+    def fail(exc):
+        raise exc
+    if bpy.app.version >= (4, 2, 0):
+        bpy.ops.extensions.package_install_files(filepath=zip_path, repo="user_default",
+                                                 enable_on_install=True)
+        return "bl_ext.user_default.fairlines"
+    bpy.ops.preferences.addon_install(filepath=zip_path, overwrite=True)
+    addon_utils.enable("fairlines_blender", default_set=True, handle_error=fail)
+    return "fairlines_blender"
 
 
 def _addon_module(sub):

@@ -87,6 +87,26 @@ class FLNodeFitCurve(FairlinesNode, bpy.types.Node):
 
 
 @register
+class FLNodeTrimCurve(FairlinesNode, bpy.types.Node):
+    """The piece of a curve between two parameters, as a clamped curve (engine split)"""
+    bl_idname = ids.NODE_TRIM_CURVE
+    bl_label = "Trim Curve"
+    category = "Curves"
+    inputs_spec = [(ids.SOCKET_CURVE, "Curve", {}),
+                   (ids.SOCKET_FLOAT, "Start", {"default": 0.0}),
+                   (ids.SOCKET_FLOAT, "End", {"default": 0.5})]
+    outputs_spec = [(ids.SOCKET_CURVE, "Curve")]
+
+    def compute(self, inputs):
+        engine.require()
+        curve = inputs["Curve"]
+        if curve is None:
+            raise NodeError("Connect a curve")
+        out = curve.split(inputs["Start"], inputs["End"])
+        return {"Curve": out, "__info__": "domain %.3g .. %.3g" % tuple(curve.domain)}
+
+
+@register
 class FLNodeCurveLines(FairlinesNode, bpy.types.Node):
     """Sample a curve into a polyline (to show it as a curve object)"""
     bl_idname = ids.NODE_CURVE_LINES

@@ -26,6 +26,10 @@ class FLNodeTessellate(FairlinesNode, bpy.types.Node):
                    (ids.SOCKET_INT, "Resolution U", {"default": 64}),
                    (ids.SOCKET_INT, "Resolution V", {"default": 32})]
     outputs_spec = [(ids.SOCKET_MESH, "Mesh")]
+    params = ("flip",)
+    flip: props.boolean("Flip Normals", False,
+                        "Reverse the face winding, for surfaces whose S_u x S_v points inward "
+                        "(Booleans need outward normals)")
 
     def compute(self, inputs):
         fl, np = engine.require()
@@ -40,7 +44,10 @@ class FLNodeTessellate(FairlinesNode, bpy.types.Node):
         pts = s.evaluate_grid(us, vs).reshape(-1, 3)
         uu, vv = np.meshgrid(us, vs, indexing="ij")
         params = np.column_stack([uu.ravel(), vv.ravel()])
-        mesh = MeshData(pts, grid_quads(nu, nv, np), params=params, surface=s)
+        faces = grid_quads(nu, nv, np)
+        if self.flip:
+            faces = faces[:, ::-1].copy()
+        mesh = MeshData(pts, faces, params=params, surface=s)
         return {"Mesh": mesh, "__info__": "%d vertices, %d faces" % (len(pts), len(mesh.faces))}
 
 

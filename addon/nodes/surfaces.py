@@ -1,6 +1,8 @@
 """Surface nodes: primitives, revolution, fitting and the shape-control operators (knot
 insertion, degree elevation, weights, control points), all computed by the engine."""
 
+import math
+
 import bpy
 
 from .. import engine, ids, props
@@ -115,8 +117,12 @@ class FLNodeRevolve(FairlinesNode, bpy.types.Node):
             raise NodeError("Connect a profile curve")
         if profile.dim == 2:
             raise NodeError("Profile is a 2-D curve; revolve needs a 3-D curve (give 3-D centre and axes)")
-        return {"Surface": fl.revolve(profile, inputs["Axis Point"], inputs["Axis Direction"],
-                                      inputs["Angle"])}
+        angle = inputs["Angle"]
+        # Blender stores the socket in single precision: 360 degrees reads back as 2 pi plus
+        # 1.7e-7, which the engine rightly rejects as more than a full turn.
+        if 0.0 < angle - 2.0 * math.pi < 1e-6:
+            angle = 2.0 * math.pi
+        return {"Surface": fl.revolve(profile, inputs["Axis Point"], inputs["Axis Direction"], angle)}
 
 
 @register
