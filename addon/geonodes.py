@@ -58,8 +58,9 @@ def _boolean(nodes, operation):
     node = nodes.new("GeometryNodeMeshBoolean")
     node.operation = operation
     # Exact: the float solver (default in newer releases) mis-classifies curved closed
-    # surfaces; exact is the one that is right for hull subdomains.
-    node.solver = "EXACT"
+    # surfaces; exact is the one that is right for hull subdomains. (3.x has only exact.)
+    if hasattr(node, "solver"):
+        node.solver = "EXACT"
     return node
 
 
