@@ -10,7 +10,7 @@ OUT ?= out
 SYS_PACKAGES := libeigen3-dev libgtest-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: setup sysdeps pydeps build cpp-test py-test test demo bench clean blender-deps addon blender-test blender-demo blender-bench
+.PHONY: setup sysdeps pydeps build cpp-test py-test test demo bench clean blender-deps addon blender-test blender-demo blender-bench blender-screenshot
 
 setup: sysdeps pydeps
 
@@ -82,3 +82,12 @@ blender-demo: addon blender-deps
 
 blender-bench: build blender-deps
 	$(PY) bench/bench_blender_latency.py
+
+# docs/node_editor.png: Debian's Blender with its interface under Xvfb (throw-away user dirs).
+blender-screenshot: addon blender-deps
+	rm -rf build/shot
+	BLENDER_USER_SCRIPTS=$(abspath build/shot/scripts) BLENDER_USER_CONFIG=$(abspath build/shot/config) \
+	  blender -b --factory-startup --python tools/blender_screenshot.py -- --zip none --prefs-only
+	BLENDER_USER_SCRIPTS=$(abspath build/shot/scripts) BLENDER_USER_CONFIG=$(abspath build/shot/config) \
+	  xvfb-run -a -s "-screen 0 1600x1000x24" blender --python tools/blender_screenshot.py -- \
+	  --zip "$$(ls dist/fairlines_blender-*-legacy.zip)" --out docs/node_editor.png

@@ -1,7 +1,7 @@
 """Fairlines for Blender: the engine's operators as a node tree, live.
 
 Installs as a Blender extension (4.2 LTS and newer, blender_manifest.toml, engine wheel in
-wheels/) or as a legacy add-on (3.4 .. 4.1, engine unpacked in _vendor/), on Python 3.11.
+wheels/) or as a legacy add-on (3.4 .. 4.1, engine wheel in wheels/, unpacked on first use), on Python 3.11.
 Registration never depends on the compiled engine: when it cannot be imported the tree, nodes
 and menus still register and every node shows why it cannot run.
 """

@@ -38,14 +38,16 @@ def stage(scene):
     scene.collection.objects.link(sun)
     world = scene.world or bpy.data.worlds.new("World")
     scene.world = world
-    world.use_nodes = True
+    if bpy.app.version < (5, 0, 0):  # always node-based from 5.0 on
+        world.use_nodes = True
     bg = world.node_tree.nodes.get("Background")
     if bg is not None:
         bg.inputs[0].default_value = (0.62, 0.72, 0.85, 1.0)
         bg.inputs[1].default_value = 0.8
     paint = bpy.data.materials.new("Hull Paint")
     paint.diffuse_color = (0.55, 0.08, 0.06, 1.0)
-    paint.use_nodes = True
+    if bpy.app.version < (5, 0, 0):
+        paint.use_nodes = True
     bsdf = paint.node_tree.nodes.get("Principled BSDF")
     if bsdf is not None:
         bsdf.inputs["Base Color"].default_value = (0.55, 0.08, 0.06, 1.0)

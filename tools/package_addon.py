@@ -3,7 +3,7 @@
   dist/fairlines_blender-<v>-extension.zip   Blender 4.2+ extension: blender_manifest.toml at
                                              the root, the engine wheel in wheels/
   dist/fairlines_blender-<v>-legacy.zip      Blender 3.4 .. 4.1 add-on: folder fairlines_blender/
-                                             with the engine unpacked in _vendor/
+                                             with the same wheel in wheels/ (engine.py unpacks it)
 
 The engine wheel is built from this checkout with the project's .venv (incremental: it reuses
 the scikit-build-core build directory). Usage: python tools/package_addon.py [--wheel PATH]
@@ -38,7 +38,7 @@ def build_wheel():
 
 def addon_files():
     for base, dirs, files in os.walk(ADDON):
-        dirs[:] = sorted(d for d in dirs if d not in ("__pycache__", "_vendor", "wheels"))
+        dirs[:] = sorted(d for d in dirs if d not in ("__pycache__", "wheels"))
         for f in sorted(files):
             if not f.endswith((".pyc",)):
                 path = os.path.join(base, f)
@@ -65,13 +65,11 @@ def main():
         z.write(wheel, "wheels/" + wheel_name)
 
     legacy = os.path.join(DIST, "fairlines_blender-%s-legacy.zip" % version)
-    with zipfile.ZipFile(legacy, "w", zipfile.ZIP_DEFLATED) as z, zipfile.ZipFile(wheel) as w:
+    with zipfile.ZipFile(legacy, "w", zipfile.ZIP_DEFLATED) as z:
         for path, rel in addon_files():
             if rel != "blender_manifest.toml":  # 4.2+ would take a manifest for an extension
                 z.write(path, LEGACY_NAME + "/" + rel)
-        for item in w.infolist():
-            if not item.filename.endswith("/"):
-                z.writestr(LEGACY_NAME + "/_vendor/" + item.filename, w.read(item))
+        z.write(wheel, LEGACY_NAME + "/wheels/" + wheel_name)
     print(ext)
     print(legacy)
 

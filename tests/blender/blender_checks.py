@@ -128,6 +128,17 @@ def t_register():
     eng = sub("engine")
     check(eng.available(), "engine did not import: " + eng.IMPORT_ERROR)
     results["engine_from"] = os.path.dirname(eng.fl.__file__)
+    if args.mode == "legacy":
+        # Re-installing over the running add-on reloads it; the loaded engine library must
+        # not be rewritten under Blender's feet (it used to crash here).
+        eng.fl.sphere((0.0, 0.0, 0.0), 1.0)
+        install()
+        check(sub("engine").available(), "engine lost after re-install")
+        tree = bpy.data.node_groups.new("Reinstall", sub("ids").TREE)
+        node = tree.nodes.new(sub("ids").NODE_ELLIPSE)
+        sub("evaluator").evaluate(tree)
+        check(node.fl_state == "OK", "after re-install: %s" % node.fl_message)
+        bpy.data.node_groups.remove(tree)
     return addon
 
 
