@@ -3,6 +3,7 @@
     extension from dist/*-extension.zip (the engine comes from the wheel inside it);
   - Debian's `blender` executable (3.4), installed as a legacy add-on from dist/*-legacy.zip
     (and re-installed over itself while running, which must not crash).
+A third test runs Debian's Blender with its interface under Xvfb for undo/redo.
 `make blender-test` installs both (see the Makefile); the executables can be overridden with
 FAIRLINES_BPY_PYTHON and FAIRLINES_BLENDER.
 """
@@ -66,3 +67,15 @@ def test_debian_blender_legacy(packages, tmp_path):
     assert report["blender"].startswith("3.4") and report["python"].startswith("3.11")
     assert "fairlines_engine" in report["engine_from"], report["engine_from"]
     print(json.dumps(report, indent=1))
+
+
+def test_debian_blender_gui_undo_redo(packages, tmp_path):
+    """Undo needs a window: Debian's Blender with its interface under Xvfb. Also shows the
+    timer-driven live evaluation in a real event loop (no explicit flush)."""
+    report = _run(["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", BLENDER, "--factory-startup",
+                   "--python", os.path.join(ROOT, "tests", "blender", "gui_undo_check.py"),
+                   "--", "--zip", packages["legacy"]],
+                  {"BLENDER_USER_SCRIPTS": str(tmp_path / "scripts"),
+                   "BLENDER_USER_CONFIG": str(tmp_path / "config")}, tmp_path)
+    assert report["ok"]
+    assert abs(report["v_after_undo"] - report["v_short"]) < 1e-6 * report["v_short"]
