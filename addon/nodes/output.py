@@ -79,13 +79,16 @@ class FLNodeLinesOutput(_ObjectOutput, FairlinesNode, bpy.types.Node):
 
 
 def write_obj(path, mesh):
-    """Wavefront OBJ, 1-based indices; numpy formats the rows (no per-vertex Python)."""
+    """The engine package's OBJ writer (triangles). Quads are split along the same diagonal
+    as fairlines.io.tessellate, so the file equals the package's own tessellation."""
     np = engine.np
-    with open(path, "w", encoding="ascii") as f:
-        f.write("# Fairlines surface mesh, metres, x forward from AP, y half-breadth, z up\n")
-        np.savetxt(f, mesh.vertices, fmt="v %.9g %.9g %.9g")
-        k = mesh.faces.shape[1]
-        np.savetxt(f, mesh.faces + 1, fmt="f" + " %d" * k)
+    import fairlines.io
+    faces = mesh.faces
+    if faces.shape[1] == 4:
+        faces = np.concatenate([faces[:, [0, 1, 2]], faces[:, [0, 2, 3]]])
+    elif faces.shape[1] != 3:
+        raise NodeError("OBJ export takes triangles or quads; got %d-gons" % faces.shape[1])
+    fairlines.io.write_obj(path, mesh.vertices, faces)
 
 
 @register
