@@ -161,3 +161,22 @@ HANDLERS = ((bpy.app.handlers.load_post, _on_load), (bpy.app.handlers.undo_post,
             (bpy.app.handlers.depsgraph_update_post, _on_depsgraph))
 
 CLASSES = (FairlinesTree, FL_OT_evaluate, FL_OT_export, FL_PT_status) + tuple(MENUS)
+
+
+class FairlinesPreferences(bpy.types.AddonPreferences):
+    """Shows whether the engine loaded, and why not (Preferences > Add-ons > Fairlines)."""
+    # The add-on's module name: "fairlines_blender" (legacy) or "bl_ext.<repo>.fairlines".
+    bl_idname = __package__
+
+    def draw(self, context):
+        layout = self.layout
+        if engine.available():
+            layout.label(text="Engine %s from %s" % (getattr(engine.fl, "__version__", "?"), engine.SOURCE),
+                         icon="CHECKMARK")
+        else:
+            col = layout.column()
+            col.alert = True
+            col.label(text=engine.IMPORT_ERROR, icon="ERROR")
+
+
+CLASSES = CLASSES + (FairlinesPreferences,)

@@ -128,6 +128,8 @@ def t_register():
     eng = sub("engine")
     check(eng.available(), "engine did not import: " + eng.IMPORT_ERROR)
     results["engine_from"] = os.path.dirname(eng.fl.__file__)
+    prefs = bpy.context.preferences.addons[MODULE].preferences
+    check(prefs is not None and type(prefs).__name__ == "FairlinesPreferences", "no add-on preferences")
     if args.mode == "legacy":
         # Re-installing over the running add-on reloads it; the loaded engine library must
         # not be rewritten under Blender's feet (it used to crash here).
@@ -203,6 +205,23 @@ def t_bulb_length(tree):
     ev.flush()
     check(len(bulb.data.vertices) == 80 * 48, "resolution change gave %d vertices" % len(bulb.data.vertices))
     check(abs(volume(bulb) / v1 - 1) < 0.01, "volume changed with resolution")
+
+
+def t_watched_object(tree):
+    """Editing the offsets object (an input of Points From Object) re-fits the hull."""
+    ev = sub("evaluator")
+    hull, offsets = bpy.data.objects["Forebody"], bpy.data.objects["Forebody Offsets"]
+    h0 = coords(hull)
+    offsets.location.z = 1.0
+    bpy.context.view_layer.update()  # the depsgraph update the handler listens to
+    check(tree.name in ev._pending, "moving the offsets object did not queue the tree")
+    ev.flush()
+    check("Fit Forebody" in ev.last_stats["evaluated"], "fit did not re-run: %s" % ev.last_stats["evaluated"])
+    check(np.allclose(coords(hull)[:, 2] - h0[:, 2], 1.0, atol=1e-3), "hull did not follow the offsets")
+    offsets.location.z = 0.0
+    bpy.context.view_layer.update()
+    ev.flush()
+    check(np.allclose(coords(hull), h0, atol=1e-5), "hull did not return")
 
 
 def t_boolean(tree):
@@ -399,6 +418,8 @@ def main():
         else:
             t_bulb_length(tree)
             steps.append("bulb length")
+            t_watched_object(tree)
+            steps.append("watched object")
             t_boolean(tree)
             steps.append("boolean")
             t_errors(tree)
