@@ -9,7 +9,10 @@ load need no special bookkeeping: whatever changed is re-run.
 
 Property changes do not evaluate inside the update callback (that would run in the middle of a
 slider drag and stall the UI); they queue the tree and a zero-delay timer evaluates it once,
-coalescing a burst of changes into one evaluation.
+coalescing a burst of changes into one evaluation. The timer works in slices of about
+SLICE_MS: when a slice is used up between two nodes it hands control back to Blender's event
+loop and carries on at the next tick, so a long graph does not freeze the interface (the cache
+keys make resuming trivial: nodes already re-run are up to date).
 """
 
 import time
@@ -28,6 +31,7 @@ class Entry:
         self.key, self.outputs, self.version, self.ms, self.ok = key, outputs, version, ms, ok
 
 
+SLICE_MS = 30.0
 _cache = {}          # (tree name, node name) -> Entry
 _pending = set()     # names of trees waiting for evaluation
 _timer_on = False
@@ -45,25 +49,32 @@ def request(tree):
     if _busy or not is_fairlines_tree(tree):
         return
     _pending.add(tree.name)
-    if not _timer_on:
+    # A running timer picks the tree up before it stops (it returns None only when nothing
+    # is pending), so registering once is enough.
+    if not (_timer_on or bpy.app.timers.is_registered(_on_timer)):
         _timer_on = True
         bpy.app.timers.register(_on_timer, first_interval=0.0, persistent=True)
 
 
 def _on_timer():
     global _timer_on
+    flush(deadline=time.perf_counter() + SLICE_MS * 1e-3)
+    if _pending:
+        return 0.0  # more to do: run again right after Blender has handled its events
     _timer_on = False
-    flush()
     return None
 
 
-def flush():
-    """Evaluate every queued tree now (the timer does this; tests and scripts call it)."""
+def flush(deadline=None):
+    """Evaluate every queued tree (the timer does this in slices; tests and scripts call it
+    without a deadline to finish now)."""
     while _pending:
         name = _pending.pop()
         tree = bpy.data.node_groups.get(name)
         if is_fairlines_tree(tree):
-            evaluate(tree)
+            evaluate(tree, deadline)
+            if deadline is not None and time.perf_counter() > deadline:
+                return
 
 
 def clear(tree_name=None, outputs_only=False):
@@ -156,8 +167,9 @@ def _message(exc):
     return "%s: %s" % (name, exc)
 
 
-def evaluate(tree):
-    """Evaluate a tree now; returns the names of the nodes that ran."""
+def evaluate(tree, deadline=None):
+    """Evaluate a tree; returns the names of the nodes that ran. With a deadline
+    (perf_counter seconds) it stops between nodes once past it and queues the tree again."""
     global _busy
     if _busy:
         return []
@@ -174,6 +186,9 @@ def evaluate(tree):
             _show(node, "ERROR", "Node is part of a cycle; links must flow one way", -1.0)
             _cache.pop((tree.name, node.name), None)
         for node in order:
+            if deadline is not None and ran and time.perf_counter() > deadline:
+                _pending.add(tree.name)  # resumed by the timer at its next tick
+                break
             if _run_node(tree, node):
                 ran.append(node.name)
         live = {n.name for n in tree.nodes}
