@@ -192,8 +192,9 @@ def evaluate(tree, deadline=None):
             if _run_node(tree, node):
                 ran.append(node.name)
         live = {n.name for n in tree.nodes}
-        for key in [k for k in _cache if k[0] == tree.name and k[1] not in live]:
-            del _cache[key]
+        trees = set(bpy.data.node_groups.keys())
+        for key in [k for k in _cache if (k[0] == tree.name and k[1] not in live) or k[0] not in trees]:
+            del _cache[key]  # deleted nodes, and trees deleted or renamed
     finally:
         _busy = False
     last_stats.update(tree=tree.name, evaluated=ran, ms=(time.perf_counter() - t_start) * 1e3)

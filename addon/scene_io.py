@@ -13,15 +13,21 @@ def _scene_collection():
 
 
 def ensure_object(name, data_type, current=None):
-    """The object to write into: `current` while it is still alive and of the right kind,
-    else an object called `name` (created and linked to the scene when missing)."""
+    """The object called `name` (the node's Object field names it); failing that the node's
+    previous object `current`, renamed, so a changed name renames rather than leaves a stray
+    copy; failing that a new object linked to the scene."""
     def usable(obj):
         try:
             return obj is not None and obj.type == data_type and obj.users > 0
         except ReferenceError:
             return False
-    obj = current if usable(current) else bpy.data.objects.get(name)
+    obj = bpy.data.objects.get(name)
     if not usable(obj):
+        obj = None
+        if usable(current) and bpy.data.objects.get(name) is None:
+            obj = current
+            obj.name = name
+    if obj is None:
         if data_type == "MESH":
             data = bpy.data.meshes.new(name)
         else:

@@ -223,6 +223,29 @@ def t_bulb_length(tree):
     check(abs(volume(bulb) / v1 - 1) < 0.01, "volume changed with resolution")
 
 
+def t_rename_output(tree):
+    """The Object field names the output object: changing it renames the object in place."""
+    ev = sub("evaluator")
+    out = tree.nodes["Bulb Output"]
+    obj = bpy.data.objects["Bulb"]
+    n_objects = len(bpy.data.objects)
+    out.object_name = "Bulb Renamed"
+    ev.flush()
+    check(bpy.data.objects.get("Bulb Renamed") == obj and "Bulb" not in bpy.data.objects,
+          "renaming did not rename the object")
+    check(len(bpy.data.objects) == n_objects, "renaming created an object")
+    out.object_name = "Bulb"
+    ev.flush()
+    check(bpy.data.objects.get("Bulb") == obj, "renaming back failed")
+    # A deleted output object is re-created from the cached result, without re-running upstream.
+    bpy.data.objects.remove(obj)
+    ev.request(tree)
+    ev.flush()
+    check(ev.last_stats["evaluated"] == ["Bulb Output"], "re-creating ran %s" % ev.last_stats["evaluated"])
+    check("Bulb" in bpy.data.objects and len(bpy.data.objects["Bulb"].data.vertices) == 80 * 48,
+          "deleted output object not re-created")
+
+
 def t_watched_object(tree):
     """Editing the offsets object (an input of Points From Object) re-fits the hull."""
     ev = sub("evaluator")
@@ -434,6 +457,8 @@ def main():
         else:
             t_bulb_length(tree)
             steps.append("bulb length")
+            t_rename_output(tree)
+            steps.append("rename output")
             t_watched_object(tree)
             steps.append("watched object")
             t_boolean(tree)
