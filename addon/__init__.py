@@ -18,7 +18,7 @@ bl_info = {
 
 import bpy  # noqa: E402
 
-from . import engine, evaluator, ids, sockets, tree  # noqa: E402
+from . import engine, evaluator, sockets, tree  # noqa: E402
 from .nodes import NODE_CLASSES  # noqa: E402
 
 
