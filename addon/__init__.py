@@ -63,7 +63,6 @@ def unregister():
         pass
     if bpy.app.timers.is_registered(evaluator._on_timer):
         bpy.app.timers.unregister(evaluator._on_timer)
-    evaluator._timer_on = False
     evaluator._pending.clear()
     evaluator.clear()
     while _registered:

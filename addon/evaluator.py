@@ -34,7 +34,6 @@ class Entry:
 SLICE_MS = 30.0
 _cache = {}          # (tree name, node name) -> Entry
 _pending = set()     # names of trees waiting for evaluation
-_timer_on = False
 _busy = False
 last_stats = {"tree": "", "evaluated": [], "ms": 0.0}
 
@@ -45,23 +44,20 @@ def is_fairlines_tree(tree):
 
 def request(tree):
     """Queue a tree for evaluation (called from property update callbacks)."""
-    global _timer_on
     if _busy or not is_fairlines_tree(tree):
         return
     _pending.add(tree.name)
-    # A running timer picks the tree up before it stops (it returns None only when nothing
-    # is pending), so registering once is enough.
-    if not (_timer_on or bpy.app.timers.is_registered(_on_timer)):
-        _timer_on = True
+    # Ask Blender, not a flag of ours, whether the timer is live: Blender can drop timers
+    # (file load, undo) without calling them. A running timer picks the tree up before it
+    # stops (it returns None only when nothing is pending).
+    if not bpy.app.timers.is_registered(_on_timer):
         bpy.app.timers.register(_on_timer, first_interval=0.0, persistent=True)
 
 
 def _on_timer():
-    global _timer_on
     flush(deadline=time.perf_counter() + SLICE_MS * 1e-3)
     if _pending:
         return 0.0  # more to do: run again right after Blender has handled its events
-    _timer_on = False
     return None
 
 

@@ -3,8 +3,10 @@
     xvfb-run -a blender --factory-startup --python gui_undo_check.py -- --zip ...-legacy.zip
 
 Builds the example graph, lengthens the bulb, undoes and redoes, and checks that the node
-value, the evaluated mesh and its volume follow. Prints FAIRLINES-CHECKS <json>; exits 1 on
-failure.
+value, the evaluated mesh and its volume follow. Then, in a node editor showing the tree with
+its sidebar, opens the Add menu and every Fairlines submenu and shows a failing node, so every
+draw callback runs in a real interface (a traceback there fails the calling test). Prints
+FAIRLINES-CHECKS <json>; exits 1 on failure.
 """
 
 import importlib
@@ -65,6 +67,22 @@ def check(cond, message):
         raise AssertionError(message)
 
 
+class _NotYet(Exception):
+    pass
+
+
+def wait_for(cond):
+    """Results arrive from the add-on's own timer; a first redraw under Xvfb's software GL can
+    hold the event loop for a while, so a step retries (up to ~6 s) until its result is in."""
+    if cond():
+        state["tries"] = 0
+        return
+    state["tries"] = state.get("tries", 0) + 1
+    if state["tries"] > 30:
+        return  # let the step's own check report what is wrong
+    raise _NotYet
+
+
 def tick():
     # One step per timer tick: undo handlers queue an evaluation that the add-on's own timer
     # runs between ticks, exactly as in an interactive session.
@@ -82,13 +100,15 @@ def tick():
         elif s == 2:
             tree = bpy.data.node_groups[blender_graph.TREE_NAME]
             tree.nodes["Bulb Profile"].inputs["Semi-axis A"].default_value[0] = 10.0
-        elif s == 3:  # the add-on's timer has evaluated by now
+        elif s == 3:
+            wait_for(lambda: abs(volume(bpy.data.objects["Bulb"]) / report["v_short"] - 1.25) < 0.005)
             report["v_long"] = volume(bpy.data.objects["Bulb"])
             check(abs(report["v_long"] / report["v_short"] - 1.25) < 0.005, "bulb did not lengthen live")
             with ctx():
                 bpy.ops.ed.undo_push(message="longer bulb")
                 bpy.ops.ed.undo()
         elif s == 4:
+            wait_for(lambda: abs(volume(bpy.data.objects["Bulb"]) / report["v_short"] - 1) < 1e-6)
             check(length() == 8.0, "undo left the length at %s" % length())
             v = volume(bpy.data.objects["Bulb"])
             report["v_after_undo"] = v
@@ -99,12 +119,45 @@ def tick():
             with ctx():
                 bpy.ops.ed.redo()
         elif s == 5:
+            wait_for(lambda: abs(volume(bpy.data.objects["Bulb"]) / report["v_long"] - 1) < 1e-6)
             check(length() == 10.0, "redo left the length at %s" % length())
             v = volume(bpy.data.objects["Bulb"])
             report["v_after_redo"] = v
             check(abs(v / report["v_long"] - 1) < 1e-6, "redo: volume %.3f, expected %.3f" % (v, report["v_long"]))
+            tree = bpy.data.node_groups[blender_graph.TREE_NAME]
+            win = bpy.context.window_manager.windows[0]
+            area = max(win.screen.areas, key=lambda a: a.width * a.height)
+            area.type = "NODE_EDITOR"
+            area.ui_type = tree.bl_idname
+            area.spaces.active.node_tree = tree
+            area.spaces.active.show_region_ui = True
+            tree.nodes["Refine"].inputs["Parameter"].default_value = 5.0
+        elif s == 6:
+            tree = bpy.data.node_groups[blender_graph.TREE_NAME]
+            wait_for(lambda: tree.nodes["Refine"].fl_state == "ERROR")
+            check(tree.nodes["Refine"].fl_state == "ERROR", "bad knot not shown in the interface")
+            win = bpy.context.window_manager.windows[0]
+            area = next(a for a in win.screen.areas if a.type == "NODE_EDITOR")
+            region = next(r for r in area.regions if r.type == "WINDOW")
+            menus = [name for name in dir(bpy.types) if name.startswith("NODE_MT_fairlines_add_")]
+            check(len(menus) >= 7, "Fairlines add menus: %s" % menus)
+            with bpy.context.temp_override(window=win, area=area, region=region):
+                bpy.ops.wm.call_menu(name="NODE_MT_add")
+                for name in menus:
+                    bpy.ops.wm.call_menu(name=name)
+            report["menus"] = len(menus)
+        elif s == 7:
+            tree = bpy.data.node_groups[blender_graph.TREE_NAME]
+            tree.nodes["Refine"].inputs["Parameter"].default_value = 0.85
+        elif s == 8:
+            tree = bpy.data.node_groups[blender_graph.TREE_NAME]
+            wait_for(lambda: all(n.fl_state == "OK" for n in tree.nodes))
+            check(all(n.fl_state == "OK" for n in tree.nodes), "graph did not recover")
             finish(True)
         return 0.3
+    except _NotYet:
+        state["step"] -= 1
+        return 0.2
     except Exception:
         finish(False, traceback.format_exc())
 
