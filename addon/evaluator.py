@@ -19,7 +19,7 @@ import time
 
 import bpy
 
-from . import ids
+from . import engine, ids
 from .nodes.base import ERROR_COLOUR, FairlinesNode, NodeError
 from .sockets import compatible
 
@@ -55,7 +55,15 @@ def request(tree):
 
 
 def _on_timer():
-    flush(deadline=time.perf_counter() + SLICE_MS * 1e-3)
+    try:
+        flush(deadline=time.perf_counter() + SLICE_MS * 1e-3)
+    except Exception as exc:
+        # Node failures are caught per node; this is the evaluator itself failing (e.g. data
+        # removed while it ran). Say so in one line, drop the queue, and keep Blender going:
+        # the next change queues the tree again.
+        print("Fairlines: evaluation stopped: %s: %s" % (type(exc).__name__, exc))
+        _pending.clear()
+        return None
     if _pending:
         return 0.0  # more to do: run again right after Blender has handled its events
     return None
@@ -157,10 +165,11 @@ def _is_error_colour(colour):
 
 
 def _message(exc):
-    name = type(exc).__name__
-    if isinstance(exc, NodeError):
+    # Our own messages read as sentences; engine exceptions keep their class name
+    # (InvalidInput, InfeasibleFormParameters, ...) because it says what kind of problem it is.
+    if isinstance(exc, (NodeError, engine.EngineMissing)):
         return str(exc)
-    return "%s: %s" % (name, exc)
+    return "%s: %s" % (type(exc).__name__, exc)
 
 
 def evaluate(tree, deadline=None):
