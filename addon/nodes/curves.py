@@ -106,6 +106,61 @@ class FLNodeTrimCurve(FairlinesNode, bpy.types.Node):
         return {"Curve": out, "__info__": "domain %.3g .. %.3g" % tuple(curve.domain)}
 
 
+def _curve(inputs):
+    c = inputs.get("Curve")
+    if c is None:
+        raise NodeError("Connect a curve")
+    return c
+
+
+@register
+class FLNodeCurveInsertKnot(FairlinesNode, bpy.types.Node):
+    """Insert a knot into a curve (same shape, more control points)"""
+    bl_idname = ids.NODE_CURVE_INSERT_KNOT
+    bl_label = "Curve Insert Knot"
+    category = "Edit"
+    inputs_spec = [(ids.SOCKET_CURVE, "Curve", {}),
+                   (ids.SOCKET_FLOAT, "Parameter", {"default": 0.5}),
+                   (ids.SOCKET_INT, "Times", {"default": 1})]
+    outputs_spec = [(ids.SOCKET_CURVE, "Curve")]
+
+    def compute(self, inputs):
+        out = _curve(inputs).insert_knot(inputs["Parameter"], inputs["Times"])
+        return {"Curve": out, "__info__": "%d control points" % out.n_control}
+
+
+@register
+class FLNodeCurveElevateDegree(FairlinesNode, bpy.types.Node):
+    """Raise the degree of a curve (same shape)"""
+    bl_idname = ids.NODE_CURVE_ELEVATE_DEGREE
+    bl_label = "Curve Elevate Degree"
+    category = "Edit"
+    inputs_spec = [(ids.SOCKET_CURVE, "Curve", {}),
+                   (ids.SOCKET_INT, "Times", {"default": 1})]
+    outputs_spec = [(ids.SOCKET_CURVE, "Curve")]
+
+    def compute(self, inputs):
+        out = _curve(inputs).elevate_degree(inputs["Times"])
+        return {"Curve": out, "__info__": "degree %d" % out.degree}
+
+
+@register
+class FLNodeCurveSetWeight(FairlinesNode, bpy.types.Node):
+    """Set the weight of one control point of a curve: up pulls the curve toward it"""
+    bl_idname = ids.NODE_CURVE_SET_WEIGHT
+    bl_label = "Curve Set Weight"
+    category = "Edit"
+    inputs_spec = [(ids.SOCKET_CURVE, "Curve", {}),
+                   (ids.SOCKET_INT, "Index", {"default": 0}),
+                   (ids.SOCKET_FLOAT, "Weight", {"default": 1.0})]
+    outputs_spec = [(ids.SOCKET_CURVE, "Curve")]
+
+    def compute(self, inputs):
+        out = _curve(inputs).copy()  # the input is a shared cached value: never edit it
+        out.set_weight(inputs["Index"], inputs["Weight"])
+        return {"Curve": out}
+
+
 @register
 class FLNodeCurveLines(FairlinesNode, bpy.types.Node):
     """Sample a curve into a polyline (to show it as a curve object)"""

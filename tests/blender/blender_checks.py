@@ -337,6 +337,45 @@ def t_errors(tree):
     check(np.array_equal(coords(hull), h0), "hull differs after relinking")
 
 
+def t_curve_edit():
+    """Curve knot insertion and degree elevation keep the shape; a weight pulls the curve."""
+    ev, ids = sub("evaluator"), sub("ids")
+    tree = bpy.data.node_groups.new("Curve Edit", ids.TREE)
+    circ = tree.nodes.new(ids.NODE_CIRCLE)
+    circ.inputs["Radius"].default_value = 2.0
+    chain = [circ]
+    for idname in (ids.NODE_CURVE_INSERT_KNOT, ids.NODE_CURVE_ELEVATE_DEGREE, ids.NODE_CURVE_SET_WEIGHT):
+        n = tree.nodes.new(idname)
+        tree.links.new(chain[-1].outputs["Curve"], n.inputs["Curve"])
+        chain.append(n)
+    chain[1].inputs["Parameter"].default_value = 0.3
+    outs = []
+    for src in chain:
+        cl = tree.nodes.new(ids.NODE_CURVE_LINES)
+        cl.inputs["Samples"].default_value = 200
+        tree.links.new(src.outputs["Curve"], cl.inputs["Curve"])
+        outs.append(cl)
+    ev.flush()
+    bad = ["%s: %s" % (n.name, n.fl_message) for n in tree.nodes if n.fl_state != "OK"]
+    check(not bad, "curve edit nodes: %s" % bad)
+    pts = [ev.outputs_of(tree, o.name)["Lines"].polylines[0] for o in outs]
+    radius = [np.linalg.norm(p, axis=1) for p in pts]
+    for r in radius[:4]:  # circle, knot inserted, degree elevated, weight 1: all the circle
+        check(np.allclose(r, 2.0, atol=1e-9), "shape changed: radius %.12g .. %.12g" % (r.min(), r.max()))
+    ctrl = ev.outputs_of(tree, chain[2].name)["Curve"].control_points
+    chain[3].inputs["Index"].default_value = 3
+    chain[3].inputs["Weight"].default_value = 5.0
+    ev.flush()
+    moved = ev.outputs_of(tree, outs[3].name)["Lines"].polylines[0]
+    target = np.asarray(ctrl[3])[:2]
+    before = np.min(np.linalg.norm(pts[3][:, :2] - target, axis=1))
+    after = np.min(np.linalg.norm(moved[:, :2] - target, axis=1))
+    check(after < 0.5 * before, "weight 5 did not pull the curve (%.4f -> %.4f m)" % (before, after))
+    ran = set(ev.evaluate(tree))
+    check(not ran, "unchanged curve tree re-ran %s" % ran)
+    bpy.data.node_groups.remove(tree)
+
+
 def t_export(tree):
     ev, ids = sub("evaluator"), sub("ids")
     exp = tree.nodes.new(ids.NODE_EXPORT_OBJ)
@@ -465,6 +504,8 @@ def main():
             steps.append("boolean")
             t_errors(tree)
             steps.append("errors")
+            t_curve_edit()
+            steps.append("curve edit")
             t_export(tree)
             steps.append("export")
             t_save_reload(tree)
