@@ -61,8 +61,7 @@ def unregister():
         bpy.types.NODE_MT_add.remove(tree.draw_add_menu)
     except ValueError:
         pass
-    if bpy.app.timers.is_registered(evaluator._on_timer):
-        bpy.app.timers.unregister(evaluator._on_timer)
+    evaluator.drop_timer()
     evaluator._pending.clear()
     evaluator.clear()
     while _registered:

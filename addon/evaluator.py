@@ -15,6 +15,7 @@ loop and carries on at the next tick, so a long graph does not freeze the interf
 keys make resuming trivial: nodes already re-run are up to date).
 """
 
+import atexit
 import time
 
 import bpy
@@ -52,6 +53,17 @@ def request(tree):
     # stops (it returns None only when nothing is pending).
     if not bpy.app.timers.is_registered(_on_timer):
         bpy.app.timers.register(_on_timer, first_interval=0.0, persistent=True)
+
+
+def drop_timer():
+    if bpy.app.timers.is_registered(_on_timer):
+        bpy.app.timers.unregister(_on_timer)
+
+
+# The bpy module of Blender 4.2 crashes at interpreter exit when a Python timer is still
+# registered (it has no event loop, so a queued evaluation can be pending then); 5.0 does not.
+# Dropping ours first is harmless everywhere.
+atexit.register(drop_timer)
 
 
 def _on_timer():

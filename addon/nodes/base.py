@@ -102,8 +102,8 @@ class FairlinesNode:
         if self.fl_state == "ERROR":
             col = layout.column(align=True)
             col.alert = True
-            for line in _wrap(self.fl_message):
-                col.label(text=line, icon="ERROR" if line is _first(self.fl_message) else "NONE")
+            for k, line in enumerate(_wrap(self.fl_message)):
+                col.label(text=line, icon="ERROR" if k == 0 else "NONE")
         elif self.fl_state == "BLOCKED":
             layout.label(text=self.fl_message, icon="INFO")
         if self.fl_info:
@@ -119,16 +119,12 @@ class FairlinesNode:
         return self.bl_label
 
 
-def _first(message):
-    return _wrap(message)[0] if message else ""
-
-
 _WRAP_CACHE = {}
 
 
 def _wrap(message, width=34):
     """Node bodies are narrow: break a long engine message into lines (cached per message so
-    the draw callback stays cheap and `_first` can compare by identity)."""
+    the draw callback, run on every redraw, stays cheap)."""
     got = _WRAP_CACHE.get(message)
     if got is not None:
         return got
