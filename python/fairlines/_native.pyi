@@ -134,9 +134,9 @@ class NurbsSurface:
         """
         (gaussian 1/m^2, mean 1/m) curvature; mean > 0 where the surface bends toward its normal.
         """
-    def derivatives(self, u: typing.SupportsFloat | typing.SupportsIndex, v: typing.SupportsFloat | typing.SupportsIndex, order: typing.Any = 1) -> numpy.typing.NDArray[numpy.float64]:
+    def derivatives(self, u: typing.Any, v: typing.Any, order: typing.Any = 1) -> typing.Any:
         """
-        D[k, l] = d^(k+l) S / du^k dv^l for k + l <= order, (order+1, order+1, 3).
+        D[k, l] = d^(k+l) S / du^k dv^l for k + l <= order (higher entries 0): (order+1, order+1, 3) for scalars, (m, order+1, order+1, 3) for arrays.
         """
     def elevate_degree(self, direction: str, times: typing.Any = 1) -> NurbsSurface:
         """
@@ -204,6 +204,10 @@ class NurbsVolume:
     """
     def __init__(self, degrees: typing.Any, knots: collections.abc.Sequence, control_points: typing.Any, weights: typing.Any = None) -> None:
         ...
+    def derivatives(self, s: typing.Any, t: typing.Any, r: typing.Any) -> typing.Any:
+        """
+        Point and first partials [V, dV/ds, dV/dt, dV/dr]: (m, 4, 3), or (4, 3) for scalars.
+        """
     def evaluate(self, s: typing.Any, t: typing.Any, r: typing.Any) -> typing.Any:
         """
         Points at (s_k, t_k, r_k): (m, 3).
