@@ -116,29 +116,32 @@ def outputs_of(tree, node_name):
     return None if entry is None or not entry.ok else entry.outputs
 
 
-def _source(socket):
+def _link_map(tree):
+    """{input socket pointer: link} in one pass. NodeSocket.links scans every link of the
+    tree on each access; asking it per socket made the walk quadratic in the graph size."""
+    return {link.to_socket.as_pointer(): link for link in tree.links}
+
+
+def _source(socket, links):
     """The output socket feeding `socket`, through reroutes; None when unlinked."""
-    seen = 0
-    while socket.is_linked and seen < 64:
-        link = socket.links[0]
-        if not link.is_valid or getattr(link, "is_muted", False):
+    for _ in range(64):
+        link = links.get(socket.as_pointer())
+        if link is None or not link.is_valid or getattr(link, "is_muted", False):
             return None
         src = link.from_socket
-        if src.node.bl_idname == "NodeReroute":
-            socket = src.node.inputs[0]
-            seen += 1
-            continue
-        return src
+        if src.node.bl_idname != "NodeReroute":
+            return src
+        socket = src.node.inputs[0]
     return None
 
 
-def _order(tree):
+def _order(tree, links):
     """Fairlines nodes in dependency order (Kahn); nodes on a cycle come back separately."""
     nodes = [n for n in tree.nodes if isinstance(n, FairlinesNode)]
     deps = {n.name: set() for n in nodes}
     for n in nodes:
         for sock in n.inputs:
-            src = _source(sock)
+            src = _source(sock, links)
             if src is not None and src.node.name in deps:
                 deps[n.name].add(src.node.name)
     by_name = {n.name: n for n in nodes}
@@ -198,7 +201,8 @@ def evaluate(tree, deadline=None):
             # A node tree shown in an editor has no real user, and Blender drops data without
             # users when saving: the design would vanish from the .blend.
             tree.use_fake_user = True
-        order, cyclic = _order(tree)
+        links = _link_map(tree)
+        order, cyclic = _order(tree, links)
         for node in cyclic:
             _show(node, "ERROR", "Node is part of a cycle; links must flow one way", -1.0)
             _cache.pop((tree.name, node.name), None)
@@ -206,7 +210,7 @@ def evaluate(tree, deadline=None):
             if deadline is not None and ran and time.perf_counter() > deadline:
                 _pending.add(tree.name)  # resumed by the timer at its next tick
                 break
-            if _run_node(tree, node):
+            if _run_node(tree, node, links):
                 ran.append(node.name)
         live = {n.name for n in tree.nodes}
         trees = set(bpy.data.node_groups.keys())
@@ -218,14 +222,14 @@ def evaluate(tree, deadline=None):
     return ran
 
 
-def _run_node(tree, node):
+def _run_node(tree, node, links):
     ckey = (tree.name, node.name)
     entry = _cache.get(ckey)
     inputs, key_parts, blocked, bad = {}, [], None, None
     for sock in node.inputs:
         if not sock.enabled:
             continue
-        src = _source(sock)
+        src = _source(sock, links)
         if src is not None:
             if not compatible(src.bl_idname, sock.bl_idname):
                 bad = "Cannot connect %s '%s' to %s input '%s'" % (

@@ -40,6 +40,7 @@ def main():
     for case, r in report["bench"].items():
         print("  %-12s %6d vertices: median %6.2f ms to mesh, %6.2f ms incl. Geometry Nodes" % (
             case, r["vertices"], r["median_ms_to_mesh"], r["median_ms_including_geometry_nodes"]))
+        print("    last run, per node: " + ", ".join("%s %.2f" % kv for kv in r["last_run_nodes_ms"].items()))
         worst = max(worst, r["median_ms_to_mesh"])
     print("  goal <= %.0f ms: %s" % (GOAL_MS, "met" if worst <= GOAL_MS else "NOT met"))
 

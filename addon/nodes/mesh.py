@@ -1,5 +1,7 @@
 """Mesh and line nodes: tessellation, curvature analysis, iso-parametric lines."""
 
+import functools
+
 import bpy
 
 from .. import engine, ids, props
@@ -7,13 +9,18 @@ from ..data import LinesData, MeshData
 from .base import FairlinesNode, NodeError, register
 
 
-def grid_quads(nu, nv, np):
+@functools.lru_cache(maxsize=16)
+def grid_quads(nu, nv):
     """Quad faces of an nu x nv point grid stored row-major (index = i * nv + j). Corners run
     (i,j) -> (i+1,j) -> (i+1,j+1) -> (i,j+1), so face normals follow S_u x S_v like the
-    engine's surface normal."""
+    engine's surface normal. Cached (read-only) because a slider drag re-tessellates at the
+    same resolution every time."""
+    np = engine.np
     i, j = np.meshgrid(np.arange(nu - 1, dtype=np.int32), np.arange(nv - 1, dtype=np.int32), indexing="ij")
     a = (i * nv + j).ravel()
-    return np.column_stack([a, a + nv, a + nv + 1, a + 1]).astype(np.int32)
+    quads = np.column_stack([a, a + nv, a + nv + 1, a + 1]).astype(np.int32)
+    quads.flags.writeable = False
+    return quads
 
 
 @register
@@ -44,7 +51,7 @@ class FLNodeTessellate(FairlinesNode, bpy.types.Node):
         pts = s.evaluate_grid(us, vs).reshape(-1, 3)
         uu, vv = np.meshgrid(us, vs, indexing="ij")
         params = np.column_stack([uu.ravel(), vv.ravel()])
-        faces = grid_quads(nu, nv, np)
+        faces = grid_quads(nu, nv)
         if self.flip:
             faces = faces[:, ::-1].copy()
         mesh = MeshData(pts, faces, params=params, surface=s)

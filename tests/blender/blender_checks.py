@@ -478,7 +478,8 @@ def bench(tree, n):
             if k == 0:
                 check(not np.array_equal(before, coords(obj)[0]) or label == "hull_knot",
                       "bench change did not reach the mesh")
-        out[label] = {"median_ms_to_mesh": round(statistics.median(to_mesh), 2),
+        nodes_ms = {name: round(tree.nodes[name].fl_time_ms, 2) for name in ev.last_stats["evaluated"]}
+        out[label] = {"median_ms_to_mesh": round(statistics.median(to_mesh), 2), "last_run_nodes_ms": nodes_ms,
                       "median_ms_including_geometry_nodes": round(statistics.median(to_eval), 2),
                       "vertices": len(obj.data.vertices), "runs": n}
     results["bench"] = out
