@@ -51,7 +51,7 @@ def write_mesh(obj, mesh_data, smooth=True):
     me = obj.data
     verts = np.ascontiguousarray(mesh_data.vertices, dtype=np.float32).ravel()
     faces = np.ascontiguousarray(mesh_data.faces, dtype=np.int32)
-    topo = _topology_key(mesh_data)
+    topo = _topology_key(mesh_data) + (":smooth" if smooth else ":flat")  # shading is per face too
     in_place = me.get(ids.MESH_TOPOLOGY_KEY) == topo and len(me.vertices) * 3 == len(verts)
     if in_place:
         me.vertices.foreach_set("co", verts)

@@ -38,10 +38,6 @@ class NodeError(Exception):
     """A message for the user, shown on the node (bad or missing input)."""
 
 
-# Properties every node has; not part of its evaluation signature.
-STATUS_PROPS = ("fl_state", "fl_message", "fl_time_ms", "fl_info")
-
-
 class FairlinesNode:
     bl_width_default = 200
     category = "Misc"
@@ -51,6 +47,8 @@ class FairlinesNode:
     # Output nodes write into the scene; they run again when their target went missing.
     is_output = False
 
+    # Status written by the evaluator and drawn on the node; not part of the signature
+    # (only the names in `params` are), so showing a result never re-runs the node.
     fl_state: bpy.props.StringProperty(default="")  # "", "OK", "ERROR", "BLOCKED"
     fl_message: bpy.props.StringProperty(default="")
     fl_info: bpy.props.StringProperty(default="")

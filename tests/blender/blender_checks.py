@@ -237,6 +237,15 @@ def t_rename_output(tree):
     out.object_name = "Bulb"
     ev.flush()
     check(bpy.data.objects.get("Bulb") == obj, "renaming back failed")
+    smooth = np.empty(len(obj.data.polygons), dtype=bool)
+    out.smooth = False
+    ev.flush()
+    obj.data.polygons.foreach_get("use_smooth", smooth)
+    check(not smooth.any(), "Smooth off left smooth faces")
+    out.smooth = True
+    ev.flush()
+    obj.data.polygons.foreach_get("use_smooth", smooth)
+    check(smooth.all(), "Smooth on left flat faces")
     # A deleted output object is re-created from the cached result, without re-running upstream.
     bpy.data.objects.remove(obj)
     ev.request(tree)
