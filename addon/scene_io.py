@@ -68,8 +68,8 @@ def write_mesh(obj, mesh_data, smooth=True):
             me.polygons.foreach_set("loop_total", np.full(nf, k, dtype=np.int32))
         except (AttributeError, TypeError, RuntimeError):
             pass
-        if smooth:
-            me.polygons.foreach_set("use_smooth", np.ones(nf, dtype=bool))
+        # Always written: new faces are flat in 3.x but smooth from 4.1 on.
+        me.polygons.foreach_set("use_smooth", np.full(nf, bool(smooth)))
         me[ids.MESH_TOPOLOGY_KEY] = topo
     for name, values in mesh_data.attributes.items():
         attr = me.attributes.get(name)
