@@ -385,6 +385,32 @@ def t_curve_edit():
     bpy.data.node_groups.remove(tree)
 
 
+def t_every_node_alone():
+    """Every node type, alone and then with its integer inputs at 0 and -1 and its numbers at
+    -1e9: each evaluates to OK or to a red node with a message; nothing raises, nothing crashes."""
+    ev, ids = sub("evaluator"), sub("ids")
+    tree = bpy.data.node_groups.new("Every Node", ids.TREE)
+    kinds = [v for k, v in vars(ids).items() if k.startswith("NODE_") and isinstance(v, str)]
+    for idname in kinds:
+        node = tree.nodes.new(idname)
+        for variant in (None, 0, -1, -1e9):
+            for sock in node.inputs:
+                if variant is None or not hasattr(sock, "default_value"):
+                    continue
+                if sock.bl_idname == ids.SOCKET_INT and variant in (0, -1):
+                    sock.default_value = variant
+                elif sock.bl_idname in (ids.SOCKET_LENGTH, ids.SOCKET_FLOAT, ids.SOCKET_ANGLE) and variant == -1e9:
+                    sock.default_value = variant
+            ev.evaluate(tree)
+            check(node.fl_state in ("OK", "ERROR"), "%s: state %r" % (idname, node.fl_state))
+            check(node.fl_state == "OK" or node.fl_message, "%s: red without a message" % idname)
+        tree.nodes.remove(node)
+    for name in [o.name for o in bpy.data.objects if o.name.startswith("Fairlines ")]:
+        bpy.data.objects.remove(bpy.data.objects[name])
+    bpy.data.node_groups.remove(tree)
+    results["node_types"] = len(kinds)
+
+
 def t_export(tree):
     ev, ids = sub("evaluator"), sub("ids")
     exp = tree.nodes.new(ids.NODE_EXPORT_OBJ)
@@ -516,6 +542,8 @@ def main():
             steps.append("errors")
             t_curve_edit()
             steps.append("curve edit")
+            t_every_node_alone()
+            steps.append("every node alone")
             t_export(tree)
             steps.append("export")
             t_save_reload(tree)
