@@ -244,6 +244,29 @@ def _triangle_integrals(tri):
     }
 
 
+def _mesh_section_area(tri, x0):
+    """Half-section area of (outward-oriented) triangles cut by the plane x = x0: Green's
+    theorem ∮ y dz over the cut segments, each traversed so that the triangle's outward
+    normal lies on its right in the (y, z) plane (centreplane and waterline add nothing)."""
+    above = tri[:, :, 0] > x0
+    na = above.sum(axis=1)
+    t = tri[(na == 1) | (na == 2)]
+    if not len(t):
+        return 0.0
+    a = above[(na == 1) | (na == 2)]
+    lone = np.where(a.sum(axis=1) == 1, np.argmax(a, axis=1), np.argmax(~a, axis=1))
+    r = np.stack([t[np.arange(len(t)), (lone + k) % 3] for k in range(3)], axis=1)
+
+    def cut(p, q):
+        s = (x0 - p[:, 0]) / (q[:, 0] - p[:, 0])
+        return p + s[:, None] * (q - p)
+    q1, q2 = cut(r[:, 0], r[:, 1]), cut(r[:, 0], r[:, 2])
+    n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+    d = q2 - q1
+    sgn = np.sign(d[:, 2] * n[:, 1] - d[:, 1] * n[:, 2])
+    return float(np.sum(sgn * 0.5 * (q1[:, 1] + q2[:, 1]) * (q2[:, 2] - q1[:, 2])))
+
+
 def mesh_hydrostatics(meshes, draft, lpp, beam) -> dict:
     """Hydrostatics of one or more triangle meshes [(vertices, faces), ...] of the half hull,
     clipped at the draft; both sides reported. Each mesh is oriented on its own."""
@@ -256,12 +279,7 @@ def mesh_hydrostatics(meshes, draft, lpp, beam) -> dict:
         sub = _clip(tri, 2, draft)
         for k, v in _triangle_integrals(sub).items():
             tot[k] += v
-        # Midship section: on the part forward of midships, ∮ n_x dS = 0 gives the cut's area.
-        fwd = _clip(sub * np.array([-1.0, 1.0, 1.0]), 0, -lpp / 2) * np.array([-1.0, 1.0, 1.0])
-        if len(fwd):
-            av = 0.5 * np.cross(fwd[:, 1] - fwd[:, 0], fwd[:, 2] - fwd[:, 0])
-            # Mirroring x twice keeps the vertex order, so the normals are still outward.
-            tot["Am"] += np.sum(av[:, 0])
+        tot["Am"] += _mesh_section_area(sub, lpp / 2)
     V = 2 * tot["V"]
     out = _coefficients(V, 2 * tot["Mx"] / V, 2 * tot["Mz"] / V, 2 * tot["Awp"], tot["Mwp"] / tot["Awp"],
                         2 * tot["Am"], lpp, beam, draft)
