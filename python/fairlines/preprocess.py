@@ -36,6 +36,8 @@ DOME_MIN_DEPTH = 0.05
 # A grid point whose distance at its fitting parameters is below this fraction of Lpp is not
 # projected onto the surface again (the bound is then the deviation to within rounding).
 DEVIATION_EXACT_TOL = 1e-9
+# Least-squares fairing of a structured grid keeps at least this many control points a direction.
+GRID_MIN_CONTROL = 12
 # Gauss-Legendre points per knot span (u) and per sub-interval (v) for surface integrals.
 GAUSS_POINTS = 6
 # Sub-intervals per submerged v-interval in the surface integrals.
@@ -636,8 +638,11 @@ def sections_grid(data: HullData, n_v=61):
 def rebuild(data: HullData, *, n_v=61, n_control=None, progress=None, deviation=True) -> Rebuild:
     """Fair surfaces through the data: the sections skinned into one surface (offsets and
     section lists), or one surface per structured grid; then the deviation of every input
-    point from the surfaces. ``n_control`` (u, v) None interpolates; fewer control points
-    give a least-squares, fairer surface."""
+    point from the surfaces.
+
+    ``n_control``: None fairs each structured grid by least squares on half as many control
+    points as grid lines (at least GRID_MIN_CONTROL) and interpolates the few stations of an
+    offsets table; 'interpolate' interpolates everything; (nu, nv) fixes the counts."""
     say = progress or (lambda msg: None)
     surfaces, roles, names, blocks, fits = [], [], [], [], []
     if data.sections:
@@ -645,10 +650,15 @@ def rebuild(data: HullData, *, n_v=61, n_control=None, progress=None, deviation=
         blocks.append(("hull", "hull", grid))
     for g in data.grids:
         blocks.append((g.name, g.role, g.points))
-    for name, role, grid in blocks:
-        say(f"fitting {name}: {grid.shape[0]} x {grid.shape[1]} points")
-        nu, nv = (None, None) if n_control is None else (min(n_control[0], grid.shape[0]),
-                                                          min(n_control[1], grid.shape[1]))
+    for b, (name, role, grid) in enumerate(blocks):
+        if n_control == "interpolate" or (n_control is None and data.sections and b == 0):
+            nu, nv = None, None
+        elif n_control is None:
+            nu, nv = (min(n, max(GRID_MIN_CONTROL, -(-n // 2))) for n in grid.shape[:2])
+        else:
+            nu, nv = min(n_control[0], grid.shape[0]), min(n_control[1], grid.shape[1])
+        say(f"fitting {name}: {grid.shape[0]} x {grid.shape[1]} points, "
+            + ("interpolated" if nu is None else f"{nu} x {nv} control points (least squares)"))
         fit = _native.fit_surface(grid, 3 if grid.shape[0] > 3 else grid.shape[0] - 1,
                                   3 if grid.shape[1] > 3 else grid.shape[1] - 1, nu, nv)
         surfaces.append(fit.surface)
@@ -668,8 +678,9 @@ def deviation_report(data: HullData, surfaces, names, fits=None) -> dict:
 
     Section points are projected onto the surface (closest point). A grid point is first
     measured against the surface point at its fitting parameters, an upper bound of its
-    distance; only where that bound exceeds DEVIATION_EXACT_TOL is it projected too (an
-    interpolating fit meets its grid to rounding, so the bound is already exact there)."""
+    distance; where that bound exceeds DEVIATION_EXACT_TOL it is projected from there by
+    Gauss-Newton (an interpolating fit meets its grid to rounding, so the bound is already
+    exact there)."""
     d_all, where = [], []
     off = 0
     if data.sections:
@@ -685,11 +696,15 @@ def deviation_report(data: HullData, surfaces, names, fits=None) -> dict:
             f = fits[k + off]
             uu, vv = np.meshgrid(f.params_u, f.params_v, indexing="ij")
             d = np.linalg.norm(s.evaluate(uu.ravel(), vv.ravel()) - pts, axis=1)
+            far = d > DEVIATION_EXACT_TOL * data.lpp
+            if far.any():
+                q = project_points(s, pts[far], uu.ravel()[far], vv.ravel()[far])
+                d[far] = np.minimum(d[far], np.linalg.norm(q - pts[far], axis=1))
         else:
-            d = np.full(len(pts), np.inf)
-        for i in np.flatnonzero(d > DEVIATION_EXACT_TOL * data.lpp):
-            _, _, q = s.closest_point(pts[i])
-            d[i] = min(d[i], float(np.linalg.norm(q - pts[i])))
+            d = np.empty(len(pts))
+            for i in range(len(pts)):
+                _, _, q = s.closest_point(pts[i])
+                d[i] = float(np.linalg.norm(q - pts[i]))
         d_all += d.tolist()
         where += [(names[k + off], p) for p in pts]
     d = np.array(d_all)
@@ -698,6 +713,25 @@ def deviation_report(data: HullData, surfaces, names, fits=None) -> dict:
             "max_at": {"block": where[i][0], "x": float(where[i][1][0]), "y": float(where[i][1][1]),
                        "z": float(where[i][1][2])},
             "rms_pct_B": 100 * float(np.sqrt(np.mean(d ** 2))) / data.beam}
+
+
+def project_points(surface, pts, u0, v0, iterations=12):
+    """Foot points on the surface of points near parameters (u0, v0), by Gauss-Newton on
+    |S(u, v) - P|^2 for all points at once, kept inside the domain."""
+    u, v = np.array(u0, float), np.array(v0, float)
+    (ua, ub), (va, vb) = surface.domain_u, surface.domain_v
+    for _ in range(iterations):
+        d = surface.derivatives(u, v, 1)
+        r = pts - d[:, 0, 0]
+        su, sv = d[:, 1, 0], d[:, 0, 1]
+        a, b, c = np.sum(su * su, 1), np.sum(su * sv, 1), np.sum(sv * sv, 1)
+        f, g = np.sum(su * r, 1), np.sum(sv * r, 1)
+        det = a * c - b * b
+        ok = det > 1e-300
+        du = np.where(ok, (c * f - b * g) / np.where(ok, det, 1), 0)
+        dv = np.where(ok, (a * g - b * f) / np.where(ok, det, 1), 0)
+        u, v = np.clip(u + du, ua, ub), np.clip(v + dv, va, vb)
+    return surface.evaluate(u, v)
 
 
 def input_hydrostatics(data: HullData) -> dict:

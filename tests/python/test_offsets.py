@@ -355,3 +355,19 @@ def test_hull_data_round_trip(tmp_path, series60):
     assert pp.offsets_hydrostatics(back)["volume"] == pytest.approx(pp.offsets_hydrostatics(data)["volume"])
     with pytest.raises(ValueError, match=r"no 'lpp' entry"):
         offsets.hull_data_from_dict({"name": "x"})
+
+
+def test_grid_deviation_projection_agrees_with_closest_point(kcs):
+    """The vectorised Gauss-Newton foot points of the deviation report against the engine's
+    closest_point on a sample of the least-squares faired KCS afterbody."""
+    data, rb = kcs
+    s, g = rb.surfaces[3], data.grids[3].points.reshape(-1, 3)
+    assert rb.names[3] == "afterbody"
+    sample = g[::97]
+    direct = np.array([np.linalg.norm(s.closest_point(p)[2] - p) for p in sample])
+    uv = np.array([s.closest_point(p)[:2] for p in sample])
+    proj = np.linalg.norm(pp.project_points(s, sample, uv[:, 0] + 1e-3, uv[:, 1] - 1e-3) - sample, axis=1)
+    assert proj == pytest.approx(direct, abs=1e-9 * data.lpp)
+    # Least-squares fairing of the grids: a real but small deviation, reported with its place.
+    assert 0 < rb.deviation["rms"] < 1e-3 * data.beam
+    assert rb.deviation["max_at"]["block"] in rb.names
