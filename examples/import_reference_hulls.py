@@ -11,15 +11,15 @@ the parent's proportions (Todd 1963); its coefficients do not depend on that cho
 
 import argparse
 import json
+import os
 import pathlib
 
 from fairlines import offsets
 from fairlines.preprocess import build_hull, comparison_table, import_hull
 
 HERE = pathlib.Path(__file__).resolve().parent
-DATA = pathlib.Path("/work/shared/data")
-if not DATA.exists():
-    DATA = HERE.parent / "data"
+# The reference hulls live next to the repository (../shared/data; see its README.md).
+DATA = pathlib.Path(os.environ.get("FAIRLINES_DATA", HERE.parents[1] / "shared" / "data"))
 
 S60_LPP = 121.92
 S60_B = S60_LPP / 6.5

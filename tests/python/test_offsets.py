@@ -3,6 +3,7 @@ form parameters, poor data. Truth comes from the Wigley hull's exact coefficient
 published particulars of the reference hulls (data README), and independent computation paths
 (Simpson vs. trapezoid, NURBS quadrature vs. a triangle mesh)."""
 
+import os
 import pathlib
 
 import numpy as np
@@ -10,9 +11,9 @@ import pytest
 
 from fairlines import offsets, preprocess as pp
 
-DATA = pathlib.Path("/work/shared/data")
-if not DATA.exists():  # the repository copy, when the shared folder is not mounted
-    DATA = pathlib.Path(__file__).resolve().parents[2] / "data"
+# The reference hulls live next to the repository (../shared/data; see its README.md).
+DATA = pathlib.Path(os.environ.get(
+    "FAIRLINES_DATA", pathlib.Path(__file__).resolve().parents[3] / "shared" / "data"))
 SERIES60 = DATA / "series60_cb080_offsets.csv"
 
 # Series 60 parent Cb 0.80 proportions (Todd 1963): L/B 6.5, B/T 2.5, Lpp 400 ft. The table's

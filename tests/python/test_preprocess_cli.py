@@ -1,6 +1,7 @@
 """`fairlines import` and `fairlines build`: outputs, progress, and one-line errors."""
 
 import json
+import os
 import pathlib
 import subprocess
 import sys
@@ -11,9 +12,9 @@ import pytest
 from fairlines.cli import main
 from fairlines.io import from_dict
 
-DATA = pathlib.Path("/work/shared/data")
-if not DATA.exists():
-    DATA = pathlib.Path(__file__).resolve().parents[2] / "data"
+# The reference hulls live next to the repository (../shared/data; see its README.md).
+DATA = pathlib.Path(os.environ.get(
+    "FAIRLINES_DATA", pathlib.Path(__file__).resolve().parents[3] / "shared" / "data"))
 
 
 def _wigley_table(path, L=60.0, B=6.0, T=3.75):
