@@ -30,6 +30,8 @@ from .offsets import HullData, knuckles
 # A section point counts as on the flat of side / flat of bottom when within this fraction of
 # B/2 of the maximum half-breadth, or of T of the keel.
 FLAT_TOL = 0.005
+# A station has a flat of bottom when it runs along the keel line over at least this fraction of B.
+FOB_MIN_HALF_WIDTH = 0.02
 # A forefoot reaching further below the baseline than this fraction of T is a sonar dome (a
 # skinned bare hull may dip a little below the baseline between stations; that is not one).
 DOME_MIN_DEPTH = 0.05
@@ -78,9 +80,9 @@ def _parabola_integral(xs, ys, a, b):
 # ---- hydrostatics of an offsets table ----------------------------------------------------
 
 def _section_integrals(hb, z, draft):
-    """Half-section area below the draft and its first moments (∫ y dz, ∫ y z dz, ∫ y²/2 dz)
-    by Simpson on the waterlines (blank cells dropped); the draft waterline is interpolated
-    linearly when it is not a column."""
+    """Half-section area below the draft ∫ y dz, its moment ∫ y z dz, and the half-breadth at
+    the draft, by Simpson on the waterlines (blank cells dropped); the draft waterline is
+    interpolated linearly when it is not a column."""
     ok = ~np.isnan(hb)
     hb, z = hb[ok], z[ok]
     if z[-1] < draft:
@@ -88,7 +90,7 @@ def _section_integrals(hb, z, draft):
     below = z < draft
     zz = np.append(z[below], draft)
     yy = np.append(hb[below], np.interp(draft, z, hb))
-    return simpson(yy, zz), simpson(yy * zz, zz), simpson(0.5 * yy ** 2, zz), yy[-1]
+    return simpson(yy, zz), simpson(yy * zz, zz), yy[-1]
 
 
 def offsets_hydrostatics(data: HullData, draft=None) -> dict:
@@ -100,7 +102,7 @@ def offsets_hydrostatics(data: HullData, draft=None) -> dict:
         raise ValueError(f"{data.name}: no offsets table; expected data read by read_offsets_csv")
     T = data.draft if draft is None else float(draft)
     x, z, hb = data.offsets["x"], data.offsets["z"], data.offsets["half_breadths"]
-    a, mz, my, ywl = np.array([_section_integrals(h, z, T) for h in hb]).T
+    a, mz, ywl = np.array([_section_integrals(h, z, T) for h in hb]).T
     areas = 2 * a
     V = simpson(areas, x)
     lcb = simpson(areas * x, x) / V
@@ -232,8 +234,8 @@ def _orientation(tri, x_mid):
 
 
 def _triangle_integrals(tri):
-    """Sums over triangles of ∫ y n_y, ∫ x y n_y, ∫ z y n_y, ∫ y²/2 n_y... as exact integrals
-    (edge-midpoint rule, exact for quadratics), plus areas and -∫ n_z terms."""
+    """Sums over triangles of ∫ y n_y, ∫ x y n_y, ∫ z y n_y dS (edge-midpoint rule, exact for
+    these quadratics on a flat triangle), the area, -∫ n_z dS and -∫ x n_z dS."""
     av = 0.5 * np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     mids = 0.5 * (tri + np.roll(tri, -1, axis=1))
     y = tri[:, :, 1].mean(axis=1)
@@ -388,7 +390,8 @@ def _dense(surface, n_u=400, n_v=120):
         us = np.linspace(*surface.domain_u, n_u)
         vs = np.linspace(*surface.domain_v, n_v)
         hit = (surface, surface.evaluate_grid(us, vs))
-        _SAMPLE_CACHE.clear() if len(_SAMPLE_CACHE) > 32 else None
+        if len(_SAMPLE_CACHE) > 32:  # a bounded cache: surfaces of earlier runs are dropped
+            _SAMPLE_CACHE.clear()
         _SAMPLE_CACHE[key] = hit
     return hit[1]
 
@@ -476,7 +479,7 @@ def section_parameters(pieces, draft, beam):
         return None
     allp = np.concatenate(pieces)
     area = 2 * sum(_polyline_area(p, draft) for p in pieces)
-    ymax = allp[:, 1].max() if False else allp[:, 0].max()
+    ymax = allp[:, 0].max()
     keel = allp[:, 1].min()
     top = pieces[int(np.argmax([p[:, 1].max() for p in pieces]))]
     deck = top[np.argmax(top[:, 1])]
@@ -524,7 +527,7 @@ def form_parameters(surfaces, data: HullData, n_stations=41, roles=None) -> dict
     dwl = np.array([s["half_breadth_dwl"] for s in stations])
     am = float(sac.max())
     fos_x = x[[s["fos_z"] is not None and s["fos_z"][0] <= T for s in stations]]
-    fob_x = x[[s["fob_half_width"] >= FLAT_TOL * B and s["keel_z"] <= FLAT_TOL * T for s in stations]]
+    fob_x = x[[s["fob_half_width"] >= FOB_MIN_HALF_WIDTH * B and s["keel_z"] <= FLAT_TOL * T for s in stations]]
     wet = dwl > 0
     xe, ye = x[wet], dwl[wet]
     # End angles of the DWL: half-angle of entrance (forward end) and of run (aft end), degrees.
