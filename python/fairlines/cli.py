@@ -82,11 +82,12 @@ def main(argv=None) -> int:
     f.add_argument("--knots", default="average", choices=["average", "hartley_judd"])
     f.add_argument("-o", "--output", help="write the curve as JSON")
     im = sub.add_parser("import", help="read offsets / section points / a point grid; find the form parameters")
-    im.add_argument("table", help="offsets CSV, x,y,z section CSV, or a DTMB 5415 / KCS grid folder")
+    im.add_argument("table", help="offsets CSV, x,y,z section CSV, Tecplot point grid in SPEC metres (.dat), "
+                                  "or a DTMB 5415 / KCS grid folder")
     im.add_argument("--lpp", type=float, help="length between perpendiculars, m")
     im.add_argument("--beam", type=float, help="moulded beam, m")
     im.add_argument("--draft", type=float, help="design draft, m")
-    im.add_argument("--format", default="auto", choices=["auto", "offsets", "sections", "dtmb5415", "kcs"])
+    im.add_argument("--format", default="auto", choices=["auto", "offsets", "sections", "tecplot", "dtmb5415", "kcs"])
     im.add_argument("--stations", type=int, default=20,
                     help="station intervals between the perpendiculars in a normalised table (default 20)")
     im.add_argument("-o", "--output", required=True, help="hull description JSON to write")

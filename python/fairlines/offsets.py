@@ -445,6 +445,20 @@ def read_tecplot(path) -> list:
     return zones
 
 
+def read_tecplot_hull(path, lpp, beam, draft, *, name=None) -> HullData:
+    """A Tecplot point-grid file whose zones are hull patches already in SPEC §6 metres (rows
+    stations from aft forward, columns keel to top, like the reference grids once converted).
+    Each zone becomes one subdomain; negative y (a port-side grid) is mirrored."""
+    lpp, beam, draft = _positive("Lpp", lpp), _positive("beam", beam), _positive("draft", draft)
+    grids = []
+    for k, z in enumerate(read_tecplot(path)):
+        pts = z.copy()
+        pts[..., 1] = np.abs(pts[..., 1])
+        _check_grid(pts, f"{path} zone {k + 1}")
+        grids.append(PointGrid(f"zone {k + 1}", pts, "hull"))
+    return HullData(name or pathlib.Path(path).stem, lpp, beam, draft, grids=grids, source=str(path))
+
+
 def read_dtmb5415(folder, *, published=None) -> HullData:
     """DTMB 5415 model: the bow, main and transom grids of ``folder`` converted to SPEC §6.
 
@@ -528,6 +542,8 @@ def read_hull_data(path, lpp=None, beam=None, draft=None, *, fmt="auto", n_stati
             else:
                 raise ValueError(f"{p}: folder holds neither DTMB5415_*_offset_*.dat nor kcs_*2.dat; "
                                  "expected one of the reference grid folders")
+        elif p.suffix.lower() in (".dat", ".plt", ".tec"):
+            fmt = "tecplot"
         else:
             rows, _ = _csv_rows(p)
             first = [h.strip().lower() for h in rows[0][1]]
@@ -537,14 +553,18 @@ def read_hull_data(path, lpp=None, beam=None, draft=None, *, fmt="auto", n_stati
     elif fmt == "kcs":
         kw = {k: v for k, v in (("lpp", lpp), ("beam", beam), ("draft", draft)) if v is not None}
         data = read_kcs(p, **kw)
-    elif fmt in ("offsets", "sections"):
+    elif fmt in ("offsets", "sections", "tecplot"):
         missing = [n for n, v in (("--lpp", lpp), ("--beam", beam), ("--draft", draft)) if v is None]
         if missing:
             raise ValueError(f"{p}: {', '.join(missing)} not given; expected the principal dimensions in metres")
-        data = (read_offsets_csv(p, lpp, beam, draft, n_stations=n_stations) if fmt == "offsets"
-                else read_sections_csv(p, lpp, beam, draft))
+        if fmt == "offsets":
+            data = read_offsets_csv(p, lpp, beam, draft, n_stations=n_stations)
+        elif fmt == "sections":
+            data = read_sections_csv(p, lpp, beam, draft)
+        else:
+            data = read_tecplot_hull(p, lpp, beam, draft)
     else:
-        raise ValueError(f"format is {fmt!r}; expected auto, offsets, sections, dtmb5415 or kcs")
+        raise ValueError(f"format is {fmt!r}; expected auto, offsets, sections, tecplot, dtmb5415 or kcs")
     if fmt in ("dtmb5415", "kcs"):
         for name, v in (("Lpp", lpp), ("beam", beam), ("draft", draft)):
             if v is not None and fmt == "dtmb5415":

@@ -92,3 +92,23 @@ def test_console_script_exit_code(tmp_path):
     r = subprocess.run([sys.executable, "-m", "fairlines.cli", "import", str(tmp_path / "missing.csv"),
                         "-o", str(tmp_path / "h.json")], capture_output=True, text=True)
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "Traceback" not in r.stderr
+
+
+def test_import_generic_tecplot_grid(tmp_path, capsys):
+    """A Wigley hull as one Tecplot zone in SPEC metres, imported and built from the command line."""
+    L, B, T = 40.0, 4.0, 2.5
+    x, z = np.linspace(0, L, 17), np.linspace(0, T * 1.2, 9)
+    X, Z = np.meshgrid(x, z, indexing="ij")
+    Y = B / 2 * (1 - (2 * (X - L / 2) / L) ** 2) * np.clip(1 - ((T - Z) / T) ** 2, 0, None)
+    Y[:, z > T] = Y[:, [np.flatnonzero(z <= T)[-1]]]
+    rows = [f"{X[i, j]} {-Y[i, j]} {Z[i, j]}" for j in range(len(z)) for i in range(len(x))]  # port side
+    p = tmp_path / "wigley.dat"
+    p.write_text(f"Zone i= {len(x)} j= {len(z)} f=point\n" + "\n".join(rows) + "\n")
+    hull = tmp_path / "h.json"
+    assert main(["import", str(p), "--lpp", str(L), "--beam", str(B), "--draft", str(T), "-o", str(hull)]) == 0
+    doc = json.loads(hull.read_text())
+    # The triangulated grid is a trapezoid-rule hull: 4/9 to the grid's resolution (17 x 9).
+    assert doc["hydrostatics_input"]["Cb"] == pytest.approx(4 / 9, rel=0.02)
+    assert main(["build", str(hull), "-o", str(tmp_path / "o")]) == 0
+    report = json.loads((tmp_path / "o" / "report.json").read_text())
+    assert report["hydrostatics"]["surface"]["Cb"] == pytest.approx(4 / 9, rel=0.005)
