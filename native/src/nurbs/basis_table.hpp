@@ -10,6 +10,8 @@
 
 #include <Eigen/Core>
 
+#include "fairlines/basis.hpp"
+
 #define FAIRLINES_INLINE inline __attribute__((always_inline))
 
 namespace fairlines::detail {
@@ -71,29 +73,15 @@ inline std::vector<double> make_basis_table(const Eigen::VectorXd& U, int p) {
   return inv;
 }
 
+/// The deg + 1 non-zero basis functions at t in `span`, using the reciprocal table.
+/// P > 0 fixes the degree at compile time (loops unroll); P == 0 takes it from p.
 template <int P>
-FAIRLINES_INLINE void basis_table_eval(int span, double t, const double* U, const double* inv, double* N) {
-  double left[P + 1], right[P + 1];
-  const double* iv = inv + span * (P * (P + 1) / 2);
+FAIRLINES_INLINE void basis_table_eval(int p, int span, double t, const double* U, const double* inv, double* N) {
+  const int deg = P > 0 ? P : p;
+  double left[kMaxFastDegree + 1], right[kMaxFastDegree + 1];
+  const double* iv = inv + span * (deg * (deg + 1) / 2);
   N[0] = 1.0;
-  for (int j = 1; j <= P; ++j) {
-    left[j] = t - U[span + 1 - j];
-    right[j] = U[span + j] - t;
-    double saved = 0.0;
-    for (int r = 0; r < j; ++r) {
-      const double temp = N[r] * iv[j * (j - 1) / 2 + r];
-      N[r] = saved + right[r + 1] * temp;
-      saved = left[j - r] * temp;
-    }
-    N[j] = saved;
-  }
-}
-
-FAIRLINES_INLINE void basis_table_eval_dyn(int p, int span, double t, const double* U, const double* inv, double* N,
-                                 double* left, double* right) {
-  const double* iv = inv + span * (p * (p + 1) / 2);
-  N[0] = 1.0;
-  for (int j = 1; j <= p; ++j) {
+  for (int j = 1; j <= deg; ++j) {
     left[j] = t - U[span + 1 - j];
     right[j] = U[span + j] - t;
     double saved = 0.0;

@@ -65,42 +65,23 @@ Layout make_layout(const Eigen::VectorXd& ku, const Eigen::VectorXd& kv, const s
 
 FAIRLINES_INLINE v4d load4(const double* p) { return *reinterpret_cast<const v4du*>(p); }
 
+// Scattered points; P, Q > 0 fix the degrees at compile time, 0 takes them from p, q.
 template <int P, int Q>
-FAIRLINES_INLINE void scatter_kernel(const Layout& L, const double* u, const double* v, long m, double* out) {
-  double Nu[P + 1], Nv[Q + 1];
+FAIRLINES_INLINE void scatter_kernel(const Layout& L, int p, int q, const double* u, const double* v, long m,
+                                     double* out) {
+  const int pu = P > 0 ? P : p, pv = Q > 0 ? Q : q;
+  double Nu[kMaxFastDegree + 1], Nv[kMaxFastDegree + 1];
   for (long k = 0; k < m; ++k) {
     const double uk = std::clamp(u[k], L.ua, L.ub), vk = std::clamp(v[k], L.va, L.vb);
     const int su = L.span_u->find(L.ku, uk), sv = L.span_v->find(L.kv, vk);
-    basis_table_eval<P>(su, uk, L.ku, L.inv_u, Nu);
-    basis_table_eval<Q>(sv, vk, L.kv, L.inv_v, Nv);
+    basis_table_eval<P>(pu, su, uk, L.ku, L.inv_u, Nu);
+    basis_table_eval<Q>(pv, sv, vk, L.kv, L.inv_v, Nv);
     v4d acc = {0, 0, 0, 0};
-    for (int a = 0; a <= P; ++a) {
-      const double* row = L.pw + (static_cast<long>(su - P + a) * L.nv + (sv - Q)) * 4;
+    for (int a = 0; a <= pu; ++a) {
+      const double* row = L.pw + (static_cast<long>(su - pu + a) * L.nv + (sv - pv)) * 4;
       v4d t4 = Nv[0] * load4(row);
-      for (int b = 1; b <= Q; ++b) t4 += Nv[b] * load4(row + 4 * b);
+      for (int b = 1; b <= pv; ++b) t4 += Nv[b] * load4(row + 4 * b);
       acc += Nu[a] * t4;
-    }
-    const double iw = L.rational ? 1.0 / acc[3] : 1.0;
-    out[3 * k] = acc[0] * iw;
-    out[3 * k + 1] = acc[1] * iw;
-    out[3 * k + 2] = acc[2] * iw;
-  }
-}
-
-// Any degree up to kMaxFastDegree, known at run time.
-FAIRLINES_INLINE void scatter_kernel_dyn(const Layout& L, int p, int q, const double* u, const double* v, long m,
-                                         double* out) {
-  double Nu[kMaxFastDegree + 1], Nv[kMaxFastDegree + 1], left[kMaxFastDegree + 1], right[kMaxFastDegree + 1];
-  for (long k = 0; k < m; ++k) {
-    const double uk = std::clamp(u[k], L.ua, L.ub), vk = std::clamp(v[k], L.va, L.vb);
-    const int su = L.span_u->find(L.ku, uk), sv = L.span_v->find(L.kv, vk);
-    detail::basis_table_eval_dyn(p, su, uk, L.ku, L.inv_u, Nu, left, right);
-    detail::basis_table_eval_dyn(q, sv, vk, L.kv, L.inv_v, Nv, left, right);
-    double acc[4] = {0, 0, 0, 0};
-    for (int a = 0; a <= p; ++a) {
-      const double* row = L.pw + (static_cast<long>(su - p + a) * L.nv + (sv - q)) * 4;
-      for (int b = 0; b <= q; ++b)
-        for (int c = 0; c < 4; ++c) acc[c] += Nu[a] * Nv[b] * row[b * 4 + c];
     }
     const double iw = L.rational ? 1.0 / acc[3] : 1.0;
     out[3 * k] = acc[0] * iw;
@@ -111,12 +92,12 @@ FAIRLINES_INLINE void scatter_kernel_dyn(const Layout& L, int p, int q, const do
 
 FAIRLINES_MULTIVERSION
 void scatter_dispatch(const Layout& L, int p, int q, const double* u, const double* v, long m, double* out) {
-  if (p == 3 && q == 3) return scatter_kernel<3, 3>(L, u, v, m, out);
-  if (p == 2 && q == 2) return scatter_kernel<2, 2>(L, u, v, m, out);
-  if (p == 2 && q == 3) return scatter_kernel<2, 3>(L, u, v, m, out);
-  if (p == 3 && q == 2) return scatter_kernel<3, 2>(L, u, v, m, out);
-  if (p == 1 && q == 1) return scatter_kernel<1, 1>(L, u, v, m, out);
-  scatter_kernel_dyn(L, p, q, u, v, m, out);
+  if (p == 3 && q == 3) return scatter_kernel<3, 3>(L, p, q, u, v, m, out);
+  if (p == 2 && q == 2) return scatter_kernel<2, 2>(L, p, q, u, v, m, out);
+  if (p == 2 && q == 3) return scatter_kernel<2, 3>(L, p, q, u, v, m, out);
+  if (p == 3 && q == 2) return scatter_kernel<3, 2>(L, p, q, u, v, m, out);
+  if (p == 1 && q == 1) return scatter_kernel<1, 1>(L, p, q, u, v, m, out);
+  scatter_kernel<0, 0>(L, p, q, u, v, m, out);
 }
 
 // One grid line u = const: `row` is the control net contracted in u (nv homogeneous
@@ -249,11 +230,10 @@ void NurbsSurface::evaluate_grid_into(const double* us, long n_u, const double* 
                      double hi, std::vector<int>& spans, std::vector<double>& N) {
     spans.resize(n);
     N.resize(static_cast<size_t>(n) * (p + 1));
-    double left[kMaxFastDegree + 1], right[kMaxFastDegree + 1];
     for (long k = 0; k < n; ++k) {
       const double t = std::clamp(ts[k], lo, hi);
       spans[k] = loc->find(U, t);
-      detail::basis_table_eval_dyn(p, spans[k], t, U, inv, &N[k * (p + 1)], left, right);
+      basis_table_eval<0>(p, spans[k], t, U, inv, &N[k * (p + 1)]);
     }
   };
   std::vector<int> su, sv;
