@@ -372,3 +372,27 @@ def test_grid_deviation_projection_agrees_with_closest_point(kcs):
     # Least-squares fairing of the grids: a real but small deviation, reported with its place.
     assert 0 < rb.deviation["rms"] < 1e-3 * data.beam
     assert rb.deviation["max_at"]["block"] in rb.names
+
+
+def test_series60_editable_description(series60):
+    """The forebody as basic curves with form parameters (issue 4's hull description)."""
+    data, rb = series60
+    fp = pp.form_parameters(rb.surfaces, data, roles=rb.roles)
+    desc = pp.hull_description(fp, data)
+    bc = desc["basic_curves"]
+    assert set(bc) == {"sac", "dwl", "deck", "profile", "fos", "fob", "deck_angle", "bottom_angle"}
+    assert desc["range"]["x_start"] == pytest.approx(S60_LPP / 2)
+    # Midship values: the midship section area, the half beam, the flat bottom of 0.85 B/2.
+    assert bc["sac"]["value"] == pytest.approx(0.994 * S60_B * S60_T, rel=COEFF_TOL)
+    assert bc["dwl"]["value"] == pytest.approx(S60_B / 2)
+    assert bc["fob"]["value"] == pytest.approx(0.85 * S60_B / 2, rel=0.02)
+    assert bc["bottom_angle"]["value"] == pytest.approx(-90, abs=0.5)  # flat bottom
+    assert bc["deck_angle"]["value"] == pytest.approx(0, abs=0.5)  # wall-sided midship
+    # Forebody volume from the description against the surface cut at midships (independent).
+    x_end = desc["range"]["x_end"]
+    xs = np.linspace(S60_LPP / 2, x_end, 81)
+    areas = [2 * sum(pp._polyline_area(p, S60_T) for p in pp.section_at(rb.surfaces, x)) for x in xs]
+    assert bc["sac"]["volume"] == pytest.approx(pp.simpson(np.array(areas), xs), rel=2e-3)
+    for name, c in bc.items():
+        xs_pts = [p[0] for p in c["points"]]
+        assert all(c["flat_to"] < x < c.get("x_end", x_end) for x in xs_pts), name
