@@ -26,6 +26,9 @@ import numpy as np
 
 # Two stations closer than this fraction of Lpp are the same station (duplicates).
 STATION_MATCH_TOL = 1e-9
+# Stations may lie beyond the perpendiculars (overhangs, a bulb), but not by more than this
+# fraction of Lpp: further out, Lpp or the units are wrong.
+STATION_RANGE_MARGIN = 0.25
 # Turning angle (degrees) between two section segments above which the point is a knuckle.
 KNUCKLE_ANGLE_DEG = 35.0
 
@@ -105,6 +108,8 @@ def _csv_rows(path):
         text = path.read_text(encoding="utf-8-sig")
     except OSError as exc:
         raise ValueError(f"cannot read {path}: {exc.strerror or exc}") from None
+    except UnicodeDecodeError:
+        raise ValueError(f"{path} is not a text file; expected CSV") from None
     rows, comments = [], []
     for lineno, line in enumerate(text.splitlines(), 1):
         if line.lstrip().startswith("#"):
@@ -197,6 +202,7 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
     if len(xs) < 3:
         raise ValueError(f"{path}: {len(xs)} station(s); expected at least 3")
     xs, table = np.array(xs), np.array(table)
+    check_station_range(xs, lpp, str(path))
     if normalised:
         hb_scale = scale_row if scale_row is not None else np.ones(len(wl_cols))
         if np.any(np.isnan(hb_scale)) or np.any(hb_scale <= 0):
@@ -333,6 +339,7 @@ def read_sections_csv(path, lpp, beam, draft, *, name=None) -> HullData:
         sections.append(Section(float(x), pts, f"x={x:g}"))
     data = HullData(name or pathlib.Path(path).stem, lpp, beam, draft, sections=sections, notes=notes,
                     source=str(path))
+    check_station_range([s.x for s in data.sections], lpp, str(path))
     check_sections(data.sections, source=str(path))
     return data
 
@@ -352,6 +359,15 @@ def _segments_cross(p1, p2, q1, q2):
     d1, d2 = orient(q1, q2, p1), orient(q1, q2, p2)
     d3, d4 = orient(p1, p2, q1), orient(p1, p2, q2)
     return d1 * d2 < 0 and d3 * d4 < 0
+
+
+def check_station_range(xs, lpp, source=""):
+    """Stations must lie near the perpendiculars: x from -margin to (1 + margin) Lpp."""
+    lo, hi = float(np.min(xs)), float(np.max(xs))
+    m = STATION_RANGE_MARGIN * lpp
+    if lo < -m or hi > lpp + m:
+        raise ValueError(f"{source}: stations run from x = {lo:.6g} to {hi:.6g} m but Lpp is {lpp:.6g} m; "
+                         "expected stations between the perpendiculars (is Lpp in metres?)")
 
 
 def check_sections(sections, source=""):

@@ -289,6 +289,11 @@ def test_missing_and_bad_cells(tmp_path):
         offsets.read_offsets_csv(_table(tmp_path, rows), 20, 4, 2)
     with pytest.raises(ValueError, match=r"two waterline columns at z = 1"):
         offsets.read_offsets_csv(_table(tmp_path, BOX_ROWS, header="x,0,1,1,3"), 20, 4, 2)
+    with pytest.raises(ValueError, match=r"stations run from x = 0 to 20 m but Lpp is 10 m"):
+        offsets.read_offsets_csv(_table(tmp_path, BOX_ROWS), 10, 4, 2)
+    (tmp_path / "bin.csv").write_bytes(b"\x00\xff\xfe")
+    with pytest.raises(ValueError, match=r"bin.csv is not a text file"):
+        offsets.read_offsets_csv(tmp_path / "bin.csv", 20, 4, 2)
     with pytest.raises(ValueError, match=r"draft is -2"):
         offsets.read_offsets_csv(_table(tmp_path, BOX_ROWS), 20, 4, -2)
 
