@@ -614,9 +614,16 @@ def _resample_section(points, n):
     s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))])
     corners = knuckles(p)
     out_s = np.linspace(0.0, s[-1], n)
-    # Every knuckle becomes a sample too, so the skinned surface has a grid line through it.
+    # Every knuckle becomes a sample too (replacing the nearest interior sample, never an end
+    # point), so the skinned surface has a grid line through it.
+    taken = set()
     for k in corners:
-        out_s[np.argmin(np.abs(out_s - s[k]))] = s[k]
+        free = [i for i in range(1, n - 1) if i not in taken]
+        if not free:
+            break
+        i = min(free, key=lambda i: abs(out_s[i] - s[k]))
+        out_s[i] = s[k]
+        taken.add(i)
     out_s = np.sort(out_s)
     idx = np.clip(np.searchsorted(s, out_s, side="right") - 1, 0, len(s) - 2)
     h = s[idx + 1] - s[idx]
