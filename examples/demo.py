@@ -13,6 +13,7 @@ HERE = pathlib.Path(__file__).resolve().parent
 # Pipeline steps in order; each is a script in examples/ taking --out.
 STEPS = [
     ("NURBS core: fit a surface to hull offsets", "fit_wigley_surface.py"),
+    ("Pre-processor: form parameters and faired surfaces of the reference hulls", "import_reference_hulls.py"),
 ]
 
 
