@@ -17,6 +17,7 @@ _COLOURS = {
     ids.SOCKET_SURFACE: (0.95, 0.55, 0.15, 1.0),
     ids.SOCKET_MESH: (0.0, 0.85, 0.6, 1.0),
     ids.SOCKET_LINES: (0.7, 0.6, 0.95, 1.0),
+    ids.SOCKET_HULL_DATA: (0.9, 0.85, 0.3, 1.0),
     ids.SOCKET_LENGTH: (0.63, 0.63, 0.63, 1.0),
     ids.SOCKET_ANGLE: (0.63, 0.63, 0.75, 1.0),
     ids.SOCKET_FLOAT: (0.63, 0.63, 0.63, 1.0),
@@ -90,6 +91,12 @@ class FLSocketLines(_DataSocket, bpy.types.NodeSocket):
     bl_label = "Lines"
 
 
+class FLSocketHullData(_DataSocket, bpy.types.NodeSocket):
+    """Imported hull data (offsets, sections or grids with Lpp, B, T), SPEC metres"""
+    bl_idname = ids.SOCKET_HULL_DATA
+    bl_label = "Hull Data"
+
+
 class FLSocketLength(_ValueSocket, bpy.types.NodeSocket):
     """A length in metres"""
     bl_idname = ids.SOCKET_LENGTH
@@ -125,7 +132,7 @@ class FLSocketVector(_ValueSocket, bpy.types.NodeSocket):
     default_value: props.vector("Value")
 
 
-CLASSES = (FLSocketCurve, FLSocketSurface, FLSocketMesh, FLSocketLines, FLSocketLength,
+CLASSES = (FLSocketCurve, FLSocketSurface, FLSocketMesh, FLSocketLines, FLSocketHullData, FLSocketLength,
            FLSocketAngle, FLSocketFloat, FLSocketInt, FLSocketVector)
 
 

@@ -411,6 +411,60 @@ def t_every_node_alone():
     results["node_types"] = len(kinds)
 
 
+DATA = os.environ.get("FAIRLINES_DATA", os.path.join(os.path.dirname(ROOT), "shared", "data"))
+
+
+def t_offsets_hydrostatics():
+    """Series 60 offsets -> rebuilt surface -> hydrostatics on the node and a hull object."""
+    ev, ids = sub("evaluator"), sub("ids")
+    from fairlines import offsets, preprocess
+    path = os.path.join(DATA, "series60_cb080_offsets.csv")
+    check(os.path.exists(path), "reference data missing: %s (set FAIRLINES_DATA)" % path)
+    tree = bpy.data.node_groups.new("Series 60", ids.TREE)
+    imp = tree.nodes.new(ids.NODE_OFFSETS_IMPORT)
+    imp.name = "Import"
+    imp.filepath = path
+    for name, value in (("Lpp", 121.92), ("Beam", 18.757), ("Draft", 7.503)):
+        imp.inputs[name].default_value = value
+    rb = tree.nodes.new(ids.NODE_REBUILD)
+    rb.name = "Rebuild"
+    hy = tree.nodes.new(ids.NODE_HYDROSTATICS)
+    hy.name = "Hydrostatics"
+    for name, value in (("Lpp", 121.92), ("Beam", 18.757), ("Draft", 7.503)):
+        hy.inputs[name].default_value = value
+    te = tree.nodes.new(ids.NODE_TESSELLATE)
+    out = tree.nodes.new(ids.NODE_MESH_OUTPUT)
+    out.object_name = "Series 60"
+    tree.links.new(imp.outputs[0], rb.inputs["Hull Data"])
+    tree.links.new(rb.outputs[0], hy.inputs["Surface"])
+    tree.links.new(rb.outputs[0], te.inputs["Surface"])
+    tree.links.new(te.outputs[0], out.inputs["Mesh"])
+    ev.flush()
+    bad = ["%s: %s" % (n.name, n.fl_message) for n in tree.nodes if n.fl_state != "OK"]
+    check(not bad, "Series 60 graph: %s" % bad)
+    data = offsets.read_hull_data(path, 121.92, 18.757, 7.503)
+    ref = preprocess.surface_hydrostatics(preprocess.rebuild(data, deviation=False).surfaces, 7.503, 121.92, 18.757)
+    got = ev.outputs_of(tree, "Hydrostatics")
+    # Equal up to the single precision in which Blender stores the Lpp / B / T sockets.
+    check(abs(got["Volume"] / ref["volume"] - 1) < 1e-6 and abs(got["Cb"] - ref["Cb"]) < 1e-6,
+          "node hydrostatics %s vs package %s" % (got, ref["volume"]))
+    check(abs(got["Cb"] - 0.80) < 0.005, "Series 60 Cb %.4f" % got["Cb"])
+    check("Cb %.4f" % got["Cb"] in hy.fl_info and "deviation max" in rb.fl_info, hy.fl_info + rb.fl_info)
+    results["series60"] = {"volume_m3": round(got["Volume"], 1), "Cb": round(got["Cb"], 4),
+                           "hydrostatics_ms": round(hy.fl_time_ms, 2), "info": hy.fl_info}
+    hy.inputs["Draft"].default_value = 6.0
+    ev.flush()
+    check(ev.last_stats["evaluated"] == ["Hydrostatics"], "a draft change re-ran %s" % ev.last_stats["evaluated"])
+    check(ev.outputs_of(tree, "Hydrostatics")["Volume"] < 0.85 * got["Volume"], "volume did not drop with the draft")
+    check(len(bpy.data.objects["Series 60"].data.vertices) == 64 * 32, "Series 60 mesh")
+    imp.filepath = os.path.join(DATA, "no_such_offsets.csv")
+    ev.flush()
+    check(imp.fl_state == "ERROR" and "does not exist" in imp.fl_message, "bad path: %s" % imp.fl_message)
+    check(rb.fl_state == "BLOCKED" and hy.fl_state == "BLOCKED", "downstream of a bad import")
+    bpy.data.objects.remove(bpy.data.objects["Series 60"])
+    bpy.data.node_groups.remove(tree)
+
+
 def t_export(tree):
     ev, ids = sub("evaluator"), sub("ids")
     exp = tree.nodes.new(ids.NODE_EXPORT_OBJ)
@@ -544,6 +598,8 @@ def main():
             steps.append("curve edit")
             t_every_node_alone()
             steps.append("every node alone")
+            t_offsets_hydrostatics()
+            steps.append("offsets and hydrostatics")
             t_export(tree)
             steps.append("export")
             t_save_reload(tree)
