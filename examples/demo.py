@@ -13,7 +13,8 @@ HERE = pathlib.Path(__file__).resolve().parent
 # Pipeline steps in order; each is a script in examples/ taking --out.
 STEPS = [
     ("NURBS core: fit a surface to hull offsets", "fit_wigley_surface.py"),
-    ("Bulbous bow + Boolean union into a watertight hull (stand-in forebody)", "compose_forebody.py"),
+    ("Pre-processor: form parameters and faired surfaces of the reference hulls", "import_reference_hulls.py"),
+    ("Bulbous bow, blend and Boolean composition into a watertight hull (stand-in forebody)", "compose_forebody.py"),
 ]
 
 

@@ -16,3 +16,13 @@ def test_fit_wigley_surface(tmp_path, monkeypatch, capsys):
     assert "least squares" in text
     assert (tmp_path / "wigley_surface.obj").stat().st_size > 1000
     assert (tmp_path / "wigley_surface.json").exists()
+
+
+def test_import_reference_hulls(tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(sys, "argv", ["import_reference_hulls.py", "--out", str(tmp_path)])
+    runpy.run_path(str(EXAMPLES / "import_reference_hulls.py"), run_name="__main__")
+    text = capsys.readouterr().out
+    assert text.count("deviation of the surface from") == 3 and "bow feature: bulb" in text and "sonar dome" in text
+    for key in ("series60", "dtmb5415", "kcs"):
+        assert (tmp_path / f"{key}_hull.json").exists()
+        assert (tmp_path / f"{key}_rebuilt" / "report.json").exists()
