@@ -9,6 +9,7 @@ namespace py = pybind11;
 namespace fairlines {
 void bind_nurbs(py::module_& m);
 void bind_compose(py::module_& m);
+void bind_form_curve(py::module_& m);
 }  // namespace fairlines
 
 PYBIND11_MODULE(_native, m) {
@@ -19,5 +20,6 @@ PYBIND11_MODULE(_native, m) {
   py::register_exception<fairlines::InfeasibleFormParameters>(m, "InfeasibleFormParameters", invalid.ptr());
   py::register_exception<fairlines::ConvergenceError>(m, "ConvergenceError", base.ptr());
   fairlines::bind_nurbs(m);
+  fairlines::bind_form_curve(m);
   fairlines::bind_compose(m);
 }

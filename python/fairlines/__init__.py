@@ -33,6 +33,7 @@ from ._native import (  # noqa: F401  (re-exported API)
     validate_knots,
 )
 
+from .form_curve import FORM_PARAMETERS, FormCurveResult, design_curve, fairness_of, form_parameters_of  # noqa: F401,E402
 from ._native import boundary_continuity, mesh_volume, orient_bare_hull, triangulate_polygon  # noqa: F401,E402
 from .compose import (  # noqa: F401,E402
     KRACHT_NAMES,

@@ -1,0 +1,190 @@
+// design_form_curve: validation, closed-form checks, continuation runs, multistart,
+// and the result / diagnosis.
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "fairlines/errors.hpp"
+#include "problem.hpp"
+#include "solver.hpp"
+
+namespace fairlines {
+
+using form_curve_impl::Problem;
+using form_curve_impl::RunOutcome;
+using form_curve_impl::Solver;
+
+namespace {
+
+Eigen::VectorXd flatten(const Eigen::MatrixXd& cps) {
+  Eigen::VectorXd z(cps.size());
+  for (int c = 0; c < cps.cols(); ++c) z.segment(c * cps.rows(), cps.rows()) = cps.col(c);
+  return z;
+}
+
+std::map<std::string, double> params_of(const form_curve_impl::SplineTables& tab, const Eigen::VectorXd& z,
+                                        int dim) {
+  const int n = tab.n;
+  std::map<std::string, double> out;
+  const char* pos[2][3] = {{"xB", "yB", "zB"}, {"xE", "yE", "zE"}};
+  for (int e = 0; e < 2; ++e)
+    for (int c = 0; c < dim; ++c) out[pos[e][c]] = z[c * n + (e == 0 ? 0 : n - 1)];
+  const char* an[2] = {"alphaB", "alphaE"};
+  const char* cn[2] = {"CAB", "CAE"};
+  for (int e = 0; e < 2; ++e) {
+    const Eigen::MatrixXd& R = tab.end_rows[e];
+    const double x1 = R.row(1).dot(z.segment(0, n)), y1 = R.row(1).dot(z.segment(n, n));
+    const double x2 = R.row(2).dot(z.segment(0, n)), y2 = R.row(2).dot(z.segment(n, n));
+    out[an[e]] = std::atan2(y1, x1) * 180.0 / std::numbers::pi;
+    out[cn[e]] = (x1 * y2 - y1 * x2) / std::pow(x1 * x1 + y1 * y1, 1.5);
+  }
+  double A, My, Mx;
+  form_curve_impl::area_moments(tab, z, A, My, Mx);
+  out["Area"] = A;
+  out["xC"] = My / A;
+  out["yC"] = Mx / A;
+  return out;
+}
+
+double angle_diff(double a, double b) {
+  double d = std::fmod(a - b, 360.0);
+  if (d > 180) d -= 360;
+  if (d <= -180) d += 360;
+  return d;
+}
+
+}  // namespace
+
+std::map<std::string, double> form_parameters_of(int degree, const Eigen::MatrixXd& control_points) {
+  if (control_points.cols() < 2 || control_points.cols() > 3 || control_points.rows() < degree + 1 || degree < 2 ||
+      !control_points.allFinite())
+    throw InvalidInput("form_parameters_of: control_points must be finite (n x 2) or (n x 3) with n >= degree + 1, degree >= 2");
+  form_curve_impl::SplineTables tab(static_cast<int>(control_points.rows()), degree);
+  return params_of(tab, flatten(control_points), static_cast<int>(control_points.cols()));
+}
+
+FairnessMeasures fairness_of(int degree, const Eigen::MatrixXd& control_points) {
+  FormCurveRequest req;
+  req.dim = static_cast<int>(control_points.cols());
+  req.degree = degree;
+  req.n_control = static_cast<int>(control_points.rows());
+  if (req.dim < 2 || req.dim > 3 || req.n_control < degree + 1 || degree < 2 || !control_points.allFinite())
+    throw InvalidInput("fairness_of: control_points must be finite (n x 2) or (n x 3) with n >= degree + 1, degree >= 2");
+  req.bounds.monotone_axis = -1;
+  req.bounds.y_nonnegative = false;
+  Problem pb(req);
+  return pb.measures(flatten(control_points));
+}
+
+FormCurveResult design_form_curve(const FormCurveRequest& request) {
+  form_curve_impl::validate_request(request);
+  check_form_parameters_feasible(request);
+  FormCurveRequest req = request;
+  Problem pb(req);
+  Solver solver(pb);
+  solver.max_total = req.options.max_iterations;
+
+  std::vector<Eigen::VectorXd> starts;
+  if (req.initial_control_points.size() > 0) {
+    Eigen::VectorXd z0 = solver.start_curve(nullptr);
+    z0.head(pb.nctrl) = flatten(req.initial_control_points);
+    z0 = solver.project_linear(z0);
+    if (!solver.interior(z0))
+      throw InvalidInput("initial_control_points (after projection onto the linear form parameters) violate the bounds");
+    starts.push_back(z0);
+  } else {
+    const Eigen::VectorXd zc = solver.start_curve(nullptr);
+    const Eigen::VectorXd zf = solver.fair_linear_start(zc);
+    if (solver.interior(zf)) starts.push_back(zf);
+    starts.push_back(zc);
+  }
+  std::mt19937 rng(req.options.seed);
+  const int extra_fallback = 6;  // random restarts tried when the main run fails
+  RunOutcome best;
+  bool have = false;
+  RunOutcome furthest;
+  furthest.tau = -1;
+  int steps = 0, all_iterations = 0;
+  const int wanted = 1 + req.options.multistart;
+  const int n_det = static_cast<int>(starts.size());
+  for (int attempt = 0; attempt < wanted + extra_fallback; ++attempt) {
+    if (attempt >= wanted && have) break;
+    if (attempt >= 1 && attempt < n_det && have) continue;
+    Eigen::VectorXd z0;
+    if (attempt < static_cast<int>(starts.size())) {
+      z0 = starts[attempt];
+    } else {
+      bool ok = false;
+      for (int k = 0; k < 20 && !ok; ++k) {
+        z0 = solver.project_linear(solver.start_curve(&rng));
+        ok = solver.interior(z0);
+      }
+      if (!ok) continue;
+    }
+    if (!solver.interior(z0)) continue;
+    solver.total_iterations = 0;  // the iteration budget applies per start
+    RunOutcome out = solver.run(z0, req.options.continuation);
+    all_iterations += solver.total_iterations;
+    steps += out.steps;
+    if (out.feasible && (!have || out.objective < best.objective)) {
+      best = out;
+      have = true;
+    }
+    if (!out.feasible && out.tau > furthest.tau) furthest = out;
+  }
+  if (!have) {
+    if (furthest.tau < 0) {
+      furthest.z = starts.front();
+      furthest.tau = 0;
+    }
+    if (furthest.tau >= 1)
+      throw ConvergenceError("form-parameter solver reached the requested values but not the tolerance (violation " +
+                             std::to_string(furthest.violation) + ")");
+    // restore the continuation origin of the furthest run for the report
+    for (size_t i = 0; i < pb.cons.size() && i < furthest.starts.size(); ++i) pb.cons[i].start = furthest.starts[i];
+    throw InfeasibleFormParameters(form_curve_impl::failure_report(solver, furthest));
+  }
+
+  FormCurveResult res;
+  res.degree = pb.p;
+  res.knots = pb.tab.knots;
+  res.control_points.resize(pb.n, pb.dim);
+  for (int c = 0; c < pb.dim; ++c) res.control_points.col(c) = best.z.segment(c * pb.n, pb.n);
+  const auto all = params_of(pb.tab, best.z, pb.dim);
+  for (const auto& [k, v] : req.params) {
+    res.achieved[k] = all.at(k);
+    res.residuals[k] = (k == "alphaB" || k == "alphaE") ? angle_diff(all.at(k), v) : all.at(k) - v;
+  }
+  res.point_parameters = best.z.tail(pb.npts);
+  res.point_residuals.resize(pb.npts);
+  Eigen::MatrixXd C, ders;
+  for (int j = 0; j < pb.npts; ++j) {
+    int f = 0;
+    pb.point_derivs(best.z, best.z[pb.tvar(j)], C, ders, f);
+    res.point_residuals[j] = (C.row(0).transpose() - req.points[j].position).norm();
+  }
+  res.fairness = pb.measures(best.z);
+  res.objective = best.objective;
+  res.iterations = all_iterations;
+  res.continuation_steps = steps;
+  res.converged = best.converged;
+  return res;
+}
+
+namespace form_curve_detail {
+
+Derivatives evaluate_problem(const FormCurveRequest& request, const Eigen::VectorXd& z,
+                             const Eigen::VectorXd& lambda) {
+  form_curve_impl::validate_request(request);
+  Problem pb(request);
+  if (z.size() != pb.nv) throw InvalidInput("evaluate_problem: z has the wrong length");
+  Derivatives d;
+  pb.constraints(z, d.c, &d.J, lambda.size() == static_cast<long>(pb.cons.size()) ? &lambda : nullptr, &d.HL);
+  if (lambda.size() != static_cast<long>(pb.cons.size())) d.HL = Eigen::MatrixXd::Zero(pb.nv, pb.nv);
+  d.f = pb.objective(z, &d.g, &d.H);
+  for (const auto& k : pb.cons) d.names.push_back(k.name);
+  return d;
+}
+
+}  // namespace form_curve_detail
+}  // namespace fairlines

@@ -1,0 +1,245 @@
+// Input validation, closed-form feasibility conditions and the infeasibility report.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include <Eigen/SVD>
+
+#include "fairlines/errors.hpp"
+#include "solver.hpp"
+
+namespace fairlines {
+
+const std::vector<std::string>& form_parameter_names() {
+  static const std::vector<std::string> names = {"xB",     "yB",     "zB",  "xE",  "yE",   "zE", "alphaB",
+                                                 "alphaE", "CAB",    "CAE", "Area", "xC",  "yC"};
+  return names;
+}
+
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
+
+[[noreturn]] void infeasible(const std::vector<std::string>& names, const std::string& why) {
+  std::ostringstream os;
+  os << "infeasible form parameters {";
+  for (size_t i = 0; i < names.size(); ++i) os << (i ? ", " : "") << names[i];
+  os << "}: " << why;
+  throw InfeasibleFormParameters(os.str());
+}
+
+}  // namespace
+
+void check_form_parameters_feasible(const FormCurveRequest& req) {
+  const auto& P = req.params;
+  auto has = [&](const char* k) { return P.count(k) > 0; };
+  auto v = [&](const char* k) { return P.at(k); };
+  constexpr double deg = std::numbers::pi / 180.0;
+  const int ax = req.bounds.monotone_axis;
+  const bool ynn = req.bounds.y_nonnegative;
+
+  double sgn = 1;  // direction of the monotone coordinate
+  if (ax >= 0) {
+    const char* bn = ax == 0 ? "xB" : "yB";
+    const char* en = ax == 0 ? "xE" : "yE";
+    const char* an = ax == 0 ? "x" : "y";
+    if (has(bn) && has(en)) {
+      if (v(bn) == v(en))
+        infeasible({bn, en}, std::string(an) + "-monotone curve needs " + en + " != " + bn + " (both " + fmt(v(bn)) +
+                                 "); pass bounds with monotone=None for a closed or returning curve");
+      sgn = v(en) > v(bn) ? 1 : -1;
+    }
+    for (const char* a : {"alphaB", "alphaE"})
+      if (has(a)) {
+        const double comp = ax == 0 ? std::cos(v(a) * deg) : std::sin(v(a) * deg);
+        if (sgn * comp < -1e-12) {
+          std::ostringstream os;
+          os << "the tangent " << a << "=" << fmt(v(a)) << " deg makes " << an << " run "
+             << (sgn > 0 ? "backwards" : "forwards") << " at the " << (a[5] == 'B' ? "start" : "end") << ", but the curve must be "
+             << an << "-monotone " << (sgn > 0 ? "increasing" : "decreasing") << "; achievable " << a << " range: "
+             << (ax == 0 ? (sgn > 0 ? "[-90, 90]" : "[90, 270]") : (sgn > 0 ? "[0, 180]" : "[-180, 0]"));
+          std::vector<std::string> names = {a};
+          if (has(bn) && has(en)) names.insert(names.begin(), {bn, en});
+          infeasible(names, os.str());
+        }
+      }
+  }
+  if (ynn) {
+    for (const char* k : {"yB", "yE"})
+      if (has(k) && v(k) < 0)
+        infeasible({k}, std::string(k) + "=" + fmt(v(k)) + " is below the bound y >= 0; achievable range [0, inf)");
+    if (has("yB") && v("yB") == 0 && has("alphaB") && std::sin(v("alphaB") * deg) < -1e-12)
+      infeasible({"yB", "alphaB"}, "starting on y = 0 with alphaB=" + fmt(v("alphaB")) +
+                                       " deg would leave y >= 0; achievable alphaB range [0, 180]");
+    if (has("yE") && v("yE") == 0 && has("alphaE") && std::sin(v("alphaE") * deg) > 1e-12)
+      infeasible({"yE", "alphaE"}, "ending on y = 0 with alphaE=" + fmt(v("alphaE")) +
+                                       " deg needs the curve below y = 0 just before; achievable alphaE range [-180, 0]");
+  }
+  // Conditions for a curve that is a graph y(x) over [xB, xE] (x-monotone).
+  if (ax == 0 && has("xB") && has("xE")) {
+    const double x0 = std::min(v("xB"), v("xE")), x1 = std::max(v("xB"), v("xE"));
+    const double L = x1 - x0, xm = 0.5 * (x0 + x1);
+    if (ynn && has("Area")) {
+      const double Aabs = sgn * v("Area");  // area in |dx|
+      const bool positive_ends = (has("yB") && v("yB") > 0) || (has("yE") && v("yE") > 0);
+      if (Aabs < 0 || (Aabs == 0 && (positive_ends || has("xC") || has("yC"))))
+        infeasible({"xB", "xE", "Area"}, "with y >= 0 and x running from xB to xE the area must have the sign of "
+                                         "xE - xB and be non-zero; requested Area=" +
+                                             fmt(v("Area")) + ", achievable " + (sgn > 0 ? "(0, inf)" : "(-inf, 0)"));
+    }
+    if (ynn && has("xC") && !(v("xC") > x0 && v("xC") < x1))
+      infeasible({"xB", "xE", "xC"}, "the centroid of an area under a curve with y >= 0 over x in [" + fmt(x0) + ", " +
+                                         fmt(x1) + "] lies strictly inside that range; requested xC=" + fmt(v("xC")) +
+                                         ", achievable (" + fmt(x0) + ", " + fmt(x1) + ")");
+    if (ynn && has("yC") && !(v("yC") > 0))
+      infeasible({"yC"}, "with y >= 0 the centroid height is positive; requested yC=" + fmt(v("yC")) +
+                             ", achievable (0, inf)");
+    if (has("Area") && has("yC") && v("Area") != 0) {
+      // Cauchy-Schwarz / Bessel: over a graph, int y^2 dx >= (A^2/L)(1 + 12 ((xC - xm)/L)^2),
+      // equality for a straight line; hence yC >= (|A|/(2L))(1 + 12 ((xC - xm)/L)^2).
+      const double Aabs = sgn * v("Area");
+      if (Aabs > 0) {
+        const double dx = has("xC") ? (v("xC") - xm) / L : 0.0;
+        const double ymin = Aabs / (2 * L) * (1 + 12 * dx * dx);
+        if (v("yC") < ymin * (1 - 1e-12)) {
+          std::ostringstream os;
+          os << "a curve that does not fold back (x monotone from xB to xE) has int y^2 dx >= "
+             << "(A^2/L)(1 + 12((xC - xm)/L)^2) (Cauchy-Schwarz; equality only for a straight line), so yC >= "
+             << fmt(ymin) << " here; requested yC=" << fmt(v("yC")) << ". Achievable: yC in [" << fmt(ymin)
+             << ", inf)";
+          if (has("xC")) {
+            const double r = L * std::sqrt(std::max(0.0, (2 * v("yC") * L / Aabs - 1) / 12));
+            os << "; or, keeping yC and Area, xC in [" << fmt(xm - r) << ", " << fmt(xm + r) << "]";
+            os << "; or, keeping xC and yC, |Area| <= " << fmt(2 * v("yC") * L / (1 + 12 * dx * dx));
+          } else {
+            os << "; or, keeping yC, |Area| <= " << fmt(2 * v("yC") * L);
+          }
+          std::vector<std::string> names = {"xB", "xE", "Area"};
+          if (has("xC")) names.push_back("xC");
+          names.push_back("yC");
+          infeasible(names, os.str());
+        }
+      }
+    }
+  }
+}
+
+namespace form_curve_impl {
+
+void validate_request(const FormCurveRequest& req) {
+  if (req.dim != 2 && req.dim != 3)
+    throw InvalidInput("dim=" + std::to_string(req.dim) + " is not supported; expected 2 or 3");
+  if (req.degree < 2 || req.degree > 15)
+    throw InvalidInput("degree=" + std::to_string(req.degree) + " is out of range; expected 2 <= degree <= 15");
+  if (req.n_control < req.degree + 1)
+    throw InvalidInput("n_control=" + std::to_string(req.n_control) + " is too small for degree " +
+                       std::to_string(req.degree) + "; expected n_control >= " + std::to_string(req.degree + 1));
+  const auto& names = form_parameter_names();
+  int m = 0;
+  for (const auto& [k, val] : req.params) {
+    if (std::find(names.begin(), names.end(), k) == names.end()) {
+      std::string list;
+      for (const auto& nm : names) list += (list.empty() ? "" : ", ") + nm;
+      throw InvalidInput("unknown form parameter '" + k + "'; expected one of " + list);
+    }
+    if ((k == "zB" || k == "zE") && req.dim != 3)
+      throw InvalidInput("form parameter '" + k + "' needs dim=3 (got dim=" + std::to_string(req.dim) + ")");
+    if (!std::isfinite(val)) throw InvalidInput("form parameter " + k + "=" + fmt(val) + " is not a finite number");
+    ++m;
+  }
+  for (const auto* t : {&req.tangent_start, &req.tangent_end}) {
+    if (t->size() == 0) continue;
+    const char* nm = t == &req.tangent_start ? "tangent_start" : "tangent_end";
+    if (req.dim != 3) throw InvalidInput(std::string(nm) + " needs dim=3; use alphaB / alphaE for plane curves");
+    if (t->size() != 3 || !t->allFinite() || t->norm() == 0)
+      throw InvalidInput(std::string(nm) + " must be a finite non-zero 3-vector");
+    m += 2;
+  }
+  for (size_t j = 0; j < req.points.size(); ++j) {
+    const auto& pt = req.points[j];
+    const std::string nm = "points[" + std::to_string(j) + "]";
+    if (pt.position.size() != req.dim)
+      throw InvalidInput(nm + " has " + std::to_string(pt.position.size()) + " coordinates; expected " +
+                         std::to_string(req.dim));
+    if (!pt.position.allFinite()) throw InvalidInput(nm + " has a non-finite coordinate");
+    if (std::isnan(pt.weight) || pt.weight <= 0)
+      throw InvalidInput(nm + " weight=" + fmt(pt.weight) + " is invalid; expected > 0 (inf = interpolate)");
+    if (std::isinf(pt.weight)) m += req.dim - 1;  // each point adds dim equations and one unknown t
+  }
+  const auto& fw = req.fairness;
+  for (const auto& [nm, val] : {std::pair<const char*, double>{"e1", fw.e1}, {"e2", fw.e2}, {"e3", fw.e3},
+                                {"length", fw.length}})
+    if (!std::isfinite(val) || val < 0)
+      throw InvalidInput(std::string("fairness weight ") + nm + "=" + fmt(val) + " is invalid; expected finite >= 0");
+  if (fw.e1 + fw.e2 + fw.e3 <= 0)
+    throw InvalidInput("fairness weights e1, e2, e3 are all zero; at least one must be > 0");
+  if (req.bounds.monotone_axis < -1 || req.bounds.monotone_axis > 1)
+    throw InvalidInput("bounds monotone axis=" + std::to_string(req.bounds.monotone_axis) +
+                       "; expected -1 (none), 0 (x) or 1 (y)");
+  if (!std::isfinite(req.bounds.min_end_speed) || req.bounds.min_end_speed < 0 || req.bounds.min_end_speed > 1)
+    throw InvalidInput("bounds min_end_speed=" + fmt(req.bounds.min_end_speed) + "; expected 0 <= value <= 1");
+  if (!(req.options.tolerance > 0) || !(req.options.tolerance < 1e-3))
+    throw InvalidInput("tolerance=" + fmt(req.options.tolerance) + "; expected 0 < tolerance < 1e-3");
+  if (req.options.max_iterations < 1 || req.options.multistart < 0)
+    throw InvalidInput("max_iterations must be >= 1 and multistart >= 0");
+  if ((req.params.count("CAB") || req.params.count("CAE")) && req.degree < 2)
+    throw InvalidInput("end curvatures need degree >= 2");
+  const int dof = req.dim * req.n_control;
+  if (m >= dof + (m > 0 ? 0 : 1)) {
+    std::ostringstream os;
+    os << "n_control=" << req.n_control << " is too small: " << m << " scalar conditions on " << dof
+       << " control-point coordinates leave no freedom for fairing; expected n_control >= "
+       << (m / req.dim + 1);
+    throw InvalidInput(os.str());
+  }
+  if (req.initial_control_points.size() > 0 &&
+      (req.initial_control_points.rows() != req.n_control || req.initial_control_points.cols() != req.dim ||
+       !req.initial_control_points.allFinite()))
+    throw InvalidInput("initial_control_points must be a finite (n_control x dim) array");
+}
+
+std::string failure_report(Solver& solver, const RunOutcome& best) {
+  Problem& pb = solver.pb;
+  std::ostringstream os;
+  std::vector<std::string> moved;
+  for (const auto& k : pb.cons)
+    if (k.kind != ConKind::Linear && std::abs(k.requested - k.start) > 1e-14 * (1 + std::abs(k.requested)))
+      moved.push_back(k.name);
+  // constraint gradients that became (nearly) dependent at the last point
+  std::vector<std::string> dependent;
+  if (solver.m > 0 && best.z.size() == pb.nv) {
+    Eigen::VectorXd c;
+    Eigen::MatrixXd J;
+    pb.constraints(best.z, c, &J, nullptr, nullptr);
+    for (int i = 0; i < solver.m; ++i) J.row(i) /= std::max(J.row(i).norm(), 1e-300);
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(J.transpose(), Eigen::ComputeThinV);
+    const Eigen::VectorXd sv = svd.singularValues();
+    if (sv.size() > 0 && sv[sv.size() - 1] < 1e-3) {
+      const Eigen::VectorXd w = svd.matrixV().col(sv.size() - 1);
+      for (int i = 0; i < solver.m; ++i)
+        if (std::abs(w[i]) > 0.1) dependent.push_back(pb.cons[i].name);
+    }
+  }
+  os << "infeasible form parameters {";
+  const auto& names = dependent.empty() ? moved : dependent;
+  for (size_t i = 0; i < names.size(); ++i) os << (i ? ", " : "") << names[i];
+  os << "}: no curve with " << pb.n << " control points of degree " << pb.p
+     << " meeting the section bounds was found (continuation from the fairest start curve stalled at "
+     << fmt(100 * best.tau) << "% of the way to the requested values, after further random starts). Reached";
+  for (const auto& k : pb.cons)
+    if (k.kind != ConKind::Linear)
+      os << " " << k.name << "=" << fmt(k.start + best.tau * (k.requested - k.start)) << " (requested "
+         << fmt(k.requested) << ", start curve " << fmt(k.start) << ");";
+  if (!dependent.empty()) os << " their constraint gradients become linearly dependent there.";
+  os << " Try fewer parameters, more control points or values nearer the reached ones.";
+  return os.str();
+}
+
+}  // namespace form_curve_impl
+}  // namespace fairlines

@@ -1,0 +1,508 @@
+// Form-parameter curve problem: basis tables, constraints with analytic Jacobian and
+// Hessians, fairness objective with gradient and Hessian.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Geometry>
+
+#include "fairlines/basis.hpp"
+#include "fairlines/knots.hpp"
+#include "problem.hpp"
+
+namespace fairlines::form_curve_impl {
+
+void gauss_legendre(int n, Eigen::VectorXd& nodes, Eigen::VectorXd& weights) {
+  nodes.resize(n);
+  weights.resize(n);
+  for (int i = 0; i < (n + 1) / 2; ++i) {
+    double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5));
+    double dp = 1;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1, p1 = x;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      if (n == 1) p0 = 1;
+      dp = n * (x * p1 - p0) / (x * x - 1);
+      const double dx = p1 / dp;
+      x -= dx;
+      if (std::abs(dx) < 1e-16) break;
+    }
+    nodes[i] = -x;
+    nodes[n - 1 - i] = x;
+    weights[i] = weights[n - 1 - i] = 2 / ((1 - x * x) * dp * dp);
+  }
+}
+
+SplineTables::SplineTables(int n_control, int degree) : n(n_control), p(degree) {
+  knots = clamped_uniform_knots(n, p, 0.0, 1.0);
+  const int per_span = std::max(8, (3 * p + 1) / 2 + 1);
+  Eigen::VectorXd gx, gw;
+  gauss_legendre(per_span, gx, gw);
+  const int spans = n - p;
+  nq = spans * per_span;
+  w.resize(nq);
+  first.resize(nq);
+  for (auto& m : N) m.resize(p + 1, nq);
+  Eigen::MatrixXd ders(4, p + 1);
+  int q = 0;
+  for (int s = 0; s < spans; ++s) {
+    const double a = knots[p + s], b = knots[p + s + 1];
+    for (int k = 0; k < per_span; ++k, ++q) {
+      const double t = 0.5 * (a + b) + 0.5 * (b - a) * gx[k];
+      w[q] = 0.5 * (b - a) * gw[k];
+      const int span = p + s;
+      basis_derivatives(span, t, p, 3, knots, ders);
+      first[q] = span - p;
+      for (int d = 0; d < 4; ++d) N[d].col(q) = ders.row(d).transpose();
+    }
+  }
+  for (int e = 0; e < 2; ++e) {
+    end_rows[e] = Eigen::MatrixXd::Zero(3, n);
+    const double t = e == 0 ? 0.0 : 1.0;
+    const int span = find_span(p, knots, t);
+    basis_derivatives(span, t, p, 2, knots, ders.topRows(3));
+    for (int d = 0; d < 3; ++d)
+      for (int k = 0; k <= p; ++k) end_rows[e](d, span - p + k) = ders(d, k);
+  }
+  for (int d = 1; d <= 3; ++d) {
+    K[d - 1] = Eigen::MatrixXd::Zero(n, n);
+    for (int qq = 0; qq < nq; ++qq) {
+      const int f = first[qq];
+      for (int i = 0; i <= p; ++i)
+        for (int j = 0; j <= p; ++j) K[d - 1](f + i, f + j) += w[qq] * N[d](i, qq) * N[d](j, qq);
+    }
+  }
+}
+
+void area_moments(const SplineTables& tab, const Eigen::VectorXd& z, double& A, double& My, double& Mx) {
+  A = My = Mx = 0;
+  const int n = tab.n, p = tab.p;
+  for (int q = 0; q < tab.nq; ++q) {
+    const int f = tab.first[q];
+    double x = 0, y = 0, xp = 0;
+    for (int k = 0; k <= p; ++k) {
+      x += tab.N[0](k, q) * z[f + k];
+      y += tab.N[0](k, q) * z[n + f + k];
+      xp += tab.N[1](k, q) * z[f + k];
+    }
+    const double wq = tab.w[q];
+    A += wq * y * xp;
+    My += wq * x * y * xp;
+    Mx += wq * 0.5 * y * y * xp;
+  }
+}
+
+namespace {
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+Eigen::VectorXd unit_row(int nv, int k) {
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(nv);
+  r[k] = 1;
+  return r;
+}
+}  // namespace
+
+Problem::Problem(const FormCurveRequest& r)
+    : req(r), tab(r.n_control, r.degree), n(r.n_control), p(r.degree), dim(r.dim),
+      npts(static_cast<int>(r.points.size())) {
+  nctrl = dim * n;
+  nv = nctrl + npts;
+  const auto& P = req.params;
+  auto has = [&](const char* k) { return P.count(k) > 0; };
+
+  // length scale from the end points / points
+  {
+    double ext = 0;
+    const char* names[3][2] = {{"xB", "xE"}, {"yB", "yE"}, {"zB", "zE"}};
+    for (int c = 0; c < dim; ++c) {
+      double lo = 1e300, hi = -1e300;
+      for (const char* nm : names[c])
+        if (has(nm)) lo = std::min(lo, P.at(nm)), hi = std::max(hi, P.at(nm));
+      for (const auto& pt : req.points) lo = std::min(lo, pt.position[c]), hi = std::max(hi, pt.position[c]);
+      if (hi >= lo) ext = std::max(ext, hi - lo);
+    }
+    if (has("Area")) ext = std::max(ext, std::sqrt(std::abs(P.at("Area"))));
+    Ls = ext > 1e-12 ? ext : 1.0;
+  }
+
+  // --- equality constraints, linear first
+  const char* pos_names[2][3] = {{"xB", "yB", "zB"}, {"xE", "yE", "zE"}};
+  for (int e = 0; e < 2; ++e)
+    for (int c = 0; c < dim; ++c)
+      if (has(pos_names[e][c])) {
+        Constraint k{ConKind::Linear, pos_names[e][c], unit_row(nv, var(c, e == 0 ? 0 : n - 1))};
+        k.target = k.requested = k.start = P.at(pos_names[e][c]);
+        k.scale = Ls;
+        cons.push_back(k);
+      }
+  const char* ang_names[2] = {"alphaB", "alphaE"};
+  for (int e = 0; e < 2; ++e)
+    if (has(ang_names[e])) {
+      const double a = P.at(ang_names[e]) * kDeg;
+      const Eigen::RowVectorXd d1 = tab.end_rows[e].row(1);
+      Constraint k{ConKind::Linear, ang_names[e], Eigen::VectorXd::Zero(nv)};
+      k.row.segment(var(0, 0), n) = -std::sin(a) * d1.transpose();
+      k.row.segment(var(1, 0), n) = std::cos(a) * d1.transpose();
+      k.scale = Ls * d1.norm();
+      cons.push_back(k);
+    }
+  const Eigen::VectorXd* tangents[2] = {&req.tangent_start, &req.tangent_end};
+  const char* tan_names[2] = {"tangent_start", "tangent_end"};
+  for (int e = 0; e < 2 && dim == 3; ++e)
+    if (tangents[e]->size() == 3) {
+      const Eigen::Vector3d d = tangents[e]->normalized();
+      Eigen::Vector3d e1 = std::abs(d.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+      e1 = (e1 - e1.dot(d) * d).normalized();
+      const Eigen::Vector3d e2 = d.cross(e1);
+      const Eigen::RowVectorXd d1 = tab.end_rows[e].row(1);
+      for (const Eigen::Vector3d& ev : {e1, e2}) {
+        Constraint k{ConKind::Linear, tan_names[e], Eigen::VectorXd::Zero(nv)};
+        for (int c = 0; c < 3; ++c) k.row.segment(var(c, 0), n) = ev[c] * d1.transpose();
+        k.scale = Ls * d1.norm();
+        cons.push_back(k);
+      }
+    }
+  // --- nonlinear
+  const char* cur_names[2] = {"CAB", "CAE"};
+  for (int e = 0; e < 2; ++e)
+    if (has(cur_names[e])) {
+      Constraint k{ConKind::Curvature, cur_names[e], {}};
+      k.requested = k.target = P.at(cur_names[e]);
+      k.end = e;
+      k.scale = 1.0 / Ls;
+      cons.push_back(k);
+    }
+  if (has("Area")) {
+    Constraint k{ConKind::Area, "Area", {}};
+    k.requested = k.target = P.at("Area");
+    k.scale = Ls * Ls;
+    cons.push_back(k);
+  }
+  if (has("xC")) {
+    Constraint k{ConKind::MomentXC, "xC", {}};
+    k.requested = k.target = P.at("xC");
+    k.scale = Ls * Ls * Ls;
+    cons.push_back(k);
+  }
+  if (has("yC")) {
+    Constraint k{ConKind::MomentYC, "yC", {}};
+    k.requested = k.target = P.at("yC");
+    k.scale = Ls * Ls * Ls;
+    cons.push_back(k);
+  }
+  need_area = has("Area") || has("xC") || has("yC");
+  const char* cn = "xyz";
+  for (int j = 0; j < npts; ++j) {
+    if (!std::isinf(req.points[j].weight)) continue;
+    for (int c = 0; c < dim; ++c) {
+      Constraint k{ConKind::Point, "points[" + std::to_string(j) + "]." + cn[c], {}};
+      k.requested = k.target = req.points[j].position[c];
+      k.point = j;
+      k.coord = c;
+      k.scale = Ls;
+      cons.push_back(k);
+    }
+  }
+
+  // --- linear inequalities G z - h > 0
+  std::vector<Eigen::VectorXd> rows;
+  std::vector<double> rhs;
+  auto add = [&](Eigen::VectorXd row, double hh, std::string name) {
+    rows.push_back(std::move(row));
+    rhs.push_back(hh);
+    ineq_names.push_back(std::move(name));
+  };
+  const int ax = req.bounds.monotone_axis;
+  if (ax >= 0) {
+    double sgn = 1;
+    const char* bn = ax == 0 ? "xB" : "yB";
+    const char* en = ax == 0 ? "xE" : "yE";
+    if (has(bn) && has(en)) sgn = P.at(en) >= P.at(bn) ? 1 : -1;
+    else if (npts >= 2) sgn = req.points.back().position[ax] >= req.points.front().position[ax] ? 1 : -1;
+    for (int i = 0; i + 1 < n; ++i) {
+      Eigen::VectorXd row = Eigen::VectorXd::Zero(nv);
+      row[var(ax, i + 1)] = sgn;
+      row[var(ax, i)] = -sgn;
+      add(row, 0, std::string(ax == 0 ? "x" : "y") + "-monotone (control points " + std::to_string(i) + "," +
+                      std::to_string(i + 1) + ")");
+    }
+  }
+  if (req.bounds.y_nonnegative)
+    for (int i = 0; i < n; ++i) add(unit_row(nv, var(1, i)), 0, "y >= 0 (control point " + std::to_string(i) + ")");
+  double chord = 0;
+  {
+    const char* bn[3] = {"xB", "yB", "zB"};
+    const char* en[3] = {"xE", "yE", "zE"};
+    for (int c = 0; c < dim; ++c)
+      if (has(bn[c]) && has(en[c])) chord += (P.at(en[c]) - P.at(bn[c])) * (P.at(en[c]) - P.at(bn[c]));
+    chord = std::sqrt(chord);
+  }
+  const double hmin = req.bounds.min_end_speed * chord;
+  for (int e = 0; e < 2; ++e) {
+    const Eigen::RowVectorXd d1 = tab.end_rows[e].row(1);
+    if (has(ang_names[e])) {
+      const double a = P.at(ang_names[e]) * kDeg;
+      Eigen::VectorXd row = Eigen::VectorXd::Zero(nv);
+      row.segment(var(0, 0), n) = std::cos(a) * d1.transpose();
+      row.segment(var(1, 0), n) = std::sin(a) * d1.transpose();
+      add(row, hmin, std::string(ang_names[e]) + " (tangent sense, end speed >= min_end_speed * chord)");
+    }
+    if (dim == 3 && tangents[e]->size() == 3) {
+      const Eigen::Vector3d d = tangents[e]->normalized();
+      Eigen::VectorXd row = Eigen::VectorXd::Zero(nv);
+      for (int c = 0; c < 3; ++c) row.segment(var(c, 0), n) = d[c] * d1.transpose();
+      add(row, hmin, std::string(tan_names[e]) + " (tangent sense, end speed >= min_end_speed * chord)");
+    }
+  }
+  for (int j = 0; j < npts; ++j) {
+    add(unit_row(nv, tvar(j)), 0, "points[" + std::to_string(j) + "] parameter > 0");
+    add(-unit_row(nv, tvar(j)), -1, "points[" + std::to_string(j) + "] parameter < 1");
+  }
+  G.resize(static_cast<int>(rows.size()), nv);
+  h.resize(static_cast<int>(rows.size()));
+  for (size_t i = 0; i < rows.size(); ++i) {
+    G.row(static_cast<int>(i)) = rows[i].transpose();
+    h[static_cast<int>(i)] = rhs[i];
+  }
+
+  const auto& fw = req.fairness;
+  Kf = fw.e1 * tab.K[0] + fw.e2 * tab.K[1] + fw.e3 * tab.K[2];
+}
+
+void Problem::point_derivs(const Eigen::VectorXd& z, double t, Eigen::MatrixXd& C, Eigen::MatrixXd& ders,
+                           int& f) const {
+  const double tc = std::clamp(t, 0.0, 1.0);
+  const int span = find_span(p, tab.knots, tc);
+  ders.resize(3, p + 1);
+  basis_derivatives(span, tc, p, 2, tab.knots, ders);
+  f = span - p;
+  C = Eigen::MatrixXd::Zero(3, dim);
+  for (int c = 0; c < dim; ++c)
+    for (int k = 0; k <= p; ++k) C.col(c) += ders.col(k) * z[var(c, f + k)];
+}
+
+void Problem::constraints(const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::MatrixXd* J,
+                          const Eigen::VectorXd* lambda, Eigen::MatrixXd* HL) const {
+  const int m = static_cast<int>(cons.size());
+  c.resize(m);
+  if (J) J->setZero(m, nv);
+  const bool hess = HL && lambda;
+  if (hess) HL->setZero(nv, nv);
+
+  // Area-type integrals in one pass
+  double A = 0, My = 0, Mx = 0;
+  int iA = -1, iX = -1, iY = -1;
+  for (int i = 0; i < m; ++i) {
+    if (cons[i].kind == ConKind::Area) iA = i;
+    if (cons[i].kind == ConKind::MomentXC) iX = i;
+    if (cons[i].kind == ConKind::MomentYC) iY = i;
+  }
+  if (need_area) {
+    const double xc = iX >= 0 ? cons[iX].target : 0, yc = iY >= 0 ? cons[iY].target : 0;
+    double cA = 0, cMy = 0, cMx = 0;
+    if (hess) {
+      if (iA >= 0) cA += (*lambda)[iA];
+      if (iX >= 0) cA -= xc * (*lambda)[iX], cMy = (*lambda)[iX];
+      if (iY >= 0) cA -= yc * (*lambda)[iY], cMx = (*lambda)[iY];
+    }
+    Eigen::VectorXd gA, gMy, gMx;
+    if (J) gA = gMy = gMx = Eigen::VectorXd::Zero(nv);
+    for (int q = 0; q < tab.nq; ++q) {
+      const int f = tab.first[q];
+      double x = 0, y = 0, xp = 0;
+      const auto N0 = tab.N[0].col(q);
+      const auto N1 = tab.N[1].col(q);
+      for (int k = 0; k <= p; ++k) {
+        x += N0[k] * z[f + k];
+        y += N0[k] * z[n + f + k];
+        xp += N1[k] * z[f + k];
+      }
+      const double w = tab.w[q];
+      A += w * y * xp;
+      My += w * x * y * xp;
+      Mx += w * 0.5 * y * y * xp;
+      if (J) {
+        for (int k = 0; k <= p; ++k) {
+          gA[f + k] += w * y * N1[k];
+          gA[n + f + k] += w * xp * N0[k];
+          gMy[f + k] += w * (y * xp * N0[k] + x * y * N1[k]);
+          gMy[n + f + k] += w * x * xp * N0[k];
+          gMx[f + k] += w * 0.5 * y * y * N1[k];
+          gMx[n + f + k] += w * y * xp * N0[k];
+        }
+      }
+      if (hess) {
+        Eigen::MatrixXd& H = *HL;
+        for (int i = 0; i <= p; ++i)
+          for (int k = 0; k <= p; ++k) {
+            H(f + i, f + k) += w * cMy * y * (N0[i] * N1[k] + N1[i] * N0[k]);
+            H(n + f + i, n + f + k) += w * cMx * xp * N0[i] * N0[k];
+            const double xy =
+                w * (cA * N1[i] * N0[k] + cMy * (xp * N0[i] + x * N1[i]) * N0[k] + cMx * y * N1[i] * N0[k]);
+            H(f + i, n + f + k) += xy;
+            H(n + f + k, f + i) += xy;
+          }
+      }
+    }
+    if (J) {
+      if (iA >= 0) J->row(iA) = gA.transpose();
+      if (iX >= 0) J->row(iX) = (gMy - xc * gA).transpose();
+      if (iY >= 0) J->row(iY) = (gMx - yc * gA).transpose();
+    }
+  }
+
+  Eigen::MatrixXd C, ders;
+  for (int i = 0; i < m; ++i) {
+    const Constraint& k = cons[i];
+    switch (k.kind) {
+      case ConKind::Linear:
+        c[i] = k.row.dot(z) - k.target;
+        if (J) J->row(i) = k.row.transpose();
+        break;
+      case ConKind::Area: c[i] = A - k.target; break;
+      case ConKind::MomentXC: c[i] = My - k.target * A; break;
+      case ConKind::MomentYC: c[i] = Mx - k.target * A; break;
+      case ConKind::Curvature: {
+        const Eigen::MatrixXd& R = tab.end_rows[k.end];
+        const Eigen::Vector4d d(R.row(1).dot(z.segment(0, n)), R.row(1).dot(z.segment(n, n)),
+                                R.row(2).dot(z.segment(0, n)), R.row(2).dot(z.segment(n, n)));
+        const double u = d[0] * d[3] - d[1] * d[2];
+        const double s = d[0] * d[0] + d[1] * d[1];
+        const double s15 = s * std::sqrt(s);
+        c[i] = u / s15 - k.target;
+        if (!J && !hess) break;
+        const Eigen::Vector4d du(d[3], -d[2], -d[1], d[0]);
+        const Eigen::Vector4d ds(2 * d[0], 2 * d[1], 0, 0);
+        const Eigen::Vector4d dk = du / s15 - 1.5 * u / (s15 * s) * ds;
+        if (J) {
+          J->row(i).segment(0, n) = dk[0] * R.row(1) + dk[2] * R.row(2);
+          J->row(i).segment(n, n) = dk[1] * R.row(1) + dk[3] * R.row(2);
+        }
+        if (hess) {
+          Eigen::Matrix4d d2u = Eigen::Matrix4d::Zero();
+          d2u(0, 3) = d2u(3, 0) = 1;
+          d2u(1, 2) = d2u(2, 1) = -1;
+          Eigen::Matrix4d d2s = Eigen::Matrix4d::Zero();
+          d2s(0, 0) = d2s(1, 1) = 2;
+          const Eigen::Matrix4d Hk = d2u / s15 - 1.5 / (s15 * s) * (du * ds.transpose() + ds * du.transpose()) +
+                                     3.75 * u / (s15 * s * s) * ds * ds.transpose() - 1.5 * u / (s15 * s) * d2s;
+          Eigen::MatrixXd M = Eigen::MatrixXd::Zero(4, nv);
+          M.block(0, 0, 1, n) = R.row(1);
+          M.block(1, n, 1, n) = R.row(1);
+          M.block(2, 0, 1, n) = R.row(2);
+          M.block(3, n, 1, n) = R.row(2);
+          HL->noalias() += (*lambda)[i] * (M.transpose() * Hk * M);
+        }
+        break;
+      }
+      case ConKind::Point: {
+        const int tv = tvar(k.point);
+        int f = 0;
+        point_derivs(z, z[tv], C, ders, f);
+        c[i] = C(0, k.coord) - k.target;
+        if (J) {
+          for (int j = 0; j <= p; ++j) (*J)(i, var(k.coord, f + j)) = ders(0, j);
+          (*J)(i, tv) = C(1, k.coord);
+        }
+        if (hess) {
+          const double l = (*lambda)[i];
+          for (int j = 0; j <= p; ++j) {
+            (*HL)(var(k.coord, f + j), tv) += l * ders(1, j);
+            (*HL)(tv, var(k.coord, f + j)) += l * ders(1, j);
+          }
+          (*HL)(tv, tv) += l * C(2, k.coord);
+        }
+        break;
+      }
+    }
+  }
+}
+
+double Problem::objective(const Eigen::VectorXd& z, Eigen::VectorXd* g, Eigen::MatrixXd* H) const {
+  double f = 0;
+  if (g) g->setZero(nv);
+  if (H) H->setZero(nv, nv);
+  for (int c = 0; c < dim; ++c) {
+    const auto X = z.segment(c * n, n);
+    const Eigen::VectorXd KX = Kf * X;
+    f += X.dot(KX);
+    if (g) g->segment(c * n, n) = 2 * KX;
+    if (H) H->block(c * n, c * n, n, n) = 2 * Kf;
+  }
+  const double sw = req.fairness.length;
+  if (sw > 0) {
+    Eigen::VectorXd v(dim);
+    for (int q = 0; q < tab.nq; ++q) {
+      const int fi = tab.first[q];
+      const auto N1 = tab.N[1].col(q);
+      for (int c = 0; c < dim; ++c) v[c] = N1.dot(z.segment(c * n + fi, p + 1));
+      const double len = std::max(v.norm(), 1e-300);
+      const double w = sw * tab.w[q];
+      f += w * len;
+      if (g)
+        for (int c = 0; c < dim; ++c) g->segment(c * n + fi, p + 1) += w * v[c] / len * N1;
+      if (H) {
+        const Eigen::MatrixXd Hv = (Eigen::MatrixXd::Identity(dim, dim) - v * v.transpose() / (len * len)) / len;
+        const Eigen::MatrixXd NN = N1 * N1.transpose();
+        for (int a = 0; a < dim; ++a)
+          for (int b = 0; b < dim; ++b) H->block(a * n + fi, b * n + fi, p + 1, p + 1) += w * Hv(a, b) * NN;
+      }
+    }
+  }
+  Eigen::MatrixXd C, ders;
+  for (int j = 0; j < npts; ++j) {
+    const double wt = req.points[j].weight;
+    if (std::isinf(wt)) continue;
+    const int tv = tvar(j);
+    int fi = 0;
+    point_derivs(z, z[tv], C, ders, fi);
+    for (int c = 0; c < dim; ++c) {
+      const double r = C(0, c) - req.points[j].position[c];
+      f += wt * r * r;
+      if (g) {
+        for (int k = 0; k <= p; ++k) (*g)[var(c, fi + k)] += 2 * wt * r * ders(0, k);
+        (*g)[tv] += 2 * wt * r * C(1, c);
+      }
+      if (H) {
+        // grad r: entries ders(0,k) at control vars, C(1,c) at t
+        for (int a = 0; a <= p; ++a) {
+          for (int b = 0; b <= p; ++b) (*H)(var(c, fi + a), var(c, fi + b)) += 2 * wt * ders(0, a) * ders(0, b);
+          const double cross = 2 * wt * (ders(0, a) * C(1, c) + r * ders(1, a));
+          (*H)(var(c, fi + a), tv) += cross;
+          (*H)(tv, var(c, fi + a)) += cross;
+        }
+        (*H)(tv, tv) += 2 * wt * (C(1, c) * C(1, c) + r * C(2, c));
+      }
+    }
+  }
+  return f;
+}
+
+FairnessMeasures Problem::measures(const Eigen::VectorXd& z) const {
+  FairnessMeasures m;
+  double* E[3] = {&m.E1, &m.E2, &m.E3};
+  for (int k = 0; k < 3; ++k)
+    for (int c = 0; c < dim; ++c) {
+      const auto X = z.segment(c * n, n);
+      *E[k] += X.dot(tab.K[k] * X);
+    }
+  Eigen::VectorXd v(dim);
+  for (int q = 0; q < tab.nq; ++q) {
+    const int fi = tab.first[q];
+    for (int c = 0; c < dim; ++c) v[c] = tab.N[1].col(q).dot(z.segment(c * n + fi, p + 1));
+    m.length += tab.w[q] * v.norm();
+  }
+  return m;
+}
+
+double Problem::scaled_violation(const Eigen::VectorXd& c) const {
+  double v = 0;
+  for (int i = 0; i < c.size(); ++i) v = std::max(v, std::abs(c[i]) / cons[i].scale);
+  return v;
+}
+
+}  // namespace fairlines::form_curve_impl

@@ -1,0 +1,79 @@
+// Internal: the form-parameter curve problem (variables, constraints, objective,
+// barrier) shared by the solver and the diagnosis. Not part of the public API.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+#include "fairlines/form_curve.hpp"
+
+namespace fairlines::form_curve_impl {
+
+/// Gauss-Legendre nodes / weights on [-1, 1] (Newton iteration on P_n).
+void gauss_legendre(int n, Eigen::VectorXd& nodes, Eigen::VectorXd& weights);
+
+/// Basis data of a clamped uniform B-spline on [0,1] at the quadrature points of every
+/// knot span, plus the end derivative rows.
+struct SplineTables {
+  int n = 0, p = 0, nq = 0;    // control points, degree, quadrature points in total
+  Eigen::VectorXd knots;
+  Eigen::VectorXd w;           // nq quadrature weights (in t)
+  std::vector<int> first;      // nq: index of the first non-zero basis function
+  Eigen::MatrixXd N[4];        // (p+1) x nq: derivative d of the non-zero basis functions
+  Eigen::MatrixXd end_rows[2]; // 3 x n: derivatives 0..2 of all basis functions at t=0 / t=1
+  Eigen::MatrixXd K[3];        // n x n Gram matrices int N^(k) N^(k)T, k = 1..3
+  SplineTables(int n_control, int degree);
+};
+
+enum class ConKind { Linear, Curvature, Area, MomentXC, MomentYC, Point };
+
+struct Constraint {
+  ConKind kind;
+  std::string name;         // form parameter name ("points[3].y" for points)
+  Eigen::VectorXd row;      // Linear: c = row . z - target
+  double target = 0;        // current (continuation) target
+  double requested = 0;     // requested value
+  double start = 0;         // value at the start curve
+  double scale = 1;         // residual scale for tolerances
+  int end = 0;              // Curvature: 0 start, 1 end
+  int point = -1, coord = 0;  // Point constraints
+};
+
+struct Problem {
+  const FormCurveRequest& req;
+  SplineTables tab;
+  int n, p, dim, npts, nv, nctrl;
+  double Ls = 1;                       // length scale
+  std::vector<Constraint> cons;        // equality constraints
+  Eigen::MatrixXd G;                   // linear inequalities G z - h > 0
+  Eigen::VectorXd h;
+  std::vector<std::string> ineq_names;
+  Eigen::MatrixXd Kf;                  // combined quadratic fairness matrix (n x n)
+  bool need_area = false;
+
+  explicit Problem(const FormCurveRequest& r);
+
+  int var(int coord, int i) const { return coord * n + i; }
+  int tvar(int j) const { return nctrl + j; }
+
+  /// Constraints, Jacobian and sum lambda_i Hess c_i (HL only if lambda non-empty).
+  void constraints(const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::MatrixXd* J,
+                   const Eigen::VectorXd* lambda, Eigen::MatrixXd* HL) const;
+  /// Objective, gradient and Hessian (g, H optional).
+  double objective(const Eigen::VectorXd& z, Eigen::VectorXd* g, Eigen::MatrixXd* H) const;
+  /// Fairness measures of control points z.
+  FairnessMeasures measures(const Eigen::VectorXd& z) const;
+  /// Curve value and derivatives up to 2 at parameter t: (3 x dim), plus the local
+  /// basis derivative table (3 x (p+1)) and first index.
+  void point_derivs(const Eigen::VectorXd& z, double t, Eigen::MatrixXd& C, Eigen::MatrixXd& ders,
+                    int& first) const;
+  /// Scaled constraint residual max |c_i| / scale_i.
+  double scaled_violation(const Eigen::VectorXd& c) const;
+};
+
+/// Area, x-moment int x y dx and y-moment int y^2/2 dx of control points z (first two coords).
+void area_moments(const SplineTables& tab, const Eigen::VectorXd& z, double& A, double& My, double& Mx);
+
+}  // namespace fairlines::form_curve_impl
