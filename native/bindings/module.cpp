@@ -8,6 +8,8 @@ namespace py = pybind11;
 
 namespace fairlines {
 void bind_nurbs(py::module_& m);
+void bind_skinning(py::module_& m);
+void bind_hull(py::module_& m);
 }  // namespace fairlines
 
 PYBIND11_MODULE(_native, m) {
@@ -18,4 +20,6 @@ PYBIND11_MODULE(_native, m) {
   py::register_exception<fairlines::InfeasibleFormParameters>(m, "InfeasibleFormParameters", invalid.ptr());
   py::register_exception<fairlines::ConvergenceError>(m, "ConvergenceError", base.ptr());
   fairlines::bind_nurbs(m);
+  fairlines::bind_skinning(m);
+  fairlines::bind_hull(m);
 }

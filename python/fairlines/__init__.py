@@ -9,12 +9,20 @@ from ._native import (  # noqa: F401  (re-exported API)
     ConvergenceError,
     CurveFit,
     FairlinesError,
+    Hydrostatics,
     InfeasibleFormParameters,
     InvalidInput,
     NurbsCurve,
     NurbsSurface,
     NurbsVolume,
+    PlaneCut,
+    SkinResult,
     SurfaceFit,
+    arc_length,
+    curve_e2,
+    equal_arc_length_points,
+    hydrostatics,
+    section_area,
     arc,
     averaged_knots,
     basis_functions,
@@ -27,10 +35,21 @@ from ._native import (  # noqa: F401  (re-exported API)
     greville_abscissae,
     hartley_judd_knots,
     parameterize,
+    plane_cut,
     revolve,
     sphere,
     unclamped_uniform_knots,
     validate_knots,
 )
+from .hull import (  # noqa: F401
+    AuxiliarySection,
+    BasicCurve,
+    BasicCurveSpec,
+    Hull,
+    HullDescription,
+    PrincipalDimensions,
+    fairness_report,
+)
+from .skinning import fair_skin  # noqa: F401
 
 __version__ = "0.1.0"
