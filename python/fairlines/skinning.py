@@ -23,6 +23,8 @@ def fair_skin(
     params: str = "auto",
     c1_sections: Sequence[int] = (),
     curvature_weight: float = 0.0,
+    e2: float = 1.0,
+    e3: float = 0.0,
 ) -> _native.SkinResult:
     """Skin section curves (3-D NurbsCurves, ordered along the hull, metres) into one surface.
 
@@ -44,10 +46,15 @@ def fair_skin(
     section length) instead of plain arc length, so the common knots crowd where the sections
     bend (tight bilges next to flat sides); 0 is seed 000's plain equal spacing.
 
+    ``e2`` / ``e3``: fairness of the longitudinal curves, e2 E2 + e3 h^2 E3 (h = 1/(q-1)).
+    The default (1, 0) is seed 000 eq. 9, whose interpolant is the natural spline (zero
+    curvature forced at the end sections); (0, 1) reproduces quadratic variation along the
+    hull exactly and keeps the end curvature.
+
     Returns a SkinResult: ``surface`` (u across the sections, v along the hull),
     ``section_params``, ``section_fit_max``, ``longitudinal_max`` and ``row_e2``.
     """
     return _native._fair_skin(
         list(curves), n_control, mode, degree_u, degree_v, samples, float(smoothing), start, end, params,
-        [int(i) for i in c1_sections], float(curvature_weight),
+        [int(i) for i in c1_sections], float(curvature_weight), float(e2), float(e3),
     )

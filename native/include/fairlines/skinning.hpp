@@ -44,6 +44,13 @@ struct SkinOptions {
   /// the common uniform knots, more control points -- where sections bend (tight bilges).
   double curvature_weight = 0.0;
   SkinMode mode = SkinMode::Interpolate;
+  /// Fairness of the longitudinal curves: e2 E2 + e3 h^2 E3 (E_k = int |C^(k)(v)|^2 dv,
+  /// h = 1/(q-1)). e2 = 1, e3 = 0 is seed 000 eq. 9: the interpolant is then the natural
+  /// spline, whose curvature is forced to 0 at the first and last section. e3 > 0 (degree_v
+  /// >= 3) penalises the jumps of the third derivative instead: data varying quadratically
+  /// along the hull are reproduced exactly and the ends keep their curvature.
+  double e2 = 1.0;
+  double e3 = 0.0;
   double smoothing = 1e-3;  ///< Approximate mode only: weight of h^4 E2 (h = 1/(q-1)), >= 0
   SkinEnd start = SkinEnd::Free;  ///< at the first section
   SkinEnd end = SkinEnd::Free;    ///< at the last section
@@ -62,7 +69,8 @@ struct SkinResult {
                                    ///< and the common-knot section fits (metres)
   double longitudinal_max = 0;     ///< max |C_i(v_d) - row point| over rows and sections
                                    ///< (metres; ~1e-12 in Interpolate mode)
-  Eigen::VectorXd row_e2;          ///< E2 of each longitudinal control-point curve (n_control)
+  Eigen::VectorXd row_e2;          ///< E2 of each longitudinal control-point curve (n_control),
+                                   ///< whatever the fairness weights
 };
 
 /// Skin q >= 2 section curves (each a 3-D NurbsCurve, ordered along the hull; metres) into one

@@ -101,8 +101,26 @@ std::pair<double, double> section_area(const NurbsSurface& s, double x0, double 
   const std::vector<double> br_a = breakpoints(lon == 1 ? s.knots_u() : s.knots_v(), lon == 1 ? s.degree_u() : s.degree_v());
   const std::vector<double> br_b = breakpoints(lon == 1 ? s.knots_v() : s.knots_u(), lon == 1 ? s.degree_v() : s.degree_u());
   auto point = [&](double a, double b) { return lon == 1 ? s.evaluate(a, b) : s.evaluate(b, a); };
-  // b where x(a, b) = x0, or NaN when the plane misses this line.
+  // b where x(a, b) = x0, or NaN when the plane misses this line. Newton from the previous
+  // solution first (consecutive a are close), the bracketing scan when that fails.
+  double b_warm = std::numeric_limits<double>::quiet_NaN();
+  auto newton_b = [&](double a) {
+    if (std::isnan(b_warm)) return std::numeric_limits<double>::quiet_NaN();
+    double b = b_warm;
+    const double lo = br_b.front(), hi = br_b.back();
+    for (int it = 0; it < 30; ++it) {
+      const Eigen::MatrixXd D = lon == 1 ? s.derivatives(a, b, 1) : s.derivatives(b, a, 1);
+      const double f = D(0, 0) - x0, df = lon == 1 ? D(1, 0) : D(2, 0);
+      if (std::abs(f) <= 1e-12 * (1 + std::abs(x0))) return b;
+      if (df == 0) break;
+      b -= f / df;
+      if (!(b >= lo && b <= hi)) break;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
   auto solve_b = [&](double a) {
+    const double bn = newton_b(a);
+    if (!std::isnan(bn)) return bn;
     std::vector<double> bs;
     for (std::size_t i = 0; i + 1 < br_b.size(); ++i)
       for (int k = 0; k < 4; ++k) bs.push_back(br_b[i] + (br_b[i + 1] - br_b[i]) * k / 4);
@@ -134,6 +152,7 @@ std::pair<double, double> section_area(const NurbsSurface& s, double x0, double 
   auto zfun = [&](double a) {
     const double b = solve_b(a);
     if (std::isnan(b)) return 1.0;  // no cut here: outside
+    b_warm = b;
     return point(a, b)[2] - draft;
   };
   const auto pieces = inside_pieces(br_a, zfun);
@@ -145,6 +164,7 @@ std::pair<double, double> section_area(const NurbsSurface& s, double x0, double 
       const double a = m + h * g.x[k];
       const double b = solve_b(a);
       if (std::isnan(b)) continue;
+      b_warm = b;
       const Eigen::MatrixXd D = lon == 1 ? s.derivatives(a, b, 1) : s.derivatives(b, a, 1);
       // Rows: 0 S, 1 S_v, 2 S_u.
       const Eigen::Vector3d Sa = lon == 1 ? Eigen::Vector3d(D.row(2)) : Eigen::Vector3d(D.row(1));

@@ -265,6 +265,9 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
   if (o.samples < 0 || m < n) fail("samples is ", o.samples, "; expected 0 (automatic) or >= n_control = ", n);
   if (!(o.curvature_weight >= 0) || !std::isfinite(o.curvature_weight))
     fail("curvature_weight is ", o.curvature_weight, "; expected a finite value >= 0");
+  if (!(o.e2 >= 0) || !(o.e3 >= 0) || !std::isfinite(o.e2) || !std::isfinite(o.e3) || !(o.e2 + o.e3 > 0))
+    fail("fairness weights are e2 = ", o.e2, ", e3 = ", o.e3, "; expected finite values >= 0, not both 0");
+  if (o.e3 > 0 && o.degree_v < 3) fail("e3 is ", o.e3, " but degree_v is ", o.degree_v, "; E3 needs degree_v >= 3");
   if (!(o.smoothing >= 0) || !std::isfinite(o.smoothing))
     fail("smoothing is ", o.smoothing, "; expected a finite value >= 0");
 
@@ -369,7 +372,10 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
 
   Eigen::MatrixXd Nv(q, nv);
   for (int d = 0; d < q; ++d) Nv.row(d) = basis_row(Kv, pv, v[d]);
-  const Eigen::MatrixXd G = derivative_gram(Kv, pv, 2);
+  // Fairness matrix: e2 E2 + e3 h^2 E3 (h = 1/(q-1) makes the two terms commensurate).
+  const double hq = 1.0 / (q - 1);
+  Eigen::MatrixXd G = o.e2 * derivative_gram(Kv, pv, 2);
+  if (o.e3 > 0) G += o.e3 * hq * hq * derivative_gram(Kv, pv, 3);
   const Eigen::RowVectorXd D0 = basis_row(Kv, pv, 0.0, 1), D1 = basis_row(Kv, pv, 1.0, 1);
 
   // Data rows: for coordinate k, row i, the q values ctrl[d](i, k). Columns: (i, k) -> 3 i + k.
@@ -398,10 +404,13 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
       Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nv + mc, cols.size());
       rhs.middleRows(nv, q) = rhs_data;
       const Eigen::FullPivLU<Eigen::MatrixXd> lu(KKT);
-      if (lu.rank() < nv + mc)
+      const Eigen::MatrixXd full = lu.solve(rhs);
+      // A singular system shows as a residual the solve cannot remove (the pivot-based rank
+      // is unreliable here: E3 and interpolation rows differ by many orders of magnitude).
+      if (!full.allFinite() || (KKT * full - rhs).norm() > 1e-10 * (KKT.norm() * full.norm() + rhs.norm()))
         fail("the longitudinal interpolation problem is singular (", q, " sections, degree_v ", pv,
              "); expected distinct section parameters");
-      sol = lu.solve(rhs).topRows(nv);
+      sol = full.topRows(nv);
     } else {
       const double h = 1.0 / (q - 1);
       const double lam = o.smoothing * h * h * h * h;
@@ -443,9 +452,10 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
     for (int i = 0; i < n; ++i)
       lmax = std::max(lmax, (fitted.block(d, 3 * i, 1, 3) - data.block(d, 3 * i, 1, 3)).norm());
   res.longitudinal_max = lmax;
+  const Eigen::MatrixXd G2 = derivative_gram(Kv, pv, 2);
   for (int i = 0; i < n; ++i) {
     double e = 0;
-    for (int k = 0; k < 3; ++k) e += lon.col(3 * i + k).dot(G * lon.col(3 * i + k));
+    for (int k = 0; k < 3; ++k) e += lon.col(3 * i + k).dot(G2 * lon.col(3 * i + k));
     res.row_e2[i] = e;
   }
   return res;
