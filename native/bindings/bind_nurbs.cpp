@@ -272,15 +272,25 @@ void bind_nurbs(py::module_& m) {
             }
             return out;
           }, "us"_a, "vs"_a, "Grid of points (len(us), len(vs), 3); basis values reused along grid lines.")
-      .def("derivatives", [](const NurbsSurface& s, double u, double v, py::handle order_obj) {
+      .def("derivatives", [](const NurbsSurface& s, py::handle u, py::handle v, py::handle order_obj) -> py::object {
             const int order = checked_int(order_obj, "order");
-            const Eigen::MatrixXd D = s.derivatives(u, v, order);
-            py::array_t<double> out({static_cast<py::ssize_t>(order + 1), static_cast<py::ssize_t>(order + 1), py::ssize_t(3)});
+            if (order < 0) throw InvalidInput("order is " + std::to_string(order) + "; expected >= 0");
+            const Eigen::VectorXd uu = vector(u, "u"), vv = vector(v, "v");
+            if (uu.size() != vv.size())
+              throw InvalidInput("u has " + std::to_string(uu.size()) + " values and v has " + std::to_string(vv.size()) + "; expected equal lengths");
+            const py::ssize_t k1 = order + 1;
+            py::array_t<double> out({static_cast<py::ssize_t>(uu.size()), k1, k1, py::ssize_t(3)});
             double* d = out.mutable_data();
-            for (Eigen::Index r = 0; r < D.rows(); ++r)
-              for (int c = 0; c < 3; ++c) d[r * 3 + c] = D(r, c);
+            for (Eigen::Index k = 0; k < uu.size(); ++k) {
+              const Eigen::MatrixXd D = s.derivatives(uu[k], vv[k], order);
+              for (Eigen::Index r = 0; r < D.rows(); ++r)
+                for (int c = 0; c < 3; ++c) d[(k * D.rows() + r) * 3 + c] = D(r, c);
+            }
+            if (is_scalar(u) && is_scalar(v)) return out.attr("reshape")(k1, k1, 3);
             return out;
-          }, "u"_a, "v"_a, "order"_a = 1, "D[k, l] = d^(k+l) S / du^k dv^l for k + l <= order, (order+1, order+1, 3).")
+          }, "u"_a, "v"_a, "order"_a = 1,
+          "D[k, l] = d^(k+l) S / du^k dv^l for k + l <= order (higher entries 0): (order+1, order+1, 3) for scalars, "
+          "(m, order+1, order+1, 3) for arrays.")
       .def("normal", [](const NurbsSurface& s, py::handle u, py::handle v) -> py::object {
             const Eigen::MatrixXd n = s.normal(vector(u, "u"), vector(v, "v"));
             if (is_scalar(u) && is_scalar(v)) return to_array(Eigen::VectorXd(n.row(0).transpose()));
@@ -360,6 +370,15 @@ void bind_nurbs(py::module_& m) {
             if (is_scalar(s) && is_scalar(t) && is_scalar(r)) return to_array(Eigen::VectorXd(out.row(0).transpose()));
             return to_array(out);
           }, "s"_a, "t"_a, "r"_a, "Points at (s_k, t_k, r_k): (m, 3).")
+      .def("derivatives", [](const NurbsVolume& vol, py::handle s, py::handle t, py::handle r) -> py::object {
+            const Eigen::MatrixXd D = vol.derivatives(vector(s, "s"), vector(t, "t"), vector(r, "r"));
+            const py::ssize_t m = D.rows() / 4;
+            py::array_t<double> out({m, py::ssize_t(4), py::ssize_t(3)});
+            double* d = out.mutable_data();
+            for (Eigen::Index i = 0; i < D.rows(); ++i) for (int c = 0; c < 3; ++c) d[i * 3 + c] = D(i, c);
+            if (is_scalar(s) && is_scalar(t) && is_scalar(r)) return out.attr("reshape")(4, 3);
+            return out;
+          }, "s"_a, "t"_a, "r"_a, "Point and first partials [V, dV/ds, dV/dt, dV/dr]: (m, 4, 3), or (4, 3) for scalars.")
       .def_property_readonly("degrees", &NurbsVolume::degrees)
       .def_property_readonly("shape", &NurbsVolume::counts);
 

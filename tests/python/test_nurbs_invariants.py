@@ -136,3 +136,28 @@ def test_pickle_round_trip(rng):
     t = np.linspace(0, 1, 50)
     assert np.array_equal(c2.evaluate(t), c.evaluate(t))
     assert np.array_equal(s2.evaluate(t, t), s.evaluate(t, t))
+
+
+def test_batch_surface_derivatives_match_single_calls(rng):
+    s = fl.NurbsSurface(3, 3, random_clamped_knots(rng, 7, 3), random_clamped_knots(rng, 6, 3),
+                        rng.uniform(-2, 2, (7, 6, 3)), rng.uniform(0.5, 2, (7, 6)))
+    u, v = rng.random(5), rng.random(5)
+    batch = s.derivatives(u, v, 2)
+    assert batch.shape == (5, 3, 3, 3)
+    for k in range(5):
+        assert np.array_equal(batch[k], s.derivatives(float(u[k]), float(v[k]), 2))
+    h = 1e-6
+    fd_u = (s.evaluate(u + h, v) - s.evaluate(u - h, v)) / (2 * h)
+    assert np.abs(batch[:, 1, 0] - fd_u).max() <= 1e-6 * (1 + np.abs(fd_u).max())
+
+
+def test_rational_volume_jacobian_matches_finite_differences(rng):
+    ks = [random_clamped_knots(rng, 5, 2), random_clamped_knots(rng, 4, 2), random_clamped_knots(rng, 4, 3)]
+    vol = fl.NurbsVolume((2, 2, 3), ks, rng.uniform(-1, 1, (5, 4, 4, 3)), rng.uniform(0.5, 2, (5, 4, 4)))
+    s, t, r = rng.uniform(0.1, 0.9, (3, 6))
+    D = vol.derivatives(s, t, r)
+    assert np.abs(D[:, 0] - vol.evaluate(s, t, r)).max() <= 1e-14
+    h = 1e-6
+    for axis, arrs in enumerate([(s + h, t, r, s - h, t, r), (s, t + h, r, s, t - h, r), (s, t, r + h, s, t, r - h)]):
+        fd = (vol.evaluate(*arrs[:3]) - vol.evaluate(*arrs[3:])) / (2 * h)
+        assert np.abs(D[:, axis + 1] - fd).max() <= 1e-6 * (1 + np.abs(fd).max())

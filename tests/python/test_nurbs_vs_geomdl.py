@@ -29,7 +29,8 @@ def test_random_rational_curves_match_geomdl(rng):
 
 
 def test_random_rational_surfaces_match_geomdl(rng):
-    for pu, pv, nu, nv in [(3, 3, 8, 9), (2, 3, 6, 7), (4, 2, 9, 5)]:
+    # (8, 2) exercises the general path above the fixed-size fast kernels
+    for pu, pv, nu, nv in [(3, 3, 8, 9), (2, 3, 6, 7), (4, 2, 9, 5), (8, 2, 10, 5)]:
         ku = random_clamped_knots(rng, nu, pu)
         kv = random_clamped_knots(rng, nv, pv)
         net = rng.uniform(-5, 5, (nu, nv, 3))

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -87,6 +88,12 @@ class NurbsSurface {
   Eigen::VectorXd weights_;
   bool rational_ = false;
   std::vector<double> pw_;  // 4 doubles per control point: w x, w y, w z, w
+  // Reciprocal knot differences of the Cox-de Boor triangle, per span, so the hot
+  // evaluation loops multiply instead of divide (see basis_table.hpp).
+  std::vector<double> inv_u_, inv_v_;
+  // O(1) knot-span lookup tables (std::shared_ptr keeps the public header free of the
+  // internal type; they are rebuilt whenever the knots change).
+  std::shared_ptr<const void> span_u_, span_v_;
 };
 
 }  // namespace fairlines

@@ -27,6 +27,11 @@ class NurbsVolume {
   /// Points at m parameter triples: m x 3.
   Eigen::MatrixXd evaluate(const Eigen::VectorXd& s, const Eigen::VectorXd& t,
                            const Eigen::VectorXd& r) const;
+  /// Point and first partial derivatives at m parameter triples, stacked: rows 4k .. 4k+3
+  /// hold V, dV/ds, dV/dt, dV/dr at triple k (metres per unit parameter); the rational
+  /// quotient rule is applied. This is the Jacobian of a free-form deformation.
+  Eigen::MatrixXd derivatives(const Eigen::VectorXd& s, const Eigen::VectorXd& t,
+                              const Eigen::VectorXd& r) const;
 
  private:
   std::array<int, 3> degrees_;

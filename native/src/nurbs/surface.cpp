@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 
+#include "basis_table.hpp"
 #include "checks.hpp"
 #include "fairlines/basis.hpp"
 #include "fairlines/knots.hpp"
@@ -27,92 +28,115 @@ double binomial(int n, int k) {
   return r;
 }
 
-// Cox-de Boor with the degree known at compile time, so loops unroll (hot path).
-template <int P>
-inline void basis_fixed(int span, double t, const double* U, double* N) {
-  double left[P + 1], right[P + 1];
-  N[0] = 1.0;
-  for (int j = 1; j <= P; ++j) {
-    left[j] = t - U[span + 1 - j];
-    right[j] = U[span + j] - t;
-    double saved = 0.0;
-    for (int r = 0; r < j; ++r) {
-      const double temp = N[r] / (right[r + 1] + left[j - r]);
-      N[r] = saved + right[r + 1] * temp;
-      saved = left[j - r] * temp;
-    }
-    N[j] = saved;
-  }
-}
+// The SIMD helpers below are always inlined, so no vector value crosses an ABI boundary.
+#pragma GCC diagnostic ignored "-Wpsabi"
 
-inline void basis_dyn(int p, int span, double t, const double* U, double* N) {
-  switch (p) {
-    case 1: basis_fixed<1>(span, t, U, N); return;
-    case 2: basis_fixed<2>(span, t, U, N); return;
-    case 3: basis_fixed<3>(span, t, U, N); return;
-    default: basis_functions(span, t, p, U, N);
-  }
-}
+// Hot kernels are compiled twice when the compiler can: for AVX2/FMA machines and a
+// portable baseline, picked at load time (GCC function multiversioning).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define FAIRLINES_MULTIVERSION __attribute__((target_clones("arch=haswell", "default")))
+#else
+#define FAIRLINES_MULTIVERSION
+#endif
+using detail::basis_table_eval;
+using detail::SpanLocator;
+using detail::v4d;
+using detail::v4du;
 
 struct Layout {
   const double* ku;
   const double* kv;
-  int nku, nkv, nv;
+  const double* inv_u;
+  const double* inv_v;
+  int nu, nv;  // control points per direction
   double ua, ub, va, vb;
   const double* pw;
   bool rational;
+  const SpanLocator* span_u;
+  const SpanLocator* span_v;
 };
 
-// Scattered evaluation kernel; P, Q > 0 fixes the degrees at compile time, 0 means runtime.
+Layout make_layout(const Eigen::VectorXd& ku, const Eigen::VectorXd& kv, const std::vector<double>& inv_u,
+                   const std::vector<double>& inv_v, int pu, int pv, int nu, int nv, const std::vector<double>& pw,
+                   bool rational, const std::shared_ptr<const void>& span_u, const std::shared_ptr<const void>& span_v) {
+  return {ku.data(), kv.data(), inv_u.data(), inv_v.data(), nu, nv, ku[pu], ku[nu], kv[pv], kv[nv], pw.data(), rational,
+          static_cast<const SpanLocator*>(span_u.get()), static_cast<const SpanLocator*>(span_v.get())};
+}
+
+FAIRLINES_INLINE v4d load4(const double* p) { return *reinterpret_cast<const v4du*>(p); }
+
+// Scattered points; P, Q > 0 fix the degrees at compile time, 0 takes them from p, q.
 template <int P, int Q>
-void scatter_kernel(const Layout& L, int pd, int qd, const double* u, const double* v, long m, double* out) {
-  const int p = P > 0 ? P : pd, q = Q > 0 ? Q : qd;
+FAIRLINES_INLINE void scatter_kernel(const Layout& L, int p, int q, const double* u, const double* v, long m,
+                                     double* out) {
+  const int pu = P > 0 ? P : p, pv = Q > 0 ? Q : q;
   double Nu[kMaxFastDegree + 1], Nv[kMaxFastDegree + 1];
   for (long k = 0; k < m; ++k) {
     const double uk = std::clamp(u[k], L.ua, L.ub), vk = std::clamp(v[k], L.va, L.vb);
-    const int su = find_span(p, L.ku, L.nku, uk), sv = find_span(q, L.kv, L.nkv, vk);
-    if constexpr (P > 0) basis_fixed<P>(su, uk, L.ku, Nu); else basis_dyn(p, su, uk, L.ku, Nu);
-    if constexpr (Q > 0) basis_fixed<Q>(sv, vk, L.kv, Nv); else basis_dyn(q, sv, vk, L.kv, Nv);
-    double acc[4] = {0, 0, 0, 0};
-    for (int a = 0; a <= p; ++a) {
-      const double* row = L.pw + (static_cast<long>(su - p + a) * L.nv + (sv - q)) * 4;
-      double t4[4] = {0, 0, 0, 0};
-      for (int b = 0; b <= q; ++b)
-        for (int c = 0; c < 4; ++c) t4[c] += Nv[b] * row[b * 4 + c];
-      for (int c = 0; c < 4; ++c) acc[c] += Nu[a] * t4[c];
+    const int su = L.span_u->find(L.ku, uk), sv = L.span_v->find(L.kv, vk);
+    basis_table_eval<P>(pu, su, uk, L.ku, L.inv_u, Nu);
+    basis_table_eval<Q>(pv, sv, vk, L.kv, L.inv_v, Nv);
+    v4d acc = {0, 0, 0, 0};
+    for (int a = 0; a <= pu; ++a) {
+      const double* row = L.pw + (static_cast<long>(su - pu + a) * L.nv + (sv - pv)) * 4;
+      v4d t4 = Nv[0] * load4(row);
+      for (int b = 1; b <= pv; ++b) t4 += Nv[b] * load4(row + 4 * b);
+      acc += Nu[a] * t4;
     }
-    if (L.rational) {
-      const double iw = 1.0 / acc[3];
-      out[3 * k] = acc[0] * iw;
-      out[3 * k + 1] = acc[1] * iw;
-      out[3 * k + 2] = acc[2] * iw;
-    } else {
-      out[3 * k] = acc[0];
-      out[3 * k + 1] = acc[1];
-      out[3 * k + 2] = acc[2];
-    }
+    const double iw = L.rational ? 1.0 / acc[3] : 1.0;
+    out[3 * k] = acc[0] * iw;
+    out[3 * k + 1] = acc[1] * iw;
+    out[3 * k + 2] = acc[2] * iw;
   }
 }
 
+FAIRLINES_MULTIVERSION
+void scatter_dispatch(const Layout& L, int p, int q, const double* u, const double* v, long m, double* out) {
+  if (p == 3 && q == 3) return scatter_kernel<3, 3>(L, p, q, u, v, m, out);
+  if (p == 2 && q == 2) return scatter_kernel<2, 2>(L, p, q, u, v, m, out);
+  if (p == 2 && q == 3) return scatter_kernel<2, 3>(L, p, q, u, v, m, out);
+  if (p == 3 && q == 2) return scatter_kernel<3, 2>(L, p, q, u, v, m, out);
+  if (p == 1 && q == 1) return scatter_kernel<1, 1>(L, p, q, u, v, m, out);
+  scatter_kernel<0, 0>(L, p, q, u, v, m, out);
+}
+
+// One grid line u = const: `row` is the control net contracted in u (nv homogeneous
+// points); every v sample combines q + 1 of them.
 template <int Q>
-void grid_row_kernel(const double* row, int q, const int* spans, const double* Nv_all, long n_v, bool rational,
-                     double* out) {
+FAIRLINES_INLINE void grid_line(const double* row, int q, const int* spans, const double* Nv_all, long n_v,
+                                bool rational, double* out) {
   const int qq = Q > 0 ? Q : q;
   for (long b = 0; b < n_v; ++b) {
     const double* Nv = Nv_all + b * (qq + 1);
     const double* base = row + static_cast<long>(spans[b] - qq) * 4;
-    double acc[4] = {0, 0, 0, 0};
-    for (int j = 0; j <= qq; ++j)
-      for (int c = 0; c < 4; ++c) acc[c] += Nv[j] * base[j * 4 + c];
-    if (rational) {
-      const double iw = 1.0 / acc[3];
-      out[3 * b] = acc[0] * iw;
-      out[3 * b + 1] = acc[1] * iw;
-      out[3 * b + 2] = acc[2] * iw;
-    } else {
-      out[3 * b] = acc[0];
-      out[3 * b + 1] = acc[1];
-      out[3 * b + 2] = acc[2];
+    v4d acc = Nv[0] * load4(base);
+    for (int j = 1; j <= qq; ++j) acc += Nv[j] * load4(base + 4 * j);
+    const double iw = rational ? 1.0 / acc[3] : 1.0;
+    out[3 * b] = acc[0] * iw;
+    out[3 * b + 1] = acc[1] * iw;
+    out[3 * b + 2] = acc[2] * iw;
+  }
+}
+
+FAIRLINES_MULTIVERSION
+void grid_dispatch(const Layout& L, int p, int q, const int* su_all, const double* Nu_all, long n_u, const int* sv_all,
+                   const double* Nv_all, long n_v, double* row, double* out) {
+  const long width = static_cast<long>(L.nv) * 4;
+  for (long a = 0; a < n_u; ++a) {
+    const double* Nu = Nu_all + a * (p + 1);
+    const double* src = L.pw + static_cast<long>(su_all[a] - p) * width;
+    // Contract the control net in u once per grid line.
+    for (long j = 0; j < width; ++j) row[j] = Nu[0] * src[j];
+    for (int i = 1; i <= p; ++i) {
+      const double w = Nu[i];
+      const double* s = src + i * width;
+      for (long j = 0; j < width; ++j) row[j] += w * s[j];
+    }
+    double* dst = out + a * n_v * 3;
+    switch (q) {
+      case 3: grid_line<3>(row, q, sv_all, Nv_all, n_v, L.rational, dst); break;
+      case 2: grid_line<2>(row, q, sv_all, Nv_all, n_v, L.rational, dst); break;
+      default: grid_line<0>(row, q, sv_all, Nv_all, n_v, L.rational, dst);
     }
   }
 }
@@ -140,6 +164,10 @@ NurbsSurface::NurbsSurface(int degree_u, int degree_v, Eigen::VectorXd knots_u, 
 
 void NurbsSurface::refresh() {
   rational_ = (weights_.array() != 1.0).any();
+  inv_u_ = detail::make_basis_table(ku_, pu_);
+  inv_v_ = detail::make_basis_table(kv_, pv_);
+  span_u_ = std::make_shared<const SpanLocator>(ku_, pu_);
+  span_v_ = std::make_shared<const SpanLocator>(kv_, pv_);
   pw_.resize(static_cast<size_t>(points_.rows()) * 4);
   for (Eigen::Index i = 0; i < points_.rows(); ++i) {
     for (int c = 0; c < 3; ++c) pw_[i * 4 + c] = points_(i, c) * weights_[i];
@@ -168,10 +196,6 @@ Eigen::MatrixXd NurbsSurface::evaluate(const Eigen::VectorXd& u, const Eigen::Ve
 }
 
 void NurbsSurface::evaluate_into(const double* u, const double* v, long m, double* out) const {
-  const auto [ua, ub] = domain_u();
-  const auto [va, vb] = domain_v();
-  const Layout L{ku_.data(), kv_.data(), static_cast<int>(ku_.size()), static_cast<int>(kv_.size()), nv_,
-                 ua, ub, va, vb, pw_.data(), rational_};
   if (pu_ > kMaxFastDegree || pv_ > kMaxFastDegree) {
     // Rare high degrees: evaluate through the general derivative routine.
     for (long k = 0; k < m; ++k) {
@@ -180,12 +204,7 @@ void NurbsSurface::evaluate_into(const double* u, const double* v, long m, doubl
     }
     return;
   }
-  if (pu_ == 3 && pv_ == 3) return scatter_kernel<3, 3>(L, 3, 3, u, v, m, out);
-  if (pu_ == 2 && pv_ == 2) return scatter_kernel<2, 2>(L, 2, 2, u, v, m, out);
-  if (pu_ == 2 && pv_ == 3) return scatter_kernel<2, 3>(L, 2, 3, u, v, m, out);
-  if (pu_ == 3 && pv_ == 2) return scatter_kernel<3, 2>(L, 3, 2, u, v, m, out);
-  if (pu_ == 1 && pv_ == 1) return scatter_kernel<1, 1>(L, 1, 1, u, v, m, out);
-  scatter_kernel<0, 0>(L, pu_, pv_, u, v, m, out);
+  scatter_dispatch(make_layout(ku_, kv_, inv_u_, inv_v_, pu_, pv_, nu_, nv_, pw_, rational_, span_u_, span_v_), pu_, pv_, u, v, m, out);
 }
 
 Eigen::MatrixXd NurbsSurface::evaluate_grid(const Eigen::VectorXd& us, const Eigen::VectorXd& vs) const {
@@ -197,37 +216,32 @@ Eigen::MatrixXd NurbsSurface::evaluate_grid(const Eigen::VectorXd& us, const Eig
 }
 
 void NurbsSurface::evaluate_grid_into(const double* us, long n_u, const double* vs, long n_v, double* out) const {
-  const auto [ua, ub] = domain_u();
-  const auto [va, vb] = domain_v();
-  const int p = pu_, q = pv_;
-  // Basis values along v are shared by every grid line u = const.
-  std::vector<int> spans(n_v);
-  std::vector<double> Nv(static_cast<size_t>(n_v) * (q + 1));
-  for (long b = 0; b < n_v; ++b) {
-    const double t = std::clamp(vs[b], va, vb);
-    spans[b] = find_span(q, kv_.data(), static_cast<int>(kv_.size()), t);
-    basis_dyn(q, spans[b], t, kv_.data(), &Nv[b * (q + 1)]);
+  if (pu_ > kMaxFastDegree || pv_ > kMaxFastDegree) {
+    for (long a = 0; a < n_u; ++a)
+      for (long b = 0; b < n_v; ++b) {
+        const Eigen::MatrixXd D = derivatives(us[a], vs[b], 0);
+        for (int c = 0; c < 3; ++c) out[(a * n_v + b) * 3 + c] = D(0, c);
+      }
+    return;
   }
+  const Layout L = make_layout(ku_, kv_, inv_u_, inv_v_, pu_, pv_, nu_, nv_, pw_, rational_, span_u_, span_v_);
+  // Basis values are computed once per grid line in each direction.
+  auto tabulate = [](const double* ts, long n, int p, const double* U, const SpanLocator* loc, const double* inv, double lo,
+                     double hi, std::vector<int>& spans, std::vector<double>& N) {
+    spans.resize(n);
+    N.resize(static_cast<size_t>(n) * (p + 1));
+    for (long k = 0; k < n; ++k) {
+      const double t = std::clamp(ts[k], lo, hi);
+      spans[k] = loc->find(U, t);
+      basis_table_eval<0>(p, spans[k], t, U, inv, &N[k * (p + 1)]);
+    }
+  };
+  std::vector<int> su, sv;
+  std::vector<double> Nu, Nv;
+  tabulate(us, n_u, pu_, L.ku, L.span_u, L.inv_u, L.ua, L.ub, su, Nu);
+  tabulate(vs, n_v, pv_, L.kv, L.span_v, L.inv_v, L.va, L.vb, sv, Nv);
   std::vector<double> row(static_cast<size_t>(nv_) * 4);
-  std::vector<double> Nu(p + 1);
-  for (long a = 0; a < n_u; ++a) {
-    const double t = std::clamp(us[a], ua, ub);
-    const int su = find_span(p, ku_.data(), static_cast<int>(ku_.size()), t);
-    basis_dyn(p, su, t, ku_.data(), Nu.data());
-    // Contract the control net in u once per grid line: a homogeneous curve in v.
-    std::fill(row.begin(), row.end(), 0.0);
-    for (int i = 0; i <= p; ++i) {
-      const double* src = &pw_[static_cast<size_t>(su - p + i) * nv_ * 4];
-      const double w = Nu[i];
-      for (int j = 0; j < nv_ * 4; ++j) row[j] += w * src[j];
-    }
-    double* dst = out + a * n_v * 3;
-    switch (q) {
-      case 3: grid_row_kernel<3>(row.data(), q, spans.data(), Nv.data(), n_v, rational_, dst); break;
-      case 2: grid_row_kernel<2>(row.data(), q, spans.data(), Nv.data(), n_v, rational_, dst); break;
-      default: grid_row_kernel<0>(row.data(), q, spans.data(), Nv.data(), n_v, rational_, dst);
-    }
-  }
+  grid_dispatch(L, pu_, pv_, su.data(), Nu.data(), n_u, sv.data(), Nv.data(), n_v, row.data(), out);
 }
 
 Eigen::MatrixXd NurbsSurface::derivatives(double u, double v, int order) const {

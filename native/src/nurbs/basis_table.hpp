@@ -1,0 +1,97 @@
+// Division-free B-spline basis evaluation for hot loops.
+//
+// The denominators of the Cox-de Boor triangle, U[s+r+1] - U[s+1-j+r], depend only on
+// the knot span s, not on the parameter, so they are inverted once per curve/surface
+// and the evaluation multiplies. Spans are found in O(1) through a bucket table.
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "fairlines/basis.hpp"
+
+#define FAIRLINES_INLINE inline __attribute__((always_inline))
+
+namespace fairlines::detail {
+
+/// Four doubles as one SIMD value (GCC/Clang vector extension): one homogeneous point
+/// (w x, w y, w z, w). The unaligned variant loads from any double array.
+typedef double v4d __attribute__((vector_size(32)));
+typedef double v4du __attribute__((vector_size(32), aligned(8)));
+
+/// Finds knot spans in O(1): the domain is cut into equal buckets, each remembering the
+/// span at its left edge; a lookup then steps forward over at most a few knots.
+struct SpanLocator {
+  double a = 0, scale = 0;   // domain start, buckets per unit parameter
+  int buckets = 0, last_span = 0;
+  std::vector<int> table;    // span at each bucket's left edge
+
+  SpanLocator() = default;
+  SpanLocator(const Eigen::VectorXd& U, int p) {
+    const int n = static_cast<int>(U.size()) - p - 1;
+    a = U[p];
+    const double b = U[n];
+    last_span = n - 1;
+    while (last_span > p && !(U[last_span + 1] > U[last_span])) --last_span;
+    buckets = std::max(16, 4 * (n - p));
+    scale = buckets / (b - a);
+    table.resize(buckets);
+    int s = p;
+    for (int k = 0; k < buckets; ++k) {
+      const double x = a + k / scale;
+      while (s < last_span && U[s + 1] <= x) ++s;
+      table[k] = s;
+    }
+  }
+  /// Span of t, which must already be clamped to the domain.
+  FAIRLINES_INLINE int find(const double* U, double t) const {
+    int k = static_cast<int>((t - a) * scale);
+    k = k < 0 ? 0 : (k >= buckets ? buckets - 1 : k);
+    int s = table[k];
+    while (s < last_span && U[s + 1] <= t) ++s;
+    return s;
+  }
+};
+
+/// Entries per span of the reciprocal table for degree p: p (p + 1) / 2.
+inline int basis_table_stride(int p) { return p * (p + 1) / 2; }
+
+/// Reciprocal table for every span index s in [0, n_knots): entry (s, j, r) at
+/// s * stride + j (j - 1) / 2 + r holds 1 / (U[s+r+1] - U[s+1-j+r]) for non-empty spans
+/// inside the domain, 0 elsewhere (never read there).
+inline std::vector<double> make_basis_table(const Eigen::VectorXd& U, int p) {
+  const int n = static_cast<int>(U.size()) - p - 1;
+  const int stride = basis_table_stride(p);
+  std::vector<double> inv(static_cast<size_t>(U.size()) * stride, 0.0);
+  for (int s = p; s < n; ++s) {
+    if (!(U[s + 1] > U[s])) continue;
+    for (int j = 1; j <= p; ++j)
+      for (int r = 0; r < j; ++r) inv[s * stride + j * (j - 1) / 2 + r] = 1.0 / (U[s + r + 1] - U[s + 1 - j + r]);
+  }
+  return inv;
+}
+
+/// The deg + 1 non-zero basis functions at t in `span`, using the reciprocal table.
+/// P > 0 fixes the degree at compile time (loops unroll); P == 0 takes it from p.
+template <int P>
+FAIRLINES_INLINE void basis_table_eval(int p, int span, double t, const double* U, const double* inv, double* N) {
+  const int deg = P > 0 ? P : p;
+  double left[kMaxFastDegree + 1], right[kMaxFastDegree + 1];
+  const double* iv = inv + span * (deg * (deg + 1) / 2);
+  N[0] = 1.0;
+  for (int j = 1; j <= deg; ++j) {
+    left[j] = t - U[span + 1 - j];
+    right[j] = U[span + j] - t;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double temp = N[r] * iv[j * (j - 1) / 2 + r];
+      N[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    N[j] = saved;
+  }
+}
+
+}  // namespace fairlines::detail

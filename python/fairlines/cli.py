@@ -1,0 +1,114 @@
+"""The `fairlines` command line.
+
+    fairlines version
+    fairlines fit POINTS.csv [--degree 3] [--n-control N] [--parameterization chord] -o curve.json
+    fairlines import TABLE --lpp L --beam B --draft T [--format auto] [--stations 20] -o hull.json
+    fairlines build hull.json -o OUTDIR
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+import numpy as np
+
+from . import __version__, fit_curve
+from .io import save_json
+
+
+def _fit(args) -> int:
+    try:
+        pts = np.loadtxt(args.points, delimiter=",", ndmin=2)
+    except (OSError, ValueError) as exc:
+        print(f"fairlines fit: cannot read {args.points}: {exc}", file=sys.stderr)
+        return 2
+    fit = fit_curve(pts, degree=args.degree, n_control=args.n_control, parameterization=args.parameterization,
+                    knots=args.knots)
+    print(f"{len(pts)} points, {fit.curve.n_control} control points, degree {fit.curve.degree}: "
+          f"max deviation {fit.max_deviation:.6g}, rms {fit.rms_deviation:.6g} (units of the input)")
+    if args.output:
+        save_json(fit.curve, args.output)
+        print(f"wrote {args.output}")
+    return 0
+
+
+def _progress(msg):
+    print(f"  .. {msg}", file=sys.stderr, flush=True)
+
+
+def _import(args) -> int:
+    import json
+    import pathlib
+
+    from .offsets import read_hull_data
+    from .preprocess import import_hull
+    data = read_hull_data(args.table, args.lpp, args.beam, args.draft, fmt=args.format, n_stations=args.stations)
+    doc = import_hull(data, progress=_progress)
+    h, fp = doc["hydrostatics_input"], doc["form_parameters"]
+    print(f"{data.name}: Lpp {data.lpp:g} m, B {data.beam:g} m, T {data.draft:g} m; "
+          f"{len(data.sections)} sections, {len(data.grids)} grids")
+    for note in data.notes:
+        print(f"note: {note}")
+    print(f"input ({h['method']}): volume {h['volume']:.6g} m3, LCB {h['LCB_pct_Lpp_from_midship']:+.3f} % Lpp, "
+          f"Cb {h['Cb']:.4f}, Cp {h['Cp']:.4f}, Cm {h['Cm']:.4f}, Cwp {h['Cwp']:.4f}")
+    def span(d):
+        return "none" if d["x_aft"] is None else f"x {d['x_aft']:.4g}..{d['x_fwd']:.4g} m"
+    print(f"form parameters: flat of side {span(fp['FOS'])}, flat of bottom {span(fp['FOB'])}, "
+          f"DWL entrance half-angle {fp['DWL']['entrance_angle_deg']:.1f} deg, bow feature: {fp['bow']['kind']}")
+    pathlib.Path(args.output).write_text(json.dumps(doc, indent=1))
+    print(f"wrote {args.output}")
+    return 0
+
+
+def _build(args) -> int:
+    from .preprocess import build_hull, comparison_table
+    report = build_hull(args.hull, args.output, progress=_progress)
+    print(report["name"])
+    print(comparison_table(report))
+    print(f"wrote {args.output}/report.json and one surface JSON/OBJ per subdomain")
+    return 0
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(prog="fairlines", description="Fair parametric hull design.")
+    sub = ap.add_subparsers(dest="command", required=True)
+    sub.add_parser("version", help="print the version")
+    f = sub.add_parser("fit", help="fit a B-spline curve to points (CSV, one point per row)")
+    f.add_argument("points")
+    f.add_argument("--degree", type=int, default=3)
+    f.add_argument("--n-control", type=int, default=None, help="control points (default: interpolate)")
+    f.add_argument("--parameterization", default="chord", choices=["chord", "centripetal", "uniform"])
+    f.add_argument("--knots", default="average", choices=["average", "hartley_judd"])
+    f.add_argument("-o", "--output", help="write the curve as JSON")
+    im = sub.add_parser("import", help="read offsets / section points / a point grid; find the form parameters")
+    im.add_argument("table", help="offsets CSV, x,y,z section CSV, Tecplot point grid in SPEC metres (.dat), "
+                                  "or a DTMB 5415 / KCS grid folder")
+    im.add_argument("--lpp", type=float, help="length between perpendiculars, m")
+    im.add_argument("--beam", type=float, help="moulded beam, m")
+    im.add_argument("--draft", type=float, help="design draft, m")
+    im.add_argument("--format", default="auto", choices=["auto", "offsets", "sections", "tecplot", "dtmb5415", "kcs"])
+    im.add_argument("--stations", type=int, default=20,
+                    help="station intervals between the perpendiculars in a normalised table (default 20)")
+    im.add_argument("-o", "--output", required=True, help="hull description JSON to write")
+    b = sub.add_parser("build", help="rebuild the faired hull of an imported description; report deviation and "
+                                     "hydrostatics")
+    b.add_argument("hull", help="hull.json written by 'fairlines import'")
+    b.add_argument("-o", "--output", required=True, help="output folder")
+    args = ap.parse_args(argv)
+    try:
+        if args.command == "version":
+            print(__version__)
+            return 0
+        if args.command == "import":
+            return _import(args)
+        if args.command == "build":
+            return _build(args)
+        return _fit(args)
+    except ValueError as exc:  # bad input: a one-line message, no traceback
+        print(f"fairlines {args.command}: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,627 @@
+"""Readers for existing hull data, converted to the project's conventions (SPEC §6).
+
+Every reader returns a :class:`HullData`: metres, x forward from the aft perpendicular (AP),
+y half-breadth >= 0, z up from the baseline. Three kinds of input are understood:
+
+* offsets tables (CSV, stations x waterlines of half-breadths), absolute or normalised;
+* lists of section points (CSV ``x,y,z`` rows, one station after the other);
+* structured point grids: the DTMB 5415 ``*_x/_y/_z.dat`` triples and Tecplot ``f=point``
+  zones such as the KCS grid.
+
+Poor data is handled explicitly: unsorted stations or waterlines are sorted and the fact is
+recorded in ``HullData.notes``; exact duplicate stations are merged (noted), conflicting ones
+raise; blank cells are dropped from their section (noted); unreadable or negative cells,
+sections that fold back (cross themselves) and grids with holes raise ``ValueError`` naming
+the file, row/column or station and what was expected.
+"""
+
+from __future__ import annotations
+
+import csv
+import dataclasses
+import pathlib
+import re
+
+import numpy as np
+
+# Two stations closer than this fraction of Lpp are the same station (duplicates).
+STATION_MATCH_TOL = 1e-9
+# Stations may lie beyond the perpendiculars (overhangs, a bulb), but not by more than this
+# fraction of Lpp: further out, Lpp or the units are wrong.
+STATION_RANGE_MARGIN = 0.25
+# Turning angle (degrees) between two section segments above which the point is a knuckle.
+KNUCKLE_ANGLE_DEG = 35.0
+
+
+@dataclasses.dataclass
+class Section:
+    """One station: points (m, 2) as (y, z) in metres, ordered from the keel (or the lowest
+    point on the centreplane) up to the top of the data."""
+    x: float
+    points: np.ndarray
+    label: str = ""
+
+
+@dataclasses.dataclass
+class PointGrid:
+    """A structured grid (rows, cols, 3) in SPEC §6 metres. ``role`` names the part of the hull
+    it covers ('hull', 'bow', 'bulb', 'transom', ...)."""
+    name: str
+    points: np.ndarray
+    role: str = "hull"
+
+
+@dataclasses.dataclass
+class HullData:
+    """Hull geometry read from a file, in SPEC §6 metres.
+
+    ``sections`` (offsets tables, section lists) or ``grids`` (structured grids) hold the
+    geometry; ``offsets`` keeps the table itself (x of the stations, z of the waterlines,
+    half-breadths with NaN where a cell was blank) for Simpson integration. ``notes`` lists
+    every repair made to the data. ``published`` carries particulars stated by the source."""
+    name: str
+    lpp: float
+    beam: float
+    draft: float
+    sections: list = dataclasses.field(default_factory=list)
+    grids: list = dataclasses.field(default_factory=list)
+    offsets: dict | None = None
+    notes: list = dataclasses.field(default_factory=list)
+    published: dict = dataclasses.field(default_factory=dict)
+    source: str = ""
+
+    def all_points(self) -> np.ndarray:
+        """Every input point as (n, 3) x, y, z."""
+        pts = [np.column_stack([np.full(len(s.points), s.x), s.points]) for s in self.sections]
+        pts += [g.points.reshape(-1, 3) for g in self.grids]
+        return np.concatenate(pts) if pts else np.zeros((0, 3))
+
+
+def _positive(name, value):
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} is {value!r}; expected a positive number of metres") from None
+    if not np.isfinite(v) or v <= 0:
+        raise ValueError(f"{name} is {value!r}; expected a positive number of metres")
+    return v
+
+
+def _cell(text, path, row, col):
+    """A table cell as float, NaN when blank; ValueError naming the cell otherwise."""
+    t = text.strip()
+    if t == "" or t.lower() in ("nan", "na", "-"):
+        return np.nan
+    try:
+        v = float(t)
+    except ValueError:
+        raise ValueError(f"{path}: row {row}, column {col!r} is {t!r}; expected a number") from None
+    if not np.isfinite(v):
+        raise ValueError(f"{path}: row {row}, column {col!r} is {t!r}; expected a finite number")
+    return v
+
+
+def _csv_rows(path):
+    """Non-comment, non-empty CSV rows with their 1-based line numbers, and the comment lines."""
+    path = pathlib.Path(path)
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except OSError as exc:
+        raise ValueError(f"cannot read {path}: {exc.strerror or exc}") from None
+    except UnicodeDecodeError:
+        raise ValueError(f"{path} is not a text file; expected CSV") from None
+    rows, comments = [], []
+    for lineno, line in enumerate(text.splitlines(), 1):
+        if line.lstrip().startswith("#"):
+            comments.append(line.lstrip("# ").rstrip())
+            continue
+        if not line.strip():
+            continue
+        rows.append((lineno, next(csv.reader([line]))))
+    if not rows:
+        raise ValueError(f"{path}: no data rows; expected a header line and one row per station")
+    return rows, comments
+
+
+def _waterline_height(label, path, draft, normalised):
+    """z of a waterline column header: 'tan_line'/'baseline' is 0, 'wl_<z/T>' a fraction of the
+    draft, a bare number metres (absolute tables) or z/T (normalised tables)."""
+    lab = label.strip().lower()
+    if lab in ("tan_line", "baseline", "base", "bl"):
+        return 0.0
+    m = re.fullmatch(r"(?:wl_?|z=?)?\s*([-+0-9.eE]+)\s*(?:m)?", lab)
+    if not m:
+        raise ValueError(f"{path}: column header {label!r}; expected 'tan_line', 'wl_<z/T>' or a height")
+    v = float(m.group(1))
+    if lab.startswith("wl") or normalised:
+        return v * draft
+    return v
+
+
+def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, name=None) -> HullData:
+    """Read an offsets table: one row per station, one column per waterline, half-breadths.
+
+    Normalised tables (like ``series60_cb080_offsets.csv``) have a ``station`` column with
+    station numbers counted from the FP (``FP``, ``0.5``, ... ``AP``; ``n_stations`` intervals
+    between the perpendiculars), waterline headers ``tan_line``/``wl_<z/T>``, half-breadths as
+    fractions of each column's ``max_half_beam`` row (or of B/2 when there is none).
+    Absolute tables have an ``x`` column (metres forward of the AP), headers giving z in
+    metres, half-breadths in metres. Extra columns such as ``area_fraction`` are kept in
+    ``offsets['extra']``. ``normalised`` None decides from the first header ('station' or 'x').
+    """
+    lpp, beam, draft = _positive("Lpp", lpp), _positive("beam", beam), _positive("draft", draft)
+    rows, comments = _csv_rows(path)
+    head_line, header = rows[0]
+    header = [h.strip() for h in header]
+    first = header[0].lower()
+    if normalised is None:
+        if first not in ("station", "x"):
+            raise ValueError(f"{path}: first column is {header[0]!r}; expected 'station' (normalised) or 'x' (metres)")
+        normalised = first == "station"
+    wl_cols, extra_cols = [], []
+    for k, h in enumerate(header[1:], 1):
+        (extra_cols if h.lower() in ("area_fraction", "area", "note") else wl_cols).append(k)
+    if len(wl_cols) < 2:
+        raise ValueError(f"{path}: {len(wl_cols)} waterline column(s); expected at least 2")
+    z = np.array([_waterline_height(header[k], path, draft, normalised) for k in wl_cols])
+    notes = []
+    scale_row = None
+    labels, xs, table, extra = [], [], [], []
+    for lineno, row in rows[1:]:
+        if len(row) < len(header):
+            row = row + [""] * (len(header) - len(row))
+        lab = row[0].strip()
+        if lab.lower() in ("max_half_beam", "scale"):
+            scale_row = np.array([_cell(row[k], path, lineno, header[k]) for k in wl_cols])
+            continue
+        if normalised:
+            if lab.upper() == "FP":
+                st = 0.0
+            elif lab.upper() == "AP":
+                st = float(n_stations)
+            else:
+                try:
+                    st = float(lab)
+                except ValueError:
+                    raise ValueError(f"{path}: row {lineno} station is {lab!r}; expected FP, AP or a number") from None
+            xpos = (n_stations - st) / n_stations * lpp  # stations count from the FP; x from the AP
+        else:
+            xpos = _cell(lab, path, lineno, header[0])
+            if np.isnan(xpos):
+                raise ValueError(f"{path}: row {lineno} has no x; expected metres forward of the AP")
+        vals = np.array([_cell(row[k], path, lineno, header[k]) for k in wl_cols])
+        bad = np.flatnonzero(vals < 0)
+        if bad.size:
+            k = wl_cols[bad[0]]
+            raise ValueError(f"{path}: row {lineno}, column {header[k]!r} is {vals[bad[0]]}; "
+                             "expected a half-breadth >= 0")
+        labels.append(lab)
+        xs.append(xpos)
+        table.append(vals)
+        extra.append({header[k]: _cell(row[k], path, lineno, header[k]) for k in extra_cols})
+    if len(xs) < 3:
+        raise ValueError(f"{path}: {len(xs)} station(s); expected at least 3")
+    xs, table = np.array(xs), np.array(table)
+    check_station_range(xs, lpp, str(path))
+    if normalised:
+        hb_scale = scale_row if scale_row is not None else np.ones(len(wl_cols))
+        if np.any(np.isnan(hb_scale)) or np.any(hb_scale <= 0):
+            raise ValueError(f"{path}: max_half_beam row has blank or non-positive entries; expected one per waterline")
+        table = table * hb_scale * beam / 2
+    # Waterlines must rise left to right: sort them (noted), refuse duplicates.
+    zo = np.argsort(z, kind="stable")
+    if np.any(np.diff(z[zo]) <= 0):
+        i = np.flatnonzero(np.diff(z[zo]) <= 0)[0]
+        raise ValueError(f"{path}: two waterline columns at z = {z[zo][i]:.6g} m; expected distinct waterlines")
+    if np.any(zo != np.arange(len(z))):
+        notes.append("waterline columns were not in rising order; sorted")
+        z, table = z[zo], table[:, zo]
+    # Stations: sort from AP forward, merge exact duplicates, refuse conflicting ones.
+    so = np.argsort(xs, kind="stable")
+    if np.any(so != np.arange(len(xs))):
+        if not np.all(so == np.arange(len(xs))[::-1]):
+            notes.append("stations were not in order; sorted from AP to FP")
+    xs, table = xs[so], table[so]
+    labels = [labels[i] for i in so]
+    extra = [extra[i] for i in so]
+    keep = [0]
+    for i in range(1, len(xs)):
+        if abs(xs[i] - xs[keep[-1]]) <= STATION_MATCH_TOL * lpp:
+            a, b = table[keep[-1]], table[i]
+            same = np.allclose(np.nan_to_num(a, nan=-1), np.nan_to_num(b, nan=-1), rtol=0, atol=1e-9 * beam)
+            if not same:
+                raise ValueError(f"{path}: station {labels[i]!r} appears twice with different half-breadths; "
+                                 "expected one row per station")
+            notes.append(f"station {labels[i]!r} appeared twice with the same values; merged")
+            continue
+        keep.append(i)
+    xs, table = xs[keep], table[keep]
+    labels = [labels[i] for i in keep]
+    extra = [extra[i] for i in keep]
+    sections = []
+    for lab, xpos, hb in zip(labels, xs, table):
+        missing = np.isnan(hb)
+        if missing.all():
+            raise ValueError(f"{path}: station {lab!r} has no half-breadths; expected at least one number")
+        if missing.any():
+            notes.append(f"station {lab!r}: {int(missing.sum())} blank cell(s) at z = "
+                         + ", ".join(f"{v:.4g}" for v in z[missing]) + " m left out of the section")
+        pts = section_from_offsets(hb, z)
+        sections.append(Section(float(xpos), pts, lab))
+    data = HullData(name or pathlib.Path(path).stem, lpp, beam, draft, sections=sections,
+                    offsets={"x": xs, "z": z, "half_breadths": table, "labels": labels, "extra": extra},
+                    notes=notes, source=str(path))
+    data.published = _published_from_comments(comments)
+    return data
+
+
+def _published_from_comments(comments):
+    """Published coefficients quoted in a table's header ('Cp 0.805, Cm 0.994, ...')."""
+    text = " ".join(comments)
+    out = {}
+    for key in ("Cp", "Cm", "Cwp", "Cb"):
+        m = re.search(rf"\b{key}\s+(0?\.\d+)", text)
+        if m:
+            out[key] = float(m.group(1))
+    m = re.search(r"LCB\s+([0-9.]+)\s*%\s*Lpp\s+(forward|aft)", text.replace("\n", " "))
+    if m:
+        out["LCB_pct_Lpp_from_midship"] = float(m.group(1)) * (1 if m.group(2) == "forward" else -1)
+    return out
+
+
+def section_from_offsets(half_breadths, z) -> np.ndarray:
+    """(y, z) points of one station from its half-breadths at waterlines z (blank cells NaN).
+
+    Where the lowest waterlines read 0 the section does not reach them: it starts on the
+    centreplane at the highest such zero below the first non-zero offset (a point of the
+    profile). A non-zero offset on the lowest waterline means a flat of bottom: the section
+    starts on the centreplane at that height. Zeros above non-zero offsets end the section on the
+    centreplane (a stem or stern above the data)."""
+    hb = np.asarray(half_breadths, float)
+    z = np.asarray(z, float)
+    ok = ~np.isnan(hb)
+    hb, z = hb[ok], z[ok]
+    nz = np.flatnonzero(hb > 0)
+    if nz.size == 0:  # a section entirely on the centreplane (a stem at FP): its profile line
+        return np.column_stack([np.zeros(len(z)), z])
+    first, last = nz[0], nz[-1]
+    pts = [(0.0, z[first - 1] if first > 0 else z[first])]
+    pts += [(hb[k], z[k]) for k in range(first, last + 1)]
+    if last + 1 < len(z):
+        pts.append((0.0, z[last + 1]))
+    return np.array(pts)
+
+
+def read_sections_csv(path, lpp, beam, draft, *, name=None) -> HullData:
+    """Read section points: CSV rows ``x,y,z`` in metres (SPEC §6), one station after another,
+    each station's points ordered from the keel up. Stations need not be in order (noted);
+    a station given twice raises; a section that crosses itself raises."""
+    lpp, beam, draft = _positive("Lpp", lpp), _positive("beam", beam), _positive("draft", draft)
+    rows, _ = _csv_rows(path)
+    start = 0
+    if rows[0][1] and not _is_number(rows[0][1][0]):
+        header = [h.strip().lower() for h in rows[0][1]]
+        if header[:3] != ["x", "y", "z"]:
+            raise ValueError(f"{path}: header is {rows[0][1]!r}; expected x,y,z")
+        start = 1
+    groups: dict = {}
+    order = []
+    last_x = None
+    for lineno, row in rows[start:]:
+        if len(row) < 3:
+            raise ValueError(f"{path}: row {lineno} has {len(row)} value(s); expected x,y,z")
+        x, y, z = (_cell(row[k], path, lineno, "xyz"[k]) for k in range(3))
+        if np.isnan(x) or np.isnan(z):
+            raise ValueError(f"{path}: row {lineno} has a blank x or z; expected numbers")
+        if np.isnan(y):
+            continue
+        if y < 0:
+            raise ValueError(f"{path}: row {lineno}, y is {y}; expected a half-breadth >= 0")
+        key = round(x / lpp / STATION_MATCH_TOL)
+        if key != last_x and key in groups:
+            raise ValueError(f"{path}: row {lineno}: station x = {x} m appears in two separate blocks; "
+                             "expected each station's points together")
+        if key not in groups:
+            groups[key] = (x, [])
+            order.append(key)
+        groups[key][1].append((y, z))
+        last_x = key
+    notes = []
+    xs = [groups[k][0] for k in order]
+    if np.any(np.diff(xs) < 0):
+        notes.append("stations were not in order; sorted from AP to FP")
+    sections = []
+    for k in sorted(order, key=lambda k: groups[k][0]):
+        x, pts = groups[k]
+        pts = np.array(pts)
+        if len(pts) < 2:
+            raise ValueError(f"{path}: station x = {x} m has {len(pts)} point(s); expected at least 2")
+        sections.append(Section(float(x), pts, f"x={x:g}"))
+    data = HullData(name or pathlib.Path(path).stem, lpp, beam, draft, sections=sections, notes=notes,
+                    source=str(path))
+    check_station_range([s.x for s in data.sections], lpp, str(path))
+    check_sections(data.sections, source=str(path))
+    return data
+
+
+def _is_number(text):
+    try:
+        float(text)
+        return True
+    except ValueError:
+        return False
+
+
+def _segments_cross(p1, p2, q1, q2):
+    """True if segments p1p2 and q1q2 intersect at an interior point of both."""
+    def orient(a, b, c):
+        return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+    d1, d2 = orient(q1, q2, p1), orient(q1, q2, p2)
+    d3, d4 = orient(p1, p2, q1), orient(p1, p2, q2)
+    return d1 * d2 < 0 and d3 * d4 < 0
+
+
+def check_station_range(xs, lpp, source=""):
+    """Stations must lie near the perpendiculars: x from -margin to (1 + margin) Lpp."""
+    lo, hi = float(np.min(xs)), float(np.max(xs))
+    m = STATION_RANGE_MARGIN * lpp
+    if lo < -m or hi > lpp + m:
+        raise ValueError(f"{source}: stations run from x = {lo:.6g} to {hi:.6g} m but Lpp is {lpp:.6g} m; "
+                         "expected stations between the perpendiculars (is Lpp in metres?)")
+
+
+def check_sections(sections, source=""):
+    """Refuse sections that fold back on themselves (a polyline that crosses itself) or
+    repeat a point; such data has no fair surface through it."""
+    for s in sections:
+        p = s.points
+        seg = np.linalg.norm(np.diff(p, axis=0), axis=1)
+        if np.any(seg == 0):
+            k = int(np.flatnonzero(seg == 0)[0])
+            raise ValueError(f"{source}: station {s.label or s.x} repeats point {k + 1} "
+                             f"(y={p[k, 0]:.6g}, z={p[k, 1]:.6g}); expected distinct points")
+        n = len(p) - 1
+        for i in range(n):
+            for j in range(i + 2, n):
+                if _segments_cross(p[i], p[i + 1], p[j], p[j + 1]):
+                    raise ValueError(f"{source}: station {s.label or s.x} folds back: segment {i + 1} "
+                                     f"crosses segment {j + 1} near z = {p[j, 1]:.6g} m; "
+                                     "expected a section that does not cross itself")
+
+
+def knuckles(points, angle_deg=KNUCKLE_ANGLE_DEG) -> np.ndarray:
+    """Indices of polyline points where the direction turns by more than ``angle_deg``."""
+    p = np.asarray(points, float)
+    if len(p) < 3:
+        return np.zeros(0, int)
+    d = np.diff(p, axis=0)
+    d /= np.linalg.norm(d, axis=1)[:, None]
+    cosang = np.clip(np.sum(d[:-1] * d[1:], axis=1), -1, 1)
+    return np.flatnonzero(np.degrees(np.arccos(cosang)) > angle_deg) + 1
+
+
+# ---- structured grids -------------------------------------------------------------------
+
+def _check_grid(points, where):
+    if points.ndim != 3 or points.shape[2] != 3 or min(points.shape[:2]) < 2:
+        raise ValueError(f"{where}: grid shape {points.shape}; expected (rows >= 2, cols >= 2, 3)")
+    if not np.all(np.isfinite(points)):
+        i, j = np.argwhere(~np.all(np.isfinite(points), axis=2))[0]
+        raise ValueError(f"{where}: point ({i + 1}, {j + 1}) is not a number; expected a complete grid")
+
+
+def read_xyz_grid(x_path, y_path, z_path, name="grid", role="hull") -> PointGrid:
+    """A structured grid from three whitespace-separated matrices of x, y and z (same shape)."""
+    mats = []
+    for p in (x_path, y_path, z_path):
+        try:
+            mats.append(np.loadtxt(p, ndmin=2))
+        except OSError as exc:
+            raise ValueError(f"cannot read {p}: {exc.strerror or exc}") from None
+        except ValueError as exc:
+            raise ValueError(f"{p}: {exc}; expected a whitespace-separated matrix of numbers") from None
+    if not (mats[0].shape == mats[1].shape == mats[2].shape):
+        raise ValueError(f"{x_path}: x, y, z matrices have shapes {[m.shape for m in mats]}; expected one shape")
+    pts = np.stack(mats, axis=-1)
+    _check_grid(pts, str(x_path))
+    return PointGrid(name, pts, role)
+
+
+def read_tecplot(path) -> list:
+    """Zones of a Tecplot ASCII file with ``f=point`` data as (i, j, 3) arrays, i fastest in the
+    file (Windows line endings accepted)."""
+    try:
+        text = pathlib.Path(path).read_text(errors="strict")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ValueError(f"cannot read {path}: {exc}") from None
+    lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
+    zones, k = [], 0
+    while k < len(lines):
+        line = lines[k].strip()
+        m = re.match(r"zone\b.*?\bi\s*=\s*(\d+).*?\bj\s*=\s*(\d+)", line, re.IGNORECASE)
+        k += 1
+        if not m:
+            continue
+        ni, nj = int(m.group(1)), int(m.group(2))
+        vals = []
+        while len(vals) < 3 * ni * nj and k < len(lines):
+            if re.match(r"\s*zone\b", lines[k], re.IGNORECASE):
+                break
+            for tok in lines[k].split():
+                try:
+                    vals.append(float(tok))
+                except ValueError:
+                    raise ValueError(f"{path}: line {k + 1} has {tok!r}; expected a number") from None
+            k += 1
+        if len(vals) != 3 * ni * nj:
+            raise ValueError(f"{path}: zone {len(zones) + 1} has {len(vals) // 3} points; expected i*j = {ni * nj}")
+        zones.append(np.array(vals).reshape(nj, ni, 3).transpose(1, 0, 2))
+    if not zones:
+        raise ValueError(f"{path}: no 'Zone i=.. j=..' header; expected Tecplot point data")
+    return zones
+
+
+def read_tecplot_hull(path, lpp, beam, draft, *, name=None) -> HullData:
+    """A Tecplot point-grid file whose zones are hull patches already in SPEC §6 metres (rows
+    stations from aft forward, columns keel to top, like the reference grids once converted).
+    Each zone becomes one subdomain; negative y (a port-side grid) is mirrored."""
+    lpp, beam, draft = _positive("Lpp", lpp), _positive("beam", beam), _positive("draft", draft)
+    grids = []
+    for k, z in enumerate(read_tecplot(path)):
+        pts = z.copy()
+        pts[..., 1] = np.abs(pts[..., 1])
+        _check_grid(pts, f"{path} zone {k + 1}")
+        grids.append(PointGrid(f"zone {k + 1}", pts, "hull"))
+    return HullData(name or pathlib.Path(path).stem, lpp, beam, draft, grids=grids, source=str(path))
+
+
+def read_dtmb5415(folder, *, published=None) -> HullData:
+    """DTMB 5415 model: the bow, main and transom grids of ``folder`` converted to SPEC §6.
+
+    Source frame: metres, FP near x = 0, AP at x = -5.719, z = 0 at the keel line. The main
+    grid's rows are stations; it overlaps the bow grid forward of the bow grid's first row (a
+    plane section), so the main grid is cut there (a section interpolated linearly between its
+    neighbouring rows) and the bow grid, which carries the sonar dome, covers the rest."""
+    folder = pathlib.Path(folder)
+    lpp, beam, draft = 5.719, 0.768, 0.248
+    grids = {}
+    for part in ("bow", "main", "transom"):
+        g = read_xyz_grid(*(folder / f"DTMB5415_{part}_offset_{c}.dat" for c in "xyz"), name=part)
+        g.points[..., 0] += lpp  # AP at source x = -5.719 becomes x = 0
+        grids[part] = g
+    bow, main = grids["bow"], grids["main"]
+    x_cut = bow.points[0, :, 0]
+    if np.ptp(x_cut) > 1e-9 * lpp:
+        raise ValueError(f"{folder}: bow grid's first row is not a plane section; expected constant x")
+    x_cut = float(x_cut[0])
+    xm = main.points[:, :, 0].mean(axis=1)
+    k = int(np.searchsorted(xm, x_cut))
+    if not 0 < k < len(xm) or np.any(np.ptp(main.points[k - 1:k + 1, :, 0], axis=1) > 1e-6 * lpp):
+        raise ValueError(f"{folder}: the main grid has no plane sections either side of x = {x_cut:.4f} m "
+                         "(where the bow grid begins); expected stations there")
+    t = (x_cut - xm[k - 1]) / (xm[k] - xm[k - 1])
+    cut_row = (1 - t) * main.points[k - 1] + t * main.points[k]
+    main.points = np.concatenate([main.points[:k], cut_row[None]], axis=0)
+    main.role = "hull"
+    bow.role = "bow (sonar dome)"
+    grids["transom"].role = "transom"
+    pub = {"volume": 0.554, "LCB_pct_Lpp_from_midship": -0.683, "Cb": 0.507, "Cm": 0.821}
+    pub.update(published or {})
+    return HullData("DTMB 5415 (model 1:24.83)", lpp, beam, draft,
+                    grids=[grids["main"], bow, grids["transom"]],
+                    notes=[f"main grid cut at x = {x_cut:.4f} m where the bow grid begins"],
+                    published=pub, source=str(folder))
+
+
+def read_kcs(folder, *, lpp=230.0, beam=32.2, draft=10.8) -> HullData:
+    """KCS: the NMRI two-block grids ``kcs_bow2.dat`` and ``kcs_stn2.dat`` scaled by Lpp.
+
+    Source frame: coordinates / Lpp, origin midship on the calm waterline, X downstream (FP at
+    X = -0.5), Y starboard, Z up. SPEC §6: x = (0.5 - X) Lpp, y = Y Lpp, z = Z Lpp + T."""
+    folder = pathlib.Path(folder)
+    lpp, beam, draft = _positive("Lpp", lpp), _positive("beam", beam), _positive("draft", draft)
+    grids = []
+    roles = {("kcs_bow2.dat", 0): ("bulb", "bulb"), ("kcs_bow2.dat", 1): ("forebody", "hull"),
+             ("kcs_stn2.dat", 0): ("transom overhang", "transom"), ("kcs_stn2.dat", 1): ("afterbody", "hull")}
+    for fname in ("kcs_bow2.dat", "kcs_stn2.dat"):
+        zones = read_tecplot(folder / fname)
+        if len(zones) != 2:
+            raise ValueError(f"{folder / fname}: {len(zones)} zone(s); expected 2 (two-block grid)")
+        for z, pts in enumerate(zones):
+            conv = np.column_stack([(0.5 - pts[..., 0].ravel()) * lpp, np.abs(pts[..., 1].ravel()) * lpp,
+                                    pts[..., 2].ravel() * lpp + draft]).reshape(pts.shape)
+            name, role = roles[(fname, z)]
+            _check_grid(conv, f"{folder / fname} zone {z + 1}")
+            grids.append(PointGrid(name, conv, role))
+    pub = {"volume": 52030.0, "Cb": 0.6505, "Cm": 0.9849, "LCB_pct_Lpp_from_midship": -1.48,
+           "wetted_surface": 9424.0, "S_over_L2": 0.178}
+    return HullData("KCS", lpp, beam, draft, grids=grids, published=pub, source=str(folder))
+
+
+# ---- detection and plain-data (JSON) form -----------------------------------------------
+
+def read_hull_data(path, lpp=None, beam=None, draft=None, *, fmt="auto", n_stations=20) -> HullData:
+    """Read any supported input. ``fmt``: 'offsets' (CSV table), 'sections' (x,y,z CSV),
+    'dtmb5415' (folder of the three grid triples), 'kcs' (folder with kcs_bow2.dat and
+    kcs_stn2.dat) or 'auto' (from the path: a folder by its files, a CSV by its header).
+    Lpp, beam and draft (metres) are needed for tables and section lists; the reference grids
+    default to their published model/ship dimensions."""
+    p = pathlib.Path(path)
+    if not p.exists():
+        raise ValueError(f"{p} does not exist; expected an offsets CSV, a section CSV or a grid folder")
+    if fmt == "auto":
+        if p.is_dir():
+            if (p / "DTMB5415_main_offset_x.dat").exists():
+                fmt = "dtmb5415"
+            elif (p / "kcs_bow2.dat").exists():
+                fmt = "kcs"
+            else:
+                raise ValueError(f"{p}: folder holds neither DTMB5415_*_offset_*.dat nor kcs_*2.dat; "
+                                 "expected one of the reference grid folders")
+        elif p.suffix.lower() in (".dat", ".plt", ".tec"):
+            fmt = "tecplot"
+        else:
+            rows, _ = _csv_rows(p)
+            first = [h.strip().lower() for h in rows[0][1]]
+            fmt = "sections" if first[:3] == ["x", "y", "z"] else "offsets"
+    if fmt == "dtmb5415":
+        data = read_dtmb5415(p)
+    elif fmt == "kcs":
+        kw = {k: v for k, v in (("lpp", lpp), ("beam", beam), ("draft", draft)) if v is not None}
+        data = read_kcs(p, **kw)
+    elif fmt in ("offsets", "sections", "tecplot"):
+        missing = [n for n, v in (("--lpp", lpp), ("--beam", beam), ("--draft", draft)) if v is None]
+        if missing:
+            raise ValueError(f"{p}: {', '.join(missing)} not given; expected the principal dimensions in metres")
+        if fmt == "offsets":
+            data = read_offsets_csv(p, lpp, beam, draft, n_stations=n_stations)
+        elif fmt == "sections":
+            data = read_sections_csv(p, lpp, beam, draft)
+        else:
+            data = read_tecplot_hull(p, lpp, beam, draft)
+    else:
+        raise ValueError(f"format is {fmt!r}; expected auto, offsets, sections, tecplot, dtmb5415 or kcs")
+    if fmt in ("dtmb5415", "kcs"):
+        for name, v in (("Lpp", lpp), ("beam", beam), ("draft", draft)):
+            if v is not None and fmt == "dtmb5415":
+                data.notes.append(f"{name} {v} ignored: the DTMB 5415 grid is at model scale, {name} fixed")
+    return data
+
+
+def hull_data_to_dict(data: HullData) -> dict:
+    """JSON-ready form of HullData (lists of floats; NaN cells as null)."""
+    def clean(a):
+        return [[None if not np.isfinite(v) else float(v) for v in row] for row in np.asarray(a)]
+    d = {"name": data.name, "lpp": data.lpp, "beam": data.beam, "draft": data.draft, "source": data.source,
+         "notes": list(data.notes), "published": dict(data.published),
+         "sections": [{"x": s.x, "label": s.label, "points": s.points.tolist()} for s in data.sections],
+         "grids": [{"name": g.name, "role": g.role, "points": g.points.tolist()} for g in data.grids]}
+    if data.offsets is not None:
+        o = data.offsets
+        d["offsets"] = {"x": o["x"].tolist(), "z": o["z"].tolist(), "half_breadths": clean(o["half_breadths"]),
+                        "labels": list(o["labels"]), "extra": o["extra"]}
+    return d
+
+
+def hull_data_from_dict(d: dict) -> HullData:
+    """Inverse of hull_data_to_dict; ValueError naming a missing entry."""
+    try:
+        data = HullData(d["name"], _positive("lpp", d["lpp"]), _positive("beam", d["beam"]),
+                        _positive("draft", d["draft"]), source=d.get("source", ""),
+                        notes=list(d.get("notes", [])), published=dict(d.get("published", {})))
+        data.sections = [Section(float(s["x"]), np.array(s["points"], float), s.get("label", ""))
+                         for s in d.get("sections", [])]
+        data.grids = [PointGrid(g["name"], np.array(g["points"], float), g.get("role", "hull"))
+                      for g in d.get("grids", [])]
+        if d.get("offsets"):
+            o = d["offsets"]
+            hb = np.array([[np.nan if v is None else v for v in row] for row in o["half_breadths"]], float)
+            data.offsets = {"x": np.array(o["x"], float), "z": np.array(o["z"], float), "half_breadths": hb,
+                            "labels": list(o["labels"]), "extra": o.get("extra", [])}
+    except KeyError as exc:
+        raise ValueError(f"hull input data has no {exc.args[0]!r} entry") from None
+    if not data.sections and not data.grids:
+        raise ValueError("hull input data has neither sections nor grids; expected one of them")
+    for g in data.grids:
+        _check_grid(g.points, f"grid {g.name!r}")
+    return data
