@@ -91,7 +91,12 @@ TEST(Section, MidshipSectionHasItsAreaAndFlats) {
   double area = 0;
   for (Eigen::Index i = 0; i + 1 < P.rows(); ++i) {
     EXPECT_NEAR(P(i, 0), 10.0, 1e-12);
-    if (P(i, 2) <= 11 && P(i + 1, 2) <= 11) area += 0.5 * (P(i, 2) - P(i + 1, 2)) * (P(i, 1) + P(i + 1, 1));
+    // Trapezoid of y dz on the part of the segment below the DWL (z = 11).
+    double z0 = P(i, 2), z1 = P(i + 1, 2), y0 = P(i, 1), y1 = P(i + 1, 1);
+    if (z0 > 11 && z1 > 11) continue;
+    if (z0 > 11) y0 += (y1 - y0) * (z0 - 11) / (z0 - z1), z0 = 11;
+    if (z1 > 11) y1 += (y0 - y1) * (z1 - 11) / (z1 - z0), z1 = 11;
+    area += 0.5 * (z0 - z1) * (y0 + y1);
   }
   EXPECT_NEAR(area, 174.7, 1e-3);
   EXPECT_LE(P.col(1).maxCoeff(), 16.125 + 1e-12);

@@ -268,10 +268,14 @@ NurbsCurve design_linear_form_curve(const LinearFormRequest& r) {
   std::vector<std::string> bad;
   for (int i = 0; i < m; ++i)
     if (!std::isfinite(rows[i].dot(y)) || std::abs(rows[i].dot(y) - rhs[i]) > kFeasibleTol * scale) bad.push_back(names[i]);
+  // The active-set loop may stop with a bound still violated when the conditions need it.
+  for (int i = 1; i < n - 1 && bad.empty(); ++i)
+    if ((upper_on && y[i] > r.y_upper + 1e-9 * yscale) || (lower_on && y[i] < r.y_lower - 1e-9 * yscale))
+      bad.push_back(std::string("the bound on control ordinate ") + std::to_string(i));
   if (!bad.empty()) {
     std::string list;
     for (const auto& s : names) list += (list.empty() ? "" : ", ") + s;
-    if (!active.empty()) list += std::string(", and ") + (upper_on ? "y <= " + fmt(r.y_upper) : "") +
+    if (upper_on || lower_on) list += std::string(", and ") + (upper_on ? "y <= " + fmt(r.y_upper) : "") +
                                  (upper_on && lower_on ? " / " : "") + (lower_on ? "y >= " + fmt(r.y_lower) : "");
     throw InfeasibleFormParameters(nm + ": the conditions " + list + " contradict each other on a curve with " +
                                    std::to_string(n) + " control points (not met: " + bad.front() + ")");
