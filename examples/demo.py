@@ -14,6 +14,7 @@ HERE = pathlib.Path(__file__).resolve().parent
 STEPS = [
     ("NURBS core: fit a surface to hull offsets", "fit_wigley_surface.py"),
     ("Pre-processor: form parameters and faired surfaces of the reference hulls", "import_reference_hulls.py"),
+    ("Bare hull: basic curves, sections, fair skinning and hydrostatics (Panamax forebody)", "build_hull.py"),
 ]
 
 
