@@ -248,3 +248,20 @@ def test_hydrostatics_bad_options(wigley):
     lifted = fl.NurbsSurface(1, 1, [0, 0, 0.5, 1, 1], [0, 0, 1, 1], P)
     with pytest.raises(ValueError, match="nothing below draft 1"):
         fl.hydrostatics(lifted, 1.0)
+
+
+def test_curvature_weighted_spacing_crowds_where_the_curve_bends():
+    # A polynomial hairpin: straight legs along x, a tight turn near x = 10.
+    P = np.array([[0, 0, 0], [8, 0, 0], [10, 0, 0], [10, 1, 0], [8, 1, 0], [0, 1, 0]], dtype=float)
+    c = fl.NurbsCurve(3, fl.clamped_uniform_knots(6, 3), P)
+    plain = fl.equal_arc_length_points(c, 2001)
+    d = np.linalg.norm(np.diff(plain, axis=0), axis=1)
+    assert d.max() - d.min() < 2e-2 * d.mean()  # equal arc length (chords ~ arcs at this density)
+    assert d.sum() == pytest.approx(fl.arc_length(c), rel=1e-4)
+    w = fl.equal_arc_length_points(c, 201, curvature_weight=0.1)
+    dw = np.linalg.norm(np.diff(w, axis=0), axis=1)
+    turn = w[:-1, 0] > 9.0
+    legs = w[:-1, 0] < 5.0
+    assert dw[turn].mean() < 0.5 * dw[legs].mean()
+    with pytest.raises(ValueError, match="curvature_weight is -1"):
+        fl.equal_arc_length_points(c, 10, curvature_weight=-1.0)

@@ -81,8 +81,9 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
 /// Points at equal arc-length spacing along a curve: m >= 2 rows (curve dim columns), first
 /// and last at the curve ends. With curvature_weight w > 0 the spacing is equal in the
 /// measure ds (1 + w L |k|) instead (L the curve length). Arc length by 8-point Gauss-Legendre on quarter knot spans,
-/// inverted by cubic Hermite interpolation of t(s) (spacing error ~1e-4 of the spacing or
-/// less; the points are on the curve to round-off whatever the spacing error).
+/// inverted by cubic Hermite interpolation of t(s) and one Newton step (spacing equal to
+/// about 1e-3 relative on sections; the points are on the curve to round-off whatever the
+/// spacing).
 Eigen::MatrixXd equal_arc_length_points(const NurbsCurve& curve, int m, double curvature_weight = 0.0);
 
 /// Arc length of a curve (metres), same quadrature as above.

@@ -79,9 +79,10 @@ class CurveProbe {
 };
 
 /// Piecewise table of arc length: breakpoints t_k (quarter knot spans), cumulative s_k and
-/// speed |C'(t_k)|, so that t(s) can be inverted by cubic Hermite interpolation.
+/// the speed |C'| just inside each end of every interval (one-sided: the speed may jump at a
+/// knot of full multiplicity), so that t(s) can be inverted by cubic Hermite interpolation.
 struct ArcTable {
-  std::vector<double> t, s, speed;
+  std::vector<double> t, s, speed_a, speed_b;  // speed_a[k], speed_b[k]: interval k's ends
 };
 
 constexpr int kArcGauss = 8;     // Gauss points per sub-interval
@@ -101,15 +102,16 @@ ArcTable arc_table(CurveProbe& probe, const NurbsCurve& c) {
   const auto [t0, t1] = c.domain();
   tab.t.push_back(t0);
   tab.s.push_back(0.0);
-  tab.speed.push_back(probe.speed(t0));
   for (Eigen::Index i = 0; i + 1 < U.size(); ++i) {
     const double a = std::max(U[i], t0), b = std::min(U[i + 1], t1);
     if (!(b > a)) continue;
     for (int k = 0; k < kArcSplit; ++k) {
       const double ta = a + (b - a) * k / kArcSplit, tb = a + (b - a) * (k + 1) / kArcSplit;
+      const double eps = 1e-9 * (tb - ta);
       tab.t.push_back(tb);
       tab.s.push_back(tab.s.back() + arc_piece(probe, ta, tb));
-      tab.speed.push_back(probe.speed(tb));
+      tab.speed_a.push_back(probe.speed(ta + eps));
+      tab.speed_b.push_back(probe.speed(tb - eps));
     }
   }
   return tab;
@@ -119,7 +121,7 @@ ArcTable arc_table(CurveProbe& probe, const NurbsCurve& c) {
 /// interpolation of t(s) on the table interval, with dt/ds = 1/|C'| at its ends (falls back
 /// to linear where the speed vanishes). The result is clamped to the interval, so t(s) stays
 /// monotone.
-double invert_arc(const ArcTable& tab, double target) {
+double invert_arc(CurveProbe& probe, const ArcTable& tab, double target) {
   const auto it = std::upper_bound(tab.s.begin(), tab.s.end(), target);
   std::size_t k = (it == tab.s.begin()) ? 0 : static_cast<std::size_t>(it - tab.s.begin()) - 1;
   if (k + 1 >= tab.s.size()) return tab.t.back();
@@ -127,13 +129,24 @@ double invert_arc(const ArcTable& tab, double target) {
   if (!(ds > 0)) return t0;
   const double x = (target - s0) / ds, dt = t1 - t0;
   double m0 = dt, m1 = dt;  // d t / d x at the ends (linear fallback)
-  if (tab.speed[k] > 1e-12 * ds / dt && tab.speed[k + 1] > 1e-12 * ds / dt) {
-    m0 = ds / tab.speed[k];
-    m1 = ds / tab.speed[k + 1];
+  if (tab.speed_a[k] > 1e-12 * ds / dt && tab.speed_b[k] > 1e-12 * ds / dt) {
+    m0 = ds / tab.speed_a[k];
+    m1 = ds / tab.speed_b[k];
   }
   const double x2 = x * x, x3 = x2 * x;
-  const double t = (2 * x3 - 3 * x2 + 1) * t0 + (x3 - 2 * x2 + x) * m0 + (-2 * x3 + 3 * x2) * t1 + (x3 - x2) * m1;
-  return std::clamp(t, t0, t1);
+  double t = (2 * x3 - 3 * x2 + 1) * t0 + (x3 - 2 * x2 + x) * m0 + (-2 * x3 + 3 * x2) * t1 + (x3 - x2) * m1;
+  t = std::clamp(t, t0, t1);
+  // One Newton step on s(t) - target (5-point Gauss-Legendre from t0) removes most of the
+  // Hermite error where the speed varies fast inside an interval (tight bends).
+  const double sp = probe.speed(t);
+  if (sp > 0 && t > t0) {
+    const auto& g = detail::gauss_rule(5);
+    const double h = 0.5 * (t - t0), mid = 0.5 * (t + t0);
+    double part = 0;
+    for (int q = 0; q < 5; ++q) part += g.w[q] * probe.speed(mid + h * g.x[q]);
+    t = std::clamp(t - (part * h - (target - s0)) / sp, t0, t1);
+  }
+  return t;
 }
 
 /// Gram matrix int N_i^(r) N_j^(r) dt of a B-spline basis (n x n), exact by Gauss-Legendre.
@@ -192,7 +205,7 @@ Eigen::MatrixXd equal_arc_length_points(const NurbsCurve& curve, int m, double c
     double t;
     if (i == 0) t = tab.t.front();
     else if (i == m - 1) t = tab.t.back();
-    else t = invert_arc(tab, L * i / (m - 1));
+    else t = invert_arc(probe, tab, L * i / (m - 1));
     if (curve.is_rational()) {
       out.row(i) = curve.evaluate(t).transpose();
     } else {
