@@ -236,3 +236,21 @@ def test_fairness_report_lists_every_cut(hull):
         for c in cuts:
             assert c["e2"] > 0 and c["bending_energy"] > 0
             assert len(c["inflections"]) == c["sign_changes"]
+
+
+def test_sections_have_no_inflection_below_the_dwl(hull, desc):
+    """The section's control polygon is kept concave from the first control point below the
+    DWL, so its curvature keeps one sign below the DWL except within two control spacings of it,
+    where the flare's inflection (a real one: concave above water, convex below) may sit.
+    Straight flats count as neither sign."""
+    T, D = desc["principal"]["T"], desc["principal"]["D"]
+    spacing = D / (desc["sections"]["n_control"] - 1)
+    for sec in hull.sections:
+        c2 = fl.NurbsCurve(sec.degree, sec.knots, sec.control_points[:, 1:])
+        t = np.linspace(0, 1, 4001)
+        pts = c2.evaluate(t)
+        if np.max(pts[:, 0]) < 1e-9:
+            continue  # the stem: a straight centre-line segment
+        k = c2.curvature(t)[pts[:, 1] < T - 2 * spacing]
+        k = k[np.abs(k) > 1e-6 * np.abs(k).max() + 1e-9]
+        assert np.all(k > 0) or np.all(k < 0), sec.control_points[0, 0]

@@ -46,6 +46,9 @@ struct LinearFormRequest {
   /// points the curve is exactly flat there (a flat of side appears where the area needs it).
   double y_lower = std::numeric_limits<double>::quiet_NaN();
   double y_upper = std::numeric_limits<double>::quiet_NaN();
+  /// From this abscissa on, the control polygon is concave (non-increasing slopes), so the
+  /// curve has no inflection there. NaN: no shape condition.
+  double concave_from = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The fairest curve (min int |C''(t)|^2 dt, t in [0, 1]) meeting the request: a 2-D
@@ -74,6 +77,9 @@ struct SectionSpec {
   double alpha_bottom = -90;  ///< tangent angle at the lower end, same convention (-90: horizontal).
                               ///< Ignored (horizontal) over a flat bottom.
   int n_control = 10;      ///< control points of the curved part (>= 8)
+  /// Concave control polygon from the first control point below the DWL: no inflection below
+  /// the DWL except within a control spacing or two of it (where a flare's inflection sits).
+  bool concave_below_dwl = true;
   int degree = 3;
 };
 

@@ -209,16 +209,43 @@ NurbsCurve design_linear_form_curve(const LinearFormRequest& r) {
       }
     }
   }
-  // Primal active-set method over the bounds of the interior ordinates 1..n-2.
+  // Inequalities g . y <= h: bounds on the interior ordinates 1..n-2 and, from abscissa
+  // concave_from on, a concave control polygon (non-increasing slopes) -- which makes the
+  // curve concave there (no inflection). Solved by a primal active-set method on the KKT system.
   const bool lower_on = !std::isnan(r.y_lower), upper_on = !std::isnan(r.y_upper);
   if (lower_on) detail::require_finite(r.y_lower, nm + ": y_lower");
   if (upper_on) detail::require_finite(r.y_upper, nm + ": y_upper");
-  std::vector<int> active;        // index i
-  std::vector<int> active_upper;  // 1 if at the upper bound
+  std::vector<Eigen::RowVectorXd> gin;
+  std::vector<double> hin;
+  std::vector<std::string> gname;
+  auto is_fixed = [&](int i) { return std::any_of(r.fixed.begin(), r.fixed.end(), [&](const auto& f) { return f.first == i; }); };
+  for (int i = 1; i < n - 1; ++i) {
+    if (is_fixed(i)) continue;
+    Eigen::RowVectorXd e = Eigen::RowVectorXd::Zero(n);
+    if (upper_on) {
+      e[i] = 1;
+      gin.push_back(e), hin.push_back(r.y_upper), gname.push_back("y <= " + fmt(r.y_upper));
+    }
+    if (lower_on) {
+      e[i] = -1;
+      gin.push_back(e), hin.push_back(-r.y_lower), gname.push_back("y >= " + fmt(r.y_lower));
+    }
+  }
+  if (!std::isnan(r.concave_from)) {
+    for (int i = 1; i < n - 1; ++i) {
+      const double h0 = a[i] - a[i - 1], h1 = a[i + 1] - a[i];
+      if (a[i - 1] < r.concave_from || !(h0 > 0) || !(h1 > 0)) continue;
+      Eigen::RowVectorXd g = Eigen::RowVectorXd::Zero(n);
+      g[i + 1] = 1 / h1, g[i] = -1 / h1 - 1 / h0, g[i - 1] = 1 / h0;
+      gin.push_back(g), hin.push_back(0.0), gname.push_back("concave below x = " + fmt(r.concave_from));
+    }
+  }
+  const int ni = static_cast<int>(gin.size());
+  std::vector<int> active;
   Eigen::VectorXd y;
   const double yscale = std::max({1.0, upper_on ? std::abs(r.y_upper) : 0.0, lower_on ? std::abs(r.y_lower) : 0.0});
-  const double btol = 1e-12 * yscale;
-  for (int iter = 0; iter <= 4 * n; ++iter) {
+  auto gscale = [&](int j) { return yscale * gin[j].cwiseAbs().sum(); };
+  for (int iter = 0; iter <= 4 * (n + ni); ++iter) {
     const int ma = static_cast<int>(active.size());
     Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + m + ma, n + m + ma);
     K.topLeftCorner(n, n) = 2.0 * G;
@@ -229,38 +256,33 @@ NurbsCurve design_linear_form_curve(const LinearFormRequest& r) {
       b[n + i] = rhs[i];
     }
     for (int k = 0; k < ma; ++k) {
-      K(n + m + k, active[k]) = K(active[k], n + m + k) = 1.0;
-      b[n + m + k] = active_upper[k] ? r.y_upper : r.y_lower;
+      K.block(n + m + k, 0, 1, n) = gin[active[k]];
+      K.block(0, n + m + k, n, 1) = gin[active[k]].transpose();
+      b[n + m + k] = hin[active[k]];
     }
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(K);
     const Eigen::VectorXd sol = lu.solve(b);
     y = sol.head(n);
-    // Most violated inactive bound.
-    int worst = -1, worst_upper = 0;
-    double worst_v = btol;
-    for (int i = 1; i < n - 1; ++i) {
-      if (std::find(active.begin(), active.end(), i) != active.end()) continue;
-      if (std::any_of(r.fixed.begin(), r.fixed.end(), [&](const auto& f) { return f.first == i; })) continue;
-      if (upper_on && y[i] - r.y_upper > worst_v) worst = i, worst_upper = 1, worst_v = y[i] - r.y_upper;
-      if (lower_on && r.y_lower - y[i] > worst_v) worst = i, worst_upper = 0, worst_v = r.y_lower - y[i];
+    // Most violated inactive inequality (relative to its scale).
+    int worst = -1;
+    double worst_v = 1e-12;
+    for (int j = 0; j < ni; ++j) {
+      if (std::find(active.begin(), active.end(), j) != active.end()) continue;
+      const double v = (gin[j].dot(y) - hin[j]) / gscale(j);
+      if (v > worst_v) worst = j, worst_v = v;
     }
     if (worst >= 0) {
       active.push_back(worst);
-      active_upper.push_back(worst_upper);
       continue;
     }
-    // Multipliers of the active bounds: 2 G y + A^T mu = 0; an upper bound holds with mu >= 0,
-    // a lower bound with mu <= 0. Release the most wrongly signed one.
+    // Multipliers: 2 G y + sum mu_k g_k = 0 with mu_k >= 0 for g . y <= h. Release the most
+    // negative one.
     int release = -1;
     double release_v = ma ? 1e-10 * (1.0 + sol.tail(ma).cwiseAbs().maxCoeff()) : 0.0;
-    for (int k = 0; k < ma; ++k) {
-      const double mu = sol[n + m + k];
-      const double wrong = active_upper[k] ? -mu : mu;
-      if (wrong > release_v) release = k, release_v = wrong;
-    }
+    for (int k = 0; k < ma; ++k)
+      if (-sol[n + m + k] > release_v) release = k, release_v = -sol[n + m + k];
     if (release < 0) break;
     active.erase(active.begin() + release);
-    active_upper.erase(active_upper.begin() + release);
   }
   // Conflicting conditions show as a residual the solve cannot remove.
   double scale = 1e-300;
@@ -268,13 +290,13 @@ NurbsCurve design_linear_form_curve(const LinearFormRequest& r) {
   std::vector<std::string> bad;
   for (int i = 0; i < m; ++i)
     if (!std::isfinite(rows[i].dot(y)) || std::abs(rows[i].dot(y) - rhs[i]) > kFeasibleTol * scale) bad.push_back(names[i]);
-  // The active-set loop may stop with a bound still violated when the conditions need it.
-  for (int i = 1; i < n - 1 && bad.empty(); ++i)
-    if ((upper_on && y[i] > r.y_upper + 1e-9 * yscale) || (lower_on && y[i] < r.y_lower - 1e-9 * yscale))
-      bad.push_back(std::string("the bound on control ordinate ") + std::to_string(i));
+  // The active-set loop may stop with an inequality still violated when the conditions need it.
+  for (int j = 0; j < ni && bad.empty(); ++j)
+    if ((gin[j].dot(y) - hin[j]) / gscale(j) > 1e-9) bad.push_back(gname[j]);
   if (!bad.empty()) {
     std::string list;
     for (const auto& s : names) list += (list.empty() ? "" : ", ") + s;
+    if (!std::isnan(r.concave_from)) list += ", a concave shape below " + fmt(r.concave_from);
     if (upper_on || lower_on) list += std::string(", and ") + (upper_on ? "y <= " + fmt(r.y_upper) : "") +
                                  (upper_on && lower_on ? " / " : "") + (lower_on ? "y >= " + fmt(r.y_lower) : "");
     throw InfeasibleFormParameters(nm + ": the conditions " + list + " contradict each other on a curve with " +
@@ -397,6 +419,7 @@ NurbsCurve design_section(const SectionSpec& s, double y_max) {
   }
   r.y_lower = 0.0;
   r.y_upper = y_max;
+  r.concave_from = s.concave_below_dwl ? std::max(s_dwl, s_top) : std::numeric_limits<double>::quiet_NaN();
   const NurbsCurve c = design_linear_form_curve(r);
   std::vector<Piece> pieces;
   if (fos) pieces.push_back(line_piece(deck, Eigen::Vector3d(s.x, s.y_deck, s.z_fos), p));
