@@ -10,6 +10,7 @@ namespace fairlines {
 void bind_nurbs(py::module_& m);
 void bind_skinning(py::module_& m);
 void bind_hull(py::module_& m);
+void bind_compose(py::module_& m);
 }  // namespace fairlines
 
 PYBIND11_MODULE(_native, m) {
@@ -22,4 +23,5 @@ PYBIND11_MODULE(_native, m) {
   fairlines::bind_nurbs(m);
   fairlines::bind_skinning(m);
   fairlines::bind_hull(m);
+  fairlines::bind_compose(m);
 }

@@ -52,4 +52,18 @@ from .hull import (  # noqa: F401
 )
 from .skinning import fair_skin  # noqa: F401
 
+from ._native import boundary_continuity, mesh_volume, orient_bare_hull, triangulate_polygon  # noqa: F401,E402
+from .compose import (  # noqa: F401,E402
+    KRACHT_NAMES,
+    BlendSurface,
+    BulbousBow,
+    blend_surface,
+    ComposedHull,
+    Mesh,
+    compose,
+    intersect_surfaces,
+    measure_kracht,
+    mesh_hydrostatics,
+)
+
 __version__ = "0.1.0"

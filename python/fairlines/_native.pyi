@@ -7,7 +7,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ConvergenceError', 'CurveFit', 'FairlinesError', 'Hydrostatics', 'InfeasibleFormParameters', 'InvalidInput', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PlaneCut', 'SkinResult', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'ellipse', 'equal_arc_length_points', 'fit_curve', 'fit_surface', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics', 'parameterize', 'plane_cut', 'revolve', 'section_area', 'sphere', 'unclamped_uniform_knots', 'validate_knots']
+__all__: list[str] = ['ConvergenceError', 'CurveFit', 'FairlinesError', 'Hydrostatics', 'InfeasibleFormParameters', 'InvalidInput', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PlaneCut', 'SkinResult', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'ellipse', 'equal_arc_length_points', 'fit_curve', 'fit_surface', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'plane_cut', 'revolve', 'section_area', 'sphere', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
 class FairlinesError(RuntimeError):
     pass
 class InvalidInput(ValueError):
@@ -403,11 +403,65 @@ class PlaneCut:
         """
         plane position (m)
         """
+class _BulbousBow:
+    def __init__(self, lpp: typing.SupportsFloat | typing.SupportsIndex, beam: typing.SupportsFloat | typing.SupportsIndex, draft_fp: typing.SupportsFloat | typing.SupportsIndex, midship_area: typing.SupportsFloat | typing.SupportsIndex, displacement_volume: typing.SupportsFloat | typing.SupportsIndex, c_lpr: typing.SupportsFloat | typing.SupportsIndex, c_bb: typing.SupportsFloat | typing.SupportsIndex, c_zb: typing.SupportsFloat | typing.SupportsIndex, c_abt: typing.SupportsFloat | typing.SupportsIndex, c_abl: typing.SupportsFloat | typing.SupportsIndex, c_vpr: typing.SupportsFloat | typing.SupportsIndex, x_fp: typing.SupportsFloat | typing.SupportsIndex, aft_length: typing.SupportsFloat | typing.SupportsIndex, nose_height_shift: typing.SupportsFloat | typing.SupportsIndex, sections: typing.SupportsInt | typing.SupportsIndex, section_points: typing.SupportsInt | typing.SupportsIndex, control_u: typing.SupportsInt | typing.SupportsIndex, control_v: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_fit_deviation(self) -> float:
+        ...
+    @property
+    def shape(self) -> dict:
+        ...
+    @property
+    def surface(self) -> NurbsSurface:
+        ...
+class _ComposedHull:
+    def full_mesh(self) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.int32]]:
+        ...
+    @property
+    def blend(self) -> typing.Any:
+        ...
+    @property
+    def blend_continuity(self) -> tuple[dict, dict]:
+        ...
+    @property
+    def face_part(self) -> numpy.typing.NDArray[numpy.int32]:
+        ...
+    @property
+    def faces(self) -> numpy.typing.NDArray[numpy.int32]:
+        ...
+    @property
+    def hull(self) -> NurbsSurface:
+        ...
+    @property
+    def intersection_curves(self) -> list:
+        ...
+    @property
+    def seam_vertices(self) -> numpy.typing.NDArray[numpy.int32]:
+        ...
+    @property
+    def trimmed_surfaces(self) -> list:
+        ...
+    @property
+    def vertices(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def x_aft(self) -> float:
+        ...
+    @property
+    def z_deck(self) -> float:
+        ...
+def _blend_surface(a: NurbsSurface, boundary_a: typing.Any, b: NurbsSurface, boundary_b: typing.Any, samples: typing.SupportsInt | typing.SupportsIndex = 61, tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, check_samples: typing.SupportsInt | typing.SupportsIndex = 200) -> tuple[NurbsSurface, dict, dict]:
+    ...
+def _compose_hull(hull: NurbsSurface, bulb: NurbsSurface = None, hull_u: typing.SupportsInt | typing.SupportsIndex = 48, hull_v: typing.SupportsInt | typing.SupportsIndex = 20, bulb_u: typing.SupportsInt | typing.SupportsIndex = 16, bulb_v: typing.SupportsInt | typing.SupportsIndex = 24, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, margin: typing.SupportsFloat | typing.SupportsIndex = 0.3, blend_hull_uv: typing.Any = None, blend_bulb_u: typing.SupportsFloat | typing.SupportsIndex = 0.5, blend_tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, blend_rows: typing.SupportsInt | typing.SupportsIndex = 8) -> _ComposedHull:
+    ...
 def _design_sections(fields: dict, n_control: typing.SupportsInt | typing.SupportsIndex, degree: typing.SupportsInt | typing.SupportsIndex, y_max: typing.SupportsFloat | typing.SupportsIndex) -> list[NurbsCurve]:
     """
     Sections from per-station parameter arrays (see fairlines/hull.hpp SectionSpec).
     """
 def _fair_skin(curves: typing.Any, n_control: typing.Any, mode: str, degree_u: typing.Any, degree_v: typing.Any, samples: typing.Any, smoothing: typing.SupportsFloat | typing.SupportsIndex, start: str, end: str, params: str, c1_sections: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], curvature_weight: typing.SupportsFloat | typing.SupportsIndex, e2: typing.SupportsFloat | typing.SupportsIndex, e3: typing.SupportsFloat | typing.SupportsIndex) -> SkinResult:
+    ...
+def _intersect_surfaces(a: NurbsSurface, b: NurbsSurface, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, subdivisions: typing.SupportsInt | typing.SupportsIndex = 12, step: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> list:
     ...
 def _linear_form_curve(name: str, abscissae: typing.Any, degree: typing.SupportsInt | typing.SupportsIndex, yB: typing.Any, yE: typing.Any, slopeB: typing.Any, slopeE: typing.Any, area: typing.Any, xC: typing.Any, area_from: typing.Any, points: typing.Any, y_lower: typing.Any = None, y_upper: typing.Any = None) -> NurbsCurve:
     ...
@@ -426,6 +480,10 @@ def averaged_knots(params: typing.Any, degree: typing.Any, n_control: typing.Any
 def basis_functions(knots: typing.Any, degree: typing.Any, t: typing.Any, order: typing.Any = 0) -> numpy.typing.NDArray[numpy.float64]:
     """
     All basis functions and derivatives at t: (m, order + 1, n_control) array.
+    """
+def boundary_continuity(blend: NurbsSurface, at_v1: bool, surface: NurbsSurface, samples: typing.SupportsInt | typing.SupportsIndex = 400) -> dict:
+    """
+    Max normal angle (deg) and gap (m) between a blend's v = 0 (or v = 1) edge and a surface, by closest-point projection at `samples` points.
     """
 def circle(center: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, normal: typing.Any = (0.0, 0.0, 1.0)) -> NurbsCurve:
     """
@@ -475,6 +533,14 @@ def hydrostatics(surface: NurbsSurface, draft: typing.SupportsFloat | typing.Sup
     to full-ship values); openings other than the centre plane must be transverse planes x = const.
     length / breadth: for the coefficients (0: submerged extent); midship_x: station of Am (None: middle).
     """
+def mesh_volume(vertices: typing.Any, faces: typing.Any) -> float:
+    """
+    Signed enclosed volume (m^3) by the divergence theorem.
+    """
+def orient_bare_hull(hull: NurbsSurface, plane_tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-06) -> NurbsSurface:
+    """
+    The hull surface re-oriented to u aft->stem, v keel->deck (see compose.hpp).
+    """
 def parameterize(points: typing.Any, method: str = 'chord') -> numpy.typing.NDArray[numpy.float64]:
     """
     Parameters in [0, 1] for (m, dim) points: 'chord', 'centripetal' or 'uniform'.
@@ -496,6 +562,10 @@ def sphere(center: typing.Any, radius: typing.SupportsFloat | typing.SupportsInd
     """
     Exact sphere (metres).
     """
+def triangulate_polygon(points: typing.Any) -> numpy.typing.NDArray[numpy.int32]:
+    """
+    Ear-clipping triangulation of a simple polygon (n, 2): (n - 2, 3) indices.
+    """
 def unclamped_uniform_knots(n_control: typing.Any, degree: typing.Any, t0: typing.SupportsFloat | typing.SupportsIndex = 0.0, t1: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> numpy.typing.NDArray[numpy.float64]:
     """
     Unclamped uniform knot vector whose valid domain [knots[degree], knots[n_control]] is [t0, t1].
@@ -503,4 +573,12 @@ def unclamped_uniform_knots(n_control: typing.Any, degree: typing.Any, t0: typin
 def validate_knots(knots: typing.Any, degree: typing.Any, n_control: typing.Any) -> None:
     """
     Raise ValueError naming the problem if `knots` is not a valid knot vector for `n_control` control points of `degree`.
+    """
+def write_obj(vertices: typing.Any, faces: typing.Any, path: str) -> None:
+    """
+    Writes a triangle mesh ((n, 3) vertices, (m, 3) faces) as Wavefront OBJ.
+    """
+def write_stl(vertices: typing.Any, faces: typing.Any, path: str, binary: bool = True) -> None:
+    """
+    Writes a triangle mesh as binary (or ASCII) STL.
     """

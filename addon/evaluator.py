@@ -1,0 +1,273 @@
+"""Live evaluation of Fairlines trees.
+
+Every node's result is cached with a *key*: its type, its own property values, the values of
+its unlinked input sockets, and the (node, socket, version) of each linked input. Evaluating a
+tree walks it in dependency order and re-runs a node only when its key changed, so a property
+change re-runs exactly that node and the nodes downstream of it; everything upstream is served
+from the cache. Because the key is rebuilt from the current properties, undo, redo and file
+load need no special bookkeeping: whatever changed is re-run.
+
+Property changes do not evaluate inside the update callback (that would run in the middle of a
+slider drag and stall the UI); they queue the tree and a zero-delay timer evaluates it once,
+coalescing a burst of changes into one evaluation. The timer works in slices of about
+SLICE_MS: when a slice is used up between two nodes it hands control back to Blender's event
+loop and carries on at the next tick, so a long graph does not freeze the interface (the cache
+keys make resuming trivial: nodes already re-run are up to date).
+"""
+
+import atexit
+import time
+
+import bpy
+
+from . import engine, ids
+from .nodes.base import ERROR_COLOUR, FairlinesNode, NodeError
+from .sockets import compatible
+
+
+class Entry:
+    __slots__ = ("key", "outputs", "version", "ms", "ok")
+
+    def __init__(self, key, outputs, version, ms, ok):
+        self.key, self.outputs, self.version, self.ms, self.ok = key, outputs, version, ms, ok
+
+
+SLICE_MS = 30.0
+_cache = {}          # (tree name, node name) -> Entry
+_pending = set()     # names of trees waiting for evaluation
+_busy = False
+last_stats = {"tree": "", "evaluated": [], "ms": 0.0}
+
+
+def is_fairlines_tree(tree):
+    return tree is not None and getattr(tree, "bl_idname", "") == ids.TREE
+
+
+def request(tree):
+    """Queue a tree for evaluation (called from property update callbacks)."""
+    if _busy or not is_fairlines_tree(tree):
+        return
+    _pending.add(tree.name)
+    # Ask Blender, not a flag of ours, whether the timer is live: Blender can drop timers
+    # (file load, undo) without calling them. A running timer picks the tree up before it
+    # stops (it returns None only when nothing is pending).
+    if not bpy.app.timers.is_registered(_on_timer):
+        bpy.app.timers.register(_on_timer, first_interval=0.0, persistent=True)
+
+
+def drop_timer():
+    if bpy.app.timers.is_registered(_on_timer):
+        bpy.app.timers.unregister(_on_timer)
+
+
+# The bpy module of Blender 4.2 crashes at interpreter exit when a Python timer is still
+# registered (it has no event loop, so a queued evaluation can be pending then); 5.0 does not.
+# Dropping ours first is harmless everywhere.
+atexit.register(drop_timer)
+
+
+def _on_timer():
+    try:
+        flush(deadline=time.perf_counter() + SLICE_MS * 1e-3)
+    except Exception as exc:
+        # Node failures are caught per node; this is the evaluator itself failing (e.g. data
+        # removed while it ran). Say so in one line, drop the queue, and keep Blender going:
+        # the next change queues the tree again.
+        print("Fairlines: evaluation stopped: %s: %s" % (type(exc).__name__, exc))
+        _pending.clear()
+        return None
+    if _pending:
+        return 0.0  # more to do: run again right after Blender has handled its events
+    return None
+
+
+def flush(deadline=None):
+    """Evaluate every queued tree (the timer does this in slices; tests and scripts call it
+    without a deadline to finish now)."""
+    while _pending:
+        name = _pending.pop()
+        tree = bpy.data.node_groups.get(name)
+        if is_fairlines_tree(tree):
+            evaluate(tree, deadline)
+            if deadline is not None and time.perf_counter() > deadline:
+                return
+
+
+def clear(tree_name=None, outputs_only=False):
+    for key in list(_cache):
+        if tree_name is not None and key[0] != tree_name:
+            continue
+        if outputs_only:
+            tree = bpy.data.node_groups.get(key[0])
+            node = tree.nodes.get(key[1]) if tree is not None else None
+            if node is not None and not getattr(node, "is_output", False):
+                continue
+        del _cache[key]
+
+
+def evaluate_all():
+    for tree in bpy.data.node_groups:
+        if is_fairlines_tree(tree):
+            evaluate(tree)
+
+
+def outputs_of(tree, node_name):
+    entry = _cache.get((tree.name, node_name))
+    return None if entry is None or not entry.ok else entry.outputs
+
+
+def _link_map(tree):
+    """{input socket pointer: link} in one pass. NodeSocket.links scans every link of the
+    tree on each access; asking it per socket made the walk quadratic in the graph size."""
+    return {link.to_socket.as_pointer(): link for link in tree.links}
+
+
+def _source(socket, links):
+    """The output socket feeding `socket`, through reroutes; None when unlinked."""
+    for _ in range(64):
+        link = links.get(socket.as_pointer())
+        if link is None or not link.is_valid or getattr(link, "is_muted", False):
+            return None
+        src = link.from_socket
+        if src.node.bl_idname != "NodeReroute":
+            return src
+        socket = src.node.inputs[0]
+    return None
+
+
+def _order(tree, links):
+    """Fairlines nodes in dependency order (Kahn); nodes on a cycle come back separately."""
+    nodes = [n for n in tree.nodes if isinstance(n, FairlinesNode)]
+    deps = {n.name: set() for n in nodes}
+    for n in nodes:
+        for sock in n.inputs:
+            src = _source(sock, links)
+            if src is not None and src.node.name in deps:
+                deps[n.name].add(src.node.name)
+    by_name = {n.name: n for n in nodes}
+    order, done = [], set()
+    remaining = dict(deps)
+    while remaining:
+        ready = [name for name, d in remaining.items() if d <= done]
+        if not ready:
+            break
+        for name in sorted(ready):
+            order.append(by_name[name])
+            done.add(name)
+            del remaining[name]
+    return order, [by_name[name] for name in remaining]
+
+
+def _show(node, state, message, ms, info=None):
+    # Writing the same value again still tags a redraw; skip unchanged properties.
+    if node.fl_state != state:
+        node.fl_state = state
+    if node.fl_message != message:
+        node.fl_message = message
+    node.fl_time_ms = ms
+    if info is not None and node.fl_info != info:
+        node.fl_info = info
+    if state == "ERROR":
+        node.use_custom_color = True
+        node.color = ERROR_COLOUR
+    elif node.use_custom_color and _is_error_colour(node.color):
+        node.use_custom_color = False  # only undo our own red, never a colour the user chose
+
+
+def _is_error_colour(colour):
+    # Stored in single precision (and as RGBA in newer releases): compare loosely.
+    return all(abs(a - b) < 1e-3 for a, b in zip(colour, ERROR_COLOUR))
+
+
+def _message(exc):
+    # Our own messages read as sentences; engine exceptions keep their class name
+    # (InvalidInput, InfeasibleFormParameters, ...) because it says what kind of problem it is.
+    if isinstance(exc, (NodeError, engine.EngineMissing)):
+        return str(exc)
+    return "%s: %s" % (type(exc).__name__, exc)
+
+
+def evaluate(tree, deadline=None):
+    """Evaluate a tree; returns the names of the nodes that ran. With a deadline
+    (perf_counter seconds) it stops between nodes once past it and queues the tree again."""
+    global _busy
+    if _busy:
+        return []
+    _busy = True
+    t_start = time.perf_counter()
+    ran = []
+    try:
+        if not tree.use_fake_user:
+            # A node tree shown in an editor has no real user, and Blender drops data without
+            # users when saving: the design would vanish from the .blend.
+            tree.use_fake_user = True
+        links = _link_map(tree)
+        order, cyclic = _order(tree, links)
+        for node in cyclic:
+            _show(node, "ERROR", "Node is part of a cycle; links must flow one way", -1.0)
+            _cache.pop((tree.name, node.name), None)
+        for node in order:
+            if deadline is not None and ran and time.perf_counter() > deadline:
+                _pending.add(tree.name)  # resumed by the timer at its next tick
+                break
+            if _run_node(tree, node, links):
+                ran.append(node.name)
+        live = {n.name for n in tree.nodes}
+        trees = set(bpy.data.node_groups.keys())
+        for key in [k for k in _cache if (k[0] == tree.name and k[1] not in live) or k[0] not in trees]:
+            del _cache[key]  # deleted nodes, and trees deleted or renamed
+    finally:
+        _busy = False
+    last_stats.update(tree=tree.name, evaluated=ran, ms=(time.perf_counter() - t_start) * 1e3)
+    return ran
+
+
+def _run_node(tree, node, links):
+    ckey = (tree.name, node.name)
+    entry = _cache.get(ckey)
+    inputs, key_parts, blocked, bad = {}, [], None, None
+    for sock in node.inputs:
+        if not sock.enabled:
+            continue
+        src = _source(sock, links)
+        if src is not None:
+            if not compatible(src.bl_idname, sock.bl_idname):
+                bad = "Cannot connect %s '%s' to %s input '%s'" % (
+                    src.bl_label, src.name, sock.bl_label, sock.name)
+                continue
+            up = _cache.get((tree.name, src.node.name))
+            if up is None or not up.ok:
+                blocked = src.node.name
+                continue
+            inputs[sock.name] = up.outputs.get(src.name)
+            key_parts.append((sock.name, src.node.name, src.name, up.version))
+        else:
+            value = sock.value() if hasattr(sock, "value") else None
+            inputs[sock.name] = value
+            key_parts.append((sock.name, value))
+    try:
+        sig = node.signature()
+    except Exception as exc:
+        sig = ("unreadable", str(exc))
+    key = (node.bl_idname, sig, tuple(key_parts), bad, blocked)
+    if entry is not None and entry.key == key and not (entry.ok and node.needs_run()):
+        return False
+    version = entry.version + 1 if entry is not None else 1
+    if bad is not None or blocked is not None:
+        if bad is not None:
+            _show(node, "ERROR", bad, -1.0)
+        else:
+            _show(node, "BLOCKED", "Waiting for '%s'" % blocked, -1.0)
+        _cache[ckey] = Entry(key, {}, version, -1.0, False)
+        return True
+    t0 = time.perf_counter()
+    try:
+        outputs = node.compute(inputs) or {}
+        ok, message = True, ""
+    except Exception as exc:  # engine errors and anything else: shown on the node, never raised
+        outputs, ok, message = {}, False, _message(exc)
+    ms = (time.perf_counter() - t0) * 1e3
+    info = outputs.pop("__info__", "") if ok else None
+    _show(node, "OK" if ok else "ERROR", message, ms, info)
+    _cache[ckey] = Entry(key, outputs, version, ms, ok)
+    return True

@@ -1,0 +1,111 @@
+"""Mesh and line nodes: tessellation, curvature analysis, iso-parametric lines."""
+
+import functools
+
+import bpy
+
+from .. import engine, ids, props
+from ..data import LinesData, MeshData
+from .base import FairlinesNode, NodeError, register
+
+
+@functools.lru_cache(maxsize=16)
+def grid_quads(nu, nv):
+    """Quad faces of an nu x nv point grid stored row-major (index = i * nv + j). Corners run
+    (i,j) -> (i+1,j) -> (i+1,j+1) -> (i,j+1), so face normals follow S_u x S_v like the
+    engine's surface normal. Cached (read-only) because a slider drag re-tessellates at the
+    same resolution every time."""
+    np = engine.np
+    i, j = np.meshgrid(np.arange(nu - 1, dtype=np.int32), np.arange(nv - 1, dtype=np.int32), indexing="ij")
+    a = (i * nv + j).ravel()
+    quads = np.column_stack([a, a + nv, a + nv + 1, a + 1]).astype(np.int32)
+    quads.flags.writeable = False
+    return quads
+
+
+@register
+class FLNodeTessellate(FairlinesNode, bpy.types.Node):
+    """Evaluate a surface on a parameter grid into a quad mesh (engine grid evaluation)"""
+    bl_idname = ids.NODE_TESSELLATE
+    bl_label = "Tessellate"
+    category = "Mesh"
+    inputs_spec = [(ids.SOCKET_SURFACE, "Surface", {}),
+                   (ids.SOCKET_INT, "Resolution U", {"default": 64}),
+                   (ids.SOCKET_INT, "Resolution V", {"default": 32})]
+    outputs_spec = [(ids.SOCKET_MESH, "Mesh")]
+    params = ("flip",)
+    flip: props.boolean("Flip Normals", False,
+                        "Reverse the face winding, for surfaces whose S_u x S_v points inward "
+                        "(Booleans need outward normals)")
+
+    def compute(self, inputs):
+        fl, np = engine.require()
+        s = inputs["Surface"]
+        if s is None:
+            raise NodeError("Connect a surface")
+        nu, nv = inputs["Resolution U"], inputs["Resolution V"]
+        if nu < 2 or nv < 2 or nu * nv > 4_000_000:
+            raise NodeError("Resolution %d x %d; each must be >= 2 and the total <= 4M points" % (nu, nv))
+        us = np.linspace(*s.domain_u, nu)
+        vs = np.linspace(*s.domain_v, nv)
+        pts = s.evaluate_grid(us, vs).reshape(-1, 3)
+        uu, vv = np.meshgrid(us, vs, indexing="ij")
+        params = np.column_stack([uu.ravel(), vv.ravel()])
+        faces = grid_quads(nu, nv)
+        if self.flip:
+            faces = faces[:, ::-1].copy()
+        mesh = MeshData(pts, faces, params=params, surface=s)
+        return {"Mesh": mesh, "__info__": "%d vertices, %d faces" % (len(pts), len(mesh.faces))}
+
+
+@register
+class FLNodeCurvature(FairlinesNode, bpy.types.Node):
+    """Gaussian and mean curvature of the surface at every vertex, as point attributes
+    (gaussian_curvature 1/m^2, mean_curvature 1/m) for Geometry Nodes and shading"""
+    bl_idname = ids.NODE_CURVATURE
+    bl_label = "Curvature Analysis"
+    category = "Mesh"
+    inputs_spec = [(ids.SOCKET_MESH, "Mesh", {})]
+    outputs_spec = [(ids.SOCKET_MESH, "Mesh")]
+
+    def compute(self, inputs):
+        _, np = engine.require()
+        mesh = inputs["Mesh"]
+        if mesh is None:
+            raise NodeError("Connect a mesh from Tessellate")
+        if mesh.surface is None or mesh.params is None:
+            raise NodeError("Mesh has no surface parameters; connect Tessellate directly")
+        K, H = mesh.surface.curvature(mesh.params[:, 0], mesh.params[:, 1])
+        K = np.asarray(K, dtype=np.float32)
+        H = np.asarray(H, dtype=np.float32)
+        out = mesh.with_attributes({ids.ATTR_GAUSSIAN: K, ids.ATTR_MEAN: H})
+        return {"Mesh": out,
+                "__info__": "K %.3g .. %.3g 1/m2\nH %.3g .. %.3g 1/m" % (K.min(), K.max(), H.min(), H.max())}
+
+
+@register
+class FLNodeIsoLines(FairlinesNode, bpy.types.Node):
+    """Iso-parametric lines of a surface (engine iso-curves), sampled as polylines"""
+    bl_idname = ids.NODE_ISO_LINES
+    bl_label = "Iso Lines"
+    category = "Lines"
+    inputs_spec = [(ids.SOCKET_SURFACE, "Surface", {}),
+                   (ids.SOCKET_INT, "Count U", {"default": 10}),
+                   (ids.SOCKET_INT, "Count V", {"default": 5}),
+                   (ids.SOCKET_INT, "Samples", {"default": 64})]
+    outputs_spec = [(ids.SOCKET_LINES, "Lines")]
+
+    def compute(self, inputs):
+        _, np = engine.require()
+        s = inputs["Surface"]
+        if s is None:
+            raise NodeError("Connect a surface")
+        cu, cv, n = inputs["Count U"], inputs["Count V"], inputs["Samples"]
+        if cu < 0 or cv < 0 or n < 2 or (cu + cv) * n > 2_000_000:
+            raise NodeError("Counts must be >= 0, samples >= 2 and (counts) x samples <= 2M")
+        lines = []
+        for direction, count, dom in (("u", cu, s.domain_u), ("v", cv, s.domain_v)):
+            for t in np.linspace(dom[0], dom[1], count) if count > 1 else ([0.5 * (dom[0] + dom[1])] if count else []):
+                c = s.iso_curve(direction, float(t))
+                lines.append(np.asarray(c.evaluate(np.linspace(*c.domain, n)), dtype=np.float64))
+        return {"Lines": LinesData(lines), "__info__": "%d lines" % len(lines)}

@@ -1,0 +1,134 @@
+"""Output nodes: write results into the scene (mesh object with the Geometry Nodes modifier,
+curve object) or to a file."""
+
+import os
+
+import bpy
+
+from .. import engine, geonodes, ids, props, scene_io
+from .base import FairlinesNode, NodeError, register
+
+
+class _ObjectOutput:
+    is_output = True
+    target: bpy.props.PointerProperty(type=bpy.types.Object)
+
+    def needs_run(self):
+        # Runs again (from cached inputs) when its object was deleted or renamed away.
+        obj = self.target
+        try:
+            return obj is None or obj.users == 0 or not obj.users_collection
+        except ReferenceError:
+            return True
+
+
+@register
+class FLNodeMeshOutput(_ObjectOutput, FairlinesNode, bpy.types.Node):
+    """Write the mesh into an object, with the generated Geometry Nodes modifier (mirror to the
+    full hull, Boolean union with a collection, difference with a cutter object)"""
+    bl_idname = ids.NODE_MESH_OUTPUT
+    bl_label = "Mesh Output"
+    category = "Output"
+    bl_width_default = 220
+    inputs_spec = [(ids.SOCKET_MESH, "Mesh", {})]
+    params = ("object_name", "mirror", "union", "cutter", "smooth")
+    object_name: props.text("Object", "Fairlines Hull")
+    mirror: props.boolean("Mirror", True, "Join the mirror image about y = 0 (full hull)")
+    union: props.pointer("Union", bpy.types.Collection)
+    cutter: props.pointer("Cutter", bpy.types.Object)
+    smooth: props.boolean("Smooth", True, "Smooth shading")
+
+    def compute(self, inputs):
+        engine.require()
+        mesh = inputs["Mesh"]
+        if mesh is None:
+            raise NodeError("Connect a mesh")
+        if not self.object_name.strip():
+            raise NodeError("Give the object a name")
+        obj = scene_io.ensure_object(self.object_name, "MESH", self.target)
+        if self.target != obj:
+            self.target = obj
+        in_place = scene_io.write_mesh(obj, mesh, self.smooth)
+        geonodes.apply_modifier(obj, self.mirror, self.union, self.cutter)
+        return {"__info__": "%s: %d vertices%s" % (obj.name, len(mesh.vertices),
+                                                    " (in place)" if in_place else "")}
+
+
+@register
+class FLNodeLinesOutput(_ObjectOutput, FairlinesNode, bpy.types.Node):
+    """Write polylines into a curve object"""
+    bl_idname = ids.NODE_LINES_OUTPUT
+    bl_label = "Lines Output"
+    category = "Output"
+    inputs_spec = [(ids.SOCKET_LINES, "Lines", {})]
+    params = ("object_name",)
+    object_name: props.text("Object", "Fairlines Lines")
+
+    def compute(self, inputs):
+        engine.require()
+        lines = inputs["Lines"]
+        if lines is None:
+            raise NodeError("Connect lines")
+        if not self.object_name.strip():
+            raise NodeError("Give the object a name")
+        obj = scene_io.ensure_object(self.object_name, "CURVE", self.target)
+        if self.target != obj:
+            self.target = obj
+        scene_io.write_lines(obj, lines)
+        return {"__info__": "%s: %d lines" % (obj.name, len(lines.polylines))}
+
+
+def write_obj(path, mesh):
+    """The engine package's OBJ writer (triangles). Quads are split along the same diagonal
+    as fairlines.io.tessellate, so the file equals the package's own tessellation."""
+    np = engine.np
+    import fairlines.io
+    faces = mesh.faces
+    if faces.shape[1] == 4:
+        faces = np.concatenate([faces[:, [0, 1, 2]], faces[:, [0, 2, 3]]])
+    elif faces.shape[1] != 3:
+        raise NodeError("OBJ export takes triangles or quads; got %d-gons" % faces.shape[1])
+    fairlines.io.write_obj(path, mesh.vertices, faces)
+
+
+@register
+class FLNodeExportOBJ(FairlinesNode, bpy.types.Node):
+    """Write the mesh to a Wavefront OBJ file (on every change when Auto is on, else with the
+    Export button)"""
+    bl_idname = ids.NODE_EXPORT_OBJ
+    bl_label = "Export OBJ"
+    category = "Output"
+    is_output = True
+    bl_width_default = 240
+    inputs_spec = [(ids.SOCKET_MESH, "Mesh", {})]
+    params = ("filepath", "auto")
+    filepath: props.text("File", "//hull.obj", subtype="FILE_PATH")
+    auto: props.boolean("Auto", False, "Write the file on every change")
+    export_count: bpy.props.IntProperty(default=0)
+
+    def signature(self):
+        return super().signature() + (self.export_count,)
+
+    def draw_params(self, context, layout):
+        layout.prop(self, "filepath", text="")
+        row = layout.row(align=True)
+        row.prop(self, "auto")
+        op = row.operator(ids.OP_EXPORT, text="Export", icon="EXPORT")
+        op.tree = self.id_data.name
+        op.node = self.name
+
+    def compute(self, inputs):
+        engine.require()
+        mesh = inputs["Mesh"]
+        if mesh is None:
+            raise NodeError("Connect a mesh")
+        if not (self.auto or self.export_count):
+            return {"__info__": "not written yet"}
+        path = bpy.path.abspath(self.filepath)
+        if not path or os.path.isdir(path):
+            raise NodeError("Choose a file name")
+        parent = os.path.dirname(path)
+        if parent and not os.path.isdir(parent):
+            raise NodeError("Folder %s does not exist" % parent)
+        write_obj(path, mesh)
+        return {"__info__": "wrote %s" % os.path.basename(path)}

@@ -1,0 +1,61 @@
+"""Property constructors shared by nodes and sockets: every user-editable value asks the
+evaluator for a (deferred) re-evaluation of its tree when it changes."""
+
+import bpy
+
+
+def _changed(self, context):
+    # Imported late: evaluator imports the node modules' base, which imports this module.
+    from . import evaluator
+    evaluator.request(self.id_data)
+
+
+def length(name, default=1.0, min=-1e6, max=1e6, soft_min=None, soft_max=None, description=""):
+    return bpy.props.FloatProperty(
+        name=name, default=default, min=min, max=max,
+        soft_min=min if soft_min is None else soft_min, soft_max=max if soft_max is None else soft_max,
+        subtype="DISTANCE", unit="LENGTH", precision=3, description=description or name + " (m)",
+        update=_changed)
+
+
+def angle(name, default=0.0, description=""):
+    return bpy.props.FloatProperty(name=name, default=default, subtype="ANGLE", unit="ROTATION",
+                                   description=description or name, update=_changed)
+
+
+def number(name, default=0.0, min=-1e9, max=1e9, description=""):
+    return bpy.props.FloatProperty(name=name, default=default, min=min, max=max,
+                                   description=description or name, update=_changed)
+
+
+def integer(name, default=0, min=-1000000, max=1000000, soft_max=None, description=""):
+    return bpy.props.IntProperty(name=name, default=default, min=min, max=max,
+                                 soft_max=max if soft_max is None else soft_max,
+                                 description=description or name, update=_changed)
+
+
+def vector(name, default=(0.0, 0.0, 0.0), description="", unit="LENGTH"):
+    return bpy.props.FloatVectorProperty(name=name, default=default, size=3,
+                                         subtype="TRANSLATION" if unit == "LENGTH" else "XYZ",
+                                         unit=unit if unit == "LENGTH" else "NONE",
+                                         description=description or name, update=_changed)
+
+
+def boolean(name, default=False, description=""):
+    return bpy.props.BoolProperty(name=name, default=default, description=description or name,
+                                  update=_changed)
+
+
+def enum(name, items, default, description=""):
+    return bpy.props.EnumProperty(name=name, items=items, default=default,
+                                  description=description or name, update=_changed)
+
+
+def text(name, default="", subtype="NONE", description=""):
+    return bpy.props.StringProperty(name=name, default=default, subtype=subtype,
+                                    description=description or name, update=_changed)
+
+
+def pointer(name, type, description=""):
+    return bpy.props.PointerProperty(name=name, type=type, description=description or name,
+                                     update=_changed)

@@ -1,0 +1,107 @@
+"""Writing engine results into Blender data: meshes and curve objects from numpy buffers with
+foreach_set (no per-vertex Python loops), updated in place when the topology is unchanged so
+that modifiers, materials and selections on the object survive a slider change."""
+
+import bpy
+
+from . import engine, ids
+
+
+def _scene_collection():
+    scene = bpy.context.scene if bpy.context.scene is not None else bpy.data.scenes[0]
+    return scene.collection
+
+
+def ensure_object(name, data_type, current=None):
+    """The object called `name` (the node's Object field names it); failing that the node's
+    previous object `current`, renamed, so a changed name renames rather than leaves a stray
+    copy; failing that a new object linked to the scene."""
+    def usable(obj):
+        try:
+            return obj is not None and obj.type == data_type and obj.users > 0
+        except ReferenceError:
+            return False
+    obj = bpy.data.objects.get(name)
+    if not usable(obj):
+        obj = None
+        if usable(current) and bpy.data.objects.get(name) is None:
+            obj = current
+            obj.name = name
+    if obj is None:
+        if data_type == "MESH":
+            data = bpy.data.meshes.new(name)
+        else:
+            data = bpy.data.curves.new(name, "CURVE")
+            data.dimensions = "3D"
+        obj = bpy.data.objects.new(name, data)
+    if not obj.users_collection:
+        _scene_collection().objects.link(obj)
+    return obj
+
+
+def _topology_key(mesh_data):
+    faces = mesh_data.faces
+    return "%d:%d:%d:%x" % (len(mesh_data.vertices), faces.shape[0], faces.shape[1],
+                            hash(faces.tobytes()) & 0xFFFFFFFFFFFF)
+
+
+def write_mesh(obj, mesh_data, smooth=True):
+    """Write MeshData into obj.data. Returns True when updated in place."""
+    np = engine.np
+    me = obj.data
+    verts = np.ascontiguousarray(mesh_data.vertices, dtype=np.float32).ravel()
+    faces = np.ascontiguousarray(mesh_data.faces, dtype=np.int32)
+    topo = _topology_key(mesh_data) + (":smooth" if smooth else ":flat")  # shading is per face too
+    in_place = me.get(ids.MESH_TOPOLOGY_KEY) == topo and len(me.vertices) * 3 == len(verts)
+    if in_place:
+        me.vertices.foreach_set("co", verts)
+    else:
+        me.clear_geometry()
+        nv, (nf, k) = len(mesh_data.vertices), faces.shape
+        me.vertices.add(nv)
+        me.vertices.foreach_set("co", verts)
+        me.loops.add(nf * k)
+        me.loops.foreach_set("vertex_index", faces.ravel())
+        me.polygons.add(nf)
+        me.polygons.foreach_set("loop_start", np.arange(0, nf * k, k, dtype=np.int32))
+        try:  # Blender < 4.0 stores the corner count per face; newer ones derive it
+            me.polygons.foreach_set("loop_total", np.full(nf, k, dtype=np.int32))
+        except (AttributeError, TypeError, RuntimeError):
+            pass
+        # Always written: new faces are flat in 3.x but smooth from 4.1 on.
+        me.polygons.foreach_set("use_smooth", np.full(nf, bool(smooth)))
+        me[ids.MESH_TOPOLOGY_KEY] = topo
+    for name, values in mesh_data.attributes.items():
+        attr = me.attributes.get(name)
+        if attr is None or attr.domain != "POINT" or attr.data_type != "FLOAT":
+            if attr is not None:
+                me.attributes.remove(attr)
+            attr = me.attributes.new(name, "FLOAT", "POINT")
+        attr.data.foreach_set("value", np.ascontiguousarray(values, dtype=np.float32))
+    for name in [a.name for a in me.attributes if a.name in (ids.ATTR_GAUSSIAN, ids.ATTR_MEAN)]:
+        if name not in mesh_data.attributes:
+            me.attributes.remove(me.attributes[name])
+    me.update()
+    obj.update_tag()
+    return in_place
+
+
+def write_lines(obj, lines):
+    """Write polylines as POLY splines of a curve object."""
+    np = engine.np
+    cu = obj.data
+    polylines = [np.asarray(p, dtype=np.float32) for p in lines.polylines]
+    counts = [len(p) for p in polylines]
+    same = [len(s.points) for s in cu.splines] == counts and all(s.type == "POLY" for s in cu.splines)
+    if not same:
+        cu.splines.clear()
+        for n in counts:
+            sp = cu.splines.new("POLY")
+            sp.points.add(n - 1)  # a new spline starts with one point
+    for sp, p in zip(cu.splines, polylines):
+        co = np.ones((len(p), 4), dtype=np.float32)  # homogeneous (x, y, z, w)
+        co[:, :3] = p
+        sp.points.foreach_set("co", co.ravel())
+    cu.update_tag()
+    obj.update_tag()
+    return same

@@ -1,0 +1,49 @@
+"""Blender add-on latency: median wall time from a node property change to the updated mesh
+in the output object (and including the Geometry Nodes modifier), in the `bpy` module from
+PyPI with the add-on installed as an extension. Goal (issue 7): <= 50 ms at default resolution.
+
+Cases: bulb length (Ellipse -> Revolve -> Tessellate 64 x 48 -> output) and a hull knot move
+(Insert Knot -> Tessellate 96 x 48 -> Curvature -> output, plus Iso Lines -> curve object).
+Usage: python bench/bench_blender_latency.py [--runs N]   (needs .venv-bpy: make blender-deps)
+"""
+
+import argparse
+import glob
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+GOAL_MS = 50.0
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--runs", type=int, default=40)
+    a = ap.parse_args()
+    bpy_python = os.environ.get("FAIRLINES_BPY_PYTHON", os.path.join(ROOT, ".venv-bpy", "bin", "python"))
+    subprocess.run([sys.executable, os.path.join(ROOT, "tools", "package_addon.py")], check=True,
+                   stdout=subprocess.DEVNULL)
+    ext = glob.glob(os.path.join(ROOT, "dist", "fairlines_blender-*-extension.zip"))[0]
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "bench.json")
+        env = dict(os.environ, BLENDER_USER_RESOURCES=os.path.join(tmp, "user"))
+        env.pop("PYTHONPATH", None)
+        subprocess.run([bpy_python, os.path.join(ROOT, "tests", "blender", "blender_checks.py"),
+                        "--zip", ext, "--mode", "extension", "--tmp", tmp, "--bench", str(a.runs),
+                        "--json", out], check=True, env=env, stdout=subprocess.DEVNULL, cwd=tmp)
+        report = json.load(open(out))
+    print("Blender %s (bpy module, Python %s), %d runs each" % (report["blender"], report["python"], a.runs))
+    worst = 0.0
+    for case, r in report["bench"].items():
+        print("  %-12s %6d vertices: median %6.2f ms to mesh, %6.2f ms incl. Geometry Nodes" % (
+            case, r["vertices"], r["median_ms_to_mesh"], r["median_ms_including_geometry_nodes"]))
+        print("    last run, per node: " + ", ".join("%s %.2f" % kv for kv in r["last_run_nodes_ms"].items()))
+        worst = max(worst, r["median_ms_to_mesh"])
+    print("  goal <= %.0f ms: %s" % (GOAL_MS, "met" if worst <= GOAL_MS else "NOT met"))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,221 @@
+// Bindings of the composition area: surface-surface intersection, the Kracht bulb, the
+// composed hull and mesh export (python/fairlines/compose.py wraps them).
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "convert.hpp"
+#include "fairlines/blend.hpp"
+#include "fairlines/bulb.hpp"
+#include "fairlines/compose.hpp"
+#include "fairlines/intersect.hpp"
+#include "fairlines/mesh.hpp"
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+namespace fairlines {
+
+namespace {
+
+using py_convert::to_array;
+
+py::array_t<int> faces_array(const Eigen::MatrixXi& f) {
+  py::array_t<int> out({f.rows(), static_cast<Eigen::Index>(3)});
+  auto r = out.mutable_unchecked<2>();
+  for (Eigen::Index i = 0; i < f.rows(); ++i)
+    for (int k = 0; k < 3; ++k) r(i, k) = f(i, k);
+  return out;
+}
+
+TriMesh mesh_from(py::handle vertices, py::handle faces) {
+  TriMesh m;
+  m.vertices = py_convert::matrix(vertices, "vertices", 3);
+  const Eigen::MatrixXd f = py_convert::matrix(faces, "faces", 3);
+  m.faces.resize(f.rows(), 3);
+  for (Eigen::Index i = 0; i < f.rows(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double x = f(i, k);
+      if (x != std::floor(x) || x < 0 || x >= static_cast<double>(m.vertices.rows())) {
+        std::ostringstream os;
+        os << "faces[" << i << ", " << k << "] is " << x << "; expected a vertex index in [0, " << m.vertices.rows() << ")";
+        throw InvalidInput(os.str());
+      }
+      m.faces(i, k) = static_cast<int>(x);
+    }
+  return m;
+}
+
+py::dict curve_dict(const IntersectionCurve& c) {
+  const Eigen::Index n = static_cast<Eigen::Index>(c.points.size());
+  Eigen::MatrixXd p(n, 3), a(n, 2), b(n, 2);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    p.row(i) = c.points[i].point.transpose();
+    a.row(i) = c.points[i].uv_a.transpose();
+    b.row(i) = c.points[i].uv_b.transpose();
+  }
+  return py::dict("points"_a = to_array(p), "uv_a"_a = to_array(a), "uv_b"_a = to_array(b), "closed"_a = c.closed,
+                  "max_gap"_a = c.max_gap);
+}
+
+}  // namespace
+
+void bind_compose(py::module_& m) {
+  m.def(
+      "_intersect_surfaces",
+      [](const NurbsSurface& a, const NurbsSurface& b, double tolerance, int subdivisions, double step) {
+        IntersectOptions o;
+        o.tolerance = tolerance;
+        o.subdivisions = subdivisions;
+        o.step = step;
+        py::list out;
+        for (const auto& c : intersect_surfaces(a, b, o)) out.append(curve_dict(c));
+        return out;
+      },
+      "a"_a, "b"_a, "tolerance"_a = 1e-7, "subdivisions"_a = 12, "step"_a = 0.0);
+
+  py::class_<BulbousBow>(m, "_BulbousBow")
+      .def(py::init([](double lpp, double beam, double draft_fp, double midship_area, double displacement_volume,
+                       double c_lpr, double c_bb, double c_zb, double c_abt, double c_abl, double c_vpr, double x_fp,
+                       double aft_length, double nose_height_shift, int sections, int section_points, int control_u,
+                       int control_v) {
+             KrachtCoefficients k{c_lpr, c_bb, c_zb, c_abt, c_abl, c_vpr};
+             ShipParticulars s{lpp, beam, draft_fp, midship_area, displacement_volume, x_fp};
+             BulbOptions o{aft_length, nose_height_shift, sections, section_points, control_u, control_v};
+             return make_bulbous_bow(k, s, o);
+           }),
+           "lpp"_a, "beam"_a, "draft_fp"_a, "midship_area"_a, "displacement_volume"_a, "c_lpr"_a, "c_bb"_a, "c_zb"_a,
+           "c_abt"_a, "c_abl"_a, "c_vpr"_a, "x_fp"_a, "aft_length"_a, "nose_height_shift"_a, "sections"_a,
+           "section_points"_a, "control_u"_a, "control_v"_a)
+      .def_property_readonly("surface", [](const BulbousBow& b) { return b.surface; })
+      .def_property_readonly("max_fit_deviation", [](const BulbousBow& b) { return b.max_fit_deviation; })
+      .def_property_readonly("shape", [](const BulbousBow& b) {
+        const BulbShape& s = b.shape;
+        return py::dict("x_fp"_a = s.x_fp, "length"_a = s.length, "breadth"_a = s.breadth,
+                        "nose_height"_a = s.nose_height, "height"_a = s.height,
+                        "section_fullness"_a = s.section_fullness, "nose_shape"_a = s.nose_shape,
+                        "section_area"_a = s.section_area, "lateral_area"_a = s.lateral_area, "volume"_a = s.volume);
+      });
+
+  py::class_<ComposedHull>(m, "_ComposedHull")
+      .def_property_readonly("vertices", [](const ComposedHull& c) { return to_array(c.mesh.vertices); })
+      .def_property_readonly("faces", [](const ComposedHull& c) { return faces_array(c.mesh.faces); })
+      .def_property_readonly("face_part", [](const ComposedHull& c) {
+        py::array_t<int> out(c.face_part.size());
+        std::copy(c.face_part.data(), c.face_part.data() + c.face_part.size(), out.mutable_data());
+        return out;
+      })
+      .def_property_readonly("seam_vertices", [](const ComposedHull& c) {
+        py::array_t<int> out(c.seam_vertices.size());
+        std::copy(c.seam_vertices.data(), c.seam_vertices.data() + c.seam_vertices.size(), out.mutable_data());
+        return out;
+      })
+      .def_property_readonly("trimmed_surfaces", [](const ComposedHull& c) {
+        py::list out;
+        for (const auto& t : c.trimmed_surfaces) {
+          py::list loops;
+          for (const auto& l : t.loops) loops.append(to_array(l));
+          out.append(py::make_tuple(t.subdomain, loops));
+        }
+        return out;
+      })
+      .def_property_readonly("intersection_curves", [](const ComposedHull& c) {
+        py::list out;
+        for (const auto& x : c.intersection_curves) out.append(curve_dict(x));
+        return out;
+      })
+      .def_property_readonly("x_aft", [](const ComposedHull& c) { return c.x_aft; })
+      .def_property_readonly("z_deck", [](const ComposedHull& c) { return c.z_deck; })
+      .def_property_readonly("hull", [](const ComposedHull& c) { return c.hull; })
+      .def_property_readonly("blend", [](const ComposedHull& c) -> py::object {
+        if (c.blend.empty()) return py::none();
+        return py::cast(c.blend[0]);
+      })
+      .def_property_readonly("blend_continuity", [](const ComposedHull& c) {
+        auto d = [](const BoundaryContinuity& x) {
+          return py::dict("max_angle_deg"_a = x.max_angle_deg, "max_gap"_a = x.max_gap);
+        };
+        return py::make_tuple(d(c.blend_at_hull), d(c.blend_at_bulb));
+      })
+      .def("full_mesh", [](const ComposedHull& c) {
+        const TriMesh f = mirror_full_hull(c);
+        return py::make_tuple(to_array(f.vertices), faces_array(f.faces));
+      });
+
+  m.def(
+      "_compose_hull",
+      [](const NurbsSurface& hull, const NurbsSurface* bulb, int hull_u, int hull_v, int bulb_u, int bulb_v,
+         double tolerance, double margin, py::handle blend_hull_uv, double blend_bulb_u, double blend_tension,
+         int blend_rows) {
+        ComposeOptions o;
+        o.hull_u = hull_u;
+        o.hull_v = hull_v;
+        o.bulb_u = bulb_u;
+        o.bulb_v = bulb_v;
+        o.tolerance = tolerance;
+        o.margin = margin;
+        o.blend_rows = blend_rows;
+        BlendSpec spec;
+        const bool with_blend = !blend_hull_uv.is_none();
+        if (with_blend) {
+          spec.hull_uv = py_convert::matrix(blend_hull_uv, "blend hull boundary", 2);
+          spec.bulb_u = blend_bulb_u;
+          spec.tension = blend_tension;
+        }
+        py::gil_scoped_release release;
+        return compose_hull(hull, bulb, o, with_blend ? &spec : nullptr);
+      },
+      "hull"_a, "bulb"_a = nullptr, "hull_u"_a = 48, "hull_v"_a = 20, "bulb_u"_a = 16, "bulb_v"_a = 24,
+      "tolerance"_a = 1e-7, "margin"_a = 0.3, "blend_hull_uv"_a = py::none(), "blend_bulb_u"_a = 0.5,
+      "blend_tension"_a = 1.0, "blend_rows"_a = 8);
+
+  m.def(
+      "_blend_surface",
+      [](const NurbsSurface& a, py::handle ba, const NurbsSurface& b, py::handle bb, int samples, double tension,
+         int check_samples) {
+        BlendOptions o;
+        o.samples = samples;
+        o.tension = tension;
+        o.check_samples = check_samples;
+        const BlendSurface r = blend_surface(a, py_convert::matrix(ba, "boundary_a", 2), b,
+                                             py_convert::matrix(bb, "boundary_b", 2), o);
+        auto cont = [](const BoundaryContinuity& c) {
+          return py::dict("max_angle_deg"_a = c.max_angle_deg, "max_gap"_a = c.max_gap);
+        };
+        return py::make_tuple(r.surface, cont(r.at_a), cont(r.at_b));
+      },
+      "a"_a, "boundary_a"_a, "b"_a, "boundary_b"_a, "samples"_a = 61, "tension"_a = 1.0, "check_samples"_a = 200);
+  m.def(
+      "boundary_continuity",
+      [](const NurbsSurface& blend, bool at_v1, const NurbsSurface& s, int samples) {
+        const BoundaryContinuity c = measure_boundary_continuity(blend, at_v1, s, samples);
+        return py::dict("max_angle_deg"_a = c.max_angle_deg, "max_gap"_a = c.max_gap);
+      },
+      "blend"_a, "at_v1"_a, "surface"_a, "samples"_a = 400,
+      "Max normal angle (deg) and gap (m) between a blend's v = 0 (or v = 1) edge and a surface, "
+      "by closest-point projection at `samples` points.");
+
+  m.def("orient_bare_hull", &orient_bare_hull, "hull"_a, "plane_tolerance"_a = 1e-6,
+        "The hull surface re-oriented to u aft->stem, v keel->deck (see compose.hpp).");
+  m.def(
+      "write_obj", [](py::handle v, py::handle f, const std::string& path) { write_obj(mesh_from(v, f), path); },
+      "vertices"_a, "faces"_a, "path"_a, "Writes a triangle mesh ((n, 3) vertices, (m, 3) faces) as Wavefront OBJ.");
+  m.def(
+      "write_stl",
+      [](py::handle v, py::handle f, const std::string& path, bool binary) { write_stl(mesh_from(v, f), path, binary); },
+      "vertices"_a, "faces"_a, "path"_a, "binary"_a = true, "Writes a triangle mesh as binary (or ASCII) STL.");
+  m.def(
+      "mesh_volume", [](py::handle v, py::handle f) { return mesh_volume(mesh_from(v, f)); }, "vertices"_a, "faces"_a,
+      "Signed enclosed volume (m^3) by the divergence theorem.");
+  m.def(
+      "triangulate_polygon",
+      [](py::handle pts) {
+        const auto tris = triangulate_polygon(py_convert::matrix(pts, "points", 2));
+        Eigen::MatrixXi f(static_cast<Eigen::Index>(tris.size()), 3);
+        for (size_t i = 0; i < tris.size(); ++i)
+          for (int k = 0; k < 3; ++k) f(static_cast<Eigen::Index>(i), k) = tris[i][k];
+        return faces_array(f);
+      },
+      "points"_a, "Ear-clipping triangulation of a simple polygon (n, 2): (n - 2, 3) indices.");
+}
+
+}  // namespace fairlines

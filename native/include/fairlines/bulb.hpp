@@ -1,0 +1,67 @@
+// Bulbous bow from the Kracht (1978) coefficients (SPEC §7), fair-skinned into a NURBS surface.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "fairlines/surface.hpp"
+
+namespace fairlines {
+
+/// The six Kracht coefficients (dimensionless).
+struct KrachtCoefficients {
+  double c_lpr = 0.025;   ///< protrusion beyond FP / Lpp
+  double c_bb = 0.18;     ///< bulb breadth at FP / B
+  double c_zb = 0.45;     ///< height of the bulb's foremost point / T_FP
+  double c_abt = 0.10;    ///< bulb section area at FP (both sides) / midship section area
+  double c_abl = 0.10;    ///< lateral (profile) area forward of FP / midship section area
+  double c_vpr = 0.0022;  ///< bulb volume forward of FP (both sides) / displacement volume
+};
+
+/// Ship quantities the coefficients are relative to (metres, m^2, m^3).
+struct ShipParticulars {
+  double lpp = 0.0;                  ///< length between perpendiculars, > 0
+  double beam = 0.0;                 ///< moulded breadth B, > 0
+  double draft_fp = 0.0;             ///< draught at FP, > 0
+  double midship_area = 0.0;         ///< midship section area A_MS (both sides), > 0
+  double displacement_volume = 0.0;  ///< moulded displacement volume (both sides), > 0
+  double x_fp = -1.0;                ///< x of FP from AP; < 0 means x_fp = lpp
+};
+
+/// Shape controls and resolution of the bulb surface.
+struct BulbOptions {
+  double aft_length = 0.0;  ///< length of the constant-section body aft of FP that runs into
+                            ///< the hull (m); 0: 2 * (protrusion + breadth)
+  double nose_height_shift = 0.0;  ///< z of the section centres minus the nose height at FP
+                                   ///< (m): > 0 lifts the bulb body behind a lower nose
+  int sections = 81;        ///< sampled sections along the bulb (>= 8)
+  int section_points = 41;  ///< sampled points per half section (>= 8)
+  int control_u = 24;       ///< control points along (>= 4)
+  int control_v = 12;       ///< control points around the half section (>= 4)
+};
+
+/// The dimensions and derived shape of a bulb.
+struct BulbShape {
+  double x_fp, length, breadth, nose_height, height;  ///< metres: L_PR, B_B, Z_B, section height H
+  double section_fullness;   ///< superellipse exponent n of the sections (2 = ellipse)
+  double nose_shape;         ///< superellipse exponent m of the plan/profile outline forward of FP
+  double section_area, lateral_area, volume;  ///< requested A_BT, A_BL, V_PR (m^2, m^2, m^3)
+};
+
+/// Bulb body: starboard half (y >= 0). u runs from the aft end (u = 0, inside the hull) to
+/// the nose (u = 1, a pole); v runs around the half section from the bottom centre line
+/// (v = 0, y = 0) to the top centre line (v = 1, y = 0). Forward of FP the half-breadth and
+/// half-height scale by f(xi) = (1 - xi^m)^(1/m), xi = (x - x_fp) / L_PR; sections are
+/// superellipses |2y / B_B|^n + |2 (z - z_c) / H|^n = f^n.
+struct BulbousBow {
+  NurbsSurface surface;
+  BulbShape shape;
+  double max_fit_deviation;  ///< max distance of the surface from its sampled analytic points (m)
+};
+
+/// Solves the shape (H, n, m) so that A_BT, A_BL and V_PR hold exactly for the analytic body,
+/// then skins it. Throws InvalidInput naming the value out of range and
+/// InfeasibleFormParameters naming the coefficients in conflict when no shape meets them.
+BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& ship,
+                            const BulbOptions& options = {});
+
+}  // namespace fairlines

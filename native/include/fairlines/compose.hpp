@@ -1,0 +1,78 @@
+// Boolean composition (union) of a bare hull and a bulbous bow into one watertight,
+// consistently oriented half-hull mesh closed by the centre plane, the deck and an aft cut.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "fairlines/blend.hpp"
+#include "fairlines/intersect.hpp"
+#include "fairlines/mesh.hpp"
+#include "fairlines/surface.hpp"
+
+namespace fairlines {
+
+struct ComposeOptions {
+  int hull_u = 48;          ///< hull tessellation cells along u (>= 4)
+  int hull_v = 20;          ///< hull tessellation cells along v (>= 4)
+  int bulb_u = 16;          ///< bulb cells from the seam to the nose (>= 2)
+  int bulb_v = 24;          ///< bulb cells around the half section; also seam segments (>= 4)
+  double tolerance = 1e-7;  ///< surface-surface intersection tolerance (metres, <= 1e-6)
+  double margin = 0.3;      ///< clearance kept between the seam and whole hull cells (in cells)
+  double plane_tolerance = 1e-6;  ///< relative tolerance of the centre plane / deck / aft checks
+  int blend_rows = 8;       ///< blend cells from the hull boundary to the bulb boundary (>= 1)
+};
+
+/// The blending subdomain of a composition: its boundary on the hull (a (k, 2) (u, v)
+/// polyline on orient_bare_hull(hull), from one centre-plane edge point to another) and on
+/// the bulb (the section u = bulb_u of the bulb, v from bottom to top).
+struct BlendSpec {
+  Eigen::MatrixXd hull_uv;
+  double bulb_u = 0.5;
+  double tension = 1.0;
+};
+
+/// A subdomain surface restricted by trimming loops in its own (u, v) parameter space.
+struct TrimmedSurface {
+  int subdomain = 0;                   ///< 0: bare hull, 1: bulb
+  std::vector<Eigen::MatrixXd> loops;  ///< each (k, 2): (u, v) vertices, counter-clockwise, kept side inside
+};
+
+/// Face labels of the composed mesh.
+enum class FacePart { Hull = 0, Bulb = 1, CentrePlane = 2, Deck = 3, AftCut = 4, Blend = 5 };
+
+struct ComposedHull {
+  TriMesh mesh;                                   ///< closed half hull, outward-oriented
+  Eigen::VectorXi face_part;                      ///< FacePart of each face
+  std::vector<TrimmedSurface> trimmed_surfaces;   ///< hull (and bulb) with their loops
+  std::vector<IntersectionCurve> intersection_curves;  ///< seam(s) at the mesh resolution
+  Eigen::VectorXi seam_vertices;                  ///< mesh vertex index of each seam point
+  double x_aft = 0.0;                             ///< aft cut plane x (m)
+  double z_deck = 0.0;                            ///< deck plane z (m)
+  NurbsSurface hull;                              ///< the hull as used (re-oriented to the convention)
+  std::vector<NurbsSurface> blend;                ///< the blending surface, when composed with one
+  BoundaryContinuity blend_at_hull, blend_at_bulb;  ///< its measured continuity
+};
+
+/// Brings a bare hull surface to the convention used here by swapping / reversing its
+/// directions: u = u_min on the aft cut (x constant), v = v_min on the centre plane (keel,
+/// y = 0), v = v_max on the deck (z constant), u = u_max on the centre plane (stem).
+/// Throws InvalidInput naming the edge that fits no plane.
+NurbsSurface orient_bare_hull(const NurbsSurface& hull, double plane_tolerance = 1e-6);
+
+/// Union of the bare hull (any orientation accepted by orient_bare_hull) and, if `bulb` is
+/// non-null, a bulb surface laid out as make_bulbous_bow makes it (u aft -> nose pole, v
+/// bottom -> top centre line). Throws InvalidInput when the bulb does not meet the hull in
+/// one seam from the keel/stem line around to the stem ("bulb cannot meet the hull").
+/// With `blend`, hull and bulb do not intersect: the hull is trimmed along blend->hull_uv,
+/// the bulb along u = blend->bulb_u, and a blending surface (blend_surface, C1 along both)
+/// joins them; the three meshes share the boundary vertices.
+ComposedHull compose_hull(const NurbsSurface& hull, const NurbsSurface* bulb, const ComposeOptions& options = {},
+                          const BlendSpec* blend = nullptr);
+
+/// Full hull: the half hull mirrored in y = 0 and welded along the centre plane, with the
+/// centre-plane faces dropped.
+TriMesh mirror_full_hull(const ComposedHull& composed);
+
+}  // namespace fairlines

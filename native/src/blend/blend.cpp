@@ -1,0 +1,207 @@
+// Blending surface by fair skinning of cubic Hermite sections, see fairlines/blend.hpp.
+#include "fairlines/blend.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "fairlines/errors.hpp"
+#include "fairlines/fitting.hpp"
+#include "fairlines/knots.hpp"
+#include "nurbs/checks.hpp"
+
+namespace fairlines {
+
+namespace {
+
+/// Parameter points of a (k, 2) polyline at n equal fractions of its 3-D arc length.
+Eigen::MatrixXd resample(const NurbsSurface& s, const Eigen::MatrixXd& uv, int n, const char* what) {
+  if (uv.cols() != 2 || uv.rows() < 2) detail::fail(what, " has shape (", uv.rows(), ", ", uv.cols(), "); expected (k, 2) with k >= 2");
+  detail::require_finite(uv, what);
+  const auto [u0, u1] = s.domain_u();
+  const auto [v0, v1] = s.domain_v();
+  const double eu = 1e-9 * (u1 - u0), ev = 1e-9 * (v1 - v0);
+  for (Eigen::Index i = 0; i < uv.rows(); ++i)
+    if (uv(i, 0) < u0 - eu || uv(i, 0) > u1 + eu || uv(i, 1) < v0 - ev || uv(i, 1) > v1 + ev)
+      detail::fail(what, "[", i, "] = (", uv(i, 0), ", ", uv(i, 1), ") lies outside the surface domain [", u0, ", ", u1,
+                   "] x [", v0, ", ", v1, "]");
+  // the points are interpolated by a cubic in parameter space (a polyline would put kinks,
+  // which no C1 blend can follow, into the boundary), densely sampled -> 3-D arc length
+  constexpr int kPerSegment = 16;
+  const Eigen::Index m = (uv.rows() - 1) * kPerSegment + 1;
+  Eigen::MatrixXd dense(m, 2);
+  FitOptions fo;
+  fo.degree = static_cast<int>(std::min<Eigen::Index>(3, uv.rows() - 1));
+  const CurveFit cf = fit_curve(uv, fo);
+  const double t0 = cf.curve.knots()[0], t1 = cf.curve.knots()[cf.curve.knots().size() - 1];
+  for (Eigen::Index i = 0; i < m; ++i) dense.row(i) = cf.curve.evaluate(t0 + (t1 - t0) * i / (m - 1)).transpose();
+  for (Eigen::Index i = 0; i < m; ++i) {
+    dense(i, 0) = std::clamp(dense(i, 0), u0, u1);
+    dense(i, 1) = std::clamp(dense(i, 1), v0, v1);
+  }
+  const Eigen::MatrixXd P = s.evaluate(Eigen::VectorXd(dense.col(0)), Eigen::VectorXd(dense.col(1)));
+  std::vector<double> arc(m, 0.0);
+  for (Eigen::Index i = 1; i < m; ++i) arc[i] = arc[i - 1] + (P.row(i) - P.row(i - 1)).norm();
+  if (!(arc[m - 1] > 0.0)) detail::fail(what, " has zero length on the surface; expected a curve");
+  Eigen::MatrixXd out(n, 2);
+  Eigen::Index q = 0;
+  for (int j = 0; j < n; ++j) {
+    const double target = arc[m - 1] * j / (n - 1);
+    while (q + 2 < m && arc[q + 1] < target) ++q;
+    const double w = std::clamp((target - arc[q]) / std::max(1e-300, arc[q + 1] - arc[q]), 0.0, 1.0);
+    out.row(j) = dense.row(q) + w * (dense.row(q + 1) - dense.row(q));
+  }
+  return out;
+}
+
+struct Frame {
+  Eigen::Vector3d p, n;
+};
+
+Frame frame(const NurbsSurface& s, double u, double v) {
+  const Eigen::MatrixXd d = s.derivatives(u, v, 1);
+  Eigen::VectorXd uu(1), vv(1);
+  uu[0] = u;
+  vv[0] = v;
+  return {d.row(0).transpose(), s.normal(uu, vv).row(0).transpose()};
+}
+
+/// Newton foot point of p on s from (u, v): (S - p) . S_u = (S - p) . S_v = 0, clamped to
+/// the domain. Returns false when it does not settle (the caller then searches globally).
+bool project(const NurbsSurface& s, const Eigen::Vector3d& p, double& u, double& v, Eigen::Vector3d& q) {
+  const auto [u0, u1] = s.domain_u();
+  const auto [v0, v1] = s.domain_v();
+  for (int it = 0; it < 30; ++it) {
+    const Eigen::MatrixXd d = s.derivatives(u, v, 2);  // row k * 3 + l
+    const Eigen::Vector3d S = d.row(0).transpose(), Sv = d.row(1).transpose(), Svv = d.row(2).transpose();
+    const Eigen::Vector3d Su = d.row(3).transpose(), Suv = d.row(4).transpose(), Suu = d.row(6).transpose();
+    const Eigen::Vector3d r = S - p;
+    const Eigen::Vector2d f(r.dot(Su), r.dot(Sv));
+    Eigen::Matrix2d J;
+    J << Su.dot(Su) + r.dot(Suu), Su.dot(Sv) + r.dot(Suv), Su.dot(Sv) + r.dot(Suv), Sv.dot(Sv) + r.dot(Svv);
+    const Eigen::Vector2d step = J.colPivHouseholderQr().solve(-f);
+    if (!step.allFinite()) return false;
+    const double nu = std::clamp(u + step[0], u0, u1), nv = std::clamp(v + step[1], v0, v1);
+    const bool done = std::abs(nu - u) < 1e-13 * (u1 - u0) && std::abs(nv - v) < 1e-13 * (v1 - v0);
+    u = nu;
+    v = nv;
+    if (done || it == 29) {
+      q = s.evaluate(u, v);
+      // at a clamped boundary the gradient condition need not vanish; accept a settled foot
+      return done;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+BoundaryContinuity measure_boundary_continuity(const NurbsSurface& blend, bool at_v1, const NurbsSurface& s,
+                                               int samples) {
+  if (samples < 2) detail::fail("samples is ", samples, "; expected >= 2");
+  const auto [u0, u1] = blend.domain_u();
+  const auto [v0, v1] = blend.domain_v();
+  BoundaryContinuity c;
+  double pu = 0.0, pv = 0.0;
+  for (int k = 0; k < samples; ++k) {
+    const double u = u0 + (u1 - u0) * k / (samples - 1);
+    const double v = at_v1 ? v1 : v0;
+    const Eigen::MatrixXd d = blend.derivatives(u, v, 1);
+    const Eigen::Vector3d p = d.row(0).transpose();
+    const Eigen::Vector3d bu = d.row(2).transpose(), bv = d.row(1).transpose();
+    const Eigen::Vector3d nb = bu.cross(bv).normalized();
+    // projection: global search at the first point, then Newton continued from the last
+    double su, sv;
+    Eigen::Vector3d q;
+    if (k == 0 || !project(s, p, pu, pv, q)) {
+      std::tie(su, sv, q) = s.closest_point(p);
+    } else {
+      su = pu;
+      sv = pv;
+    }
+    pu = su;
+    pv = sv;
+    Eigen::VectorXd uu(1), vv(1);
+    uu[0] = su;
+    vv[0] = sv;
+    const Eigen::Vector3d ns = s.normal(uu, vv).row(0).transpose();
+    const double cosang = std::min(1.0, std::abs(nb.dot(ns)));
+    c.max_angle_deg = std::max(c.max_angle_deg, std::acos(cosang) * 180.0 / M_PI);
+    c.max_gap = std::max(c.max_gap, (q - p).norm());
+  }
+  return c;
+}
+
+BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundary_a, const NurbsSurface& b,
+                           const Eigen::MatrixXd& boundary_b, const BlendOptions& o) {
+  if (o.samples < 4) detail::fail("samples is ", o.samples, "; expected >= 4");
+  detail::require_positive(o.tension, "tension");
+  const int n = o.samples;
+  const Eigen::MatrixXd ua = resample(a, boundary_a, n, "boundary_a");
+  const Eigen::MatrixXd ub = resample(b, boundary_b, n, "boundary_b");
+  std::vector<Frame> fa(n), fb(n);
+  for (int j = 0; j < n; ++j) {
+    fa[j] = frame(a, ua(j, 0), ua(j, 1));
+    fb[j] = frame(b, ub(j, 0), ub(j, 1));
+  }
+  // rows of section control points: P0 (on a), P1, P2, P3 (on b)
+  Eigen::MatrixXd rows[4];
+  for (auto& r : rows) r.resize(n, 3);
+  for (int j = 0; j < n; ++j) {
+    const int jp = std::min(j + 1, n - 1), jm = std::max(j - 1, 0);
+    const Eigen::Vector3d ta = (fa[jp].p - fa[jm].p).normalized(), tb = (fb[jp].p - fb[jm].p).normalized();
+    const Eigen::Vector3d gap = fb[j].p - fa[j].p;
+    const double len = gap.norm();
+    if (!(len > 0.0))
+      detail::fail("boundaries touch at sample ", j, "; expected separate curves on the two surfaces");
+    Eigen::Vector3d da = fa[j].n.cross(ta), db = fb[j].n.cross(tb);
+    if (da.norm() < 1e-12 || db.norm() < 1e-12) detail::fail("boundary tangent is parallel to the surface normal at sample ", j);
+    da.normalize();
+    db.normalize();
+    if (da.dot(gap) < 0) da = -da;   // toward b
+    if (db.dot(-gap) < 0) db = -db;  // toward a
+    const double h = o.tension * len / 3.0;
+    rows[0].row(j) = fa[j].p.transpose();
+    rows[1].row(j) = (fa[j].p + h * da).transpose();
+    rows[2].row(j) = (fb[j].p + h * db).transpose();
+    rows[3].row(j) = fb[j].p.transpose();
+  }
+  if (o.centre_plane_ends) {
+    const double tol = 1e-9 * std::max(1.0, (fb[0].p - fa[0].p).norm());
+    for (int j : {0, n - 1})
+      if (std::abs(fa[j].p.y()) <= tol && std::abs(fb[j].p.y()) <= tol) {
+        rows[1](j, 1) = 0.0;
+        rows[2](j, 1) = 0.0;
+        rows[0](j, 1) = 0.0;
+        rows[3](j, 1) = 0.0;
+      }
+  }
+  // common parameters (averaged chord lengths of the rows) and knots; interpolate each row
+  Eigen::VectorXd par = Eigen::VectorXd::Zero(n);
+  for (int j = 1; j < n; ++j) {
+    double d = 0.0;
+    for (const auto& r : rows) d += (r.row(j) - r.row(j - 1)).norm();
+    par[j] = par[j - 1] + d;
+  }
+  par /= par[n - 1];
+  const int p = 3;
+  const Eigen::VectorXd K = averaged_knots(par, p, n);
+  Eigen::MatrixXd ctrl(static_cast<Eigen::Index>(n) * 4, 3);
+  Eigen::MatrixXd all(n, 12);  // the four rows share one interpolation matrix: one solve
+  for (int r = 0; r < 4; ++r) all.middleCols(3 * r, 3) = rows[r];
+  const Eigen::MatrixXd c = fit_curve_with(all, par, K, p).curve.control_points();
+  for (int r = 0; r < 4; ++r)
+    for (int i = 0; i < n; ++i) ctrl.row(i * 4 + r) = c.block<1, 3>(i, 3 * r);
+  Eigen::VectorXd kt(8);
+  kt << 0, 0, 0, 0, 1, 1, 1, 1;
+  NurbsSurface s(p, 3, K, kt, n, 4, ctrl);
+  BlendSurface out{s, {}, {}, ua, ub, par};
+  out.at_a = measure_boundary_continuity(s, false, a, o.check_samples);
+  out.at_b = measure_boundary_continuity(s, true, b, o.check_samples);
+  return out;
+}
+
+}  // namespace fairlines

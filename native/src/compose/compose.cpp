@@ -1,0 +1,700 @@
+// Boolean union of bare hull and bulb into one closed half-hull mesh, see fairlines/compose.hpp.
+//
+// Method: the seam is traced by intersect_surfaces, then re-sampled at the bulb's mesh
+// columns v_j with Newton (bulb v fixed), so hull and bulb meshes share those seam vertices.
+// Bulb: a structured strip from the seam to the nose pole. Hull: whole grid cells clear of
+// the hole; the band between the cells and the seam is one simple polygon in scaled
+// parameter space, triangulated by ear clipping. The open boundary (centre plane, deck, aft
+// cut) is split into its three planar runs and each is capped by a planar polygon.
+#include "fairlines/compose.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <unordered_map>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+#include "fairlines/errors.hpp"
+#include "nurbs/checks.hpp"
+
+namespace fairlines {
+
+namespace {
+
+NurbsSurface transform(const NurbsSurface& s, bool swap, bool rev_u, bool rev_v) {
+  int nu = s.nu(), nv = s.nv(), pu = s.degree_u(), pv = s.degree_v();
+  Eigen::VectorXd ku = s.knots_u(), kv = s.knots_v();
+  Eigen::MatrixXd pw = s.homogeneous();
+  if (swap) {
+    Eigen::MatrixXd q(pw.rows(), 4);
+    for (int i = 0; i < nu; ++i)
+      for (int j = 0; j < nv; ++j) q.row(j * nu + i) = pw.row(i * nv + j);
+    pw = q;
+    std::swap(nu, nv);
+    std::swap(pu, pv);
+    std::swap(ku, kv);
+  }
+  auto reverse_knots = [](const Eigen::VectorXd& k) {
+    Eigen::VectorXd r(k.size());
+    const double a = k[0], b = k[k.size() - 1];
+    for (Eigen::Index i = 0; i < k.size(); ++i) r[i] = a + b - k[k.size() - 1 - i];
+    return r;
+  };
+  if (rev_u || rev_v) {
+    Eigen::MatrixXd q(pw.rows(), 4);
+    for (int i = 0; i < nu; ++i)
+      for (int j = 0; j < nv; ++j)
+        q.row(i * nv + j) = pw.row((rev_u ? nu - 1 - i : i) * nv + (rev_v ? nv - 1 - j : j));
+    pw = q;
+    if (rev_u) ku = reverse_knots(ku);
+    if (rev_v) kv = reverse_knots(kv);
+  }
+  return NurbsSurface::from_homogeneous(pu, pv, ku, kv, nu, nv, pw);
+}
+
+Eigen::MatrixXd edge_points(const NurbsSurface& s, bool fix_u, bool at_max, int n = 25) {
+  const auto [u0, u1] = s.domain_u();
+  const auto [v0, v1] = s.domain_v();
+  Eigen::VectorXd us(n), vs(n);
+  for (int k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) / (n - 1);
+    us[k] = fix_u ? (at_max ? u1 : u0) : u0 + (u1 - u0) * t;
+    vs[k] = fix_u ? v0 + (v1 - v0) * t : (at_max ? v1 : v0);
+  }
+  return s.evaluate(us, vs);
+}
+
+double size_of(const NurbsSurface& s) {
+  const Eigen::MatrixXd& P = s.control_points();
+  return (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
+}
+
+/// Newton on S_h(s, t) = S_b(u, v) with v fixed: x = (s, t, u, v). Clamped to the domains.
+double seam_newton(const NurbsSurface& h, const NurbsSurface& b, Eigen::Vector4d& x, double tol) {
+  const auto [hu0, hu1] = h.domain_u();
+  const auto [hv0, hv1] = h.domain_v();
+  const auto [bu0, bu1] = b.domain_u();
+  double r = 1e300;
+  for (int it = 0; it < 50; ++it) {
+    x[0] = std::clamp(x[0], hu0, hu1);
+    x[1] = std::clamp(x[1], hv0, hv1);
+    x[2] = std::clamp(x[2], bu0, bu1);
+    const Eigen::MatrixXd dh = h.derivatives(x[0], x[1], 1), db = b.derivatives(x[2], x[3], 1);
+    const Eigen::Vector3d res = (dh.row(0) - db.row(0)).transpose();
+    r = res.norm();
+    if (r < tol) break;
+    Eigen::Matrix3d J;
+    J.col(0) = dh.row(2).transpose();
+    J.col(1) = dh.row(1).transpose();
+    J.col(2) = -db.row(2).transpose();
+    const Eigen::Vector3d d = J.colPivHouseholderQr().solve(-res);
+    if (!d.allFinite()) break;
+    x.head<3>() += d;
+  }
+  return r;
+}
+
+bool point_in_polygon(const Eigen::Vector2d& q, const std::vector<Eigen::Vector2d>& poly) {
+  bool in = false;
+  const size_t n = poly.size();
+  for (size_t i = 0, j = n - 1; i < n; j = i++) {
+    const auto& a = poly[i];
+    const auto& c = poly[j];
+    if ((a.y() > q.y()) != (c.y() > q.y()) &&
+        q.x() < (c.x() - a.x()) * (q.y() - a.y()) / (c.y() - a.y()) + a.x())
+      in = !in;
+  }
+  return in;
+}
+
+double seg_dist(const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double L2 = ab.squaredNorm();
+  const double t = L2 > 0 ? std::clamp((q - a).dot(ab) / L2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - q).norm();
+}
+
+struct MeshBuilder {
+  std::vector<Eigen::Vector3d> verts;
+  std::vector<std::array<int, 3>> faces;
+  std::vector<int> part;
+  int add(const Eigen::Vector3d& p) {
+    verts.push_back(p);
+    return static_cast<int>(verts.size()) - 1;
+  }
+  void tri(int a, int b, int c, FacePart fp) {
+    faces.push_back({a, b, c});
+    part.push_back(static_cast<int>(fp));
+  }
+  TriMesh mesh() const {
+    TriMesh m;
+    m.vertices.resize(static_cast<Eigen::Index>(verts.size()), 3);
+    for (size_t i = 0; i < verts.size(); ++i) m.vertices.row(static_cast<Eigen::Index>(i)) = verts[i].transpose();
+    m.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+    for (size_t f = 0; f < faces.size(); ++f)
+      for (int k = 0; k < 3; ++k) m.faces(static_cast<Eigen::Index>(f), k) = faces[f][k];
+    return m;
+  }
+};
+
+/// Caps the three planar boundary runs of an open half-hull surface (oriented consistently).
+void close_half_hull(MeshBuilder& mb, double x_aft, double z_deck) {
+  TriMesh open = mb.mesh();
+  orient_consistently(open);
+  for (size_t f = 0; f < mb.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) mb.faces[f][k] = open.faces(static_cast<Eigen::Index>(f), k);
+  std::map<std::pair<int, int>, int> count;
+  for (const auto& f : mb.faces)
+    for (int k = 0; k < 3; ++k) {
+      int a = f[k], b = f[(k + 1) % 3];
+      count[{std::min(a, b), std::max(a, b)}]++;
+    }
+  std::unordered_map<int, int> next;
+  for (const auto& f : mb.faces)
+    for (int k = 0; k < 3; ++k) {
+      int a = f[k], b = f[(k + 1) % 3];
+      if (count[{std::min(a, b), std::max(a, b)}] == 1) {
+        if (next.count(b)) throw Error("compose: the open hull boundary branches (non-manifold boundary vertex)");
+        next[b] = a;  // reversed: the cap runs against the surface boundary
+      }
+    }
+  if (next.empty()) throw Error("compose: the hull surface has no open boundary to close");
+  // one loop
+  std::vector<int> loop;
+  const int start = next.begin()->first;
+  int v = start;
+  do {
+    loop.push_back(v);
+    auto it = next.find(v);
+    if (it == next.end()) throw Error("compose: the open hull boundary is not a closed loop");
+    v = it->second;
+    if (loop.size() > next.size()) throw Error("compose: the open hull boundary is not a single loop");
+  } while (v != start);
+  if (loop.size() != next.size())
+    throw Error("compose: the open hull boundary has several loops; expected one (centre plane, deck, aft cut)");
+  const auto& P = mb.verts;
+  auto edge_class = [&](int a, int b) {
+    if (P[a].y() == 0.0 && P[b].y() == 0.0) return 0;           // centre plane
+    if (P[a].z() == z_deck && P[b].z() == z_deck) return 1;     // deck
+    if (P[a].x() == x_aft && P[b].x() == x_aft) return 2;       // aft cut
+    std::ostringstream os;
+    os << "compose: a boundary edge from (" << P[a].transpose() << ") to (" << P[b].transpose()
+       << ") lies on none of the centre plane, deck or aft cut";
+    throw Error(os.str());
+  };
+  const int n = static_cast<int>(loop.size());
+  std::vector<int> cls(n);
+  for (int i = 0; i < n; ++i) cls[i] = edge_class(loop[i], loop[(i + 1) % n]);
+  int s0 = -1;
+  for (int i = 0; i < n; ++i)
+    if (cls[i] != cls[(i + n - 1) % n]) {
+      s0 = i;
+      break;
+    }
+  if (s0 < 0) throw Error("compose: the open boundary lies in one plane only");
+  const int corner = mb.add(Eigen::Vector3d(x_aft, 0.0, z_deck));
+  int runs = 0;
+  int seen_mask = 0;
+  for (int i = 0; i < n;) {
+    const int c = cls[(s0 + i) % n];
+    std::vector<int> run{loop[(s0 + i) % n]};
+    while (i < n && cls[(s0 + i) % n] == c) {
+      run.push_back(loop[(s0 + i + 1) % n]);
+      ++i;
+    }
+    ++runs;
+    seen_mask |= 1 << c;
+    run.push_back(corner);
+    Eigen::MatrixXd poly(static_cast<Eigen::Index>(run.size()), 2);
+    for (size_t k = 0; k < run.size(); ++k) {
+      const Eigen::Vector3d& q = mb.verts[run[k]];
+      if (c == 0) poly.row(static_cast<Eigen::Index>(k)) << q.x(), q.z();
+      else if (c == 1) poly.row(static_cast<Eigen::Index>(k)) << q.x(), q.y();
+      else poly.row(static_cast<Eigen::Index>(k)) << q.y(), q.z();
+    }
+    for (const auto& t : triangulate_polygon(poly))
+      mb.tri(run[t[0]], run[t[1]], run[t[2]], c == 0 ? FacePart::CentrePlane : c == 1 ? FacePart::Deck : FacePart::AftCut);
+  }
+  if (runs != 3 || seen_mask != 7) {
+    std::ostringstream os;
+    os << "compose: the open boundary splits into " << runs
+       << " planar runs; expected 3 (centre plane, deck, aft cut) in that cyclic order";
+    throw Error(os.str());
+  }
+}
+
+}  // namespace
+
+NurbsSurface orient_bare_hull(const NurbsSurface& hull, double tol_rel) {
+  if (!(tol_rel > 0.0) || !std::isfinite(tol_rel)) detail::fail("plane_tolerance is ", tol_rel, "; expected > 0");
+  const double tol = tol_rel * size_of(hull);
+  std::string why;
+  for (int c = 0; c < 8; ++c) {
+    const NurbsSurface s = transform(hull, c & 1, c & 2, c & 4);
+    const Eigen::MatrixXd aft = edge_points(s, true, false), stem = edge_points(s, true, true);
+    const Eigen::MatrixXd keel = edge_points(s, false, false), deck = edge_points(s, false, true);
+    const bool ok_aft = aft.col(0).maxCoeff() - aft.col(0).minCoeff() <= tol;
+    const bool ok_keel = keel.col(1).cwiseAbs().maxCoeff() <= tol;
+    const bool ok_stem = stem.col(1).cwiseAbs().maxCoeff() <= tol;
+    const bool ok_deck = deck.col(2).maxCoeff() - deck.col(2).minCoeff() <= tol;
+    const bool up = deck.col(2).mean() > keel.col(2).mean();
+    const bool fwd = stem.col(0).mean() > aft.col(0).mean();
+    if (ok_aft && ok_keel && ok_stem && ok_deck && up && fwd) return s;
+    if (c == 0) {
+      std::ostringstream os;
+      os << (ok_aft ? "" : " u=u_min edge not at one x (aft cut);") << (ok_keel ? "" : " v=v_min edge not at y = 0 (keel);")
+         << (ok_stem ? "" : " u=u_max edge not at y = 0 (stem);") << (ok_deck ? "" : " v=v_max edge not at one z (deck);");
+      why = os.str();
+    }
+  }
+  throw InvalidInput("hull surface: no orientation has one edge on an aft cut x = const, one on the deck z = const "
+                     "and the other two on the centre plane y = 0 (as given:" + why + ")");
+}
+
+ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb, const ComposeOptions& o,
+                          const BlendSpec* blend) {
+  if (o.hull_u < 4) detail::fail("hull_u is ", o.hull_u, "; expected >= 4");
+  if (o.hull_v < 4) detail::fail("hull_v is ", o.hull_v, "; expected >= 4");
+  if (o.bulb_u < 2) detail::fail("bulb_u is ", o.bulb_u, "; expected >= 2");
+  if (o.bulb_v < 4) detail::fail("bulb_v is ", o.bulb_v, "; expected >= 4");
+  if (!(o.margin > 0.0) || o.margin > 1.0) detail::fail("margin is ", o.margin, "; expected a fraction of a cell in (0, 1]");
+  if (o.blend_rows < 1) detail::fail("blend_rows is ", o.blend_rows, "; expected >= 1");
+  if (blend && !bulb) detail::fail("a blend needs a bulb to blend into; got no bulb");
+  const NurbsSurface H = orient_bare_hull(hull_in, o.plane_tolerance);
+  ComposedHull out{TriMesh{}, Eigen::VectorXi(), {}, {}, Eigen::VectorXi(), 0.0, 0.0, H, {}, {}, {}};
+  const auto [u0, u1] = H.domain_u();
+  const auto [v0, v1] = H.domain_v();
+  out.x_aft = edge_points(H, true, false).col(0).mean();
+  out.z_deck = edge_points(H, false, true).col(2).mean();
+  const int I = o.hull_u, K = o.hull_v;
+  Eigen::VectorXd su(I + 1), tv(K + 1);
+  for (int i = 0; i <= I; ++i) su[i] = u0 + (u1 - u0) * i / I;
+  for (int k = 0; k <= K; ++k) tv[k] = v0 + (v1 - v0) * k / K;
+  su[I] = u1;
+  tv[K] = v1;
+  const Eigen::MatrixXd hull_grid = H.evaluate_grid(su, tv);
+  MeshBuilder mb;
+  std::vector<int> gid((I + 1) * (K + 1), -1);
+  auto grid_vertex = [&](int i, int k) {
+    int& g = gid[i * (K + 1) + k];
+    if (g < 0) {
+      Eigen::Vector3d p = hull_grid.row(i * (K + 1) + k).transpose();
+      if (k == 0 || i == I) p.y() = 0.0;
+      if (i == 0) p.x() = out.x_aft;
+      if (k == K) p.z() = out.z_deck;
+      g = mb.add(p);
+    }
+    return g;
+  };
+  std::vector<char> removed(I * K, 0);
+  TrimmedSurface hull_trim;
+  hull_trim.subdomain = 0;
+
+  if (bulb) {
+    const NurbsSurface& B = *bulb;
+    const auto [bu0, bu1] = B.domain_u();
+    const auto [bv0, bv1] = B.domain_v();
+    const int NV = o.bulb_v, NU = o.bulb_u;
+    std::vector<Eigen::Vector4d> sx(NV + 1);
+    IntersectionCurve rs;
+    std::vector<Eigen::Vector3d> blend_pts;  // blend mode: (NV + 1) x (rows - 1) interior points
+    const int NT = o.blend_rows;
+    if (!blend) {
+      IntersectOptions io;
+      io.tolerance = o.tolerance;
+      const std::vector<IntersectionCurve> curves = intersect_surfaces(H, B, io);
+      if (curves.empty())
+        throw InvalidInput("bulb cannot meet the hull: the bulb surface does not intersect the bare hull "
+                           "(move it aft / into the hull, or lengthen its aft body)");
+      const double vt = 1e-6 * (bv1 - bv0);
+      const IntersectionCurve* seam = nullptr;
+      for (const auto& c : curves) {
+        if (c.closed) continue;
+        const double va = c.points.front().uv_b.y(), vb = c.points.back().uv_b.y();
+        if (std::min(va, vb) <= bv0 + vt && std::max(va, vb) >= bv1 - vt) seam = &c;
+      }
+      if (!seam || curves.size() != 1) {
+        std::ostringstream os;
+        os << "bulb cannot meet the hull: the surfaces intersect in " << curves.size()
+           << " curve(s) but the union needs one seam running around the bulb from its bottom to its top centre line";
+        for (const auto& c : curves)
+          for (const auto& q : c.points)
+            if (q.uv_b.x() <= bu0 + 1e-6 * (bu1 - bu0)) {
+              os << "; the bulb's aft end is not inside the hull (lengthen aft_length)";
+              goto done;
+            }
+      done:
+        throw InvalidInput(os.str());
+      }
+      for (const auto& q : seam->points)
+        if (q.uv_b.x() <= bu0 + 1e-6 * (bu1 - bu0))
+          throw InvalidInput("bulb cannot meet the hull: the seam reaches the bulb's aft end, which is not inside the "
+                             "hull (lengthen aft_length or move the bulb aft)");
+      std::vector<IntersectionPoint> pts = seam->points;
+      if (pts.front().uv_b.y() > pts.back().uv_b.y()) std::reverse(pts.begin(), pts.end());
+      for (size_t k = 1; k < pts.size(); ++k)
+        if (pts[k].uv_b.y() < pts[k - 1].uv_b.y() - vt)
+          throw InvalidInput("bulb cannot meet the hull in a simple seam: the intersection turns back around the bulb");
+      // re-sample at the bulb columns
+      for (int j = 0; j <= NV; ++j) {
+        const double vj = j == NV ? bv1 : bv0 + (bv1 - bv0) * j / NV;
+        size_t k = 1;
+        while (k + 1 < pts.size() && pts[k].uv_b.y() < vj) ++k;
+        const auto& a = pts[k - 1];
+        const auto& c = pts[k];
+        const double dv = c.uv_b.y() - a.uv_b.y();
+        const double w = dv > 0 ? std::clamp((vj - a.uv_b.y()) / dv, 0.0, 1.0) : 0.0;
+        Eigen::Vector4d x;
+        x << (1 - w) * a.uv_a + w * c.uv_a, (1 - w) * a.uv_b.x() + w * c.uv_b.x(), vj;
+        const double r = seam_newton(H, B, x, o.tolerance);
+        if (r > 1e-6) {
+          std::ostringstream os;
+          os << "compose: seam point at bulb v = " << vj << " did not converge (gap " << r << " m)";
+          throw ConvergenceError(os.str());
+        }
+        sx[j] = x;
+        const Eigen::Vector3d ph = H.evaluate(x[0], x[1]), pb = B.evaluate(x[2], x[3]);
+        rs.points.push_back({0.5 * (ph + pb), {x[0], x[1]}, {x[2], x[3]}});
+        rs.max_gap = std::max(rs.max_gap, (ph - pb).norm());
+      }
+    } else {
+      Eigen::MatrixXd hb = blend->hull_uv;
+      if (hb.cols() != 2 || hb.rows() < 2)
+        detail::fail("blend hull boundary has shape (", hb.rows(), ", ", hb.cols(), "); expected (k, 2), k >= 2");
+      if (!(blend->bulb_u > bu0 && blend->bulb_u < bu1))
+        detail::fail("blend bulb_u is ", blend->bulb_u, "; expected inside the bulb's u domain (", bu0, ", ", bu1, ")");
+      const Eigen::Vector3d first = H.evaluate(hb(0, 0), hb(0, 1)), last = H.evaluate(hb(hb.rows() - 1, 0), hb(hb.rows() - 1, 1));
+      if (first.z() > last.z()) hb = hb.colwise().reverse().eval();  // bottom -> top, like the bulb's v
+      Eigen::MatrixXd bb(129, 2);
+      for (int q = 0; q < 129; ++q) bb.row(q) << blend->bulb_u, bv0 + (bv1 - bv0) * q / 128.0;
+      BlendOptions bo;
+      constexpr int kSectionsPerColumn = 4;  // the skin is finer than the mesh columns
+      bo.samples = kSectionsPerColumn * NV + 1;
+      bo.tension = blend->tension;
+      bo.check_samples = 200;  // continuity measured every half per cent of the boundary
+      const BlendSurface bs = blend_surface(H, hb, B, bb, bo);
+      out.blend.push_back(bs.surface);
+      out.blend_at_hull = bs.at_a;
+      out.blend_at_bulb = bs.at_b;
+      for (int j = 0; j <= NV; ++j) {
+        const int q = kSectionsPerColumn * j;
+        sx[j] << bs.params_a(q, 0), bs.params_a(q, 1), bs.params_b(q, 0), bs.params_b(q, 1);
+        const Eigen::Vector3d ph = H.evaluate(sx[j][0], sx[j][1]);
+        rs.points.push_back({ph, {sx[j][0], sx[j][1]}, {bs.params_s[q], 0.0}});
+        for (int k = 1; k < NT; ++k) {
+          Eigen::Vector3d p = bs.surface.evaluate(bs.params_s[q], static_cast<double>(k) / NT);
+          if (j == 0 || j == NV) p.y() = 0.0;
+          blend_pts.push_back(p);
+        }
+      }
+    }
+    // seam ends must sit on the hull's centre-plane edges
+    auto perim = [&](const Eigen::Vector4d& x, double& p) {
+      const double ds = (u1 - x[0]) / (u1 - u0), dt = (x[1] - v0) / (v1 - v0);
+      if (dt <= 1e-6 && dt <= ds) p = (x[0] - u0) / (u1 - u0);
+      else if (ds <= 1e-6) p = 1.0 + dt;
+      else return false;
+      return true;
+    };
+    double pa = 0, pb = 0;
+    if (!perim(sx[0], pa) || !perim(sx[NV], pb))
+      throw InvalidInput("bulb cannot meet the hull: the seam does not end on the hull's keel/stem centre line "
+                         "(the bulb must be attached at the stem)");
+    const bool seam_reversed = pa > pb;  // walk the seam from lower to higher perimeter coordinate
+    if (seam_reversed) std::swap(pa, pb);
+    // bulb vertices
+    std::vector<int> seam_id(NV + 1), bulb_seam_id(NV + 1);
+    for (int j = 0; j <= NV; ++j) {
+      Eigen::Vector3d p = rs.points[j].point;
+      if (j == 0 || j == NV) p.y() = 0.0;
+      seam_id[j] = mb.add(p);
+    }
+    if (!blend) {
+      bulb_seam_id = seam_id;
+    } else {
+      std::vector<int> col(NT + 1);
+      std::vector<int> prev;
+      for (int j = 0; j <= NV; ++j) {
+        Eigen::Vector3d pb = B.evaluate(sx[j][2], sx[j][3]);
+        if (j == 0 || j == NV) pb.y() = 0.0;
+        bulb_seam_id[j] = mb.add(pb);
+        col[0] = seam_id[j];
+        for (int k = 1; k < NT; ++k) col[k] = mb.add(blend_pts[static_cast<size_t>(j) * (NT - 1) + k - 1]);
+        col[NT] = bulb_seam_id[j];
+        if (j > 0)
+          for (int k = 0; k < NT; ++k) {
+            mb.tri(prev[k], col[k], col[k + 1], FacePart::Blend);
+            mb.tri(prev[k], col[k + 1], prev[k + 1], FacePart::Blend);
+          }
+        prev = col;
+      }
+    }
+    Eigen::Vector3d pole = B.evaluate(bu1, 0.5 * (bv0 + bv1));
+    pole.y() = 0.0;
+    const int pole_id = mb.add(pole);
+    std::vector<int> bid((NV + 1) * NU);
+    for (int j = 0; j <= NV; ++j) {
+      const double vj = sx[j][3];
+      bid[j * NU] = bulb_seam_id[j];
+      for (int i = 1; i < NU; ++i) {
+        const double ui = sx[j][2] + (bu1 - sx[j][2]) * i / NU;
+        Eigen::Vector3d p = B.evaluate(ui, vj);
+        if (j == 0 || j == NV) p.y() = 0.0;
+        bid[j * NU + i] = mb.add(p);
+      }
+    }
+    for (int j = 0; j < NV; ++j) {
+      for (int i = 0; i + 1 < NU; ++i) {
+        const int a = bid[j * NU + i], b = bid[(j + 1) * NU + i], c = bid[(j + 1) * NU + i + 1], d = bid[j * NU + i + 1];
+        mb.tri(a, b, c, FacePart::Bulb);
+        mb.tri(a, c, d, FacePart::Bulb);
+      }
+      mb.tri(bid[j * NU + NU - 1], bid[(j + 1) * NU + NU - 1], pole_id, FacePart::Bulb);
+    }
+    // hull hole in scaled parameter space
+    const double Ls = (hull_grid.row(I * (K + 1) + K / 2) - hull_grid.row(K / 2)).norm();
+    double Lt = 0.0;
+    for (int k = 0; k < K; ++k) Lt += (hull_grid.row((I / 2) * (K + 1) + k + 1) - hull_grid.row((I / 2) * (K + 1) + k)).norm();
+    auto scaled = [&](double s, double t) { return Eigen::Vector2d(Ls * (s - u0) / (u1 - u0), Lt * (t - v0) / (v1 - v0)); };
+    std::vector<Eigen::Vector2d> seam2(NV + 1);
+    for (int j = 0; j <= NV; ++j) seam2[j] = scaled(sx[j][0], sx[j][1]);
+    std::vector<Eigen::Vector2d> hole = seam2;  // close along the centre-plane edges (short way)
+    const double pj0 = seam_reversed ? pb : pa, pjN = seam_reversed ? pa : pb;
+    if ((pj0 - 1.0) * (pjN - 1.0) < 0.0) hole.push_back(scaled(u1, v0));
+    const double cell = std::min(Ls / I, Lt / K);
+    const double margin = o.margin * cell;
+    std::vector<char> vrem((I + 1) * (K + 1), 0);
+    for (int i = 0; i <= I; ++i)
+      for (int k = 0; k <= K; ++k) {
+        const Eigen::Vector2d q = scaled(su[i], tv[k]);
+        bool r = point_in_polygon(q, hole);
+        for (int j = 0; j < NV && !r; ++j) r = seg_dist(q, seam2[j], seam2[j + 1]) < margin;
+        vrem[i * (K + 1) + k] = r;
+      }
+    auto cell_of = [&](const Eigen::Vector2d& q, int& i, int& k) {
+      i = std::clamp(static_cast<int>(std::floor(q.x() / (Ls / I))), 0, I - 1);
+      k = std::clamp(static_cast<int>(std::floor(q.y() / (Lt / K))), 0, K - 1);
+    };
+    for (int i = 0; i < I; ++i)
+      for (int k = 0; k < K; ++k)
+        removed[i * K + k] = vrem[i * (K + 1) + k] || vrem[(i + 1) * (K + 1) + k] || vrem[i * (K + 1) + k + 1] ||
+                             vrem[(i + 1) * (K + 1) + k + 1];
+    for (int j = 0; j < NV; ++j)
+      for (int s = 0; s <= 16; ++s) {
+        int ci, ck;
+        cell_of(seam2[j] + (seam2[j + 1] - seam2[j]) * (s / 16.0), ci, ck);
+        removed[ci * K + ck] = 1;
+      }
+    // regularize: fill kept pockets (not 4-connected to the aft-deck cell) and diagonal pinches
+    for (bool changed = true; changed;) {
+      changed = false;
+      std::vector<char> reach(I * K, 0);
+      std::vector<int> stack;
+      if (!removed[0 * K + K - 1]) {
+        reach[K - 1] = 1;
+        stack.push_back(K - 1);
+      }
+      while (!stack.empty()) {
+        const int c = stack.back();
+        stack.pop_back();
+        const int ci = c / K, ck = c % K;
+        const int nb[4][2] = {{ci - 1, ck}, {ci + 1, ck}, {ci, ck - 1}, {ci, ck + 1}};
+        for (const auto& q : nb) {
+          if (q[0] < 0 || q[0] >= I || q[1] < 0 || q[1] >= K) continue;
+          const int d = q[0] * K + q[1];
+          if (removed[d] || reach[d]) continue;
+          reach[d] = 1;
+          stack.push_back(d);
+        }
+      }
+      for (int c = 0; c < I * K; ++c)
+        if (!removed[c] && !reach[c]) {
+          removed[c] = 1;
+          changed = true;
+        }
+      for (int i = 0; i + 1 < I; ++i)
+        for (int k = 0; k + 1 < K; ++k) {
+          const char a = removed[i * K + k], b = removed[(i + 1) * K + k], c = removed[i * K + k + 1],
+                     d = removed[(i + 1) * K + k + 1];
+          if (a == d && b == c && a != b) {  // diagonal pinch: remove the kept pair
+            removed[i * K + k] = removed[(i + 1) * K + k] = removed[i * K + k + 1] = removed[(i + 1) * K + k + 1] = 1;
+            changed = true;
+          }
+        }
+    }
+    for (int i = 0; i < I; ++i)
+      if (removed[i * K + K - 1])
+        throw InvalidInput("bulb cannot meet the hull: the bulb seam reaches the deck; the bulb is too high or too large");
+    for (int k = 0; k < K; ++k)
+      if (removed[0 * K + k])
+        throw InvalidInput("bulb cannot meet the hull: the bulb seam reaches the aft cut of the hull surface");
+    // staircase: boundary edges of the removed region between removed and kept cells, R on the left
+    std::unordered_map<int, int> nxt, has_in;
+    auto vkey = [&](int i, int k) { return i * (K + 1) + k; };
+    for (int i = 0; i < I; ++i)
+      for (int k = 0; k < K; ++k) {
+        if (!removed[i * K + k]) continue;
+        // ccw edges: bottom (i,k)->(i+1,k), right (i+1,k)->(i+1,k+1), top (i+1,k+1)->(i,k+1), left (i,k+1)->(i,k)
+        if (k > 0 && !removed[i * K + k - 1]) nxt[vkey(i, k)] = vkey(i + 1, k);
+        if (i + 1 < I && !removed[(i + 1) * K + k]) nxt[vkey(i + 1, k)] = vkey(i + 1, k + 1);
+        if (k + 1 < K && !removed[i * K + k + 1]) nxt[vkey(i + 1, k + 1)] = vkey(i, k + 1);
+        if (i > 0 && !removed[(i - 1) * K + k]) nxt[vkey(i, k + 1)] = vkey(i, k);
+      }
+    for (const auto& [a, b] : nxt) has_in[b] = 1;
+    int st = -1, n_starts = 0;
+    for (const auto& [a, b] : nxt)
+      if (!has_in.count(a)) {
+        st = a;
+        ++n_starts;
+      }
+    if (n_starts != 1)
+      throw Error("compose: the trimmed hull band is not one simple strip; refine hull_u / hull_v");
+    std::vector<int> stair{st};
+    while (nxt.count(stair.back())) {
+      stair.push_back(nxt[stair.back()]);
+      if (stair.size() > nxt.size() + 1) throw Error("compose: staircase of the hull band loops");
+    }
+    if (stair.size() != nxt.size() + 1)
+      throw Error("compose: the removed hull region has more than one boundary; refine hull_u / hull_v");
+    auto perim_v = [&](int key, double& p) {
+      const int i = key / (K + 1), k = key % (K + 1);
+      if (k == 0) p = (su[i] - u0) / (u1 - u0);
+      else if (i == I) p = 1.0 + (tv[k] - v0) / (v1 - v0);
+      else return false;
+      return true;
+    };
+    double ps = 0, pe = 0;
+    if (!perim_v(stair.front(), ps) || !perim_v(stair.back(), pe) || !(pe <= pa && pb <= ps))
+      throw Error("compose: the hull band does not end on the centre-plane edges around the seam; refine the grid");
+    // band polygon: staircase (start -> end), boundary up to the seam, seam, boundary back to start
+    std::vector<int> poly_id;
+    std::vector<Eigen::Vector2d> poly2;
+    for (int key : stair) {
+      const int i = key / (K + 1), k = key % (K + 1);
+      poly_id.push_back(grid_vertex(i, k));
+      poly2.push_back(scaled(su[i], tv[k]));
+    }
+    std::vector<std::pair<double, int>> bnd;  // boundary grid vertices on the centre-plane edges
+    for (int i = 0; i <= I; ++i) bnd.push_back({(su[i] - u0) / (u1 - u0), vkey(i, 0)});
+    for (int k = 1; k <= K; ++k) bnd.push_back({1.0 + (tv[k] - v0) / (v1 - v0), vkey(I, k)});
+    const double peps = 1e-9;
+    for (const auto& [p, key] : bnd)
+      if (p > pe + peps && p < pa - peps) {
+        poly_id.push_back(grid_vertex(key / (K + 1), key % (K + 1)));
+        poly2.push_back(scaled(su[key / (K + 1)], tv[key % (K + 1)]));
+      }
+    for (int j = 0; j <= NV; ++j) {
+      const int jj = seam_reversed ? NV - j : j;
+      poly_id.push_back(seam_id[jj]);
+      poly2.push_back(seam2[jj]);
+    }
+    for (const auto& [p, key] : bnd)
+      if (p > pb + peps && p < ps - peps) {
+        poly_id.push_back(grid_vertex(key / (K + 1), key % (K + 1)));
+        poly2.push_back(scaled(su[key / (K + 1)], tv[key % (K + 1)]));
+      }
+    Eigen::MatrixXd P2(static_cast<Eigen::Index>(poly2.size()), 2);
+    for (size_t q = 0; q < poly2.size(); ++q) P2.row(static_cast<Eigen::Index>(q)) = poly2[q].transpose();
+    std::vector<char> flat(poly_id.size());
+    for (size_t q = 0; q < poly_id.size(); ++q) flat[q] = mb.verts[poly_id[q]].y() == 0.0;
+    for (const auto& t : triangulate_polygon(P2, flat)) mb.tri(poly_id[t[0]], poly_id[t[1]], poly_id[t[2]], FacePart::Hull);
+    // trimming loops in parameter space
+    Eigen::MatrixXd hl(NV + 6, 2);
+    int r = 0;
+    hl.row(r++) << u0, v0;
+    if (pa > 1.0) hl.row(r++) << u1, v0;
+    for (int j = 0; j <= NV; ++j) hl.row(r++) = sx[seam_reversed ? NV - j : j].head<2>().transpose();
+    if (pb < 1.0) hl.row(r++) << u1, v0;
+    hl.row(r++) << u1, v1;
+    hl.row(r++) << u0, v1;
+    hull_trim.loops.push_back(hl.topRows(r));
+    TrimmedSurface bulb_trim;
+    bulb_trim.subdomain = 1;
+    Eigen::MatrixXd bl(NV + 3, 2);
+    bl.row(0) << bu1, bv0;
+    bl.row(1) << bu1, bv1;
+    for (int j = 0; j <= NV; ++j) bl.row(2 + j) << sx[NV - j][2], sx[NV - j][3];
+    bulb_trim.loops.push_back(bl);
+    out.trimmed_surfaces.push_back(std::move(hull_trim));
+    out.trimmed_surfaces.push_back(std::move(bulb_trim));
+    out.intersection_curves.push_back(std::move(rs));
+    out.seam_vertices.resize(NV + 1);
+    for (int j = 0; j <= NV; ++j) out.seam_vertices[j] = seam_id[j];
+  } else {
+    Eigen::MatrixXd hl(4, 2);
+    hl << u0, v0, u1, v0, u1, v1, u0, v1;
+    hull_trim.loops.push_back(hl);
+    out.trimmed_surfaces.push_back(std::move(hull_trim));
+  }
+  for (int i = 0; i < I; ++i)
+    for (int k = 0; k < K; ++k) {
+      if (removed[i * K + k]) continue;
+      const int a = grid_vertex(i, k), b = grid_vertex(i + 1, k), c = grid_vertex(i + 1, k + 1), d = grid_vertex(i, k + 1);
+      auto on_cp = [&](int q) { return mb.verts[q].y() == 0.0; };
+      if (on_cp(a) && on_cp(b) && on_cp(c)) {  // keep triangles out of the centre plane
+        mb.tri(a, b, d, FacePart::Hull);
+        mb.tri(b, c, d, FacePart::Hull);
+      } else {
+        mb.tri(a, b, c, FacePart::Hull);
+        mb.tri(a, c, d, FacePart::Hull);
+      }
+    }
+  close_half_hull(mb, out.x_aft, out.z_deck);
+  out.mesh = mb.mesh();
+  orient_consistently(out.mesh);
+  out.face_part.resize(static_cast<Eigen::Index>(mb.part.size()));
+  for (size_t f = 0; f < mb.part.size(); ++f) out.face_part[static_cast<Eigen::Index>(f)] = mb.part[f];
+  const EdgeReport er = edge_report(out.mesh);
+  if (er.open || er.non_manifold || er.inconsistent) {
+    std::ostringstream os;
+    os << "compose: the composed mesh is not closed (" << er.open << " open, " << er.non_manifold
+       << " non-manifold, " << er.inconsistent << " inconsistent edges)";
+    throw Error(os.str());
+  }
+  return out;
+}
+
+TriMesh mirror_full_hull(const ComposedHull& c) {
+  const TriMesh& m = c.mesh;
+  const Eigen::Index n = m.vertices.rows();
+  std::vector<int> mirror(n);
+  std::vector<Eigen::Vector3d> verts;
+  for (Eigen::Index i = 0; i < n; ++i) verts.push_back(m.vertices.row(i).transpose());
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (m.vertices(i, 1) == 0.0) {
+      mirror[i] = static_cast<int>(i);
+    } else {
+      Eigen::Vector3d p = m.vertices.row(i).transpose();
+      p.y() = -p.y();
+      verts.push_back(p);
+      mirror[i] = static_cast<int>(verts.size()) - 1;
+    }
+  }
+  std::vector<std::array<int, 3>> faces;
+  for (Eigen::Index f = 0; f < m.faces.rows(); ++f) {
+    if (c.face_part[f] == static_cast<int>(FacePart::CentrePlane)) continue;
+    faces.push_back({m.faces(f, 0), m.faces(f, 1), m.faces(f, 2)});
+    faces.push_back({mirror[m.faces(f, 0)], mirror[m.faces(f, 2)], mirror[m.faces(f, 1)]});
+  }
+  // drop vertices only the centre-plane faces used (the aft-deck corner of the caps stays)
+  std::vector<int> used(verts.size(), -1);
+  TriMesh out;
+  int cnt = 0;
+  for (auto& f : faces)
+    for (int& v : f) {
+      if (used[v] < 0) used[v] = cnt++;
+      v = used[v];
+    }
+  out.vertices.resize(cnt, 3);
+  for (size_t i = 0; i < verts.size(); ++i)
+    if (used[i] >= 0) out.vertices.row(used[i]) = verts[i].transpose();
+  out.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) out.faces(static_cast<Eigen::Index>(f), k) = faces[f][k];
+  return out;
+}
+
+}  // namespace fairlines

@@ -1,0 +1,359 @@
+// Surface-surface intersection (subdivision + marching), see fairlines/intersect.hpp.
+#include "fairlines/intersect.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+#include "fairlines/errors.hpp"
+#include "nurbs/checks.hpp"
+
+namespace fairlines {
+
+namespace {
+
+struct Box {
+  Eigen::Vector3d lo, hi;
+  Eigen::Vector2d ulo, uhi;  // parameter rectangle (u range in x, v range in y)
+};
+
+struct Deriv {
+  Eigen::Vector3d s, su, sv;
+};
+
+Deriv deriv(const NurbsSurface& f, double u, double v) {
+  const Eigen::MatrixXd d = f.derivatives(u, v, 1);
+  return {d.row(0).transpose(), d.row(2).transpose(), d.row(1).transpose()};
+}
+
+bool clamped(const Eigen::VectorXd& k, int p) {
+  const Eigen::Index n = k.size();
+  for (int i = 1; i <= p; ++i)
+    if (k[i] != k[0] || k[n - 1 - i] != k[n - 1]) return false;
+  return true;
+}
+
+/// Knots to insert so every breakpoint (existing interior knots and `extra` uniform ones) has
+/// multiplicity p: afterwards span i of the distinct breakpoints owns control rows i*p..i*p+p.
+Eigen::VectorXd bezier_insertions(const Eigen::VectorXd& k, int p, int extra, std::vector<double>& breaks) {
+  const double a = k[0], b = k[k.size() - 1];
+  std::vector<double> interior;
+  for (Eigen::Index i = p + 1; i < k.size() - p - 1; ++i) interior.push_back(k[i]);
+  std::vector<double> targets = interior;
+  for (int e = 1; e < extra; ++e) targets.push_back(a + (b - a) * e / extra);
+  std::sort(targets.begin(), targets.end());
+  // merge near-equal targets onto the existing knot
+  std::vector<double> uniq;
+  const double eps = 1e-12 * (b - a);
+  for (double t : targets)
+    if (uniq.empty() || t - uniq.back() > eps) uniq.push_back(t);
+  std::vector<double> ins;
+  breaks.assign(1, a);
+  for (double t : uniq) {
+    int mult = 0;
+    double snapped = t;
+    for (double q : interior)
+      if (std::abs(q - t) <= eps) {
+        ++mult;
+        snapped = q;
+      }
+    for (int r = mult; r < p; ++r) ins.push_back(snapped);
+    breaks.push_back(snapped);
+  }
+  breaks.push_back(b);
+  Eigen::VectorXd out(static_cast<Eigen::Index>(ins.size()));
+  for (size_t i = 0; i < ins.size(); ++i) out[static_cast<Eigen::Index>(i)] = ins[i];
+  return out;
+}
+
+std::vector<Box> patch_boxes(const NurbsSurface& s0, int extra) {
+  const int pu = s0.degree_u(), pv = s0.degree_v();
+  if (!clamped(s0.knots_u(), pu) || !clamped(s0.knots_v(), pv))
+    throw InvalidInput("intersect_surfaces: surface knot vectors must be clamped (end knots repeated degree + 1 times)");
+  std::vector<double> bu, bv;
+  const Eigen::VectorXd iu = bezier_insertions(s0.knots_u(), pu, extra, bu);
+  const Eigen::VectorXd iv = bezier_insertions(s0.knots_v(), pv, extra, bv);
+  NurbsSurface s = iu.size() ? s0.refine_knots(Direction::U, iu) : s0;
+  if (iv.size()) s = s.refine_knots(Direction::V, iv);
+  const int nv = s.nv();
+  const Eigen::MatrixXd& P = s.control_points();
+  std::vector<Box> boxes;
+  for (size_t i = 0; i + 1 < bu.size(); ++i)
+    for (size_t j = 0; j + 1 < bv.size(); ++j) {
+      Box bx;
+      bx.lo.setConstant(1e300);
+      bx.hi.setConstant(-1e300);
+      for (int r = 0; r <= pu; ++r)
+        for (int c = 0; c <= pv; ++c) {
+          const Eigen::Vector3d q = P.row((static_cast<int>(i) * pu + r) * nv + static_cast<int>(j) * pv + c);
+          bx.lo = bx.lo.cwiseMin(q);
+          bx.hi = bx.hi.cwiseMax(q);
+        }
+      bx.ulo = {bu[i], bv[j]};
+      bx.uhi = {bu[i + 1], bv[j + 1]};
+      boxes.push_back(bx);
+    }
+  return boxes;
+}
+
+struct Domain {
+  double u0, u1, v0, v1;
+  explicit Domain(const NurbsSurface& s) {
+    std::tie(u0, u1) = s.domain_u();
+    std::tie(v0, v1) = s.domain_v();
+  }
+  bool inside(double u, double v, double slack = 0.0) const {
+    return u >= u0 - slack && u <= u1 + slack && v >= v0 - slack && v <= v1 + slack;
+  }
+  void clamp(double& u, double& v) const {
+    u = std::clamp(u, u0, u1);
+    v = std::clamp(v, v0, v1);
+  }
+};
+
+/// Which parameter of x (0..3) leaves its domain the most, and the boundary value; -1 if none.
+int exiting(const Domain& da, const Domain& db, const Eigen::Vector4d& x, double& value) {
+  const double lo[4] = {da.u0, da.v0, db.u0, db.v0};
+  const double hi[4] = {da.u1, da.v1, db.u1, db.v1};
+  int worst = -1;
+  double excess = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const double span = hi[k] - lo[k];
+    const double e = std::max(lo[k] - x[k], x[k] - hi[k]) / span;
+    if (e > excess) {
+      excess = e;
+      worst = k;
+      value = x[k] < lo[k] ? lo[k] : hi[k];
+    }
+  }
+  return worst;
+}
+
+/// Newton with parameter `fixed` held at `value`: 3 equations S_a = S_b in 3 unknowns.
+bool solve_on_boundary(const NurbsSurface& a, const NurbsSurface& b, const Domain& da, const Domain& db,
+                       Eigen::Vector4d& x, int fixed, double value, double tol) {
+  x[fixed] = value;
+  for (int it = 0; it < 40; ++it) {
+    da.clamp(x[0], x[1]);
+    db.clamp(x[2], x[3]);
+    const Deriv A = deriv(a, x[0], x[1]), B = deriv(b, x[2], x[3]);
+    const Eigen::Vector3d r = A.s - B.s;
+    if (r.norm() < tol) return true;
+    Eigen::Matrix<double, 3, 4> J;
+    J << A.su, A.sv, -B.su, -B.sv;
+    Eigen::Matrix3d K;
+    int c = 0;
+    for (int k = 0; k < 4; ++k)
+      if (k != fixed) K.col(c++) = J.col(k);
+    const Eigen::Vector3d d = K.colPivHouseholderQr().solve(-r);
+    if (!d.allFinite()) return false;
+    c = 0;
+    for (int k = 0; k < 4; ++k)
+      if (k != fixed) x[k] += d[c++];
+  }
+  da.clamp(x[0], x[1]);
+  db.clamp(x[2], x[3]);
+  return (deriv(a, x[0], x[1]).s - deriv(b, x[2], x[3]).s).norm() < tol * 10.0;
+}
+
+IntersectionPoint make_point(const NurbsSurface& a, const NurbsSurface& b, const Eigen::Vector4d& x, double& gap) {
+  const Eigen::Vector3d pa = a.evaluate(x[0], x[1]), pb = b.evaluate(x[2], x[3]);
+  gap = std::max(gap, (pa - pb).norm());
+  return {0.5 * (pa + pb), {x[0], x[1]}, {x[2], x[3]}};
+}
+
+/// Marches from x in direction sign * (n_a x n_b); appends points (excluding the start).
+/// Returns true if the branch closed on `start_point`.
+bool march(const NurbsSurface& a, const NurbsSurface& b, const Domain& da, const Domain& db, Eigen::Vector4d x,
+           double sign, double h0, const IntersectOptions& o, std::vector<IntersectionPoint>& out, double& gap,
+           const Eigen::Vector3d& start_point) {
+  double h = h0;
+  const double h_min = h0 * 1e-4;
+  const double turn_max = o.max_turn_deg * M_PI / 180.0;
+  Eigen::Vector3d t_prev = Eigen::Vector3d::Zero();
+  int steps = 0;
+  while (static_cast<int>(out.size()) < o.max_points) {
+    const Deriv A = deriv(a, x[0], x[1]), B = deriv(b, x[2], x[3]);
+    Eigen::Vector3d t = A.su.cross(A.sv).normalized().cross(B.su.cross(B.sv).normalized());
+    if (t.norm() < 1e-9) {
+      std::ostringstream os;
+      os << "intersect_surfaces: tangential contact at (" << A.s.transpose()
+         << "); the surfaces touch instead of crossing";
+      throw ConvergenceError(os.str());
+    }
+    t = sign * t.normalized();
+    if (steps > 0 && t.dot(t_prev) < 0.0) t = -t;  // keep heading
+    bool accepted = false;
+    Eigen::Vector4d xn;
+    while (!accepted) {
+      if (h < h_min) {
+        std::ostringstream os;
+        os << "intersect_surfaces: marching step collapsed near (" << A.s.transpose() << ")";
+        throw ConvergenceError(os.str());
+      }
+      // predictor: parameter steps that move each surface by h t
+      Eigen::Matrix<double, 3, 2> Ja, Jb;
+      Ja << A.su, A.sv;
+      Jb << B.su, B.sv;
+      const Eigen::Vector2d ga = Ja.colPivHouseholderQr().solve(h * t);
+      const Eigen::Vector2d gb = Jb.colPivHouseholderQr().solve(h * t);
+      xn << x[0] + ga[0], x[1] + ga[1], x[2] + gb[0], x[3] + gb[1];
+      // corrector: S_a = S_b on the plane (P - P0) . t = h
+      bool ok = false;
+      bool left = false;
+      for (int it = 0; it < 30; ++it) {
+        double bv;
+        if (exiting(da, db, xn, bv) >= 0) {
+          left = true;
+          break;
+        }
+        const Deriv An = deriv(a, xn[0], xn[1]), Bn = deriv(b, xn[2], xn[3]);
+        Eigen::Vector4d F;
+        F.head<3>() = An.s - Bn.s;
+        F[3] = (An.s - A.s).dot(t) - h;
+        if (F.head<3>().norm() < o.tolerance && std::abs(F[3]) < 1e-3 * h) {
+          ok = true;
+          break;
+        }
+        Eigen::Matrix4d J;
+        J.block<3, 1>(0, 0) = An.su;
+        J.block<3, 1>(0, 1) = An.sv;
+        J.block<3, 1>(0, 2) = -Bn.su;
+        J.block<3, 1>(0, 3) = -Bn.sv;
+        J(3, 0) = An.su.dot(t);
+        J(3, 1) = An.sv.dot(t);
+        J(3, 2) = 0.0;
+        J(3, 3) = 0.0;
+        const Eigen::Vector4d d = J.partialPivLu().solve(-F);
+        if (!d.allFinite()) break;
+        xn += d;
+      }
+      if (ok) {
+        const Deriv An = deriv(a, xn[0], xn[1]), Bn = deriv(b, xn[2], xn[3]);
+        Eigen::Vector3d tn = An.su.cross(An.sv).normalized().cross(Bn.su.cross(Bn.sv).normalized());
+        const double turn = tn.norm() > 1e-12 ? std::acos(std::min(1.0, std::abs(tn.normalized().dot(t)))) : M_PI;
+        if (turn > turn_max) ok = false;
+      }
+      if (left) {
+        // the step leaves a parameter domain: land on that boundary from the current point
+        double bval = 0.0;
+        const int ex = exiting(da, db, xn, bval);
+        Eigen::Vector4d xb = x;
+        if (solve_on_boundary(a, b, da, db, xb, ex, bval, o.tolerance) &&
+            (a.evaluate(xb[0], xb[1]) - A.s).norm() < 2.0 * h) {
+          out.push_back(make_point(a, b, xb, gap));
+          return false;
+        }
+        ok = false;
+      }
+      if (ok) accepted = true;
+      else h *= 0.5;
+    }
+    double bval = 0.0;
+    const int ex = exiting(da, db, xn, bval);
+    if (ex >= 0) {
+      Eigen::Vector4d xb = xn;
+      if (!solve_on_boundary(a, b, da, db, xb, ex, bval, o.tolerance)) {
+        xb = x;  // boundary solve from the last inside point
+        if (!solve_on_boundary(a, b, da, db, xb, ex, bval, o.tolerance))
+          throw ConvergenceError("intersect_surfaces: could not land a branch on a domain boundary");
+      }
+      out.push_back(make_point(a, b, xb, gap));
+      return false;
+    }
+    x = xn;
+    out.push_back(make_point(a, b, x, gap));
+    t_prev = t;
+    ++steps;
+    if (steps > 3 && (out.back().point - start_point).norm() < 0.75 * h) return true;
+    if (h < h0) h = std::min(h0, h * 1.5);
+  }
+  throw ConvergenceError("intersect_surfaces: branch exceeded max_points");
+}
+
+}  // namespace
+
+double refine_intersection(const NurbsSurface& a, const NurbsSurface& b, Eigen::Vector4d& x, double tolerance,
+                           int max_iterations) {
+  const Domain da(a), db(b);
+  double r_norm = 1e300;
+  for (int it = 0; it < max_iterations; ++it) {
+    da.clamp(x[0], x[1]);
+    db.clamp(x[2], x[3]);
+    const Deriv A = deriv(a, x[0], x[1]), B = deriv(b, x[2], x[3]);
+    const Eigen::Vector3d r = A.s - B.s;
+    r_norm = r.norm();
+    if (r_norm < tolerance) return r_norm;
+    Eigen::Matrix<double, 3, 4> J;
+    J << A.su, A.sv, -B.su, -B.sv;
+    const Eigen::Vector4d d = J.completeOrthogonalDecomposition().solve(-r);
+    if (!d.allFinite()) break;
+    x += d;
+  }
+  da.clamp(x[0], x[1]);
+  db.clamp(x[2], x[3]);
+  return (a.evaluate(x[0], x[1]) - b.evaluate(x[2], x[3])).norm();
+}
+
+std::vector<IntersectionCurve> intersect_surfaces(const NurbsSurface& a, const NurbsSurface& b,
+                                                  const IntersectOptions& o) {
+  if (o.subdivisions < 1) detail::fail("subdivisions is ", o.subdivisions, "; expected an integer >= 1");
+  if (!(o.tolerance > 0.0) || o.tolerance > 1e-6)
+    detail::fail("tolerance is ", o.tolerance, "; expected a value in (0, 1e-6] metres");
+  if (o.step < 0.0 || !std::isfinite(o.step)) detail::fail("step is ", o.step, "; expected >= 0 metres");
+  if (o.max_points < 10) detail::fail("max_points is ", o.max_points, "; expected >= 10");
+  const std::vector<Box> ba = patch_boxes(a, o.subdivisions), bb = patch_boxes(b, o.subdivisions);
+  auto diag = [](const std::vector<Box>& bs) {
+    Eigen::Vector3d lo = bs[0].lo, hi = bs[0].hi;
+    for (const auto& x : bs) {
+      lo = lo.cwiseMin(x.lo);
+      hi = hi.cwiseMax(x.hi);
+    }
+    return (hi - lo).norm();
+  };
+  const double h0 = o.step > 0.0 ? o.step : std::min(diag(ba), diag(bb)) / 150.0;
+  const double slack = 1e-9 * std::max(diag(ba), diag(bb));
+  const Domain da(a), db(b);
+  // seeds: Newton from the centres of every overlapping patch pair
+  std::vector<Eigen::Vector4d> seeds;
+  for (const auto& p : ba)
+    for (const auto& q : bb) {
+      if ((p.lo.array() > q.hi.array() + slack).any() || (q.lo.array() > p.hi.array() + slack).any()) continue;
+      Eigen::Vector4d x;
+      x << 0.5 * (p.ulo + p.uhi), 0.5 * (q.ulo + q.uhi);
+      if (refine_intersection(a, b, x, o.tolerance) < o.tolerance) seeds.push_back(x);
+    }
+  std::vector<IntersectionCurve> curves;
+  for (const auto& s : seeds) {
+    const Eigen::Vector3d ps = a.evaluate(s[0], s[1]);
+    bool covered = false;
+    for (const auto& c : curves) {
+      for (const auto& q : c.points)
+        if ((q.point - ps).norm() < 2.0 * h0) {
+          covered = true;
+          break;
+        }
+      if (covered) break;
+    }
+    if (covered) continue;
+    IntersectionCurve c;
+    double gap = 0.0;
+    std::vector<IntersectionPoint> fwd, bwd;
+    const IntersectionPoint p0 = make_point(a, b, s, gap);
+    const bool closed = march(a, b, da, db, s, 1.0, h0, o, fwd, gap, p0.point);
+    if (!closed) march(a, b, da, db, s, -1.0, h0, o, bwd, gap, p0.point);
+    c.points.assign(bwd.rbegin(), bwd.rend());
+    c.points.push_back(p0);
+    c.points.insert(c.points.end(), fwd.begin(), fwd.end());
+    if (closed) c.points.pop_back();  // last point duplicates the start region
+    c.closed = closed;
+    c.max_gap = gap;
+    curves.push_back(std::move(c));
+  }
+  return curves;
+}
+
+}  // namespace fairlines

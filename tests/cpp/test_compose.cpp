@@ -1,0 +1,190 @@
+// Surface-surface intersection, bulb from Kracht coefficients and the composed hull.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "compose_fixtures.hpp"
+#include "fairlines/blend.hpp"
+#include "fairlines/bulb.hpp"
+#include "fairlines/compose.hpp"
+#include "fairlines/conics.hpp"
+#include "fairlines/errors.hpp"
+#include "fairlines/intersect.hpp"
+
+using namespace fairlines;
+using fairlines::test::Forebody;
+
+namespace {
+
+NurbsSurface plane_z(double z0, double half) {  // bilinear plane z = z0 over [-half, half]^2
+  Eigen::VectorXd k(4);
+  k << 0, 0, 1, 1;
+  Eigen::MatrixXd P(4, 3);
+  P << -half, -half, z0, -half, half, z0, half, -half, z0, half, half, z0;
+  return NurbsSurface(1, 1, k, k, 2, 2, P);
+}
+
+}  // namespace
+
+TEST(Intersect, SphereAndPlaneGiveTheCircle) {
+  // exact rational sphere of radius 3 cut by z = 1: circle of radius sqrt(8)
+  const NurbsSurface s = sphere(Eigen::Vector3d::Zero(), 3.0);
+  const auto curves = intersect_surfaces(s, plane_z(1.0, 5.0));
+  ASSERT_GE(curves.size(), 1u);
+  double max_r_err = 0.0, max_gap = 0.0;
+  size_t n = 0;
+  for (const auto& c : curves) {
+    max_gap = std::max(max_gap, c.max_gap);
+    for (const auto& p : c.points) {
+      max_r_err = std::max(max_r_err, std::abs(std::hypot(p.point.x(), p.point.y()) - std::sqrt(8.0)));
+      max_r_err = std::max(max_r_err, std::abs(p.point.z() - 1.0));
+      ++n;
+    }
+  }
+  EXPECT_GT(n, 20u);
+  EXPECT_LT(max_r_err, 1e-6);
+  EXPECT_LT(max_gap, 1e-6);
+}
+
+TEST(Intersect, DisjointSurfacesGiveNothing) {
+  const NurbsSurface s = sphere(Eigen::Vector3d::Zero(), 1.0);
+  EXPECT_TRUE(intersect_surfaces(s, plane_z(2.0, 5.0)).empty());
+}
+
+TEST(Bulb, AnalyticBodyMeetsTheKrachtQuantities) {
+  Forebody fb;
+  KrachtCoefficients k;
+  const BulbousBow b = make_bulbous_bow(k, fb.ship());
+  const ShipParticulars s = fb.ship();
+  EXPECT_NEAR(b.shape.length, k.c_lpr * s.lpp, 1e-12);
+  EXPECT_LT(b.max_fit_deviation, 0.02);
+  // nose pole: foremost point at FP + L_PR and height Z_B
+  const Eigen::Vector3d nose = b.surface.evaluate(1.0, 0.5);
+  EXPECT_NEAR(nose.x(), s.lpp + k.c_lpr * s.lpp, 1e-9);
+  EXPECT_NEAR(nose.z(), k.c_zb * s.draft_fp, 1e-9);
+}
+
+TEST(Bulb, ConflictingCoefficientsAreReported) {
+  Forebody fb;
+  KrachtCoefficients k;
+  k.c_vpr = 0.02;  // far more volume than the section and length allow
+  EXPECT_THROW(make_bulbous_bow(k, fb.ship()), InfeasibleFormParameters);
+  k = KrachtCoefficients{};
+  k.c_bb = -0.1;
+  EXPECT_THROW(make_bulbous_bow(k, fb.ship()), InvalidInput);
+}
+
+TEST(Compose, BareHullIsClosedAndHasTheQuadratureVolume) {
+  Forebody fb;
+  const NurbsSurface h = fb.surface();
+  const ComposedHull c = compose_hull(h, nullptr, ComposeOptions{});
+  const auto chk = fairlines::test::check_edges(c.mesh);
+  EXPECT_EQ(chk.open, 0);
+  EXPECT_EQ(chk.non_manifold, 0);
+  EXPECT_EQ(chk.misoriented, 0);
+  // analytic volume of the half forebody: int int y dz dx
+  // int_0^1 (1 - xi^4) dxi = 4/5; int_0^D (1 - (1 - z/D)^6) dz = 6 D / 7
+  const double exact = 0.5 * fb.B * (0.5 * fb.L) * 0.8 * fb.D * 6.0 / 7.0;
+  EXPECT_NEAR(mesh_volume(c.mesh) / exact, 1.0, 2e-3);
+}
+
+TEST(Compose, HullWithBulbIsWatertightOrientedAndSelfIntersectionFree) {
+  Forebody fb;
+  const NurbsSurface h = fb.surface();
+  const BulbousBow b = make_bulbous_bow(KrachtCoefficients{}, fb.ship());
+  const ComposedHull c = compose_hull(h, &b.surface, ComposeOptions{});
+  const auto chk = fairlines::test::check_edges(c.mesh);
+  EXPECT_EQ(chk.open, 0);
+  EXPECT_EQ(chk.non_manifold, 0);
+  EXPECT_EQ(chk.misoriented, 0);
+  EXPECT_EQ(fairlines::test::count_self_intersections(c.mesh), 0);
+  ASSERT_EQ(c.intersection_curves.size(), 1u);
+  EXPECT_LT(c.intersection_curves[0].max_gap, 1e-6);
+  // every seam vertex lies on both surfaces
+  for (const auto& p : c.intersection_curves[0].points) {
+    EXPECT_LT((c.hull.evaluate(p.uv_a.x(), p.uv_a.y()) - p.point).norm(), 1e-6);
+    EXPECT_LT((b.surface.evaluate(p.uv_b.x(), p.uv_b.y()) - p.point).norm(), 1e-6);
+  }
+  EXPECT_GT(mesh_volume(c.mesh), 0.0);
+  const TriMesh full = mirror_full_hull(c);
+  const auto fchk = fairlines::test::check_edges(full);
+  EXPECT_EQ(fchk.open, 0);
+  EXPECT_EQ(fchk.non_manifold, 0);
+  EXPECT_EQ(fchk.misoriented, 0);
+  EXPECT_NEAR(mesh_volume(full), 2.0 * mesh_volume(c.mesh), 1e-6 * mesh_volume(full));
+}
+
+TEST(Compose, BulbAwayFromTheHullIsAClearError) {
+  Forebody fb;
+  ShipParticulars s = fb.ship();
+  s.x_fp = s.lpp + 40.0;  // bulb entirely ahead of the stem
+  const BulbousBow b = make_bulbous_bow(KrachtCoefficients{}, s);
+  try {
+    compose_hull(fb.surface(), &b.surface, ComposeOptions{});
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("bulb cannot meet the hull"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Blend, FilletFromPlaneToCylinderIsTangentPlaneContinuous) {
+  const NurbsSurface plane = plane_z(0.0, 5.0);  // (u, v) -> (-5 + 10 u, -5 + 10 v, 0)
+  const NurbsSurface cyl = cylinder(Eigen::Vector3d(0, 0, 2), Eigen::Vector3d(0, 0, 1), 1.0, 3.0);
+  const int k = 129;
+  Eigen::MatrixXd ca(k, 2), cb(k, 2);
+  for (int i = 0; i < k; ++i) {
+    const double a = 2.0 * M_PI * i / (k - 1);
+    ca.row(i) << 0.5 + 0.3 * std::cos(a), 0.5 + 0.3 * std::sin(a);
+    cb.row(i) << static_cast<double>(i) / (k - 1), 0.0;  // the cylinder's bottom circle
+  }
+  const BlendSurface b = blend_surface(plane, ca, cyl, cb);
+  EXPECT_LT(b.at_a.max_angle_deg, 0.5);
+  EXPECT_LT(b.at_b.max_angle_deg, 0.5);
+  EXPECT_LT(b.at_a.max_gap, 1e-3);
+  // independent check at the boundary: the blend's normal is vertical on the plane side
+  for (int i = 0; i <= 20; ++i) {
+    const Eigen::MatrixXd d = b.surface.derivatives(i / 20.0, 0.0, 1);
+    const Eigen::Vector3d su = d.row(2).transpose(), sv = d.row(1).transpose();
+    const Eigen::Vector3d n = su.cross(sv).normalized();
+    EXPECT_GT(std::abs(n.z()), std::cos(0.5 * M_PI / 180.0));
+  }
+  Eigen::MatrixXd one(1, 2);
+  one << 0.5, 0.5;
+  EXPECT_THROW(blend_surface(plane, one, cyl, cb), InvalidInput);
+}
+
+TEST(Compose, HullBulbAndBlendComposeWatertightWithC1Boundaries) {
+  Forebody fb;
+  const NurbsSurface h = fb.surface();
+  const BulbousBow b = make_bulbous_bow(KrachtCoefficients{}, fb.ship());
+  const ComposedHull u = compose_hull(h, &b.surface, ComposeOptions{});
+  // hull boundary: a half ellipse in (u, v) around the union seam, ending on the stem edge
+  double umin = 1.0, tlo = 1.0, thi = 0.0, ubmax = 0.0;
+  for (const auto& p : u.intersection_curves[0].points) {
+    umin = std::min(umin, p.uv_a.x());
+    tlo = std::min(tlo, p.uv_a.y());
+    thi = std::max(thi, p.uv_a.y());
+    ubmax = std::max(ubmax, p.uv_b.x());
+  }
+  const double tc = 0.5 * (tlo + thi), R = 0.5 * (thi - tlo) + 0.03, du = 1.0 - umin + 0.02;
+  ASSERT_GT(tc - R, 0.0);
+  const int k = 65;
+  BlendSpec spec;
+  spec.hull_uv.resize(k, 2);
+  for (int i = 0; i < k; ++i) {
+    const double phi = M_PI * i / (k - 1);
+    spec.hull_uv.row(i) << 1.0 - du * std::sin(phi), tc - R * std::cos(phi);
+  }
+  spec.bulb_u = std::min(0.95, ubmax + 0.08);
+  const ComposedHull c = compose_hull(h, &b.surface, ComposeOptions{}, &spec);
+  const auto chk = fairlines::test::check_edges(c.mesh);
+  EXPECT_EQ(chk.open, 0);
+  EXPECT_EQ(chk.non_manifold, 0);
+  EXPECT_EQ(chk.misoriented, 0);
+  EXPECT_EQ(fairlines::test::count_self_intersections(c.mesh), 0);
+  EXPECT_LE(c.blend_at_hull.max_angle_deg, 0.5);
+  EXPECT_LE(c.blend_at_bulb.max_angle_deg, 0.5);
+  EXPECT_GT(mesh_volume(c.mesh), 0.0);
+  const auto fchk = fairlines::test::check_edges(mirror_full_hull(c));
+  EXPECT_EQ(fchk.open + fchk.non_manifold + fchk.misoriented, 0);
+}

@@ -1,0 +1,348 @@
+"""Issue 5: bulbous bow, surface-surface intersection and the composed watertight hull.
+
+Stand-ins (issue 4's bare hull lands later): a Wigley-type forebody y = B/2 (1 - xi^4)
+(1 - (1 - z/D)^6) fitted as a bicubic surface, with Panamax particulars. Every check below
+uses code of its own (numpy edge census, quadrature of the NURBS surfaces) rather than the
+engine's own checks.
+"""
+
+import numpy as np
+import pytest
+from matplotlib.path import Path
+
+import fairlines as fl
+
+L, B, T, D = 244.8, 32.25, 11.0, 19.0
+SHIP = dict(lpp=L, beam=B, draft_fp=T, midship_area=0.97 * B * T, displacement_volume=0.65 * L * B * T)
+KRACHT_TOL = 0.02      # issue 5: measured coefficients within 2 %
+VOLUME_TOL = 0.002     # issue 5: composed = bare + added within 0.2 %
+
+
+def forebody_surface(rows=41, cols=25):
+    r = np.arange(rows)[:, None]
+    c = np.arange(cols)[None, :]
+    x = 0.5 * L + 0.5 * L * (1 - np.cos(np.pi * 0.5 * r / (rows - 1))) + 0 * c
+    z = D * (1 - np.cos(np.pi * 0.5 * c / (cols - 1))) + 0 * r
+    xi = (x - 0.5 * L) / (0.5 * L)
+    y = 0.5 * B * (1 - xi**4) * (1 - (1 - z / D) ** 6)
+    return fl.fit_surface(np.stack([x, y, z], axis=-1), n_control_u=16, n_control_v=12).surface
+
+
+@pytest.fixture(scope="module")
+def hull():
+    return forebody_surface()
+
+
+@pytest.fixture(scope="module")
+def bulb():
+    return fl.BulbousBow(**SHIP)
+
+
+@pytest.fixture(scope="module")
+def composed(hull, bulb):
+    return fl.compose([hull, bulb])
+
+
+def edge_census(faces):
+    """(open, non-manifold, misoriented) edge counts, computed here with numpy."""
+    f = np.asarray(faces)
+    directed = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+    und = np.sort(directed, axis=1)
+    _, counts = np.unique(und, axis=0, return_counts=True)
+    _, dcounts = np.unique(directed, axis=0, return_counts=True)
+    return int((counts == 1).sum()), int((counts > 2).sum()), int((dcounts > 1).sum())
+
+
+def test_composed_half_hull_is_closed_manifold_and_oriented(composed):
+    m = composed.mesh
+    assert m.vertices.shape[1] == 3 and m.faces.shape[1] == 3
+    assert edge_census(m.faces) == (0, 0, 0)
+    assert not np.any(m.faces[:, 0] == m.faces[:, 1]) and not np.any(m.faces[:, 1] == m.faces[:, 2])
+    # outward: the signed volume (own divergence sum) is positive
+    t = m.vertices[m.faces]
+    vol = np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0
+    assert vol > 0 and vol == pytest.approx(composed.volume, rel=1e-12)
+    assert np.all(m.vertices[:, 1] >= 0.0)
+
+
+def test_full_hull_is_closed_and_twice_the_half(composed):
+    full = composed.full_mesh()
+    assert edge_census(full.faces) == (0, 0, 0)
+    assert full.volume == pytest.approx(2.0 * composed.volume, rel=1e-9)
+    assert full.vertices[:, 1].min() == pytest.approx(-full.vertices[:, 1].max())
+
+
+def test_seam_vertices_lie_on_both_surfaces_and_are_shared(composed, bulb):
+    hull_s = composed.trimmed_surfaces[0][0]
+    seam = composed.mesh.vertices[composed.seam_vertices]
+    for p in seam[:: max(1, len(seam) // 8)]:
+        assert np.linalg.norm(hull_s.closest_point(p)[2] - p) < 1e-6
+        assert np.linalg.norm(bulb.surface.closest_point(p)[2] - p) < 1e-6
+    (curve,) = composed.intersection_curves
+    assert curve["max_gap"] <= 1e-6
+    # each seam edge is used by one hull face and one bulb face
+    f, part = composed.mesh.faces, composed.face_part
+    for a, b in zip(composed.seam_vertices[:-1], composed.seam_vertices[1:]):
+        users = [i for i in np.nonzero(np.any(f == a, axis=1) & np.any(f == b, axis=1))[0]]
+        assert sorted(part[users].tolist()) == [0, 1]
+
+
+def test_intersection_of_sphere_and_plane_is_the_circle():
+    s = fl.sphere([0.0, 0.0, 0.0], 3.0)
+    plane = fl.NurbsSurface(1, 1, [0, 0, 1, 1], [0, 0, 1, 1],
+                            [[[-5, -5, 1], [-5, 5, 1]], [[5, -5, 1], [5, 5, 1]]])
+    curves = fl.intersect_surfaces(s, plane)
+    pts = np.concatenate([c["points"] for c in curves])
+    assert len(pts) > 20
+    assert np.abs(np.hypot(pts[:, 0], pts[:, 1]) - np.sqrt(8.0)).max() < 1e-6
+    assert max(c["max_gap"] for c in curves) <= 1e-6
+
+
+def test_kracht_coefficients_measured_back_within_two_percent(composed, bulb):
+    got = fl.measure_kracht(composed.mesh, x_fp=L, **SHIP)
+    for name in fl.KRACHT_NAMES:
+        assert got[name] == pytest.approx(bulb.kracht[name], rel=KRACHT_TOL), name
+
+
+def _flux_y(surface, loop=None, n=400):
+    """int y n_y dA over the surface (or the part inside a parameter-space loop), by the
+    midpoint rule on an n x n parameter grid with central-difference partials."""
+    ku, kv = surface.knots_u, surface.knots_v
+    u0, u1, v0, v1 = ku[0], ku[-1], kv[0], kv[-1]
+    if loop is not None:
+        u0, v0 = np.maximum(loop.min(axis=0), [u0, v0])
+        u1, v1 = np.minimum(loop.max(axis=0), [u1, v1])
+    du, dv = (u1 - u0) / n, (v1 - v0) / n
+    uc = u0 + du * (np.arange(n) + 0.5)
+    vc = v0 + dv * (np.arange(n) + 0.5)
+    U, V = [a.ravel() for a in np.meshgrid(uc, vc, indexing="ij")]
+    if loop is not None:
+        keep = Path(loop).contains_points(np.column_stack([U, V]))
+        U, V = U[keep], V[keep]
+    h = 1e-6
+    su = (surface.evaluate(np.minimum(U + h, u1), V) - surface.evaluate(np.maximum(U - h, u0), V)) / (
+        np.minimum(U + h, u1) - np.maximum(U - h, u0))[:, None]
+    sv = (surface.evaluate(U, np.minimum(V + h, v1)) - surface.evaluate(U, np.maximum(V - h, v0))) / (
+        np.minimum(V + h, v1) - np.maximum(V - h, v0))[:, None]
+    y = surface.evaluate(U, V)[:, 1]
+    return float(np.sum(y * np.cross(su, sv)[:, 1]) * du * dv)
+
+
+def test_composed_volume_is_bare_plus_bulb_two_independent_ways(hull, composed, bulb):
+    """Way 1: divergence theorem on the meshes. Way 2: quadrature of y n_y over the NURBS
+    surfaces (the caps add nothing: n_y = 0 on deck and aft cut, y = 0 on the centre plane):
+    bare = whole hull surface; added = kept bulb - hull hole, over their trimming loops."""
+    bare = fl.compose([hull])
+    hull_s = composed.trimmed_surfaces[0][0]
+    sign = -1.0 if _flux_y(hull_s, n=200) < 0 else 1.0  # u forward, v up: S_u x S_v points inward
+    v_bare_q = sign * _flux_y(hull_s, n=200)
+    (hole,) = [l for l in composed.trimmed_surfaces[0][1]]
+    seam_uv = composed.intersection_curves[0]["uv_a"]
+    hole_loop = np.vstack([seam_uv, [[hull_s.knots_u[-1], hull_s.knots_v[0]]]])
+    (bulb_loop,) = composed.trimmed_surfaces[1][1]
+    v_added_q = sign * (_flux_y(bulb.surface, bulb_loop) - _flux_y(hull_s, hole_loop))
+    v_added_mesh = composed.volume - bare.volume
+    assert bare.volume == pytest.approx(v_bare_q, rel=VOLUME_TOL)
+    assert composed.volume == pytest.approx(v_bare_q + v_added_q, rel=VOLUME_TOL)
+    assert v_added_mesh == pytest.approx(v_added_q, rel=0.05)
+    assert v_added_q > 0.5 * bulb.shape["volume"]  # the half bulb forward of FP at least
+
+
+@pytest.mark.parametrize("c_lpr", [0.018, 0.024, 0.031])
+@pytest.mark.parametrize("c_bb", [0.15, 0.18, 0.21])
+def test_sweep_of_bulb_length_and_breadth_composes(hull, c_lpr, c_bb):
+    # length and breadth swept at constant shape: areas and volume scale with them
+    sl, sb = c_lpr / 0.025, c_bb / 0.18
+    b = fl.BulbousBow(**SHIP, c_lpr=c_lpr, c_bb=c_bb, c_abt=0.10 * sb, c_abl=0.10 * sl, c_vpr=0.0022 * sl * sb)
+    c = fl.compose([hull, b])
+    assert edge_census(c.mesh.faces) == (0, 0, 0)
+    got = fl.measure_kracht(c.mesh, x_fp=L, **SHIP)
+    for name in fl.KRACHT_NAMES:
+        assert got[name] == pytest.approx(b.kracht[name], rel=KRACHT_TOL), (name, c_lpr, c_bb)
+    # and with a blending surface between hull and bulb
+    on_bulb = ("u", float(c.intersection_curves[0]["uv_b"][:, 0].max()) + 0.04)
+    bl = fl.blend_surface(hull, _hull_boundary_around(c), b.surface, on_bulb)
+    cb = fl.compose([hull, b, bl])
+    assert edge_census(cb.mesh.faces) == (0, 0, 0)
+    assert max(d["max_angle_deg"] for d in cb.blend_continuity) <= MAX_BLEND_ANGLE_DEG
+
+
+def test_bulb_that_cannot_meet_the_hull_is_a_clear_error(hull):
+    far = fl.BulbousBow(**SHIP, x_fp=L + 30.0)
+    with pytest.raises(ValueError, match="bulb cannot meet the hull"):
+        fl.compose([hull, far])
+    short = fl.BulbousBow(**SHIP, aft_length=0.5)
+    with pytest.raises(ValueError, match="bulb cannot meet the hull"):
+        fl.compose([hull, short])
+
+
+def test_bad_input_names_the_value(hull, bulb):
+    with pytest.raises(ValueError, match="operation"):
+        fl.compose([hull, bulb], operation="difference")
+    with pytest.raises(ValueError, match="c_bb"):
+        fl.BulbousBow(**{**SHIP, "c_bb": -0.1})
+    with pytest.raises(fl.InfeasibleFormParameters, match="c_vpr"):
+        fl.BulbousBow(**SHIP, c_vpr=0.02)
+    with pytest.raises(fl.InfeasibleFormParameters, match="c_abt"):
+        fl.BulbousBow(**SHIP, c_abt=0.05)  # a diamond section
+    with pytest.raises(ValueError, match="hull_u"):
+        fl.compose([hull, bulb], hull_u=1)
+    with pytest.raises(ValueError, match="subdomains"):
+        fl.compose([hull, bulb, bulb, bulb])
+    with pytest.raises(ValueError, match="aft cut"):
+        fl.compose([bulb.surface])  # a bulb is not a bare hull
+
+
+def test_bulb_from_json_section():
+    b = fl.BulbousBow.from_dict({"kracht": {"c_lpr": 0.027}, "shape": {"aft_length": 10.0}}, SHIP)
+    assert b.shape["length"] == pytest.approx(0.027 * L)
+    with pytest.raises(ValueError, match="unknown keys"):
+        fl.BulbousBow.from_dict({"kracht": {"c_xx": 1.0}}, SHIP)
+
+
+def test_obj_and_stl_round_trip(composed, tmp_path):
+    m = composed.mesh
+    composed.write_obj(tmp_path / "hull.obj")
+    v, f = [], []
+    for line in (tmp_path / "hull.obj").read_text().splitlines():
+        if line.startswith("v "):
+            v.append([float(x) for x in line.split()[1:]])
+        elif line.startswith("f "):
+            f.append([int(x) - 1 for x in line.split()[1:]])
+    np.testing.assert_allclose(np.array(v), m.vertices, rtol=1e-9, atol=1e-7)
+    np.testing.assert_array_equal(np.array(f), m.faces)
+    composed.write_stl(tmp_path / "hull.stl", full=True)
+    raw = (tmp_path / "hull.stl").read_bytes()
+    n = int(np.frombuffer(raw[80:84], dtype="<u4")[0])
+    full = composed.full_mesh()
+    assert n == len(full.faces) and len(raw) == 84 + 50 * n
+    rec = np.frombuffer(raw[84:], dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]))
+    np.testing.assert_allclose(rec["v"], full.vertices[full.faces], rtol=1e-6, atol=1e-4)
+
+
+def test_mesh_hydrostatics_of_the_bare_forebody_match_the_analytic_integrals(hull):
+    h = fl.mesh_hydrostatics(fl.compose([hull]).mesh, T)
+    # y = B/2 g(xi) k(z): V = 2 int int y dz dx with int_0^1 (1 - xi^4) = 4/5 and
+    # int_0^T (1 - (1 - z/D)^6) dz = T - D/7 (1 - (1 - T/D)^7)
+    kz = T - D / 7 * (1 - (1 - T / D) ** 7)
+    vol = 2 * 0.5 * B * 0.5 * L * 0.8 * kz
+    # LCB: x = L/2 + (L/2) xi, int xi (1 - xi^4) / int (1 - xi^4) = (1/2 - 1/6) / (4/5)
+    lcb = 0.5 * L + 0.5 * L * (1 / 2 - 1 / 6) / 0.8
+    zs = np.linspace(0, T, 20001)
+    w = 1 - (1 - zs / D) ** 6
+    trap = lambda f: float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(zs)))  # noqa: E731
+    kb = trap(zs * w) / trap(w)
+    assert h["volume"] == pytest.approx(vol, rel=3e-3)
+    assert h["lcb"] == pytest.approx(lcb, rel=1e-3)
+    assert h["kb"] == pytest.approx(kb, rel=3e-3)
+
+
+def test_compose_forebody_example_runs(tmp_path, monkeypatch, capsys):
+    import runpy
+    import sys
+    from pathlib import Path
+
+    script = Path(__file__).resolve().parents[2] / "examples" / "compose_forebody.py"
+    monkeypatch.setattr(sys, "argv", ["compose_forebody.py", "--out", str(tmp_path)])
+    runpy.run_path(str(script), run_name="__main__")
+    assert "c_vpr" in capsys.readouterr().out
+    assert (tmp_path / "panamax_standin_forebody_full.stl").stat().st_size > 84
+
+
+MAX_BLEND_ANGLE_DEG = 0.5  # issue 5: normals across each blend boundary within 0.5 degrees
+
+
+def _normal_angle_profile(blend, at_v1, surface, n=300):
+    """Angles (deg) between blend and surface normals along a blend edge, computed here
+    with the public evaluation API (closest_point + normal) independently of the engine's
+    own measurement."""
+    out = []
+    for u in np.linspace(0.0, 1.0, n):
+        d = blend.derivatives(u, 1.0 if at_v1 else 0.0, 1)
+        nb = np.cross(d[1, 0], d[0, 1])
+        nb /= np.linalg.norm(nb)
+        su, sv, q = surface.closest_point(d[0, 0])
+        out.append(np.degrees(np.arccos(min(1.0, abs(float(nb @ surface.normal(su, sv)))))))
+        assert np.linalg.norm(q - d[0, 0]) < 1e-3
+    return np.array(out)
+
+
+def test_blend_between_hull_and_bulb_is_tangent_plane_continuous(composed, bulb):
+    hull_s = composed.trimmed_surfaces[0][0]
+    seam = composed.intersection_curves[0]
+    on_hull = seam["uv_a"] - [0.03, 0.0]  # a curve on the hull aft of the seam
+    on_bulb = ("u", float(seam["uv_b"][:, 0].max()) + 0.08)  # a bulb section ahead of it
+    bl = fl.blend_surface(hull_s, on_hull, bulb.surface, on_bulb)
+    assert bl.max_angle_deg <= MAX_BLEND_ANGLE_DEG
+    assert _normal_angle_profile(bl.surface, False, hull_s).max() <= MAX_BLEND_ANGLE_DEG
+    assert _normal_angle_profile(bl.surface, True, bulb.surface).max() <= MAX_BLEND_ANGLE_DEG
+    assert bl.at_a["max_gap"] < 1e-3 and bl.at_b["max_gap"] < 1e-3
+
+
+def test_blend_of_plane_and_cylinder_is_c1():
+    """A fillet from the deck-like plane z = 0 (circle of radius 3) up to the bottom circle of
+    a vertical cylinder of radius 1 at z = 2: normals must match the plane's (+-z) and the
+    cylinder's (radial) along the two circles."""
+    plane = fl.NurbsSurface(1, 1, [0, 0, 1, 1], [0, 0, 1, 1],
+                            [[[-5, -5, 0], [-5, 5, 0]], [[5, -5, 0], [5, 5, 0]]])
+    cyl = fl.cylinder([0.0, 0.0, 2.0], [0.0, 0.0, 1.0], 1.0, 3.0)
+    a = np.linspace(0.0, 2.0 * np.pi, 129)
+    circle_uv = np.column_stack([0.5 + 0.3 * np.cos(a), 0.5 + 0.3 * np.sin(a)])
+    bl = fl.blend_surface(plane, circle_uv, cyl, ("v", 0.0))
+    assert bl.max_angle_deg <= MAX_BLEND_ANGLE_DEG
+    assert _normal_angle_profile(bl.surface, False, plane).max() <= MAX_BLEND_ANGLE_DEG
+    assert _normal_angle_profile(bl.surface, True, cyl).max() <= MAX_BLEND_ANGLE_DEG
+    mid = bl.surface.evaluate(np.linspace(0, 1, 50), np.full(50, 0.5))
+    r = np.hypot(mid[:, 0], mid[:, 1])
+    assert np.all((r > 1.0) & (r < 3.0)) and np.all((mid[:, 2] > 0.0) & (mid[:, 2] < 2.0))
+    with pytest.raises(ValueError, match="boundary_a"):
+        fl.blend_surface(plane, [[0.5, 0.5]], cyl, ("v", 0.0))
+    with pytest.raises(ValueError, match="outside the surface domain"):
+        fl.blend_surface(plane, [[0.5, 0.5], [2.0, 0.5]], cyl, ("v", 0.0))
+
+
+def test_any_parameter_orientation_of_the_bare_hull_is_accepted(hull, composed):
+    """Issue 4's hull may run u/v the other way: transposed and reversed copies compose to
+    the same closed half hull volume."""
+    P = np.asarray(hull.control_points)
+    ku, kv = np.asarray(hull.knots_u), np.asarray(hull.knots_v)
+    swapped = fl.NurbsSurface(hull.degree_v, hull.degree_u, kv, ku, P.transpose(1, 0, 2))
+    reversed_u = fl.NurbsSurface(hull.degree_u, hull.degree_v, ku[-1] + ku[0] - ku[::-1], kv, P[::-1])
+    bulb = composed.trimmed_surfaces[1][0]
+    for h in (swapped, reversed_u):
+        c = fl.compose([h, bulb])
+        assert edge_census(c.mesh.faces) == (0, 0, 0)
+        assert c.volume == pytest.approx(composed.volume, rel=1e-9)
+
+
+def _hull_boundary_around(composed, clearance_u=0.02, clearance_v=0.03, k=65):
+    """A curve on the hull around the union seam: a half ellipse in (u, v) from the stem edge
+    below the bulb to the stem edge above it."""
+    uv = composed.intersection_curves[0]["uv_a"]
+    tlo, thi = uv[:, 1].min(), uv[:, 1].max()
+    tc, R, du = 0.5 * (tlo + thi), 0.5 * (thi - tlo) + clearance_v, 1.0 - uv[:, 0].min() + clearance_u
+    phi = np.linspace(0.0, np.pi, k)
+    return np.column_stack([1.0 - du * np.sin(phi), tc - R * np.cos(phi)])
+
+
+def test_hull_bulb_and_blend_compose_into_one_watertight_c1_hull(composed, bulb):
+    hull_s = composed.trimmed_surfaces[0][0]
+    on_hull = _hull_boundary_around(composed)
+    # a bulb section just ahead of the seam: the blend then stays short and the Kracht
+    # quantities at FP stay the bulb's
+    on_bulb = ("u", float(composed.intersection_curves[0]["uv_b"][:, 0].max()) + 0.04)
+    blend = fl.blend_surface(hull_s, on_hull, bulb.surface, on_bulb)
+    c = fl.compose([hull_s, bulb, blend])
+    assert edge_census(c.mesh.faces) == (0, 0, 0)
+    assert edge_census(c.full_mesh().faces) == (0, 0, 0)
+    assert set(np.unique(c.face_part)) == {0, 1, 2, 3, 4, 5}
+    assert c.volume > composed.volume * 0.99
+    # C1 across both blend boundaries, measured densely here and by the engine
+    assert _normal_angle_profile(c.blend, False, hull_s).max() <= MAX_BLEND_ANGLE_DEG
+    assert _normal_angle_profile(c.blend, True, bulb.surface).max() <= MAX_BLEND_ANGLE_DEG
+    assert max(d["max_angle_deg"] for d in c.blend_continuity) <= MAX_BLEND_ANGLE_DEG
+    got = fl.measure_kracht(c.mesh, x_fp=L, **SHIP)
+    for name in fl.KRACHT_NAMES:
+        assert got[name] == pytest.approx(bulb.kracht[name], rel=KRACHT_TOL), name
+    with pytest.raises(ValueError, match="bulb section"):
+        fl.compose([hull_s, bulb, fl.blend_surface(hull_s, on_hull, bulb.surface, ("v", 0.5))])
