@@ -8,6 +8,8 @@ namespace py = pybind11;
 
 namespace fairlines {
 void bind_nurbs(py::module_& m);
+void bind_skinning(py::module_& m);
+void bind_hull(py::module_& m);
 void bind_compose(py::module_& m);
 void bind_form_curve(py::module_& m);
 }  // namespace fairlines
@@ -21,5 +23,7 @@ PYBIND11_MODULE(_native, m) {
   py::register_exception<fairlines::ConvergenceError>(m, "ConvergenceError", base.ptr());
   fairlines::bind_nurbs(m);
   fairlines::bind_form_curve(m);
+  fairlines::bind_skinning(m);
+  fairlines::bind_hull(m);
   fairlines::bind_compose(m);
 }

@@ -9,12 +9,20 @@ from ._native import (  # noqa: F401  (re-exported API)
     ConvergenceError,
     CurveFit,
     FairlinesError,
+    Hydrostatics,
     InfeasibleFormParameters,
     InvalidInput,
     NurbsCurve,
     NurbsSurface,
     NurbsVolume,
+    PlaneCut,
+    SkinResult,
     SurfaceFit,
+    arc_length,
+    curve_e2,
+    equal_arc_length_points,
+    hydrostatics,
+    section_area,
     arc,
     averaged_knots,
     basis_functions,
@@ -27,11 +35,22 @@ from ._native import (  # noqa: F401  (re-exported API)
     greville_abscissae,
     hartley_judd_knots,
     parameterize,
+    plane_cut,
     revolve,
     sphere,
     unclamped_uniform_knots,
     validate_knots,
 )
+from .hull import (  # noqa: F401
+    AuxiliarySection,
+    BasicCurve,
+    BasicCurveSpec,
+    Hull,
+    HullDescription,
+    PrincipalDimensions,
+    fairness_report,
+)
+from .skinning import fair_skin  # noqa: F401
 
 from .form_curve import FORM_PARAMETERS, FormCurveResult, design_curve, fairness_of, form_parameters_of  # noqa: F401,E402
 from ._native import boundary_continuity, mesh_volume, orient_bare_hull, triangulate_polygon  # noqa: F401,E402

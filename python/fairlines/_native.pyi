@@ -7,7 +7,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ConvergenceError', 'CurveFit', 'FairlinesError', 'InfeasibleFormParameters', 'InvalidInput', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'SurfaceFit', 'arc', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'cylinder', 'ellipse', 'fit_curve', 'fit_surface', 'greville_abscissae', 'hartley_judd_knots', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'revolve', 'sphere', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
+__all__: list[str] = ['ConvergenceError', 'CurveFit', 'FairlinesError', 'Hydrostatics', 'InfeasibleFormParameters', 'InvalidInput', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PlaneCut', 'SkinResult', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'ellipse', 'equal_arc_length_points', 'fairness_of', 'fit_curve', 'fit_surface', 'form_parameter_names', 'form_parameters_of', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'plane_cut', 'revolve', 'section_area', 'sphere', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
 class FairlinesError(RuntimeError):
     pass
 class InvalidInput(ValueError):
@@ -257,6 +257,152 @@ class SurfaceFit:
     @property
     def surface(self) -> NurbsSurface:
         ...
+class SkinResult:
+    """
+    Result of fair_skin: the surface and how closely it follows the sections.
+    """
+    @property
+    def longitudinal_max(self) -> float:
+        """
+        max distance (m) between the longitudinal curves and the section control rows
+        """
+    @property
+    def row_e2(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        E2 of each longitudinal control-row curve (n_control,).
+        """
+    @property
+    def section_fit_max(self) -> float:
+        """
+        max distance (m) between the equally spaced section points and the common-knot fits
+        """
+    @property
+    def section_params(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        v of each section (q,).
+        """
+    @property
+    def surface(self) -> NurbsSurface:
+        """
+        NurbsSurface: u across the sections, v along the hull (v = 0 first section).
+        """
+class Hydrostatics:
+    """
+    Hydrostatics at one draft. Volume, areas and SAC are for the full ship when the surface was a half hull (half_hull=True); lengths in m, areas m^2, volume m^3, displacement t.
+    """
+    def as_dict(self) -> dict:
+        """
+        Scalar results as a dict.
+        """
+    @property
+    def breadth(self) -> float:
+        ...
+    @property
+    def cb(self) -> float:
+        ...
+    @property
+    def cm(self) -> float:
+        ...
+    @property
+    def cp(self) -> float:
+        ...
+    @property
+    def cwp(self) -> float:
+        ...
+    @property
+    def displacement(self) -> float:
+        ...
+    @property
+    def draft(self) -> float:
+        ...
+    @property
+    def lcb(self) -> float:
+        ...
+    @property
+    def lcf(self) -> float:
+        ...
+    @property
+    def length(self) -> float:
+        ...
+    @property
+    def midship_area(self) -> float:
+        ...
+    @property
+    def midship_x(self) -> float:
+        ...
+    @property
+    def sac_area(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def sac_x(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def vcb(self) -> float:
+        ...
+    @property
+    def volume(self) -> float:
+        ...
+    @property
+    def waterplane_area(self) -> float:
+        ...
+    @property
+    def wetted_surface(self) -> float:
+        ...
+    @property
+    def x_max(self) -> float:
+        ...
+    @property
+    def x_min(self) -> float:
+        ...
+class PlaneCut:
+    """
+    A waterline / buttock / frame cut from a surface, with analytic curvature.
+    """
+    @property
+    def axis(self) -> int:
+        """
+        0 frame (x = value), 1 buttock (y = value), 2 waterline (z = value)
+        """
+    @property
+    def bending_energy(self) -> float:
+        """
+        int k^2 ds (1/m)
+        """
+    @property
+    def curvature(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (m,) signed curvature (1/m) in the plane's coordinates
+        """
+    @property
+    def e2(self) -> float:
+        """
+        int |c''(w)|^2 dw, w the marching parameter on [0, 1] (m^2)
+        """
+    @property
+    def inflections(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (n, 3) points where the curvature changes sign
+        """
+    @property
+    def points(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (m, 3) points (m)
+        """
+    @property
+    def sign_changes(self) -> int:
+        """
+        curvature sign changes (|k| > threshold)
+        """
+    @property
+    def threshold(self) -> float:
+        """
+        curvature below this (1/m) counts as straight
+        """
+    @property
+    def value(self) -> float:
+        """
+        plane position (m)
+        """
 class _BulbousBow:
     def __init__(self, lpp: typing.SupportsFloat | typing.SupportsIndex, beam: typing.SupportsFloat | typing.SupportsIndex, draft_fp: typing.SupportsFloat | typing.SupportsIndex, midship_area: typing.SupportsFloat | typing.SupportsIndex, displacement_volume: typing.SupportsFloat | typing.SupportsIndex, c_lpr: typing.SupportsFloat | typing.SupportsIndex, c_bb: typing.SupportsFloat | typing.SupportsIndex, c_zb: typing.SupportsFloat | typing.SupportsIndex, c_abt: typing.SupportsFloat | typing.SupportsIndex, c_abl: typing.SupportsFloat | typing.SupportsIndex, c_vpr: typing.SupportsFloat | typing.SupportsIndex, x_fp: typing.SupportsFloat | typing.SupportsIndex, aft_length: typing.SupportsFloat | typing.SupportsIndex, nose_height_shift: typing.SupportsFloat | typing.SupportsIndex, sections: typing.SupportsInt | typing.SupportsIndex, section_points: typing.SupportsInt | typing.SupportsIndex, control_u: typing.SupportsInt | typing.SupportsIndex, control_v: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
@@ -309,11 +455,31 @@ def _blend_surface(a: NurbsSurface, boundary_a: typing.Any, b: NurbsSurface, bou
     ...
 def _compose_hull(hull: NurbsSurface, bulb: NurbsSurface = None, hull_u: typing.SupportsInt | typing.SupportsIndex = 48, hull_v: typing.SupportsInt | typing.SupportsIndex = 20, bulb_u: typing.SupportsInt | typing.SupportsIndex = 16, bulb_v: typing.SupportsInt | typing.SupportsIndex = 24, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, margin: typing.SupportsFloat | typing.SupportsIndex = 0.3, blend_hull_uv: typing.Any = None, blend_bulb_u: typing.SupportsFloat | typing.SupportsIndex = 0.5, blend_tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, blend_rows: typing.SupportsInt | typing.SupportsIndex = 8) -> _ComposedHull:
     ...
+def _design_form_curve(params: dict, n_control: typing.SupportsInt | typing.SupportsIndex, degree: typing.SupportsInt | typing.SupportsIndex, dim: typing.SupportsInt | typing.SupportsIndex, fairness: dict, points: list, bounds: dict, options: dict, tangent_start: typing.Any = None, tangent_end: typing.Any = None, initial_control_points: typing.Any = None) -> dict:
+    """
+    Form-parameter curve solver (private; use fairlines.design_curve).
+    """
+def _design_sections(fields: dict, n_control: typing.SupportsInt | typing.SupportsIndex, degree: typing.SupportsInt | typing.SupportsIndex, y_max: typing.SupportsFloat | typing.SupportsIndex) -> list[NurbsCurve]:
+    """
+    Sections from per-station parameter arrays (see fairlines/hull.hpp SectionSpec).
+    """
+def _fair_skin(curves: typing.Any, n_control: typing.Any, mode: str, degree_u: typing.Any, degree_v: typing.Any, samples: typing.Any, smoothing: typing.SupportsFloat | typing.SupportsIndex, start: str, end: str, params: str, c1_sections: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], curvature_weight: typing.SupportsFloat | typing.SupportsIndex, e2: typing.SupportsFloat | typing.SupportsIndex, e3: typing.SupportsFloat | typing.SupportsIndex) -> SkinResult:
+    ...
+def _form_curve_derivatives(params: dict, n_control: typing.SupportsInt | typing.SupportsIndex, degree: typing.SupportsInt | typing.SupportsIndex, dim: typing.SupportsInt | typing.SupportsIndex, fairness: dict, points: list, z: typing.Any, lambda: typing.Any = None) -> dict:
+    """
+    Testing hook: constraints, Jacobian, sum lambda_i Hess c_i, objective, gradient and Hessian at z.
+    """
 def _intersect_surfaces(a: NurbsSurface, b: NurbsSurface, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, subdivisions: typing.SupportsInt | typing.SupportsIndex = 12, step: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> list:
+    ...
+def _linear_form_curve(name: str, abscissae: typing.Any, degree: typing.SupportsInt | typing.SupportsIndex, yB: typing.Any, yE: typing.Any, slopeB: typing.Any, slopeE: typing.Any, area: typing.Any, xC: typing.Any, area_from: typing.Any, points: typing.Any, y_lower: typing.Any = None, y_upper: typing.Any = None) -> NurbsCurve:
     ...
 def arc(center: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, start_angle: typing.SupportsFloat | typing.SupportsIndex, end_angle: typing.SupportsFloat | typing.SupportsIndex, normal: typing.Any = (0.0, 0.0, 1.0), x_axis: typing.Any = None) -> NurbsCurve:
     """
     Exact circular arc, angles in radians from x_axis toward normal x x_axis (0 < end - start <= 2 pi).
+    """
+def arc_length(curve: NurbsCurve) -> float:
+    """
+    Arc length of the curve (m).
     """
 def averaged_knots(params: typing.Any, degree: typing.Any, n_control: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
     """
@@ -335,6 +501,10 @@ def clamped_uniform_knots(n_control: typing.Any, degree: typing.Any, t0: typing.
     """
     Clamped (open) uniform knot vector, n_control + degree + 1 values on [t0, t1].
     """
+def curve_e2(curve: NurbsCurve) -> float:
+    """
+    E2 = integral of |C''(t)|^2 dt over the curve's parameter domain.
+    """
 def cylinder(base: typing.Any, axis_dir: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, height: typing.SupportsFloat | typing.SupportsIndex) -> NurbsSurface:
     """
     Exact cylinder (metres).
@@ -342,6 +512,15 @@ def cylinder(base: typing.Any, axis_dir: typing.Any, radius: typing.SupportsFloa
 def ellipse(center: typing.Any, semi_axis_a: typing.Any, semi_axis_b: typing.Any) -> NurbsCurve:
     """
     Exact ellipse; the semi-axis vectors give directions and lengths (metres).
+    """
+def equal_arc_length_points(curve: NurbsCurve, m: typing.Any, curvature_weight: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    m points at equal arc-length spacing along the curve, ends included: (m, dim). curvature_weight w > 0:
+    equal spacing in ds (1 + w L |k|) instead (L the curve length).
+    """
+def fairness_of(degree: typing.SupportsInt | typing.SupportsIndex, control_points: typing.Any) -> dict:
+    """
+    E1, E2, E3 (int |C^(k)|^2 dt over t in [0,1]) and arc length of a clamped uniform B-spline.
     """
 def fit_curve(points: typing.Any, degree: typing.Any = 3, n_control: typing.Any = None, parameterization: str = 'chord', knots: str = 'average') -> CurveFit:
     """
@@ -351,6 +530,14 @@ def fit_surface(grid: typing.Any, degree_u: typing.Any = 3, degree_v: typing.Any
     """
     Fit a (rows, cols, 3) point grid; u runs over rows, v over columns.
     """
+def form_parameter_names() -> list[str]:
+    """
+    Names accepted as form parameters.
+    """
+def form_parameters_of(degree: typing.SupportsInt | typing.SupportsIndex, control_points: typing.Any) -> dict[str, float]:
+    """
+    Every form parameter (xB.., alphaB/E in degrees, CAB/CAE, Area, xC, yC) of the clamped uniform B-spline with these control points (n x 2 or n x 3).
+    """
 def greville_abscissae(knots: typing.Any, degree: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
     """
     Knot averages, one per control point.
@@ -358,6 +545,13 @@ def greville_abscissae(knots: typing.Any, degree: typing.Any) -> numpy.typing.ND
 def hartley_judd_knots(points: typing.Any, degree: typing.Any, n_control: typing.Any, metric: str = 'chord') -> numpy.typing.NDArray[numpy.float64]:
     """
     Clamped knots on [0, 1] by Hartley-Judd: spacings are sums of `degree` chords measured by 'chord' (length), 'centripetal' (sqrt of length, seed 001 eq. 5) or 'uniform'.
+    """
+def hydrostatics(surface: NurbsSurface, draft: typing.SupportsFloat | typing.SupportsIndex, half_hull: bool = True, length: typing.SupportsFloat | typing.SupportsIndex = 0.0, breadth: typing.SupportsFloat | typing.SupportsIndex = 0.0, midship_x: typing.Any = None, gauss: typing.Any = 8, sac_stations: typing.Any = 41, density: typing.SupportsFloat | typing.SupportsIndex = 1.025) -> Hydrostatics:
+    """
+    Hydrostatics of a hull surface at `draft` (m above base) by Gauss-Legendre quadrature on the surface.
+    The surface is the y >= 0 half of the hull when half_hull=True (volume, areas and SAC are then doubled
+    to full-ship values); openings other than the centre plane must be transverse planes x = const.
+    length / breadth: for the coefficients (0: submerged extent); midship_x: station of Am (None: middle).
     """
 def mesh_volume(vertices: typing.Any, faces: typing.Any) -> float:
     """
@@ -371,9 +565,18 @@ def parameterize(points: typing.Any, method: str = 'chord') -> numpy.typing.NDAr
     """
     Parameters in [0, 1] for (m, dim) points: 'chord', 'centripetal' or 'uniform'.
     """
+def plane_cut(surface: NurbsSurface, axis: typing.Any, value: typing.SupportsFloat | typing.SupportsIndex, samples: typing.SupportsInt | typing.SupportsIndex = 401) -> PlaneCut:
+    """
+    Cut a surface by the plane x, y or z = value (axis 'frame' | 'buttock' | 'waterline'); curvature
+    from the surface's derivatives. Frames march along u, waterlines and buttocks along v.
+    """
 def revolve(profile: NurbsCurve, axis_point: typing.Any, axis_dir: typing.Any, angle: typing.SupportsFloat | typing.SupportsIndex = 6.283185307179586) -> NurbsSurface:
     """
     Surface of revolution of a 3-D profile about an axis, angle in radians; u runs around the axis.
+    """
+def section_area(surface: NurbsSurface, x: typing.SupportsFloat | typing.SupportsIndex, draft: typing.SupportsFloat | typing.SupportsIndex, half_hull: bool = True, gauss: typing.SupportsInt | typing.SupportsIndex = 8) -> tuple[float, float]:
+    """
+    (area below the draft of the section x = const (m^2; full section when half_hull), centroid height (m)).
     """
 def sphere(center: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex) -> NurbsSurface:
     """

@@ -26,3 +26,16 @@ def test_import_reference_hulls(tmp_path, monkeypatch, capsys):
     for key in ("series60", "dtmb5415", "kcs"):
         assert (tmp_path / f"{key}_hull.json").exists()
         assert (tmp_path / f"{key}_rebuilt" / "report.json").exists()
+
+
+def test_build_hull(tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(sys, "argv", ["build_hull.py", "--out", str(tmp_path)])
+    runpy.run_path(str(EXAMPLES / "build_hull.py"), run_name="__main__")
+    text = capsys.readouterr().out
+    assert "volume" in text and "m^3" in text and "LCB" in text and "Cb" in text
+    import json
+
+    net = json.loads((tmp_path / "bare_hull_surface.json").read_text())
+    assert net["half_hull"] and len(net["control_points"]) == len(net["knots_u"]) - net["degree_u"] - 1
+    report = json.loads((tmp_path / "fairness_report.json").read_text())
+    assert set(report) == {"waterline", "buttock", "frame"}

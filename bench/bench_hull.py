@@ -1,0 +1,67 @@
+"""Bare-hull speed (issue 4 goals): description -> surface for the Panamax forebody (33
+sections), one form-parameter change and rebuild (what a Blender slider does), fair skinning
+alone, and hydrostatics. Prints figures; run by bench/run_all.py.
+
+Goal: the whole bare hull (>= 30 sections) from description to surface in <= 20 ms.
+"""
+
+import json
+import pathlib
+import statistics
+import time
+
+import numpy as np
+
+import fairlines as fl
+
+EXAMPLE = pathlib.Path(__file__).resolve().parents[1] / "examples" / "panamax_forebody.json"
+GOAL_MS = 20.0
+
+
+def best_of(fn, repeat=15):
+    times = []
+    for _ in range(repeat):
+        t = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t)
+    return min(times) * 1e3, statistics.median(times) * 1e3
+
+
+def main():
+    desc = json.loads(EXAMPLE.read_text())
+
+    def full_build():
+        h = fl.Hull.from_json(desc)
+        h.bare_hull_surface()
+        return h
+
+    h = full_build()
+    n_sections = len(h.sections)
+    best, med = best_of(full_build)
+    print(f"bare hull, description -> surface ({n_sections} sections): best {best:.2f} ms, median {med:.2f} ms "
+          f"(goal <= {GOAL_MS:.0f} ms: {'met' if best <= GOAL_MS else 'NOT met'})")
+
+    vols = iter(np.linspace(26000.0, 27000.0, 1000))
+
+    def slider():
+        h.set("sac", "volume", float(next(vols)))
+        h.bare_hull_surface()
+
+    best, med = best_of(slider)
+    print(f"one form-parameter change (sac.volume) and rebuild: best {best:.2f} ms, median {med:.2f} ms")
+
+    secs = h.sections
+    best, med = best_of(lambda: fl.fair_skin(secs, n_control=32, start="parallel"))
+    print(f"fair_skin alone ({n_sections} sections, 32 x {n_sections + 2} control net): best {best:.2f} ms, median {med:.2f} ms")
+
+    fields = h.section_parameters()
+    best, med = best_of(lambda: fl._native._design_sections(fields, 10, 3, desc["principal"]["B"] / 2))
+    print(f"{n_sections} sections from basic curves (one C++ call): best {best:.3f} ms, median {med:.3f} ms")
+
+    surf = h.bare_hull_surface()
+    best, med = best_of(lambda: fl.hydrostatics(surf, desc["principal"]["T"]), repeat=5)
+    print(f"hydrostatics at T (quadrature on the surface, SAC at 41 stations): best {best:.1f} ms, median {med:.1f} ms")
+
+
+if __name__ == "__main__":
+    main()

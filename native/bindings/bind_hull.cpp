@@ -1,0 +1,104 @@
+// Python bindings of the bare-hull section builder (fairlines/hull.hpp). The hull
+// description, its validation and the orchestration live in python/fairlines/hull.py.
+#include <cmath>
+#include <limits>
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "convert.hpp"
+#include "fairlines/hull.hpp"
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+namespace fairlines {
+
+using namespace py_convert;
+
+namespace {
+
+double opt(const py::handle& h) { return h.is_none() ? std::numeric_limits<double>::quiet_NaN() : h.cast<double>(); }
+
+}  // namespace
+
+void bind_hull(py::module_& m) {
+  m.def("_linear_form_curve",
+        [](const std::string& name, py::handle abscissae, int degree, py::handle yB, py::handle yE, py::handle slopeB,
+           py::handle slopeE, py::handle area, py::handle xC, py::handle area_from, py::handle points, py::handle y_lower, py::handle y_upper) {
+          LinearFormRequest r;
+          r.name = name;
+          r.degree = degree;
+          r.abscissae = vector(abscissae, (name + ": abscissae").c_str());
+          r.yB = opt(yB), r.yE = opt(yE), r.slopeB = opt(slopeB), r.slopeE = opt(slopeE);
+          r.area = opt(area), r.xC = opt(xC);
+          if (!area_from.is_none()) r.area_from = area_from.cast<double>();
+          r.y_lower = opt(y_lower), r.y_upper = opt(y_upper);
+          if (!points.is_none()) {
+            const Eigen::MatrixXd P = matrix(points, (name + ": points").c_str(), 2);
+            for (Eigen::Index i = 0; i < P.rows(); ++i) r.points.emplace_back(P(i, 0), P(i, 1));
+          }
+          return design_linear_form_curve(r);
+        },
+        "name"_a, "abscissae"_a, "degree"_a, "yB"_a, "yE"_a, "slopeB"_a, "slopeE"_a, "area"_a, "xC"_a, "area_from"_a,
+        "points"_a, "y_lower"_a = py::none(), "y_upper"_a = py::none());
+
+  m.def("_design_sections",
+        [](py::dict f, int n_control, int degree, double y_max) {
+          const char* keys[] = {"x", "z_deck", "y_deck", "draft", "y_dwl", "z_keel", "half_area", "z_centroid",
+                                "z_fos", "y_fob", "alpha_deck", "alpha_bottom"};
+          std::vector<Eigen::VectorXd> cols;
+          for (const char* k : keys) {
+            if (!f.contains(k)) throw InvalidInput(std::string("section field '") + k + "' is missing");
+            cols.push_back(vector(f[k], k));
+          }
+          const Eigen::Index q = cols[0].size();
+          for (std::size_t i = 1; i < cols.size(); ++i)
+            if (cols[i].size() != q)
+              throw InvalidInput(std::string("section field '") + keys[i] + "' has " + std::to_string(cols[i].size()) +
+                                 " values; expected " + std::to_string(q) + " (one per station)");
+          std::vector<SectionSpec> specs(q);
+          for (Eigen::Index d = 0; d < q; ++d) {
+            SectionSpec& s = specs[d];
+            s.x = cols[0][d], s.z_deck = cols[1][d], s.y_deck = cols[2][d], s.draft = cols[3][d];
+            s.y_dwl = cols[4][d], s.z_keel = cols[5][d], s.half_area = cols[6][d], s.z_centroid = cols[7][d];
+            s.z_fos = cols[8][d], s.y_fob = cols[9][d], s.alpha_deck = cols[10][d], s.alpha_bottom = cols[11][d];
+            s.n_control = n_control, s.degree = degree;
+          }
+          py::gil_scoped_release release;
+          return design_sections(specs, y_max);
+        },
+        "fields"_a, "n_control"_a, "degree"_a, "y_max"_a,
+        "Sections from per-station parameter arrays (see fairlines/hull.hpp SectionSpec).");
+
+  py::class_<PlaneCut>(m, "PlaneCut", "A waterline / buttock / frame cut from a surface, with analytic curvature.")
+      .def_readonly("axis", &PlaneCut::axis, "0 frame (x = value), 1 buttock (y = value), 2 waterline (z = value)")
+      .def_readonly("value", &PlaneCut::value, "plane position (m)")
+      .def_property_readonly("points", [](const PlaneCut& c) { return to_array(c.points); }, "(m, 3) points (m)")
+      .def_property_readonly("curvature", [](const PlaneCut& c) { return to_array(c.curvature); },
+                             "(m,) signed curvature (1/m) in the plane's coordinates")
+      .def_readonly("bending_energy", &PlaneCut::bending_energy, "int k^2 ds (1/m)")
+      .def_readonly("e2", &PlaneCut::e2, "int |c''(w)|^2 dw, w the marching parameter on [0, 1] (m^2)")
+      .def_readonly("sign_changes", &PlaneCut::sign_changes, "curvature sign changes (|k| > threshold)")
+      .def_readonly("threshold", &PlaneCut::threshold, "curvature below this (1/m) counts as straight")
+      .def_property_readonly("inflections", [](const PlaneCut& c) { return to_array(c.inflections); },
+                             "(n, 3) points where the curvature changes sign");
+  m.def("plane_cut", [](const NurbsSurface& s, py::handle axis, double value, int samples) {
+          int a = -1;
+          if (py::isinstance<py::str>(axis)) {
+            const std::string n = axis.cast<std::string>();
+            if (n == "frame" || n == "x") a = 0;
+            else if (n == "buttock" || n == "y") a = 1;
+            else if (n == "waterline" || n == "z") a = 2;
+            else throw InvalidInput("axis is '" + n + "'; expected 'frame', 'buttock' or 'waterline' (or 0, 1, 2)");
+          } else {
+            a = axis.cast<int>();
+          }
+          return plane_cut(s, a, value, samples);
+        },
+        "surface"_a, "axis"_a, "value"_a, "samples"_a = 401,
+        "Cut a surface by the plane x, y or z = value (axis 'frame' | 'buttock' | 'waterline'); curvature\n"
+        "from the surface's derivatives. Frames march along u, waterlines and buttocks along v.");
+}
+
+}  // namespace fairlines

@@ -1,0 +1,100 @@
+// Fair skinning of section curves into one B-spline surface (SPEC §5; seed 000 eq. 6-9,
+// Fig. 2): equally spaced points along every section, one common knot vector and control
+// count for all sections, then for each row of section control points a longitudinal
+// B-spline through (or near) the row that minimises E2 = int |C''(v)|^2 dv.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "fairlines/curve.hpp"
+#include "fairlines/surface.hpp"
+
+namespace fairlines {
+
+/// How the longitudinal curves treat the rows of section control points.
+enum class SkinMode {
+  Interpolate,  ///< through every row point; among all such splines the one of least E2
+  Approximate,  ///< near the row points: min (1/q) sum |C(v_d) - P_d|^2 + smoothing h^4 E2
+};
+
+/// Condition on the longitudinal curves at the first / last section.
+enum class SkinEnd {
+  Free,      ///< natural end (what E2 minimisation gives: no curvature imposed)
+  Parallel,  ///< dy/dv = dz/dv = 0: the surface leaves the end section along x, so it meets a
+             ///< parallel middle body (a cylinder along x) with tangent-plane (C1) continuity
+};
+
+/// How the sections are placed in the longitudinal parameter v in [0, 1].
+enum class SkinParams {
+  Auto,   ///< Station when every section is planar at constant, strictly monotone x, else Chord
+  Station,  ///< v_d = (x_d - x_0) / (x_last - x_0): then x(u, v) = x_0 + v (x_last - x_0) exactly
+  Chord,    ///< chord length between consecutive sections, averaged over the control rows
+};
+
+struct SkinOptions {
+  int n_control = 0;      ///< control points per section in u; 0: max(12, 2 x largest section count)
+  int degree_u = 3;       ///< degree across the sections (>= 1)
+  int degree_v = 3;       ///< degree of the longitudinal curves (>= 2)
+  int samples = 0;        ///< equally spaced points per section; 0: 4 x n_control. >= n_control
+  /// Spacing metric of the section points: ds (1 + curvature_weight L |k|), L the section's
+  /// length. 0 is plain arc length (seed 000 Fig. 2b); > 0 puts more points -- and, through
+  /// the common uniform knots, more control points -- where sections bend (tight bilges).
+  double curvature_weight = 0.0;
+  SkinMode mode = SkinMode::Interpolate;
+  /// Fairness of the longitudinal curves: e2 E2 + e3 h^2 E3 (E_k = int |C^(k)(v)|^2 dv,
+  /// h = 1/(q-1)). e2 = 1, e3 = 0 is seed 000 eq. 9: the interpolant is then the natural
+  /// spline, whose curvature is forced to 0 at the first and last section. e3 > 0 (degree_v
+  /// >= 3) penalises the jumps of the third derivative instead: data varying quadratically
+  /// along the hull are reproduced exactly and the ends keep their curvature.
+  double e2 = 1.0;
+  double e3 = 0.0;
+  double smoothing = 1e-3;  ///< Approximate mode only: weight of h^4 E2 (h = 1/(q-1)), >= 0
+  SkinEnd start = SkinEnd::Free;  ///< at the first section
+  SkinEnd end = SkinEnd::Free;    ///< at the last section
+  SkinParams params = SkinParams::Auto;
+  /// Interior section indices (1..q-2) where the longitudinal curves are only C1 (knot of
+  /// multiplicity degree_v - 1): the joint between fore and aft bodies. Elsewhere C^(degree_v-1).
+  std::vector<int> c1_sections;
+};
+
+struct SkinResult {
+  /// u across the sections (from each section's start to its end), v longitudinal from the
+  /// first section (v = 0) to the last (v = 1). Non-rational, clamped in both directions.
+  NurbsSurface surface;
+  Eigen::VectorXd section_params;  ///< v of each section (q values)
+  double section_fit_max = 0;      ///< max distance between the equally spaced section points
+                                   ///< and the common-knot section fits (metres)
+  double longitudinal_max = 0;     ///< max |C_i(v_d) - row point| over rows and sections
+                                   ///< (metres; ~1e-12 in Interpolate mode)
+  Eigen::VectorXd row_e2;          ///< E2 of each longitudinal control-point curve (n_control),
+                                   ///< whatever the fairness weights
+};
+
+/// Skin q >= 2 section curves (each a 3-D NurbsCurve, ordered along the hull; metres) into one
+/// surface. Throws InvalidInput naming the bad section / option (2-D curves, zero-length
+/// sections, coincident section parameters, bad counts).
+SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions& options = {});
+
+/// Points at equal arc-length spacing along a curve: m >= 2 rows (curve dim columns), first
+/// and last at the curve ends. With curvature_weight w > 0 the spacing is equal in the
+/// measure ds (1 + w L |k|) instead (L the curve length). Arc length by 8-point Gauss-Legendre on quarter knot spans,
+/// inverted by cubic Hermite interpolation of t(s) and one Newton step (spacing equal to
+/// about 1e-3 relative on sections; the points are on the curve to round-off whatever the
+/// spacing).
+Eigen::MatrixXd equal_arc_length_points(const NurbsCurve& curve, int m, double curvature_weight = 0.0);
+
+/// Arc length of a curve (metres), same quadrature as above.
+double arc_length(const NurbsCurve& curve);
+
+/// E2 = int |C''(t)|^2 dt of a curve over its own parameter domain (exact for polynomial
+/// B-splines: Gauss-Legendre with degree points per knot span).
+double curve_e2(const NurbsCurve& curve);
+
+SkinMode parse_skin_mode(const std::string& name);   ///< "interpolate" | "approximate"
+SkinEnd parse_skin_end(const std::string& name);     ///< "free" | "parallel"
+SkinParams parse_skin_params(const std::string& name);  ///< "auto" | "station" | "chord"
+
+}  // namespace fairlines

@@ -1,0 +1,442 @@
+// Linear form-parameter curves and bare-hull sections: see fairlines/hull.hpp.
+#include "fairlines/hull.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include <Eigen/Dense>
+
+#include "fairlines/basis.hpp"
+#include "fairlines/errors.hpp"
+#include "fairlines/knots.hpp"
+#include "nurbs/checks.hpp"
+#include "skinning/gauss.hpp"
+
+namespace fairlines {
+
+namespace {
+
+using detail::fail;
+
+constexpr double kVerticalAngle = 89.999;  // |alpha| (deg) from which an end tangent is taken as normal to the abscissa
+constexpr double kFeasibleTol = 1e-9;      // relative residual above which conditions are in conflict
+
+Eigen::RowVectorXd basis_row(const Eigen::VectorXd& U, int p, double t, int r = 0) {
+  const int n = static_cast<int>(U.size()) - p - 1;
+  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
+  const int span = find_span(p, U, t);
+  Eigen::MatrixXd ders(r + 1, p + 1);
+  basis_derivatives(span, t, p, r, U, ders);
+  for (int j = 0; j <= p; ++j) row[span - p + j] = ders(r, j);
+  return row;
+}
+
+/// t in [0, 1] with x(t) = x for the monotone abscissa function x(t) = sum N_j(t) a_j.
+double invert_abscissa(const Eigen::VectorXd& U, int p, const Eigen::VectorXd& a, double x) {
+  double lo = 0, hi = 1;
+  if (x <= a[0]) return 0;
+  if (x >= a[a.size() - 1]) return 1;
+  for (int it = 0; it < 100 && hi - lo > 1e-16; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (basis_row(U, p, mid).dot(a) < x) lo = mid;
+    else hi = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
+
+/// A piece of a section: degree p, knots on [0, 1], 3-D control points.
+struct Piece {
+  Eigen::VectorXd knots;
+  Eigen::MatrixXd ctrl;
+};
+
+Piece line_piece(const Eigen::Vector3d& a, const Eigen::Vector3d& b, int p) {
+  Piece pc;
+  pc.knots = clamped_uniform_knots(p + 1, p);
+  pc.ctrl.resize(p + 1, 3);
+  for (int i = 0; i <= p; ++i) pc.ctrl.row(i) = (a + (b - a) * (static_cast<double>(i) / p)).transpose();
+  return pc;
+}
+
+/// Joins pieces end to end (each piece's start equals the previous piece's end) with knots of
+/// multiplicity p at the joints; parameter lengths proportional to control-polygon lengths.
+NurbsCurve join_pieces(const std::vector<Piece>& pieces, int p) {
+  std::vector<double> len;
+  double total = 0;
+  for (const Piece& pc : pieces) {
+    double l = 0;
+    for (Eigen::Index i = 0; i + 1 < pc.ctrl.rows(); ++i) l += (pc.ctrl.row(i + 1) - pc.ctrl.row(i)).norm();
+    len.push_back(std::max(l, 1e-300));
+    total += len.back();
+  }
+  std::vector<double> knots(p + 1, 0.0);
+  std::vector<Eigen::RowVector3d> pts;
+  double off = 0;
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    const Piece& pc = pieces[k];
+    const int n = static_cast<int>(pc.ctrl.rows());
+    for (int i = (k == 0 ? 0 : 1); i < n; ++i) pts.push_back(pc.ctrl.row(i));
+    for (int i = p + 1; i < n; ++i) knots.push_back((off + pc.knots[i] * len[k]) / total);
+    off += len[k];
+    if (k + 1 < pieces.size())
+      for (int r = 0; r < p; ++r) knots.push_back(off / total);
+  }
+  for (int r = 0; r <= p; ++r) knots.push_back(1.0);
+  Eigen::MatrixXd P(pts.size(), 3);
+  for (std::size_t i = 0; i < pts.size(); ++i) P.row(i) = pts[i];
+  return NurbsCurve(p, Eigen::Map<Eigen::VectorXd>(knots.data(), static_cast<Eigen::Index>(knots.size())), P);
+}
+
+}  // namespace
+
+NurbsCurve design_linear_form_curve(const LinearFormRequest& r) {
+  const std::string& nm = r.name;
+  const int p = r.degree;
+  if (p < 2) fail(nm, ": degree is ", p, "; expected an integer >= 2 (E2 needs C'')");
+  const int n = static_cast<int>(r.abscissae.size());
+  if (n < p + 1) fail(nm, ": ", n, " control points; expected at least degree + 1 = ", p + 1);
+  detail::require_finite(r.abscissae, nm + ": abscissae");
+  const Eigen::VectorXd& a = r.abscissae;
+  for (int i = 0; i + 1 < n; ++i) {
+    if (a[i + 1] < a[i]) fail(nm, ": abscissae decrease at index ", i + 1, "; expected non-decreasing values");
+    if (a[i + 1] == a[i] && a[i] != a[0] && a[i + 1] != a[n - 1])
+      fail(nm, ": abscissae ", i, " and ", i + 1, " coincide; only runs at the start or the end may");
+  }
+  if (!(a[n - 1] > a[0])) fail(nm, ": the curve has zero extent (", a[0], " to ", a[n - 1], "); expected start < end");
+  const Eigen::VectorXd U = clamped_uniform_knots(n, p);
+
+  std::vector<Eigen::RowVectorXd> rows;
+  std::vector<double> rhs;
+  std::vector<std::string> names;
+  auto add = [&](Eigen::RowVectorXd row, double b, const std::string& what) {
+    rows.push_back(std::move(row));
+    rhs.push_back(b);
+    names.push_back(what);
+  };
+  auto given = [&](double v, const char* field) {
+    if (std::isnan(v)) return false;
+    if (!std::isfinite(v)) fail(nm, ": ", field, " is ", v, "; expected a finite number or not given");
+    return true;
+  };
+  if (given(r.yB, "yB")) {
+    Eigen::RowVectorXd e = Eigen::RowVectorXd::Zero(n);
+    e[0] = 1;
+    add(e, r.yB, "yB");
+  }
+  if (given(r.yE, "yE")) {
+    Eigen::RowVectorXd e = Eigen::RowVectorXd::Zero(n);
+    e[n - 1] = 1;
+    add(e, r.yE, "yE");
+  }
+  if (given(r.slopeB, "slopeB")) {
+    if (a[1] == a[0]) fail(nm, ": slopeB is given but the start tangent is normal to the abscissa (first two abscissae coincide)");
+    Eigen::RowVectorXd e = Eigen::RowVectorXd::Zero(n);
+    e[0] = -1, e[1] = 1;
+    add(e, r.slopeB * (a[1] - a[0]), "alphaB");
+  }
+  if (given(r.slopeE, "slopeE")) {
+    if (a[n - 1] == a[n - 2]) fail(nm, ": slopeE is given but the end tangent is normal to the abscissa (last two abscissae coincide)");
+    Eigen::RowVectorXd e = Eigen::RowVectorXd::Zero(n);
+    e[n - 2] = -1, e[n - 1] = 1;
+    add(e, r.slopeE * (a[n - 1] - a[n - 2]), "alphaE");
+  }
+  const bool want_area = given(r.area, "Area"), want_xc = given(r.xC, "xC");
+  if (want_area || want_xc) {
+    if (std::isnan(r.area_from) || r.area_from == std::numeric_limits<double>::infinity())
+      fail(nm, ": area_from is ", r.area_from, "; expected a number or -inf");
+    const double t0 = invert_abscissa(U, p, a, r.area_from);
+    Eigen::RowVectorXd ar = Eigen::RowVectorXd::Zero(n), mr = Eigen::RowVectorXd::Zero(n);
+    const auto& g = detail::gauss_rule(2 * p);
+    std::vector<double> br{t0};
+    for (int i = p + 1; i < n; ++i)
+      if (U[i] > t0) br.push_back(U[i]);
+    br.push_back(1.0);
+    for (std::size_t k = 0; k + 1 < br.size(); ++k) {
+      const double h = 0.5 * (br[k + 1] - br[k]), m = 0.5 * (br[k + 1] + br[k]);
+      if (!(h > 0)) continue;
+      for (std::size_t q = 0; q < g.x.size(); ++q) {
+        const double t = m + h * g.x[q];
+        const Eigen::RowVectorXd N = basis_row(U, p, t), dN = basis_row(U, p, t, 1);
+        const double x = N.dot(a), dx = dN.dot(a);
+        ar += g.w[q] * h * dx * N;
+        mr += g.w[q] * h * x * dx * N;
+      }
+    }
+    if (want_area) add(ar, r.area, "Area");
+    if (want_xc) add(mr - r.xC * ar, 0.0, "xC");
+  }
+  for (std::size_t k = 0; k < r.points.size(); ++k) {
+    const Eigen::Vector2d& q = r.points[k];
+    if (!std::isfinite(q[0]) || !std::isfinite(q[1])) fail(nm, ": points[", k, "] is (", q[0], ", ", q[1], "); expected finite values");
+    if (q[0] < a[0] || q[0] > a[n - 1])
+      fail(nm, ": points[", k, "] x = ", q[0], " is outside the curve (", a[0], " to ", a[n - 1], ")");
+    add(basis_row(U, p, invert_abscissa(U, p, a, q[0])), q[1], "points[" + std::to_string(k) + "]");
+  }
+  for (std::size_t k = 0; k < r.param_points.size(); ++k) {
+    const Eigen::Vector2d& q = r.param_points[k];
+    if (!(q[0] >= 0 && q[0] <= 1) || !std::isfinite(q[1])) fail(nm, ": param_points[", k, "] is (", q[0], ", ", q[1], "); expected t in [0, 1] and a finite y");
+    add(basis_row(U, p, q[0]), q[1], "param_points[" + std::to_string(k) + "]");
+  }
+  for (std::size_t k = 0; k < r.fixed.size(); ++k) {
+    const auto [i, v] = r.fixed[k];
+    if (i < 0 || i >= n || !std::isfinite(v)) fail(nm, ": fixed[", k, "] is (", i, ", ", v, "); expected an index 0..", n - 1, " and a finite y");
+    Eigen::RowVectorXd e = Eigen::RowVectorXd::Zero(n);
+    e[i] = 1;
+    add(e, v, "fixed[" + std::to_string(i) + "]");
+  }
+  const int m = static_cast<int>(rows.size());
+  if (m > n) fail(nm, ": ", m, " conditions need at least ", m, " control points; the curve has ", n);
+
+  // Fairness: E2 of the y ordinates (x(t) is fixed): Gram matrix of N''.
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n, n);
+  {
+    const auto& g = detail::gauss_rule(p);
+    for (int s = p; s < n; ++s) {
+      const double h = 0.5 * (U[s + 1] - U[s]), mid = 0.5 * (U[s + 1] + U[s]);
+      if (!(h > 0)) continue;
+      for (std::size_t q = 0; q < g.x.size(); ++q) {
+        const Eigen::RowVectorXd d2 = basis_row(U, p, mid + h * g.x[q], 2);
+        G += g.w[q] * h * d2.transpose() * d2;
+      }
+    }
+  }
+  // Inequalities g . y <= h: bounds on the interior ordinates 1..n-2 and, from abscissa
+  // concave_from on, a concave control polygon (non-increasing slopes) -- which makes the
+  // curve concave there (no inflection). Solved by a primal active-set method on the KKT system.
+  const bool lower_on = !std::isnan(r.y_lower), upper_on = !std::isnan(r.y_upper);
+  if (lower_on) detail::require_finite(r.y_lower, nm + ": y_lower");
+  if (upper_on) detail::require_finite(r.y_upper, nm + ": y_upper");
+  std::vector<Eigen::RowVectorXd> gin;
+  std::vector<double> hin;
+  std::vector<std::string> gname;
+  auto is_fixed = [&](int i) { return std::any_of(r.fixed.begin(), r.fixed.end(), [&](const auto& f) { return f.first == i; }); };
+  for (int i = 1; i < n - 1; ++i) {
+    if (is_fixed(i)) continue;
+    Eigen::RowVectorXd e = Eigen::RowVectorXd::Zero(n);
+    if (upper_on) {
+      e[i] = 1;
+      gin.push_back(e), hin.push_back(r.y_upper), gname.push_back("y <= " + fmt(r.y_upper));
+    }
+    if (lower_on) {
+      e[i] = -1;
+      gin.push_back(e), hin.push_back(-r.y_lower), gname.push_back("y >= " + fmt(r.y_lower));
+    }
+  }
+  if (!std::isnan(r.concave_from)) {
+    for (int i = 1; i < n - 1; ++i) {
+      const double h0 = a[i] - a[i - 1], h1 = a[i + 1] - a[i];
+      if (a[i - 1] < r.concave_from || !(h0 > 0) || !(h1 > 0)) continue;
+      Eigen::RowVectorXd g = Eigen::RowVectorXd::Zero(n);
+      g[i + 1] = 1 / h1, g[i] = -1 / h1 - 1 / h0, g[i - 1] = 1 / h0;
+      gin.push_back(g), hin.push_back(0.0), gname.push_back("concave below x = " + fmt(r.concave_from));
+    }
+  }
+  const int ni = static_cast<int>(gin.size());
+  std::vector<int> active;
+  Eigen::VectorXd y;
+  const double yscale = std::max({1.0, upper_on ? std::abs(r.y_upper) : 0.0, lower_on ? std::abs(r.y_lower) : 0.0});
+  auto gscale = [&](int j) { return yscale * gin[j].cwiseAbs().sum(); };
+  for (int iter = 0; iter <= 4 * (n + ni); ++iter) {
+    const int ma = static_cast<int>(active.size());
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + m + ma, n + m + ma);
+    K.topLeftCorner(n, n) = 2.0 * G;
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(n + m + ma);
+    for (int i = 0; i < m; ++i) {
+      K.block(n + i, 0, 1, n) = rows[i];
+      K.block(0, n + i, n, 1) = rows[i].transpose();
+      b[n + i] = rhs[i];
+    }
+    for (int k = 0; k < ma; ++k) {
+      K.block(n + m + k, 0, 1, n) = gin[active[k]];
+      K.block(0, n + m + k, n, 1) = gin[active[k]].transpose();
+      b[n + m + k] = hin[active[k]];
+    }
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(K);
+    const Eigen::VectorXd sol = lu.solve(b);
+    y = sol.head(n);
+    // Most violated inactive inequality (relative to its scale).
+    int worst = -1;
+    double worst_v = 1e-12;
+    for (int j = 0; j < ni; ++j) {
+      if (std::find(active.begin(), active.end(), j) != active.end()) continue;
+      const double v = (gin[j].dot(y) - hin[j]) / gscale(j);
+      if (v > worst_v) worst = j, worst_v = v;
+    }
+    if (worst >= 0) {
+      active.push_back(worst);
+      continue;
+    }
+    // Multipliers: 2 G y + sum mu_k g_k = 0 with mu_k >= 0 for g . y <= h. Release the most
+    // negative one.
+    int release = -1;
+    double release_v = ma ? 1e-10 * (1.0 + sol.tail(ma).cwiseAbs().maxCoeff()) : 0.0;
+    for (int k = 0; k < ma; ++k)
+      if (-sol[n + m + k] > release_v) release = k, release_v = -sol[n + m + k];
+    if (release < 0) break;
+    active.erase(active.begin() + release);
+  }
+  // Conflicting conditions show as a residual the solve cannot remove.
+  double scale = 1e-300;
+  for (int i = 0; i < m; ++i) scale = std::max(scale, std::abs(rhs[i]) + rows[i].cwiseAbs().sum() * y.cwiseAbs().maxCoeff());
+  std::vector<std::string> bad;
+  for (int i = 0; i < m; ++i)
+    if (!std::isfinite(rows[i].dot(y)) || std::abs(rows[i].dot(y) - rhs[i]) > kFeasibleTol * scale) bad.push_back(names[i]);
+  // The active-set loop may stop with an inequality still violated when the conditions need it.
+  for (int j = 0; j < ni && bad.empty(); ++j)
+    if ((gin[j].dot(y) - hin[j]) / gscale(j) > 1e-9) bad.push_back(gname[j]);
+  if (!bad.empty()) {
+    std::string list;
+    for (const auto& s : names) list += (list.empty() ? "" : ", ") + s;
+    if (!std::isnan(r.concave_from)) list += ", a concave shape below " + fmt(r.concave_from);
+    if (upper_on || lower_on) list += std::string(", and ") + (upper_on ? "y <= " + fmt(r.y_upper) : "") +
+                                 (upper_on && lower_on ? " / " : "") + (lower_on ? "y >= " + fmt(r.y_lower) : "");
+    throw InfeasibleFormParameters(nm + ": the conditions " + list + " contradict each other on a curve with " +
+                                   std::to_string(n) + " control points (not met: " + bad.front() + ")");
+  }
+  Eigen::MatrixXd P(n, 2);
+  P.col(0) = a;
+  P.col(1) = y;
+  return NurbsCurve(p, U, P);
+}
+
+NurbsCurve design_section(const SectionSpec& s, double y_max) {
+  const std::string at = "section at x = " + fmt(s.x) + " m";
+  auto finite = [&](double v, const char* field) {
+    if (!std::isfinite(v)) fail(at, ": ", field, " is ", v, "; expected a finite number");
+  };
+  finite(s.x, "x");
+  finite(s.z_deck, "z_deck");
+  finite(s.y_deck, "y_deck");
+  finite(s.draft, "draft");
+  finite(s.y_dwl, "y_dwl");
+  finite(s.z_keel, "z_keel");
+  finite(s.half_area, "half_area");
+  finite(s.y_fob, "y_fob");
+  finite(s.alpha_deck, "alpha_deck");
+  finite(s.alpha_bottom, "alpha_bottom");
+  if (std::isinf(s.z_fos)) fail(at, ": z_fos is ", s.z_fos, "; expected a height or NaN (no flat side)");
+  if (std::isinf(s.z_centroid)) fail(at, ": z_centroid is ", s.z_centroid, "; expected a height or NaN (free)");
+  if (!(y_max > 0) || !std::isfinite(y_max)) fail("y_max is ", y_max, "; expected a half-breadth > 0 (m)");
+  if (s.n_control < 6) fail(at, ": n_control is ", s.n_control, "; expected at least 6");
+  const double tol = 1e-9 * (y_max + std::abs(s.z_deck));
+  if (!(s.z_keel < s.draft)) fail(at, ": keel height ", s.z_keel, " m is not below the DWL ", s.draft, " m (centre profile)");
+  if (!(s.draft < s.z_deck)) fail(at, ": DWL ", s.draft, " m is not below the deck ", s.z_deck, " m");
+  for (auto [v, field] : {std::pair{s.y_deck, "y_deck (deck curve)"}, std::pair{s.y_dwl, "y_dwl (design waterline)"},
+                          std::pair{s.y_fob, "y_fob (flat of bottom)"}})
+    if (v < -tol || v > y_max + tol) fail(at, ": ", field, " is ", v, " m; expected 0 <= y <= ", y_max, " m (B/2)");
+  if (s.half_area < 0) fail(at, ": half area is ", s.half_area, " m^2; expected >= 0 (sectional area curve)");
+  const double depth_dwl = s.draft - s.z_keel;
+  if (s.half_area > y_max * depth_dwl * (1 + 1e-12))
+    throw InfeasibleFormParameters(at + ": half area " + fmt(s.half_area) + " m^2 exceeds the rectangle B/2 x (T - z_keel) = " +
+                                   fmt(y_max * depth_dwl) + " m^2 (sectional area curve vs breadth and centre profile)");
+  const int p = s.degree;
+  const Eigen::Vector3d deck(s.x, s.y_deck, s.z_deck), keel(s.x, 0.0, s.z_keel);
+
+  // A station with no breadth: the straight centre-line segment (a vertical stem).
+  if (s.y_deck <= tol && s.y_dwl <= tol && s.y_fob <= tol) {
+    if (s.half_area > tol * y_max)
+      throw InfeasibleFormParameters(at + ": half area " + fmt(s.half_area) +
+                                     " m^2 with zero breadth at deck and DWL (sectional area curve vs design waterline)");
+    return join_pieces({line_piece(Eigen::Vector3d(s.x, 0, s.z_deck), keel, p)}, p);
+  }
+
+  const bool fos = std::isfinite(s.z_fos) && s.z_fos < s.z_deck;
+  if (fos) {
+    if (!(s.z_fos > s.z_keel)) fail(at, ": flat-of-side lower end ", s.z_fos, " m is not above the keel ", s.z_keel, " m");
+    if (s.z_fos <= s.draft && std::abs(s.y_deck - s.y_dwl) > 1e-6 * y_max)
+      fail(at, ": a flat side reaching below the DWL needs equal deck and DWL half-breadths; got ", s.y_deck, " and ",
+           s.y_dwl, " m (flat-of-side curve vs deck curve and design waterline)");
+  }
+  const bool fob = s.y_fob > tol;
+  const double z_top = fos ? s.z_fos : s.z_deck, y_top = s.y_deck;
+  const double s_top = s.z_deck - z_top, s_bot = s.z_deck - s.z_keel, s_dwl = s.z_deck - s.draft;
+  const int n = s.n_control;
+  const double deg = std::numbers::pi / 180.0;
+
+  LinearFormRequest r;
+  r.name = at;
+  r.degree = p;
+  {
+    const Eigen::VectorXd gr = greville_abscissae(clamped_uniform_knots(n, p), p);
+    r.abscissae = (s_top + (s_bot - s_top) * gr.array()).matrix();
+  }
+  const bool bottom_vertical = fob || std::abs(s.alpha_bottom) >= kVerticalAngle;
+  const bool top_vertical = !fos && std::abs(s.alpha_deck) >= kVerticalAngle;
+  // The end legs of the control polygon point along the end tangents: their abscissa extent
+  // is the uniform gap times |cos(alpha)|, so steep angles stay well conditioned and +-90 deg
+  // is the limit where the two abscissae coincide.
+  const double gap_top = r.abscissae[1] - r.abscissae[0], gap_bot = r.abscissae[n - 1] - r.abscissae[n - 2];
+  if (fob) {
+    // Meet the flat bottom with G2: tangent along y (s' = 0) and zero curvature (s'' = 0)
+    // at the end need the last three abscissae equal.
+    r.abscissae[n - 2] = r.abscissae[n - 3] = r.abscissae[n - 1];
+  } else if (bottom_vertical) {
+    r.abscissae[n - 2] = r.abscissae[n - 1];
+  } else {
+    r.abscissae[n - 2] = r.abscissae[n - 1] - gap_bot * std::abs(std::cos(s.alpha_bottom * deg));
+  }
+  if (top_vertical) r.abscissae[1] = r.abscissae[0];
+  else if (!fos) r.abscissae[1] = r.abscissae[0] + gap_top * std::abs(std::cos(s.alpha_deck * deg));
+  r.yB = y_top;
+  r.yE = fob ? s.y_fob : 0.0;
+  if (fos) {
+    // Leave the flat side with G2: slope 0 and y'' = 0 at the start (ordinates 0, 1, 2 equal
+    // for the uniform abscissae: y' = 0 fixes y_1 = y_0, then y'' = 0 fixes y_2 = y_1).
+    r.fixed.emplace_back(1, y_top);
+    r.fixed.emplace_back(2, y_top);
+  } else if (!top_vertical) {
+    r.slopeB = std::tan(s.alpha_deck * deg);
+  }
+  if (!bottom_vertical) r.slopeE = std::tan(s.alpha_bottom * deg);
+  double area_fs = 0, moment_fs = 0;
+  if (s_dwl > s_top && s_dwl < s_bot) {
+    r.points.emplace_back(s_dwl, s.y_dwl);
+    r.area_from = s_dwl;
+  } else {
+    // The DWL is on the flat side (or at its lower end): that part is a rectangle.
+    r.area_from = s_top;
+    if (fos) {
+      area_fs = s.y_dwl * (s_top - s_dwl);
+      moment_fs = s.y_dwl * 0.5 * (s_top * s_top - s_dwl * s_dwl);
+    }
+  }
+  r.area = s.half_area - area_fs;
+  if (r.area <= 0)
+    throw InfeasibleFormParameters(at + ": half area " + fmt(s.half_area) + " m^2 does not exceed the flat side's " + fmt(area_fs) +
+                                   " m^2 (sectional area curve vs flat-of-side curve)");
+  if (std::isfinite(s.z_centroid)) {
+    const double sc = s.z_deck - s.z_centroid;
+    r.xC = (s.half_area * sc - moment_fs) / r.area;
+  }
+  r.y_lower = 0.0;
+  r.y_upper = y_max;
+  r.concave_from = s.concave_below_dwl ? std::max(s_dwl, s_top) : std::numeric_limits<double>::quiet_NaN();
+  const NurbsCurve c = design_linear_form_curve(r);
+  std::vector<Piece> pieces;
+  if (fos) pieces.push_back(line_piece(deck, Eigen::Vector3d(s.x, s.y_deck, s.z_fos), p));
+  Piece mid;
+  mid.knots = c.knots();
+  mid.ctrl.resize(n, 3);
+  for (int i = 0; i < n; ++i) mid.ctrl.row(i) << s.x, c.control_points()(i, 1), s.z_deck - c.control_points()(i, 0);
+  pieces.push_back(mid);
+  if (fob) pieces.push_back(line_piece(Eigen::Vector3d(s.x, s.y_fob, s.z_keel), keel, p));
+  return join_pieces(pieces, p);
+}
+
+std::vector<NurbsCurve> design_sections(const std::vector<SectionSpec>& specs, double y_max) {
+  std::vector<NurbsCurve> out;
+  out.reserve(specs.size());
+  for (const SectionSpec& s : specs) out.push_back(design_section(s, y_max));
+  return out;
+}
+
+}  // namespace fairlines

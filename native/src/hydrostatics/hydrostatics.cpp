@@ -1,0 +1,270 @@
+// Hydrostatics by quadrature on the NURBS surface: see fairlines/hydrostatics.hpp.
+#include "fairlines/hydrostatics.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "fairlines/errors.hpp"
+#include "nurbs/checks.hpp"
+#include "skinning/gauss.hpp"
+
+namespace fairlines {
+
+namespace {
+
+using detail::fail;
+
+constexpr int kClipSamples = 8;        // samples per knot span when looking for draft crossings
+constexpr int kBisection = 60;         // bisection steps (interval shrinks below 1e-16 of the span)
+
+/// Distinct knots of a knot vector inside the domain (the span breakpoints).
+std::vector<double> breakpoints(const Eigen::VectorXd& U, int degree) {
+  const int n = static_cast<int>(U.size()) - degree - 1;
+  std::vector<double> b;
+  for (int i = degree; i <= n; ++i)
+    if (b.empty() || U[i] > b.back()) b.push_back(U[i]);
+  return b;
+}
+
+/// Sub-intervals of [breaks.front(), breaks.back()] where f(t) <= 0, each split at the breaks.
+/// f is sampled kClipSamples times per break interval; sign changes are refined by bisection.
+template <typename F>
+std::vector<std::pair<double, double>> inside_pieces(const std::vector<double>& breaks, F&& f) {
+  std::vector<double> ts;
+  for (std::size_t i = 0; i + 1 < breaks.size(); ++i)
+    for (int k = 0; k < kClipSamples; ++k)
+      ts.push_back(breaks[i] + (breaks[i + 1] - breaks[i]) * k / kClipSamples);
+  ts.push_back(breaks.back());
+  std::vector<double> fs(ts.size());
+  for (std::size_t i = 0; i < ts.size(); ++i) fs[i] = f(ts[i]);
+  // Collect boundaries of the inside set.
+  std::vector<std::pair<double, double>> ivs;
+  bool in = fs[0] <= 0;
+  double start = ts[0];
+  for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
+    const bool in_next = fs[i + 1] <= 0;
+    if (in_next == in) continue;
+    double a = ts[i], b = ts[i + 1], fa = fs[i];
+    for (int it = 0; it < kBisection && b - a > 1e-15 * (1 + std::abs(a)); ++it) {
+      const double mid = 0.5 * (a + b), fm = f(mid);
+      if ((fm <= 0) == (fa <= 0)) a = mid, fa = fm;
+      else b = mid;
+    }
+    const double root = 0.5 * (a + b);
+    if (in) ivs.emplace_back(start, root);
+    else start = root;
+    in = in_next;
+  }
+  if (in) ivs.emplace_back(start, ts.back());
+  // Split each interval at the breaks.
+  std::vector<std::pair<double, double>> pieces;
+  for (const auto& [a, b] : ivs) {
+    double lo = a;
+    for (double br : breaks)
+      if (br > lo && br < b) {
+        pieces.emplace_back(lo, br);
+        lo = br;
+      }
+    if (b > lo) pieces.emplace_back(lo, b);
+  }
+  return pieces;
+}
+
+/// Longitudinal parameter direction: 1 (v) when the control net's x varies more along j.
+int longitudinal_direction(const NurbsSurface& s) {
+  const Eigen::MatrixXd& P = s.control_points();
+  const int nu = s.nu(), nv = s.nv();
+  double du = 0, dv = 0;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      if (i + 1 < nu) du += std::abs(P((i + 1) * nv + j, 0) - P(i * nv + j, 0));
+      if (j + 1 < nv) dv += std::abs(P(i * nv + j + 1, 0) - P(i * nv + j, 0));
+    }
+  return dv >= du ? 1 : 0;
+}
+
+}  // namespace
+
+std::pair<double, double> section_area(const NurbsSurface& s, double x0, double draft, bool half_hull,
+                                       int gauss) {
+  detail::require_finite(x0, "x");
+  detail::require_positive(draft, "draft");
+  if (gauss < 2 || gauss > 32) fail("gauss is ", gauss, "; expected 2..32 points per knot span");
+  const int lon = longitudinal_direction(s);
+  // Parameters: a = across (integration), b = longitudinal (solved for x = x0).
+  const auto dom_a = lon == 1 ? s.domain_u() : s.domain_v();
+  const auto dom_b = lon == 1 ? s.domain_v() : s.domain_u();
+  const std::vector<double> br_a = breakpoints(lon == 1 ? s.knots_u() : s.knots_v(), lon == 1 ? s.degree_u() : s.degree_v());
+  const std::vector<double> br_b = breakpoints(lon == 1 ? s.knots_v() : s.knots_u(), lon == 1 ? s.degree_v() : s.degree_u());
+  auto point = [&](double a, double b) { return lon == 1 ? s.evaluate(a, b) : s.evaluate(b, a); };
+  // b where x(a, b) = x0, or NaN when the plane misses this line. Newton from the previous
+  // solution first (consecutive a are close), the bracketing scan when that fails.
+  double b_warm = std::numeric_limits<double>::quiet_NaN();
+  auto newton_b = [&](double a) {
+    if (std::isnan(b_warm)) return std::numeric_limits<double>::quiet_NaN();
+    double b = b_warm;
+    const double lo = br_b.front(), hi = br_b.back();
+    for (int it = 0; it < 30; ++it) {
+      const Eigen::MatrixXd D = lon == 1 ? s.derivatives(a, b, 1) : s.derivatives(b, a, 1);
+      const double f = D(0, 0) - x0, df = lon == 1 ? D(1, 0) : D(2, 0);
+      if (std::abs(f) <= 1e-12 * (1 + std::abs(x0))) return b;
+      if (df == 0) break;
+      b -= f / df;
+      if (!(b >= lo && b <= hi)) break;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  auto solve_b = [&](double a) {
+    const double bn = newton_b(a);
+    if (!std::isnan(bn)) return bn;
+    std::vector<double> bs;
+    for (std::size_t i = 0; i + 1 < br_b.size(); ++i)
+      for (int k = 0; k < 4; ++k) bs.push_back(br_b[i] + (br_b[i + 1] - br_b[i]) * k / 4);
+    bs.push_back(br_b.back());
+    double prev = point(a, bs[0])[0] - x0;
+    if (prev == 0) return bs[0];
+    for (std::size_t i = 1; i < bs.size(); ++i) {
+      const double cur = point(a, bs[i])[0] - x0;
+      if (cur == 0) return bs[i];
+      if ((prev < 0) != (cur < 0)) {
+        double lo = bs[i - 1], hi = bs[i], flo = prev;
+        for (int it = 0; it < kBisection && hi - lo > 1e-15; ++it) {
+          const double mid = 0.5 * (lo + hi), fm = point(a, mid)[0] - x0;
+          if ((fm < 0) == (flo < 0)) lo = mid, flo = fm;
+          else hi = mid;
+        }
+        return 0.5 * (lo + hi);
+      }
+      prev = cur;
+    }
+    // Tolerate x0 at the very end of the surface (round-off).
+    const double tol = 1e-9 * (1 + std::abs(x0));
+    if (std::abs(point(a, bs.front())[0] - x0) < tol) return bs.front();
+    if (std::abs(point(a, bs.back())[0] - x0) < tol) return bs.back();
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  (void)dom_a;
+  (void)dom_b;
+  auto zfun = [&](double a) {
+    const double b = solve_b(a);
+    if (std::isnan(b)) return 1.0;  // no cut here: outside
+    b_warm = b;
+    return point(a, b)[2] - draft;
+  };
+  const auto pieces = inside_pieces(br_a, zfun);
+  const auto& g = detail::gauss_rule(gauss);
+  double area = 0, mz = 0;
+  for (const auto& [pa, pb] : pieces) {
+    const double h = 0.5 * (pb - pa), m = 0.5 * (pa + pb);
+    for (int k = 0; k < gauss; ++k) {
+      const double a = m + h * g.x[k];
+      const double b = solve_b(a);
+      if (std::isnan(b)) continue;
+      b_warm = b;
+      const Eigen::MatrixXd D = lon == 1 ? s.derivatives(a, b, 1) : s.derivatives(b, a, 1);
+      // Rows: 0 S, 1 S_v, 2 S_u.
+      const Eigen::Vector3d Sa = lon == 1 ? Eigen::Vector3d(D.row(2)) : Eigen::Vector3d(D.row(1));
+      const Eigen::Vector3d Sb = lon == 1 ? Eigen::Vector3d(D.row(1)) : Eigen::Vector3d(D.row(2));
+      if (Sb[0] == 0) continue;
+      const double db = -Sa[0] / Sb[0];
+      const double dz = Sa[2] + Sb[2] * db;
+      const double y = D(0, 1), z = D(0, 2);
+      area += g.w[k] * h * y * dz;
+      mz += g.w[k] * h * y * z * dz;
+    }
+  }
+  if (area == 0) return {0.0, 0.0};
+  const double zc = mz / area;
+  return {(half_hull ? 2.0 : 1.0) * std::abs(area), zc};
+}
+
+Hydrostatics hydrostatics(const NurbsSurface& s, double draft, const HydrostaticsOptions& o) {
+  detail::require_positive(draft, "draft");
+  if (o.gauss < 2 || o.gauss > 32) fail("gauss is ", o.gauss, "; expected 2..32 points per knot span");
+  if (o.sac_stations < 2) fail("sac_stations is ", o.sac_stations, "; expected at least 2");
+  if (!(o.length >= 0) || !std::isfinite(o.length)) fail("length is ", o.length, "; expected 0 (automatic) or a length > 0 (m)");
+  if (!(o.breadth >= 0) || !std::isfinite(o.breadth)) fail("breadth is ", o.breadth, "; expected 0 (automatic) or a breadth > 0 (m)");
+  if (!(o.density > 0) || !std::isfinite(o.density)) fail("density is ", o.density, "; expected a density > 0 (t/m^3)");
+  if (std::isinf(o.midship_x)) fail("midship_x is ", o.midship_x, "; expected a finite x (m) or NaN (automatic)");
+
+  const std::vector<double> bu = breakpoints(s.knots_u(), s.degree_u());
+  const std::vector<double> bv = breakpoints(s.knots_v(), s.degree_v());
+  const auto& g = detail::gauss_rule(o.gauss);
+  // Accumulators: V, Mx, Mz (flux of y), Qz, Qxz (flux of z), wetted area.
+  std::array<double, 6> acc{};
+  double xmin = std::numeric_limits<double>::infinity(), xmax = -xmin, ymax = 0;
+  for (std::size_t jv = 0; jv + 1 < bv.size(); ++jv) {
+    const double hv = 0.5 * (bv[jv + 1] - bv[jv]), mv = 0.5 * (bv[jv + 1] + bv[jv]);
+    for (int kv = 0; kv < o.gauss; ++kv) {
+      const double v = mv + hv * g.x[kv];
+      const auto pieces = inside_pieces(bu, [&](double u) { return s.evaluate(u, v)[2] - draft; });
+      for (const auto& [pa, pb] : pieces) {
+        const double hu = 0.5 * (pb - pa), mu = 0.5 * (pa + pb);
+        for (int ku = 0; ku < o.gauss; ++ku) {
+          const double u = mu + hu * g.x[ku];
+          const Eigen::MatrixXd D = s.derivatives(u, v, 1);
+          const Eigen::Vector3d P = D.row(0), Sv = D.row(1), Su = D.row(2);
+          const Eigen::Vector3d N = Su.cross(Sv);
+          const double w = g.w[kv] * hv * g.w[ku] * hu;
+          acc[0] += w * P[1] * N[1];
+          acc[1] += w * P[0] * P[1] * N[1];
+          acc[2] += w * P[2] * P[1] * N[1];
+          acc[3] += w * P[2] * N[2];
+          acc[4] += w * P[0] * P[2] * N[2];
+          acc[5] += w * N.norm();
+          xmin = std::min(xmin, P[0]);
+          xmax = std::max(xmax, P[0]);
+          ymax = std::max(ymax, P[1]);
+        }
+        // The piece ends are on the surface too: include them in the extent.
+        for (double ue : {pa, pb}) {
+          const Eigen::Vector3d P = s.evaluate(ue, v);
+          xmin = std::min(xmin, P[0]);
+          xmax = std::max(xmax, P[0]);
+          ymax = std::max(ymax, P[1]);
+        }
+      }
+    }
+  }
+  if (acc[0] == 0) fail("the surface has nothing below draft ", draft, " m; expected a draft above its lowest point");
+  // Also sample the domain edges in v so the extent includes the surface ends.
+  for (double v : {bv.front(), bv.back()})
+    for (double u : bu) {
+      const Eigen::Vector3d P = s.evaluate(u, v);
+      if (P[2] <= draft) xmin = std::min(xmin, P[0]), xmax = std::max(xmax, P[0]), ymax = std::max(ymax, P[1]);
+    }
+  const double sign = acc[0] > 0 ? 1.0 : -1.0;
+  const double V = sign * acc[0];
+  const double factor = o.half_hull ? 2.0 : 1.0;
+  Hydrostatics h;
+  h.draft = draft;
+  h.volume = factor * V;
+  h.displacement = o.density * h.volume;
+  h.lcb = sign * acc[1] / V;
+  h.vcb = sign * acc[2] / V;
+  const double awp_half = (V - sign * acc[3]) / draft;
+  h.waterplane_area = factor * awp_half;
+  h.lcf = awp_half != 0 ? (sign * acc[1] - sign * acc[4]) / (draft * awp_half) : 0.0;
+  h.wetted_surface = factor * acc[5];
+  h.x_min = xmin;
+  h.x_max = xmax;
+  h.length = o.length > 0 ? o.length : xmax - xmin;
+  h.breadth = o.breadth > 0 ? o.breadth : 2.0 * ymax;
+  h.midship_x = std::isnan(o.midship_x) ? 0.5 * (xmin + xmax) : o.midship_x;
+  h.midship_area = section_area(s, h.midship_x, draft, o.half_hull, o.gauss).first;
+  h.cb = h.volume / (h.length * h.breadth * draft);
+  h.cm = h.midship_area / (h.breadth * draft);
+  h.cp = h.midship_area > 0 ? h.volume / (h.midship_area * h.length) : 0.0;
+  h.cwp = h.waterplane_area / (h.length * h.breadth);
+  h.sac_x = Eigen::VectorXd::LinSpaced(o.sac_stations, xmin, xmax);
+  h.sac_area.resize(o.sac_stations);
+  for (int k = 0; k < o.sac_stations; ++k)
+    h.sac_area[k] = section_area(s, h.sac_x[k], draft, o.half_hull, o.gauss).first;
+  return h;
+}
+
+}  // namespace fairlines

@@ -1,0 +1,477 @@
+// Fair skinning (seed 000 eq. 6-9): see fairlines/skinning.hpp.
+#include "fairlines/skinning.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <Eigen/Dense>
+
+#include "fairlines/basis.hpp"
+#include "fairlines/errors.hpp"
+#include "fairlines/knots.hpp"
+#include "nurbs/checks.hpp"
+#include "skinning/gauss.hpp"
+
+namespace fairlines {
+
+namespace {
+
+using detail::fail;
+
+/// Value and first derivative of a curve at t, without allocation for non-rational curves.
+class CurveProbe {
+ public:
+  /// weight > 0 measures length as ds (1 + weight |k|) (curvature-weighted arc length).
+  explicit CurveProbe(const NurbsCurve& c, double weight = 0.0)
+      : c_(c), weight_(weight), ders_(3, c.degree() + 1) {}
+  /// Writes C(t) into p, C'(t) into d and C''(t) into dd (dim values each).
+  void eval(double t, double* p, double* d, double* dd = nullptr) {
+    const int deg = c_.degree(), dim = c_.dim();
+    if (c_.is_rational() || dim > 8) {
+      const Eigen::MatrixXd D = c_.derivatives(t, 2);
+      for (int k = 0; k < dim; ++k) {
+        p[k] = D(0, k), d[k] = D(1, k);
+        if (dd) dd[k] = D(2, k);
+      }
+      return;
+    }
+    const Eigen::VectorXd& U = c_.knots();
+    const int span = find_span(deg, U.data(), static_cast<int>(U.size()), t);
+    basis_derivatives(span, t, deg, 2, U, ders_);
+    const Eigen::MatrixXd& P = c_.control_points();
+    for (int k = 0; k < dim; ++k) {
+      p[k] = d[k] = 0.0;
+      if (dd) dd[k] = 0.0;
+    }
+    for (int j = 0; j <= deg; ++j) {
+      const int row = span - deg + j;
+      for (int k = 0; k < dim; ++k) {
+        p[k] += ders_(0, j) * P(row, k);
+        d[k] += ders_(1, j) * P(row, k);
+        if (dd) dd[k] += ders_(2, j) * P(row, k);
+      }
+    }
+  }
+  /// |C'(t)| (1 + weight |k(t)|).
+  double speed(double t) {
+    double p[8], d[8], dd[8];
+    if (c_.dim() > 8) {
+      const Eigen::MatrixXd D = c_.derivatives(t, 1);
+      return D.row(1).norm();
+    }
+    eval(t, p, d, weight_ > 0 ? dd : nullptr);
+    double s2 = 0;
+    for (int k = 0; k < c_.dim(); ++k) s2 += d[k] * d[k];
+    const double sp = std::sqrt(s2);
+    if (!(weight_ > 0) || !(sp > 0)) return sp;
+    // |C' x C''|^2 = |C'|^2 |C''|^2 - (C'.C'')^2, any dimension.
+    double dd2 = 0, dot = 0;
+    for (int k = 0; k < c_.dim(); ++k) dd2 += dd[k] * dd[k], dot += d[k] * dd[k];
+    const double cross = std::sqrt(std::max(0.0, s2 * dd2 - dot * dot));
+    return sp + weight_ * cross / s2;  // |C'| (1 + w |k|), |k| = |C' x C''| / |C'|^3
+  }
+
+ private:
+  const NurbsCurve& c_;
+  double weight_;
+  Eigen::MatrixXd ders_;
+};
+
+/// Piecewise table of arc length: breakpoints t_k (quarter knot spans), cumulative s_k and
+/// the speed |C'| just inside each end of every interval (one-sided: the speed may jump at a
+/// knot of full multiplicity), so that t(s) can be inverted by cubic Hermite interpolation.
+struct ArcTable {
+  std::vector<double> t, s, speed_a, speed_b;  // speed_a[k], speed_b[k]: interval k's ends
+};
+
+constexpr int kArcGauss = 8;     // Gauss points per sub-interval
+constexpr int kArcSplit = 4;     // sub-intervals per knot span
+
+double arc_piece(CurveProbe& probe, double a, double b) {
+  const auto& g = detail::gauss_rule(kArcGauss);
+  const double h = 0.5 * (b - a), m = 0.5 * (a + b);
+  double s = 0;
+  for (int k = 0; k < kArcGauss; ++k) s += g.w[k] * probe.speed(m + h * g.x[k]);
+  return s * h;
+}
+
+ArcTable arc_table(CurveProbe& probe, const NurbsCurve& c) {
+  ArcTable tab;
+  const Eigen::VectorXd& U = c.knots();
+  const auto [t0, t1] = c.domain();
+  tab.t.push_back(t0);
+  tab.s.push_back(0.0);
+  for (Eigen::Index i = 0; i + 1 < U.size(); ++i) {
+    const double a = std::max(U[i], t0), b = std::min(U[i + 1], t1);
+    if (!(b > a)) continue;
+    for (int k = 0; k < kArcSplit; ++k) {
+      const double ta = a + (b - a) * k / kArcSplit, tb = a + (b - a) * (k + 1) / kArcSplit;
+      const double eps = 1e-9 * (tb - ta);
+      tab.t.push_back(tb);
+      tab.s.push_back(tab.s.back() + arc_piece(probe, ta, tb));
+      tab.speed_a.push_back(probe.speed(ta + eps));
+      tab.speed_b.push_back(probe.speed(tb - eps));
+    }
+  }
+  return tab;
+}
+
+/// Parameter where the arc length from the start is (nearly) `target`: cubic Hermite
+/// interpolation of t(s) on the table interval, with dt/ds = 1/|C'| at its ends (falls back
+/// to linear where the speed vanishes). The result is clamped to the interval, so t(s) stays
+/// monotone.
+double invert_arc(CurveProbe& probe, const ArcTable& tab, double target) {
+  const auto it = std::upper_bound(tab.s.begin(), tab.s.end(), target);
+  std::size_t k = (it == tab.s.begin()) ? 0 : static_cast<std::size_t>(it - tab.s.begin()) - 1;
+  if (k + 1 >= tab.s.size()) return tab.t.back();
+  const double t0 = tab.t[k], t1 = tab.t[k + 1], s0 = tab.s[k], ds = tab.s[k + 1] - s0;
+  if (!(ds > 0)) return t0;
+  const double x = (target - s0) / ds, dt = t1 - t0;
+  double m0 = dt, m1 = dt;  // d t / d x at the ends (linear fallback)
+  if (tab.speed_a[k] > 1e-12 * ds / dt && tab.speed_b[k] > 1e-12 * ds / dt) {
+    m0 = ds / tab.speed_a[k];
+    m1 = ds / tab.speed_b[k];
+  }
+  const double x2 = x * x, x3 = x2 * x;
+  double t = (2 * x3 - 3 * x2 + 1) * t0 + (x3 - 2 * x2 + x) * m0 + (-2 * x3 + 3 * x2) * t1 + (x3 - x2) * m1;
+  t = std::clamp(t, t0, t1);
+  // One Newton step on s(t) - target (5-point Gauss-Legendre from t0) removes most of the
+  // Hermite error where the speed varies fast inside an interval (tight bends).
+  const double sp = probe.speed(t);
+  if (sp > 0 && t > t0) {
+    const auto& g = detail::gauss_rule(5);
+    const double h = 0.5 * (t - t0), mid = 0.5 * (t + t0);
+    double part = 0;
+    for (int q = 0; q < 5; ++q) part += g.w[q] * probe.speed(mid + h * g.x[q]);
+    t = std::clamp(t - (part * h - (target - s0)) / sp, t0, t1);
+  }
+  return t;
+}
+
+/// Gram matrix int N_i^(r) N_j^(r) dt of a B-spline basis (n x n), exact by Gauss-Legendre.
+Eigen::MatrixXd derivative_gram(const Eigen::VectorXd& U, int degree, int r) {
+  const int n = static_cast<int>(U.size()) - degree - 1;
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n, n);
+  if (r > degree) return G;
+  const auto& g = detail::gauss_rule(degree + 1);
+  Eigen::MatrixXd ders(r + 1, degree + 1);
+  for (int s = degree; s < n; ++s) {
+    const double a = U[s], b = U[s + 1];
+    if (!(b > a)) continue;
+    const double h = 0.5 * (b - a), m = 0.5 * (a + b);
+    for (std::size_t k = 0; k < g.x.size(); ++k) {
+      const double t = m + h * g.x[k];
+      basis_derivatives(s, t, degree, r, U, ders);
+      for (int i = 0; i <= degree; ++i)
+        for (int j = 0; j <= degree; ++j)
+          G(s - degree + i, s - degree + j) += g.w[k] * h * ders(r, i) * ders(r, j);
+    }
+  }
+  return G;
+}
+
+/// Row of basis values (order r derivative) at t: 1 x n.
+Eigen::RowVectorXd basis_row(const Eigen::VectorXd& U, int degree, double t, int r = 0) {
+  const int n = static_cast<int>(U.size()) - degree - 1;
+  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
+  const int span = find_span(degree, U, t);
+  Eigen::MatrixXd ders(r + 1, degree + 1);
+  basis_derivatives(span, t, degree, r, U, ders);
+  for (int j = 0; j <= degree; ++j) row[span - degree + j] = ders(r, j);
+  return row;
+}
+
+}  // namespace
+
+double arc_length(const NurbsCurve& curve) {
+  CurveProbe probe(curve);
+  return arc_table(probe, curve).s.back();
+}
+
+Eigen::MatrixXd equal_arc_length_points(const NurbsCurve& curve, int m, double curvature_weight) {
+  if (m < 2) fail("m is ", m, "; expected at least 2 points");
+  if (!(curvature_weight >= 0) || !std::isfinite(curvature_weight))
+    fail("curvature_weight is ", curvature_weight, "; expected a finite value >= 0");
+  double w = 0;
+  if (curvature_weight > 0) w = curvature_weight * arc_length(curve);
+  CurveProbe probe(curve, w);
+  const ArcTable tab = arc_table(probe, curve);
+  const double L = tab.s.back();
+  if (!(L > 0)) fail("curve has zero length; expected a curve of positive length");
+  Eigen::MatrixXd out(m, curve.dim());
+  std::vector<double> p(curve.dim()), d(curve.dim());
+  for (int i = 0; i < m; ++i) {
+    double t;
+    if (i == 0) t = tab.t.front();
+    else if (i == m - 1) t = tab.t.back();
+    else t = invert_arc(probe, tab, L * i / (m - 1));
+    if (curve.is_rational()) {
+      out.row(i) = curve.evaluate(t).transpose();
+    } else {
+      probe.eval(t, p.data(), d.data());
+      for (int k = 0; k < curve.dim(); ++k) out(i, k) = p[k];
+    }
+  }
+  return out;
+}
+
+double curve_e2(const NurbsCurve& curve) {
+  const auto& g = detail::gauss_rule(curve.degree() + 1);
+  const Eigen::VectorXd& U = curve.knots();
+  const auto [t0, t1] = curve.domain();
+  double e = 0;
+  for (Eigen::Index i = 0; i + 1 < U.size(); ++i) {
+    const double a = std::max(U[i], t0), b = std::min(U[i + 1], t1);
+    if (!(b > a)) continue;
+    const double h = 0.5 * (b - a), m = 0.5 * (a + b);
+    // Rational curves are not polynomial; use more points then.
+    const int reps = curve.is_rational() ? 4 : 1;
+    for (int r = 0; r < reps; ++r) {
+      const double ra = a + (b - a) * r / reps, rb = a + (b - a) * (r + 1) / reps;
+      const double hh = 0.5 * (rb - ra), mm = 0.5 * (ra + rb);
+      for (std::size_t k = 0; k < g.x.size(); ++k) {
+        const Eigen::MatrixXd D = curve.derivatives(mm + hh * g.x[k], 2);
+        e += g.w[k] * hh * D.row(2).squaredNorm();
+      }
+    }
+    (void)h;
+    (void)m;
+  }
+  return e;
+}
+
+SkinMode parse_skin_mode(const std::string& name) {
+  if (name == "interpolate") return SkinMode::Interpolate;
+  if (name == "approximate") return SkinMode::Approximate;
+  fail("mode is '", name, "'; expected 'interpolate' or 'approximate'");
+}
+
+SkinEnd parse_skin_end(const std::string& name) {
+  if (name == "free") return SkinEnd::Free;
+  if (name == "parallel") return SkinEnd::Parallel;
+  fail("end condition is '", name, "'; expected 'free' or 'parallel'");
+}
+
+SkinParams parse_skin_params(const std::string& name) {
+  if (name == "auto") return SkinParams::Auto;
+  if (name == "station") return SkinParams::Station;
+  if (name == "chord") return SkinParams::Chord;
+  fail("params is '", name, "'; expected 'auto', 'station' or 'chord'");
+}
+
+SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions& o) {
+  const int q = static_cast<int>(sections.size());
+  if (q < 2) fail("sections has ", q, " curves; expected at least 2");
+  int largest = 0;
+  for (int d = 0; d < q; ++d) {
+    if (sections[d].dim() != 3)
+      fail("sections[", d, "] is a ", sections[d].dim(), "-D curve; expected a 3-D curve (x, y, z)");
+    largest = std::max(largest, sections[d].n_control());
+  }
+  detail::require_degree(o.degree_u, "degree_u");
+  if (o.degree_v < 2) fail("degree_v is ", o.degree_v, "; expected an integer >= 2 (E2 needs C'')");
+  const int n = o.n_control > 0 ? o.n_control : std::max(12, 2 * largest);
+  if (o.n_control < 0) fail("n_control is ", o.n_control, "; expected 0 (automatic) or >= degree_u + 1");
+  if (n < o.degree_u + 1) fail("n_control is ", n, "; expected at least degree_u + 1 = ", o.degree_u + 1);
+  const int m = o.samples > 0 ? o.samples : 4 * n;
+  if (o.samples < 0 || m < n) fail("samples is ", o.samples, "; expected 0 (automatic) or >= n_control = ", n);
+  if (!(o.curvature_weight >= 0) || !std::isfinite(o.curvature_weight))
+    fail("curvature_weight is ", o.curvature_weight, "; expected a finite value >= 0");
+  if (!(o.e2 >= 0) || !(o.e3 >= 0) || !std::isfinite(o.e2) || !std::isfinite(o.e3) || !(o.e2 + o.e3 > 0))
+    fail("fairness weights are e2 = ", o.e2, ", e3 = ", o.e3, "; expected finite values >= 0, not both 0");
+  if (o.e3 > 0 && o.degree_v < 3) fail("e3 is ", o.e3, " but degree_v is ", o.degree_v, "; E3 needs degree_v >= 3");
+  if (!(o.smoothing >= 0) || !std::isfinite(o.smoothing))
+    fail("smoothing is ", o.smoothing, "; expected a finite value >= 0");
+
+  // (b) equally spaced points along every section.
+  std::vector<Eigen::MatrixXd> pts(q);
+  for (int d = 0; d < q; ++d) {
+    try {
+      pts[d] = equal_arc_length_points(sections[d], m, o.curvature_weight);
+    } catch (const InvalidInput& e) {
+      fail("sections[", d, "]: ", e.what());
+    }
+  }
+
+  // (c)-(d) one knot vector and control count for all sections; ends interpolated, the rest
+  // by least squares (QR of the collocation matrix, factorised once for all sections).
+  const Eigen::VectorXd Ku = clamped_uniform_knots(n, o.degree_u);
+  Eigen::MatrixXd Nu(m, n);
+  for (int k = 0; k < m; ++k) Nu.row(k) = basis_row(Ku, o.degree_u, static_cast<double>(k) / (m - 1));
+  // ctrl[d] : n x 3
+  std::vector<Eigen::MatrixXd> ctrl(q, Eigen::MatrixXd(n, 3));
+  double fit_max = 0;
+  {
+    Eigen::MatrixXd rhs(m, 3 * q);
+    for (int d = 0; d < q; ++d) rhs.middleCols(3 * d, 3) = pts[d];
+    Eigen::MatrixXd sol(n, 3 * q);
+    if (m == n) {
+      sol = Nu.partialPivLu().solve(rhs);
+    } else {
+      // Fix the end control points to the end samples, least squares on the interior.
+      sol.row(0) = rhs.row(0);
+      sol.row(n - 1) = rhs.row(m - 1);
+      const Eigen::MatrixXd A = Nu.block(1, 1, m - 2, n - 2);
+      const Eigen::MatrixXd b = rhs.middleRows(1, m - 2) - Nu.block(1, 0, m - 2, 1) * sol.row(0) -
+                                Nu.block(1, n - 1, m - 2, 1) * sol.row(n - 1);
+      sol.middleRows(1, n - 2) = A.householderQr().solve(b);
+    }
+    const Eigen::MatrixXd resid = Nu * sol - rhs;
+    for (int d = 0; d < q; ++d) {
+      ctrl[d] = sol.middleCols(3 * d, 3);
+      for (int k = 0; k < m; ++k) fit_max = std::max(fit_max, resid.block(k, 3 * d, 1, 3).norm());
+    }
+  }
+
+  // Longitudinal parameters of the sections.
+  Eigen::VectorXd v(q);
+  SkinParams mode = o.params;
+  if (mode != SkinParams::Chord) {
+    bool planar = true, monotone = true;
+    double scale = 0;
+    for (int d = 0; d < q; ++d) scale = std::max(scale, ctrl[d].cwiseAbs().maxCoeff());
+    for (int d = 0; d < q; ++d) {
+      const double spread = ctrl[d].col(0).maxCoeff() - ctrl[d].col(0).minCoeff();
+      if (spread > 1e-9 * std::max(scale, 1.0)) planar = false;
+    }
+    const double dir = ctrl[q - 1](0, 0) - ctrl[0](0, 0);
+    for (int d = 0; d + 1 < q; ++d)
+      if (!((ctrl[d + 1](0, 0) - ctrl[d](0, 0)) * dir > 0)) monotone = false;
+    if (planar && monotone) {
+      mode = SkinParams::Station;
+    } else if (mode == SkinParams::Station) {
+      if (!planar) fail("params is 'station' but the sections are not planar at constant x");
+      fail("params is 'station' but the section x positions are not strictly monotone");
+    } else {
+      mode = SkinParams::Chord;
+    }
+  }
+  if (mode == SkinParams::Station) {
+    const double x0 = ctrl[0](0, 0), x1 = ctrl[q - 1](0, 0);
+    for (int d = 0; d < q; ++d) v[d] = (ctrl[d](0, 0) - x0) / (x1 - x0);
+  } else {
+    v[0] = 0;
+    for (int d = 1; d < q; ++d) {
+      double c = 0;
+      for (int i = 0; i < n; ++i) c += (ctrl[d].row(i) - ctrl[d - 1].row(i)).norm();
+      v[d] = v[d - 1] + c / n;
+    }
+    if (!(v[q - 1] > 0)) fail("sections all coincide; expected sections at distinct places");
+    v /= v[q - 1];
+    for (int d = 1; d < q; ++d)
+      if (!(v[d] > v[d - 1]))
+        fail("sections[", d, "] coincides with sections[", d - 1, "]; expected distinct sections");
+  }
+  v[0] = 0;
+  v[q - 1] = 1;
+
+  // Longitudinal knots: a knot at every interior section parameter (multiplicity degree_v - 1
+  // at C1 joints), clamped ends. Dimension q + degree_v - 1 (+ joints * (degree_v - 2)).
+  const int pv = o.degree_v;
+  std::set<int> joints;
+  for (int j : o.c1_sections) {
+    if (j < 1 || j > q - 2) fail("c1_sections contains ", j, "; expected interior section indices 1..", q - 2);
+    joints.insert(j);
+  }
+  std::vector<double> kv(pv + 1, 0.0);
+  for (int d = 1; d < q - 1; ++d) {
+    const int mult = joints.count(d) ? pv - 1 : 1;
+    for (int r = 0; r < mult; ++r) kv.push_back(v[d]);
+  }
+  for (int r = 0; r <= pv; ++r) kv.push_back(1.0);
+  const Eigen::VectorXd Kv = Eigen::Map<Eigen::VectorXd>(kv.data(), static_cast<Eigen::Index>(kv.size()));
+  const int nv = static_cast<int>(Kv.size()) - pv - 1;
+
+  Eigen::MatrixXd Nv(q, nv);
+  for (int d = 0; d < q; ++d) Nv.row(d) = basis_row(Kv, pv, v[d]);
+  // Fairness matrix: e2 E2 + e3 h^2 E3 (h = 1/(q-1) makes the two terms commensurate).
+  const double hq = 1.0 / (q - 1);
+  Eigen::MatrixXd G = o.e2 * derivative_gram(Kv, pv, 2);
+  if (o.e3 > 0) G += o.e3 * hq * hq * derivative_gram(Kv, pv, 3);
+  const Eigen::RowVectorXd D0 = basis_row(Kv, pv, 0.0, 1), D1 = basis_row(Kv, pv, 1.0, 1);
+
+  // Data rows: for coordinate k, row i, the q values ctrl[d](i, k). Columns: (i, k) -> 3 i + k.
+  Eigen::MatrixXd data(q, 3 * n);
+  for (int d = 0; d < q; ++d)
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k) data(d, 3 * i + k) = ctrl[d](i, k);
+
+  // Solve for one coordinate group (x alone, or y and z with the end conditions).
+  Eigen::MatrixXd lon(nv, 3 * n);
+  auto solve_group = [&](const std::vector<int>& cols, bool with_ends) {
+    std::vector<Eigen::RowVectorXd> extra;
+    if (with_ends && o.start == SkinEnd::Parallel) extra.push_back(D0);
+    if (with_ends && o.end == SkinEnd::Parallel) extra.push_back(D1);
+    const int ne = static_cast<int>(extra.size());
+    Eigen::MatrixXd rhs_data(q, cols.size());
+    for (std::size_t c = 0; c < cols.size(); ++c) rhs_data.col(c) = data.col(cols[c]);
+    Eigen::MatrixXd sol;
+    if (o.mode == SkinMode::Interpolate) {
+      const int mc = q + ne;
+      Eigen::MatrixXd KKT = Eigen::MatrixXd::Zero(nv + mc, nv + mc);
+      KKT.topLeftCorner(nv, nv) = 2.0 * G;
+      KKT.block(nv, 0, q, nv) = Nv;
+      for (int e = 0; e < ne; ++e) KKT.row(nv + q + e).head(nv) = extra[e];
+      KKT.topRightCorner(nv, mc) = KKT.bottomLeftCorner(mc, nv).transpose();
+      Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nv + mc, cols.size());
+      rhs.middleRows(nv, q) = rhs_data;
+      const Eigen::FullPivLU<Eigen::MatrixXd> lu(KKT);
+      const Eigen::MatrixXd full = lu.solve(rhs);
+      // A singular system shows as a residual the solve cannot remove (the pivot-based rank
+      // is unreliable here: E3 and interpolation rows differ by many orders of magnitude).
+      if (!full.allFinite() || (KKT * full - rhs).norm() > 1e-10 * (KKT.norm() * full.norm() + rhs.norm()))
+        fail("the longitudinal interpolation problem is singular (", q, " sections, degree_v ", pv,
+             "); expected distinct section parameters");
+      sol = full.topRows(nv);
+    } else {
+      const double h = 1.0 / (q - 1);
+      const double lam = o.smoothing * h * h * h * h;
+      Eigen::MatrixXd KKT = Eigen::MatrixXd::Zero(nv + ne, nv + ne);
+      KKT.topLeftCorner(nv, nv) = (2.0 / q) * Nv.transpose() * Nv + 2.0 * lam * G;
+      for (int e = 0; e < ne; ++e) {
+        KKT.row(nv + e).head(nv) = extra[e];
+        KKT.col(nv + e).head(nv) = extra[e].transpose();
+      }
+      Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nv + ne, cols.size());
+      rhs.topRows(nv) = (2.0 / q) * Nv.transpose() * rhs_data;
+      const Eigen::FullPivLU<Eigen::MatrixXd> lu(KKT);
+      if (lu.rank() < nv + ne)
+        fail("the longitudinal approximation problem is singular (", q, " sections, degree_v ", pv,
+             ", smoothing ", o.smoothing, "); expected smoothing > 0 or more sections");
+      sol = lu.solve(rhs).topRows(nv);
+    }
+    for (std::size_t c = 0; c < cols.size(); ++c) lon.col(cols[c]) = sol.col(c);
+  };
+  std::vector<int> xs, yz;
+  for (int i = 0; i < n; ++i) {
+    xs.push_back(3 * i);
+    yz.push_back(3 * i + 1);
+    yz.push_back(3 * i + 2);
+  }
+  solve_group(xs, false);
+  solve_group(yz, true);
+
+  SkinResult res{NurbsSurface(o.degree_u, pv, Ku, Kv, n, nv, Eigen::MatrixXd::Zero(n * nv, 3)),
+                 v, fit_max, 0.0, Eigen::VectorXd(n)};
+  Eigen::MatrixXd P(n * nv, 3);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < nv; ++j)
+      for (int k = 0; k < 3; ++k) P(i * nv + j, k) = lon(j, 3 * i + k);
+  res.surface = NurbsSurface(o.degree_u, pv, Ku, Kv, n, nv, P);
+  const Eigen::MatrixXd fitted = Nv * lon;
+  double lmax = 0;
+  for (int d = 0; d < q; ++d)
+    for (int i = 0; i < n; ++i)
+      lmax = std::max(lmax, (fitted.block(d, 3 * i, 1, 3) - data.block(d, 3 * i, 1, 3)).norm());
+  res.longitudinal_max = lmax;
+  const Eigen::MatrixXd G2 = derivative_gram(Kv, pv, 2);
+  for (int i = 0; i < n; ++i) {
+    double e = 0;
+    for (int k = 0; k < 3; ++k) e += lon.col(3 * i + k).dot(G2 * lon.col(3 * i + k));
+    res.row_e2[i] = e;
+  }
+  return res;
+}
+
+}  // namespace fairlines

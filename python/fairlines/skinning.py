@@ -1,0 +1,60 @@
+"""Fair skinning of section curves into one B-spline surface (SPEC §5, seed 000 eq. 6-9)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from . import _native
+
+__all__ = ["fair_skin"]
+
+
+def fair_skin(
+    curves: Sequence[_native.NurbsCurve],
+    n_control: int | None = None,
+    mode: str = "interpolate",
+    *,
+    degree_u: int = 3,
+    degree_v: int = 3,
+    samples: int | None = None,
+    smoothing: float = 1e-3,
+    start: str = "free",
+    end: str = "free",
+    params: str = "auto",
+    c1_sections: Sequence[int] = (),
+    curvature_weight: float = 0.0,
+    e2: float = 1.0,
+    e3: float = 0.0,
+) -> _native.SkinResult:
+    """Skin section curves (3-D NurbsCurves, ordered along the hull, metres) into one surface.
+
+    (b) ``samples`` equally spaced points along every section (default 4 x n_control);
+    (c)-(d) one clamped uniform knot vector with ``n_control`` control points for all sections
+    (default max(12, 2 x the largest section control count)), ends interpolated, the rest by
+    least squares; (f) for each control-point row a longitudinal B-spline of ``degree_v`` with a
+    knot at every section that, in ``mode="interpolate"``, passes through the row and has the
+    least E2 = int |C''(v)|^2 dv (seed 000 eq. 9), and in ``mode="approximate"`` minimises
+    (1/q) sum |C(v_d) - P_d|^2 + smoothing h^4 E2 with h = 1/(q - 1).
+
+    ``start`` / ``end``: "free" (natural) or "parallel" (dy/dv = dz/dv = 0, so the surface meets
+    a parallel middle body with C1 continuity). ``c1_sections``: interior section indices where
+    the longitudinal curves are only C1 (the fore / aft body joint). ``params``: "station"
+    (v proportional to section x; then every section is the iso-curve v = v_d), "chord", or
+    "auto" (station when the sections are planar at monotone x).
+
+    ``curvature_weight`` w > 0 spaces the section points equally in ds (1 + w L |k|) (L the
+    section length) instead of plain arc length, so the common knots crowd where the sections
+    bend (tight bilges next to flat sides); 0 is seed 000's plain equal spacing.
+
+    ``e2`` / ``e3``: fairness of the longitudinal curves, e2 E2 + e3 h^2 E3 (h = 1/(q-1)).
+    The default (1, 0) is seed 000 eq. 9, whose interpolant is the natural spline (zero
+    curvature forced at the end sections); (0, 1) reproduces quadratic variation along the
+    hull exactly and keeps the end curvature.
+
+    Returns a SkinResult: ``surface`` (u across the sections, v along the hull),
+    ``section_params``, ``section_fit_max``, ``longitudinal_max`` and ``row_e2``.
+    """
+    return _native._fair_skin(
+        list(curves), n_control, mode, degree_u, degree_v, samples, float(smoothing), start, end, params,
+        [int(i) for i in c1_sections], float(curvature_weight), float(e2), float(e3),
+    )

@@ -1,0 +1,256 @@
+"""The bare hull from basic curves: description, sections, skinned surface, hydrostatics.
+
+Truths: the form parameters written in examples/panamax_forebody.json (volume, LCB, waterplane
+area, end values and angles), the geometry of each section checked by an independent dense
+polygon (shoelace area), analytic Wigley cuts for the fairness tool, and bad descriptions that
+must be rejected with the field named.
+"""
+
+import copy
+import json
+import math
+import pathlib
+
+import numpy as np
+import pytest
+
+import fairlines as fl
+
+EXAMPLE = pathlib.Path(__file__).resolve().parents[2] / "examples" / "panamax_forebody.json"
+
+
+@pytest.fixture(scope="module")
+def desc():
+    return json.loads(EXAMPLE.read_text())
+
+
+@pytest.fixture(scope="module")
+def hull(desc):
+    return fl.Hull.from_json(EXAMPLE)
+
+
+def test_displacement_lcb_and_waterplane_match_the_basic_curves(hull, desc):
+    sac = desc["basic_curves"]["sac"]
+    dwl = desc["basic_curves"]["dwl"]
+    lpp = desc["principal"]["Lpp"]
+    h = hull.hydrostatics()
+    assert h.volume == pytest.approx(sac["volume"], rel=2e-3)
+    assert abs(h.lcb - sac["lcb"]) < 1e-3 * lpp
+    assert h.waterplane_area == pytest.approx(dwl["waterplane_area"], rel=2e-3)
+    assert h.midship_area == pytest.approx(sac["value"], rel=2e-3)
+    assert h.cm == pytest.approx(sac["value"] / (desc["principal"]["B"] * desc["principal"]["T"]), rel=2e-3)
+
+
+def test_every_station_area_matches_the_sac(hull, desc):
+    surf = hull.bare_hull_surface()
+    params = hull.section_parameters()
+    am = desc["basic_curves"]["sac"]["value"]
+    for x, half in zip(params["x"], params["half_area"]):
+        area, _ = fl.section_area(surf, x, desc["principal"]["T"])
+        assert abs(area - 2 * half) <= 2e-3 * max(2 * half, 1e-3 * am), x
+
+
+def test_basic_curves_meet_their_form_parameters(hull, desc):
+    bc = hull.basic_curves
+    sac = bc["sac"].form_parameters()
+    assert sac["Area"] == pytest.approx(desc["basic_curves"]["sac"]["volume"], rel=1e-6)
+    assert sac["xC"] == pytest.approx(desc["basic_curves"]["sac"]["lcb"], rel=1e-6)
+    dwl = bc["dwl"]
+    assert 2 * dwl.form_parameters()["Area"] == pytest.approx(desc["basic_curves"]["dwl"]["waterplane_area"], rel=1e-6)
+    # Entrance angle: dy/dx at the FP is -tan(iE); the curve's x is linear in t.
+    d = dwl.curve.derivatives(1.0, 1)
+    assert d[1][1] / d[1][0] == pytest.approx(-math.tan(math.radians(desc["basic_curves"]["dwl"]["entrance_angle"])), rel=1e-9)
+    # Flat parts and C1 departure from them.
+    for name in ("sac", "dwl", "deck", "fob"):
+        spec = desc["basic_curves"][name]
+        c = bc[name]
+        assert c(spec["flat_to"] - 1.0)[0] == pytest.approx(spec["value"])
+        d0 = c.curve.derivatives(0.0, 1)
+        assert abs(d0[1][1]) < 1e-9 * abs(d0[1][0]) * max(1.0, abs(spec["value"]))
+    assert bc["profile"](244.8)[0] == pytest.approx(desc["basic_curves"]["profile"]["yE"])
+    assert np.isnan(bc["fos"](150.0)[0])  # no flat side beyond its x_end
+    assert bc["fob"](210.0, outside=0.0)[0] == 0.0
+
+
+def test_sections_follow_the_basic_curves(hull, desc):
+    p = hull.section_parameters()
+    T, D = desc["principal"]["T"], desc["principal"]["D"]
+    for k, sec in enumerate(hull.sections):
+        pts = sec.evaluate(np.linspace(0, 1, 6001))
+        assert np.allclose(pts[:, 0], p["x"][k], atol=1e-9)
+        assert pts[0, 1] == pytest.approx(p["y_deck"][k], abs=1e-9) and pts[0, 2] == pytest.approx(D, abs=1e-9)
+        assert pts[-1, 1] == pytest.approx(0.0, abs=1e-9) and pts[-1, 2] == pytest.approx(p["z_keel"][k], abs=1e-9)
+        assert pts[:, 1].min() >= -1e-9 and pts[:, 1].max() <= desc["principal"]["B"] / 2 + 1e-9
+        # Half area below the DWL by the shoelace formula on a dense polygon closed along the
+        # waterline and the centre line (independent of the engine's quadrature).
+        y, z = pts[:, 1], pts[:, 2]
+        below = z <= T
+        if not below.any() or p["half_area"][k] == 0:
+            assert p["half_area"][k] < 1e-9
+            continue
+        i = np.argmax(below)  # first point below the DWL; interpolate the crossing
+        if i > 0:
+            t = (T - z[i - 1]) / (z[i] - z[i - 1])
+            y_wl = y[i - 1] + t * (y[i] - y[i - 1])
+            assert y_wl == pytest.approx(p["y_dwl"][k], abs=2e-3)
+            poly_y = np.concatenate([[0.0, y_wl], y[i:], [0.0]])
+            poly_z = np.concatenate([[T, T], z[i:], [z[-1]]])
+        else:
+            poly_y, poly_z = np.concatenate([[0.0], y, [0.0]]), np.concatenate([[T], z, [z[-1]]])
+        area = 0.5 * abs(np.dot(poly_y, np.roll(poly_z, -1)) - np.dot(poly_z, np.roll(poly_y, -1)))
+        assert area == pytest.approx(p["half_area"][k], rel=1e-4, abs=1e-4)
+
+
+def test_changing_one_form_parameter_rebuilds(desc):
+    h = fl.Hull.from_json(EXAMPLE)
+    before = h.bare_hull_surface()
+    h.set("sac", "volume", 26000.0)
+    after = h.bare_hull_surface()
+    assert after is not before
+    hy = h.hydrostatics()
+    assert hy.volume == pytest.approx(26000.0, rel=2e-3)
+    assert abs(hy.lcb - desc["basic_curves"]["sac"]["lcb"]) < 1e-3 * desc["principal"]["Lpp"]
+    with pytest.raises(ValueError, match="basic_curves.sac.volume is nan"):
+        h.set("sac", "volume", float("nan"))
+    with pytest.raises(ValueError, match="curve is 'bulb'"):
+        h.set("bulb", "volume", 1.0)
+
+
+def test_json_round_trip_gives_the_same_surface(hull):
+    again = fl.Hull.from_json(hull.to_json())
+    a, b = hull.bare_hull_surface(), again.bare_hull_surface()
+    assert np.allclose(a.control_points, b.control_points, atol=1e-9)
+    assert isinstance(hull.description, fl.HullDescription)
+    assert isinstance(hull.description.principal, fl.PrincipalDimensions)
+
+
+def _bad(desc, path, value):
+    d = copy.deepcopy(desc)
+    node = d
+    for key in path[:-1]:
+        node = node[key]
+    if value is KeyError:
+        del node[path[-1]]
+    else:
+        node[path[-1]] = value
+    return d
+
+
+@pytest.mark.parametrize(
+    "path, value, match",
+    [
+        (("basic_curves", "fob"), KeyError, r"basic_curves\.fob is missing"),
+        (("basic_curves", "sac"), KeyError, r"basic_curves\.sac is missing"),
+        (("principal", "T"), KeyError, r"principal\.T is missing"),
+        (("principal", "B"), float("nan"), r"principal\.B is nan"),
+        (("principal", "Lpp"), -5.0, r"principal\.Lpp is -5.0"),
+        (("basic_curves", "dwl", "waterplane_area"), float("nan"), r"basic_curves\.dwl\.waterplane_area is nan"),
+        (("basic_curves", "sac", "lcb"), "aft", r"basic_curves\.sac\.lcb is 'aft'"),
+        (("stations",), {"x": [122.4, 150.0, 200.0, 250.0]}, r"stations\[3\] is 250.0; expected a station inside the hull"),
+        (("stations",), {"x": [122.4, 150.0, 140.0, 200.0]}, r"stations\[2\] is 140.0; expected stations in increasing x"),
+        (("stations",), KeyError, r"stations is missing"),
+        (("basic_curves", "sac", "value"), 400.0, r"basic_curves\.sac\.value is 400.0.*B x T"),
+        (("basic_curves", "sac", "volume"), 43000.0, r"basic_curves\.sac\.volume is 43000.0.*Cp <= 1"),
+        (("basic_curves", "sac", "volume"), 45000.0, r"basic_curves\.sac\.volume is 45000.0.*Cb <= 1"),
+        (("basic_curves", "sac", "lcb"), 250.0, r"basic_curves\.sac\.lcb is 250.0.*inside the hull"),
+        (("basic_curves", "sac", "lcb"), 140.0, r"basic_curves\.sac.*(negative sectional area|contradict)"),
+        (("basic_curves", "dwl", "colour"), 3, r"basic_curves\.dwl\.colour is not a form parameter"),
+        (("basic_curves", "bulb"), {"value": 1.0}, r"basic_curves\.bulb is not a basic curve"),
+    ],
+)
+def test_bad_descriptions_name_the_field(desc, path, value, match):
+    with pytest.raises(ValueError, match=match):
+        h = fl.Hull.from_json(_bad(desc, path, value))
+        h.bare_hull_surface()
+
+
+def test_sac_impossible_for_the_centre_profile_is_infeasible(desc):
+    # A forefoot rising almost to the DWL leaves no room for the SAC's area there.
+    d = _bad(desc, ("basic_curves", "profile", "yE"), 10.9)
+    d["basic_curves"]["profile"]["flat_to"] = 200.0
+    with pytest.raises(fl.InfeasibleFormParameters, match=r"section at x = .* m"):
+        fl.Hull.from_json(d).bare_hull_surface()
+
+
+def test_invalid_json_text():
+    with pytest.raises(ValueError, match="not valid JSON"):
+        fl.Hull.from_json("{not json")
+
+
+L, B, T = 100.0, 10.0, 6.25
+
+
+def _wigley_surface(**kw):
+    def sec(x):
+        xm = x - L / 2
+
+        def f(t):
+            z = T * (1 - t)
+            return np.array([x, B / 2 * (1 - (2 * xm / L) ** 2) * (1 - ((T - z) / T) ** 2), z])
+
+        p0, p2 = f(0.0), f(1.0)
+        return fl.NurbsCurve(2, [0, 0, 0, 1, 1, 1], np.array([p0, 2 * f(0.5) - (p0 + p2) / 2, p2]))
+
+    return fl.fair_skin([sec(x) for x in np.linspace(0, L, 41)], n_control=8, **kw).surface
+
+
+def test_plane_cuts_have_the_analytic_curvature_of_the_wigley_hull():
+    # e3 fairness: the rows vary quadratically along x and are reproduced exactly.
+    s = _wigley_surface(e2=0.0, e3=1.0)
+    # Waterline z: y = c (1 - (2 xm / L)^2), c = B/2 (1 - ((T - z)/T)^2).
+    z = 4.0
+    c = B / 2 * (1 - ((T - z) / T) ** 2)
+    cut = fl.plane_cut(s, "waterline", z, 201)
+    x = cut.points[:, 0] - L / 2
+    yp, ypp = -8 * c * x / L**2, -8 * c / L**2
+    k = ypp / (1 + yp**2) ** 1.5
+    # In (x, y) with x increasing the waterline bends toward -y: negative curvature.
+    inner = np.abs(x) < 0.4 * L
+    assert np.max(np.abs(cut.curvature[inner] - k[inner])) < 2e-2 * np.max(np.abs(k))
+    assert cut.sign_changes == 0
+    # Frame x: y = a (1 - ((T - z)/T)^2), one sign of curvature.
+    fr = fl.plane_cut(s, "frame", 30.0, 201)
+    assert fr.sign_changes == 0 and np.allclose(fr.points[:, 0], 30.0, atol=1e-9)
+    bt = fl.plane_cut(s, "buttock", 2.0, 201)
+    assert bt.sign_changes == 0 and np.allclose(bt.points[:, 1], 2.0, atol=1e-9)
+    with pytest.raises(ValueError, match="axis is 'diagonal'"):
+        fl.plane_cut(s, "diagonal", 1.0)
+
+
+def test_e2_skinning_has_natural_ends_that_e3_avoids():
+    """Seed 000's E2 interpolant is the natural spline: zero curvature at the end sections,
+    which on the Wigley waterline (constant sign of curvature) makes spurious inflections
+    near the ends; the E3 objective keeps the end curvature."""
+    z = 4.0
+    e2 = fl.plane_cut(_wigley_surface(), "waterline", z, 201)
+    e3 = fl.plane_cut(_wigley_surface(e2=0.0, e3=1.0), "waterline", z, 201)
+    assert abs(e2.curvature[0]) < 0.1 * abs(e2.curvature[100])
+    assert abs(e3.curvature[0]) > 0.8 * abs(e3.curvature[100])
+    assert e2.sign_changes > 0 and e3.sign_changes == 0
+
+
+def test_fairness_report_lists_every_cut(hull):
+    rep = hull.fairness_report(n_waterlines=3, n_buttocks=2, n_frames=3, samples=101)
+    assert [len(rep[k]) for k in ("waterline", "buttock", "frame")] == [3, 2, 3]
+    for cuts in rep.values():
+        for c in cuts:
+            assert c["e2"] > 0 and c["bending_energy"] > 0
+            assert len(c["inflections"]) == c["sign_changes"]
+
+
+def test_sections_have_no_inflection_below_the_dwl(hull, desc):
+    """The section's control polygon is kept concave from the first control point below the
+    DWL, so its curvature keeps one sign below the DWL except within two control spacings of it,
+    where the flare's inflection (a real one: concave above water, convex below) may sit.
+    Straight flats count as neither sign."""
+    T, D = desc["principal"]["T"], desc["principal"]["D"]
+    spacing = D / (desc["sections"]["n_control"] - 1)
+    for sec in hull.sections:
+        c2 = fl.NurbsCurve(sec.degree, sec.knots, sec.control_points[:, 1:])
+        t = np.linspace(0, 1, 4001)
+        pts = c2.evaluate(t)
+        if np.max(pts[:, 0]) < 1e-9:
+            continue  # the stem: a straight centre-line segment
+        k = c2.curvature(t)[pts[:, 1] < T - 2 * spacing]
+        k = k[np.abs(k) > 1e-6 * np.abs(k).max() + 1e-9]
+        assert np.all(k > 0) or np.all(k < 0), sec.control_points[0, 0]

@@ -1,0 +1,267 @@
+"""Fair skinning and hydrostatics against analytic truth and independent computations.
+
+Truths used: the Wigley hull y = (B/2)(1 - (2x/L)^2)(1 - (zeta/T)^2) (zeta depth below the
+waterline) has Cb = 4/9, Cm = Cwp = Cp = 2/3, LCB at midships and KB = 5T/8, and closed-form
+volume and waterplane area at any draft; a box has Cb = Cm = 1; the E2-least interpolating
+cubic is the natural cubic spline (scipy's CubicSpline, a different computation path); and a
+dense triangle mesh of the surface gives volume and wetted area by a second method.
+"""
+
+import numpy as np
+import pytest
+from scipy.interpolate import CubicSpline
+
+import fairlines as fl
+
+L, B, T = 100.0, 10.0, 6.25
+
+
+def wigley_y(x, z):
+    """Half-breadth of the Wigley hull, x from AP (midships at L/2), z above base."""
+    xm = x - L / 2
+    return B / 2 * (1 - (2 * xm / L) ** 2) * (1 - ((T - z) / T) ** 2)
+
+
+def wigley_section(x, top=1.0):
+    """The section at x from z = top*T down to the keel, exactly (a quadratic Bezier in z)."""
+    def f(t):
+        z = top * T * (1 - t)
+        return np.array([x, wigley_y(x, z), z])
+
+    p0, p2 = f(0.0), f(1.0)
+    p1 = 2 * f(0.5) - (p0 + p2) / 2
+    return fl.NurbsCurve(2, [0, 0, 0, 1, 1, 1], np.array([p0, p1, p2]))
+
+
+@pytest.fixture(scope="module")
+def wigley():
+    sections = [wigley_section(x) for x in np.linspace(0, L, 41)]
+    return fl.fair_skin(sections, n_control=8)
+
+
+def mesh_volume_area(surface, n=400):
+    """Volume (int y n_y dA on flat triangles, exact per triangle) and area of a dense mesh."""
+    u0, u1 = surface.domain_u if not callable(surface.domain_u) else surface.domain_u()
+    v0, v1 = surface.domain_v if not callable(surface.domain_v) else surface.domain_v()
+    us, vs = np.linspace(u0, u1, n), np.linspace(v0, v1, n)
+    P = surface.evaluate_grid(us, vs).reshape(n, n, 3)
+    a, b, c, d = P[:-1, :-1], P[1:, :-1], P[1:, 1:], P[:-1, 1:]
+    vol = area = 0.0
+    for p, q, r in ((a, b, c), (a, c, d)):
+        cr = np.cross(q - p, r - p) / 2
+        area += np.linalg.norm(cr, axis=-1).sum()
+        vol += ((p[..., 1] + q[..., 1] + r[..., 1]) / 3 * cr[..., 1]).sum()
+    return 2 * abs(vol), 2 * area
+
+
+def wigley_dense_wetted(n=1500):
+    """Wetted surface of the analytic Wigley hull (both sides) from a dense triangle mesh."""
+    x, z = np.meshgrid(np.linspace(0, L, n), np.linspace(0, T, n), indexing="ij")
+    P = np.stack([x, wigley_y(x, z), z], axis=-1)
+    a, b, c, d = P[:-1, :-1], P[1:, :-1], P[1:, 1:], P[:-1, 1:]
+    area = sum(np.linalg.norm(np.cross(q - p, r - p), axis=-1).sum() / 2 for p, q, r in ((a, b, c), (a, c, d)))
+    return 2 * area
+
+
+def test_wigley_rebuilt_from_sections(wigley):
+    h = fl.hydrostatics(wigley.surface, T, length=L, breadth=B, midship_x=L / 2)
+    assert h.cb == pytest.approx(4 / 9, rel=1e-3)
+    assert h.volume == pytest.approx(4 / 9 * L * B * T, rel=1e-3)
+    for coef in (h.cm, h.cwp, h.cp):
+        assert coef == pytest.approx(2 / 3, rel=1e-3)
+    assert h.lcb == pytest.approx(L / 2, abs=1e-6 * L)
+    assert h.lcf == pytest.approx(L / 2, abs=1e-6 * L)
+    assert h.vcb == pytest.approx(5 * T / 8, rel=1e-3)
+    assert h.wetted_surface == pytest.approx(wigley_dense_wetted(), rel=5e-3)
+    # x_min / x_max: the submerged extent is the whole length.
+    assert h.x_min == pytest.approx(0, abs=1e-9) and h.x_max == pytest.approx(L, rel=1e-12)
+
+
+def test_wigley_partial_draft_closed_form(wigley):
+    d = T / 2
+    depth_int = d - (T**3 - (T - d) ** 3) / (3 * T**2)  # int_0^d (1 - ((T - z)/T)^2) dz
+    volume = 2 * (B / 2) * (2 * L / 3) * depth_int
+    awp = 2 * (B / 2) * (2 * L / 3) * (1 - ((T - d) / T) ** 2)
+    h = fl.hydrostatics(wigley.surface, d)
+    assert h.volume == pytest.approx(volume, rel=1e-3)
+    assert h.waterplane_area == pytest.approx(awp, rel=1e-3)
+    # The SAC at mid draft: A(x) = 2 (B/2)(1 - (2 xm/L)^2) depth_int.
+    xm = h.sac_x - L / 2
+    expected = 2 * (B / 2) * (1 - (2 * xm / L) ** 2) * depth_int
+    assert np.max(np.abs(h.sac_area - expected)) < 2e-3 * expected.max()
+
+
+def test_wigley_section_area_and_centroid(wigley):
+    for x in (10.0, 37.5, 50.0, 81.0):
+        area, zc = fl.section_area(wigley.surface, x, T)
+        c = B / 2 * (1 - (2 * (x - L / 2) / L) ** 2)
+        assert area == pytest.approx(2 * c * 2 * T / 3, rel=1e-3)
+        assert zc == pytest.approx(5 * T / 8, rel=1e-3)
+
+
+def test_hydrostatics_match_dense_mesh_of_the_same_surface():
+    sections = [wigley_section(x, top=1.0) for x in np.linspace(0, L, 15)]
+    surf = fl.fair_skin(sections, n_control=10).surface
+    vol, area = mesh_volume_area(surf)
+    h = fl.hydrostatics(surf, T)
+    assert h.volume == pytest.approx(vol, rel=2e-4)
+    assert h.wetted_surface == pytest.approx(area, rel=2e-4)
+
+
+def test_box_is_exact():
+    """A degree-1 box half hull: Cb = Cm = Cwp = 1, KB = d/2, wetted = L (2d + B)."""
+    Lb, Bb, Db, d = 20.0, 4.0, 3.0, 1.7
+    P = np.array([[[0, Bb / 2, Db], [Lb, Bb / 2, Db]],
+                  [[0, Bb / 2, 0], [Lb, Bb / 2, 0]],
+                  [[0, 0, 0], [Lb, 0, 0]]], dtype=float)
+    box = fl.NurbsSurface(1, 1, [0, 0, 0.5, 1, 1], [0, 0, 1, 1], P)
+    h = fl.hydrostatics(box, d)
+    assert h.volume == pytest.approx(Lb * Bb * d, rel=1e-12)
+    assert h.cb == pytest.approx(1, rel=1e-12) and h.cm == pytest.approx(1, rel=1e-12)
+    assert h.cwp == pytest.approx(1, rel=1e-12)
+    assert h.vcb == pytest.approx(d / 2, rel=1e-12)
+    assert h.lcb == pytest.approx(Lb / 2, rel=1e-12) and h.lcf == pytest.approx(Lb / 2, rel=1e-12)
+    assert h.wetted_surface == pytest.approx(Lb * (2 * d + Bb), rel=1e-12)
+    full = fl.hydrostatics(box, d, half_hull=False)
+    assert full.volume == pytest.approx(h.volume / 2, rel=1e-12)
+
+
+def test_sections_are_iso_curves_and_rows_are_natural_splines(wigley):
+    surf = wigley.surface
+    v = wigley.section_params
+    # Station parameterization: v proportional to x.
+    assert np.allclose(v, np.linspace(0, 1, 41), atol=1e-12)
+    xs = np.linspace(0, L, 41)
+    for d in (0, 7, 20, 40):
+        sec = wigley_section(xs[d])
+        iso = surf.iso_curve("v", v[d])
+        ts = np.linspace(0, 1, 60)
+        pts = iso.evaluate(ts)
+        assert np.allclose(pts[:, 0], xs[d], atol=1e-9)
+        # Every iso-curve point lies on the exact section: y = wigley_y(x, z).
+        assert np.max(np.abs(pts[:, 1] - wigley_y(xs[d], pts[:, 2]))) < 5 * wigley.section_fit_max + 1e-9
+    # Each longitudinal control row is the natural cubic spline through the row data.
+    nu, nv = 8, surf.control_points.shape[1]
+    row_curves = [surf.iso_curve("u", 0.3)]  # a generic u-line, checked below through rows
+    assert row_curves[0].degree == 3
+    cps = surf.control_points  # (nu, nv, 3)
+    knots_v = surf.knots_v
+    for i in (1, 4):
+        row = fl.NurbsCurve(3, knots_v, cps[i])
+        data = row.evaluate(v)
+        spline = CubicSpline(v, data, bc_type="natural")
+        tt = np.linspace(0, 1, 333)
+        assert np.max(np.abs(row.evaluate(tt) - spline(tt))) < 1e-9
+    assert wigley.longitudinal_max < 1e-10
+    assert wigley.row_e2.shape == (nu,)
+
+
+def test_parallel_end_meets_a_cylinder_with_c1():
+    # A forebody-like set: identical midship sections at the start, narrowing forward.
+    xs = np.linspace(50, 100, 11)
+    secs = [wigley_section(x) for x in xs]
+    r = fl.fair_skin(secs, n_control=8, start="parallel")
+    for u in np.linspace(0.05, 0.95, 7):
+        sv = r.surface.derivatives(u, 0.0, 1)[0, 1]  # dS/dv
+        assert abs(sv[1]) < 1e-9 and abs(sv[2]) < 1e-9 and sv[0] > 0
+    free = fl.fair_skin(secs, n_control=8)
+    assert abs(free.surface.derivatives(0.5, 0.0, 1)[0, 1][1]) > 1e-3
+    # The parallel start is still an interpolation of all sections.
+    assert r.longitudinal_max < 1e-10
+
+
+def test_c1_joint_and_approximate_mode():
+    xs = np.linspace(0, L, 21)
+    secs = [wigley_section(x) for x in xs]
+    r = fl.fair_skin(secs, n_control=8, c1_sections=[10])
+    kv = r.surface.knots_v
+    assert np.sum(np.isclose(kv, 0.5)) == 2
+    assert r.longitudinal_max < 1e-10
+    a = fl.fair_skin(secs, n_control=8, mode="approximate", smoothing=1e-2)
+    i = fl.fair_skin(secs, n_control=8)
+    assert 0 < a.longitudinal_max < 0.05
+    assert a.row_e2.sum() < i.row_e2.sum()
+
+
+def test_equal_arc_length_points_on_a_circle():
+    c = fl.arc([0, 0, 0], 2.0, 0.0, np.pi)
+    pts = c.evaluate(np.linspace(0, 1, 5))
+    eq = fl.equal_arc_length_points(c, 9)
+    ang = np.unwrap(np.arctan2(eq[:, 1], eq[:, 0]))
+    assert np.allclose(np.linalg.norm(eq, axis=1), 2.0, atol=1e-12)
+    assert np.max(np.abs(np.diff(ang) - np.pi / 8)) < 1e-4 * np.pi / 8
+    assert fl.arc_length(c) == pytest.approx(2 * np.pi, rel=1e-10)
+    assert pts.shape == (5, 3)
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(mode="smooth"), "mode is 'smooth'"),
+        (dict(start="clamped"), "end condition is 'clamped'"),
+        (dict(params="uniform"), "params is 'uniform'"),
+        (dict(n_control=2), "n_control is 2"),
+        (dict(samples=3), "samples is 3"),
+        (dict(c1_sections=[0]), "c1_sections contains 0"),
+        (dict(degree_v=1), "degree_v is 1"),
+        (dict(mode="approximate", smoothing=float("nan")), "smoothing is nan"),
+    ],
+)
+def test_fair_skin_bad_options(kwargs, match):
+    secs = [wigley_section(x) for x in (10.0, 20.0, 30.0)]
+    with pytest.raises(ValueError, match=match):
+        fl.fair_skin(secs, **kwargs)
+
+
+def test_fair_skin_bad_curves():
+    with pytest.raises(ValueError, match="at least 2"):
+        fl.fair_skin([wigley_section(10.0)])
+    flat = fl.NurbsCurve(1, [0, 0, 1, 1], [[0.0, 0.0], [1.0, 1.0]])
+    with pytest.raises(ValueError, match=r"sections\[1\] is a 2-D curve"):
+        fl.fair_skin([wigley_section(10.0), flat])
+    point = fl.NurbsCurve(1, [0, 0, 1, 1], [[5.0, 1.0, 1.0], [5.0, 1.0, 1.0]])
+    with pytest.raises(ValueError, match=r"sections\[1\].*zero length"):
+        fl.fair_skin([wigley_section(10.0), point, wigley_section(30.0)])
+    with pytest.raises(ValueError, match=r"curves\[0\] is"):
+        fl.fair_skin(["not a curve", wigley_section(1.0)])
+    with pytest.raises(ValueError, match="params is 'station' but the section x positions"):
+        fl.fair_skin([wigley_section(20.0), wigley_section(10.0), wigley_section(30.0)], params="station")
+
+
+@pytest.mark.parametrize("draft, match", [(0.0, "draft is 0"), (float("nan"), "draft is nan"), (-1.0, "draft is -1")])
+def test_hydrostatics_bad_draft(wigley, draft, match):
+    with pytest.raises(ValueError, match=match):
+        fl.hydrostatics(wigley.surface, draft)
+
+
+def test_hydrostatics_bad_options(wigley):
+    with pytest.raises(ValueError, match="gauss is 1"):
+        fl.hydrostatics(wigley.surface, T, gauss=1)
+    with pytest.raises(ValueError, match="length is -3"):
+        fl.hydrostatics(wigley.surface, T, length=-3.0)
+    with pytest.raises(ValueError, match="sac_stations is 1"):
+        fl.hydrostatics(wigley.surface, T, sac_stations=1)
+    with pytest.raises(ValueError, match="midship_x is nan"):
+        fl.hydrostatics(wigley.surface, T, midship_x=float("nan"))
+    # Entirely above the water.
+    P = np.array([[[0, 1, 5], [9, 1, 5]], [[0, 1, 2], [9, 1, 2]], [[0, 0, 2], [9, 0, 2]]], dtype=float)
+    lifted = fl.NurbsSurface(1, 1, [0, 0, 0.5, 1, 1], [0, 0, 1, 1], P)
+    with pytest.raises(ValueError, match="nothing below draft 1"):
+        fl.hydrostatics(lifted, 1.0)
+
+
+def test_curvature_weighted_spacing_crowds_where_the_curve_bends():
+    # A polynomial hairpin: straight legs along x, a tight turn near x = 10.
+    P = np.array([[0, 0, 0], [8, 0, 0], [10, 0, 0], [10, 1, 0], [8, 1, 0], [0, 1, 0]], dtype=float)
+    c = fl.NurbsCurve(3, fl.clamped_uniform_knots(6, 3), P)
+    plain = fl.equal_arc_length_points(c, 2001)
+    d = np.linalg.norm(np.diff(plain, axis=0), axis=1)
+    assert d.max() - d.min() < 2e-2 * d.mean()  # equal arc length (chords ~ arcs at this density)
+    assert d.sum() == pytest.approx(fl.arc_length(c), rel=1e-4)
+    w = fl.equal_arc_length_points(c, 201, curvature_weight=0.1)
+    dw = np.linalg.norm(np.diff(w, axis=0), axis=1)
+    turn = w[:-1, 0] > 9.0
+    legs = w[:-1, 0] < 5.0
+    assert dw[turn].mean() < 0.5 * dw[legs].mean()
+    with pytest.raises(ValueError, match="curvature_weight is -1"):
+        fl.equal_arc_length_points(c, 10, curvature_weight=-1.0)
