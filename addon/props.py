@@ -18,6 +18,16 @@ def length(name, default=1.0, min=-1e6, max=1e6, soft_min=None, soft_max=None, d
         update=_changed)
 
 
+def area(name, default=1.0, min=0.0, max=1e9, description=""):
+    return bpy.props.FloatProperty(name=name, default=default, min=min, max=max, subtype="NONE", unit="AREA",
+                                   precision=2, description=description or name + " (m^2)", update=_changed)
+
+
+def volume(name, default=1.0, min=0.0, max=1e12, description=""):
+    return bpy.props.FloatProperty(name=name, default=default, min=min, max=max, subtype="NONE", unit="VOLUME",
+                                   precision=1, description=description or name + " (m^3)", update=_changed)
+
+
 def angle(name, default=0.0, description=""):
     return bpy.props.FloatProperty(name=name, default=default, subtype="ANGLE", unit="ROTATION",
                                    description=description or name, update=_changed)

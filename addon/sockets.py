@@ -23,10 +23,17 @@ _COLOURS = {
     ids.SOCKET_FLOAT: (0.63, 0.63, 0.63, 1.0),
     ids.SOCKET_INT: (0.35, 0.55, 0.36, 1.0),
     ids.SOCKET_VECTOR: (0.39, 0.39, 0.78, 1.0),
+    ids.SOCKET_AREA: (0.55, 0.63, 0.63, 1.0),
+    ids.SOCKET_VOLUME: (0.5, 0.6, 0.6, 1.0),
+    ids.SOCKET_CURVATURE: (0.7, 0.6, 0.6, 1.0),
+    ids.SOCKET_BLEND: (0.95, 0.4, 0.55, 1.0),
+    ids.SOCKET_HULL: (0.2, 0.45, 0.95, 1.0),
+    ids.SOCKET_CURVES: (0.25, 0.6, 0.8, 1.0),
 }
 
 # Number sockets that may feed one another (a Length into a Float input and so on).
-NUMERIC = {ids.SOCKET_LENGTH, ids.SOCKET_ANGLE, ids.SOCKET_FLOAT, ids.SOCKET_INT}
+NUMERIC = {ids.SOCKET_LENGTH, ids.SOCKET_ANGLE, ids.SOCKET_FLOAT, ids.SOCKET_INT, ids.SOCKET_AREA,
+           ids.SOCKET_VOLUME, ids.SOCKET_CURVATURE}
 
 
 class _DataSocket:
@@ -43,8 +50,12 @@ class _DataSocket:
 class _ValueSocket:
     is_optional: bpy.props.BoolProperty(default=False)
     use: props.boolean("Use", True, "Pass this parameter to the engine; off drops it")
+    # Shown after the name for units Blender's unit system has no name for (1/m).
+    unit_suffix = ""
 
     def draw(self, context, layout, node, text):
+        if self.unit_suffix:
+            text = "%s (%s)" % (text, self.unit_suffix)
         if self.is_output or self.is_linked:
             layout.label(text=text)
             return
@@ -104,6 +115,47 @@ class FLSocketLength(_ValueSocket, bpy.types.NodeSocket):
     default_value: props.length("Value", 1.0)
 
 
+class FLSocketArea(_ValueSocket, bpy.types.NodeSocket):
+    """An area in square metres"""
+    bl_idname = ids.SOCKET_AREA
+    bl_label = "Area"
+    default_value: props.area("Value", 1.0, min=-1e9)
+
+
+class FLSocketVolume(_ValueSocket, bpy.types.NodeSocket):
+    """A volume in cubic metres"""
+    bl_idname = ids.SOCKET_VOLUME
+    bl_label = "Volume"
+    default_value: props.volume("Value", 1.0, min=-1e12)
+
+
+class FLSocketCurvature(_ValueSocket, bpy.types.NodeSocket):
+    """A curvature in 1/m (signed: positive turns left along the curve)"""
+    bl_idname = ids.SOCKET_CURVATURE
+    bl_label = "Curvature"
+    unit_suffix = "1/m"
+    default_value: bpy.props.FloatProperty(name="Value", default=0.0, min=-1e6, max=1e6, precision=5,
+                                           description="Curvature (1/m)", update=props._changed)
+
+
+class FLSocketBlend(_DataSocket, bpy.types.NodeSocket):
+    """A blending surface with the boundaries it was built on (hull and bulb), metres"""
+    bl_idname = ids.SOCKET_BLEND
+    bl_label = "Blend"
+
+
+class FLSocketHull(_DataSocket, bpy.types.NodeSocket):
+    """A hull description with its solved basic curves, sections and bare hull (fairlines.Hull)"""
+    bl_idname = ids.SOCKET_HULL
+    bl_label = "Hull"
+
+
+class FLSocketCurves(_DataSocket, bpy.types.NodeSocket):
+    """An ordered list of curves (hull sections, metres)"""
+    bl_idname = ids.SOCKET_CURVES
+    bl_label = "Curves"
+
+
 class FLSocketAngle(_ValueSocket, bpy.types.NodeSocket):
     """An angle (radians inside, degrees on screen by default)"""
     bl_idname = ids.SOCKET_ANGLE
@@ -133,7 +185,8 @@ class FLSocketVector(_ValueSocket, bpy.types.NodeSocket):
 
 
 CLASSES = (FLSocketCurve, FLSocketSurface, FLSocketMesh, FLSocketLines, FLSocketHullData, FLSocketLength,
-           FLSocketAngle, FLSocketFloat, FLSocketInt, FLSocketVector)
+           FLSocketAngle, FLSocketFloat, FLSocketInt, FLSocketVector, FLSocketArea, FLSocketVolume,
+           FLSocketCurvature, FLSocketBlend, FLSocketHull, FLSocketCurves)
 
 
 def compatible(from_idname, to_idname):

@@ -2,8 +2,12 @@
 in the output object (and including the Geometry Nodes modifier), in the `bpy` module from
 PyPI with the add-on installed as an extension. Goal (issue 7): <= 50 ms at default resolution.
 
-Cases: bulb length (Ellipse -> Revolve -> Tessellate 64 x 48 -> output) and a hull knot move
-(Insert Knot -> Tessellate 96 x 48 -> Curvature -> output, plus Iso Lines -> curve object).
+The example graph is the Panamax forebody pipeline (examples/blender_graph.py). Cases: bulb
+length (C_LPR on Bulbous Bow -> Blend -> Compose (union, full hull) -> Forebody object) and a
+hull knot move (Insert Knot -> Tessellate 48 x 96 -> Curvature -> bare hull object, Iso Lines ->
+curve object, and Blend -> Compose -> Forebody object, which hang off the refined hull too);
+and the forebody's displaced volume on the SAC node (the whole chain: basic curve, sections,
+bare hull with its hydrostatics, everything after it).
 Usage: python bench/bench_blender_latency.py [--runs N]   (needs .venv-bpy: make blender-deps)
 """
 

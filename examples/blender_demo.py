@@ -1,4 +1,5 @@
-"""`make demo` (Blender part): build the example node graph in headless Blender, save the
+"""`make demo` (Blender part): build the Panamax forebody node graph (hull description ->
+bare hull -> bulbous bow -> blend -> Boolean union -> output) in headless Blender, save the
 .blend and render the hull with Cycles on the CPU.
 
     .venv-bpy/bin/python examples/blender_demo.py --zip dist/fairlines_blender-*-extension.zip --out out/blender
@@ -18,7 +19,7 @@ import blender_graph  # noqa: E402
 
 
 def stage(scene):
-    """Camera, sun and world for a three-quarter bow view of the mirrored forebody."""
+    """Camera, sun and world for a three-quarter bow view of the composed forebody."""
     L = blender_graph.LPP
     target = (0.86 * L, 0.0, 8.0)
     cam_data = bpy.data.cameras.new("Camera")
@@ -51,11 +52,13 @@ def stage(scene):
     bsdf = paint.node_tree.nodes.get("Principled BSDF")
     if bsdf is not None:
         bsdf.inputs["Base Color"].default_value = (0.55, 0.08, 0.06, 1.0)
-    for name in ("Forebody", "Bulb"):
-        obj = bpy.data.objects[name]
-        if not obj.data.materials:
-            obj.data.materials.append(paint)
-    bpy.data.objects["Forebody Lines"].hide_render = True
+    fore = bpy.data.objects["Forebody"]
+    if not fore.data.materials:
+        fore.data.materials.append(paint)
+    # The composed hull is the picture; the bare hull it contains and the lines stay in the
+    # viewport only.
+    for name in ("Bare Forebody", "Forebody Lines", "Sections"):
+        bpy.data.objects[name].hide_render = True
 
 
 def main():

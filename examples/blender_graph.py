@@ -1,37 +1,39 @@
 """The example Fairlines node graph, built by script in Blender (GUI, `blender -b`, or the
 `bpy` module). Used by `make demo` (examples/blender_demo.py) and the headless tests.
 
-Until the hull operators land (design curves, fair skin, bulbous bow), the example forebody is
-a fitted surface: an offsets grid (stations x waterlines) of a full-bodied forebody with the
-Panamax principal dimensions, fitted by the engine, refined by knot insertion, tessellated,
-analysed for curvature and drawn as iso-lines; plus a bulb, an ellipse revolved about its
-axis (length set on the Ellipse node), half of it revolved, as its own subdomain object.
+The Panamax container ship's forebody (examples/panamax_forebody.json, Lpp 244.8 m, B 32.25 m,
+T 11.0 m): principal dimensions -> hull description (the JSON, kept in the .blend as a text
+block) -> SAC basic curve (displaced volume and LCB as switchable form parameters) -> sections
+and the fair-skinned bare hull -> bulbous bow from its Kracht coefficients -> blending surface
+(C1 to hull and bulb) -> Boolean union -> the Forebody object (mirrored and welded by the
+engine). The bare hull is also tessellated with curvature attributes and drawn as lines.
 """
+
+import os
 
 import bpy
 import numpy as np
 
-LPP, BEAM, DEPTH = 244.8, 32.25, 19.0  # metres (Lpp and B of SPEC §2; depth to the deck)
+HERE = os.path.dirname(os.path.abspath(__file__))
+DESCRIPTION = os.path.join(HERE, "panamax_forebody.json")
+LPP, BEAM, DRAFT, DEPTH = 244.8, 32.25, 11.0, 19.0  # metres (SPEC section 2; depth to the deck)
+MIDSHIP_AREA = 349.4           # m^2, Am = 0.985 B T as in the description's SAC
+DISPLACEMENT = 0.65 * LPP * BEAM * DRAFT  # m^3, the ship's (Cb 0.65) for the Kracht volume
 TREE_NAME = "Fairlines Forebody"
 
 
-def offsets_grid(n_stations=13, n_waterlines=9):
-    """Half-breadths of an illustrative forebody: stations from midship (x = Lpp/2) to the FP,
-    waterlines from the keel to the deck. Example input data, not an engine operator."""
-    x = np.linspace(0.5 * LPP, LPP, n_stations)
-    z = np.linspace(0.0, DEPTH, n_waterlines)
-    xi = (x - 0.5 * LPP) / (0.5 * LPP)            # 0 at midship, 1 at the FP
-    zeta = z / DEPTH
-    waterplane = 1.0 - xi[:, None] ** 3            # fine entrance toward the bow
-    section = 1.0 - (1.0 - zeta[None, :]) ** 6    # full sections with a bilge radius
-    y = 0.5 * BEAM * np.clip(waterplane * section, 0.0, None) + 0.05
-    X, Z = np.meshgrid(x, z, indexing="ij")
-    return np.stack([X, y, Z], axis=-1)           # (stations, waterlines, 3)
+def description_text(name="panamax_forebody.json"):
+    """The hull description as a text block, so the saved .blend carries its own input."""
+    text = bpy.data.texts.get(name) or bpy.data.texts.new(name)
+    text.clear()
+    with open(DESCRIPTION, encoding="utf-8") as f:
+        text.write(f.read())
+    return text
 
 
-def offsets_object(name="Forebody Offsets"):
-    """A point-cloud mesh holding the offsets grid, row by row (stations)."""
-    grid = offsets_grid()
+def points_object(grid, name):
+    """A point-cloud mesh holding a (rows, cols, 3) grid row by row (input of Points From
+    Object; used by the tests)."""
     me = bpy.data.meshes.get(name) or bpy.data.meshes.new(name)
     me.clear_geometry()
     me.vertices.add(grid.shape[0] * grid.shape[1])
@@ -41,7 +43,7 @@ def offsets_object(name="Forebody Offsets"):
     if not obj.users_collection:
         bpy.context.scene.collection.objects.link(obj)
     obj.hide_render = True
-    return obj, grid.shape
+    return obj
 
 
 def build(tree_name=TREE_NAME):
@@ -51,7 +53,6 @@ def build(tree_name=TREE_NAME):
     if old is not None:
         bpy.data.node_groups.remove(old)
     tree = bpy.data.node_groups.new(tree_name, ids.TREE)
-    obj, shape = offsets_object()
 
     def node(idname, name, x, y, **values):
         n = tree.nodes.new(idname)
@@ -64,50 +65,59 @@ def build(tree_name=TREE_NAME):
                 setattr(n, key, value)
         return n
 
-    pts = node(ids.NODE_POINTS_FROM_OBJECT, "Offsets", -900, 200, source=obj, columns=shape[1])
-    fit = node(ids.NODE_FIT_SURFACE, "Fit Forebody", -650, 200)
-    fit.inputs["Control Points U"].use = True
-    fit.inputs["Control Points U"].default_value = 9
-    fit.inputs["Control Points V"].use = True
-    fit.inputs["Control Points V"].default_value = 7
-    knot = node(ids.NODE_INSERT_KNOT, "Refine", -400, 200, direction="u", in_Parameter=0.85)
-    tess = node(ids.NODE_TESSELLATE, "Tessellate Hull", -150, 300)
-    tess.inputs["Resolution U"].default_value = 96
-    tess.inputs["Resolution V"].default_value = 48
-    curv = node(ids.NODE_CURVATURE, "Curvature", 100, 300)
-    hull_out = node(ids.NODE_MESH_OUTPUT, "Hull Output", 350, 300, object_name="Forebody", mirror=True)
-    iso = node(ids.NODE_ISO_LINES, "Lines", -150, 0)
-    iso.inputs["Count U"].default_value = 13
-    iso.inputs["Count V"].default_value = 9
-    lines_out = node(ids.NODE_LINES_OUTPUT, "Lines Output", 100, 0, object_name="Forebody Lines")
+    def switch_on(n, socket, value):
+        n.inputs[socket].use = True
+        n.inputs[socket].default_value = value
 
-    ell = node(ids.NODE_ELLIPSE, "Bulb Profile", -900, -350)
-    ell.inputs["Center"].default_value = (LPP - 1.0, 0.0, 6.0)
-    ell.inputs["Semi-axis A"].default_value = (8.0, 0.0, 0.0)    # bulb half-length (m)
-    ell.inputs["Semi-axis B"].default_value = (0.0, 0.0, 4.2)    # bulb half-height (m)
-    half = node(ids.NODE_TRIM_CURVE, "Bulb Half Profile", -650, -350)  # nose, over the top, tail
-    half.inputs["Start"].default_value = 0.0
-    half.inputs["End"].default_value = 0.5
-    rev = node(ids.NODE_REVOLVE, "Bulb", -400, -350)
-    rev.inputs["Axis Point"].default_value = (LPP - 1.0, 0.0, 6.0)
-    rev.inputs["Axis Direction"].default_value = (-1.0, 0.0, 0.0)  # S_u x S_v outward
-    btess = node(ids.NODE_TESSELLATE, "Tessellate Bulb", -150, -350)
-    btess.inputs["Resolution U"].default_value = 64
-    btess.inputs["Resolution V"].default_value = 48
-    bulb_out = node(ids.NODE_MESH_OUTPUT, "Bulb Output", 100, -350, object_name="Bulb", mirror=False)
+    dims = node(ids.NODE_PRINCIPAL_DIMENSIONS, "Principal Dimensions", -1450, 300,
+                in_Lpp=LPP, in_B=BEAM, in_T=DRAFT, in_D=DEPTH)
+    desc = node(ids.NODE_HULL_DESCRIPTION, "Hull Description", -1150, 350, text=description_text())
+    sac = node(ids.NODE_BASIC_CURVE, "SAC", -850, 350, curve="sac")
+    switch_on(sac, "Area", 26500.0)   # forebody displaced volume, m^3
+    switch_on(sac, "xC", 166.5)       # its LCB, m from AP
+    sections = node(ids.NODE_SECTIONS, "Sections", -550, 650)
+    sections_out = node(ids.NODE_LINES_OUTPUT, "Sections Output", -300, 650, object_name="Sections")
+    bare = node(ids.NODE_BARE_HULL, "Bare Hull", -550, 350)
+    knot = node(ids.NODE_INSERT_KNOT, "Refine", -300, 350, direction="v", in_Parameter=0.85)
+    tess = node(ids.NODE_TESSELLATE, "Tessellate Hull", 0, 850, flip=True)  # u deck -> keel: S_u x S_v inward
+    tess.inputs["Resolution U"].default_value = 48
+    tess.inputs["Resolution V"].default_value = 96
+    curv = node(ids.NODE_CURVATURE, "Curvature", 250, 850)
+    hull_out = node(ids.NODE_MESH_OUTPUT, "Hull Output", 500, 850, object_name="Bare Forebody", mirror=True)
+    iso = node(ids.NODE_ISO_LINES, "Lines", 0, 600)
+    iso.inputs["Count U"].default_value = 9
+    iso.inputs["Count V"].default_value = 13
+    lines_out = node(ids.NODE_LINES_OUTPUT, "Lines Output", 250, 600, object_name="Forebody Lines")
+
+    bow = node(ids.NODE_BULBOUS_BOW, "Bulbous Bow", -850, -50)
+    bow.inputs["Midship Area"].default_value = MIDSHIP_AREA
+    bow.inputs["Displacement"].default_value = DISPLACEMENT
+    blend = node(ids.NODE_BLEND, "Blend", -300, 50)
+    comp = node(ids.NODE_COMPOSE, "Compose", 0, 250, output="full")
+    fore_out = node(ids.NODE_MESH_OUTPUT, "Forebody Output", 250, 250, object_name="Forebody", mirror=False)
 
     L = tree.links.new
-    L(pts.outputs["Points"], fit.inputs["Points"])
-    L(fit.outputs["Surface"], knot.inputs["Surface"])
+    for name in ("Lpp", "B", "T", "D"):
+        L(dims.outputs[name], desc.inputs[name])
+    L(dims.outputs["Lpp"], bow.inputs["Lpp"])
+    L(dims.outputs["B"], bow.inputs["Beam"])
+    L(dims.outputs["T"], bow.inputs["Draft FP"])
+    L(desc.outputs["Hull"], sac.inputs["Hull"])
+    L(sac.outputs["Hull"], sections.inputs["Hull"])
+    L(sections.outputs["Lines"], sections_out.inputs["Lines"])
+    L(sac.outputs["Hull"], bare.inputs["Hull"])
+    L(bare.outputs["Surface"], knot.inputs["Surface"])
     L(knot.outputs["Surface"], tess.inputs["Surface"])
     L(tess.outputs["Mesh"], curv.inputs["Mesh"])
     L(curv.outputs["Mesh"], hull_out.inputs["Mesh"])
     L(knot.outputs["Surface"], iso.inputs["Surface"])
     L(iso.outputs["Lines"], lines_out.inputs["Lines"])
-    L(ell.outputs["Curve"], half.inputs["Curve"])
-    L(half.outputs["Curve"], rev.inputs["Profile"])
-    L(rev.outputs["Surface"], btess.inputs["Surface"])
-    L(btess.outputs["Mesh"], bulb_out.inputs["Mesh"])
+    L(knot.outputs["Surface"], blend.inputs["Hull"])
+    L(bow.outputs["Surface"], blend.inputs["Bulb"])
+    L(knot.outputs["Surface"], comp.inputs["Hull"])
+    L(bow.outputs["Surface"], comp.inputs["Bulb"])
+    L(blend.outputs["Blend"], comp.inputs["Blend"])
+    L(comp.outputs["Mesh"], fore_out.inputs["Mesh"])
     return tree
 
 

@@ -65,6 +65,7 @@ from .compose import (  # noqa: F401,E402
     intersect_surfaces,
     measure_kracht,
     mesh_hydrostatics,
+    seam_blend,
 )
 
 __version__ = "0.1.0"

@@ -26,6 +26,7 @@ __all__ = [
     "intersect_surfaces",
     "measure_kracht",
     "mesh_hydrostatics",
+    "seam_blend",
     "KRACHT_NAMES",
 ]
 
@@ -379,3 +380,60 @@ def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, 
     s, at_a, at_b = _native._blend_surface(surface_a, ba, surface_b, bb, int(samples), float(tension),
                                            int(check_samples))
     return BlendSurface(s, dict(at_a), dict(at_b), ba, boundary_b, float(tension))
+
+
+def seam_blend(hull: NurbsSurface, bulb, *, clearance_u: float = 0.02, clearance_v: float = 0.03,
+               bulb_clearance: float = 0.04, tension: float = 1.0, samples: int = 61) -> BlendSurface:
+    """The blending surface around the seam a bulb makes on a bare hull (the boundaries of
+    examples/compose_forebody.py, as one call for the Blender node).
+
+    On the hull (re-oriented by ``orient_bare_hull``: u aft -> stem, v keel -> deck) the
+    boundary is an ellipse arc in (u, v) around the seam, ``clearance_u`` / ``clearance_v``
+    (fractions of the parameter range) clear of it: a half ellipse from the stem edge below the
+    seam to the stem edge above it when the seam ends on the stem at both ends, a quarter
+    ellipse from the keel edge aft of the seam to the stem edge above it when the bulb reaches
+    below the forefoot (the seam then starts on the keel line). On the bulb it is the section
+    ``bulb_clearance`` ahead of the seam. The result goes into ``compose([hull, bulb, blend])``
+    with the same hull (orientation is idempotent). Raises ValueError when the bulb does not
+    meet the hull in one seam from the stem or keel line to the stem.
+    """
+    surface_b = bulb.surface if isinstance(bulb, BulbousBow) else bulb
+    oriented = _native.orient_bare_hull(hull)
+    seams = intersect_surfaces(oriented, surface_b)
+    if not seams:
+        raise ValueError("the bulb does not intersect the hull; expected a bulb reaching into the hull "
+                         "(check x_fp, the aft length and the nose height)")
+    seam = max(seams, key=lambda c: len(c["points"]))
+    uv = np.asarray(seam["uv_a"])
+    ku, kv = oriented.knots_u, oriented.knots_v
+    u1, v0, du, dv = ku[-1], kv[0], ku[-1] - ku[0], kv[-1] - kv[0]
+    on_stem = [abs(p[0] - u1) < 1e-6 * du for p in (uv[0], uv[-1])]
+    on_keel = [abs(p[1] - v0) < 1e-6 * dv for p in (uv[0], uv[-1])]
+    reach = u1 - uv[:, 0].min() + clearance_u * du
+    phi_n = 65
+    if all(on_stem):
+        tlo, thi = uv[:, 1].min(), uv[:, 1].max()
+        tc, r = 0.5 * (tlo + thi), 0.5 * (thi - tlo) + clearance_v * dv
+        phi = np.linspace(0.0, np.pi, phi_n)
+        on_hull = np.column_stack([u1 - reach * np.sin(phi), tc - r * np.cos(phi)])
+        ellipse = ((u1 - uv[:, 0]) / reach) ** 2 + ((uv[:, 1] - tc) / r) ** 2
+        top = tc + r
+    elif any(on_stem) and any(on_keel):
+        top = uv[:, 1].max() + clearance_v * dv
+        phi = np.linspace(0.0, 0.5 * np.pi, phi_n)
+        on_hull = np.column_stack([u1 - reach * np.cos(phi), v0 + (top - v0) * np.sin(phi)])
+        ellipse = ((u1 - uv[:, 0]) / reach) ** 2 + ((uv[:, 1] - v0) / (top - v0)) ** 2
+    else:
+        raise ValueError("the seam of bulb and hull does not run from the stem or keel line to the stem; "
+                         "expected a bulb crossing the stem below the deck")
+    if on_hull[:, 0].min() <= ku[0] or top >= kv[-1] or on_hull[:, 1].min() < v0:
+        raise ValueError("the blend boundary leaves the hull (past the aft cut, keel or deck); expected "
+                         "smaller clearances")
+    if ellipse.max() >= 1.0:
+        raise ValueError(f"the blend boundary cuts the seam (clearance_u = {clearance_u}, clearance_v = "
+                         f"{clearance_v}); expected larger clearances")
+    kb = surface_b.knots_u
+    u_b = float(np.asarray(seam["uv_b"])[:, 0].max()) + bulb_clearance * (kb[-1] - kb[0])
+    if not u_b < kb[-1]:
+        raise ValueError(f"bulb_clearance = {bulb_clearance} puts the blend beyond the bulb's nose; expected less")
+    return blend_surface(oriented, on_hull, surface_b, ("u", u_b), samples=samples, tension=tension)

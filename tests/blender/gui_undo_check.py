@@ -43,8 +43,21 @@ def volume(obj):
 
 
 def length():
+    """The bulb's protrusion coefficient C_LPR (protrusion / Lpp) on the Bulbous Bow node."""
     tree = bpy.data.node_groups[blender_graph.TREE_NAME]
-    return round(tree.nodes["Bulb Profile"].inputs["Semi-axis A"].default_value[0], 4)
+    return round(tree.nodes["Bulbous Bow"].inputs["C_LPR"].default_value, 4)
+
+
+def nose():
+    """Foremost x of the composed forebody (the bulb's nose), metres."""
+    me = bpy.data.objects["Forebody"].data
+    v = np.empty(len(me.vertices) * 3)
+    me.vertices.foreach_get("co", v)
+    return float(v.reshape(-1, 3)[:, 0].max())
+
+
+SHORT, LONG = 0.025, 0.035
+DX = (LONG - SHORT) * blender_graph.LPP  # how far the nose moves forward
 
 
 def ctx():
@@ -96,21 +109,24 @@ def tick():
             state["ev"].flush()
             with ctx():
                 bpy.ops.ed.undo_push(message="example graph")
-            report["v_short"] = volume(bpy.data.objects["Bulb"])
+            report["v_short"] = volume(bpy.data.objects["Forebody"])
+            report["nose_short"] = nose()
         elif s == 2:
             tree = bpy.data.node_groups[blender_graph.TREE_NAME]
-            tree.nodes["Bulb Profile"].inputs["Semi-axis A"].default_value[0] = 10.0
+            tree.nodes["Bulbous Bow"].inputs["C_LPR"].default_value = LONG
         elif s == 3:
-            wait_for(lambda: abs(volume(bpy.data.objects["Bulb"]) / report["v_short"] - 1.25) < 0.005)
-            report["v_long"] = volume(bpy.data.objects["Bulb"])
-            check(abs(report["v_long"] / report["v_short"] - 1.25) < 0.005, "bulb did not lengthen live")
+            wait_for(lambda: abs(nose() - report["nose_short"] - DX) < 0.02 * DX)
+            report["v_long"] = volume(bpy.data.objects["Forebody"])
+            report["nose_long"] = nose()
+            check(abs(report["nose_long"] - report["nose_short"] - DX) < 0.02 * DX, "bulb did not lengthen live")
+            check(report["v_long"] != report["v_short"], "the volume did not change with the bulb")
             with ctx():
                 bpy.ops.ed.undo_push(message="longer bulb")
                 bpy.ops.ed.undo()
         elif s == 4:
-            wait_for(lambda: abs(volume(bpy.data.objects["Bulb"]) / report["v_short"] - 1) < 1e-6)
-            check(length() == 8.0, "undo left the length at %s" % length())
-            v = volume(bpy.data.objects["Bulb"])
+            wait_for(lambda: abs(volume(bpy.data.objects["Forebody"]) / report["v_short"] - 1) < 1e-6)
+            check(length() == SHORT, "undo left C_LPR at %s" % length())
+            v = volume(bpy.data.objects["Forebody"])
             report["v_after_undo"] = v
             check(abs(v / report["v_short"] - 1) < 1e-6, "undo: volume %.3f, expected %.3f" % (v, report["v_short"]))
             tree = bpy.data.node_groups[blender_graph.TREE_NAME]
@@ -119,9 +135,9 @@ def tick():
             with ctx():
                 bpy.ops.ed.redo()
         elif s == 5:
-            wait_for(lambda: abs(volume(bpy.data.objects["Bulb"]) / report["v_long"] - 1) < 1e-6)
-            check(length() == 10.0, "redo left the length at %s" % length())
-            v = volume(bpy.data.objects["Bulb"])
+            wait_for(lambda: abs(volume(bpy.data.objects["Forebody"]) / report["v_long"] - 1) < 1e-6)
+            check(length() == LONG, "redo left C_LPR at %s" % length())
+            v = volume(bpy.data.objects["Forebody"])
             report["v_after_redo"] = v
             check(abs(v / report["v_long"] - 1) < 1e-6, "redo: volume %.3f, expected %.3f" % (v, report["v_long"]))
             tree = bpy.data.node_groups[blender_graph.TREE_NAME]

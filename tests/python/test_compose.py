@@ -346,3 +346,25 @@ def test_hull_bulb_and_blend_compose_into_one_watertight_c1_hull(composed, bulb)
         assert got[name] == pytest.approx(bulb.kracht[name], rel=KRACHT_TOL), name
     with pytest.raises(ValueError, match="bulb section"):
         fl.compose([hull_s, bulb, fl.blend_surface(hull_s, on_hull, bulb.surface, ("v", 0.5))])
+
+
+def test_seam_blend_matches_the_hand_built_blend_and_composes_with_the_original_hull(hull, composed, bulb):
+    """fl.seam_blend (the Blender Blend node's one call) builds the boundaries of the test above
+    from the raw hull (its seam comes from intersect_surfaces, the test's from the composition:
+    the same curve, sampled differently at its ends, so the boundaries agree to 5e-3 in (u, v));
+    composed with the *unoriented* hull (orientation is idempotent) it gives a watertight, C1
+    hull of the same volume."""
+    cp = fl
+    bl = fl.seam_blend(hull, bulb)
+    hull_s = composed.trimmed_surfaces[0][0]
+    ref = fl.blend_surface(hull_s, _hull_boundary_around(composed), bulb.surface,
+                           ("u", float(composed.intersection_curves[0]["uv_b"][:, 0].max()) + 0.04))
+    assert np.abs(np.asarray(bl.boundary_a) - np.asarray(ref.boundary_a)).max() < 5e-3
+    assert abs(bl.boundary_b[1] - ref.boundary_b[1]) < 1e-3
+    a = fl.compose([hull, bulb, bl])
+    b = fl.compose([hull_s, bulb, ref])
+    assert edge_census(a.mesh.faces) == (0, 0, 0)
+    assert a.volume == pytest.approx(b.volume, rel=1e-4)
+    assert max(d["max_angle_deg"] for d in a.blend_continuity) <= MAX_BLEND_ANGLE_DEG
+    with pytest.raises(ValueError, match="does not intersect"):
+        fl.seam_blend(hull, fl.BulbousBow(**dict(SHIP, x_fp=L + 60.0)))
