@@ -251,7 +251,10 @@ class FLNodeBareHull(FairlinesNode, bpy.types.Node):
             surface.control_points.shape[0], surface.control_points.shape[1], skin.section_fit_max)
         out = {"Surface": surface}
         if self.hydrostatics:
-            h = hull.hydrostatics()
+            # The node shows volume, LCB and Cb, not the SAC: no SAC stations, and 4 Gauss points
+            # per span (on the Panamax forebody the same volume and LCB as 8 to 1e-11, in a
+            # sixth of the time: this runs on every hull change).
+            h = hull.hydrostatics(gauss=4, sac_stations=2)
             out.update({"Volume": float(h.volume), "LCB": float(h.lcb), "Cb": float(h.cb)})
             info += "\nV %.6g m3, LCB %.4g m, Cb %.4f" % (h.volume, h.lcb, h.cb)
         out["__info__"] = info
