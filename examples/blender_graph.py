@@ -89,10 +89,10 @@ def build(tree_name=TREE_NAME):
     iso.inputs["Count V"].default_value = 13
     lines_out = node(ids.NODE_LINES_OUTPUT, "Lines Output", 250, 600, object_name="Forebody Lines")
 
-    bow = node(ids.NODE_BULBOUS_BOW, "Bulbous Bow", -850, -50)
+    bow = node(ids.NODE_BULBOUS_BOW, "Bulbous Bow", -850, -150)
     bow.inputs["Midship Area"].default_value = MIDSHIP_AREA
     bow.inputs["Displacement"].default_value = DISPLACEMENT
-    blend = node(ids.NODE_BLEND, "Blend", -300, 50)
+    blend = node(ids.NODE_BLEND, "Blend", -300, 0)
     comp = node(ids.NODE_COMPOSE, "Compose", 0, 250, output="full")
     fore_out = node(ids.NODE_MESH_OUTPUT, "Forebody Output", 250, 250, object_name="Forebody", mirror=False)
 

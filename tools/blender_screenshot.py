@@ -27,7 +27,7 @@ ap.add_argument("--prefs-only", action="store_true", help="save preferences with
 args = ap.parse_args(argv)
 
 state = {"step": 0}
-ZOOM_STEPS = 1  # the forebody graph is wide: one step keeps all of it in the picture
+ZOOM_STEPS = 5
 
 
 def setup():
