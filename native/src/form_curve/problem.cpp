@@ -8,33 +8,15 @@
 
 #include "fairlines/basis.hpp"
 #include "fairlines/knots.hpp"
+#include "nurbs/gauss.hpp"
 #include "problem.hpp"
 
 namespace fairlines::form_curve_impl {
 
 void gauss_legendre(int n, Eigen::VectorXd& nodes, Eigen::VectorXd& weights) {
-  nodes.resize(n);
-  weights.resize(n);
-  for (int i = 0; i < (n + 1) / 2; ++i) {
-    double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5));
-    double dp = 1;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1, p1 = x;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      if (n == 1) p0 = 1;
-      dp = n * (x * p1 - p0) / (x * x - 1);
-      const double dx = p1 / dp;
-      x -= dx;
-      if (std::abs(dx) < 1e-16) break;
-    }
-    nodes[i] = -x;
-    nodes[n - 1 - i] = x;
-    weights[i] = weights[n - 1 - i] = 2 / ((1 - x * x) * dp * dp);
-  }
+  const detail::GaussRule& g = detail::gauss_rule(n);
+  nodes = Eigen::Map<const Eigen::VectorXd>(g.x.data(), n);
+  weights = Eigen::Map<const Eigen::VectorXd>(g.w.data(), n);
 }
 
 SplineTables::SplineTables(int n_control, int degree) : n(n_control), p(degree) {

@@ -12,7 +12,7 @@
 #include "fairlines/errors.hpp"
 #include "fairlines/knots.hpp"
 #include "nurbs/checks.hpp"
-#include "skinning/gauss.hpp"
+#include "nurbs/gauss.hpp"
 
 namespace fairlines {
 

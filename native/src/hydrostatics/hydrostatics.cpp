@@ -10,7 +10,7 @@
 
 #include "fairlines/errors.hpp"
 #include "nurbs/checks.hpp"
-#include "skinning/gauss.hpp"
+#include "nurbs/gauss.hpp"
 
 namespace fairlines {
 

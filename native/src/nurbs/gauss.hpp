@@ -1,5 +1,5 @@
-// Gauss-Legendre quadrature rules on [-1, 1] (internal; shared by skinning, hydrostatics
-// and the hull builder). An n-point rule integrates polynomials of degree 2n - 1 exactly.
+// Gauss-Legendre quadrature rules on [-1, 1] (internal; shared by form-parameter curves,
+// skinning, hydrostatics and the hull builder). An n-point rule integrates polynomials of degree 2n - 1 exactly.
 #pragma once
 
 #include <cmath>
