@@ -54,6 +54,7 @@ from typing import Any
 import numpy as np
 
 from . import _native
+from .inflections import classify_cut
 from .skinning import fair_skin
 
 __all__ = [
@@ -594,17 +595,27 @@ class Hull:
         return _native.hydrostatics(self.bare_hull_surface(), d.principal.draft if draft is None else draft, **options)
 
     def fairness_report(self, **kwargs) -> dict:
-        return fairness_report(self.bare_hull_surface(), draft=self.description.principal.draft, **kwargs)
+        """fairness_report of the bare hull, every inflection judged against the designed
+        sections (fairlines.inflections): real (the shape calls for it, and why) or false."""
+        d = self.description
+        kwargs.setdefault("sections", self.sections)
+        kwargs.setdefault("dz", d.principal.depth / (d.section_n_control - 1))
+        return fairness_report(self.bare_hull_surface(), draft=d.principal.draft, **kwargs)
 
 
 def fairness_report(surface, draft: float, n_waterlines: int = 8, n_buttocks: int = 6, n_frames: int = 12,
-                    samples: int = 401) -> dict:
+                    samples: int = 401, sections=None, dz: float | None = None) -> dict:
     """Waterlines, buttocks and frames cut from the surface (fl.plane_cut), each with its E2, its
     bending energy int k^2 ds and its number of curvature sign changes with their positions.
 
     Waterlines at equally spaced heights strictly between the lowest point and the draft plus
     half the freeboard-free margin (up to 1.2 T, clipped to the surface); buttocks at fractions
     of the largest half-breadth; frames at equally spaced x strictly inside the surface.
+
+    With the designed `sections` (3-D curves in x order) every inflection is also classified
+    (fairlines.inflections.classify_cut; `dz` the frames' height tolerance, default a tenth of
+    the sections' height): "classified" lists {point, real, reason} and "false_inflections" /
+    "real_inflections" count them.
     """
     us = np.linspace(*surface.domain_u(), 41) if callable(surface.domain_u) else np.linspace(*surface.domain_u, 41)
     vs = np.linspace(*surface.domain_v(), 41) if callable(surface.domain_v) else np.linspace(*surface.domain_v, 41)
@@ -612,6 +623,10 @@ def fairness_report(surface, draft: float, n_waterlines: int = 8, n_buttocks: in
     lo, hi = grid.min(axis=0), grid.max(axis=0)
     z_top = min(1.2 * draft, hi[2])
     report: dict[str, list] = {"waterline": [], "buttock": [], "frame": []}
+    if sections is not None:
+        station_x = np.array([float(np.asarray(c.control_points)[0, 0]) for c in sections])
+        zs = np.concatenate([np.asarray(c.control_points)[:, 2] for c in sections])
+        dz_ = dz if dz is not None else (zs.max() - zs.min()) / 10
     plan = {
         "waterline": (2, np.linspace(lo[2], z_top, n_waterlines + 2)[1:-1]),
         "buttock": (1, np.linspace(0.0, hi[1], n_buttocks + 2)[1:-1]),
@@ -631,4 +646,9 @@ def fairness_report(surface, draft: float, n_waterlines: int = 8, n_buttocks: in
                 "inflections": cut.inflections.tolist(),
                 "max_abs_curvature": float(np.max(np.abs(cut.curvature))),
             })
+            if sections is not None:
+                judged = classify_cut(kind, float(val), cut.inflections, sections, station_x, dz_)
+                report[kind][-1]["classified"] = judged
+                report[kind][-1]["real_inflections"] = sum(1 for j in judged if j["real"])
+                report[kind][-1]["false_inflections"] = sum(1 for j in judged if not j["real"])
     return report
