@@ -118,3 +118,15 @@ def test_panamax_report_judges_every_inflection(panamax_report):
             for j in c["classified"]:
                 assert j["reason"] and (j["real"] != j["reason"].startswith("false"))
     json.dumps(panamax_report)  # the report is what build_hull.py writes
+
+
+def test_wigley_e3_skin_has_no_inflection_in_any_cut_family():
+    # Every Wigley waterline, buttock and frame keeps one sign of curvature.
+    secs = _quadratic_sections(lambda x: B / 2 * (1 - (2 * (x - L / 2) / L) ** 2))
+    surf = fl.fair_skin(secs, n_control=8, e2=0.0, e3=1.0).surface
+    plan = {"waterline": np.linspace(0.7, 5.6, 8), "buttock": np.linspace(0.7, 4.3, 6), "frame": np.linspace(5, 95, 12)}
+    for kind, values in plan.items():
+        for v in values:
+            cut = fl.plane_cut(surf, kind, float(v), 401)
+            assert len(cut.points) > 0
+            assert cut.sign_changes == 0, (kind, v)
