@@ -6,7 +6,8 @@ the surface control net and a fairness report.
 Writes DIR/bare_hull_surface.json (degrees, knots, control net (nu, nv, 3) in metres; u from
 deck to keel, v from the first station to the last; the half hull y >= 0) and
 DIR/fairness_report.json (waterlines, buttocks and frames cut from the surface: E2, bending
-energy, curvature sign changes and where they are).
+energy, curvature sign changes and where they are, each judged real -- called for by the
+designed sections, with the reason -- or false).
 """
 
 import argparse
@@ -75,9 +76,15 @@ def main(argv=None):
     (out / "bare_hull_surface.json").write_text(json.dumps(net))
     report = hull.fairness_report()
     (out / "fairness_report.json").write_text(json.dumps(report, indent=1))
-    print("Fairness (curvature sign changes per cut):")
+    print("Fairness (per cut: position: curvature sign changes = real + false; real ones are called for by the "
+          "designed sections, see fairlines.inflections):")
     for kind, cuts in report.items():
-        print(f"  {kind:10s} " + ", ".join(f"{c['value']:.2f}:{c['sign_changes']}" for c in cuts))
+        print(f"  {kind:10s} " + ", ".join(f"{c['value']:.2f}:{c['sign_changes']}={c['real_inflections']}+{c['false_inflections']}"
+                                           for c in cuts))
+    for kind, cuts in report.items():
+        total = sum(c["sign_changes"] for c in cuts)
+        false = sum(c["false_inflections"] for c in cuts)
+        print(f"  {kind}s: {total} sign changes, {total - false} real, {false} false")
     print(f"wrote {out / 'bare_hull_surface.json'} and {out / 'fairness_report.json'}")
 
 

@@ -39,7 +39,10 @@ deck point (deck curve) down -- along the flat side when there is one -- through
 (design waterline) to the keel (centre profile) and along the flat bottom to the centre line,
 with the deck and bottom tangent angles, and half the SAC value as its area below the DWL. The
 sections are fair-skinned (fairlines.fair_skin) into one B-spline surface, the half hull
-y >= 0.
+y >= 0. ``skinning`` holds the fair_skin options: ``n_control``, ``start`` / ``end``,
+``curvature_weight``, the longitudinal fairness weights ``e2`` / ``e3`` (default 1 / 0, seed 000's
+E2), and ``junctions`` (default false): move the station nearest each basic-curve junction (end
+of a flat part or of a curve, where the curve is only C1) onto it and let the skin be C1 there.
 """
 
 from __future__ import annotations
@@ -54,6 +57,7 @@ from typing import Any
 import numpy as np
 
 from . import _native
+from .inflections import classify_cut
 from .skinning import fair_skin
 
 __all__ = [
@@ -89,6 +93,12 @@ def _number(path: str, value: Any, *, positive: bool = False) -> float:
     if positive and not v > 0:
         raise _bad(path, v, "a number > 0")
     return v
+
+
+def _flag(path: str, value: Any) -> bool:
+    if not isinstance(value, bool):
+        raise _bad(path, value, "true or false")
+    return value
 
 
 def _integer(path: str, value: Any, lo: int) -> int:
@@ -203,6 +213,9 @@ class HullDescription:
     skin_start: str = "free"
     skin_end: str = "free"
     skin_curvature_weight: float = 0.0
+    skin_e2: float = 1.0
+    skin_e3: float = 0.0
+    skin_junctions: bool = False
     notes: str = ""
 
     @classmethod
@@ -273,6 +286,9 @@ class HullDescription:
             skin_start=str(sk.get("start", "free")),
             skin_end=str(sk.get("end", "free")),
             skin_curvature_weight=_number("skinning.curvature_weight", sk.get("curvature_weight", 0.0)),
+            skin_e2=_number("skinning.e2", sk.get("e2", 1.0)),
+            skin_e3=_number("skinning.e3", sk.get("e3", 0.0)),
+            skin_junctions=_flag("skinning.junctions", sk.get("junctions", False)),
             notes=str(d.get("notes", "")),
         )
         return desc
@@ -288,7 +304,8 @@ class HullDescription:
             "auxiliary_sections": [{"x": a.x, "offsets": [list(p) for p in a.offsets]} for a in self.auxiliary_sections],
             "sections": {"n_control": self.section_n_control},
             "skinning": {"n_control": self.skin_n_control, "start": self.skin_start, "end": self.skin_end,
-                         "curvature_weight": self.skin_curvature_weight},
+                         "curvature_weight": self.skin_curvature_weight, "e2": self.skin_e2, "e3": self.skin_e3,
+                         "junctions": self.skin_junctions},
         }
 
 
@@ -525,12 +542,38 @@ class Hull:
             raise _native.InfeasibleFormParameters(
                 f"basic_curves.profile: keel height {prof[i]:.6g} m at x = {xs[i]:.4g} m; expected 0 <= z < T = {pr.draft} m")
 
+    def junctions(self) -> list[float]:
+        """x strictly inside the range where a basic curve leaves its flat part or ends: there the
+        curve is only C1 (its curvature jumps), and so is every section property it sets."""
+        d = self.description
+        tol = 1e-9 * d.principal.lpp
+        out = set()
+        for bc in self.basic_curves.values():
+            for xj in (bc.flat_to, bc.x_end):
+                if d.x_start + tol < xj < d.x_end - tol:
+                    out.add(round(float(xj), 9))
+        return sorted(out)
+
+    def stations(self) -> np.ndarray:
+        """Stations of the designed sections: the description's, except that with
+        ``skinning.junctions`` the station nearest each basic-curve junction (not an end one)
+        moves onto it, so the skin can be C1 there as the basic curves are (a C2 surface
+        through a curvature jump rings on both sides of it)."""
+        d = self.description
+        x = np.asarray(d.stations, dtype=float).copy()
+        if d.skin_junctions:
+            for xj in self.junctions():
+                k = int(np.argmin(np.abs(x - xj)))
+                if 0 < k < len(x) - 1 and x[k - 1] < xj < x[k + 1]:
+                    x[k] = xj
+        return x
+
     def section_parameters(self) -> dict[str, np.ndarray]:
         """Per-station section parameters read off the basic curves (SectionSpec fields)."""
         d = self.description
         pr = d.principal
         bc = self.basic_curves
-        x = np.asarray(d.stations, dtype=float)
+        x = self.stations()
         ones = np.ones_like(x)
         zc = bc["section_zc"](x) if "section_zc" in bc else np.full_like(x, math.nan)
         return {
@@ -573,8 +616,13 @@ class Hull:
         if self._skin is None:
             d = self.description
             n = d.skin_n_control or None
+            c1 = []
+            if d.skin_junctions:
+                xs = [float(np.asarray(c.control_points)[0, 0]) for c in self.sections]
+                tol = 1e-9 * d.principal.lpp
+                c1 = [i for i in range(1, len(xs) - 1) if any(abs(xs[i] - j) <= tol for j in self.junctions())]
             self._skin = fair_skin(self.sections, n_control=n, start=d.skin_start, end=d.skin_end, params="station",
-                                   curvature_weight=d.skin_curvature_weight)
+                                   curvature_weight=d.skin_curvature_weight, e2=d.skin_e2, e3=d.skin_e3, c1_sections=c1)
         return self._skin
 
     def bare_hull_surface(self) -> _native.NurbsSurface:
@@ -594,17 +642,27 @@ class Hull:
         return _native.hydrostatics(self.bare_hull_surface(), d.principal.draft if draft is None else draft, **options)
 
     def fairness_report(self, **kwargs) -> dict:
-        return fairness_report(self.bare_hull_surface(), draft=self.description.principal.draft, **kwargs)
+        """fairness_report of the bare hull, every inflection judged against the designed
+        sections (fairlines.inflections): real (the shape calls for it, and why) or false."""
+        d = self.description
+        kwargs.setdefault("sections", self.sections)
+        kwargs.setdefault("dz", d.principal.depth / (d.section_n_control - 1))
+        return fairness_report(self.bare_hull_surface(), draft=d.principal.draft, **kwargs)
 
 
 def fairness_report(surface, draft: float, n_waterlines: int = 8, n_buttocks: int = 6, n_frames: int = 12,
-                    samples: int = 401) -> dict:
+                    samples: int = 401, sections=None, dz: float | None = None) -> dict:
     """Waterlines, buttocks and frames cut from the surface (fl.plane_cut), each with its E2, its
     bending energy int k^2 ds and its number of curvature sign changes with their positions.
 
     Waterlines at equally spaced heights strictly between the lowest point and the draft plus
     half the freeboard-free margin (up to 1.2 T, clipped to the surface); buttocks at fractions
     of the largest half-breadth; frames at equally spaced x strictly inside the surface.
+
+    With the designed `sections` (3-D curves in x order) every inflection is also classified
+    (fairlines.inflections.classify_cut; `dz` the frames' height tolerance, default a tenth of
+    the sections' height): "classified" lists {point, real, reason} and "false_inflections" /
+    "real_inflections" count them.
     """
     us = np.linspace(*surface.domain_u(), 41) if callable(surface.domain_u) else np.linspace(*surface.domain_u, 41)
     vs = np.linspace(*surface.domain_v(), 41) if callable(surface.domain_v) else np.linspace(*surface.domain_v, 41)
@@ -612,6 +670,10 @@ def fairness_report(surface, draft: float, n_waterlines: int = 8, n_buttocks: in
     lo, hi = grid.min(axis=0), grid.max(axis=0)
     z_top = min(1.2 * draft, hi[2])
     report: dict[str, list] = {"waterline": [], "buttock": [], "frame": []}
+    if sections is not None:
+        station_x = np.array([float(np.asarray(c.control_points)[0, 0]) for c in sections])
+        zs = np.concatenate([np.asarray(c.control_points)[:, 2] for c in sections])
+        dz_ = dz if dz is not None else (zs.max() - zs.min()) / 10
     plan = {
         "waterline": (2, np.linspace(lo[2], z_top, n_waterlines + 2)[1:-1]),
         "buttock": (1, np.linspace(0.0, hi[1], n_buttocks + 2)[1:-1]),
@@ -631,4 +693,9 @@ def fairness_report(surface, draft: float, n_waterlines: int = 8, n_buttocks: in
                 "inflections": cut.inflections.tolist(),
                 "max_abs_curvature": float(np.max(np.abs(cut.curvature))),
             })
+            if sections is not None:
+                judged = classify_cut(kind, float(val), cut.inflections, sections, station_x, dz_)
+                report[kind][-1]["classified"] = judged
+                report[kind][-1]["real_inflections"] = sum(1 for j in judged if j["real"])
+                report[kind][-1]["false_inflections"] = sum(1 for j in judged if not j["real"])
     return report

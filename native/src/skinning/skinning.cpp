@@ -409,13 +409,18 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
     Eigen::MatrixXd sol;
     if (o.mode == SkinMode::Interpolate) {
       const int mc = q + ne;
+      // Constraint rows scaled to the fairness block's magnitude: with E3 (entries ~ q^3) the
+      // unscaled KKT pivots of the O(1) interpolation rows fall under FullPivLU's rank
+      // threshold, and the solve silently misses the sections by decimetres.
+      const double gmax = (2.0 * G).cwiseAbs().maxCoeff();
+      const double cs = gmax > 0 ? gmax : 1.0;
       Eigen::MatrixXd KKT = Eigen::MatrixXd::Zero(nv + mc, nv + mc);
       KKT.topLeftCorner(nv, nv) = 2.0 * G;
-      KKT.block(nv, 0, q, nv) = Nv;
-      for (int e = 0; e < ne; ++e) KKT.row(nv + q + e).head(nv) = extra[e];
+      KKT.block(nv, 0, q, nv) = cs * Nv;
+      for (int e = 0; e < ne; ++e) KKT.row(nv + q + e).head(nv) = cs * extra[e];
       KKT.topRightCorner(nv, mc) = KKT.bottomLeftCorner(mc, nv).transpose();
       Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nv + mc, cols.size());
-      rhs.middleRows(nv, q) = rhs_data;
+      rhs.middleRows(nv, q) = cs * rhs_data;
       const Eigen::FullPivLU<Eigen::MatrixXd> lu(KKT);
       const Eigen::MatrixXd full = lu.solve(rhs);
       // A singular system shows as a residual the solve cannot remove (the pivot-based rank
