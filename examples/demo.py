@@ -16,7 +16,7 @@ STEPS = [
     ("Form-parameter curves: Area and yC families (seed 002 Figs. 3-4)", "form_curve_families.py"),
     ("Pre-processor: form parameters and faired surfaces of the reference hulls", "import_reference_hulls.py"),
     ("Bare hull: basic curves, sections, fair skinning and hydrostatics (Panamax forebody)", "build_hull.py"),
-    ("Bulbous bow, blend and Boolean composition into a watertight hull (stand-in forebody)", "compose_forebody.py"),
+    ("Bulbous bow, blend and Boolean composition into a watertight hull (Panamax forebody)", "compose_forebody.py"),
 ]
 
 

@@ -246,7 +246,7 @@ def test_compose_forebody_example_runs(tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(sys, "argv", ["compose_forebody.py", "--out", str(tmp_path)])
     runpy.run_path(str(script), run_name="__main__")
     assert "c_vpr" in capsys.readouterr().out
-    assert (tmp_path / "panamax_standin_forebody_full.stl").stat().st_size > 84
+    assert (tmp_path / "panamax_forebody_with_bulb_full.stl").stat().st_size > 84
 
 
 MAX_BLEND_ANGLE_DEG = 0.5  # issue 5: normals across each blend boundary within 0.5 degrees
