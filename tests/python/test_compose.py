@@ -1,7 +1,7 @@
 """Issue 5: bulbous bow, surface-surface intersection and the composed watertight hull.
 
-Stand-ins (issue 4's bare hull lands later): a Wigley-type forebody y = B/2 (1 - xi^4)
-(1 - (1 - z/D)^6) fitted as a bicubic surface, with Panamax particulars. Every check below
+Analytic stand-in (the real Panamax hull is in test_compose_panamax.py): a Wigley-type
+forebody y = B/2 (1 - xi^4) (1 - (1 - z/D)^6) fitted as a bicubic surface, with Panamax particulars. Every check below
 uses code of its own (numpy edge census, quadrature of the NURBS surfaces) rather than the
 engine's own checks.
 """
