@@ -452,7 +452,8 @@ def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface
         return union
     hull_s = union.trimmed_surfaces[0][0]
     bulb_s = bulb.surface if isinstance(bulb, BulbousBow) else bulb
-    bl = blend_surface(hull_s, bounds[0], bulb_s, bounds[1], tension=tension)
+    # compose() re-skins the blend at the mesh resolution and measures its continuity itself
+    bl = blend_surface(hull_s, bounds[0], bulb_s, bounds[1], tension=tension, check_samples=2)
     out = compose([hull_s, bulb, bl], **compose_options)
     out.blend_note = "blend: max normal angle %.3f deg at the hull, %.3f deg at the bulb" % tuple(
         d["max_angle_deg"] for d in out.blend_continuity)

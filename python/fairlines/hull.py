@@ -685,6 +685,9 @@ class Hull:
         ``displacement_volume`` or, for a hull modelling the whole ship, its own volume."""
         d = self.description
         pr = d.principal
+        cached = getattr(self, "_ship", None)
+        if cached is not None and cached[0] is self.skin() and cached[1] == (d.bulb.to_dict() if d.bulb else None):
+            return dict(cached[2])
         h = self.hydrostatics()
         vol = d.bulb.displacement_volume if d.bulb is not None else None
         if vol is None:
@@ -692,8 +695,10 @@ class Hull:
                 raise _native.InvalidInput(
                     f"bulb.displacement_volume is missing; the hull models only x = {d.x_start} .. {d.x_end} m")
             vol = float(h.volume)
-        return dict(lpp=pr.lpp, beam=pr.breadth, draft_fp=pr.draft, midship_area=float(h.midship_area),
+        ship = dict(lpp=pr.lpp, beam=pr.breadth, draft_fp=pr.draft, midship_area=float(h.midship_area),
                     displacement_volume=float(vol), x_fp=pr.lpp)
+        self._ship = (self.skin(), d.bulb.to_dict() if d.bulb else None, ship)  # until the skin is rebuilt
+        return dict(ship)
 
     def bulbous_bow(self, **overrides):
         """The BulbousBow of the ``"bulb"`` section sized from :meth:`ship_particulars`;
