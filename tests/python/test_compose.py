@@ -346,3 +346,31 @@ def test_hull_bulb_and_blend_compose_into_one_watertight_c1_hull(composed, bulb)
         assert got[name] == pytest.approx(bulb.kracht[name], rel=KRACHT_TOL), name
     with pytest.raises(ValueError, match="bulb section"):
         fl.compose([hull_s, bulb, fl.blend_surface(hull_s, on_hull, bulb.surface, ("v", 0.5))])
+
+
+def test_blend_ending_on_the_centre_plane_is_c1_there():
+    """Both boundaries end on y = 0 (a stem and a bulb top centre line): the blend's end
+    section must stay in the centre plane and still be tangent to both surfaces there, also
+    where the boundary on the first surface climbs (its tangent is not horizontal). Plane a
+    holds the vertical stem line x = y = 0 and leaves it at a half entrance angle of 20 deg;
+    plane b is the horizontal z = 2 ahead of the stem."""
+    alpha = np.radians(20.0)
+    back = np.array([-10.0 * np.cos(alpha), 10.0 * np.sin(alpha), 0.0])
+    a = fl.NurbsSurface(1, 1, [0, 0, 1, 1], [0, 0, 1, 1],
+                        [[back + [0, 0, 4], back + [0, 0, 12]], [[0, 0, 4], [0, 0, 12]]])
+    b = fl.NurbsSurface(1, 1, [0, 0, 1, 1], [0, 0, 1, 1],
+                        [[[3, 0, 2], [3, 6, 2]], [[9, 0, 2], [9, 6, 2]]])
+    on_a = np.array([[0.3, 0.1], [1.0, 0.6]])  # climbs to the stem at z = 8.8
+    on_b = np.array([[0.5, 0.8], [0.5, 0.0]])  # the line x = 6 to the centre line
+    bl = fl.blend_surface(a, on_a, b, on_b)
+    end = bl.surface.evaluate(np.ones(20), np.linspace(0.0, 1.0, 20))
+    assert np.abs(end[:, 1]).max() < 1e-9
+    d = bl.surface.derivatives(1.0, 0.0, 1)
+    nb = np.cross(d[1, 0], d[0, 1])
+    na = np.array([np.sin(alpha), np.cos(alpha), 0.0])  # plane a's normal
+    angle = np.degrees(np.arccos(min(1.0, abs(nb @ na) / np.linalg.norm(nb))))
+    assert angle <= MAX_BLEND_ANGLE_DEG
+    d = bl.surface.derivatives(1.0, 1.0, 1)
+    nb = np.cross(d[1, 0], d[0, 1])
+    assert np.degrees(np.arccos(min(1.0, abs(nb[2]) / np.linalg.norm(nb)))) <= MAX_BLEND_ANGLE_DEG
+    assert bl.max_angle_deg <= MAX_BLEND_ANGLE_DEG
