@@ -29,7 +29,11 @@ def main():
     for title, script in STEPS:
         print(f"\n== {title} ({script}) ==", flush=True)
         sys.argv = [script, "--out", str(out)]
-        runpy.run_path(str(HERE / script), run_name="__main__")
+        try:
+            runpy.run_path(str(HERE / script), run_name="__main__")
+        except SystemExit as e:  # a step ending with sys.exit(0) must not end the demo
+            if e.code not in (None, 0):
+                raise
     print(f"\nOutputs are in {out}")
 
 
