@@ -239,7 +239,7 @@ def test_sweep_of_bulb_length_and_breadth_composes_on_the_real_hull(hull, ship, 
     assert self_intersections(c.full_mesh()) == []
     assert max(d["max_angle_deg"] for d in c.blend_continuity) <= MAX_BLEND_ANGLE_DEG
     got = fl.measure_kracht(c.mesh, **ship)
-    for name in ("c_lpr", "c_bb", "c_zb"):
+    for name in fl.KRACHT_NAMES:
         assert got[name] == pytest.approx(b.kracht[name], rel=KRACHT_TOL), (name, c_lpr, c_bb)
 
 
