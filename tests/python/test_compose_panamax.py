@@ -213,9 +213,11 @@ def test_volume_identity_two_ways_on_the_real_hull(hull, union, blended, bulb):
     hull_s = union.trimmed_surfaces[0][0]
     v_bare_q = _y_flux(hull_s)
     assert bare.volume == pytest.approx(v_bare_q, rel=VOLUME_TOL)
-    # and below the waterline the mesh agrees with the bare hull's own NURBS hydrostatics
+    # and below the waterline a finer mesh agrees with the bare hull's own NURBS hydrostatics
+    # (the default 48 x 20 cells give -0.25 %: chords inside the convex sections)
     T = hull.description.principal.draft
-    assert fl.mesh_hydrostatics(bare.mesh, T)["volume"] == pytest.approx(hull.hydrostatics().volume, rel=VOLUME_TOL)
+    fine = fl.compose([hull.bare_hull_surface()], hull_u=96, hull_v=40)
+    assert fl.mesh_hydrostatics(fine.mesh, T)["volume"] == pytest.approx(hull.hydrostatics().volume, rel=VOLUME_TOL)
     for c in (union, blended):
         v_q = sum(_y_flux(s, loops) for s, loops in c.trimmed_surfaces)
         added_q = v_q - v_bare_q
