@@ -16,7 +16,7 @@ STEPS = [
     ("Form-parameter curves: Area and yC families (seed 002 Figs. 3-4)", "form_curve_families.py"),
     ("Pre-processor: form parameters and faired surfaces of the reference hulls", "import_reference_hulls.py"),
     ("Bare hull: basic curves, sections, fair skinning and hydrostatics (Panamax forebody)", "build_hull.py"),
-    ("Bulbous bow, blend and Boolean composition into a watertight hull (stand-in forebody)", "compose_forebody.py"),
+    ("Bulbous bow, blend and Boolean composition into a watertight hull (Panamax forebody)", "compose_forebody.py"),
 ]
 
 
@@ -29,7 +29,11 @@ def main():
     for title, script in STEPS:
         print(f"\n== {title} ({script}) ==", flush=True)
         sys.argv = [script, "--out", str(out)]
-        runpy.run_path(str(HERE / script), run_name="__main__")
+        try:
+            runpy.run_path(str(HERE / script), run_name="__main__")
+        except SystemExit as e:  # a step ending with sys.exit(0) must not end the demo
+            if e.code not in (None, 0):
+                raise
     print(f"\nOutputs are in {out}")
 
 

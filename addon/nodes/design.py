@@ -112,18 +112,18 @@ class FLNodeBulbousBow(FairlinesNode, bpy.types.Node):
 @register
 class FLNodeBlendSurface(FairlinesNode, bpy.types.Node):
     """Blending surface between the bare hull and the bulb, tangent (C1) to both: on the hull
-    around the seam the bulb makes, on the bulb just ahead of it (clearances are fractions of
-    the surfaces' parameter ranges)"""
+    around the seam the bulb makes, on the bulb just ahead of it (clearances in the surfaces'
+    parameters, which run 0 .. 1; see fairlines.seam_blend_boundaries)"""
     bl_idname = ids.NODE_BLEND
     bl_label = "Blend Surface"
     category = "Surfaces"
     bl_width_default = 240
     inputs_spec = [(ids.SOCKET_SURFACE, "Hull", {}),
                    (ids.SOCKET_SURFACE, "Bulb", {}),
-                   (ids.SOCKET_FLOAT, "Clearance U", {"default": 0.02}),
-                   (ids.SOCKET_FLOAT, "Clearance V", {"default": 0.03}),
-                   (ids.SOCKET_FLOAT, "Bulb Clearance", {"default": 0.04}),
-                   (ids.SOCKET_FLOAT, "Tension", {"default": 1.0}),
+                   (ids.SOCKET_FLOAT, "Clearance U", {"default": 0.05}),
+                   (ids.SOCKET_FLOAT, "Clearance V", {"default": 0.01}),
+                   (ids.SOCKET_FLOAT, "Bulb Clearance", {"default": 0.02}),
+                   (ids.SOCKET_FLOAT, "Tension", {"default": 0.6}),
                    (ids.SOCKET_INT, "Sections", {"default": 61})]
     outputs_spec = [(ids.SOCKET_BLEND, "Blend"), (ids.SOCKET_SURFACE, "Surface")]
 

@@ -23,6 +23,8 @@ __all__ = [
     "ComposedHull",
     "Mesh",
     "compose",
+    "compose_with_blend",
+    "seam_blend_boundaries",
     "intersect_surfaces",
     "measure_kracht",
     "mesh_hydrostatics",
@@ -170,6 +172,8 @@ class ComposedHull:
             self.trimmed_surfaces.append((self.blend, [np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])]))
         self.x_aft = float(native.x_aft)
         self.z_deck = float(native.z_deck)
+        #: What compose_with_blend did about the blend (empty from compose()).
+        self.blend_note = ""
 
     @property
     def volume(self) -> float:
@@ -382,58 +386,94 @@ def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, 
     return BlendSurface(s, dict(at_a), dict(at_b), ba, boundary_b, float(tension))
 
 
-def seam_blend(hull: NurbsSurface, bulb, *, clearance_u: float = 0.02, clearance_v: float = 0.03,
-               bulb_clearance: float = 0.04, tension: float = 1.0, samples: int = 61) -> BlendSurface:
-    """The blending surface around the seam a bulb makes on a bare hull (the boundaries of
-    examples/compose_forebody.py, as one call for the Blender node).
+def seam_blend_boundaries(union: ComposedHull, *, clearance_u: float = 0.05, clearance_v: float = 0.01,
+                          bulb_clearance: float = 0.02, points: int = 65):
+    """Blend boundaries around the union seam of ``compose([hull, bulb])``.
 
-    On the hull (re-oriented by ``orient_bare_hull``: u aft -> stem, v keel -> deck) the
-    boundary is an ellipse arc in (u, v) around the seam, ``clearance_u`` / ``clearance_v``
-    (fractions of the parameter range) clear of it: a half ellipse from the stem edge below the
-    seam to the stem edge above it when the seam ends on the stem at both ends, a quarter
-    ellipse from the keel edge aft of the seam to the stem edge above it when the bulb reaches
-    below the forefoot (the seam then starts on the keel line). On the bulb it is the section
-    ``bulb_clearance`` ahead of the seam. The result goes into ``compose([hull, bulb, blend])``
-    with the same hull (orientation is idempotent). Raises ValueError when the bulb does not
-    meet the hull in one seam from the stem or keel line to the stem.
-    """
-    surface_b = bulb.surface if isinstance(bulb, BulbousBow) else bulb
-    oriented = _native.orient_bare_hull(hull)
-    seams = intersect_surfaces(oriented, surface_b)
-    if not seams:
-        raise ValueError("the bulb does not intersect the hull; expected a bulb reaching into the hull "
-                         "(check x_fp, the aft length and the nose height)")
-    seam = max(seams, key=lambda c: len(c["points"]))
-    uv = np.asarray(seam["uv_a"])
-    ku, kv = oriented.knots_u, oriented.knots_v
-    u1, v0, du, dv = ku[-1], kv[0], ku[-1] - ku[0], kv[-1] - kv[0]
-    on_stem = [abs(p[0] - u1) < 1e-6 * du for p in (uv[0], uv[-1])]
-    on_keel = [abs(p[1] - v0) < 1e-6 * dv for p in (uv[0], uv[-1])]
-    reach = u1 - uv[:, 0].min() + clearance_u * du
-    phi_n = 65
+    On the hull (orient_bare_hull convention: u aft cut -> stem, v keel -> deck) an ellipse
+    arc in (u, v) around the seam, ``clearance_u`` / ``clearance_v`` (parameter units) clear
+    of it: a half ellipse from the stem edge below the bulb to the stem edge above it when
+    the seam ends on the stem at both ends, a quarter ellipse about the forefoot corner (stem
+    foot) from the keel edge to the stem edge when the seam starts on the keel (a bulb reaching
+    below a raised forefoot). On the bulb the section ``bulb_clearance`` ahead of the seam's
+    foremost point. Returns (on_hull (k, 2), ("u", u_b)), or the reason as a string when no
+    such boundary fits on the hull."""
+    uv = union.intersection_curves[0]["uv_a"]
+    hull = union.trimmed_surfaces[0][0]
+    u0, u1 = hull.knots_u[0], hull.knots_u[-1]
+    v0, v1 = hull.knots_v[0], hull.knots_v[-1]
+    tol = 1e-6 * (u1 - u0)
+    on_stem = [abs(uv[k, 0] - u1) < tol for k in (0, -1)]
+    on_keel = [abs(uv[k, 1] - v0) < tol * (v1 - v0) / (u1 - u0) for k in (0, -1)]
+    phi_end = np.pi
     if all(on_stem):
         tlo, thi = uv[:, 1].min(), uv[:, 1].max()
-        tc, r = 0.5 * (tlo + thi), 0.5 * (thi - tlo) + clearance_v * dv
-        phi = np.linspace(0.0, np.pi, phi_n)
-        on_hull = np.column_stack([u1 - reach * np.sin(phi), tc - r * np.cos(phi)])
-        ellipse = ((u1 - uv[:, 0]) / reach) ** 2 + ((uv[:, 1] - tc) / r) ** 2
-        top = tc + r
-    elif any(on_stem) and any(on_keel):
-        top = uv[:, 1].max() + clearance_v * dv
-        phi = np.linspace(0.0, 0.5 * np.pi, phi_n)
-        on_hull = np.column_stack([u1 - reach * np.cos(phi), v0 + (top - v0) * np.sin(phi)])
-        ellipse = ((u1 - uv[:, 0]) / reach) ** 2 + ((uv[:, 1] - v0) / (top - v0)) ** 2
+        tc, R = 0.5 * (tlo + thi), 0.5 * (thi - tlo) + clearance_v
+        du = u1 - uv[:, 0].min() + clearance_u
+        if tc - R <= v0 or tc + R >= v1:
+            return "a blend boundary clear of the seam would leave the hull between keel and deck"
+    elif (on_keel[0] and on_stem[1]) or (on_keel[1] and on_stem[0]):
+        # quarter ellipse about (u1, v0) through (u1 - a, v0) and (u1, v0 + b), scaled so that
+        # the whole seam lies inside it, then widened by the clearances
+        a0, b0 = u1 - uv[:, 0].min(), uv[:, 1].max() - v0
+        scale = float(np.max(np.hypot((u1 - uv[:, 0]) / a0, (uv[:, 1] - v0) / b0)))
+        du, R, tc = scale * a0 + clearance_u, scale * b0 + clearance_v, v0
+        phi_end = 0.5 * np.pi
+        if tc + R >= v1:
+            return "a blend boundary clear of the seam would reach the deck"
     else:
-        raise ValueError("the seam of bulb and hull does not run from the stem or keel line to the stem; "
-                         "expected a bulb crossing the stem below the deck")
-    if on_hull[:, 0].min() <= ku[0] or top >= kv[-1] or on_hull[:, 1].min() < v0:
-        raise ValueError("the blend boundary leaves the hull (past the aft cut, keel or deck); expected "
-                         "smaller clearances")
-    if ellipse.max() >= 1.0:
-        raise ValueError(f"the blend boundary cuts the seam (clearance_u = {clearance_u}, clearance_v = "
-                         f"{clearance_v}); expected larger clearances")
-    kb = surface_b.knots_u
-    u_b = float(np.asarray(seam["uv_b"])[:, 0].max()) + bulb_clearance * (kb[-1] - kb[0])
-    if not u_b < kb[-1]:
-        raise ValueError(f"bulb_clearance = {bulb_clearance} puts the blend beyond the bulb's nose; expected less")
-    return blend_surface(oriented, on_hull, surface_b, ("u", u_b), samples=samples, tension=tension)
+        return "the seam does not run from the keel or stem edge to the stem edge"
+    if u1 - du <= u0:
+        return "a blend boundary clear of the seam would reach the aft cut"
+    phi = np.linspace(0.0, phi_end, points)
+    on_hull = np.column_stack([u1 - du * np.sin(phi + (0.5 * np.pi if phi_end < np.pi else 0.0)),
+                               tc - R * np.cos(phi) if phi_end == np.pi else tc + R * np.sin(phi)])
+    on_bulb = ("u", float(union.intersection_curves[0]["uv_b"][:, 0].max()) + bulb_clearance)
+    return on_hull, on_bulb
+
+
+def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, blend: bool = True,
+                       clearance_u: float = 0.05, clearance_v: float = 0.01, bulb_clearance: float = 0.02,
+                       tension: float = 0.6, **compose_options) -> ComposedHull:
+    """Bare hull + bulb composed into one closed half hull, with a C1 blending surface between
+    them when ``blend`` (boundaries from :func:`seam_blend_boundaries`; ``tension`` of the
+    cross-boundary tangents: 0.6 keeps a long blend from the keel to the bottom of a bulb
+    that reaches below a raised forefoot from overshooting below the base line and across the
+    centre plane, which 1.0 does on the Panamax forebody). The result carries
+    ``blend_note``: what was done, or why no blend could be placed (then it is the plain
+    union)."""
+    union = compose([bare_hull, bulb], **compose_options)
+    if not blend:
+        union.blend_note = "no blend requested: plain union"
+        return union
+    bounds = seam_blend_boundaries(union, clearance_u=clearance_u, clearance_v=clearance_v,
+                                   bulb_clearance=bulb_clearance)
+    if isinstance(bounds, str):
+        union.blend_note = "no blend: " + bounds + "; plain union"
+        return union
+    hull_s = union.trimmed_surfaces[0][0]
+    bulb_s = bulb.surface if isinstance(bulb, BulbousBow) else bulb
+    # compose() re-skins the blend at the mesh resolution and measures its continuity itself
+    bl = blend_surface(hull_s, bounds[0], bulb_s, bounds[1], tension=tension, check_samples=2)
+    out = compose([hull_s, bulb, bl], **compose_options)
+    out.blend_note = "blend: max normal angle %.3f deg at the hull, %.3f deg at the bulb" % tuple(
+        d["max_angle_deg"] for d in out.blend_continuity)
+    return out
+
+
+def seam_blend(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, clearance_u: float = 0.05,
+               clearance_v: float = 0.01, bulb_clearance: float = 0.02, tension: float = 0.6,
+               samples: int = 61) -> BlendSurface:
+    """The blending surface around the seam a bulb makes on a bare hull, as one call (the
+    Blender Blend node): the boundaries of :func:`seam_blend_boundaries` on the union of hull
+    and bulb, then :func:`blend_surface`. The result goes into ``compose([hull, bulb, blend])``
+    with the same hull (orientation is idempotent). Raises ValueError when the bulb cannot meet
+    the hull or no boundary fits (the message says why)."""
+    union = compose([hull, bulb])
+    bounds = seam_blend_boundaries(union, clearance_u=clearance_u, clearance_v=clearance_v,
+                                   bulb_clearance=bulb_clearance)
+    if isinstance(bounds, str):
+        raise ValueError(f"no blend fits between hull and bulb: {bounds}")
+    surface_b = bulb.surface if isinstance(bulb, BulbousBow) else bulb
+    return blend_surface(union.trimmed_surfaces[0][0], bounds[0], surface_b, bounds[1], samples=samples,
+                         tension=tension)

@@ -43,6 +43,28 @@ y >= 0. ``skinning`` holds the fair_skin options: ``n_control``, ``start`` / ``e
 ``curvature_weight``, the longitudinal fairness weights ``e2`` / ``e3`` (default 1 / 0, seed 000's
 E2), and ``junctions`` (default false): move the station nearest each basic-curve junction (end
 of a flat part or of a curve, where the curve is only C1) onto it and let the skin be C1 there.
+
+Optional ``"bulb"`` section (issue 5; SPEC §7): a bulbous bow added to the bare hull by
+:meth:`Hull.bulbous_bow` / :meth:`Hull.composed_hull`::
+
+    "bulb": {
+      "kracht": {"c_lpr": 0.025, "c_bb": 0.18, "c_zb": 0.45, "c_abt": 0.10, "c_abl": 0.10, "c_vpr": 0.0022},
+      "shape": {"aft_length": 12.0, "nose_height_shift": 0.0},
+      "displacement_volume": 56490.0
+    }
+
+``kracht``: the six Kracht (1978) coefficients (each > 0; any left out takes the default of
+fairlines.BulbousBow): c_lpr = L_PR / Lpp (protrusion beyond FP), c_bb = B_B / B (bulb
+breadth at FP), c_zb = Z_B / T (height of the nose), c_abt = A_BT / A_MS (bulb section area at
+FP, both sides), c_abl = A_BL / A_MS (lateral area forward of FP), c_vpr = V_PR / displacement
+volume (bulb volume forward of FP, both sides). ``shape``: ``aft_length`` (m, >= 0; how far
+the bulb runs on behind FP into the hull; 0: the default 2 (L_PR + B_B)), ``nose_height_shift``
+(m), ``sections``, ``section_points``, ``control_u``, ``control_v`` (integers; the bulb's
+skinning resolution). The ship particulars come from the hull itself: Lpp, B, T (draught at FP)
+from ``principal``, FP at x = Lpp, A_MS from the hull's hydrostatics (section area at Lpp / 2,
+both sides). The displacement volume is the hull's own hydrostatic volume when the range
+covers the whole ship (0 .. Lpp); a forebody or afterbody must give the ship's displacement
+volume (m^3) as ``displacement_volume`` (the hull alone is only part of it).
 """
 
 from __future__ import annotations
@@ -67,6 +89,7 @@ __all__ = [
     "Hull",
     "HullDescription",
     "PrincipalDimensions",
+    "BulbSpec",
     "AuxiliarySection",
     "fairness_report",
 ]
@@ -197,6 +220,60 @@ class AuxiliarySection:
     offsets: list[tuple[float, float]]
 
 
+_KRACHT = ("c_lpr", "c_bb", "c_zb", "c_abt", "c_abl", "c_vpr")
+_BULB_SHAPE_NUMBERS = ("aft_length", "nose_height_shift")
+_BULB_SHAPE_INTEGERS = {"sections": 8, "section_points": 8, "control_u": 4, "control_v": 4}
+
+
+@dataclass
+class BulbSpec:
+    """The optional ``"bulb"`` section: Kracht coefficients, shape controls and (for a hull
+    that models only part of the ship) the ship's displacement volume."""
+
+    kracht: dict[str, float] = field(default_factory=dict)
+    shape: dict[str, float] = field(default_factory=dict)
+    displacement_volume: float | None = None
+
+    @classmethod
+    def from_dict(cls, d: Any, path: str = "bulb") -> BulbSpec:
+        if not isinstance(d, dict):
+            raise _bad(path, d, "an object with kracht, shape and displacement_volume")
+        for key in d:
+            if key not in ("kracht", "shape", "displacement_volume"):
+                raise _native.InvalidInput(f"{path}.{key} is not a bulb field; expected kracht, shape, displacement_volume")
+        spec = cls()
+        kr = d.get("kracht", {})
+        if not isinstance(kr, dict):
+            raise _bad(f"{path}.kracht", kr, "an object of Kracht coefficients " + ", ".join(_KRACHT))
+        for key, val in kr.items():
+            if key not in _KRACHT:
+                raise _native.InvalidInput(f"{path}.kracht.{key} is not a Kracht coefficient; expected one of {list(_KRACHT)}")
+            spec.kracht[key] = _number(f"{path}.kracht.{key}", val, positive=True)
+        sh = d.get("shape", {})
+        if not isinstance(sh, dict):
+            raise _bad(f"{path}.shape", sh, "an object of bulb shape controls")
+        for key, val in sh.items():
+            if key in _BULB_SHAPE_NUMBERS:
+                v = _number(f"{path}.shape.{key}", val)
+                if key == "aft_length" and v < 0:
+                    raise _bad(f"{path}.shape.{key}", v, "a length >= 0 m (0: the default 2 (L_PR + B_B))")
+                spec.shape[key] = v
+            elif key in _BULB_SHAPE_INTEGERS:
+                spec.shape[key] = _integer(f"{path}.shape.{key}", val, _BULB_SHAPE_INTEGERS[key])
+            else:
+                raise _native.InvalidInput(f"{path}.shape.{key} is not a bulb shape control; expected one of "
+                                           f"{list(_BULB_SHAPE_NUMBERS) + list(_BULB_SHAPE_INTEGERS)}")
+        if d.get("displacement_volume") is not None:
+            spec.displacement_volume = _number(f"{path}.displacement_volume", d["displacement_volume"], positive=True)
+        return spec
+
+    def to_dict(self) -> dict:
+        d: dict[str, Any] = {"kracht": dict(self.kracht), "shape": dict(self.shape)}
+        if self.displacement_volume is not None:
+            d["displacement_volume"] = self.displacement_volume
+        return d
+
+
 @dataclass
 class HullDescription:
     """A bare hull: principal dimensions, modelled x range, stations and basic curves."""
@@ -217,6 +294,7 @@ class HullDescription:
     skin_e3: float = 0.0
     skin_junctions: bool = False
     notes: str = ""
+    bulb: BulbSpec | None = None
 
     @classmethod
     def from_dict(cls, d: Any) -> HullDescription:
@@ -290,7 +368,12 @@ class HullDescription:
             skin_e3=_number("skinning.e3", sk.get("e3", 0.0)),
             skin_junctions=_flag("skinning.junctions", sk.get("junctions", False)),
             notes=str(d.get("notes", "")),
+            bulb=BulbSpec.from_dict(d["bulb"], "bulb") if d.get("bulb") is not None else None,
         )
+        if desc.bulb is not None and desc.bulb.displacement_volume is None and not (x0 <= 0.0 and x1 >= principal.lpp):
+            raise _native.InvalidInput(
+                f"bulb.displacement_volume is missing; the hull models only x = {x0} .. {x1} m of the ship, so the "
+                "ship's displacement volume (m^3) for C_VPR must be given")
         return desc
 
     def to_dict(self) -> dict:
@@ -306,6 +389,7 @@ class HullDescription:
             "skinning": {"n_control": self.skin_n_control, "start": self.skin_start, "end": self.skin_end,
                          "curvature_weight": self.skin_curvature_weight, "e2": self.skin_e2, "e3": self.skin_e3,
                          "junctions": self.skin_junctions},
+            **({"bulb": self.bulb.to_dict()} if self.bulb is not None else {}),
         }
 
 
@@ -640,6 +724,52 @@ class Hull:
         mid = d.principal.lpp / 2
         options.setdefault("midship_x", mid if d.x_start <= mid <= d.x_end else (d.x_start + d.x_end) / 2)
         return _native.hydrostatics(self.bare_hull_surface(), d.principal.draft if draft is None else draft, **options)
+
+    # ---- bulbous bow (issue 5) ----------------------------------------------------------
+    def ship_particulars(self) -> dict[str, float]:
+        """The particulars a bulbous bow is sized from (fairlines.BulbousBow): Lpp, B, T at
+        FP (the design draught), FP at x = Lpp, A_MS (both sides) from the hull's
+        hydrostatics at Lpp / 2, and the ship's displacement volume: the bulb section's
+        ``displacement_volume`` or, for a hull modelling the whole ship, its own volume."""
+        d = self.description
+        pr = d.principal
+        cached = getattr(self, "_ship", None)
+        if cached is not None and cached[0] is self.skin() and cached[1] == (d.bulb.to_dict() if d.bulb else None):
+            return dict(cached[2])
+        h = self.hydrostatics()
+        vol = d.bulb.displacement_volume if d.bulb is not None else None
+        if vol is None:
+            if not (d.x_start <= 0.0 and d.x_end >= pr.lpp):
+                raise _native.InvalidInput(
+                    f"bulb.displacement_volume is missing; the hull models only x = {d.x_start} .. {d.x_end} m")
+            vol = float(h.volume)
+        ship = dict(lpp=pr.lpp, beam=pr.breadth, draft_fp=pr.draft, midship_area=float(h.midship_area),
+                    displacement_volume=float(vol), x_fp=pr.lpp)
+        self._ship = (self.skin(), d.bulb.to_dict() if d.bulb else None, ship)  # until the skin is rebuilt
+        return dict(ship)
+
+    def bulbous_bow(self, **overrides):
+        """The BulbousBow of the ``"bulb"`` section sized from :meth:`ship_particulars`;
+        keyword overrides (Kracht coefficients or shape controls) replace the section's."""
+        from .compose import BulbousBow
+
+        d = self.description
+        if d.bulb is None and not overrides:
+            raise _native.InvalidInput("bulb is missing; expected a \"bulb\" section in the hull description "
+                                       "(kracht, shape, displacement_volume)")
+        spec = d.bulb if d.bulb is not None else BulbSpec()
+        kw = {**spec.kracht, **spec.shape, **overrides}
+        return BulbousBow(**self.ship_particulars(), **kw)
+
+    def composed_hull(self, blend: bool = True, bulb=None, **compose_options):
+        """Bare hull + bulbous bow (+ a C1 blending surface between them when ``blend``)
+        composed into one watertight half hull (fairlines.ComposedHull). ``bulb``: a
+        BulbousBow to use instead of :meth:`bulbous_bow`. Raises ValueError ("bulb cannot
+        meet the hull ...") when the bulb does not cross the hull in one seam."""
+        from .compose import compose_with_blend
+
+        b = self.bulbous_bow() if bulb is None else bulb
+        return compose_with_blend(self.bare_hull_surface(), b, blend=blend, **compose_options)
 
     def fairness_report(self, **kwargs) -> dict:
         """fairness_report of the bare hull, every inflection judged against the designed

@@ -170,9 +170,26 @@ BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundar
     rows[3].row(j) = fb[j].p.transpose();
   }
   if (o.centre_plane_ends) {
+    // An end section on the centre plane y = 0 must stay in it (the mirrored hull is then
+    // smooth across it), and for C1 its cross-boundary tangent must lie in the surface's
+    // tangent plane too: the one direction in both is n x e_y (the stem or keel line on the
+    // hull, the top or bottom centre line on the bulb). Zeroing y of n x t instead would
+    // leave the tangent plane wherever the boundary tangent t is not horizontal.
     const double tol = 1e-9 * std::max(1.0, (fb[0].p - fa[0].p).norm());
+    const Eigen::Vector3d ey(0.0, 1.0, 0.0);
     for (int j : {0, n - 1})
       if (std::abs(fa[j].p.y()) <= tol && std::abs(fb[j].p.y()) <= tol) {
+        const Eigen::Vector3d gap = fb[j].p - fa[j].p;
+        const double h = o.tension * gap.norm() / 3.0;
+        Eigen::Vector3d da = fa[j].n.cross(ey), db = fb[j].n.cross(ey);
+        if (da.norm() > 1e-9 && db.norm() > 1e-9) {
+          da.normalize();
+          db.normalize();
+          if (da.dot(gap) < 0) da = -da;
+          if (db.dot(-gap) < 0) db = -db;
+          rows[1].row(j) = (fa[j].p + h * da).transpose();
+          rows[2].row(j) = (fb[j].p + h * db).transpose();
+        }
         rows[1](j, 1) = 0.0;
         rows[2](j, 1) = 0.0;
         rows[0](j, 1) = 0.0;
