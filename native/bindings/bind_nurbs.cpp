@@ -281,6 +281,23 @@ void bind_nurbs(py::module_& m) {
             const py::ssize_t k1 = order + 1;
             py::array_t<double> out({static_cast<py::ssize_t>(uu.size()), k1, k1, py::ssize_t(3)});
             double* d = out.mutable_data();
+            for (Eigen::Index k = 0; k < uu.size(); ++k)
+              if (!std::isfinite(uu[k]) || !std::isfinite(vv[k]))
+                throw InvalidInput("parameter pair " + std::to_string(k) + " is not finite; expected finite (u, v)");
+            if (order == 1) {
+              // Fast path: [S, S_u, S_v] per point, laid out as D[0,0], D[1,0], D[0,1]; D[1,1] = 0.
+              std::vector<double> d1(9 * static_cast<size_t>(uu.size()));
+              s.evaluate_first_derivatives_into(uu.data(), vv.data(), uu.size(), d1.data());
+              std::fill(d, d + out.size(), 0.0);
+              for (Eigen::Index k = 0; k < uu.size(); ++k)
+                for (int c = 0; c < 3; ++c) {
+                  d[k * 12 + 0 + c] = d1[9 * k + c];      // (0, 0)
+                  d[k * 12 + 3 + c] = d1[9 * k + 6 + c];  // (0, 1) = S_v
+                  d[k * 12 + 6 + c] = d1[9 * k + 3 + c];  // (1, 0) = S_u
+                }
+              if (is_scalar(u) && is_scalar(v)) return out.attr("reshape")(k1, k1, 3);
+              return out;
+            }
             for (Eigen::Index k = 0; k < uu.size(); ++k) {
               const Eigen::MatrixXd D = s.derivatives(uu[k], vv[k], order);
               for (Eigen::Index r = 0; r < D.rows(); ++r)

@@ -30,6 +30,29 @@ TEST(Surface, GridAndScatteredEvaluationAgreeWithDerivativeRoutine) {
   }
 }
 
+TEST(Surface, BatchFirstDerivativesAgreeWithGeneralRoutine) {
+  std::mt19937 rng(16);
+  for (auto [pu, pv] : {std::pair{3, 3}, std::pair{2, 3}, std::pair{1, 2}, std::pair{4, 5}, std::pair{8, 2}}) {
+    for (bool rational : {false, true}) {
+      const NurbsSurface s = test::random_surface(10, 9, pu, pv, rational, rng);
+      std::uniform_real_distribution<double> U(0.0, 1.0);
+      std::vector<double> u(50), v(50), out(9 * 50);
+      for (int k = 0; k < 50; ++k) u[k] = U(rng), v[k] = U(rng);
+      u[0] = 0.0, v[1] = 1.0;  // domain ends
+      s.evaluate_first_derivatives_into(u.data(), v.data(), 50, out.data());
+      for (int k = 0; k < 50; ++k) {
+        const Eigen::MatrixXd D = s.derivatives(u[k], v[k], 1);
+        const double scale = 1.0 + D.cwiseAbs().maxCoeff();
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_NEAR(out[9 * k + c], D(0, c), 1e-12 * scale);
+          EXPECT_NEAR(out[9 * k + 3 + c], D(2, c), 1e-11 * scale) << pu << pv << rational;
+          EXPECT_NEAR(out[9 * k + 6 + c], D(1, c), 1e-11 * scale) << pu << pv << rational;
+        }
+      }
+    }
+  }
+}
+
 TEST(Surface, DerivativesMatchFiniteDifferences) {
   std::mt19937 rng(7);
   const NurbsSurface s = test::random_surface(7, 6, 3, 2, true, rng);

@@ -149,6 +149,12 @@ def test_batch_surface_derivatives_match_single_calls(rng):
     h = 1e-6
     fd_u = (s.evaluate(u + h, v) - s.evaluate(u - h, v)) / (2 * h)
     assert np.abs(batch[:, 1, 0] - fd_u).max() <= 1e-6 * (1 + np.abs(fd_u).max())
+    # order 1 takes the allocation-free kernel; it must agree with the general routine
+    first = s.derivatives(u, v, 1)
+    assert first.shape == (5, 2, 2, 3)
+    assert np.abs(first[:, :2, :2] - np.stack([d[:2, :2] for d in batch]) * [[[1], [1]], [[1], [0]]]).max() <= 1e-11
+    with pytest.raises(ValueError, match="not finite"):
+        s.derivatives([np.nan], [0.5], 1)
 
 
 def test_rational_volume_jacobian_matches_finite_differences(rng):

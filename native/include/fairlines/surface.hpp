@@ -50,6 +50,10 @@ class NurbsSurface {
   /// Basis values are computed once per grid line and control rows are contracted per u.
   Eigen::MatrixXd evaluate_grid(const Eigen::VectorXd& us, const Eigen::VectorXd& vs) const;
   void evaluate_grid_into(const double* us, long n_u, const double* vs, long n_v, double* out) const;
+  /// Points and first partials at m scattered (u_k, v_k), without allocation (hot loops such
+  /// as quadrature): out is m x 9 row-major, row k = [S, S_u, S_v] (metres, metres per unit
+  /// parameter).
+  void evaluate_first_derivatives_into(const double* u, const double* v, long m, double* out) const;
 
   /// Partial derivatives d^{k+l} S / du^k dv^l for k + l <= order, at (u, v):
   /// returns (order + 1)^2 x 3, row k * (order + 1) + l (P&T A3.6 / A4.4).

@@ -101,6 +101,16 @@ std::pair<double, double> section_area(const NurbsSurface& s, double x0, double 
   const std::vector<double> br_a = breakpoints(lon == 1 ? s.knots_u() : s.knots_v(), lon == 1 ? s.degree_u() : s.degree_v());
   const std::vector<double> br_b = breakpoints(lon == 1 ? s.knots_v() : s.knots_u(), lon == 1 ? s.degree_v() : s.degree_u());
   auto point = [&](double a, double b) { return lon == 1 ? s.evaluate(a, b) : s.evaluate(b, a); };
+  // S, S_a (across) and S_b (longitudinal) at (a, b) through the allocation-free kernel.
+  struct D1 {
+    Eigen::Vector3d S, Sa, Sb;
+  };
+  auto first_derivs = [&](double a, double b) {
+    double uv[2] = {lon == 1 ? a : b, lon == 1 ? b : a}, r[9];
+    s.evaluate_first_derivatives_into(&uv[0], &uv[1], 1, r);
+    const Eigen::Vector3d S(r[0], r[1], r[2]), Su(r[3], r[4], r[5]), Sv(r[6], r[7], r[8]);
+    return lon == 1 ? D1{S, Su, Sv} : D1{S, Sv, Su};
+  };
   // b where x(a, b) = x0, or NaN when the plane misses this line. Newton from the previous
   // solution first (consecutive a are close), the bracketing scan when that fails.
   double b_warm = std::numeric_limits<double>::quiet_NaN();
@@ -109,8 +119,8 @@ std::pair<double, double> section_area(const NurbsSurface& s, double x0, double 
     double b = b_warm;
     const double lo = br_b.front(), hi = br_b.back();
     for (int it = 0; it < 30; ++it) {
-      const Eigen::MatrixXd D = lon == 1 ? s.derivatives(a, b, 1) : s.derivatives(b, a, 1);
-      const double f = D(0, 0) - x0, df = lon == 1 ? D(1, 0) : D(2, 0);
+      const D1 D = first_derivs(a, b);
+      const double f = D.S[0] - x0, df = D.Sb[0];
       if (std::abs(f) <= 1e-12 * (1 + std::abs(x0))) return b;
       if (df == 0) break;
       b -= f / df;
@@ -165,14 +175,13 @@ std::pair<double, double> section_area(const NurbsSurface& s, double x0, double 
       const double b = solve_b(a);
       if (std::isnan(b)) continue;
       b_warm = b;
-      const Eigen::MatrixXd D = lon == 1 ? s.derivatives(a, b, 1) : s.derivatives(b, a, 1);
-      // Rows: 0 S, 1 S_v, 2 S_u.
-      const Eigen::Vector3d Sa = lon == 1 ? Eigen::Vector3d(D.row(2)) : Eigen::Vector3d(D.row(1));
-      const Eigen::Vector3d Sb = lon == 1 ? Eigen::Vector3d(D.row(1)) : Eigen::Vector3d(D.row(2));
+      const D1 D = first_derivs(a, b);
+      const Eigen::Vector3d& Sa = D.Sa;
+      const Eigen::Vector3d& Sb = D.Sb;
       if (Sb[0] == 0) continue;
       const double db = -Sa[0] / Sb[0];
       const double dz = Sa[2] + Sb[2] * db;
-      const double y = D(0, 1), z = D(0, 2);
+      const double y = D.S[1], z = D.S[2];
       area += g.w[k] * h * y * dz;
       mz += g.w[k] * h * y * z * dz;
     }
@@ -196,6 +205,7 @@ Hydrostatics hydrostatics(const NurbsSurface& s, double draft, const Hydrostatic
   const auto& g = detail::gauss_rule(o.gauss);
   // Accumulators: V, Mx, Mz (flux of y), Qz, Qxz (flux of z), wetted area.
   std::array<double, 6> acc{};
+  std::vector<double> us(o.gauss), vs(o.gauss), d1(9 * static_cast<size_t>(o.gauss));
   double xmin = std::numeric_limits<double>::infinity(), xmax = -xmin, ymax = 0;
   for (std::size_t jv = 0; jv + 1 < bv.size(); ++jv) {
     const double hv = 0.5 * (bv[jv + 1] - bv[jv]), mv = 0.5 * (bv[jv + 1] + bv[jv]);
@@ -204,10 +214,15 @@ Hydrostatics hydrostatics(const NurbsSurface& s, double draft, const Hydrostatic
       const auto pieces = inside_pieces(bu, [&](double u) { return s.evaluate(u, v)[2] - draft; });
       for (const auto& [pa, pb] : pieces) {
         const double hu = 0.5 * (pb - pa), mu = 0.5 * (pa + pb);
+        // All Gauss points of this piece in one allocation-free batch: rows [S, S_u, S_v].
         for (int ku = 0; ku < o.gauss; ++ku) {
-          const double u = mu + hu * g.x[ku];
-          const Eigen::MatrixXd D = s.derivatives(u, v, 1);
-          const Eigen::Vector3d P = D.row(0), Sv = D.row(1), Su = D.row(2);
+          us[ku] = mu + hu * g.x[ku];
+          vs[ku] = v;
+        }
+        s.evaluate_first_derivatives_into(us.data(), vs.data(), o.gauss, d1.data());
+        for (int ku = 0; ku < o.gauss; ++ku) {
+          const double* row = &d1[9 * ku];
+          const Eigen::Vector3d P(row[0], row[1], row[2]), Su(row[3], row[4], row[5]), Sv(row[6], row[7], row[8]);
           const Eigen::Vector3d N = Su.cross(Sv);
           const double w = g.w[kv] * hv * g.w[ku] * hu;
           acc[0] += w * P[1] * N[1];

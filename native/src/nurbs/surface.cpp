@@ -100,6 +100,50 @@ void scatter_dispatch(const Layout& L, int p, int q, const double* u, const doub
   scatter_kernel<0, 0>(L, p, q, u, v, m, out);
 }
 
+// Points and first partials at scattered parameters: row k of out = [S, S_u, S_v].
+template <int P, int Q>
+FAIRLINES_INLINE void d1_kernel(const Layout& L, int p, int q, const double* u, const double* v, long m, double* out) {
+  const int pu = P > 0 ? P : p, pv = Q > 0 ? Q : q;
+  double Nu[kMaxFastDegree + 1], Nv[kMaxFastDegree + 1], dNu[kMaxFastDegree + 1], dNv[kMaxFastDegree + 1];
+  for (long k = 0; k < m; ++k) {
+    const double uk = std::clamp(u[k], L.ua, L.ub), vk = std::clamp(v[k], L.va, L.vb);
+    const int su = L.span_u->find(L.ku, uk), sv = L.span_v->find(L.kv, vk);
+    detail::basis_table_eval_d1<P>(pu, su, uk, L.ku, L.inv_u, Nu, dNu);
+    detail::basis_table_eval_d1<Q>(pv, sv, vk, L.kv, L.inv_v, Nv, dNv);
+    v4d A = {0, 0, 0, 0}, Au = {0, 0, 0, 0}, Av = {0, 0, 0, 0};
+    for (int a = 0; a <= pu; ++a) {
+      const double* row = L.pw + (static_cast<long>(su - pu + a) * L.nv + (sv - pv)) * 4;
+      v4d t4 = Nv[0] * load4(row), d4 = dNv[0] * load4(row);
+      for (int b = 1; b <= pv; ++b) {
+        const v4d c = load4(row + 4 * b);
+        t4 += Nv[b] * c;
+        d4 += dNv[b] * c;
+      }
+      A += Nu[a] * t4;
+      Au += dNu[a] * t4;
+      Av += Nu[a] * d4;
+    }
+    // Quotient rule on the homogeneous sums (w = A[3]).
+    const double iw = 1.0 / A[3];
+    double* o = out + 9 * k;
+    for (int c = 0; c < 3; ++c) {
+      const double S = A[c] * iw;
+      o[c] = S;
+      o[3 + c] = (Au[c] - Au[3] * S) * iw;
+      o[6 + c] = (Av[c] - Av[3] * S) * iw;
+    }
+  }
+}
+
+FAIRLINES_MULTIVERSION
+void d1_dispatch(const Layout& L, int p, int q, const double* u, const double* v, long m, double* out) {
+  if (p == 3 && q == 3) return d1_kernel<3, 3>(L, p, q, u, v, m, out);
+  if (p == 2 && q == 2) return d1_kernel<2, 2>(L, p, q, u, v, m, out);
+  if (p == 2 && q == 3) return d1_kernel<2, 3>(L, p, q, u, v, m, out);
+  if (p == 3 && q == 2) return d1_kernel<3, 2>(L, p, q, u, v, m, out);
+  d1_kernel<0, 0>(L, p, q, u, v, m, out);
+}
+
 // One grid line u = const: `row` is the control net contracted in u (nv homogeneous
 // points); every v sample combines q + 1 of them.
 template <int Q>
@@ -205,6 +249,22 @@ void NurbsSurface::evaluate_into(const double* u, const double* v, long m, doubl
     return;
   }
   scatter_dispatch(make_layout(ku_, kv_, inv_u_, inv_v_, pu_, pv_, nu_, nv_, pw_, rational_, span_u_, span_v_), pu_, pv_, u, v, m, out);
+}
+
+void NurbsSurface::evaluate_first_derivatives_into(const double* u, const double* v, long m, double* out) const {
+  if (pu_ > kMaxFastDegree || pv_ > kMaxFastDegree) {
+    for (long k = 0; k < m; ++k) {
+      const Eigen::MatrixXd D = derivatives(u[k], v[k], 1);  // rows (0,0), (0,1) = S_v, (1,0) = S_u
+      for (int c = 0; c < 3; ++c) {
+        out[9 * k + c] = D(0, c);
+        out[9 * k + 3 + c] = D(2, c);
+        out[9 * k + 6 + c] = D(1, c);
+      }
+    }
+    return;
+  }
+  d1_dispatch(make_layout(ku_, kv_, inv_u_, inv_v_, pu_, pv_, nu_, nv_, pw_, rational_, span_u_, span_v_), pu_, pv_, u, v,
+              m, out);
 }
 
 Eigen::MatrixXd NurbsSurface::evaluate_grid(const Eigen::VectorXd& us, const Eigen::VectorXd& vs) const {
