@@ -29,4 +29,9 @@ void basis_functions(int span, double t, int degree, const double* knots, double
 void basis_derivatives(int span, double t, int degree, int n_deriv, const Eigen::VectorXd& knots,
                        Eigen::Ref<Eigen::MatrixXd> ders);
 
+/// All n = knots.size() - degree - 1 basis functions (or their order-th derivatives) at t,
+/// as one row: 1 x n, zero outside the degree + 1 non-zero ones. For building collocation
+/// and constraint matrices; t must lie in the domain.
+Eigen::RowVectorXd basis_row(const Eigen::VectorXd& knots, int degree, double t, int order = 0);
+
 }  // namespace fairlines

@@ -95,6 +95,8 @@ class NurbsSurface {
   // Reciprocal knot differences of the Cox-de Boor triangle, per span, so the hot
   // evaluation loops multiply instead of divide (see basis_table.hpp).
   std::vector<double> inv_u_, inv_v_;
+  // Power-basis coefficients of the basis functions per span (scattered evaluation).
+  std::vector<double> pow_u_, pow_v_;
   // O(1) knot-span lookup tables (std::shared_ptr keeps the public header free of the
   // internal type; they are rebuilt whenever the knots change).
   std::shared_ptr<const void> span_u_, span_v_;

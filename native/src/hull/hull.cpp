@@ -23,16 +23,6 @@ using detail::fail;
 constexpr double kVerticalAngle = 89.999;  // |alpha| (deg) from which an end tangent is taken as normal to the abscissa
 constexpr double kFeasibleTol = 1e-9;      // relative residual above which conditions are in conflict
 
-Eigen::RowVectorXd basis_row(const Eigen::VectorXd& U, int p, double t, int r = 0) {
-  const int n = static_cast<int>(U.size()) - p - 1;
-  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
-  const int span = find_span(p, U, t);
-  Eigen::MatrixXd ders(r + 1, p + 1);
-  basis_derivatives(span, t, p, r, U, ders);
-  for (int j = 0; j <= p; ++j) row[span - p + j] = ders(r, j);
-  return row;
-}
-
 /// t in [0, 1] with x(t) = x for the monotone abscissa function x(t) = sum N_j(t) a_j.
 double invert_abscissa(const Eigen::VectorXd& U, int p, const Eigen::VectorXd& a, double x) {
   double lo = 0, hi = 1;

@@ -110,4 +110,14 @@ void basis_derivatives(int span, double t, int p, int n, const Eigen::VectorXd& 
   }
 }
 
+Eigen::RowVectorXd basis_row(const Eigen::VectorXd& knots, int degree, double t, int order) {
+  const int n = static_cast<int>(knots.size()) - degree - 1;
+  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
+  const int span = find_span(degree, knots, t);
+  Eigen::MatrixXd ders(order + 1, degree + 1);
+  basis_derivatives(span, t, degree, order, knots, ders);
+  for (int j = 0; j <= degree; ++j) row[span - degree + j] = ders(order, j);
+  return row;
+}
+
 }  // namespace fairlines

@@ -73,6 +73,38 @@ inline std::vector<double> make_basis_table(const Eigen::VectorXd& U, int p) {
   return inv;
 }
 
+/// Power-basis coefficients of the non-zero basis functions on every span, in the local
+/// parameter s = t - U[span]: entry (span, k, j) at (span * (p + 1) + k) * (p + 1) + j is
+/// N_{span-p+j}^(k)(U[span]) / k!, so N_{span-p+j}(t) = sum_k entry(span, k, j) s^k exactly
+/// (a B-spline is one polynomial per span). Evaluating by Horner has no long dependency
+/// chain, unlike the Cox-de Boor triangle. Zero for empty spans (never read).
+inline std::vector<double> make_power_table(const Eigen::VectorXd& U, int p) {
+  const int n = static_cast<int>(U.size()) - p - 1;
+  const int w = p + 1;
+  std::vector<double> c(static_cast<size_t>(U.size()) * w * w, 0.0);
+  Eigen::MatrixXd ders(w, w);
+  for (int s = p; s < n; ++s) {
+    if (!(U[s + 1] > U[s])) continue;
+    basis_derivatives(s, U[s], p, p, U, ders);
+    double fact = 1.0;
+    for (int k = 0; k <= p; ++k) {
+      if (k > 0) fact *= k;
+      for (int j = 0; j <= p; ++j) c[(static_cast<size_t>(s) * w + k) * w + j] = ders(k, j) / fact;
+    }
+  }
+  return c;
+}
+
+/// The P + 1 non-zero basis functions at t in `span` from the power table (P > 0 fixed).
+template <int P>
+FAIRLINES_INLINE void basis_power_eval(int span, double t, const double* U, const double* table, double* N) {
+  const double s = t - U[span];
+  const double* c = table + static_cast<long>(span) * (P + 1) * (P + 1);
+  for (int j = 0; j <= P; ++j) N[j] = c[P * (P + 1) + j];
+  for (int k = P - 1; k >= 0; --k)
+    for (int j = 0; j <= P; ++j) N[j] = N[j] * s + c[k * (P + 1) + j];
+}
+
 /// The deg + 1 non-zero basis functions at t in `span`, using the reciprocal table.
 /// P > 0 fixes the degree at compile time (loops unroll); P == 0 takes it from p.
 template <int P>

@@ -54,16 +54,23 @@ struct Layout {
   bool rational;
   const SpanLocator* span_u;
   const SpanLocator* span_v;
+  const double* pow_u;
+  const double* pow_v;
 };
 
 Layout make_layout(const Eigen::VectorXd& ku, const Eigen::VectorXd& kv, const std::vector<double>& inv_u,
                    const std::vector<double>& inv_v, int pu, int pv, int nu, int nv, const std::vector<double>& pw,
-                   bool rational, const std::shared_ptr<const void>& span_u, const std::shared_ptr<const void>& span_v) {
+                   bool rational, const std::shared_ptr<const void>& span_u, const std::shared_ptr<const void>& span_v,
+                   const std::vector<double>& pow_u, const std::vector<double>& pow_v) {
   return {ku.data(), kv.data(), inv_u.data(), inv_v.data(), nu, nv, ku[pu], ku[nu], kv[pv], kv[nv], pw.data(), rational,
-          static_cast<const SpanLocator*>(span_u.get()), static_cast<const SpanLocator*>(span_v.get())};
+          static_cast<const SpanLocator*>(span_u.get()), static_cast<const SpanLocator*>(span_v.get()), pow_u.data(),
+          pow_v.data()};
 }
 
 FAIRLINES_INLINE v4d load4(const double* p) { return *reinterpret_cast<const v4du*>(p); }
+
+// std::clamp is not inlined into the multiversioned kernels (target mismatch): clamp here.
+FAIRLINES_INLINE double clamp_to(double t, double lo, double hi) { return t < lo ? lo : (t > hi ? hi : t); }
 
 // Scattered points; P, Q > 0 fix the degrees at compile time, 0 takes them from p, q.
 template <int P, int Q>
@@ -72,10 +79,12 @@ FAIRLINES_INLINE void scatter_kernel(const Layout& L, int p, int q, const double
   const int pu = P > 0 ? P : p, pv = Q > 0 ? Q : q;
   double Nu[kMaxFastDegree + 1], Nv[kMaxFastDegree + 1];
   for (long k = 0; k < m; ++k) {
-    const double uk = std::clamp(u[k], L.ua, L.ub), vk = std::clamp(v[k], L.va, L.vb);
+    const double uk = clamp_to(u[k], L.ua, L.ub), vk = clamp_to(v[k], L.va, L.vb);
     const int su = L.span_u->find(L.ku, uk), sv = L.span_v->find(L.kv, vk);
-    basis_table_eval<P>(pu, su, uk, L.ku, L.inv_u, Nu);
-    basis_table_eval<Q>(pv, sv, vk, L.kv, L.inv_v, Nv);
+    if constexpr (P > 0) detail::basis_power_eval<P>(su, uk, L.ku, L.pow_u, Nu);
+    else basis_table_eval<0>(pu, su, uk, L.ku, L.inv_u, Nu);
+    if constexpr (Q > 0) detail::basis_power_eval<Q>(sv, vk, L.kv, L.pow_v, Nv);
+    else basis_table_eval<0>(pv, sv, vk, L.kv, L.inv_v, Nv);
     v4d acc = {0, 0, 0, 0};
     for (int a = 0; a <= pu; ++a) {
       const double* row = L.pw + (static_cast<long>(su - pu + a) * L.nv + (sv - pv)) * 4;
@@ -106,7 +115,7 @@ FAIRLINES_INLINE void d1_kernel(const Layout& L, int p, int q, const double* u, 
   const int pu = P > 0 ? P : p, pv = Q > 0 ? Q : q;
   double Nu[kMaxFastDegree + 1], Nv[kMaxFastDegree + 1], dNu[kMaxFastDegree + 1], dNv[kMaxFastDegree + 1];
   for (long k = 0; k < m; ++k) {
-    const double uk = std::clamp(u[k], L.ua, L.ub), vk = std::clamp(v[k], L.va, L.vb);
+    const double uk = clamp_to(u[k], L.ua, L.ub), vk = clamp_to(v[k], L.va, L.vb);
     const int su = L.span_u->find(L.ku, uk), sv = L.span_v->find(L.kv, vk);
     detail::basis_table_eval_d1<P>(pu, su, uk, L.ku, L.inv_u, Nu, dNu);
     detail::basis_table_eval_d1<Q>(pv, sv, vk, L.kv, L.inv_v, Nv, dNv);
@@ -210,6 +219,8 @@ void NurbsSurface::refresh() {
   rational_ = (weights_.array() != 1.0).any();
   inv_u_ = detail::make_basis_table(ku_, pu_);
   inv_v_ = detail::make_basis_table(kv_, pv_);
+  pow_u_ = detail::make_power_table(ku_, pu_);
+  pow_v_ = detail::make_power_table(kv_, pv_);
   span_u_ = std::make_shared<const SpanLocator>(ku_, pu_);
   span_v_ = std::make_shared<const SpanLocator>(kv_, pv_);
   pw_.resize(static_cast<size_t>(points_.rows()) * 4);
@@ -248,7 +259,7 @@ void NurbsSurface::evaluate_into(const double* u, const double* v, long m, doubl
     }
     return;
   }
-  scatter_dispatch(make_layout(ku_, kv_, inv_u_, inv_v_, pu_, pv_, nu_, nv_, pw_, rational_, span_u_, span_v_), pu_, pv_, u, v, m, out);
+  scatter_dispatch(make_layout(ku_, kv_, inv_u_, inv_v_, pu_, pv_, nu_, nv_, pw_, rational_, span_u_, span_v_, pow_u_, pow_v_), pu_, pv_, u, v, m, out);
 }
 
 void NurbsSurface::evaluate_first_derivatives_into(const double* u, const double* v, long m, double* out) const {
@@ -263,7 +274,7 @@ void NurbsSurface::evaluate_first_derivatives_into(const double* u, const double
     }
     return;
   }
-  d1_dispatch(make_layout(ku_, kv_, inv_u_, inv_v_, pu_, pv_, nu_, nv_, pw_, rational_, span_u_, span_v_), pu_, pv_, u, v,
+  d1_dispatch(make_layout(ku_, kv_, inv_u_, inv_v_, pu_, pv_, nu_, nv_, pw_, rational_, span_u_, span_v_, pow_u_, pow_v_), pu_, pv_, u, v,
               m, out);
 }
 
@@ -284,7 +295,7 @@ void NurbsSurface::evaluate_grid_into(const double* us, long n_u, const double* 
       }
     return;
   }
-  const Layout L = make_layout(ku_, kv_, inv_u_, inv_v_, pu_, pv_, nu_, nv_, pw_, rational_, span_u_, span_v_);
+  const Layout L = make_layout(ku_, kv_, inv_u_, inv_v_, pu_, pv_, nu_, nv_, pw_, rational_, span_u_, span_v_, pow_u_, pow_v_);
   // Basis values are computed once per grid line in each direction.
   auto tabulate = [](const double* ts, long n, int p, const double* U, const SpanLocator* loc, const double* inv, double lo,
                      double hi, std::vector<int>& spans, std::vector<double>& N) {

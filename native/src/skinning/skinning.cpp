@@ -171,16 +171,6 @@ Eigen::MatrixXd derivative_gram(const Eigen::VectorXd& U, int degree, int r) {
   return G;
 }
 
-/// Row of basis values (order r derivative) at t: 1 x n.
-Eigen::RowVectorXd basis_row(const Eigen::VectorXd& U, int degree, double t, int r = 0) {
-  const int n = static_cast<int>(U.size()) - degree - 1;
-  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
-  const int span = find_span(degree, U, t);
-  Eigen::MatrixXd ders(r + 1, degree + 1);
-  basis_derivatives(span, t, degree, r, U, ders);
-  for (int j = 0; j <= degree; ++j) row[span - degree + j] = ders(r, j);
-  return row;
-}
 
 }  // namespace
 
