@@ -12,3 +12,13 @@ def random_clamped_knots(rng, n, p):
 @pytest.fixture
 def rng():
     return np.random.default_rng(20261122)
+
+
+def edge_census(faces):
+    """(open, non-manifold, misoriented) edge counts of a triangle list, computed with numpy."""
+    f = np.asarray(faces)
+    directed = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+    und = np.sort(directed, axis=1)
+    _, counts = np.unique(und, axis=0, return_counts=True)
+    _, dcounts = np.unique(directed, axis=0, return_counts=True)
+    return int((counts == 1).sum()), int((counts > 2).sum()), int((dcounts > 1).sum())

@@ -11,6 +11,7 @@ import pytest
 from matplotlib.path import Path
 
 import fairlines as fl
+from conftest import edge_census
 
 L, B, T, D = 244.8, 32.25, 11.0, 19.0
 SHIP = dict(lpp=L, beam=B, draft_fp=T, midship_area=0.97 * B * T, displacement_volume=0.65 * L * B * T)
@@ -41,16 +42,6 @@ def bulb():
 @pytest.fixture(scope="module")
 def composed(hull, bulb):
     return fl.compose([hull, bulb])
-
-
-def edge_census(faces):
-    """(open, non-manifold, misoriented) edge counts, computed here with numpy."""
-    f = np.asarray(faces)
-    directed = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
-    und = np.sort(directed, axis=1)
-    _, counts = np.unique(und, axis=0, return_counts=True)
-    _, dcounts = np.unique(directed, axis=0, return_counts=True)
-    return int((counts == 1).sum()), int((counts > 2).sum()), int((dcounts > 1).sum())
 
 
 def test_composed_half_hull_is_closed_manifold_and_oriented(composed):

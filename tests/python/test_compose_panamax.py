@@ -12,6 +12,7 @@ import pytest
 from matplotlib.path import Path
 
 import fairlines as fl
+from conftest import edge_census
 
 EXAMPLE = pathlib.Path(__file__).resolve().parents[2] / "examples" / "panamax_forebody.json"
 KRACHT_TOL = 0.02           # issue 5: measured coefficients within 2 %
@@ -51,16 +52,6 @@ def union(hull, bulb):
 @pytest.fixture(scope="module")
 def blended(hull, bulb):
     return hull.composed_hull(blend=True, bulb=bulb)
-
-
-def edge_census(faces):
-    """(open, non-manifold, misoriented) edge counts, computed here with numpy."""
-    f = np.asarray(faces)
-    directed = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
-    und = np.sort(directed, axis=1)
-    _, counts = np.unique(und, axis=0, return_counts=True)
-    _, dcounts = np.unique(directed, axis=0, return_counts=True)
-    return int((counts == 1).sum()), int((counts > 2).sum()), int((dcounts > 1).sum())
 
 
 def _segments_cross_triangles(a, b, t, eps=1e-9):

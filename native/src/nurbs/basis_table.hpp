@@ -105,35 +105,14 @@ FAIRLINES_INLINE void basis_power_eval(int span, double t, const double* U, cons
     for (int j = 0; j <= P; ++j) N[j] = N[j] * s + c[k * (P + 1) + j];
 }
 
-/// The deg + 1 non-zero basis functions at t in `span`, using the reciprocal table.
-/// P > 0 fixes the degree at compile time (loops unroll); P == 0 takes it from p.
+/// The deg + 1 non-zero basis functions N at t in `span`, using the reciprocal table, and,
+/// when dN is given, their first derivatives: the triangle's degree deg - 1 values give
+/// N'_{i,p} = p (N_{i,p-1} / (U_{i+p} - U_i) - N_{i+1,p-1} / (U_{i+p+1} - U_{i+1})), whose
+/// reciprocals are the table's j = deg row. P > 0 fixes the degree at compile time (loops
+/// unroll); P == 0 takes it from p. Inlined, so dN == nullptr costs nothing.
 template <int P>
-FAIRLINES_INLINE void basis_table_eval(int p, int span, double t, const double* U, const double* inv, double* N) {
-  const int deg = P > 0 ? P : p;
-  double left[kMaxFastDegree + 1], right[kMaxFastDegree + 1];
-  const double* iv = inv + span * (deg * (deg + 1) / 2);
-  N[0] = 1.0;
-  for (int j = 1; j <= deg; ++j) {
-    left[j] = t - U[span + 1 - j];
-    right[j] = U[span + j] - t;
-    double saved = 0.0;
-    for (int r = 0; r < j; ++r) {
-      const double temp = N[r] * iv[j * (j - 1) / 2 + r];
-      N[r] = saved + right[r + 1] * temp;
-      saved = left[j - r] * temp;
-    }
-    N[j] = saved;
-  }
-}
-
-/// Values N and first derivatives dN of the deg + 1 non-zero basis functions at t:
-/// the triangle is run to degree deg - 1, whose values give the derivatives
-/// N'_{i,p} = p (N_{i,p-1} / (U_{i+p} - U_i) - N_{i+1,p-1} / (U_{i+p+1} - U_{i+1})),
-/// then completed to degree deg. The reciprocals of that last step are the table's
-/// j = deg row.
-template <int P>
-FAIRLINES_INLINE void basis_table_eval_d1(int p, int span, double t, const double* U, const double* inv, double* N,
-                                          double* dN) {
+FAIRLINES_INLINE void basis_table_eval(int p, int span, double t, const double* U, const double* inv, double* N,
+                                       double* dN = nullptr) {
   const int deg = P > 0 ? P : p;
   double left[kMaxFastDegree + 1], right[kMaxFastDegree + 1];
   const double* iv = inv + span * (deg * (deg + 1) / 2);
@@ -142,7 +121,7 @@ FAIRLINES_INLINE void basis_table_eval_d1(int p, int span, double t, const doubl
     left[j] = t - U[span + 1 - j];
     right[j] = U[span + j] - t;
     const double* ivj = iv + j * (j - 1) / 2;
-    if (j == deg) {
+    if (dN != nullptr && j == deg) {
       // N holds the degree deg - 1 values here.
       dN[0] = -deg * N[0] * ivj[0];
       for (int r = 1; r < deg; ++r) dN[r] = deg * (N[r - 1] * ivj[r - 1] - N[r] * ivj[r]);

@@ -117,8 +117,8 @@ FAIRLINES_INLINE void d1_kernel(const Layout& L, int p, int q, const double* u, 
   for (long k = 0; k < m; ++k) {
     const double uk = clamp_to(u[k], L.ua, L.ub), vk = clamp_to(v[k], L.va, L.vb);
     const int su = L.span_u->find(L.ku, uk), sv = L.span_v->find(L.kv, vk);
-    detail::basis_table_eval_d1<P>(pu, su, uk, L.ku, L.inv_u, Nu, dNu);
-    detail::basis_table_eval_d1<Q>(pv, sv, vk, L.kv, L.inv_v, Nv, dNv);
+    basis_table_eval<P>(pu, su, uk, L.ku, L.inv_u, Nu, dNu);
+    basis_table_eval<Q>(pv, sv, vk, L.kv, L.inv_v, Nv, dNv);
     v4d A = {0, 0, 0, 0}, Au = {0, 0, 0, 0}, Av = {0, 0, 0, 0};
     for (int a = 0; a <= pu; ++a) {
       const double* row = L.pw + (static_cast<long>(su - pu + a) * L.nv + (sv - pv)) * 4;
