@@ -59,7 +59,8 @@ void bind_skinning(py::module_& m) {
   m.def("_fair_skin",
         [](py::handle curves, py::handle n_control, const std::string& mode, py::handle degree_u, py::handle degree_v,
            py::handle samples, double smoothing, const std::string& start, const std::string& end,
-           const std::string& params, const std::vector<int>& c1_sections, double curvature_weight, double e2, double e3) {
+           const std::string& params, const std::vector<int>& c1_sections, double curvature_weight, double e2, double e3,
+           const std::vector<std::pair<int, double>>& flats) {
           SkinOptions o;
           o.n_control = n_control.is_none() ? 0 : as_int(n_control, "n_control");
           if (!n_control.is_none() && o.n_control <= 0)
@@ -78,12 +79,14 @@ void bind_skinning(py::module_& m) {
           o.curvature_weight = curvature_weight;
           o.e2 = e2;
           o.e3 = e3;
+          o.flats = flats;
           const std::vector<NurbsCurve> cs = as_curves(curves);
           py::gil_scoped_release release;
           return fair_skin(cs, o);
         },
         "curves"_a, "n_control"_a, "mode"_a, "degree_u"_a, "degree_v"_a, "samples"_a, "smoothing"_a, "start"_a,
-        "end"_a, "params"_a, "c1_sections"_a, "curvature_weight"_a, "e2"_a, "e3"_a);
+        "end"_a, "params"_a, "c1_sections"_a, "curvature_weight"_a, "e2"_a, "e3"_a,
+        "flats"_a = std::vector<std::pair<int, double>>{});
 
   m.def("equal_arc_length_points", [](const NurbsCurve& c, py::handle mobj, double w) { return to_array(equal_arc_length_points(c, as_int(mobj, "m"), w)); },
         "curve"_a, "m"_a, "curvature_weight"_a = 0.0,

@@ -41,8 +41,11 @@ with the deck and bottom tangent angles, and half the SAC value as its area belo
 sections are fair-skinned (fairlines.fair_skin) into one B-spline surface, the half hull
 y >= 0. ``skinning`` holds the fair_skin options: ``n_control``, ``start`` / ``end``,
 ``curvature_weight``, the longitudinal fairness weights ``e2`` / ``e3`` (default 1 / 0, seed 000's
-E2), and ``junctions`` (default false): move the station nearest each basic-curve junction (end
-of a flat part or of a curve, where the curve is only C1) onto it and let the skin be C1 there.
+E2), ``junctions`` (default false): move the station nearest each basic-curve junction (end
+of a flat part or of a curve, where the curve is only C1) onto it and let the skin be C1 there,
+and ``flats`` (default true): keep the common-knot section fits exactly in the planes of the
+flat of side (y = B/2), the flat of bottom (z = the flat keel height) and the centre plane
+wherever the sections lie in them (fair_skin ``flats``), instead of rippling about them.
 
 Optional ``"bulb"`` section (issue 5; SPEC §7): a bulbous bow added to the bare hull by
 :meth:`Hull.bulbous_bow` / :meth:`Hull.composed_hull`::
@@ -293,6 +296,7 @@ class HullDescription:
     skin_e2: float = 1.0
     skin_e3: float = 0.0
     skin_junctions: bool = False
+    skin_flats: bool = True
     notes: str = ""
     bulb: BulbSpec | None = None
 
@@ -367,6 +371,7 @@ class HullDescription:
             skin_e2=_number("skinning.e2", sk.get("e2", 1.0)),
             skin_e3=_number("skinning.e3", sk.get("e3", 0.0)),
             skin_junctions=_flag("skinning.junctions", sk.get("junctions", False)),
+            skin_flats=_flag("skinning.flats", sk.get("flats", True)),
             notes=str(d.get("notes", "")),
             bulb=BulbSpec.from_dict(d["bulb"], "bulb") if d.get("bulb") is not None else None,
         )
@@ -388,7 +393,7 @@ class HullDescription:
             "sections": {"n_control": self.section_n_control},
             "skinning": {"n_control": self.skin_n_control, "start": self.skin_start, "end": self.skin_end,
                          "curvature_weight": self.skin_curvature_weight, "e2": self.skin_e2, "e3": self.skin_e3,
-                         "junctions": self.skin_junctions},
+                         "junctions": self.skin_junctions, "flats": self.skin_flats},
             **({"bulb": self.bulb.to_dict()} if self.bulb is not None else {}),
         }
 
@@ -706,8 +711,18 @@ class Hull:
                 tol = 1e-9 * d.principal.lpp
                 c1 = [i for i in range(1, len(xs) - 1) if any(abs(xs[i] - j) <= tol for j in self.junctions())]
             self._skin = fair_skin(self.sections, n_control=n, start=d.skin_start, end=d.skin_end, params="station",
-                                   curvature_weight=d.skin_curvature_weight, e2=d.skin_e2, e3=d.skin_e3, c1_sections=c1)
+                                   curvature_weight=d.skin_curvature_weight, e2=d.skin_e2, e3=d.skin_e3, c1_sections=c1,
+                                   flats=self.flat_planes() if d.skin_flats else ())
         return self._skin
+
+    def flat_planes(self) -> list[tuple[int, float]]:
+        """Planes the bare hull lies in over parts of its sections, as fair_skin ``flats``: the
+        flat of side y = B/2, the centre plane y = 0 and the flat of bottom at the keel height of
+        the profile's flat part."""
+        d = self.description
+        keel = self.basic_curves["profile"].value
+        z_flat = keel if keel is not None else 0.0
+        return [(1, d.principal.breadth / 2), (1, 0.0), (2, float(z_flat))]
 
     def bare_hull_surface(self) -> _native.NurbsSurface:
         """The fair-skinned bare hull: the half hull y >= 0, u from deck to keel, v from the

@@ -25,6 +25,7 @@ def fair_skin(
     curvature_weight: float = 0.0,
     e2: float = 1.0,
     e3: float = 0.0,
+    flats: Sequence[tuple[int, float]] = (),
 ) -> _native.SkinResult:
     """Skin section curves (3-D NurbsCurves, ordered along the hull, metres) into one surface.
 
@@ -51,10 +52,17 @@ def fair_skin(
     curvature forced at the end sections); (0, 1) reproduces quadratic variation along the
     hull exactly and keeps the end curvature.
 
+    ``flats``: planes ``(axis, value)`` (axis 0 / 1 / 2 for x / y / z, value in metres) the
+    hull lies in over parts of its sections, e.g. ``[(1, B / 2), (2, 0.0)]`` for the flat of
+    side and the flat of bottom. Where a section lies in one, the common-knot fit (c) holds
+    every control point whose support lies there on the plane, so the fitted section is
+    exactly flat there instead of rippling about the plane by the fit's residuals.
+
     Returns a SkinResult: ``surface`` (u across the sections, v along the hull),
     ``section_params``, ``section_fit_max``, ``longitudinal_max`` and ``row_e2``.
     """
     return _native._fair_skin(
         list(curves), n_control, mode, degree_u, degree_v, samples, float(smoothing), start, end, params,
         [int(i) for i in c1_sections], float(curvature_weight), float(e2), float(e3),
+        [(int(a), float(c)) for a, c in flats],
     )

@@ -265,3 +265,51 @@ def test_curvature_weighted_spacing_crowds_where_the_curve_bends():
     assert dw[turn].mean() < 0.5 * dw[legs].mean()
     with pytest.raises(ValueError, match="curvature_weight is -1"):
         fl.equal_arc_length_points(c, 10, curvature_weight=-1.0)
+
+
+def box_bilge_section(x, half_breadth, depth, radius):
+    """Exact section: flat side y = half_breadth from the deck down to the bilge, a circular
+    bilge of `radius` (rational quadratic arc), flat bottom z = 0 to the centre line."""
+    b, r = half_breadth, radius
+    w = np.sqrt(0.5)
+    pts = [[x, b, depth], [x, b, 0.5 * (depth + r)], [x, b, r], [x, b, 0.0], [x, b - r, 0.0],
+           [x, 0.5 * (b - r), 0.0], [x, 0.0, 0.0]]
+    return fl.NurbsCurve(2, [0, 0, 0, 0.4, 0.4, 0.6, 0.6, 1, 1, 1], pts, weights=[1, 1, 1, w, 1, 1, 1])
+
+
+def test_flats_keep_the_section_fits_exactly_on_the_planes():
+    B2, D = 10.0, 12.0
+    xs = np.linspace(0.0, 40.0, 9)
+    radii = 2.0 + 0.05 * xs
+    secs = [box_bilge_section(x, B2, D, r) for x, r in zip(xs, radii)]
+    flats = [(1, B2), (2, 0.0)]
+    held = fl.fair_skin(secs, n_control=24, flats=flats)
+    plain = fl.fair_skin(secs, n_control=24)
+    us = np.linspace(0.0, 1.0, 4001)
+    margin = 5.0  # m: a control point's support (four knot spans of about 1 m) away from the bilge
+    for res, exact in ((held, True), (plain, False)):
+        side_dev, bottom_dev = 0.0, 0.0
+        for v, r in zip(res.section_params, radii):
+            p = res.surface.evaluate(us, np.full_like(us, v))
+            side = p[:, 2] > r + margin
+            bottom = p[:, 1] < B2 - r - margin
+            side_dev = max(side_dev, np.abs(p[side, 1] - B2).max())
+            bottom_dev = max(bottom_dev, np.abs(p[bottom, 2]).max())
+        if exact:
+            assert side_dev <= 1e-12 and bottom_dev <= 1e-12
+        else:  # the plain least-squares fit ripples about the planes: the option matters
+            assert max(side_dev, bottom_dev) > 1e-6
+    # Rows flat in every section stay flat between the sections too.
+    g = held.surface.evaluate_grid(us, np.linspace(0, 1, 201)).reshape(-1, 3)
+    top = g[:, 2] > radii.max() + margin
+    assert np.abs(g[top, 1] - B2).max() <= 1e-12
+    # The fit still follows the exact sections closely.
+    assert held.section_fit_max < 0.05
+
+
+@pytest.mark.parametrize("flats, match", [([(3, 0.0)], "flats\\[0\\] has axis 3"),
+                                          ([(1, float("nan"))], "flats\\[0\\] has value nan")])
+def test_fair_skin_bad_flats(flats, match):
+    secs = [box_bilge_section(x, 10.0, 12.0, 2.0) for x in (0.0, 10.0, 20.0)]
+    with pytest.raises(ValueError, match=match):
+        fl.fair_skin(secs, flats=flats)

@@ -58,7 +58,17 @@ struct SkinOptions {
   /// Interior section indices (1..q-2) where the longitudinal curves are only C1 (knot of
   /// multiplicity degree_v - 1): the joint between fore and aft bodies. Elsewhere C^(degree_v-1).
   std::vector<int> c1_sections;
+  /// Planes the hull lies in over parts of its sections: (axis 0 / 1 / 2 for x / y / z, value
+  /// in metres), e.g. the flat of side y = B/2 and the flat of bottom z = 0. Where a section
+  /// lies in such a plane (to kFlatTolerance of the sections' size) the common-knot fit (c)
+  /// keeps every control point whose support lies there exactly on it, so the fitted section
+  /// is exactly flat there instead of rippling about the plane by the fit's residuals.
+  std::vector<std::pair<int, double>> flats;
 };
+
+/// Relative distance (to the sections' largest coordinate) within which a section point
+/// counts as lying in one of SkinOptions::flats.
+inline constexpr double kFlatTolerance = 1e-9;
 
 struct SkinResult {
   /// u across the sections (from each section's start to its end), v longitudinal from the

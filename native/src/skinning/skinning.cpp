@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <set>
 
 #include <Eigen/Dense>
@@ -284,6 +286,27 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
     }
   }
 
+  // Flat planes (SkinOptions::flats) and the distance within which a point lies in one.
+  double extent = 1.0;
+  for (int d = 0; d < q; ++d) extent = std::max(extent, pts[d].cwiseAbs().maxCoeff());
+  const double flat_tol = kFlatTolerance * extent;
+  for (std::size_t f = 0; f < o.flats.size(); ++f) {
+    const auto [axis, value] = o.flats[f];
+    if (axis < 0 || axis > 2) fail("flats[", f, "] has axis ", axis, "; expected 0 (x), 1 (y) or 2 (z)");
+    if (!std::isfinite(value)) fail("flats[", f, "] has value ", value, "; expected a finite coordinate (m)");
+  }
+  // The plane value a set of coordinates all lie in (to flat_tol), or NaN.
+  auto flat_value = [&](int axis, auto&& coords) {
+    for (const auto& [a, c] : o.flats) {
+      if (a != axis) continue;
+      bool all = true;
+      for (double x : coords)
+        if (!(std::abs(x - c) <= flat_tol)) { all = false; break; }
+      if (all) return c;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+
   // (c)-(d) one knot vector and control count for all sections; ends interpolated, the rest
   // by least squares (QR of the collocation matrix, factorised once for all sections).
   const Eigen::VectorXd Ku = clamped_uniform_knots(n, o.degree_u);
@@ -306,6 +329,52 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
       const Eigen::MatrixXd b = rhs.middleRows(1, m - 2) - Nu.block(1, 0, m - 2, 1) * sol.row(0) -
                                 Nu.block(1, n - 1, m - 2, 1) * sol.row(n - 1);
       sol.middleRows(1, n - 2) = A.householderQr().solve(b);
+      if (!o.flats.empty()) {
+        // Control points whose whole support lies in a flat keep exactly to it; the others are
+        // the least-squares fit with those fixed (normal equations of the free ones, one
+        // Cholesky factorisation per distinct set of fixed points).
+        const Eigen::MatrixXd M = Nu.transpose() * Nu;
+        std::map<std::vector<char>, Eigen::LLT<Eigen::MatrixXd>> factors;
+        for (int col = 0; col < 3 * q; ++col) {
+          const int axis = col % 3;
+          std::vector<char> fixed(n, 0);
+          Eigen::VectorXd z = sol.col(col);
+          fixed[0] = fixed[n - 1] = 1;
+          bool any = false;
+          for (int j = 1; j < n - 1; ++j) {
+            std::vector<double> in;
+            for (int k = 1; k < m - 1; ++k) {
+              const double u = static_cast<double>(k) / (m - 1);
+              if (u > Ku[j] && u < Ku[j + o.degree_u + 1]) in.push_back(rhs(k, col));
+            }
+            const double c = in.empty() ? std::numeric_limits<double>::quiet_NaN() : flat_value(axis, in);
+            if (!std::isnan(c)) fixed[j] = 1, z[j] = c, any = true;
+          }
+          if (!any) continue;
+          std::vector<int> freev;
+          for (int j = 0; j < n; ++j)
+            if (!fixed[j]) freev.push_back(j);
+          if (freev.empty()) {
+            sol.col(col) = z;
+            continue;
+          }
+          const int r = static_cast<int>(freev.size());
+          auto it = factors.find(fixed);
+          if (it == factors.end()) {
+            Eigen::MatrixXd Mrr(r, r);
+            for (int a = 0; a < r; ++a)
+              for (int b2 = 0; b2 < r; ++b2) Mrr(a, b2) = M(freev[a], freev[b2]);
+            it = factors.emplace(fixed, Eigen::LLT<Eigen::MatrixXd>(Mrr)).first;
+          }
+          const Eigen::VectorXd g = Nu.transpose() * rhs.col(col) - M * z.cwiseProduct(
+              Eigen::Map<const Eigen::Matrix<char, Eigen::Dynamic, 1>>(fixed.data(), n).cast<double>());
+          Eigen::VectorXd gr(r);
+          for (int a = 0; a < r; ++a) gr[a] = g[freev[a]];
+          const Eigen::VectorXd zr = it->second.solve(gr);
+          for (int a = 0; a < r; ++a) z[freev[a]] = zr[a];
+          sol.col(col) = z;
+        }
+      }
     }
     const Eigen::MatrixXd resid = Nu * sol - rhs;
     for (int d = 0; d < q; ++d) {
