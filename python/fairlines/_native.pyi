@@ -463,7 +463,7 @@ def _design_sections(fields: dict, n_control: typing.SupportsInt | typing.Suppor
     """
     Sections from per-station parameter arrays (see fairlines/hull.hpp SectionSpec).
     """
-def _fair_skin(curves: typing.Any, n_control: typing.Any, mode: str, degree_u: typing.Any, degree_v: typing.Any, samples: typing.Any, smoothing: typing.SupportsFloat | typing.SupportsIndex, start: str, end: str, params: str, c1_sections: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], curvature_weight: typing.SupportsFloat | typing.SupportsIndex, e2: typing.SupportsFloat | typing.SupportsIndex, e3: typing.SupportsFloat | typing.SupportsIndex) -> SkinResult:
+def _fair_skin(curves: typing.Any, n_control: typing.Any, mode: str, degree_u: typing.Any, degree_v: typing.Any, samples: typing.Any, smoothing: typing.SupportsFloat | typing.SupportsIndex, start: str, end: str, params: str, c1_sections: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], curvature_weight: typing.SupportsFloat | typing.SupportsIndex, e2: typing.SupportsFloat | typing.SupportsIndex, e3: typing.SupportsFloat | typing.SupportsIndex, flats: collections.abc.Sequence[tuple[typing.SupportsInt | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]] = []) -> SkinResult:
     ...
 def _form_curve_derivatives(params: dict, n_control: typing.SupportsInt | typing.SupportsIndex, degree: typing.SupportsInt | typing.SupportsIndex, dim: typing.SupportsInt | typing.SupportsIndex, fairness: dict, points: list, z: typing.Any, lambda: typing.Any = None) -> dict:
     """
