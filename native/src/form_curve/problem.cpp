@@ -469,11 +469,18 @@ double Problem::objective(const Eigen::VectorXd& z, Eigen::VectorXd* g, Eigen::M
   double f = 0;
   if (g) g->setZero(nv);
   if (H) H->setZero(nv, nv);
+  // The fairness part X^T Kf X per coordinate: its Hessian 2 Kf is constant (knots never
+  // change). Plain loops: this runs in every merit evaluation of the line search, where an
+  // Eigen temporary for Kf X would be a heap allocation each time.
   for (int c = 0; c < dim; ++c) {
-    const auto X = z.segment(c * n, n);
-    const Eigen::VectorXd KX = Kf * X;
-    f += X.dot(KX);
-    if (g) g->segment(c * n, n) = 2 * KX;
+    const double* X = z.data() + c * n;
+    for (int j = 0; j < n; ++j) {
+      const double* Kj = Kf.col(j).data();
+      double kx = 0;
+      for (int i = 0; i < n; ++i) kx += Kj[i] * X[i];  // (Kf X)_j, Kf symmetric
+      f += X[j] * kx;
+      if (g) (*g)[c * n + j] = 2 * kx;
+    }
     if (H) H->block(c * n, c * n, n, n) = 2 * Kf;
   }
   const double sw = req.fairness.length;

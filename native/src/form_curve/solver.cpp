@@ -87,12 +87,16 @@ double Solver::merit(const Eigen::VectorXd& z, double mu, double nu, Eigen::Vect
   const Eigen::VectorXd s = G * z - h;
   if (s.size() > 0 && !(s.minCoeff() > 0)) return kInf;
   pb.constraints(z, c, nullptr, nullptr, nullptr);
+  return merit_of(pb.objective(z, nullptr, nullptr), c, s, mu, nu);
+}
+
+double Solver::merit_of(double f, const Eigen::VectorXd& c, const Eigen::VectorXd& s, double mu, double nu) const {
   double l1 = 0;
   for (int i = 0; i < c.size(); ++i) {
     const double noise = kMeritRoundoff * (std::abs(pb.cons[i].target) + pb.cons[i].scale);
     l1 += std::max(0.0, std::abs(c[i]) - noise);
   }
-  double val = pb.objective(z, nullptr, nullptr) + nu * l1;
+  double val = f + nu * l1;
   for (int i = 0; i < s.size(); ++i) val -= mu * std::log(s[i]);
   return std::isfinite(val) ? val : kInf;
 }
@@ -197,7 +201,8 @@ bool Solver::newton(Eigen::VectorXd& z, Eigen::VectorXd& lam, double mu, double 
       for (int r = 0; r < s.size(); ++r)
         if (Gd[r] < 0) amax = std::min(amax, -0.995 * s[r] / Gd[r]);
     }
-    const double phi0 = merit(z, mu, nu, ctrial);
+    // z is interior (s > 0) and f, c are its values: no re-evaluation needed
+    const double phi0 = merit_of(f, c, s, mu, nu);
     const double dphi = gt.dot(d) - nu * c.lpNorm<1>();
     double alpha = amax;
     bool accepted = false;
