@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -42,6 +43,21 @@ SplineTables::SplineTables(int n_control, int degree) : n(n_control), p(degree) 
       for (int d = 0; d < 4; ++d) N[d].col(q) = ders.row(d).transpose();
     }
   }
+  per_span_area = (3 * p + 1) / 2;  // 2 * per_span_area - 1 >= 3p - 1
+  gauss_legendre(per_span_area, gx, gw);
+  nqa = spans * per_span_area;
+  wa.resize(nqa);
+  for (auto& m : Na) m.resize(p + 1, nqa);
+  q = 0;
+  for (int s = 0; s < spans; ++s) {
+    const double a = knots[p + s], b = knots[p + s + 1];
+    for (int k = 0; k < per_span_area; ++k, ++q) {
+      const double t = 0.5 * (a + b) + 0.5 * (b - a) * gx[k];
+      wa[q] = 0.5 * (b - a) * gw[k];
+      basis_derivatives(p + s, t, p, 1, knots, ders.topRows(2));
+      for (int d = 0; d < 2; ++d) Na[d].col(q) = ders.row(d).transpose();
+    }
+  }
   for (int e = 0; e < 2; ++e) {
     end_rows[e] = Eigen::MatrixXd::Zero(3, n);
     const double t = e == 0 ? 0.0 : 1.0;
@@ -62,16 +78,18 @@ SplineTables::SplineTables(int n_control, int degree) : n(n_control), p(degree) 
 
 void area_moments(const SplineTables& tab, const Eigen::VectorXd& z, double& A, double& My, double& Mx) {
   A = My = Mx = 0;
-  const int n = tab.n, p = tab.p;
-  for (int q = 0; q < tab.nq; ++q) {
-    const int f = tab.first[q];
+  const int n = tab.n, pp = tab.p + 1;
+  for (int q = 0; q < tab.nqa; ++q) {
+    const int f = q / tab.per_span_area;
+    const double* N0 = tab.Na[0].col(q).data();
+    const double* N1 = tab.Na[1].col(q).data();
     double x = 0, y = 0, xp = 0;
-    for (int k = 0; k <= p; ++k) {
-      x += tab.N[0](k, q) * z[f + k];
-      y += tab.N[0](k, q) * z[n + f + k];
-      xp += tab.N[1](k, q) * z[f + k];
+    for (int k = 0; k < pp; ++k) {
+      x += N0[k] * z[f + k];
+      y += N0[k] * z[n + f + k];
+      xp += N1[k] * z[f + k];
     }
-    const double wq = tab.w[q];
+    const double wq = tab.wa[q];
     A += wq * y * xp;
     My += wq * x * y * xp;
     Mx += wq * 0.5 * y * y * xp;
@@ -293,41 +311,77 @@ void Problem::constraints(const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::M
     }
     Eigen::VectorXd gA, gMy, gMx;
     if (J) gA = gMy = gMx = Eigen::VectorXd::Zero(nv);
-    for (int q = 0; q < tab.nq; ++q) {
-      const int f = tab.first[q];
-      double x = 0, y = 0, xp = 0;
-      const auto N0 = tab.N[0].col(q);
-      const auto N1 = tab.N[1].col(q);
-      for (int k = 0; k <= p; ++k) {
-        x += N0[k] * z[f + k];
-        y += N0[k] * z[n + f + k];
-        xp += N1[k] * z[f + k];
-      }
-      const double w = tab.w[q];
-      A += w * y * xp;
-      My += w * x * y * xp;
-      Mx += w * 0.5 * y * y * xp;
-      if (J) {
-        for (int k = 0; k <= p; ++k) {
-          gA[f + k] += w * y * N1[k];
-          gA[n + f + k] += w * xp * N0[k];
-          gMy[f + k] += w * (y * xp * N0[k] + x * y * N1[k]);
-          gMy[n + f + k] += w * x * xp * N0[k];
-          gMx[f + k] += w * 0.5 * y * y * N1[k];
-          gMx[n + f + k] += w * y * xp * N0[k];
+    // Plain loops over raw pointers: with a run-time degree, Eigen's dynamic-size
+    // expressions on these (p+1)-vectors cost a call and often an allocation each.
+    // Hessian of cA A + cMy My + cMx Mx: accumulated per span in (p+1) x (p+1) blocks
+    // (xx, yy, and xy: rows x, columns y), scattered once per span.
+    const int pp = p + 1;
+    Eigen::MatrixXd hxx, hyy, hxy;
+    if (hess) hxx.resize(pp, pp), hyy.resize(pp, pp), hxy.resize(pp, pp);
+    double u[16];  // u_i = alpha N1_i + beta N0_i: on the stack for p + 1 <= 16, else on the heap
+    std::vector<double> ubuf;
+    double* uu = u;
+    if (pp > 16) ubuf.resize(pp), uu = ubuf.data();
+    const double* zd = z.data();
+    for (int q0 = 0; q0 < tab.nqa; q0 += tab.per_span_area) {
+      const int f = q0 / tab.per_span_area;
+      const double* zx = zd + f;
+      const double* zy = zd + n + f;
+      if (hess) hxx.setZero(), hyy.setZero(), hxy.setZero();
+      for (int q = q0; q < q0 + tab.per_span_area; ++q) {
+        const double* N0 = tab.Na[0].col(q).data();
+        const double* N1 = tab.Na[1].col(q).data();
+        double x = 0, y = 0, xp = 0;
+        for (int k = 0; k < pp; ++k) {
+          x += N0[k] * zx[k];
+          y += N0[k] * zy[k];
+          xp += N1[k] * zx[k];
+        }
+        const double w = tab.wa[q];
+        A += w * y * xp;
+        My += w * x * y * xp;
+        Mx += w * 0.5 * y * y * xp;
+        if (J) {
+          double* gAx = gA.data() + f;
+          double* gAy = gA.data() + n + f;
+          double* gMyx = gMy.data() + f;
+          double* gMyy = gMy.data() + n + f;
+          double* gMxx = gMx.data() + f;
+          double* gMxy = gMx.data() + n + f;
+          const double a1 = w * y, a0 = w * xp, b0 = w * y * xp, b1 = w * x * y, b2 = w * x * xp,
+                       c1 = w * 0.5 * y * y;
+          for (int k = 0; k < pp; ++k) {
+            gAx[k] += a1 * N1[k];
+            gAy[k] += a0 * N0[k];
+            gMyx[k] += b0 * N0[k] + b1 * N1[k];
+            gMyy[k] += b2 * N0[k];
+            gMxx[k] += c1 * N1[k];
+            gMxy[k] += b0 * N0[k];
+          }
+        }
+        if (hess) {
+          const double a = w * cMy * y, b = w * cMx * xp;
+          const double al = w * (cA + cMy * x + cMx * y), be = w * cMy * xp;
+          for (int i = 0; i < pp; ++i) uu[i] = al * N1[i] + be * N0[i];
+          for (int k = 0; k < pp; ++k) {  // column k (column-major blocks)
+            double* cxx = hxx.col(k).data();
+            double* cyy = hyy.col(k).data();
+            double* cxy = hxy.col(k).data();
+            const double aN1 = a * N1[k], aN0 = a * N0[k], bN0 = b * N0[k], n0 = N0[k];
+            for (int i = 0; i < pp; ++i) {
+              cxx[i] += aN1 * N0[i] + aN0 * N1[i];
+              cyy[i] += bN0 * N0[i];
+              cxy[i] += uu[i] * n0;
+            }
+          }
         }
       }
       if (hess) {
         Eigen::MatrixXd& H = *HL;
-        for (int i = 0; i <= p; ++i)
-          for (int k = 0; k <= p; ++k) {
-            H(f + i, f + k) += w * cMy * y * (N0[i] * N1[k] + N1[i] * N0[k]);
-            H(n + f + i, n + f + k) += w * cMx * xp * N0[i] * N0[k];
-            const double xy =
-                w * (cA * N1[i] * N0[k] + cMy * (xp * N0[i] + x * N1[i]) * N0[k] + cMx * y * N1[i] * N0[k]);
-            H(f + i, n + f + k) += xy;
-            H(n + f + k, f + i) += xy;
-          }
+        H.block(f, f, pp, pp) += hxx;
+        H.block(n + f, n + f, pp, pp) += hyy;
+        H.block(f, n + f, pp, pp) += hxy;
+        H.block(n + f, f, pp, pp) += hxy.transpose();
       }
     }
     if (J) {
@@ -372,12 +426,19 @@ void Problem::constraints(const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::M
           d2s(0, 0) = d2s(1, 1) = 2;
           const Eigen::Matrix4d Hk = d2u / s15 - 1.5 / (s15 * s) * (du * ds.transpose() + ds * du.transpose()) +
                                      3.75 * u / (s15 * s * s) * ds * ds.transpose() - 1.5 * u / (s15 * s) * d2s;
-          Eigen::MatrixXd M = Eigen::MatrixXd::Zero(4, nv);
-          M.block(0, 0, 1, n) = R.row(1);
-          M.block(1, n, 1, n) = R.row(1);
-          M.block(2, 0, 1, n) = R.row(2);
-          M.block(3, n, 1, n) = R.row(2);
-          HL->noalias() += (*lambda)[i] * (M.transpose() * Hk * M);
+          // d = (x1, y1, x2, y2) depends only on the p+1 control points next to the end:
+          // d_x = B zx, d_y = B zy with B = end rows 1, 2 restricted to them
+          const int pp = p + 1, r0 = k.end == 0 ? 0 : n - pp;
+          Eigen::MatrixXd B(2, pp);
+          B.row(0) = R.row(1).segment(r0, pp);
+          B.row(1) = R.row(2).segment(r0, pp);
+          const double l = (*lambda)[i];
+          for (int a = 0; a < 2; ++a)
+            for (int bb = 0; bb < 2; ++bb) {
+              Eigen::Matrix2d Hab;  // Hk restricted to (coord a) x (coord bb): d indices a, a+2
+              Hab << Hk(a, bb), Hk(a, bb + 2), Hk(a + 2, bb), Hk(a + 2, bb + 2);
+              HL->block(a * n + r0, bb * n + r0, pp, pp).noalias() += l * (B.transpose() * Hab * B);
+            }
         }
         break;
       }
@@ -408,11 +469,18 @@ double Problem::objective(const Eigen::VectorXd& z, Eigen::VectorXd* g, Eigen::M
   double f = 0;
   if (g) g->setZero(nv);
   if (H) H->setZero(nv, nv);
+  // The fairness part X^T Kf X per coordinate: its Hessian 2 Kf is constant (knots never
+  // change). Plain loops: this runs in every merit evaluation of the line search, where an
+  // Eigen temporary for Kf X would be a heap allocation each time.
   for (int c = 0; c < dim; ++c) {
-    const auto X = z.segment(c * n, n);
-    const Eigen::VectorXd KX = Kf * X;
-    f += X.dot(KX);
-    if (g) g->segment(c * n, n) = 2 * KX;
+    const double* X = z.data() + c * n;
+    for (int j = 0; j < n; ++j) {
+      const double* Kj = Kf.col(j).data();
+      double kx = 0;
+      for (int i = 0; i < n; ++i) kx += Kj[i] * X[i];  // (Kf X)_j, Kf symmetric
+      f += X[j] * kx;
+      if (g) (*g)[c * n + j] = 2 * kx;
+    }
     if (H) H->block(c * n, c * n, n, n) = 2 * Kf;
   }
   const double sw = req.fairness.length;

@@ -24,6 +24,13 @@ struct SplineTables {
   Eigen::MatrixXd N[4];        // (p+1) x nq: derivative d of the non-zero basis functions
   Eigen::MatrixXd end_rows[2]; // 3 x n: derivatives 0..2 of all basis functions at t=0 / t=1
   Eigen::MatrixXd K[3];        // n x n Gram matrices int N^(k) N^(k)T, k = 1..3
+  // Area and moments: their integrands y x', x y x', y^2 x' are polynomials of degree
+  // <= 3p - 1 on every knot span, so the smallest Gauss rule exact for them,
+  // ceil(3p / 2) points per span, gives the same values as any higher order. The
+  // general rule above (>= 8 points per span) is kept for the arc length.
+  int per_span_area = 0, nqa = 0;
+  Eigen::VectorXd wa;          // nqa quadrature weights (in t); point q lies on span q / per_span_area
+  Eigen::MatrixXd Na[2];       // (p+1) x nqa: values and first derivatives of the non-zero basis functions
   SplineTables(int n_control, int degree);
 };
 

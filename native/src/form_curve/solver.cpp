@@ -23,6 +23,14 @@ namespace fairlines::form_curve_impl {
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kDeg = std::numbers::pi / 180.0;
+// Relative rounding level of a constraint value c_i = value - target: residuals below
+// kMeritRoundoff * (|target| + scale) are noise, not violation. The l1 merit ignores
+// them: with penalty weights nu ~ 1e5 that noise otherwise swamps the decrease of a
+// near-converged Newton step and the line search creeps with tiny steps.
+constexpr double kMeritRoundoff = 1e-14;
+// A step shorter than this (relative to |z|) changes nothing representable: the line
+// search has stalled and the iterate is as converged as the merit can resolve.
+constexpr double kStallStep = 1e-13;
 }  // namespace
 
 Solver::Solver(Problem& problem) : pb(problem) {
@@ -79,7 +87,16 @@ double Solver::merit(const Eigen::VectorXd& z, double mu, double nu, Eigen::Vect
   const Eigen::VectorXd s = G * z - h;
   if (s.size() > 0 && !(s.minCoeff() > 0)) return kInf;
   pb.constraints(z, c, nullptr, nullptr, nullptr);
-  double val = pb.objective(z, nullptr, nullptr) + nu * c.lpNorm<1>();
+  return merit_of(pb.objective(z, nullptr, nullptr), c, s, mu, nu);
+}
+
+double Solver::merit_of(double f, const Eigen::VectorXd& c, const Eigen::VectorXd& s, double mu, double nu) const {
+  double l1 = 0;
+  for (int i = 0; i < c.size(); ++i) {
+    const double noise = kMeritRoundoff * (std::abs(pb.cons[i].target) + pb.cons[i].scale);
+    l1 += std::max(0.0, std::abs(c[i]) - noise);
+  }
+  double val = f + nu * l1;
   for (int i = 0; i < s.size(); ++i) val -= mu * std::log(s[i]);
   return std::isfinite(val) ? val : kInf;
 }
@@ -184,7 +201,8 @@ bool Solver::newton(Eigen::VectorXd& z, Eigen::VectorXd& lam, double mu, double 
       for (int r = 0; r < s.size(); ++r)
         if (Gd[r] < 0) amax = std::min(amax, -0.995 * s[r] / Gd[r]);
     }
-    const double phi0 = merit(z, mu, nu, ctrial);
+    // z is interior (s > 0) and f, c are its values: no re-evaluation needed
+    const double phi0 = merit_of(f, c, s, mu, nu);
     const double dphi = gt.dot(d) - nu * c.lpNorm<1>();
     double alpha = amax;
     bool accepted = false;
@@ -205,8 +223,9 @@ bool Solver::newton(Eigen::VectorXd& z, Eigen::VectorXd& lam, double mu, double 
         }
       }
       if (phi <= phi0 + 1e-4 * alpha * std::min(dphi, 0.0)) {
-        z = zt;
-        accepted = true;
+        // a step below representable size is a stall, not progress
+        accepted = (zt - z).norm() > kStallStep * (1 + z.norm());
+        if (accepted) z = zt;
         break;
       }
       alpha *= 0.5;

@@ -48,6 +48,8 @@ struct Solver {
   void set_targets(double tau);
   bool newton(Eigen::VectorXd& z, Eigen::VectorXd& lam, double mu, double tol_c, double tol_g, int maxit);
   double merit(const Eigen::VectorXd& z, double mu, double nu, Eigen::VectorXd& c) const;
+  /// The merit from already computed objective f, constraints c and slacks s = G z - h > 0.
+  double merit_of(double f, const Eigen::VectorXd& c, const Eigen::VectorXd& s, double mu, double nu) const;
   double restore_tol = 1e-3;
   bool restore(Eigen::VectorXd& z, int maxit);
   RunOutcome run(const Eigen::VectorXd& z0, bool continuation);
