@@ -32,9 +32,11 @@ double binomial(int n, int k) {
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 // Hot kernels are compiled twice when the compiler can: for AVX2/FMA machines and a
-// portable baseline, picked at load time (GCC function multiversioning).
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define FAIRLINES_MULTIVERSION __attribute__((target_clones("arch=haswell", "default")))
+// portable baseline, picked at load time (GCC function multiversioning). The clone is the
+// x86-64-v3 ISA level, dispatched on CPU features: an "arch=haswell" clone is dispatched
+// on the CPU model and so ran only on Haswell itself (every later CPU got the baseline).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && __GNUC__ >= 12
+#define FAIRLINES_MULTIVERSION __attribute__((target_clones("arch=x86-64-v3", "default")))
 #else
 #define FAIRLINES_MULTIVERSION
 #endif
