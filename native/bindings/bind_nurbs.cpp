@@ -250,13 +250,13 @@ void bind_nurbs(py::module_& m) {
             if (ua.ndim() > 1 || va.ndim() > 1) throw InvalidInput("u and v must be 1-D arrays; got shapes " + shape_of(ua) + " and " + shape_of(va));
             if (ua.size() != va.size())
               throw InvalidInput("u has " + std::to_string(ua.size()) + " values and v has " + std::to_string(va.size()) + "; expected equal lengths");
-            for (py::ssize_t k = 0; k < ua.size(); ++k)
-              if (!std::isfinite(ua.data()[k]) || !std::isfinite(va.data()[k]))
-                throw InvalidInput("parameter pair " + std::to_string(k) + " is not finite; expected finite (u, v)");
-            py::array_t<double> out({static_cast<py::ssize_t>(ua.size()), py::ssize_t(3)});
+            const py::ssize_t m = ua.size();
+            if (const py::ssize_t k = first_nonfinite_pair(ua.data(), va.data(), m); k < m)
+              throw InvalidInput("parameter pair " + std::to_string(k) + " is not finite; expected finite (u, v)");
+            py::array_t<double> out({m, py::ssize_t(3)});
             {
               py::gil_scoped_release release;
-              s.evaluate_into(ua.data(), va.data(), ua.size(), out.mutable_data());
+              s.evaluate_into(ua.data(), va.data(), m, out.mutable_data());
             }
             if (scalar) return out.attr("reshape")(3);
             return out;
@@ -281,9 +281,8 @@ void bind_nurbs(py::module_& m) {
             const py::ssize_t k1 = order + 1;
             py::array_t<double> out({static_cast<py::ssize_t>(uu.size()), k1, k1, py::ssize_t(3)});
             double* d = out.mutable_data();
-            for (Eigen::Index k = 0; k < uu.size(); ++k)
-              if (!std::isfinite(uu[k]) || !std::isfinite(vv[k]))
-                throw InvalidInput("parameter pair " + std::to_string(k) + " is not finite; expected finite (u, v)");
+            if (const py::ssize_t k = first_nonfinite_pair(uu.data(), vv.data(), uu.size()); k < uu.size())
+              throw InvalidInput("parameter pair " + std::to_string(k) + " is not finite; expected finite (u, v)");
             if (order == 1) {
               // Fast path: [S, S_u, S_v] per point, laid out as D[0,0], D[1,0], D[0,1]; D[1,1] = 0.
               std::vector<double> d1(9 * static_cast<size_t>(uu.size()));

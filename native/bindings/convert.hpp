@@ -1,6 +1,10 @@
 // numpy <-> Eigen conversions with shape checks that name the argument (bindings only).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <sstream>
 #include <string>
 
@@ -30,6 +34,27 @@ inline Array as_array(const py::handle& obj, const char* what) {
   Array a = Array::ensure(obj);  // returns a null array (error cleared) when conversion fails
   if (!a) throw InvalidInput(std::string(what) + " could not be read as an array of numbers");
   return a;
+}
+
+/// Index of the first k with a[k] or b[k] not finite, or n. Runs over every point of a batch
+/// call with the GIL held, so blocks are screened by a branch-free exponent test (all-ones
+/// exponent <=> inf/NaN) that the compiler vectorises; only a flagged block is rescanned.
+inline py::ssize_t first_nonfinite_pair(const double* a, const double* b, py::ssize_t n) {
+  constexpr py::ssize_t kBlock = 512;
+  for (py::ssize_t k0 = 0; k0 < n; k0 += kBlock) {
+    const py::ssize_t k1 = std::min(n, k0 + kBlock);
+    std::uint64_t flags = 0;
+    for (py::ssize_t k = k0; k < k1; ++k) {
+      std::uint64_t x, y;
+      std::memcpy(&x, a + k, 8);
+      std::memcpy(&y, b + k, 8);
+      flags |= (((x >> 52) & 0x7FF) + 1) | (((y >> 52) & 0x7FF) + 1);  // bit 11 set iff exponent is 0x7FF
+    }
+    if (flags & 0x800)
+      for (py::ssize_t k = k0; k < k1; ++k)
+        if (!std::isfinite(a[k]) || !std::isfinite(b[k])) return k;
+  }
+  return n;
 }
 
 /// 1-D vector (a scalar becomes length 1).

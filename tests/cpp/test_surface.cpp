@@ -30,6 +30,45 @@ TEST(Surface, GridAndScatteredEvaluationAgreeWithDerivativeRoutine) {
   }
 }
 
+// The batch scattered path has fixed-degree kernels for degrees 1..3 in each direction:
+// check every pair against the general derivative routine, including parameters exactly on
+// (repeated) interior knots, at the domain ends, outside the domain (clamped) and odd counts.
+TEST(Surface, ScatteredBatchMatchesGeneralRoutineOnKnotsAndEnds) {
+  std::mt19937 rng(26);
+  std::uniform_real_distribution<double> T(0.0, 1.0);
+  for (int pu = 1; pu <= 4; ++pu)
+    for (int pv = 1; pv <= 3; ++pv)
+      for (bool rational : {false, true}) {
+        NurbsSurface s0 = test::random_surface(9, 7, pu, pv, rational, rng);
+        // Double an interior knot (an empty span) where the degree allows it.
+        Eigen::VectorXd ku = s0.knots_u(), kv = s0.knots_v();
+        if (pu >= 2) ku[pu + 2] = ku[pu + 1];
+        if (pv >= 2) kv[pv + 2] = kv[pv + 1];
+        const NurbsSurface s(pu, pv, ku, kv, 9, 7, s0.control_points(), rational ? s0.weights() : Eigen::VectorXd());
+        std::vector<double> us, vs;
+        for (int k = 0; k < 301; ++k) {
+          us.push_back(T(rng));
+          vs.push_back(T(rng));
+        }
+        for (Eigen::Index k = 0; k < ku.size(); ++k) {
+          us.push_back(ku[k]);
+          vs.push_back(kv[std::min<Eigen::Index>(k, kv.size() - 1)]);
+        }
+        for (double t : {-0.25, 0.0, 1.0, 1.25, std::nextafter(1.0, 0.0)}) {
+          us.push_back(t);
+          vs.push_back(1.0 - t);
+        }
+        const Eigen::VectorXd u = Eigen::Map<Eigen::VectorXd>(us.data(), us.size());
+        const Eigen::VectorXd v = Eigen::Map<Eigen::VectorXd>(vs.data(), vs.size());
+        const Eigen::MatrixXd S = s.evaluate(u, v);
+        for (Eigen::Index k = 0; k < u.size(); ++k) {
+          const Eigen::Vector3d ref = s.derivatives(u[k], v[k], 0).row(0).transpose();
+          EXPECT_LT((S.row(k).transpose() - ref).norm(), 1e-12 * (1.0 + ref.norm()))
+              << "degrees (" << pu << ", " << pv << ") rational " << rational << " at (" << u[k] << ", " << v[k] << ")";
+        }
+      }
+}
+
 TEST(Surface, BatchFirstDerivativesAgreeWithGeneralRoutine) {
   std::mt19937 rng(16);
   for (auto [pu, pv] : {std::pair{3, 3}, std::pair{2, 3}, std::pair{1, 2}, std::pair{4, 5}, std::pair{8, 2}}) {

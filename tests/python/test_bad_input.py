@@ -53,6 +53,17 @@ def test_surface_and_fit_errors():
         s.evaluate([0.1, 0.2], [0.3])
     with pytest.raises(ValueError, match="not finite"):
         s.evaluate([np.nan], [0.3])
+    # the batch screen works in blocks: the first bad pair is named wherever it lies
+    for k in (0, 511, 512, 1000, 1999):
+        for bad in (np.nan, np.inf, -np.inf):
+            u, v = np.full(2000, 0.5), np.full(2000, 0.5)
+            (u if k % 2 else v)[k] = bad
+            u[1999 if k < 1999 else 0] = 0.0  # a finite extreme value is fine
+            with pytest.raises(ValueError, match=f"parameter pair {k} is not finite"):
+                s.evaluate(u, v)
+            with pytest.raises(ValueError, match=f"parameter pair {k} is not finite"):
+                s.derivatives(u, v, 1)
+    s.evaluate(np.full(600, np.finfo(float).max), np.full(600, -np.finfo(float).tiny))  # finite: clamped
     with pytest.raises(ValueError, match="direction"):
         s.insert_knot("w", 0.5)
     with pytest.raises(ValueError, match="parameterization"):

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -26,7 +27,10 @@ typedef double v4du __attribute__((vector_size(32), aligned(8)));
 struct SpanLocator {
   double a = 0, scale = 0;   // domain start, buckets per unit parameter
   int buckets = 0, last_span = 0;
-  std::vector<int> table;    // span at each bucket's left edge
+  std::vector<int> table;    // span at each bucket's left edge; entry `buckets` is last_span
+  // The knots with +inf after last_span: stepping needs one test (t >= knots[s + 1]), and
+  // knots[s] is still U[s] for the local parameter of any span found.
+  std::vector<double> knots;
 
   SpanLocator() = default;
   SpanLocator(const Eigen::VectorXd& U, int p) {
@@ -37,20 +41,28 @@ struct SpanLocator {
     while (last_span > p && !(U[last_span + 1] > U[last_span])) --last_span;
     buckets = std::max(16, 4 * (n - p));
     scale = buckets / (b - a);
-    table.resize(buckets);
+    table.resize(buckets + 1);
     int s = p;
-    for (int k = 0; k < buckets; ++k) {
-      const double x = a + k / scale;
+    for (int k = 0; k <= buckets; ++k) {
+      const double x = k == buckets ? b : a + k / scale;
       while (s < last_span && U[s + 1] <= x) ++s;
       table[k] = s;
     }
+    knots.assign(U.size(), std::numeric_limits<double>::infinity());
+    for (int i = 0; i <= last_span; ++i) knots[i] = U[i];
   }
-  /// Span of t, which must already be clamped to the domain.
-  FAIRLINES_INLINE int find(const double* U, double t) const {
-    int k = static_cast<int>((t - a) * scale);
-    k = k < 0 ? 0 : (k >= buckets ? buckets - 1 : k);
-    int s = table[k];
-    while (s < last_span && U[s + 1] <= t) ++s;
+  /// Span of t, which must already be clamped to the domain (NaN gives some valid span).
+  FAIRLINES_INLINE int find(double t) const {
+    return static_cast<int>(find(t, a, scale, buckets, table.data(), knots.data()));
+  }
+  /// The same from copies of the fields, which a hot loop can keep in registers.
+  static FAIRLINES_INLINE long find(double t, double a, double scale, unsigned buckets, const int* table,
+                                    const double* knots) {
+    // Unsigned, a NaN's INT_MIN lands on the last bucket instead of outside the table.
+    unsigned k = static_cast<unsigned>(static_cast<int>((t - a) * scale));
+    k = k < buckets ? k : buckets;
+    long s = table[k];
+    while (t >= knots[s + 1]) ++s;
     return s;
   }
 };
@@ -74,36 +86,44 @@ inline std::vector<double> make_basis_table(const Eigen::VectorXd& U, int p) {
 }
 
 /// Power-basis coefficients of the non-zero basis functions on every span, in the local
-/// parameter s = t - U[span]: entry (span, k, j) at (span * (p + 1) + k) * (p + 1) + j is
-/// N_{span-p+j}^(k)(U[span]) / k!, so N_{span-p+j}(t) = sum_k entry(span, k, j) s^k exactly
-/// (a B-spline is one polynomial per span). Evaluating by Horner has no long dependency
-/// chain, unlike the Cox-de Boor triangle. Zero for empty spans (never read).
+/// parameter s = t - U[span], for degree p <= 3 (empty above): entry (span, k, j) at
+/// span * 16 + k * 4 + j is N_{span-p+j}^(k)(U[span]) / k!, so N_{span-p+j}(t) =
+/// sum_k entry(span, k, j) s^k exactly (a B-spline is one polynomial per span). Rows are
+/// padded to 4 lanes with zeros so the p + 1 basis values are one SIMD Horner evaluation.
+/// Zero for empty spans (never read).
+inline constexpr int kPowerMaxDegree = 3;
 inline std::vector<double> make_power_table(const Eigen::VectorXd& U, int p) {
+  if (p > kPowerMaxDegree) return {};
   const int n = static_cast<int>(U.size()) - p - 1;
-  const int w = p + 1;
-  std::vector<double> c(static_cast<size_t>(U.size()) * w * w, 0.0);
-  Eigen::MatrixXd ders(w, w);
+  std::vector<double> c(static_cast<size_t>(U.size()) * 16, 0.0);
+  Eigen::MatrixXd ders(p + 1, p + 1);
   for (int s = p; s < n; ++s) {
     if (!(U[s + 1] > U[s])) continue;
     basis_derivatives(s, U[s], p, p, U, ders);
     double fact = 1.0;
     for (int k = 0; k <= p; ++k) {
       if (k > 0) fact *= k;
-      for (int j = 0; j <= p; ++j) c[(static_cast<size_t>(s) * w + k) * w + j] = ders(k, j) / fact;
+      for (int j = 0; j <= p; ++j) c[static_cast<size_t>(s) * 16 + k * 4 + j] = ders(k, j) / fact;
     }
   }
   return c;
 }
 
-/// The P + 1 non-zero basis functions at t in `span` from the power table (P > 0 fixed).
+/// The P + 1 non-zero basis functions (lanes above P are zero) at local parameter s from
+/// the span's block of the power table: Horner over s, 4 coefficient lanes per degree.
+/// Written per lane: the AVX2 clone vectorises it into 4-lane FMAs, while the SSE2 baseline
+/// stays scalar instead of assembling 256-bit broadcasts through the stack.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"  // always inlined: no vector crosses an ABI boundary
 template <int P>
-FAIRLINES_INLINE void basis_power_eval(int span, double t, const double* U, const double* table, double* N) {
-  const double s = t - U[span];
-  const double* c = table + static_cast<long>(span) * (P + 1) * (P + 1);
-  for (int j = 0; j <= P; ++j) N[j] = c[P * (P + 1) + j];
+FAIRLINES_INLINE v4d basis_power4(const double* block, double s) {
+  double N[4] = {0, 0, 0, 0};
+  for (int j = 0; j <= P; ++j) N[j] = block[4 * P + j];
   for (int k = P - 1; k >= 0; --k)
-    for (int j = 0; j <= P; ++j) N[j] = N[j] * s + c[k * (P + 1) + j];
+    for (int j = 0; j <= P; ++j) N[j] = N[j] * s + block[4 * k + j];
+  return v4d{N[0], N[1], N[2], N[3]};
 }
+#pragma GCC diagnostic pop
 
 /// The deg + 1 non-zero basis functions N at t in `span`, using the reciprocal table, and,
 /// when dN is given, their first derivatives: the triangle's degree deg - 1 values give

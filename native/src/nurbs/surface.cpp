@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <Eigen/Dense>
 
@@ -32,9 +33,11 @@ double binomial(int n, int k) {
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 // Hot kernels are compiled twice when the compiler can: for AVX2/FMA machines and a
-// portable baseline, picked at load time (GCC function multiversioning).
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define FAIRLINES_MULTIVERSION __attribute__((target_clones("arch=haswell", "default")))
+// portable baseline, picked at load time (GCC function multiversioning). The clone is the
+// x86-64-v3 ISA level, dispatched on CPU features: an "arch=haswell" clone is dispatched
+// on the CPU model and so ran only on Haswell itself (every later CPU got the baseline).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && __GNUC__ >= 12
+#define FAIRLINES_MULTIVERSION __attribute__((target_clones("arch=x86-64-v3", "default")))
 #else
 #define FAIRLINES_MULTIVERSION
 #endif
@@ -70,21 +73,77 @@ Layout make_layout(const Eigen::VectorXd& ku, const Eigen::VectorXd& kv, const s
 FAIRLINES_INLINE v4d load4(const double* p) { return *reinterpret_cast<const v4du*>(p); }
 
 // std::clamp is not inlined into the multiversioned kernels (target mismatch): clamp here.
-FAIRLINES_INLINE double clamp_to(double t, double lo, double hi) { return t < lo ? lo : (t > hi ? hi : t); }
+// Two separate selects compile to max/min (no branch) and keep a NaN.
+FAIRLINES_INLINE double clamp_to(double t, double lo, double hi) {
+  t = t < lo ? lo : t;
+  return t > hi ? hi : t;
+}
 
-// Scattered points; P, Q > 0 fix the degrees at compile time, 0 takes them from p, q.
+// Broadcast of lane I: one permute (an initializer {x[I], ...} compiles to far more code).
+template <int I>
+FAIRLINES_INLINE v4d lane(v4d x) {
+#if defined(__clang__) || __GNUC__ >= 12
+  return __builtin_shufflevector(x, x, I, I, I, I);
+#else
+  typedef long long v4di __attribute__((vector_size(32)));
+  return __builtin_shuffle(x, v4di{I, I, I, I});
+#endif
+}
+
+// sum_B N[B] * row[B] over homogeneous points row[0..]: index packs unroll at compile time.
+template <int... B>
+FAIRLINES_INLINE v4d combine(const double* row, v4d N, std::integer_sequence<int, B...>) {
+  return (... + (lane<B>(N) * load4(row + 4 * B)));
+}
+template <int... A>
+FAIRLINES_INLINE v4d combine_rows(const double* row, long stride, v4d Nu, v4d Nv, std::integer_sequence<int, A...>,
+                                  auto qs) {
+  return (... + (lane<A>(Nu) * combine(row + A * stride, Nv, qs)));
+}
+
+// Scattered points for degrees P, Q <= 3: both bases by one SIMD Horner each, then the
+// (P + 1) x (Q + 1) homogeneous block contracted row by row in v, then in u.
+template <int P, int Q, bool Rational>
+FAIRLINES_INLINE void scatter_power_kernel(const Layout& L, const double* u, const double* v, long m, double* out) {
+  // Local copies: the output stores could alias the layout's doubles and force reloads.
+  const double ua = L.ua, ub = L.ub, va = L.va, vb = L.vb;
+  const double au = L.span_u->a, scale_u = L.span_u->scale, av = L.span_v->a, scale_v = L.span_v->scale;
+  const unsigned bu = L.span_u->buckets, bv = L.span_v->buckets;
+  const int *table_u = L.span_u->table.data(), *table_v = L.span_v->table.data();
+  const double *ku = L.span_u->knots.data(), *kv = L.span_v->knots.data();
+  const double *pow_u = L.pow_u, *pow_v = L.pow_v, *pw = L.pw;
+  const long stride = static_cast<long>(L.nv) * 4;
+  for (long k = 0; k < m; ++k) {
+    const double uk = clamp_to(u[k], ua, ub), vk = clamp_to(v[k], va, vb);
+    const long su = SpanLocator::find(uk, au, scale_u, bu, table_u, ku);
+    const long sv = SpanLocator::find(vk, av, scale_v, bv, table_v, kv);
+    const v4d Nu = detail::basis_power4<P>(pow_u + su * 16, uk - ku[su]);
+    const v4d Nv = detail::basis_power4<Q>(pow_v + sv * 16, vk - kv[sv]);
+    const double* row = pw + (su - P) * stride + (sv - Q) * 4;
+    v4d acc = combine_rows(row, stride, Nu, Nv, std::make_integer_sequence<int, P + 1>(),
+                           std::make_integer_sequence<int, Q + 1>());
+    if constexpr (Rational) acc *= 1.0 / acc[3];
+    out[3 * k] = acc[0];
+    out[3 * k + 1] = acc[1];
+    out[3 * k + 2] = acc[2];
+  }
+}
+
 template <int P, int Q>
-FAIRLINES_INLINE void scatter_kernel(const Layout& L, int p, int q, const double* u, const double* v, long m,
+FAIRLINES_INLINE void scatter_power(const Layout& L, const double* u, const double* v, long m, double* out) {
+  if (L.rational) scatter_power_kernel<P, Q, true>(L, u, v, m, out);
+  else scatter_power_kernel<P, Q, false>(L, u, v, m, out);
+}
+
+// Scattered points for any degree up to kMaxFastDegree (the Cox-de Boor triangle).
+FAIRLINES_INLINE void scatter_kernel(const Layout& L, int pu, int pv, const double* u, const double* v, long m,
                                      double* out) {
-  const int pu = P > 0 ? P : p, pv = Q > 0 ? Q : q;
   double Nu[kMaxFastDegree + 1], Nv[kMaxFastDegree + 1];
   for (long k = 0; k < m; ++k) {
     const double uk = clamp_to(u[k], L.ua, L.ub), vk = clamp_to(v[k], L.va, L.vb);
-    const int su = L.span_u->find(L.ku, uk), sv = L.span_v->find(L.kv, vk);
-    if constexpr (P > 0) detail::basis_power_eval<P>(su, uk, L.ku, L.pow_u, Nu);
-    else basis_table_eval<0>(pu, su, uk, L.ku, L.inv_u, Nu);
-    if constexpr (Q > 0) detail::basis_power_eval<Q>(sv, vk, L.kv, L.pow_v, Nv);
-    else basis_table_eval<0>(pv, sv, vk, L.kv, L.inv_v, Nv);
+    const int su = L.span_u->find(uk), sv = L.span_v->find(vk);
+    basis_table_eval<0>(pu, su, uk, L.ku, L.inv_u, Nu);
+    basis_table_eval<0>(pv, sv, vk, L.kv, L.inv_v, Nv);
     v4d acc = {0, 0, 0, 0};
     for (int a = 0; a <= pu; ++a) {
       const double* row = L.pw + (static_cast<long>(su - pu + a) * L.nv + (sv - pv)) * 4;
@@ -101,12 +160,12 @@ FAIRLINES_INLINE void scatter_kernel(const Layout& L, int p, int q, const double
 
 FAIRLINES_MULTIVERSION
 void scatter_dispatch(const Layout& L, int p, int q, const double* u, const double* v, long m, double* out) {
-  if (p == 3 && q == 3) return scatter_kernel<3, 3>(L, p, q, u, v, m, out);
-  if (p == 2 && q == 2) return scatter_kernel<2, 2>(L, p, q, u, v, m, out);
-  if (p == 2 && q == 3) return scatter_kernel<2, 3>(L, p, q, u, v, m, out);
-  if (p == 3 && q == 2) return scatter_kernel<3, 2>(L, p, q, u, v, m, out);
-  if (p == 1 && q == 1) return scatter_kernel<1, 1>(L, p, q, u, v, m, out);
-  scatter_kernel<0, 0>(L, p, q, u, v, m, out);
+  if (p == 3 && q == 3) return scatter_power<3, 3>(L, u, v, m, out);
+  if (p == 2 && q == 2) return scatter_power<2, 2>(L, u, v, m, out);
+  if (p == 2 && q == 3) return scatter_power<2, 3>(L, u, v, m, out);
+  if (p == 3 && q == 2) return scatter_power<3, 2>(L, u, v, m, out);
+  if (p == 1 && q == 1) return scatter_power<1, 1>(L, u, v, m, out);
+  scatter_kernel(L, p, q, u, v, m, out);
 }
 
 // Points and first partials at scattered parameters: row k of out = [S, S_u, S_v].
@@ -116,7 +175,7 @@ FAIRLINES_INLINE void d1_kernel(const Layout& L, int p, int q, const double* u, 
   double Nu[kMaxFastDegree + 1], Nv[kMaxFastDegree + 1], dNu[kMaxFastDegree + 1], dNv[kMaxFastDegree + 1];
   for (long k = 0; k < m; ++k) {
     const double uk = clamp_to(u[k], L.ua, L.ub), vk = clamp_to(v[k], L.va, L.vb);
-    const int su = L.span_u->find(L.ku, uk), sv = L.span_v->find(L.kv, vk);
+    const int su = L.span_u->find(uk), sv = L.span_v->find(vk);
     basis_table_eval<P>(pu, su, uk, L.ku, L.inv_u, Nu, dNu);
     basis_table_eval<Q>(pv, sv, vk, L.kv, L.inv_v, Nv, dNv);
     v4d A = {0, 0, 0, 0}, Au = {0, 0, 0, 0}, Av = {0, 0, 0, 0};
@@ -303,7 +362,7 @@ void NurbsSurface::evaluate_grid_into(const double* us, long n_u, const double* 
     N.resize(static_cast<size_t>(n) * (p + 1));
     for (long k = 0; k < n; ++k) {
       const double t = std::clamp(ts[k], lo, hi);
-      spans[k] = loc->find(U, t);
+      spans[k] = loc->find(t);
       basis_table_eval<0>(p, spans[k], t, U, inv, &N[k * (p + 1)]);
     }
   };
