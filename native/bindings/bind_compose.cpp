@@ -169,6 +169,21 @@ void bind_compose(py::module_& m) {
       "blend_tension"_a = 1.0, "blend_rows"_a = 8);
 
   m.def(
+      "_hull_bulb_seam",
+      [](const NurbsSurface& hull, const NurbsSurface& bulb, int bulb_v, double tolerance) {
+        ComposeOptions o;
+        o.bulb_v = bulb_v;
+        o.tolerance = tolerance;
+        HullBulbSeam r = [&] {
+          py::gil_scoped_release release;
+          return hull_bulb_seam(hull, bulb, o);
+        }();
+        return py::make_tuple(r.hull, curve_dict(r.seam));
+      },
+      "hull"_a, "bulb"_a, "bulb_v"_a = 24, "tolerance"_a = 1e-7,
+      "(oriented hull, seam dict) of compose_hull([hull, bulb]) without meshing (see compose.hpp).");
+
+  m.def(
       "_blend_surface",
       [](const NurbsSurface& a, py::handle ba, const NurbsSurface& b, py::handle bb, int samples, double tension,
          int check_samples) {

@@ -469,6 +469,10 @@ def _form_curve_derivatives(params: dict, n_control: typing.SupportsInt | typing
     """
     Testing hook: constraints, Jacobian, sum lambda_i Hess c_i, objective, gradient and Hessian at z.
     """
+def _hull_bulb_seam(hull: NurbsSurface, bulb: NurbsSurface, bulb_v: typing.SupportsInt | typing.SupportsIndex = 24, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07) -> tuple[NurbsSurface, dict]:
+    """
+    (oriented hull, seam dict) of compose_hull([hull, bulb]) without meshing (see compose.hpp).
+    """
 def _intersect_surfaces(a: NurbsSurface, b: NurbsSurface, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, subdivisions: typing.SupportsInt | typing.SupportsIndex = 12, step: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> list:
     ...
 def _linear_form_curve(name: str, abscissae: typing.Any, degree: typing.SupportsInt | typing.SupportsIndex, yB: typing.Any, yE: typing.Any, slopeB: typing.Any, slopeE: typing.Any, area: typing.Any, xC: typing.Any, area_from: typing.Any, points: typing.Any, y_lower: typing.Any = None, y_upper: typing.Any = None) -> NurbsCurve:

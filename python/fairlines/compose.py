@@ -398,8 +398,16 @@ def seam_blend_boundaries(union: ComposedHull, *, clearance_u: float = 0.05, cle
     below a raised forefoot). On the bulb the section ``bulb_clearance`` ahead of the seam's
     foremost point. Returns (on_hull (k, 2), ("u", u_b)), or the reason as a string when no
     such boundary fits on the hull."""
-    uv = union.intersection_curves[0]["uv_a"]
-    hull = union.trimmed_surfaces[0][0]
+    return _boundaries_around_seam(union.trimmed_surfaces[0][0], union.intersection_curves[0],
+                                   clearance_u=clearance_u, clearance_v=clearance_v,
+                                   bulb_clearance=bulb_clearance, points=points)
+
+
+def _boundaries_around_seam(hull: NurbsSurface, seam: dict, *, clearance_u: float, clearance_v: float,
+                            bulb_clearance: float, points: int):
+    """seam_blend_boundaries from the oriented hull and the seam (a dict with ``uv_a`` on the
+    hull, ``uv_b`` on the bulb) alone, so that callers without the union mesh can use it."""
+    uv = seam["uv_a"]
     u0, u1 = hull.knots_u[0], hull.knots_u[-1]
     v0, v1 = hull.knots_v[0], hull.knots_v[-1]
     tol = 1e-6 * (u1 - u0)
@@ -428,7 +436,7 @@ def seam_blend_boundaries(union: ComposedHull, *, clearance_u: float = 0.05, cle
     phi = np.linspace(0.0, phi_end, points)
     on_hull = np.column_stack([u1 - du * np.sin(phi + (0.5 * np.pi if phi_end < np.pi else 0.0)),
                                tc - R * np.cos(phi) if phi_end == np.pi else tc + R * np.sin(phi)])
-    on_bulb = ("u", float(union.intersection_curves[0]["uv_b"][:, 0].max()) + bulb_clearance)
+    on_bulb = ("u", float(seam["uv_b"][:, 0].max()) + bulb_clearance)
     return on_hull, on_bulb
 
 
@@ -469,11 +477,15 @@ def seam_blend(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, clearan
     and bulb, then :func:`blend_surface`. The result goes into ``compose([hull, bulb, blend])``
     with the same hull (orientation is idempotent). Raises ValueError when the bulb cannot meet
     the hull or no boundary fits (the message says why)."""
-    union = compose([hull, bulb])
-    bounds = seam_blend_boundaries(union, clearance_u=clearance_u, clearance_v=clearance_v,
-                                   bulb_clearance=bulb_clearance)
+    surface_b = bulb.surface if isinstance(bulb, BulbousBow) else bulb
+    if not isinstance(hull, NurbsSurface) or not isinstance(surface_b, NurbsSurface):
+        raise ValueError(f"seam_blend takes NurbsSurface hull and bulb; got {type(hull).__name__}, "
+                         f"{type(surface_b).__name__}")
+    # The seam of compose([hull, bulb]) (same tracing, same checks) without meshing the
+    # union, which is all the boundaries need: the union mesh was most of this call's time.
+    oriented, seam = _native._hull_bulb_seam(hull, surface_b)
+    bounds = _boundaries_around_seam(oriented, seam, clearance_u=clearance_u, clearance_v=clearance_v,
+                                     bulb_clearance=bulb_clearance, points=65)
     if isinstance(bounds, str):
         raise ValueError(f"no blend fits between hull and bulb: {bounds}")
-    surface_b = bulb.surface if isinstance(bulb, BulbousBow) else bulb
-    return blend_surface(union.trimmed_surfaces[0][0], bounds[0], surface_b, bounds[1], samples=samples,
-                         tension=tension)
+    return blend_surface(oriented, bounds[0], surface_b, bounds[1], samples=samples, tension=tension)

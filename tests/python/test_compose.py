@@ -350,6 +350,18 @@ def test_seam_blend_is_c1_and_composes_with_the_original_hull(hull, bulb):
         fl.seam_blend(hull, fl.BulbousBow(**dict(SHIP, x_fp=L + 60.0)))
 
 
+def test_seam_blend_equals_the_blend_around_the_union_seam(hull, bulb):
+    """seam_blend traces the seam without meshing the union (for the Blender latency); its
+    blend must be the one built from compose([hull, bulb])'s seam, bit for bit."""
+    union = fl.compose([hull, bulb])
+    on_hull, on_bulb = fl.seam_blend_boundaries(union)
+    ref = fl.blend_surface(union.trimmed_surfaces[0][0], on_hull, bulb.surface, on_bulb, tension=0.6)
+    got = fl.seam_blend(hull, bulb, tension=0.6)
+    assert np.array_equal(got.boundary_a, ref.boundary_a) and got.boundary_b == ref.boundary_b
+    assert np.array_equal(got.surface.control_points, ref.surface.control_points)
+    assert got.at_a == ref.at_a and got.at_b == ref.at_b
+
+
 def test_blend_ending_on_the_centre_plane_is_c1_there():
     """Both boundaries end on y = 0 (a stem and a bulb top centre line): the blend's end
     section must stay in the centre plane and still be tangent to both surfaces there, also
