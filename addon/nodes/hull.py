@@ -249,13 +249,16 @@ class FLNodeBareHull(FairlinesNode, bpy.types.Node):
         skin = hull.skin()
         info = "%d x %d control points\nsection fit max %.3g m" % (
             surface.control_points.shape[0], surface.control_points.shape[1], skin.section_fit_max)
-        out = {"Surface": surface}
+        out = {"Surface": surface, "__info__": info}
         if self.hydrostatics:
             # The node shows volume, LCB and Cb, not the SAC: no SAC stations, and 4 Gauss points
             # per span (on the Panamax forebody the same volume and LCB as 8 to 1e-11, in a
-            # sixth of the time: this runs on every hull change).
-            h = hull.hydrostatics(gauss=4, sac_stations=2)
-            out.update({"Volume": float(h.volume), "LCB": float(h.lcb), "Cb": float(h.cb)})
-            info += "\nV %.6g m3, LCB %.4g m, Cb %.4f" % (h.volume, h.lcb, h.cb)
-        out["__info__"] = info
+            # sixth of the time: this runs on every hull change). Nothing on the way to the
+            # meshes needs them, so they are a deferred job (evaluator.py): done when a node
+            # reads Volume / LCB / Cb, else right after the meshes are in the scene.
+            def hydrostatics():
+                h = hull.hydrostatics(gauss=4, sac_stations=2)
+                return {"Volume": float(h.volume), "LCB": float(h.lcb), "Cb": float(h.cb),
+                        "__info__": "\nV %.6g m3, LCB %.4g m, Cb %.4f" % (h.volume, h.lcb, h.cb)}
+            out["__later__"] = hydrostatics
         return out
