@@ -132,13 +132,24 @@ class FLNodeBlendSurface(FairlinesNode, bpy.types.Node):
         hull, bulb = inputs["Hull"], inputs["Bulb"]
         if hull is None or bulb is None:
             raise NodeError("Connect the bare hull and the bulb surfaces")
-        blend = fl.seam_blend(hull, bulb, clearance_u=inputs["Clearance U"],
-                                   clearance_v=inputs["Clearance V"], bulb_clearance=inputs["Bulb Clearance"],
-                                   tension=inputs["Tension"], samples=inputs["Sections"])
-        info = "max normal angle %.3f deg at hull, %.3f deg at bulb\nmax gap %.2g m" % (
-            blend.at_a["max_angle_deg"], blend.at_b["max_angle_deg"],
-            max(blend.at_a["max_gap"], blend.at_b["max_gap"]))
-        return {"Blend": blend, "Surface": blend.surface, "__info__": info}
+        samples = inputs["Sections"]
+        if samples < 4:
+            raise NodeError("Sections is %d; expected at least 4" % samples)
+        # Where the blend goes is all Compose needs (it skins the blend at its mesh resolution
+        # itself): that goes on at once. This node's own surface and its measured continuity
+        # (fl.seam_blend = placement + surface) are a deferred job (evaluator.py), run when
+        # something reads Surface or else once the meshes are in the scene.
+        placement = fl.seam_blend_placement(hull, bulb, clearance_u=inputs["Clearance U"],
+                                            clearance_v=inputs["Clearance V"],
+                                            bulb_clearance=inputs["Bulb Clearance"], tension=inputs["Tension"])
+
+        def surface():
+            blend = placement.blend_surface(samples=samples)
+            info = "max normal angle %.3f deg at hull, %.3f deg at bulb\nmax gap %.2g m" % (
+                blend.at_a["max_angle_deg"], blend.at_b["max_angle_deg"],
+                max(blend.at_a["max_gap"], blend.at_b["max_gap"]))
+            return {"Surface": blend.surface, "__info__": info}
+        return {"Blend": placement, "__later__": surface}
 
 
 _COMPOSE_OUTPUT = [("full", "Full Hull", "Mirrored about y = 0 and welded by the engine (set Mirror off "

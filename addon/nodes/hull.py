@@ -152,8 +152,12 @@ class FLNodeBasicCurve(FairlinesNode, bpy.types.Node):
         if self.curve not in src.description.curves:
             raise NodeError("The description has no '%s' curve" % self.curve)
         from fairlines.hull import _ALIASES
-        desc = copy.deepcopy(src.description)
-        spec = desc.curves[self.curve]
+        # A new description that shares everything with the upstream one except the curve this
+        # node edits (Hull.set and the alias clean-up below touch only that curve's spec). A
+        # deep copy of the whole description took longer than solving the curve.
+        desc = copy.copy(src.description)
+        desc.curves = dict(desc.curves)
+        spec = desc.curves[self.curve] = copy.deepcopy(desc.curves[self.curve])
         hull = fl.Hull(desc)
         for sock, key in _BASIC_PARAMS:
             value = inputs[sock]

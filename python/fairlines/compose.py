@@ -17,6 +17,7 @@ from . import _native
 from ._native import NurbsSurface
 
 __all__ = [
+    "BlendPlacement",
     "BlendSurface",
     "BulbousBow",
     "blend_surface",
@@ -29,6 +30,7 @@ __all__ = [
     "measure_kracht",
     "mesh_hydrostatics",
     "seam_blend",
+    "seam_blend_placement",
     "KRACHT_NAMES",
 ]
 
@@ -223,8 +225,9 @@ def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int 
     blend_kw = {}
     if len(subs) == 3:
         bl = subs.pop()
-        if not isinstance(bl, BlendSurface):
-            raise ValueError(f"subdomains[2] is {type(bl).__name__}; expected a BlendSurface from blend_surface()")
+        if not isinstance(bl, (BlendSurface, BlendPlacement)):
+            raise ValueError(f"subdomains[2] is {type(bl).__name__}; expected a BlendSurface from blend_surface() "
+                             "or a BlendPlacement from seam_blend_placement()")
         bb = bl.boundary_b
         if not (isinstance(bb, tuple) and len(bb) == 2 and bb[0] == "u"):
             raise ValueError(f"the blend's bulb boundary is {bb!r}; expected a bulb section ('u', value)")
@@ -367,6 +370,27 @@ class BlendSurface:
         return max(self.at_a["max_angle_deg"], self.at_b["max_angle_deg"])
 
 
+@dataclass(frozen=True)
+class BlendPlacement:
+    """Where the blend around a hull/bulb seam goes (:func:`seam_blend_placement`): the hull
+    in the orient_bare_hull convention, the bulb surface, the blend's boundary on each
+    (``boundary_a`` (k, 2) (u, v) on the hull, ``boundary_b`` ``("u", u_b)`` on the bulb) and
+    its tension. That is all compose() takes from a blend (it skins the blend at the mesh
+    resolution itself), so ``compose([hull, bulb, placement])`` equals ``compose([hull, bulb,
+    placement.blend_surface()])`` without skinning a surface it does not use."""
+
+    hull: NurbsSurface
+    bulb: NurbsSurface
+    boundary_a: np.ndarray
+    boundary_b: tuple
+    tension: float
+
+    def blend_surface(self, samples: int = 61, check_samples: int = 200) -> BlendSurface:
+        """The blending surface itself (see :func:`blend_surface`)."""
+        return blend_surface(self.hull, self.boundary_a, self.bulb, self.boundary_b, samples=samples,
+                             tension=self.tension, check_samples=check_samples)
+
+
 def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, boundary_b, *,
                   samples: int = 61, tension: float = 1.0, check_samples: int = 200) -> BlendSurface:
     """Blending surface between two surfaces with C1 (tangent-plane) continuity along both
@@ -469,14 +493,13 @@ def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface
     return out
 
 
-def seam_blend(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, clearance_u: float = 0.05,
-               clearance_v: float = 0.01, bulb_clearance: float = 0.02, tension: float = 0.6,
-               samples: int = 61) -> BlendSurface:
-    """The blending surface around the seam a bulb makes on a bare hull, as one call (the
-    Blender Blend node): the boundaries of :func:`seam_blend_boundaries` on the union of hull
-    and bulb, then :func:`blend_surface`. The result goes into ``compose([hull, bulb, blend])``
-    with the same hull (orientation is idempotent). Raises ValueError when the bulb cannot meet
-    the hull or no boundary fits (the message says why)."""
+def seam_blend_placement(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, clearance_u: float = 0.05,
+                         clearance_v: float = 0.01, bulb_clearance: float = 0.02,
+                         tension: float = 0.6) -> BlendPlacement:
+    """Where the blend around the seam a bulb makes on a bare hull goes: the boundaries of
+    :func:`seam_blend_boundaries` on the union of hull and bulb, as a :class:`BlendPlacement`
+    (compose() takes it in place of the surface; ``.blend_surface()`` skins it). Raises
+    ValueError when the bulb cannot meet the hull or no boundary fits (the message says why)."""
     surface_b = bulb.surface if isinstance(bulb, BulbousBow) else bulb
     if not isinstance(hull, NurbsSurface) or not isinstance(surface_b, NurbsSurface):
         raise ValueError(f"seam_blend takes NurbsSurface hull and bulb; got {type(hull).__name__}, "
@@ -488,4 +511,16 @@ def seam_blend(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, clearan
                                      bulb_clearance=bulb_clearance, points=65)
     if isinstance(bounds, str):
         raise ValueError(f"no blend fits between hull and bulb: {bounds}")
-    return blend_surface(oriented, bounds[0], surface_b, bounds[1], samples=samples, tension=tension)
+    return BlendPlacement(oriented, surface_b, bounds[0], bounds[1], float(tension))
+
+
+def seam_blend(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, clearance_u: float = 0.05,
+               clearance_v: float = 0.01, bulb_clearance: float = 0.02, tension: float = 0.6,
+               samples: int = 61) -> BlendSurface:
+    """The blending surface around the seam a bulb makes on a bare hull, as one call:
+    :func:`seam_blend_placement`, then its surface (:func:`blend_surface`). The result goes
+    into ``compose([hull, bulb, blend])`` with the same hull (orientation is idempotent).
+    Raises ValueError when the bulb cannot meet the hull or no boundary fits (the message
+    says why)."""
+    return seam_blend_placement(hull, bulb, clearance_u=clearance_u, clearance_v=clearance_v,
+                                bulb_clearance=bulb_clearance, tension=tension).blend_surface(samples=samples)

@@ -362,6 +362,18 @@ def test_seam_blend_equals_the_blend_around_the_union_seam(hull, bulb):
     assert got.at_a == ref.at_a and got.at_b == ref.at_b
 
 
+def test_compose_takes_the_blend_placement_for_the_surface(hull, bulb):
+    """compose() only needs where the blend goes: with the placement it gives the mesh it gives
+    with the skinned blend (the Blender Compose node relies on it)."""
+    placement = fl.seam_blend_placement(hull, bulb)
+    a = fl.compose([hull, bulb, placement])
+    b = fl.compose([hull, bulb, placement.blend_surface()])
+    assert np.array_equal(a.mesh.vertices, b.mesh.vertices) and np.array_equal(a.mesh.faces, b.mesh.faces)
+    assert a.blend_continuity == b.blend_continuity
+    blend = fl.seam_blend(hull, bulb)
+    assert np.array_equal(placement.blend_surface().surface.control_points, blend.surface.control_points)
+
+
 def test_blend_ending_on_the_centre_plane_is_c1_there():
     """Both boundaries end on y = 0 (a stem and a bulb top centre line): the blend's end
     section must stay in the centre plane and still be tangent to both surfaces there, also
