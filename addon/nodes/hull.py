@@ -194,7 +194,16 @@ class FLNodeSections(FairlinesNode, bpy.types.Node):
         if n < 2:
             raise NodeError("Samples is %d; expected at least 2" % n)
         sections = list(_hull(inputs).sections)
-        lines = [np.asarray(c.evaluate(np.linspace(*c.domain, n)), dtype=np.float64) for c in sections]
+        # The sections share their parameter domain: one sample vector for all (np.linspace per
+        # section cost as much as evaluating the curves).
+        params = {}
+        lines = []
+        for c in sections:
+            dom = tuple(c.domain)
+            t = params.get(dom)
+            if t is None:
+                t = params[dom] = np.linspace(dom[0], dom[1], n)
+            lines.append(np.asarray(c.evaluate(t), dtype=np.float64))
         return {"Sections": sections, "Lines": LinesData(lines), "__info__": "%d sections" % len(sections)}
 
 
