@@ -415,6 +415,9 @@ def t_hull_nodes(tree):
     check(abs((V1 - V0) / 500.0 - 1) < 0.05, "bare hull volume grew %.1f m3, SAC asks 500" % (V1 - V0))
     f1 = volume(fore, False)
     check(f1 > f0 + 250.0, "forebody volume %.1f -> %.1f m3" % (f0, f1))
+    smooth = np.zeros(len(fore.data.polygons), dtype=bool)
+    fore.data.polygons.foreach_get("use_smooth", smooth)
+    check(smooth.all(), "the re-built forebody mesh has flat faces")
     results["sac_volume_change"] = {"bare_hull_m3": [round(V0, 1), round(V1, 1)], "forebody_m3": [round(f0, 1), round(f1, 1)]}
     # A node reading a deferred output gets it at once, in the same tick.
     reader = tree.nodes.new(ids.NODE_SPHERE)  # a sphere of radius V m: shows what it was given
