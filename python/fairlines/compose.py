@@ -196,7 +196,7 @@ class ComposedHull:
 
 def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int = 48,
             hull_v: int = 20, bulb_u: int = 16, bulb_v: int = 24, tolerance: float = 1e-7,
-            margin: float = 0.3, blend_rows: int = 8) -> ComposedHull:
+            margin: float = 0.3, blend_rows: int = 8, blend_check_samples: int = 200) -> ComposedHull:
     """Boolean composition of hull subdomains into one closed half hull.
 
     subdomains  [bare_hull], [bare_hull, bulb] or [bare_hull, bulb, blend]: NurbsSurface (or
@@ -212,6 +212,11 @@ def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int 
                 removed, and the hull's part inside the bulb).
     hull_u, hull_v, bulb_u, bulb_v   tessellation cells; tolerance: intersection (m, <= 1e-6);
     margin      clearance between the seam and whole hull cells (fraction of a cell).
+    blend_check_samples   points per boundary at which the blend's continuity
+                ``blend_continuity`` is measured (>= 2; each is a projection onto hull or
+                bulb). The same figures come from ``boundary_continuity(c.blend, False,
+                c.trimmed_surfaces[0][0], n)`` and ``(c.blend, True, bulb, n)``, so a caller
+                can pass 2 and measure them later.
 
     Raises ValueError ("bulb cannot meet the hull ...") when the bulb does not cross the hull
     in one seam from the keel/stem line around to the stem.
@@ -232,7 +237,8 @@ def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int 
         if not (isinstance(bb, tuple) and len(bb) == 2 and bb[0] == "u"):
             raise ValueError(f"the blend's bulb boundary is {bb!r}; expected a bulb section ('u', value)")
         blend_kw = dict(blend_hull_uv=np.asarray(bl.boundary_a, float), blend_bulb_u=float(bb[1]),
-                        blend_tension=float(bl.tension), blend_rows=int(blend_rows))
+                        blend_tension=float(bl.tension), blend_rows=int(blend_rows),
+                        blend_check_samples=int(blend_check_samples))
     surfaces = [s.surface if isinstance(s, BulbousBow) else s for s in subs]
     for i, s in enumerate(surfaces):
         if not isinstance(s, NurbsSurface):

@@ -271,6 +271,11 @@ def t_bulb_length(tree):
                          np.asarray(ref_blend.surface.control_points)), "the Blend node's surface is not fl.seam_blend's")
     check(blend_node.fl_info != blend_info0 and "%.3f deg at hull" % ref_blend.at_a["max_angle_deg"] in blend_node.fl_info,
           "the Blend node's info: %s" % blend_node.fl_info)
+    # The Compose node measures its blend's continuity in a deferred job: the package's figures.
+    ref_c = fl.compose([ev.outputs_of(tree, "Refine")["Surface"], ev.outputs_of(tree, "Bulbous Bow")["Surface"],
+                        ref_blend])
+    want = "blend %.3f / %.3f deg" % tuple(d["max_angle_deg"] for d in ref_c.blend_continuity)
+    check(want in tree.nodes["Compose"].fl_info, "Compose info %r lacks %r" % (tree.nodes["Compose"].fl_info, want))
     x1 = coords(fore)[:, 0].max()
     check(abs((x1 - x0) / (0.007 * L) - 1) < 0.02, "nose moved %.3f m, expected %.3f" % (x1 - x0, 0.007 * L))
     fwd1 = forward_volume(fore, L)
@@ -305,8 +310,9 @@ def t_bulb_length(tree):
     finally:
         ev.SLICE_MS = 30.0
     # One node per tick, plus possibly one tick that only confirms the rest is up to date, then
-    # one for the Blend node's deferred surface (after the forebody is in the scene).
-    check(ticks in (5, 6), "4 bulb nodes and a deferred job took %d timer ticks" % ticks)
+    # one per deferred job (after the forebody is in the scene): the Blend node's surface and
+    # the Compose node's continuity figures.
+    check(ticks in (6, 7), "4 bulb nodes and 2 deferred jobs took %d timer ticks" % ticks)
     check(abs(volume(fore, False) / v0 - 1) < 1e-9, "sliced evaluation did not restore the forebody")
     # A topology change (resolution) rebuilds the mesh.
     n0 = len(fore.data.vertices)

@@ -374,6 +374,20 @@ def test_compose_takes_the_blend_placement_for_the_surface(hull, bulb):
     assert np.array_equal(placement.blend_surface().surface.control_points, blend.surface.control_points)
 
 
+def test_blend_continuity_can_be_measured_after_compose(hull, bulb):
+    """compose(blend_check_samples=2) meshes the same hull, and boundary_continuity on its blend
+    gives the figures compose() reports by default (the Blender Compose node defers them)."""
+    placement = fl.seam_blend_placement(hull, bulb)
+    full = fl.compose([hull, bulb, placement])
+    quick = fl.compose([hull, bulb, placement], blend_check_samples=2)
+    assert np.array_equal(full.mesh.vertices, quick.mesh.vertices) and np.array_equal(full.mesh.faces, quick.mesh.faces)
+    later = (fl.boundary_continuity(quick.blend, False, quick.trimmed_surfaces[0][0], 200),
+             fl.boundary_continuity(quick.blend, True, bulb.surface, 200))
+    assert later == full.blend_continuity
+    with pytest.raises(ValueError, match="blend_check_samples"):
+        fl.compose([hull, bulb, placement], blend_check_samples=1)
+
+
 def test_blend_ending_on_the_centre_plane_is_c1_there():
     """Both boundaries end on y = 0 (a stem and a bulb top centre line): the blend's end
     section must stay in the centre plane and still be tangent to both surfaces there, also

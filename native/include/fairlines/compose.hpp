@@ -22,6 +22,7 @@ struct ComposeOptions {
   double margin = 0.3;      ///< clearance kept between the seam and whole hull cells (in cells)
   double plane_tolerance = 1e-6;  ///< relative tolerance of the centre plane / deck / aft checks
   int blend_rows = 8;       ///< blend cells from the hull boundary to the bulb boundary (>= 1)
+  int blend_check_samples = 200;  ///< boundary points at which the blend's continuity is measured (>= 2)
 };
 
 /// The blending subdomain of a composition: its boundary on the hull (a (k, 2) (u, v)

@@ -361,6 +361,8 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
   if (o.bulb_v < 4) detail::fail("bulb_v is ", o.bulb_v, "; expected >= 4");
   if (!(o.margin > 0.0) || o.margin > 1.0) detail::fail("margin is ", o.margin, "; expected a fraction of a cell in (0, 1]");
   if (o.blend_rows < 1) detail::fail("blend_rows is ", o.blend_rows, "; expected >= 1");
+  if (o.blend_check_samples < 2)
+    detail::fail("blend_check_samples is ", o.blend_check_samples, "; expected >= 2");
   if (blend && !bulb) detail::fail("a blend needs a bulb to blend into; got no bulb");
   const NurbsSurface H = orient_bare_hull(hull_in, o.plane_tolerance);
   ComposedHull out{TriMesh{}, Eigen::VectorXi(), {}, {}, Eigen::VectorXi(), 0.0, 0.0, H, {}, {}, {}};
@@ -417,7 +419,7 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
       constexpr int kSectionsPerColumn = 4;  // the skin is finer than the mesh columns
       bo.samples = kSectionsPerColumn * NV + 1;
       bo.tension = blend->tension;
-      bo.check_samples = 200;  // continuity measured every half per cent of the boundary
+      bo.check_samples = o.blend_check_samples;  // default: every half per cent of the boundary
       const BlendSurface bs = blend_surface(H, hb, B, bb, bo);
       out.blend.push_back(bs.surface);
       out.blend_at_hull = bs.at_a;
