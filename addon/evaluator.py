@@ -13,6 +13,13 @@ coalescing a burst of changes into one evaluation. The timer works in slices of 
 SLICE_MS: when a slice is used up between two nodes it hands control back to Blender's event
 loop and carries on at the next tick, so a long graph does not freeze the interface (the cache
 keys make resuming trivial: nodes already re-run are up to date).
+
+Deferred work: a node may hand back part of its work as a job (``"__later__"`` in its outputs)
+for outputs and info that nothing may need at once, such as the bare hull's hydrostatics. The
+job runs when a downstream node reads one of the outputs it provides, or else after the whole
+tree has been evaluated: from the timer, one tick later, so that Blender first redraws with the
+new meshes; from flush(), before it returns. Either way every value ends up as if the node had
+computed it all in one go; a job never delays the mesh when nothing downstream reads its outputs.
 """
 
 import atexit
@@ -26,15 +33,17 @@ from .sockets import compatible
 
 
 class Entry:
-    __slots__ = ("key", "outputs", "version", "ms", "ok")
+    __slots__ = ("key", "outputs", "version", "ms", "ok", "later", "info")
 
-    def __init__(self, key, outputs, version, ms, ok):
+    def __init__(self, key, outputs, version, ms, ok, later=None, info=""):
         self.key, self.outputs, self.version, self.ms, self.ok = key, outputs, version, ms, ok
+        self.later, self.info = later, info  # deferred job (or None) and the info shown before it
 
 
 SLICE_MS = 30.0
 _cache = {}          # (tree name, node name) -> Entry
 _pending = set()     # names of trees waiting for evaluation
+_deferred = []       # cache keys of entries that still hold a deferred job, oldest first
 _busy = False
 last_stats = {"tree": "", "evaluated": [], "ms": 0.0}
 
@@ -76,21 +85,75 @@ def _on_timer():
         print("Fairlines: evaluation stopped: %s: %s" % (type(exc).__name__, exc))
         _pending.clear()
         return None
-    if _pending:
+    if _pending or _deferred:
         return 0.0  # more to do: run again right after Blender has handled its events
     return None
 
 
-def flush(deadline=None):
-    """Evaluate every queued tree (the timer does this in slices; tests and scripts call it
-    without a deadline to finish now)."""
-    while _pending:
-        name = _pending.pop()
-        tree = bpy.data.node_groups.get(name)
-        if is_fairlines_tree(tree):
-            evaluate(tree, deadline)
-            if deadline is not None and time.perf_counter() > deadline:
-                return
+def flush(deadline=None, later=True):
+    """Evaluate every queued tree, then run the deferred jobs (the timer does this in slices
+    and leaves the jobs to a later tick than the trees, so the new meshes are drawn first;
+    tests and scripts call it without a deadline to finish now). later=False leaves the
+    deferred jobs queued (the latency bench times the meshes alone that way)."""
+    evaluated = False
+    while _pending or (later and _deferred):
+        while _pending:
+            name = _pending.pop()
+            tree = bpy.data.node_groups.get(name)
+            if is_fairlines_tree(tree):
+                evaluate(tree, deadline)
+                evaluated = True
+                if deadline is not None and time.perf_counter() > deadline:
+                    return
+        if not later or (deadline is not None and evaluated):
+            return
+        _run_deferred(deadline)
+        if deadline is not None and time.perf_counter() > deadline:
+            return
+
+
+def _run_deferred(deadline=None):
+    """Run queued deferred jobs, oldest first, until done or past the deadline."""
+    while _deferred:
+        ckey = _deferred.pop(0)
+        tree = bpy.data.node_groups.get(ckey[0])
+        entry = _cache.get(ckey)
+        node = tree.nodes.get(ckey[1]) if is_fairlines_tree(tree) else None
+        if entry is not None and entry.later is not None and node is not None:
+            _finish(tree, node, entry)
+        if deadline is not None and time.perf_counter() > deadline:
+            return
+
+
+def _finish(tree, node, entry):
+    """Run an entry's deferred job: its outputs join the entry's, its info the node's. A failing
+    job fails the node as a failing compute() would: red, outputs dropped, and its version bumped
+    so that the nodes which already used it re-run (and show they are blocked)."""
+    global _busy
+    job, entry.later = entry.later, None
+    t0 = time.perf_counter()
+    try:
+        more = job() or {}
+        ok, message = True, ""
+    except Exception as exc:
+        more, ok, message = {}, False, _message(exc)
+    entry.ms += (time.perf_counter() - t0) * 1e3
+    busy, _busy = _busy, True  # writing the node's status must not queue an evaluation
+    try:
+        if ok:
+            info = entry.info + more.pop("__info__", "")
+            entry.outputs.update(more)
+            _show(node, "OK", "", entry.ms, info)
+        else:
+            entry.ok, entry.outputs = False, {}
+            entry.version += 1
+            _show(node, "ERROR", message, entry.ms)
+    finally:
+        _busy = busy
+    if not ok:
+        _pending.add(tree.name)  # the nodes downstream of it must now show they are blocked
+        if not bpy.app.timers.is_registered(_on_timer):
+            bpy.app.timers.register(_on_timer, first_interval=0.0, persistent=True)
 
 
 def clear(tree_name=None, outputs_only=False):
@@ -113,6 +176,9 @@ def evaluate_all():
 
 def outputs_of(tree, node_name):
     entry = _cache.get((tree.name, node_name))
+    node = tree.nodes.get(node_name)
+    if entry is not None and entry.later is not None and node is not None:
+        _finish(tree, node, entry)  # whoever asks gets every output
     return None if entry is None or not entry.ok else entry.outputs
 
 
@@ -236,6 +302,8 @@ def _run_node(tree, node, links):
                     src.bl_label, src.name, sock.bl_label, sock.name)
                 continue
             up = _cache.get((tree.name, src.node.name))
+            if up is not None and up.later is not None and src.name not in up.outputs:
+                _finish(tree, src.node, up)  # this output is needed now: do the deferred part
             if up is None or not up.ok:
                 blocked = src.node.name
                 continue
@@ -268,6 +336,11 @@ def _run_node(tree, node, links):
         outputs, ok, message = {}, False, _message(exc)
     ms = (time.perf_counter() - t0) * 1e3
     info = outputs.pop("__info__", "") if ok else None
-    _show(node, "OK" if ok else "ERROR", message, ms, info)
-    _cache[ckey] = Entry(key, outputs, version, ms, ok)
+    later = outputs.pop("__later__", None) if ok else None
+    # With a deferred job the node keeps showing its previous info until the job completes it
+    # (a shorter info for one redraw would make the node jump in size on every slider step).
+    _show(node, "OK" if ok else "ERROR", message, ms, info if later is None else None)
+    _cache[ckey] = Entry(key, outputs, version, ms, ok, later, info or "")
+    if later is not None:
+        _deferred.append(ckey)
     return True

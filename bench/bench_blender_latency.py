@@ -7,7 +7,10 @@ length (C_LPR on Bulbous Bow -> Blend -> Compose (union, full hull) -> Forebody 
 hull knot move (Insert Knot -> Tessellate 48 x 96 -> Curvature -> bare hull object, Iso Lines ->
 curve object, and Blend -> Compose -> Forebody object, which hang off the refined hull too);
 and the forebody's displaced volume on the SAC node (the whole chain: basic curve, sections,
-bare hull with its hydrostatics, everything after it).
+bare hull, everything after it). "To mesh" is the add-on's work until the meshes are in
+their objects, which is what its timer does before Blender draws them; the bare hull's
+hydrostatics are a deferred job that runs in the timer's next tick (addon/evaluator.py),
+reported apart as "incl. deferred work".
 Usage: python bench/bench_blender_latency.py [--runs N]   (needs .venv-bpy: make blender-deps)
 """
 
@@ -42,9 +45,11 @@ def main():
     print("Blender %s (bpy module, Python %s), %d runs each" % (report["blender"], report["python"], a.runs))
     worst = 0.0
     for case, r in report["bench"].items():
-        print("  %-12s %6d vertices: median %6.2f ms to mesh, %6.2f ms incl. Geometry Nodes" % (
-            case, r["vertices"], r["median_ms_to_mesh"], r["median_ms_including_geometry_nodes"]))
-        print("    last run, per node: " + ", ".join("%s %.2f" % kv for kv in r["last_run_nodes_ms"].items()))
+        print("  %-12s %6d vertices: median %6.2f ms to mesh, %6.2f ms incl. Geometry Nodes, "
+              "%6.2f ms incl. deferred work" % (case, r["vertices"], r["median_ms_to_mesh"],
+                                                r["median_ms_including_geometry_nodes"],
+                                                r["median_ms_including_deferred"]))
+        print("    last run, per node (with its deferred job): " + ", ".join("%s %.2f" % kv for kv in r["last_run_nodes_ms"].items()))
         worst = max(worst, r["median_ms_to_mesh"])
     print("  goal <= %.0f ms: %s" % (GOAL_MS, "met" if worst <= GOAL_MS else "NOT met"))
 

@@ -14,6 +14,10 @@ is done here and in evaluator.py, so a new engine operator is one small class:
         outputs_spec = [(ids.SOCKET_SURFACE, "Surface")]
         def compute(self, inputs):
             return {"Surface": engine_call(inputs["Surface"])}
+
+Besides its outputs, compute() may return "__info__" (text shown on the node) and "__later__":
+a job returning more outputs (and "__info__" to add) that the evaluator runs only once they
+are needed or the meshes are in the scene (evaluator.py, "Deferred work").
 """
 
 import bpy

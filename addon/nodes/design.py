@@ -132,13 +132,24 @@ class FLNodeBlendSurface(FairlinesNode, bpy.types.Node):
         hull, bulb = inputs["Hull"], inputs["Bulb"]
         if hull is None or bulb is None:
             raise NodeError("Connect the bare hull and the bulb surfaces")
-        blend = fl.seam_blend(hull, bulb, clearance_u=inputs["Clearance U"],
-                                   clearance_v=inputs["Clearance V"], bulb_clearance=inputs["Bulb Clearance"],
-                                   tension=inputs["Tension"], samples=inputs["Sections"])
-        info = "max normal angle %.3f deg at hull, %.3f deg at bulb\nmax gap %.2g m" % (
-            blend.at_a["max_angle_deg"], blend.at_b["max_angle_deg"],
-            max(blend.at_a["max_gap"], blend.at_b["max_gap"]))
-        return {"Blend": blend, "Surface": blend.surface, "__info__": info}
+        samples = inputs["Sections"]
+        if samples < 4:
+            raise NodeError("Sections is %d; expected at least 4" % samples)
+        # Where the blend goes is all Compose needs (it skins the blend at its mesh resolution
+        # itself): that goes on at once. This node's own surface and its measured continuity
+        # (fl.seam_blend = placement + surface) are a deferred job (evaluator.py), run when
+        # something reads Surface or else once the meshes are in the scene.
+        placement = fl.seam_blend_placement(hull, bulb, clearance_u=inputs["Clearance U"],
+                                            clearance_v=inputs["Clearance V"],
+                                            bulb_clearance=inputs["Bulb Clearance"], tension=inputs["Tension"])
+
+        def surface():
+            blend = placement.blend_surface(samples=samples)
+            info = "max normal angle %.3f deg at hull, %.3f deg at bulb\nmax gap %.2g m" % (
+                blend.at_a["max_angle_deg"], blend.at_b["max_angle_deg"],
+                max(blend.at_a["max_gap"], blend.at_b["max_gap"]))
+            return {"Surface": blend.surface, "__info__": info}
+        return {"Blend": placement, "__later__": surface}
 
 
 _COMPOSE_OUTPUT = [("full", "Full Hull", "Mirrored about y = 0 and welded by the engine (set Mirror off "
@@ -176,7 +187,11 @@ class FLNodeCompose(FairlinesNode, bpy.types.Node):
         if min(cells) < 2 or cells[0] * cells[1] + cells[2] * cells[3] > 2_000_000:
             raise NodeError("Cells must each be >= 2 (at most 2M in all)")
         subdomains = [hull] + ([bulb] if bulb is not None else []) + ([blend] if blend is not None else [])
-        composed = fl.compose(subdomains, hull_u=cells[0], hull_v=cells[1], bulb_u=cells[2], bulb_v=cells[3])
+        # The blend's continuity (shown on the node) is 400 projections onto hull and bulb and
+        # changes nothing in the mesh: the engine measures 2 points here and the 200 per
+        # boundary it measures by default are a deferred job below (same figures).
+        composed = fl.compose(subdomains, hull_u=cells[0], hull_v=cells[1], bulb_u=cells[2], bulb_v=cells[3],
+                              blend_check_samples=2)
         mesh = composed.full_mesh() if self.output == "full" else composed.mesh
         volume = composed.volume * (2.0 if self.output == "full" else 1.0)
         data = MeshData(np.asarray(mesh.vertices, dtype=np.float64), np.asarray(mesh.faces, dtype=np.int32))
@@ -184,6 +199,13 @@ class FLNodeCompose(FairlinesNode, bpy.types.Node):
             len(data.vertices), len(data.faces), volume, "both sides" if self.output == "full" else "half")
         if composed.intersection_curves:
             info += "\nseam gap %.2g m" % max(c["max_gap"] for c in composed.intersection_curves)
-        if composed.blend_continuity:
-            info += "\nblend %.3f / %.3f deg" % tuple(d["max_angle_deg"] for d in composed.blend_continuity)
-        return {"Mesh": data, "Volume": float(volume), "__info__": info}
+        out = {"Mesh": data, "Volume": float(volume), "__info__": info}
+        if composed.blend is not None:
+            surface_b = bulb.surface if isinstance(bulb, fl.BulbousBow) else bulb
+
+            def continuity():
+                at_hull = fl.boundary_continuity(composed.blend, False, composed.trimmed_surfaces[0][0], 200)
+                at_bulb = fl.boundary_continuity(composed.blend, True, surface_b, 200)
+                return {"__info__": "\nblend %.3f / %.3f deg" % (at_hull["max_angle_deg"], at_bulb["max_angle_deg"])}
+            out["__later__"] = continuity
+        return out

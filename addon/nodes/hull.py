@@ -152,8 +152,12 @@ class FLNodeBasicCurve(FairlinesNode, bpy.types.Node):
         if self.curve not in src.description.curves:
             raise NodeError("The description has no '%s' curve" % self.curve)
         from fairlines.hull import _ALIASES
-        desc = copy.deepcopy(src.description)
-        spec = desc.curves[self.curve]
+        # A new description that shares everything with the upstream one except the curve this
+        # node edits (Hull.set and the alias clean-up below touch only that curve's spec). A
+        # deep copy of the whole description took longer than solving the curve.
+        desc = copy.copy(src.description)
+        desc.curves = dict(desc.curves)
+        spec = desc.curves[self.curve] = copy.deepcopy(desc.curves[self.curve])
         hull = fl.Hull(desc)
         for sock, key in _BASIC_PARAMS:
             value = inputs[sock]
@@ -190,7 +194,16 @@ class FLNodeSections(FairlinesNode, bpy.types.Node):
         if n < 2:
             raise NodeError("Samples is %d; expected at least 2" % n)
         sections = list(_hull(inputs).sections)
-        lines = [np.asarray(c.evaluate(np.linspace(*c.domain, n)), dtype=np.float64) for c in sections]
+        # The sections share their parameter domain: one sample vector for all (np.linspace per
+        # section cost as much as evaluating the curves).
+        params = {}
+        lines = []
+        for c in sections:
+            dom = tuple(c.domain)
+            t = params.get(dom)
+            if t is None:
+                t = params[dom] = np.linspace(dom[0], dom[1], n)
+            lines.append(np.asarray(c.evaluate(t), dtype=np.float64))
         return {"Sections": sections, "Lines": LinesData(lines), "__info__": "%d sections" % len(sections)}
 
 
@@ -249,13 +262,16 @@ class FLNodeBareHull(FairlinesNode, bpy.types.Node):
         skin = hull.skin()
         info = "%d x %d control points\nsection fit max %.3g m" % (
             surface.control_points.shape[0], surface.control_points.shape[1], skin.section_fit_max)
-        out = {"Surface": surface}
+        out = {"Surface": surface, "__info__": info}
         if self.hydrostatics:
             # The node shows volume, LCB and Cb, not the SAC: no SAC stations, and 4 Gauss points
             # per span (on the Panamax forebody the same volume and LCB as 8 to 1e-11, in a
-            # sixth of the time: this runs on every hull change).
-            h = hull.hydrostatics(gauss=4, sac_stations=2)
-            out.update({"Volume": float(h.volume), "LCB": float(h.lcb), "Cb": float(h.cb)})
-            info += "\nV %.6g m3, LCB %.4g m, Cb %.4f" % (h.volume, h.lcb, h.cb)
-        out["__info__"] = info
+            # sixth of the time: this runs on every hull change). Nothing on the way to the
+            # meshes needs them, so they are a deferred job (evaluator.py): done when a node
+            # reads Volume / LCB / Cb, else right after the meshes are in the scene.
+            def hydrostatics():
+                h = hull.hydrostatics(gauss=4, sac_stations=2)
+                return {"Volume": float(h.volume), "LCB": float(h.lcb), "Cb": float(h.cb),
+                        "__info__": "\nV %.6g m3, LCB %.4g m, Cb %.4f" % (h.volume, h.lcb, h.cb)}
+            out["__later__"] = hydrostatics
         return out

@@ -104,8 +104,13 @@ class FLNodeIsoLines(FairlinesNode, bpy.types.Node):
         if cu < 0 or cv < 0 or n < 2 or (cu + cv) * n > 2_000_000:
             raise NodeError("Counts must be >= 0, samples >= 2 and (counts) x samples <= 2M")
         lines = []
+        params = {}  # iso-curves share their domain: one sample vector for all of them
         for direction, count, dom in (("u", cu, s.domain_u), ("v", cv, s.domain_v)):
             for t in np.linspace(dom[0], dom[1], count) if count > 1 else ([0.5 * (dom[0] + dom[1])] if count else []):
                 c = s.iso_curve(direction, float(t))
-                lines.append(np.asarray(c.evaluate(np.linspace(*c.domain, n)), dtype=np.float64))
+                cdom = tuple(c.domain)
+                ts = params.get(cdom)
+                if ts is None:
+                    ts = params[cdom] = np.linspace(cdom[0], cdom[1], n)
+                lines.append(np.asarray(c.evaluate(ts), dtype=np.float64))
         return {"Lines": LinesData(lines), "__info__": "%d lines" % len(lines)}

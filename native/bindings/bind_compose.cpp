@@ -145,7 +145,7 @@ void bind_compose(py::module_& m) {
       "_compose_hull",
       [](const NurbsSurface& hull, const NurbsSurface* bulb, int hull_u, int hull_v, int bulb_u, int bulb_v,
          double tolerance, double margin, py::handle blend_hull_uv, double blend_bulb_u, double blend_tension,
-         int blend_rows) {
+         int blend_rows, int blend_check_samples) {
         ComposeOptions o;
         o.hull_u = hull_u;
         o.hull_v = hull_v;
@@ -154,6 +154,7 @@ void bind_compose(py::module_& m) {
         o.tolerance = tolerance;
         o.margin = margin;
         o.blend_rows = blend_rows;
+        o.blend_check_samples = blend_check_samples;
         BlendSpec spec;
         const bool with_blend = !blend_hull_uv.is_none();
         if (with_blend) {
@@ -166,7 +167,22 @@ void bind_compose(py::module_& m) {
       },
       "hull"_a, "bulb"_a = nullptr, "hull_u"_a = 48, "hull_v"_a = 20, "bulb_u"_a = 16, "bulb_v"_a = 24,
       "tolerance"_a = 1e-7, "margin"_a = 0.3, "blend_hull_uv"_a = py::none(), "blend_bulb_u"_a = 0.5,
-      "blend_tension"_a = 1.0, "blend_rows"_a = 8);
+      "blend_tension"_a = 1.0, "blend_rows"_a = 8, "blend_check_samples"_a = 200);
+
+  m.def(
+      "_hull_bulb_seam",
+      [](const NurbsSurface& hull, const NurbsSurface& bulb, int bulb_v, double tolerance) {
+        ComposeOptions o;
+        o.bulb_v = bulb_v;
+        o.tolerance = tolerance;
+        HullBulbSeam r = [&] {
+          py::gil_scoped_release release;
+          return hull_bulb_seam(hull, bulb, o);
+        }();
+        return py::make_tuple(r.hull, curve_dict(r.seam));
+      },
+      "hull"_a, "bulb"_a, "bulb_v"_a = 24, "tolerance"_a = 1e-7,
+      "(oriented hull, seam dict) of compose_hull([hull, bulb]) without meshing (see compose.hpp).");
 
   m.def(
       "_blend_surface",

@@ -57,6 +57,7 @@ from .form_curve import FORM_PARAMETERS, FormCurveResult, design_curve, fairness
 from ._native import boundary_continuity, mesh_volume, orient_bare_hull, triangulate_polygon  # noqa: F401,E402
 from .compose import (  # noqa: F401,E402
     KRACHT_NAMES,
+    BlendPlacement,
     BlendSurface,
     BulbousBow,
     blend_surface,
@@ -69,6 +70,7 @@ from .compose import (  # noqa: F401,E402
     measure_kracht,
     mesh_hydrostatics,
     seam_blend,
+    seam_blend_placement,
 )
 
 __version__ = "0.1.0"

@@ -453,7 +453,7 @@ class _ComposedHull:
         ...
 def _blend_surface(a: NurbsSurface, boundary_a: typing.Any, b: NurbsSurface, boundary_b: typing.Any, samples: typing.SupportsInt | typing.SupportsIndex = 61, tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, check_samples: typing.SupportsInt | typing.SupportsIndex = 200) -> tuple[NurbsSurface, dict, dict]:
     ...
-def _compose_hull(hull: NurbsSurface, bulb: NurbsSurface = None, hull_u: typing.SupportsInt | typing.SupportsIndex = 48, hull_v: typing.SupportsInt | typing.SupportsIndex = 20, bulb_u: typing.SupportsInt | typing.SupportsIndex = 16, bulb_v: typing.SupportsInt | typing.SupportsIndex = 24, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, margin: typing.SupportsFloat | typing.SupportsIndex = 0.3, blend_hull_uv: typing.Any = None, blend_bulb_u: typing.SupportsFloat | typing.SupportsIndex = 0.5, blend_tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, blend_rows: typing.SupportsInt | typing.SupportsIndex = 8) -> _ComposedHull:
+def _compose_hull(hull: NurbsSurface, bulb: NurbsSurface = None, hull_u: typing.SupportsInt | typing.SupportsIndex = 48, hull_v: typing.SupportsInt | typing.SupportsIndex = 20, bulb_u: typing.SupportsInt | typing.SupportsIndex = 16, bulb_v: typing.SupportsInt | typing.SupportsIndex = 24, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, margin: typing.SupportsFloat | typing.SupportsIndex = 0.3, blend_hull_uv: typing.Any = None, blend_bulb_u: typing.SupportsFloat | typing.SupportsIndex = 0.5, blend_tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, blend_rows: typing.SupportsInt | typing.SupportsIndex = 8, blend_check_samples: typing.SupportsInt | typing.SupportsIndex = 200) -> _ComposedHull:
     ...
 def _design_form_curve(params: dict, n_control: typing.SupportsInt | typing.SupportsIndex, degree: typing.SupportsInt | typing.SupportsIndex, dim: typing.SupportsInt | typing.SupportsIndex, fairness: dict, points: list, bounds: dict, options: dict, tangent_start: typing.Any = None, tangent_end: typing.Any = None, initial_control_points: typing.Any = None) -> dict:
     """
@@ -468,6 +468,10 @@ def _fair_skin(curves: typing.Any, n_control: typing.Any, mode: str, degree_u: t
 def _form_curve_derivatives(params: dict, n_control: typing.SupportsInt | typing.SupportsIndex, degree: typing.SupportsInt | typing.SupportsIndex, dim: typing.SupportsInt | typing.SupportsIndex, fairness: dict, points: list, z: typing.Any, lambda: typing.Any = None) -> dict:
     """
     Testing hook: constraints, Jacobian, sum lambda_i Hess c_i, objective, gradient and Hessian at z.
+    """
+def _hull_bulb_seam(hull: NurbsSurface, bulb: NurbsSurface, bulb_v: typing.SupportsInt | typing.SupportsIndex = 24, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07) -> tuple[NurbsSurface, dict]:
+    """
+    (oriented hull, seam dict) of compose_hull([hull, bulb]) without meshing (see compose.hpp).
     """
 def _intersect_surfaces(a: NurbsSurface, b: NurbsSurface, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, subdivisions: typing.SupportsInt | typing.SupportsIndex = 12, step: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> list:
     ...

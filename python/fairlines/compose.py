@@ -17,6 +17,7 @@ from . import _native
 from ._native import NurbsSurface
 
 __all__ = [
+    "BlendPlacement",
     "BlendSurface",
     "BulbousBow",
     "blend_surface",
@@ -29,6 +30,7 @@ __all__ = [
     "measure_kracht",
     "mesh_hydrostatics",
     "seam_blend",
+    "seam_blend_placement",
     "KRACHT_NAMES",
 ]
 
@@ -194,7 +196,7 @@ class ComposedHull:
 
 def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int = 48,
             hull_v: int = 20, bulb_u: int = 16, bulb_v: int = 24, tolerance: float = 1e-7,
-            margin: float = 0.3, blend_rows: int = 8) -> ComposedHull:
+            margin: float = 0.3, blend_rows: int = 8, blend_check_samples: int = 200) -> ComposedHull:
     """Boolean composition of hull subdomains into one closed half hull.
 
     subdomains  [bare_hull], [bare_hull, bulb] or [bare_hull, bulb, blend]: NurbsSurface (or
@@ -210,6 +212,11 @@ def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int 
                 removed, and the hull's part inside the bulb).
     hull_u, hull_v, bulb_u, bulb_v   tessellation cells; tolerance: intersection (m, <= 1e-6);
     margin      clearance between the seam and whole hull cells (fraction of a cell).
+    blend_check_samples   points per boundary at which the blend's continuity
+                ``blend_continuity`` is measured (>= 2; each is a projection onto hull or
+                bulb). The same figures come from ``boundary_continuity(c.blend, False,
+                c.trimmed_surfaces[0][0], n)`` and ``(c.blend, True, bulb, n)``, so a caller
+                can pass 2 and measure them later.
 
     Raises ValueError ("bulb cannot meet the hull ...") when the bulb does not cross the hull
     in one seam from the keel/stem line around to the stem.
@@ -223,13 +230,15 @@ def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int 
     blend_kw = {}
     if len(subs) == 3:
         bl = subs.pop()
-        if not isinstance(bl, BlendSurface):
-            raise ValueError(f"subdomains[2] is {type(bl).__name__}; expected a BlendSurface from blend_surface()")
+        if not isinstance(bl, (BlendSurface, BlendPlacement)):
+            raise ValueError(f"subdomains[2] is {type(bl).__name__}; expected a BlendSurface from blend_surface() "
+                             "or a BlendPlacement from seam_blend_placement()")
         bb = bl.boundary_b
         if not (isinstance(bb, tuple) and len(bb) == 2 and bb[0] == "u"):
             raise ValueError(f"the blend's bulb boundary is {bb!r}; expected a bulb section ('u', value)")
         blend_kw = dict(blend_hull_uv=np.asarray(bl.boundary_a, float), blend_bulb_u=float(bb[1]),
-                        blend_tension=float(bl.tension), blend_rows=int(blend_rows))
+                        blend_tension=float(bl.tension), blend_rows=int(blend_rows),
+                        blend_check_samples=int(blend_check_samples))
     surfaces = [s.surface if isinstance(s, BulbousBow) else s for s in subs]
     for i, s in enumerate(surfaces):
         if not isinstance(s, NurbsSurface):
@@ -367,6 +376,27 @@ class BlendSurface:
         return max(self.at_a["max_angle_deg"], self.at_b["max_angle_deg"])
 
 
+@dataclass(frozen=True)
+class BlendPlacement:
+    """Where the blend around a hull/bulb seam goes (:func:`seam_blend_placement`): the hull
+    in the orient_bare_hull convention, the bulb surface, the blend's boundary on each
+    (``boundary_a`` (k, 2) (u, v) on the hull, ``boundary_b`` ``("u", u_b)`` on the bulb) and
+    its tension. That is all compose() takes from a blend (it skins the blend at the mesh
+    resolution itself), so ``compose([hull, bulb, placement])`` equals ``compose([hull, bulb,
+    placement.blend_surface()])`` without skinning a surface it does not use."""
+
+    hull: NurbsSurface
+    bulb: NurbsSurface
+    boundary_a: np.ndarray
+    boundary_b: tuple
+    tension: float
+
+    def blend_surface(self, samples: int = 61, check_samples: int = 200) -> BlendSurface:
+        """The blending surface itself (see :func:`blend_surface`)."""
+        return blend_surface(self.hull, self.boundary_a, self.bulb, self.boundary_b, samples=samples,
+                             tension=self.tension, check_samples=check_samples)
+
+
 def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, boundary_b, *,
                   samples: int = 61, tension: float = 1.0, check_samples: int = 200) -> BlendSurface:
     """Blending surface between two surfaces with C1 (tangent-plane) continuity along both
@@ -398,8 +428,16 @@ def seam_blend_boundaries(union: ComposedHull, *, clearance_u: float = 0.05, cle
     below a raised forefoot). On the bulb the section ``bulb_clearance`` ahead of the seam's
     foremost point. Returns (on_hull (k, 2), ("u", u_b)), or the reason as a string when no
     such boundary fits on the hull."""
-    uv = union.intersection_curves[0]["uv_a"]
-    hull = union.trimmed_surfaces[0][0]
+    return _boundaries_around_seam(union.trimmed_surfaces[0][0], union.intersection_curves[0],
+                                   clearance_u=clearance_u, clearance_v=clearance_v,
+                                   bulb_clearance=bulb_clearance, points=points)
+
+
+def _boundaries_around_seam(hull: NurbsSurface, seam: dict, *, clearance_u: float, clearance_v: float,
+                            bulb_clearance: float, points: int):
+    """seam_blend_boundaries from the oriented hull and the seam (a dict with ``uv_a`` on the
+    hull, ``uv_b`` on the bulb) alone, so that callers without the union mesh can use it."""
+    uv = seam["uv_a"]
     u0, u1 = hull.knots_u[0], hull.knots_u[-1]
     v0, v1 = hull.knots_v[0], hull.knots_v[-1]
     tol = 1e-6 * (u1 - u0)
@@ -428,7 +466,7 @@ def seam_blend_boundaries(union: ComposedHull, *, clearance_u: float = 0.05, cle
     phi = np.linspace(0.0, phi_end, points)
     on_hull = np.column_stack([u1 - du * np.sin(phi + (0.5 * np.pi if phi_end < np.pi else 0.0)),
                                tc - R * np.cos(phi) if phi_end == np.pi else tc + R * np.sin(phi)])
-    on_bulb = ("u", float(union.intersection_curves[0]["uv_b"][:, 0].max()) + bulb_clearance)
+    on_bulb = ("u", float(seam["uv_b"][:, 0].max()) + bulb_clearance)
     return on_hull, on_bulb
 
 
@@ -461,19 +499,34 @@ def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface
     return out
 
 
+def seam_blend_placement(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, clearance_u: float = 0.05,
+                         clearance_v: float = 0.01, bulb_clearance: float = 0.02,
+                         tension: float = 0.6) -> BlendPlacement:
+    """Where the blend around the seam a bulb makes on a bare hull goes: the boundaries of
+    :func:`seam_blend_boundaries` on the union of hull and bulb, as a :class:`BlendPlacement`
+    (compose() takes it in place of the surface; ``.blend_surface()`` skins it). Raises
+    ValueError when the bulb cannot meet the hull or no boundary fits (the message says why)."""
+    surface_b = bulb.surface if isinstance(bulb, BulbousBow) else bulb
+    if not isinstance(hull, NurbsSurface) or not isinstance(surface_b, NurbsSurface):
+        raise ValueError(f"seam_blend takes NurbsSurface hull and bulb; got {type(hull).__name__}, "
+                         f"{type(surface_b).__name__}")
+    # The seam of compose([hull, bulb]) (same tracing, same checks) without meshing the
+    # union, which is all the boundaries need: the union mesh was most of this call's time.
+    oriented, seam = _native._hull_bulb_seam(hull, surface_b)
+    bounds = _boundaries_around_seam(oriented, seam, clearance_u=clearance_u, clearance_v=clearance_v,
+                                     bulb_clearance=bulb_clearance, points=65)
+    if isinstance(bounds, str):
+        raise ValueError(f"no blend fits between hull and bulb: {bounds}")
+    return BlendPlacement(oriented, surface_b, bounds[0], bounds[1], float(tension))
+
+
 def seam_blend(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, clearance_u: float = 0.05,
                clearance_v: float = 0.01, bulb_clearance: float = 0.02, tension: float = 0.6,
                samples: int = 61) -> BlendSurface:
-    """The blending surface around the seam a bulb makes on a bare hull, as one call (the
-    Blender Blend node): the boundaries of :func:`seam_blend_boundaries` on the union of hull
-    and bulb, then :func:`blend_surface`. The result goes into ``compose([hull, bulb, blend])``
-    with the same hull (orientation is idempotent). Raises ValueError when the bulb cannot meet
-    the hull or no boundary fits (the message says why)."""
-    union = compose([hull, bulb])
-    bounds = seam_blend_boundaries(union, clearance_u=clearance_u, clearance_v=clearance_v,
-                                   bulb_clearance=bulb_clearance)
-    if isinstance(bounds, str):
-        raise ValueError(f"no blend fits between hull and bulb: {bounds}")
-    surface_b = bulb.surface if isinstance(bulb, BulbousBow) else bulb
-    return blend_surface(union.trimmed_surfaces[0][0], bounds[0], surface_b, bounds[1], samples=samples,
-                         tension=tension)
+    """The blending surface around the seam a bulb makes on a bare hull, as one call:
+    :func:`seam_blend_placement`, then its surface (:func:`blend_surface`). The result goes
+    into ``compose([hull, bulb, blend])`` with the same hull (orientation is idempotent).
+    Raises ValueError when the bulb cannot meet the hull or no boundary fits (the message
+    says why)."""
+    return seam_blend_placement(hull, bulb, clearance_u=clearance_u, clearance_v=clearance_v,
+                                bulb_clearance=bulb_clearance, tension=tension).blend_surface(samples=samples)

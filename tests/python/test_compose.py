@@ -350,6 +350,44 @@ def test_seam_blend_is_c1_and_composes_with_the_original_hull(hull, bulb):
         fl.seam_blend(hull, fl.BulbousBow(**dict(SHIP, x_fp=L + 60.0)))
 
 
+def test_seam_blend_equals_the_blend_around_the_union_seam(hull, bulb):
+    """seam_blend traces the seam without meshing the union (for the Blender latency); its
+    blend must be the one built from compose([hull, bulb])'s seam, bit for bit."""
+    union = fl.compose([hull, bulb])
+    on_hull, on_bulb = fl.seam_blend_boundaries(union)
+    ref = fl.blend_surface(union.trimmed_surfaces[0][0], on_hull, bulb.surface, on_bulb, tension=0.6)
+    got = fl.seam_blend(hull, bulb, tension=0.6)
+    assert np.array_equal(got.boundary_a, ref.boundary_a) and got.boundary_b == ref.boundary_b
+    assert np.array_equal(got.surface.control_points, ref.surface.control_points)
+    assert got.at_a == ref.at_a and got.at_b == ref.at_b
+
+
+def test_compose_takes_the_blend_placement_for_the_surface(hull, bulb):
+    """compose() only needs where the blend goes: with the placement it gives the mesh it gives
+    with the skinned blend (the Blender Compose node relies on it)."""
+    placement = fl.seam_blend_placement(hull, bulb)
+    a = fl.compose([hull, bulb, placement])
+    b = fl.compose([hull, bulb, placement.blend_surface()])
+    assert np.array_equal(a.mesh.vertices, b.mesh.vertices) and np.array_equal(a.mesh.faces, b.mesh.faces)
+    assert a.blend_continuity == b.blend_continuity
+    blend = fl.seam_blend(hull, bulb)
+    assert np.array_equal(placement.blend_surface().surface.control_points, blend.surface.control_points)
+
+
+def test_blend_continuity_can_be_measured_after_compose(hull, bulb):
+    """compose(blend_check_samples=2) meshes the same hull, and boundary_continuity on its blend
+    gives the figures compose() reports by default (the Blender Compose node defers them)."""
+    placement = fl.seam_blend_placement(hull, bulb)
+    full = fl.compose([hull, bulb, placement])
+    quick = fl.compose([hull, bulb, placement], blend_check_samples=2)
+    assert np.array_equal(full.mesh.vertices, quick.mesh.vertices) and np.array_equal(full.mesh.faces, quick.mesh.faces)
+    later = (fl.boundary_continuity(quick.blend, False, quick.trimmed_surfaces[0][0], 200),
+             fl.boundary_continuity(quick.blend, True, bulb.surface, 200))
+    assert later == full.blend_continuity
+    with pytest.raises(ValueError, match="blend_check_samples"):
+        fl.compose([hull, bulb, placement], blend_check_samples=1)
+
+
 def test_blend_ending_on_the_centre_plane_is_c1_there():
     """Both boundaries end on y = 0 (a stem and a bulb top centre line): the blend's end
     section must stay in the centre plane and still be tangent to both surfaces there, also

@@ -22,6 +22,7 @@ struct ComposeOptions {
   double margin = 0.3;      ///< clearance kept between the seam and whole hull cells (in cells)
   double plane_tolerance = 1e-6;  ///< relative tolerance of the centre plane / deck / aft checks
   int blend_rows = 8;       ///< blend cells from the hull boundary to the bulb boundary (>= 1)
+  int blend_check_samples = 200;  ///< boundary points at which the blend's continuity is measured (>= 2)
 };
 
 /// The blending subdomain of a composition: its boundary on the hull (a (k, 2) (u, v)
@@ -70,6 +71,17 @@ NurbsSurface orient_bare_hull(const NurbsSurface& hull, double plane_tolerance =
 /// joins them; the three meshes share the boundary vertices.
 ComposedHull compose_hull(const NurbsSurface& hull, const NurbsSurface* bulb, const ComposeOptions& options = {},
                           const BlendSpec* blend = nullptr);
+
+/// The union seam of a bare hull and a bulb without the mesh: `hull` re-oriented as in
+/// compose_hull and the seam as compose_hull([hull, bulb]) reports it (intersection_curves[0],
+/// re-sampled at the options.bulb_v + 1 bulb columns), with the same checks on the seam (one
+/// branch around the bulb, ends on the keel/stem centre line). For placing a blend around the
+/// seam, which needs the seam and not the union mesh.
+struct HullBulbSeam {
+  NurbsSurface hull;      ///< the hull as used (re-oriented to the convention)
+  IntersectionCurve seam;  ///< uv_a on `hull`, uv_b on the bulb
+};
+HullBulbSeam hull_bulb_seam(const NurbsSurface& hull, const NurbsSurface& bulb, const ComposeOptions& options = {});
 
 /// Full hull: the half hull mirrored in y = 0 and welded along the centre plane, with the
 /// centre-plane faces dropped.

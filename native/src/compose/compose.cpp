@@ -226,6 +226,95 @@ void close_half_hull(MeshBuilder& mb, double x_aft, double z_deck) {
   }
 }
 
+/// The seam of the union of the oriented bare hull H and bulb B: the one intersection branch
+/// that runs around the bulb from its bottom to its top centre line, re-sampled by Newton at the
+/// bulb's mesh columns v_j (j = 0 .. bulb_v) so that hull and bulb meshes can share those
+/// points. sx[j] = (u_h, v_h, u_b, v_b); rs holds the same points with their positions. Used by
+/// compose_hull and by hull_bulb_seam (the blend boundaries need the seam, not the mesh).
+void trace_seam(const NurbsSurface& H, const NurbsSurface& B, const ComposeOptions& o,
+                std::vector<Eigen::Vector4d>& sx, IntersectionCurve& rs) {
+  const auto [bu0, bu1] = B.domain_u();
+  const auto [bv0, bv1] = B.domain_v();
+  const int NV = o.bulb_v;
+  sx.assign(NV + 1, Eigen::Vector4d::Zero());
+  rs = IntersectionCurve{};
+  IntersectOptions io;
+  io.tolerance = o.tolerance;
+  const std::vector<IntersectionCurve> curves = intersect_surfaces(H, B, io);
+  if (curves.empty())
+    throw InvalidInput("bulb cannot meet the hull: the bulb surface does not intersect the bare hull "
+                       "(move it aft / into the hull, or lengthen its aft body)");
+  const double vt = 1e-6 * (bv1 - bv0);
+  const IntersectionCurve* seam = nullptr;
+  for (const auto& c : curves) {
+    if (c.closed) continue;
+    const double va = c.points.front().uv_b.y(), vb = c.points.back().uv_b.y();
+    if (std::min(va, vb) <= bv0 + vt && std::max(va, vb) >= bv1 - vt) seam = &c;
+  }
+  if (!seam || curves.size() != 1) {
+    std::ostringstream os;
+    os << "bulb cannot meet the hull: the surfaces intersect in " << curves.size()
+       << " curve(s) but the union needs one seam running around the bulb from its bottom to its top centre line";
+    for (const auto& c : curves)
+      for (const auto& q : c.points)
+        if (q.uv_b.x() <= bu0 + 1e-6 * (bu1 - bu0)) {
+          os << "; the bulb's aft end is not inside the hull (lengthen aft_length)";
+          goto done;
+        }
+  done:
+    throw InvalidInput(os.str());
+  }
+  for (const auto& q : seam->points)
+    if (q.uv_b.x() <= bu0 + 1e-6 * (bu1 - bu0))
+      throw InvalidInput("bulb cannot meet the hull: the seam reaches the bulb's aft end, which is not inside the "
+                         "hull (lengthen aft_length or move the bulb aft)");
+  std::vector<IntersectionPoint> pts = seam->points;
+  if (pts.front().uv_b.y() > pts.back().uv_b.y()) std::reverse(pts.begin(), pts.end());
+  for (size_t k = 1; k < pts.size(); ++k)
+    if (pts[k].uv_b.y() < pts[k - 1].uv_b.y() - vt)
+      throw InvalidInput("bulb cannot meet the hull in a simple seam: the intersection turns back around the bulb");
+  // re-sample at the bulb columns
+  for (int j = 0; j <= NV; ++j) {
+    const double vj = j == NV ? bv1 : bv0 + (bv1 - bv0) * j / NV;
+    size_t k = 1;
+    while (k + 1 < pts.size() && pts[k].uv_b.y() < vj) ++k;
+    const auto& a = pts[k - 1];
+    const auto& c = pts[k];
+    const double dv = c.uv_b.y() - a.uv_b.y();
+    const double w = dv > 0 ? std::clamp((vj - a.uv_b.y()) / dv, 0.0, 1.0) : 0.0;
+    Eigen::Vector4d x;
+    x << (1 - w) * a.uv_a + w * c.uv_a, (1 - w) * a.uv_b.x() + w * c.uv_b.x(), vj;
+    const double r = seam_newton(H, B, x, o.tolerance);
+    if (r > 1e-6) {
+      std::ostringstream os;
+      os << "compose: seam point at bulb v = " << vj << " did not converge (gap " << r << " m)";
+      throw ConvergenceError(os.str());
+    }
+    sx[j] = x;
+    const Eigen::Vector3d ph = H.evaluate(x[0], x[1]), pb = B.evaluate(x[2], x[3]);
+    rs.points.push_back({0.5 * (ph + pb), {x[0], x[1]}, {x[2], x[3]}});
+    rs.max_gap = std::max(rs.max_gap, (ph - pb).norm());
+  }
+}
+
+/// Perimeter coordinates of the seam's ends on the hull's centre-plane edges (keel: u in
+/// [0, 1), stem: 1 + v); throws when an end is elsewhere.
+void seam_ends_on_centre_line(const NurbsSurface& H, const std::vector<Eigen::Vector4d>& sx, double& pa,
+                              double& pb) {
+  const auto [u0, u1] = H.domain_u();
+  const auto [v0, v1] = H.domain_v();
+  auto perim = [&](const Eigen::Vector4d& x, double& p) {
+    const double ds = (u1 - x[0]) / (u1 - u0), dt = (x[1] - v0) / (v1 - v0);
+    if (dt <= 1e-6 && dt <= ds) p = (x[0] - u0) / (u1 - u0);
+    else if (ds <= 1e-6) p = 1.0 + dt;
+    else return false;
+    return true;
+  };
+  if (!perim(sx.front(), pa) || !perim(sx.back(), pb))
+    throw InvalidInput("bulb cannot meet the hull: the seam does not end on the hull's keel/stem centre line "
+                       "(the bulb must be attached at the stem)");
+}
+
 }  // namespace
 
 NurbsSurface orient_bare_hull(const NurbsSurface& hull, double tol_rel) {
@@ -254,6 +343,16 @@ NurbsSurface orient_bare_hull(const NurbsSurface& hull, double tol_rel) {
                      "and the other two on the centre plane y = 0 (as given:" + why + ")");
 }
 
+HullBulbSeam hull_bulb_seam(const NurbsSurface& hull, const NurbsSurface& bulb, const ComposeOptions& o) {
+  if (o.bulb_v < 4) detail::fail("bulb_v is ", o.bulb_v, "; expected >= 4");
+  HullBulbSeam out{orient_bare_hull(hull, o.plane_tolerance), {}};
+  std::vector<Eigen::Vector4d> sx;
+  trace_seam(out.hull, bulb, o, sx, out.seam);
+  double pa = 0, pb = 0;
+  seam_ends_on_centre_line(out.hull, sx, pa, pb);
+  return out;
+}
+
 ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb, const ComposeOptions& o,
                           const BlendSpec* blend) {
   if (o.hull_u < 4) detail::fail("hull_u is ", o.hull_u, "; expected >= 4");
@@ -262,6 +361,8 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
   if (o.bulb_v < 4) detail::fail("bulb_v is ", o.bulb_v, "; expected >= 4");
   if (!(o.margin > 0.0) || o.margin > 1.0) detail::fail("margin is ", o.margin, "; expected a fraction of a cell in (0, 1]");
   if (o.blend_rows < 1) detail::fail("blend_rows is ", o.blend_rows, "; expected >= 1");
+  if (o.blend_check_samples < 2)
+    detail::fail("blend_check_samples is ", o.blend_check_samples, "; expected >= 2");
   if (blend && !bulb) detail::fail("a blend needs a bulb to blend into; got no bulb");
   const NurbsSurface H = orient_bare_hull(hull_in, o.plane_tolerance);
   ComposedHull out{TriMesh{}, Eigen::VectorXi(), {}, {}, Eigen::VectorXi(), 0.0, 0.0, H, {}, {}, {}};
@@ -303,63 +404,7 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
     std::vector<Eigen::Vector3d> blend_pts;  // blend mode: (NV + 1) x (rows - 1) interior points
     const int NT = o.blend_rows;
     if (!blend) {
-      IntersectOptions io;
-      io.tolerance = o.tolerance;
-      const std::vector<IntersectionCurve> curves = intersect_surfaces(H, B, io);
-      if (curves.empty())
-        throw InvalidInput("bulb cannot meet the hull: the bulb surface does not intersect the bare hull "
-                           "(move it aft / into the hull, or lengthen its aft body)");
-      const double vt = 1e-6 * (bv1 - bv0);
-      const IntersectionCurve* seam = nullptr;
-      for (const auto& c : curves) {
-        if (c.closed) continue;
-        const double va = c.points.front().uv_b.y(), vb = c.points.back().uv_b.y();
-        if (std::min(va, vb) <= bv0 + vt && std::max(va, vb) >= bv1 - vt) seam = &c;
-      }
-      if (!seam || curves.size() != 1) {
-        std::ostringstream os;
-        os << "bulb cannot meet the hull: the surfaces intersect in " << curves.size()
-           << " curve(s) but the union needs one seam running around the bulb from its bottom to its top centre line";
-        for (const auto& c : curves)
-          for (const auto& q : c.points)
-            if (q.uv_b.x() <= bu0 + 1e-6 * (bu1 - bu0)) {
-              os << "; the bulb's aft end is not inside the hull (lengthen aft_length)";
-              goto done;
-            }
-      done:
-        throw InvalidInput(os.str());
-      }
-      for (const auto& q : seam->points)
-        if (q.uv_b.x() <= bu0 + 1e-6 * (bu1 - bu0))
-          throw InvalidInput("bulb cannot meet the hull: the seam reaches the bulb's aft end, which is not inside the "
-                             "hull (lengthen aft_length or move the bulb aft)");
-      std::vector<IntersectionPoint> pts = seam->points;
-      if (pts.front().uv_b.y() > pts.back().uv_b.y()) std::reverse(pts.begin(), pts.end());
-      for (size_t k = 1; k < pts.size(); ++k)
-        if (pts[k].uv_b.y() < pts[k - 1].uv_b.y() - vt)
-          throw InvalidInput("bulb cannot meet the hull in a simple seam: the intersection turns back around the bulb");
-      // re-sample at the bulb columns
-      for (int j = 0; j <= NV; ++j) {
-        const double vj = j == NV ? bv1 : bv0 + (bv1 - bv0) * j / NV;
-        size_t k = 1;
-        while (k + 1 < pts.size() && pts[k].uv_b.y() < vj) ++k;
-        const auto& a = pts[k - 1];
-        const auto& c = pts[k];
-        const double dv = c.uv_b.y() - a.uv_b.y();
-        const double w = dv > 0 ? std::clamp((vj - a.uv_b.y()) / dv, 0.0, 1.0) : 0.0;
-        Eigen::Vector4d x;
-        x << (1 - w) * a.uv_a + w * c.uv_a, (1 - w) * a.uv_b.x() + w * c.uv_b.x(), vj;
-        const double r = seam_newton(H, B, x, o.tolerance);
-        if (r > 1e-6) {
-          std::ostringstream os;
-          os << "compose: seam point at bulb v = " << vj << " did not converge (gap " << r << " m)";
-          throw ConvergenceError(os.str());
-        }
-        sx[j] = x;
-        const Eigen::Vector3d ph = H.evaluate(x[0], x[1]), pb = B.evaluate(x[2], x[3]);
-        rs.points.push_back({0.5 * (ph + pb), {x[0], x[1]}, {x[2], x[3]}});
-        rs.max_gap = std::max(rs.max_gap, (ph - pb).norm());
-      }
+      trace_seam(H, B, o, sx, rs);
     } else {
       Eigen::MatrixXd hb = blend->hull_uv;
       if (hb.cols() != 2 || hb.rows() < 2)
@@ -374,7 +419,7 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
       constexpr int kSectionsPerColumn = 4;  // the skin is finer than the mesh columns
       bo.samples = kSectionsPerColumn * NV + 1;
       bo.tension = blend->tension;
-      bo.check_samples = 200;  // continuity measured every half per cent of the boundary
+      bo.check_samples = o.blend_check_samples;  // default: every half per cent of the boundary
       const BlendSurface bs = blend_surface(H, hb, B, bb, bo);
       out.blend.push_back(bs.surface);
       out.blend_at_hull = bs.at_a;
@@ -392,17 +437,8 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
       }
     }
     // seam ends must sit on the hull's centre-plane edges
-    auto perim = [&](const Eigen::Vector4d& x, double& p) {
-      const double ds = (u1 - x[0]) / (u1 - u0), dt = (x[1] - v0) / (v1 - v0);
-      if (dt <= 1e-6 && dt <= ds) p = (x[0] - u0) / (u1 - u0);
-      else if (ds <= 1e-6) p = 1.0 + dt;
-      else return false;
-      return true;
-    };
     double pa = 0, pb = 0;
-    if (!perim(sx[0], pa) || !perim(sx[NV], pb))
-      throw InvalidInput("bulb cannot meet the hull: the seam does not end on the hull's keel/stem centre line "
-                         "(the bulb must be attached at the stem)");
+    seam_ends_on_centre_line(H, sx, pa, pb);
     const bool seam_reversed = pa > pb;  // walk the seam from lower to higher perimeter coordinate
     if (seam_reversed) std::swap(pa, pb);
     // bulb vertices

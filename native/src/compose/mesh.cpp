@@ -82,45 +82,71 @@ std::vector<std::array<int, 3>> triangulate_polygon(const Eigen::MatrixXd& point
     const double d1 = sign * cross2(a, b, q), d2 = sign * cross2(b, c, q), d3 = sign * cross2(c, a, q);
     return d1 >= 0.0 && d2 >= 0.0 && d3 >= 0.0;
   };
+  // Does remaining vertex iq keep the triangle (ia, ib, ic) from being an ear? Vertices of the
+  // triangle, and points that coincide with one of them, do not.
+  auto blocks = [&](int iq, int ia, int ib, int ic) {
+    if (iq == ia || iq == ib || iq == ic) return false;
+    if (p[iq] == p[ia] || p[iq] == p[ib] || p[iq] == p[ic]) return false;
+    return inside(p[iq], p[ia], p[ib], p[ic]);
+  };
+  // Each step clips the best-shaped ear of the remaining polygon (largest area over the sum of
+  // squared sides; the first in polygon order among equals). Per vertex the triangle with its
+  // neighbours is kept with its convexity, score and the number of remaining vertices inside
+  // it: a clip changes the triangles of the two neighbours only, and for every other vertex it
+  // can only remove the clipped vertex from inside its triangle. That makes ear clipping
+  // O(n^2) instead of re-testing every vertex against every triangle at each step (O(n^3)),
+  // with the same choices, so the same triangles.
+  std::vector<int> ta(n), tc(n), blockers(n, 0);
+  std::vector<double> convex(n), score(n, -1.0);
+  std::vector<char> candidate(n, 0);
+  auto measure = [&](int k) {
+    const int m = static_cast<int>(idx.size());
+    const int ia = idx[(k + m - 1) % m], ib = idx[k], ic = idx[(k + 1) % m];
+    ta[ib] = ia;
+    tc[ib] = ic;
+    const double c = sign * cross2(p[ia], p[ib], p[ic]);
+    convex[ib] = c;
+    candidate[ib] = c > 0.0 && !(!avoid.empty() && avoid[ia] && avoid[ib] && avoid[ic]);
+    blockers[ib] = 0;
+    if (!candidate[ib]) return;
+    for (const int iq : idx) blockers[ib] += blocks(iq, ia, ib, ic);
+    const double s = (p[ia] - p[ib]).squaredNorm() + (p[ib] - p[ic]).squaredNorm() + (p[ic] - p[ia]).squaredNorm();
+    score[ib] = c / s;
+  };
+  for (int k = 0; k < n; ++k) measure(k);
   while (idx.size() > 3) {
     const int m = static_cast<int>(idx.size());
     int best = -1;
     double best_score = -1.0;
     for (int k = 0; k < m; ++k) {
-      const int ia = idx[(k + m - 1) % m], ib = idx[k], ic = idx[(k + 1) % m];
-      const double c = sign * cross2(p[ia], p[ib], p[ic]);
-      if (!(c > 0.0)) continue;
-      if (!avoid.empty() && avoid[ia] && avoid[ib] && avoid[ic]) continue;
-      bool ok = true;
-      for (int t = 0; t < m && ok; ++t) {
-        const int iq = idx[t];
-        if (iq == ia || iq == ib || iq == ic) continue;
-        if (p[iq] == p[ia] || p[iq] == p[ib] || p[iq] == p[ic]) continue;
-        if (inside(p[iq], p[ia], p[ib], p[ic])) ok = false;
-      }
-      if (!ok) continue;
-      // prefer well-shaped ears: smallest angle-ish score = area / (sum of squared sides)
-      const double s = (p[ia] - p[ib]).squaredNorm() + (p[ib] - p[ic]).squaredNorm() +
-                       (p[ic] - p[ia]).squaredNorm();
-      const double score = c / s;
-      if (score > best_score) {
-        best_score = score;
+      const int ib = idx[k];
+      if (!candidate[ib] || blockers[ib] != 0) continue;
+      if (score[ib] > best_score) {
+        best_score = score[ib];
         best = k;
       }
     }
     if (best < 0) {
       // numerically degenerate remainder: clip the most convex vertex
       double bc = -1e300;
-      for (int k = 0; k < m; ++k) {
-        const double c = sign * cross2(p[idx[(k + m - 1) % m]], p[idx[k]], p[idx[(k + 1) % m]]);
-        if (c > bc) {
-          bc = c;
+      for (int k = 0; k < m; ++k)
+        if (convex[idx[k]] > bc) {
+          bc = convex[idx[k]];
           best = k;
         }
-      }
     }
-    out.push_back({idx[(best + m - 1) % m], idx[best], idx[(best + 1) % m]});
+    const int x = idx[best];
+    out.push_back({idx[(best + m - 1) % m], x, idx[(best + 1) % m]});
     idx.erase(idx.begin() + best);
+    const int mm = m - 1;
+    const int kp = (best + mm - 1) % mm, kn = best % mm;  // the clipped vertex's neighbours, now adjacent
+    const int vp = idx[kp], vn = idx[kn];
+    for (const int v : idx)
+      if (v != vp && v != vn && candidate[v] && blocks(x, ta[v], v, tc[v])) --blockers[v];
+    if (mm > 3) {
+      measure(kp);
+      measure(kn);
+    }
   }
   out.push_back({idx[0], idx[1], idx[2]});
   return out;
