@@ -15,6 +15,7 @@ import numpy as np
 
 from . import _native
 from ._native import NurbsSurface
+from .hull import _integer
 
 __all__ = [
     "BlendPlacement",
@@ -237,14 +238,15 @@ def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int 
         if not (isinstance(bb, tuple) and len(bb) == 2 and bb[0] == "u"):
             raise ValueError(f"the blend's bulb boundary is {bb!r}; expected a bulb section ('u', value)")
         blend_kw = dict(blend_hull_uv=np.asarray(bl.boundary_a, float), blend_bulb_u=float(bb[1]),
-                        blend_tension=float(bl.tension), blend_rows=int(blend_rows),
-                        blend_check_samples=int(blend_check_samples))
+                        blend_tension=float(bl.tension), blend_rows=_integer("blend_rows", blend_rows, None),
+                        blend_check_samples=_integer("blend_check_samples", blend_check_samples, None))
     surfaces = [s.surface if isinstance(s, BulbousBow) else s for s in subs]
     for i, s in enumerate(surfaces):
         if not isinstance(s, NurbsSurface):
             raise ValueError(f"subdomains[{i}] is {type(s).__name__}; expected a NurbsSurface or BulbousBow")
     native = _native._compose_hull(surfaces[0], surfaces[1] if len(surfaces) > 1 else None,
-                                   int(hull_u), int(hull_v), int(bulb_u), int(bulb_v),
+                                   _integer("hull_u", hull_u, None), _integer("hull_v", hull_v, None),
+                                   _integer("bulb_u", bulb_u, None), _integer("bulb_v", bulb_v, None),
                                    float(tolerance), float(margin), **blend_kw)
     return ComposedHull(native, surfaces)
 
@@ -508,7 +510,7 @@ def seam_blend_placement(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", 
     ValueError when the bulb cannot meet the hull or no boundary fits (the message says why)."""
     surface_b = bulb.surface if isinstance(bulb, BulbousBow) else bulb
     if not isinstance(hull, NurbsSurface) or not isinstance(surface_b, NurbsSurface):
-        raise ValueError(f"seam_blend takes NurbsSurface hull and bulb; got {type(hull).__name__}, "
+        raise ValueError(f"seam_blend_placement takes NurbsSurface hull and bulb; got {type(hull).__name__}, "
                          f"{type(surface_b).__name__}")
     # The seam of compose([hull, bulb]) (same tracing, same checks) without meshing the
     # union, which is all the boundaries need: the union mesh was most of this call's time.

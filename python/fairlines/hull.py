@@ -127,9 +127,10 @@ def _flag(path: str, value: Any) -> bool:
     return value
 
 
-def _integer(path: str, value: Any, lo: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or int(value) < lo:
-        raise _bad(path, value, f"an integer >= {lo}")
+def _integer(path: str, value: Any, lo: int | None) -> int:
+    """value as an int, or InvalidInput naming `path`; lo None leaves the range to the engine."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or (lo is not None and int(value) < lo):
+        raise _bad(path, value, "an integer" if lo is None else f"an integer >= {lo}")
     return int(value)
 
 

@@ -64,5 +64,14 @@ def fair_skin(
     return _native._fair_skin(
         list(curves), n_control, mode, degree_u, degree_v, samples, float(smoothing), start, end, params,
         [int(i) for i in c1_sections], float(curvature_weight), float(e2), float(e3),
-        [(int(a), float(c)) for a, c in flats],
+        [_flat(k, f) for k, f in enumerate(flats)],
     )
+
+
+def _flat(k: int, plane) -> tuple[int, float]:
+    """One ``flats`` entry as (axis, value); the engine checks the axis range and finiteness."""
+    try:
+        axis, value = plane
+        return int(axis), float(value)
+    except (TypeError, ValueError):
+        raise _native.InvalidInput(f"flats[{k}] is {plane!r}; expected an (axis, value) pair") from None

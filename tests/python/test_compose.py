@@ -178,6 +178,8 @@ def test_bad_input_names_the_value(hull, bulb):
         fl.BulbousBow(**SHIP, c_abt=0.05)  # a diamond section
     with pytest.raises(ValueError, match="hull_u"):
         fl.compose([hull, bulb], hull_u=1)
+    with pytest.raises(ValueError, match="bulb_v is 12.5; expected an integer"):
+        fl.compose([hull, bulb], bulb_v=12.5)
     with pytest.raises(ValueError, match="subdomains"):
         fl.compose([hull, bulb, bulb, bulb])
     with pytest.raises(ValueError, match="aft cut"):
@@ -386,6 +388,8 @@ def test_blend_continuity_can_be_measured_after_compose(hull, bulb):
     assert later == full.blend_continuity
     with pytest.raises(ValueError, match="blend_check_samples"):
         fl.compose([hull, bulb, placement], blend_check_samples=1)
+    with pytest.raises(ValueError, match="blend_check_samples is nan; expected an integer"):
+        fl.compose([hull, bulb, placement], blend_check_samples=float("nan"))
 
 
 def test_blend_ending_on_the_centre_plane_is_c1_there():

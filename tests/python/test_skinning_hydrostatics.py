@@ -308,7 +308,8 @@ def test_flats_keep_the_section_fits_exactly_on_the_planes():
 
 
 @pytest.mark.parametrize("flats, match", [([(3, 0.0)], "flats\\[0\\] has axis 3"),
-                                          ([(1, float("nan"))], "flats\\[0\\] has value nan")])
+                                          ([(1, float("nan"))], "flats\\[0\\] has value nan"),
+                                          ([(1,)], "flats\\[0\\] is \\(1,\\); expected an \\(axis, value\\) pair")])
 def test_fair_skin_bad_flats(flats, match):
     secs = [box_bilge_section(x, 10.0, 12.0, 2.0) for x in (0.0, 10.0, 20.0)]
     with pytest.raises(ValueError, match=match):
