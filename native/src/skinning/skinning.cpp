@@ -334,21 +334,31 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
         // the least-squares fit with those fixed (normal equations of the free ones, one
         // Cholesky factorisation per distinct set of fixed points).
         const Eigen::MatrixXd M = Nu.transpose() * Nu;
+        // Samples strictly inside each interior control point's support (the same for every
+        // section): [first, last], empty when first > last.
+        std::vector<std::pair<int, int>> inside(n, {1, 0});
+        for (int j = 1; j < n - 1; ++j) {
+          int first = m, last = -1;
+          for (int k = 1; k < m - 1; ++k) {
+            const double u = static_cast<double>(k) / (m - 1);
+            if (u > Ku[j] && u < Ku[j + o.degree_u + 1]) first = std::min(first, k), last = k;
+          }
+          inside[j] = {first, last};
+        }
         std::map<std::vector<char>, Eigen::LLT<Eigen::MatrixXd>> factors;
         for (int col = 0; col < 3 * q; ++col) {
           const int axis = col % 3;
           std::vector<char> fixed(n, 0);
-          Eigen::VectorXd z = sol.col(col);
+          Eigen::VectorXd z = sol.col(col), held = Eigen::VectorXd::Zero(n);  // held: z where fixed
           fixed[0] = fixed[n - 1] = 1;
+          held[0] = z[0], held[n - 1] = z[n - 1];
           bool any = false;
           for (int j = 1; j < n - 1; ++j) {
-            std::vector<double> in;
-            for (int k = 1; k < m - 1; ++k) {
-              const double u = static_cast<double>(k) / (m - 1);
-              if (u > Ku[j] && u < Ku[j + o.degree_u + 1]) in.push_back(rhs(k, col));
-            }
-            const double c = in.empty() ? std::numeric_limits<double>::quiet_NaN() : flat_value(axis, in);
-            if (!std::isnan(c)) fixed[j] = 1, z[j] = c, any = true;
+            const auto [first, last] = inside[j];
+            if (first > last) continue;
+            const double* col_data = rhs.col(col).data();
+            const double c = flat_value(axis, std::vector<double>(col_data + first, col_data + last + 1));
+            if (!std::isnan(c)) fixed[j] = 1, z[j] = held[j] = c, any = true;
           }
           if (!any) continue;
           std::vector<int> freev;
@@ -366,8 +376,7 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
               for (int b2 = 0; b2 < r; ++b2) Mrr(a, b2) = M(freev[a], freev[b2]);
             it = factors.emplace(fixed, Eigen::LLT<Eigen::MatrixXd>(Mrr)).first;
           }
-          const Eigen::VectorXd g = Nu.transpose() * rhs.col(col) - M * z.cwiseProduct(
-              Eigen::Map<const Eigen::Matrix<char, Eigen::Dynamic, 1>>(fixed.data(), n).cast<double>());
+          const Eigen::VectorXd g = Nu.transpose() * rhs.col(col) - M * held;
           Eigen::VectorXd gr(r);
           for (int a = 0; a < r; ++a) gr[a] = g[freev[a]];
           const Eigen::VectorXd zr = it->second.solve(gr);
