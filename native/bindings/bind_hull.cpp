@@ -25,12 +25,15 @@ double opt(const py::handle& h) { return h.is_none() ? std::numeric_limits<doubl
 void bind_hull(py::module_& m) {
   m.def("_linear_form_curve",
         [](const std::string& name, py::handle abscissae, int degree, py::handle yB, py::handle yE, py::handle slopeB,
-           py::handle slopeE, py::handle area, py::handle xC, py::handle area_from, py::handle points, py::handle y_lower, py::handle y_upper) {
+           py::handle slopeE, py::handle area, py::handle xC, py::handle area_from, py::handle points, py::handle y_lower, py::handle y_upper,
+           py::handle curvB, py::handle curvE, const std::vector<std::pair<int, double>>& fixed) {
           LinearFormRequest r;
           r.name = name;
           r.degree = degree;
           r.abscissae = vector(abscissae, (name + ": abscissae").c_str());
           r.yB = opt(yB), r.yE = opt(yE), r.slopeB = opt(slopeB), r.slopeE = opt(slopeE);
+          r.curvB = opt(curvB), r.curvE = opt(curvE);
+          r.fixed = fixed;
           r.area = opt(area), r.xC = opt(xC);
           if (!area_from.is_none()) r.area_from = area_from.cast<double>();
           r.y_lower = opt(y_lower), r.y_upper = opt(y_upper);
@@ -41,7 +44,8 @@ void bind_hull(py::module_& m) {
           return design_linear_form_curve(r);
         },
         "name"_a, "abscissae"_a, "degree"_a, "yB"_a, "yE"_a, "slopeB"_a, "slopeE"_a, "area"_a, "xC"_a, "area_from"_a,
-        "points"_a, "y_lower"_a = py::none(), "y_upper"_a = py::none());
+        "points"_a, "y_lower"_a = py::none(), "y_upper"_a = py::none(), "curvB"_a = py::none(), "curvE"_a = py::none(),
+        "fixed"_a = std::vector<std::pair<int, double>>{});
 
   m.def("_design_sections",
         [](py::dict f, int n_control, int degree, double y_max) {
@@ -52,7 +56,12 @@ void bind_hull(py::module_& m) {
             if (!f.contains(k)) throw InvalidInput(std::string("section field '") + k + "' is missing");
             cols.push_back(vector(f[k], k));
           }
+          Eigen::VectorXd departure;
+          if (f.contains("flat_departure")) departure = vector(f["flat_departure"], "flat_departure");
           const Eigen::Index q = cols[0].size();
+          if (f.contains("flat_departure") && departure.size() != q)
+            throw InvalidInput("section field 'flat_departure' has " + std::to_string(departure.size()) + " values; expected " +
+                               std::to_string(q) + " (one per station)");
           for (std::size_t i = 1; i < cols.size(); ++i)
             if (cols[i].size() != q)
               throw InvalidInput(std::string("section field '") + keys[i] + "' has " + std::to_string(cols[i].size()) +
@@ -63,13 +72,20 @@ void bind_hull(py::module_& m) {
             s.x = cols[0][d], s.z_deck = cols[1][d], s.y_deck = cols[2][d], s.draft = cols[3][d];
             s.y_dwl = cols[4][d], s.z_keel = cols[5][d], s.half_area = cols[6][d], s.z_centroid = cols[7][d];
             s.z_fos = cols[8][d], s.y_fob = cols[9][d], s.alpha_deck = cols[10][d], s.alpha_bottom = cols[11][d];
+            if (departure.size()) s.flat_departure = departure[d];
             s.n_control = n_control, s.degree = degree;
           }
           py::gil_scoped_release release;
           return design_sections(specs, y_max);
         },
         "fields"_a, "n_control"_a, "degree"_a, "y_max"_a,
-        "Sections from per-station parameter arrays (see fairlines/hull.hpp SectionSpec).");
+        "Sections from per-station parameter arrays (see fairlines/sections.hpp SectionSpec), all on\n"
+        "section_knot_vector(n_control).");
+  m.def("section_knot_vector", &section_knot_vector, "n_control"_a,
+        "The knot vector every bare-hull section with n_control curved-part control points shares:\n"
+        "clamped, triple knots at the ends of the top and bottom zones (n_control + 10 values).");
+  m.def("section_straight_groups", &section_straight_groups, "n_control"_a,
+        "Control-point rows (first, last) on one straight segment in every section (the zones and their legs).");
 
   py::class_<PlaneCut>(m, "PlaneCut", "A waterline / buttock / frame cut from a surface, with analytic curvature.")
       .def_readonly("axis", &PlaneCut::axis, "0 frame (x = value), 1 buttock (y = value), 2 waterline (z = value)")

@@ -54,13 +54,15 @@ void bind_skinning(py::module_& m) {
       .def_readonly("longitudinal_max", &SkinResult::longitudinal_max,
                     "max distance (m) between the longitudinal curves and the section control rows")
       .def_property_readonly("row_e2", [](const SkinResult& r) { return to_array(r.row_e2); },
-                             "E2 of each longitudinal control-row curve (n_control,).");
+                             "E2 of each longitudinal control-row curve (n_control,).")
+      .def_readonly("held_columns", &SkinResult::held_columns,
+                    "row coordinates (y or z of a control row) held constant over at least one run of sections");
 
   m.def("_fair_skin",
         [](py::handle curves, py::handle n_control, const std::string& mode, py::handle degree_u, py::handle degree_v,
            py::handle samples, double smoothing, const std::string& start, const std::string& end,
            const std::string& params, const std::vector<int>& c1_sections, double curvature_weight, double e2, double e3,
-           const std::vector<std::pair<int, double>>& flats) {
+           const std::vector<std::pair<int, double>>& flats, bool hold_runs, const std::vector<std::pair<int, int>>& straight_groups) {
           SkinOptions o;
           o.n_control = n_control.is_none() ? 0 : as_int(n_control, "n_control");
           if (!n_control.is_none() && o.n_control <= 0)
@@ -80,13 +82,16 @@ void bind_skinning(py::module_& m) {
           o.e2 = e2;
           o.e3 = e3;
           o.flats = flats;
+          o.hold_runs = hold_runs;
+          o.straight_groups = straight_groups;
           const std::vector<NurbsCurve> cs = as_curves(curves);
           py::gil_scoped_release release;
           return fair_skin(cs, o);
         },
         "curves"_a, "n_control"_a, "mode"_a, "degree_u"_a, "degree_v"_a, "samples"_a, "smoothing"_a, "start"_a,
         "end"_a, "params"_a, "c1_sections"_a, "curvature_weight"_a, "e2"_a, "e3"_a,
-        "flats"_a = std::vector<std::pair<int, double>>{});
+        "flats"_a = std::vector<std::pair<int, double>>{}, "hold_runs"_a = true,
+        "straight_groups"_a = std::vector<std::pair<int, int>>{});
 
   m.def("equal_arc_length_points", [](const NurbsCurve& c, py::handle mobj, double w) { return to_array(equal_arc_length_points(c, as_int(mobj, "m"), w)); },
         "curve"_a, "m"_a, "curvature_weight"_a = 0.0,

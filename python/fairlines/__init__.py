@@ -37,6 +37,8 @@ from ._native import (  # noqa: F401  (re-exported API)
     parameterize,
     plane_cut,
     revolve,
+    section_knot_vector,
+    section_straight_groups,
     sphere,
     unclamped_uniform_knots,
     validate_knots,

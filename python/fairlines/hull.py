@@ -99,7 +99,7 @@ __all__ = [
 
 BASIC_CURVES = ("sac", "dwl", "deck", "profile", "fos", "fob", "deck_angle", "bottom_angle")
 OPTIONAL_CURVES = ("section_zc",)
-_FORM_KEYS = ("yB", "yE", "alphaB", "alphaE", "slopeB", "slopeE", "Area", "xC")
+_FORM_KEYS = ("yB", "yE", "alphaB", "alphaE", "slopeB", "slopeE", "CAB", "CAE", "Area", "xC")
 _ALIASES = {
     "sac": {"volume": ("Area", 1.0), "lcb": ("xC", 1.0)},
     "dwl": {"waterplane_area": ("Area", 0.5), "lcf": ("xC", 1.0), "entrance_angle": ("alphaE", -1.0)},
@@ -289,15 +289,12 @@ class HullDescription:
     stations: list[float]
     curves: dict[str, BasicCurveSpec]
     auxiliary_sections: list[AuxiliarySection] = field(default_factory=list)
-    section_n_control: int = 10
-    skin_n_control: int = 0
+    section_n_control: int = 16
     skin_start: str = "free"
     skin_end: str = "free"
-    skin_curvature_weight: float = 0.0
     skin_e2: float = 1.0
     skin_e3: float = 0.0
     skin_junctions: bool = False
-    skin_flats: bool = True
     notes: str = ""
     bulb: BulbSpec | None = None
 
@@ -364,15 +361,12 @@ class HullDescription:
             stations=stations,
             curves=curves,
             auxiliary_sections=aux,
-            section_n_control=_integer("sections.n_control", d.get("sections", {}).get("n_control", 10), 8),
-            skin_n_control=_integer("skinning.n_control", sk.get("n_control", 0), 0),
+            section_n_control=_integer("sections.n_control", d.get("sections", {}).get("n_control", 16), 8),
             skin_start=str(sk.get("start", "free")),
             skin_end=str(sk.get("end", "free")),
-            skin_curvature_weight=_number("skinning.curvature_weight", sk.get("curvature_weight", 0.0)),
             skin_e2=_number("skinning.e2", sk.get("e2", 1.0)),
             skin_e3=_number("skinning.e3", sk.get("e3", 0.0)),
             skin_junctions=_flag("skinning.junctions", sk.get("junctions", False)),
-            skin_flats=_flag("skinning.flats", sk.get("flats", True)),
             notes=str(d.get("notes", "")),
             bulb=BulbSpec.from_dict(d["bulb"], "bulb") if d.get("bulb") is not None else None,
         )
@@ -392,9 +386,8 @@ class HullDescription:
             "basic_curves": {k: v.to_dict() for k, v in self.curves.items()},
             "auxiliary_sections": [{"x": a.x, "offsets": [list(p) for p in a.offsets]} for a in self.auxiliary_sections],
             "sections": {"n_control": self.section_n_control},
-            "skinning": {"n_control": self.skin_n_control, "start": self.skin_start, "end": self.skin_end,
-                         "curvature_weight": self.skin_curvature_weight, "e2": self.skin_e2, "e3": self.skin_e3,
-                         "junctions": self.skin_junctions, "flats": self.skin_flats},
+            "skinning": {"start": self.skin_start, "end": self.skin_end, "e2": self.skin_e2, "e3": self.skin_e3,
+                         "junctions": self.skin_junctions},
             **({"bulb": self.bulb.to_dict()} if self.bulb is not None else {}),
         }
 
@@ -425,6 +418,33 @@ class BasicCurve:
                 t = np.clip((x[on] - self.flat_to) / (self.x_end - self.flat_to), 0.0, 1.0)
                 out[on] = self.curve.evaluate(t)[:, 1]
         return out
+
+    def extended(self, x: Any) -> np.ndarray:
+        """f at x (array), continued beyond x_end along the end tangent (a straight line), so a
+        flat-of-side / flat-of-bottom curve that ends at the deck / centre line passes on
+        beyond it smoothly (fairlines.sections: the zone then shrinks to its floor)."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        out = self(x)
+        beyond = x > self.x_end + 1e-9 * max(1.0, abs(self.x_end))
+        if np.any(beyond):
+            y_end, slope = self.end_value_and_slope()
+            out[beyond] = y_end + slope * (x[beyond] - self.x_end)
+        return out
+
+    def end_value_and_slope(self) -> tuple[float, float]:
+        """f and df/dx at x_end."""
+        if self.curve is None:
+            return float(self.value), 0.0
+        d = self.curve.derivatives(1.0, 1)
+        return float(d[0][1]), float(d[1][1] / d[1][0])
+
+    def derivative(self, x: float, order: int) -> float:
+        """d^order f / dx^order just after x (the curve part; 0 on the flat part)."""
+        if self.curve is None or x < self.flat_to:
+            return 0.0
+        t = min(max((x - self.flat_to) / (self.x_end - self.flat_to), 0.0), 1.0)
+        # x is linear in t, so d/dx = (1 / (x_end - flat_to)) d/dt.
+        return float(self.curve.derivatives(t, order)[order][1] / (self.x_end - self.flat_to) ** order)
 
     def form_parameters(self) -> dict[str, float]:
         """Area and centroid of f over its whole extent (flat part included), by quadrature."""
@@ -466,13 +486,17 @@ def _solve_basic_curve(name: str, spec: BasicCurveSpec, x0: float, x_range_end: 
         return BasicCurve(name, x0, x_end, x_end, value, None)
     yB = params.get("yB")
     slopeB = params.get("slopeB")
+    curvB = params.get("CAB")
+    fixed: list[tuple[int, float]] = []
     if spec.flat_to is not None and spec.flat_to > x0:
         if yB is not None and abs(yB - value) > 1e-9 * (1 + abs(value)):
             raise _native.InvalidInput(f"{path}.yB is {yB}; after a flat part it must equal value = {value}")
-        yB = value
-        if slopeB is not None and slopeB != 0:
-            raise _native.InvalidInput(f"{path}.alphaB is given after a flat part; the curve leaves it with zero slope")
-        slopeB = 0.0
+        if (slopeB is not None and slopeB != 0) or (curvB is not None and curvB != 0):
+            raise _native.InvalidInput(f"{path}.{'alphaB' if slopeB else 'CAB'} is given after a flat part; "
+                                       "the curve leaves it with zero slope and zero curvature (G2)")
+        # G2 exit: with the uniform Greville abscissae y' = 0 fixes y_1 = y_0 and y'' = 0 y_2 = y_1.
+        yB, slopeB, curvB = value, None, None
+        fixed = [(1, value), (2, value)]
     elif value is not None and yB is None:
         yB = value
     area, xc = params.get("Area"), params.get("xC")
@@ -498,10 +522,32 @@ def _solve_basic_curve(name: str, spec: BasicCurveSpec, x0: float, x_range_end: 
             pts = None
     try:
         curve = _native._linear_form_curve(path, absc, 3, yB, params.get("yE"), slopeB, params.get("slopeE"), area, xc, None, pts,
-                                           bounds[0], bounds[1])
+                                           bounds[0], bounds[1], curvB, params.get("CAE"), fixed)
     except _native.InvalidInput as e:
         raise type(e)(str(e)) from None
     return BasicCurve(name, x0, flat_to, x_end, value, curve)
+
+
+def _fit_on_section_knots(a: AuxiliarySection, n_control: int, path: str) -> _native.NurbsCurve:
+    """An auxiliary section's offsets (deck to keel) as a cubic on the designed sections' knot
+    vector: ends interpolated, the rest by least squares at chord-length parameters."""
+    pts = np.array([[a.x, y, z] for y, z in a.offsets], dtype=float)
+    knots = np.asarray(_native.section_knot_vector(n_control))
+    n = n_control + 6
+    if len(pts) < n:
+        raise _native.InvalidInput(f"{path}.offsets has {len(pts)} points; expected at least {n} "
+                                   f"(the sections' control points, sections.n_control + 6)")
+    chord = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))]
+    if not chord[-1] > 0 or np.any(np.diff(chord) <= 0):
+        raise _native.InvalidInput(f"{path}.offsets repeat a point; expected distinct points from deck to keel")
+    t = chord / chord[-1]
+    N = _native.basis_functions(knots, 3, t)[:, 0, :]
+    ctrl = np.zeros((n, 3))
+    ctrl[0], ctrl[-1] = pts[0], pts[-1]
+    rhs = pts[1:-1] - np.outer(N[1:-1, 0], pts[0]) - np.outer(N[1:-1, -1], pts[-1])
+    ctrl[1:-1] = np.linalg.lstsq(N[1:-1, 1:-1], rhs, rcond=None)[0]
+    ctrl[:, 0] = a.x
+    return _native.NurbsCurve(3, knots, ctrl)
 
 
 class Hull:
@@ -633,8 +679,9 @@ class Hull:
                 f"basic_curves.profile: keel height {prof[i]:.6g} m at x = {xs[i]:.4g} m; expected 0 <= z < T = {pr.draft} m")
 
     def junctions(self) -> list[float]:
-        """x strictly inside the range where a basic curve leaves its flat part or ends: there the
-        curve is only C1 (its curvature jumps), and so is every section property it sets."""
+        """x strictly inside the range where a basic curve leaves its flat part or ends: a flat
+        of side, bottom or parallel body ends there, and a station on it makes that end exact
+        on the surface (fair_skin holds the rows constant up to it)."""
         d = self.description
         tol = 1e-9 * d.principal.lpp
         out = set()
@@ -647,8 +694,7 @@ class Hull:
     def stations(self) -> np.ndarray:
         """Stations of the designed sections: the description's, except that with
         ``skinning.junctions`` the station nearest each basic-curve junction (not an end one)
-        moves onto it, so the skin can be C1 there as the basic curves are (a C2 surface
-        through a curvature jump rings on both sides of it)."""
+        moves onto it, so flats and the parallel body end exactly where the basic curves say."""
         d = self.description
         x = np.asarray(d.stations, dtype=float).copy()
         if d.skin_junctions:
@@ -658,8 +704,30 @@ class Hull:
                     x[k] = xj
         return x
 
+    def flat_departure(self) -> float:
+        """Rate K (1/m^2) at which the design waterline leaves the flat of side, where the
+        flat's lower end (the fos curve) crosses the DWL at x_T (the DWL's flat_to): the DWL's
+        deficit from B/2 grows as c dx^3 (it leaves its flat part with zero curvature) while
+        the fos curve rises with slope s, so a section leaving the flat with zero curvature
+        loses K d^3 at depth d below it, K = c / s^3. NaN when the fos curve does not cross the
+        DWL at the end of the DWL's flat part (fairlines.sections: SectionSpec.flat_departure)."""
+        d = self.description
+        bc = self.basic_curves
+        dwl, fos = bc["dwl"], bc["fos"]
+        x_t = dwl.flat_to
+        tol = 1e-6 * d.principal.depth
+        if dwl.curve is None or not d.x_start < x_t < d.x_end or fos.curve is None or not fos.flat_to < x_t < fos.x_end:
+            return math.nan
+        if abs(float(fos(x_t)[0]) - d.principal.draft) > tol:
+            return math.nan
+        c = -dwl.derivative(x_t, 3) / 6.0
+        slope = fos.derivative(x_t, 1)
+        return max(c, 0.0) / slope**3 if slope > 0 else math.nan
+
     def section_parameters(self) -> dict[str, np.ndarray]:
-        """Per-station section parameters read off the basic curves (SectionSpec fields)."""
+        """Per-station section parameters read off the basic curves (SectionSpec fields). The
+        flat-of-side and flat-of-bottom curves are continued straight beyond their ends (the
+        flat then ends smoothly where the continuation passes the deck / the centre line)."""
         d = self.description
         pr = d.principal
         bc = self.basic_curves
@@ -675,23 +743,24 @@ class Hull:
             "z_keel": bc["profile"](x),
             "half_area": np.clip(bc["sac"](x), 0.0, None) / 2,
             "z_centroid": zc,
-            "z_fos": bc["fos"](x, outside=math.nan),
-            "y_fob": np.clip(bc["fob"](x, outside=0.0), 0.0, None),
+            "z_fos": bc["fos"].extended(x),
+            "y_fob": bc["fob"].extended(x),
             "alpha_deck": bc["deck_angle"](x),
             "alpha_bottom": bc["bottom_angle"](x),
+            "flat_departure": np.full_like(x, self.flat_departure()),
         }
 
     @property
     def sections(self) -> list:
-        """Section curves (3-D NurbsCurves, deck to keel), auxiliary sections included, in x order."""
+        """Section curves (3-D NurbsCurves, deck to keel), auxiliary sections included, in x
+        order, all on one knot vector (fl.section_knot_vector(sections.n_control))."""
         if self._sections is None:
             d = self.description
             fields_ = self.section_parameters()
             secs = list(_native._design_sections(fields_, d.section_n_control, 3, d.principal.breadth / 2))
             xs = list(fields_["x"])
-            for a in d.auxiliary_sections:
-                pts = np.array([[a.x, y, z] for y, z in a.offsets])
-                c = _native.fit_curve(pts, degree=3).curve
+            for i, a in enumerate(d.auxiliary_sections):
+                c = _fit_on_section_knots(a, d.section_n_control, f"auxiliary_sections[{i}]")
                 k = int(np.searchsorted(xs, a.x))
                 if k < len(xs) and abs(xs[k] - a.x) < 1e-9 * d.principal.lpp:
                     secs[k] = c
@@ -702,28 +771,15 @@ class Hull:
         return self._sections
 
     def skin(self):
-        """The SkinResult of the fair skinning (cached)."""
+        """The SkinResult of the fair skinning (cached): the sections share one knot vector, so
+        their control points are the surface's rows exactly; constant runs (the parallel body,
+        flats) are held exactly along the hull (fair_skin hold_runs, straight_groups)."""
         if self._skin is None:
             d = self.description
-            n = d.skin_n_control or None
-            c1 = []
-            if d.skin_junctions:
-                xs = [float(np.asarray(c.control_points)[0, 0]) for c in self.sections]
-                tol = 1e-9 * d.principal.lpp
-                c1 = [i for i in range(1, len(xs) - 1) if any(abs(xs[i] - j) <= tol for j in self.junctions())]
-            self._skin = fair_skin(self.sections, n_control=n, start=d.skin_start, end=d.skin_end, params="station",
-                                   curvature_weight=d.skin_curvature_weight, e2=d.skin_e2, e3=d.skin_e3, c1_sections=c1,
-                                   flats=self.flat_planes() if d.skin_flats else ())
+            self._skin = fair_skin(self.sections, start=d.skin_start, end=d.skin_end, params="station",
+                                   e2=d.skin_e2, e3=d.skin_e3, hold_runs=True,
+                                   straight_groups=_native.section_straight_groups(d.section_n_control))
         return self._skin
-
-    def flat_planes(self) -> list[tuple[int, float]]:
-        """Planes the bare hull lies in over parts of its sections, as fair_skin ``flats``: the
-        flat of side y = B/2, the centre plane y = 0 and the flat of bottom at the keel height of
-        the profile's flat part."""
-        d = self.description
-        keel = self.basic_curves["profile"].value
-        z_flat = keel if keel is not None else 0.0
-        return [(1, d.principal.breadth / 2), (1, 0.0), (2, float(z_flat))]
 
     def bare_hull_surface(self) -> _native.NurbsSurface:
         """The fair-skinned bare hull: the half hull y >= 0, u from deck to keel, v from the

@@ -26,8 +26,14 @@ def fair_skin(
     e2: float = 1.0,
     e3: float = 0.0,
     flats: Sequence[tuple[int, float]] = (),
+    hold_runs: bool = True,
+    straight_groups: Sequence[tuple[int, int]] = (),
 ) -> _native.SkinResult:
     """Skin section curves (3-D NurbsCurves, ordered along the hull, metres) into one surface.
+
+    Sections that already share one knot vector of degree ``degree_u`` (as fl.Hull's sections
+    do) are used exactly: their control points are the rows and steps (b)-(d) are skipped
+    (``n_control`` None or equal to their count). Otherwise:
 
     (b) ``samples`` equally spaced points along every section (default 4 x n_control);
     (c)-(d) one clamped uniform knot vector with ``n_control`` control points for all sections
@@ -58,13 +64,21 @@ def fair_skin(
     every control point whose support lies there on the plane, so the fitted section is
     exactly flat there instead of rippling about the plane by the fit's residuals.
 
+    ``hold_runs``: where a row of control points keeps one y or z over three or more
+    consecutive sections (a parallel middle body, a flat that ends), its longitudinal curve
+    keeps it exactly there and leaves it with full continuity (one extra knot next to the run
+    keeps that fit well posed). ``straight_groups``: row ranges ``(first, last)`` that lie on
+    one straight segment in every section (fl.section_straight_groups); their runs are made
+    common so the segment stays straight between the sections.
+
     Returns a SkinResult: ``surface`` (u across the sections, v along the hull),
     ``section_params``, ``section_fit_max``, ``longitudinal_max`` and ``row_e2``.
     """
     return _native._fair_skin(
         list(curves), n_control, mode, degree_u, degree_v, samples, float(smoothing), start, end, params,
         [int(i) for i in c1_sections], float(curvature_weight), float(e2), float(e3),
-        [_flat(k, f) for k, f in enumerate(flats)],
+        [_flat(k, f) for k, f in enumerate(flats)], bool(hold_runs),
+        [(int(a), int(b)) for a, b in straight_groups],
     )
 
 

@@ -1,14 +1,14 @@
-// Bare-hull sections from basic curves (seed 000 steps 2-3; SPEC §2).
+// Basic curves of the bare hull (seed 000 step 2; SPEC §2) and plane cuts for its fairness
+// check (SPEC §5). The sections themselves are in fairlines/sections.hpp.
 //
-// Every basic curve and every section is a form-parameter curve: the E2-fairest clamped
-// uniform B-spline meeting its form parameters exactly. With the control-point abscissae
-// fixed in advance (equally spaced Greville abscissae, so x(t) is linear in t, or with the
-// first / last pair coincident for a tangent normal to the x axis), every parameter used here
-// -- end points, end slopes, pass-through points, the area under the curve over a sub-range
-// and its centroid -- is LINEAR in the free ordinates, and the fairest curve is one
-// symmetric KKT solve: microseconds per curve, no iteration, no start guess. (Parameters that
-// are nonlinear in the ordinates -- the lateral centroid yC and end curvatures -- are left to
-// the general solver of fairlines/form_curve.hpp.)
+// Every basic curve is a form-parameter curve: the E2-fairest clamped uniform B-spline
+// meeting its form parameters exactly. With the control-point abscissae fixed in advance
+// (equally spaced Greville abscissae, so x(t) is linear in t), every parameter used here --
+// end points, end slopes, end curvatures at a given slope, pass-through points, the area under
+// the curve over a sub-range and its centroid -- is LINEAR in the free ordinates, and the
+// fairest curve is one symmetric KKT solve: microseconds per curve, no iteration, no start
+// guess. (Parameters that are nonlinear in the ordinates -- the lateral centroid yC, or an end
+// curvature without its end slope -- are left to the general solver of fairlines/form_curve.hpp.)
 #pragma once
 
 #include <limits>
@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "fairlines/curve.hpp"
+#include "fairlines/sections.hpp"
 #include "fairlines/surface.hpp"
 
 namespace fairlines {
@@ -34,6 +35,10 @@ struct LinearFormRequest {
   double yE = std::numeric_limits<double>::quiet_NaN();      ///< y at the end
   double slopeB = std::numeric_limits<double>::quiet_NaN();  ///< dy/dx at the start (tan alphaB)
   double slopeE = std::numeric_limits<double>::quiet_NaN();  ///< dy/dx at the end (tan alphaE)
+  /// Signed curvature (1/unit of x) at the start / end, CAB / CAE. Linear only with the slope
+  /// at that end known (or for zero curvature), so a nonzero value needs slopeB / slopeE.
+  double curvB = std::numeric_limits<double>::quiet_NaN();
+  double curvE = std::numeric_limits<double>::quiet_NaN();
   double area = std::numeric_limits<double>::quiet_NaN();    ///< int y dx over [area_from, x_end]
   double xC = std::numeric_limits<double>::quiet_NaN();      ///< (1/area) int x y dx, same range
   double area_from = -std::numeric_limits<double>::infinity();  ///< start of the area range
@@ -56,46 +61,6 @@ struct LinearFormRequest {
 /// requests (naming `name` and the field) and InfeasibleFormParameters when the
 /// conditions contradict each other (the message lists them).
 NurbsCurve design_linear_form_curve(const LinearFormRequest& request);
-
-/// Parameters of one bare-hull section at station x, read off the basic curves (metres,
-/// degrees). The section runs from the deck down to the keel in the (y, z) plane at x; in its
-/// own form-curve coordinates the abscissa is the depth below the deck s = z_deck - z and the
-/// ordinate the half-breadth y (seed 000 Table 1: x_B = 0 at the deck, x_E = depth).
-struct SectionSpec {
-  double x = 0;            ///< station (m from AP)
-  double z_deck = 0;       ///< deck height (m)
-  double y_deck = 0;       ///< half-breadth at the deck (deck curve)
-  double draft = 0;        ///< DWL height T (m)
-  double y_dwl = 0;        ///< half-breadth at the DWL (design waterline)
-  double z_keel = 0;       ///< keel / forefoot height (centre profile)
-  double half_area = 0;    ///< half of the section area below the DWL (SAC / 2, m^2)
-  double z_centroid = std::numeric_limits<double>::quiet_NaN();  ///< height of that area's centroid (optional)
-  double z_fos = std::numeric_limits<double>::quiet_NaN();  ///< lower end of the flat side (FOS); NaN: none
-  double y_fob = 0;        ///< half-breadth of the flat bottom (FOB); 0: none
-  double alpha_deck = 0;   ///< tangent angle at the deck, degrees from the depth axis toward +y
-                           ///< (0: vertical side; < 0: flare). Ignored under a flat side.
-  double alpha_bottom = -90;  ///< tangent angle at the lower end, same convention (-90: horizontal).
-                              ///< Ignored (horizontal) over a flat bottom.
-  int n_control = 10;      ///< control points of the curved part (>= 8)
-  /// Concave control polygon from the first control point below the DWL: no inflection below
-  /// the DWL except within a control spacing or two of it (where a flare's inflection sits).
-  bool concave_below_dwl = true;
-  int degree = 3;
-};
-
-/// One section as a 3-D curve (x, y, z), from the deck to the keel: the flat side (a straight
-/// segment down to z_fos), the curved part (a linear form curve) and the flat bottom (a
-/// straight segment from y_fob to the centre line), joined with G2 continuity (the curved part
-/// leaves the flat side and meets the flat bottom with zero curvature) into one B-spline of
-/// the given degree. A station with no breadth anywhere (a vertical stem at x) gives the
-/// straight centre-line segment.
-/// Throws InvalidInput / InfeasibleFormParameters naming `x` and the parameter; a section
-/// is the fairest curve with 0 <= y <= y_max (half-breadth limit, m) on its control polygon;
-/// when no such curve meets the parameters it is infeasible.
-NurbsCurve design_section(const SectionSpec& spec, double y_max);
-
-/// All sections in one call (what a hull rebuild uses).
-std::vector<NurbsCurve> design_sections(const std::vector<SectionSpec>& specs, double y_max);
 
 /// A plane cut of a hull surface for the fairness check (SPEC §5): a waterline (plane
 /// z = value), buttock (y = value) or frame (x = value), sampled densely, with its curvature

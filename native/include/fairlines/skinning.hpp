@@ -64,7 +64,25 @@ struct SkinOptions {
   /// keeps every control point whose support lies there exactly on it, so the fitted section
   /// is exactly flat there instead of rippling about the plane by the fit's residuals.
   std::vector<std::pair<int, double>> flats;
+  /// Where a row of control points keeps one coordinate (y or z) over kMinHeldRun or more
+  /// consecutive sections -- a parallel middle body, a flat of side or bottom that ends -- its
+  /// longitudinal curve keeps that value exactly over them (the controls whose support lies
+  /// there are held) and leaves it with full continuity: one extra knot in the interval next to
+  /// the run gives the curve beyond a well-posed fit. Without it an interpolating spline rings
+  /// where a row leaves a constant stretch.
+  bool hold_runs = true;
+  /// Row ranges (first, last, inclusive) whose control points lie on one straight segment in
+  /// every section (a hull's zones, fairlines/sections.hpp). Held runs are made common to the
+  /// rows of a group, so the segment stays straight between the sections.
+  std::vector<std::pair<int, int>> straight_groups;
 };
+
+/// Least number of consecutive sections over which a row coordinate must keep its value to be
+/// held (SkinOptions::hold_runs). Three: two equal values happen on any curve with a maximum
+/// between them (the middle stations of a symmetric hull), three equal ones only on a flat.
+inline constexpr int kMinHeldRun = 3;
+/// Values within this fraction of the sections' largest coordinate count as one (held runs).
+inline constexpr double kRunTolerance = 1e-12;
 
 /// Relative distance (to the sections' largest coordinate) within which a section point
 /// counts as lying in one of SkinOptions::flats.
@@ -81,10 +99,13 @@ struct SkinResult {
                                    ///< (metres; ~1e-12 in Interpolate mode)
   Eigen::VectorXd row_e2;          ///< E2 of each longitudinal control-point curve (n_control),
                                    ///< whatever the fairness weights
+  int held_columns = 0;            ///< row coordinates with at least one held run
 };
 
 /// Skin q >= 2 section curves (each a 3-D NurbsCurve, ordered along the hull; metres) into one
-/// surface. Throws InvalidInput naming the bad section / option (2-D curves, zero-length
+/// surface. Sections that already share one non-rational knot vector of degree degree_u (and
+/// n_control, when given, equal to their count) are used as they are: their control points
+/// are the rows (section_fit_max 0); otherwise steps (b)-(d) refit them to a common knot vector. Throws InvalidInput naming the bad section / option (2-D curves, zero-length
 /// sections, coincident section parameters, bad counts).
 SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions& options = {});
 

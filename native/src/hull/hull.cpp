@@ -1,4 +1,4 @@
-// Linear form-parameter curves and bare-hull sections: see fairlines/hull.hpp.
+// Linear form-parameter curves (the bare hull's basic curves): see fairlines/hull.hpp.
 #include "fairlines/hull.hpp"
 
 #include <algorithm>
@@ -20,7 +20,6 @@ namespace {
 
 using detail::fail;
 
-constexpr double kVerticalAngle = 89.999;  // |alpha| (deg) from which an end tangent is taken as normal to the abscissa
 constexpr double kFeasibleTol = 1e-9;      // relative residual above which conditions are in conflict
 
 /// t in [0, 1] with x(t) = x for the monotone abscissa function x(t) = sum N_j(t) a_j.
@@ -41,49 +40,6 @@ std::string fmt(double v) {
   os.precision(10);
   os << v;
   return os.str();
-}
-
-/// A piece of a section: degree p, knots on [0, 1], 3-D control points.
-struct Piece {
-  Eigen::VectorXd knots;
-  Eigen::MatrixXd ctrl;
-};
-
-Piece line_piece(const Eigen::Vector3d& a, const Eigen::Vector3d& b, int p) {
-  Piece pc;
-  pc.knots = clamped_uniform_knots(p + 1, p);
-  pc.ctrl.resize(p + 1, 3);
-  for (int i = 0; i <= p; ++i) pc.ctrl.row(i) = (a + (b - a) * (static_cast<double>(i) / p)).transpose();
-  return pc;
-}
-
-/// Joins pieces end to end (each piece's start equals the previous piece's end) with knots of
-/// multiplicity p at the joints; parameter lengths proportional to control-polygon lengths.
-NurbsCurve join_pieces(const std::vector<Piece>& pieces, int p) {
-  std::vector<double> len;
-  double total = 0;
-  for (const Piece& pc : pieces) {
-    double l = 0;
-    for (Eigen::Index i = 0; i + 1 < pc.ctrl.rows(); ++i) l += (pc.ctrl.row(i + 1) - pc.ctrl.row(i)).norm();
-    len.push_back(std::max(l, 1e-300));
-    total += len.back();
-  }
-  std::vector<double> knots(p + 1, 0.0);
-  std::vector<Eigen::RowVector3d> pts;
-  double off = 0;
-  for (std::size_t k = 0; k < pieces.size(); ++k) {
-    const Piece& pc = pieces[k];
-    const int n = static_cast<int>(pc.ctrl.rows());
-    for (int i = (k == 0 ? 0 : 1); i < n; ++i) pts.push_back(pc.ctrl.row(i));
-    for (int i = p + 1; i < n; ++i) knots.push_back((off + pc.knots[i] * len[k]) / total);
-    off += len[k];
-    if (k + 1 < pieces.size())
-      for (int r = 0; r < p; ++r) knots.push_back(off / total);
-  }
-  for (int r = 0; r <= p; ++r) knots.push_back(1.0);
-  Eigen::MatrixXd P(pts.size(), 3);
-  for (std::size_t i = 0; i < pts.size(); ++i) P.row(i) = pts[i];
-  return NurbsCurve(p, Eigen::Map<Eigen::VectorXd>(knots.data(), static_cast<Eigen::Index>(knots.size())), P);
 }
 
 }  // namespace
@@ -139,6 +95,21 @@ NurbsCurve design_linear_form_curve(const LinearFormRequest& r) {
     e[n - 2] = -1, e[n - 1] = 1;
     add(e, r.slopeE * (a[n - 1] - a[n - 2]), "alphaE");
   }
+  // End curvature k = (x' y'' - y' x'') / (x'^2 + y'^2)^1.5: with the end slope s known,
+  // y' = s x' and the denominator is |x'|^3 (1 + s^2)^1.5, so k is linear in the ordinates.
+  auto add_curvature = [&](double k, double slope, double t, const char* field, const char* slope_field) {
+    if (!given(k, field)) return;
+    const double s = std::isnan(slope) ? 0.0 : slope;
+    if (std::isnan(slope) && k != 0.0)
+      fail(nm, ": ", field, " is ", k, " without ", slope_field, "; expected the end slope too (or ", field, " = 0)");
+    const Eigen::RowVectorXd d1 = basis_row(U, p, t, 1), d2 = basis_row(U, p, t, 2);
+    const double xt = d1.dot(a), xtt = d2.dot(a);
+    if (!(std::abs(xt) > 0)) fail(nm, ": ", field, " is given but the curve's abscissa does not advance at that end");
+    // x' y'' - y' x'' = k |x'|^3 (1 + s^2)^1.5, y' = d1 . y
+    add(xt * d2 - xtt * d1, k * std::abs(xt) * xt * xt * std::pow(1.0 + s * s, 1.5), field);
+  };
+  add_curvature(r.curvB, r.slopeB, 0.0, "CAB", "alphaB / slopeB");
+  add_curvature(r.curvE, r.slopeE, 1.0, "CAE", "alphaE / slopeE");
   const bool want_area = given(r.area, "Area"), want_xc = given(r.xC, "xC");
   if (want_area || want_xc) {
     if (std::isnan(r.area_from) || r.area_from == std::numeric_limits<double>::infinity())
@@ -296,137 +267,6 @@ NurbsCurve design_linear_form_curve(const LinearFormRequest& r) {
   P.col(0) = a;
   P.col(1) = y;
   return NurbsCurve(p, U, P);
-}
-
-NurbsCurve design_section(const SectionSpec& s, double y_max) {
-  const std::string at = "section at x = " + fmt(s.x) + " m";
-  auto finite = [&](double v, const char* field) {
-    if (!std::isfinite(v)) fail(at, ": ", field, " is ", v, "; expected a finite number");
-  };
-  finite(s.x, "x");
-  finite(s.z_deck, "z_deck");
-  finite(s.y_deck, "y_deck");
-  finite(s.draft, "draft");
-  finite(s.y_dwl, "y_dwl");
-  finite(s.z_keel, "z_keel");
-  finite(s.half_area, "half_area");
-  finite(s.y_fob, "y_fob");
-  finite(s.alpha_deck, "alpha_deck");
-  finite(s.alpha_bottom, "alpha_bottom");
-  if (std::isinf(s.z_fos)) fail(at, ": z_fos is ", s.z_fos, "; expected a height or NaN (no flat side)");
-  if (std::isinf(s.z_centroid)) fail(at, ": z_centroid is ", s.z_centroid, "; expected a height or NaN (free)");
-  if (!(y_max > 0) || !std::isfinite(y_max)) fail("y_max is ", y_max, "; expected a half-breadth > 0 (m)");
-  if (s.n_control < 6) fail(at, ": n_control is ", s.n_control, "; expected at least 6");
-  const double tol = 1e-9 * (y_max + std::abs(s.z_deck));
-  if (!(s.z_keel < s.draft)) fail(at, ": keel height ", s.z_keel, " m is not below the DWL ", s.draft, " m (centre profile)");
-  if (!(s.draft < s.z_deck)) fail(at, ": DWL ", s.draft, " m is not below the deck ", s.z_deck, " m");
-  for (auto [v, field] : {std::pair{s.y_deck, "y_deck (deck curve)"}, std::pair{s.y_dwl, "y_dwl (design waterline)"},
-                          std::pair{s.y_fob, "y_fob (flat of bottom)"}})
-    if (v < -tol || v > y_max + tol) fail(at, ": ", field, " is ", v, " m; expected 0 <= y <= ", y_max, " m (B/2)");
-  if (s.half_area < 0) fail(at, ": half area is ", s.half_area, " m^2; expected >= 0 (sectional area curve)");
-  const double depth_dwl = s.draft - s.z_keel;
-  if (s.half_area > y_max * depth_dwl * (1 + 1e-12))
-    throw InfeasibleFormParameters(at + ": half area " + fmt(s.half_area) + " m^2 exceeds the rectangle B/2 x (T - z_keel) = " +
-                                   fmt(y_max * depth_dwl) + " m^2 (sectional area curve vs breadth and centre profile)");
-  const int p = s.degree;
-  const Eigen::Vector3d deck(s.x, s.y_deck, s.z_deck), keel(s.x, 0.0, s.z_keel);
-
-  // A station with no breadth: the straight centre-line segment (a vertical stem).
-  if (s.y_deck <= tol && s.y_dwl <= tol && s.y_fob <= tol) {
-    if (s.half_area > tol * y_max)
-      throw InfeasibleFormParameters(at + ": half area " + fmt(s.half_area) +
-                                     " m^2 with zero breadth at deck and DWL (sectional area curve vs design waterline)");
-    return join_pieces({line_piece(Eigen::Vector3d(s.x, 0, s.z_deck), keel, p)}, p);
-  }
-
-  const bool fos = std::isfinite(s.z_fos) && s.z_fos < s.z_deck;
-  if (fos) {
-    if (!(s.z_fos > s.z_keel)) fail(at, ": flat-of-side lower end ", s.z_fos, " m is not above the keel ", s.z_keel, " m");
-    if (s.z_fos <= s.draft && std::abs(s.y_deck - s.y_dwl) > 1e-6 * y_max)
-      fail(at, ": a flat side reaching below the DWL needs equal deck and DWL half-breadths; got ", s.y_deck, " and ",
-           s.y_dwl, " m (flat-of-side curve vs deck curve and design waterline)");
-  }
-  const bool fob = s.y_fob > tol;
-  const double z_top = fos ? s.z_fos : s.z_deck, y_top = s.y_deck;
-  const double s_top = s.z_deck - z_top, s_bot = s.z_deck - s.z_keel, s_dwl = s.z_deck - s.draft;
-  const int n = s.n_control;
-  const double deg = std::numbers::pi / 180.0;
-
-  LinearFormRequest r;
-  r.name = at;
-  r.degree = p;
-  {
-    const Eigen::VectorXd gr = greville_abscissae(clamped_uniform_knots(n, p), p);
-    r.abscissae = (s_top + (s_bot - s_top) * gr.array()).matrix();
-  }
-  const bool bottom_vertical = fob || std::abs(s.alpha_bottom) >= kVerticalAngle;
-  const bool top_vertical = !fos && std::abs(s.alpha_deck) >= kVerticalAngle;
-  // The end legs of the control polygon point along the end tangents: their abscissa extent
-  // is the uniform gap times |cos(alpha)|, so steep angles stay well conditioned and +-90 deg
-  // is the limit where the two abscissae coincide.
-  const double gap_top = r.abscissae[1] - r.abscissae[0], gap_bot = r.abscissae[n - 1] - r.abscissae[n - 2];
-  if (fob) {
-    // Meet the flat bottom with G2: tangent along y (s' = 0) and zero curvature (s'' = 0)
-    // at the end need the last three abscissae equal.
-    r.abscissae[n - 2] = r.abscissae[n - 3] = r.abscissae[n - 1];
-  } else if (bottom_vertical) {
-    r.abscissae[n - 2] = r.abscissae[n - 1];
-  } else {
-    r.abscissae[n - 2] = r.abscissae[n - 1] - gap_bot * std::abs(std::cos(s.alpha_bottom * deg));
-  }
-  if (top_vertical) r.abscissae[1] = r.abscissae[0];
-  else if (!fos) r.abscissae[1] = r.abscissae[0] + gap_top * std::abs(std::cos(s.alpha_deck * deg));
-  r.yB = y_top;
-  r.yE = fob ? s.y_fob : 0.0;
-  if (fos) {
-    // Leave the flat side with G2: slope 0 and y'' = 0 at the start (ordinates 0, 1, 2 equal
-    // for the uniform abscissae: y' = 0 fixes y_1 = y_0, then y'' = 0 fixes y_2 = y_1).
-    r.fixed.emplace_back(1, y_top);
-    r.fixed.emplace_back(2, y_top);
-  } else if (!top_vertical) {
-    r.slopeB = std::tan(s.alpha_deck * deg);
-  }
-  if (!bottom_vertical) r.slopeE = std::tan(s.alpha_bottom * deg);
-  double area_fs = 0, moment_fs = 0;
-  if (s_dwl > s_top && s_dwl < s_bot) {
-    r.points.emplace_back(s_dwl, s.y_dwl);
-    r.area_from = s_dwl;
-  } else {
-    // The DWL is on the flat side (or at its lower end): that part is a rectangle.
-    r.area_from = s_top;
-    if (fos) {
-      area_fs = s.y_dwl * (s_top - s_dwl);
-      moment_fs = s.y_dwl * 0.5 * (s_top * s_top - s_dwl * s_dwl);
-    }
-  }
-  r.area = s.half_area - area_fs;
-  if (r.area <= 0)
-    throw InfeasibleFormParameters(at + ": half area " + fmt(s.half_area) + " m^2 does not exceed the flat side's " + fmt(area_fs) +
-                                   " m^2 (sectional area curve vs flat-of-side curve)");
-  if (std::isfinite(s.z_centroid)) {
-    const double sc = s.z_deck - s.z_centroid;
-    r.xC = (s.half_area * sc - moment_fs) / r.area;
-  }
-  r.y_lower = 0.0;
-  r.y_upper = y_max;
-  r.concave_from = s.concave_below_dwl ? std::max(s_dwl, s_top) : std::numeric_limits<double>::quiet_NaN();
-  const NurbsCurve c = design_linear_form_curve(r);
-  std::vector<Piece> pieces;
-  if (fos) pieces.push_back(line_piece(deck, Eigen::Vector3d(s.x, s.y_deck, s.z_fos), p));
-  Piece mid;
-  mid.knots = c.knots();
-  mid.ctrl.resize(n, 3);
-  for (int i = 0; i < n; ++i) mid.ctrl.row(i) << s.x, c.control_points()(i, 1), s.z_deck - c.control_points()(i, 0);
-  pieces.push_back(mid);
-  if (fob) pieces.push_back(line_piece(Eigen::Vector3d(s.x, s.y_fob, s.z_keel), keel, p));
-  return join_pieces(pieces, p);
-}
-
-std::vector<NurbsCurve> design_sections(const std::vector<SectionSpec>& specs, double y_max) {
-  std::vector<NurbsCurve> out;
-  out.reserve(specs.size());
-  for (const SectionSpec& s : specs) out.push_back(design_section(s, y_max));
-  return out;
 }
 
 }  // namespace fairlines

@@ -174,6 +174,47 @@ Eigen::MatrixXd derivative_gram(const Eigen::VectorXd& U, int degree, int r) {
 }
 
 
+/// A run of consecutive sections [first, last] over which one data column keeps `value`.
+struct HeldRun {
+  int first, last;
+  double value;
+};
+
+/// Maximal runs of at least kMinHeldRun consecutive equal values (to tol) of a column, among
+/// the sections allowed by `allowed` (all when empty).
+std::vector<HeldRun> find_runs_in(const Eigen::VectorXd& col, const std::vector<char>& allowed, double tol = -1) {
+  const int q = static_cast<int>(col.size());
+  if (tol < 0) tol = kRunTolerance * std::max(1.0, col.cwiseAbs().maxCoeff());
+  std::vector<HeldRun> out;
+  int d = 0;
+  while (d < q) {
+    if (!allowed.empty() && !allowed[d]) {
+      ++d;
+      continue;
+    }
+    int e = d;
+    while (e + 1 < q && (allowed.empty() || allowed[e + 1]) && std::abs(col[e + 1] - col[d]) <= tol) ++e;
+    if (e - d + 1 >= kMinHeldRun) out.push_back({d, e, col[d]});
+    d = e + 1;
+  }
+  return out;
+}
+
+std::vector<HeldRun> find_runs(const Eigen::VectorXd& col, double tol) { return find_runs_in(col, {}, tol); }
+
+/// True when every section already has degree degree_u, one and the same knot vector and (if
+/// n_control is given) that many control points, non-rational.
+bool shared_knot_vector(const std::vector<NurbsCurve>& sections, const SkinOptions& o) {
+  const NurbsCurve& c0 = sections[0];
+  if (c0.degree() != o.degree_u || (o.n_control > 0 && o.n_control != c0.n_control())) return false;
+  const Eigen::VectorXd& U0 = c0.knots();
+  for (const NurbsCurve& c : sections) {
+    if (c.is_rational() || c.degree() != c0.degree() || c.knots().size() != U0.size()) return false;
+    if ((c.knots() - U0).cwiseAbs().maxCoeff() > 1e-14 * std::max(1.0, U0.cwiseAbs().maxCoeff())) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 double arc_length(const NurbsCurve& curve) {
@@ -263,11 +304,15 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
   }
   detail::require_degree(o.degree_u, "degree_u");
   if (o.degree_v < 2) fail("degree_v is ", o.degree_v, "; expected an integer >= 2 (E2 needs C'')");
-  const int n = o.n_control > 0 ? o.n_control : std::max(12, 2 * largest);
   if (o.n_control < 0) fail("n_control is ", o.n_control, "; expected 0 (automatic) or >= degree_u + 1");
+  // Sections already on one knot vector of degree degree_u (the hull's sections are designed so):
+  // their control points are the rows, exactly. Seed 000's steps (b)-(d) only exist to make
+  // such a knot vector, and their refit ripples about flats and tight bilges.
+  const bool exact = shared_knot_vector(sections, o);
+  const int n = exact ? sections[0].n_control() : (o.n_control > 0 ? o.n_control : std::max(12, 2 * largest));
   if (n < o.degree_u + 1) fail("n_control is ", n, "; expected at least degree_u + 1 = ", o.degree_u + 1);
   const int m = o.samples > 0 ? o.samples : 4 * n;
-  if (o.samples < 0 || m < n) fail("samples is ", o.samples, "; expected 0 (automatic) or >= n_control = ", n);
+  if (o.samples < 0 || (!exact && m < n)) fail("samples is ", o.samples, "; expected 0 (automatic) or >= n_control = ", n);
   if (!(o.curvature_weight >= 0) || !std::isfinite(o.curvature_weight))
     fail("curvature_weight is ", o.curvature_weight, "; expected a finite value >= 0");
   if (!(o.e2 >= 0) || !(o.e3 >= 0) || !std::isfinite(o.e2) || !std::isfinite(o.e3) || !(o.e2 + o.e3 > 0))
@@ -275,120 +320,133 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
   if (o.e3 > 0 && o.degree_v < 3) fail("e3 is ", o.e3, " but degree_v is ", o.degree_v, "; E3 needs degree_v >= 3");
   if (!(o.smoothing >= 0) || !std::isfinite(o.smoothing))
     fail("smoothing is ", o.smoothing, "; expected a finite value >= 0");
-
-  // (b) equally spaced points along every section.
-  std::vector<Eigen::MatrixXd> pts(q);
-  for (int d = 0; d < q; ++d) {
-    try {
-      pts[d] = equal_arc_length_points(sections[d], m, o.curvature_weight);
-    } catch (const InvalidInput& e) {
-      fail("sections[", d, "]: ", e.what());
-    }
+  for (std::size_t g = 0; g < o.straight_groups.size(); ++g) {
+    const auto [first, last] = o.straight_groups[g];
+    if (first < 0 || last < first || last >= n)
+      fail("straight_groups[", g, "] is (", first, ", ", last, "); expected row indices 0 <= first <= last < ", n);
   }
 
-  // Flat planes (SkinOptions::flats) and the distance within which a point lies in one.
-  double extent = 1.0;
-  for (int d = 0; d < q; ++d) extent = std::max(extent, pts[d].cwiseAbs().maxCoeff());
-  const double flat_tol = kFlatTolerance * extent;
-  for (std::size_t f = 0; f < o.flats.size(); ++f) {
-    const auto [axis, value] = o.flats[f];
-    if (axis < 0 || axis > 2) fail("flats[", f, "] has axis ", axis, "; expected 0 (x), 1 (y) or 2 (z)");
-    if (!std::isfinite(value)) fail("flats[", f, "] has value ", value, "; expected a finite coordinate (m)");
-  }
-  // The plane value a set of coordinates all lie in (to flat_tol), or NaN.
-  auto flat_value = [&](int axis, auto&& coords) {
-    for (const auto& [a, c] : o.flats) {
-      if (a != axis) continue;
-      bool all = true;
-      for (double x : coords)
-        if (!(std::abs(x - c) <= flat_tol)) { all = false; break; }
-      if (all) return c;
-    }
-    return std::numeric_limits<double>::quiet_NaN();
-  };
-
-  // (c)-(d) one knot vector and control count for all sections; ends interpolated, the rest
-  // by least squares (QR of the collocation matrix, factorised once for all sections).
-  const Eigen::VectorXd Ku = clamped_uniform_knots(n, o.degree_u);
-  Eigen::MatrixXd Nu(m, n);
-  for (int k = 0; k < m; ++k) Nu.row(k) = basis_row(Ku, o.degree_u, static_cast<double>(k) / (m - 1));
-  // ctrl[d] : n x 3
-  std::vector<Eigen::MatrixXd> ctrl(q, Eigen::MatrixXd(n, 3));
+  Eigen::VectorXd Ku;
+  std::vector<Eigen::MatrixXd> ctrl(q);
   double fit_max = 0;
-  {
-    Eigen::MatrixXd rhs(m, 3 * q);
-    for (int d = 0; d < q; ++d) rhs.middleCols(3 * d, 3) = pts[d];
-    Eigen::MatrixXd sol(n, 3 * q);
-    if (m == n) {
-      sol = Nu.partialPivLu().solve(rhs);
-    } else {
-      // Fix the end control points to the end samples, least squares on the interior.
-      sol.row(0) = rhs.row(0);
-      sol.row(n - 1) = rhs.row(m - 1);
-      const Eigen::MatrixXd A = Nu.block(1, 1, m - 2, n - 2);
-      const Eigen::MatrixXd b = rhs.middleRows(1, m - 2) - Nu.block(1, 0, m - 2, 1) * sol.row(0) -
-                                Nu.block(1, n - 1, m - 2, 1) * sol.row(n - 1);
-      sol.middleRows(1, n - 2) = A.householderQr().solve(b);
-      if (!o.flats.empty()) {
-        // Control points whose whole support lies in a flat keep exactly to it; the others are
-        // the least-squares fit with those fixed (normal equations of the free ones, one
-        // Cholesky factorisation per distinct set of fixed points).
-        const Eigen::MatrixXd M = Nu.transpose() * Nu;
-        // Samples strictly inside each interior control point's support (the same for every
-        // section): [first, last], empty when first > last.
-        std::vector<std::pair<int, int>> inside(n, {1, 0});
-        for (int j = 1; j < n - 1; ++j) {
-          int first = m, last = -1;
-          for (int k = 1; k < m - 1; ++k) {
-            const double u = static_cast<double>(k) / (m - 1);
-            if (u > Ku[j] && u < Ku[j + o.degree_u + 1]) first = std::min(first, k), last = k;
-          }
-          inside[j] = {first, last};
-        }
-        std::map<std::vector<char>, Eigen::LLT<Eigen::MatrixXd>> factors;
-        for (int col = 0; col < 3 * q; ++col) {
-          const int axis = col % 3;
-          std::vector<char> fixed(n, 0);
-          Eigen::VectorXd z = sol.col(col), held = Eigen::VectorXd::Zero(n);  // held: z where fixed
-          fixed[0] = fixed[n - 1] = 1;
-          held[0] = z[0], held[n - 1] = z[n - 1];
-          bool any = false;
-          for (int j = 1; j < n - 1; ++j) {
-            const auto [first, last] = inside[j];
-            if (first > last) continue;
-            const double* col_data = rhs.col(col).data();
-            const double c = flat_value(axis, std::vector<double>(col_data + first, col_data + last + 1));
-            if (!std::isnan(c)) fixed[j] = 1, z[j] = held[j] = c, any = true;
-          }
-          if (!any) continue;
-          std::vector<int> freev;
-          for (int j = 0; j < n; ++j)
-            if (!fixed[j]) freev.push_back(j);
-          if (freev.empty()) {
-            sol.col(col) = z;
-            continue;
-          }
-          const int r = static_cast<int>(freev.size());
-          auto it = factors.find(fixed);
-          if (it == factors.end()) {
-            Eigen::MatrixXd Mrr(r, r);
-            for (int a = 0; a < r; ++a)
-              for (int b2 = 0; b2 < r; ++b2) Mrr(a, b2) = M(freev[a], freev[b2]);
-            it = factors.emplace(fixed, Eigen::LLT<Eigen::MatrixXd>(Mrr)).first;
-          }
-          const Eigen::VectorXd g = Nu.transpose() * rhs.col(col) - M * held;
-          Eigen::VectorXd gr(r);
-          for (int a = 0; a < r; ++a) gr[a] = g[freev[a]];
-          const Eigen::VectorXd zr = it->second.solve(gr);
-          for (int a = 0; a < r; ++a) z[freev[a]] = zr[a];
-          sol.col(col) = z;
-        }
+  if (exact) {
+    Ku = sections[0].knots();
+    for (int d = 0; d < q; ++d) ctrl[d] = sections[d].control_points();
+  } else {
+
+    // (b) equally spaced points along every section.
+    std::vector<Eigen::MatrixXd> pts(q);
+    for (int d = 0; d < q; ++d) {
+      try {
+        pts[d] = equal_arc_length_points(sections[d], m, o.curvature_weight);
+      } catch (const InvalidInput& e) {
+        fail("sections[", d, "]: ", e.what());
       }
     }
-    const Eigen::MatrixXd resid = Nu * sol - rhs;
-    for (int d = 0; d < q; ++d) {
-      ctrl[d] = sol.middleCols(3 * d, 3);
-      for (int k = 0; k < m; ++k) fit_max = std::max(fit_max, resid.block(k, 3 * d, 1, 3).norm());
+
+    // Flat planes (SkinOptions::flats) and the distance within which a point lies in one.
+    double extent = 1.0;
+    for (int d = 0; d < q; ++d) extent = std::max(extent, pts[d].cwiseAbs().maxCoeff());
+    const double flat_tol = kFlatTolerance * extent;
+    for (std::size_t f = 0; f < o.flats.size(); ++f) {
+      const auto [axis, value] = o.flats[f];
+      if (axis < 0 || axis > 2) fail("flats[", f, "] has axis ", axis, "; expected 0 (x), 1 (y) or 2 (z)");
+      if (!std::isfinite(value)) fail("flats[", f, "] has value ", value, "; expected a finite coordinate (m)");
+    }
+    // The plane value a set of coordinates all lie in (to flat_tol), or NaN.
+    auto flat_value = [&](int axis, auto&& coords) {
+      for (const auto& [a, c] : o.flats) {
+        if (a != axis) continue;
+        bool all = true;
+        for (double x : coords)
+          if (!(std::abs(x - c) <= flat_tol)) { all = false; break; }
+        if (all) return c;
+      }
+      return std::numeric_limits<double>::quiet_NaN();
+    };
+
+    // (c)-(d) one knot vector and control count for all sections; ends interpolated, the rest
+    // by least squares (QR of the collocation matrix, factorised once for all sections).
+    Ku = clamped_uniform_knots(n, o.degree_u);
+    Eigen::MatrixXd Nu(m, n);
+    for (int k = 0; k < m; ++k) Nu.row(k) = basis_row(Ku, o.degree_u, static_cast<double>(k) / (m - 1));
+    // ctrl[d] : n x 3
+    ctrl.assign(q, Eigen::MatrixXd(n, 3));
+    {
+      Eigen::MatrixXd rhs(m, 3 * q);
+      for (int d = 0; d < q; ++d) rhs.middleCols(3 * d, 3) = pts[d];
+      Eigen::MatrixXd sol(n, 3 * q);
+      if (m == n) {
+        sol = Nu.partialPivLu().solve(rhs);
+      } else {
+        // Fix the end control points to the end samples, least squares on the interior.
+        sol.row(0) = rhs.row(0);
+        sol.row(n - 1) = rhs.row(m - 1);
+        const Eigen::MatrixXd A = Nu.block(1, 1, m - 2, n - 2);
+        const Eigen::MatrixXd b = rhs.middleRows(1, m - 2) - Nu.block(1, 0, m - 2, 1) * sol.row(0) -
+                                  Nu.block(1, n - 1, m - 2, 1) * sol.row(n - 1);
+        sol.middleRows(1, n - 2) = A.householderQr().solve(b);
+        if (!o.flats.empty()) {
+          // Control points whose whole support lies in a flat keep exactly to it; the others are
+          // the least-squares fit with those fixed (normal equations of the free ones, one
+          // Cholesky factorisation per distinct set of fixed points).
+          const Eigen::MatrixXd M = Nu.transpose() * Nu;
+          // Samples strictly inside each interior control point's support (the same for every
+          // section): [first, last], empty when first > last.
+          std::vector<std::pair<int, int>> inside(n, {1, 0});
+          for (int j = 1; j < n - 1; ++j) {
+            int first = m, last = -1;
+            for (int k = 1; k < m - 1; ++k) {
+              const double u = static_cast<double>(k) / (m - 1);
+              if (u > Ku[j] && u < Ku[j + o.degree_u + 1]) first = std::min(first, k), last = k;
+            }
+            inside[j] = {first, last};
+          }
+          std::map<std::vector<char>, Eigen::LLT<Eigen::MatrixXd>> factors;
+          for (int col = 0; col < 3 * q; ++col) {
+            const int axis = col % 3;
+            std::vector<char> fixed(n, 0);
+            Eigen::VectorXd z = sol.col(col), held = Eigen::VectorXd::Zero(n);  // held: z where fixed
+            fixed[0] = fixed[n - 1] = 1;
+            held[0] = z[0], held[n - 1] = z[n - 1];
+            bool any = false;
+            for (int j = 1; j < n - 1; ++j) {
+              const auto [first, last] = inside[j];
+              if (first > last) continue;
+              const double* col_data = rhs.col(col).data();
+              const double c = flat_value(axis, std::vector<double>(col_data + first, col_data + last + 1));
+              if (!std::isnan(c)) fixed[j] = 1, z[j] = held[j] = c, any = true;
+            }
+            if (!any) continue;
+            std::vector<int> freev;
+            for (int j = 0; j < n; ++j)
+              if (!fixed[j]) freev.push_back(j);
+            if (freev.empty()) {
+              sol.col(col) = z;
+              continue;
+            }
+            const int r = static_cast<int>(freev.size());
+            auto it = factors.find(fixed);
+            if (it == factors.end()) {
+              Eigen::MatrixXd Mrr(r, r);
+              for (int a = 0; a < r; ++a)
+                for (int b2 = 0; b2 < r; ++b2) Mrr(a, b2) = M(freev[a], freev[b2]);
+              it = factors.emplace(fixed, Eigen::LLT<Eigen::MatrixXd>(Mrr)).first;
+            }
+            const Eigen::VectorXd g = Nu.transpose() * rhs.col(col) - M * held;
+            Eigen::VectorXd gr(r);
+            for (int a = 0; a < r; ++a) gr[a] = g[freev[a]];
+            const Eigen::VectorXd zr = it->second.solve(gr);
+            for (int a = 0; a < r; ++a) z[freev[a]] = zr[a];
+            sol.col(col) = z;
+          }
+        }
+      }
+      const Eigen::MatrixXd resid = Nu * sol - rhs;
+      for (int d = 0; d < q; ++d) {
+        ctrl[d] = sol.middleCols(3 * d, 3);
+        for (int k = 0; k < m; ++k) fit_max = std::max(fit_max, resid.block(k, 3 * d, 1, 3).norm());
+      }
     }
   }
 
@@ -435,17 +493,71 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
   v[q - 1] = 1;
 
   // Longitudinal knots: a knot at every interior section parameter (multiplicity degree_v - 1
-  // at C1 joints), clamped ends. Dimension q + degree_v - 1 (+ joints * (degree_v - 2)).
+  // at C1 joints), one more in the interval next to each end of a held run (below), clamped ends.
   const int pv = o.degree_v;
   std::set<int> joints;
   for (int j : o.c1_sections) {
     if (j < 1 || j > q - 2) fail("c1_sections contains ", j, "; expected interior section indices 1..", q - 2);
     joints.insert(j);
   }
+
+  // Data columns: for coordinate k of row i, the q values ctrl[d](i, k). Column 3 i + k.
+  Eigen::MatrixXd data(q, 3 * n);
+  for (int d = 0; d < q; ++d)
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k) data(d, 3 * i + k) = ctrl[d](i, k);
+
+  // Held runs (SkinOptions::hold_runs): per column, the maximal runs of at least kMinHeldRun
+  // consecutive sections with one value (y and z only; x moves with the stations).
+  std::vector<std::vector<HeldRun>> runs(3 * n);
+  if (o.hold_runs) {
+    double extent = 1.0;
+    for (int d = 0; d < q; ++d) extent = std::max(extent, ctrl[d].cwiseAbs().maxCoeff());
+    const double tol = kRunTolerance * extent;
+    for (int col = 0; col < 3 * n; ++col)
+      if (col % 3 != 0) runs[col] = find_runs(data.col(col), tol);
+    // Rows of one straight group keep one straight segment between the sections only if their
+    // longitudinal curves are built alike: they hold only where every row of the group holds
+    // (rows constant everywhere are exact either way).
+    for (const auto& [first, last] : o.straight_groups)
+      for (int k = 1; k < 3; ++k) {
+        std::vector<char> common(q, 1);
+        bool any = false;
+        for (int i = first; i <= last; ++i) {
+          const auto& r = runs[3 * i + k];
+          if (r.size() == 1 && r[0].first == 0 && r[0].last == q - 1) continue;
+          any = true;
+          std::vector<char> held(q, 0);
+          for (const HeldRun& h : r)
+            for (int d = h.first; d <= h.last; ++d) held[d] = 1;
+          for (int d = 0; d < q; ++d) common[d] = common[d] && held[d];
+        }
+        if (!any) continue;
+        for (int i = first; i <= last; ++i) {
+          auto& r = runs[3 * i + k];
+          if (r.size() == 1 && r[0].first == 0 && r[0].last == q - 1) continue;
+          r = find_runs_in(data.col(3 * i + k), common, tol);
+        }
+      }
+  }
   std::vector<double> kv(pv + 1, 0.0);
   for (int d = 1; d < q - 1; ++d) {
     const int mult = joints.count(d) ? pv - 1 : 1;
     for (int r = 0; r < mult; ++r) kv.push_back(v[d]);
+  }
+  {
+    // One knot in the middle of the interval after each held run and before it: the run's
+    // controls are fixed, and this knot gives the curve beyond one free control, so it leaves
+    // the run with C^(degree_v - 1) continuity through a well-posed boundary value problem
+    // (without it the curve would be an initial value spline, growing by ~3.7 per interval).
+    std::set<double> extra;
+    for (const auto& col_runs : runs)
+      for (const HeldRun& h : col_runs) {
+        if (h.last < q - 1) extra.insert(0.5 * (v[h.last] + v[h.last + 1]));
+        if (h.first > 0) extra.insert(0.5 * (v[h.first - 1] + v[h.first]));
+      }
+    kv.insert(kv.end(), extra.begin(), extra.end());
+    std::sort(kv.begin() + pv + 1, kv.end());
   }
   for (int r = 0; r <= pv; ++r) kv.push_back(1.0);
   const Eigen::VectorXd Kv = Eigen::Map<Eigen::VectorXd>(kv.data(), static_cast<Eigen::Index>(kv.size()));
@@ -459,71 +571,83 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
   if (o.e3 > 0) G += o.e3 * hq * hq * derivative_gram(Kv, pv, 3);
   const Eigen::RowVectorXd D0 = basis_row(Kv, pv, 0.0, 1), D1 = basis_row(Kv, pv, 1.0, 1);
 
-  // Data rows: for coordinate k, row i, the q values ctrl[d](i, k). Columns: (i, k) -> 3 i + k.
-  Eigen::MatrixXd data(q, 3 * n);
-  for (int d = 0; d < q; ++d)
-    for (int i = 0; i < n; ++i)
-      for (int k = 0; k < 3; ++k) data(d, 3 * i + k) = ctrl[d](i, k);
+  // Objective 1/2 c' H c - b' c with constraints C c = e: Interpolate: H = 2 G, C = [Nv; ends],
+  // e = [data; 0]. Approximate: H = (2/q) Nv'Nv + 2 lam G, b = (2/q) Nv' data, C = ends.
+  // Constraint rows are scaled to the fairness block's magnitude: with E3 (entries ~ q^3) the
+  // unscaled KKT pivots of the O(1) interpolation rows fall under FullPivLU's rank threshold.
+  const bool interp = o.mode == SkinMode::Interpolate;
+  const double lam = o.smoothing * hq * hq * hq * hq;
+  const Eigen::MatrixXd H = interp ? Eigen::MatrixXd(2.0 * G) : Eigen::MatrixXd((2.0 / q) * Nv.transpose() * Nv + 2.0 * lam * G);
+  const double cs = std::max(1e-300, H.cwiseAbs().maxCoeff());
 
-  // Solve for one coordinate group (x alone, or y and z with the end conditions).
+  // Held controls of each column: those whose support meets a held run (open interval).
+  std::vector<std::vector<char>> held_mask(3 * n, std::vector<char>(nv, 0));
+  std::vector<Eigen::VectorXd> held_val(3 * n, Eigen::VectorXd::Zero(nv));
+  for (int col = 0; col < 3 * n; ++col)
+    for (const HeldRun& h : runs[col])
+      for (int j = 0; j < nv; ++j)
+        if (Kv[j] < v[h.last] && Kv[j + pv + 1] > v[h.first]) held_mask[col][j] = 1, held_val[col][j] = h.value;
+
+  // Columns that share a held set and end conditions share one factorisation.
   Eigen::MatrixXd lon(nv, 3 * n);
-  auto solve_group = [&](const std::vector<int>& cols, bool with_ends) {
-    std::vector<Eigen::RowVectorXd> extra;
-    if (with_ends && o.start == SkinEnd::Parallel) extra.push_back(D0);
-    if (with_ends && o.end == SkinEnd::Parallel) extra.push_back(D1);
-    const int ne = static_cast<int>(extra.size());
-    Eigen::MatrixXd rhs_data(q, cols.size());
-    for (std::size_t c = 0; c < cols.size(); ++c) rhs_data.col(c) = data.col(cols[c]);
-    Eigen::MatrixXd sol;
-    if (o.mode == SkinMode::Interpolate) {
-      const int mc = q + ne;
-      // Constraint rows scaled to the fairness block's magnitude: with E3 (entries ~ q^3) the
-      // unscaled KKT pivots of the O(1) interpolation rows fall under FullPivLU's rank
-      // threshold, and the solve silently misses the sections by decimetres.
-      const double gmax = (2.0 * G).cwiseAbs().maxCoeff();
-      const double cs = gmax > 0 ? gmax : 1.0;
-      Eigen::MatrixXd KKT = Eigen::MatrixXd::Zero(nv + mc, nv + mc);
-      KKT.topLeftCorner(nv, nv) = 2.0 * G;
-      KKT.block(nv, 0, q, nv) = cs * Nv;
-      for (int e = 0; e < ne; ++e) KKT.row(nv + q + e).head(nv) = cs * extra[e];
-      KKT.topRightCorner(nv, mc) = KKT.bottomLeftCorner(mc, nv).transpose();
-      Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nv + mc, cols.size());
-      rhs.middleRows(nv, q) = cs * rhs_data;
-      const Eigen::FullPivLU<Eigen::MatrixXd> lu(KKT);
-      const Eigen::MatrixXd full = lu.solve(rhs);
-      // A singular system shows as a residual the solve cannot remove (the pivot-based rank
-      // is unreliable here: E3 and interpolation rows differ by many orders of magnitude).
-      if (!full.allFinite() || (KKT * full - rhs).norm() > 1e-10 * (KKT.norm() * full.norm() + rhs.norm()))
+  std::map<std::pair<std::vector<char>, bool>, std::vector<int>> groups;
+  for (int col = 0; col < 3 * n; ++col) groups[{held_mask[col], col % 3 != 0}].push_back(col);
+  for (const auto& [key, cols] : groups) {
+    const auto& [mask, with_ends] = key;
+    std::vector<int> freev;
+    for (int j = 0; j < nv; ++j)
+      if (!mask[j]) freev.push_back(j);
+    const int nf = static_cast<int>(freev.size());
+    // Constraint rows over all controls, then keep the ones that still involve a free control
+    // (a station inside a held run is met by the held controls themselves).
+    std::vector<Eigen::RowVectorXd> crow;
+    std::vector<int> data_row;  // station index of an interpolation row, -1 for an end row
+    if (interp)
+      for (int d = 0; d < q; ++d) crow.push_back(Nv.row(d)), data_row.push_back(d);
+    if (with_ends && o.start == SkinEnd::Parallel) crow.push_back(D0), data_row.push_back(-1);
+    if (with_ends && o.end == SkinEnd::Parallel) crow.push_back(D1), data_row.push_back(-1);
+    std::vector<int> keep;
+    for (std::size_t r = 0; r < crow.size(); ++r) {
+      double f = 0;
+      for (int a = 0; a < nf; ++a) f = std::max(f, std::abs(crow[r][freev[a]]));
+      if (f > 1e-14 * crow[r].cwiseAbs().maxCoeff()) keep.push_back(static_cast<int>(r));
+    }
+    const int mc = static_cast<int>(keep.size());
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nf + mc, nf + mc);
+    for (int a = 0; a < nf; ++a)
+      for (int b2 = 0; b2 < nf; ++b2) K(a, b2) = H(freev[a], freev[b2]);
+    for (int r = 0; r < mc; ++r)
+      for (int a = 0; a < nf; ++a) K(nf + r, a) = K(a, nf + r) = cs * crow[keep[r]][freev[a]];
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nf + mc, cols.size());
+    for (std::size_t c = 0; c < cols.size(); ++c) {
+      const int col = cols[c];
+      const Eigen::VectorXd& hv = held_val[col];
+      Eigen::VectorXd b = Eigen::VectorXd::Zero(nv);
+      if (!interp) b = (2.0 / q) * Nv.transpose() * data.col(col);
+      const Eigen::VectorXd top = b - H * hv;  // hv is zero on the free controls
+      for (int a = 0; a < nf; ++a) rhs(a, c) = top[freev[a]];
+      for (int r = 0; r < mc; ++r) {
+        const int dr = data_row[keep[r]];
+        rhs(nf + r, c) = cs * ((dr >= 0 ? data(dr, col) : 0.0) - crow[keep[r]].dot(hv));
+      }
+    }
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(K);
+    const Eigen::MatrixXd sol = lu.solve(rhs);
+    // A singular system shows as a residual the solve cannot remove (the pivot-based rank is
+    // unreliable here: E3 and interpolation rows differ by many orders of magnitude).
+    if (!sol.allFinite() || (K * sol - rhs).norm() > 1e-10 * (K.norm() * sol.norm() + rhs.norm())) {
+      if (interp)
         fail("the longitudinal interpolation problem is singular (", q, " sections, degree_v ", pv,
              "); expected distinct section parameters");
-      sol = full.topRows(nv);
-    } else {
-      const double h = 1.0 / (q - 1);
-      const double lam = o.smoothing * h * h * h * h;
-      Eigen::MatrixXd KKT = Eigen::MatrixXd::Zero(nv + ne, nv + ne);
-      KKT.topLeftCorner(nv, nv) = (2.0 / q) * Nv.transpose() * Nv + 2.0 * lam * G;
-      for (int e = 0; e < ne; ++e) {
-        KKT.row(nv + e).head(nv) = extra[e];
-        KKT.col(nv + e).head(nv) = extra[e].transpose();
-      }
-      Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nv + ne, cols.size());
-      rhs.topRows(nv) = (2.0 / q) * Nv.transpose() * rhs_data;
-      const Eigen::FullPivLU<Eigen::MatrixXd> lu(KKT);
-      if (lu.rank() < nv + ne)
-        fail("the longitudinal approximation problem is singular (", q, " sections, degree_v ", pv,
-             ", smoothing ", o.smoothing, "); expected smoothing > 0 or more sections");
-      sol = lu.solve(rhs).topRows(nv);
+      fail("the longitudinal approximation problem is singular (", q, " sections, degree_v ", pv,
+           ", smoothing ", o.smoothing, "); expected smoothing > 0 or more sections");
     }
-    for (std::size_t c = 0; c < cols.size(); ++c) lon.col(cols[c]) = sol.col(c);
-  };
-  std::vector<int> xs, yz;
-  for (int i = 0; i < n; ++i) {
-    xs.push_back(3 * i);
-    yz.push_back(3 * i + 1);
-    yz.push_back(3 * i + 2);
+    for (std::size_t c = 0; c < cols.size(); ++c) {
+      Eigen::VectorXd z = held_val[cols[c]];
+      for (int a = 0; a < nf; ++a) z[freev[a]] = sol(a, c);
+      lon.col(cols[c]) = z;
+    }
   }
-  solve_group(xs, false);
-  solve_group(yz, true);
 
   SkinResult res{NurbsSurface(o.degree_u, pv, Ku, Kv, n, nv, Eigen::MatrixXd::Zero(n * nv, 3)),
                  v, fit_max, 0.0, Eigen::VectorXd(n)};
@@ -538,6 +662,8 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
     for (int i = 0; i < n; ++i)
       lmax = std::max(lmax, (fitted.block(d, 3 * i, 1, 3) - data.block(d, 3 * i, 1, 3)).norm());
   res.longitudinal_max = lmax;
+  res.held_columns = 0;
+  for (const auto& r : runs) res.held_columns += !r.empty();
   const Eigen::MatrixXd G2 = derivative_gram(Kv, pv, 2);
   for (int i = 0; i < n; ++i) {
     double e = 0;
