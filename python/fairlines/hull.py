@@ -724,14 +724,22 @@ class Hull:
         slope = fos.derivative(x_t, 1)
         return max(c, 0.0) / slope**3 if slope > 0 else math.nan
 
-    def section_parameters(self) -> dict[str, np.ndarray]:
-        """Per-station section parameters read off the basic curves (SectionSpec fields). The
-        flat-of-side and flat-of-bottom curves are continued straight beyond their ends (the
-        flat then ends smoothly where the continuation passes the deck / the centre line)."""
+    def section_parameters(self, x: Any = None) -> dict[str, np.ndarray]:
+        """Section parameters read off the basic curves (SectionSpec fields) at the stations,
+        or at the given x (m). The flat-of-side and flat-of-bottom curves are continued
+        straight beyond their ends (the flat then ends smoothly where the continuation passes
+        the deck / the centre line)."""
         d = self.description
         pr = d.principal
         bc = self.basic_curves
-        x = self.stations()
+        if x is None:
+            x = self.stations()
+        else:
+            x = np.atleast_1d(np.asarray(x, dtype=float))
+            tol = 1e-9 * pr.lpp
+            for i, xi in enumerate(x):
+                if not (d.x_start - tol <= xi <= d.x_end + tol):
+                    raise _native.InvalidInput(f"x[{i}] is {xi}; expected a station inside the hull ({d.x_start} to {d.x_end} m)")
         ones = np.ones_like(x)
         zc = bc["section_zc"](x) if "section_zc" in bc else np.full_like(x, math.nan)
         return {
@@ -769,6 +777,32 @@ class Hull:
                     secs.insert(k, c)
             self._sections = secs
         return self._sections
+
+    def sections_at(self, x: Any) -> list:
+        """The designed sections at any x (m): what the basic curves define between the
+        stations too (the form-parameter family the skinned surface approximates)."""
+        d = self.description
+        return list(_native._design_sections(self.section_parameters(x), d.section_n_control, 3, d.principal.breadth / 2))
+
+    def design_family(self, per_interval: int = 4) -> list:
+        """Designed sections at the stations and ``per_interval - 1`` more between each pair,
+        auxiliary sections in place: the designed shape at that density, for judging the
+        skinned surface's inflections (fairness_report)."""
+        per_interval = _integer("per_interval", per_interval, 1)
+        xs = self.stations()
+        dense = np.concatenate([np.linspace(a, b, per_interval + 1)[:-1] for a, b in zip(xs[:-1], xs[1:])] + [xs[-1:]])
+        secs = self.sections_at(dense)
+        xl = list(dense)
+        d = self.description
+        for i, a in enumerate(d.auxiliary_sections):
+            c = _fit_on_section_knots(a, d.section_n_control, f"auxiliary_sections[{i}]")
+            k = int(np.searchsorted(xl, a.x))
+            if k < len(xl) and abs(xl[k] - a.x) < 1e-9 * d.principal.lpp:
+                secs[k] = c
+            else:
+                xl.insert(k, a.x)
+                secs.insert(k, c)
+        return secs
 
     def skin(self):
         """The SkinResult of the fair skinning (cached): the sections share one knot vector, so
@@ -843,11 +877,15 @@ class Hull:
         b = self.bulbous_bow() if bulb is None else bulb
         return compose_with_blend(self.bare_hull_surface(), b, blend=blend, **compose_options)
 
-    def fairness_report(self, **kwargs) -> dict:
-        """fairness_report of the bare hull, every inflection judged against the designed
-        sections (fairlines.inflections): real (the shape calls for it, and why) or false."""
+    def fairness_report(self, family_density: int = 4, **kwargs) -> dict:
+        """fairness_report of the bare hull, every inflection judged against the designed shape
+        (fairlines.inflections): real (the shape calls for it, and why) or false. The designed
+        shape is the family of sections the basic curves define, taken at ``family_density``
+        sections per station interval (design_family): a feature shorter than two station
+        spacings is still the design's, and the skinned surface must not add any other."""
         d = self.description
-        kwargs.setdefault("sections", self.sections)
+        if "sections" not in kwargs:
+            kwargs["sections"] = self.design_family(family_density)
         kwargs.setdefault("dz", d.principal.depth / (d.section_n_control - 1))
         return fairness_report(self.bare_hull_surface(), draft=d.principal.draft, **kwargs)
 

@@ -49,11 +49,21 @@ inline constexpr double kMinTangentChordCos = 0.05;
 /// Flat-side departure band, as a fraction of the draught: sections whose flat of side ends
 /// less than this below the DWL blend their departure from the flat toward the rate the design
 /// waterline has where it leaves the flat (SectionSpec::flat_departure); see design_section.
-inline constexpr double kDepartureBand = 0.5;
+inline constexpr double kDepartureBand = 1.0;
 /// Fore-side band, as a fraction of the draught: sections whose flat of side ends less than
 /// this above the DWL blend from that departure condition to the exact DWL point (near the
 /// crossing the DWL point sits within millimetres of the flat's end and pins the same rate).
 inline constexpr double kDwlNearBand = 0.05;
+/// Length over which a section's end passes from zero curvature (G2 with a flat of side or
+/// bottom) to a free end curvature (no flat), as a fraction of the depth: the two designs are
+/// blended with the flat's length (a smooth step from 0 to this length), so nothing jumps
+/// where a flat ends, and cuts near the deck and keel of the fine bow keep a definite curvature.
+inline constexpr double kG2Blend = 0.05;
+/// Near a stem the end angles fade to vertical: a section narrower than this fraction of B/2
+/// (largest of its deck, DWL and flat-bottom half-breadths) uses its deck and bottom angles
+/// times a smooth step of its breadth, and the stem itself (zero breadth) is vertical. An angle
+/// at a section only centimetres wide would swing its end legs across the centre plane.
+inline constexpr double kAngleFadeBreadth = 0.1;
 /// A designed section may exceed 0 <= y <= y_max by this fraction of y_max (round-off) before
 /// it counts as infeasible.
 inline constexpr double kSectionBoundTol = 1e-6;

@@ -181,8 +181,9 @@ NurbsCurve design_section(const SectionSpec& s, double y_max) {
     throw InfeasibleFormParameters(at + ": a flat of bottom out to y = " + fmt(s.y_fob) +
                                    " m needs a horizontal tangent at the keel; got alpha_bottom = " + fmt(s.alpha_bottom) +
                                    " deg (the bottom_angle curve leaves -90 before the fob curve ends)");
-  const V2 Tt = stem ? V2(0.0, -1.0) : tangent(flat_side ? 0.0 : s.alpha_deck);
-  const V2 Tb = stem ? V2(0.0, -1.0) : tangent(flat_bottom ? -90.0 : s.alpha_bottom);
+  const double fade = smoothstep(breadth / (kAngleFadeBreadth * y_max));
+  const V2 Tt = stem ? V2(0.0, -1.0) : tangent(flat_side ? 0.0 : s.alpha_deck * fade);
+  const V2 Tb = stem ? V2(0.0, -1.0) : tangent(flat_bottom ? -90.0 : s.alpha_bottom * fade);
   const double lt = stem ? floor_eff : zone_length(L_top, floor_eff);
   const double lb = stem ? floor_eff : zone_length(L_bot, floor_eff);
   const V2 P_deck(y_deck, D), K(0.0, s.z_keel);
@@ -206,19 +207,17 @@ NurbsCurve design_section(const SectionSpec& s, double y_max) {
                                    " deg) points across the section instead of toward the " +
                                    std::string(td < kMinTangentChordCos ? "keel" : "deck") +
                                    " (deck_angle / bottom_angle curves vs the section's breadth and depth)");
-  // Fixed legs: the first and last three control points lie on the zones' lines (G2 joints).
+  // Legs: the first and last three control points on the zones' lines (G2 joints with flats;
+  // the third ones are released where there is no flat, see wt / wb below).
   std::vector<V2> P(nc);
-  std::vector<char> fixed(nc, 0);
   // At a stem (zero breadth) the whole section is the centre-line segment A -> E.
   if (stem)
     for (int k = 0; k < nc; ++k) P[k] = A + Lc * g[k] * d;
   for (int k : {0, 1, 2}) {
     P[k] = stem ? V2(A + Lc * g[k] * d) : V2(A + (Lc * g[k] / td) * Tt);
-    fixed[k] = 1;
   }
   for (int k : {nc - 1, nc - 2, nc - 3}) {
     P[k] = stem ? V2(A + Lc * g[k] * d) : V2(E - (Lc * (1.0 - g[k]) / bd) * Tb);
-    fixed[k] = 1;
   }
   P[0] = A, P[nc - 1] = E;
 
@@ -230,8 +229,11 @@ NurbsCurve design_section(const SectionSpec& s, double y_max) {
       r[k] = 1.0;
       return r;
     };
-    for (int k = 0; k < nc; ++k)
-      if (fixed[k]) base.add(unit(k), (P[k] - A).dot(n), "end tangents");
+    // P0, P1 (and E, P_n-2) on the zones' lines always: tangent continuity. P2 (and P_n-3) too
+    // where the zone is a flat: zero curvature there, G2 with the flat (see g2 below).
+    for (int k : {0, 1, nc - 2, nc - 1}) base.add(unit(k), (P[k] - A).dot(n), "end tangents");
+    const Eigen::RowVectorXd g2_top_row = unit(2), g2_bot_row = unit(nc - 3);
+    const double g2_top_val = (P[2] - A).dot(n), g2_bot_val = (P[nc - 3] - A).dot(n);
     // E2 of the ordinates (the abscissae are linear in t).
     Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nc, nc);
     {
@@ -361,26 +363,42 @@ NurbsCurve design_section(const SectionSpec& s, double y_max) {
     }
     const double band = kDepartureBand * T, near = kDwlNearBand * T;
     const double below = T - A.y();  // > 0: the flat ends below the DWL
-    if (departure && below >= 0 && below < band) {
-      // Aft of the crossing: blend the free departure toward the DWL's rate.
-      const Eigen::VectorXd free = solve(base);
-      const double w = smoothstep(1.0 - below / band);
-      const double target = (1.0 - w) * (off_row.dot(free) + off_const) + w * off_T;
-      eta = solve(with(base, off_row, target - off_const, "departure from the flat of side"));
-    } else if (departure && below < 0 && -below < near) {
-      // Just forward of the crossing the DWL point sits millimetres below the flat's end:
-      // blend from the departure condition (its limit) to the exact DWL point.
-      const double sw = smoothstep(-below / near);
-      const Eigen::VectorXd e_dep = solve(with(base, off_row, off_T - off_const, "departure from the flat of side"));
-      eta = e_dep;
-      if (sw > 0) eta = (1.0 - sw) * e_dep + sw * solve(with(base, dwl_row, eta_Q, "DWL point"));
-    } else if (!dwl_on_top) {
-      eta = solve(with(base, dwl_row, eta_Q, "DWL point"));
-    } else {
-      eta = solve(base);
+    auto design = [&](bool g2_top, bool g2_bot) -> Eigen::VectorXd {
+      Constraints c = base;
+      if (g2_top) c.add(g2_top_row, g2_top_val, "zero curvature leaving the flat of side");
+      if (g2_bot) c.add(g2_bot_row, g2_bot_val, "zero curvature meeting the flat of bottom");
+      if (g2_top && departure && below >= 0 && below < band) {
+        // Aft of the crossing: blend the free departure toward the DWL's rate.
+        const Eigen::VectorXd free = solve(c);
+        const double w = smoothstep(1.0 - below / band);
+        const double target = (1.0 - w) * (off_row.dot(free) + off_const) + w * off_T;
+        return solve(with(c, off_row, target - off_const, "departure from the flat of side"));
+      }
+      if (g2_top && departure && below < 0 && -below < near) {
+        // Just forward of the crossing the DWL point sits millimetres below the flat's end:
+        // blend from the departure condition (its limit) to the exact DWL point.
+        const double sw = smoothstep(-below / near);
+        const Eigen::VectorXd e_dep = solve(with(c, off_row, off_T - off_const, "departure from the flat of side"));
+        return sw > 0 ? Eigen::VectorXd((1.0 - sw) * e_dep + sw * solve(with(c, dwl_row, eta_Q, "DWL point"))) : e_dep;
+      }
+      if (!dwl_on_top) return solve(with(c, dwl_row, eta_Q, "DWL point"));
+      return solve(c);
+    };
+    // Zero end curvature (G2) is what a flat asks for; where there is none the end curvature is
+    // left to the fairness, so cuts near the deck and keel keep a definite curvature. In between
+    // the two designs blend with the flat's length (over kG2Blend of the depth): nothing jumps.
+    const double g2_len = kG2Blend * (D - s.z_keel);
+    const double wt = smoothstep(L_top / g2_len), wb = smoothstep(L_bot / g2_len);
+    eta.setZero();
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        const double w = (a ? wt : 1.0 - wt) * (b ? wb : 1.0 - wb);
+        if (w > 0) eta += w * design(a == 1, b == 1);
+      }
+    for (int k = 1; k < nc - 1; ++k) {
+      const bool exact = k == 1 || k == nc - 2 || (k == 2 && wt == 1.0) || (k == nc - 3 && wb == 1.0);
+      if (!exact) P[k] = A + (Lc * g[k]) * d + eta[k] * n;
     }
-    for (int k = 0; k < nc; ++k)
-      if (!fixed[k]) P[k] = A + (Lc * g[k]) * d + eta[k] * n;
   }
 
   // Assemble: top zone, curved part, bottom zone.
