@@ -122,7 +122,7 @@ class FLNodeBlendSurface(FairlinesNode, bpy.types.Node):
                    (ids.SOCKET_SURFACE, "Bulb", {}),
                    (ids.SOCKET_FLOAT, "Clearance U", {"default": 0.05}),
                    (ids.SOCKET_FLOAT, "Clearance V", {"default": 0.01}),
-                   (ids.SOCKET_FLOAT, "Bulb Clearance", {"default": 0.02}),
+                   (ids.SOCKET_FLOAT, "Bulb Clearance", {"default": 0.01}),
                    (ids.SOCKET_FLOAT, "Tension", {"default": 0.6}),
                    (ids.SOCKET_INT, "Sections", {"default": 61})]
     outputs_spec = [(ids.SOCKET_BLEND, "Blend"), (ids.SOCKET_SURFACE, "Surface")]
@@ -170,8 +170,8 @@ class FLNodeCompose(FairlinesNode, bpy.types.Node):
                    (ids.SOCKET_BLEND, "Blend", {}),
                    (ids.SOCKET_INT, "Hull Cells U", {"default": 48}),
                    (ids.SOCKET_INT, "Hull Cells V", {"default": 20}),
-                   (ids.SOCKET_INT, "Bulb Cells U", {"default": 16}),
-                   (ids.SOCKET_INT, "Bulb Cells V", {"default": 24})]
+                   (ids.SOCKET_INT, "Bulb Cells U", {"default": 24}),
+                   (ids.SOCKET_INT, "Bulb Cells V", {"default": 32})]
     outputs_spec = [(ids.SOCKET_MESH, "Mesh"), (ids.SOCKET_VOLUME, "Volume")]
     params = ("output",)
     output: props.enum("Output", _COMPOSE_OUTPUT, "full")

@@ -165,7 +165,7 @@ void bind_compose(py::module_& m) {
         py::gil_scoped_release release;
         return compose_hull(hull, bulb, o, with_blend ? &spec : nullptr);
       },
-      "hull"_a, "bulb"_a = nullptr, "hull_u"_a = 48, "hull_v"_a = 20, "bulb_u"_a = 16, "bulb_v"_a = 24,
+      "hull"_a, "bulb"_a = nullptr, "hull_u"_a = 48, "hull_v"_a = 20, "bulb_u"_a = 24, "bulb_v"_a = 32,
       "tolerance"_a = 1e-7, "margin"_a = 0.3, "blend_hull_uv"_a = py::none(), "blend_bulb_u"_a = 0.5,
       "blend_tension"_a = 1.0, "blend_rows"_a = 8, "blend_check_samples"_a = 200);
 

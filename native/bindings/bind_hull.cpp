@@ -81,7 +81,7 @@ void bind_hull(py::module_& m) {
         "fields"_a, "n_control"_a, "degree"_a, "y_max"_a,
         "Sections from per-station parameter arrays (see fairlines/sections.hpp SectionSpec), all on\n"
         "section_knot_vector(n_control).");
-  m.def("section_knot_vector", &section_knot_vector, "n_control"_a,
+  m.def("section_knot_vector", [](int n) { return to_array(section_knot_vector(n)); }, "n_control"_a,
         "The knot vector every bare-hull section with n_control curved-part control points shares:\n"
         "clamped, triple knots at the ends of the top and bottom zones (n_control + 10 values).");
   m.def("section_straight_groups", &section_straight_groups, "n_control"_a,

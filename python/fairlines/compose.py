@@ -196,7 +196,7 @@ class ComposedHull:
 
 
 def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int = 48,
-            hull_v: int = 20, bulb_u: int = 16, bulb_v: int = 24, tolerance: float = 1e-7,
+            hull_v: int = 20, bulb_u: int = 24, bulb_v: int = 32, tolerance: float = 1e-7,
             margin: float = 0.3, blend_rows: int = 8, blend_check_samples: int = 200) -> ComposedHull:
     """Boolean composition of hull subdomains into one closed half hull.
 
@@ -419,7 +419,7 @@ def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, 
 
 
 def seam_blend_boundaries(union: ComposedHull, *, clearance_u: float = 0.05, clearance_v: float = 0.01,
-                          bulb_clearance: float = 0.02, points: int = 65):
+                          bulb_clearance: float = 0.01, points: int = 65):
     """Blend boundaries around the union seam of ``compose([hull, bulb])``.
 
     On the hull (orient_bare_hull convention: u aft cut -> stem, v keel -> deck) an ellipse
@@ -433,6 +433,19 @@ def seam_blend_boundaries(union: ComposedHull, *, clearance_u: float = 0.05, cle
     return _boundaries_around_seam(union.trimmed_surfaces[0][0], union.intersection_curves[0],
                                    clearance_u=clearance_u, clearance_v=clearance_v,
                                    bulb_clearance=bulb_clearance, points=points)
+
+
+def _keel_zone_end(hull: NurbsSurface) -> float:
+    """v where a straight keel zone ends on an oriented bare hull: the first knot of full
+    multiplicity (a C0 joint) in the first tenth of the v range above the keel edge -- the
+    bottom zone of fairlines.sections -- or the keel edge itself when there is none."""
+    kv = np.asarray(hull.knots_v)
+    v0, v1 = kv[0], kv[-1]
+    vals, counts = np.unique(kv, return_counts=True)
+    for val, cnt in zip(vals, counts):
+        if v0 < val < v0 + 0.1 * (v1 - v0) and cnt >= hull.degree_v:
+            return float(val)
+    return float(v0)
 
 
 def _boundaries_around_seam(hull: NurbsSurface, seam: dict, *, clearance_u: float, clearance_v: float,
@@ -453,11 +466,15 @@ def _boundaries_around_seam(hull: NurbsSurface, seam: dict, *, clearance_u: floa
         if tc - R <= v0 or tc + R >= v1:
             return "a blend boundary clear of the seam would leave the hull between keel and deck"
     elif (on_keel[0] and on_stem[1]) or (on_keel[1] and on_stem[0]):
-        # quarter ellipse about (u1, v0) through (u1 - a, v0) and (u1, v0 + b), scaled so that
-        # the whole seam lies inside it, then widened by the clearances
-        a0, b0 = u1 - uv[:, 0].min(), uv[:, 1].max() - v0
-        scale = float(np.max(np.hypot((u1 - uv[:, 0]) / a0, (uv[:, 1] - v0) / b0)))
-        du, R, tc = scale * a0 + clearance_u, scale * b0 + clearance_v, v0
+        # quarter ellipse about (u1, vz) through (u1 - a, vz) and (u1, vz + b), scaled so that
+        # the whole seam lies inside it, then widened by the clearances; vz is the end of a
+        # straight keel zone (fairlines.sections), which the boundary crosses straight along v
+        vz = _keel_zone_end(hull)
+        a0, b0 = u1 - uv[:, 0].min(), uv[:, 1].max() - vz
+        if not b0 > 0:
+            return "the seam does not rise above the keel zone"
+        scale = float(np.max(np.hypot((u1 - uv[:, 0]) / a0, np.maximum(uv[:, 1] - vz, 0.0) / b0)))
+        du, R, tc = scale * a0 + clearance_u, scale * b0 + clearance_v, vz
         phi_end = 0.5 * np.pi
         if tc + R >= v1:
             return "a blend boundary clear of the seam would reach the deck"
@@ -468,12 +485,17 @@ def _boundaries_around_seam(hull: NurbsSurface, seam: dict, *, clearance_u: floa
     phi = np.linspace(0.0, phi_end, points)
     on_hull = np.column_stack([u1 - du * np.sin(phi + (0.5 * np.pi if phi_end < np.pi else 0.0)),
                                tc - R * np.cos(phi) if phi_end == np.pi else tc + R * np.sin(phi)])
+    if phi_end < np.pi and tc > v0:
+        # From the keel edge across the keel zone along v: there the zone is a few centimetres
+        # of a straight leg, so the boundary enters the curved part along the section without
+        # a kink (an oblique crossing would run along the hull inside the zone).
+        on_hull = np.vstack([[on_hull[0, 0], v0], on_hull])
     on_bulb = ("u", float(seam["uv_b"][:, 0].max()) + bulb_clearance)
     return on_hull, on_bulb
 
 
 def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, blend: bool = True,
-                       clearance_u: float = 0.05, clearance_v: float = 0.01, bulb_clearance: float = 0.02,
+                       clearance_u: float = 0.05, clearance_v: float = 0.01, bulb_clearance: float = 0.01,
                        tension: float = 0.6, **compose_options) -> ComposedHull:
     """Bare hull + bulb composed into one closed half hull, with a C1 blending surface between
     them when ``blend`` (boundaries from :func:`seam_blend_boundaries`; ``tension`` of the
@@ -502,7 +524,7 @@ def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface
 
 
 def seam_blend_placement(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, clearance_u: float = 0.05,
-                         clearance_v: float = 0.01, bulb_clearance: float = 0.02,
+                         clearance_v: float = 0.01, bulb_clearance: float = 0.01,
                          tension: float = 0.6) -> BlendPlacement:
     """Where the blend around the seam a bulb makes on a bare hull goes: the boundaries of
     :func:`seam_blend_boundaries` on the union of hull and bulb, as a :class:`BlendPlacement`
@@ -523,7 +545,7 @@ def seam_blend_placement(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", 
 
 
 def seam_blend(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, clearance_u: float = 0.05,
-               clearance_v: float = 0.01, bulb_clearance: float = 0.02, tension: float = 0.6,
+               clearance_v: float = 0.01, bulb_clearance: float = 0.01, tension: float = 0.6,
                samples: int = 61) -> BlendSurface:
     """The blending surface around the seam a bulb makes on a bare hull, as one call:
     :func:`seam_blend_placement`, then its surface (:func:`blend_surface`). The result goes

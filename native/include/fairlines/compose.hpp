@@ -16,8 +16,8 @@ namespace fairlines {
 struct ComposeOptions {
   int hull_u = 48;          ///< hull tessellation cells along u (>= 4)
   int hull_v = 20;          ///< hull tessellation cells along v (>= 4)
-  int bulb_u = 16;          ///< bulb cells from the seam to the nose (>= 2)
-  int bulb_v = 24;          ///< bulb cells around the half section; also seam segments (>= 4)
+  int bulb_u = 24;          ///< bulb cells from the seam to the nose (>= 2)
+  int bulb_v = 32;          ///< bulb cells around the half section; also seam segments (>= 4)
   double tolerance = 1e-7;  ///< surface-surface intersection tolerance (metres, <= 1e-6)
   double margin = 0.3;      ///< clearance kept between the seam and whole hull cells (in cells)
   double plane_tolerance = 1e-6;  ///< relative tolerance of the centre plane / deck / aft checks

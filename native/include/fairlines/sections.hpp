@@ -103,7 +103,7 @@ struct SectionSpec {
 Eigen::VectorXd section_knot_vector(int n_control);
 
 /// Control-point rows (first, last, inclusive) that lie on one straight segment in every section:
-/// the top zone with the curved part's two leg points, and the same at the bottom. fair_skin
+/// the top zone with the curved part's first two points, and the same at the bottom. fair_skin
 /// keeps each group's longitudinal curves consistent (SkinOptions::straight_groups).
 std::vector<std::pair<int, int>> section_straight_groups(int n_control);
 

@@ -116,9 +116,10 @@ Eigen::VectorXd section_knot_vector(int n_control) {
 std::vector<std::pair<int, int>> section_straight_groups(int n_control) {
   section_knot_vector(n_control);  // validates n_control
   const int n = n_control + 6;
-  // Rows 0..3 top zone, 3..5 the curved part's first three points (on the same line); the
-  // same mirrored at the bottom.
-  return {{0, 5}, {n - 6, n - 1}};
+  // Rows 0..3 top zone, 3..4 the curved part's first two points (always on the zone's line:
+  // tangent continuity); the same mirrored at the bottom. The third points join the line only
+  // where the zone is a flat (G2), so they are not part of the groups.
+  return {{0, 4}, {n - 5, n - 1}};
 }
 
 NurbsCurve design_section(const SectionSpec& s, double y_max) {
