@@ -181,7 +181,7 @@ void bind_compose(py::module_& m) {
         }();
         return py::make_tuple(r.hull, curve_dict(r.seam));
       },
-      "hull"_a, "bulb"_a, "bulb_v"_a = 24, "tolerance"_a = 1e-7,
+      "hull"_a, "bulb"_a, "bulb_v"_a = 32, "tolerance"_a = 1e-7,
       "(oriented hull, seam dict) of compose_hull([hull, bulb]) without meshing (see compose.hpp).");
 
   m.def(

@@ -67,9 +67,10 @@ def fair_skin(
     ``hold_runs``: where a row of control points keeps one y or z over three or more
     consecutive sections (a parallel middle body, a flat that ends), its longitudinal curve
     keeps it exactly there and leaves it with full continuity (one extra knot next to the run
-    keeps that fit well posed). ``straight_groups``: row ranges ``(first, last)`` that lie on
-    one straight segment in every section (fl.section_straight_groups); their runs are made
-    common so the segment stays straight between the sections.
+    keeps that fit well posed). ``straight_groups``: row ranges ``(first, last)`` whose
+    interior rows lie at one fraction of the segment between the end rows in every section
+    (fl.section_straight_groups: a hull's straight zones); their longitudinal curves are built
+    from the end rows' so the segment stays straight between the sections.
 
     Returns a SkinResult: ``surface`` (u across the sections, v along the hull),
     ``section_params``, ``section_fit_max``, ``longitudinal_max`` and ``row_e2``.

@@ -102,8 +102,9 @@ struct SectionSpec {
 /// kBottomZoneStart, uniform in between. Sections have n_control + 6 control points.
 Eigen::VectorXd section_knot_vector(int n_control);
 
-/// Control-point rows (first, last, inclusive) that lie on one straight segment in every section:
-/// the top zone with the curved part's first two points, and the same at the bottom. fair_skin
+/// Control-point rows (first, last, inclusive) of the two zones: the interior rows lie at the
+/// fractions 1/3 and 2/3 of the segment between the end rows in every section (fair_skin
+/// straight_groups keeps them straight between the sections). fair_skin
 /// keeps each group's longitudinal curves consistent (SkinOptions::straight_groups).
 std::vector<std::pair<int, int>> section_straight_groups(int n_control);
 

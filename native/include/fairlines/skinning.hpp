@@ -71,9 +71,11 @@ struct SkinOptions {
   /// the run gives the curve beyond a well-posed fit. Without it an interpolating spline rings
   /// where a row leaves a constant stretch.
   bool hold_runs = true;
-  /// Row ranges (first, last, inclusive) whose control points lie on one straight segment in
-  /// every section (a hull's zones, fairlines/sections.hpp). Held runs are made common to the
-  /// rows of a group, so the segment stays straight between the sections.
+  /// Row ranges (first, last, inclusive) whose interior rows lie on the segment from row
+  /// `first` to row `last` at the same fraction in every section (a hull's straight zones,
+  /// fairlines/sections.hpp). The interior rows' longitudinal curves are built as that
+  /// combination of the end rows' curves, so the segment stays straight between the sections
+  /// while each end row holds its own runs. InvalidInput when the fractions differ.
   std::vector<std::pair<int, int>> straight_groups;
 };
 

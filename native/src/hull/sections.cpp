@@ -116,10 +116,9 @@ Eigen::VectorXd section_knot_vector(int n_control) {
 std::vector<std::pair<int, int>> section_straight_groups(int n_control) {
   section_knot_vector(n_control);  // validates n_control
   const int n = n_control + 6;
-  // Rows 0..3 top zone, 3..4 the curved part's first two points (always on the zone's line:
-  // tangent continuity); the same mirrored at the bottom. The third points join the line only
-  // where the zone is a flat (G2), so they are not part of the groups.
-  return {{0, 4}, {n - 5, n - 1}};
+  // Rows 0..3: the top zone, from the deck point to A at fractions 0, 1/3, 2/3, 1 in every
+  // section; rows n-4..n-1 the bottom zone from E to the keel point likewise.
+  return {{0, 3}, {n - 4, n - 1}};
 }
 
 NurbsCurve design_section(const SectionSpec& s, double y_max) {

@@ -516,29 +516,34 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
     const double tol = kRunTolerance * extent;
     for (int col = 0; col < 3 * n; ++col)
       if (col % 3 != 0) runs[col] = find_runs(data.col(col), tol);
-    // Rows of one straight group keep one straight segment between the sections only if their
-    // longitudinal curves are built alike: they hold only where every row of the group holds
-    // (rows constant everywhere are exact either way).
-    for (const auto& [first, last] : o.straight_groups)
-      for (int k = 1; k < 3; ++k) {
-        std::vector<char> common(q, 1);
-        bool any = false;
-        for (int i = first; i <= last; ++i) {
-          const auto& r = runs[3 * i + k];
-          if (r.size() == 1 && r[0].first == 0 && r[0].last == q - 1) continue;
-          any = true;
-          std::vector<char> held(q, 0);
-          for (const HeldRun& h : r)
-            for (int d = h.first; d <= h.last; ++d) held[d] = 1;
-          for (int d = 0; d < q; ++d) common[d] = common[d] && held[d];
-        }
-        if (!any) continue;
-        for (int i = first; i <= last; ++i) {
-          auto& r = runs[3 * i + k];
-          if (r.size() == 1 && r[0].first == 0 && r[0].last == q - 1) continue;
-          r = find_runs_in(data.col(3 * i + k), common, tol);
-        }
+  }
+  // Straight groups: the interior rows are at one fraction s of the segment from the group's
+  // first row to its last in every section; their longitudinal curves are built as the same
+  // combination of the end rows' curves, so the segment stays straight between the sections
+  // whatever the end rows hold. A group whose fractions differ between sections is refused.
+  std::vector<std::pair<int, double>> derived;  // (row, s) with its group's ends below
+  std::vector<std::pair<int, int>> derived_ends;
+  for (std::size_t gi = 0; gi < o.straight_groups.size(); ++gi) {
+    const auto [first, last] = o.straight_groups[gi];
+    if (last - first < 2) continue;
+    int dref = 0;
+    for (int d = 0; d < q; ++d)
+      if ((ctrl[d].row(last) - ctrl[d].row(first)).norm() > (ctrl[dref].row(last) - ctrl[dref].row(first)).norm()) dref = d;
+    const Eigen::RowVector3d seg = ctrl[dref].row(last) - ctrl[dref].row(first);
+    if (!(seg.norm() > 0)) fail("straight_groups[", gi, "]: its end rows coincide in every section; expected a segment");
+    for (int i = first + 1; i < last; ++i) {
+      const double frac = (ctrl[dref].row(i) - ctrl[dref].row(first)).dot(seg) / seg.squaredNorm();
+      for (int d = 0; d < q; ++d) {
+        const Eigen::RowVector3d a = ctrl[d].row(first), b = ctrl[d].row(last);
+        const double err = (ctrl[d].row(i) - (a + frac * (b - a))).norm();
+        if (err > 1e-9 * std::max(1.0, ctrl[d].cwiseAbs().maxCoeff()))
+          fail("straight_groups[", gi, "]: row ", i, " is not at one fraction of the segment from row ", first, " to row ", last,
+               " in every section (off by ", err, " m at section ", d, "); expected straight zones");
       }
+      derived.emplace_back(i, frac);
+      derived_ends.emplace_back(first, last);
+      for (int k = 0; k < 3; ++k) runs[3 * i + k].clear();
+    }
   }
   std::vector<double> kv(pv + 1, 0.0);
   for (int d = 1; d < q - 1; ++d) {
@@ -646,6 +651,15 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
       Eigen::VectorXd z = held_val[cols[c]];
       for (int a = 0; a < nf; ++a) z[freev[a]] = sol(a, c);
       lon.col(cols[c]) = z;
+    }
+  }
+
+  for (std::size_t r = 0; r < derived.size(); ++r) {
+    const auto [i, frac] = derived[r];
+    const auto [first, last] = derived_ends[r];
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::VectorXd a = lon.col(3 * first + k), b = lon.col(3 * last + k);
+      lon.col(3 * i + k) = a + frac * (b - a);  // a + s (b - a): exact where a == b (flats)
     }
   }
 
