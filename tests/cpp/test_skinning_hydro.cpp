@@ -92,3 +92,73 @@ TEST(FairSkin, BadInputNamesTheProblem) {
 
 }  // namespace
 }  // namespace fairlines
+
+namespace fairlines {
+namespace {
+
+/// q cubic sections on one knot vector (6 control points): the same shape for the first four
+/// stations (a parallel body), then shrinking quadratically in y. Rows 0..3 lie on one vertical
+/// segment at fractions 0, 1/3, 2/3, 1 (a zone): row 0 fixed at the deck, row 3 rising.
+std::vector<NurbsCurve> body_sections(int q) {
+  std::vector<NurbsCurve> secs;
+  const Eigen::VectorXd U = (Eigen::VectorXd(10) << 0, 0, 0, 0, 1.0 / 3, 2.0 / 3, 1, 1, 1, 1).finished();
+  for (int d = 0; d < q; ++d) {
+    const double t = std::max(0, d - 3), shrink = 1.0 - 0.01 * t * t, zf = 8.0 - 0.3 * t;
+    Eigen::MatrixXd P(6, 3);
+    P << 0, 5, 10, 0, 5, 10 - (10 - zf) / 3, 0, 5, 10 - 2 * (10 - zf) / 3, 0, 5, zf, 0, 4 * shrink, 2, 0, 0, 0;
+    P.col(0).setConstant(10.0 * d);
+    secs.emplace_back(3, U, P);
+  }
+  return secs;
+}
+
+TEST(FairSkin, SectionsOnOneKnotVectorAreUsedExactlyAndRunsAreHeld) {
+  const int q = 12;
+  const std::vector<NurbsCurve> secs = body_sections(q);
+  SkinOptions o;
+  o.e2 = 0.0;
+  o.e3 = 1.0;
+  o.straight_groups = {{0, 3}};
+  const SkinResult r = fair_skin(secs, o);
+  EXPECT_EQ(r.section_fit_max, 0.0);
+  EXPECT_GT(r.held_columns, 0);
+  const NurbsSurface& s = r.surface;
+  EXPECT_TRUE(s.knots_u() == secs[0].knots());
+  // Every station's iso-curve is its section, control point for control point.
+  for (int d = 0; d < q; ++d) {
+    const NurbsCurve iso = s.iso_curve(Direction::V, r.section_params[d]);
+    EXPECT_LT((iso.control_points() - secs[d].control_points()).cwiseAbs().maxCoeff(), 1e-10) << d;
+  }
+  // The parallel body (stations 0..3) is exactly the first section, between the stations too.
+  const Eigen::VectorXd us = Eigen::VectorXd::LinSpaced(41, 0.0, 1.0);
+  const Eigen::MatrixXd first = secs[0].evaluate(us);
+  for (double v : {0.03, 0.11, 0.2, 0.27}) {
+    const Eigen::MatrixXd p = s.evaluate(us, Eigen::VectorXd::Constant(41, v));
+    EXPECT_LT((p.rightCols(2) - first.rightCols(2)).cwiseAbs().maxCoeff(), 1e-13) << v;
+  }
+  // An extra knot in the interval after the run's last station.
+  const Eigen::VectorXd& kv = s.knots_v();
+  const double v3 = r.section_params[3], v4 = r.section_params[4];
+  EXPECT_TRUE(((kv.array() > v3) && (kv.array() < v4)).any());
+  // The zone stays straight between the stations: rows 1, 2 on the segment of rows 0 and 3.
+  for (double v : {0.31, 0.47, 0.66, 0.93}) {
+    const NurbsCurve iso = s.iso_curve(Direction::V, v);
+    const Eigen::RowVector3d a = iso.control_points().row(0), b = iso.control_points().row(3);
+    for (int i : {1, 2}) {
+      const Eigen::RowVector3d p = iso.control_points().row(i);
+      const double frac = i / 3.0;
+      EXPECT_LT((p - (a + frac * (b - a))).norm(), 1e-12) << v;
+    }
+  }
+  // Without holding the runs the interpolant rings over the parallel body.
+  o.hold_runs = false;
+  const SkinResult free = fair_skin(secs, o);
+  const Eigen::MatrixXd p = free.surface.evaluate(us, Eigen::VectorXd::Constant(41, 0.2));
+  EXPECT_GT((p.rightCols(2) - first.rightCols(2)).cwiseAbs().maxCoeff(), 1e-5);
+  // A group whose rows are not at fixed fractions is refused.
+  o.straight_groups = {{2, 5}};
+  EXPECT_THROW(fair_skin(secs, o), InvalidInput);
+}
+
+}  // namespace
+}  // namespace fairlines

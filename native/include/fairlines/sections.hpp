@@ -41,7 +41,7 @@ inline constexpr double kBottomZoneStart = 0.95;
 /// Least length of a zone, as a fraction of the section's depth (deck to keel): where there is
 /// no flat the zone is this long (4.75 cm on a 19 m deep hull), never zero, so the surface has
 /// no degenerate strip. Near a stem (breadth -> 0) it shrinks with the breadth (at most a
-/// quarter of it) so that narrow sections keep their shape.
+/// quarter of it, but not below a tenth of the floor) so that narrow sections keep their shape.
 inline constexpr double kZoneFloor = 2.5e-3;
 /// The curved part's end tangents must make an angle below acos(kMinTangentChordCos) (87 deg)
 /// with its chord; a tangent pointing across or away from the chord cannot carry a graph.

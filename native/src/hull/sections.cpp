@@ -166,7 +166,7 @@ NurbsCurve design_section(const SectionSpec& s, double y_max) {
     throw InfeasibleFormParameters(at + ": half area " + fmt(s.half_area) +
                                    " m^2 with zero breadth at deck, DWL and bottom (sectional area curve vs design waterline and deck)");
   const double floor_len = kZoneFloor * (D - s.z_keel);
-  const double floor_eff = std::max(1e-3 * floor_len, std::min(floor_len, breadth / 4.0));
+  const double floor_eff = std::max(0.1 * floor_len, std::min(floor_len, breadth / 4.0));
 
   // Zones. A flat of side needs the deck at B/2 with a vertical tangent; a flat of bottom a
   // horizontal tangent at the keel.
