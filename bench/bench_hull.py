@@ -51,12 +51,26 @@ def main():
     print(f"one form-parameter change (sac.volume) and rebuild: best {best:.2f} ms, median {med:.2f} ms")
 
     secs = h.sections
+    n = h.description.section_n_control
+    groups = fl.section_straight_groups(n)
+    skin = h.skin()
+    net = skin.surface.control_points.shape
+    best, med = best_of(lambda: fl.fair_skin(secs, start="parallel", e2=0.0, e3=1.0, straight_groups=groups))
+    print(f"fair_skin alone ({n_sections} sections on one knot vector, held runs, {net[0]} x {net[1]} control net): "
+          f"best {best:.2f} ms, median {med:.2f} ms")
     best, med = best_of(lambda: fl.fair_skin(secs, n_control=32, start="parallel"))
-    print(f"fair_skin alone ({n_sections} sections, 32 x {n_sections + 2} control net): best {best:.2f} ms, median {med:.2f} ms")
+    print(f"fair_skin with seed 000's refit to 32 common knots (for comparison): best {best:.2f} ms, median {med:.2f} ms")
 
     fields = h.section_parameters()
-    best, med = best_of(lambda: fl._native._design_sections(fields, 10, 3, desc["principal"]["B"] / 2))
+    best, med = best_of(lambda: fl._native._design_sections(fields, n, 3, desc["principal"]["B"] / 2))
     print(f"{n_sections} sections from basic curves (one C++ call): best {best:.3f} ms, median {med:.3f} ms")
+
+    t = time.perf_counter()
+    rep = h.fairness_report()
+    t_rep = (time.perf_counter() - t) * 1e3
+    counts = {k: (sum(c["sign_changes"] for c in v), sum(c["false_inflections"] for c in v)) for k, v in rep.items()}
+    print(f"fairness report (8 waterlines, 6 buttocks, 12 frames judged against the designed family): {t_rep:.0f} ms; "
+          + ", ".join(f"{k}s {n_all} sign changes, {n_false} false" for k, (n_all, n_false) in counts.items()))
 
     surf = h.bare_hull_surface()
     best, med = best_of(lambda: fl.hydrostatics(surf, desc["principal"]["T"]), repeat=5)

@@ -7,7 +7,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ConvergenceError', 'CurveFit', 'FairlinesError', 'Hydrostatics', 'InfeasibleFormParameters', 'InvalidInput', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PlaneCut', 'SkinResult', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'ellipse', 'equal_arc_length_points', 'fairness_of', 'fit_curve', 'fit_surface', 'form_parameter_names', 'form_parameters_of', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'plane_cut', 'revolve', 'section_area', 'sphere', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
+__all__: list[str] = ['ConvergenceError', 'CurveFit', 'FairlinesError', 'Hydrostatics', 'InfeasibleFormParameters', 'InvalidInput', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PlaneCut', 'SkinResult', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'ellipse', 'equal_arc_length_points', 'fairness_of', 'fit_curve', 'fit_surface', 'form_parameter_names', 'form_parameters_of', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'plane_cut', 'revolve', 'section_area', 'section_knot_vector', 'section_straight_groups', 'sphere', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
 class FairlinesError(RuntimeError):
     pass
 class InvalidInput(ValueError):
@@ -262,6 +262,11 @@ class SkinResult:
     Result of fair_skin: the surface and how closely it follows the sections.
     """
     @property
+    def held_columns(self) -> int:
+        """
+        row coordinates (y or z of a control row) held constant over at least one run of sections
+        """
+    @property
     def longitudinal_max(self) -> float:
         """
         max distance (m) between the longitudinal curves and the section control rows
@@ -453,7 +458,7 @@ class _ComposedHull:
         ...
 def _blend_surface(a: NurbsSurface, boundary_a: typing.Any, b: NurbsSurface, boundary_b: typing.Any, samples: typing.SupportsInt | typing.SupportsIndex = 61, tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, check_samples: typing.SupportsInt | typing.SupportsIndex = 200) -> tuple[NurbsSurface, dict, dict]:
     ...
-def _compose_hull(hull: NurbsSurface, bulb: NurbsSurface = None, hull_u: typing.SupportsInt | typing.SupportsIndex = 48, hull_v: typing.SupportsInt | typing.SupportsIndex = 20, bulb_u: typing.SupportsInt | typing.SupportsIndex = 16, bulb_v: typing.SupportsInt | typing.SupportsIndex = 24, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, margin: typing.SupportsFloat | typing.SupportsIndex = 0.3, blend_hull_uv: typing.Any = None, blend_bulb_u: typing.SupportsFloat | typing.SupportsIndex = 0.5, blend_tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, blend_rows: typing.SupportsInt | typing.SupportsIndex = 8, blend_check_samples: typing.SupportsInt | typing.SupportsIndex = 200) -> _ComposedHull:
+def _compose_hull(hull: NurbsSurface, bulb: NurbsSurface = None, hull_u: typing.SupportsInt | typing.SupportsIndex = 48, hull_v: typing.SupportsInt | typing.SupportsIndex = 20, bulb_u: typing.SupportsInt | typing.SupportsIndex = 24, bulb_v: typing.SupportsInt | typing.SupportsIndex = 32, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, margin: typing.SupportsFloat | typing.SupportsIndex = 0.3, blend_hull_uv: typing.Any = None, blend_bulb_u: typing.SupportsFloat | typing.SupportsIndex = 0.5, blend_tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, blend_rows: typing.SupportsInt | typing.SupportsIndex = 8, blend_check_samples: typing.SupportsInt | typing.SupportsIndex = 200) -> _ComposedHull:
     ...
 def _design_form_curve(params: dict, n_control: typing.SupportsInt | typing.SupportsIndex, degree: typing.SupportsInt | typing.SupportsIndex, dim: typing.SupportsInt | typing.SupportsIndex, fairness: dict, points: list, bounds: dict, options: dict, tangent_start: typing.Any = None, tangent_end: typing.Any = None, initial_control_points: typing.Any = None) -> dict:
     """
@@ -461,21 +466,22 @@ def _design_form_curve(params: dict, n_control: typing.SupportsInt | typing.Supp
     """
 def _design_sections(fields: dict, n_control: typing.SupportsInt | typing.SupportsIndex, degree: typing.SupportsInt | typing.SupportsIndex, y_max: typing.SupportsFloat | typing.SupportsIndex) -> list[NurbsCurve]:
     """
-    Sections from per-station parameter arrays (see fairlines/hull.hpp SectionSpec).
+    Sections from per-station parameter arrays (see fairlines/sections.hpp SectionSpec), all on
+    section_knot_vector(n_control).
     """
-def _fair_skin(curves: typing.Any, n_control: typing.Any, mode: str, degree_u: typing.Any, degree_v: typing.Any, samples: typing.Any, smoothing: typing.SupportsFloat | typing.SupportsIndex, start: str, end: str, params: str, c1_sections: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], curvature_weight: typing.SupportsFloat | typing.SupportsIndex, e2: typing.SupportsFloat | typing.SupportsIndex, e3: typing.SupportsFloat | typing.SupportsIndex, flats: collections.abc.Sequence[tuple[typing.SupportsInt | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]] = []) -> SkinResult:
+def _fair_skin(curves: typing.Any, n_control: typing.Any, mode: str, degree_u: typing.Any, degree_v: typing.Any, samples: typing.Any, smoothing: typing.SupportsFloat | typing.SupportsIndex, start: str, end: str, params: str, c1_sections: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], curvature_weight: typing.SupportsFloat | typing.SupportsIndex, e2: typing.SupportsFloat | typing.SupportsIndex, e3: typing.SupportsFloat | typing.SupportsIndex, flats: collections.abc.Sequence[tuple[typing.SupportsInt | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]] = [], hold_runs: bool = True, straight_groups: collections.abc.Sequence[tuple[typing.SupportsInt | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex]] = []) -> SkinResult:
     ...
 def _form_curve_derivatives(params: dict, n_control: typing.SupportsInt | typing.SupportsIndex, degree: typing.SupportsInt | typing.SupportsIndex, dim: typing.SupportsInt | typing.SupportsIndex, fairness: dict, points: list, z: typing.Any, lambda: typing.Any = None) -> dict:
     """
     Testing hook: constraints, Jacobian, sum lambda_i Hess c_i, objective, gradient and Hessian at z.
     """
-def _hull_bulb_seam(hull: NurbsSurface, bulb: NurbsSurface, bulb_v: typing.SupportsInt | typing.SupportsIndex = 24, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07) -> tuple[NurbsSurface, dict]:
+def _hull_bulb_seam(hull: NurbsSurface, bulb: NurbsSurface, bulb_v: typing.SupportsInt | typing.SupportsIndex = 32, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07) -> tuple[NurbsSurface, dict]:
     """
     (oriented hull, seam dict) of compose_hull([hull, bulb]) without meshing (see compose.hpp).
     """
 def _intersect_surfaces(a: NurbsSurface, b: NurbsSurface, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, subdivisions: typing.SupportsInt | typing.SupportsIndex = 12, step: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> list:
     ...
-def _linear_form_curve(name: str, abscissae: typing.Any, degree: typing.SupportsInt | typing.SupportsIndex, yB: typing.Any, yE: typing.Any, slopeB: typing.Any, slopeE: typing.Any, area: typing.Any, xC: typing.Any, area_from: typing.Any, points: typing.Any, y_lower: typing.Any = None, y_upper: typing.Any = None) -> NurbsCurve:
+def _linear_form_curve(name: str, abscissae: typing.Any, degree: typing.SupportsInt | typing.SupportsIndex, yB: typing.Any, yE: typing.Any, slopeB: typing.Any, slopeE: typing.Any, area: typing.Any, xC: typing.Any, area_from: typing.Any, points: typing.Any, y_lower: typing.Any = None, y_upper: typing.Any = None, curvB: typing.Any = None, curvE: typing.Any = None, fixed: collections.abc.Sequence[tuple[typing.SupportsInt | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]] = []) -> NurbsCurve:
     ...
 def arc(center: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, start_angle: typing.SupportsFloat | typing.SupportsIndex, end_angle: typing.SupportsFloat | typing.SupportsIndex, normal: typing.Any = (0.0, 0.0, 1.0), x_axis: typing.Any = None) -> NurbsCurve:
     """
@@ -581,6 +587,15 @@ def revolve(profile: NurbsCurve, axis_point: typing.Any, axis_dir: typing.Any, a
 def section_area(surface: NurbsSurface, x: typing.SupportsFloat | typing.SupportsIndex, draft: typing.SupportsFloat | typing.SupportsIndex, half_hull: bool = True, gauss: typing.SupportsInt | typing.SupportsIndex = 8) -> tuple[float, float]:
     """
     (area below the draft of the section x = const (m^2; full section when half_hull), centroid height (m)).
+    """
+def section_knot_vector(n_control: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    The knot vector every bare-hull section with n_control curved-part control points shares:
+    clamped, triple knots at the ends of the top and bottom zones (n_control + 10 values).
+    """
+def section_straight_groups(n_control: typing.SupportsInt | typing.SupportsIndex) -> list[tuple[int, int]]:
+    """
+    Control-point rows (first, last) on one straight segment in every section (the zones and their legs).
     """
 def sphere(center: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex) -> NurbsSurface:
     """

@@ -16,36 +16,45 @@ deck            deck-line half-breadth at z = D (m)
 profile         centre profile: keel / forefoot height (m); the stem
                 is vertical at the end of the modelled range
 fos             flat of side: height of the flat side's lower end (m);
-                absent beyond x_end (end of the parallel middle body)
+                end it at the deck (yE = D, alphaE = 0, CAE = 0): past
+                x_end its straight continuation runs above the deck
 fob             flat of bottom: half-breadth of the flat bottom (m);
-                absent beyond x_end
+                end it on the centre line (yE = 0, alphaE = 0, CAE = 0)
 deck_angle      section tangent angle at the deck (deg from the
-                downward vertical toward +y; 0 vertical, < 0 flare)
+                downward vertical toward +y; 0 vertical, < 0 flare);
+                0 wherever there is a flat of side
 bottom_angle    section tangent angle at the keel (same convention;
-                -90 horizontal), used where there is no flat bottom
+                -90 horizontal); -90 wherever there is a flat bottom
 section_zc      (optional) height of each section's area centroid (m)
 ==============  =====================================================  ===========================
 
 Every basic curve is ``{"flat_to": x, "value": v}`` (constant v from the start of the range to
 x -- the parallel middle body part), then a fairest B-spline from there to ``x_end`` (default:
 the end of the range) meeting the form parameters given: ``yB``/``yE`` (end values), ``alphaB``/
-``alphaE`` (end tangent angles, degrees) or ``slopeB``/``slopeE`` (dy/dx), ``Area`` (integral of
-f over the whole range, the flat part included) and ``xC`` (its centroid x), ``points`` ([[x, f],
-...] to pass through), ``n_control`` (default 8). After a flat part the curve starts at v with
-zero slope (C1). Constant curves need only ``value``.
+``alphaE`` (end tangent angles, degrees) or ``slopeB``/``slopeE`` (dy/dx), ``CAB``/``CAE`` (end
+curvatures, 1/m; a nonzero one needs the slope at that end), ``Area`` (integral of f over the
+whole range, the flat part included) and ``xC`` (its centroid x), ``points`` ([[x, f], ...] to
+pass through), ``n_control`` (default 8). After a flat part the curve starts at v with zero
+slope and zero curvature (G2), so nothing on the hull jumps in curvature where a flat ends.
+Constant curves need only ``value``.
 
-Each section is then a form-parameter curve in the (y, z) plane (fairlines/hull.hpp): from the
-deck point (deck curve) down -- along the flat side when there is one -- through the DWL point
-(design waterline) to the keel (centre profile) and along the flat bottom to the centre line,
-with the deck and bottom tangent angles, and half the SAC value as its area below the DWL. The
-sections are fair-skinned (fairlines.fair_skin) into one B-spline surface, the half hull
-y >= 0. ``skinning`` holds the fair_skin options: ``n_control``, ``start`` / ``end``,
-``curvature_weight``, the longitudinal fairness weights ``e2`` / ``e3`` (default 1 / 0, seed 000's
-E2), ``junctions`` (default false): move the station nearest each basic-curve junction (end
-of a flat part or of a curve, where the curve is only C1) onto it and let the skin be C1 there,
-and ``flats`` (default true): keep the common-knot section fits exactly in the planes of the
-flat of side (y = B/2), the flat of bottom (z = the flat keel height) and the centre plane
-wherever the sections lie in them (fair_skin ``flats``), instead of rippling about them.
+Each section is then a form-parameter curve in the (y, z) plane (fairlines/sections.hpp), all
+on one knot vector (fl.section_knot_vector): a straight top zone from the deck point (the flat
+of side down to the fos curve, or a few centimetres along the deck tangent), a curved part --
+the fairest curve through the DWL point with half the SAC value as its area below the DWL,
+leaving the zones with G2 continuity where they are flats -- and a straight bottom zone into
+the keel point (the flat of bottom, or a short leg along the bottom tangent). Where the design
+waterline leaves the flat of side (the DWL's flat_to, where the fos curve crosses the DWL) the
+sections aft of it blend their departure from the flat toward the DWL's own rate
+(Hull.flat_departure), so the DWL is met exactly without a jump. The sections' control points
+are the skin's rows as they are (no refit): fair_skin interpolates each row along the hull,
+holding it exactly where it is constant over three or more stations (the parallel middle body,
+the flats), so flats and the parallel body are exact on the surface. ``skinning`` holds the
+longitudinal options: ``start`` / ``end`` ("free" / "parallel"), the fairness weights ``e2`` /
+``e3`` (default 1 / 0, seed 000's E2) and ``junctions`` (default false): move the station nearest
+each basic-curve junction (end of a flat part or of a curve) onto it, so the flats end exactly
+where the basic curves say. ``sections.n_control`` (default 16) is the number of control points
+of each section's curved part (each section has six more).
 
 Optional ``"bulb"`` section (issue 5; SPEC §7): a bulbous bow added to the bare hull by
 :meth:`Hull.bulbous_bow` / :meth:`Hull.composed_hull`::
