@@ -551,10 +551,24 @@ def _fit_on_section_knots(a: AuxiliarySection, n_control: int, path: str) -> _na
         raise _native.InvalidInput(f"{path}.offsets repeat a point; expected distinct points from deck to keel")
     t = chord / chord[-1]
     N = _native.basis_functions(knots, 3, t)[:, 0, :]
-    ctrl = np.zeros((n, 3))
-    ctrl[0], ctrl[-1] = pts[0], pts[-1]
-    rhs = pts[1:-1] - np.outer(N[1:-1, 0], pts[0]) - np.outer(N[1:-1, -1], pts[-1])
-    ctrl[1:-1] = np.linalg.lstsq(N[1:-1, 1:-1], rhs, rcond=None)[0]
+    # The zones' interior rows stay at 1/3 and 2/3 of their zone (fl.section_straight_groups),
+    # as on the designed sections: M maps the free rows to all rows.
+    interior = {}
+    for first, last in _native.section_straight_groups(n_control):
+        for i in range(first + 1, last):
+            interior[i] = (first, last, (i - first) / (last - first))
+    free = [i for i in range(n) if i not in interior]
+    M = np.zeros((n, len(free)))
+    for k, i in enumerate(free):
+        M[i, k] = 1.0
+    for i, (first, last, s) in interior.items():
+        M[i, free.index(first)] += 1.0 - s
+        M[i, free.index(last)] += s
+    A = N @ M
+    # ends interpolated: the first and last free rows are the first and last offsets
+    rhs = pts - np.outer(A[:, 0], pts[0]) - np.outer(A[:, -1], pts[-1])
+    inner = np.linalg.lstsq(A[1:-1, 1:-1], rhs[1:-1], rcond=None)[0]
+    ctrl = M @ np.vstack([pts[0], inner, pts[-1]])
     ctrl[:, 0] = a.x
     return _native.NurbsCurve(3, knots, ctrl)
 
@@ -760,12 +774,24 @@ class Hull:
             "z_keel": bc["profile"](x),
             "half_area": np.clip(bc["sac"](x), 0.0, None) / 2,
             "z_centroid": zc,
-            "z_fos": bc["fos"].extended(x),
-            "y_fob": bc["fob"].extended(x),
+            "z_fos": self._flat_end(bc["fos"], x, pr.depth),
+            "y_fob": self._flat_end(bc["fob"], x, 0.0),
             "alpha_deck": bc["deck_angle"](x),
             "alpha_bottom": bc["bottom_angle"](x),
             "flat_departure": np.full_like(x, self.flat_departure()),
         }
+
+    def _flat_end(self, curve: BasicCurve, x: np.ndarray, end: float) -> np.ndarray:
+        """The flat-of-side / flat-of-bottom curve at x. One that ends on the deck / the centre
+        line (yE = D / 0) is continued straight beyond its end, so the flat ends smoothly (the
+        section's zone shrinks to its floor through a soft maximum); one that ends elsewhere
+        stops there (NaN / 0 beyond: the flat ends abruptly, as described)."""
+        if curve.curve is None:
+            return curve.extended(x)
+        y_end, _ = curve.end_value_and_slope()
+        if abs(y_end - end) <= 1e-6 * self.description.principal.depth:
+            return curve.extended(x)
+        return curve(x, outside=math.nan if end > 0 else 0.0)
 
     @property
     def sections(self) -> list:

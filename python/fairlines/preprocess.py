@@ -950,10 +950,10 @@ def hull_description(fp: dict, data: HullData, *, n_stations=25) -> dict:
         k = np.flatnonzero(inner)
         if len(k) > DESCRIPTION_POINTS:
             k = k[np.round(np.linspace(0, len(k) - 1, DESCRIPTION_POINTS)).astype(int)]
-        # Room for every condition (start value and slope, end value, points, integrals) and
-        # some freedom left for fairness.
+        # Room for every condition (start value, slope and curvature, end value, points,
+        # integrals) and some freedom left for fairness.
         return {"flat_to": flat_to, "value": float(f[0]), "yE": float(np.interp(x_end, x, f)),
-                "points": [[float(x[i]), float(f[i])] for i in k], "n_control": len(k) + 8}
+                "points": [[float(x[i]), float(f[i])] for i in k], "n_control": len(k) + 9}
     # Where the flat side reaches below the DWL, the DWL and deck lie on it (within FLAT_TOL):
     # say so exactly, as the section design requires.
     on_fos = ~np.isnan(fos_low) & (fos_low < T)
@@ -986,6 +986,6 @@ def hull_description(fp: dict, data: HullData, *, n_stations=25) -> dict:
         "range": {"x_start": x0, "x_end": x1},
         "stations": {"count": int(n_stations)},
         "basic_curves": out,
-        "sections": {"n_control": 10},
+        "sections": {"n_control": 16},
         "skinning": {"start": "parallel", "end": "free"},
     })

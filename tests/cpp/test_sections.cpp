@@ -193,15 +193,22 @@ TEST(Sections, ContradictionsAreNamed) {
     }
     return "";
   };
+  // A section that would bulge past B/2 is kept inside: control points pinned to B/2, the
+  // area still met.
   SectionSpec s = bow();
-  s.y_deck = kHalfB;  // deck at B/2, vertical, no flat of side: an area too large bulges out
+  s.y_deck = kHalfB;
   s.alpha_deck = 0;
   s.y_dwl = 15.0;
   s.half_area = 40;
-  EXPECT_NE(message(s).find("beyond B/2"), std::string::npos) << message(s);
+  const NurbsCurve held = design_section(s, kHalfB);
+  EXPECT_LE(held.control_points().col(1).maxCoeff(), kHalfB * (1 + 1e-12));
+  EXPECT_GE(held.control_points().col(1).minCoeff(), -1e-12);
+  EXPECT_NEAR(area_below(held, s.draft).first, s.half_area, 1e-3);
+  // Almost the whole box B/2 x (T - keel) below the DWL: no section fits (it would have to
+  // leave 0 <= y <= B/2 or fold back); the station is named.
   s = bow();
-  s.half_area = 5;  // far less than deck and DWL make: crosses the centre plane
-  EXPECT_NE(message(s).find("centre plane"), std::string::npos) << message(s);
+  s.half_area = 0.999 * kHalfB * (s.draft - s.z_keel);
+  EXPECT_NE(message(s).find("section at x = 215 m"), std::string::npos) << message(s);
   s = midship();
   s.alpha_deck = -10;  // a flat of side under a flared deck
   EXPECT_NE(message(s).find("flat of side"), std::string::npos) << message(s);

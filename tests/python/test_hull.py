@@ -385,3 +385,58 @@ def test_stations_move_onto_the_basic_curve_junctions(desc):
     plain = copy.deepcopy(desc)
     plain["skinning"]["junctions"] = False
     assert not np.any([np.min(np.abs(fl.Hull.from_json(plain).stations() - j)) < 1e-9 for j in junctions[1:]])
+
+
+@pytest.mark.parametrize(
+    "path, value, match",
+    [
+        (("basic_curves", "profile", "CAE"), 0.01, r"basic_curves\.profile: CAE is 0\.01 without alphaE"),
+        (("basic_curves", "sac", "CAB"), 0.01, r"basic_curves\.sac\.CAB is given after a flat part"),
+        (("basic_curves", "fos", "CAE"), float("nan"), r"basic_curves\.fos\.CAE is nan"),
+        (("sections", "n_control"), 7, r"sections\.n_control is 7; expected an integer >= 8"),
+        (("basic_curves", "deck", "flat_to"), 190.0, r"section at x = .* flat of side .* deck / deck_angle"),
+        (("basic_curves", "bottom_angle", "flat_to"), 180.0, r"section at x = .* flat of bottom .* bottom_angle"),
+        (("basic_curves", "dwl", "flat_to"), 150.0, r"section at x = .* DWL half-breadth"),
+    ],
+)
+def test_contradicting_section_data_names_the_curves(desc, path, value, match):
+    with pytest.raises(ValueError, match=match):
+        fl.Hull.from_json(_bad(desc, path, value)).bare_hull_surface()
+
+
+def test_designed_sections_anywhere_and_bad_stations(hull, desc):
+    x = [130.0, 150.5, 200.25]
+    got = hull.sections_at(x)
+    assert [float(s.control_points[0, 0]) for s in got] == x
+    at_station = hull.sections_at(hull.stations()[5:6])[0]
+    assert np.array_equal(at_station.control_points, hull.sections[5].control_points)
+    with pytest.raises(ValueError, match=r"x\[1\] is 300.0; expected a station inside the hull"):
+        hull.sections_at([150.0, 300.0])
+    with pytest.raises(ValueError, match="per_interval is 0"):
+        hull.design_family(0)
+
+
+def test_auxiliary_section_on_the_shared_knots(desc):
+    d = copy.deepcopy(desc)
+    x = 214.0
+    ref = fl.Hull.from_json(desc).sections_at([x])[0]
+    pts = ref.evaluate(np.linspace(0, 1, 80))
+    d["auxiliary_sections"] = [{"x": x, "offsets": pts[:, 1:].tolist()}]
+    h = fl.Hull.from_json(d)
+    aux = [s for s in h.sections if abs(s.control_points[0, 0] - x) < 1e-9]
+    assert len(aux) == 1 and np.array_equal(np.asarray(aux[0].knots), np.asarray(fl.section_knot_vector(16)))
+    dense = aux[0].evaluate(np.linspace(0, 1, 2001))
+    gap = np.min(np.linalg.norm(dense[:, None, 1:] - pts[None, :, 1:], axis=2), axis=0)
+    assert gap.max() < 0.05  # a least-squares fit of the offsets on the sections' knots
+    assert h.skin().section_fit_max == 0.0  # still one knot vector: no refit
+    d["auxiliary_sections"] = [{"x": x, "offsets": pts[:10, 1:].tolist()}]
+    with pytest.raises(ValueError, match=r"auxiliary_sections\[0\]\.offsets has 10 points; expected at least 22"):
+        fl.Hull.from_json(d).sections
+
+
+def test_fair_skin_straight_groups_are_checked(hull):
+    secs = hull.sections
+    with pytest.raises(ValueError, match=r"straight_groups\[0\] is \(3, 40\)"):
+        fl.fair_skin(secs, straight_groups=[(3, 40)])
+    with pytest.raises(ValueError, match=r"straight_groups\[0\]: row 6 is not at one fraction"):
+        fl.fair_skin(secs, straight_groups=[(5, 9)])

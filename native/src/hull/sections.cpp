@@ -23,7 +23,12 @@ using detail::fail;
 using V2 = Eigen::Vector2d;
 
 constexpr int kDegree = 3;
-constexpr double kAngleTol = 1e-6;       // deg: a flat's tangent must be this close to vertical / horizontal
+// A flat's tangent must be within kFlatAngleTol (deg) of vertical / horizontal and the deck
+// within kFlatBreadthTol of B/2 over a flat of side; the flat is then exactly vertical /
+// horizontal (measured basic curves carry noise of this size; more is a contradiction).
+constexpr double kFlatAngleTol = 1.0;
+constexpr double kFlatBreadthTol = 1e-3;
+constexpr double kBottomAngleSlack = 1.0;  // deg: a bottom angle this far below -90 (fitting noise of measured data) is -90
 constexpr double kFeasibleTol = 1e-9;    // relative residual above which the conditions contradict each other
 constexpr int kCheckSamples = 12;        // samples per knot span when checking the designed section
 constexpr int kCentroidIterations = 30;  // Newton steps for the (cubic) centroid condition
@@ -146,8 +151,9 @@ NurbsCurve design_section(const SectionSpec& s, double y_max) {
   if (!(s.z_keel < s.draft)) fail(at, ": keel height ", s.z_keel, " m is not below the DWL ", s.draft, " m (centre profile)");
   if (!(s.draft < s.z_deck)) fail(at, ": DWL ", s.draft, " m is not below the deck ", s.z_deck, " m");
   if (!(std::abs(s.alpha_deck) < 90.0)) fail(at, ": alpha_deck is ", s.alpha_deck, " deg; expected an angle between -90 and 90");
-  if (!(s.alpha_bottom >= -90.0 && s.alpha_bottom < 90.0))
+  if (!(s.alpha_bottom >= -90.0 - kBottomAngleSlack && s.alpha_bottom < 90.0))
     fail(at, ": alpha_bottom is ", s.alpha_bottom, " deg; expected an angle from -90 (horizontal) to 90");
+  const double alpha_bottom = std::max(s.alpha_bottom, -90.0);
   const double tol = 1e-9 * (y_max + std::abs(s.z_deck));
   for (auto [v, field] : {std::pair{s.y_deck, "y_deck (deck curve)"}, std::pair{s.y_dwl, "y_dwl (design waterline)"}})
     if (v < -tol || v > y_max + tol) fail(at, ": ", field, " is ", v, " m; expected 0 <= y <= ", y_max, " m (B/2)");
@@ -173,17 +179,17 @@ NurbsCurve design_section(const SectionSpec& s, double y_max) {
   const double L_top = std::isnan(s.z_fos) ? -(D - s.z_keel) : D - s.z_fos;
   const double L_bot = s.y_fob;
   const bool flat_side = L_top > tol && !stem, flat_bottom = L_bot > tol && !stem;
-  if (flat_side && (std::abs(s.alpha_deck) > kAngleTol || y_deck < y_max * (1 - 1e-9)))
+  if (flat_side && (std::abs(s.alpha_deck) > kFlatAngleTol || y_deck < y_max * (1 - kFlatBreadthTol)))
     throw InfeasibleFormParameters(at + ": a flat of side down to z = " + fmt(s.z_fos) + " m needs the deck at B/2 = " + fmt(y_max) +
                                    " m with a vertical tangent; got y_deck = " + fmt(s.y_deck) + " m, alpha_deck = " +
                                    fmt(s.alpha_deck) + " deg (the deck / deck_angle curves leave their flat parts before the fos curve reaches the deck)");
-  if (flat_bottom && std::abs(s.alpha_bottom + 90.0) > kAngleTol)
+  if (flat_bottom && std::abs(alpha_bottom + 90.0) > kFlatAngleTol)
     throw InfeasibleFormParameters(at + ": a flat of bottom out to y = " + fmt(s.y_fob) +
                                    " m needs a horizontal tangent at the keel; got alpha_bottom = " + fmt(s.alpha_bottom) +
                                    " deg (the bottom_angle curve leaves -90 before the fob curve ends)");
   const double fade = smoothstep(breadth / (kAngleFadeBreadth * y_max));
   const V2 Tt = stem ? V2(0.0, -1.0) : tangent(flat_side ? 0.0 : s.alpha_deck * fade);
-  const V2 Tb = stem ? V2(0.0, -1.0) : tangent(flat_bottom ? -90.0 : s.alpha_bottom * fade);
+  const V2 Tb = stem ? V2(0.0, -1.0) : tangent(flat_bottom ? -90.0 : alpha_bottom * fade);
   const double lt = stem ? floor_eff : zone_length(L_top, floor_eff);
   const double lb = stem ? floor_eff : zone_length(L_bot, floor_eff);
   const V2 P_deck(y_deck, D), K(0.0, s.z_keel);
@@ -324,10 +330,33 @@ NurbsCurve design_section(const SectionSpec& s, double y_max) {
       if (dwl_on_top) M += seg(Q, A);
       return M;
     };
+    // The fairest curve meeting the conditions, with its control polygon kept inside
+    // 0 <= y <= B/2 (then so is the curve): control points that leave it are pinned to the
+    // bound one at a time, the most violated first. Consistent basic curves never get here; it
+    // keeps a slider that asks for a little too much area from failing (the section flattens
+    // against B/2 there, as a real flat of side would).
+    auto bounded = [&](Constraints c) {
+      const double ytol = kSectionBoundTol * y_max;
+      for (int it = 0; it < nc; ++it) {
+        const Eigen::VectorXd e = kkt_solve(G, c, at);
+        int worst = -1;
+        double excess = ytol, target = 0.0;
+        for (int k = 2; k < nc - 2; ++k) {
+          const double y = A.x() + Lc * g[k] * d.x() + e[k] * n.x();
+          if (y - y_max > excess) worst = k, excess = y - y_max, target = y_max;
+          if (-y > excess) worst = k, excess = -y, target = 0.0;
+        }
+        if (worst < 0) return e;
+        if (!(std::abs(n.x()) > 1e-9))
+          throw InfeasibleFormParameters(at + ": the section leaves 0 <= y <= B/2 and its chord is horizontal (no room to keep it in)");
+        c.add(unit(worst) * n.x(), target - A.x() - Lc * g[worst] * d.x(), "0 <= y <= B/2");
+      }
+      return kkt_solve(G, c, at);
+    };
     auto solve = [&](const Constraints& c) {
-      if (!want_zc) return kkt_solve(G, c, at);
+      if (!want_zc) return bounded(c);
       const double target = s.z_centroid * s.half_area;
-      Eigen::VectorXd e = kkt_solve(G, c, at);
+      Eigen::VectorXd e = bounded(c);
       const double scale = std::max(1e-300, std::abs(target) + s.half_area * std::max(std::abs(T), std::abs(s.z_keel)));
       for (int it = 0; it < kCentroidIterations; ++it) {
         Eigen::RowVectorXd gradM;
@@ -335,7 +364,7 @@ NurbsCurve design_section(const SectionSpec& s, double y_max) {
         if (std::abs(M - target) <= kCentroidTol * scale) return e;
         Constraints cc = c;
         cc.add(gradM, target - M + gradM.dot(e), "z_centroid");
-        e = kkt_solve(G, cc, at);
+        e = bounded(cc);
       }
       const double M = moment(e, nullptr);
       if (std::abs(M - target) <= 1e3 * kCentroidTol * scale) return e;
