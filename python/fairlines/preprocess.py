@@ -963,13 +963,15 @@ def hull_description(fp: dict, data: HullData, *, n_stations=25) -> dict:
         # Lengths and areas are >= 0 by definition; a skinned surface dipping a hair below the
         # baseline between stations must not hand a negative keel height on.
         out[name] = spec(f if scale is None else np.maximum(f, 0.0), scale)
-    # The flat side as a basic curve ends where it no longer reaches below the DWL (the end of
-    # the parallel middle body); above the DWL the DWL and deck curves carry the shape.
-    fos_ok = np.flatnonzero(~np.isnan(fos_low) & (fos_low < T))
+    # The flat side as a basic curve: its lower end at every station from midships on where the
+    # side is flat, rising to the deck where the flat side ends (fairlines.sections continues
+    # a curve that ends on the deck smoothly; one that ended lower would stop abruptly).
+    fos_ok = np.flatnonzero(~np.isnan(fos_low))
     fos_ok = fos_ok[: int(np.argmax(np.diff(np.append(fos_ok, -9)) != 1)) + 1] if len(fos_ok) else fos_ok
-    if len(fos_ok) >= 2:
-        end = float(x[fos_ok[-1]])
-        out["fos"] = spec(np.nan_to_num(fos_low, nan=T), T, end) | {"x_end": end}
+    if len(fos_ok) >= 2 and fos_ok[-1] + 1 < len(x):
+        end = float(x[fos_ok[-1] + 1])
+        f = np.where(np.arange(len(x)) <= fos_ok[-1], np.nan_to_num(fos_low, nan=top), top)
+        out["fos"] = spec(f, T, end) | {"x_end": end, "yE": top}
     else:
         out["fos"] = {"value": T, "flat_to": x0 + 1e-3 * L, "x_end": x0 + 2e-3 * L, "yE": T}
     fob_end = fp["FOB"]["x_fwd"] if fp["FOB"]["x_fwd"] else x0 + 2e-3 * L

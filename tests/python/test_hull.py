@@ -394,8 +394,6 @@ def test_stations_move_onto_the_basic_curve_junctions(desc):
         (("basic_curves", "sac", "CAB"), 0.01, r"basic_curves\.sac\.CAB is given after a flat part"),
         (("basic_curves", "fos", "CAE"), float("nan"), r"basic_curves\.fos\.CAE is nan"),
         (("sections", "n_control"), 7, r"sections\.n_control is 7; expected an integer >= 8"),
-        (("basic_curves", "deck", "flat_to"), 190.0, r"section at x = .* flat of side .* deck / deck_angle"),
-        (("basic_curves", "bottom_angle", "flat_to"), 180.0, r"section at x = .* flat of bottom .* bottom_angle"),
         (("basic_curves", "dwl", "flat_to"), 150.0, r"section at x = .* DWL half-breadth"),
     ],
 )

@@ -110,10 +110,12 @@ std::vector<std::pair<int, int>> section_straight_groups(int n_control);
 
 /// One section as a 3-D cubic curve (x, y, z) on section_knot_vector(n_control), from the deck
 /// point to the keel point on the centre line. y_max is the half-breadth limit B/2 (m).
+/// The control polygon is kept inside 0 <= y <= y_max (points that would leave it are pinned
+/// to the bound), and under a flat the zone is vertical / horizontal whatever the angles say.
 /// Throws InvalidInput for malformed values (naming x and the field) and
-/// InfeasibleFormParameters when the basic curves contradict each other at this station (the
-/// section would cross B/2 or the centre plane, fold back, or a flat contradicts the deck /
-/// DWL / bottom data); the message names the curves involved.
+/// InfeasibleFormParameters when the basic curves contradict each other at this station (no
+/// section fits inside the bounds, it would fold back, or the DWL half-breadth contradicts a
+/// flat of side reaching below the DWL); the message names the curves involved.
 NurbsCurve design_section(const SectionSpec& spec, double y_max);
 
 /// All sections in one call (what a hull rebuild uses).
