@@ -801,17 +801,23 @@ class Hull:
             d = self.description
             fields_ = self.section_parameters()
             secs = list(_native._design_sections(fields_, d.section_n_control, 3, d.principal.breadth / 2))
-            xs = list(fields_["x"])
-            for i, a in enumerate(d.auxiliary_sections):
-                c = _fit_on_section_knots(a, d.section_n_control, f"auxiliary_sections[{i}]")
-                k = int(np.searchsorted(xs, a.x))
-                if k < len(xs) and abs(xs[k] - a.x) < 1e-9 * d.principal.lpp:
-                    secs[k] = c
-                else:
-                    xs.insert(k, a.x)
-                    secs.insert(k, c)
-            self._sections = secs
+            self._sections = self._with_auxiliary(secs, fields_["x"])
         return self._sections
+
+    def _with_auxiliary(self, secs: list, xs: np.ndarray) -> list:
+        """Designed sections at xs with the auxiliary sections put in place (replacing a section
+        at the same x, else inserted in x order), fitted on the shared knot vector."""
+        d = self.description
+        xl = list(xs)
+        for i, a in enumerate(d.auxiliary_sections):
+            c = _fit_on_section_knots(a, d.section_n_control, f"auxiliary_sections[{i}]")
+            k = int(np.searchsorted(xl, a.x))
+            if k < len(xl) and abs(xl[k] - a.x) < 1e-9 * d.principal.lpp:
+                secs[k] = c
+            else:
+                xl.insert(k, a.x)
+                secs.insert(k, c)
+        return secs
 
     def sections_at(self, x: Any) -> list:
         """The designed sections at any x (m): what the basic curves define between the
@@ -826,18 +832,7 @@ class Hull:
         per_interval = _integer("per_interval", per_interval, 1)
         xs = self.stations()
         dense = np.concatenate([np.linspace(a, b, per_interval + 1)[:-1] for a, b in zip(xs[:-1], xs[1:])] + [xs[-1:]])
-        secs = self.sections_at(dense)
-        xl = list(dense)
-        d = self.description
-        for i, a in enumerate(d.auxiliary_sections):
-            c = _fit_on_section_knots(a, d.section_n_control, f"auxiliary_sections[{i}]")
-            k = int(np.searchsorted(xl, a.x))
-            if k < len(xl) and abs(xl[k] - a.x) < 1e-9 * d.principal.lpp:
-                secs[k] = c
-            else:
-                xl.insert(k, a.x)
-                secs.insert(k, c)
-        return secs
+        return self._with_auxiliary(self.sections_at(dense), dense)
 
     def skin(self):
         """The SkinResult of the fair skinning (cached): the sections share one knot vector, so

@@ -1,5 +1,6 @@
-// Linear form-parameter curves and sections: parameters met exactly (checked by independent
-// dense trapezoidal quadrature), conflicts reported, bounds respected.
+// Linear form-parameter curves (the basic curves): parameters met exactly (checked by
+// independent dense trapezoidal quadrature), conflicts reported, bounds respected. Sections:
+// test_sections.cpp.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -72,38 +73,6 @@ TEST(LinearFormCurve, ContradictionsAreInfeasibleAndBoundsHold) {
   EXPECT_NEAR(trapezoid_area(c).first, 0.8, 1e-7);
   b.area = 1.2;  // more than the unit box allows
   EXPECT_THROW(design_linear_form_curve(b), InfeasibleFormParameters);
-}
-
-TEST(Section, MidshipSectionHasItsAreaAndFlats) {
-  SectionSpec s;
-  s.x = 10;
-  s.z_deck = 19;
-  s.y_deck = 16.125;
-  s.draft = 11;
-  s.y_dwl = 16.125;
-  s.z_keel = 0;
-  s.z_fos = 2.9;
-  s.y_fob = 13.2;
-  s.half_area = 174.7;
-  s.n_control = 10;
-  const NurbsCurve c = design_section(s, 16.125);
-  const Eigen::MatrixXd P = c.evaluate(Eigen::VectorXd::LinSpaced(40001, 0.0, 1.0));
-  double area = 0;
-  for (Eigen::Index i = 0; i + 1 < P.rows(); ++i) {
-    EXPECT_NEAR(P(i, 0), 10.0, 1e-12);
-    // Trapezoid of y dz on the part of the segment below the DWL (z = 11).
-    double z0 = P(i, 2), z1 = P(i + 1, 2), y0 = P(i, 1), y1 = P(i + 1, 1);
-    if (z0 > 11 && z1 > 11) continue;
-    if (z0 > 11) y0 += (y1 - y0) * (z0 - 11) / (z0 - z1), z0 = 11;
-    if (z1 > 11) y1 += (y0 - y1) * (z1 - 11) / (z1 - z0), z1 = 11;
-    area += 0.5 * (z0 - z1) * (y0 + y1);
-  }
-  EXPECT_NEAR(area, 174.7, 1e-3);
-  EXPECT_LE(P.col(1).maxCoeff(), 16.125 + 1e-12);
-  s.half_area = 180;  // more than B/2 x T
-  EXPECT_THROW(design_section(s, 16.125), InfeasibleFormParameters);
-  s.half_area = std::nan("");
-  EXPECT_THROW(design_section(s, 16.125), InvalidInput);
 }
 
 }  // namespace

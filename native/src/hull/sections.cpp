@@ -264,25 +264,31 @@ NurbsCurve design_section(const SectionSpec& s, double y_max) {
     // Half area below the DWL by Green's theorem along Q -> curve -> E -> K -> (0, T) -> Q
     // (clockwise, so the area is minus half the sum of P x dP). On the curved part
     // P x P' = Lc (A x d) + (A x n) eta' + (d x n) Lc (t eta' - eta): linear in eta.
-    Eigen::RowVectorXd area_row = Eigen::RowVectorXd::Zero(nc);
-    double area_const = 0.0;
-    {
-      const auto& gr = detail::gauss_rule(3);
-      std::vector<double> br{t_from};
-      for (int i = kDegree + 1; i < nc; ++i)
-        if (Uc[i] > t_from) br.push_back(Uc[i]);
-      br.push_back(1.0);
-      const double Axd = cross(A, d), Axn = cross(A, n), dxn = cross(d, n);
+    // Knot spans of the curved part below the DWL point (quadrature pieces).
+    std::vector<double> br{t_from};
+    for (int i = kDegree + 1; i < nc; ++i)
+      if (Uc[i] > t_from) br.push_back(Uc[i]);
+    br.push_back(1.0);
+    // Gauss-Legendre with `points` nodes on each piece: f(t, weight, N(t), N'(t)).
+    auto integrate = [&](int points, auto&& f) {
+      const auto& gr = detail::gauss_rule(points);
       for (std::size_t k = 0; k + 1 < br.size(); ++k) {
         const double h = 0.5 * (br[k + 1] - br[k]), m = 0.5 * (br[k + 1] + br[k]);
         if (!(h > 0)) continue;
         for (std::size_t q = 0; q < gr.x.size(); ++q) {
-          const double t = m + h * gr.x[q], w = gr.w[q] * h;
-          const Eigen::RowVectorXd N = basis_row(Uc, kDegree, t), dN = basis_row(Uc, kDegree, t, 1);
-          area_const += 0.5 * w * Lc * Axd;
-          area_row += 0.5 * w * (Axn * dN + dxn * Lc * (t * dN - N));
+          const double t = m + h * gr.x[q];
+          f(t, gr.w[q] * h, basis_row(Uc, kDegree, t), basis_row(Uc, kDegree, t, 1));
         }
       }
+    };
+    Eigen::RowVectorXd area_row = Eigen::RowVectorXd::Zero(nc);
+    double area_const = 0.0;
+    {
+      const double Axd = cross(A, d), Axn = cross(A, n), dxn = cross(d, n);
+      integrate(3, [&](double t, double w, const Eigen::RowVectorXd& N, const Eigen::RowVectorXd& dN) {
+        area_const += 0.5 * w * Lc * Axd;
+        area_row += 0.5 * w * (Axn * dN + dxn * Lc * (t * dN - N));
+      });
       area_const += 0.5 * cross(E, K) + 0.5 * cross(V2(0.0, T), Q);
       if (dwl_on_top) area_const += 0.5 * cross(Q, A);
     }
@@ -296,25 +302,14 @@ NurbsCurve design_section(const SectionSpec& s, double y_max) {
     // point the KKT conditions of the nonlinear problem hold).
     const bool want_zc = std::isfinite(s.z_centroid);
     auto moment = [&](const Eigen::VectorXd& e, Eigen::RowVectorXd* grad) {
-      const auto& gr = detail::gauss_rule(6);
-      std::vector<double> br{t_from};
-      for (int i = kDegree + 1; i < nc; ++i)
-        if (Uc[i] > t_from) br.push_back(Uc[i]);
-      br.push_back(1.0);
       double M = 0.0;
       if (grad) *grad = Eigen::RowVectorXd::Zero(nc);
-      for (std::size_t k = 0; k + 1 < br.size(); ++k) {
-        const double h = 0.5 * (br[k + 1] - br[k]), m = 0.5 * (br[k + 1] + br[k]);
-        if (!(h > 0)) continue;
-        for (std::size_t q = 0; q < gr.x.size(); ++q) {
-          const double t = m + h * gr.x[q], w = gr.w[q] * h;
-          const Eigen::RowVectorXd N = basis_row(Uc, kDegree, t), dN = basis_row(Uc, kDegree, t, 1);
-          const double et = N.dot(e), det = dN.dot(e);
-          const double z = A.y() + Lc * t * d.y() + et * n.y(), dy = Lc * d.x() + det * n.x();
-          M += w * 0.5 * z * z * dy;
-          if (grad) *grad += w * (z * n.y() * dy * N + 0.5 * z * z * n.x() * dN);
-        }
-      }
+      integrate(6, [&](double t, double w, const Eigen::RowVectorXd& N, const Eigen::RowVectorXd& dN) {
+        const double et = N.dot(e), det = dN.dot(e);
+        const double z = A.y() + Lc * t * d.y() + et * n.y(), dy = Lc * d.x() + det * n.x();
+        M += w * 0.5 * z * z * dy;
+        if (grad) *grad += w * (z * n.y() * dy * N + 0.5 * z * z * n.x() * dN);
+      });
       auto seg = [](const V2& p1, const V2& p2) { return (p2.x() - p1.x()) * (p1.y() * p1.y() + p1.y() * p2.y() + p2.y() * p2.y()) / 6.0; };
       M += seg(E, K) + seg(K, V2(0.0, T)) + seg(V2(0.0, T), Q);
       if (dwl_on_top) M += seg(Q, A);
