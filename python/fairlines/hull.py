@@ -436,16 +436,8 @@ class BasicCurve:
         out = self(x)
         beyond = x > self.x_end + 1e-9 * max(1.0, abs(self.x_end))
         if np.any(beyond):
-            y_end, slope = self.end_value_and_slope()
-            out[beyond] = y_end + slope * (x[beyond] - self.x_end)
+            out[beyond] = self(self.x_end)[0] + self.derivative(self.x_end, 1) * (x[beyond] - self.x_end)
         return out
-
-    def end_value_and_slope(self) -> tuple[float, float]:
-        """f and df/dx at x_end."""
-        if self.curve is None:
-            return float(self.value), 0.0
-        d = self.curve.derivatives(1.0, 1)
-        return float(d[0][1]), float(d[1][1] / d[1][0])
 
     def derivative(self, x: float, order: int) -> float:
         """d^order f / dx^order just after x (the curve part; 0 on the flat part)."""
@@ -786,10 +778,7 @@ class Hull:
         line (yE = D / 0) is continued straight beyond its end, so the flat ends smoothly (the
         section's zone shrinks to its floor through a soft maximum); one that ends elsewhere
         stops there (NaN / 0 beyond: the flat ends abruptly, as described)."""
-        if curve.curve is None:
-            return curve.extended(x)
-        y_end, _ = curve.end_value_and_slope()
-        if abs(y_end - end) <= 1e-6 * self.description.principal.depth:
+        if curve.curve is None or abs(curve(curve.x_end)[0] - end) <= 1e-6 * self.description.principal.depth:
             return curve.extended(x)
         return curve(x, outside=math.nan if end > 0 else 0.0)
 

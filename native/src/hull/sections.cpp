@@ -14,6 +14,7 @@
 #include "fairlines/knots.hpp"
 #include "nurbs/checks.hpp"
 #include "nurbs/gauss.hpp"
+#include "nurbs/gram.hpp"
 
 namespace fairlines {
 
@@ -231,17 +232,7 @@ NurbsCurve design_section(const SectionSpec& s, double y_max) {
     const Eigen::RowVectorXd g2_top_row = unit(2), g2_bot_row = unit(nc - 3);
     const double g2_top_val = (P[2] - A).dot(n), g2_bot_val = (P[nc - 3] - A).dot(n);
     // E2 of the ordinates (the abscissae are linear in t).
-    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nc, nc);
-    {
-      const auto& gr = detail::gauss_rule(kDegree);
-      for (int sp = kDegree; sp < nc; ++sp) {
-        const double h = 0.5 * (Uc[sp + 1] - Uc[sp]), m = 0.5 * (Uc[sp + 1] + Uc[sp]);
-        for (std::size_t q = 0; q < gr.x.size(); ++q) {
-          const Eigen::RowVectorXd d2 = basis_row(Uc, kDegree, m + h * gr.x[q], 2);
-          G += gr.w[q] * h * d2.transpose() * d2;
-        }
-      }
-    }
+    const Eigen::MatrixXd G = detail::derivative_gram(Uc, kDegree, 2);
     // The DWL: on the top zone (then its half-breadth must be the zone's) or a point of the
     // curved part at t_Q = xi_Q / Lc.
     const bool dwl_on_top = T >= A.y();

@@ -14,6 +14,7 @@
 #include "fairlines/knots.hpp"
 #include "nurbs/checks.hpp"
 #include "nurbs/gauss.hpp"
+#include "nurbs/gram.hpp"
 
 namespace fairlines {
 
@@ -151,56 +152,24 @@ double invert_arc(CurveProbe& probe, const ArcTable& tab, double target) {
   return t;
 }
 
-/// Gram matrix int N_i^(r) N_j^(r) dt of a B-spline basis (n x n), exact by Gauss-Legendre.
-Eigen::MatrixXd derivative_gram(const Eigen::VectorXd& U, int degree, int r) {
-  const int n = static_cast<int>(U.size()) - degree - 1;
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n, n);
-  if (r > degree) return G;
-  const auto& g = detail::gauss_rule(degree + 1);
-  Eigen::MatrixXd ders(r + 1, degree + 1);
-  for (int s = degree; s < n; ++s) {
-    const double a = U[s], b = U[s + 1];
-    if (!(b > a)) continue;
-    const double h = 0.5 * (b - a), m = 0.5 * (a + b);
-    for (std::size_t k = 0; k < g.x.size(); ++k) {
-      const double t = m + h * g.x[k];
-      basis_derivatives(s, t, degree, r, U, ders);
-      for (int i = 0; i <= degree; ++i)
-        for (int j = 0; j <= degree; ++j)
-          G(s - degree + i, s - degree + j) += g.w[k] * h * ders(r, i) * ders(r, j);
-    }
-  }
-  return G;
-}
-
-
 /// A run of consecutive sections [first, last] over which one data column keeps `value`.
 struct HeldRun {
   int first, last;
   double value;
 };
 
-/// Maximal runs of at least kMinHeldRun consecutive equal values (to tol) of a column, among
-/// the sections allowed by `allowed` (all when empty).
-std::vector<HeldRun> find_runs_in(const Eigen::VectorXd& col, const std::vector<char>& allowed, double tol = -1) {
+/// Maximal runs of at least kMinHeldRun consecutive values of a column equal to within tol.
+std::vector<HeldRun> find_runs(const Eigen::VectorXd& col, double tol) {
   const int q = static_cast<int>(col.size());
-  if (tol < 0) tol = kRunTolerance * std::max(1.0, col.cwiseAbs().maxCoeff());
   std::vector<HeldRun> out;
-  int d = 0;
-  while (d < q) {
-    if (!allowed.empty() && !allowed[d]) {
-      ++d;
-      continue;
-    }
+  for (int d = 0; d < q;) {
     int e = d;
-    while (e + 1 < q && (allowed.empty() || allowed[e + 1]) && std::abs(col[e + 1] - col[d]) <= tol) ++e;
+    while (e + 1 < q && std::abs(col[e + 1] - col[d]) <= tol) ++e;
     if (e - d + 1 >= kMinHeldRun) out.push_back({d, e, col[d]});
     d = e + 1;
   }
   return out;
 }
-
-std::vector<HeldRun> find_runs(const Eigen::VectorXd& col, double tol) { return find_runs_in(col, {}, tol); }
 
 /// True when every section already has degree degree_u, one and the same knot vector and (if
 /// n_control is given) that many control points, non-rational.
@@ -213,6 +182,130 @@ bool shared_knot_vector(const std::vector<NurbsCurve>& sections, const SkinOptio
     if ((c.knots() - U0).cwiseAbs().maxCoeff() > 1e-14 * std::max(1.0, U0.cwiseAbs().maxCoeff())) return false;
   }
   return true;
+}
+
+/// Seed 000's steps (b)-(d): m equally spaced points along every section, refitted with one
+/// clamped uniform knot vector Ku of n control points (ctrl[d]: n x 3). Returns the largest
+/// distance between the points and the fits (m).
+double refit_sections(const std::vector<NurbsCurve>& sections, const SkinOptions& o, int n, int m, Eigen::VectorXd& Ku,
+                      std::vector<Eigen::MatrixXd>& ctrl) {
+  const int q = static_cast<int>(sections.size());
+  double fit_max = 0;
+  // (b) equally spaced points along every section.
+  std::vector<Eigen::MatrixXd> pts(q);
+  for (int d = 0; d < q; ++d) {
+    try {
+      pts[d] = equal_arc_length_points(sections[d], m, o.curvature_weight);
+    } catch (const InvalidInput& e) {
+      fail("sections[", d, "]: ", e.what());
+    }
+  }
+
+  // Flat planes (SkinOptions::flats) and the distance within which a point lies in one.
+  double extent = 1.0;
+  for (int d = 0; d < q; ++d) extent = std::max(extent, pts[d].cwiseAbs().maxCoeff());
+  const double flat_tol = kFlatTolerance * extent;
+  for (std::size_t f = 0; f < o.flats.size(); ++f) {
+    const auto [axis, value] = o.flats[f];
+    if (axis < 0 || axis > 2) fail("flats[", f, "] has axis ", axis, "; expected 0 (x), 1 (y) or 2 (z)");
+    if (!std::isfinite(value)) fail("flats[", f, "] has value ", value, "; expected a finite coordinate (m)");
+  }
+  // The plane value a set of coordinates all lie in (to flat_tol), or NaN.
+  auto flat_value = [&](int axis, auto&& coords) {
+    for (const auto& [a, c] : o.flats) {
+      if (a != axis) continue;
+      bool all = true;
+      for (double x : coords)
+        if (!(std::abs(x - c) <= flat_tol)) { all = false; break; }
+      if (all) return c;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+
+  // (c)-(d) one knot vector and control count for all sections; ends interpolated, the rest
+  // by least squares (QR of the collocation matrix, factorised once for all sections).
+  Ku = clamped_uniform_knots(n, o.degree_u);
+  Eigen::MatrixXd Nu(m, n);
+  for (int k = 0; k < m; ++k) Nu.row(k) = basis_row(Ku, o.degree_u, static_cast<double>(k) / (m - 1));
+  // ctrl[d] : n x 3
+  ctrl.assign(q, Eigen::MatrixXd(n, 3));
+  {
+    Eigen::MatrixXd rhs(m, 3 * q);
+    for (int d = 0; d < q; ++d) rhs.middleCols(3 * d, 3) = pts[d];
+    Eigen::MatrixXd sol(n, 3 * q);
+    if (m == n) {
+      sol = Nu.partialPivLu().solve(rhs);
+    } else {
+      // Fix the end control points to the end samples, least squares on the interior.
+      sol.row(0) = rhs.row(0);
+      sol.row(n - 1) = rhs.row(m - 1);
+      const Eigen::MatrixXd A = Nu.block(1, 1, m - 2, n - 2);
+      const Eigen::MatrixXd b = rhs.middleRows(1, m - 2) - Nu.block(1, 0, m - 2, 1) * sol.row(0) -
+                                Nu.block(1, n - 1, m - 2, 1) * sol.row(n - 1);
+      sol.middleRows(1, n - 2) = A.householderQr().solve(b);
+      if (!o.flats.empty()) {
+        // Control points whose whole support lies in a flat keep exactly to it; the others are
+        // the least-squares fit with those fixed (normal equations of the free ones, one
+        // Cholesky factorisation per distinct set of fixed points).
+        const Eigen::MatrixXd M = Nu.transpose() * Nu;
+        // Samples strictly inside each interior control point's support (the same for every
+        // section): [first, last], empty when first > last.
+        std::vector<std::pair<int, int>> inside(n, {1, 0});
+        for (int j = 1; j < n - 1; ++j) {
+          int first = m, last = -1;
+          for (int k = 1; k < m - 1; ++k) {
+            const double u = static_cast<double>(k) / (m - 1);
+            if (u > Ku[j] && u < Ku[j + o.degree_u + 1]) first = std::min(first, k), last = k;
+          }
+          inside[j] = {first, last};
+        }
+        std::map<std::vector<char>, Eigen::LLT<Eigen::MatrixXd>> factors;
+        for (int col = 0; col < 3 * q; ++col) {
+          const int axis = col % 3;
+          std::vector<char> fixed(n, 0);
+          Eigen::VectorXd z = sol.col(col), held = Eigen::VectorXd::Zero(n);  // held: z where fixed
+          fixed[0] = fixed[n - 1] = 1;
+          held[0] = z[0], held[n - 1] = z[n - 1];
+          bool any = false;
+          for (int j = 1; j < n - 1; ++j) {
+            const auto [first, last] = inside[j];
+            if (first > last) continue;
+            const double* col_data = rhs.col(col).data();
+            const double c = flat_value(axis, std::vector<double>(col_data + first, col_data + last + 1));
+            if (!std::isnan(c)) fixed[j] = 1, z[j] = held[j] = c, any = true;
+          }
+          if (!any) continue;
+          std::vector<int> freev;
+          for (int j = 0; j < n; ++j)
+            if (!fixed[j]) freev.push_back(j);
+          if (freev.empty()) {
+            sol.col(col) = z;
+            continue;
+          }
+          const int r = static_cast<int>(freev.size());
+          auto it = factors.find(fixed);
+          if (it == factors.end()) {
+            Eigen::MatrixXd Mrr(r, r);
+            for (int a = 0; a < r; ++a)
+              for (int b2 = 0; b2 < r; ++b2) Mrr(a, b2) = M(freev[a], freev[b2]);
+            it = factors.emplace(fixed, Eigen::LLT<Eigen::MatrixXd>(Mrr)).first;
+          }
+          const Eigen::VectorXd g = Nu.transpose() * rhs.col(col) - M * held;
+          Eigen::VectorXd gr(r);
+          for (int a = 0; a < r; ++a) gr[a] = g[freev[a]];
+          const Eigen::VectorXd zr = it->second.solve(gr);
+          for (int a = 0; a < r; ++a) z[freev[a]] = zr[a];
+          sol.col(col) = z;
+        }
+      }
+    }
+    const Eigen::MatrixXd resid = Nu * sol - rhs;
+    for (int d = 0; d < q; ++d) {
+      ctrl[d] = sol.middleCols(3 * d, 3);
+      for (int k = 0; k < m; ++k) fit_max = std::max(fit_max, resid.block(k, 3 * d, 1, 3).norm());
+    }
+  }
+  return fit_max;
 }
 
 }  // namespace
@@ -333,121 +426,7 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
     Ku = sections[0].knots();
     for (int d = 0; d < q; ++d) ctrl[d] = sections[d].control_points();
   } else {
-
-    // (b) equally spaced points along every section.
-    std::vector<Eigen::MatrixXd> pts(q);
-    for (int d = 0; d < q; ++d) {
-      try {
-        pts[d] = equal_arc_length_points(sections[d], m, o.curvature_weight);
-      } catch (const InvalidInput& e) {
-        fail("sections[", d, "]: ", e.what());
-      }
-    }
-
-    // Flat planes (SkinOptions::flats) and the distance within which a point lies in one.
-    double extent = 1.0;
-    for (int d = 0; d < q; ++d) extent = std::max(extent, pts[d].cwiseAbs().maxCoeff());
-    const double flat_tol = kFlatTolerance * extent;
-    for (std::size_t f = 0; f < o.flats.size(); ++f) {
-      const auto [axis, value] = o.flats[f];
-      if (axis < 0 || axis > 2) fail("flats[", f, "] has axis ", axis, "; expected 0 (x), 1 (y) or 2 (z)");
-      if (!std::isfinite(value)) fail("flats[", f, "] has value ", value, "; expected a finite coordinate (m)");
-    }
-    // The plane value a set of coordinates all lie in (to flat_tol), or NaN.
-    auto flat_value = [&](int axis, auto&& coords) {
-      for (const auto& [a, c] : o.flats) {
-        if (a != axis) continue;
-        bool all = true;
-        for (double x : coords)
-          if (!(std::abs(x - c) <= flat_tol)) { all = false; break; }
-        if (all) return c;
-      }
-      return std::numeric_limits<double>::quiet_NaN();
-    };
-
-    // (c)-(d) one knot vector and control count for all sections; ends interpolated, the rest
-    // by least squares (QR of the collocation matrix, factorised once for all sections).
-    Ku = clamped_uniform_knots(n, o.degree_u);
-    Eigen::MatrixXd Nu(m, n);
-    for (int k = 0; k < m; ++k) Nu.row(k) = basis_row(Ku, o.degree_u, static_cast<double>(k) / (m - 1));
-    // ctrl[d] : n x 3
-    ctrl.assign(q, Eigen::MatrixXd(n, 3));
-    {
-      Eigen::MatrixXd rhs(m, 3 * q);
-      for (int d = 0; d < q; ++d) rhs.middleCols(3 * d, 3) = pts[d];
-      Eigen::MatrixXd sol(n, 3 * q);
-      if (m == n) {
-        sol = Nu.partialPivLu().solve(rhs);
-      } else {
-        // Fix the end control points to the end samples, least squares on the interior.
-        sol.row(0) = rhs.row(0);
-        sol.row(n - 1) = rhs.row(m - 1);
-        const Eigen::MatrixXd A = Nu.block(1, 1, m - 2, n - 2);
-        const Eigen::MatrixXd b = rhs.middleRows(1, m - 2) - Nu.block(1, 0, m - 2, 1) * sol.row(0) -
-                                  Nu.block(1, n - 1, m - 2, 1) * sol.row(n - 1);
-        sol.middleRows(1, n - 2) = A.householderQr().solve(b);
-        if (!o.flats.empty()) {
-          // Control points whose whole support lies in a flat keep exactly to it; the others are
-          // the least-squares fit with those fixed (normal equations of the free ones, one
-          // Cholesky factorisation per distinct set of fixed points).
-          const Eigen::MatrixXd M = Nu.transpose() * Nu;
-          // Samples strictly inside each interior control point's support (the same for every
-          // section): [first, last], empty when first > last.
-          std::vector<std::pair<int, int>> inside(n, {1, 0});
-          for (int j = 1; j < n - 1; ++j) {
-            int first = m, last = -1;
-            for (int k = 1; k < m - 1; ++k) {
-              const double u = static_cast<double>(k) / (m - 1);
-              if (u > Ku[j] && u < Ku[j + o.degree_u + 1]) first = std::min(first, k), last = k;
-            }
-            inside[j] = {first, last};
-          }
-          std::map<std::vector<char>, Eigen::LLT<Eigen::MatrixXd>> factors;
-          for (int col = 0; col < 3 * q; ++col) {
-            const int axis = col % 3;
-            std::vector<char> fixed(n, 0);
-            Eigen::VectorXd z = sol.col(col), held = Eigen::VectorXd::Zero(n);  // held: z where fixed
-            fixed[0] = fixed[n - 1] = 1;
-            held[0] = z[0], held[n - 1] = z[n - 1];
-            bool any = false;
-            for (int j = 1; j < n - 1; ++j) {
-              const auto [first, last] = inside[j];
-              if (first > last) continue;
-              const double* col_data = rhs.col(col).data();
-              const double c = flat_value(axis, std::vector<double>(col_data + first, col_data + last + 1));
-              if (!std::isnan(c)) fixed[j] = 1, z[j] = held[j] = c, any = true;
-            }
-            if (!any) continue;
-            std::vector<int> freev;
-            for (int j = 0; j < n; ++j)
-              if (!fixed[j]) freev.push_back(j);
-            if (freev.empty()) {
-              sol.col(col) = z;
-              continue;
-            }
-            const int r = static_cast<int>(freev.size());
-            auto it = factors.find(fixed);
-            if (it == factors.end()) {
-              Eigen::MatrixXd Mrr(r, r);
-              for (int a = 0; a < r; ++a)
-                for (int b2 = 0; b2 < r; ++b2) Mrr(a, b2) = M(freev[a], freev[b2]);
-              it = factors.emplace(fixed, Eigen::LLT<Eigen::MatrixXd>(Mrr)).first;
-            }
-            const Eigen::VectorXd g = Nu.transpose() * rhs.col(col) - M * held;
-            Eigen::VectorXd gr(r);
-            for (int a = 0; a < r; ++a) gr[a] = g[freev[a]];
-            const Eigen::VectorXd zr = it->second.solve(gr);
-            for (int a = 0; a < r; ++a) z[freev[a]] = zr[a];
-            sol.col(col) = z;
-          }
-        }
-      }
-      const Eigen::MatrixXd resid = Nu * sol - rhs;
-      for (int d = 0; d < q; ++d) {
-        ctrl[d] = sol.middleCols(3 * d, 3);
-        for (int k = 0; k < m; ++k) fit_max = std::max(fit_max, resid.block(k, 3 * d, 1, 3).norm());
-      }
-    }
+    fit_max = refit_sections(sections, o, n, m, Ku, ctrl);
   }
 
   // Longitudinal parameters of the sections.
@@ -572,8 +551,8 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
   for (int d = 0; d < q; ++d) Nv.row(d) = basis_row(Kv, pv, v[d]);
   // Fairness matrix: e2 E2 + e3 h^2 E3 (h = 1/(q-1) makes the two terms commensurate).
   const double hq = 1.0 / (q - 1);
-  Eigen::MatrixXd G = o.e2 * derivative_gram(Kv, pv, 2);
-  if (o.e3 > 0) G += o.e3 * hq * hq * derivative_gram(Kv, pv, 3);
+  Eigen::MatrixXd G = o.e2 * detail::derivative_gram(Kv, pv, 2);
+  if (o.e3 > 0) G += o.e3 * hq * hq * detail::derivative_gram(Kv, pv, 3);
   const Eigen::RowVectorXd D0 = basis_row(Kv, pv, 0.0, 1), D1 = basis_row(Kv, pv, 1.0, 1);
 
   // Objective 1/2 c' H c - b' c with constraints C c = e: Interpolate: H = 2 G, C = [Nv; ends],
@@ -678,7 +657,7 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
   res.longitudinal_max = lmax;
   res.held_columns = 0;
   for (const auto& r : runs) res.held_columns += !r.empty();
-  const Eigen::MatrixXd G2 = derivative_gram(Kv, pv, 2);
+  const Eigen::MatrixXd G2 = detail::derivative_gram(Kv, pv, 2);
   for (int i = 0; i < n; ++i) {
     double e = 0;
     for (int k = 0; k < 3; ++k) e += lon.col(3 * i + k).dot(G2 * lon.col(3 * i + k));
