@@ -177,3 +177,25 @@ TEST(Qp, DuplicateAndDependentRowsAreHandled) {
 
 }  // namespace
 }  // namespace fairlines
+
+namespace fairlines {
+namespace {
+
+TEST(Qp, EqualitiesThatFixEverythingStillCheckTheInequalities) {
+  QuadraticProgram qp;
+  qp.H = Eigen::MatrixXd::Identity(2, 2);
+  qp.g = Eigen::VectorXd::Zero(2);
+  qp.E = Eigen::MatrixXd::Identity(2, 2);
+  qp.e = Eigen::Vector2d(1.0, 2.0);
+  qp.A = Eigen::RowVector2d(1.0, 1.0);
+  qp.b = Eigen::VectorXd::Constant(1, 2.5);
+  const QpSolution s = solve_qp(qp);
+  EXPECT_EQ(s.status, QpStatus::Infeasible);
+  std::vector<int> expected{0, 1, 2};
+  EXPECT_EQ(s.conflict, expected);
+  qp.b[0] = 3.0;
+  EXPECT_EQ(solve_qp(qp).status, QpStatus::Optimal);
+}
+
+}  // namespace
+}  // namespace fairlines

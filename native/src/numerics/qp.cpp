@@ -1,5 +1,10 @@
 // Dual active-set QP (Goldfarb & Idnani 1983): see fairlines/qp.hpp.
 //
+// Equalities are eliminated first (null-space method: x = x_p + Z y with E x_p = e and E Z = 0,
+// from a column-pivoted QR of E'), so the dual active-set iteration runs on the reduced problem
+// in y with inequalities only; a nearly singular H on directions the equalities fix then does
+// no harm.
+//
 // Notation: C the active constraint rows (unit normals), d their right-hand sides, lambda their
 // multipliers with H x + g + C' lambda = 0; Hi v means a solve with the Cholesky factor of H;
 // W = Hi C' (one column per active constraint), S = C Hi C' (the Schur complement). Adding a
@@ -12,6 +17,7 @@
 #include <limits>
 
 #include <Eigen/Cholesky>
+#include <Eigen/QR>
 
 #include "fairlines/errors.hpp"
 #include "nurbs/checks.hpp"
@@ -27,6 +33,8 @@ using detail::fail;
 constexpr double kDependentTol = 1e-11;
 /// Multiplier directions smaller than this (relative) do not limit a step.
 constexpr double kRatioTol = 1e-14;
+/// Proximal passes that remove the regularisation's bias (see solve_refined).
+constexpr int kRefinements = 3;
 
 struct Row {
   Eigen::VectorXd c;  // unit normal
@@ -36,7 +44,7 @@ struct Row {
 
 class ActiveSetSolver {
  public:
-  ActiveSetSolver(const QuadraticProgram& qp, const QpOptions& opt) : qp_(qp), opt_(opt), n_(static_cast<int>(qp.H.rows())) {
+  ActiveSetSolver(const QuadraticProgram& qp, const QpOptions& opt) : qp_(qp), opt_(opt), n_(static_cast<int>(qp.H.rows())), g_(qp.g) {
     const Eigen::Index me = qp.E.rows(), mi = qp.A.rows();
     rows_.reserve(me + mi);
     for (Eigen::Index i = 0; i < me; ++i) rows_.push_back(normalised(qp.E.row(i), qp.e[i], true));
@@ -45,7 +53,8 @@ class ActiveSetSolver {
     double dmax = 0.0;
     for (int i = 0; i < n_; ++i) dmax = std::max(dmax, std::abs(qp.H(i, i)));
     Eigen::MatrixXd Hr = qp.H;
-    Hr.diagonal().array() += opt.regularisation * std::max(dmax, 1e-300);
+    delta_ = opt.regularisation * std::max(dmax, 1e-300);
+    Hr.diagonal().array() += delta_;
     llt_.compute(Hr);
     if (llt_.info() != Eigen::Success) fail("qp: H is not positive definite; expected a convex objective");
     hinv_.assign(rows_.size(), Eigen::VectorXd());
@@ -54,9 +63,30 @@ class ActiveSetSolver {
     lambda_.resize(0);
   }
 
+  /// Proximal refinement: the regularised problem is solved again with its linear term moved
+  /// by delta x (min q(x) + delta/2 |x - x_prev|^2), which removes the bias toward x = 0 the
+  /// regularisation adds (the bias shrinks by delta / (delta + smallest curvature) per pass).
+  QpSolution solve_refined(const std::vector<int>& warm) {
+    QpSolution s = solve(warm);
+    for (int pass = 0; pass < kRefinements && s.status == QpStatus::Optimal && delta_ > 0; ++pass) {
+      g_ = qp_.g - delta_ * s.x;
+      const Eigen::VectorXd prev = s.x;
+      const int its = s.iterations;
+      s = solve(s.active);
+      s.iterations += its;
+      if ((s.x - prev).cwiseAbs().maxCoeff() <= 1e-15 * std::max(1.0, prev.cwiseAbs().maxCoeff())) break;
+    }
+    g_ = qp_.g;
+    return s;
+  }
+
+ private:
   QpSolution solve(const std::vector<int>& warm) {
     QpSolution out;
-    x_ = -llt_.solve(qp_.g);
+    active_.clear();
+    conflict_rows_.clear();
+    lambda_.resize(0);
+    x_ = -llt_.solve(g_);
     // Equalities first (never dropped), then the warm inequalities.
     for (int i = 0; i < m_eq_; ++i) try_add(i);
     for (int w : warm)
@@ -74,7 +104,6 @@ class ActiveSetSolver {
     return finish(out, QpStatus::IterationLimit);
   }
 
- private:
   Row normalised(const Eigen::RowVectorXd& c, double d, bool eq) const {
     if (c.size() != n_) fail("qp: a constraint row has ", c.size(), " entries; expected ", n_);
     Row r;
@@ -141,7 +170,7 @@ class ActiveSetSolver {
 
   /// x and lambda of min q subject to the active rows as equalities.
   void solve_equality_problem() {
-    const Eigen::VectorXd x0 = -llt_.solve(qp_.g);
+    const Eigen::VectorXd x0 = -llt_.solve(g_);
     if (active_.empty()) {
       x_ = x0;
       return;
@@ -251,6 +280,8 @@ class ActiveSetSolver {
   const QuadraticProgram& qp_;
   const QpOptions& opt_;
   int n_;
+  Eigen::VectorXd g_;  // linear term in use (moved by the proximal refinement)
+  double delta_ = 0.0;
   int m_eq_ = 0;
   std::vector<Row> rows_;
   std::vector<Eigen::VectorXd> hinv_;
@@ -281,13 +312,86 @@ void check_sizes(const QuadraticProgram& qp) {
 
 }  // namespace
 
+/// Below this fraction of the largest diagonal entry of R an equality row counts as dependent on
+/// the others (column-pivoted QR of E').
+constexpr double kRankTol = 1e-12;
+
 QpSolution solve_qp(const QuadraticProgram& qp, const std::vector<int>& warm_active, const QpOptions& options) {
   check_sizes(qp);
   if (!(options.feasibility_tol > 0) || !(options.regularisation >= 0))
     fail("qp: options feasibility_tol ", options.feasibility_tol, " / regularisation ", options.regularisation,
          "; expected > 0 / >= 0");
-  ActiveSetSolver solver(qp, options);
-  return solver.solve(warm_active);
+  const Eigen::Index n = qp.H.rows(), me = qp.E.rows();
+  if (me == 0) {
+    ActiveSetSolver solver(qp, options);
+    return solver.solve_refined(warm_active);
+  }
+  // Null space of the (row-normalised) equalities.
+  Eigen::VectorXd s = qp.E.rowwise().norm();
+  for (Eigen::Index i = 0; i < me; ++i) s[i] = s[i] > 0 ? 1.0 / s[i] : 0.0;
+  const Eigen::MatrixXd En = s.asDiagonal() * qp.E;
+  const Eigen::VectorXd en = s.asDiagonal() * qp.e;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(En.transpose());
+  qr.setThreshold(kRankTol);
+  const Eigen::Index r = qr.rank();
+  const Eigen::MatrixXd Q = qr.householderQ();
+  const Eigen::MatrixXd R = qr.matrixR().topLeftCorner(r, r).template triangularView<Eigen::Upper>();
+  const Eigen::VectorXd ep = qr.colsPermutation().transpose() * en;
+  const Eigen::VectorXd zr = R.transpose().template triangularView<Eigen::Lower>().solve(ep.head(r));
+  const Eigen::VectorXd xp = Q.leftCols(r) * zr;
+  QpSolution out;
+  const double scale = std::max({1.0, en.cwiseAbs().maxCoeff(), xp.cwiseAbs().maxCoeff()});
+  const Eigen::VectorXd eres = En * xp - en;
+  for (Eigen::Index i = 0; i < me; ++i)
+    if (std::abs(eres[i]) > options.feasibility_tol * scale) {
+      out.status = QpStatus::Infeasible;
+      out.x = xp;
+      out.y_eq = Eigen::VectorXd::Zero(me);
+      out.y_in = Eigen::VectorXd::Zero(qp.A.rows());
+      for (Eigen::Index j = 0; j < me; ++j) out.conflict.push_back(static_cast<int>(j));
+      return out;
+    }
+  if (r == n) {  // the equalities fix x: the inequalities are met or not
+    out.status = QpStatus::Optimal;
+    out.x = xp;
+    out.y_in = Eigen::VectorXd::Zero(qp.A.rows());
+    for (Eigen::Index i = 0; i < qp.A.rows(); ++i)
+      if (qp.A.row(i).dot(xp) - qp.b[i] > options.feasibility_tol * scale * std::max(1.0, qp.A.row(i).norm())) {
+        out.status = QpStatus::Infeasible;
+        out.conflict.push_back(static_cast<int>(i));
+      }
+  } else {
+    const Eigen::MatrixXd Z = Q.rightCols(n - r);
+    QuadraticProgram red{Z.transpose() * qp.H * Z, Z.transpose() * (qp.H * xp + qp.g), Eigen::MatrixXd(0, n - r), Eigen::VectorXd(0),
+                         qp.A * Z, qp.b - qp.A * xp};
+    // A row the equalities already fix (its reduced part vanishes) is met or contradicts them.
+    for (Eigen::Index i = 0; i < red.A.rows(); ++i)
+      if (red.A.row(i).norm() <= kRankTol * qp.A.row(i).norm()) {
+        red.A.row(i).setZero();
+        if (red.b[i] < -options.feasibility_tol * scale * qp.A.row(i).norm()) {
+          out.status = QpStatus::Infeasible;
+          out.x = xp;
+          out.y_eq = Eigen::VectorXd::Zero(me);
+          out.y_in = Eigen::VectorXd::Zero(qp.A.rows());
+          out.conflict.push_back(static_cast<int>(me + i));
+          for (Eigen::Index j = 0; j < me; ++j) out.conflict.push_back(static_cast<int>(j));
+          std::sort(out.conflict.begin(), out.conflict.end());
+          return out;
+        }
+        red.b[i] = std::max(red.b[i], 0.0);
+      }
+    ActiveSetSolver solver(red, options);
+    out = solver.solve_refined(warm_active);
+    out.x = (xp + Z * out.x).eval();
+  }
+  // Equality multipliers from stationarity, E' y_eq = -(H x + g + A' y_in), by least squares.
+  const Eigen::VectorXd resid = -(qp.H * out.x + qp.g + qp.A.transpose() * out.y_in);
+  out.y_eq = qp.E.transpose().colPivHouseholderQr().solve(resid);
+  for (int& k : out.conflict) k += static_cast<int>(me);
+  if (out.status == QpStatus::Infeasible)
+    for (Eigen::Index j = 0; j < me; ++j) out.conflict.push_back(static_cast<int>(j));
+  std::sort(out.conflict.begin(), out.conflict.end());
+  return out;
 }
 
 }  // namespace fairlines

@@ -1,0 +1,99 @@
+// Fairest spline functions y = f(x) meeting form parameters: the basic curves of a hull (SAC,
+// design waterline, deck line, centre profile, section fullness, angles along the ship).
+//
+// f is a clamped B-spline FUNCTION of x (knots in metres): a NurbsCurve of dimension 1 whose
+// parameter is x itself. Every condition used here -- values and derivatives at a point, flat
+// parts, weighted integrals and moments, bounds, and the sign of f' or f'' over a range -- is
+// linear in the coefficients, so the fairest f is one convex QP (fairlines/qp.hpp): minimise
+// e2 int f''^2 dx + e3 h^2 int f'''^2 dx + sum_j w_j (f(x_j) - y_j)^2 (h the mean knot span)
+// subject to the conditions. Bounds and signs act on the coefficients of f, f' or f'' (the
+// control polygon bounds the spline), which is sufficient and keeps the problem linear.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "fairlines/curve.hpp"
+
+namespace fairlines {
+
+/// f^(derivative)(x) = value; derivative 0..3 (degree >= derivative).
+struct SplineCondition {
+  double x = 0;
+  int derivative = 0;
+  double value = 0;
+  std::string name;  ///< named in error messages ("yE", "entrance angle", ...)
+};
+
+/// int_{from}^{to} x^power f(x) w(x) dx = value, w the product of `factors` (each a
+/// 1-D spline function of x, e.g. a half-breadth curve; empty: w = 1). power 0 or 1 (area,
+/// first moment). With `centroid` set, the condition is the centroid instead:
+/// int x f w dx - centroid int f w dx = 0 (then `value` and `power` are unused).
+struct SplineIntegral {
+  double from = 0, to = 0;
+  int power = 0;
+  std::vector<NurbsCurve> factors;
+  double value = 0;
+  double centroid = std::numeric_limits<double>::quiet_NaN();
+  std::string name;
+};
+
+/// f = value on [from, to] exactly: every coefficient whose support meets (from, to) equals
+/// value, so f leaves the flat part with degree - 1 continuous derivatives (G2 for cubics).
+struct SplineFlat {
+  double from = 0, to = 0;
+  double value = 0;
+  std::string name;
+};
+
+/// lower <= f <= upper on [from, to] (NaN: no bound on that side).
+struct SplineBound {
+  double from = 0, to = 0;
+  double lower = std::numeric_limits<double>::quiet_NaN();
+  double upper = std::numeric_limits<double>::quiet_NaN();
+  std::string name;
+};
+
+/// sign x f^(derivative) >= 0 on [from, to]; derivative 1 (monotone) or 2 (convex /
+/// concave), sign +1 or -1.
+struct SplineShape {
+  double from = 0, to = 0;
+  int derivative = 2;
+  int sign = -1;
+  std::string name;
+};
+
+/// Pass near (x, y) with weight w (least squares, in the objective).
+struct SplineFitPoint {
+  double x = 0, y = 0, weight = 1;
+};
+
+struct SplineDesignRequest {
+  std::string name = "curve";  ///< prefix of error messages
+  int degree = 3;              ///< 2..5
+  Eigen::VectorXd knots;       ///< clamped knot vector in x (metres), n_control + degree + 1 values
+  std::vector<SplineCondition> conditions;
+  std::vector<SplineIntegral> integrals;
+  std::vector<SplineFlat> flats;
+  std::vector<SplineBound> bounds;
+  std::vector<SplineShape> shapes;
+  std::vector<SplineFitPoint> fit;
+  double e2 = 1.0;  ///< weight of int f''^2 dx
+  double e3 = 0.0;  ///< weight of h^2 int f'''^2 dx
+};
+
+/// The fairest spline function meeting the request. Throws InvalidInput for malformed input
+/// (naming the request and the field) and InfeasibleFormParameters when the conditions
+/// contradict each other; the message lists the named conditions found in conflict.
+NurbsCurve design_spline_function(const SplineDesignRequest& request);
+
+/// Knots for a spline function on [x0, x1] with interior breakpoints `breaks` (e.g. the ends of
+/// a flat part, kept as knots so the flat is exact) and about `spans` equal spans in total,
+/// spread over the pieces between breakpoints in proportion to their length (at least one
+/// each). Clamped, degree `degree`.
+Eigen::VectorXd spline_function_knots(double x0, double x1, const std::vector<double>& breaks, int spans, int degree = 3);
+
+}  // namespace fairlines

@@ -1,0 +1,219 @@
+// Fairest spline functions meeting form parameters: see fairlines/spline_design.hpp.
+#include "fairlines/spline_design.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "fairlines/basis.hpp"
+#include "fairlines/errors.hpp"
+#include "fairlines/qp.hpp"
+#include "nurbs/checks.hpp"
+#include "nurbs/gauss.hpp"
+#include "nurbs/gram.hpp"
+
+namespace fairlines {
+
+namespace {
+
+using detail::fail;
+
+/// Rows of a QP under construction, each with the name of the condition it encodes.
+struct RowSet {
+  std::vector<Eigen::RowVectorXd> rows;
+  std::vector<double> rhs;
+  std::vector<std::string> names;
+  void add(Eigen::RowVectorXd r, double b, std::string name) {
+    rows.push_back(std::move(r));
+    rhs.push_back(b);
+    names.push_back(std::move(name));
+  }
+  Eigen::MatrixXd matrix(int n) const {
+    Eigen::MatrixXd M(static_cast<Eigen::Index>(rows.size()), n);
+    for (std::size_t i = 0; i < rows.size(); ++i) M.row(static_cast<Eigen::Index>(i)) = rows[i];
+    return M;
+  }
+  Eigen::VectorXd vector() const { return Eigen::Map<const Eigen::VectorXd>(rhs.data(), static_cast<Eigen::Index>(rhs.size())); }
+};
+
+/// Matrix D (n - k, n) mapping the coefficients of f to those of f^(k) (P&T eq. 3.8 applied k
+/// times); row i of it belongs to the basis function of degree p - k on knots U[i + k ..].
+Eigen::MatrixXd derivative_coefficients(const Eigen::VectorXd& U, int p, int k) {
+  const int n = static_cast<int>(U.size()) - p - 1;
+  Eigen::MatrixXd D = Eigen::MatrixXd::Identity(n, n);
+  for (int d = 1; d <= k; ++d) {
+    const int m = n - d, q = p - d + 1;  // from degree q to q - 1
+    Eigen::MatrixXd step = Eigen::MatrixXd::Zero(m, m + 1);
+    for (int i = 0; i < m; ++i) {
+      const double h = U[i + d + q] - U[i + d];
+      if (h > 0) step(i, i) = -q / h, step(i, i + 1) = q / h;
+    }
+    D = (step * D).eval();
+  }
+  return D;
+}
+
+/// Indices i in [0, count) whose support [U[i + shift], U[i + shift + order]] meets (from, to).
+std::vector<int> touching(const Eigen::VectorXd& U, int count, int shift, int order, double from, double to) {
+  std::vector<int> out;
+  for (int i = 0; i < count; ++i)
+    if (U[i + shift] < to && U[i + shift + order] > from) out.push_back(i);
+  return out;
+}
+
+double eval_factors(const std::vector<NurbsCurve>& f, double x) {
+  double w = 1.0;
+  for (const NurbsCurve& c : f) w *= c.evaluate(x)[0];
+  return w;
+}
+
+/// Row of int_{from}^{to} x^power N(x) w(x) dx, by Gauss-Legendre on every piece between the
+/// breakpoints of f and the factors, exact for the polynomial integrand.
+Eigen::RowVectorXd integral_row(const Eigen::VectorXd& U, int p, const SplineIntegral& in, int power) {
+  std::set<double> br{in.from, in.to};
+  auto add_breaks = [&](const Eigen::VectorXd& K) {
+    for (Eigen::Index i = 0; i < K.size(); ++i)
+      if (K[i] > in.from && K[i] < in.to) br.insert(K[i]);
+  };
+  add_breaks(U);
+  int deg = p + power;
+  for (const NurbsCurve& c : in.factors) add_breaks(c.knots()), deg += c.degree();
+  const auto& g = detail::gauss_rule(deg / 2 + 1);
+  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(U.size() - p - 1);
+  for (auto it = br.begin(); std::next(it) != br.end(); ++it) {
+    const double a = *it, b = *std::next(it), h = 0.5 * (b - a), m = 0.5 * (a + b);
+    for (std::size_t q = 0; q < g.x.size(); ++q) {
+      const double x = m + h * g.x[q];
+      row += g.w[q] * h * std::pow(x, power) * eval_factors(in.factors, x) * basis_row(U, p, x);
+    }
+  }
+  return row;
+}
+
+void check_request(const SplineDesignRequest& r) {
+  const std::string& nm = r.name;
+  if (r.degree < 2 || r.degree > 5) fail(nm, ": degree is ", r.degree, "; expected 2 to 5");
+  const int p = r.degree;
+  const Eigen::VectorXd& U = r.knots;
+  if (U.size() < 2 * (p + 1)) fail(nm, ": ", U.size(), " knots; expected at least ", 2 * (p + 1), " (degree + 1 control points)");
+  detail::require_finite(U, nm + ": knots");
+  for (Eigen::Index i = 0; i + 1 < U.size(); ++i)
+    if (U[i + 1] < U[i]) fail(nm, ": knots decrease at index ", i + 1, "; expected non-decreasing values");
+  for (int i = 1; i <= p; ++i)
+    if (U[i] != U[0] || U[U.size() - 1 - i] != U[U.size() - 1]) fail(nm, ": knots are not clamped; expected ", p + 1, " equal end knots");
+  if (!(U[U.size() - 1] > U[0])) fail(nm, ": the knots span no range (", U[0], " to ", U[U.size() - 1], ")");
+  if (!(r.e2 >= 0) || !(r.e3 >= 0) || !std::isfinite(r.e2 + r.e3)) fail(nm, ": e2 / e3 are ", r.e2, " / ", r.e3, "; expected finite weights >= 0");
+  const double x0 = U[0], x1 = U[U.size() - 1], tol = 1e-9 * (x1 - x0);
+  auto inside = [&](double x, const std::string& what) {
+    if (!std::isfinite(x) || x < x0 - tol || x > x1 + tol) fail(nm, ": ", what, " x = ", x, "; expected ", x0, " <= x <= ", x1);
+  };
+  auto range = [&](double a, double b, const std::string& what) {
+    inside(a, what), inside(b, what);
+    if (!(b >= a)) fail(nm, ": ", what, " runs from ", a, " to ", b, "; expected from <= to");
+  };
+  for (const auto& c : r.conditions) {
+    inside(c.x, c.name);
+    if (c.derivative < 0 || c.derivative > std::min(3, p)) fail(nm, ": ", c.name, " asks derivative ", c.derivative, "; expected 0 to ", std::min(3, p));
+    detail::require_finite(c.value, nm + ": " + c.name);
+  }
+  for (const auto& c : r.integrals) {
+    range(c.from, c.to, c.name);
+    if (c.power < 0 || c.power > 1) fail(nm, ": ", c.name, " power is ", c.power, "; expected 0 or 1");
+    for (const NurbsCurve& f : c.factors)
+      if (f.dim() != 1) fail(nm, ": ", c.name, " has a weight factor of dimension ", f.dim(), "; expected a function (dimension 1)");
+  }
+  for (const auto& c : r.flats) range(c.from, c.to, c.name), detail::require_finite(c.value, nm + ": " + c.name);
+  for (const auto& c : r.bounds) range(c.from, c.to, c.name);
+  for (const auto& c : r.shapes) {
+    range(c.from, c.to, c.name);
+    if (c.derivative < 1 || c.derivative > std::min(2, p - 1)) fail(nm, ": ", c.name, " constrains derivative ", c.derivative, "; expected 1 or 2");
+    if (c.sign != 1 && c.sign != -1) fail(nm, ": ", c.name, " sign is ", c.sign, "; expected +1 or -1");
+  }
+  for (const auto& f : r.fit) {
+    inside(f.x, "fit point");
+    if (!std::isfinite(f.y) || !(f.weight >= 0) || !std::isfinite(f.weight)) fail(nm, ": fit point (", f.x, ", ", f.y, ") weight ", f.weight, "; expected finite values, weight >= 0");
+  }
+}
+
+}  // namespace
+
+NurbsCurve design_spline_function(const SplineDesignRequest& r) {
+  check_request(r);
+  const int p = r.degree;
+  const Eigen::VectorXd& U = r.knots;
+  const int n = static_cast<int>(U.size()) - p - 1;
+  const double x0 = U[0], x1 = U[n + p], h = (x1 - x0) / std::max(1, n - p);
+
+  QuadraticProgram qp;
+  qp.H = 2.0 * r.e2 * detail::derivative_gram(U, p, 2);
+  if (r.e3 > 0) qp.H += 2.0 * r.e3 * h * h * detail::derivative_gram(U, p, 3);
+  qp.g = Eigen::VectorXd::Zero(n);
+  for (const auto& f : r.fit) {
+    const Eigen::RowVectorXd N = basis_row(U, p, std::clamp(f.x, x0, x1));
+    qp.H += 2.0 * f.weight * N.transpose() * N;
+    qp.g -= 2.0 * f.weight * f.y * N.transpose();
+  }
+
+  RowSet eq, in;
+  for (const auto& c : r.conditions) eq.add(basis_row(U, p, std::clamp(c.x, x0, x1), c.derivative), c.value, c.name);
+  for (const auto& c : r.integrals) {
+    if (std::isnan(c.centroid)) eq.add(integral_row(U, p, c, c.power), c.value, c.name);
+    else eq.add(integral_row(U, p, c, 1) - c.centroid * integral_row(U, p, c, 0), 0.0, c.name);
+  }
+  for (const auto& c : r.flats)
+    for (int i : touching(U, n, 0, p + 1, c.from, c.to)) {
+      Eigen::RowVectorXd e = Eigen::RowVectorXd::Zero(n);
+      e[i] = 1.0;
+      eq.add(e, c.value, c.name);
+    }
+  for (const auto& c : r.bounds)
+    for (int i : touching(U, n, 0, p + 1, c.from, c.to)) {
+      Eigen::RowVectorXd e = Eigen::RowVectorXd::Zero(n);
+      e[i] = 1.0;
+      if (!std::isnan(c.upper)) in.add(e, c.upper, c.name);
+      if (!std::isnan(c.lower)) in.add(-e, -c.lower, c.name);
+    }
+  for (const auto& c : r.shapes) {
+    const Eigen::MatrixXd D = derivative_coefficients(U, p, c.derivative);
+    for (int i : touching(U, n - c.derivative, c.derivative, p + 1 - c.derivative, c.from, c.to))
+      in.add(-c.sign * D.row(i), 0.0, c.name);
+  }
+  qp.E = eq.matrix(n);
+  qp.e = eq.vector();
+  qp.A = in.matrix(n);
+  qp.b = in.vector();
+  const QpSolution s = solve_qp(qp);
+  if (s.status != QpStatus::Optimal) {
+    std::set<std::string> names;
+    for (int k : s.conflict) names.insert(k < qp.E.rows() ? eq.names[k] : in.names[k - qp.E.rows()]);
+    std::string list;
+    for (const auto& nm : names) list += (list.empty() ? "" : ", ") + nm;
+    throw InfeasibleFormParameters(r.name + ": the conditions " + list + " contradict each other");
+  }
+  return NurbsCurve(p, U, s.x);
+}
+
+Eigen::VectorXd spline_function_knots(double x0, double x1, const std::vector<double>& breaks, int spans, int degree) {
+  if (!(x1 > x0) || !std::isfinite(x0) || !std::isfinite(x1)) fail("spline knots: range ", x0, " to ", x1, "; expected finite x0 < x1");
+  if (degree < 1) fail("spline knots: degree is ", degree, "; expected >= 1");
+  std::vector<double> pts{x0};
+  const double tol = 1e-9 * (x1 - x0);
+  std::vector<double> b = breaks;
+  std::sort(b.begin(), b.end());
+  for (double x : b)
+    if (x > pts.back() + tol && x < x1 - tol) pts.push_back(x);
+  pts.push_back(x1);
+  const int pieces = static_cast<int>(pts.size()) - 1;
+  if (spans < pieces) spans = pieces;
+  std::vector<double> knots(degree + 1, x0);
+  for (int k = 0; k < pieces; ++k) {
+    const double a = pts[k], c = pts[k + 1];
+    const int m = std::max(1, static_cast<int>(std::lround(spans * (c - a) / (x1 - x0))));
+    for (int j = 1; j <= m; ++j) knots.push_back(j == m ? c : a + (c - a) * j / m);
+  }
+  knots.pop_back();
+  for (int i = 0; i <= degree; ++i) knots.push_back(x1);
+  return Eigen::Map<Eigen::VectorXd>(knots.data(), static_cast<Eigen::Index>(knots.size()));
+}
+
+}  // namespace fairlines
