@@ -47,46 +47,6 @@ void bind_hull(py::module_& m) {
         "points"_a, "y_lower"_a = py::none(), "y_upper"_a = py::none(), "curvB"_a = py::none(), "curvE"_a = py::none(),
         "fixed"_a = std::vector<std::pair<int, double>>{});
 
-  m.def("_design_sections",
-        [](py::dict f, int n_control, int degree, double y_max) {
-          const char* keys[] = {"x", "z_deck", "y_deck", "draft", "y_dwl", "z_keel", "half_area", "z_centroid",
-                                "z_fos", "y_fob", "alpha_deck", "alpha_bottom"};
-          std::vector<Eigen::VectorXd> cols;
-          for (const char* k : keys) {
-            if (!f.contains(k)) throw InvalidInput(std::string("section field '") + k + "' is missing");
-            cols.push_back(vector(f[k], k));
-          }
-          Eigen::VectorXd departure;
-          if (f.contains("flat_departure")) departure = vector(f["flat_departure"], "flat_departure");
-          const Eigen::Index q = cols[0].size();
-          if (f.contains("flat_departure") && departure.size() != q)
-            throw InvalidInput("section field 'flat_departure' has " + std::to_string(departure.size()) + " values; expected " +
-                               std::to_string(q) + " (one per station)");
-          for (std::size_t i = 1; i < cols.size(); ++i)
-            if (cols[i].size() != q)
-              throw InvalidInput(std::string("section field '") + keys[i] + "' has " + std::to_string(cols[i].size()) +
-                                 " values; expected " + std::to_string(q) + " (one per station)");
-          std::vector<SectionSpec> specs(q);
-          for (Eigen::Index d = 0; d < q; ++d) {
-            SectionSpec& s = specs[d];
-            s.x = cols[0][d], s.z_deck = cols[1][d], s.y_deck = cols[2][d], s.draft = cols[3][d];
-            s.y_dwl = cols[4][d], s.z_keel = cols[5][d], s.half_area = cols[6][d], s.z_centroid = cols[7][d];
-            s.z_fos = cols[8][d], s.y_fob = cols[9][d], s.alpha_deck = cols[10][d], s.alpha_bottom = cols[11][d];
-            if (departure.size()) s.flat_departure = departure[d];
-            s.n_control = n_control, s.degree = degree;
-          }
-          py::gil_scoped_release release;
-          return design_sections(specs, y_max);
-        },
-        "fields"_a, "n_control"_a, "degree"_a, "y_max"_a,
-        "Sections from per-station parameter arrays (see fairlines/sections.hpp SectionSpec), all on\n"
-        "section_knot_vector(n_control).");
-  m.def("section_knot_vector", [](int n) { return to_array(section_knot_vector(n)); }, "n_control"_a,
-        "The knot vector every bare-hull section with n_control curved-part control points shares:\n"
-        "clamped, triple knots at the ends of the top and bottom zones (n_control + 10 values).");
-  m.def("section_straight_groups", &section_straight_groups, "n_control"_a,
-        "Control-point rows (first, last) on one straight segment in every section (the zones and their legs).");
-
   py::class_<PlaneCut>(m, "PlaneCut", "A waterline / buttock / frame cut from a surface, with analytic curvature.")
       .def_readonly("axis", &PlaneCut::axis, "0 frame (x = value), 1 buttock (y = value), 2 waterline (z = value)")
       .def_readonly("value", &PlaneCut::value, "plane position (m)")

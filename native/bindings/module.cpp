@@ -10,6 +10,7 @@ namespace fairlines {
 void bind_nurbs(py::module_& m);
 void bind_skinning(py::module_& m);
 void bind_hull(py::module_& m);
+void bind_design(py::module_& m);
 void bind_compose(py::module_& m);
 void bind_form_curve(py::module_& m);
 }  // namespace fairlines
@@ -25,5 +26,6 @@ PYBIND11_MODULE(_native, m) {
   fairlines::bind_form_curve(m);
   fairlines::bind_skinning(m);
   fairlines::bind_hull(m);
+  fairlines::bind_design(m);
   fairlines::bind_compose(m);
 }

@@ -38,21 +38,28 @@ from ._native import (  # noqa: F401  (re-exported API)
     plane_cut,
     revolve,
     section_knot_vector,
-    section_straight_groups,
+    SectionAbove,
+    SectionDesign,
+    SectionSpec,
+    SplineBound,
+    SplineCondition,
+    SplineDesignRequest,
+    SplineFitPoint,
+    SplineFlat,
+    SplineIntegral,
+    SplineShape,
+    design_section,
+    design_sections,
+    design_spline_function,
+    section_area_range,
+    spline_function_knots,
     sphere,
     unclamped_uniform_knots,
     validate_knots,
 )
-from .hull import (  # noqa: F401
-    AuxiliarySection,
-    BasicCurve,
-    BasicCurveSpec,
-    BulbSpec,
-    Hull,
-    HullDescription,
-    PrincipalDimensions,
-    fairness_report,
-)
+from .basic_curves import BasicCurve  # noqa: F401
+from .description import BasicCurveSpec, BulbSpec, HullDescription, PrincipalDimensions  # noqa: F401
+from .hull import Hull  # noqa: F401
 from .skinning import fair_skin  # noqa: F401
 
 from .form_curve import FORM_PARAMETERS, FormCurveResult, design_curve, fairness_of, form_parameters_of  # noqa: F401,E402
@@ -76,3 +83,4 @@ from .compose import (  # noqa: F401,E402
 )
 
 __version__ = "0.1.0"
+from .designer import Particulars, design_description, design_hull  # noqa: F401,E402

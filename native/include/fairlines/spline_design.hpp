@@ -20,12 +20,15 @@
 
 namespace fairlines {
 
-/// f^(derivative)(x) = value; derivative 0..3 (degree >= derivative).
+/// f^(derivative)(x) = value; derivative 0..3 (degree >= derivative). With `combination`
+/// (c_0, c_1, ...) the condition is sum_k c_k f^(k)(x) = value instead (e.g. the slope of a
+/// product f w: w f' + w' f), `derivative` unused.
 struct SplineCondition {
   double x = 0;
   int derivative = 0;
   double value = 0;
   std::string name;  ///< named in error messages ("yE", "entrance angle", ...)
+  std::vector<double> combination;
 };
 
 /// int_{from}^{to} x^power f(x) w(x) dx = value, w the product of `factors` (each a
@@ -49,7 +52,9 @@ struct SplineFlat {
   std::string name;
 };
 
-/// lower <= f <= upper on [from, to] (NaN: no bound on that side).
+/// lower <= f <= upper on [from, to] (NaN: no bound on that side): on the coefficients whose
+/// support meets the range (so on the whole control polygon there). from == to bounds the value
+/// f(from) itself.
 struct SplineBound {
   double from = 0, to = 0;
   double lower = std::numeric_limits<double>::quiet_NaN();
@@ -57,13 +62,14 @@ struct SplineBound {
   std::string name;
 };
 
-/// sign x f^(derivative) >= 0 on [from, to]; derivative 1 (monotone) or 2 (convex /
-/// concave), sign +1 or -1.
+/// sign x f^(derivative) >= margin on [from, to]; derivative 1 (monotone) or 2 (convex /
+/// concave), sign +1 or -1; margin >= 0 (a definite slope or curvature, in f's units per m^k).
 struct SplineShape {
   double from = 0, to = 0;
   int derivative = 2;
   int sign = -1;
   std::string name;
+  double margin = 0.0;
 };
 
 /// Pass near (x, y) with weight w (least squares, in the objective).
@@ -81,6 +87,9 @@ struct SplineDesignRequest {
   std::vector<SplineBound> bounds;
   std::vector<SplineShape> shapes;
   std::vector<SplineFitPoint> fit;
+  /// Linear terms added to the objective: each integral's `value` is its weight (minimised;
+  /// a negative weight maximises). With e2, e3 tiny this finds the extremes of an integral.
+  std::vector<SplineIntegral> linear;
   double e2 = 1.0;  ///< weight of int f''^2 dx
   double e3 = 0.0;  ///< weight of h^2 int f'''^2 dx
 };
@@ -92,8 +101,10 @@ NurbsCurve design_spline_function(const SplineDesignRequest& request);
 
 /// Knots for a spline function on [x0, x1] with interior breakpoints `breaks` (e.g. the ends of
 /// a flat part, kept as knots so the flat is exact) and about `spans` equal spans in total,
-/// spread over the pieces between breakpoints in proportion to their length (at least one
-/// each). Clamped, degree `degree`.
-Eigen::VectorXd spline_function_knots(double x0, double x1, const std::vector<double>& breaks, int spans, int degree = 3);
+/// spread over the pieces between breakpoints in proportion to their length, at least
+/// `min_piece_spans` each (4 by default: a cubic piece next to a flat part has its first three
+/// coefficients fixed for G2 and needs room for its own conditions). Clamped, degree `degree`.
+Eigen::VectorXd spline_function_knots(double x0, double x1, const std::vector<double>& breaks, int spans, int degree = 3,
+                                      int min_piece_spans = 4);
 
 }  // namespace fairlines

@@ -114,6 +114,9 @@ void check_request(const SplineDesignRequest& r) {
   for (const auto& c : r.conditions) {
     inside(c.x, c.name);
     if (c.derivative < 0 || c.derivative > std::min(3, p)) fail(nm, ": ", c.name, " asks derivative ", c.derivative, "; expected 0 to ", std::min(3, p));
+    if (c.combination.size() > static_cast<std::size_t>(std::min(3, p) + 1))
+      fail(nm, ": ", c.name, " combines ", c.combination.size(), " derivatives; expected at most ", std::min(3, p) + 1);
+    for (double v : c.combination) detail::require_finite(v, nm + ": " + c.name + " combination");
     detail::require_finite(c.value, nm + ": " + c.name);
   }
   for (const auto& c : r.integrals) {
@@ -128,7 +131,9 @@ void check_request(const SplineDesignRequest& r) {
     range(c.from, c.to, c.name);
     if (c.derivative < 1 || c.derivative > std::min(2, p - 1)) fail(nm, ": ", c.name, " constrains derivative ", c.derivative, "; expected 1 or 2");
     if (c.sign != 1 && c.sign != -1) fail(nm, ": ", c.name, " sign is ", c.sign, "; expected +1 or -1");
+    if (!(c.margin >= 0) || !std::isfinite(c.margin)) fail(nm, ": ", c.name, " margin is ", c.margin, "; expected a finite value >= 0");
   }
+  for (const auto& c : r.linear) range(c.from, c.to, c.name);
   for (const auto& f : r.fit) {
     inside(f.x, "fit point");
     if (!std::isfinite(f.y) || !(f.weight >= 0) || !std::isfinite(f.weight)) fail(nm, ": fit point (", f.x, ", ", f.y, ") weight ", f.weight, "; expected finite values, weight >= 0");
@@ -154,8 +159,19 @@ NurbsCurve design_spline_function(const SplineDesignRequest& r) {
     qp.g -= 2.0 * f.weight * f.y * N.transpose();
   }
 
+  for (const auto& c : r.linear) qp.g += c.value * integral_row(U, p, c, c.power).transpose();
+
   RowSet eq, in;
-  for (const auto& c : r.conditions) eq.add(basis_row(U, p, std::clamp(c.x, x0, x1), c.derivative), c.value, c.name);
+  for (const auto& c : r.conditions) {
+    const double x = std::clamp(c.x, x0, x1);
+    if (c.combination.empty()) {
+      eq.add(basis_row(U, p, x, c.derivative), c.value, c.name);
+      continue;
+    }
+    Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
+    for (std::size_t k = 0; k < c.combination.size(); ++k) row += c.combination[k] * basis_row(U, p, x, static_cast<int>(k));
+    eq.add(row, c.value, c.name);
+  }
   for (const auto& c : r.integrals) {
     if (std::isnan(c.centroid)) eq.add(integral_row(U, p, c, c.power), c.value, c.name);
     else eq.add(integral_row(U, p, c, 1) - c.centroid * integral_row(U, p, c, 0), 0.0, c.name);
@@ -166,17 +182,24 @@ NurbsCurve design_spline_function(const SplineDesignRequest& r) {
       e[i] = 1.0;
       eq.add(e, c.value, c.name);
     }
-  for (const auto& c : r.bounds)
+  for (const auto& c : r.bounds) {
+    if (c.from == c.to) {  // a bound on the value at one point
+      const Eigen::RowVectorXd N = basis_row(U, p, std::clamp(c.from, x0, x1));
+      if (!std::isnan(c.upper)) in.add(N, c.upper, c.name);
+      if (!std::isnan(c.lower)) in.add(-N, -c.lower, c.name);
+      continue;
+    }
     for (int i : touching(U, n, 0, p + 1, c.from, c.to)) {
       Eigen::RowVectorXd e = Eigen::RowVectorXd::Zero(n);
       e[i] = 1.0;
       if (!std::isnan(c.upper)) in.add(e, c.upper, c.name);
       if (!std::isnan(c.lower)) in.add(-e, -c.lower, c.name);
     }
+  }
   for (const auto& c : r.shapes) {
     const Eigen::MatrixXd D = derivative_coefficients(U, p, c.derivative);
     for (int i : touching(U, n - c.derivative, c.derivative, p + 1 - c.derivative, c.from, c.to))
-      in.add(-c.sign * D.row(i), 0.0, c.name);
+      in.add(-c.sign * D.row(i), -c.margin, c.name);
   }
   qp.E = eq.matrix(n);
   qp.e = eq.vector();
@@ -193,9 +216,11 @@ NurbsCurve design_spline_function(const SplineDesignRequest& r) {
   return NurbsCurve(p, U, s.x);
 }
 
-Eigen::VectorXd spline_function_knots(double x0, double x1, const std::vector<double>& breaks, int spans, int degree) {
+Eigen::VectorXd spline_function_knots(double x0, double x1, const std::vector<double>& breaks, int spans, int degree,
+                                      int min_piece_spans) {
   if (!(x1 > x0) || !std::isfinite(x0) || !std::isfinite(x1)) fail("spline knots: range ", x0, " to ", x1, "; expected finite x0 < x1");
   if (degree < 1) fail("spline knots: degree is ", degree, "; expected >= 1");
+  if (min_piece_spans < 1 || spans > 100000) fail("spline knots: spans ", spans, " / min_piece_spans ", min_piece_spans, "; expected 1 .. 100000 / >= 1");
   std::vector<double> pts{x0};
   const double tol = 1e-9 * (x1 - x0);
   std::vector<double> b = breaks;
@@ -208,7 +233,7 @@ Eigen::VectorXd spline_function_knots(double x0, double x1, const std::vector<do
   std::vector<double> knots(degree + 1, x0);
   for (int k = 0; k < pieces; ++k) {
     const double a = pts[k], c = pts[k + 1];
-    const int m = std::max(1, static_cast<int>(std::lround(spans * (c - a) / (x1 - x0))));
+    const int m = std::max(min_piece_spans, static_cast<int>(std::lround(spans * (c - a) / (x1 - x0))));
     for (int j = 1; j <= m; ++j) knots.push_back(j == m ? c : a + (c - a) * j / m);
   }
   knots.pop_back();

@@ -17,6 +17,7 @@
 #include <limits>
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <Eigen/QR>
 
 #include "fairlines/errors.hpp"
@@ -391,6 +392,150 @@ QpSolution solve_qp(const QuadraticProgram& qp, const std::vector<int>& warm_act
   if (out.status == QpStatus::Infeasible)
     for (Eigen::Index j = 0; j < me; ++j) out.conflict.push_back(static_cast<int>(j));
   std::sort(out.conflict.begin(), out.conflict.end());
+  return out;
+}
+
+}  // namespace fairlines
+
+namespace fairlines {
+
+namespace {
+
+/// Primal-dual iterations allowed before the central point counts as not found.
+constexpr int kCentralIterations = 80;
+/// Fraction of the way to the boundary a primal-dual step may go.
+constexpr double kToBoundary = 0.995;
+/// Residuals, relative to the terms they sum, at which the central point is reached (and the
+/// products s_i z_i within 1e-6 of mu).
+constexpr double kCentralTol = 1e-9;
+
+/// Index range [first, last] of the nonzero entries of a row (its B-spline support).
+std::pair<int, int> support(const Eigen::RowVectorXd& r) {
+  int a = 0, b = static_cast<int>(r.size()) - 1;
+  while (a <= b && r[a] == 0.0) ++a;
+  while (b >= a && r[b] == 0.0) --b;
+  return {a, b};
+}
+
+}  // namespace
+
+/// Inequality rows normalised to unit length, stored by their support (B-spline rows have a
+/// few nonzero entries): row k is vals[off[k] .. off[k] + len[k]) at columns first[k] ...
+struct SparseRows {
+  std::vector<int> first, len, off, index;  // index: the row in A
+  std::vector<double> vals, b, scale;
+  double dot(int k, const Eigen::VectorXd& x) const {
+    double sum = 0.0;
+    for (int i = 0; i < len[k]; ++i) sum += vals[off[k] + i] * x[first[k] + i];
+    return sum;
+  }
+};
+
+/// The nonzero rows of A, normalised (b widened by `relax`); false when a zero row is violated.
+bool sparse_rows(const QuadraticProgram& qp, double relax, SparseRows& r, int& bad) {
+  for (Eigen::Index i = 0; i < qp.A.rows(); ++i) {
+    const double sc = qp.A.row(i).norm();
+    if (!(sc > 0)) {
+      if (qp.b[i] < 0) return bad = static_cast<int>(i), false;
+      continue;
+    }
+    const auto [a, c] = support(qp.A.row(i));
+    r.first.push_back(a), r.len.push_back(c - a + 1), r.off.push_back(static_cast<int>(r.vals.size()));
+    for (int k = a; k <= c; ++k) r.vals.push_back(qp.A(i, k) / sc);
+    r.b.push_back(qp.b[i] / sc + relax), r.scale.push_back(sc), r.index.push_back(static_cast<int>(i));
+  }
+  return true;
+}
+
+QpSolution solve_qp_central(const QuadraticProgram& qp, double mu, double relax, CentralState* state) {
+  check_sizes(qp);
+  if (!(mu > 0) || !std::isfinite(mu)) fail("qp: mu is ", mu, "; expected a barrier weight > 0");
+  if (!(relax >= 0)) fail("qp: relax is ", relax, "; expected >= 0");
+  const int n = static_cast<int>(qp.H.rows()), me = static_cast<int>(qp.E.rows()), mA = static_cast<int>(qp.A.rows());
+  QpSolution out;
+  out.y_in = Eigen::VectorXd::Zero(mA);
+  SparseRows R;
+  int bad = -1;
+  if (!sparse_rows(qp, relax, R, bad)) {
+    out.status = QpStatus::Infeasible, out.conflict = {me + bad}, out.x = Eigen::VectorXd::Zero(n);
+    return out;
+  }
+  const int m = static_cast<int>(R.b.size());
+  const bool warm = state && state->x.size() == n && state->z.size() == mA;
+  Eigen::VectorXd x = warm ? state->x : Eigen::VectorXd(-Eigen::LLT<Eigen::MatrixXd>(qp.H + 1e-12 * Eigen::MatrixXd::Identity(n, n)).solve(qp.g));
+  if (!x.allFinite()) x = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd s(m), z(m), y = warm && state->y.size() == me ? state->y : Eigen::VectorXd(Eigen::VectorXd::Zero(me));
+  for (int k = 0; k < m; ++k) {
+    // A warm start keeps its multipliers and the slacks it has (floored at a thousandth of its
+    // own central slack mu / z); a cold one starts every slack at sqrt(mu) or more.
+    const double zw = warm ? state->z[R.index[k]] * R.scale[k] : 0.0;
+    s[k] = std::max(R.b[k] - R.dot(k, x), zw > 0 ? 1e-3 * mu / zw : std::sqrt(mu));
+    z[k] = zw > 0 ? zw : mu / s[k];
+  }
+  double target = m > 0 ? std::max(mu, s.dot(z) / m) : mu;
+  const double xs = std::max(1.0, qp.g.cwiseAbs().maxCoeff());
+  Eigen::MatrixXd K(n + me, n + me);
+  Eigen::VectorXd rhs(n + me), rd(n), ri(m), re(me), ds(m), dz(m), sol(n + me);
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu(n + me);
+  for (int it = 0; it < kCentralIterations; ++it) {
+    // Residuals: dual r_d = H x + g + E'y + A'z, equality r_e, primal r_i = A x + s - b.
+    rd.noalias() = qp.H * x;
+    rd += qp.g;
+    if (me) rd.noalias() += qp.E.transpose() * y, re.noalias() = qp.E * x - qp.e;
+    for (int k = 0; k < m; ++k) {
+      for (int i = 0; i < R.len[k]; ++i) rd[R.first[k] + i] += z[k] * R.vals[R.off[k] + i];
+      ri[k] = R.dot(k, x) + s[k] - R.b[k];
+    }
+    const double comp = m ? (s.cwiseProduct(z).array() - mu).abs().maxCoeff() : 0.0;
+    // Residuals relative to the sizes of the terms they sum (H x, A' z carry the rounding).
+    const double rd_scale = std::max({xs, (qp.H.cwiseAbs() * x.cwiseAbs()).maxCoeff(), m ? z.maxCoeff() : 0.0});
+    const double x_scale = 1.0 + x.cwiseAbs().maxCoeff();
+    if (target <= mu && rd.cwiseAbs().maxCoeff() <= kCentralTol * rd_scale && (m == 0 || ri.cwiseAbs().maxCoeff() <= kCentralTol * x_scale) &&
+        (me == 0 || re.cwiseAbs().maxCoeff() <= kCentralTol * (x_scale + qp.e.cwiseAbs().maxCoeff())) && comp <= 1e-6 * mu) {
+      out.status = QpStatus::Optimal;
+      out.x = x;
+      out.y_eq = y;
+      for (int k = 0; k < m; ++k) out.y_in[R.index[k]] = z[k] / R.scale[k];
+      out.iterations = it;
+      if (state) state->x = x, state->y = y, state->z = out.y_in;
+      return out;
+    }
+    // Newton: (H + A' S^-1 Z A) dx + E' dy = -r_d - A' S^-1 (target - S Z + Z r_i), E dx = -r_e.
+    K.setZero();
+    K.topLeftCorner(n, n) = qp.H;
+    if (me) K.topRightCorner(n, me) = qp.E.transpose(), K.bottomLeftCorner(me, n) = qp.E;
+    rhs.head(n) = -rd;
+    rhs.tail(me) = -re;
+    for (int k = 0; k < m; ++k) {
+      const double w = z[k] / s[k], v = (target - s[k] * z[k] + z[k] * ri[k]) / s[k];
+      const int f = R.first[k], c = R.len[k];
+      const double* a = R.vals.data() + R.off[k];
+      for (int p = 0; p < c; ++p) {
+        rhs[f + p] -= v * a[p];
+        for (int q = 0; q < c; ++q) K(f + p, f + q) += w * a[p] * a[q];
+      }
+    }
+    lu.compute(K);
+    sol = lu.solve(rhs);
+    if (!sol.allFinite()) break;
+    double alpha = 1.0;
+    for (int k = 0; k < m; ++k) {
+      double adx = 0.0;
+      for (int i = 0; i < R.len[k]; ++i) adx += R.vals[R.off[k] + i] * sol[R.first[k] + i];
+      ds[k] = -ri[k] - adx;
+      dz[k] = (target - s[k] * z[k] - z[k] * ds[k]) / s[k];
+      if (ds[k] < 0) alpha = std::min(alpha, -kToBoundary * s[k] / ds[k]);
+      if (dz[k] < 0) alpha = std::min(alpha, -kToBoundary * z[k] / dz[k]);
+    }
+    x += alpha * sol.head(n), y += alpha * sol.tail(me), s += alpha * ds, z += alpha * dz;
+    // Lower the barrier weight geometrically toward mu once the step was a good one.
+    const double gap = m ? s.dot(z) / m : mu;
+    target = std::max(mu, std::min(target, alpha > 0.5 ? 0.2 * gap : gap));
+  }
+  out.status = QpStatus::Infeasible;
+  out.x = x;
+  out.y_eq = y;
+  out.iterations = kCentralIterations;
   return out;
 }
 

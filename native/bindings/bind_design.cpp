@@ -1,0 +1,134 @@
+// Python bindings of the hull designer's solvers: fairest spline functions (basic curves) and
+// sections (fairlines/spline_design.hpp, fairlines/sections.hpp). Request structs are bound
+// once, field by field, so their defaults live only in the C++ headers.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "convert.hpp"
+#include "fairlines/sections.hpp"
+#include "fairlines/spline_design.hpp"
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+namespace fairlines {
+
+using namespace py_convert;
+
+namespace {
+
+void bind_spline_design(py::module_& m) {
+  py::class_<SplineCondition>(m, "SplineCondition", "f^(derivative)(x) = value (a form parameter of a basic curve).")
+      .def(py::init([](double x, int derivative, double value, std::string name, std::vector<double> combination) {
+             return SplineCondition{x, derivative, value, std::move(name), std::move(combination)};
+           }),
+           "x"_a, "derivative"_a, "value"_a, "name"_a, "combination"_a = std::vector<double>{})
+      .def_readwrite("combination", &SplineCondition::combination)
+      .def_readwrite("x", &SplineCondition::x).def_readwrite("derivative", &SplineCondition::derivative)
+      .def_readwrite("value", &SplineCondition::value).def_readwrite("name", &SplineCondition::name);
+  py::class_<SplineIntegral>(m, "SplineIntegral",
+                             "int_{from_}^{to} x^power f(x) w(x) dx = value, w the product of the 1-D spline `factors`; with `centroid`\n"
+                             "the condition is the centroid of f w instead.")
+      .def(py::init([](double from, double to, double value, int power, std::vector<NurbsCurve> factors, double centroid, std::string name) {
+             return SplineIntegral{from, to, power, std::move(factors), value, centroid, std::move(name)};
+           }),
+           "from_"_a, "to"_a, "value"_a = 0.0, "power"_a = 0, "factors"_a = std::vector<NurbsCurve>{}, "centroid"_a = kNaN, "name"_a = "integral")
+      .def_readwrite("from_", &SplineIntegral::from).def_readwrite("to", &SplineIntegral::to)
+      .def_readwrite("power", &SplineIntegral::power).def_readwrite("factors", &SplineIntegral::factors)
+      .def_readwrite("value", &SplineIntegral::value).def_readwrite("centroid", &SplineIntegral::centroid)
+      .def_readwrite("name", &SplineIntegral::name);
+  py::class_<SplineFlat>(m, "SplineFlat", "f = value on [from_, to] exactly (left with G2 for cubics).")
+      .def(py::init<double, double, double, std::string>(), "from_"_a, "to"_a, "value"_a, "name"_a)
+      .def_readwrite("from_", &SplineFlat::from).def_readwrite("to", &SplineFlat::to)
+      .def_readwrite("value", &SplineFlat::value).def_readwrite("name", &SplineFlat::name);
+  py::class_<SplineBound>(m, "SplineBound", "lower <= f <= upper on [from_, to] (NaN: no bound).")
+      .def(py::init<double, double, double, double, std::string>(), "from_"_a, "to"_a, "lower"_a = kNaN, "upper"_a = kNaN, "name"_a = "bound")
+      .def_readwrite("from_", &SplineBound::from).def_readwrite("to", &SplineBound::to)
+      .def_readwrite("lower", &SplineBound::lower).def_readwrite("upper", &SplineBound::upper).def_readwrite("name", &SplineBound::name);
+  py::class_<SplineShape>(m, "SplineShape", "sign * f^(derivative) >= 0 on [from_, to] (derivative 1 or 2, sign +1 / -1).")
+      .def(py::init<double, double, int, int, std::string, double>(), "from_"_a, "to"_a, "derivative"_a, "sign"_a, "name"_a = "shape",
+           "margin"_a = 0.0)
+      .def_readwrite("margin", &SplineShape::margin)
+      .def_readwrite("from_", &SplineShape::from).def_readwrite("to", &SplineShape::to)
+      .def_readwrite("derivative", &SplineShape::derivative).def_readwrite("sign", &SplineShape::sign).def_readwrite("name", &SplineShape::name);
+  py::class_<SplineFitPoint>(m, "SplineFitPoint", "Pass near (x, y) with weight w (least squares).")
+      .def(py::init<double, double, double>(), "x"_a, "y"_a, "weight"_a = 1.0)
+      .def_readwrite("x", &SplineFitPoint::x).def_readwrite("y", &SplineFitPoint::y).def_readwrite("weight", &SplineFitPoint::weight);
+  py::class_<SplineDesignRequest>(m, "SplineDesignRequest", "A fairest spline function y = f(x) and its form parameters.")
+      .def(py::init<>())
+      .def_readwrite("name", &SplineDesignRequest::name).def_readwrite("degree", &SplineDesignRequest::degree)
+      .def_property("knots", [](const SplineDesignRequest& r) { return to_array(r.knots); },
+                    [](SplineDesignRequest& r, py::handle k) { r.knots = vector(k, "knots"); }, "clamped knot vector in x (m)")
+      .def_readwrite("conditions", &SplineDesignRequest::conditions).def_readwrite("integrals", &SplineDesignRequest::integrals)
+      .def_readwrite("flats", &SplineDesignRequest::flats).def_readwrite("bounds", &SplineDesignRequest::bounds)
+      .def_readwrite("shapes", &SplineDesignRequest::shapes).def_readwrite("fit", &SplineDesignRequest::fit)
+      .def_readwrite("linear", &SplineDesignRequest::linear)
+      .def_readwrite("e2", &SplineDesignRequest::e2).def_readwrite("e3", &SplineDesignRequest::e3);
+  m.def("design_spline_function", &design_spline_function, "request"_a, py::call_guard<py::gil_scoped_release>(),
+        "The fairest spline function meeting the request: a NurbsCurve of dimension 1 whose parameter is x (m).\n"
+        "Raises InvalidInput (malformed request) or InfeasibleFormParameters (conditions in conflict, named).");
+  m.def("spline_function_knots", [](double x0, double x1, const std::vector<double>& breaks, int spans, int degree, int min_piece_spans) {
+          return to_array(spline_function_knots(x0, x1, breaks, spans, degree, min_piece_spans));
+        },
+        "x0"_a, "x1"_a, "breaks"_a = std::vector<double>{}, "spans"_a = 8, "degree"_a = 3, "min_piece_spans"_a = 4,
+        "Clamped knots on [x0, x1] keeping `breaks` as knots, about `spans` spans spread by length.");
+}
+
+void bind_sections(py::module_& m) {
+  py::enum_<SectionAbove>(m, "SectionAbove", "Shape of a section above the DWL.")
+      .value("auto", SectionAbove::Auto).value("convex", SectionAbove::Convex)
+      .value("flare", SectionAbove::Flare).value("free", SectionAbove::Free);
+  py::class_<SectionSpec>(m, "SectionSpec", "Parameters of one hull section (metres, degrees); see fairlines/sections.hpp.")
+      .def(py::init<>())
+      .def_readwrite("x", &SectionSpec::x).def_readwrite("y_deck", &SectionSpec::y_deck).def_readwrite("z_deck", &SectionSpec::z_deck)
+      .def_readwrite("alpha_deck", &SectionSpec::alpha_deck).def_readwrite("flare", &SectionSpec::flare)
+      .def_readwrite("z_keel", &SectionSpec::z_keel)
+      .def_readwrite("alpha_keel", &SectionSpec::alpha_keel).def_readwrite("draft", &SectionSpec::draft)
+      .def_readwrite("y_dwl", &SectionSpec::y_dwl).def_readwrite("half_area", &SectionSpec::half_area)
+      .def_readwrite("alpha_dwl", &SectionSpec::alpha_dwl).def_readwrite("alpha_dwl_weight", &SectionSpec::alpha_dwl_weight)
+      .def_readwrite("y_max", &SectionSpec::y_max).def_readwrite("above", &SectionSpec::above).def_readwrite("z_inflection", &SectionSpec::z_inflection)
+      .def_readwrite("convex_below", &SectionSpec::convex_below).def_readwrite("z_fos", &SectionSpec::z_fos)
+      .def_readwrite("y_fob", &SectionSpec::y_fob).def_readwrite("skeg_half_thickness", &SectionSpec::skeg_half_thickness)
+      .def_readwrite("skeg_bottom", &SectionSpec::skeg_bottom).def_readwrite("skeg_top", &SectionSpec::skeg_top)
+      .def_property("points", [](const SectionSpec& s) {
+          Eigen::MatrixXd P(static_cast<Eigen::Index>(s.points.size()), 2);
+          for (std::size_t i = 0; i < s.points.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = s.points[i].transpose();
+          return to_array(P);
+        },
+        [](SectionSpec& s, py::handle p) {
+          const Eigen::MatrixXd P = matrix(p, "points", 2);
+          s.points.clear();
+          for (Eigen::Index i = 0; i < P.rows(); ++i) s.points.emplace_back(P(i, 0), P(i, 1));
+        }, "(k, 2) data points (y, z) the section passes near")
+      .def_readwrite("points_weight", &SectionSpec::points_weight).def_readwrite("n_control", &SectionSpec::n_control)
+      .def_readwrite("e2", &SectionSpec::e2).def_readwrite("e3", &SectionSpec::e3);
+  py::class_<SectionDesign>(m, "SectionDesign", "A designed section and what its solve needed.")
+      .def_readonly("curve", &SectionDesign::curve).def_readonly("active", &SectionDesign::active)
+      .def_readonly("fullness", &SectionDesign::fullness);
+  m.def("design_section", &design_section, "spec"_a, "warm"_a = std::vector<int>{}, py::call_guard<py::gil_scoped_release>(),
+        "One section (fairest graph over its deck-keel chord meeting its form parameters and shape).");
+  m.def("design_sections", &design_sections, "specs"_a, py::call_guard<py::gil_scoped_release>(),
+        "Sections in order, each warm-started from the previous one; all on section_knot_vector(n_control).");
+  m.def("section_area_range", &section_area_range, "spec"_a, py::call_guard<py::gil_scoped_release>(),
+        "(least, largest) half area below the DWL (m^2) a fair section with these parameters can hold.");
+  m.def("section_fullness_bands", [](const std::vector<SectionSpec>& specs) {
+          Eigen::MatrixXd b;
+          {
+            py::gil_scoped_release release;
+            b = section_fullness_bands(specs);
+          }
+          return to_array(b);
+        },
+        "specs"_a, "(q, 2) least and largest fullness half_area / (y_dwl (T - z_keel)) a fair section can have (NaN: no DWL).");
+  m.def("section_knot_vector", [](int n) { return to_array(section_knot_vector(n)); }, "n_control"_a,
+        "The clamped uniform cubic knot vector every section of a hull shares.");
+}
+
+}  // namespace
+
+void bind_design(py::module_& m) {
+  bind_spline_design(m);
+  bind_sections(m);
+}
+
+}  // namespace fairlines

@@ -1,0 +1,458 @@
+"""Basic curves of a hull: each the fairest spline function of x meeting its form parameters
+(fairlines.design_spline_function), and the sectional area curve designed through the sections'
+fullness so that every section it asks for can be built.
+
+The SAC is A(x) = 2 y_dwl(x) (T - z_keel(x)) s(x): the box the DWL and the centre profile leave
+a section, times the section's fullness s. Every SAC form parameter -- volume, LCB, end values,
+end slopes and curvatures, a flat part, points -- is linear in s for the given DWL and profile,
+so designing s is one QP like any other basic curve; bounds on s keep every section inside the
+fullness a fair section can have, and A vanishes by itself where the DWL or the immersed depth
+does.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from . import _native
+from .description import FORM_ALIASES, BasicCurveSpec
+
+__all__ = ["BasicCurve", "solve_curve", "solve_sac", "immersed_range", "FULLNESS_BOUNDS"]
+
+#: Section fullness A / (2 y_dwl (T - z_keel)) a designed SAC keeps within (a convex section
+#: through the DWL point with a flat keel has at least half its box; at most the box).
+FULLNESS_BOUNDS = (0.45, 0.995)
+#: Weight of a SAC's fullness_fit points (per point, on the squared fullness difference); the
+#: fairness int s''^2 dx of a fullness curve is some 1e-6.
+FULLNESS_FIT_WEIGHT = 1.0
+# Gauss points per knot span for exact integrals of f and x f (cubic: 3 are exact for degree 5).
+_GAUSS = np.polynomial.legendre.leggauss(4)
+
+
+@dataclass
+class BasicCurve:
+    """A solved basic curve f(x) on [x_start, x_end]: a spline function (``curve``, a 1-D
+    NurbsCurve whose parameter is x) or a constant ``value``."""
+
+    name: str
+    x_start: float
+    x_end: float
+    curve: Any = None
+    value: float | None = None
+
+    def __call__(self, x: Any, outside: float = math.nan) -> np.ndarray:
+        """f at x (array); ``outside`` beyond the range."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        tol = 1e-9 * max(1.0, abs(self.x_end) + abs(self.x_start))
+        inside = (x >= self.x_start - tol) & (x <= self.x_end + tol)
+        out = np.full(x.shape, outside, dtype=float)
+        if self.curve is None:
+            out[inside] = self.value
+        elif np.any(inside):
+            out[inside] = np.asarray(self.curve.evaluate(np.clip(x[inside], self.x_start, self.x_end)))[:, 0]
+        return out
+
+    def derivative(self, x: float, order: int = 1) -> float:
+        """d^order f / dx^order at x (0 for a constant)."""
+        if self.curve is None or order > self.curve.degree:
+            return 0.0
+        return float(np.asarray(self.curve.derivatives(float(np.clip(x, self.x_start, self.x_end)), order))[order, 0])
+
+    def integral(self, power: int = 0, lo: float | None = None, hi: float | None = None) -> float:
+        """int x^power f dx over [lo, hi] (default the whole range), exact (Gauss per knot span)."""
+        lo = self.x_start if lo is None else lo
+        hi = self.x_end if hi is None else hi
+        if self.curve is None:
+            return float(self.value * (hi ** (power + 1) - lo ** (power + 1)) / (power + 1))
+        k = np.asarray(self.curve.knots)
+        br = np.unique(np.concatenate([[lo, hi], k[(k > lo) & (k < hi)]]))
+        a, b = br[:-1, None], br[1:, None]
+        x = 0.5 * (a + b) + 0.5 * (b - a) * _GAUSS[0][None, :]
+        w = 0.5 * (b - a) * _GAUSS[1][None, :]
+        return float(np.sum(w * x**power * self(x.ravel()).reshape(x.shape)))
+
+    def form_parameters(self) -> dict[str, float]:
+        """Area (int f dx over the range) and its centroid xC, exact."""
+        area = self.integral(0)
+        return {"Area": area, "xC": self.integral(1) / area if area else math.nan}
+
+    def factor(self, offset: float = 0.0, scale: float = 1.0):
+        """offset + scale f as a 1-D spline (a weight factor for fairlines.SplineIntegral)."""
+        if self.curve is None:
+            k = np.array([self.x_start, self.x_start, self.x_end, self.x_end])
+            return _native.NurbsCurve(1, k, np.full((2, 1), offset + scale * self.value))
+        c = np.asarray(self.curve.control_points)
+        return _native.NurbsCurve(self.curve.degree, np.asarray(self.curve.knots), offset + scale * c)
+
+
+def _form_params(name: str, spec: BasicCurveSpec, path: str) -> dict[str, float]:
+    """The spec's form parameters with aliases resolved and angles turned into slopes."""
+    params = dict(spec.params)
+    for alias, val in spec.aliases.items():
+        key, factor = FORM_ALIASES[name][alias]
+        if key in params:
+            raise _native.InvalidInput(f"{path}.{alias} and {path}.{key} are both given; expected one of them")
+        params[key] = factor * val
+    for side in ("B", "E"):
+        if f"alpha{side}" in params and f"slope{side}" in params:
+            raise _native.InvalidInput(f"{path}.alpha{side} and {path}.slope{side} are both given; expected one of them")
+        if f"alpha{side}" in params:
+            a = params.pop(f"alpha{side}")
+            if not -90 < a < 90:
+                raise _native.InvalidInput(f"{path}.alpha{side} is {a}; expected an angle between -90 and 90 degrees")
+            params[f"slope{side}"] = math.tan(math.radians(a))
+    return params
+
+
+@dataclass
+class _Plan:
+    """Where a curve lives and its flat part, checked against its range."""
+
+    xs: float
+    xe: float
+    flat: tuple[float, float] | None
+    value: float | None
+
+
+def _plan(spec: BasicCurveSpec, x0: float, x1: float, path: str) -> _Plan:
+    tol = 1e-9 * max(1.0, abs(x0) + abs(x1))
+    xs = spec.x_start if spec.x_start is not None else x0
+    xe = spec.x_end if spec.x_end is not None else x1
+    if xs < x0 - tol or xe > x1 + tol or not xs < xe:
+        raise _native.InvalidInput(f"{path}: x_start / x_end are {xs} / {xe}; expected {x0:.6g} <= x_start < x_end <= {x1:.6g} m")
+    flat = None
+    if spec.flat_to is not None or spec.flat_from is not None:
+        ff = spec.flat_from if spec.flat_from is not None else xs
+        ft = spec.flat_to if spec.flat_to is not None else xe
+        if ff < xs - tol or ft > xe + tol:
+            raise _native.InvalidInput(f"{path}: the flat part {ff} .. {ft} m is not inside the curve's range {xs:.6g} .. {xe:.6g} m")
+        flat = (max(ff, xs), min(ft, xe))
+    return _Plan(xs, xe, flat, spec.value)
+
+
+def _conditions(params: dict, plan: _Plan, path: str, to_unknown) -> list:
+    """End conditions as SplineConditions; `to_unknown(x, [c0, c1, c2], value)` maps a
+    condition on f (sum c_k f^(k)(x) = value) to one on the designed spline."""
+    out = []
+    starts_flat = plan.flat is not None and plan.flat[0] <= plan.xs
+    ends_flat = plan.flat is not None and plan.flat[1] >= plan.xe
+    for side, x, flat in (("B", plan.xs, starts_flat), ("E", plan.xe, ends_flat)):
+        y, s, k = params.get(f"y{side}"), params.get(f"slope{side}"), params.get(f"CA{side}")
+        if flat:
+            if y is not None and abs(y - plan.value) > 1e-9 * (1 + abs(plan.value)):
+                raise _native.InvalidInput(f"{path}.y{side} is {y}; at the end of the flat part it is value = {plan.value}")
+            if (s not in (None, 0.0)) or (k not in (None, 0.0)):
+                raise _native.InvalidInput(f"{path}: an end angle or curvature is given at the flat part's end; "
+                                           "the curve leaves a flat part with zero slope and curvature")
+            continue
+        alpha = "alphaB" if side == "B" else "alphaE"
+        if y is not None:
+            out += to_unknown(x, [1.0], y, f"y{side}")
+        if s is not None:
+            out += to_unknown(x, [0.0, 1.0], s, alpha)
+        if k is not None:
+            if s is None and k != 0:
+                raise _native.InvalidInput(f"{path}.CA{side} is {k} without {alpha}; expected the end slope too (or CA{side} = 0)")
+            out += to_unknown(x, [0.0, 0.0, 1.0], k * (1.0 + (s or 0.0) ** 2) ** 1.5, f"CA{side}")
+    return out
+
+
+def _monotone(plan: _Plan, params: dict, maximum: bool) -> list:
+    """f' signs that make f move away from its flat part monotonically: down from a flat
+    maximum, up from a flat minimum (an end value above the flat value says which; without
+    one `maximum` decides)."""
+    if plan.flat is None:
+        return []
+    out = []
+    for side, (a, b), end in (("B", (plan.xs, plan.flat[0]), params.get("yB")), ("E", (plan.flat[1], plan.xe), params.get("yE"))):
+        if not a < b:
+            continue
+        is_max = maximum if end is None or end == plan.value else end < plan.value
+        sign = (1 if is_max else -1) * (1 if side == "B" else -1)
+        out.append(_native.SplineShape(a, b, 1, sign, "monotone " + ("toward" if side == "B" else "away from") + " the flat part"))
+    return out
+
+
+def _curvature_signs(spec: BasicCurveSpec, plan: _Plan) -> list:
+    """The spec's convex / concave ranges (clipped to the curve) as f'' sign conditions."""
+    out = []
+    for key, sign in (("convex", -1), ("concave", 1)):
+        for a, b, k in getattr(spec, key):
+            a, b = max(a, plan.xs), min(b, plan.xe)
+            if a < b:
+                out.append(_native.SplineShape(a, b, 2, sign, f"{key} {a:.5g} .. {b:.5g} m", k))
+    return out
+
+
+def _request(name: str, plan: _Plan, spec: BasicCurveSpec, path: str, stations=()) -> Any:
+    """The request with its knots: `spans` spread over the pieces between the breakpoints, or a
+    knot at every one of `stations` when given (then no piece needs more than one span)."""
+    r = _native.SplineDesignRequest()
+    r.name = path
+    breaks = [x for x in (*(plan.flat or ()), *spec.breaks, *stations) if plan.xs < x < plan.xe]
+    r.knots = _native.spline_function_knots(plan.xs, plan.xe, breaks, spec.spans, 3, 1 if len(stations) else 4)
+    return r
+
+
+def solve_curve(name: str, spec: BasicCurveSpec, x0: float, x1: float, *, lower: float | None = None,
+                upper: float | None = None, maximum: bool = True, defaults: dict | None = None,
+                at_least: list | None = None) -> BasicCurve:
+    """Solve one basic curve on its range [x0, x1] (the spec may narrow it). `lower` / `upper`:
+    physical bounds unless the spec gives its own; `maximum`: a flat part is its maximum
+    (monotone away from it); `defaults`: form parameters used unless the spec gives them;
+    `at_least`: [(x, y, what), ...] points where f(x) >= y (another curve it must clear)."""
+    path = f"basic_curves.{name}"
+    plan = _plan(spec, x0, x1, path)
+    if spec.constant:
+        return BasicCurve(name, plan.xs, plan.xe, None, spec.value)
+    params = {**(defaults or {}), **_form_params(name, spec, path)}
+    r = _request(name, plan, spec, path)
+
+    def direct(x, combo, value, what):
+        return [_native.SplineCondition(x, 0, value, what, combo)]
+
+    r.conditions = _conditions(params, plan, path, direct)
+    r.conditions += [_native.SplineCondition(x, 0, y, "points") for x, y in spec.points]
+    if "Area" in params:
+        r.integrals = [_native.SplineIntegral(plan.xs, plan.xe, params["Area"], name="Area")]
+    if "xC" in params:
+        if "Area" not in params:
+            raise _native.InvalidInput(f"{path}.xC is given without the area; expected both (the centroid of a given area)")
+        r.integrals += [_native.SplineIntegral(plan.xs, plan.xe, centroid=params["xC"], name="xC")]
+    if plan.flat is not None:
+        r.flats = [_native.SplineFlat(plan.flat[0], plan.flat[1], plan.value, "flat part")]
+    lo = spec.lower if spec.lower is not None else lower
+    hi = spec.upper if spec.upper is not None else upper
+    if lo is not None or hi is not None:
+        r.bounds = [_native.SplineBound(plan.xs, plan.xe, math.nan if lo is None else lo, math.nan if hi is None else hi,
+                                        f"{'' if lo is None else f'{lo:.6g} <= '}{name}{'' if hi is None else f' <= {hi:.6g}'}")]
+    r.bounds += [_native.SplineBound(x, x, y, math.nan, what) for x, y, what in (at_least or []) if plan.xs <= x <= plan.xe]
+    r.shapes = _monotone(plan, params, maximum) if spec.monotone else []
+    r.shapes += _curvature_signs(spec, plan)
+    r.fit = [_native.SplineFitPoint(x, y, spec.fit_weight) for x, y in spec.fit]
+    return BasicCurve(name, plan.xs, plan.xe, _native.design_spline_function(r), None)
+
+
+def immersed_range(profile: BasicCurve, draft: float, samples: int = 2001) -> tuple[float, float]:
+    """The x range where the centre profile is below the draft (the DWL's range): one interval,
+    its ends found by bisection to round-off."""
+    xs = np.linspace(profile.x_start, profile.x_end, samples)
+    below = profile(xs) < draft
+    if not below.any():
+        raise _native.InfeasibleFormParameters(
+            f"basic_curves.profile is above the draft T = {draft} m everywhere; expected a keel below the waterline")
+    idx = np.flatnonzero(below)
+    if np.any(np.diff(idx) != 1):
+        raise _native.InfeasibleFormParameters("basic_curves.profile rises above the draft between two immersed parts; "
+                                               "expected one immersed stretch (one design waterline)")
+
+    def crossing(a: float, b: float) -> float:
+        fa = profile(a)[0] - draft
+        for _ in range(80):
+            m = 0.5 * (a + b)
+            fm = profile(m)[0] - draft
+            if (fm < 0) == (fa < 0):
+                a, fa = m, fm
+            else:
+                b = m
+        return 0.5 * (a + b)
+
+    i0, i1 = idx[0], idx[-1]
+    x_a = xs[0] if i0 == 0 else crossing(xs[i0 - 1], xs[i0])
+    x_f = xs[-1] if i1 == samples - 1 else crossing(xs[i1 + 1], xs[i1])
+    return float(x_a), float(x_f)
+
+
+def _sac_request(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft: float, fullness, bands, targets: bool):
+    """The fullness design request of the SAC (with or without its volume and LCB)."""
+    path = "basic_curves.sac"
+    plan = _plan(spec, dwl.x_start, dwl.x_end, path)
+    params = _form_params("sac", spec, path)
+
+    def w_derivs(x: float) -> tuple[float, float, float]:
+        """w = 2 y (T - z) and its first two derivatives at x."""
+        yv = [float(dwl(x)[0])] + [dwl.derivative(x, k) for k in (1, 2)]
+        dv = [draft - float(profile(x)[0])] + [-profile.derivative(x, k) for k in (1, 2)]
+        return (2 * yv[0] * dv[0], 2 * (yv[1] * dv[0] + yv[0] * dv[1]), 2 * (yv[2] * dv[0] + 2 * yv[1] * dv[1] + yv[0] * dv[2]))
+
+    def through_fullness(x, combo, value, what):
+        # sum c_k A^(k) = value with A = w s: A' = w s' + w' s, A'' = w s'' + 2 w' s' + w'' s.
+        w, w1, w2 = w_derivs(x)
+        c = list(combo) + [0.0] * (3 - len(combo))
+        coeffs = [c[0] * w + c[1] * w1 + c[2] * w2, c[1] * w + 2 * c[2] * w1, c[2] * w]
+        if max(abs(v) for v in coeffs) <= 1e-12 * max(1.0, abs(w) + abs(w1)):
+            if abs(value) > 1e-9 * max(1.0, abs(value)):
+                raise _native.InfeasibleFormParameters(
+                    f"{path}.{what} is {value:.6g} at x = {x:.6g} m where the DWL and the immersed depth leave no section")
+            return []
+        while coeffs and coeffs[-1] == 0.0:
+            coeffs.pop()
+        return [_native.SplineCondition(x, 0, value, what, coeffs)]
+
+    # A knot at every station with a band: the fullness can follow the sections' limits where
+    # they change quickly (near the ends), E2 keeps it fair.
+    r = _request("sac", plan, spec, path, [x for x, _, _ in (bands or [])])
+    r.conditions = _conditions(params, plan, path, through_fullness)
+    for x, a in spec.points:
+        r.conditions += through_fullness(x, [1.0], a, "points")
+    factors = [dwl.factor(), profile.factor(offset=draft, scale=-1.0)]
+    integrals = []  # (pybind11 list fields are copies: build, then assign)
+    if targets and "Area" in params:
+        integrals.append(_native.SplineIntegral(plan.xs, plan.xe, params["Area"] / 2.0, factors=factors, name="volume"))
+    if targets and "xC" in params:
+        if "Area" not in params:
+            raise _native.InvalidInput(f"{path}.lcb is given without the volume; expected both")
+        integrals.append(_native.SplineIntegral(plan.xs, plan.xe, centroid=params["xC"], factors=factors, name="lcb"))
+    r.integrals = integrals
+    if plan.flat is not None:
+        a, b = plan.flat
+        xs_ = np.linspace(a, b, 9)
+        w = 2 * dwl(xs_) * (draft - profile(xs_))
+        if np.ptp(w) > 1e-9 * np.max(np.abs(w)):
+            raise _native.InfeasibleFormParameters(
+                f"{path}: the flat part {a:.6g} .. {b:.6g} m needs a constant box 2 y_dwl (T - z_keel) there; expected the DWL "
+                "and the profile flat over it (dwl / profile flat parts cover the SAC's)")
+        r.flats = [_native.SplineFlat(a, b, plan.value / w[0], "flat part (midship section area)")]
+    if spec.lower is not None or spec.upper is not None:
+        raise _native.InvalidInput(f"{path}.lower / upper are not used; the SAC is bounded through the section fullness")
+    lo, hi = fullness
+    r.bounds = [_native.SplineBound(plan.xs, plan.xe, lo, hi, f"section fullness {lo:.3g} .. {hi:.3g}")]
+    r.bounds += [_native.SplineBound(x, x, a, b, f"section fullness at x = {x:.5g} m: {a:.3g} .. {b:.3g}")
+                 for x, a, b in (bands or []) if plan.xs < x < plan.xe]
+    if spec.monotone:
+        r.shapes = _monotone(plan, params, True)
+    fit = []
+    for x, a in spec.fit:
+        w = w_derivs(x)[0]
+        if w > 0:
+            fit.append(_native.SplineFitPoint(x, a / w, spec.fit_weight * w * w))
+    # The fullness to stay near, weighted far above the fairness: the fullness follows it and
+    # bends only as much as the volume and LCB ask, smoothly.
+    fit += [_native.SplineFitPoint(x, f, FULLNESS_FIT_WEIGHT) for x, f in spec.fullness_fit if plan.xs <= x <= plan.xe]
+    r.fit = fit
+    return r, plan, params, factors
+
+
+def _sac_ranges(r, plan, params, factors) -> str:
+    """What the SAC's sections can hold: the volume range, and the LCB range at the asked
+    volume, by linear objectives on the same request (for the error message)."""
+    r.e2, r.e3 = 1e-9, 0.0
+    vol = _native.SplineIntegral(plan.xs, plan.xe, 1.0, factors=factors, name="volume")
+    mom = _native.SplineIntegral(plan.xs, plan.xe, 1.0, power=1, factors=factors, name="moment")
+    out = []
+    try:
+        ext = []
+        for sign in (1.0, -1.0):
+            vol.value = sign
+            r.linear = [vol]
+            f = BasicCurve("s", plan.xs, plan.xe, _native.design_spline_function(r))
+            ext.append(2 * _weighted_integral(f, factors, 0))
+        out.append(f"the sections this DWL and profile allow hold {ext[0]:.6g} to {ext[1]:.6g} m^3")
+        if "Area" in params and ext[0] <= params["Area"] <= ext[1]:
+            r.integrals = [_native.SplineIntegral(plan.xs, plan.xe, params["Area"] / 2.0, factors=factors, name="volume")]
+            lcb = []
+            for sign in (1.0, -1.0):
+                mom.value = sign
+                r.linear = [mom]
+                f = BasicCurve("s", plan.xs, plan.xe, _native.design_spline_function(r))
+                lcb.append(_weighted_integral(f, factors, 1) / _weighted_integral(f, factors, 0))
+            out.append(f"at {params['Area']:.6g} m^3 their LCB can lie from {lcb[0]:.6g} to {lcb[1]:.6g} m")
+    except _native.InfeasibleFormParameters:
+        out.append("no SAC meets its end conditions and flat part with these sections")
+    return "; ".join(out)
+
+
+def _weighted_integral(f: BasicCurve, factors, power: int) -> float:
+    k = np.concatenate([np.asarray(f.curve.knots)] + [np.asarray(c.knots) for c in factors])
+    br = np.unique(np.concatenate([[f.x_start, f.x_end], k[(k > f.x_start) & (k < f.x_end)]]))
+    g = np.polynomial.legendre.leggauss(8)
+    a, b = br[:-1, None], br[1:, None]
+    x = (0.5 * (a + b) + 0.5 * (b - a) * g[0][None, :]).ravel()
+    w = (0.5 * (b - a) * g[1][None, :]).ravel()
+    val = f(x)
+    for c in factors:
+        val = val * np.asarray(c.evaluate(x))[:, 0]
+    return float(np.sum(w * x**power * val))
+
+
+def solve_sac(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft: float,
+              fullness: tuple[float, float] = FULLNESS_BOUNDS, bands: list | None = None) -> tuple[BasicCurve, BasicCurve]:
+    """The SAC (m^2, both sides) and the section fullness it is designed through, on the DWL's
+    range. Every SAC form parameter is mapped onto the fullness (see the module docstring).
+    `bands`: [(x, least, largest), ...] fullness the section at x can have (the sections'
+    own limits, fairlines.section_fullness_bands), kept at those points. An infeasible request
+    names the volume and LCB ranges the sections can hold."""
+    r, plan, params, factors = _sac_request(spec, dwl, profile, draft, fullness, bands, True)
+    try:
+        s = _native.design_spline_function(r)
+    except _native.InfeasibleFormParameters as e:
+        r2, plan2, params2, factors2 = _sac_request(spec, dwl, profile, draft, fullness, bands, False)
+        raise _native.InfeasibleFormParameters(
+            f"basic_curves.sac: volume {params.get('Area', float('nan')):.6g} m^3 / lcb {params.get('xC', float('nan')):.6g} m "
+            f"cannot be met by fair sections: {_sac_ranges(r2, plan2, params2, factors2)} ({e})") from None
+    full = BasicCurve("fullness", plan.xs, plan.xe, s, None)
+    return _ProductCurve("sac", plan.xs, plan.xe, full, dwl, profile, draft), full
+
+
+class _ProductCurve(BasicCurve):
+    """A(x) = 2 y_dwl(x) (T - z_keel(x)) s(x): evaluated through its factors."""
+
+    def __init__(self, name, xs, xe, fullness, dwl, profile, draft):
+        super().__init__(name, xs, xe, None, None)
+        self.fullness, self.dwl, self.profile, self.draft = fullness, dwl, profile, draft
+
+    def __call__(self, x: Any, outside: float = math.nan) -> np.ndarray:
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        s = self.fullness(x, outside=math.nan)
+        out = 2 * self.dwl(x) * (self.draft - self.profile(x)) * s
+        return np.where(np.isnan(s), outside, out)
+
+    def derivative(self, x: float, order: int = 1) -> float:
+        h = 1e-4 * max(1.0, self.x_end - self.x_start)
+        if order == 1:
+            return float((self(x + h)[0] - self(x - h)[0]) / (2 * h))
+        return float((self(x + h)[0] - 2 * self(x)[0] + self(x - h)[0]) / h**2)
+
+    def integral(self, power: int = 0, lo: float | None = None, hi: float | None = None) -> float:
+        lo = self.x_start if lo is None else lo
+        hi = self.x_end if hi is None else hi
+        knots = [np.asarray(c.curve.knots) for c in (self.fullness, self.dwl, self.profile) if c.curve is not None]
+        k = np.concatenate(knots) if knots else np.array([])
+        br = np.unique(np.concatenate([[lo, hi], k[(k > lo) & (k < hi)]]))
+        g = np.polynomial.legendre.leggauss(8)  # degree 3 + 3 + 3 + power: exact
+        a, b = br[:-1, None], br[1:, None]
+        x = 0.5 * (a + b) + 0.5 * (b - a) * g[0][None, :]
+        w = 0.5 * (b - a) * g[1][None, :]
+        return float(np.sum(w * x**power * self(x.ravel()).reshape(x.shape)))
+
+    def factor(self, offset: float = 0.0, scale: float = 1.0):
+        raise _native.InvalidInput("the SAC is a product of splines; use its fullness, DWL and profile as factors")
+
+
+class StemKeelAngle(BasicCurve):
+    """Keel angle that follows the stem: forward of `x_from`, where the centre profile rises with
+    slope s = dz/dx at height z, the section leaves the keel at -atan2(1, s cot(i(z))) degrees:
+    i(z) is the half angle of the waterline at the stem, blunt (90 deg) at the keel and fining to
+    `half_angle_deg` at `fine_height` and above (cot(i) = cot(i_E) smoothstep(z / fine_height)),
+    so the keel angle turns from -90 (a flat keel) toward 0 (a knife-edge stem) gradually up the
+    forefoot. Where the base curve's angle is steeper, it wins."""
+
+    def __init__(self, base: BasicCurve, profile: BasicCurve, half_angle_deg: float, x_from: float, fine_height: float):
+        super().__init__("keel_angle", base.x_start, base.x_end, None, None)
+        self.base, self.profile = base, profile
+        self.cot_i = 1.0 / math.tan(math.radians(half_angle_deg))
+        self.x_from, self.fine_height = x_from, fine_height
+
+    def __call__(self, x: Any, outside: float = math.nan) -> np.ndarray:
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        out = self.base(x, outside)
+        for i in np.flatnonzero((x > self.x_from) & np.isfinite(out)):
+            slope = max(self.profile.derivative(float(x[i]), 1), 0.0)
+            r = min(max(float(self.profile(x[i])[0]) / self.fine_height, 0.0), 1.0)
+            cot = self.cot_i * r * r * r * (10.0 - 15.0 * r + 6.0 * r * r)
+            out[i] = max(out[i], -math.degrees(math.atan2(1.0, slope * cot)))
+        return out

@@ -1,0 +1,470 @@
+"""The hull description: a whole ship (or part of one) as principal dimensions and basic curves.
+
+Format (JSON; ``docs/hull_description.schema.json`` is its JSON Schema)::
+
+    {
+      "name": "...", "notes": "...",
+      "principal": {"Lpp": 244.8, "B": 32.25, "T": 11.0, "D": 19.0},      # metres
+      "ends": {"aft": -5.0, "fore": 247.0},       # x of the hull's aft end (transom / stern) and
+                                                  # forward end (stem head); default 0 and Lpp
+      "stations": {"count": 61} | {"x": [...]},    # default {"count": 61}, clustered at the ends
+      "sections": {"n_control": 20},
+      "basic_curves": {"profile": ..., "dwl": ..., "deck": ..., "sac": ..., "flare": ...,
+                       "keel_angle": ..., "deck_angle": ..., "skeg": ..., "skeg_top": ...},
+      "skinning": {"e2": 1.0, "e3": 0.0},
+      "bulb": {...}                               # optional bulbous bow (Kracht coefficients)
+    }
+
+Basic curves (each a fairest spline function of x, fairlines.spline_design):
+
+==============  ==============================================================  ================
+name            f(x)                                                            range
+==============  ==============================================================  ================
+profile         centre-line contour: keel, skeg, sternpost, counter and stem    ends
+                height (m); below T it bounds the immersed body
+dwl             design-waterline half-breadth (m)                               where profile < T
+deck            deck-at-side half-breadth (m)                                   ends
+sac             sectional area below T, both sides (m^2), designed through the  as dwl
+                section fullness SAC / (2 y_dwl (T - z_keel))
+flare           (optional) the top's flare as a fraction of its lean: the deck      ends
+                tangent leans (1 + flare) times as far from the vertical as the
+                line from the deck point to the DWL point (0 straight, > 0
+                flared, < 0 a convex shoulder); default 0
+deck_angle      (optional) absolute section angle at the deck (deg from the     ends
+                downward vertical toward +y); replaces flare where given
+keel_angle      section angle at the keel (deg; -90 flat, -60 a 30 deg           ends
+                deadrise, 0 a knife edge); default -90. With
+                ``stem_waterline_angle`` (deg) it follows the stem where the
+                profile rises forward: -atan2(tan(angle), dz/dx)
+skeg            (optional) skeg half-thickness (m) where the sections carry a   its own
+                skeg; skeg_top: height up to which they do (m)
+==============  ==============================================================  ================
+
+A basic curve is ``{"value": v}`` (constant) or a spline with any of: ``x_start``, ``x_end``
+(inside its range above), ``flat_from`` / ``flat_to`` / ``value`` (a part where f = value exactly,
+left with G2; flat_from defaults to the start), ``yB`` / ``yE`` (end values), ``alphaB`` /
+``alphaE`` (end slope angles, deg) or ``slopeB`` / ``slopeE`` (df/dx), ``CAB`` / ``CAE`` (end
+curvatures, 1/m, with the slope at that end), ``Area`` and ``xC`` (integral of f over the range
+and its centroid), ``points`` ([[x, f], ...] passed through), ``fit`` ([[x, f], ...] passed near,
+weight ``fit_weight``), ``lower`` / ``upper`` (bounds), ``convex`` / ``concave`` ([[x_from,
+x_to, k], ...]: f'' <= -k / f'' >= k there, k >= 0 a least curvature in 1/m: a waterline that
+bulges out, or a hollow), ``monotone`` (true: f moves away from its
+flat value monotonically on both sides of the flat part), ``spans`` (default 12) and ``breaks``
+(extra knot positions, m, where the curve must turn quickly: a sternpost). Aliases: sac
+``volume`` (Area, m^3) and ``lcb`` (xC, m from the AP), and ``fullness_fit`` ([[x, s], ...]: the
+section fullness the SAC stays near while meeting its volume and LCB exactly); dwl ``waterplane_area`` (both sides,
+m^2), ``lcf``, ``entrance_angle`` (half angle at the fore end, deg) and ``run_angle`` (at the aft
+end, deg). Unknown keys anywhere are refused with the nearest valid one.
+"""
+
+from __future__ import annotations
+
+import copy
+import difflib
+import json
+import math
+import os
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from . import _native
+
+__all__ = [
+    "BASIC_CURVES",
+    "FORM_ALIASES",
+    "BasicCurveSpec",
+    "BulbSpec",
+    "HullDescription",
+    "PrincipalDimensions",
+    "load_description",
+]
+
+REQUIRED_CURVES = ("profile", "dwl", "deck", "sac")
+OPTIONAL_CURVES = ("flare", "deck_angle", "keel_angle", "skeg", "skeg_top")
+BASIC_CURVES = REQUIRED_CURVES + OPTIONAL_CURVES
+FORM_KEYS = ("yB", "yE", "alphaB", "alphaE", "slopeB", "slopeE", "CAB", "CAE", "Area", "xC")
+#: Public aliases of form parameters per curve: alias -> (form parameter, factor).
+FORM_ALIASES = {
+    "sac": {"volume": ("Area", 1.0), "lcb": ("xC", 1.0)},
+    "dwl": {"waterplane_area": ("Area", 0.5), "lcf": ("xC", 1.0), "entrance_angle": ("alphaE", -1.0),
+            "run_angle": ("alphaB", 1.0)},
+}
+CURVE_KEYS = ("x_start", "x_end", "flat_from", "flat_to", "value", "points", "fit", "fit_weight", "lower", "upper",
+              "monotone", "spans", "n_control", "breaks", "convex", "concave") + FORM_KEYS
+# keel_angle only: the half angle (deg) at which waterlines leave the stem; where the centre
+# profile rises forward (forefoot, stem) the keel angle follows it: -atan2(tan(angle), dz/dx).
+STEM_KEY = "stem_waterline_angle"
+# sac only: the section fullness SAC / (2 y_dwl (T - z_keel)) it stays near ([[x, s], ...]).
+FULLNESS_KEY = "fullness_fit"
+
+# Limits on sizes a description may ask for (refused beyond, before any work is done).
+MAX_STATIONS = 1000
+MAX_SPANS = 200
+SECTION_CONTROLS = (8, 64)
+# Plausible ship sizes: a length outside this range is a unit mistake far more often than a ship.
+LENGTH_RANGE = (1.0, 600.0)
+
+
+def _bad(path: str, value: Any, expected: str) -> ValueError:
+    return _native.InvalidInput(f"{path} is {value!r}; expected {expected}")
+
+
+def _number(path: str, value: Any, *, positive: bool = False) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
+        raise _bad(path, value, "a number")
+    v = float(value)
+    if not math.isfinite(v):
+        raise _bad(path, v, "a finite number")
+    if positive and not v > 0:
+        raise _bad(path, v, "a number > 0")
+    return v
+
+
+def _integer(path: str, value: Any, lo: int, hi: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not lo <= int(value) <= hi:
+        raise _bad(path, value, f"an integer from {lo} to {hi}")
+    return int(value)
+
+
+def _object(path: str, value: Any, known: tuple[str, ...] | list[str]) -> dict:
+    """value as a dict whose keys are all in `known`; an unknown key names the nearest valid one."""
+    if not isinstance(value, dict):
+        raise _bad(path, value, "an object with keys from " + ", ".join(known))
+    for key in value:
+        if key not in known:
+            near = difflib.get_close_matches(str(key), list(known), n=1)
+            hint = f"; did you mean {near[0]!r}?" if near else ""
+            raise _native.InvalidInput(f"{path}.{key} is not a known key{hint} (expected one of {', '.join(known)})")
+    return value
+
+
+def _pairs(path: str, value: Any) -> list[tuple[float, float]]:
+    if not isinstance(value, (list, tuple)):
+        raise _bad(path, value, "a list of [x, value] pairs")
+    out = []
+    for i, p in enumerate(value):
+        if not isinstance(p, (list, tuple)) or len(p) != 2:
+            raise _bad(f"{path}[{i}]", p, "an [x, value] pair")
+        out.append((_number(f"{path}[{i}][0]", p[0]), _number(f"{path}[{i}][1]", p[1])))
+    return out
+
+
+@dataclass
+class PrincipalDimensions:
+    """Lpp, B (moulded breadth), T (design draught), D (depth to the deck), metres."""
+
+    lpp: float
+    breadth: float
+    draft: float
+    depth: float
+
+    @classmethod
+    def from_dict(cls, d: Any, path: str = "principal") -> PrincipalDimensions:
+        d = _object(path, d, ("Lpp", "B", "T", "D"))
+        vals = {}
+        for key in ("Lpp", "B", "T", "D"):
+            if key not in d:
+                raise _native.InvalidInput(f"{path}.{key} is missing; expected a length in metres")
+            vals[key] = _number(f"{path}.{key}", d[key], positive=True)
+        lo, hi = LENGTH_RANGE
+        if not lo <= vals["Lpp"] <= hi:
+            hint = " (millimetres? divide by 1000)" if vals["Lpp"] > 1000 * lo else ""
+            raise _native.InvalidInput(f"{path}.Lpp is {vals['Lpp']}; expected a ship length from {lo} to {hi} m{hint}")
+        for key in ("B", "T", "D"):
+            if not vals[key] < vals["Lpp"]:
+                raise _native.InvalidInput(f"{path}.{key} is {vals[key]}; expected less than Lpp = {vals['Lpp']} m (same unit: metres)")
+        if not vals["T"] < vals["D"]:
+            raise _native.InvalidInput(f"{path}.T is {vals['T']}; expected a draught below the depth D = {vals['D']} m")
+        return cls(vals["Lpp"], vals["B"], vals["T"], vals["D"])
+
+    def to_dict(self) -> dict:
+        return {"Lpp": self.lpp, "B": self.breadth, "T": self.draft, "D": self.depth}
+
+
+@dataclass
+class BasicCurveSpec:
+    """One basic curve as described (see the module docstring for the fields)."""
+
+    x_start: float | None = None
+    x_end: float | None = None
+    flat_from: float | None = None
+    flat_to: float | None = None
+    value: float | None = None
+    params: dict[str, float] = field(default_factory=dict)
+    aliases: dict[str, float] = field(default_factory=dict)
+    points: list[tuple[float, float]] = field(default_factory=list)
+    fit: list[tuple[float, float]] = field(default_factory=list)
+    fit_weight: float = 1.0
+    lower: float | None = None
+    upper: float | None = None
+    monotone: bool = False
+    spans: int = 12
+    breaks: list[float] = field(default_factory=list)
+    stem_angle: float | None = None
+    fullness_fit: list[tuple[float, float]] = field(default_factory=list)
+    convex: list[tuple[float, float, float]] = field(default_factory=list)   # f'' <= -k on [x0, x1]
+    concave: list[tuple[float, float, float]] = field(default_factory=list)  # f'' >= k on [x0, x1]
+
+    @classmethod
+    def from_dict(cls, name: str, d: Any, path: str) -> BasicCurveSpec:
+        extra = (STEM_KEY,) if name == "keel_angle" else (FULLNESS_KEY,) if name == "sac" else ()
+        d = _object(path, d, CURVE_KEYS + tuple(FORM_ALIASES.get(name, {})) + extra)
+        spec = cls()
+        if STEM_KEY in d:
+            spec.stem_angle = _number(f"{path}.{STEM_KEY}", d[STEM_KEY])
+            if not 0 < spec.stem_angle < 80:
+                raise _bad(f"{path}.{STEM_KEY}", spec.stem_angle, "a half angle between 0 and 80 degrees")
+        for key in ("x_start", "x_end", "flat_from", "flat_to", "value", "lower", "upper"):
+            if d.get(key) is not None:
+                setattr(spec, key, _number(f"{path}.{key}", d[key]))
+        if "spans" in d and "n_control" in d:
+            raise _native.InvalidInput(f"{path}.spans and {path}.n_control are both given; expected one of them")
+        if "spans" in d:
+            spec.spans = _integer(f"{path}.spans", d["spans"], 1, MAX_SPANS)
+        elif "n_control" in d:
+            spec.spans = _integer(f"{path}.n_control", d["n_control"], 4, MAX_SPANS + 3) - 3
+        for key in FORM_KEYS:
+            if d.get(key) is not None:
+                spec.params[key] = _number(f"{path}.{key}", d[key])
+        for key in FORM_ALIASES.get(name, {}):
+            if d.get(key) is not None:
+                spec.aliases[key] = _number(f"{path}.{key}", d[key])
+        for key in ("alphaB", "alphaE"):
+            if key in spec.params and not -90 < spec.params[key] < 90:
+                raise _bad(f"{path}.{key}", spec.params[key], "an angle between -90 and 90 degrees")
+        spec.points = _pairs(f"{path}.points", d.get("points", []))
+        spec.fit = _pairs(f"{path}.fit", d.get("fit", []))
+        if "breaks" in d:
+            if not isinstance(d["breaks"], (list, tuple)) or len(d["breaks"]) > MAX_SPANS:
+                raise _bad(f"{path}.breaks", d["breaks"], f"a list of at most {MAX_SPANS} knot positions (m)")
+            spec.breaks = sorted(_number(f"{path}.breaks[{i}]", v) for i, v in enumerate(d["breaks"]))
+        for key in ("convex", "concave"):
+            ranges = d.get(key, [])
+            if not isinstance(ranges, (list, tuple)):
+                raise _bad(f"{path}.{key}", ranges, "a list of [x_from, x_to, least curvature] triples")
+            for i, r in enumerate(ranges):
+                if not isinstance(r, (list, tuple)) or len(r) != 3:
+                    raise _bad(f"{path}.{key}[{i}]", r, "an [x_from, x_to, least curvature (1/m, >= 0)] triple")
+                a, b, k = (_number(f"{path}.{key}[{i}][{j}]", v) for j, v in enumerate(r))
+                if not a < b or k < 0:
+                    raise _bad(f"{path}.{key}[{i}]", list(r), "x_from < x_to and a least curvature >= 0")
+                getattr(spec, key).append((a, b, k))
+        if FULLNESS_KEY in d:
+            spec.fullness_fit = _pairs(f"{path}.{FULLNESS_KEY}", d[FULLNESS_KEY])
+            for i, (_, v) in enumerate(spec.fullness_fit):
+                if not 0 < v <= 1:
+                    raise _bad(f"{path}.{FULLNESS_KEY}[{i}][1]", v, "a section fullness between 0 and 1")
+        if "fit_weight" in d:
+            spec.fit_weight = _number(f"{path}.fit_weight", d["fit_weight"], positive=True)
+        if "monotone" in d:
+            if not isinstance(d["monotone"], bool):
+                raise _bad(f"{path}.monotone", d["monotone"], "true or false")
+            spec.monotone = d["monotone"]
+        if (spec.flat_to is not None or spec.flat_from is not None) and spec.value is None:
+            raise _native.InvalidInput(f"{path}.value is missing; expected the constant value of the flat part")
+        for a, b in (("flat_from", "flat_to"), ("x_start", "x_end"), ("lower", "upper")):
+            va, vb = getattr(spec, a), getattr(spec, b)
+            if va is not None and vb is not None and not va <= vb:
+                raise _native.InvalidInput(f"{path}.{a} is {va}; expected at most {path}.{b} = {vb}")
+        return spec
+
+    @property
+    def constant(self) -> bool:
+        """Only a value: the curve is that constant over its range."""
+        return (self.value is not None and self.flat_to is None and self.flat_from is None and not self.params
+                and not self.aliases and not self.points and not self.fit)
+
+    def to_dict(self) -> dict:
+        d: dict[str, Any] = {}
+        for key in ("x_start", "x_end", "flat_from", "flat_to", "value", "lower", "upper"):
+            if getattr(self, key) is not None:
+                d[key] = getattr(self, key)
+        d.update(self.params)
+        d.update(self.aliases)
+        if self.points:
+            d["points"] = [list(p) for p in self.points]
+        if self.fit:
+            d["fit"] = [list(p) for p in self.fit]
+            d["fit_weight"] = self.fit_weight
+        if self.monotone:
+            d["monotone"] = True
+        if self.breaks:
+            d["breaks"] = list(self.breaks)
+        if self.stem_angle is not None:
+            d[STEM_KEY] = self.stem_angle
+        for key in ("convex", "concave"):
+            if getattr(self, key):
+                d[key] = [list(r) for r in getattr(self, key)]
+        if self.fullness_fit:
+            d[FULLNESS_KEY] = [list(p) for p in self.fullness_fit]
+        if not self.constant:
+            d["spans"] = self.spans
+        if self.constant and self.stem_angle is not None:
+            d["value"] = self.value
+        return d
+
+
+KRACHT = ("c_lpr", "c_bb", "c_zb", "c_abt", "c_abl", "c_vpr")
+BULB_SHAPE_NUMBERS = ("aft_length", "nose_height_shift")
+BULB_SHAPE_INTEGERS = {"sections": (8, 200), "section_points": (8, 400), "control_u": (4, 100), "control_v": (4, 100)}
+
+
+@dataclass
+class BulbSpec:
+    """The optional ``"bulb"`` section: Kracht coefficients, shape controls and (for a hull
+    that models only part of the ship) the ship's displacement volume."""
+
+    kracht: dict[str, float] = field(default_factory=dict)
+    shape: dict[str, float] = field(default_factory=dict)
+    displacement_volume: float | None = None
+
+    @classmethod
+    def from_dict(cls, d: Any, path: str = "bulb") -> BulbSpec:
+        d = _object(path, d, ("kracht", "shape", "displacement_volume"))
+        spec = cls()
+        for key, val in _object(f"{path}.kracht", d.get("kracht", {}), KRACHT).items():
+            spec.kracht[key] = _number(f"{path}.kracht.{key}", val, positive=True)
+        shape_keys = BULB_SHAPE_NUMBERS + tuple(BULB_SHAPE_INTEGERS)
+        for key, val in _object(f"{path}.shape", d.get("shape", {}), shape_keys).items():
+            if key in BULB_SHAPE_NUMBERS:
+                v = _number(f"{path}.shape.{key}", val)
+                if key == "aft_length" and v < 0:
+                    raise _bad(f"{path}.shape.{key}", v, "a length >= 0 m (0: the default 2 (L_PR + B_B))")
+                spec.shape[key] = v
+            else:
+                spec.shape[key] = _integer(f"{path}.shape.{key}", val, *BULB_SHAPE_INTEGERS[key])
+        if d.get("displacement_volume") is not None:
+            spec.displacement_volume = _number(f"{path}.displacement_volume", d["displacement_volume"], positive=True)
+        return spec
+
+    def to_dict(self) -> dict:
+        d: dict[str, Any] = {"kracht": dict(self.kracht), "shape": dict(self.shape)}
+        if self.displacement_volume is not None:
+            d["displacement_volume"] = self.displacement_volume
+        return d
+
+
+TOP_KEYS = ("name", "notes", "principal", "ends", "stations", "sections", "basic_curves", "skinning", "bulb", "design")
+
+
+@dataclass
+class HullDescription:
+    """A hull: principal dimensions, its x range, stations, section options, basic curves."""
+
+    name: str
+    principal: PrincipalDimensions
+    x_aft: float
+    x_fore: float
+    curves: dict[str, BasicCurveSpec]
+    station_count: int | None = 61
+    station_x: list[float] | None = None
+    section_n_control: int = 20
+    skin_e2: float = 1.0
+    skin_e3: float = 0.0
+    notes: str = ""
+    bulb: BulbSpec | None = None
+    design: dict | None = None  # the particulars a designer built it from (kept, not used)
+
+    @classmethod
+    def from_dict(cls, d: Any) -> HullDescription:
+        d = _object("description", d, TOP_KEYS)
+        principal = PrincipalDimensions.from_dict(d.get("principal"), "principal")
+        ends = _object("ends", d.get("ends", {}), ("aft", "fore"))
+        x_aft = _number("ends.aft", ends.get("aft", 0.0))
+        x_fore = _number("ends.fore", ends.get("fore", principal.lpp))
+        lpp = principal.lpp
+        if not x_aft < x_fore:
+            raise _native.InvalidInput(f"ends.fore is {x_fore}; expected more than ends.aft = {x_aft}")
+        if x_aft < -0.25 * lpp or x_fore > 1.25 * lpp:
+            raise _native.InvalidInput(f"ends are {x_aft} .. {x_fore} m; expected the hull within -0.25 Lpp .. 1.25 Lpp of the AP")
+        desc = cls(name=str(d.get("name", "hull")), principal=principal, x_aft=x_aft, x_fore=x_fore, curves={},
+                   notes=str(d.get("notes", "")))
+        desc._parse_stations(d.get("stations", {"count": 61}))
+        sec = _object("sections", d.get("sections", {}), ("n_control",))
+        desc.section_n_control = _integer("sections.n_control", sec.get("n_control", 20), *SECTION_CONTROLS)
+        bc = _object("basic_curves", d.get("basic_curves"), BASIC_CURVES)
+        for name in REQUIRED_CURVES:
+            if name not in bc:
+                raise _native.InvalidInput(f"basic_curves.{name} is missing; expected the {name} basic curve")
+        desc.curves = {name: BasicCurveSpec.from_dict(name, spec, f"basic_curves.{name}") for name, spec in bc.items()}
+        if "deck_angle" in desc.curves and "flare" in desc.curves:
+            raise _native.InvalidInput("basic_curves.deck_angle and basic_curves.flare are both given; expected one of them")
+        if ("skeg" in desc.curves) != ("skeg_top" in desc.curves):
+            raise _native.InvalidInput("basic_curves.skeg and basic_curves.skeg_top go together; expected both or neither")
+        sk = _object("skinning", d.get("skinning", {}), ("e2", "e3"))
+        desc.skin_e2 = _number("skinning.e2", sk.get("e2", 1.0))
+        desc.skin_e3 = _number("skinning.e3", sk.get("e3", 0.0))
+        if desc.skin_e2 < 0 or desc.skin_e3 < 0 or desc.skin_e2 + desc.skin_e3 <= 0:
+            raise _native.InvalidInput(f"skinning.e2 / e3 are {desc.skin_e2} / {desc.skin_e3}; expected weights >= 0, not both 0")
+        if d.get("bulb") is not None:
+            desc.bulb = BulbSpec.from_dict(d["bulb"], "bulb")
+        if d.get("design") is not None:
+            if not isinstance(d["design"], dict):
+                raise _bad("design", d["design"], "an object (the particulars the hull was designed from)")
+            desc.design = copy.deepcopy(d["design"])
+        if desc.bulb is not None and desc.bulb.displacement_volume is None and not (x_aft <= 0.0 and x_fore >= lpp):
+            raise _native.InvalidInput(
+                f"bulb.displacement_volume is missing; the hull models only x = {x_aft} .. {x_fore} m of the ship, so the "
+                "ship's displacement volume (m^3) for C_VPR must be given")
+        return desc
+
+    def _parse_stations(self, st: Any) -> None:
+        st = _object("stations", st, ("count", "x"))
+        if "count" in st and "x" in st:
+            raise _native.InvalidInput("stations.count and stations.x are both given; expected one of them")
+        if "x" in st:
+            xs = st["x"]
+            if not isinstance(xs, (list, tuple)) or not 4 <= len(xs) <= MAX_STATIONS:
+                raise _bad("stations.x", xs, f"a list of 4 to {MAX_STATIONS} station positions (m)")
+            vals = [_number(f"stations.x[{i}]", v) for i, v in enumerate(xs)]
+            tol = 1e-9 * self.principal.lpp
+            for i, xs_ in enumerate(vals):
+                if xs_ < self.x_aft - tol or xs_ > self.x_fore + tol:
+                    raise _native.InvalidInput(f"stations.x[{i}] is {xs_}; expected a station on the hull ({self.x_aft} to {self.x_fore} m)")
+                if i and not xs_ > vals[i - 1]:
+                    raise _native.InvalidInput(f"stations.x[{i}] is {xs_}; expected increasing x (previous {vals[i - 1]})")
+            self.station_x, self.station_count = vals, None
+        else:
+            self.station_count, self.station_x = _integer("stations.count", st.get("count", 61), 5, MAX_STATIONS), None
+
+    def to_dict(self) -> dict:
+        d = {
+            "name": self.name,
+            "notes": self.notes,
+            "principal": self.principal.to_dict(),
+            "ends": {"aft": self.x_aft, "fore": self.x_fore},
+            "stations": {"x": list(map(float, self.station_x))} if self.station_x else {"count": self.station_count},
+            "sections": {"n_control": self.section_n_control},
+            "basic_curves": {k: v.to_dict() for k, v in self.curves.items()},
+            "skinning": {"e2": self.skin_e2, "e3": self.skin_e3},
+        }
+        if self.bulb is not None:
+            d["bulb"] = self.bulb.to_dict()
+        if self.design is not None:
+            d["design"] = copy.deepcopy(self.design)
+        return d
+
+
+def load_description(path_or_text_or_dict: Any) -> dict:
+    """A description as a dict, from a dict (copied), JSON text or a path to a JSON file."""
+    src = path_or_text_or_dict
+    if isinstance(src, dict):
+        return copy.deepcopy(src)
+    if isinstance(src, (str, os.PathLike)):
+        text = str(src)
+        if isinstance(src, os.PathLike) or not text.lstrip().startswith(("{", "[")):
+            try:
+                with open(src, encoding="utf-8") as fh:
+                    text = fh.read()
+            except OSError as e:
+                raise _native.InvalidInput(f"description file {text!r} cannot be read: {e.strerror}") from None
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as e:
+            raise _native.InvalidInput(f"description is not valid JSON: {e}") from None
+        if not isinstance(data, dict):
+            raise _bad("description", type(data).__name__, "a JSON object")
+        return data
+    raise _bad("description", type(src).__name__, "a path, JSON text or a dict")
