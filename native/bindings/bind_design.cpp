@@ -63,7 +63,10 @@ void bind_spline_design(py::module_& m) {
       .def_readwrite("flats", &SplineDesignRequest::flats).def_readwrite("bounds", &SplineDesignRequest::bounds)
       .def_readwrite("shapes", &SplineDesignRequest::shapes).def_readwrite("fit", &SplineDesignRequest::fit)
       .def_readwrite("linear", &SplineDesignRequest::linear)
-      .def_readwrite("e2", &SplineDesignRequest::e2).def_readwrite("e3", &SplineDesignRequest::e3);
+      .def_readwrite("e2", &SplineDesignRequest::e2).def_readwrite("e3", &SplineDesignRequest::e3)
+      .def_property("reference", [](const SplineDesignRequest& r) { return to_array(r.reference); },
+                    [](SplineDesignRequest& r, py::handle k) { r.reference = k.is_none() ? Eigen::VectorXd() : vector(k, "reference"); },
+                    "coefficients of a reference function on `knots` (the fairness measures f - reference); empty: none");
   m.def("design_spline_function", &design_spline_function, "request"_a, py::call_guard<py::gil_scoped_release>(),
         "The fairest spline function meeting the request: a NurbsCurve of dimension 1 whose parameter is x (m).\n"
         "Raises InvalidInput (malformed request) or InfeasibleFormParameters (conditions in conflict, named).");
@@ -75,53 +78,41 @@ void bind_spline_design(py::module_& m) {
 }
 
 void bind_sections(py::module_& m) {
-  py::enum_<SectionAbove>(m, "SectionAbove", "Shape of a section above the DWL.")
-      .value("auto", SectionAbove::Auto).value("convex", SectionAbove::Convex)
-      .value("flare", SectionAbove::Flare).value("free", SectionAbove::Free);
-  py::class_<SectionSpec>(m, "SectionSpec", "Parameters of one hull section (metres, degrees); see fairlines/sections.hpp.")
+  py::class_<SectionSpec>(m, "SectionSpec", "One hull section's numbers (metres, degrees); see fairlines/sections.hpp.")
       .def(py::init<>())
-      .def_readwrite("x", &SectionSpec::x).def_readwrite("y_deck", &SectionSpec::y_deck).def_readwrite("z_deck", &SectionSpec::z_deck)
-      .def_readwrite("alpha_deck", &SectionSpec::alpha_deck).def_readwrite("flare", &SectionSpec::flare)
-      .def_readwrite("z_keel", &SectionSpec::z_keel)
-      .def_readwrite("alpha_keel", &SectionSpec::alpha_keel).def_readwrite("draft", &SectionSpec::draft)
-      .def_readwrite("y_dwl", &SectionSpec::y_dwl).def_readwrite("half_area", &SectionSpec::half_area)
-      .def_readwrite("alpha_dwl", &SectionSpec::alpha_dwl).def_readwrite("alpha_dwl_weight", &SectionSpec::alpha_dwl_weight)
-      .def_readwrite("y_max", &SectionSpec::y_max).def_readwrite("above", &SectionSpec::above).def_readwrite("z_inflection", &SectionSpec::z_inflection)
-      .def_readwrite("convex_below", &SectionSpec::convex_below).def_readwrite("z_fos", &SectionSpec::z_fos)
-      .def_readwrite("y_fob", &SectionSpec::y_fob).def_readwrite("skeg_half_thickness", &SectionSpec::skeg_half_thickness)
-      .def_readwrite("skeg_bottom", &SectionSpec::skeg_bottom).def_readwrite("skeg_top", &SectionSpec::skeg_top)
-      .def_property("points", [](const SectionSpec& s) {
-          Eigen::MatrixXd P(static_cast<Eigen::Index>(s.points.size()), 2);
-          for (std::size_t i = 0; i < s.points.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = s.points[i].transpose();
-          return to_array(P);
-        },
-        [](SectionSpec& s, py::handle p) {
-          const Eigen::MatrixXd P = matrix(p, "points", 2);
-          s.points.clear();
-          for (Eigen::Index i = 0; i < P.rows(); ++i) s.points.emplace_back(P(i, 0), P(i, 1));
-        }, "(k, 2) data points (y, z) the section passes near")
-      .def_readwrite("points_weight", &SectionSpec::points_weight).def_readwrite("n_control", &SectionSpec::n_control)
-      .def_readwrite("e2", &SectionSpec::e2).def_readwrite("e3", &SectionSpec::e3);
-  py::class_<SectionDesign>(m, "SectionDesign", "A designed section and what its solve needed.")
-      .def_readonly("curve", &SectionDesign::curve).def_readonly("active", &SectionDesign::active)
-      .def_readonly("fullness", &SectionDesign::fullness);
-  m.def("design_section", &design_section, "spec"_a, "warm"_a = std::vector<int>{}, py::call_guard<py::gil_scoped_release>(),
-        "One section (fairest graph over its deck-keel chord meeting its form parameters and shape).");
+      .def_readwrite("x", &SectionSpec::x, "station (m from the AP)")
+      .def_readwrite("y_deck", &SectionSpec::y_deck, "deck-at-side half-breadth (m)")
+      .def_readwrite("z_deck", &SectionSpec::z_deck, "deck-at-side height (m)")
+      .def_readwrite("z_keel", &SectionSpec::z_keel, "keel point height on the centre plane (m)")
+      .def_readwrite("y_max", &SectionSpec::y_max, "half-breadth bound B/2 (m)")
+      .def_readwrite("draft", &SectionSpec::draft, "waterline height T (m; NaN: none)")
+      .def_readwrite("y_dwl", &SectionSpec::y_dwl, "waterline half-breadth (m; NaN or <= 0: not immersed)")
+      .def_readwrite("half_area", &SectionSpec::half_area, "area below T, one side (m^2; NaN: free)")
+      .def_readwrite("shape", &SectionSpec::shape, "shape knob when half_area is NaN (0 fullest .. 2 straight V)")
+      .def_readwrite("top_corner", &SectionSpec::top_corner, "height of the top corner, fraction of the freeboard")
+      .def_readwrite("deadrise", &SectionSpec::deadrise, "bottom rise at the bilge corner (deg)")
+      .def_readwrite("character", &SectionSpec::character, "where the bilge corner heads as the section fines (fraction of the chord Q-K)")
+      .def_readwrite("lower_angle", &SectionSpec::lower_angle, "above-water sections: arrival angle at the keel point (deg from vertical; NaN: 0)")
+      .def_readwrite("n_control", &SectionSpec::n_control, "control points of every section of a hull");
+  py::class_<SectionDesign>(m, "SectionDesign", "A designed section and what was needed to build it.")
+      .def_readonly("curve", &SectionDesign::curve)
+      .def_readonly("shape", &SectionDesign::shape, "shape knob used")
+      .def_readonly("fullness", &SectionDesign::fullness, "area below T / (y_dwl (T - z_keel)) achieved")
+      .def_readonly("fullness_min", &SectionDesign::fullness_min)
+      .def_readonly("fullness_max", &SectionDesign::fullness_max)
+      .def_readonly("area_met", &SectionDesign::area_met, "false when the asked area lies outside what the family holds here")
+      .def_readonly("immersion", &SectionDesign::immersion, "weight of the waterline and area conditions (0 .. 1)");
+  m.def("design_section", &design_section, "spec"_a, py::call_guard<py::gil_scoped_release>(),
+        "One section: its template (deck, waterline and keel points, rounded corners) sampled on the shared knot vector.\n"
+        "Raises InvalidInput (malformed numbers) or InfeasibleFormParameters (no one-curve section through the points).");
   m.def("design_sections", &design_sections, "specs"_a, py::call_guard<py::gil_scoped_release>(),
-        "Sections in order, each warm-started from the previous one; all on section_knot_vector(n_control).");
-  m.def("section_area_range", &section_area_range, "spec"_a, py::call_guard<py::gil_scoped_release>(),
-        "(least, largest) half area below the DWL (m^2) a fair section with these parameters can hold.");
-  m.def("section_fullness_bands", [](const std::vector<SectionSpec>& specs) {
-          Eigen::MatrixXd b;
-          {
-            py::gil_scoped_release release;
-            b = section_fullness_bands(specs);
-          }
-          return to_array(b);
-        },
-        "specs"_a, "(q, 2) least and largest fullness half_area / (y_dwl (T - z_keel)) a fair section can have (NaN: no DWL).");
+        "design_section for each spec, in order; all on section_knot_vector(n_control).");
+  m.def("section_fullness_range", &section_fullness_range, "spec"_a, py::call_guard<py::gil_scoped_release>(),
+        "(least, largest) fullness area / (y_dwl (T - z_keel)) the section family holds here (NaN: not immersed).");
   m.def("section_knot_vector", [](int n) { return to_array(section_knot_vector(n)); }, "n_control"_a,
         "The clamped uniform cubic knot vector every section of a hull shares.");
+  m.attr("END_BAND") = kEndBand;
+  m.attr("MAX_SHAPE_KNOB") = kMaxShapeKnob;
 }
 
 }  // namespace

@@ -38,7 +38,7 @@ from ._native import (  # noqa: F401  (re-exported API)
     plane_cut,
     revolve,
     section_knot_vector,
-    SectionAbove,
+
     SectionDesign,
     SectionSpec,
     SplineBound,
@@ -51,7 +51,7 @@ from ._native import (  # noqa: F401  (re-exported API)
     design_section,
     design_sections,
     design_spline_function,
-    section_area_range,
+    section_fullness_range,
     spline_function_knots,
     sphere,
     unclamped_uniform_knots,

@@ -26,9 +26,13 @@ __all__ = ["BasicCurve", "solve_curve", "solve_sac", "immersed_range", "FULLNESS
 #: Section fullness A / (2 y_dwl (T - z_keel)) a designed SAC keeps within (a convex section
 #: through the DWL point with a flat keel has at least half its box; at most the box).
 FULLNESS_BOUNDS = (0.45, 0.995)
-#: Weight of a SAC's fullness_fit points (per point, on the squared fullness difference); the
-#: fairness int s''^2 dx of a fullness curve is some 1e-6.
-FULLNESS_FIT_WEIGHT = 1.0
+#: Weight of the fairness (int s''^2 dx, times the range cubed) against the fit when the SAC's
+#: reference fullness is fitted to its fullness_fit points (and its flat part).
+REFERENCE_FAIRNESS = 1e-6
+#: Fullness of a section where the waterline ends on the centre plane (a straight wedge), and
+#: the waterline breadth (fraction of its largest) below which an end counts as such.
+WEDGE_FULLNESS = 0.5
+WEDGE_BREADTH = 1e-9
 # Gauss points per knot span for exact integrals of f and x f (cubic: 3 are exact for degree 5).
 _GAUSS = np.polynomial.legendre.leggauss(4)
 
@@ -193,7 +197,7 @@ def _request(name: str, plan: _Plan, spec: BasicCurveSpec, path: str, stations=(
     knot at every one of `stations` when given (then no piece needs more than one span)."""
     r = _native.SplineDesignRequest()
     r.name = path
-    breaks = [x for x in (*(plan.flat or ()), *spec.breaks, *stations) if plan.xs < x < plan.xe]
+    breaks = [x for x in (*(plan.flat or ()), *spec.breaks, *(x for x, _ in spec.slopes), *stations) if plan.xs < x < plan.xe]
     r.knots = _native.spline_function_knots(plan.xs, plan.xe, breaks, spec.spans, 3, 1 if len(stations) else 4)
     return r
 
@@ -217,6 +221,7 @@ def solve_curve(name: str, spec: BasicCurveSpec, x0: float, x1: float, *, lower:
 
     r.conditions = _conditions(params, plan, path, direct)
     r.conditions += [_native.SplineCondition(x, 0, y, "points") for x, y in spec.points]
+    r.conditions += [_native.SplineCondition(x, 1, v, "slopes") for x, v in spec.slopes]
     if "Area" in params:
         r.integrals = [_native.SplineIntegral(plan.xs, plan.xe, params["Area"], name="Area")]
     if "xC" in params:
@@ -296,7 +301,14 @@ def _sac_request(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, dra
     # A knot at every station with a band: the fullness can follow the sections' limits where
     # they change quickly (near the ends), E2 keeps it fair.
     r = _request("sac", plan, spec, path, [x for x, _, _ in (bands or [])])
-    r.conditions = _conditions(params, plan, path, through_fullness)
+    conditions = _conditions(params, plan, path, through_fullness)
+    # Where the waterline ends on the centre plane the immersed part is a wedge between the
+    # waterline and the centre-line contour: its sections are straight, of fullness one half.
+    widest = max(dwl.value or 0.0, float(np.max(dwl(np.linspace(dwl.x_start, dwl.x_end, 33)))))
+    for x_end in (plan.xs, plan.xe):
+        if dwl(x_end)[0] <= WEDGE_BREADTH * widest:
+            conditions.append(_native.SplineCondition(x_end, 0, WEDGE_FULLNESS, "fullness where the waterline ends (a wedge)"))
+    r.conditions = conditions
     for x, a in spec.points:
         r.conditions += through_fullness(x, [1.0], a, "points")
     factors = [dwl.factor(), profile.factor(offset=draft, scale=-1.0)]
@@ -330,10 +342,17 @@ def _sac_request(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, dra
         w = w_derivs(x)[0]
         if w > 0:
             fit.append(_native.SplineFitPoint(x, a / w, spec.fit_weight * w * w))
-    # The fullness to stay near, weighted far above the fairness: the fullness follows it and
-    # bends only as much as the volume and LCB ask, smoothly.
-    fit += [_native.SplineFitPoint(x, f, FULLNESS_FIT_WEIGHT) for x, f in spec.fullness_fit if plan.xs <= x <= plan.xe]
     r.fit = fit
+    # The fullness to stay near is the reference: the SAC is it changed as fairly as possible
+    # to meet the volume, the LCB and the rest.
+    pts = [(x, f) for x, f in spec.fullness_fit if plan.xs <= x <= plan.xe]
+    if pts:
+        ref = _native.SplineDesignRequest()
+        ref.name, ref.knots = f"{path}.fullness_fit", r.knots
+        ref.flats = r.flats
+        ref.e2 = REFERENCE_FAIRNESS * (plan.xe - plan.xs) ** 3 / len(pts)
+        ref.fit = [_native.SplineFitPoint(x, f, 1.0) for x, f in pts]
+        r.reference = np.asarray(_native.design_spline_function(ref).control_points)[:, 0]
     return r, plan, params, factors
 
 

@@ -9,8 +9,8 @@ Format (JSON; ``docs/hull_description.schema.json`` is its JSON Schema)::
                                                   # forward end (stem head); default 0 and Lpp
       "stations": {"count": 61} | {"x": [...]},    # default {"count": 61}, clustered at the ends
       "sections": {"n_control": 20},
-      "basic_curves": {"profile": ..., "dwl": ..., "deck": ..., "sac": ..., "flare": ...,
-                       "keel_angle": ..., "deck_angle": ..., "skeg": ..., "skeg_top": ...},
+      "basic_curves": {"profile": ..., "dwl": ..., "deck": ..., "sac": ...,
+                       "top_corner": ..., "deadrise": ..., "character": ...},
       "skinning": {"e2": 1.0, "e3": 0.0},
       "bulb": {...}                               # optional bulbous bow (Kracht coefficients)
     }
@@ -20,24 +20,19 @@ Basic curves (each a fairest spline function of x, fairlines.spline_design):
 ==============  ==============================================================  ================
 name            f(x)                                                            range
 ==============  ==============================================================  ================
-profile         centre-line contour: keel, skeg, sternpost, counter and stem    ends
+profile         centre-line contour: keel, counter or stern, forefoot and stem   ends
                 height (m); below T it bounds the immersed body
 dwl             design-waterline half-breadth (m)                               where profile < T
-deck            deck-at-side half-breadth (m)                                   ends
+deck            deck-at-side half-breadth (m) at the depth D                    ends
 sac             sectional area below T, both sides (m^2), designed through the  as dwl
                 section fullness SAC / (2 y_dwl (T - z_keel))
-flare           (optional) the top's flare as a fraction of its lean: the deck      ends
-                tangent leans (1 + flare) times as far from the vertical as the
-                line from the deck point to the DWL point (0 straight, > 0
-                flared, < 0 a convex shoulder); default 0
-deck_angle      (optional) absolute section angle at the deck (deg from the     ends
-                downward vertical toward +y); replaces flare where given
-keel_angle      section angle at the keel (deg; -90 flat, -60 a 30 deg           ends
-                deadrise, 0 a knife edge); default -90. With
-                ``stem_waterline_angle`` (deg) it follows the stem where the
-                profile rises forward: -atan2(tan(angle), dz/dx)
-skeg            (optional) skeg half-thickness (m) where the sections carry a   its own
-                skeg; skeg_top: height up to which they do (m)
+top_corner      (optional) where the sections' top turns, as a fraction of the  ends
+                freeboard above T: small values turn it near the waterline, large
+                ones near the deck (more flare at the deck); default 0.5
+deadrise        (optional) rise of the bottom at the bilge, deg; default 0       ends
+character       (optional) where the bilge heads as the sections fine, as a      ends
+                fraction of the chord from the waterline point to the keel: 0.5
+                a symmetric V, smaller the side leans in first; default 0.5
 ==============  ==============================================================  ================
 
 A basic curve is ``{"value": v}`` (constant) or a spline with any of: ``x_start``, ``x_end``
@@ -45,7 +40,7 @@ A basic curve is ``{"value": v}`` (constant) or a spline with any of: ``x_start`
 left with G2; flat_from defaults to the start), ``yB`` / ``yE`` (end values), ``alphaB`` /
 ``alphaE`` (end slope angles, deg) or ``slopeB`` / ``slopeE`` (df/dx), ``CAB`` / ``CAE`` (end
 curvatures, 1/m, with the slope at that end), ``Area`` and ``xC`` (integral of f over the range
-and its centroid), ``points`` ([[x, f], ...] passed through), ``fit`` ([[x, f], ...] passed near,
+and its centroid), ``points`` ([[x, f], ...] passed through), ``slopes`` ([[x, df/dx], ...]: interior tangents), ``fit`` ([[x, f], ...] passed near,
 weight ``fit_weight``), ``lower`` / ``upper`` (bounds), ``convex`` / ``concave`` ([[x_from,
 x_to, k], ...]: f'' <= -k / f'' >= k there, k >= 0 a least curvature in 1/m: a waterline that
 bulges out, or a hollow), ``monotone`` (true: f moves away from its
@@ -82,7 +77,7 @@ __all__ = [
 ]
 
 REQUIRED_CURVES = ("profile", "dwl", "deck", "sac")
-OPTIONAL_CURVES = ("flare", "deck_angle", "keel_angle", "skeg", "skeg_top")
+OPTIONAL_CURVES = ("top_corner", "deadrise", "character")
 BASIC_CURVES = REQUIRED_CURVES + OPTIONAL_CURVES
 FORM_KEYS = ("yB", "yE", "alphaB", "alphaE", "slopeB", "slopeE", "CAB", "CAE", "Area", "xC")
 #: Public aliases of form parameters per curve: alias -> (form parameter, factor).
@@ -91,11 +86,8 @@ FORM_ALIASES = {
     "dwl": {"waterplane_area": ("Area", 0.5), "lcf": ("xC", 1.0), "entrance_angle": ("alphaE", -1.0),
             "run_angle": ("alphaB", 1.0)},
 }
-CURVE_KEYS = ("x_start", "x_end", "flat_from", "flat_to", "value", "points", "fit", "fit_weight", "lower", "upper",
+CURVE_KEYS = ("x_start", "x_end", "flat_from", "flat_to", "value", "points", "slopes", "fit", "fit_weight", "lower", "upper",
               "monotone", "spans", "n_control", "breaks", "convex", "concave") + FORM_KEYS
-# keel_angle only: the half angle (deg) at which waterlines leave the stem; where the centre
-# profile rises forward (forefoot, stem) the keel angle follows it: -atan2(tan(angle), dz/dx).
-STEM_KEY = "stem_waterline_angle"
 # sac only: the section fullness SAC / (2 y_dwl (T - z_keel)) it stays near ([[x, s], ...]).
 FULLNESS_KEY = "fullness_fit"
 
@@ -195,6 +187,7 @@ class BasicCurveSpec:
     params: dict[str, float] = field(default_factory=dict)
     aliases: dict[str, float] = field(default_factory=dict)
     points: list[tuple[float, float]] = field(default_factory=list)
+    slopes: list[tuple[float, float]] = field(default_factory=list)
     fit: list[tuple[float, float]] = field(default_factory=list)
     fit_weight: float = 1.0
     lower: float | None = None
@@ -202,20 +195,15 @@ class BasicCurveSpec:
     monotone: bool = False
     spans: int = 12
     breaks: list[float] = field(default_factory=list)
-    stem_angle: float | None = None
     fullness_fit: list[tuple[float, float]] = field(default_factory=list)
     convex: list[tuple[float, float, float]] = field(default_factory=list)   # f'' <= -k on [x0, x1]
     concave: list[tuple[float, float, float]] = field(default_factory=list)  # f'' >= k on [x0, x1]
 
     @classmethod
     def from_dict(cls, name: str, d: Any, path: str) -> BasicCurveSpec:
-        extra = (STEM_KEY,) if name == "keel_angle" else (FULLNESS_KEY,) if name == "sac" else ()
+        extra = (FULLNESS_KEY,) if name == "sac" else ()
         d = _object(path, d, CURVE_KEYS + tuple(FORM_ALIASES.get(name, {})) + extra)
         spec = cls()
-        if STEM_KEY in d:
-            spec.stem_angle = _number(f"{path}.{STEM_KEY}", d[STEM_KEY])
-            if not 0 < spec.stem_angle < 80:
-                raise _bad(f"{path}.{STEM_KEY}", spec.stem_angle, "a half angle between 0 and 80 degrees")
         for key in ("x_start", "x_end", "flat_from", "flat_to", "value", "lower", "upper"):
             if d.get(key) is not None:
                 setattr(spec, key, _number(f"{path}.{key}", d[key]))
@@ -235,6 +223,7 @@ class BasicCurveSpec:
             if key in spec.params and not -90 < spec.params[key] < 90:
                 raise _bad(f"{path}.{key}", spec.params[key], "an angle between -90 and 90 degrees")
         spec.points = _pairs(f"{path}.points", d.get("points", []))
+        spec.slopes = _pairs(f"{path}.slopes", d.get("slopes", []))
         spec.fit = _pairs(f"{path}.fit", d.get("fit", []))
         if "breaks" in d:
             if not isinstance(d["breaks"], (list, tuple)) or len(d["breaks"]) > MAX_SPANS:
@@ -274,7 +263,7 @@ class BasicCurveSpec:
     def constant(self) -> bool:
         """Only a value: the curve is that constant over its range."""
         return (self.value is not None and self.flat_to is None and self.flat_from is None and not self.params
-                and not self.aliases and not self.points and not self.fit)
+                and not self.aliases and not self.points and not self.slopes and not self.fit)
 
     def to_dict(self) -> dict:
         d: dict[str, Any] = {}
@@ -285,6 +274,8 @@ class BasicCurveSpec:
         d.update(self.aliases)
         if self.points:
             d["points"] = [list(p) for p in self.points]
+        if self.slopes:
+            d["slopes"] = [list(p) for p in self.slopes]
         if self.fit:
             d["fit"] = [list(p) for p in self.fit]
             d["fit_weight"] = self.fit_weight
@@ -292,8 +283,6 @@ class BasicCurveSpec:
             d["monotone"] = True
         if self.breaks:
             d["breaks"] = list(self.breaks)
-        if self.stem_angle is not None:
-            d[STEM_KEY] = self.stem_angle
         for key in ("convex", "concave"):
             if getattr(self, key):
                 d[key] = [list(r) for r in getattr(self, key)]
@@ -301,8 +290,6 @@ class BasicCurveSpec:
             d[FULLNESS_KEY] = [list(p) for p in self.fullness_fit]
         if not self.constant:
             d["spans"] = self.spans
-        if self.constant and self.stem_angle is not None:
-            d["value"] = self.value
         return d
 
 
@@ -389,10 +376,6 @@ class HullDescription:
             if name not in bc:
                 raise _native.InvalidInput(f"basic_curves.{name} is missing; expected the {name} basic curve")
         desc.curves = {name: BasicCurveSpec.from_dict(name, spec, f"basic_curves.{name}") for name, spec in bc.items()}
-        if "deck_angle" in desc.curves and "flare" in desc.curves:
-            raise _native.InvalidInput("basic_curves.deck_angle and basic_curves.flare are both given; expected one of them")
-        if ("skeg" in desc.curves) != ("skeg_top" in desc.curves):
-            raise _native.InvalidInput("basic_curves.skeg and basic_curves.skeg_top go together; expected both or neither")
         sk = _object("skinning", d.get("skinning", {}), ("e2", "e3"))
         desc.skin_e2 = _number("skinning.e2", sk.get("e2", 1.0))
         desc.skin_e3 = _number("skinning.e3", sk.get("e3", 0.0))

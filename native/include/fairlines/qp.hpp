@@ -66,28 +66,3 @@ struct QpSolution {
 QpSolution solve_qp(const QuadraticProgram& qp, const std::vector<int>& warm_active = {}, const QpOptions& options = {});
 
 }  // namespace fairlines
-
-namespace fairlines {
-
-/// The point on the central path of a convex QP for barrier weight `mu` > 0:
-///
-///   minimise 1/2 x' H x + g' x - mu sum_i log(b_i - a_i' x)   subject to  E x = e
-///
-/// (rows of A normalised to unit length first). Unlike the QP's minimiser it is a smooth
-/// (C-infinity) function of H, g, e and b, strictly inside every inequality: an inequality the
-/// minimiser would hold with multiplier lambda is kept at a distance of about mu / lambda, so a
-/// family of problems whose active sets change along a parameter gives solutions without kinks.
-/// Solved by a primal-dual Newton method (the barrier weight is lowered geometrically to `mu`
-/// and held there). Returns status Infeasible when no strictly feasible point is found (the
-/// caller can name the conflict with solve_qp). `relax` >= 0 widens every (normalised)
-/// inequality by that much, so inequalities the equalities force to hold exactly (a straight
-/// wall between two points on a bound) leave a strict interior. `state` (optional): a warm start
-/// read from it when its sizes match (x (n), y (m_e), z (m_i): a central point of a similar
-/// problem, e.g. the same problem with a slightly changed H) and the result written back.
-/// Throws InvalidInput on malformed input, mu <= 0 or relax < 0.
-struct CentralState {
-  Eigen::VectorXd x, y, z;
-};
-QpSolution solve_qp_central(const QuadraticProgram& qp, double mu, double relax = 0.0, CentralState* state = nullptr);
-
-}  // namespace fairlines

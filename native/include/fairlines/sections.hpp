@@ -1,33 +1,35 @@
-// Hull sections: the fairest curve from the deck point to the keel point that meets a
-// section's form parameters and has the shape a naval architect expects.
+// Hull sections: a fair, convex section from a few numbers read off the basic curves.
 //
-// Notation (a section in the plane x = const, coordinates (y, z), metres):
-//   P_D = (y_deck, z_deck)  deck point (deck at side), the section's start (t = 0)
-//   K   = (0, z_keel)       keel point on the centre plane, its end (t = 1)
-//   Q   = (y_dwl, T)        design-waterline point
-//   L, d, n                 chord length |K - P_D|, its unit direction and the unit normal
-//                           n = (-d_z, d_y), pointing out of the hull (away from the centre plane)
-//   xi, eta                 coordinates along d and n from P_D
+// A section in the plane x = const runs from the deck point D (deck at side) down to the keel
+// point K on the centre plane. Where the hull is immersed it passes through the design-
+// waterline point Q = (y_dwl, T) and holds the asked area below T. It is built in two steps:
 //
-// The section is a graph over its chord: control point k is P_D + L g_k d + eta_k n, with g_k
-// the Greville abscissae of one clamped uniform cubic knot vector shared by every section of a
-// hull (fair skinning uses the control points as its rows, without refitting). Every form
-// parameter -- end tangents, the DWL point, the area below the DWL, passing near data points --
-// is linear in eta, and so are the shape conditions:
-//   below the DWL the section is convex (no inflection: eta'' <= 0 on every span),
-//   above it the section keeps one curvature sign: convex where the deck tangent leans out of
-//   the chord P_D -> Q, concave (flare) where it leans in, straight in between, so the only
-//   inflection a flared section has is at the waterline,
-//   the control polygon stays inside 0 <= y <= y_max (B/2) and z_keel <= z <= z_deck.
-// The fairest such curve (least int eta''(t)^2 dt, plus any data term) is one small convex QP
-// (fairlines/qp.hpp). Where the area asks for it the y <= B/2 and z >= z_keel bounds become
-// active on runs of control points: the flat of side and the flat of bottom appear by
-// themselves, exactly flat, and leave the bilge with curvature continuity (a cubic B-spline is
-// C2). Optional explicit flats and a skeg put runs of control points on given lines.
+//  1. A template: the guide polygon D -> Y -> Q -> X -> K with its corners rounded. X is the
+//     bilge corner (where the side below the waterline would meet the bottom), Y the top corner
+//     on the waterline tangent's upward extension. The top D..Q is one rounded corner at Y (a
+//     flared top where D lies outboard of the line Y-Q, a convex shoulder where it lies inboard,
+//     straight where it lies on it); below Q the section runs straight along Q-X, round a bilge
+//     at X and straight along X-K: a flat of side and a flat of bottom appear by themselves
+//     where the bilge is small. One number, the shape knob lambda, moves the template from the
+//     fullest (a tight bilge in the box corner) through rounder bilges (lambda 0 .. 1) to a
+//     straight V (lambda 2, X on the chord Q-K); lambda is solved so that the area below the
+//     waterline is the asked one.
+//  2. The section spline: a cubic B-spline on one knot vector shared by every section of a hull
+//     (fair skinning uses its control points as the surface's rows). It is a graph over the
+//     chord D -> K: control point k is D + xi_k d + eta_k n with xi_k the Greville abscissae,
+//     and eta_k the template's ordinate at xi_k. Samples of a concave (convex, flat) template
+//     give a convex (convex, exactly flat) spline, and the ordinates are smooth functions of
+//     the inputs, so sections change smoothly along the hull. A last small correction (least
+//     squares, linear) makes the spline pass exactly through Q with the area unchanged.
+//
+// Where the immersed part vanishes (at the stem, and at a dry transom or cruiser stern, where
+// the waterline ends) the waterline point and the area fade out over a band of the breadth and
+// draught (kEndBand), and the section tends to the above-water template D -> Y -> K, whose
+// lower end arrives at K at `lower_angle`: nothing jumps where the waterline ends.
 #pragma once
 
 #include <limits>
-#include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -36,107 +38,67 @@
 
 namespace fairlines {
 
-/// Shape of the part of a section above the design waterline.
-enum class SectionAbove {
-  Auto,     ///< convex or flared (concave) as the deck tangent says (see the file comment)
-  Convex,   ///< no inflection from the deck to the keel
-  Flare,    ///< concave above the DWL (flare), convex below: one inflection, at the DWL
-  Free,     ///< no shape condition above the DWL
-};
-
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-/// Parameters of one section at station x (metres; angles in degrees).
-struct SectionSpec {
-  double x = 0;                ///< station (m from the AP)
-  double y_deck = 0;           ///< deck-at-side half-breadth (>= 0)
-  double z_deck = 0;           ///< deck-at-side height (> z_keel)
-  /// Tangent at the deck, degrees from the downward vertical toward +y (0 vertical, < 0 the
-  /// section goes inward as it goes down: flare; > 0 tumblehome). NaN: free.
-  double alpha_deck = kNaN;
-  /// Alternative to alpha_deck: the flare of the top as a fraction of its lean. The line from the
-  /// deck point to the DWL point (to the keel point when there is no DWL) leans `lean` degrees
-  /// from the vertical; the deck tangent leans (1 + flare) times that: > 0 a flared (concave)
-  /// top, < 0 a convex shoulder, 0 a straight top. Where deck and DWL are both at B/2 the lean
-  /// is zero and so is any flare, so the parallel body stays wall-sided. Used when alpha_deck
-  /// is NaN; NaN: the deck tangent is free.
-  double flare = kNaN;
-  double z_keel = 0;           ///< keel / centre-profile height (the section's lowest point)
-  /// Tangent arriving at the keel, same convention: -90 horizontal (a flat keel), -60 a 30 deg
-  /// deadrise, 0 a vertical knife edge. NaN: free.
-  double alpha_keel = -90;
-  double draft = kNaN;         ///< DWL height T (NaN: no DWL condition)
-  double y_dwl = kNaN;         ///< half-breadth at the DWL (NaN: free)
-  double half_area = kNaN;     ///< area below the DWL between the section and the centre plane (m^2, one side; NaN: free)
-  /// Section angle at the DWL (deg from the downward vertical toward +y: 0 wall-sided, < 0
-  /// leaning in as it goes down, a V), held by a penalty of weight alpha_dwl_weight (0 .. 1;
-  /// 1 holds it to a fraction of a degree, 0 leaves the angle to the fairness), so a weight that
-  /// fades along the hull changes the sections smoothly. NaN: free.
-  double alpha_dwl = kNaN;
-  double alpha_dwl_weight = 1.0;
-  double y_max = 0;            ///< half-breadth bound B/2 (> 0)
-  SectionAbove above = SectionAbove::Auto;
-  /// Height (m) where a flared top turns into the convex bottom (the one inflection of a flared
-  /// section). NaN: at the DWL (at mid-height for a section wholly above it). A counter just
-  /// below the waterline needs it higher: its bilge turns above the DWL.
-  double z_inflection = kNaN;
-  bool convex_below = true;    ///< false: no shape condition below the DWL (data-driven sections)
-  /// Optional explicit flat of side: the section lies on y = y_max from the deck down to this
-  /// height (needs y_deck = y_max). NaN: none (a flat still appears where the area needs it).
-  double z_fos = kNaN;
-  /// Optional explicit flat of bottom: on z = z_keel from the centre plane out to this
-  /// half-breadth. NaN: none.
-  double y_fob = kNaN;
-  /// Optional skeg (or sonar-dome neck) side: the section lies on y = skeg_half_thickness for
-  /// skeg_bottom <= z <= skeg_top, concave in the fillet above it. NaN: none.
-  double skeg_half_thickness = kNaN;
-  double skeg_bottom = kNaN;
-  double skeg_top = kNaN;
-  /// Data points (y, z) the section passes near (least squares, weight points_weight per
-  /// point relative to the fairness term); empty: none.
-  std::vector<Eigen::Vector2d> points;
-  double points_weight = 1.0;
-  int n_control = 20;          ///< control points of every section of the hull (8 .. 64)
-  /// Fairness of the section: e2 int eta''(t)^2 dt + e3 int eta'''(t)^2 dt (eta over the chord).
-  double e2 = 1.0;
-  double e3 = 0.0;
-};
 
 /// Least and largest number of control points of a section.
 inline constexpr int kMinSectionControls = 8;
 inline constexpr int kMaxSectionControls = 64;
-/// Sections narrower than this fraction of y_max are the centre-line segment from the deck to
-/// the keel (the stem or a cruiser stern's end): every control point on the centre plane.
-inline constexpr double kStemBreadth = 1e-9;
-/// Constraint residuals within this fraction of the section's size count as met.
-inline constexpr double kSectionTol = 1e-9;
+/// Width of the band (fraction of B/2 in breadth and of T in depth) over which the waterline
+/// point and the area fade out as the immersed part of the sections vanishes.
+inline constexpr double kEndBand = 0.1;
+/// Largest value of the shape knob: the straight V (the bilge corner on the chord Q-K).
+inline constexpr double kMaxShapeKnob = 2.0;
 
-/// The knot vector every section with n_control control points shares: clamped uniform cubic.
-Eigen::VectorXd section_knot_vector(int n_control);
-
-/// The result of designing one section: the curve and what the solver needed (for warm starts
-/// and diagnostics).
-struct SectionDesign {
-  NurbsCurve curve;              ///< 3-D cubic (x, y, z) on section_knot_vector(n_control), deck to keel
-  std::vector<int> active;       ///< active inequality rows (warm start for a neighbouring section)
-  double fullness = kNaN;        ///< half_area / (y_dwl (T - z_keel)): the section's area coefficient
+/// One section's numbers (metres; angles in degrees).
+struct SectionSpec {
+  double x = 0;       ///< station (m from the AP); the section lies in the plane x = const
+  double y_deck = 0;  ///< deck-at-side half-breadth, 0 <= y_deck <= y_max
+  double z_deck = 0;  ///< deck-at-side height (m above base)
+  double z_keel = 0;  ///< keel point height on the centre plane (<= z_deck)
+  double y_max = 0;   ///< half-breadth bound B/2 (> 0)
+  double draft = kNaN;      ///< waterline height T (NaN: no waterline condition)
+  double y_dwl = kNaN;      ///< waterline half-breadth at T (NaN or <= 0: not immersed)
+  double half_area = kNaN;  ///< area below T between the section and the centre plane, one side (m^2); NaN: free
+  /// Shape knob used when half_area is NaN (0 fullest .. kMaxShapeKnob a straight V).
+  double shape = 1.0;
+  /// Height of the top corner Y as a fraction of the freeboard (deck height over T): small
+  /// values round the top near the waterline, large ones near the deck (more flare at the deck).
+  double top_corner = 0.5;
+  double deadrise = 0.0;   ///< rise of the bottom at the bilge corner, deg from the horizontal (>= 0)
+  /// Where the bilge corner heads as the section fines (lambda 1 .. 2): the point at this
+  /// fraction of the chord from Q (0) to K (1). 0.5 a symmetric V; < 0.5 the side leans in
+  /// first (deadrise first), > 0.5 the bottom rises first.
+  double character = 0.5;
+  /// Above-water sections (and the limit of immersed ones as the immersed part vanishes): the
+  /// angle at which the section arrives at the keel point, deg from the downward vertical
+  /// toward the centre plane (0 a vertical knife edge). NaN: 0.
+  double lower_angle = kNaN;
+  int n_control = 20;  ///< control points of every section of a hull (kMinSectionControls .. kMaxSectionControls)
 };
 
-/// One section. `warm`: the `active` of a similar section (optional). Throws InvalidInput for
-/// malformed values (naming x and the field) and InfeasibleFormParameters when the section's
-/// form parameters contradict each other or its shape conditions; the message names the
-/// station, the parameters and, for the area, the range a fair section can hold there.
-SectionDesign design_section(const SectionSpec& spec, const std::vector<int>& warm = {});
+/// A designed section and what was needed to build it.
+struct SectionDesign {
+  NurbsCurve curve;          ///< 3-D cubic (x, y, z) on section_knot_vector(n_control), deck (t = 0) to keel (t = 1)
+  double shape = kNaN;       ///< shape knob used
+  double fullness = kNaN;    ///< area below T / (y_dwl (T - z_keel)) achieved (NaN: not immersed)
+  double fullness_min = kNaN, fullness_max = kNaN;  ///< what the family can hold here
+  bool area_met = true;      ///< false when half_area lies outside [fullness_min, fullness_max] (the knob is clamped)
+  double immersion = 0.0;    ///< weight (0 .. 1) of the waterline and area conditions (fades at the waterline's ends)
+};
 
-/// Sections in order, each warm-started from the previous one.
-std::vector<NurbsCurve> design_sections(const std::vector<SectionSpec>& specs);
+/// The knot vector every section with n_control control points shares: clamped uniform cubic on [0, 1].
+Eigen::VectorXd section_knot_vector(int n_control);
 
-/// Least and largest half area below the DWL (m^2) a section with these parameters can hold
-/// with its shape conditions (its own half_area ignored); {NaN, NaN} when it has no DWL part.
-std::pair<double, double> section_area_range(const SectionSpec& spec);
+/// One section. Throws InvalidInput for malformed numbers (naming the station and the field)
+/// and InfeasibleFormParameters when the deck, waterline and keel points make no section that
+/// is one curve over its chord (the message names the station and the points).
+SectionDesign design_section(const SectionSpec& spec);
 
-/// The same as fullness, half_area / (y_dwl (T - z_keel)), for each spec: (q, 2) rows
-/// (least, largest), NaN where a section has no DWL part.
-Eigen::MatrixXd section_fullness_bands(const std::vector<SectionSpec>& specs);
+/// design_section for each spec, in order.
+std::vector<SectionDesign> design_sections(const std::vector<SectionSpec>& specs);
+
+/// The fullness (area below T / (y_dwl (T - z_keel))) the section family can hold at this
+/// station: {least, largest}; {NaN, NaN} where the section is not immersed.
+std::pair<double, double> section_fullness_range(const SectionSpec& spec);
 
 }  // namespace fairlines

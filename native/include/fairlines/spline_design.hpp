@@ -90,8 +90,12 @@ struct SplineDesignRequest {
   /// Linear terms added to the objective: each integral's `value` is its weight (minimised;
   /// a negative weight maximises). With e2, e3 tiny this finds the extremes of an integral.
   std::vector<SplineIntegral> linear;
-  double e2 = 1.0;  ///< weight of int f''^2 dx
-  double e3 = 0.0;  ///< weight of h^2 int f'''^2 dx
+  double e2 = 1.0;  ///< weight of int (f - reference)''^2 dx
+  double e3 = 0.0;  ///< weight of h^2 int (f - reference)'''^2 dx
+  /// Optional coefficients (one per control point, on `knots`) of a reference function: the
+  /// fairness terms measure f - reference, so f is the reference changed as fairly as
+  /// possible to meet the conditions. Empty: none (the plain fairest function).
+  Eigen::VectorXd reference;
 };
 
 /// The fairest spline function meeting the request. Throws InvalidInput for malformed input

@@ -153,6 +153,11 @@ NurbsCurve design_spline_function(const SplineDesignRequest& r) {
   qp.H = 2.0 * r.e2 * detail::derivative_gram(U, p, 2);
   if (r.e3 > 0) qp.H += 2.0 * r.e3 * h * h * detail::derivative_gram(U, p, 3);
   qp.g = Eigen::VectorXd::Zero(n);
+  if (r.reference.size() > 0) {
+    if (r.reference.size() != n) fail(r.name, ": reference has ", r.reference.size(), " coefficients; expected ", n, " (one per control point)");
+    detail::require_finite(r.reference, r.name + ": reference");
+    qp.g -= qp.H * r.reference;
+  }
   for (const auto& f : r.fit) {
     const Eigen::RowVectorXd N = basis_row(U, p, std::clamp(f.x, x0, x1));
     qp.H += 2.0 * f.weight * N.transpose() * N;
