@@ -42,6 +42,8 @@ STEM_RAKE = 20.0            # stem rake above the waterline, deg from the vertic
 TRANSOM_AFT = 0.025         # transom aft of the AP, fraction of Lpp
 LCF_AFT_OF_LCB = 0.015      # default LCF aft of the LCB, fraction of Lpp
 COUNTER_ANGLE = 12.0        # rise of the counter at the transom, deg from the horizontal
+KEEL_RISE = 0.65            # the keel rises over this fraction of the run (Holtrop and Mennen's L_R)
+MIN_KEEL_RISE, MAX_KEEL_RISE = 0.06, 0.3  # ... kept within these fractions of Lpp
 PARALLEL_SLOPE = 1.6        # parallel body length / Lpp per unit Cp above PARALLEL_CP
 PARALLEL_CP = 0.62
 PARALLEL_SHIFT = 1.5        # the parallel body's centre moves this many times the LCB's offset
@@ -127,8 +129,9 @@ def _profile(p: Particulars, c: dict, x_aft: float, x_fore: float) -> dict:
     the deck) and forward through the forefoot to T at the FP and on up the raked stem."""
     L, T, D = p.lpp, p.draft, p.depth
     z_t = c["transom_z"]
-    run = z_t / math.tan(math.radians(COUNTER_ANGLE)) * 1.6
-    keel_aft = x_aft + float(np.clip(run, 0.08 * L, 0.3 * L))
+    lcb_pct = 100 * (p.lcb - L / 2) / L
+    run = L * (1 - c["cp"] + 0.06 * c["cp"] * lcb_pct / (4 * c["cp"] - 1))  # Holtrop and Mennen's run length
+    keel_aft = x_aft + float(np.clip(KEEL_RISE * run, MIN_KEEL_RISE * L, MAX_KEEL_RISE * L))
     keel_fore = L - (0.04 + 0.10 * c["fine"]) * L
     if c["parallel"][1] > c["parallel"][0]:
         keel_aft, keel_fore = min(keel_aft, c["parallel"][0]), max(keel_fore, c["parallel"][1])

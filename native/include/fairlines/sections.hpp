@@ -61,8 +61,9 @@ struct SectionSpec {
   double half_area = kNaN;  ///< area below T between the section and the centre plane, one side (m^2); NaN: free
   /// Shape knob used when half_area is NaN (0 fullest .. kMaxShapeKnob a straight V).
   double shape = 1.0;
-  /// Height of the top corner Y as a fraction of the freeboard (deck height over T): small
-  /// values round the top near the waterline, large ones near the deck (more flare at the deck).
+  /// Where the top corner Y lies above the waterline point Q, on the waterline tangent, as a
+  /// fraction of the distance |D - Q|: small values round the top near the waterline, large
+  /// ones near the deck (more flare at the deck).
   double top_corner = 0.5;
   double deadrise = 0.0;   ///< rise of the bottom at the bilge corner, deg from the horizontal (>= 0)
   /// Where the bilge corner heads as the section fines (lambda 1 .. 2): the point at this

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -66,6 +67,9 @@ constexpr int kAreaGauss = 4;
 constexpr double kFlatGuard = 1e4;
 constexpr double kStraightScale = 1e-5;
 constexpr double kCorrectionSmoothing = 1.0;
+/// ... and the correction stays near Q: its weight grows as the fourth power of the distance
+/// from Q beyond this many knot spans.
+constexpr double kCorrectionReach = 2.0;
 /// Sections shorter than this fraction of B/2 are a point (the stem head).
 constexpr double kPointSection = 1e-9;
 /// Samples per template piece of the check that the template is a graph over its chord.
@@ -214,15 +218,17 @@ Section setup(const SectionSpec& s) {
 
 /// Where the bilge corner heads as the section fines: `character` of the depth below Q, on the
 /// line from Q that leans in by the chord's lean b / d -- or less where the top has no room:
-/// the top corner above Q must stay inside B/2, so tan(lean) <= (B/2 - b) / (top_corner
-/// (z_deck - T)). With little room the bottom rises (deadrise) under a wall-sided waterline
-/// instead of the side leaning in, and the section can still fine down.
+/// the top corner Y (at top_corner |D - Q| above Q along the waterline tangent) must stay
+/// inside B/2, so sin(lean) <= (B/2 - b) / (top_corner |D - Q|). With little room the bottom
+/// rises (deadrise) under a wall-sided waterline instead of the side leaning in, and the
+/// section can still fine down.
 V2 heading(const Section& S) {
   const SectionSpec& s = S.s;
   const double chord = S.b / S.d;
-  const double room = (s.y_max - S.b) / std::max(s.top_corner * (S.f.D.y() - S.Q.y()), 1e-12);
+  const double sin_room = (s.y_max - S.b) / std::max(s.top_corner * (S.f.D - S.Q).norm(), 1e-12);
+  const double room = sin_room >= 1.0 ? std::numeric_limits<double>::infinity() : sin_room / std::sqrt(1.0 - sin_room * sin_room);
   const double r = room / chord;
-  const double lean = chord * r / std::pow(1.0 + std::pow(r, kHeadingSharpness), 1.0 / kHeadingSharpness);  // smooth min(room, chord)
+  const double lean = std::isinf(r) ? chord : chord * r / std::pow(1.0 + std::pow(r, kHeadingSharpness), 1.0 / kHeadingSharpness);
   return S.Q + s.character * S.d * V2(-lean, -1.0);
 }
 
@@ -241,7 +247,7 @@ std::vector<Piece> immersed_template(const Section& S, double lambda) {
   const double r = std::min(l1, l2) * (kMinFillet + (1.0 - kMinFillet) * sr);
   const V2 A = X - r * tw;
   const V2 B = l2 > 0 ? V2(X + r * (K - X) / l2) : K;
-  const V2 Y = Q - s.top_corner * (D.y() - Q.y()) / std::max(-tw.y(), 1e-12) * tw;
+  const V2 Y = Q - s.top_corner * (D - Q).norm() * tw;
   return {fillet(D, Y, Q), line(Q, A), fillet(A, X, B), line(B, K)};
 }
 
@@ -251,7 +257,7 @@ std::vector<Piece> above_template(const Section& S) {
   const SectionSpec& s = S.s;
   const double a = (std::isnan(s.lower_angle) ? 0.0 : s.lower_angle) * std::numbers::pi / 180.0;
   const V2 t_low(-std::sin(a), -std::cos(a));
-  const V2 Y = S.K - s.top_corner * (S.f.D.y() - S.K.y()) / std::cos(a) * t_low;
+  const V2 Y = S.K - s.top_corner * (S.f.D - S.K).norm() * t_low;
   return {fillet(S.f.D, Y, S.K)};
 }
 
@@ -355,10 +361,12 @@ double knob_limit(const Section& S) {
 Eigen::VectorXd correction(const Section& S, const Eigen::VectorXd& eta, double eta_q, const Eigen::RowVectorXd& arow) {
   const int n = S.l.n;
   Eigen::MatrixXd Mw = Eigen::MatrixXd::Zero(n, n);
+  const double span = 1.0 / (n - kDegree);
   for (int k = 0; k < n; ++k) {
     double curv = 0.0;
     if (k > 0 && k < n - 1) curv = (eta[k - 1] - 2.0 * eta[k] + eta[k + 1]) / (kStraightScale * S.f.L);
-    Mw(k, k) = 1.0 + kFlatGuard / (1.0 + curv * curv);
+    const double far = (S.l.g[k] - S.t_q) / (kCorrectionReach * span);
+    Mw(k, k) = (1.0 + kFlatGuard / (1.0 + curv * curv)) * (1.0 + far * far * far * far);
   }
   for (int k = 1; k + 1 < n; ++k) {
     const Eigen::Vector3d c(1.0, -2.0, 1.0);
