@@ -25,6 +25,9 @@ enum class KnotMethod {
 Parameterization parse_parameterization(const std::string& name);
 /// Parses "average" | "hartley_judd"; throws InvalidInput naming the bad value.
 KnotMethod parse_knot_method(const std::string& name);
+/// The names parse_parameterization and parse_knot_method accept for each value.
+std::string parameterization_name(Parameterization method);
+std::string knot_method_name(KnotMethod method);
 
 /// Checks a knot vector for a B-spline of `degree` with `n_control` control points:
 /// length n_control + degree + 1, finite, non-decreasing, no interior multiplicity
