@@ -1,4 +1,5 @@
-"""Readers for existing hull data, converted to the project's conventions (SPEC §6).
+"""Readers for existing hull data, converted to the project's conventions
+(metres, x forward from the AP, y half-breadth >= 0, z up from the baseline).
 
 Every reader returns a :class:`HullData`: metres, x forward from the aft perpendicular (AP),
 y half-breadth >= 0, z up from the baseline. Three kinds of input are understood:
@@ -44,7 +45,7 @@ class Section:
 
 @dataclasses.dataclass
 class PointGrid:
-    """A structured grid (rows, cols, 3) in SPEC §6 metres. ``role`` names the part of the hull
+    """A structured grid (rows, cols, 3) in the project's metres and axes. ``role`` names the part of the hull
     it covers ('hull', 'bow', 'bulb', 'transom', ...)."""
     name: str
     points: np.ndarray
@@ -53,7 +54,7 @@ class PointGrid:
 
 @dataclasses.dataclass
 class HullData:
-    """Hull geometry read from a file, in SPEC §6 metres.
+    """Hull geometry read from a file, in the project's metres and axes.
 
     ``sections`` (offsets tables, section lists) or ``grids`` (structured grids) hold the
     geometry; ``offsets`` keeps the table itself (x of the stations, z of the waterlines,
@@ -293,7 +294,7 @@ def section_from_offsets(half_breadths, z) -> np.ndarray:
 
 
 def read_sections_csv(path, lpp, beam, draft, *, name=None) -> HullData:
-    """Read section points: CSV rows ``x,y,z`` in metres (SPEC §6), one station after another,
+    """Read section points: CSV rows ``x,y,z`` in metres (the project's axes), one station after another,
     each station's points ordered from the keel up. Stations need not be in order (noted);
     a station given twice raises; a section that crosses itself raises."""
     lpp, beam, draft = _positive("Lpp", lpp), _positive("beam", beam), _positive("draft", draft)
@@ -462,7 +463,7 @@ def read_tecplot(path) -> list:
 
 
 def read_tecplot_hull(path, lpp, beam, draft, *, name=None) -> HullData:
-    """A Tecplot point-grid file whose zones are hull patches already in SPEC §6 metres (rows
+    """A Tecplot point-grid file whose zones are hull patches already in the project's metres and axes (rows
     stations from aft forward, columns keel to top, like the reference grids once converted).
     Each zone becomes one subdomain; negative y (a port-side grid) is mirrored."""
     lpp, beam, draft = _positive("Lpp", lpp), _positive("beam", beam), _positive("draft", draft)
@@ -476,7 +477,7 @@ def read_tecplot_hull(path, lpp, beam, draft, *, name=None) -> HullData:
 
 
 def read_dtmb5415(folder, *, published=None) -> HullData:
-    """DTMB 5415 model: the bow, main and transom grids of ``folder`` converted to SPEC §6.
+    """DTMB 5415 model: the bow, main and transom grids of ``folder`` converted to the project's axes.
 
     Source frame: metres, FP near x = 0, AP at x = -5.719, z = 0 at the keel line. The main
     grid's rows are stations; it overlaps the bow grid forward of the bow grid's first row (a
@@ -517,7 +518,7 @@ def read_kcs(folder, *, lpp=230.0, beam=32.2, draft=10.8) -> HullData:
     """KCS: the NMRI two-block grids ``kcs_bow2.dat`` and ``kcs_stn2.dat`` scaled by Lpp.
 
     Source frame: coordinates / Lpp, origin midship on the calm waterline, X downstream (FP at
-    X = -0.5), Y starboard, Z up. SPEC §6: x = (0.5 - X) Lpp, y = Y Lpp, z = Z Lpp + T."""
+    X = -0.5), Y starboard, Z up. In the project's axes: x = (0.5 - X) Lpp, y = Y Lpp, z = Z Lpp + T."""
     folder = pathlib.Path(folder)
     lpp, beam, draft = _positive("Lpp", lpp), _positive("beam", beam), _positive("draft", draft)
     grids = []
