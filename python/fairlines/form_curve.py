@@ -86,8 +86,8 @@ def _is_int(v) -> bool:
 def _unknown(kind, key, expected):
     """InvalidInput for an unknown key, with the nearest valid one."""
     near = difflib.get_close_matches(str(key), expected, n=1, cutoff=0.5)
-    hint = f"; did you mean {near[0]!r}?" if near else ""
-    return InvalidInput(f"unknown {kind} {key!r}{hint} Expected one of {', '.join(expected)}")
+    hint = f" (did you mean {near[0]!r}?)" if near else ""
+    return InvalidInput(f"unknown {kind} {key!r}{hint}; expected one of {', '.join(expected)}")
 
 
 def _int(name, value, lo, hi=2**31 - 1):

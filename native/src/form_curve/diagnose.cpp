@@ -53,7 +53,7 @@ size_t edit_distance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
-// "unknown form parameter 'e22'; did you mean 'xE'? expected one of ...".
+// "unknown form parameter 'Aera' (did you mean 'Area'?); expected one of ...".
 [[noreturn]] void unknown_parameter(const std::string& key) {
   const auto& names = form_parameter_names();
   std::string list, nearest;
@@ -63,8 +63,8 @@ size_t edit_distance(const std::string& a, const std::string& b) {
     const size_t d = edit_distance(key, nm);
     if (d < best) best = d, nearest = nm;
   }
-  std::string hint = best <= std::max<size_t>(2, key.size() / 2) ? "; did you mean '" + nearest + "'?" : "";
-  throw InvalidInput("unknown form parameter '" + key + "'" + hint + " Expected one of " + list);
+  std::string hint = best <= std::max<size_t>(2, key.size() / 2) ? " (did you mean '" + nearest + "'?)" : "";
+  throw InvalidInput("unknown form parameter '" + key + "'" + hint + "; expected one of " + list);
 }
 
 // Magnitude limit of a form parameter in the unit of the offsets (see limits.hpp).
