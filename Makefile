@@ -99,3 +99,27 @@ blender-screenshot: addon blender-deps
 	BLENDER_USER_SCRIPTS=$(abspath build/shot/scripts) BLENDER_USER_CONFIG=$(abspath build/shot/config) \
 	  xvfb-run -a -s "-screen 0 1600x1000x24" blender --python tools/blender_screenshot.py -- \
 	  --zip "$$(ls dist/fairlines_blender-*-legacy.zip)" --out docs/node_editor.png
+
+# ---- reliability: fuzzing and sanitizers (docs/reliability.md) ----------------------------
+# atheris harnesses in fuzz/, corpora in fuzz/corpus/<harness>; FUZZ_RUNS runs per harness.
+FUZZ_RUNS ?= 200000
+
+.PHONY: fuzz fuzz-smoke sanitize
+
+fuzz: build
+	$(PY) fuzz/run.py --runs $(FUZZ_RUNS)
+
+# CI: each harness on its corpus plus 2000 runs (at most a minute each).
+fuzz-smoke: build
+	$(PY) fuzz/run.py --smoke
+
+# The C++ tests built with AddressSanitizer and UBSan in their own build directory; any report
+# fails the run (halt_on_error, no recovery from UB).
+SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+sanitize: sysdeps pydeps
+	$(VENV)/bin/cmake -S . -B build/sanitize -G Ninja -DCMAKE_MAKE_PROGRAM=$(abspath $(VENV)/bin/ninja) \
+	  -DFAIRLINES_BUILD_TESTS=ON -DFAIRLINES_BUILD_PYTHON=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  "-DCMAKE_CXX_FLAGS=$(SAN_FLAGS)" "-DCMAKE_EXE_LINKER_FLAGS=$(SAN_FLAGS)"
+	$(VENV)/bin/cmake --build build/sanitize -j $(JOBS)
+	cd build/sanitize && ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:abort_on_error=1 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 $(abspath $(VENV)/bin/ctest) --output-on-failure -j $(JOBS)

@@ -1,5 +1,6 @@
-// Python bindings of the form-parameter curve solver (private functions; the public
-// API is fairlines.design_curve in python/fairlines/form_curve.py).
+// Python bindings of the form-parameter curve solver. The request and its option structs
+// are bound once (their defaults live in fairlines/form_curve.hpp); the public API is
+// fairlines.design_curve in python/fairlines/form_curve.py.
 #include <cmath>
 #include <string>
 
@@ -24,96 +25,132 @@ double number(const py::handle& obj, const std::string& what) {
   return obj.cast<double>();
 }
 
-FormCurveRequest make_request(const py::dict& params, int n_control, int degree, int dim, const py::dict& fairness,
-                              const py::list& points, const py::dict& bounds, const py::dict& options,
-                              const py::handle& tangent_start, const py::handle& tangent_end,
-                              const py::handle& initial) {
-  FormCurveRequest r;
-  r.dim = dim;
-  r.n_control = n_control;
-  r.degree = degree;
+std::map<std::string, double> form_params(const py::dict& params) {
+  std::map<std::string, double> out;
   for (auto [k, v] : params) {
+    if (!py::isinstance<py::str>(k))
+      throw InvalidInput("form parameter name " + py::repr(k).cast<std::string>() + " is not a string");
     const std::string key = py::str(k);
-    r.params[key] = number(v, "form parameter " + key);
+    out[key] = number(v, "form parameter " + key);
   }
+  return out;
+}
+
+// Offset points: a list of (position, weight) pairs, weight inf = interpolate.
+std::vector<FormPoint> form_points(const py::list& points) {
+  std::vector<FormPoint> out;
+  for (size_t j = 0; j < points.size(); ++j) {
+    const std::string nm = "points[" + std::to_string(j) + "]";
+    if (!py::isinstance<py::tuple>(points[j]) || py::len(points[j]) != 2)
+      throw InvalidInput(nm + " must be a pair (position, weight)");
+    const py::tuple item = points[j].cast<py::tuple>();
+    FormPoint fp;
+    fp.position = py_convert::vector(item[0], nm.c_str());
+    fp.weight = number(item[1], nm + " weight");
+    out.push_back(fp);
+  }
+  return out;
+}
+
+// Fairness weights from a dict {e1, e2, e3, length}; unlisted weights are zero.
+FairnessWeights fairness_from(const py::dict& fairness) {
+  FairnessWeights w{0.0, 0.0, 0.0, 0.0};
   for (auto [k, v] : fairness) {
     const std::string key = py::str(k);
     const double val = number(v, "fairness weight " + key);
-    if (key == "e1") r.fairness.e1 = val;
-    else if (key == "e2") r.fairness.e2 = val;
-    else if (key == "e3") r.fairness.e3 = val;
-    else if (key == "length" || key == "s" || key == "S") r.fairness.length = val;
+    if (key == "e1") w.e1 = val;
+    else if (key == "e2") w.e2 = val;
+    else if (key == "e3") w.e3 = val;
+    else if (key == "length") w.length = val;
     else throw InvalidInput("unknown fairness weight '" + key + "'; expected e1, e2, e3 or length");
   }
-  for (size_t j = 0; j < points.size(); ++j) {
-    const py::tuple item = points[j].cast<py::tuple>();
-    FormPoint fp;
-    const std::string nm = "points[" + std::to_string(j) + "]";
-    fp.position = py_convert::vector(item[0], nm.c_str());
-    fp.weight = number(item[1], nm + " weight");
-    r.points.push_back(fp);
-  }
-  for (auto [k, v] : bounds) {
-    const std::string key = py::str(k);
-    if (key == "monotone_axis") r.bounds.monotone_axis = v.cast<int>();
-    else if (key == "y_nonnegative") r.bounds.y_nonnegative = v.cast<bool>();
-    else if (key == "min_end_speed") r.bounds.min_end_speed = number(v, "bounds min_end_speed");
-    else throw InvalidInput("unknown bound '" + key + "'");
-  }
-  for (auto [k, v] : options) {
-    const std::string key = py::str(k);
-    if (key == "tolerance") r.options.tolerance = number(v, "tolerance");
-    else if (key == "max_iterations") r.options.max_iterations = v.cast<int>();
-    else if (key == "continuation") r.options.continuation = v.cast<bool>();
-    else if (key == "multistart") r.options.multistart = v.cast<int>();
-    else if (key == "seed") r.options.seed = v.cast<unsigned>();
-    else throw InvalidInput("unknown solver option '" + key + "'");
-  }
+  return w;
+}
+
+void set_optional_vectors(FormCurveRequest& r, const py::handle& tangent_start, const py::handle& tangent_end,
+                          const py::handle& initial) {
   if (!tangent_start.is_none()) r.tangent_start = py_convert::vector(tangent_start, "tangent_start");
   if (!tangent_end.is_none()) r.tangent_end = py_convert::vector(tangent_end, "tangent_end");
-  if (!initial.is_none()) r.initial_control_points = py_convert::matrix(initial, "initial_control_points", dim);
-  return r;
+  if (!initial.is_none()) r.initial_control_points = py_convert::matrix(initial, "initial_control_points", r.dim);
+}
+
+py::dict result_dict(const FormCurveResult& res) {
+  py::dict out;
+  out["degree"] = res.degree;
+  out["knots"] = py_convert::to_array(res.knots);
+  out["control_points"] = py_convert::to_array(res.control_points);
+  out["achieved"] = res.achieved;
+  out["residuals"] = res.residuals;
+  out["point_parameters"] = py_convert::to_array(res.point_parameters);
+  out["point_residuals"] = py_convert::to_array(res.point_residuals);
+  out["fairness"] = py::dict("E1"_a = res.fairness.E1, "E2"_a = res.fairness.E2, "E3"_a = res.fairness.E3,
+                             "length"_a = res.fairness.length);
+  out["objective"] = res.objective;
+  out["iterations"] = res.iterations;
+  out["continuation_steps"] = res.continuation_steps;
+  out["converged"] = res.converged;
+  return out;
+}
+
+void bind_option_structs(py::module_& m) {
+  py::class_<FairnessWeights>(m, "FairnessWeights", "Weights of the fairness objective (all >= 0, one of e1, e2, e3 > 0).")
+      .def(py::init<>())
+      .def_readwrite("e1", &FairnessWeights::e1, "weight of E1 = int |C'|^2 dt")
+      .def_readwrite("e2", &FairnessWeights::e2, "weight of E2 = int |C''|^2 dt")
+      .def_readwrite("e3", &FairnessWeights::e3, "weight of E3 = int |C'''|^2 dt")
+      .def_readwrite("length", &FairnessWeights::length, "weight of the arc length");
+  py::class_<FormBounds>(m, "FormBounds", "Conditions on the control polygon that keep a section a section.")
+      .def(py::init<>())
+      .def_readwrite("monotone_axis", &FormBounds::monotone_axis, "0: x monotone, 1: y monotone, -1: none")
+      .def_readwrite("y_nonnegative", &FormBounds::y_nonnegative, "all control y >= 0")
+      .def_readwrite("min_end_speed", &FormBounds::min_end_speed,
+                     "where an end tangent is given, the end derivative along it is at least this fraction of the chord");
+  py::class_<FormSolverOptions>(m, "FormSolverOptions", "Options of the form-parameter solver.")
+      .def(py::init<>())
+      .def_readwrite("tolerance", &FormSolverOptions::tolerance, "bound on the scaled constraint residuals, 0 < tol < 1e-3")
+      .def_readwrite("max_iterations", &FormSolverOptions::max_iterations,
+                     "Newton iterations per start, 1 .. fairlines.limits.MAX_FORM_CURVE_ITERATIONS")
+      .def_readwrite("continuation", &FormSolverOptions::continuation, "False: aim at the requested values directly")
+      .def_readwrite("multistart", &FormSolverOptions::multistart,
+                     "extra randomised starts (fairest kept), 0 .. fairlines.limits.MAX_FORM_CURVE_MULTISTART")
+      .def_readwrite("seed", &FormSolverOptions::seed, "random seed of the multistart");
+  py::class_<FormCurveRequest>(m, "FormCurveRequest",
+                               "A form-parameter curve request without its offset points, tangents and start curve.")
+      .def(py::init<>())
+      .def_readwrite("dim", &FormCurveRequest::dim, "2 (plane curve) or 3 (space curve)")
+      .def_readwrite("n_control", &FormCurveRequest::n_control,
+                     "control points, degree + 1 .. fairlines.limits.MAX_FORM_CURVE_CONTROL_POINTS")
+      .def_readwrite("degree", &FormCurveRequest::degree, "B-spline degree, 2 .. 15")
+      .def_readwrite("params", &FormCurveRequest::params, "form parameters by name (fairlines.FORM_PARAMETERS)")
+      .def_readwrite("fairness", &FormCurveRequest::fairness, "FairnessWeights")
+      .def_readwrite("bounds", &FormCurveRequest::bounds, "FormBounds")
+      .def_readwrite("options", &FormCurveRequest::options, "FormSolverOptions");
 }
 
 }  // namespace
 
 void bind_form_curve(py::module_& m) {
+  bind_option_structs(m);
   m.def(
       "_design_form_curve",
-      [](const py::dict& params, int n_control, int degree, int dim, const py::dict& fairness, const py::list& points,
-         const py::dict& bounds, const py::dict& options, const py::handle& tangent_start,
-         const py::handle& tangent_end, const py::handle& initial) {
-        const FormCurveRequest req = make_request(params, n_control, degree, dim, fairness, points, bounds, options,
-                                                  tangent_start, tangent_end, initial);
+      [](FormCurveRequest req, const py::list& points, const py::handle& tangent_start, const py::handle& tangent_end,
+         const py::handle& initial) {
+        req.points = form_points(points);
+        set_optional_vectors(req, tangent_start, tangent_end, initial);
         FormCurveResult res;
         {
           py::gil_scoped_release release;
           res = design_form_curve(req);
         }
-        py::dict out;
-        out["degree"] = res.degree;
-        out["knots"] = py_convert::to_array(res.knots);
-        out["control_points"] = py_convert::to_array(res.control_points);
-        out["achieved"] = res.achieved;
-        out["residuals"] = res.residuals;
-        out["point_parameters"] = py_convert::to_array(res.point_parameters);
-        out["point_residuals"] = py_convert::to_array(res.point_residuals);
-        out["fairness"] = py::dict("E1"_a = res.fairness.E1, "E2"_a = res.fairness.E2, "E3"_a = res.fairness.E3,
-                                   "length"_a = res.fairness.length);
-        out["objective"] = res.objective;
-        out["iterations"] = res.iterations;
-        out["continuation_steps"] = res.continuation_steps;
-        out["converged"] = res.converged;
-        return out;
+        return result_dict(res);
       },
-      "params"_a, "n_control"_a, "degree"_a, "dim"_a, "fairness"_a, "points"_a, "bounds"_a, "options"_a,
-      "tangent_start"_a = py::none(), "tangent_end"_a = py::none(), "initial_control_points"_a = py::none(),
-      "Form-parameter curve solver (private; use fairlines.design_curve).");
+      "request"_a, py::kw_only(), "points"_a = py::list(), "tangent_start"_a = py::none(), "tangent_end"_a = py::none(),
+      "initial_control_points"_a = py::none(), "Form-parameter curve solver (private; use fairlines.design_curve).");
 
   m.def(
       "form_parameters_of",
-      [](int degree, const py::handle& cps) {
-        return form_parameters_of(degree, py_convert::matrix(cps, "control_points"));
+      [](py::handle degree, const py::handle& cps) {
+        return form_parameters_of(py_convert::checked_int(degree, "degree"), py_convert::matrix(cps, "control_points"));
       },
       "degree"_a, "control_points"_a,
       "Every form parameter (xB.., alphaB/E in degrees, CAB/CAE, Area, xC, yC) of the clamped uniform "
@@ -121,8 +158,8 @@ void bind_form_curve(py::module_& m) {
 
   m.def(
       "fairness_of",
-      [](int degree, const py::handle& cps) {
-        const FairnessMeasures f = fairness_of(degree, py_convert::matrix(cps, "control_points"));
+      [](py::handle degree, const py::handle& cps) {
+        const FairnessMeasures f = fairness_of(py_convert::checked_int(degree, "degree"), py_convert::matrix(cps, "control_points"));
         return py::dict("E1"_a = f.E1, "E2"_a = f.E2, "E3"_a = f.E3, "length"_a = f.length);
       },
       "degree"_a, "control_points"_a,
@@ -134,10 +171,15 @@ void bind_form_curve(py::module_& m) {
 
   m.def(
       "_form_curve_derivatives",
-      [](const py::dict& params, int n_control, int degree, int dim, const py::dict& fairness, const py::list& points,
-         const py::handle& z, const py::handle& lambda) {
-        const FormCurveRequest req = make_request(params, n_control, degree, dim, fairness, points, py::dict(),
-                                                  py::dict(), py::none(), py::none(), py::none());
+      [](const py::dict& params, py::handle n_control, py::handle degree, py::handle dim, const py::dict& fairness,
+         const py::list& points, const py::handle& z, const py::handle& lambda) {
+        FormCurveRequest req;
+        req.params = form_params(params);
+        req.n_control = py_convert::checked_int(n_control, "n_control");
+        req.degree = py_convert::checked_int(degree, "degree");
+        req.dim = py_convert::checked_int(dim, "dim");
+        req.fairness = fairness_from(fairness);
+        req.points = form_points(points);
         const auto d = form_curve_detail::evaluate_problem(req, py_convert::vector(z, "z"),
                                                            lambda.is_none() ? Eigen::VectorXd()
                                                                             : py_convert::vector(lambda, "lambda"));

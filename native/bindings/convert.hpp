@@ -96,6 +96,28 @@ inline py::array_t<double> to_array(const Eigen::VectorXd& v) {
   return out;
 }
 
+/// A Python integer (or an integral float such as 3.0) that fits an int; anything else,
+/// including a bool or an integer beyond the int range, is InvalidInput naming `what`.
+inline int checked_int(const py::handle& obj, const char* what) {
+  if (!py::isinstance<py::bool_>(obj) && py::isinstance<py::float_>(obj)) {
+    const double d = obj.cast<double>();
+    if (std::isfinite(d) && d == std::floor(d) && std::abs(d) <= 2147483647.0) return static_cast<int>(d);
+  }
+  const std::string shown = py::repr(obj).cast<std::string>();
+  PyObject* index = py::isinstance<py::bool_>(obj) ? nullptr : PyNumber_Index(obj.ptr());
+  if (index == nullptr) {
+    PyErr_Clear();
+    throw InvalidInput(std::string(what) + " is " + shown + "; expected an integer");
+  }
+  const py::object held = py::reinterpret_steal<py::object>(index);
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(held.ptr(), &overflow);
+  if (PyErr_Occurred()) PyErr_Clear();
+  if (overflow != 0 || v < -2147483648LL || v > 2147483647LL)
+    throw InvalidInput(std::string(what) + " is " + shown + "; expected an integer of a sensible size (far below 2^31)");
+  return static_cast<int>(v);
+}
+
 /// True when obj is a Python or numpy scalar (so results drop the sample axis).
 inline bool is_scalar(const py::handle& obj) {
   if (py::isinstance<py::float_>(obj) || py::isinstance<py::int_>(obj)) return true;

@@ -1,4 +1,5 @@
-"""Readers for existing hull data, converted to the project's conventions (SPEC §6).
+"""Readers for existing hull data, converted to the project's conventions
+(metres, x forward from the AP, y half-breadth >= 0, z up from the baseline).
 
 Every reader returns a :class:`HullData`: metres, x forward from the aft perpendicular (AP),
 y half-breadth >= 0, z up from the baseline. Three kinds of input are understood:
@@ -11,8 +12,9 @@ y half-breadth >= 0, z up from the baseline. Three kinds of input are understood
 Poor data is handled explicitly: unsorted stations or waterlines are sorted and the fact is
 recorded in ``HullData.notes``; exact duplicate stations are merged (noted), conflicting ones
 raise; blank cells are dropped from their section (noted); unreadable or negative cells,
-sections that fold back (cross themselves) and grids with holes raise ``ValueError`` naming
-the file, row/column or station and what was expected.
+sections that fold back (cross themselves) and grids with holes raise
+:class:`fairlines.InvalidInput` (a ``ValueError``) naming the file, row/column or station and
+what was expected; so does every other malformed input, whatever the reader.
 """
 
 from __future__ import annotations
@@ -24,6 +26,8 @@ import re
 
 import numpy as np
 
+from ._native import InvalidInput
+
 # Two stations closer than this fraction of Lpp are the same station (duplicates).
 STATION_MATCH_TOL = 1e-9
 # Stations may lie beyond the perpendiculars (overhangs, a bulb), but not by more than this
@@ -31,6 +35,15 @@ STATION_MATCH_TOL = 1e-9
 STATION_RANGE_MARGIN = 0.25
 # Turning angle (degrees) between two section segments above which the point is a knuckle.
 KNUCKLE_ANGLE_DEG = 35.0
+# Principal dimensions outside this range (metres) are refused: from a small tank model to
+# the largest ships; beyond it the unit is wrong (millimetres) or the value is a typo.
+LENGTH_RANGE_M = (0.1, 1000.0)
+# Points of one station a section list may hold: the fold-back check compares every pair of
+# segments, so this bounds its work.
+MAX_SECTION_POINTS = 5000
+# Largest half-breadth fraction a normalised table may hold (fractions of a waterline's own
+# maximum, or of B/2, are at most 1 in principle; measured data overshoots a little).
+HALF_BREADTH_FRACTION_MAX = 10.0
 
 
 @dataclasses.dataclass
@@ -44,7 +57,7 @@ class Section:
 
 @dataclasses.dataclass
 class PointGrid:
-    """A structured grid (rows, cols, 3) in SPEC §6 metres. ``role`` names the part of the hull
+    """A structured grid (rows, cols, 3) in the project's metres and axes. ``role`` names the part of the hull
     it covers ('hull', 'bow', 'bulb', 'transom', ...)."""
     name: str
     points: np.ndarray
@@ -53,7 +66,7 @@ class PointGrid:
 
 @dataclasses.dataclass
 class HullData:
-    """Hull geometry read from a file, in SPEC §6 metres.
+    """Hull geometry read from a file, in the project's metres and axes.
 
     ``sections`` (offsets tables, section lists) or ``grids`` (structured grids) hold the
     geometry; ``offsets`` keeps the table itself (x of the stations, z of the waterlines,
@@ -78,13 +91,27 @@ class HullData:
 
 
 def _positive(name, value):
+    """A principal dimension in metres within LENGTH_RANGE_M; InvalidInput with a units hint."""
     try:
         v = float(value)
     except (TypeError, ValueError):
-        raise ValueError(f"{name} is {value!r}; expected a positive number of metres") from None
+        raise InvalidInput(f"{name} is {value!r}; expected a positive number of metres") from None
     if not np.isfinite(v) or v <= 0:
-        raise ValueError(f"{name} is {value!r}; expected a positive number of metres")
+        raise InvalidInput(f"{name} is {value!r}; expected a positive number of metres")
+    lo, hi = LENGTH_RANGE_M
+    if not lo <= v <= hi:
+        hint = " (millimetres? divide by 1000)" if v > hi else ""
+        raise InvalidInput(f"{name} is {value!r}; expected {lo} to {hi} m{hint}")
     return v
+
+
+def _dimensions(lpp, beam, draft):
+    """(Lpp, beam, draft) checked: each in LENGTH_RANGE_M, beam and draft below Lpp."""
+    lpp, beam, draft = _positive("Lpp", lpp), _positive("beam", beam), _positive("draft", draft)
+    for name, v in (("beam", beam), ("draft", draft)):
+        if v >= lpp:
+            raise InvalidInput(f"{name} is {v} m; expected less than Lpp = {lpp} m (same unit: metres)")
+    return lpp, beam, draft
 
 
 def _cell(text, path, row, col):
@@ -95,9 +122,9 @@ def _cell(text, path, row, col):
     try:
         v = float(t)
     except ValueError:
-        raise ValueError(f"{path}: row {row}, column {col!r} is {t!r}; expected a number") from None
+        raise InvalidInput(f"{path}: row {row}, column {col!r} is {t!r}; expected a number") from None
     if not np.isfinite(v):
-        raise ValueError(f"{path}: row {row}, column {col!r} is {t!r}; expected a finite number")
+        raise InvalidInput(f"{path}: row {row}, column {col!r} is {t!r}; expected a finite number")
     return v
 
 
@@ -107,9 +134,9 @@ def _csv_rows(path):
     try:
         text = path.read_text(encoding="utf-8-sig")
     except OSError as exc:
-        raise ValueError(f"cannot read {path}: {exc.strerror or exc}") from None
+        raise InvalidInput(f"cannot read {path}: {exc.strerror or exc}") from None
     except UnicodeDecodeError:
-        raise ValueError(f"{path} is not a text file; expected CSV") from None
+        raise InvalidInput(f"{path} is not a text file; expected CSV") from None
     rows, comments = [], []
     for lineno, line in enumerate(text.splitlines(), 1):
         if line.lstrip().startswith("#"):
@@ -119,8 +146,17 @@ def _csv_rows(path):
             continue
         rows.append((lineno, next(csv.reader([line]))))
     if not rows:
-        raise ValueError(f"{path}: no data rows; expected a header line and one row per station")
+        raise InvalidInput(f"{path}: no data rows; expected a header line and one row per station")
     return rows, comments
+
+
+def _float_or_none(text):
+    """float(text) if it is a finite number, else None."""
+    try:
+        v = float(text)
+    except ValueError:
+        return None
+    return v if np.isfinite(v) else None
 
 
 def _waterline_height(label, path, draft, normalised):
@@ -130,9 +166,9 @@ def _waterline_height(label, path, draft, normalised):
     if lab in ("tan_line", "baseline", "base", "bl"):
         return 0.0
     m = re.fullmatch(r"(?:wl_?|z=?)?\s*([-+0-9.eE]+)\s*(?:m)?", lab)
-    if not m:
-        raise ValueError(f"{path}: column header {label!r}; expected 'tan_line', 'wl_<z/T>' or a height")
-    v = float(m.group(1))
+    v = _float_or_none(m.group(1)) if m else None
+    if v is None:
+        raise InvalidInput(f"{path}: column header {label!r}; expected 'tan_line', 'wl_<z/T>' or a height")
     if lab.startswith("wl") or normalised:
         return v * draft
     return v
@@ -149,21 +185,27 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
     metres, half-breadths in metres. Extra columns such as ``area_fraction`` are kept in
     ``offsets['extra']``. ``normalised`` None decides from the first header ('station' or 'x').
     """
-    lpp, beam, draft = _positive("Lpp", lpp), _positive("beam", beam), _positive("draft", draft)
+    lpp, beam, draft = _dimensions(lpp, beam, draft)
+    if isinstance(n_stations, bool) or not isinstance(n_stations, (int, np.integer)) or not 1 <= n_stations <= 1000:
+        raise InvalidInput(f"n_stations is {n_stations!r}; expected an integer from 1 to 1000 (intervals between the perpendiculars)")
     rows, comments = _csv_rows(path)
     head_line, header = rows[0]
     header = [h.strip() for h in header]
     first = header[0].lower()
     if normalised is None:
         if first not in ("station", "x"):
-            raise ValueError(f"{path}: first column is {header[0]!r}; expected 'station' (normalised) or 'x' (metres)")
+            raise InvalidInput(f"{path}: first column is {header[0]!r}; expected 'station' (normalised) or 'x' (metres)")
         normalised = first == "station"
     wl_cols, extra_cols = [], []
     for k, h in enumerate(header[1:], 1):
         (extra_cols if h.lower() in ("area_fraction", "area", "note") else wl_cols).append(k)
     if len(wl_cols) < 2:
-        raise ValueError(f"{path}: {len(wl_cols)} waterline column(s); expected at least 2")
+        raise InvalidInput(f"{path}: {len(wl_cols)} waterline column(s); expected at least 2")
     z = np.array([_waterline_height(header[k], path, draft, normalised) for k in wl_cols])
+    if np.any(np.abs(z) > lpp):
+        k = wl_cols[int(np.flatnonzero(np.abs(z) > lpp)[0])]
+        raise InvalidInput(f"{path}: column header {header[k]!r} puts a waterline {np.abs(z).max():.6g} m from the "
+                           f"baseline but Lpp is {lpp} m; expected heights in metres")
     notes = []
     scale_row = None
     labels, xs, table, extra = [], [], [], []
@@ -180,39 +222,43 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
             elif lab.upper() == "AP":
                 st = float(n_stations)
             else:
-                try:
-                    st = float(lab)
-                except ValueError:
-                    raise ValueError(f"{path}: row {lineno} station is {lab!r}; expected FP, AP or a number") from None
+                st = _float_or_none(lab)
+                if st is None:
+                    raise InvalidInput(f"{path}: row {lineno} station is {lab!r}; expected FP, AP or a number")
             xpos = (n_stations - st) / n_stations * lpp  # stations count from the FP; x from the AP
         else:
             xpos = _cell(lab, path, lineno, header[0])
             if np.isnan(xpos):
-                raise ValueError(f"{path}: row {lineno} has no x; expected metres forward of the AP")
+                raise InvalidInput(f"{path}: row {lineno} has no x; expected metres forward of the AP")
         vals = np.array([_cell(row[k], path, lineno, header[k]) for k in wl_cols])
         bad = np.flatnonzero(vals < 0)
         if bad.size:
             k = wl_cols[bad[0]]
-            raise ValueError(f"{path}: row {lineno}, column {header[k]!r} is {vals[bad[0]]}; "
+            raise InvalidInput(f"{path}: row {lineno}, column {header[k]!r} is {vals[bad[0]]}; "
                              "expected a half-breadth >= 0")
+        wide = np.flatnonzero(vals > (HALF_BREADTH_FRACTION_MAX if normalised else beam))
+        if wide.size:
+            k = wl_cols[wide[0]]
+            raise InvalidInput(f"{path}: row {lineno}, column {header[k]!r} is {vals[wide[0]]}; expected a half-breadth "
+                               + ("fraction <= " + str(HALF_BREADTH_FRACTION_MAX) if normalised else f"<= B = {beam} m (metres?)"))
         labels.append(lab)
         xs.append(xpos)
         table.append(vals)
         extra.append({header[k]: _cell(row[k], path, lineno, header[k]) for k in extra_cols})
     if len(xs) < 3:
-        raise ValueError(f"{path}: {len(xs)} station(s); expected at least 3")
+        raise InvalidInput(f"{path}: {len(xs)} station(s); expected at least 3")
     xs, table = np.array(xs), np.array(table)
     check_station_range(xs, lpp, str(path))
     if normalised:
         hb_scale = scale_row if scale_row is not None else np.ones(len(wl_cols))
         if np.any(np.isnan(hb_scale)) or np.any(hb_scale <= 0):
-            raise ValueError(f"{path}: max_half_beam row has blank or non-positive entries; expected one per waterline")
+            raise InvalidInput(f"{path}: max_half_beam row has blank or non-positive entries; expected one per waterline")
         table = table * hb_scale * beam / 2
     # Waterlines must rise left to right: sort them (noted), refuse duplicates.
     zo = np.argsort(z, kind="stable")
     if np.any(np.diff(z[zo]) <= 0):
         i = np.flatnonzero(np.diff(z[zo]) <= 0)[0]
-        raise ValueError(f"{path}: two waterline columns at z = {z[zo][i]:.6g} m; expected distinct waterlines")
+        raise InvalidInput(f"{path}: two waterline columns at z = {z[zo][i]:.6g} m; expected distinct waterlines")
     if np.any(zo != np.arange(len(z))):
         notes.append("waterline columns were not in rising order; sorted")
         z, table = z[zo], table[:, zo]
@@ -230,7 +276,7 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
             a, b = table[keep[-1]], table[i]
             same = np.allclose(np.nan_to_num(a, nan=-1), np.nan_to_num(b, nan=-1), rtol=0, atol=1e-9 * beam)
             if not same:
-                raise ValueError(f"{path}: station {labels[i]!r} appears twice with different half-breadths; "
+                raise InvalidInput(f"{path}: station {labels[i]!r} appears twice with different half-breadths; "
                                  "expected one row per station")
             notes.append(f"station {labels[i]!r} appeared twice with the same values; merged")
             continue
@@ -242,7 +288,7 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
     for lab, xpos, hb in zip(labels, xs, table):
         missing = np.isnan(hb)
         if missing.all():
-            raise ValueError(f"{path}: station {lab!r} has no half-breadths; expected at least one number")
+            raise InvalidInput(f"{path}: station {lab!r} has no half-breadths; expected at least one number")
         if missing.any():
             notes.append(f"station {lab!r}: {int(missing.sum())} blank cell(s) at z = "
                          + ", ".join(f"{v:.4g}" for v in z[missing]) + " m left out of the section")
@@ -293,33 +339,39 @@ def section_from_offsets(half_breadths, z) -> np.ndarray:
 
 
 def read_sections_csv(path, lpp, beam, draft, *, name=None) -> HullData:
-    """Read section points: CSV rows ``x,y,z`` in metres (SPEC §6), one station after another,
+    """Read section points: CSV rows ``x,y,z`` in metres (the project's axes), one station after another,
     each station's points ordered from the keel up. Stations need not be in order (noted);
     a station given twice raises; a section that crosses itself raises."""
-    lpp, beam, draft = _positive("Lpp", lpp), _positive("beam", beam), _positive("draft", draft)
+    lpp, beam, draft = _dimensions(lpp, beam, draft)
     rows, _ = _csv_rows(path)
     start = 0
     if rows[0][1] and not _is_number(rows[0][1][0]):
         header = [h.strip().lower() for h in rows[0][1]]
         if header[:3] != ["x", "y", "z"]:
-            raise ValueError(f"{path}: header is {rows[0][1]!r}; expected x,y,z")
+            raise InvalidInput(f"{path}: header is {rows[0][1]!r}; expected x,y,z")
         start = 1
     groups: dict = {}
     order = []
     last_x = None
     for lineno, row in rows[start:]:
         if len(row) < 3:
-            raise ValueError(f"{path}: row {lineno} has {len(row)} value(s); expected x,y,z")
+            raise InvalidInput(f"{path}: row {lineno} has {len(row)} value(s); expected x,y,z")
         x, y, z = (_cell(row[k], path, lineno, "xyz"[k]) for k in range(3))
         if np.isnan(x) or np.isnan(z):
-            raise ValueError(f"{path}: row {lineno} has a blank x or z; expected numbers")
+            raise InvalidInput(f"{path}: row {lineno} has a blank x or z; expected numbers")
         if np.isnan(y):
             continue
         if y < 0:
-            raise ValueError(f"{path}: row {lineno}, y is {y}; expected a half-breadth >= 0")
+            raise InvalidInput(f"{path}: row {lineno}, y is {y}; expected a half-breadth >= 0")
+        if y > beam or abs(z) > lpp:
+            raise InvalidInput(f"{path}: row {lineno}, (y, z) = ({y}, {z}) m lies outside the ship "
+                               f"(B = {beam} m, Lpp = {lpp} m); expected metres")
+        if abs(x) > (1 + STATION_RANGE_MARGIN) * lpp + lpp:
+            raise InvalidInput(f"{path}: row {lineno}, x is {x} m but Lpp is {lpp} m; "
+                               "expected stations between the perpendiculars (is x in metres?)")
         key = round(x / lpp / STATION_MATCH_TOL)
         if key != last_x and key in groups:
-            raise ValueError(f"{path}: row {lineno}: station x = {x} m appears in two separate blocks; "
+            raise InvalidInput(f"{path}: row {lineno}: station x = {x} m appears in two separate blocks; "
                              "expected each station's points together")
         if key not in groups:
             groups[key] = (x, [])
@@ -334,8 +386,8 @@ def read_sections_csv(path, lpp, beam, draft, *, name=None) -> HullData:
     for k in sorted(order, key=lambda k: groups[k][0]):
         x, pts = groups[k]
         pts = np.array(pts)
-        if len(pts) < 2:
-            raise ValueError(f"{path}: station x = {x} m has {len(pts)} point(s); expected at least 2")
+        if not 2 <= len(pts) <= MAX_SECTION_POINTS:
+            raise InvalidInput(f"{path}: station x = {x} m has {len(pts)} point(s); expected 2 to {MAX_SECTION_POINTS}")
         sections.append(Section(float(x), pts, f"x={x:g}"))
     data = HullData(name or pathlib.Path(path).stem, lpp, beam, draft, sections=sections, notes=notes,
                     source=str(path))
@@ -352,21 +404,33 @@ def _is_number(text):
         return False
 
 
-def _segments_cross(p1, p2, q1, q2):
-    """True if segments p1p2 and q1q2 intersect at an interior point of both."""
-    def orient(a, b, c):
-        return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
-    d1, d2 = orient(q1, q2, p1), orient(q1, q2, p2)
-    d3, d4 = orient(p1, p2, q1), orient(p1, p2, q2)
-    return d1 * d2 < 0 and d3 * d4 < 0
+def _orient(a, b, c):
+    """Twice the signed area of triangles (a, b, c), broadcast over rows."""
+    return (b[..., 0] - a[..., 0]) * (c[..., 1] - a[..., 1]) - (b[..., 1] - a[..., 1]) * (c[..., 0] - a[..., 0])
+
+
+def _first_crossing(p):
+    """(i, j) of the first pair of non-adjacent segments of polyline p that cross at an
+    interior point of both, or None; each segment is tested against all later ones at once."""
+    a, b = p[:-1], p[1:]
+    for i in range(len(a) - 2):
+        q1, q2 = a[i + 2:], b[i + 2:]
+        d1, d2 = _orient(q1, q2, a[i]), _orient(q1, q2, b[i])
+        d3, d4 = _orient(a[i], b[i], q1), _orient(a[i], b[i], q2)
+        hit = np.flatnonzero((d1 * d2 < 0) & (d3 * d4 < 0))
+        if hit.size:
+            return i, i + 2 + int(hit[0])
+    return None
 
 
 def check_station_range(xs, lpp, source=""):
     """Stations must lie near the perpendiculars: x from -margin to (1 + margin) Lpp."""
+    if len(xs) == 0:
+        raise InvalidInput(f"{source}: no stations; expected at least one")
     lo, hi = float(np.min(xs)), float(np.max(xs))
     m = STATION_RANGE_MARGIN * lpp
     if lo < -m or hi > lpp + m:
-        raise ValueError(f"{source}: stations run from x = {lo:.6g} to {hi:.6g} m but Lpp is {lpp:.6g} m; "
+        raise InvalidInput(f"{source}: stations run from x = {lo:.6g} to {hi:.6g} m but Lpp is {lpp:.6g} m; "
                          "expected stations between the perpendiculars (is Lpp in metres?)")
 
 
@@ -378,15 +442,14 @@ def check_sections(sections, source=""):
         seg = np.linalg.norm(np.diff(p, axis=0), axis=1)
         if np.any(seg == 0):
             k = int(np.flatnonzero(seg == 0)[0])
-            raise ValueError(f"{source}: station {s.label or s.x} repeats point {k + 1} "
+            raise InvalidInput(f"{source}: station {s.label or s.x} repeats point {k + 1} "
                              f"(y={p[k, 0]:.6g}, z={p[k, 1]:.6g}); expected distinct points")
-        n = len(p) - 1
-        for i in range(n):
-            for j in range(i + 2, n):
-                if _segments_cross(p[i], p[i + 1], p[j], p[j + 1]):
-                    raise ValueError(f"{source}: station {s.label or s.x} folds back: segment {i + 1} "
-                                     f"crosses segment {j + 1} near z = {p[j, 1]:.6g} m; "
-                                     "expected a section that does not cross itself")
+        crossing = _first_crossing(p)
+        if crossing:
+            i, j = crossing
+            raise InvalidInput(f"{source}: station {s.label or s.x} folds back: segment {i + 1} "
+                               f"crosses segment {j + 1} near z = {p[j, 1]:.6g} m; "
+                               "expected a section that does not cross itself")
 
 
 def knuckles(points, angle_deg=KNUCKLE_ANGLE_DEG) -> np.ndarray:
@@ -404,10 +467,10 @@ def knuckles(points, angle_deg=KNUCKLE_ANGLE_DEG) -> np.ndarray:
 
 def _check_grid(points, where):
     if points.ndim != 3 or points.shape[2] != 3 or min(points.shape[:2]) < 2:
-        raise ValueError(f"{where}: grid shape {points.shape}; expected (rows >= 2, cols >= 2, 3)")
+        raise InvalidInput(f"{where}: grid shape {points.shape}; expected (rows >= 2, cols >= 2, 3)")
     if not np.all(np.isfinite(points)):
         i, j = np.argwhere(~np.all(np.isfinite(points), axis=2))[0]
-        raise ValueError(f"{where}: point ({i + 1}, {j + 1}) is not a number; expected a complete grid")
+        raise InvalidInput(f"{where}: point ({i + 1}, {j + 1}) is not a number; expected a complete grid")
 
 
 def read_xyz_grid(x_path, y_path, z_path, name="grid", role="hull") -> PointGrid:
@@ -417,11 +480,11 @@ def read_xyz_grid(x_path, y_path, z_path, name="grid", role="hull") -> PointGrid
         try:
             mats.append(np.loadtxt(p, ndmin=2))
         except OSError as exc:
-            raise ValueError(f"cannot read {p}: {exc.strerror or exc}") from None
+            raise InvalidInput(f"cannot read {p}: {exc.strerror or exc}") from None
         except ValueError as exc:
-            raise ValueError(f"{p}: {exc}; expected a whitespace-separated matrix of numbers") from None
+            raise InvalidInput(f"{p}: {exc}; expected a whitespace-separated matrix of numbers") from None
     if not (mats[0].shape == mats[1].shape == mats[2].shape):
-        raise ValueError(f"{x_path}: x, y, z matrices have shapes {[m.shape for m in mats]}; expected one shape")
+        raise InvalidInput(f"{x_path}: x, y, z matrices have shapes {[m.shape for m in mats]}; expected one shape")
     pts = np.stack(mats, axis=-1)
     _check_grid(pts, str(x_path))
     return PointGrid(name, pts, role)
@@ -433,7 +496,7 @@ def read_tecplot(path) -> list:
     try:
         text = pathlib.Path(path).read_text(errors="strict")
     except (OSError, UnicodeDecodeError) as exc:
-        raise ValueError(f"cannot read {path}: {exc}") from None
+        raise InvalidInput(f"cannot read {path}: {exc}") from None
     lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
     zones, k = [], 0
     while k < len(lines):
@@ -451,21 +514,21 @@ def read_tecplot(path) -> list:
                 try:
                     vals.append(float(tok))
                 except ValueError:
-                    raise ValueError(f"{path}: line {k + 1} has {tok!r}; expected a number") from None
+                    raise InvalidInput(f"{path}: line {k + 1} has {tok!r}; expected a number") from None
             k += 1
         if len(vals) != 3 * ni * nj:
-            raise ValueError(f"{path}: zone {len(zones) + 1} has {len(vals) // 3} points; expected i*j = {ni * nj}")
+            raise InvalidInput(f"{path}: zone {len(zones) + 1} has {len(vals) // 3} points; expected i*j = {ni * nj}")
         zones.append(np.array(vals).reshape(nj, ni, 3).transpose(1, 0, 2))
     if not zones:
-        raise ValueError(f"{path}: no 'Zone i=.. j=..' header; expected Tecplot point data")
+        raise InvalidInput(f"{path}: no 'Zone i=.. j=..' header; expected Tecplot point data")
     return zones
 
 
 def read_tecplot_hull(path, lpp, beam, draft, *, name=None) -> HullData:
-    """A Tecplot point-grid file whose zones are hull patches already in SPEC §6 metres (rows
+    """A Tecplot point-grid file whose zones are hull patches already in the project's metres and axes (rows
     stations from aft forward, columns keel to top, like the reference grids once converted).
     Each zone becomes one subdomain; negative y (a port-side grid) is mirrored."""
-    lpp, beam, draft = _positive("Lpp", lpp), _positive("beam", beam), _positive("draft", draft)
+    lpp, beam, draft = _dimensions(lpp, beam, draft)
     grids = []
     for k, z in enumerate(read_tecplot(path)):
         pts = z.copy()
@@ -476,7 +539,7 @@ def read_tecplot_hull(path, lpp, beam, draft, *, name=None) -> HullData:
 
 
 def read_dtmb5415(folder, *, published=None) -> HullData:
-    """DTMB 5415 model: the bow, main and transom grids of ``folder`` converted to SPEC §6.
+    """DTMB 5415 model: the bow, main and transom grids of ``folder`` converted to the project's axes.
 
     Source frame: metres, FP near x = 0, AP at x = -5.719, z = 0 at the keel line. The main
     grid's rows are stations; it overlaps the bow grid forward of the bow grid's first row (a
@@ -492,12 +555,12 @@ def read_dtmb5415(folder, *, published=None) -> HullData:
     bow, main = grids["bow"], grids["main"]
     x_cut = bow.points[0, :, 0]
     if np.ptp(x_cut) > 1e-9 * lpp:
-        raise ValueError(f"{folder}: bow grid's first row is not a plane section; expected constant x")
+        raise InvalidInput(f"{folder}: bow grid's first row is not a plane section; expected constant x")
     x_cut = float(x_cut[0])
     xm = main.points[:, :, 0].mean(axis=1)
     k = int(np.searchsorted(xm, x_cut))
     if not 0 < k < len(xm) or np.any(np.ptp(main.points[k - 1:k + 1, :, 0], axis=1) > 1e-6 * lpp):
-        raise ValueError(f"{folder}: the main grid has no plane sections either side of x = {x_cut:.4f} m "
+        raise InvalidInput(f"{folder}: the main grid has no plane sections either side of x = {x_cut:.4f} m "
                          "(where the bow grid begins); expected stations there")
     t = (x_cut - xm[k - 1]) / (xm[k] - xm[k - 1])
     cut_row = (1 - t) * main.points[k - 1] + t * main.points[k]
@@ -517,16 +580,16 @@ def read_kcs(folder, *, lpp=230.0, beam=32.2, draft=10.8) -> HullData:
     """KCS: the NMRI two-block grids ``kcs_bow2.dat`` and ``kcs_stn2.dat`` scaled by Lpp.
 
     Source frame: coordinates / Lpp, origin midship on the calm waterline, X downstream (FP at
-    X = -0.5), Y starboard, Z up. SPEC §6: x = (0.5 - X) Lpp, y = Y Lpp, z = Z Lpp + T."""
+    X = -0.5), Y starboard, Z up. In the project's axes: x = (0.5 - X) Lpp, y = Y Lpp, z = Z Lpp + T."""
     folder = pathlib.Path(folder)
-    lpp, beam, draft = _positive("Lpp", lpp), _positive("beam", beam), _positive("draft", draft)
+    lpp, beam, draft = _dimensions(lpp, beam, draft)
     grids = []
     roles = {("kcs_bow2.dat", 0): ("bulb", "bulb"), ("kcs_bow2.dat", 1): ("forebody", "hull"),
              ("kcs_stn2.dat", 0): ("transom overhang", "transom"), ("kcs_stn2.dat", 1): ("afterbody", "hull")}
     for fname in ("kcs_bow2.dat", "kcs_stn2.dat"):
         zones = read_tecplot(folder / fname)
         if len(zones) != 2:
-            raise ValueError(f"{folder / fname}: {len(zones)} zone(s); expected 2 (two-block grid)")
+            raise InvalidInput(f"{folder / fname}: {len(zones)} zone(s); expected 2 (two-block grid)")
         for z, pts in enumerate(zones):
             conv = np.column_stack([(0.5 - pts[..., 0].ravel()) * lpp, np.abs(pts[..., 1].ravel()) * lpp,
                                     pts[..., 2].ravel() * lpp + draft]).reshape(pts.shape)
@@ -548,7 +611,7 @@ def read_hull_data(path, lpp=None, beam=None, draft=None, *, fmt="auto", n_stati
     default to their published model/ship dimensions."""
     p = pathlib.Path(path)
     if not p.exists():
-        raise ValueError(f"{p} does not exist; expected an offsets CSV, a section CSV or a grid folder")
+        raise InvalidInput(f"{p} does not exist; expected an offsets CSV, a section CSV or a grid folder")
     if fmt == "auto":
         if p.is_dir():
             if (p / "DTMB5415_main_offset_x.dat").exists():
@@ -556,7 +619,7 @@ def read_hull_data(path, lpp=None, beam=None, draft=None, *, fmt="auto", n_stati
             elif (p / "kcs_bow2.dat").exists():
                 fmt = "kcs"
             else:
-                raise ValueError(f"{p}: folder holds neither DTMB5415_*_offset_*.dat nor kcs_*2.dat; "
+                raise InvalidInput(f"{p}: folder holds neither DTMB5415_*_offset_*.dat nor kcs_*2.dat; "
                                  "expected one of the reference grid folders")
         elif p.suffix.lower() in (".dat", ".plt", ".tec"):
             fmt = "tecplot"
@@ -572,7 +635,7 @@ def read_hull_data(path, lpp=None, beam=None, draft=None, *, fmt="auto", n_stati
     elif fmt in ("offsets", "sections", "tecplot"):
         missing = [n for n, v in (("--lpp", lpp), ("--beam", beam), ("--draft", draft)) if v is None]
         if missing:
-            raise ValueError(f"{p}: {', '.join(missing)} not given; expected the principal dimensions in metres")
+            raise InvalidInput(f"{p}: {', '.join(missing)} not given; expected the principal dimensions in metres")
         if fmt == "offsets":
             data = read_offsets_csv(p, lpp, beam, draft, n_stations=n_stations)
         elif fmt == "sections":
@@ -580,7 +643,7 @@ def read_hull_data(path, lpp=None, beam=None, draft=None, *, fmt="auto", n_stati
         else:
             data = read_tecplot_hull(p, lpp, beam, draft)
     else:
-        raise ValueError(f"format is {fmt!r}; expected auto, offsets, sections, tecplot, dtmb5415 or kcs")
+        raise InvalidInput(f"format is {fmt!r}; expected auto, offsets, sections, tecplot, dtmb5415 or kcs")
     if fmt in ("dtmb5415", "kcs"):
         for name, v in (("Lpp", lpp), ("beam", beam), ("draft", draft)):
             if v is not None and fmt == "dtmb5415":
@@ -619,9 +682,9 @@ def hull_data_from_dict(d: dict) -> HullData:
             data.offsets = {"x": np.array(o["x"], float), "z": np.array(o["z"], float), "half_breadths": hb,
                             "labels": list(o["labels"]), "extra": o.get("extra", [])}
     except KeyError as exc:
-        raise ValueError(f"hull input data has no {exc.args[0]!r} entry") from None
+        raise InvalidInput(f"hull input data has no {exc.args[0]!r} entry") from None
     if not data.sections and not data.grids:
-        raise ValueError("hull input data has neither sections nor grids; expected one of them")
+        raise InvalidInput("hull input data has neither sections nor grids; expected one of them")
     for g in data.grids:
         _check_grid(g.points, f"grid {g.name!r}")
     return data

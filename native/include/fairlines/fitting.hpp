@@ -1,4 +1,5 @@
-// Interpolation and least-squares approximation ("inverse B-spline", seed 001 eq. 7-11)
+// Interpolation and least-squares approximation ("inverse B-spline", Kim & Kim 1995;
+// Piegl & Tiller 1997, sections 9.2 and 9.4)
 // of curves and of surfaces from point grids.
 #pragma once
 

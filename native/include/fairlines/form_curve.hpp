@@ -1,4 +1,5 @@
-// Form-parameter curve design (seed 002; SPEC section 4).
+// Form-parameter curve design (Kim, Shin & Kim 2002: the fairest B-spline control points
+// meeting the form parameters).
 //
 // A clamped, uniform, non-rational B-spline curve of a given degree and number of
 // control points is found that is as fair as possible,

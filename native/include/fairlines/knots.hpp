@@ -1,5 +1,5 @@
-// Knot vectors and data parameterization (SPEC §3; Piegl & Tiller ch. 2 and 9;
-// Hartley & Judd 1980 as used in seed 001 eq. 5).
+// Knot vectors and data parameterization (Piegl & Tiller 1997, ch. 2 and 9; Hartley &
+// Judd 1980 as used for hull curves by Kim & Kim 1995).
 #pragma once
 
 #include <string>
@@ -11,20 +11,23 @@ namespace fairlines {
 /// How data points are assigned parameter values before fitting.
 enum class Parameterization {
   Uniform,     ///< u_i = i / m
-  ChordLength, ///< proportional to cumulative chord length (seed 001 eq. 6)
-  Centripetal, ///< proportional to cumulative sqrt of chord length (seed 003 eq. 12)
+  ChordLength, ///< proportional to cumulative chord length (Kim & Kim 1995)
+  Centripetal, ///< proportional to cumulative sqrt of chord length (Lee 1989; Yoon 2007)
 };
 
 /// How interior knots of a fitted B-spline are placed.
 enum class KnotMethod {
-  Average,     ///< averaging of the data parameters (seed 003 eq. 13; P&T eq. 9.8 / 9.69)
-  HartleyJudd, ///< spacing proportional to sums of `degree` consecutive chords (seed 001 eq. 5)
+  Average,     ///< averaging of the data parameters (Piegl & Tiller 1997, eq. 9.8 / 9.69; Yoon 2007)
+  HartleyJudd, ///< spacing proportional to sums of `degree` consecutive chords (Hartley & Judd 1980)
 };
 
 /// Parses "uniform" | "chord" | "centripetal"; throws InvalidInput naming the bad value.
 Parameterization parse_parameterization(const std::string& name);
 /// Parses "average" | "hartley_judd"; throws InvalidInput naming the bad value.
 KnotMethod parse_knot_method(const std::string& name);
+/// The names parse_parameterization and parse_knot_method accept for each value.
+std::string parameterization_name(Parameterization method);
+std::string knot_method_name(KnotMethod method);
 
 /// Checks a knot vector for a B-spline of `degree` with `n_control` control points:
 /// length n_control + degree + 1, finite, non-decreasing, no interior multiplicity
@@ -53,7 +56,7 @@ Eigen::VectorXd averaged_knots(const Eigen::VectorXd& params, int degree, int n_
 /// Clamped knot vector on [0, 1] by Hartley–Judd: knot spacings proportional to the sum
 /// of `degree` consecutive chords of the data polygon (resampled to n_control points when
 /// n_control < rows of `points`). The chord measure follows `metric`: length (chord),
-/// sqrt of length (centripetal, as in seed 001 eq. 5) or 1 (uniform).
+/// sqrt of length (centripetal, as Kim & Kim 1995 use it) or 1 (uniform).
 Eigen::VectorXd hartley_judd_knots(const Eigen::MatrixXd& points, int degree, int n_control,
                                    Parameterization metric = Parameterization::ChordLength);
 

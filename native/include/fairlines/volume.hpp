@@ -1,4 +1,4 @@
-// Trivariate NURBS volumes V(s,t,r) (seed 003 eq. 8): free-form deformation lattices.
+// Trivariate NURBS volumes V(s,t,r) (Sederberg & Parry 1986; Yoon 2007): free-form deformation lattices.
 #pragma once
 
 #include <array>

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "fairlines/errors.hpp"
+#include "fairlines/limits.hpp"
 #include "problem.hpp"
 #include "solver.hpp"
 
@@ -55,10 +56,24 @@ double angle_diff(double a, double b) {
 
 }  // namespace
 
+namespace {
+
+// A curve handed to form_parameters_of / fairness_of: finite (n x 2) or (n x 3), degree in
+// [2, 15], degree + 1 <= n <= the form-curve control point limit.
+void check_measured_curve(const char* who, int degree, const Eigen::MatrixXd& control_points) {
+  const Eigen::Index n = control_points.rows();
+  if (control_points.cols() < 2 || control_points.cols() > 3 || n < degree + 1 || degree < 2 || degree > 15 ||
+      n > limits::kMaxFormCurveControlPoints || !control_points.allFinite())
+    throw InvalidInput(std::string(who) + ": control_points must be finite (n x 2) or (n x 3) with degree + 1 <= n <= " +
+                       std::to_string(limits::kMaxFormCurveControlPoints) + " and 2 <= degree <= 15; got " +
+                       std::to_string(n) + " x " + std::to_string(control_points.cols()) + ", degree " +
+                       std::to_string(degree));
+}
+
+}  // namespace
+
 std::map<std::string, double> form_parameters_of(int degree, const Eigen::MatrixXd& control_points) {
-  if (control_points.cols() < 2 || control_points.cols() > 3 || control_points.rows() < degree + 1 || degree < 2 ||
-      !control_points.allFinite())
-    throw InvalidInput("form_parameters_of: control_points must be finite (n x 2) or (n x 3) with n >= degree + 1, degree >= 2");
+  check_measured_curve("form_parameters_of", degree, control_points);
   form_curve_impl::SplineTables tab(static_cast<int>(control_points.rows()), degree);
   return params_of(tab, flatten(control_points), static_cast<int>(control_points.cols()));
 }
@@ -67,9 +82,8 @@ FairnessMeasures fairness_of(int degree, const Eigen::MatrixXd& control_points) 
   FormCurveRequest req;
   req.dim = static_cast<int>(control_points.cols());
   req.degree = degree;
+  check_measured_curve("fairness_of", degree, control_points);
   req.n_control = static_cast<int>(control_points.rows());
-  if (req.dim < 2 || req.dim > 3 || req.n_control < degree + 1 || degree < 2 || !control_points.allFinite())
-    throw InvalidInput("fairness_of: control_points must be finite (n x 2) or (n x 3) with n >= degree + 1, degree >= 2");
   req.bounds.monotone_axis = -1;
   req.bounds.y_nonnegative = false;
   Problem pb(req);

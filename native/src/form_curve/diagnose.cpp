@@ -1,5 +1,6 @@
 // Input validation, closed-form feasibility conditions and the infeasibility report.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -7,6 +8,7 @@
 #include <Eigen/SVD>
 
 #include "fairlines/errors.hpp"
+#include "fairlines/limits.hpp"
 #include "solver.hpp"
 
 namespace fairlines {
@@ -32,6 +34,72 @@ std::string fmt(double v) {
   for (size_t i = 0; i < names.size(); ++i) os << (i ? ", " : "") << names[i];
   os << "}: " << why;
   throw InfeasibleFormParameters(os.str());
+}
+
+// Levenshtein distance (insertions, deletions, substitutions), case-insensitive.
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) == std::tolower(static_cast<unsigned char>(b[j - 1]));
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (same ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// "unknown form parameter 'Aera' (did you mean 'Area'?); expected one of ...".
+[[noreturn]] void unknown_parameter(const std::string& key) {
+  const auto& names = form_parameter_names();
+  std::string list, nearest;
+  size_t best = std::string::npos;
+  for (const auto& nm : names) {
+    list += (list.empty() ? "" : ", ") + nm;
+    const size_t d = edit_distance(key, nm);
+    if (d < best) best = d, nearest = nm;
+  }
+  std::string hint = best <= std::max<size_t>(2, key.size() / 2) ? " (did you mean '" + nearest + "'?)" : "";
+  throw InvalidInput("unknown form parameter '" + key + "'" + hint + "; expected one of " + list);
+}
+
+// Magnitude limit of a form parameter in the unit of the offsets (see limits.hpp).
+double magnitude_limit(const std::string& k) {
+  if (k == "alphaB" || k == "alphaE") return limits::kMaxAngleDegrees;
+  if (k == "Area") return limits::kMaxFormCurveLength * limits::kMaxFormCurveLength;
+  return limits::kMaxFormCurveLength;  // coordinates, centroid; end curvature in 1/length
+}
+
+void check_magnitude(const std::string& k, double val) {
+  if (!std::isfinite(val)) throw InvalidInput("form parameter " + k + "=" + fmt(val) + " is not a finite number");
+  const double limit = magnitude_limit(k);
+  if (std::abs(val) <= limit) return;
+  const bool angle = k == "alphaB" || k == "alphaE";
+  throw InvalidInput("form parameter " + k + "=" + fmt(val) + " is beyond the supported magnitude " + fmt(limit) +
+                     (angle ? " degrees; angles are degrees from +x, expected within [-360, 360]"
+                            : "; lengths are metres (or one consistent unit): check the units"));
+}
+
+void check_counts(const FormCurveRequest& req) {
+  if (req.n_control > limits::kMaxFormCurveControlPoints)
+    throw InvalidInput("n_control=" + std::to_string(req.n_control) + " is beyond the limit of " +
+                       std::to_string(limits::kMaxFormCurveControlPoints) + " control points of a form-parameter curve");
+  if (req.points.size() > static_cast<size_t>(limits::kMaxFormCurvePoints))
+    throw InvalidInput("points has " + std::to_string(req.points.size()) + " entries; the limit is " +
+                       std::to_string(limits::kMaxFormCurvePoints));
+  if (req.options.max_iterations < 1 || req.options.max_iterations > limits::kMaxFormCurveIterations)
+    throw InvalidInput("max_iterations=" + std::to_string(req.options.max_iterations) + "; expected 1 <= max_iterations <= " +
+                       std::to_string(limits::kMaxFormCurveIterations));
+  if (req.options.multistart < 0 || req.options.multistart > limits::kMaxFormCurveMultistart)
+    throw InvalidInput("multistart=" + std::to_string(req.options.multistart) + "; expected 0 <= multistart <= " +
+                       std::to_string(limits::kMaxFormCurveMultistart));
+  if (req.params.empty() && req.points.empty() && req.tangent_start.size() == 0 && req.tangent_end.size() == 0)
+    throw InvalidInput("the request is empty: no form parameter, point or tangent given; expected at least one of " +
+                       std::string("xB, yB, xE, yE, alphaB, alphaE, CAB, CAE, Area, xC, yC or points"));
 }
 
 }  // namespace
@@ -140,17 +208,14 @@ void validate_request(const FormCurveRequest& req) {
   if (req.n_control < req.degree + 1)
     throw InvalidInput("n_control=" + std::to_string(req.n_control) + " is too small for degree " +
                        std::to_string(req.degree) + "; expected n_control >= " + std::to_string(req.degree + 1));
+  check_counts(req);
   const auto& names = form_parameter_names();
   int m = 0;
   for (const auto& [k, val] : req.params) {
-    if (std::find(names.begin(), names.end(), k) == names.end()) {
-      std::string list;
-      for (const auto& nm : names) list += (list.empty() ? "" : ", ") + nm;
-      throw InvalidInput("unknown form parameter '" + k + "'; expected one of " + list);
-    }
+    if (std::find(names.begin(), names.end(), k) == names.end()) unknown_parameter(k);
     if ((k == "zB" || k == "zE") && req.dim != 3)
       throw InvalidInput("form parameter '" + k + "' needs dim=3 (got dim=" + std::to_string(req.dim) + ")");
-    if (!std::isfinite(val)) throw InvalidInput("form parameter " + k + "=" + fmt(val) + " is not a finite number");
+    check_magnitude(k, val);
     ++m;
   }
   for (const auto* t : {&req.tangent_start, &req.tangent_end}) {
@@ -168,6 +233,9 @@ void validate_request(const FormCurveRequest& req) {
       throw InvalidInput(nm + " has " + std::to_string(pt.position.size()) + " coordinates; expected " +
                          std::to_string(req.dim));
     if (!pt.position.allFinite()) throw InvalidInput(nm + " has a non-finite coordinate");
+    if (pt.position.cwiseAbs().maxCoeff() > limits::kMaxFormCurveLength)
+      throw InvalidInput(nm + " has a coordinate beyond the supported magnitude " + fmt(limits::kMaxFormCurveLength) +
+                         "; lengths are metres (or one consistent unit): check the units");
     if (std::isnan(pt.weight) || pt.weight <= 0)
       throw InvalidInput(nm + " weight=" + fmt(pt.weight) + " is invalid; expected > 0 (inf = interpolate)");
     if (std::isinf(pt.weight)) m += req.dim - 1;  // each point adds dim equations and one unknown t
@@ -186,8 +254,6 @@ void validate_request(const FormCurveRequest& req) {
     throw InvalidInput("bounds min_end_speed=" + fmt(req.bounds.min_end_speed) + "; expected 0 <= value <= 1");
   if (!(req.options.tolerance > 0) || !(req.options.tolerance < 1e-3))
     throw InvalidInput("tolerance=" + fmt(req.options.tolerance) + "; expected 0 < tolerance < 1e-3");
-  if (req.options.max_iterations < 1 || req.options.multistart < 0)
-    throw InvalidInput("max_iterations must be >= 1 and multistart >= 0");
   if ((req.params.count("CAB") || req.params.count("CAE")) && req.degree < 2)
     throw InvalidInput("end curvatures need degree >= 2");
   const int dof = req.dim * req.n_control;

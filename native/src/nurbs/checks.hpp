@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "fairlines/errors.hpp"
+#include "fairlines/limits.hpp"
 
 namespace fairlines::detail {
 
@@ -35,7 +36,22 @@ inline void require_finite(double x, const std::string& what) {
 }
 
 inline void require_degree(int degree, const std::string& what = "degree") {
-  if (degree < 1) fail(what, " is ", degree, "; expected an integer >= 1");
+  if (degree < 1 || degree > limits::kMaxDegree)
+    fail(what, " is ", degree, "; expected an integer in [1, ", limits::kMaxDegree, "] (the degree limit)");
+}
+
+/// Order of derivatives: 0 <= order <= limits::kMaxDerivativeOrder.
+inline void require_order(int order, const std::string& what = "order") {
+  if (order < 0 || order > limits::kMaxDerivativeOrder)
+    fail(what, " is ", order, "; expected an integer in [0, ", limits::kMaxDerivativeOrder,
+         "] (the derivative order limit)");
+}
+
+/// A result of `count` values (a product of caller sizes) within limits::kMaxResultValues.
+inline void require_result_size(double count, const std::string& what) {
+  if (count > static_cast<double>(limits::kMaxResultValues))
+    fail(what, " would hold ", count, " values; the limit is ", limits::kMaxResultValues,
+         " per call: ask for fewer points or split the call");
 }
 
 inline void require_positive(double x, const std::string& what) {

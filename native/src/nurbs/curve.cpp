@@ -5,6 +5,8 @@
 #include <limits>
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 
 #include "checks.hpp"
 #include "fairlines/basis.hpp"
@@ -93,7 +95,7 @@ Eigen::MatrixXd NurbsCurve::evaluate(const Eigen::VectorXd& t) const {
 }
 
 Eigen::MatrixXd NurbsCurve::derivatives(double t, int order) const {
-  if (order < 0) fail("order is ", order, "; expected an integer >= 0");
+  detail::require_order(order);
   detail::require_finite(t, "t");
   const int p = degree_, d = dim();
   const auto [a, b] = domain();
@@ -118,6 +120,8 @@ Eigen::MatrixXd NurbsCurve::derivatives(double t, int order) const {
 }
 
 Eigen::MatrixXd NurbsCurve::derivatives(const Eigen::VectorXd& t, int order) const {
+  detail::require_order(order);
+  detail::require_result_size(static_cast<double>(t.size()) * (order + 1) * dim(), "derivatives");
   Eigen::MatrixXd out(t.size() * (order + 1), dim());
   for (Eigen::Index k = 0; k < t.size(); ++k) out.middleRows(k * (order + 1), order + 1) = derivatives(t[k], order);
   return out;
@@ -223,8 +227,10 @@ NurbsCurve NurbsCurve::insert_knot(double t, int times) const {
   if (t < a || t > b) fail("knot t = ", t, " lies outside the domain [", a, ", ", b, "]");
   int mult = 0;
   for (Eigen::Index i = 0; i < knots_.size(); ++i) mult += (knots_[i] == t);
-  if (mult + times > degree_ + ((t == a || t == b) ? 1 : 0))
-    fail("inserting knot ", t, " ", times, " time(s) raises its multiplicity from ", mult, " to ", mult + times,
+  // times is compared with the room left (not mult + times) so a huge count cannot overflow.
+  if (times > degree_ + ((t == a || t == b) ? 1 : 0) - mult)
+    fail("inserting knot ", t, " ", times, " time(s) raises its multiplicity from ", mult, " to ",
+         static_cast<long long>(mult) + times,
          "; expected at most the degree ", degree_);
   Eigen::VectorXd X = Eigen::VectorXd::Constant(times, t);
   return refine_knots(X);
@@ -310,6 +316,9 @@ NurbsCurve NurbsCurve::split_range(double a, double b) const {
 
 NurbsCurve NurbsCurve::elevate_degree(int times) const {
   detail::require_times(times);
+  if (times > limits::kMaxDegree - degree_)
+    fail("times is ", times, ": degree ", degree_, " + ", times, " exceeds the degree limit ", limits::kMaxDegree,
+         "; expected times <= ", limits::kMaxDegree - degree_);
   // Work on the clamped representation of the domain so both ends are interpolatory.
   const auto [a, b] = domain();
   const NurbsCurve c = split_range(a, b);
@@ -325,14 +334,22 @@ NurbsCurve NurbsCurve::elevate_degree(int times) const {
   const Eigen::MatrixXd Pw = c.homogeneous();
   const NurbsCurve hom(c.degree_, c.knots_, Pw);  // polynomial curve in R^{d+1}
   const Eigen::MatrixXd rhs = hom.evaluate(g);
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+  // The collocation matrix is banded (p + 1 entries a row): a sparse factorization keeps
+  // the work and memory linear in the number of control points.
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<size_t>(n) * (p + 1));
   std::vector<double> N(p + 1);
   for (int i = 0; i < n; ++i) {
     const int span = find_span(p, U, g[i]);
     basis_functions(span, g[i], p, U, N.data());
-    for (int j = 0; j <= p; ++j) A(i, span - p + j) = N[j];
+    for (int j = 0; j <= p; ++j)
+      if (N[j] != 0.0) entries.emplace_back(i, span - p + j, N[j]);
   }
-  const Eigen::MatrixXd Qw = A.partialPivLu().solve(rhs);
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(A);
+  if (lu.info() != Eigen::Success) fail("degree elevation: the collocation matrix is singular");
+  const Eigen::MatrixXd Qw = lu.solve(rhs);
   return from_homogeneous(p, U, Qw);
 }
 

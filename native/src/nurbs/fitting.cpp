@@ -58,6 +58,9 @@ Eigen::MatrixXd solve_control_points(const Eigen::MatrixXd& D, const Eigen::Vect
 void check_fit_sizes(Eigen::Index m, const FitOptions& o, const char* what) {
   detail::require_degree(o.degree);
   if (m < o.degree + 1) fail(what, " has ", m, " points; a degree-", o.degree, " fit needs at least ", o.degree + 1);
+  if (m > limits::kMaxFitPoints)
+    fail(what, " has ", m, " points; the limit is ", limits::kMaxFitPoints,
+         " per fitted line (a dense collocation solve): thin the data first");
   if (o.n_control != 0 && (o.n_control < o.degree + 1 || o.n_control > m))
     fail("n_control is ", o.n_control, "; expected between degree + 1 = ", o.degree + 1, " and the number of points ", m);
 }
@@ -104,6 +107,8 @@ CurveFit fit_curve_with(const Eigen::MatrixXd& points, const Eigen::VectorXd& pa
   const int n = static_cast<int>(knots.size()) - degree - 1;
   validate_knots(knots, degree, n);
   if (n > points.rows()) fail("knots define ", n, " control points; expected at most the number of points ", points.rows());
+  if (points.rows() > limits::kMaxFitPoints)
+    fail("points has ", points.rows(), " rows; the limit is ", limits::kMaxFitPoints, " per fitted line");
   NurbsCurve curve(degree, knots, solve_control_points(points, params, knots, degree));
   const Eigen::MatrixXd e = curve.evaluate(params) - points;
   const Eigen::VectorXd d = e.rowwise().norm();
@@ -148,17 +153,18 @@ SurfaceFit fit_surface(const Eigen::MatrixXd& grid, int rows, int cols, const Fi
   const Eigen::VectorXd Uu = knots_and_params(u, ou);
   const Eigen::VectorXd Uv = knots_and_params(v, ov);
   const int nu = static_cast<int>(Uu.size()) - ou.degree - 1, nv = static_cast<int>(Uv.size()) - ov.degree - 1;
-  // Tensor product: fit every column in u, then every row of the result in v.
-  Eigen::MatrixXd R(static_cast<Eigen::Index>(nu) * cols, 3);
-  for (int c = 0; c < cols; ++c) {
-    const Eigen::MatrixXd q = solve_control_points(ulines[c], u, Uu, ou.degree);
-    for (int i = 0; i < nu; ++i) R.row(static_cast<Eigen::Index>(i) * cols + c) = q.row(i);
-  }
+  // Tensor product: every column fitted in u, then every row of the result in v. The lines
+  // of one direction share their collocation matrix, so they are solved together as the
+  // columns of one right-hand side (one factorization per direction).
+  Eigen::MatrixXd Du(rows, 3 * static_cast<Eigen::Index>(cols));
+  for (int c = 0; c < cols; ++c) Du.middleCols(3 * c, 3) = ulines[c];
+  const Eigen::MatrixXd Qu = solve_control_points(Du, u, Uu, ou.degree);  // nu x 3 cols
+  Eigen::MatrixXd Dv(cols, 3 * static_cast<Eigen::Index>(nu));
+  for (int i = 0; i < nu; ++i)
+    for (int c = 0; c < cols; ++c) Dv.block(c, 3 * i, 1, 3) = Qu.block(i, 3 * c, 1, 3);
+  const Eigen::MatrixXd Qv = solve_control_points(Dv, v, Uv, ov.degree);  // nv x 3 nu
   Eigen::MatrixXd P(static_cast<Eigen::Index>(nu) * nv, 3);
-  for (int i = 0; i < nu; ++i) {
-    const Eigen::MatrixXd q = solve_control_points(R.middleRows(static_cast<Eigen::Index>(i) * cols, cols), v, Uv, ov.degree);
-    P.middleRows(static_cast<Eigen::Index>(i) * nv, nv) = q;
-  }
+  for (int i = 0; i < nu; ++i) P.middleRows(static_cast<Eigen::Index>(i) * nv, nv) = Qv.middleCols(3 * i, 3);
   NurbsSurface s(ou.degree, ov.degree, Uu, Uv, nu, nv, P);
   const Eigen::MatrixXd fitted = s.evaluate_grid(u, v);
   const Eigen::VectorXd d = (fitted - grid).rowwise().norm();

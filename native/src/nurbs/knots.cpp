@@ -21,6 +21,18 @@ KnotMethod parse_knot_method(const std::string& name) {
   fail("knots is '", name, "'; expected 'average' or 'hartley_judd'");
 }
 
+std::string parameterization_name(Parameterization method) {
+  switch (method) {
+    case Parameterization::Uniform: return "uniform";
+    case Parameterization::Centripetal: return "centripetal";
+    default: return "chord";
+  }
+}
+
+std::string knot_method_name(KnotMethod method) {
+  return method == KnotMethod::HartleyJudd ? "hartley_judd" : "average";
+}
+
 void validate_knots(const Eigen::VectorXd& U, int p, int n, const std::string& what) {
   detail::require_degree(p);
   if (n < p + 1) fail("control point count is ", n, "; a degree-", p, " B-spline needs at least ", p + 1);
@@ -48,6 +60,10 @@ void validate_knots(const Eigen::VectorXd& U, int p, int n, const std::string& w
 Eigen::VectorXd clamped_uniform_knots(int n, int p, double t0, double t1) {
   detail::require_degree(p);
   if (n < p + 1) fail("control point count is ", n, "; a degree-", p, " B-spline needs at least ", p + 1);
+  if (n > limits::kMaxControlPoints)
+    fail("control point count is ", n, "; the limit is ", limits::kMaxControlPoints, " per direction");
+  detail::require_finite(t0, "t0");
+  detail::require_finite(t1, "t1");
   if (!(t1 > t0)) fail("knot range [", t0, ", ", t1, "] is empty; expected t0 < t1");
   Eigen::VectorXd U(n + p + 1);
   const int segments = n - p;
@@ -62,6 +78,10 @@ Eigen::VectorXd clamped_uniform_knots(int n, int p, double t0, double t1) {
 Eigen::VectorXd unclamped_uniform_knots(int n, int p, double t0, double t1) {
   detail::require_degree(p);
   if (n < p + 1) fail("control point count is ", n, "; a degree-", p, " B-spline needs at least ", p + 1);
+  if (n > limits::kMaxControlPoints)
+    fail("control point count is ", n, "; the limit is ", limits::kMaxControlPoints, " per direction");
+  detail::require_finite(t0, "t0");
+  detail::require_finite(t1, "t1");
   if (!(t1 > t0)) fail("knot range [", t0, ", ", t1, "] is empty; expected t0 < t1");
   Eigen::VectorXd U(n + p + 1);
   const double h = (t1 - t0) / (n - p);

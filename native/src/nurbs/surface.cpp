@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <utility>
 
 #include <Eigen/Dense>
@@ -340,6 +341,7 @@ void NurbsSurface::evaluate_first_derivatives_into(const double* u, const double
 Eigen::MatrixXd NurbsSurface::evaluate_grid(const Eigen::VectorXd& us, const Eigen::VectorXd& vs) const {
   detail::require_finite(us, "us");
   detail::require_finite(vs, "vs");
+  detail::require_result_size(3.0 * static_cast<double>(us.size()) * static_cast<double>(vs.size()), "evaluate_grid");
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> out(us.size() * vs.size(), 3);
   evaluate_grid_into(us.data(), us.size(), vs.data(), vs.size(), out.data());
   return out;
@@ -375,7 +377,7 @@ void NurbsSurface::evaluate_grid_into(const double* us, long n_u, const double* 
 }
 
 Eigen::MatrixXd NurbsSurface::derivatives(double u, double v, int order) const {
-  if (order < 0) fail("order is ", order, "; expected an integer >= 0");
+  detail::require_order(order);
   detail::require_finite(u, "u");
   detail::require_finite(v, "v");
   const auto [ua, ub] = domain_u();
@@ -447,23 +449,76 @@ Eigen::MatrixXd NurbsSurface::normal(const Eigen::VectorXd& u, const Eigen::Vect
   return out;
 }
 
+namespace {
+
+// A partial shorter than this fraction of the other one, or a normal S_u x S_v shorter
+// than this fraction of |S_u| |S_v|, marks a degenerate point of the parametrisation
+// (a pole, a collapsed edge or corner) where the curvature formulas divide 0 by 0.
+constexpr double kDegenerate = 1e-8;
+// Steps toward the interior, as fractions of the parameter range, at which the curvature
+// is sampled to extrapolate its limit at a degenerate point.
+constexpr double kLimitStep = 1e-3;
+// Two extrapolations of the limit from successively halved steps must agree to this
+// relative size, otherwise the curvature has no limit there (e.g. a cone apex).
+constexpr double kLimitAgreement = 1e-6;
+
+// Gaussian and mean curvature from the partials D of derivatives(u, v, 2) (row k*3 + l);
+// false where the tangent plane is degenerate.
+bool curvature_from(const Eigen::MatrixXd& D, double& K, double& H) {
+  const Eigen::Vector3d Su = D.row(3).transpose(), Sv = D.row(1).transpose();
+  const Eigen::Vector3d Suu = D.row(6).transpose(), Suv = D.row(4).transpose(), Svv = D.row(2).transpose();
+  const Eigen::Vector3d n = Su.cross(Sv);
+  const double a = Su.norm(), b = Sv.norm(), nn = n.norm();
+  if (!(nn > kDegenerate * a * b) || a < kDegenerate * b || b < kDegenerate * a) return false;
+  const Eigen::Vector3d nu = n / nn;
+  const double E = Su.dot(Su), F = Su.dot(Sv), G = Sv.dot(Sv);
+  const double L = Suu.dot(nu), M = Suv.dot(nu), N = Svv.dot(nu);
+  const double det = E * G - F * F;
+  K = (L * N - M * M) / det;
+  H = (E * N - 2.0 * F * M + G * L) / (2.0 * det);
+  return true;
+}
+
+// Limit of (K, H) at a degenerate point (u, v), approached from the interior along the
+// parameter that does not collapse: curvature at steps h, h/2, h/4, h/8 and Richardson
+// extrapolation to h = 0 (error O(h^3)) from two triples that must agree.
+std::pair<double, double> curvature_limit(const NurbsSurface& s, double u, double v, const Eigen::MatrixXd& D) {
+  const auto [ua, ub] = s.domain_u();
+  const auto [va, vb] = s.domain_v();
+  const double a = D.row(3).norm(), b = D.row(1).norm();
+  // S_u collapsed: the edge is a line v = const, approach it along v; S_v likewise along u;
+  // parallel partials (or both zero): along both.
+  const bool u_collapsed = a < kDegenerate * b, v_collapsed = b < kDegenerate * a;
+  const bool step_u = !u_collapsed, step_v = !v_collapsed;
+  const double du = step_u ? kLimitStep * (ub - ua) * (u < 0.5 * (ua + ub) ? 1.0 : -1.0) : 0.0;
+  const double dv = step_v ? kLimitStep * (vb - va) * (v < 0.5 * (va + vb) ? 1.0 : -1.0) : 0.0;
+  double K[4], H[4];
+  for (int i = 0; i < 4; ++i) {
+    const double f = std::ldexp(1.0, -i);
+    if (!curvature_from(s.derivatives(u + f * du, v + f * dv, 2), K[i], H[i]))
+      fail("curvature is undefined at (u, v) = (", u, ", ", v, "): the surface is degenerate there and near it");
+  }
+  auto extrapolate = [](const double* f) { return (8.0 * f[2] - 6.0 * f[1] + f[0]) / 3.0; };
+  const double K1 = extrapolate(K), K2 = extrapolate(K + 1), H1 = extrapolate(H), H2 = extrapolate(H + 1);
+  const Eigen::MatrixXd& P = s.control_points();
+  const double size = std::max((P.colwise().maxCoeff() - P.colwise().minCoeff()).norm(), 1e-300);
+  const bool k_ok = std::abs(K1 - K2) <= kLimitAgreement * std::max({std::abs(K1), std::abs(K2), 1.0 / (size * size)});
+  const bool h_ok = std::abs(H1 - H2) <= kLimitAgreement * std::max({std::abs(H1), std::abs(H2), 1.0 / size});
+  if (!k_ok || !h_ok)
+    fail("curvature is singular at (u, v) = (", u, ", ", v, "): the surface has no tangent plane there and the ",
+         k_ok ? "mean" : "Gaussian", " curvature has no limit (e.g. a cone apex)");
+  return {K2, H2};
+}
+
+}  // namespace
+
 std::pair<Eigen::VectorXd, Eigen::VectorXd> NurbsSurface::curvature(const Eigen::VectorXd& u,
                                                                     const Eigen::VectorXd& v) const {
   if (u.size() != v.size()) fail("u has ", u.size(), " values and v has ", v.size(), "; expected equal lengths");
   Eigen::VectorXd K(u.size()), H(u.size());
   for (Eigen::Index k = 0; k < u.size(); ++k) {
     const Eigen::MatrixXd D = derivatives(u[k], v[k], 2);  // rows k*3 + l
-    const Eigen::Vector3d Su = D.row(3).transpose(), Sv = D.row(1).transpose();
-    const Eigen::Vector3d Suu = D.row(6).transpose(), Suv = D.row(4).transpose(), Svv = D.row(2).transpose();
-    const Eigen::Vector3d n = Su.cross(Sv);
-    const double nn = n.norm();
-    if (!(nn > 0.0)) fail("curvature is undefined at (u, v) = (", u[k], ", ", v[k], "): the surface is degenerate there");
-    const Eigen::Vector3d nu = n / nn;
-    const double E = Su.dot(Su), F = Su.dot(Sv), G = Sv.dot(Sv);
-    const double L = Suu.dot(nu), M = Suv.dot(nu), N = Svv.dot(nu);
-    const double det = E * G - F * F;
-    K[k] = (L * N - M * M) / det;
-    H[k] = (E * N - 2.0 * F * M + G * L) / (2.0 * det);
+    if (!curvature_from(D, K[k], H[k])) std::tie(K[k], H[k]) = curvature_limit(*this, u[k], v[k], D);
   }
   return {K, H};
 }

@@ -1,0 +1,55 @@
+"""The hull-description loader refuses absurd or mistaken input by JSON path: lengths outside
+the physical range (with a units hint), unknown keys anywhere (with the nearest valid one),
+station counts beyond the limit, and JSON that is not an object. The loader is the
+description module of the hull designer; these tests run where it exists."""
+
+import copy
+
+import pytest
+
+import fairlines as fl
+
+description = pytest.importorskip("fairlines.description")
+
+BASE = {
+    "principal": {"Lpp": 100.0, "B": 16.0, "T": 6.0, "D": 9.0},
+    "basic_curves": {"profile": {"value": 0.0}, "dwl": {"value": 8.0}, "deck": {"value": 8.0},
+                     "sac": {"value": 90.0}},
+}
+
+
+def refused(mutate):
+    d = copy.deepcopy(BASE)
+    mutate(d)
+    with pytest.raises(fl.InvalidInput) as exc:
+        description.HullDescription.from_dict(d)
+    return str(exc.value)
+
+
+def test_the_base_description_is_accepted():
+    description.HullDescription.from_dict(copy.deepcopy(BASE))
+
+
+@pytest.mark.parametrize("lpp", [1e300, 244800.0])
+def test_lengths_beyond_the_physical_range_hint_at_units(lpp):
+    msg = refused(lambda d: d["principal"].__setitem__("Lpp", lpp))
+    assert "principal.Lpp" in msg and "millimetres" in msg
+
+
+def test_unknown_skinning_key_names_the_nearest():
+    msg = refused(lambda d: d.__setitem__("skinning", {"e22": 1.0}))
+    assert "e22" in msg and "did you mean 'e2'" in msg
+
+
+def test_unknown_top_level_key_names_the_nearest():
+    msg = refused(lambda d: d.__setitem__("principle", {}))
+    assert "principle" in msg and "did you mean 'principal'" in msg
+
+
+def test_station_count_beyond_the_limit_is_refused():
+    assert "stations.count" in refused(lambda d: d.__setitem__("stations", {"count": 10**7}))
+
+
+def test_json_that_is_not_an_object_is_invalid_input():
+    with pytest.raises(fl.InvalidInput, match="JSON object"):
+        fl.Hull.from_json("[1,2,3]")
