@@ -16,6 +16,8 @@ __all__ = ["layout"]
 
 #: Title block size (mm on paper).
 TITLE_MM = (118.0, 92.0)
+#: Waterlines are labelled in the half-breadth plan at this fraction of the drawn x range.
+WL_LABEL_AT = 0.72
 #: Band left for labels outside a view (mm on paper).
 LABEL_MM = 9.0
 
@@ -34,8 +36,8 @@ def _frame(plan, xr, lo, hi):
     z_lo = min(0.0, lo[2])
     z_top = max(p["depth"], hi[2])
     y_max = max(0.5 * p["beam"], hi[1])
-    d_max = max([np.hypot(c[:, 1], c[:, 2] - zc).max() for _, (zc, _a), cuts in plan.diagonals for c in cuts]
-                + [0.0])
+    d_max = max([np.hypot(piece[:, 1], piece[:, 2] - zc).max() for _, (zc, _a), cuts in plan.diagonals
+                 for c in cuts for piece in _clip_x(c, *xr)] + [0.0])
     return xr[0], xr[1], z_lo, z_top, y_max, d_max
 
 
@@ -74,7 +76,22 @@ def layout(plan, xr, lo, hi) -> None:
     _grid(plan, prims, x0, x1, z_lo, z_top, y_max, d_max, yc, xb, m)
     _curves(plan, prims, x0, x1, yc, xb)
     _title_block(plan, prims, m)
-    plan.primitives = prims
+    plan.primitives = _drop_overlapping_labels(prims, m)
+
+
+def _drop_overlapping_labels(prims, m):
+    """Station labels in the body plan crowd where the sections end close together: a
+    label is dropped when it would overlap one already placed (boxes from the text size)."""
+    boxes, out = [], []
+    for pr in prims:
+        if isinstance(pr, Text) and pr.layer in ("STATIONS", "WATERLINES"):
+            w, h = 0.6 * pr.size * len(pr.text) * m, pr.size * m
+            box = (pr.x - 0.5 * w, pr.y, pr.x + 0.5 * w, pr.y + h)
+            if any(b[0] < box[2] and box[0] < b[2] and b[1] < box[3] and box[1] < b[3] for b in boxes):
+                continue
+            boxes.append(box)
+        out.append(pr)
+    return out
 
 
 def _line(prims, pts, layer, name=""):
@@ -141,6 +158,23 @@ def _grid(plan, prims, x0, x1, z_lo, z_top, y_max, d_max, yc, xb, m):
     prims.append(Text(xb, z_top + 1.8 * lab, "BODY PLAN", size=2.5))
 
 
+def _spread_x(waterlines, x0, x1):
+    """x (inside the middle 80 % of [x0, x1]) where the waterlines in the half-breadth plan are
+    furthest apart from each other: there their labels do not crowd."""
+    xs = np.linspace(x0 + 0.1 * (x1 - x0), x1 - 0.1 * (x1 - x0), 41)
+    ys = []
+    for _, _, cuts in waterlines:
+        pieces = [c for c in cuts if np.ptp(c[:, 0]) > 0]
+        if pieces:
+            c = max(pieces, key=lambda c: np.ptp(c[:, 0]))
+            o = np.argsort(c[:, 0])
+            ys.append(np.interp(xs, c[o, 0], c[o, 1], left=np.nan, right=np.nan))
+    if len(ys) < 2:
+        return x0 + WL_LABEL_AT * (x1 - x0)
+    gaps = np.nan_to_num(np.min(np.diff(np.sort(np.array(ys), axis=0), axis=0), axis=0), nan=0.0)
+    return float(xs[int(np.argmax(gaps))])
+
+
 def _curves(plan, prims, x0, x1, yc, xb):
     mid = 0.5 * plan.particulars["lpp"]
     # Body plan: stations aft of midships on the left, forward on the right, midship both.
@@ -152,14 +186,17 @@ def _curves(plan, prims, x0, x1, yc, xb):
         top = max((c for c in cuts), key=lambda c: c[:, 2].max(), default=None)
         if top is not None and x0 <= x <= x1:
             k = int(np.argmax(top[:, 2]))
-            for s in sides:
-                prims.append(Text(xb + s * top[k, 1], top[k, 2], label, size=1.5, va="bottom",
-                                  layer="STATIONS"))
+            prims.append(Text(xb + sides[0] * top[k, 1], top[k, 2], label, size=1.5, va="bottom",
+                              layer="STATIONS"))
+    x_lab = _spread_x(plan.waterlines, x0, x1)
     for label, z, cuts in plan.waterlines:
         layer = "DWL" if label == "DWL" else "WATERLINES"
         for c in cuts:
             for piece in _clip_x(c, x0, x1):
                 prims.append(Polyline(np.column_stack([piece[:, 0], yc + piece[:, 1]]), layer, True, f"WL {label}"))
+                if piece[:, 0].min() <= x_lab <= piece[:, 0].max():
+                    k = int(np.argmin(np.abs(piece[:, 0] - x_lab)))
+                    prims.append(Text(piece[k, 0], yc + piece[k, 1], label, size=1.4, va="bottom", layer="WATERLINES"))
     for label, y, cuts in plan.buttocks:
         for c in cuts:
             for piece in _clip_x(c, x0, x1):

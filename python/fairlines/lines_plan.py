@@ -33,7 +33,7 @@ from ._native import InvalidInput, NurbsSurface
 from . import _native
 from .plane_sections import boundary_curves, plane_sections
 
-__all__ = ["LinesPlan", "Polyline", "Text", "lines_plan", "default_stations", "nice_step", "KNUCKLE_ANGLE_DEG"]
+__all__ = ["LinesPlan", "Polyline", "Text", "lines_plan", "closeup", "default_stations", "nice_step", "KNUCKLE_ANGLE_DEG"]
 
 #: Normal-angle jump (degrees) across a knot line above which it is drawn as a knuckle.
 KNUCKLE_ANGLE_DEG = 3.0
@@ -126,15 +126,16 @@ def nice_step(span: float, count: float) -> float:
     return min((m * 10 ** k for m in (1, 2, 2.5, 5, 10)), key=lambda s: abs(math.log(s / raw)))
 
 
-def default_stations(lpp: float, x_min: float, x_max: float) -> list[float]:
-    """Station numbers (0 at AP .. 20 at FP) inside [x_min, x_max]: the whole stations, half
-    stations in the end intervals and every half station beyond the perpendiculars."""
-    n = [float(k) for k in range(STATIONS_PER_LPP + 1)]
+def default_stations(lpp: float, x_min: float, x_max: float, step: float = 1.0) -> list[float]:
+    """Station numbers (0 at AP .. 20 at FP) inside [x_min, x_max]: every ``step`` stations,
+    half stations in the end intervals and every half station beyond the perpendiculars."""
+    n = [float(k) for k in np.arange(0.0, STATIONS_PER_LPP + 0.5 * step, step)]
     n += [0.5, 1.5, STATIONS_PER_LPP - 1.5, STATIONS_PER_LPP - 0.5]
-    k = 0.5
+    beyond = min(0.5, step)
+    k = beyond
     while -k * lpp / STATIONS_PER_LPP > x_min or (STATIONS_PER_LPP + k) * lpp / STATIONS_PER_LPP < x_max:
         n += [-k, STATIONS_PER_LPP + k]
-        k += 0.5
+        k += beyond
     eps = 1e-9 * lpp
     return sorted(s for s in set(n) if x_min - eps <= s * lpp / STATIONS_PER_LPP <= x_max + eps)
 
@@ -309,7 +310,8 @@ def lines_plan(hull, *, lpp: float, beam: float, draft: float, depth: float, nam
     diagonals    (height on the centre line (m), angle below the horizontal (deg)) pairs;
                  default three 45 deg diagonals through B/4, 3B/8 and B/2 above the base.
     hydrostatics dict for the title block (default: computed at T, see ``LinesPlan``).
-    x_range      (x_from, x_to) m: draw only this part (close-ups); lines are clipped to it.
+    x_range      (x_from, x_to) m: draw only this part (close-ups, quarter stations by
+                 default); lines are clipped to it. See :func:`closeup`.
 
     Raises InvalidInput for non-positive particulars, draft above depth, or a bad hull entry.
     """
@@ -322,7 +324,10 @@ def lines_plan(hull, *, lpp: float, beam: float, draft: float, depth: float, nam
     patches = _as_patches(hull)
     lo, hi = _extent(patches)
     x0, x1 = (lo[0], hi[0]) if x_range is None else (max(lo[0], x_range[0]), min(hi[0], x_range[1]))
-    st_nums = list(stations) if stations is not None else default_stations(p["lpp"], x0, x1)
+    if stations is not None:
+        st_nums = list(stations)
+    else:  # a close-up gets quarter stations
+        st_nums = default_stations(p["lpp"], x0, x1, 1.0 if x_range is None else 0.25)
     dz = nice_step(p["draft"], 5)
     if waterlines is None:
         waterlines = [z for z in np.arange(dz, hi[2], dz) if abs(z - p["draft"]) > 0.3 * dz]
@@ -351,6 +356,21 @@ def lines_plan(hull, *, lpp: float, beam: float, draft: float, depth: float, nam
     from .lines_layout import layout
     layout(plan, (x0, x1), lo, hi)
     return plan
+
+
+def closeup(hull, end: str = "bow", fraction: float = 0.15, **kw) -> LinesPlan:
+    """Lines plan of the bow (``end="bow"``: from (1 - fraction) Lpp forward) or the stern
+    (``"stern"``: aft of fraction Lpp), at the scale that fills the sheet; other keywords as
+    :func:`lines_plan` (lpp, beam, draft, depth required). Raises InvalidInput for another end."""
+    lpp = float(kw["lpp"])
+    if end == "bow":
+        xr = ((1.0 - fraction) * lpp, np.inf)
+    elif end == "stern":
+        xr = (-np.inf, fraction * lpp)
+    else:
+        raise InvalidInput(f"end is {end!r}; expected 'bow' or 'stern'")
+    kw.setdefault("title", f"LINES PLAN - {end.upper()} CLOSE-UP")
+    return lines_plan(hull, x_range=xr, **kw)
 
 
 def _station_label(n: float) -> str:
