@@ -52,16 +52,16 @@ def domain_samples(knots: np.ndarray, degree: int, per_span: int, minimum: int) 
 
 def _even_odd_inside(uv: np.ndarray, loops: list[np.ndarray]) -> np.ndarray:
     """True where a (u, v) point is inside an odd number of the loops (closed polygons)."""
-    inside = np.zeros(len(uv), bool)
+    crossings = np.zeros(len(uv), int)
     for loop in loops:
         a = np.asarray(loop, float)
         b = np.roll(a, -1, axis=0)
-        for (ua, va), (ub, vb) in zip(a, b):
-            crosses = (va > uv[:, 1]) != (vb > uv[:, 1])
-            with np.errstate(divide="ignore", invalid="ignore"):
-                ux = ua + (uv[:, 1] - va) * (ub - ua) / (vb - va)
-            inside ^= crosses & (uv[:, 0] < ux)
-    return inside
+        u, v = uv[:, :1], uv[:, 1:]
+        crosses = (a[None, :, 1] > v) != (b[None, :, 1] > v)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ux = a[None, :, 0] + (v - a[None, :, 1]) * (b[None, :, 0] - a[None, :, 0]) / (b[None, :, 1] - a[None, :, 1])
+        crossings += np.count_nonzero(crosses & (u < ux), axis=1)
+    return crossings % 2 == 1
 
 
 def _bisect_edges(surface, normal, offset, lo, hi, f_lo):
@@ -145,22 +145,26 @@ def _trim(surface, normal, offset, chain_uv, closed, loops):
     inside = _even_odd_inside(chain_uv, loops)
     if inside.all():
         return [(chain_uv, closed)]
+    if not inside.any():
+        return []
     if closed:  # start at an outside point so that every inside run is contiguous
         k = int(np.argmin(inside))
         chain_uv, inside = np.roll(chain_uv, -k, axis=0), np.roll(inside, -k)
         chain_uv, inside = np.vstack([chain_uv, chain_uv[:1]]), np.append(inside, inside[0])
-    out, run = [], []
+    # every transition at once: bisection on the segment, inside end kept in lo
+    ks = np.flatnonzero(inside[1:] != inside[:-1]) + 1
+    lo = np.where(inside[ks - 1][:, None], chain_uv[ks - 1], chain_uv[ks])
+    hi = np.where(inside[ks - 1][:, None], chain_uv[ks], chain_uv[ks - 1])
+    for _ in range(_BISECTION_STEPS):
+        mid = 0.5 * (lo + hi)
+        m_in = _even_odd_inside(mid, loops)
+        lo[m_in], hi[~m_in] = mid[m_in], mid[~m_in]
+    ends = _onto_plane(surface, normal, offset, lo)
+    out, run, j = [], [], 0
     for k in range(len(chain_uv)):
-        if k > 0 and inside[k] != inside[k - 1]:
-            lo, hi = (chain_uv[k - 1], chain_uv[k]) if inside[k - 1] else (chain_uv[k], chain_uv[k - 1])
-            for _ in range(_BISECTION_STEPS):  # lo inside, hi outside
-                mid = 0.5 * (lo + hi)
-                if _even_odd_inside(mid[None], loops)[0]:
-                    lo = mid
-                else:
-                    hi = mid
-            edge = _onto_plane(surface, normal, offset, lo[None])[0]
-            run.append(edge)
+        if j < len(ks) and k == ks[j]:
+            run.append(ends[j])
+            j += 1
             if not inside[k]:
                 out.append((np.array(run), False))
                 run = []
