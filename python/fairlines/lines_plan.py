@@ -272,7 +272,31 @@ def _extent(patches):
     return pts.min(axis=0), pts.max(axis=0)
 
 
-def _hydrostatics(hull, patches, p) -> dict | None:
+def waterplane_from_sections(cuts, density: float = 1.025) -> dict:
+    """Full-ship waterplane area, LCF, I_T and I_L (about F) from the half waterline's branches
+    (k, 3) by Green's theorem: the region between them, the centre line y = 0 and transverse
+    lines x = const (which add nothing to the line integrals of y, x y, y^3 / 3, x^2 y along
+    dx); open branches count positive, a closed branch (an island) by its enclosed area."""
+    a = mx = it = ix2 = 0.0
+    for c in cuts:
+        x, y = c[:, 0], np.abs(c[:, 1])
+        if np.linalg.norm(c[0] - c[-1]) < 1e-9 * max(1.0, np.ptp(x)) or len(c) < 2:
+            x, y = np.r_[x, x[:1]], np.r_[y, y[:1]]
+        dx = np.diff(x)
+        ym, xm = 0.5 * (y[1:] + y[:-1]), 0.5 * (x[1:] + x[:-1])
+        s = np.sign(np.sum(ym * dx)) or 1.0
+        a += s * np.sum(ym * dx)
+        mx += s * np.sum(xm * ym * dx)
+        it += s * np.sum((y[1:] ** 3 + y[:-1] ** 3) / 6.0 * dx)
+        ix2 += s * np.sum(xm * xm * ym * dx)
+    if a <= 0:
+        return {}
+    lcf = mx / a
+    return dict(waterplane_area=2 * a, lcf=lcf, inertia_t=2 * it, inertia_l=2 * (ix2 - a * lcf * lcf),
+                tpc=density * 2 * a / 100)
+
+
+def _hydrostatics(hull, patches, p, dwl_cuts=()) -> dict | None:
     """Hydrostatics at the design draft for the title block, with where they come from."""
     try:
         if len(patches) == 1 and patches[0][1] is None:
@@ -285,8 +309,16 @@ def _hydrostatics(hull, patches, p) -> dict | None:
         if hasattr(hull, "mesh"):
             from .compose import mesh_hydrostatics
             m = mesh_hydrostatics(hull.mesh, p["draft"])
-            return dict(volume=m["volume"], displacement=1.025 * m["volume"], lcb=m["lcb"], vcb=m["kb"],
-                        source="composed mesh, modelled part only")
+            h = dict(volume=m["volume"], displacement=1.025 * m["volume"], lcb=m["lcb"], vcb=m["kb"],
+                     source="volume, LCB, KB from the composed mesh, waterplane from the DWL section; "
+                            "modelled part only")
+            h.update(waterplane_from_sections(dwl_cuts))
+            if "inertia_t" in h:
+                h["kmt"] = h["vcb"] + h["inertia_t"] / h["volume"]
+                h["kml"] = h["vcb"] + h["inertia_l"] / h["volume"]
+                h["mct1cm"] = h["displacement"] * h["inertia_l"] / h["volume"] / (100 * p["lpp"])
+                h["cwp"] = h["waterplane_area"] / (p["lpp"] * p["beam"])
+            return h
     except (ValueError, RuntimeError):
         return None
     return None
@@ -352,7 +384,8 @@ def lines_plan(hull, *, lpp: float, beam: float, draft: float, depth: float, nam
             dg.append((f"D{k + 1}", (zc, ang), cuts))
     outline = _mesh_outline(hull) if hasattr(hull, "face_part") else _outline(patches)
     plan = LinesPlan(st, wl, bl, dg, _knuckles(patches), _split_on_centre_plane(outline, p["lpp"]), p,
-                     hydrostatics if hydrostatics is not None else _hydrostatics(hull, patches, p), title=title)
+                     hydrostatics if hydrostatics is not None else _hydrostatics(hull, patches, p, wl[wls.index(p["draft"])][2]),
+                     title=title)
     from .lines_layout import layout
     layout(plan, (x0, x1), lo, hi)
     return plan

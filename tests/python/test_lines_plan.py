@@ -108,3 +108,17 @@ def test_bad_input_is_named():
         lines_plan(example_hull_surface(), lpp=244.8, beam=32.25, draft=20.0, depth=19.0)
     with pytest.raises(fl.InvalidInput, match="suffix"):
         lines_plan(example_hull_surface(), **P).save("x.doc")
+
+
+def test_waterplane_from_the_dwl_section_agrees_with_quadrature(forebody_plan):
+    from fairlines.lines_plan import waterplane_from_sections
+    dwl = [cuts for label, _, cuts in forebody_plan.waterlines if label == "DWL"][0]
+    w = waterplane_from_sections(dwl)
+    h = fl.hydrostatics(example_hull_surface(), P["draft"])
+    for key in ("waterplane_area", "lcf", "inertia_t", "inertia_l"):
+        assert w[key] == pytest.approx(getattr(h, key), rel=1e-5), key
+
+
+def test_composed_title_block_has_waterplane_and_metacentres(composed_plan):
+    h = composed_plan.hydrostatics
+    assert "mesh" in h["source"] and h["kmt"] == pytest.approx(h["vcb"] + h["inertia_t"] / h["volume"])
