@@ -203,16 +203,22 @@ def _sew(shapes, tol=SEW_TOLERANCE):
     return sew.SewedShape()
 
 
-def _edges(shape):
-    from OCP.TopAbs import TopAbs_EDGE
+def _sub_shapes(shape, kind: str):
+    """The sub-shapes of one kind ("EDGE", "FACE", "SHELL") of ``shape``, down-cast."""
+    from OCP import TopAbs
     from OCP.TopExp import TopExp_Explorer
     from OCP.TopoDS import TopoDS
-    ex = TopExp_Explorer(shape, TopAbs_EDGE)
+    ex = TopExp_Explorer(shape, getattr(TopAbs, f"TopAbs_{kind}"))
+    cast = getattr(TopoDS, kind.capitalize())
     out = []
     while ex.More():
-        out.append(TopoDS.Edge(ex.Current()))
+        out.append(cast(ex.Current()))
         ex.Next()
     return out
+
+
+def _edges(shape):
+    return _sub_shapes(shape, "EDGE")
 
 
 def _edge_points(edge, n=9):
@@ -433,14 +439,7 @@ def _solid_if_closed(shape):
     """The one shell of ``shape`` as a solid when it has no free edge, else ``shape``."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeSolid
     from OCP.BRepLib import BRepLib
-    from OCP.TopAbs import TopAbs_SHELL
-    from OCP.TopExp import TopExp_Explorer
-    from OCP.TopoDS import TopoDS
-    ex = TopExp_Explorer(shape, TopAbs_SHELL)
-    shells = []
-    while ex.More():
-        shells.append(TopoDS.Shell(ex.Current()))
-        ex.Next()
+    shells = _sub_shapes(shape, "SHELL")
     if len(shells) != 1 or _free_edges(shells[0], SEW_TOLERANCE):
         return shape
     solid = BRepBuilderAPI_MakeSolid(shells[0]).Solid()
@@ -449,15 +448,7 @@ def _solid_if_closed(shape):
 
 
 def _faces_of(shape):
-    from OCP.TopAbs import TopAbs_FACE
-    from OCP.TopExp import TopExp_Explorer
-    from OCP.TopoDS import TopoDS
-    ex = TopExp_Explorer(shape, TopAbs_FACE)
-    out = []
-    while ex.More():
-        out.append(TopoDS.Face(ex.Current()))
-        ex.Next()
-    return out
+    return _sub_shapes(shape, "FACE")
 
 
 def surface_deviation(shape, surfaces: Sequence[NurbsSurface], samples: int = 11) -> float:
