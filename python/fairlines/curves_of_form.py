@@ -135,13 +135,13 @@ def curves_of_form(surface: NurbsSurface, drafts: Sequence[float], *, lpp: float
     if design_draft is not None:
         hd = _native.hydrostatics(surface, float(design_draft), half_hull=half_hull, length=float(lpp),
                                   breadth=float(beam), gauss=gauss, sac_stations=sac_stations, density=density,
-                                  midship_x=_midship(surface, mid))
+                                  midship_x=midship_x(surface, mid))
         design = hd.as_dict()
         sac = (np.asarray(hd.sac_x), np.asarray(hd.sac_area))
     return CurvesOfForm(rows, dict(lpp=float(lpp), beam=float(beam), depth=depth), design, sac)
 
 
-def _midship(surface, mid):
+def midship_x(surface, mid):
     """Lpp / 2 for Am when the surface reaches it, else None (the middle of its extent)."""
     x = np.asarray(surface.control_points)[..., 0]
     return mid if x.min() <= mid <= x.max() else None
@@ -149,5 +149,5 @@ def _midship(surface, mid):
 
 def _hydro(surface, T, lpp, beam, mid, trim, density, half_hull, gauss, sac_stations):
     return _native.hydrostatics(surface, T, half_hull=half_hull, length=float(lpp), breadth=float(beam),
-                                midship_x=_midship(surface, mid), gauss=gauss, sac_stations=sac_stations,
+                                midship_x=midship_x(surface, mid), gauss=gauss, sac_stations=sac_stations,
                                 density=density, trim=trim, trim_length=float(lpp)).as_dict()

@@ -18,6 +18,8 @@ __all__ = ["layout"]
 TITLE_MM = (118.0, 92.0)
 #: Waterlines are labelled in the half-breadth plan at this fraction of the drawn x range.
 WL_LABEL_AT = 0.72
+#: Clear space kept between two labels (mm on paper).
+LABEL_PAD_MM = 0.8
 #: Band left for labels outside a view (mm on paper).
 LABEL_MM = 9.0
 
@@ -85,7 +87,7 @@ def _drop_overlapping_labels(prims, m):
     boxes, out = [], []
     for pr in prims:
         if isinstance(pr, Text) and pr.layer in ("STATIONS", "WATERLINES"):
-            w, h = 0.6 * pr.size * len(pr.text) * m, pr.size * m
+            w, h = (0.75 * pr.size * len(pr.text) + LABEL_PAD_MM) * m, pr.size * m
             box = (pr.x - 0.5 * w, pr.y, pr.x + 0.5 * w, pr.y + h)
             if any(b[0] < box[2] and box[0] < b[2] and b[1] < box[3] and box[1] < b[3] for b in boxes):
                 continue
@@ -142,7 +144,7 @@ def _grid(plan, prims, x0, x1, z_lo, z_top, y_max, d_max, yc, xb, m):
     _line(prims, [[x0, yc], [x1, yc]], "CENTRELINE")
     prims.append(Text(x0 - 0.3 * lab, yc, "CL", size=1.8, ha="right"))
     _line(prims, [[xb, z_lo], [xb, z_top]], "CENTRELINE")
-    prims.append(Text(xb, z_top + 0.6 * lab, "CL", size=2.0))
+    prims.append(Text(xb, z_top + 1.15 * lab, "CL", size=2.0))
     prims.append(Text(xb, z_lo - 0.35 * lab, "CL", size=1.5, va="top"))
     prims.append(Text(xb - 0.5 * y_max, z_lo - 1.3 * lab, "AFT", size=1.8, va="top"))
     prims.append(Text(xb + 0.5 * y_max, z_lo - 1.3 * lab, "FORE", size=1.8, va="top"))
@@ -155,7 +157,7 @@ def _grid(plan, prims, x0, x1, z_lo, z_top, y_max, d_max, yc, xb, m):
         prims.append(Text(xb + y_end + 0.2 * lab, zc - y_end * t, label, size=1.8, ha="left", layer="DIAGONALS"))
     prims.append(Text(0.5 * (x0 + x1), z_top + 1.8 * lab, "PROFILE", size=2.5))
     prims.append(Text(0.5 * (x0 + x1), yc + y_max + 0.6 * lab, "HALF-BREADTH PLAN", size=2.5))
-    prims.append(Text(xb, z_top + 1.8 * lab, "BODY PLAN", size=2.5))
+    prims.append(Text(xb, z_top + 2.0 * lab, "BODY PLAN", size=2.5))
 
 
 def _spread_x(waterlines, x0, x1):

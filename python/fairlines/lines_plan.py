@@ -301,7 +301,9 @@ def _hydrostatics(hull, patches, p, dwl_cuts=()) -> dict | None:
     try:
         if len(patches) == 1 and patches[0][1] is None:
             s = patches[0][0]
-            h = _native.hydrostatics(s, p["draft"], length=p["lpp"], breadth=p["beam"]).as_dict()
+            from .curves_of_form import midship_x
+            h = _native.hydrostatics(s, p["draft"], length=p["lpp"], breadth=p["beam"],
+                                     midship_x=midship_x(s, 0.5 * p["lpp"])).as_dict()
             full = h["x_min"] <= 1e-6 * p["lpp"] and h["x_max"] >= p["lpp"] * (1 - 1e-6)
             h["source"] = "NURBS quadrature" + ("" if full else
                                                 f", modelled part x {h['x_min']:.1f}-{h['x_max']:.1f} m only")
