@@ -122,3 +122,17 @@ def test_waterplane_from_the_dwl_section_agrees_with_quadrature(forebody_plan):
 def test_composed_title_block_has_waterplane_and_metacentres(composed_plan):
     h = composed_plan.hydrostatics
     assert "mesh" in h["source"] and h["kmt"] == pytest.approx(h["vcb"] + h["inertia_t"] / h["volume"])
+
+
+def test_example_writes_the_drawings(tmp_path, monkeypatch, capsys):
+    import runpy
+    import sys
+    from cad_fixtures import ROOT
+    pytest.importorskip("matplotlib")
+    monkeypatch.setattr(sys, "argv", ["lines_plan.py", "--out", str(tmp_path)])
+    runpy.run_path(str(ROOT / "examples" / "lines_plan.py"), run_name="__main__")
+    text = capsys.readouterr().out
+    assert "lines plan at 1:" in text and "KMt" in text
+    for name in ("lines_plan.png", "lines_plan.pdf", "lines_plan.dxf", "lines_plan_bow.png", "curves_of_form.csv",
+                 "sac.png"):
+        assert (tmp_path / "lines" / name).stat().st_size > 1000
