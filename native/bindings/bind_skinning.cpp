@@ -122,6 +122,16 @@ void bind_skinning(py::module_& m) {
       .def_readonly("cp", &Hydrostatics::cp)
       .def_readonly("cm", &Hydrostatics::cm)
       .def_readonly("cwp", &Hydrostatics::cwp)
+      .def_readonly("trim", &Hydrostatics::trim, "trim by the stern (m)")
+      .def_readonly("inertia_t", &Hydrostatics::inertia_t, "I_T, waterplane 2nd moment about the centre line (m^4)")
+      .def_readonly("inertia_l", &Hydrostatics::inertia_l, "I_L, waterplane 2nd moment about the axis through F (m^4)")
+      .def_readonly("bmt", &Hydrostatics::bmt, "I_T / V (m)")
+      .def_readonly("bml", &Hydrostatics::bml, "I_L / V (m)")
+      .def_readonly("kmt", &Hydrostatics::kmt, "VCB + BMt (m above base)")
+      .def_readonly("kml", &Hydrostatics::kml, "VCB + BMl (m above base)")
+      .def_readonly("tpc", &Hydrostatics::tpc, "tonnes per cm immersion (t/cm)")
+      .def_readonly("mct1cm", &Hydrostatics::mct1cm, "moment to change trim 1 cm, GML taken as BML (t m/cm)")
+      .def_readonly("z_max", &Hydrostatics::z_max, "highest point of the surface (m)")
       .def_property_readonly("sac_x", [](const Hydrostatics& h) { return to_array(h.sac_x); })
       .def_property_readonly("sac_area", [](const Hydrostatics& h) { return to_array(h.sac_area); })
       .def("as_dict", [](const Hydrostatics& h) {
@@ -131,12 +141,15 @@ void bind_skinning(py::module_& m) {
         d["wetted_surface"] = h.wetted_surface; d["x_min"] = h.x_min; d["x_max"] = h.x_max;
         d["length"] = h.length; d["breadth"] = h.breadth; d["midship_x"] = h.midship_x;
         d["midship_area"] = h.midship_area; d["cb"] = h.cb; d["cp"] = h.cp; d["cm"] = h.cm; d["cwp"] = h.cwp;
+        d["trim"] = h.trim; d["inertia_t"] = h.inertia_t; d["inertia_l"] = h.inertia_l; d["bmt"] = h.bmt;
+        d["bml"] = h.bml; d["kmt"] = h.kmt; d["kml"] = h.kml; d["tpc"] = h.tpc; d["mct1cm"] = h.mct1cm;
+        d["z_max"] = h.z_max;
         return d;
       }, "Scalar results as a dict.");
 
   m.def("hydrostatics",
         [](const NurbsSurface& s, double draft, bool half_hull, double length, double breadth, py::handle midship_x,
-           py::handle gauss, py::handle sac_stations, double density) {
+           py::handle gauss, py::handle sac_stations, double density, double trim, double trim_length) {
           HydrostaticsOptions o;
           o.half_hull = half_hull;
           o.length = length;
@@ -147,15 +160,19 @@ void bind_skinning(py::module_& m) {
           o.gauss = as_int(gauss, "gauss");
           o.sac_stations = as_int(sac_stations, "sac_stations");
           o.density = density;
+          o.trim = trim;
+          o.trim_length = trim_length;
           py::gil_scoped_release release;
           return hydrostatics(s, draft, o);
         },
         "surface"_a, "draft"_a, "half_hull"_a = true, "length"_a = 0.0, "breadth"_a = 0.0, "midship_x"_a = py::none(),
-        "gauss"_a = 8, "sac_stations"_a = 41, "density"_a = 1.025,
+        "gauss"_a = 8, "sac_stations"_a = 41, "density"_a = 1.025, "trim"_a = 0.0, "trim_length"_a = 0.0,
         "Hydrostatics of a hull surface at `draft` (m above base) by Gauss-Legendre quadrature on the surface.\n"
         "The surface is the y >= 0 half of the hull when half_hull=True (volume, areas and SAC are then doubled\n"
         "to full-ship values); openings other than the centre plane must be transverse planes x = const.\n"
-        "length / breadth: for the coefficients (0: submerged extent); midship_x: station of Am (None: middle).");
+        "length / breadth: for the coefficients (0: submerged extent); midship_x: station of Am (None: middle).\n"
+        "trim: by the stern (m) over trim_length (AP at x = 0 to FP); draft is then the draft at trim_length / 2.\n"
+        "Raises InvalidInput for a bad draft or option, or a waterplane above the surface's highest point.");
   m.def("section_area", &section_area, "surface"_a, "x"_a, "draft"_a, "half_hull"_a = true, "gauss"_a = 8,
         "(area below the draft of the section x = const (m^2; full section when half_hull), centroid height (m)).");
 }

@@ -4,6 +4,7 @@
     fairlines fit POINTS.csv [--degree 3] [--n-control N] [--parameterization chord] -o curve.json
     fairlines import TABLE --lpp L --beam B --draft T [--format auto] [--stations 20] -o hull.json
     fairlines build hull.json -o OUTDIR
+    fairlines export | lines | hydrostatics ...   (see fairlines.cli_output)
 """
 
 from __future__ import annotations
@@ -95,6 +96,8 @@ def main(argv=None) -> int:
                                      "hydrostatics")
     b.add_argument("hull", help="hull.json written by 'fairlines import'")
     b.add_argument("-o", "--output", required=True, help="output folder")
+    from . import cli_output
+    cli_output.add_parsers(sub)
     args = ap.parse_args(argv)
     try:
         if args.command == "version":
@@ -104,6 +107,8 @@ def main(argv=None) -> int:
             return _import(args)
         if args.command == "build":
             return _build(args)
+        if args.command in cli_output.COMMANDS:
+            return cli_output.run(args)
         return _fit(args)
     except ValueError as exc:  # bad input: a one-line message, no traceback
         print(f"fairlines {args.command}: {exc}", file=sys.stderr)

@@ -11,10 +11,23 @@
 //   V            = int y n_y dS                (F = (0, y, 0); zero flux through y = 0, the
 //                                               waterplane and planes x = const)
 //   V LCB        = int x y n_y dS,  V VCB = int z y n_y dS
-//   waterplane   from V = T Awp + int z n_z dS and V LCB = T Awp LCF + int x z n_z dS
+//   waterplane   below
 //   wetted area  = int dS over z < draft
 // Each v node line is clipped where z(u, v) crosses the draft (sign changes by sampling,
 // then bisection to 1e-14), and every piece is integrated per knot span.
+//
+// The waterplane's area, first and second moments follow from divergence-free fields
+// F = (0, 0, g(x, y)), whose flux through the waterplane is int g dA_h (dA_h the waterplane
+// area element projected on z = 0) and is zero through y = 0 and planes x = const:
+//   Awp_h        = -int n_z dS,   Awp_h LCF = -int x n_z dS
+//   I_T,h        = -int y^2 n_z dS              (about the centre line y = 0)
+//   I_L,h        = -int x^2 n_z dS - Awp_h LCF^2 (about the transverse axis through F)
+// With trim the waterplane z = draft + trim (L/2 - x) / L (L = trim_length, AP at x = 0) is
+// inclined by theta = atan(trim / L); its true area and transverse moment are the projected
+// ones over cos(theta), its longitudinal moment (measured along the plane) over cos^3(theta).
+// Volume, LCB and VCB need no change (n_y = 0 on the inclined plane). KMt = VCB + I_T / V and
+// KMl = VCB + I_L / V; MCT1cm = displacement BML / (100 L) with GML taken as BML (the
+// centre of gravity is not known here), the usual entry of a hydrostatic table.
 #pragma once
 
 #include <limits>
@@ -34,6 +47,10 @@ struct HydrostaticsOptions {
   int gauss = 8;          ///< Gauss-Legendre points per knot span in each direction (2..32)
   int sac_stations = 41;  ///< equally spaced stations of the returned SAC (>= 2), ends included
   double density = 1.025; ///< water density (t/m^3) for the displacement mass
+  /// Trim by the stern (m): draft at the AP (x = 0) minus draft at the FP (x = trim_length);
+  /// `draft` is then the draft at x = trim_length / 2. Negative: trim by the bow.
+  double trim = 0;
+  double trim_length = 0; ///< AP to FP (m) over which `trim` is measured; > 0 when trim != 0
 };
 
 struct Hydrostatics {
@@ -50,10 +67,21 @@ struct Hydrostatics {
   double midship_x = 0, midship_area = 0;  ///< Am (m^2) at midship_x
   double cb = 0, cp = 0, cm = 0, cwp = 0;  ///< V/(L B T), V/(Am L), Am/(B T), Awp/(L B)
   Eigen::VectorXd sac_x, sac_area;  ///< sectional area curve: stations (m) and areas (m^2)
+                                    ///< (below the local waterline when trimmed)
+  double trim = 0;             ///< trim by the stern (m) as asked
+  double inertia_t = 0;        ///< I_T: waterplane 2nd moment about the centre line (m^4, full ship when half_hull)
+  double inertia_l = 0;        ///< I_L: waterplane 2nd moment about the transverse axis through F (m^4)
+  double bmt = 0, bml = 0;     ///< I_T / V, I_L / V (m)
+  double kmt = 0, kml = 0;     ///< VCB + BMt, VCB + BMl (m above base)
+  double tpc = 0;              ///< tonnes per cm immersion: density Awp / 100 (t/cm)
+  double mct1cm = 0;           ///< moment to change trim 1 cm: displacement BML / (100 length) (t m/cm)
+  double z_max = 0;            ///< highest point of the surface (m above base)
 };
 
-/// Hydrostatics of `surface` floating upright at `draft` (m, > 0). Throws InvalidInput for a
-/// non-finite / non-positive draft, bad options, or a surface with nothing below the draft.
+/// Hydrostatics of `surface` floating at `draft` (m, > 0), upright or trimmed (options.trim).
+/// Throws InvalidInput for a non-finite / non-positive draft, bad options, a waterplane
+/// above the surface's highest point anywhere along the surface (naming both), or a
+/// surface with nothing below the draft.
 Hydrostatics hydrostatics(const NurbsSurface& surface, double draft, const HydrostaticsOptions& options = {});
 
 /// Area (m^2) below `draft` of the section of the surface by the plane x = `x` (half the

@@ -20,6 +20,8 @@ using detail::fail;
 
 constexpr int kClipSamples = 8;        // samples per knot span when looking for draft crossings
 constexpr int kBisection = 60;         // bisection steps (interval shrinks below 1e-16 of the span)
+// A waterplane this far (relative) above the surface's sampled top still counts as at the top.
+constexpr double kAboveTopTolerance = 1e-9;
 
 /// Distinct knots of a knot vector inside the domain (the span breakpoints).
 std::vector<double> breakpoints(const Eigen::VectorXd& U, int degree) {
@@ -191,27 +193,111 @@ std::pair<double, double> section_area(const NurbsSurface& s, double x0, double 
   return {(half_hull ? 2.0 : 1.0) * std::abs(area), zc};
 }
 
-Hydrostatics hydrostatics(const NurbsSurface& s, double draft, const HydrostaticsOptions& o) {
-  detail::require_positive(draft, "draft");
+namespace {
+
+/// Highest z of the surface, sampled kClipSamples times per knot span in each direction
+/// (breakpoints included, so a deck edge at constant z is found exactly).
+double highest_point(const NurbsSurface& s) {
+  const std::vector<double> bu = breakpoints(s.knots_u(), s.degree_u());
+  const std::vector<double> bv = breakpoints(s.knots_v(), s.degree_v());
+  auto refine = [](const std::vector<double>& b) {
+    std::vector<double> t;
+    for (std::size_t i = 0; i + 1 < b.size(); ++i)
+      for (int k = 0; k < kClipSamples; ++k) t.push_back(b[i] + (b[i + 1] - b[i]) * k / kClipSamples);
+    t.push_back(b.back());
+    return t;
+  };
+  const std::vector<double> us = refine(bu), vs = refine(bv);
+  double zmax = -std::numeric_limits<double>::infinity();
+  for (double u : us)
+    for (double v : vs) zmax = std::max(zmax, s.evaluate(u, v)[2]);
+  return zmax;
+}
+
+void check_options(const HydrostaticsOptions& o) {
   if (o.gauss < 2 || o.gauss > 32) fail("gauss is ", o.gauss, "; expected 2..32 points per knot span");
   if (o.sac_stations < 2) fail("sac_stations is ", o.sac_stations, "; expected at least 2");
   if (!(o.length >= 0) || !std::isfinite(o.length)) fail("length is ", o.length, "; expected 0 (automatic) or a length > 0 (m)");
   if (!(o.breadth >= 0) || !std::isfinite(o.breadth)) fail("breadth is ", o.breadth, "; expected 0 (automatic) or a breadth > 0 (m)");
   if (!(o.density > 0) || !std::isfinite(o.density)) fail("density is ", o.density, "; expected a density > 0 (t/m^3)");
   if (std::isinf(o.midship_x)) fail("midship_x is ", o.midship_x, "; expected a finite x (m) or NaN (automatic)");
+  if (!std::isfinite(o.trim)) fail("trim is ", o.trim, "; expected a finite trim by the stern (m)");
+  if (!(o.trim_length >= 0) || !std::isfinite(o.trim_length))
+    fail("trim_length is ", o.trim_length, "; expected 0 or the length AP..FP (m)");
+  if (o.trim != 0 && !(o.trim_length > 0))
+    fail("trim is ", o.trim, " m but trim_length is ", o.trim_length, "; expected the length AP..FP (m) > 0");
+}
+
+/// Results from the accumulated surface integrals (see the header for the formulas).
+template <typename Z>
+void fill_results(Hydrostatics& h, const NurbsSurface& s, double draft, const HydrostaticsOptions& o,
+                  const std::array<double, 8>& acc, double xmin, double xmax, double ymax, double slope,
+                  Z&& waterline_z) {
+  const double sign = acc[0] > 0 ? 1.0 : -1.0;
+  const double V = sign * acc[0];
+  const double factor = o.half_hull ? 2.0 : 1.0;
+  const double cos_t = 1.0 / std::sqrt(1.0 + slope * slope);
+  h.draft = draft;
+  h.trim = o.trim;
+  h.volume = factor * V;
+  h.displacement = o.density * h.volume;
+  h.lcb = sign * acc[1] / V;
+  h.vcb = sign * acc[2] / V;
+  const double awp_h = -sign * acc[3];  // half waterplane, projected on z = 0
+  h.waterplane_area = factor * awp_h / cos_t;
+  h.lcf = awp_h != 0 ? -sign * acc[4] / awp_h : 0.0;
+  h.inertia_t = factor * (-sign * acc[5]) / cos_t;
+  h.inertia_l = factor * (-sign * acc[6] - awp_h * h.lcf * h.lcf) / (cos_t * cos_t * cos_t);
+  h.wetted_surface = factor * acc[7];
+  h.x_min = xmin;
+  h.x_max = xmax;
+  h.length = o.length > 0 ? o.length : xmax - xmin;
+  h.breadth = o.breadth > 0 ? o.breadth : 2.0 * ymax;
+  h.midship_x = std::isnan(o.midship_x) ? 0.5 * (xmin + xmax) : o.midship_x;
+  h.midship_area = section_area(s, h.midship_x, waterline_z(h.midship_x), o.half_hull, o.gauss).first;
+  h.cb = h.volume / (h.length * h.breadth * draft);
+  h.cm = h.midship_area / (h.breadth * draft);
+  h.cp = h.midship_area > 0 ? h.volume / (h.midship_area * h.length) : 0.0;
+  h.cwp = h.waterplane_area / (h.length * h.breadth);
+  h.bmt = h.inertia_t / h.volume;
+  h.bml = h.inertia_l / h.volume;
+  h.kmt = h.vcb + h.bmt;
+  h.kml = h.vcb + h.bml;
+  h.tpc = o.density * h.waterplane_area / 100.0;
+  h.mct1cm = h.displacement * h.bml / (100.0 * h.length);
+  h.sac_x = Eigen::VectorXd::LinSpaced(o.sac_stations, xmin, xmax);
+  h.sac_area.resize(o.sac_stations);
+  for (int k = 0; k < o.sac_stations; ++k) {
+    const double zl = waterline_z(h.sac_x[k]);
+    h.sac_area[k] = zl > 0 ? section_area(s, h.sac_x[k], zl, o.half_hull, o.gauss).first : 0.0;
+  }
+}
+
+}  // namespace
+
+Hydrostatics hydrostatics(const NurbsSurface& s, double draft, const HydrostaticsOptions& o) {
+  detail::require_positive(draft, "draft");
+  check_options(o);
+  // Waterplane z = draft + slope (x - x_ref): level when untrimmed.
+  const double slope = o.trim != 0 ? -o.trim / o.trim_length : 0.0;
+  const double x_ref = 0.5 * o.trim_length;
+  auto waterline_z = [&](double x) { return draft + slope * (x - x_ref); };
 
   const std::vector<double> bu = breakpoints(s.knots_u(), s.degree_u());
   const std::vector<double> bv = breakpoints(s.knots_v(), s.degree_v());
   const auto& g = detail::gauss_rule(o.gauss);
-  // Accumulators: V, Mx, Mz (flux of y), Qz, Qxz (flux of z), wetted area.
-  std::array<double, 6> acc{};
+  // Accumulators: V, Mx, Mz (flux of y); A, Ax, Ayy, Axx (flux of n_z); wetted area.
+  std::array<double, 8> acc{};
   std::vector<double> us(o.gauss), vs(o.gauss), d1(9 * static_cast<size_t>(o.gauss));
   double xmin = std::numeric_limits<double>::infinity(), xmax = -xmin, ymax = 0;
   for (std::size_t jv = 0; jv + 1 < bv.size(); ++jv) {
     const double hv = 0.5 * (bv[jv + 1] - bv[jv]), mv = 0.5 * (bv[jv + 1] + bv[jv]);
     for (int kv = 0; kv < o.gauss; ++kv) {
       const double v = mv + hv * g.x[kv];
-      const auto pieces = inside_pieces(bu, [&](double u) { return s.evaluate(u, v)[2] - draft; });
+      const auto pieces = inside_pieces(bu, [&](double u) {
+        const Eigen::Vector3d P = s.evaluate(u, v);
+        return P[2] - waterline_z(P[0]);
+      });
       for (const auto& [pa, pb] : pieces) {
         const double hu = 0.5 * (pb - pa), mu = 0.5 * (pa + pb);
         // All Gauss points of this piece in one allocation-free batch: rows [S, S_u, S_v].
@@ -228,9 +314,11 @@ Hydrostatics hydrostatics(const NurbsSurface& s, double draft, const Hydrostatic
           acc[0] += w * P[1] * N[1];
           acc[1] += w * P[0] * P[1] * N[1];
           acc[2] += w * P[2] * P[1] * N[1];
-          acc[3] += w * P[2] * N[2];
-          acc[4] += w * P[0] * P[2] * N[2];
-          acc[5] += w * N.norm();
+          acc[3] += w * N[2];
+          acc[4] += w * P[0] * N[2];
+          acc[5] += w * P[1] * P[1] * N[2];
+          acc[6] += w * P[0] * P[0] * N[2];
+          acc[7] += w * N.norm();
           xmin = std::min(xmin, P[0]);
           xmax = std::max(xmax, P[0]);
           ymax = std::max(ymax, P[1]);
@@ -250,35 +338,17 @@ Hydrostatics hydrostatics(const NurbsSurface& s, double draft, const Hydrostatic
   for (double v : {bv.front(), bv.back()})
     for (double u : bu) {
       const Eigen::Vector3d P = s.evaluate(u, v);
-      if (P[2] <= draft) xmin = std::min(xmin, P[0]), xmax = std::max(xmax, P[0]), ymax = std::max(ymax, P[1]);
+      if (P[2] <= waterline_z(P[0])) xmin = std::min(xmin, P[0]), xmax = std::max(xmax, P[0]), ymax = std::max(ymax, P[1]);
     }
-  const double sign = acc[0] > 0 ? 1.0 : -1.0;
-  const double V = sign * acc[0];
-  const double factor = o.half_hull ? 2.0 : 1.0;
   Hydrostatics h;
-  h.draft = draft;
-  h.volume = factor * V;
-  h.displacement = o.density * h.volume;
-  h.lcb = sign * acc[1] / V;
-  h.vcb = sign * acc[2] / V;
-  const double awp_half = (V - sign * acc[3]) / draft;
-  h.waterplane_area = factor * awp_half;
-  h.lcf = awp_half != 0 ? (sign * acc[1] - sign * acc[4]) / (draft * awp_half) : 0.0;
-  h.wetted_surface = factor * acc[5];
-  h.x_min = xmin;
-  h.x_max = xmax;
-  h.length = o.length > 0 ? o.length : xmax - xmin;
-  h.breadth = o.breadth > 0 ? o.breadth : 2.0 * ymax;
-  h.midship_x = std::isnan(o.midship_x) ? 0.5 * (xmin + xmax) : o.midship_x;
-  h.midship_area = section_area(s, h.midship_x, draft, o.half_hull, o.gauss).first;
-  h.cb = h.volume / (h.length * h.breadth * draft);
-  h.cm = h.midship_area / (h.breadth * draft);
-  h.cp = h.midship_area > 0 ? h.volume / (h.midship_area * h.length) : 0.0;
-  h.cwp = h.waterplane_area / (h.length * h.breadth);
-  h.sac_x = Eigen::VectorXd::LinSpaced(o.sac_stations, xmin, xmax);
-  h.sac_area.resize(o.sac_stations);
-  for (int k = 0; k < o.sac_stations; ++k)
-    h.sac_area[k] = section_area(s, h.sac_x[k], draft, o.half_hull, o.gauss).first;
+  h.z_max = highest_point(s);
+  // The body is closed only up to the surface's top: a waterplane above it anywhere along the
+  // submerged extent would be an open, meaningless volume.
+  const double z_wl_top = std::max(waterline_z(xmin), waterline_z(xmax));
+  if (z_wl_top > h.z_max + kAboveTopTolerance * (1 + std::abs(h.z_max)))
+    fail("draft ", draft, " m puts the waterplane at z = ", z_wl_top, " m, above the surface's highest point z = ",
+         h.z_max, " m (the deck); expected a waterplane at or below it");
+  fill_results(h, s, draft, o, acc, xmin, xmax, ymax, slope, waterline_z);
   return h;
 }
 

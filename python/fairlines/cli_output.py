@@ -1,0 +1,147 @@
+"""The ``fairlines export``, ``fairlines lines`` and ``fairlines hydrostatics`` subcommands.
+
+    fairlines export HULL -o hull.step [--what solid|surfaces] [--full] [--schema AP214|AP242]
+    fairlines lines HULL -o lines.pdf [--closeup bow|stern] [--lpp L --beam B --draft T --depth D]
+    fairlines hydrostatics HULL -o curves.csv [--drafts 1:19:1] [--trims 0,1] [--plot curves.png]
+
+HULL is a surface JSON written by ``fairlines.io.save_json`` (or several, one per subdomain)
+or a hull description JSON (``fl.Hull.from_json``); ``--compose`` adds its bulb and blend
+(``compose_with_blend``). Principal particulars come from the description's ``principal``
+section unless given.
+"""
+
+from __future__ import annotations
+
+import json
+import pathlib
+
+import numpy as np
+
+from ._native import InvalidInput, NurbsSurface
+
+__all__ = ["add_parsers", "run", "COMMANDS"]
+
+COMMANDS = ("export", "lines", "hydrostatics")
+
+
+def _hull_arg(p):
+    p.add_argument("hull", nargs="+", help="surface JSON file(s) or a hull description JSON")
+    p.add_argument("--compose", action="store_true", help="description: bare hull + bulb + blend composed")
+    for k, h in (("lpp", "length between perpendiculars (m), AP at x = 0"), ("beam", "moulded breadth B (m)"),
+                 ("draft", "design draft T (m)"), ("depth", "depth D (m)")):
+        p.add_argument(f"--{k}", type=float, help=h)
+
+
+def add_parsers(sub) -> None:
+    """Register the three subcommands on an argparse subparsers object."""
+    e = sub.add_parser("export", help="write the hull as STEP / IGES / Rhino 3dm (OpenCASCADE, rhino3dm)")
+    _hull_arg(e)
+    e.add_argument("-o", "--output", required=True, help="file: .step/.stp, .iges/.igs or .3dm")
+    e.add_argument("--what", default="solid", choices=["solid", "surfaces"])
+    e.add_argument("--full", action="store_true", help="full ship (mirrored) instead of the half")
+    e.add_argument("--schema", default="AP214", choices=["AP214", "AP242"])
+    e.add_argument("--verify", action="store_true", help="read the file back with OpenCASCADE and report")
+    ln = sub.add_parser("lines", help="lines plan: profile, half-breadth and body plan (SVG, PDF, PNG, DXF)")
+    _hull_arg(ln)
+    ln.add_argument("-o", "--output", required=True, nargs="+", help="file(s): .svg, .pdf, .png, .dxf")
+    ln.add_argument("--closeup", choices=["bow", "stern"], help="a close-up of one end")
+    ln.add_argument("--name", default=None, help="ship name for the title block")
+    hy = sub.add_parser("hydrostatics", help="curves of form over drafts (and trims): CSV and plots")
+    _hull_arg(hy)
+    hy.add_argument("-o", "--output", required=True, help="CSV table")
+    hy.add_argument("--drafts", default=None, help="FROM:TO:STEP or a comma list (m); default T/10 .. D in 10ths")
+    hy.add_argument("--trims", default="0", help="comma list of trims by the stern (m)")
+    hy.add_argument("--plot", help="curves-of-form plot (.png/.pdf/.svg)")
+    hy.add_argument("--sac-plot", help="SAC at the design draft (against the description's SAC when known)")
+
+
+def _load(args):
+    """(hull, particulars, name, description Hull or None) from the HULL argument(s)."""
+    from . import io
+    docs = [json.loads(pathlib.Path(p).read_text()) for p in args.hull]
+    part, name, hull_obj = {}, "", None
+    if len(docs) == 1 and "principal" in docs[0]:
+        from .hull import Hull
+        hull_obj = Hull.from_json(docs[0])
+        pr = docs[0]["principal"]
+        part = dict(lpp=pr.get("Lpp"), beam=pr.get("B"), draft=pr.get("T"), depth=pr.get("D"))
+        name = docs[0].get("name", "")
+        hull = (hull_obj.composed_hull() if args.compose else hull_obj.bare_hull_surface())
+    else:
+        surfaces = [io.from_dict(d) for d in docs]
+        if not all(isinstance(s, NurbsSurface) for s in surfaces):
+            raise InvalidInput(f"{args.hull} are not all surface JSON files; expected surfaces or one hull description")
+        hull = surfaces[0] if len(surfaces) == 1 else surfaces
+        name = pathlib.Path(args.hull[0]).stem
+    for k in ("lpp", "beam", "draft", "depth"):
+        if getattr(args, k) is not None:
+            part[k] = getattr(args, k)
+    return hull, part, name, hull_obj
+
+
+def _need(part, keys):
+    missing = [k for k in keys if part.get(k) is None]
+    if missing:
+        raise InvalidInput(f"principal particulars {missing} are not known; expected --{' --'.join(missing)}")
+
+
+def _export(args) -> int:
+    from . import cad
+    hull, _, _, _ = _load(args)
+    cad.export_cad(hull, args.output, what=args.what, full=args.full, schema=args.schema)
+    print(f"wrote {args.output}")
+    if args.verify and not args.output.lower().endswith(".3dm"):
+        v = cad.verify(cad.read_cad(args.output))
+        print(f"read back: {v['faces']} faces, valid {v['valid']}, closed {v['closed']}, volume {v['volume']:.6g} m3")
+    return 0
+
+
+def _lines(args) -> int:
+    from .lines_plan import closeup, lines_plan
+    hull, part, name, _ = _load(args)
+    _need(part, ("lpp", "beam", "draft", "depth"))
+    kw = dict(lpp=part["lpp"], beam=part["beam"], draft=part["draft"], depth=part["depth"],
+              name=args.name if args.name is not None else name)
+    plan = closeup(hull, args.closeup, **kw) if args.closeup else lines_plan(hull, **kw)
+    for out in args.output:
+        plan.save(out)
+        print(f"wrote {out} (scale 1:{plan.scale:g} on A3)")
+    return 0
+
+
+def _floats(text):
+    if ":" in text:
+        a, b, s = (float(v) for v in text.split(":"))
+        return np.arange(a, b + 0.5 * s, s)
+    return np.array([float(v) for v in text.split(",")])
+
+
+def _hydrostatics(args) -> int:
+    from .curves_of_form import curves_of_form
+    hull, part, name, hull_obj = _load(args)
+    if not isinstance(hull, NurbsSurface):
+        raise InvalidInput("curves of form need one surface; expected a single surface or a bare-hull description")
+    _need(part, ("lpp", "beam"))
+    depth = part.get("depth")
+    if args.drafts:
+        drafts = _floats(args.drafts)
+    else:
+        _need(part, ("draft", "depth"))
+        drafts = np.linspace(0.1 * part["draft"], depth, 19)
+    cof = curves_of_form(hull, drafts, lpp=part["lpp"], beam=part["beam"], depth=depth, trims=_floats(args.trims),
+                         design_draft=part.get("draft"))
+    cof.write_csv(args.output)
+    print(f"wrote {args.output}: {len(cof.rows)} rows")
+    if args.plot:
+        cof.plot(args.plot, name)
+        print(f"wrote {args.plot}")
+    if args.sac_plot:
+        basic = hull_obj.basic_curves["sac"] if hull_obj is not None else None
+        cof.plot_sac(args.sac_plot, basic, name)
+        print(f"wrote {args.sac_plot}")
+    return 0
+
+
+def run(args) -> int:
+    """Run one of :data:`COMMANDS` (argparse namespace from :func:`add_parsers`)."""
+    return {"export": _export, "lines": _lines, "hydrostatics": _hydrostatics}[args.command](args)

@@ -1,0 +1,138 @@
+"""Lines plan: its body plan sections against fl.plane_cut, its DXF against the hull, its views
+and conventions on a forebody, a composed hull and a whole (Wigley) ship."""
+
+import numpy as np
+import pytest
+
+import fairlines as fl
+from fairlines.lines_plan import STATIONS_PER_LPP, closeup, lines_plan
+from cad_fixtures import EXAMPLE_PARTICULARS as P, example_composed_hull, example_hull_surface, wigley_surface
+
+#: Drawn polylines vs plane_cut's 401 samples: both are exact points joined by chords.
+CHORD_TOLERANCE = 1e-3
+
+
+def _dist_to_polyline(points, poly):
+    a, b = poly[:-1], poly[1:]
+    ab = b - a
+    w = np.clip(np.einsum("pkj,kj->pk", points[:, None, :] - a[None], ab) / np.einsum("kj,kj->k", ab, ab), 0, 1)
+    return np.min(np.linalg.norm(points[:, None, :] - (a[None] + w[..., None] * ab[None]), axis=2), axis=1)
+
+
+@pytest.fixture(scope="module")
+def forebody_plan():
+    return lines_plan(example_hull_surface(), **P, name="Panamax forebody")
+
+
+@pytest.fixture(scope="module")
+def composed_plan():
+    return lines_plan(example_composed_hull(), **P)
+
+
+def _drawn(plan, layer, name):
+    return [p for p in plan.primitives if getattr(p, "layer", None) == layer and getattr(p, "name", "") == name]
+
+
+def test_body_plan_sections_equal_plane_cut_frames(forebody_plan):
+    s = example_hull_surface()
+    checked = 0
+    for label, x, _ in forebody_plan.stations:
+        if not 123.0 < x < 244.0:
+            continue
+        cut = fl.plane_cut(s, 0, x).points[:, 1:]
+        (drawn,) = _drawn(forebody_plan, "STATIONS", f"ST {label}")
+        yz = forebody_plan.to_model("body", drawn.points)
+        assert np.all(yz[:, 0] >= -1e-9)  # fore stations on the right of the centre line
+        assert _dist_to_polyline(cut, yz).max() < CHORD_TOLERANCE
+        assert _dist_to_polyline(yz, cut).max() < CHORD_TOLERANCE
+        checked += 1
+    assert checked >= 10
+
+
+def test_dxf_passes_audit_and_its_dwl_lies_on_the_design_waterline(forebody_plan, tmp_path):
+    ezdxf = pytest.importorskip("ezdxf")
+    path = tmp_path / "lines.dxf"
+    forebody_plan.save(path)
+    doc = ezdxf.readfile(str(path))
+    assert len(doc.audit().errors) == 0
+    splines = doc.modelspace().query('SPLINE[layer=="DWL"]')
+    assert len(splines) >= 1
+    s = example_hull_surface()
+    for sp in splines:
+        pts = np.array([[p.x, p.y] for p in sp.construction_tool().points(np.linspace(0, sp.construction_tool().max_t, 60))])
+        xy = forebody_plan.to_model("plan", pts)
+        for x, y in xy:
+            q = np.array([x, y, P["draft"]])
+            assert np.linalg.norm(s.closest_point(q)[2] - q) < 1e-3
+
+
+def test_composed_hull_plan_draws_the_bulb_beyond_the_fp(composed_plan):
+    c = example_composed_hull()
+    nose = c.mesh.vertices[:, 0].max()
+    labels = [n for n, x, cuts in composed_plan.stations if x > P["lpp"] and cuts]
+    assert labels, "no station through the bulb ahead of the FP"
+    outline_x = max(o[:, 0].max() for o in composed_plan.outline)
+    assert outline_x == pytest.approx(nose, abs=1e-6)
+    assert any(np.abs(o[:, 1]).max() < 1e-9 and o[:, 0].max() > P["lpp"] for o in composed_plan.outline)
+
+
+def test_whole_ship_body_plan_aft_left_fore_right():
+    plan = lines_plan(wigley_surface(), lpp=100.0, beam=10.0, draft=6.25, depth=10.0)
+    nums = [float(n) for n, _, _ in plan.stations]
+    assert nums[0] == 0.0 and nums[-1] == STATIONS_PER_LPP
+    xb = plan.offsets["body"][0]
+    for n, _, _ in plan.stations:
+        for prim in _drawn(plan, "STATIONS", f"ST {n}"):
+            side = np.sign(prim.points[:, 0] - xb)
+            if float(n) < STATIONS_PER_LPP / 2:
+                assert np.all(side <= 0)
+            elif float(n) > STATIONS_PER_LPP / 2:
+                assert np.all(side >= 0)
+
+
+def test_bow_closeup_has_quarter_stations_and_a_larger_scale(forebody_plan):
+    plan = closeup(example_hull_surface(), "bow", **P)
+    assert plan.scale < forebody_plan.scale
+    assert any(float(n) % 1 == 0.25 for n, _, _ in plan.stations)
+
+
+def test_svg_pdf_written(forebody_plan, tmp_path):
+    pytest.importorskip("matplotlib")
+    for suffix, head in ((".svg", b"<?xml"), (".pdf", b"%PDF")):
+        forebody_plan.save(tmp_path / f"l{suffix}")
+        assert (tmp_path / f"l{suffix}").read_bytes()[:5].startswith(head)
+
+
+def test_bad_input_is_named():
+    with pytest.raises(fl.InvalidInput, match="draft 20.0 m is above depth 19.0 m"):
+        lines_plan(example_hull_surface(), lpp=244.8, beam=32.25, draft=20.0, depth=19.0)
+    with pytest.raises(fl.InvalidInput, match="suffix"):
+        lines_plan(example_hull_surface(), **P).save("x.doc")
+
+
+def test_waterplane_from_the_dwl_section_agrees_with_quadrature(forebody_plan):
+    from fairlines.lines_plan import waterplane_from_sections
+    dwl = [cuts for label, _, cuts in forebody_plan.waterlines if label == "DWL"][0]
+    w = waterplane_from_sections(dwl)
+    h = fl.hydrostatics(example_hull_surface(), P["draft"])
+    for key in ("waterplane_area", "lcf", "inertia_t", "inertia_l"):
+        assert w[key] == pytest.approx(getattr(h, key), rel=1e-5), key
+
+
+def test_composed_title_block_has_waterplane_and_metacentres(composed_plan):
+    h = composed_plan.hydrostatics
+    assert "mesh" in h["source"] and h["kmt"] == pytest.approx(h["vcb"] + h["inertia_t"] / h["volume"])
+
+
+def test_example_writes_the_drawings(tmp_path, monkeypatch, capsys):
+    import runpy
+    import sys
+    from cad_fixtures import ROOT
+    pytest.importorskip("matplotlib")
+    monkeypatch.setattr(sys, "argv", ["lines_plan.py", "--out", str(tmp_path)])
+    runpy.run_path(str(ROOT / "examples" / "lines_plan.py"), run_name="__main__")
+    text = capsys.readouterr().out
+    assert "lines plan at 1:" in text and "KMt" in text
+    for name in ("lines_plan.png", "lines_plan.pdf", "lines_plan.dxf", "lines_plan_bow.png", "curves_of_form.csv",
+                 "sac.png"):
+        assert (tmp_path / "lines" / name).stat().st_size > 1000
