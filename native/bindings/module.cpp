@@ -12,6 +12,7 @@ void bind_skinning(py::module_& m);
 void bind_hull(py::module_& m);
 void bind_compose(py::module_& m);
 void bind_form_curve(py::module_& m);
+void bind_meshing(py::module_& m);
 }  // namespace fairlines
 
 PYBIND11_MODULE(_native, m) {
@@ -26,4 +27,5 @@ PYBIND11_MODULE(_native, m) {
   fairlines::bind_skinning(m);
   fairlines::bind_hull(m);
   fairlines::bind_compose(m);
+  fairlines::bind_meshing(m);
 }

@@ -315,7 +315,52 @@ void seam_ends_on_centre_line(const NurbsSurface& H, const std::vector<Eigen::Ve
                        "(the bulb must be attached at the stem)");
 }
 
+/// Smallest rake allowed for a transom plane: |normal.x| >= this.
+constexpr double kMinTransomNormalX = 0.2;
+
+/// Plane through the points (PCA: the normal is the direction of least spread), normal.x >= 0;
+/// false when a point is farther than tol from it or the normal is too far from x.
+bool fit_transom_plane(const Eigen::MatrixXd& pts, double tol, AftEnd& out) {
+  const Eigen::RowVector3d c = pts.colwise().mean();
+  const Eigen::MatrixXd d = pts.rowwise() - c;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(d, Eigen::ComputeFullV);
+  Eigen::Vector3d n = svd.matrixV().col(2);
+  if (svd.singularValues()[1] <= tol) {  // a straight edge: the plane through it and the y axis
+    const Eigen::Vector3d dir = svd.matrixV().col(0);
+    n = dir.cross(Eigen::Vector3d::UnitY());
+    if (n.norm() < 1e-12) return false;
+    n.normalize();
+  }
+  if (n.x() < 0) n = -n;
+  if (n.x() < kMinTransomNormalX) return false;
+  const double offset = n.dot(c.transpose());
+  if ((d * n).cwiseAbs().maxCoeff() > tol) return false;
+  out.on_centre_plane = false;
+  out.normal = n;
+  out.offset = offset;
+  return true;
+}
+
 }  // namespace
+
+AftEnd aft_end(const NurbsSurface& H, double z_deck, double tol_rel) {
+  const double tol = tol_rel * size_of(H);
+  const Eigen::MatrixXd aft = edge_points(H, true, false);
+  AftEnd a;
+  if (aft.col(1).cwiseAbs().maxCoeff() <= tol) {
+    a.on_centre_plane = true;
+    const auto [v0, v1] = H.domain_v();
+    a.deck_corner = H.evaluate(H.domain_u().first, v1);
+    a.deck_corner.y() = 0.0;
+    a.deck_corner.z() = z_deck;
+    return a;
+  }
+  if (!fit_transom_plane(aft, tol, a))
+    throw InvalidInput("hull surface: the aft edge (u = u_min) lies neither on the centre plane y = 0 nor in one "
+                       "plane (a transom) whose normal is within 78 deg of x");
+  a.deck_corner = Eigen::Vector3d((a.offset - a.normal.z() * z_deck) / a.normal.x(), 0.0, z_deck);
+  return a;
+}
 
 NurbsSurface orient_bare_hull(const NurbsSurface& hull, double tol_rel) {
   if (!(tol_rel > 0.0) || !std::isfinite(tol_rel)) detail::fail("plane_tolerance is ", tol_rel, "; expected > 0");
@@ -325,7 +370,8 @@ NurbsSurface orient_bare_hull(const NurbsSurface& hull, double tol_rel) {
     const NurbsSurface s = transform(hull, c & 1, c & 2, c & 4);
     const Eigen::MatrixXd aft = edge_points(s, true, false), stem = edge_points(s, true, true);
     const Eigen::MatrixXd keel = edge_points(s, false, false), deck = edge_points(s, false, true);
-    const bool ok_aft = aft.col(0).maxCoeff() - aft.col(0).minCoeff() <= tol;
+    AftEnd plane;
+    const bool ok_aft = aft.col(1).cwiseAbs().maxCoeff() <= tol || fit_transom_plane(aft, tol, plane);
     const bool ok_keel = keel.col(1).cwiseAbs().maxCoeff() <= tol;
     const bool ok_stem = stem.col(1).cwiseAbs().maxCoeff() <= tol;
     const bool ok_deck = deck.col(2).maxCoeff() - deck.col(2).minCoeff() <= tol;
@@ -334,13 +380,14 @@ NurbsSurface orient_bare_hull(const NurbsSurface& hull, double tol_rel) {
     if (ok_aft && ok_keel && ok_stem && ok_deck && up && fwd) return s;
     if (c == 0) {
       std::ostringstream os;
-      os << (ok_aft ? "" : " u=u_min edge not at one x (aft cut);") << (ok_keel ? "" : " v=v_min edge not at y = 0 (keel);")
+      os << (ok_aft ? "" : " u=u_min edge neither in one plane (aft cut, a transom) nor at y = 0;") << (ok_keel ? "" : " v=v_min edge not at y = 0 (keel);")
          << (ok_stem ? "" : " u=u_max edge not at y = 0 (stem);") << (ok_deck ? "" : " v=v_max edge not at one z (deck);");
       why = os.str();
     }
   }
-  throw InvalidInput("hull surface: no orientation has one edge on an aft cut x = const, one on the deck z = const "
-                     "and the other two on the centre plane y = 0 (as given:" + why + ")");
+  throw InvalidInput("hull surface: no orientation has one edge on the deck z = const, the opposite one (keel) and "
+                     "one of the others (stem) on the centre plane y = 0, and the last (aft cut) in one plane or on "
+                     "y = 0 (as given:" + why + ")");
 }
 
 HullBulbSeam hull_bulb_seam(const NurbsSurface& hull, const NurbsSurface& bulb, const ComposeOptions& o) {
@@ -395,6 +442,7 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
   hull_trim.subdomain = 0;
 
   if (bulb) {
+    out.bulb.push_back(*bulb);
     const NurbsSurface& B = *bulb;
     const auto [bu0, bu1] = B.domain_u();
     const auto [bv0, bv1] = B.domain_v();
@@ -422,6 +470,8 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
       bo.check_samples = o.blend_check_samples;  // default: every half per cent of the boundary
       const BlendSurface bs = blend_surface(H, hb, B, bb, bo);
       out.blend.push_back(bs.surface);
+      out.blend_params.resize(bs.params_s.size(), 5);
+      out.blend_params << bs.params_s, bs.params_a, bs.params_b;
       out.blend_at_hull = bs.at_a;
       out.blend_at_bulb = bs.at_b;
       for (int j = 0; j <= NV; ++j) {
