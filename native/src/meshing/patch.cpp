@@ -28,6 +28,7 @@ constexpr double kDefaultTolerance = 0.01; ///< chordal tolerance / size when no
 constexpr double kDefaultMinSize = 0.05;   ///< minimum size / size when not given
 constexpr int kSwapPasses = 8;             ///< sweeps of 3-D edge swaps
 constexpr int kAugmentVisits = 400;        ///< triangles one alternating-path search may visit
+constexpr double kGrading = 0.6;           ///< size may grow by this x the distance from the boundary
 
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
@@ -76,9 +77,10 @@ struct Cell {
 
 class Subdivision {
  public:
+  using SizeAt = std::function<double(const Vec2&, const Vec3&)>;
   Subdivision(const FaceGeometry& g, const MeshOptions& o, std::vector<double> ru, std::vector<double> rv,
-              double size_scale)
-      : g_(g), o_(o), ru_(std::move(ru)), rv_(std::move(rv)), scale_(size_scale) {
+              double size_scale, SizeAt size_at)
+      : g_(g), o_(o), ru_(std::move(ru)), rv_(std::move(rv)), scale_(size_scale), size_at_(std::move(size_at)) {
     const long long one = 1LL << kDepth;
     for (size_t i = 0; i + 1 < ru_.size(); ++i)
       for (size_t j = 0; j + 1 < rv_.size(); ++j)
@@ -140,7 +142,7 @@ class Subdivision {
       Lu = std::max(Lu, (P[1][k] - P[0][k]).norm() + (P[2][k] - P[1][k]).norm());
       Lv = std::max(Lv, (P[k][1] - P[k][0]).norm() + (P[k][2] - P[k][1]).norm());
     }
-    const double h = scale_ * target_size(g_, {us[1], vs[1]}, o_);
+    const double h = size_at_({us[1], vs[1]}, P[1][1]);
     const double dev = (P[1][1] - 0.25 * (P[0][0] + P[2][0] + P[0][2] + P[2][2])).norm();
     const bool too_big = std::max(Lu, Lv) > h;
     const bool too_curved = dev > o_.chordal_tolerance && std::max(Lu, Lv) > scale_ * o_.min_size;
@@ -214,6 +216,7 @@ class Subdivision {
   const MeshOptions& o_;
   std::vector<double> ru_, rv_;
   double scale_;
+  SizeAt size_at_;
   std::vector<Cell> cells_;
   int roots_ = 0;
 };
@@ -594,7 +597,17 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   // interior nodes: corners of the balanced subdivision, inside and clear of the boundary
   const auto ru = root_lines(g, lo.x(), hi.x(), lo.y(), hi.y(), true, size_scale * o.size);
   const auto rv = root_lines(g, lo.y(), hi.y(), lo.x(), hi.x(), false, size_scale * o.size);
-  const Subdivision sub(g, o, ru, rv, size_scale);
+  // size: the curvature's, graded from the boundary's own spacing
+  std::vector<double> hb(nb);
+  for (int i = 0; i < nb; ++i)
+    hb[i] = std::max((w.xyz[(i + 1) % nb] - w.xyz[i]).norm(), (w.xyz[(i + nb - 1) % nb] - w.xyz[i]).norm());
+  auto size_at = [&](const Vec2& q, const Vec3& p) {
+    double h = size_scale * target_size(g, q, o);
+    for (int i = 0; i < nb; ++i)
+      if (hb[i] > 0) h = std::min(h, hb[i] + kGrading * (p - w.xyz[i]).norm());
+    return std::max(h, size_scale * o.min_size);
+  };
+  const Subdivision sub(g, o, ru, rv, size_scale, size_at);
   // boundary segments bucketed in scaled (u, v) for the clearance test
   const double bucket = size_scale * o.size;
   std::unordered_map<long long, std::vector<int>> buckets;
@@ -616,7 +629,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
     if (!point_in_polygon(q, poly)) continue;
     Vec3 p, su, sv;
     g.first(q, p, su, sv);
-    const double h = size_scale * target_size(g, q, o);
+    const double h = size_at(q, p);
     const double clear = kClearance * h;
     // search radius in scaled coordinates: the slowest direction bounds the reach
     const double slow = std::max(1e-300, std::min(su.norm() / su_mean, sv.norm() / sv_mean));
