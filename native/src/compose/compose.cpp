@@ -140,8 +140,9 @@ struct MeshBuilder {
   }
 };
 
-/// Caps the three planar boundary runs of an open half-hull surface (oriented consistently).
-void close_half_hull(MeshBuilder& mb, double x_aft, double z_deck) {
+/// Caps the planar boundary runs of an open half-hull surface (oriented consistently): the
+/// centre plane, the deck and, unless the aft end lies on the centre plane, the transom plane.
+void close_half_hull(MeshBuilder& mb, const AftEnd& aft, double z_deck, double tol) {
   TriMesh open = mb.mesh();
   orient_consistently(open);
   for (size_t f = 0; f < mb.faces.size(); ++f)
@@ -179,7 +180,9 @@ void close_half_hull(MeshBuilder& mb, double x_aft, double z_deck) {
   auto edge_class = [&](int a, int b) {
     if (P[a].y() == 0.0 && P[b].y() == 0.0) return 0;           // centre plane
     if (P[a].z() == z_deck && P[b].z() == z_deck) return 1;     // deck
-    if (P[a].x() == x_aft && P[b].x() == x_aft) return 2;       // aft cut
+    if (!aft.on_centre_plane && std::abs(aft.normal.dot(P[a]) - aft.offset) <= tol &&
+        std::abs(aft.normal.dot(P[b]) - aft.offset) <= tol)
+      return 2;  // aft cut (transom plane)
     std::ostringstream os;
     os << "compose: a boundary edge from (" << P[a].transpose() << ") to (" << P[b].transpose()
        << ") lies on none of the centre plane, deck or aft cut";
@@ -195,7 +198,7 @@ void close_half_hull(MeshBuilder& mb, double x_aft, double z_deck) {
       break;
     }
   if (s0 < 0) throw Error("compose: the open boundary lies in one plane only");
-  const int corner = mb.add(Eigen::Vector3d(x_aft, 0.0, z_deck));
+  const int corner = aft.on_centre_plane ? -1 : mb.add(aft.deck_corner);
   int runs = 0;
   int seen_mask = 0;
   for (int i = 0; i < n;) {
@@ -207,7 +210,7 @@ void close_half_hull(MeshBuilder& mb, double x_aft, double z_deck) {
     }
     ++runs;
     seen_mask |= 1 << c;
-    run.push_back(corner);
+    if (corner >= 0) run.push_back(corner);
     Eigen::MatrixXd poly(static_cast<Eigen::Index>(run.size()), 2);
     for (size_t k = 0; k < run.size(); ++k) {
       const Eigen::Vector3d& q = mb.verts[run[k]];
@@ -218,10 +221,11 @@ void close_half_hull(MeshBuilder& mb, double x_aft, double z_deck) {
     for (const auto& t : triangulate_polygon(poly))
       mb.tri(run[t[0]], run[t[1]], run[t[2]], c == 0 ? FacePart::CentrePlane : c == 1 ? FacePart::Deck : FacePart::AftCut);
   }
-  if (runs != 3 || seen_mask != 7) {
+  const int want = aft.on_centre_plane ? 2 : 3;
+  if (runs != want || seen_mask != (aft.on_centre_plane ? 3 : 7)) {
     std::ostringstream os;
-    os << "compose: the open boundary splits into " << runs
-       << " planar runs; expected 3 (centre plane, deck, aft cut) in that cyclic order";
+    os << "compose: the open boundary splits into " << runs << " planar runs; expected " << want
+       << (aft.on_centre_plane ? " (centre plane, deck)" : " (centre plane, deck, aft cut) in that cyclic order");
     throw Error(os.str());
   }
 }
@@ -417,6 +421,9 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
   const auto [v0, v1] = H.domain_v();
   out.x_aft = edge_points(H, true, false).col(0).mean();
   out.z_deck = edge_points(H, false, true).col(2).mean();
+  AftEnd aft = aft_end(H, out.z_deck, o.plane_tolerance);
+  if (aft.on_centre_plane) aft.normal.setZero();  // the aft edge stays where it is
+  const double plane_tol = o.plane_tolerance * size_of(H);
   const int I = o.hull_u, K = o.hull_v;
   Eigen::VectorXd su(I + 1), tv(K + 1);
   for (int i = 0; i <= I; ++i) su[i] = u0 + (u1 - u0) * i / I;
@@ -430,8 +437,8 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
     int& g = gid[i * (K + 1) + k];
     if (g < 0) {
       Eigen::Vector3d p = hull_grid.row(i * (K + 1) + k).transpose();
-      if (k == 0 || i == I) p.y() = 0.0;
-      if (i == 0) p.x() = out.x_aft;
+      if (i == 0) p -= (aft.normal.dot(p) - aft.offset) * aft.normal;  // onto the transom plane
+      if (k == 0 || i == I || (i == 0 && aft.on_centre_plane)) p.y() = 0.0;
       if (k == K) p.z() = out.z_deck;
       g = mb.add(p);
     }
@@ -728,7 +735,7 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
         mb.tri(a, c, d, FacePart::Hull);
       }
     }
-  close_half_hull(mb, out.x_aft, out.z_deck);
+  close_half_hull(mb, aft, out.z_deck, plane_tol);
   out.mesh = mb.mesh();
   orient_consistently(out.mesh);
   out.face_part.resize(static_cast<Eigen::Index>(mb.part.size()));
