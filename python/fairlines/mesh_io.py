@@ -23,8 +23,8 @@ __all__ = ["write_mesh", "read_mesh", "write_gdf", "write_mar", "write_plot3d", 
 
 #: Formats that hold triangles only: quads are split along their shorter diagonal.
 _TRIANGLE_ONLY = {"stl"}
-#: Suffixes whose meshio format is ambiguous or worth naming (".msh" is gmsh's, not ANSYS's).
-_SUFFIX_FORMAT = {".msh": "gmsh", ".vtu": "vtu", ".vtk": "vtk", ".stl": "stl", ".obj": "obj", ".med": "med",
+#: Suffixes whose meshio format is ambiguous or worth naming (".msh": gmsh 2.2, which needs no entity tags).
+_SUFFIX_FORMAT = {".msh": "gmsh22", ".vtu": "vtu", ".vtk": "vtk", ".stl": "stl", ".obj": "obj", ".med": "med",
                   ".ply": "ply", ".off": "off", ".xdmf": "xdmf", ".inp": "abaqus", ".mesh": "medit"}
 
 
@@ -56,10 +56,11 @@ def write_mesh(mesh: SurfaceMesh, path, file_format: str | None = None, **kw) ->
     cells, part = _cells(mesh, fmt in _TRIANGLE_ONLY)
     cell_data = {}
     if part is not None and fmt not in ("obj", "off", "ply"):
-        cell_data = {"part": [p.astype(np.int32) for p in part]}
-        if fmt.startswith("gmsh"):
-            cell_data["gmsh:physical"] = [p.astype(np.int32) + 1 for p in part]
-            cell_data["gmsh:geometrical"] = [p.astype(np.int32) + 1 for p in part]
+        if fmt.startswith("gmsh"):  # parts as physical groups (numbered from 1)
+            cell_data = {"gmsh:physical": [p.astype(np.int32) + 1 for p in part],
+                         "gmsh:geometrical": [p.astype(np.int32) + 1 for p in part]}
+        else:
+            cell_data = {"part": [p.astype(np.int32) for p in part]}
     m = meshio.Mesh(np.asarray(mesh.vertices, float), cells, cell_data=cell_data)
     if fmt.startswith("gmsh"):
         m.field_data = {name: np.array([i + 1, 2]) for i, name in enumerate(mesh.parts)}
@@ -83,7 +84,9 @@ def read_mesh(path) -> SurfaceMesh:
         f[:, : d.shape[1]] = d
         faces.append(f)
         p = m.cell_data.get("part")
-        part.append(np.asarray(p[k], int) if p is not None else np.zeros(len(d), int))
+        g = m.cell_data.get("gmsh:physical")
+        part.append(np.asarray(p[k], int) if p is not None else
+                    np.asarray(g[k], int) - 1 if g is not None else np.zeros(len(d), int))
     if not faces:
         raise InvalidInput(f"{path} holds no triangles or quadrilaterals")
     return SurfaceMesh(np.asarray(m.points, float)[:, :3], np.concatenate(faces), np.concatenate(part))
