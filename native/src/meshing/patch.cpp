@@ -262,6 +262,45 @@ std::vector<double> root_lines(const FaceGeometry& g, double a, double b, double
   return out;
 }
 
+/// Monotone map of one parameter to the mean arc length (m) along three iso-lines of the other.
+class ArcMap {
+ public:
+  ArcMap(const FaceGeometry& g, double a, double b, double c0, double c1, bool along_u) : a_(a), b_(b) {
+    s_.assign(kSamples + 1, 0.0);
+    for (double f : {0.25, 0.5, 0.75}) {
+      const double c = c0 + (c1 - c0) * f;
+      Vec3 prev = g.point(along_u ? Vec2(a, c) : Vec2(c, a));
+      double len = 0.0;
+      for (int k = 1; k <= kSamples; ++k) {
+        const double t = a + (b - a) * k / kSamples;
+        const Vec3 p = g.point(along_u ? Vec2(t, c) : Vec2(c, t));
+        len += (p - prev).norm();
+        s_[k] += len / 3.0;
+        prev = p;
+      }
+    }
+    const double total = std::max(s_.back(), 1e-300);
+    for (int k = 1; k <= kSamples; ++k)  // strictly increasing, even across a pole
+      s_[k] = std::max(s_[k], s_[k - 1] + 1e-9 * total / kSamples);
+  }
+  double operator()(double t) const {
+    const double f = b_ > a_ ? (t - a_) / (b_ - a_) * kSamples : 0.0;
+    const int k = std::clamp(static_cast<int>(std::floor(f)), 0, kSamples - 1);
+    return s_[k] + (s_[k + 1] - s_[k]) * (f - k);
+  }
+  /// d(arc length) / d(parameter) at t.
+  double speed(double t) const {
+    const double f = b_ > a_ ? (t - a_) / (b_ - a_) * kSamples : 0.0;
+    const int k = std::clamp(static_cast<int>(std::floor(f)), 0, kSamples - 1);
+    return b_ > a_ ? (s_[k + 1] - s_[k]) * kSamples / (b_ - a_) : 1.0;
+  }
+
+ private:
+  static constexpr int kSamples = 256;
+  double a_, b_;
+  std::vector<double> s_;
+};
+
 // ---- elements ---------------------------------------------------------------------------
 
 struct Work {
@@ -582,17 +621,10 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
     lo = lo.cwiseMin(poly[i]);
     hi = hi.cwiseMax(poly[i]);
   }
-  // mean parametric speeds: the planar triangulation's scale
-  double su_mean = 0, sv_mean = 0;
-  for (int a = 0; a < 5; ++a)
-    for (int b = 0; b < 5; ++b) {
-      Vec3 p, su, sv;
-      g.first(lo + Vec2((hi.x() - lo.x()) * (a + 0.5) / 5, (hi.y() - lo.y()) * (b + 0.5) / 5), p, su, sv);
-      su_mean += su.norm() / 25;
-      sv_mean += sv.norm() / 25;
-    }
-  if (!(su_mean > 0)) su_mean = 1;
-  if (!(sv_mean > 0)) sv_mean = 1;
+  // the planar triangulation works in arc-length coordinates: each parameter mapped by the
+  // mean arc length along three iso-lines (monotone, so orientation is kept), which evens out
+  // parametrisations whose speed jumps (a hull's flat-of-side zone between triple knots)
+  const ArcMap amap_u(g, lo.x(), hi.x(), lo.y(), hi.y(), true), amap_v(g, lo.y(), hi.y(), lo.x(), hi.x(), false);
   const double size_scale = o.all_quad ? 2.0 : 1.0;
   // interior nodes: corners of the balanced subdivision, inside and clear of the boundary
   const auto ru = root_lines(g, lo.x(), hi.x(), lo.y(), hi.y(), true, size_scale * o.size);
@@ -612,7 +644,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   const double bucket = size_scale * o.size;
   std::unordered_map<long long, std::vector<int>> buckets;
   auto bkey = [&](long long i, long long j) { return i * 1000003LL + j; };
-  auto scaled = [&](const Vec2& q) { return Vec2(q.x() * su_mean, q.y() * sv_mean); };
+  auto scaled = [&](const Vec2& q) { return Vec2(amap_u(q.x()), amap_v(q.y())); };
   for (int i = 0; i < nb; ++i) {
     const Vec2 a = scaled(poly[i]), b = scaled(poly[(i + 1) % nb]);
     const long long i0 = static_cast<long long>(std::floor(std::min(a.x(), b.x()) / bucket));
@@ -632,7 +664,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
     const double h = size_at(q, p);
     const double clear = kClearance * h;
     // search radius in scaled coordinates: the slowest direction bounds the reach
-    const double slow = std::max(1e-300, std::min(su.norm() / su_mean, sv.norm() / sv_mean));
+    const double slow = std::max(1e-300, std::min(su.norm() / amap_u.speed(q.x()), sv.norm() / amap_v.speed(q.y())));
     const double reach = std::min(clear / slow, 50.0 * bucket);
     const Vec2 s = scaled(q);
     const long long i0 = static_cast<long long>(std::floor((s.x() - reach) / bucket));
