@@ -23,7 +23,7 @@ namespace {
 
 constexpr int kDepth = 16;                 ///< subdivision levels available per root cell
 constexpr double kClearance = 0.55;        ///< interior nodes keep this x h from the boundary
-constexpr double kCurvatureSafety = 0.9;   ///< size from curvature times this (element diagonals)
+constexpr double kCurvatureSafety = 0.8;   ///< size from curvature times this (element diagonals)
 constexpr double kDefaultTolerance = 0.01; ///< chordal tolerance / size when not given
 constexpr double kDefaultMinSize = 0.05;   ///< minimum size / size when not given
 constexpr int kSwapPasses = 8;             ///< sweeps of 3-D edge swaps
@@ -143,7 +143,12 @@ class Subdivision {
       Lv = std::max(Lv, (P[k][1] - P[k][0]).norm() + (P[k][2] - P[k][1]).norm());
     }
     const double h = size_at_({us[1], vs[1]}, P[1][1]);
-    const double dev = (P[1][1] - 0.25 * (P[0][0] + P[2][0] + P[0][2] + P[2][2])).norm();
+    // chordal deviation: the normal distance of the middle from the corners' bilinear middle
+    // (a parametrisation whose speed jumps moves the middle along the surface, not off it)
+    Vec3 n = (P[2][1] - P[0][1]).cross(P[1][2] - P[1][0]);
+    const double nn = n.norm();
+    const Vec3 off = P[1][1] - 0.25 * (P[0][0] + P[2][0] + P[0][2] + P[2][2]);
+    const double dev = nn > 0 ? std::abs(off.dot(n / nn)) : off.norm();
     const bool too_big = std::max(Lu, Lv) > h;
     const bool too_curved = dev > o_.chordal_tolerance && std::max(Lu, Lv) > scale_ * o_.min_size;
     if (!too_big && !too_curved) return -1;
