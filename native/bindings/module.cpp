@@ -13,6 +13,7 @@ void bind_hull(py::module_& m);
 void bind_design(py::module_& m);
 void bind_compose(py::module_& m);
 void bind_form_curve(py::module_& m);
+void bind_meshing(py::module_& m);
 }  // namespace fairlines
 
 PYBIND11_MODULE(_native, m) {
@@ -28,4 +29,5 @@ PYBIND11_MODULE(_native, m) {
   fairlines::bind_hull(m);
   fairlines::bind_design(m);
   fairlines::bind_compose(m);
+  fairlines::bind_meshing(m);
 }

@@ -84,3 +84,9 @@ from .compose import (  # noqa: F401,E402
 
 __version__ = "0.1.0"
 from .designer import Particulars, design_description, design_hull  # noqa: F401,E402
+
+# Surface grids and solver meshes (seeds 003 and 004).
+from . import mesh_io  # noqa: F401,E402
+from ._native import MeshOptions  # noqa: F401,E402
+from .meshing import SurfaceMesh, mesh_hull, mesh_options, mesh_quality, mesh_surface  # noqa: F401,E402
+from .mesh_io import read_mesh, read_plot3d, write_gdf, write_mar, write_mesh, write_plot3d  # noqa: F401,E402

@@ -5,6 +5,7 @@
     fairlines import TABLE --lpp L --beam B --draft T [--format auto] [--stations 20] -o hull.json
     fairlines build hull.json -o OUTDIR
     fairlines export | lines | hydrostatics ...   (see fairlines.cli_output)
+    fairlines mesh HULL.json --size 2.0 [--draft T] [--open] [--full] [--format gdf] -o mesh.msh
 """
 
 from __future__ import annotations
@@ -71,6 +72,43 @@ def _build(args) -> int:
     return 0
 
 
+def _mesh(args) -> int:
+    import pathlib
+    import time
+
+    from .hull import Hull
+    from .meshing import mesh_hull
+    from .mesh_io import write_gdf, write_mar, write_mesh
+    t0 = time.perf_counter()
+    _progress(f"reading {args.hull}")
+    hull = Hull.from_json(args.hull)
+    _progress("composing the hull (bare hull, bulb and blend when the description has a bulb)")
+    composed = hull.composed_hull()
+    if composed.blend_note:
+        _progress(composed.blend_note)
+
+    def report(done, total, name):
+        _progress(f"meshed face {done}/{total}: {name}")
+    m = mesh_hull(composed, size=args.size, draft=args.draft, lids=not args.open, full=args.full, progress=report,
+                  chordal_tolerance=args.tolerance, all_quad=args.all_quad)
+    q = m.quality()
+    out = pathlib.Path(args.output)
+    fmt = args.format or out.suffix.lstrip(".").lower()
+    _progress(f"writing {out} ({fmt})")
+    if fmt == "gdf":
+        write_gdf(m, out)
+    elif fmt == "mar":
+        write_mar(m, out)
+    else:
+        write_mesh(m, out, None if args.format is None else args.format)
+    print(f"{len(m.vertices)} nodes, {q['quads']} quads, {q['triangles']} triangles ({100 * q['quad_fraction']:.1f} % "
+          f"quads); scaled Jacobian min {q['min_scaled_jacobian']:.3f} mean {q['mean_scaled_jacobian']:.3f}; "
+          f"{q['inverted']} inverted; {q['open_edges']} open edges; parts {', '.join(m.parts)}; "
+          f"{time.perf_counter() - t0:.2f} s")
+    print(f"wrote {out}")
+    return 0
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="fairlines", description="Fair parametric hull design.")
     sub = ap.add_subparsers(dest="command", required=True)
@@ -98,6 +136,18 @@ def main(argv=None) -> int:
     b.add_argument("-o", "--output", required=True, help="output folder")
     from . import cli_output
     cli_output.add_parsers(sub)
+    me = sub.add_parser("mesh", help="quad-dominant mesh of a hull description's composed hull (CFD / BEM files)")
+    me.add_argument("hull", help="hull description JSON (bare hull, and bulb if it has a 'bulb' section)")
+    me.add_argument("--size", type=float, required=True, help="maximum element edge length, m")
+    me.add_argument("--tolerance", type=float, default=0.0, help="chordal tolerance, m (default size / 100)")
+    me.add_argument("--draft", type=float, default=None, help="mesh only the wetted part below this draft, m")
+    me.add_argument("--open", action="store_true", help="no lids: leave the waterplane (and centre plane) open, "
+                                                       "as a BEM code wants")
+    me.add_argument("--full", action="store_true", help="mirror into the full hull")
+    me.add_argument("--all-quad", action="store_true", help="quadrilaterals only")
+    me.add_argument("--format", default=None, help="gdf (WAMIT), mar (Nemoh) or a meshio format name; default from "
+                                                   "the output suffix (.msh .vtu .stl .obj .med ...)")
+    me.add_argument("-o", "--output", required=True, help="mesh file to write")
     args = ap.parse_args(argv)
     try:
         if args.command == "version":
@@ -109,6 +159,8 @@ def main(argv=None) -> int:
             return _build(args)
         if args.command in cli_output.COMMANDS:
             return cli_output.run(args)
+        if args.command == "mesh":
+            return _mesh(args)
         return _fit(args)
     except ValueError as exc:  # bad input: a one-line message, no traceback
         print(f"fairlines {args.command}: {exc}", file=sys.stderr)

@@ -54,11 +54,33 @@ struct ComposedHull {
   NurbsSurface hull;                              ///< the hull as used (re-oriented to the convention)
   std::vector<NurbsSurface> blend;                ///< the blending surface, when composed with one
   BoundaryContinuity blend_at_hull, blend_at_bulb;  ///< its measured continuity
+  std::vector<NurbsSurface> bulb;                 ///< the bulb surface, when composed with one
+  /// Blend sections, bottom to top: (k, 5) rows (s on the blend, u and v on `hull`, u and v
+  /// on the bulb); empty without a blend.
+  Eigen::MatrixXd blend_params;
 };
 
+/// The aft end of an oriented bare hull (its u = u_min edge): either in a plane -- a transom,
+/// upright (x = const) or raked -- which a planar face closes, or on the centre plane y = 0 (a
+/// cruiser stern), which needs no face.
+struct AftEnd {
+  bool on_centre_plane = false;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();  ///< unit normal of the transom plane, normal.x() > 0
+  double offset = 0.0;                                 ///< the plane is normal . p = offset (m)
+  /// The transom's corner on the deck and the centre plane (m); for a cruiser stern the aft
+  /// edge's top end.
+  Eigen::Vector3d deck_corner = Eigen::Vector3d::Zero();
+};
+
+/// Classifies the aft edge of a hull in the orient_bare_hull convention. `z_deck`: the deck
+/// height. Throws InvalidInput when the edge is neither on y = 0 nor in one plane whose normal
+/// has an x component of at least 0.2 (a rake under about 78 degrees).
+AftEnd aft_end(const NurbsSurface& oriented_hull, double z_deck, double plane_tolerance = 1e-6);
+
 /// Brings a bare hull surface to the convention used here by swapping / reversing its
-/// directions: u = u_min on the aft cut (x constant), v = v_min on the centre plane (keel,
-/// y = 0), v = v_max on the deck (z constant), u = u_max on the centre plane (stem).
+/// directions: u = u_min on the aft end (in one plane, upright or raked, or on the centre
+/// plane: see aft_end), v = v_min on the centre plane (keel, y = 0), v = v_max on the deck
+/// (z constant), u = u_max on the centre plane (stem).
 /// Throws InvalidInput naming the edge that fits no plane.
 NurbsSurface orient_bare_hull(const NurbsSurface& hull, double plane_tolerance = 1e-6);
 

@@ -140,8 +140,9 @@ struct MeshBuilder {
   }
 };
 
-/// Caps the three planar boundary runs of an open half-hull surface (oriented consistently).
-void close_half_hull(MeshBuilder& mb, double x_aft, double z_deck) {
+/// Caps the planar boundary runs of an open half-hull surface (oriented consistently): the
+/// centre plane, the deck and, unless the aft end lies on the centre plane, the transom plane.
+void close_half_hull(MeshBuilder& mb, const AftEnd& aft, double z_deck, double tol) {
   TriMesh open = mb.mesh();
   orient_consistently(open);
   for (size_t f = 0; f < mb.faces.size(); ++f)
@@ -179,7 +180,9 @@ void close_half_hull(MeshBuilder& mb, double x_aft, double z_deck) {
   auto edge_class = [&](int a, int b) {
     if (P[a].y() == 0.0 && P[b].y() == 0.0) return 0;           // centre plane
     if (P[a].z() == z_deck && P[b].z() == z_deck) return 1;     // deck
-    if (P[a].x() == x_aft && P[b].x() == x_aft) return 2;       // aft cut
+    if (!aft.on_centre_plane && std::abs(aft.normal.dot(P[a]) - aft.offset) <= tol &&
+        std::abs(aft.normal.dot(P[b]) - aft.offset) <= tol)
+      return 2;  // aft cut (transom plane)
     std::ostringstream os;
     os << "compose: a boundary edge from (" << P[a].transpose() << ") to (" << P[b].transpose()
        << ") lies on none of the centre plane, deck or aft cut";
@@ -195,7 +198,7 @@ void close_half_hull(MeshBuilder& mb, double x_aft, double z_deck) {
       break;
     }
   if (s0 < 0) throw Error("compose: the open boundary lies in one plane only");
-  const int corner = mb.add(Eigen::Vector3d(x_aft, 0.0, z_deck));
+  const int corner = aft.on_centre_plane ? -1 : mb.add(aft.deck_corner);
   int runs = 0;
   int seen_mask = 0;
   for (int i = 0; i < n;) {
@@ -207,7 +210,7 @@ void close_half_hull(MeshBuilder& mb, double x_aft, double z_deck) {
     }
     ++runs;
     seen_mask |= 1 << c;
-    run.push_back(corner);
+    if (corner >= 0) run.push_back(corner);
     Eigen::MatrixXd poly(static_cast<Eigen::Index>(run.size()), 2);
     for (size_t k = 0; k < run.size(); ++k) {
       const Eigen::Vector3d& q = mb.verts[run[k]];
@@ -218,10 +221,11 @@ void close_half_hull(MeshBuilder& mb, double x_aft, double z_deck) {
     for (const auto& t : triangulate_polygon(poly))
       mb.tri(run[t[0]], run[t[1]], run[t[2]], c == 0 ? FacePart::CentrePlane : c == 1 ? FacePart::Deck : FacePart::AftCut);
   }
-  if (runs != 3 || seen_mask != 7) {
+  const int want = aft.on_centre_plane ? 2 : 3;
+  if (runs != want || seen_mask != (aft.on_centre_plane ? 3 : 7)) {
     std::ostringstream os;
-    os << "compose: the open boundary splits into " << runs
-       << " planar runs; expected 3 (centre plane, deck, aft cut) in that cyclic order";
+    os << "compose: the open boundary splits into " << runs << " planar runs; expected " << want
+       << (aft.on_centre_plane ? " (centre plane, deck)" : " (centre plane, deck, aft cut) in that cyclic order");
     throw Error(os.str());
   }
 }
@@ -315,7 +319,52 @@ void seam_ends_on_centre_line(const NurbsSurface& H, const std::vector<Eigen::Ve
                        "(the bulb must be attached at the stem)");
 }
 
+/// Smallest rake allowed for a transom plane: |normal.x| >= this.
+constexpr double kMinTransomNormalX = 0.2;
+
+/// Plane through the points (PCA: the normal is the direction of least spread), normal.x >= 0;
+/// false when a point is farther than tol from it or the normal is too far from x.
+bool fit_transom_plane(const Eigen::MatrixXd& pts, double tol, AftEnd& out) {
+  const Eigen::RowVector3d c = pts.colwise().mean();
+  const Eigen::MatrixXd d = pts.rowwise() - c;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(d, Eigen::ComputeFullV);
+  Eigen::Vector3d n = svd.matrixV().col(2);
+  if (svd.singularValues()[1] <= tol) {  // a straight edge: the plane through it and the y axis
+    const Eigen::Vector3d dir = svd.matrixV().col(0);
+    n = dir.cross(Eigen::Vector3d::UnitY());
+    if (n.norm() < 1e-12) return false;
+    n.normalize();
+  }
+  if (n.x() < 0) n = -n;
+  if (n.x() < kMinTransomNormalX) return false;
+  const double offset = n.dot(c.transpose());
+  if ((d * n).cwiseAbs().maxCoeff() > tol) return false;
+  out.on_centre_plane = false;
+  out.normal = n;
+  out.offset = offset;
+  return true;
+}
+
 }  // namespace
+
+AftEnd aft_end(const NurbsSurface& H, double z_deck, double tol_rel) {
+  const double tol = tol_rel * size_of(H);
+  const Eigen::MatrixXd aft = edge_points(H, true, false);
+  AftEnd a;
+  if (aft.col(1).cwiseAbs().maxCoeff() <= tol) {
+    a.on_centre_plane = true;
+    const auto [v0, v1] = H.domain_v();
+    a.deck_corner = H.evaluate(H.domain_u().first, v1);
+    a.deck_corner.y() = 0.0;
+    a.deck_corner.z() = z_deck;
+    return a;
+  }
+  if (!fit_transom_plane(aft, tol, a))
+    throw InvalidInput("hull surface: the aft edge (u = u_min) lies neither on the centre plane y = 0 nor in one "
+                       "plane (a transom) whose normal is within 78 deg of x");
+  a.deck_corner = Eigen::Vector3d((a.offset - a.normal.z() * z_deck) / a.normal.x(), 0.0, z_deck);
+  return a;
+}
 
 NurbsSurface orient_bare_hull(const NurbsSurface& hull, double tol_rel) {
   if (!(tol_rel > 0.0) || !std::isfinite(tol_rel)) detail::fail("plane_tolerance is ", tol_rel, "; expected > 0");
@@ -325,7 +374,8 @@ NurbsSurface orient_bare_hull(const NurbsSurface& hull, double tol_rel) {
     const NurbsSurface s = transform(hull, c & 1, c & 2, c & 4);
     const Eigen::MatrixXd aft = edge_points(s, true, false), stem = edge_points(s, true, true);
     const Eigen::MatrixXd keel = edge_points(s, false, false), deck = edge_points(s, false, true);
-    const bool ok_aft = aft.col(0).maxCoeff() - aft.col(0).minCoeff() <= tol;
+    AftEnd plane;
+    const bool ok_aft = aft.col(1).cwiseAbs().maxCoeff() <= tol || fit_transom_plane(aft, tol, plane);
     const bool ok_keel = keel.col(1).cwiseAbs().maxCoeff() <= tol;
     const bool ok_stem = stem.col(1).cwiseAbs().maxCoeff() <= tol;
     const bool ok_deck = deck.col(2).maxCoeff() - deck.col(2).minCoeff() <= tol;
@@ -334,13 +384,14 @@ NurbsSurface orient_bare_hull(const NurbsSurface& hull, double tol_rel) {
     if (ok_aft && ok_keel && ok_stem && ok_deck && up && fwd) return s;
     if (c == 0) {
       std::ostringstream os;
-      os << (ok_aft ? "" : " u=u_min edge not at one x (aft cut);") << (ok_keel ? "" : " v=v_min edge not at y = 0 (keel);")
+      os << (ok_aft ? "" : " u=u_min edge neither in one plane (aft cut, a transom) nor at y = 0;") << (ok_keel ? "" : " v=v_min edge not at y = 0 (keel);")
          << (ok_stem ? "" : " u=u_max edge not at y = 0 (stem);") << (ok_deck ? "" : " v=v_max edge not at one z (deck);");
       why = os.str();
     }
   }
-  throw InvalidInput("hull surface: no orientation has one edge on an aft cut x = const, one on the deck z = const "
-                     "and the other two on the centre plane y = 0 (as given:" + why + ")");
+  throw InvalidInput("hull surface: no orientation has one edge on the deck z = const, the opposite one (keel) and "
+                     "one of the others (stem) on the centre plane y = 0, and the last (aft cut) in one plane or on "
+                     "y = 0 (as given:" + why + ")");
 }
 
 HullBulbSeam hull_bulb_seam(const NurbsSurface& hull, const NurbsSurface& bulb, const ComposeOptions& o) {
@@ -370,6 +421,9 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
   const auto [v0, v1] = H.domain_v();
   out.x_aft = edge_points(H, true, false).col(0).mean();
   out.z_deck = edge_points(H, false, true).col(2).mean();
+  AftEnd aft = aft_end(H, out.z_deck, o.plane_tolerance);
+  if (aft.on_centre_plane) aft.normal.setZero();  // the aft edge stays where it is
+  const double plane_tol = o.plane_tolerance * size_of(H);
   const int I = o.hull_u, K = o.hull_v;
   Eigen::VectorXd su(I + 1), tv(K + 1);
   for (int i = 0; i <= I; ++i) su[i] = u0 + (u1 - u0) * i / I;
@@ -383,8 +437,8 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
     int& g = gid[i * (K + 1) + k];
     if (g < 0) {
       Eigen::Vector3d p = hull_grid.row(i * (K + 1) + k).transpose();
-      if (k == 0 || i == I) p.y() = 0.0;
-      if (i == 0) p.x() = out.x_aft;
+      if (i == 0) p -= (aft.normal.dot(p) - aft.offset) * aft.normal;  // onto the transom plane
+      if (k == 0 || i == I || (i == 0 && aft.on_centre_plane)) p.y() = 0.0;
       if (k == K) p.z() = out.z_deck;
       g = mb.add(p);
     }
@@ -395,6 +449,7 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
   hull_trim.subdomain = 0;
 
   if (bulb) {
+    out.bulb.push_back(*bulb);
     const NurbsSurface& B = *bulb;
     const auto [bu0, bu1] = B.domain_u();
     const auto [bv0, bv1] = B.domain_v();
@@ -422,6 +477,8 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
       bo.check_samples = o.blend_check_samples;  // default: every half per cent of the boundary
       const BlendSurface bs = blend_surface(H, hb, B, bb, bo);
       out.blend.push_back(bs.surface);
+      out.blend_params.resize(bs.params_s.size(), 5);
+      out.blend_params << bs.params_s, bs.params_a, bs.params_b;
       out.blend_at_hull = bs.at_a;
       out.blend_at_bulb = bs.at_b;
       for (int j = 0; j <= NV; ++j) {
@@ -678,7 +735,7 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
         mb.tri(a, c, d, FacePart::Hull);
       }
     }
-  close_half_hull(mb, out.x_aft, out.z_deck);
+  close_half_hull(mb, aft, out.z_deck, plane_tol);
   out.mesh = mb.mesh();
   orient_consistently(out.mesh);
   out.face_part.resize(static_cast<Eigen::Index>(mb.part.size()));

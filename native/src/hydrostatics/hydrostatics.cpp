@@ -89,6 +89,29 @@ int longitudinal_direction(const NurbsSurface& s) {
   return dv >= du ? 1 : 0;
 }
 
+/// Direction along which z varies most on the control net: 1 (v) or 0 (u).
+int vertical_direction(const NurbsSurface& s) {
+  const Eigen::MatrixXd& P = s.control_points();
+  const int nu = s.nu(), nv = s.nv();
+  double du = 0, dv = 0;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      if (i + 1 < nu) du += std::abs(P((i + 1) * nv + j, 2) - P(i * nv + j, 2));
+      if (j + 1 < nv) dv += std::abs(P(i * nv + j + 1, 2) - P(i * nv + j, 2));
+    }
+  return dv > du ? 1 : 0;
+}
+
+/// The same surface with u and v exchanged.
+NurbsSurface transposed(const NurbsSurface& s) {
+  const int nu = s.nu(), nv = s.nv();
+  const Eigen::MatrixXd pw = s.homogeneous();
+  Eigen::MatrixXd q(pw.rows(), 4);
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) q.row(j * nu + i) = pw.row(i * nv + j);
+  return NurbsSurface::from_homogeneous(s.degree_v(), s.degree_u(), s.knots_v(), s.knots_u(), nv, nu, q);
+}
+
 }  // namespace
 
 std::pair<double, double> section_area(const NurbsSurface& s, double x0, double draft, bool half_hull,
@@ -275,9 +298,12 @@ void fill_results(Hydrostatics& h, const NurbsSurface& s, double draft, const Hy
 
 }  // namespace
 
-Hydrostatics hydrostatics(const NurbsSurface& s, double draft, const HydrostaticsOptions& o) {
+Hydrostatics hydrostatics(const NurbsSurface& surface, double draft, const HydrostaticsOptions& o) {
   detail::require_positive(draft, "draft");
   check_options(o);
+  // Lines of the inner (clipped) direction must cross the waterplane: make that u, the
+  // direction along which z varies most, or a draft between two Gauss lines is not clipped.
+  const NurbsSurface s = vertical_direction(surface) == 1 ? transposed(surface) : surface;
   // Waterplane z = draft + slope (x - x_ref): level when untrimmed.
   const double slope = o.trim != 0 ? -o.trim / o.trim_length : 0.0;
   const double x_ref = 0.5 * o.trim_length;

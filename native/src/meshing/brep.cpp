@@ -1,0 +1,597 @@
+// Shared edges, the waterline cut and the assembly of face meshes, see brep.hpp.
+//
+// Notation: e an edge, f a face, s an edge's samples; I the integral of ds / h along an edge
+// (h the target size), so an edge gets ceil(I) segments of equal I; g(u, v) = z(u, v) - T
+// on a face, whose zero set is the waterline.
+#include "meshing/brep.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <queue>
+#include <sstream>
+#include <unordered_map>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+#include "fairlines/errors.hpp"
+
+namespace fairlines::meshing {
+
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+
+constexpr int kPoleSegments = 4;        ///< copies of a pole node along its parameter edge, minus one
+constexpr double kTraceStep = 0.25;     ///< waterline trace step / size
+constexpr int kBisections = 60;         ///< bisection steps for an edge's crossing of the cut
+constexpr double kVertexMatch = 1e-9;   ///< vertices closer than this x model size are one
+
+bool inside_polygon(const Vec2& q, const std::vector<Vec2>& poly) {
+  bool in = false;
+  const size_t n = poly.size();
+  for (size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2& a = poly[i];
+    const Vec2& c = poly[j];
+    if ((a.y() > q.y()) != (c.y() > q.y()) && q.x() < (c.x() - a.x()) * (q.y() - a.y()) / (c.y() - a.y()) + a.x())
+      in = !in;
+  }
+  return in;
+}
+
+EdgeSample lerp(const EdgeSample& a, const EdgeSample& b, double t) {
+  EdgeSample r;
+  r.xyz = (1 - t) * a.xyz + t * b.xyz;
+  r.uv[0] = (1 - t) * a.uv[0] + t * b.uv[0];
+  r.uv[1] = (1 - t) * a.uv[1] + t * b.uv[1];
+  return r;
+}
+
+/// Side of edge e that belongs to face f.
+int side_of(const Edge& e, int f) { return e.face[0] == f ? 0 : 1; }
+
+}  // namespace
+
+int Brep::vertex(const Vec3& p) {
+  double scale = 1.0;
+  for (const Vec3& q : vertices) scale = std::max(scale, q.cwiseAbs().maxCoeff());
+  for (size_t i = 0; i < vertices.size(); ++i)
+    if ((vertices[i] - p).norm() <= kVertexMatch * scale) return static_cast<int>(i);
+  vertices.push_back(p);
+  return static_cast<int>(vertices.size()) - 1;
+}
+
+int Brep::add_edge(int f0, int f1, std::vector<EdgeSample> s, bool degenerate) {
+  Edge e;
+  e.face[0] = f0;
+  e.face[1] = f1;
+  for (int k = 0; k < 2; ++k) {
+    const int f = e.face[k];
+    if (f >= 0 && !faces[f].g.surface)
+      for (auto& x : s) x.uv[k] = faces[f].g.locate(x.xyz, x.uv[k]);
+  }
+  e.v0 = vertex(s.front().xyz);
+  e.v1 = degenerate ? e.v0 : vertex(s.back().xyz);
+  e.s = std::move(s);
+  e.degenerate = degenerate;
+  edges.push_back(std::move(e));
+  return static_cast<int>(edges.size()) - 1;
+}
+
+int Brep::sampled_edge(int f0, int f1, int n, const std::function<EdgeSample(double)>& at, bool degenerate) {
+  std::vector<EdgeSample> s(n);
+  for (int k = 0; k < n; ++k) s[k] = at(static_cast<double>(k) / (n - 1));
+  return add_edge(f0, f1, std::move(s), degenerate);
+}
+
+// ---- the waterline cut -------------------------------------------------------------------
+
+namespace {
+
+/// The exact sample at fraction t between samples k and k + 1 of e.
+EdgeSample edge_point(const Brep& b, const Edge& e, int k, double t) {
+  EdgeSample r = lerp(e.s[k], e.s[std::min<size_t>(k + 1, e.s.size() - 1)], t);
+  if (e.degenerate) return r;
+  if (e.refine) {
+    e.refine(r);
+    return r;
+  }
+  const Face& f0 = b.faces[e.face[0]];
+  r.xyz = f0.g.point(r.uv[0]);
+  if (e.face[1] >= 0) r.uv[1] = b.faces[e.face[1]].g.locate(r.xyz, r.uv[1]);
+  return r;
+}
+
+/// Level-set march of z = T on face f from uv `from` into the face until it leaves `poly`.
+std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const std::vector<Vec2>& poly, double T,
+                                  double step3d) {
+  auto grad = [&](const Vec2& q, double& z) {
+    Vec3 p, su, sv;
+    g.first(q, p, su, sv);
+    z = p.z();
+    return Vec2(su.z(), sv.z());
+  };
+  auto speed = [&](const Vec2& q, const Vec2& t) {
+    Vec3 p, su, sv;
+    g.first(q, p, su, sv);
+    return (su * t.x() + sv * t.y()).norm();
+  };
+  auto correct = [&](Vec2 q) {
+    for (int it = 0; it < 6; ++it) {
+      double z;
+      const Vec2 gr = grad(q, z);
+      const double n2 = gr.squaredNorm();
+      if (n2 <= 0) break;
+      q -= (z - T) * gr / n2;
+      q = g.clamp(q);
+      if (std::abs(z - T) < 1e-12 * std::max(1.0, std::abs(T))) break;
+    }
+    return q;
+  };
+  std::vector<Vec2> out{from};
+  double z0;
+  Vec2 gr = grad(from, z0);
+  Vec2 t(-gr.y(), gr.x());
+  if (t.norm() <= 0) throw Error("mesh: the waterline is tangent to a face edge (horizontal surface at the draft)");
+  t.normalize();
+  {  // into the face
+    const double d = step3d / std::max(1e-300, speed(from, t));
+    const bool fwd_in = inside_polygon(from + 0.5 * d * t, poly);
+    const bool back_in = inside_polygon(from - 0.5 * d * t, poly);
+    if (!fwd_in && back_in) t = -t;
+  }
+  for (int n = 0; n < 100000; ++n) {
+    const Vec2 q = out.back();
+    double z;
+    gr = grad(q, z);
+    Vec2 tn(-gr.y(), gr.x());
+    if (tn.norm() <= 0) throw Error("mesh: the waterline trace met a horizontal point of a face");
+    tn.normalize();
+    if (tn.dot(t) < 0) tn = -tn;
+    t = tn;
+    const double d = step3d / std::max(1e-300, speed(q, t));
+    const Vec2 next = correct(g.clamp(q + d * t));
+    out.push_back(next);
+    if (!inside_polygon(next, poly) || (next - q).norm() < 1e-15) return out;
+  }
+  throw Error("mesh: the waterline trace did not leave the face");
+}
+
+}  // namespace
+
+void Brep::cut_below(double T, double size, const std::string& lid_name, bool keep_lid) {
+  // 1. split edges at z = T, keep the pieces below
+  std::vector<std::vector<int>> pieces(edges.size());  // kept pieces of each old edge, first to last
+  const size_t n_old = edges.size();
+  for (size_t ei = 0; ei < n_old; ++ei) {
+    Edge e = edges[ei];
+    std::vector<EdgeSample> run;
+    auto below = [&](const EdgeSample& x) { return x.xyz.z() <= T; };
+    auto flush = [&] {
+      if (run.size() >= 2) {
+        const int id = add_edge(e.face[0], e.face[1], run, e.degenerate);
+        edges[id].refine = e.refine;
+        pieces[ei].push_back(id);
+      }
+      run.clear();
+    };
+    for (size_t k = 0; k < e.s.size(); ++k) {
+      if (k > 0 && below(e.s[k - 1]) != below(e.s[k])) {
+        double lo = 0, hi = 1;
+        const bool start_below = below(e.s[k - 1]);
+        for (int it = 0; it < kBisections; ++it) {
+          const double mid = 0.5 * (lo + hi);
+          ((edge_point(*this, e, static_cast<int>(k) - 1, mid).xyz.z() <= T) == start_below ? lo : hi) = mid;
+        }
+        EdgeSample c = edge_point(*this, e, static_cast<int>(k) - 1, 0.5 * (lo + hi));
+        c.xyz.z() = T;
+        run.push_back(c);
+        if (start_below) flush();
+      }
+      if (below(e.s[k])) run.push_back(e.s[k]);
+    }
+    flush();
+  }
+  // 2. every face: kept pieces in loop order, the gaps closed by traced waterlines
+  const int lid = static_cast<int>(faces.size());
+  Face lid_face;
+  lid_face.g.origin = Vec3(0, 0, T);
+  lid_face.g.ax = Vec3::UnitX();
+  lid_face.g.ay = Vec3::UnitY();
+  lid_face.name = lid_name;
+  lid_face.keep = keep_lid;
+  faces.push_back(lid_face);
+  std::vector<int> traced;
+  const size_t n_faces = faces.size() - 1;
+  std::vector<Face> out_faces;
+  std::vector<int> origin;  // old index of each new face
+  for (size_t fi = 0; fi < n_faces; ++fi) {
+    const Face f = faces[fi];
+    std::vector<std::pair<int, bool>> kept;
+    std::vector<Vec2> poly;
+    bool cut = false;
+    for (const auto& [e, fwd] : f.loop) {
+      const int sd = side_of(edges[e], static_cast<int>(fi));
+      std::vector<EdgeSample> s = edges[e].s;
+      if (!fwd) std::reverse(s.begin(), s.end());
+      for (const auto& x : s) poly.push_back(x.uv[sd]);
+      std::vector<int> p = pieces[e];
+      if (p.size() != 1 || edges[p[0]].s.size() != edges[e].s.size()) cut = true;
+      if (!fwd) std::reverse(p.begin(), p.end());
+      for (int id : p) kept.push_back({id, fwd});
+    }
+    if (kept.empty()) continue;  // all above
+    if (!cut) {
+      Face g = f;
+      g.loop = kept;
+      out_faces.push_back(g);
+      origin.push_back(static_cast<int>(fi));
+      continue;
+    }
+    auto start_of = [&](const std::pair<int, bool>& k) { return k.second ? edges[k.first].v0 : edges[k.first].v1; };
+    auto end_of = [&](const std::pair<int, bool>& k) { return k.second ? edges[k.first].v1 : edges[k.first].v0; };
+    auto uv_at = [&](const std::pair<int, bool>& k, bool at_end) {
+      const Edge& e = edges[k.first];
+      const bool last = at_end == k.second;
+      return (last ? e.s.back() : e.s.front()).uv[side_of(e, static_cast<int>(fi))];
+    };
+    // entries: piece starts not continuing a previous piece
+    std::map<int, size_t> start_index;
+    for (size_t i = 0; i < kept.size(); ++i) start_index[start_of(kept[i])] = i;
+    std::map<int, std::pair<int, size_t>> bridge;  // exit vertex -> (traced edge, next piece)
+    for (size_t i = 0; i < kept.size(); ++i) {
+      const int ex = end_of(kept[i]);
+      if (start_index.count(ex)) continue;
+      const std::vector<Vec2> tr = trace_waterline(f.g, uv_at(kept[i], true), poly, T, kTraceStep * size);
+      // the entry the trace reached: the nearest piece start with no predecessor
+      size_t best = kept.size();
+      double bd = 1e300;
+      for (size_t j = 0; j < kept.size(); ++j) {
+        bool continued = false;
+        for (size_t m = 0; m < kept.size(); ++m)
+          if (end_of(kept[m]) == start_of(kept[j])) continued = true;
+        if (continued) continue;
+        const double d = (uv_at(kept[j], false) - tr.back()).norm();
+        if (d < bd) {
+          bd = d;
+          best = j;
+        }
+      }
+      if (best == kept.size()) throw Error("mesh: a waterline on face '" + f.name + "' ends nowhere");
+      std::vector<EdgeSample> s;
+      for (size_t k = 0; k + 1 < tr.size(); ++k) {
+        EdgeSample x;
+        x.uv[0] = tr[k];
+        x.xyz = f.g.point(tr[k]);
+        x.xyz.z() = T;
+        s.push_back(x);
+      }
+      EdgeSample last;
+      last.uv[0] = uv_at(kept[best], false);
+      last.xyz = vertices[start_of(kept[best])];
+      if (s.size() >= 2 && (f.g.point(s.back().uv[0]) - last.xyz).norm() < 0.3 * kTraceStep * size) s.pop_back();
+      s.push_back(last);
+      s.front().xyz = vertices[ex];
+      const int id = add_edge(static_cast<int>(fi), lid, s);
+      traced.push_back(id);
+      bridge[ex] = {id, best};
+    }
+    // loops: follow pieces and bridges
+    std::vector<char> used(kept.size(), 0);
+    for (size_t s0 = 0; s0 < kept.size(); ++s0) {
+      if (used[s0]) continue;
+      Face g = f;
+      g.loop.clear();
+      size_t i = s0;
+      for (size_t guard = 0; guard <= 2 * kept.size() && !used[i]; ++guard) {
+        used[i] = 1;
+        g.loop.push_back(kept[i]);
+        const int ex = end_of(kept[i]);
+        auto br = bridge.find(ex);
+        if (br != bridge.end()) {
+          g.loop.push_back({br->second.first, true});
+          i = br->second.second;
+        } else {
+          auto st = start_index.find(ex);
+          if (st == start_index.end()) throw Error("mesh: the cut loop of face '" + f.name + "' does not close");
+          i = st->second;
+        }
+      }
+      out_faces.push_back(g);
+      origin.push_back(static_cast<int>(fi));
+    }
+  }
+  // edges name their faces by index: point them at the new faces (a face cut into several
+  // loops keeps each edge on the loop that uses it)
+  std::vector<Face> all = out_faces;
+  std::vector<std::array<int, 2>> sides(edges.size(), {-1, -1});
+  for (int f = 0; f < static_cast<int>(all.size()); ++f)
+    for (const auto& [e, fwd] : all[f].loop)
+      for (int k = 0; k < 2; ++k)
+        if (edges[e].face[k] == origin[f]) sides[e][k] = f;
+  for (size_t e = 0; e < edges.size(); ++e) {
+    const bool to_lid = edges[e].face[1] == lid;
+    edges[e].face[0] = sides[e][0];
+    edges[e].face[1] = to_lid ? -1 : sides[e][1];
+  }
+  // the lid: chain the traced edges into loops
+  std::multimap<int, int> at_vertex;
+  for (int id : traced) {
+    at_vertex.insert({edges[id].v0, id});
+    at_vertex.insert({edges[id].v1, id});
+  }
+  std::vector<char> done(edges.size(), 0);
+  std::vector<Face> lids;
+  for (int id : traced) {
+    if (done[id]) continue;
+    Face l = faces[lid];
+    int e = id, v = edges[id].v0;
+    while (!done[e]) {
+      done[e] = 1;
+      const bool fwd = edges[e].v0 == v;
+      l.loop.push_back({e, fwd});
+      v = fwd ? edges[e].v1 : edges[e].v0;
+      int next = -1;
+      auto range = at_vertex.equal_range(v);
+      for (auto it = range.first; it != range.second; ++it)
+        if (!done[it->second]) next = it->second;
+      if (next < 0) break;
+      e = next;
+    }
+    lids.push_back(l);
+  }
+  for (size_t k = 0; k < lids.size(); ++k) {
+    const int fidx = static_cast<int>(all.size());
+    for (const auto& [e, fwd] : lids[k].loop) edges[e].face[1] = fidx;
+    all.push_back(lids[k]);
+  }
+  faces = std::move(all);
+}
+
+// ---- meshing -----------------------------------------------------------------------------
+
+namespace {
+
+struct Discrete {
+  std::vector<int> ids;
+  std::vector<EdgeSample> pts;
+  std::vector<double> at;  // I at each node
+};
+
+struct Mesher {
+  Brep& b;
+  const MeshOptions& o;
+  double scale;  // interior size factor (2 for all-quad)
+  std::vector<Vec3> nodes;
+  std::vector<Discrete> disc;
+  std::map<std::pair<int, int>, LoopNode> mids;  // (edge, segment) -> midpoint node (all-quad)
+  std::vector<std::vector<double>> cum_I;         // I at every sample of every edge
+
+  double h_at(const Edge& e, const EdgeSample& x) const {
+    double h = o.size;
+    for (int k = 0; k < 2; ++k)
+      if (e.face[k] >= 0) h = std::min(h, target_size(b.faces[e.face[k]].g, x.uv[k], o));
+    return scale * h;
+  }
+
+  EdgeSample point_at_I(int ei, double I) const {
+    const Edge& e = b.edges[ei];
+    const auto& c = cum_I[ei];
+    size_t k = 1;
+    while (k + 1 < c.size() && c[k] < I) ++k;
+    const double w = c[k] > c[k - 1] ? std::clamp((I - c[k - 1]) / (c[k] - c[k - 1]), 0.0, 1.0) : 0.0;
+    return edge_point(b, e, static_cast<int>(k) - 1, w);
+  }
+
+  void discretise(int ei) {
+    const Edge& e = b.edges[ei];
+    Discrete d;
+    cum_I[ei].assign(e.s.size(), 0.0);
+    if (e.degenerate) {
+      for (int k = 0; k <= kPoleSegments; ++k) {
+        d.pts.push_back(lerp(e.s.front(), e.s.back(), static_cast<double>(k) / kPoleSegments));
+        d.ids.push_back(e.v0);
+        d.at.push_back(k);
+      }
+      disc[ei] = std::move(d);
+      return;
+    }
+    auto& c = cum_I[ei];
+    double prev_h = h_at(e, e.s[0]);
+    for (size_t k = 1; k < e.s.size(); ++k) {
+      const double h = h_at(e, e.s[k]);
+      c[k] = c[k - 1] + (e.s[k].xyz - e.s[k - 1].xyz).norm() * 0.5 * (1.0 / h + 1.0 / prev_h);
+      prev_h = h;
+    }
+    const int n = std::max(1, static_cast<int>(std::ceil(c.back() - 1e-6)));
+    d.ids.push_back(e.v0);
+    d.pts.push_back(e.s.front());
+    d.at.push_back(0.0);
+    for (int i = 1; i < n; ++i) {
+      const double I = c.back() * i / n;
+      EdgeSample x = point_at_I(ei, I);
+      d.ids.push_back(static_cast<int>(nodes.size()));
+      nodes.push_back(x.xyz);
+      d.pts.push_back(x);
+      d.at.push_back(I);
+    }
+    d.ids.push_back(e.v1);
+    d.pts.push_back(e.s.back());
+    d.at.push_back(c.back());
+    disc[ei] = std::move(d);
+  }
+
+  LoopNode midpoint(int ei, int seg, int face) {
+    const Edge& e = b.edges[ei];
+    const int sd = side_of(e, face);
+    auto it = mids.find({ei, seg});
+    LoopNode n;
+    if (it == mids.end()) {
+      const Discrete& d = disc[ei];
+      EdgeSample x;
+      if (e.degenerate) {
+        x = lerp(d.pts[seg], d.pts[seg + 1], 0.5);
+        n.id = e.v0;
+      } else {
+        x = point_at_I(ei, 0.5 * (d.at[seg] + d.at[seg + 1]));
+        n.id = static_cast<int>(nodes.size());
+        nodes.push_back(x.xyz);
+      }
+      n.xyz = x.xyz;
+      n.uv = x.uv[0];
+      LoopNode other = n;
+      other.uv = x.uv[1];
+      mids[{ei, seg}] = n;
+      mids[{ei, -1 - seg}] = other;
+      it = mids.find({ei, seg});
+    }
+    return sd == 0 ? it->second : mids[{ei, -1 - seg}];
+  }
+};
+
+/// Polygon elements made consistent across shared edges, then outward by int y n_y dS > 0.
+void orient(std::vector<std::array<int, 4>>& el, const std::vector<Vec3>& x) {
+  const int m = static_cast<int>(el.size());
+  auto corners = [&](int f) { return el[f][3] < 0 ? 3 : 4; };
+  std::unordered_map<long long, std::vector<int>> by_edge;
+  const long long N = static_cast<long long>(x.size()) + 1;
+  auto key = [&](int a, int b) { return std::min(a, b) * N + std::max(a, b); };
+  for (int f = 0; f < m; ++f)
+    for (int k = 0; k < corners(f); ++k) by_edge[key(el[f][k], el[f][(k + 1) % corners(f)])].push_back(f);
+  auto has_directed = [&](int f, int a, int b) {
+    for (int k = 0; k < corners(f); ++k)
+      if (el[f][k] == a && el[f][(k + 1) % corners(f)] == b) return true;
+    return false;
+  };
+  auto flip = [&](int f) { std::reverse(el[f].begin(), el[f].begin() + corners(f)); };
+  std::vector<char> seen(m, 0);
+  for (int s = 0; s < m; ++s) {
+    if (seen[s]) continue;
+    seen[s] = 1;
+    std::queue<int> q;
+    q.push(s);
+    std::vector<int> comp{s};
+    while (!q.empty()) {
+      const int f = q.front();
+      q.pop();
+      for (int k = 0; k < corners(f); ++k) {
+        const int a = el[f][k], b = el[f][(k + 1) % corners(f)];
+        const auto& nb = by_edge[key(a, b)];
+        if (nb.size() != 2) continue;
+        const int g = nb[0] == f ? nb[1] : nb[0];
+        if (seen[g]) continue;
+        seen[g] = 1;
+        if (has_directed(g, a, b)) flip(g);
+        q.push(g);
+        comp.push_back(g);
+      }
+    }
+    double flux = 0.0;  // int y n_y dS of this component
+    for (int f : comp)
+      for (int k = 1; k + 1 < corners(f); ++k) {
+        const Vec3 &a = x[el[f][0]], &b = x[el[f][k]], &c = x[el[f][k + 1]];
+        const Vec3 n = 0.5 * (b - a).cross(c - a);
+        flux += (a.y() + b.y() + c.y()) / 3.0 * n.y();
+      }
+    if (flux < 0)
+      for (int f : comp) flip(f);
+  }
+}
+
+}  // namespace
+
+SurfaceMesh mesh_brep(Brep& b, const MeshOptions& o, const std::function<void(int, int, const std::string&)>& progress,
+                      bool outward) {
+  Mesher M{b, o, o.all_quad ? 2.0 : 1.0, b.vertices, {}, {}, {}};
+  M.disc.resize(b.edges.size());
+  M.cum_I.resize(b.edges.size());
+  std::vector<char> needed(b.edges.size(), 0);
+  for (const Face& f : b.faces)
+    if (f.keep)
+      for (const auto& [e, fwd] : f.loop) needed[e] = 1;
+  for (size_t e = 0; e < b.edges.size(); ++e)
+    if (needed[e]) M.discretise(static_cast<int>(e));
+  std::vector<std::array<int, 4>> el;
+  std::vector<int> part;
+  SurfaceMesh out;
+  int done = 0, total = 0;
+  for (const Face& f : b.faces) total += f.keep;
+  for (size_t fi = 0; fi < b.faces.size(); ++fi) {
+    const Face& f = b.faces[fi];
+    if (!f.keep) continue;
+    std::vector<LoopNode> loop;
+    std::vector<std::pair<int, int>> seg_of;  // loop node i -> (edge, segment) of edge (i, i+1)
+    for (const auto& [e, fwd] : f.loop) {
+      const Discrete& d = M.disc[e];
+      const int sd = side_of(b.edges[e], static_cast<int>(fi));
+      const int n = static_cast<int>(d.ids.size());
+      for (int k = 0; k + 1 < n; ++k) {
+        const int i = fwd ? k : n - 1 - k;
+        LoopNode ln;
+        ln.id = d.ids[i];
+        ln.uv = f.g.surface ? d.pts[i].uv[sd] : f.g.locate(d.pts[i].xyz, Vec2::Zero());
+        ln.xyz = i == 0 || i == n - 1 ? M.nodes[d.ids[i]] : d.pts[i].xyz;
+        loop.push_back(ln);
+        seg_of.push_back({e, fwd ? k : n - 2 - k});
+      }
+    }
+    if (loop.empty()) continue;
+    auto mid = [&](int i) {
+      LoopNode m = M.midpoint(seg_of[i].first, seg_of[i].second, static_cast<int>(fi));
+      if (!f.g.surface) m.uv = f.g.locate(m.xyz, Vec2::Zero());
+      return m;
+    };
+    const PatchMesh pm = mesh_patch(f.g, loop, o, mid);
+    std::vector<int> gid(pm.xyz.size());
+    for (size_t i = 0; i < pm.xyz.size(); ++i) {
+      if (pm.global[i] >= 0) {
+        gid[i] = pm.global[i];
+      } else {
+        gid[i] = static_cast<int>(M.nodes.size());
+        M.nodes.push_back(pm.xyz[i]);
+      }
+    }
+    int pidx = static_cast<int>(std::find(out.parts.begin(), out.parts.end(), f.name) - out.parts.begin());
+    if (pidx == static_cast<int>(out.parts.size())) out.parts.push_back(f.name);
+    for (const auto& e : pm.elements) {
+      std::array<int, 4> g{-1, -1, -1, -1};
+      int k = 0;
+      const int corners = e[3] < 0 ? 3 : 4;
+      for (int c = 0; c < corners; ++c) {
+        const int id = gid[e[c]];
+        if (k > 0 && g[k - 1] == id) continue;
+        g[k++] = id;
+      }
+      if (k > 1 && g[k - 1] == g[0]) --k;
+      if (k < 3) continue;
+      if (k == 3) g[3] = -1;
+      el.push_back(g);
+      part.push_back(pidx);
+    }
+    if (progress) progress(++done, total, f.name);
+  }
+  if (outward) orient(el, M.nodes);
+  // compact: only nodes used by elements
+  std::vector<int> used(M.nodes.size(), -1);
+  int n = 0;
+  for (auto& e : el)
+    for (int& v : e)
+      if (v >= 0) {
+        if (used[v] < 0) used[v] = n++;
+        v = used[v];
+      }
+  out.vertices.resize(n, 3);
+  for (size_t i = 0; i < M.nodes.size(); ++i)
+    if (used[i] >= 0) out.vertices.row(used[i]) = M.nodes[i].transpose();
+  out.faces.resize(static_cast<Eigen::Index>(el.size()), 4);
+  out.face_part.resize(static_cast<Eigen::Index>(el.size()));
+  for (size_t f = 0; f < el.size(); ++f) {
+    for (int k = 0; k < 4; ++k) out.faces(static_cast<Eigen::Index>(f), k) = el[f][k];
+    out.face_part[static_cast<Eigen::Index>(f)] = part[f];
+  }
+  return out;
+}
+
+}  // namespace fairlines::meshing

@@ -1,0 +1,764 @@
+// One face inside one loop of fixed boundary nodes, see patch.hpp.
+//
+// Notation: (u, v) face parameters; (U, V) integer dyadic coordinates of the subdivision,
+// 2^kDepth units per root cell; h the target element size (m); S_u, S_v first partials;
+// "scaled" (u, v) are the parameters times the mean parametric speeds, in which the planar
+// Delaunay triangulation is built.
+#include "meshing/patch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+#include "fairlines/errors.hpp"
+#include "meshing/triangulation.hpp"
+#include "nurbs/checks.hpp"
+
+namespace fairlines::meshing {
+
+namespace {
+
+constexpr int kDepth = 16;                 ///< subdivision levels available per root cell
+constexpr double kClearance = 0.55;        ///< interior nodes keep this x h from the boundary
+constexpr double kCurvatureSafety = 0.8;   ///< size from curvature times this (element diagonals)
+constexpr double kDefaultTolerance = 0.01; ///< chordal tolerance / size when not given
+constexpr double kDefaultMinSize = 0.05;   ///< minimum size / size when not given
+constexpr int kSwapPasses = 8;             ///< sweeps of 3-D edge swaps
+constexpr int kAugmentVisits = 400;        ///< triangles one alternating-path search may visit
+constexpr double kGrading = 0.6;           ///< size may grow by this x the distance from the boundary
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+
+double angle_at(const Vec3& a, const Vec3& b, const Vec3& c) {  // angle at a in triangle abc
+  const Vec3 e1 = b - a, e2 = c - a;
+  const double n1 = e1.norm(), n2 = e2.norm();
+  if (n1 <= 0 || n2 <= 0) return 0.0;
+  return std::acos(std::clamp(e1.dot(e2) / (n1 * n2), -1.0, 1.0));
+}
+
+double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return std::min({angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)});
+}
+
+double cross2(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+bool point_in_polygon(const Vec2& q, const std::vector<Vec2>& poly) {
+  bool in = false;
+  const size_t n = poly.size();
+  for (size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2& a = poly[i];
+    const Vec2& c = poly[j];
+    if ((a.y() > q.y()) != (c.y() > q.y()) && q.x() < (c.x() - a.x()) * (q.y() - a.y()) / (c.y() - a.y()) + a.x())
+      in = !in;
+  }
+  return in;
+}
+
+double segment_distance(const Vec3& q, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double l2 = ab.squaredNorm();
+  const double t = l2 > 0 ? std::clamp((q - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - q).norm();
+}
+
+// ---- binary subdivision of the parameter rectangle (Yoon & Kim's node generation) ----------
+
+struct Cell {
+  long long U0, U1, V0, V1;
+  int child = -1;  // first of two children
+  bool split_u = false;
+};
+
+class Subdivision {
+ public:
+  using SizeAt = std::function<double(const Vec2&, const Vec3&)>;
+  Subdivision(const FaceGeometry& g, const MeshOptions& o, std::vector<double> ru, std::vector<double> rv,
+              double size_scale, SizeAt size_at)
+      : g_(g), o_(o), ru_(std::move(ru)), rv_(std::move(rv)), scale_(size_scale), size_at_(std::move(size_at)) {
+    const long long one = 1LL << kDepth;
+    for (size_t i = 0; i + 1 < ru_.size(); ++i)
+      for (size_t j = 0; j + 1 < rv_.size(); ++j)
+        cells_.push_back({static_cast<long long>(i) * one, static_cast<long long>(i + 1) * one,
+                          static_cast<long long>(j) * one, static_cast<long long>(j + 1) * one});
+    roots_ = static_cast<int>(cells_.size());
+    std::vector<int> work(roots_);
+    for (int c = 0; c < roots_; ++c) work[c] = c;
+    while (!work.empty()) {
+      const int c = work.back();
+      work.pop_back();
+      const int d = wanted_split(c);
+      if (d < 0) continue;
+      split(c, d == 0);
+      work.push_back(cells_[c].child);
+      work.push_back(cells_[c].child + 1);
+    }
+    balance();
+  }
+
+  double u(long long U) const { return coord(ru_, U); }
+  double v(long long V) const { return coord(rv_, V); }
+
+  /// Corners of every leaf, each once: (U, V) pairs.
+  std::vector<std::pair<long long, long long>> corners() const {
+    std::vector<std::pair<long long, long long>> out;
+    std::unordered_map<long long, char> seen;
+    const long long stride = (static_cast<long long>(rv_.size()) << kDepth) + 1;
+    for (const Cell& c : cells_) {
+      if (c.child >= 0) continue;
+      for (long long U : {c.U0, c.U1})
+        for (long long V : {c.V0, c.V1})
+          if (seen.emplace(U * stride + V, 1).second) out.push_back({U, V});
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+ private:
+  static double coord(const std::vector<double>& r, long long X) {
+    const long long one = 1LL << kDepth;
+    const long long i = std::min<long long>(X >> kDepth, static_cast<long long>(r.size()) - 2);
+    const double f = static_cast<double>(X - i * one) / static_cast<double>(one);
+    return f >= 1.0 ? r[i + 1] : r[i] + (r[i + 1] - r[i]) * f;
+  }
+
+  /// -1: keep; 0: split in u; 1: split in v.
+  int wanted_split(int ci) const {
+    const Cell& c = cells_[ci];
+    const bool can_u = c.U1 - c.U0 > 1, can_v = c.V1 - c.V0 > 1;
+    if (!can_u && !can_v) return -1;
+    const double us[3] = {u(c.U0), 0.5 * (u(c.U0) + u(c.U1)), u(c.U1)};
+    const double vs[3] = {v(c.V0), 0.5 * (v(c.V0) + v(c.V1)), v(c.V1)};
+    Vec3 P[3][3];
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) P[a][b] = g_.point({us[a], vs[b]});
+    double Lu = 0, Lv = 0;
+    for (int k = 0; k < 3; ++k) {
+      Lu = std::max(Lu, (P[1][k] - P[0][k]).norm() + (P[2][k] - P[1][k]).norm());
+      Lv = std::max(Lv, (P[k][1] - P[k][0]).norm() + (P[k][2] - P[k][1]).norm());
+    }
+    const double h = size_at_({us[1], vs[1]}, P[1][1]);
+    // chordal deviation: the normal distance of the middle from the corners' bilinear middle
+    // (a parametrisation whose speed jumps moves the middle along the surface, not off it)
+    Vec3 n = (P[2][1] - P[0][1]).cross(P[1][2] - P[1][0]);
+    const double nn = n.norm();
+    const Vec3 off = P[1][1] - 0.25 * (P[0][0] + P[2][0] + P[0][2] + P[2][2]);
+    const double dev = nn > 0 ? std::abs(off.dot(n / nn)) : off.norm();
+    const bool too_big = std::max(Lu, Lv) > h;
+    const bool too_curved = dev > o_.chordal_tolerance && std::max(Lu, Lv) > scale_ * o_.min_size;
+    if (!too_big && !too_curved) return -1;
+    if (Lu >= Lv) return can_u ? 0 : 1;
+    return can_v ? 1 : 0;
+  }
+
+  void split(int ci, bool in_u) {
+    const int first = static_cast<int>(cells_.size());
+    Cell a = cells_[ci], b = cells_[ci];
+    a.child = b.child = -1;
+    if (in_u) {
+      a.U1 = b.U0 = (a.U0 + a.U1) / 2;
+    } else {
+      a.V1 = b.V0 = (a.V0 + a.V1) / 2;
+    }
+    cells_.push_back(a);
+    cells_.push_back(b);
+    cells_[ci].child = first;
+    cells_[ci].split_u = in_u;
+  }
+
+  int find(long long U, long long V) const {
+    const long long one = 1LL << kDepth;
+    const long long nu = static_cast<long long>(ru_.size()) - 1, nv = static_cast<long long>(rv_.size()) - 1;
+    if (U < 0 || V < 0 || U >= nu * one || V >= nv * one) return -1;
+    int c = static_cast<int>((U >> kDepth) * nv + (V >> kDepth));
+    while (cells_[c].child >= 0) {
+      const Cell& x = cells_[c];
+      const bool second = x.split_u ? U >= (x.U0 + x.U1) / 2 : V >= (x.V0 + x.V1) / 2;
+      c = x.child + (second ? 1 : 0);
+    }
+    return c;
+  }
+
+  /// 2:1 balance: no leaf is more than twice as long as a side neighbour in either direction.
+  void balance() {
+    for (bool changed = true; changed;) {
+      changed = false;
+      const int n = static_cast<int>(cells_.size());
+      for (int ci = 0; ci < n; ++ci) {
+        if (cells_[ci].child >= 0) continue;
+        const Cell c = cells_[ci];
+        const long long du = c.U1 - c.U0, dv = c.V1 - c.V0;
+        int want = -1;
+        auto check = [&](long long U, long long V) {
+          const int nb = find(U, V);
+          if (nb < 0 || want >= 0) return;
+          const Cell& x = cells_[nb];
+          if (2 * (x.U1 - x.U0) < du && du > 1) want = 0;
+          else if (2 * (x.V1 - x.V0) < dv && dv > 1) want = 1;
+        };
+        for (int k = 0; k < 4; ++k) {
+          const long long V = c.V0 + std::max<long long>(dv * (2 * k + 1) / 8, 0);
+          const long long U = c.U0 + std::max<long long>(du * (2 * k + 1) / 8, 0);
+          check(c.U0 - 1, V);
+          check(c.U1, V);
+          check(U, c.V0 - 1);
+          check(U, c.V1);
+        }
+        if (want >= 0) {
+          split(ci, want == 0);
+          changed = true;
+        }
+      }
+    }
+  }
+
+  const FaceGeometry& g_;
+  const MeshOptions& o_;
+  std::vector<double> ru_, rv_;
+  double scale_;
+  SizeAt size_at_;
+  std::vector<Cell> cells_;
+  int roots_ = 0;
+};
+
+/// Root lines in one direction: equal arc length along the face's middle iso-line, as many
+/// as the longest of three iso-lines needs at the maximum size.
+std::vector<double> root_lines(const FaceGeometry& g, double a, double b, double c0, double c1, bool along_u,
+                               double h) {
+  constexpr int kSamples = 64;
+  double longest = 0.0;
+  std::vector<double> s(kSamples + 1, 0.0);
+  for (double f : {0.0, 0.5, 1.0}) {
+    const double c = c0 + (c1 - c0) * f;
+    double len = 0.0;
+    Vec3 prev = g.point(along_u ? Vec2(a, c) : Vec2(c, a));
+    std::vector<double> cum(kSamples + 1, 0.0);
+    for (int k = 1; k <= kSamples; ++k) {
+      const double t = a + (b - a) * k / kSamples;
+      const Vec3 p = g.point(along_u ? Vec2(t, c) : Vec2(c, t));
+      len += (p - prev).norm();
+      cum[k] = len;
+      prev = p;
+    }
+    longest = std::max(longest, len);
+    if (f == 0.5) s = cum;
+  }
+  const int n = std::max(1, static_cast<int>(std::ceil(longest / h - 1e-9)));
+  std::vector<double> out(n + 1);
+  out[0] = a;
+  out[n] = b;
+  const double total = s.back();
+  for (int i = 1; i < n; ++i) {
+    if (!(total > 0)) {
+      out[i] = a + (b - a) * i / n;
+      continue;
+    }
+    const double target = total * i / n;
+    int k = 1;
+    while (k < kSamples && s[k] < target) ++k;
+    const double w = s[k] > s[k - 1] ? (target - s[k - 1]) / (s[k] - s[k - 1]) : 0.0;
+    out[i] = a + (b - a) * (k - 1 + w) / kSamples;
+  }
+  return out;
+}
+
+/// Monotone map of one parameter to the mean arc length (m) along three iso-lines of the other.
+class ArcMap {
+ public:
+  ArcMap(const FaceGeometry& g, double a, double b, double c0, double c1, bool along_u) : a_(a), b_(b) {
+    s_.assign(kSamples + 1, 0.0);
+    for (double f : {0.25, 0.5, 0.75}) {
+      const double c = c0 + (c1 - c0) * f;
+      Vec3 prev = g.point(along_u ? Vec2(a, c) : Vec2(c, a));
+      double len = 0.0;
+      for (int k = 1; k <= kSamples; ++k) {
+        const double t = a + (b - a) * k / kSamples;
+        const Vec3 p = g.point(along_u ? Vec2(t, c) : Vec2(c, t));
+        len += (p - prev).norm();
+        s_[k] += len / 3.0;
+        prev = p;
+      }
+    }
+    const double total = std::max(s_.back(), 1e-300);
+    for (int k = 1; k <= kSamples; ++k)  // strictly increasing, even across a pole
+      s_[k] = std::max(s_[k], s_[k - 1] + 1e-9 * total / kSamples);
+  }
+  double operator()(double t) const {
+    const double f = b_ > a_ ? (t - a_) / (b_ - a_) * kSamples : 0.0;
+    const int k = std::clamp(static_cast<int>(std::floor(f)), 0, kSamples - 1);
+    return s_[k] + (s_[k + 1] - s_[k]) * (f - k);
+  }
+  /// d(arc length) / d(parameter) at t.
+  double speed(double t) const {
+    const double f = b_ > a_ ? (t - a_) / (b_ - a_) * kSamples : 0.0;
+    const int k = std::clamp(static_cast<int>(std::floor(f)), 0, kSamples - 1);
+    return b_ > a_ ? (s_[k + 1] - s_[k]) * kSamples / (b_ - a_) : 1.0;
+  }
+
+ private:
+  static constexpr int kSamples = 256;
+  double a_, b_;
+  std::vector<double> s_;
+};
+
+// ---- elements ---------------------------------------------------------------------------
+
+struct Work {
+  const FaceGeometry& g;
+  const MeshOptions& o;
+  std::vector<Vec3> xyz;
+  std::vector<Vec2> uv;
+  std::vector<Vec3> normal;  // surface normal at each node (S_u x S_v direction)
+  int fixed = 0;             // nodes 0 .. fixed-1 do not move
+  std::vector<std::array<int, 4>> el;
+
+  Vec3 surface_normal(const Vec2& q) const {
+    Vec3 p, su, sv;
+    g.first(q, p, su, sv);
+    const Vec3 n = su.cross(sv);
+    const double len = n.norm();
+    return len > 1e-300 ? Vec3(n / len) : Vec3::Zero();
+  }
+  Vec3 element_normal(const std::array<int, 4>& e) const {
+    const int k = e[3] < 0 ? 3 : 4;
+    Vec3 n = Vec3::Zero();
+    for (int i = 0; i < k; ++i) n += normal[e[i]];
+    if (n.norm() < 1e-12) {  // singular corners (a pole): the element's own normal
+      n = k == 4 ? Vec3((xyz[e[2]] - xyz[e[0]]).cross(xyz[e[3]] - xyz[e[1]]))
+                 : Vec3((xyz[e[1]] - xyz[e[0]]).cross(xyz[e[2]] - xyz[e[0]]));
+    }
+    return n.normalized();
+  }
+  double quality(const std::array<int, 4>& e) const {
+    const int k = e[3] < 0 ? 3 : 4;
+    Vec3 p[4];
+    for (int i = 0; i < k; ++i) p[i] = xyz[e[i]];
+    double q = element_quality(p, k, element_normal(e));
+    // folded in the parameter plane: as bad as inverted
+    for (int i = 0; i < k; ++i)
+      if (cross2(uv[e[i]], uv[e[(i + 1) % k]], uv[e[(i + k - 1) % k]]) <= 0 &&
+          (xyz[e[i]] - xyz[e[(i + 1) % k]]).norm() > 0 && (xyz[e[i]] - xyz[e[(i + k - 1) % k]]).norm() > 0)
+        q = std::min(q, -1.0);
+    return q;
+  }
+  int add(const Vec2& q) {
+    uv.push_back(q);
+    xyz.push_back(g.point(q));
+    normal.push_back(surface_normal(q));
+    return static_cast<int>(xyz.size()) - 1;
+  }
+};
+
+/// Greedy matching by quad quality, then alternating-path augmentation (Edmonds' idea without
+/// blossoms) so that as few triangles as possible stay unpaired.
+std::vector<int> match_triangles(const Work& w, const std::vector<std::array<int, 3>>& tri,
+                                 std::vector<std::array<int, 3>>& nbr, std::vector<std::array<double, 3>>& q) {
+  const int n = static_cast<int>(tri.size());
+  std::unordered_map<long long, std::pair<int, int>> half;
+  const long long N = static_cast<long long>(w.xyz.size());
+  for (int t = 0; t < n; ++t)
+    for (int k = 0; k < 3; ++k) half[tri[t][k] * N + tri[t][(k + 1) % 3]] = {t, k};
+  nbr.assign(n, {-1, -1, -1});
+  q.assign(n, {-2, -2, -2});
+  std::vector<std::tuple<double, int, int>> cand;
+  for (int t = 0; t < n; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = tri[t][k], b = tri[t][(k + 1) % 3], c = tri[t][(k + 2) % 3];
+      auto it = half.find(b * N + a);
+      if (it == half.end()) continue;
+      const int u = it->second.first;
+      nbr[t][k] = u;
+      const int d = tri[u][(it->second.second + 2) % 3];
+      q[t][k] = w.quality({a, d, b, c});
+      if (t < u && q[t][k] >= w.o.min_quad_quality) cand.push_back({q[t][k], t, u});
+    }
+  std::sort(cand.begin(), cand.end(), [](const auto& x, const auto& y) { return std::get<0>(x) > std::get<0>(y); });
+  std::vector<int> mate(n, -1);
+  for (const auto& [qq, t, u] : cand)
+    if (mate[t] < 0 && mate[u] < 0) {
+      mate[t] = u;
+      mate[u] = t;
+    }
+  auto good = [&](int t, int k) { return nbr[t][k] >= 0 && q[t][k] >= w.o.min_quad_quality; };
+  std::vector<int> parent(n, -1), via(n, -1), stamp(n, -1);
+  for (int f = 0; f < n; ++f) {
+    if (mate[f] >= 0) continue;
+    // breadth-first over even triangles (f and mates); odd ones are entered by a good edge
+    std::vector<int> queue{f};
+    stamp[f] = f;
+    parent[f] = -1;
+    int found = -1, found_from = -1;
+    for (size_t head = 0; head < queue.size() && found < 0 && static_cast<int>(queue.size()) < kAugmentVisits; ++head) {
+      const int x = queue[head];
+      for (int k = 0; k < 3 && found < 0; ++k) {
+        if (!good(x, k)) continue;
+        const int y = nbr[x][k];
+        if (stamp[y] == f || y == mate[x]) continue;
+        if (mate[y] < 0) {
+          found = y;
+          found_from = x;
+          break;
+        }
+        const int z = mate[y];
+        if (stamp[z] == f) continue;
+        stamp[y] = stamp[z] = f;
+        parent[z] = x;
+        via[z] = y;
+        queue.push_back(z);
+      }
+    }
+    if (found < 0) continue;
+    int x = found_from, y = found;
+    while (true) {  // flip the path: y-x becomes a pair, x's old mate pairs with x's parent
+      const int old = mate[x];
+      mate[x] = y;
+      mate[y] = x;
+      if (x == f) break;
+      y = old;  // == via[x]
+      x = parent[x];
+    }
+  }
+  return mate;
+}
+
+/// Moves each free node toward the mean of its elements' centroids, back onto the face,
+/// when the worst of its elements does not get worse.
+void smooth(Work& w, int passes) {
+  const int n = static_cast<int>(w.xyz.size());
+  std::vector<std::vector<int>> around(n);
+  for (int e = 0; e < static_cast<int>(w.el.size()); ++e)
+    for (int k = 0; k < (w.el[e][3] < 0 ? 3 : 4); ++k) around[w.el[e][k]].push_back(e);
+  for (int pass = 0; pass < passes; ++pass) {
+    int moved = 0;
+    for (int i = w.fixed; i < n; ++i) {
+      if (around[i].empty()) continue;
+      double worst = 1e9;
+      Vec3 target = Vec3::Zero();
+      for (int e : around[i]) {
+        worst = std::min(worst, w.quality(w.el[e]));
+        const int k = w.el[e][3] < 0 ? 3 : 4;
+        Vec3 c = Vec3::Zero();
+        for (int j = 0; j < k; ++j) c += w.xyz[w.el[e][j]];
+        target += c / k;
+      }
+      target /= static_cast<double>(around[i].size());
+      const Vec2 old_uv = w.uv[i];
+      const Vec3 old_p = w.xyz[i], old_n = w.normal[i];
+      const Vec2 new_uv = w.g.locate(target, old_uv);
+      if ((new_uv - old_uv).norm() == 0.0) continue;
+      w.uv[i] = new_uv;
+      w.xyz[i] = w.g.point(new_uv);
+      w.normal[i] = w.surface_normal(new_uv);
+      double now = 1e9;
+      for (int e : around[i]) now = std::min(now, w.quality(w.el[e]));
+      if (now + 1e-12 < worst) {
+        w.uv[i] = old_uv;
+        w.xyz[i] = old_p;
+        w.normal[i] = old_n;
+      } else {
+        ++moved;
+      }
+    }
+    if (!moved) break;
+  }
+}
+
+/// Each quad into four and each triangle into three quads (edge midpoints and centre).
+void split_all_quad(Work& w, int loop_size, const LoopMidpoint& midpoint, std::vector<int>& global) {
+  std::unordered_map<long long, int> mid;
+  const long long N = static_cast<long long>(w.xyz.size()) + 1;
+  auto edge_mid = [&](int a, int b) {
+    const long long key = std::min(a, b) * N + std::max(a, b);
+    auto it = mid.find(key);
+    if (it != mid.end()) return it->second;
+    int id;
+    const bool on_loop = a < loop_size && b < loop_size &&
+                         ((b == (a + 1) % loop_size) || (a == (b + 1) % loop_size));
+    if (on_loop) {
+      const int i = b == (a + 1) % loop_size ? a : b;
+      const LoopNode m = midpoint(i);
+      w.uv.push_back(m.uv);
+      w.xyz.push_back(m.xyz);
+      w.normal.push_back(w.surface_normal(m.uv));
+      id = static_cast<int>(w.xyz.size()) - 1;
+      global.resize(w.xyz.size(), -1);
+      global[id] = m.id;
+    } else {
+      id = w.add(0.5 * (w.uv[a] + w.uv[b]));
+    }
+    mid[key] = id;
+    return id;
+  };
+  std::vector<std::array<int, 4>> out;
+  std::vector<std::array<int, 4>> el = w.el;
+  for (const auto& e : el) {
+    const int k = e[3] < 0 ? 3 : 4;
+    Vec2 c = Vec2::Zero();
+    for (int i = 0; i < k; ++i) c += w.uv[e[i]];
+    const int centre = w.add(c / k);
+    int m[4];
+    for (int i = 0; i < k; ++i) m[i] = edge_mid(e[i], e[(i + 1) % k]);
+    for (int i = 0; i < k; ++i) out.push_back({e[i], m[i], centre, m[(i + k - 1) % k]});
+  }
+  w.el = std::move(out);
+  global.resize(w.xyz.size(), -1);
+}
+
+}  // namespace
+
+// ---- FaceGeometry ------------------------------------------------------------------------
+
+Vec3 FaceGeometry::point(const Vec2& q) const {
+  if (surface) return surface->evaluate(q.x(), q.y());
+  return origin + q.x() * ax + q.y() * ay;
+}
+
+void FaceGeometry::first(const Vec2& q, Vec3& p, Vec3& su, Vec3& sv) const {
+  if (!surface) {
+    p = point(q);
+    su = ax;
+    sv = ay;
+    return;
+  }
+  double out[9];
+  surface->evaluate_first_derivatives_into(&q.x(), &q.y(), 1, out);
+  p = Vec3(out[0], out[1], out[2]);
+  su = Vec3(out[3], out[4], out[5]);
+  sv = Vec3(out[6], out[7], out[8]);
+}
+
+double FaceGeometry::curvature_sum(const Vec2& q) const {
+  if (!surface) return 0.0;
+  const Eigen::MatrixXd d = surface->derivatives(q.x(), q.y(), 2);
+  const Vec3 sv = d.row(1), svv = d.row(2), su = d.row(3), suv = d.row(4), suu = d.row(6);
+  Vec3 n = su.cross(sv);
+  const double len = n.norm();
+  const double E = su.dot(su), F = su.dot(sv), G = sv.dot(sv);
+  const double det = E * G - F * F;
+  if (len < 1e-12 * std::max(E, G) || det <= 0) return 0.0;
+  n /= len;
+  const double L = suu.dot(n), M = suv.dot(n), N = svv.dot(n);
+  const double K = (L * N - M * M) / det, H = (E * N - 2 * F * M + G * L) / (2 * det);
+  return K >= 0 ? 2 * std::abs(H) : 2 * std::sqrt(H * H - K);
+}
+
+Vec2 FaceGeometry::clamp(const Vec2& q) const {
+  if (!surface) return q;
+  const auto [u0, u1] = surface->domain_u();
+  const auto [v0, v1] = surface->domain_v();
+  return {std::clamp(q.x(), u0, u1), std::clamp(q.y(), v0, v1)};
+}
+
+Vec2 FaceGeometry::locate(const Vec3& p, const Vec2& start) const {
+  if (!surface) return {(p - origin).dot(ax), (p - origin).dot(ay)};
+  Vec2 q = start;
+  for (int it = 0; it < 8; ++it) {
+    Vec3 s, su, sv;
+    first(q, s, su, sv);
+    Eigen::Matrix2d A;
+    A << su.dot(su), su.dot(sv), su.dot(sv), sv.dot(sv);
+    const Vec2 rhs(su.dot(p - s), sv.dot(p - s));
+    const Vec2 d = A.ldlt().solve(rhs);
+    if (!d.allFinite()) break;
+    const Vec2 next = clamp(q + d);
+    const double step = (next - q).norm();
+    q = next;
+    if (step < 1e-13) break;
+  }
+  return q;
+}
+
+// ---- public (internal) functions --------------------------------------------------------
+
+MeshOptions resolved(const MeshOptions& o) {
+  if (!(o.size > 0) || !std::isfinite(o.size)) detail::fail("size is ", o.size, "; expected a length > 0 (m)");
+  if (!(o.chordal_tolerance >= 0) || !std::isfinite(o.chordal_tolerance))
+    detail::fail("chordal_tolerance is ", o.chordal_tolerance, "; expected >= 0 (m; 0: size / 100)");
+  if (!(o.min_size >= 0) || !std::isfinite(o.min_size) || o.min_size > o.size)
+    detail::fail("min_size is ", o.min_size, "; expected 0 <= min_size <= size (m; 0: size / 20)");
+  if (o.smoothing_passes < 0) detail::fail("smoothing_passes is ", o.smoothing_passes, "; expected >= 0");
+  if (!(o.min_quad_quality >= 0 && o.min_quad_quality < 1))
+    detail::fail("min_quad_quality is ", o.min_quad_quality, "; expected a scaled Jacobian in [0, 1)");
+  MeshOptions r = o;
+  if (r.chordal_tolerance == 0) r.chordal_tolerance = kDefaultTolerance * r.size;
+  if (r.min_size == 0) r.min_size = kDefaultMinSize * r.size;
+  return r;
+}
+
+double target_size(const FaceGeometry& g, const Vec2& uv, const MeshOptions& o) {
+  const double k = g.curvature_sum(uv);
+  double h = o.size;
+  if (k > 0) h = std::min(h, kCurvatureSafety * std::sqrt(8.0 * o.chordal_tolerance / k));
+  return std::max(h, o.min_size);
+}
+
+double element_quality(const Vec3* p, int k, const Vec3& n) {
+  double q = 1e9;
+  for (int i = 0; i < k; ++i) {
+    const Vec3 e1 = p[(i + 1) % k] - p[i], e2 = p[(i + k - 1) % k] - p[i];
+    const double l = e1.norm() * e2.norm();
+    const double s = l > 0 ? e1.cross(e2).dot(n) / l : 0.0;
+    q = std::min(q, s);
+  }
+  if (k == 3) q = std::min(1.0, q * 2.0 / std::sqrt(3.0));
+  return q;
+}
+
+PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, const MeshOptions& o,
+                     const LoopMidpoint& midpoint) {
+  const int nb = static_cast<int>(loop.size());
+  if (nb < 3) throw Error("mesh: a face boundary has fewer than 3 nodes");
+  Work w{g, o, {}, {}, {}, nb, {}};
+  for (const LoopNode& n : loop) {
+    w.uv.push_back(n.uv);
+    w.xyz.push_back(n.xyz);
+    w.normal.push_back(w.surface_normal(n.uv));
+  }
+  std::vector<Vec2> poly(nb);
+  Vec2 lo = loop[0].uv, hi = lo;
+  for (int i = 0; i < nb; ++i) {
+    poly[i] = loop[i].uv;
+    lo = lo.cwiseMin(poly[i]);
+    hi = hi.cwiseMax(poly[i]);
+  }
+  // the planar triangulation works in arc-length coordinates: each parameter mapped by the
+  // mean arc length along three iso-lines (monotone, so orientation is kept), which evens out
+  // parametrisations whose speed jumps (a hull's flat-of-side zone between triple knots)
+  const ArcMap amap_u(g, lo.x(), hi.x(), lo.y(), hi.y(), true), amap_v(g, lo.y(), hi.y(), lo.x(), hi.x(), false);
+  const double size_scale = o.all_quad ? 2.0 : 1.0;
+  // interior nodes: corners of the balanced subdivision, inside and clear of the boundary
+  const auto ru = root_lines(g, lo.x(), hi.x(), lo.y(), hi.y(), true, size_scale * o.size);
+  const auto rv = root_lines(g, lo.y(), hi.y(), lo.x(), hi.x(), false, size_scale * o.size);
+  // size: the curvature's, graded from the boundary's own spacing
+  std::vector<double> hb(nb);
+  for (int i = 0; i < nb; ++i)
+    hb[i] = std::max((w.xyz[(i + 1) % nb] - w.xyz[i]).norm(), (w.xyz[(i + nb - 1) % nb] - w.xyz[i]).norm());
+  auto size_at = [&](const Vec2& q, const Vec3& p) {
+    double h = size_scale * target_size(g, q, o);
+    for (int i = 0; i < nb; ++i)
+      if (hb[i] > 0) h = std::min(h, hb[i] + kGrading * (p - w.xyz[i]).norm());
+    return std::max(h, size_scale * o.min_size);
+  };
+  const Subdivision sub(g, o, ru, rv, size_scale, size_at);
+  // boundary segments bucketed in scaled (u, v) for the clearance test
+  const double bucket = size_scale * o.size;
+  std::unordered_map<long long, std::vector<int>> buckets;
+  auto bkey = [&](long long i, long long j) { return i * 1000003LL + j; };
+  auto scaled = [&](const Vec2& q) { return Vec2(amap_u(q.x()), amap_v(q.y())); };
+  for (int i = 0; i < nb; ++i) {
+    const Vec2 a = scaled(poly[i]), b = scaled(poly[(i + 1) % nb]);
+    const long long i0 = static_cast<long long>(std::floor(std::min(a.x(), b.x()) / bucket));
+    const long long i1 = static_cast<long long>(std::floor(std::max(a.x(), b.x()) / bucket));
+    const long long j0 = static_cast<long long>(std::floor(std::min(a.y(), b.y()) / bucket));
+    const long long j1 = static_cast<long long>(std::floor(std::max(a.y(), b.y()) / bucket));
+    for (long long x = i0; x <= i1; ++x)
+      for (long long y = j0; y <= j1; ++y) buckets[bkey(x, y)].push_back(i);
+  }
+  std::vector<Vec2> pts2;
+  for (const Vec2& q : poly) pts2.push_back(scaled(q));
+  for (const auto& [U, V] : sub.corners()) {
+    const Vec2 q(sub.u(U), sub.v(V));
+    if (!point_in_polygon(q, poly)) continue;
+    Vec3 p, su, sv;
+    g.first(q, p, su, sv);
+    const double h = size_at(q, p);
+    const double clear = kClearance * h;
+    // search radius in scaled coordinates: the slowest direction bounds the reach
+    const double slow = std::max(1e-300, std::min(su.norm() / amap_u.speed(q.x()), sv.norm() / amap_v.speed(q.y())));
+    const double reach = std::min(clear / slow, 50.0 * bucket);
+    const Vec2 s = scaled(q);
+    const long long i0 = static_cast<long long>(std::floor((s.x() - reach) / bucket));
+    const long long i1 = static_cast<long long>(std::floor((s.x() + reach) / bucket));
+    const long long j0 = static_cast<long long>(std::floor((s.y() - reach) / bucket));
+    const long long j1 = static_cast<long long>(std::floor((s.y() + reach) / bucket));
+    bool near = false;
+    for (long long x = i0; x <= i1 && !near; ++x)
+      for (long long y = j0; y <= j1 && !near; ++y) {
+        auto it = buckets.find(bkey(x, y));
+        if (it == buckets.end()) continue;
+        for (int i : it->second)
+          if (segment_distance(p, w.xyz[i], w.xyz[(i + 1) % nb]) < clear) {
+            near = true;
+            break;
+          }
+      }
+    if (near) continue;
+    w.uv.push_back(q);
+    w.xyz.push_back(p);
+    const Vec3 n = su.cross(sv);
+    w.normal.push_back(n.norm() > 1e-300 ? Vec3(n.normalized()) : Vec3::Zero());
+    pts2.push_back(s);
+  }
+  // constrained Delaunay in scaled (u, v), then 3-D swaps (max-min angle)
+  std::vector<int> order(nb);
+  for (int i = 0; i < nb; ++i) order[i] = i;
+  Triangulation tr(pts2, order);
+  for (int i = nb; i < static_cast<int>(pts2.size()); ++i) tr.insert(i);
+  tr.flip_while(
+      [&](int a, int b, int c, int d) {
+        const double now = std::min(min_angle(w.xyz[a], w.xyz[b], w.xyz[c]), min_angle(w.xyz[b], w.xyz[a], w.xyz[d]));
+        const double then = std::min(min_angle(w.xyz[a], w.xyz[d], w.xyz[c]), min_angle(w.xyz[d], w.xyz[b], w.xyz[c]));
+        return then > now + 1e-9;
+      },
+      kSwapPasses);
+  const auto& tri = tr.triangles();
+  std::vector<std::array<int, 3>> nbr;
+  std::vector<std::array<double, 3>> q;
+  const std::vector<int> mate = match_triangles(w, tri, nbr, q);
+  for (int t = 0; t < static_cast<int>(tri.size()); ++t) {
+    if (mate[t] < 0) {
+      w.el.push_back({tri[t][0], tri[t][1], tri[t][2], -1});
+      continue;
+    }
+    if (mate[t] < t) continue;
+    for (int k = 0; k < 3; ++k)
+      if (nbr[t][k] == mate[t]) {
+        const int a = tri[t][k], b = tri[t][(k + 1) % 3], c = tri[t][(k + 2) % 3];
+        const int u = mate[t];
+        int d = -1;
+        for (int j = 0; j < 3; ++j)
+          if (tri[u][j] != a && tri[u][j] != b) d = tri[u][j];
+        w.el.push_back({a, d, b, c});
+      }
+  }
+  std::vector<int> global(w.xyz.size(), -1);
+  for (int i = 0; i < nb; ++i) global[i] = loop[i].id;
+  if (o.all_quad) {
+    smooth(w, o.smoothing_passes);
+    split_all_quad(w, nb, midpoint, global);
+    // split-off boundary midpoints stay where the edge put them
+    std::vector<int> perm;  // move loop-midpoint nodes before the free ones: renumber
+    const int n = static_cast<int>(w.xyz.size());
+    std::vector<int> fixed_first, rest;
+    for (int i = 0; i < n; ++i) (i < nb || global[i] >= 0 ? fixed_first : rest).push_back(i);
+    perm = fixed_first;
+    perm.insert(perm.end(), rest.begin(), rest.end());
+    std::vector<int> inv(n);
+    for (int i = 0; i < n; ++i) inv[perm[i]] = i;
+    Work r{g, o, {}, {}, {}, static_cast<int>(fixed_first.size()), {}};
+    std::vector<int> g2(n);
+    for (int i = 0; i < n; ++i) {
+      r.xyz.push_back(w.xyz[perm[i]]);
+      r.uv.push_back(w.uv[perm[i]]);
+      r.normal.push_back(w.normal[perm[i]]);
+      g2[i] = global[perm[i]];
+    }
+    for (auto e : w.el) {
+      for (int k = 0; k < 4; ++k)
+        if (e[k] >= 0) e[k] = inv[e[k]];
+      r.el.push_back(e);
+    }
+    smooth(r, o.smoothing_passes);
+    return {std::move(r.xyz), std::move(r.uv), std::move(r.el), std::move(g2)};
+  }
+  smooth(w, o.smoothing_passes);
+  global.resize(w.xyz.size(), -1);
+  return {std::move(w.xyz), std::move(w.uv), std::move(w.el), std::move(global)};
+}
+
+}  // namespace fairlines::meshing

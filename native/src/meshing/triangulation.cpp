@@ -1,0 +1,245 @@
+// Constrained Delaunay triangulation by ear clipping and Lawson flips (Lawson 1977; de Berg
+// et al., Computational Geometry, ch. 9), see triangulation.hpp.
+#include "meshing/triangulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "fairlines/errors.hpp"
+#include "fairlines/mesh.hpp"
+
+namespace fairlines::meshing {
+
+namespace {
+
+unsigned long long key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<unsigned long long>(static_cast<unsigned>(a)) << 32) | static_cast<unsigned>(b);
+}
+
+/// Relative size below which an orientation counts as zero (points on a line).
+constexpr double kCollinear = 1e-12;
+
+}  // namespace
+
+Triangulation::Triangulation(std::vector<Eigen::Vector2d> points, const std::vector<int>& loop) : p_(std::move(points)) {
+  const int m = static_cast<int>(loop.size());
+  if (m < 3) throw InvalidInput("triangulation: a boundary loop needs at least 3 points");
+  Eigen::Vector2d lo = p_[loop[0]], hi = lo;
+  for (int i : loop) {
+    lo = lo.cwiseMin(p_[i]);
+    hi = hi.cwiseMax(p_[i]);
+  }
+  scale_ = std::max((hi - lo).norm(), 1e-300);
+  Eigen::MatrixXd poly(m, 2);
+  for (int i = 0; i < m; ++i) poly.row(i) = p_[loop[i]].transpose();
+  double area2 = 0.0;
+  for (int i = 0; i < m; ++i) area2 += poly(i, 0) * poly((i + 1) % m, 1) - poly(i, 1) * poly((i + 1) % m, 0);
+  for (const auto& t : triangulate_polygon(poly)) {
+    std::array<int, 3> tri{loop[t[0]], loop[t[1]], loop[t[2]]};
+    if (area2 < 0) std::swap(tri[1], tri[2]);
+    v_.push_back(tri);
+  }
+  n_.assign(v_.size(), {-1, -1, -1});
+  std::map<std::pair<int, int>, std::pair<int, int>> half;
+  for (int t = 0; t < static_cast<int>(v_.size()); ++t)
+    for (int k = 0; k < 3; ++k) half[{v_[t][k], v_[t][(k + 1) % 3]}] = {t, k};
+  for (const auto& [e, tk] : half) {
+    auto it = half.find({e.second, e.first});
+    if (it != half.end()) n_[tk.first][tk.second] = it->second.first;
+  }
+  for (int i = 0; i < m; ++i) fixed_.insert(key(loop[i], loop[(i + 1) % m]));
+  std::vector<std::pair<int, int>> stack;
+  for (int t = 0; t < static_cast<int>(v_.size()); ++t)
+    for (int k = 0; k < 3; ++k) stack.push_back({t, k});
+  legalize(std::move(stack));
+}
+
+bool Triangulation::constrained(int a, int b) const { return fixed_.count(key(a, b)) > 0; }
+
+double Triangulation::orient(int a, int b, int c) const { return orient(a, b, p_[c]); }
+
+double Triangulation::orient(int a, int b, const Eigen::Vector2d& q) const {
+  const Eigen::Vector2d& pa = p_[a];
+  const Eigen::Vector2d& pb = p_[b];
+  return (pb.x() - pa.x()) * (q.y() - pa.y()) - (pb.y() - pa.y()) * (q.x() - pa.x());
+}
+
+bool Triangulation::in_circle(int a, int b, int c, int d) const {
+  const Eigen::Vector2d A = p_[a] - p_[d], B = p_[b] - p_[d], C = p_[c] - p_[d];
+  const double det = (A.squaredNorm()) * (B.x() * C.y() - C.x() * B.y()) -
+                     (B.squaredNorm()) * (A.x() * C.y() - C.x() * A.y()) +
+                     (C.squaredNorm()) * (A.x() * B.y() - B.x() * A.y());
+  return det > kCollinear * scale_ * scale_ * scale_ * scale_;
+}
+
+int Triangulation::edge_index(int t, int a, int b) const {
+  for (int k = 0; k < 3; ++k)
+    if (v_[t][k] == a && v_[t][(k + 1) % 3] == b) return k;
+  return -1;
+}
+
+void Triangulation::link(int t, int k, int u, int j) {
+  if (t >= 0) n_[t][k] = u;
+  if (u >= 0) n_[u][j] = t;
+}
+
+int Triangulation::locate(const Eigen::Vector2d& q) const {
+  const double eps = kCollinear * scale_ * scale_;
+  int t = std::clamp(hint_, 0, static_cast<int>(v_.size()) - 1);
+  for (size_t steps = 0; steps < v_.size() + 8; ++steps) {
+    int next = -2;  // -2: q is inside t
+    for (int r = 0; r < 3; ++r) {
+      const int kk = (r + static_cast<int>(steps)) % 3;  // rotate the first edge tested: no walking in circles
+      if (orient(v_[t][kk], v_[t][(kk + 1) % 3], q) < -eps) {
+        next = n_[t][kk];
+        break;
+      }
+    }
+    if (next == -2) return hint_ = t;
+    if (next < 0) break;
+    t = next;
+  }
+  for (int u = 0; u < static_cast<int>(v_.size()); ++u) {  // walk blocked by the boundary
+    bool inside = true;
+    for (int k = 0; k < 3; ++k)
+      if (orient(v_[u][k], v_[u][(k + 1) % 3], q) < -eps) inside = false;
+    if (inside) return hint_ = u;
+  }
+  return -1;
+}
+
+bool Triangulation::flip(int t, int k) {
+  const int u = n_[t][k];
+  if (u < 0) return false;
+  const int a = v_[t][k], b = v_[t][(k + 1) % 3], c = v_[t][(k + 2) % 3];
+  const int j = edge_index(u, b, a);
+  if (j < 0) return false;
+  const int d = v_[u][(j + 2) % 3];
+  // outer neighbours: t has (b,c) and (c,a); u has (a,d) and (d,b)
+  const int n_bc = n_[t][(k + 1) % 3], n_ca = n_[t][(k + 2) % 3];
+  const int n_ad = n_[u][(j + 1) % 3], n_db = n_[u][(j + 2) % 3];
+  v_[t] = {a, d, c};  // edges: (a,d) (d,c) (c,a)
+  v_[u] = {d, b, c};  // edges: (d,b) (b,c) (c,d)
+  auto relink = [&](int outer, int x, int y, int tri, int kk) {  // outer triangle holds edge (y, x)
+    n_[tri][kk] = outer;
+    if (outer >= 0) {
+      const int e = edge_index(outer, y, x);
+      if (e >= 0) n_[outer][e] = tri;
+    }
+  };
+  relink(n_ad, a, d, t, 0);
+  n_[t][1] = u;
+  relink(n_ca, c, a, t, 2);
+  relink(n_db, d, b, u, 0);
+  relink(n_bc, b, c, u, 1);
+  n_[u][2] = t;
+  return true;
+}
+
+void Triangulation::legalize(std::vector<std::pair<int, int>> stack) {
+  while (!stack.empty()) {
+    const auto [t, k] = stack.back();
+    stack.pop_back();
+    const int u = n_[t][k];
+    if (u < 0) continue;
+    const int a = v_[t][k], b = v_[t][(k + 1) % 3], c = v_[t][(k + 2) % 3];
+    if (constrained(a, b)) continue;
+    const int j = edge_index(u, b, a);
+    if (j < 0) continue;
+    const int d = v_[u][(j + 2) % 3];
+    if (!in_circle(a, b, c, d)) continue;
+    if (orient(c, a, d) <= 0 || orient(d, b, c) <= 0) continue;  // not convex: keep
+    flip(t, k);
+    // the new outer edges of both triangles may now be illegal
+    stack.push_back({t, 0});
+    stack.push_back({t, 2});
+    stack.push_back({u, 0});
+    stack.push_back({u, 1});
+  }
+}
+
+void Triangulation::split_triangle(int t, int idx) {
+  const int a = v_[t][0], b = v_[t][1], c = v_[t][2];
+  const int n_ab = n_[t][0], n_bc = n_[t][1], n_ca = n_[t][2];
+  const int t1 = static_cast<int>(v_.size()), t2 = t1 + 1;
+  v_[t] = {a, b, idx};
+  v_.push_back({b, c, idx});
+  v_.push_back({c, a, idx});
+  n_.push_back({-1, -1, -1});
+  n_.push_back({-1, -1, -1});
+  n_[t] = {n_ab, t1, t2};
+  n_[t1] = {n_bc, t2, t};
+  n_[t2] = {n_ca, t, t1};
+  if (n_bc >= 0) n_[n_bc][edge_index(n_bc, c, b)] = t1;
+  if (n_ca >= 0) n_[n_ca][edge_index(n_ca, a, c)] = t2;
+  legalize({{t, 0}, {t1, 0}, {t2, 0}});
+}
+
+void Triangulation::split_edge(int t, int k, int idx) {
+  const int u = n_[t][k];
+  const int a = v_[t][k], b = v_[t][(k + 1) % 3], c = v_[t][(k + 2) % 3];
+  const int j = edge_index(u, b, a);
+  const int d = v_[u][(j + 2) % 3];
+  const int n_bc = n_[t][(k + 1) % 3], n_ca = n_[t][(k + 2) % 3];
+  const int n_ad = n_[u][(j + 1) % 3], n_db = n_[u][(j + 2) % 3];
+  const int t2 = static_cast<int>(v_.size()), u2 = t2 + 1;
+  // t: (a, idx, c)  t2: (idx, b, c)  u: (b, idx, d)  u2: (idx, a, d)
+  v_[t] = {a, idx, c};
+  v_[u] = {b, idx, d};
+  v_.push_back({idx, b, c});
+  v_.push_back({idx, a, d});
+  n_.push_back({-1, -1, -1});
+  n_.push_back({-1, -1, -1});
+  n_[t] = {u2, t2, n_ca};
+  n_[t2] = {u, n_bc, t};
+  n_[u] = {t2, u2, n_db};
+  n_[u2] = {t, n_ad, u};
+  if (n_bc >= 0) n_[n_bc][edge_index(n_bc, c, b)] = t2;
+  if (n_ad >= 0) n_[n_ad][edge_index(n_ad, d, a)] = u2;
+  legalize({{t, 2}, {t2, 1}, {u, 2}, {u2, 1}});
+}
+
+bool Triangulation::insert(int idx) {
+  const Eigen::Vector2d& q = p_[idx];
+  const int t = locate(q);
+  if (t < 0) return false;
+  const double eps = kCollinear * scale_ * scale_;
+  for (int k = 0; k < 3; ++k) {
+    const int a = v_[t][k], b = v_[t][(k + 1) % 3];
+    if (std::abs(orient(a, b, q)) <= eps) {
+      if (constrained(a, b) || n_[t][k] < 0) return false;
+      if ((p_[a] - q).norm() <= 1e-9 * scale_ || (p_[b] - q).norm() <= 1e-9 * scale_) return false;
+      split_edge(t, k, idx);
+      return true;
+    }
+  }
+  split_triangle(t, idx);
+  return true;
+}
+
+long Triangulation::flip_while(const std::function<bool(int, int, int, int)>& better, int max_passes) {
+  long flips = 0;
+  for (int pass = 0; pass < max_passes; ++pass) {
+    long here = 0;
+    for (int t = 0; t < static_cast<int>(v_.size()); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int u = n_[t][k];
+        if (u < 0 || u < t) continue;
+        const int a = v_[t][k], b = v_[t][(k + 1) % 3], c = v_[t][(k + 2) % 3];
+        if (constrained(a, b)) continue;
+        const int j = edge_index(u, b, a);
+        const int d = v_[u][(j + 2) % 3];
+        if (orient(c, a, d) <= 0 || orient(d, b, c) <= 0) continue;
+        if (!better(a, b, c, d)) continue;
+        flip(t, k);
+        ++here;
+      }
+    flips += here;
+    if (!here) break;
+  }
+  return flips;
+}
+
+}  // namespace fairlines::meshing

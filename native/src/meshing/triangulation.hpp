@@ -1,0 +1,57 @@
+// A planar triangulation with neighbour links: constrained Delaunay triangulation of a simple
+// polygon plus interior points (ear clipping, then Lawson flips, then incremental insertion
+// with Lawson flips), and edge flips by any criterion (the 3-D swaps of the surface mesher).
+//
+// Notation: triangle t has vertices v[t][0..2] counter-clockwise; its edge k runs from
+// v[t][k] to v[t][k+1 mod 3] and n[t][k] is the triangle across it (-1 on the boundary).
+#pragma once
+
+#include <array>
+#include <functional>
+#include <unordered_set>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace fairlines::meshing {
+
+class Triangulation {
+ public:
+  /// points  2-D positions (any consistent unit); loop: indices into points of a simple
+  /// polygon, either orientation, without repeats. Its edges are constrained.
+  Triangulation(std::vector<Eigen::Vector2d> points, const std::vector<int>& loop);
+
+  /// Inserts interior point `index` (already in points) keeping the triangulation
+  /// constrained Delaunay. Returns false (point skipped) when it lies outside the polygon or
+  /// on a constrained edge.
+  bool insert(int index);
+
+  /// Flips every edge for which better(t, k) says the flipped pair is better, until none
+  /// does or `max_passes` sweeps are done; only flips whose quadrilateral is strictly convex
+  /// in the plane. Returns the number of flips.
+  long flip_while(const std::function<bool(int a, int b, int c, int d)>& better, int max_passes);
+
+  const std::vector<std::array<int, 3>>& triangles() const { return v_; }
+  const std::vector<Eigen::Vector2d>& points() const { return p_; }
+  bool constrained(int a, int b) const;
+
+ private:
+  double orient(int a, int b, int c) const;
+  double orient(int a, int b, const Eigen::Vector2d& q) const;
+  bool in_circle(int a, int b, int c, int d) const;
+  int locate(const Eigen::Vector2d& q) const;
+  void link(int t, int k, int u, int j);
+  int edge_index(int t, int a, int b) const;
+  bool flip(int t, int k);
+  void legalize(std::vector<std::pair<int, int>> stack);
+  void split_triangle(int t, int idx);
+  void split_edge(int t, int k, int idx);
+
+  std::vector<Eigen::Vector2d> p_;
+  std::vector<std::array<int, 3>> v_, n_;
+  std::unordered_set<unsigned long long> fixed_;
+  mutable int hint_ = 0;
+  double scale_ = 1.0;
+};
+
+}  // namespace fairlines::meshing

@@ -1,0 +1,156 @@
+"""Quad-dominant surface meshes of NURBS surfaces and of composed hulls.
+
+The engine (``fairlines._native``) does the work: curvature-adaptive nodes, constrained
+Delaunay triangulation, 3-D edge swaps, quadrilaterals by matching triangle pairs, an optional
+all-quad split, and smoothing that keeps nodes on the surface and never lowers an element's
+quality (docs/meshing.md). A composed hull is meshed face by face with every seam's nodes
+shared, optionally cut at a draft along the exact waterline. Conventions (SPEC §6): metres, x
+forward from AP, y >= 0 the starboard half, z up; normals point out of the body.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Optional
+
+import numpy as np
+
+from . import _native
+from ._native import InvalidInput, NurbsSurface
+
+__all__ = ["SurfaceMesh", "mesh_options", "mesh_surface", "mesh_hull", "mesh_quality"]
+
+
+def mesh_options(**options) -> "_native.MeshOptions":
+    """A :class:`fairlines._native.MeshOptions` with the given fields set (``size``,
+    ``chordal_tolerance``, ``min_size``, ``all_quad``, ``smoothing_passes``,
+    ``min_quad_quality``; the defaults live in the engine). Raises InvalidInput for an unknown
+    name."""
+    o = _native.MeshOptions()
+    for name, value in options.items():
+        if name.startswith("_") or not hasattr(o, name):
+            raise InvalidInput(f"mesh option {name!r} is unknown; expected one of size, chordal_tolerance, "
+                               "min_size, all_quad, smoothing_passes, min_quad_quality")
+        setattr(o, name, value)
+    return o
+
+
+@dataclass(frozen=True)
+class SurfaceMesh:
+    """A mixed quadrilateral / triangle surface mesh.
+
+    ``vertices`` (n, 3) metres, each node once; ``faces`` (m, 4) node indices counter-clockwise
+    seen from outside, -1 in column 3 for a triangle; ``face_part`` (m) index into ``parts``
+    (names such as ``"hull"``, ``"bulb"``, ``"blend"``, ``"waterplane"``); ``draft`` the cut
+    height of a wetted-part mesh (None for a whole hull or a surface)."""
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    face_part: np.ndarray
+    parts: tuple = ()
+    draft: Optional[float] = None
+    symmetric: bool = False  #: a half hull (y >= 0) whose other half is its mirror image
+
+    @property
+    def quads(self) -> np.ndarray:
+        """(q, 4) node indices of the quadrilaterals."""
+        return self.faces[self.faces[:, 3] >= 0]
+
+    @property
+    def triangles(self) -> np.ndarray:
+        """(t, 3) node indices of the triangles."""
+        return self.faces[self.faces[:, 3] < 0, :3]
+
+    def part(self, *names: str) -> "SurfaceMesh":
+        """The elements of the named parts only (nodes kept as they are)."""
+        bad = [n for n in names if n not in self.parts]
+        if bad:
+            raise InvalidInput(f"parts {bad} are not in this mesh; it has {list(self.parts)}")
+        keep = np.isin(self.face_part, [self.parts.index(n) for n in names])
+        return SurfaceMesh(self.vertices, self.faces[keep], self.face_part[keep], self.parts, self.draft,
+                           self.symmetric)
+
+    def triangulated(self) -> np.ndarray:
+        """(k, 3) triangles: each quad split along its shorter diagonal."""
+        q = self.quads
+        v = self.vertices
+        d02 = np.linalg.norm(v[q[:, 2]] - v[q[:, 0]], axis=1)
+        d13 = np.linalg.norm(v[q[:, 3]] - v[q[:, 1]], axis=1)
+        a = np.where((d02 <= d13)[:, None], q[:, [0, 1, 2]], q[:, [0, 1, 3]])
+        b = np.where((d02 <= d13)[:, None], q[:, [0, 2, 3]], q[:, [1, 2, 3]])
+        return np.concatenate([self.triangles, a, b])
+
+    def quality(self) -> dict:
+        """Element quality census (:func:`mesh_quality`)."""
+        return mesh_quality(self)
+
+    def hydrostatics(self, draft: float | None = None):
+        """Hydrostatics of the body this mesh bounds floating at ``draft`` (default: its own
+        cut), by the divergence theorem (``fairlines.mesh_hydrostatics``)."""
+        from .compose import mesh_hydrostatics
+        t = self.draft if draft is None else draft
+        if t is None:
+            raise InvalidInput("draft is None; this mesh was not cut at a draft, so give one (m)")
+        return mesh_hydrostatics(self, t, half=self.symmetric, full_result=True)
+
+    def write(self, path, file_format: str | None = None, **kw) -> None:
+        """Writes the mesh (see :func:`fairlines.mesh_io.write_mesh`)."""
+        from .mesh_io import write_mesh
+        write_mesh(self, path, file_format, **kw)
+
+
+def _wrap(result, draft=None, symmetric=False) -> SurfaceMesh:
+    v, f, p, parts = result
+    return SurfaceMesh(np.asarray(v), np.asarray(f), np.asarray(p), tuple(parts), draft, symmetric)
+
+
+def mesh_surface(surface: NurbsSurface, *, size: float, **options) -> SurfaceMesh:
+    """Quad-dominant mesh of a whole NURBS surface.
+
+    size       maximum element edge length (m).
+    options    chordal_tolerance (m, default size / 100), min_size (m, default size / 20),
+               all_quad (bool), smoothing_passes, min_quad_quality (see :func:`mesh_options`).
+    Elements are counter-clockwise about S_u x S_v. A closed (periodic) surface is meshed as
+    if its seam were two edges. Raises InvalidInput for bad options.
+    """
+    if not isinstance(surface, NurbsSurface):
+        raise InvalidInput(f"surface is {type(surface).__name__}; expected a NurbsSurface")
+    return _wrap(_native._mesh_surface(surface, mesh_options(size=size, **options)))
+
+
+def mesh_hull(hull, *, size: float, draft: float | None = None, lids: bool = True, full: bool = False,
+              progress: Callable[[int, int, str], None] | None = None, **options) -> SurfaceMesh:
+    """Mesh of a composed hull, conforming across the bare-hull / bulb / blend seams.
+
+    hull       a :class:`fairlines.ComposedHull` (``fl.compose(...)``, ``hull.composed_hull()``)
+               or a bare-hull NurbsSurface (composed alone).
+    size, options   as :func:`mesh_surface`.
+    draft      cut at z = draft (m): only the wetted part is meshed, its edge on the exact
+               waterline; None: the whole hull.
+    lids       close the mesh with planar faces: the waterplane (with a draft) or the deck (without),
+               and the centre plane of a half hull. ``lids=False`` with a draft gives the open
+               wetted surface a BEM code wants (WAMIT, Nemoh, capytaine).
+    full       mirror about y = 0 into the full hull (no centre-plane face).
+    progress   called as progress(faces_done, faces_total, face_name).
+    Normals point out of the body. Raises InvalidInput for bad options or a draft outside
+    keel..deck.
+    """
+    from .compose import ComposedHull, compose
+    if isinstance(hull, NurbsSurface):
+        hull = compose([hull])
+    if not isinstance(hull, ComposedHull):
+        raise InvalidInput(f"hull is {type(hull).__name__}; expected a ComposedHull or a bare-hull NurbsSurface")
+    t = float("nan") if draft is None else float(draft)
+    res = _native._mesh_hull(hull._c, mesh_options(size=size, **options), t, bool(lids), bool(full), progress)
+    return _wrap(res, None if draft is None else float(draft), not full)
+
+
+def mesh_quality(mesh: SurfaceMesh) -> dict:
+    """Quality census: quads, triangles, inverted elements, min / mean scaled Jacobian
+    (Knupp 2000; 1 for a square or an equilateral triangle, <= 0 inverted), the fraction of quad
+    corners within 45..135 deg, extreme corner angles (deg) and edge lengths (m), duplicate
+    nodes and the open / non-manifold / misoriented edge counts."""
+    q = dict(_native.mesh_quality(mesh.vertices, mesh.faces))
+    n = q["quads"] + q["triangles"]
+    q["quad_fraction"] = q["quads"] / n if n else 0.0
+    return q

@@ -1,0 +1,84 @@
+"""Surfaces for the grid and mesh tests and the mesh bench: analytic hulls made here, and the
+one real hull through example_hull_surface() (repoint it when the example hulls change)."""
+
+import numpy as np
+
+import fairlines as fl
+
+WIGLEY = dict(L=100.0, B=10.0, T=6.25, D=9.0)
+
+
+def example_hull_surface():
+    """The real bare hull used by the mesh bench."""
+    return fl.Hull.from_json("examples/panamax_forebody.json").bare_hull_surface()
+
+
+def wigley_surface(rows=41, cols=21, aft="cruiser", rake_deg=0.0):
+    """Wigley hull y = B/2 (1 - (2 xi / L)^2) (1 - ((T - z) / T)^2), u along x from the aft end, v
+    from the keel to the deck D. aft="cruiser": the whole hull, both ends on y = 0;
+    "transom": cut at x = L / 4 (aft end in the plane x = L / 4 + (z - T) tan(rake_deg))."""
+    L, B, T, D = (WIGLEY[k] for k in "LBTD")
+    z = np.linspace(0.0, D, cols)[None, :]
+    if aft == "cruiser":
+        x = np.linspace(0.0, L, rows)[:, None] + 0 * z
+    else:
+        x0 = L / 4 + (z - T) * np.tan(np.radians(rake_deg))
+        x = x0 + (L - x0) * np.linspace(0.0, 1.0, rows)[:, None]
+    y = 0.5 * B * (1 - (2 * (x - L / 2) / L) ** 2) * (1 - ((T - z) / T) ** 2)
+    grid = np.stack([x, y, np.broadcast_to(z, x.shape)], axis=-1)
+    return fl.fit_surface(grid, n_control_u=16, n_control_v=10).surface
+
+
+def bilge_patch(length=20.0):
+    """A bicubic bilge-like patch: flat bottom into a turn of bilge whose radius grows from 2 m
+    to 3.5 m along x, up to the vertical side."""
+    nx, ns = 9, 9
+    pts = np.zeros((nx, ns, 3))
+    for i in range(nx):
+        x = length * i / (nx - 1)
+        r = 2.0 + 1.5 * i / (nx - 1)
+        t = 0.5 * np.pi * np.arange(ns) / (ns - 1)
+        pts[i] = np.column_stack([np.full(ns, x), 4.0 - r + r * np.sin(t), r - r * np.cos(t)])
+    return fl.fit_surface(pts, n_control_u=6, n_control_v=6).surface
+
+
+def forebody_surface(rows=41, cols=25):
+    """The composition tests' Wigley-type forebody (Panamax particulars)."""
+    L, B, D = 244.8, 32.25, 19.0
+    r = np.arange(rows)[:, None]
+    c = np.arange(cols)[None, :]
+    x = 0.5 * L + 0.5 * L * (1 - np.cos(np.pi * 0.5 * r / (rows - 1))) + 0 * c
+    z = D * (1 - np.cos(np.pi * 0.5 * c / (cols - 1))) + 0 * r
+    xi = (x - 0.5 * L) / (0.5 * L)
+    y = 0.5 * B * (1 - xi**4) * (1 - (1 - z / D) ** 6)
+    return fl.fit_surface(np.stack([x, y, z], axis=-1), n_control_u=16, n_control_v=12).surface
+
+
+FOREBODY_SHIP = dict(lpp=244.8, beam=32.25, draft_fp=11.0, midship_area=0.97 * 32.25 * 11.0,
+                     displacement_volume=0.65 * 244.8 * 32.25 * 11.0)
+
+
+def edge_census(faces):
+    """(open, non-manifold, misoriented) edge counts of a quad / triangle list (-1 pads a
+    triangle), by numpy alone."""
+    f = np.asarray(faces)
+    edges = []
+    for row in f:
+        k = 3 if row[3] < 0 else 4
+        edges += [(row[i], row[(i + 1) % k]) for i in range(k)]
+    d = np.array(edges)
+    und = np.sort(d, axis=1)
+    _, counts = np.unique(und, axis=0, return_counts=True)
+    _, dcounts = np.unique(d, axis=0, return_counts=True)
+    return int((counts == 1).sum()), int((counts > 2).sum()), int((dcounts > 1).sum())
+
+
+def closed_volume(vertices, faces):
+    """Enclosed volume of a closed mesh (quads split by a diagonal), numpy only."""
+    v = np.asarray(vertices)
+    tris = []
+    for row in np.asarray(faces):
+        k = 3 if row[3] < 0 else 4
+        tris += [(row[0], row[i], row[i + 1]) for i in range(1, k - 1)]
+    t = v[np.array(tris)]
+    return float(np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0)

@@ -1,0 +1,151 @@
+"""Quad-dominant meshes of surfaces and composed hulls, and the files solvers read.
+
+Truths used: numpy edge censuses and volumes of our own, the surfaces' own closest points,
+NURBS quadrature (fl.hydrostatics), meshio and capytaine reading the files back.
+"""
+
+import numpy as np
+import pytest
+
+import fairlines as fl
+from mesh_fixtures import (FOREBODY_SHIP, WIGLEY, bilge_patch, closed_volume, edge_census, forebody_surface,
+                           wigley_surface)
+
+MESH_VOLUME_TOL = 2e-3     # closed hull mesh vs NURBS quadrature at about 1 % of L element size
+CAPYTAINE_TOL = 3e-3       # capytaine's panel hydrostatics converge as O(h^2): ~2e-3 at 2 500 panels
+
+
+@pytest.fixture(scope="module")
+def bilge():
+    return bilge_patch()
+
+
+@pytest.fixture(scope="module")
+def blended():
+    bulb = fl.BulbousBow(**FOREBODY_SHIP)
+    return fl.compose_with_blend(forebody_surface(), bulb)
+
+
+@pytest.fixture(scope="module")
+def wigley():
+    return wigley_surface()
+
+
+def test_surface_mesh_is_quad_dominant_valid_and_on_the_surface(bilge):
+    m = fl.mesh_surface(bilge, size=0.5)
+    q = m.quality()
+    assert q["quad_fraction"] >= 0.98 and q["inverted"] == 0 and q["duplicate_nodes"] == 0
+    assert q["min_scaled_jacobian"] > 0.45 and q["corners_in_45_135"] >= 0.97
+    sample = m.vertices[:: max(1, len(m.vertices) // 200)]
+    gap = [np.linalg.norm(bilge.closest_point(p)[2] - p) for p in sample]
+    assert max(gap) < 1e-8
+
+
+def test_chordal_deviation_within_the_tolerance(bilge):
+    tol = 0.002
+    m = fl.mesh_surface(bilge, size=1.0, chordal_tolerance=tol)
+    cent = np.array([m.vertices[f[f >= 0]].mean(axis=0) for f in m.faces[:: max(1, len(m.faces) // 300)]])
+    dev = [np.linalg.norm(bilge.closest_point(c)[2] - c) for c in cent]
+    assert max(dev) <= tol
+    assert m.quality()["max_edge"] <= 1.0 * 1.05
+
+
+def test_all_quad_mode_has_no_triangles(bilge):
+    q = fl.mesh_surface(bilge, size=0.8, all_quad=True).quality()
+    assert q["triangles"] == 0 and q["inverted"] == 0 and q["min_scaled_jacobian"] > 0.4
+
+
+@pytest.mark.parametrize("draft", [None, 11.0])
+def test_composed_hull_mesh_is_watertight_conforming_and_has_no_duplicates(blended, draft):
+    m = fl.mesh_hull(blended, size=2.0, draft=draft)
+    assert {"hull", "bulb", "blend", "centre_plane"} <= set(m.parts)
+    assert edge_census(m.faces) == (0, 0, 0)  # closed: every seam's nodes are shared
+    assert len(np.unique(np.round(m.vertices, 9), axis=0)) == len(m.vertices)
+    assert np.all(fl._native.scaled_jacobians(m.vertices, m.faces) > 0)
+    assert closed_volume(m.vertices, m.faces) > 0  # outward
+    if draft is not None:
+        assert m.vertices[:, 2].max() <= draft + 1e-9
+
+
+def test_seams_are_shared_by_the_parts_on_both_sides(blended):
+    m = fl.mesh_hull(blended, size=2.0)
+    edges = {}
+    for f, part in zip(m.faces, m.face_part):
+        k = 3 if f[3] < 0 else 4
+        for i in range(k):
+            edges.setdefault(tuple(sorted((f[i], f[(i + 1) % k]))), []).append(m.parts[part])
+    pairs = {tuple(sorted(set(p))) for p in edges.values() if len(set(p)) == 2}
+    assert {("blend", "hull"), ("blend", "bulb")} <= pairs
+
+
+def test_bare_hull_mesh_volume_matches_nurbs_hydrostatics():
+    s = forebody_surface()
+    T = 11.0
+    m = fl.mesh_hull(s, size=2.0, draft=T)
+    assert 2 * closed_volume(m.vertices, m.faces) == pytest.approx(fl.hydrostatics(s, T).volume, rel=MESH_VOLUME_TOL)
+
+
+@pytest.mark.parametrize("aft, rake", [("cruiser", 0.0), ("transom", 0.0), ("transom", 20.0)])
+def test_every_aft_closure_composes_and_meshes_watertight(aft, rake):
+    s = wigley_surface(aft=aft, rake_deg=rake)
+    T = WIGLEY["T"]
+    c = fl.compose([s])
+    from conftest import edge_census as tri_census
+    assert tri_census(c.mesh.faces) == (0, 0, 0)
+    assert tri_census(c.full_mesh().faces) == (0, 0, 0)
+    m = fl.mesh_hull(c, size=1.0, draft=T)
+    assert edge_census(m.faces) == (0, 0, 0)
+    assert ("aft" in m.parts) == (aft == "transom")
+    assert 2 * closed_volume(m.vertices, m.faces) == pytest.approx(fl.hydrostatics(s, T).volume, rel=MESH_VOLUME_TOL)
+
+
+def test_files_reread_by_meshio_give_the_same_mesh(blended, tmp_path):
+    m = fl.mesh_hull(blended, size=3.0, draft=11.0)
+    for name in ("hull.msh", "hull.vtu", "hull.obj"):
+        fl.write_mesh(m, tmp_path / name)
+        r = fl.read_mesh(tmp_path / name)
+        assert np.allclose(r.vertices, m.vertices)
+        key = lambda f: sorted(tuple(row) for row in f)  # noqa: E731
+        assert key(r.faces) == key(m.faces)
+    fl.write_mesh(m, tmp_path / "hull.stl", binary=False)
+    assert (tmp_path / "hull.stl").read_text().count("facet normal") == len(m.triangulated())
+
+
+def test_panel_files_read_by_capytaine_give_the_same_panels_and_hydrostatics(wigley, tmp_path):
+    cpt = pytest.importorskip("capytaine")
+    T = WIGLEY["T"]
+    m = fl.mesh_hull(wigley, size=2.0, draft=T, lids=False)  # half hull, open at the waterline
+    n = len(m.faces)
+    assert 1000 < 2 * n < 4000
+    ref = fl.hydrostatics(wigley, T)
+    for name, fmt, writer in (("w.gdf", "gdf", fl.write_gdf), ("w.mar", "mar", fl.write_mar)):
+        writer(m, tmp_path / name)
+        cm = cpt.load_mesh(tmp_path / name, file_format=fmt)
+        assert cm.nb_faces == 2 * n  # the mirrored half comes from the symmetry flag
+        assert cm.volume == pytest.approx(ref.volume, rel=CAPYTAINE_TOL)
+        assert cm.waterplane_area == pytest.approx(ref.waterplane_area, rel=CAPYTAINE_TOL)
+        assert cm.wet_surface_area == pytest.approx(ref.wetted_surface, rel=CAPYTAINE_TOL)
+        cob = cm.center_of_buoyancy
+        assert cob[0] == pytest.approx(ref.lcb, abs=CAPYTAINE_TOL * WIGLEY["L"])
+        assert cob[2] + T == pytest.approx(ref.vcb, abs=CAPYTAINE_TOL * T)
+
+
+def test_plot3d_round_trip(tmp_path):
+    a = np.random.default_rng(1).normal(size=(5, 4, 3))
+    b = np.random.default_rng(2).normal(size=(3, 7, 3))
+    fl.write_plot3d([a, b], tmp_path / "g.xyz")
+    r = fl.read_plot3d(tmp_path / "g.xyz")
+    assert np.allclose(r[0], a) and np.allclose(r[1], b)
+    head = (tmp_path / "g.xyz").read_text().split("\n")[:3]
+    assert head == ["2", "5 4 1", "3 7 1"]
+
+
+def test_bad_mesh_input_is_refused(bilge, blended):
+    with pytest.raises(fl.InvalidInput, match="size is -1"):
+        fl.mesh_surface(bilge, size=-1.0)
+    with pytest.raises(fl.InvalidInput, match="unknown"):
+        fl.mesh_surface(bilge, size=1.0, smoothness=3)
+    with pytest.raises(fl.InvalidInput, match="draft is 40"):
+        fl.mesh_hull(blended, size=2.0, draft=40.0)
+    with pytest.raises(fl.InvalidInput, match="draft"):
+        fl.write_gdf(fl.mesh_surface(bilge, size=2.0), "/tmp/never.gdf")
