@@ -1,4 +1,4 @@
-"""Writing the hull out of the tool (the Panamax forebody of examples/panamax_forebody.json,
+"""Writing the hull out of the tool (the Panamax forebody of examples/container_ship.json,
 bare and composed with its bulb and blend): lines plan (geometry, then each format), curves
 of form, and the CAD formats through OpenCASCADE / rhino3dm with their read-back figures.
 Medians of repeated runs; OpenCASCADE and rhino3dm are optional (skipped when missing)."""
@@ -15,7 +15,7 @@ from common import median_time, report
 from fairlines.curves_of_form import curves_of_form
 from fairlines.lines_plan import lines_plan
 
-EXAMPLE = pathlib.Path(__file__).resolve().parents[1] / "examples" / "panamax_forebody.json"
+EXAMPLE = pathlib.Path(__file__).resolve().parents[1] / "examples" / "container_ship.json"
 PART = dict(lpp=244.8, beam=32.25, draft=11.0, depth=19.0)
 
 

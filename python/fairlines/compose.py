@@ -478,6 +478,8 @@ def _boundaries_around_seam(hull: NurbsSurface, seam: dict, *, clearance_u: floa
         phi_end = 0.5 * np.pi
         if tc + R >= v1:
             return "a blend boundary clear of the seam would reach the deck"
+    elif all(on_keel):
+        return _arc_over_centre_edge(uv, hull, clearance_u, clearance_v, points, seam, bulb_clearance)
     else:
         return "the seam does not run from the keel or stem edge to the stem edge"
     if u1 - du <= u0:
@@ -492,6 +494,35 @@ def _boundaries_around_seam(hull: NurbsSurface, seam: dict, *, clearance_u: floa
         on_hull = np.vstack([[on_hull[0, 0], v0], on_hull])
     on_bulb = ("u", float(seam["uv_b"][:, 0].max()) + bulb_clearance)
     return on_hull, on_bulb
+
+
+def _arc_over_centre_edge(uv, hull, clearance_u, clearance_v, points, seam, bulb_clearance):
+    """Blend boundary for a whole-ship hull, whose keel edge runs on up the stem (the stem head
+    is the corner u1): the seam starts and ends on that edge, so the boundary is an arc from
+    the edge aft of the seam over it to the edge between the seam and the stem head -- two
+    quarter ellipses meeting at the seam's highest point, scaled to hold the whole seam."""
+    u1 = hull.knots_u[-1]
+    v0, v1 = hull.knots_v[0], hull.knots_v[-1]
+    vz = _keel_zone_end(hull)
+    top = int(np.argmax(uv[:, 1]))
+    uc, b0 = float(uv[top, 0]), float(uv[top, 1] - vz)
+    a_aft, a_fore = uc - uv[:, 0].min(), uv[:, 0].max() - uc
+    if not (b0 > 0 and a_aft > 0 and a_fore > 0):
+        return "the seam does not rise above the keel zone"
+    side = np.where(uv[:, 0] < uc, a_aft, a_fore)
+    scale = float(np.max(np.hypot((uv[:, 0] - uc) / side, np.maximum(uv[:, 1] - vz, 0.0) / b0)))
+    R = scale * b0 + clearance_v
+    fore_room = 0.5 * (u1 - uv[:, 0].max())  # keep half the stem above the seam free
+    a_aft, a_fore = scale * a_aft + clearance_u, min(scale * a_fore + clearance_u, uv[:, 0].max() + fore_room - uc)
+    if vz + R >= v1:
+        return "a blend boundary clear of the seam would reach the deck"
+    if uc - a_aft <= hull.knots_u[0]:
+        return "a blend boundary clear of the seam would reach the aft end"
+    phi = np.linspace(0.0, np.pi, points)
+    on_hull = np.column_stack([uc - np.where(phi <= 0.5 * np.pi, a_aft, a_fore) * np.cos(phi), vz + R * np.sin(phi)])
+    if vz > v0:
+        on_hull = np.vstack([[on_hull[0, 0], v0], on_hull, [on_hull[-1, 0], v0]])
+    return on_hull, ("u", float(seam["uv_b"][:, 0].max()) + bulb_clearance)
 
 
 def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, blend: bool = True,

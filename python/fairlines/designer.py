@@ -223,6 +223,8 @@ def design_description(p: Particulars) -> dict:
         "basic_curves": {"profile": prof, "dwl": dwl, "deck": deck, "sac": sac},
         "design": {k: v for k, v in asdict(p).items() if k != "notes"},
     }
+    if p.bulb:
+        desc["bulb"] = dict(p.bulb) if isinstance(p.bulb, dict) else {}
     return desc
 
 

@@ -18,7 +18,7 @@ EXAMPLE_PARTICULARS = dict(lpp=244.8, beam=32.25, draft=11.0, depth=19.0)
 
 @functools.lru_cache(maxsize=None)
 def example_hull():
-    return fl.Hull.from_json(str(ROOT / "examples" / "panamax_forebody.json"))
+    return fl.Hull.from_json(str(ROOT / "examples" / "container_ship.json"))
 
 
 def example_hull_surface() -> fl.NurbsSurface:

@@ -10,7 +10,7 @@ WIGLEY = dict(L=100.0, B=10.0, T=6.25, D=9.0)
 
 def example_hull_surface():
     """The real bare hull used by the mesh bench."""
-    return fl.Hull.from_json("examples/panamax_forebody.json").bare_hull_surface()
+    return fl.Hull.from_json("examples/container_ship.json").bare_hull_surface()
 
 
 def wigley_surface(rows=41, cols=21, aft="cruiser", rake_deg=0.0):

@@ -5,7 +5,7 @@ import pytest
 from fairlines.cli import main
 from cad_fixtures import ROOT
 
-DESCRIPTION = str(ROOT / "examples" / "panamax_forebody.json")
+DESCRIPTION = str(ROOT / "examples" / "container_ship.json")
 
 
 def test_lines_writes_the_drawing(tmp_path, capsys):
