@@ -266,40 +266,43 @@ def _clip_positive(tri: np.ndarray, c: float) -> list[np.ndarray]:
 
 def measure_kracht(mesh: Mesh, *, x_fp: float, lpp: float, beam: float, draft_fp: float,
                    midship_area: float, displacement_volume: float) -> dict:
-    """Kracht coefficients measured on a closed, outward-oriented half-hull mesh (y >= 0).
+    """Kracht coefficients measured on a closed, outward-oriented half-hull mesh (y >= 0),
+    on its part below the waterline z = draft_fp (a raked stem reaches forward of the FP
+    above it, and is not bulb).
 
-    Protrusion = max x - x_fp; nose height = z of the foremost vertex; bulb breadth = 2 max y
+    Protrusion = max x - x_fp; nose height = z of the foremost point; bulb breadth = 2 max y
     on the section x = x_fp; section area at FP = 2 * x-component of the area vector of the
-    surface forward of FP (closed-surface identity); lateral area = centre-plane area forward
-    of FP; volume forward of FP = 2 * sum (x - x_fp) n_x dA over the surface forward of FP
-    (divergence theorem with the field (x - x_fp, 0, 0), which vanishes on the cut).
+    surface forward of FP (closed-surface identity: the waterplane's n_x is 0); lateral area =
+    centre-plane area forward of FP; volume forward of FP = 2 * sum (x - x_fp) n_x dA over the
+    surface forward of FP (divergence theorem with the field (x - x_fp, 0, 0), which vanishes
+    on the cut and has no flux through the waterplane).
     """
     V = np.asarray(mesh.vertices, float)
-    F = np.asarray(mesh.faces)
-    tris = V[F]
-    xmax = V[:, 0].max()
-    fore = V[:, 0] >= xmax - 1e-9 * max(1.0, abs(xmax))
-    ax = 0.0
-    vol = 0.0
-    lat = 0.0
-    ymax = 0.0
-    on_cp = np.all(np.abs(tris[:, :, 1]) == 0.0, axis=1)
-    for t, cp in zip(tris[tris[:, :, 0].max(axis=1) > x_fp], on_cp[tris[:, :, 0].max(axis=1) > x_fp]):
-        for k in range(3):  # section crossing points
-            p, q = t[k], t[(k + 1) % 3]
-            if (p[0] - x_fp) * (q[0] - x_fp) <= 0 and p[0] != q[0]:
-                s = (x_fp - p[0]) / (q[0] - p[0])
-                ymax = max(ymax, p[1] + s * (q[1] - p[1]))
-        for piece in _clip_positive(t, x_fp):
-            n = 0.5 * np.cross(piece[1] - piece[0], piece[2] - piece[0])
-            ax += n[0]
-            vol += (piece[:, 0].mean() - x_fp) * n[0]
-            if cp:
-                lat += np.linalg.norm(n)
+    tris = V[np.asarray(mesh.faces)]
+    keep = (tris[:, :, 0].max(axis=1) > x_fp) & (tris[:, :, 2].min(axis=1) < draft_fp)
+    ax = vol = lat = ymax = 0.0
+    nose = np.array([-np.inf, 0.0, 0.0])
+    for t in tris[keep]:
+        cp = bool(np.all(t[:, 1] == 0.0))
+        for low in _clip_below(t, draft_fp) if t[:, 2].max() > draft_fp else [t]:
+            for k in range(3):  # section crossing points
+                p, q = low[k], low[(k + 1) % 3]
+                if (p[0] - x_fp) * (q[0] - x_fp) <= 0 and p[0] != q[0]:
+                    s = (x_fp - p[0]) / (q[0] - p[0])
+                    ymax = max(ymax, p[1] + s * (q[1] - p[1]))
+            for piece in _clip_positive(low, x_fp):
+                n = 0.5 * np.cross(piece[1] - piece[0], piece[2] - piece[0])
+                ax += n[0]
+                vol += (piece[:, 0].mean() - x_fp) * n[0]
+                if cp:
+                    lat += np.linalg.norm(n)
+                front = piece[np.argmax(piece[:, 0])]
+                if front[0] > nose[0]:
+                    nose = front
     return dict(
-        c_lpr=(xmax - x_fp) / lpp,
+        c_lpr=(nose[0] - x_fp) / lpp,
         c_bb=2.0 * ymax / beam,
-        c_zb=float(V[fore, 2].mean()) / draft_fp,
+        c_zb=float(nose[2]) / draft_fp,
         c_abt=2.0 * ax / midship_area,
         c_abl=lat / midship_area,
         c_vpr=2.0 * vol / displacement_volume,
@@ -512,7 +515,7 @@ def _arc_over_centre_edge(uv, hull, clearance_u, clearance_v, points, seam, bulb
     side = np.where(uv[:, 0] < uc, a_aft, a_fore)
     scale = float(np.max(np.hypot((uv[:, 0] - uc) / side, np.maximum(uv[:, 1] - vz, 0.0) / b0)))
     R = scale * b0 + clearance_v
-    fore_room = 0.5 * (u1 - uv[:, 0].max())  # keep half the stem above the seam free
+    fore_room = 0.3 * (u1 - uv[:, 0].max())  # keep half the stem above the seam free
     a_aft, a_fore = scale * a_aft + clearance_u, min(scale * a_fore + clearance_u, uv[:, 0].max() + fore_room - uc)
     if vz + R >= v1:
         return "a blend boundary clear of the seam would reach the deck"

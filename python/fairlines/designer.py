@@ -24,6 +24,7 @@ or two), so the surface meets the request to MATCH_TOL.
 
 from __future__ import annotations
 
+import inspect
 import math
 from dataclasses import asdict, dataclass, field
 
@@ -31,6 +32,7 @@ import numpy as np
 
 from . import _native
 from .basic_curves import immersed_range, solve_curve
+from .compose import KRACHT_NAMES, BulbousBow
 from .description import BasicCurveSpec
 from .hull import Hull
 
@@ -224,7 +226,9 @@ def design_description(p: Particulars) -> dict:
         "design": {k: v for k, v in asdict(p).items() if k != "notes"},
     }
     if p.bulb:
-        desc["bulb"] = dict(p.bulb) if isinstance(p.bulb, dict) else {}
+        given = dict(p.bulb) if isinstance(p.bulb, dict) else {}
+        defaults = {k: v.default for k, v in inspect.signature(BulbousBow).parameters.items() if k in KRACHT_NAMES}
+        desc["bulb"] = {"kracht": {**defaults, **given}}
     return desc
 
 
