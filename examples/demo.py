@@ -15,8 +15,9 @@ STEPS = [
     ("NURBS core: fit a surface to hull offsets", "fit_wigley_surface.py"),
     ("Form-parameter curves: Area and yC families (seed 002 Figs. 3-4)", "form_curve_families.py"),
     ("Pre-processor: form parameters and faired surfaces of the reference hulls", "import_reference_hulls.py"),
-    ("Bare hull: basic curves, sections, fair skinning and hydrostatics (Panamax forebody)", "build_hull.py"),
-    ("Bulbous bow, blend and Boolean composition into a watertight hull (Panamax forebody)", "compose_forebody.py"),
+    ("Hull designer: whole ships from particulars (container ship, tanker, ferry, coaster)", "design_ship.py"),
+    ("Bulbous bow, blend and Boolean composition into a watertight hull (container ship)", "compose_ship.py"),
+    ("Lines plan, curves of form and CAD files (container ship)", "lines_plan.py"),
 ]
 
 

@@ -5,7 +5,7 @@
 the LCB and the waterplane area Cwp Lpp B on the built surface. Optional particulars take
 textbook defaults when left out (each named in the description's notes):
 
-* Cm from Kerlen's regression, Cm = 1.006 - 0.0056 Cb^-3.56 (at most 0.995);
+* Cm from Kerlen's regression, Cm = 1.006 - 0.0056 Cb^-3.56 (at most CM_MAX);
 * Cwp = sqrt(Cb) + 0.01 (a vertical prismatic coefficient Cb / Cwp of 0.70 at Cb 0.5 to 0.92
   at Cb 0.87);
 * the LCF 1.5 % Lpp aft of the LCB;
@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import inspect
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
 
@@ -48,6 +48,8 @@ KEEL_RISE = 0.65            # the keel rises over this fraction of the run (Holt
 MIN_KEEL_RISE, MAX_KEEL_RISE = 0.06, 0.3  # ... kept within these fractions of Lpp
 PARALLEL_SLOPE = 1.6        # parallel body length / Lpp per unit Cp above PARALLEL_CP
 PARALLEL_CP = 0.62
+CM_MAX = 0.99              # the fullest midship section the regression gives (fuller ones leave the SAC no room)
+PARALLEL_RETRIES, PARALLEL_STEP = 3, 0.05  # a SAC the ends cannot hold: parallel body + 5 % Lpp, 3 times
 PARALLEL_SHIFT = 1.5        # the parallel body's centre moves this many times the LCB's offset
 DECK_TRANSOM = 0.92         # deck half-breadth at the transom, fraction of B/2
 DWL_TRANSOM = 0.7           # waterline half-breadth at an immersed transom, fraction of B/2
@@ -108,7 +110,7 @@ class Particulars:
 def _coefficients(p: Particulars) -> dict:
     """Coefficients and lengths the particulars leave open."""
     L = p.lpp
-    cm = p.cm if p.cm is not None else min(1.006 - 0.0056 * p.cb ** -3.56, 0.995)
+    cm = p.cm if p.cm is not None else min(1.006 - 0.0056 * p.cb ** -3.56, CM_MAX)
     cp = p.cb / cm
     cwp = p.cwp if p.cwp is not None else min(math.sqrt(p.cb) + 0.01, 0.97)
     lcf = p.lcf if p.lcf is not None else p.lcb - LCF_AFT_OF_LCB * L
@@ -202,7 +204,13 @@ def design_description(p: Particulars) -> dict:
     else:
         dwl["upper"] = half
     dwl["yB"] = DWL_TRANSOM * half if xa <= x_aft + 1e-9 * L else 0.0
-    dwl_curve = solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=half)
+    try:
+        dwl_curve = solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=half)
+    except _native.InfeasibleFormParameters:
+        if p.lcf is not None:
+            raise
+        del dwl["lcf"]  # the default LCF does not suit this waterline: let it fall where it is fairest
+        dwl_curve = solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=half)
     xs, target = natural_fullness(p, c, dwl_curve, profile, xa, xf)
     near_end = FIT_END * (xf - xa)
     sac = {"volume": p.cb * L * B * T, "lcb": p.lcb, "spans": 24,
@@ -237,9 +245,21 @@ def design_hull(particulars: Particulars | None = None, **kwargs) -> Hull:
     matched: its surface holds Cb Lpp B T, the LCB and Cwp Lpp B (see the module docstring).
     Raises InvalidInput for particulars outside the designer's range."""
     p = particulars if particulars is not None else Particulars(**kwargs)
-    hull = Hull.from_json(design_description(p))
-    match_targets(hull)
-    return hull
+    p.check()
+    lp = _coefficients(p)["parallel"]
+    for attempt in range(PARALLEL_RETRIES + 1):
+        try:
+            hull = Hull.from_json(design_description(p))
+            match_targets(hull)
+            return hull
+        except _native.InfeasibleFormParameters as exc:
+            # A full ship whose ends cannot hold the volume gets a longer parallel middle body
+            # (unless the user fixed its length).
+            if particulars is not None and particulars.parallel_length is not None or attempt == PARALLEL_RETRIES \
+                    or not str(exc).startswith("basic_curves.sac"):
+                raise
+            p = replace(p, parallel_length=(lp[1] - lp[0]) + (attempt + 1) * PARALLEL_STEP * p.lpp)
+    raise AssertionError("unreachable")
 
 
 def match_targets(hull: Hull, tol: float = MATCH_TOL) -> dict:

@@ -49,6 +49,7 @@ SHAPE_CURVES = {"top_corner": (0.5, 0.05, 0.95), "deadrise": (0.0, 0.0, 40.0), "
 DECK_CHECKS = 81
 # Least slope (dz/dx) of the profile used for the arrival angle of above-water sections.
 MIN_STEM_SLOPE = 0.05
+MAX_LOWER_ANGLE = 75.0      # deg: a flat counter under a full waterline end arrives no flatter (sections allow < 80)
 
 
 def station_positions(x_aft: float, x_fore: float, count: int, junctions: list[float] = ()) -> np.ndarray:
@@ -203,7 +204,7 @@ class Hull:
             mask = xs >= x_end if side == "fore" else xs <= x_end
             for k in np.flatnonzero(mask):
                 slope = max(abs(prof.derivative(float(xs[k]), 1)), MIN_STEM_SLOPE)
-                out[k] = math.degrees(math.atan(tan_i / slope))
+                out[k] = min(math.degrees(math.atan(tan_i / slope)), MAX_LOWER_ANGLE)
         return out
 
     def section_specs(self, x: Any = None, with_area: bool = True) -> list:

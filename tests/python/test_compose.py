@@ -230,16 +230,16 @@ def test_mesh_hydrostatics_of_the_bare_forebody_match_the_analytic_integrals(hul
     assert h["kb"] == pytest.approx(kb, rel=3e-3)
 
 
-def test_compose_forebody_example_runs(tmp_path, monkeypatch, capsys):
+def test_compose_ship_example_runs(tmp_path, monkeypatch, capsys):
     import runpy
     import sys
     from pathlib import Path
 
-    script = Path(__file__).resolve().parents[2] / "examples" / "compose_forebody.py"
-    monkeypatch.setattr(sys, "argv", ["compose_forebody.py", "--out", str(tmp_path)])
+    script = Path(__file__).resolve().parents[2] / "examples" / "compose_ship.py"
+    monkeypatch.setattr(sys, "argv", ["compose_ship.py", "--out", str(tmp_path)])
     runpy.run_path(str(script), run_name="__main__")
     assert "c_vpr" in capsys.readouterr().out
-    assert (tmp_path / "panamax_forebody_with_bulb_full.stl").stat().st_size > 84
+    assert (tmp_path / "container_ship_full.stl").stat().st_size > 84
 
 
 MAX_BLEND_ANGLE_DEG = 0.5  # issue 5: normals across each blend boundary within 0.5 degrees

@@ -28,14 +28,15 @@ def test_import_reference_hulls(tmp_path, monkeypatch, capsys):
         assert (tmp_path / f"{key}_rebuilt" / "report.json").exists()
 
 
-def test_build_hull(tmp_path, monkeypatch, capsys):
-    monkeypatch.setattr(sys, "argv", ["build_hull.py", "--out", str(tmp_path)])
-    runpy.run_path(str(EXAMPLES / "build_hull.py"), run_name="__main__")
+def test_design_ship(tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(sys, "argv", ["design_ship.py", "--out", str(tmp_path), "--docs", str(tmp_path)])
+    runpy.run_path(str(EXAMPLES / "design_ship.py"), run_name="__main__")
     text = capsys.readouterr().out
-    assert "volume" in text and "m^3" in text and "LCB" in text and "Cb" in text
+    assert text.count("designed in") == 4 and "+0.0000" in text
+    assert (tmp_path / "designed_ships.png").stat().st_size > 10_000
     import json
 
-    net = json.loads((tmp_path / "bare_hull_surface.json").read_text())
-    assert net["half_hull"] and len(net["control_points"]) == len(net["knots_u"]) - net["degree_u"] - 1
-    report = json.loads((tmp_path / "fairness_report.json").read_text())
-    assert set(report) == {"waterline", "buttock", "frame"}
+    import fairlines as fl
+    d = json.loads((tmp_path / "designed" / "product_tanker.json").read_text())
+    h = fl.Hull.from_json(d).hydrostatics()
+    assert h.volume == __import__("pytest").approx(0.82 * 180.0 * 32.0 * 11.5, rel=1e-5)

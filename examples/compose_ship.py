@@ -1,11 +1,11 @@
-"""Issue 5 pipeline steps 4-5 on the Panamax bare forebody of examples/panamax_forebody.json:
+"""Bulb, blend and composition on the whole Panamax container ship of examples/container_ship.json:
 the bulbous bow from the Kracht coefficients of its "bulb" section, a C1 blending surface and
 the Boolean composition into one watertight half hull, the Kracht quantities measured back,
 OBJ / STL of the half and the mirrored full hull, hydrostatics.
 
-    python examples/compose_forebody.py --out out/ [--description examples/panamax_forebody.json]
+    python examples/compose_ship.py --out out/ [--description examples/container_ship.json]
 
-``compose_forebody(bare_hull_surface, ship, kracht, bulb_shape)`` runs the same on any bare
+``compose_ship(bare_hull_surface, ship, kracht, bulb_shape)`` runs the same on any bare
 hull surface with its ship particulars.
 """
 
@@ -21,7 +21,7 @@ import fairlines as fl
 HERE = pathlib.Path(__file__).resolve().parent
 
 
-def compose_forebody(bare_hull, ship, kracht=None, bulb_shape=None, out=None, name="forebody", blend=True,
+def compose_ship(bare_hull, ship, kracht=None, bulb_shape=None, out=None, name="ship", blend=True,
                      **compose_options):
     """Bulb + union for any bare hull surface.
 
@@ -71,7 +71,7 @@ def compose_forebody(bare_hull, ship, kracht=None, bulb_shape=None, out=None, na
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default="out")
-    ap.add_argument("--description", default=str(HERE / "panamax_forebody.json"), help="hull description (JSON) with a bulb section")
+    ap.add_argument("--description", default=str(HERE / "container_ship.json"), help="hull description (JSON) with a bulb section")
     args = ap.parse_args()
     hull = fl.Hull.from_json(args.description)
     spec = hull.description.bulb
@@ -79,8 +79,8 @@ def main():
         raise SystemExit(f"{args.description} has no \"bulb\" section")
     ship = hull.ship_particulars()
     T = ship["draft_fp"]
-    name = "panamax_forebody_with_bulb"
-    bulb, composed, rep = compose_forebody(hull.bare_hull_surface(), ship, spec.kracht, spec.shape, out=args.out, name=name)
+    name = "container_ship"
+    bulb, composed, rep = compose_ship(hull.bare_hull_surface(), ship, spec.kracht, spec.shape, out=args.out, name=name)
     print(hull.description.name)
     print(f"  ship: A_MS {ship['midship_area']:.1f} m^2 (hull hydrostatics), displacement volume "
           f"{ship['displacement_volume']:.0f} m^3 (bulb section)")
@@ -93,7 +93,7 @@ def main():
         print(f"  {k:6s} requested {req:.5f} measured {got:.5f} ({100 * (got / req - 1):+.2f} %)")
     h = rep["hydrostatics_at_draft_fp"]
     hb = hull.hydrostatics()
-    print(f"  bulb adds {rep['volume_added_by_bulb_m3']:.1f} m^3 (both sides, whole bulb); forebody displacement at "
+    print(f"  bulb adds {rep['volume_added_by_bulb_m3']:.1f} m^3 (both sides, whole bulb); displacement at "
           f"T = {T} m: bare {hb.volume:.0f} m^3 (NURBS quadrature), with bulb {h['volume']:.0f} m^3 (mesh), "
           f"LCB {h['lcb']:.2f} m, KB {h['kb']:.2f} m")
     print(f"  wrote {args.out}/{name}_{{half,full}}.{{obj,stl}} and {name}.json")

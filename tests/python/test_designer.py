@@ -1,0 +1,201 @@
+"""The whole-ship designer (fl.design_hull): particulars in, a hull whose surface holds them out.
+
+Truths used: the particulars asked for (volume Cb Lpp B T, LCB, Cwp Lpp B), measured on the
+surface by the engine's NURBS quadrature (fl.hydrostatics) and by the composed mesh
+(fl.mesh_hydrostatics, a different integral of a different object); exact geometry of the
+ends (deck, baseline, transom plane, centre plane); the curvature of the cut curves."""
+
+import json
+import math
+import pathlib
+
+import numpy as np
+import pytest
+
+import fairlines as fl
+from conftest import edge_census
+
+EXAMPLE = pathlib.Path(__file__).resolve().parents[2] / "examples" / "container_ship.json"
+MATCH_TOL = 1e-5        # volume, Cwp (relative) and LCB (of Lpp) met on the surface
+MESH_TOL = 5e-3         # composed mesh vs surface quadrature (chords inside convex sections)
+GEOMETRY_TOL = 1e-6     # m: ends on their planes
+OVERSHOOT_TOL = 1e-4    # of B: the skinned surface may pass the flat of side by this much
+
+SHIPS = {
+    "container": dict(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.65, lcb=118.73, bulb=True),
+    "tanker": dict(lpp=180.0, breadth=32.0, draft=11.5, depth=17.0, cb=0.82, lcb=95.4),
+    "fine_ferry": dict(lpp=140.0, breadth=17.0, draft=5.5, depth=10.0, cb=0.50, lcb=67.2),
+    "coaster_cruiser": dict(lpp=100.0, breadth=16.0, draft=6.0, depth=9.0, cb=0.75, lcb=51.0, stern="cruiser"),
+}
+# The issue's design space: Cb, LCB % Lpp from midships, L/B, B/T
+SPACE = dict(cb=(0.50, 0.87), lcb_pct=(-4.0, 4.0), l_over_b=(4.0, 9.0), b_over_t=(2.0, 4.5))
+
+
+@pytest.fixture(scope="module", params=list(SHIPS))
+def ship(request):
+    p = SHIPS[request.param]
+    return p, fl.design_hull(**p)
+
+
+def _asked(p):
+    return p["cb"] * p["lpp"] * p["breadth"] * p["draft"]
+
+
+def _grid(surface, n=61):
+    return np.asarray(surface.evaluate_grid(np.linspace(*surface.domain_u, n), np.linspace(*surface.domain_v, n)))
+
+
+def test_particulars_are_met_on_the_surface(ship):
+    p, hull = ship
+    h = fl.hydrostatics(hull.bare_hull_surface(), p["draft"], length=p["lpp"], breadth=p["breadth"],
+                        midship_x=p["lpp"] / 2)
+    assert h.volume == pytest.approx(_asked(p), rel=MATCH_TOL)
+    assert abs(h.lcb - p["lcb"]) <= MATCH_TOL * p["lpp"]
+    cwp = fl.Particulars(**p)
+    assert h.cb == pytest.approx(p["cb"], rel=MATCH_TOL)
+    assert 0 < h.cm <= 1 and h.cb < h.cwp <= 1 and cwp.cwp is None
+
+
+def test_whole_ship_geometry(ship):
+    """Half hull y >= 0 within B/2, bottom on the baseline, deck edge at D, aft end on one plane
+    (a transom) or on the centre plane (a cruiser stern), stem forward of the FP above T."""
+    p, hull = ship
+    g = _grid(hull.bare_hull_surface())
+    assert g[..., 1].min() >= -GEOMETRY_TOL and g[..., 1].max() <= p["breadth"] * (0.5 + OVERSHOOT_TOL)
+    assert -OVERSHOOT_TOL * p["breadth"] <= g[..., 2].min() <= GEOMETRY_TOL
+    assert g[..., 2].max() == pytest.approx(p["depth"], abs=GEOMETRY_TOL)
+    assert g[..., 0].min() < 0.0 and g[..., 0].max() > p["lpp"]
+    along_u = np.ptp(g[:, 0, 0]) > np.ptp(g[0, :, 0])
+    ends = (g[0], g[-1]) if along_u else (g[:, 0], g[:, -1])
+    aft = min(ends, key=lambda e: e[:, 0].mean())
+    if p.get("stern", "transom") == "transom":
+        assert np.ptp(aft[:, 0]) < GEOMETRY_TOL
+    else:
+        assert np.abs(aft[:, 1]).max() < 1e-3 * p["breadth"]
+
+
+def test_composed_whole_ship_is_watertight_and_holds_the_volume(ship):
+    p, hull = ship
+    c = hull.composed_hull() if p.get("bulb") else fl.compose([hull.bare_hull_surface()], hull_u=96, hull_v=40)
+    assert edge_census(c.mesh.faces) == (0, 0, 0)
+    assert edge_census(c.full_mesh().faces) == (0, 0, 0)
+    if not p.get("bulb"):
+        assert fl.mesh_hydrostatics(c.mesh, p["draft"])["volume"] == pytest.approx(_asked(p), rel=MESH_TOL)
+
+
+def test_round_trip_through_json_rebuilds_the_same_hull():
+    hull = fl.Hull.from_json(EXAMPLE.read_text())
+    again = fl.Hull.from_json(json.loads(hull.to_json()))
+    a, b = hull.bare_hull_surface(), again.bare_hull_surface()
+    assert np.array_equal(np.asarray(a.control_points), np.asarray(b.control_points))
+    assert np.array_equal(np.asarray(a.knots_u), np.asarray(b.knots_u))
+
+
+def test_example_is_the_designed_container_ship():
+    hull = fl.Hull.from_json(EXAMPLE.read_text())
+    p = SHIPS["container"]
+    h = hull.hydrostatics()
+    assert h.volume == pytest.approx(_asked(p), rel=MATCH_TOL)
+
+
+@pytest.mark.parametrize("change", [dict(cb=0.65 * 1.06), dict(cb=0.65 * 0.94), dict(lcb=118.73 + 2.448),
+                                    dict(lcb=118.73 - 2.448), dict(cwp=0.86), dict(bulb=False)])
+def test_changed_particulars_of_the_container_ship_build(change):
+    p = {**SHIPS["container"], **change}
+    h = fl.design_hull(**p).hydrostatics()
+    assert h.volume == pytest.approx(_asked(p), rel=MATCH_TOL)
+    assert abs(h.lcb - p["lcb"]) <= MATCH_TOL * p["lpp"]
+    if "cwp" in change:
+        assert h.cwp == pytest.approx(change["cwp"], rel=MATCH_TOL)
+
+
+def _space_sample(n, seed):
+    from scipy.stats import qmc
+
+    out = []
+    for r in qmc.LatinHypercube(d=4, seed=seed).random(n):
+        cb, lcb, lb, bt = (lo + x * (hi - lo) for x, (lo, hi) in zip(r, SPACE.values()))
+        lpp = 150.0
+        b = lpp / lb
+        t = b / bt
+        out.append(dict(lpp=lpp, breadth=b, draft=t, depth=1.6 * t, cb=cb, lcb=lpp / 2 + lcb / 100 * lpp))
+    return out
+
+
+@pytest.mark.xfail(strict=True, reason="34-37 of 40 build today: the fullest ships (Cb > 0.85) find no SAC the "
+                                       "sections can hold, some shallow fine ships no profile")
+def test_latin_hypercube_of_the_design_space_all_builds():
+    fails = []
+    for p in _space_sample(40, 2026):
+        try:
+            h = fl.design_hull(**p).hydrostatics()
+            assert h.volume == pytest.approx(_asked(p), rel=1e-4)
+        except (fl.InfeasibleFormParameters, AssertionError) as e:
+            fails.append((p, str(e)[:80]))
+    assert fails == []
+
+
+def test_most_of_the_design_space_builds():
+    ok = 0
+    for p in _space_sample(40, 2026):
+        try:
+            h = fl.design_hull(**p).hydrostatics()
+            ok += h.volume == pytest.approx(_asked(p), rel=1e-4)
+        except fl.InfeasibleFormParameters as e:
+            assert "basic_curves." in str(e)  # names the curve, not solver internals only
+    assert ok >= 34
+
+
+@pytest.mark.parametrize("bad, field", [(dict(cb=1.2), "cb"), (dict(lpp=244800.0), "millimetres"),
+                                        (dict(draft=25.0), "draft"), (dict(stern="pram"), "stern"),
+                                        (dict(lcb=0.0), "lcb_pct"), (dict(breadth=float("nan")), "breadth")])
+def test_bad_particulars_name_the_value(bad, field):
+    with pytest.raises(fl.InvalidInput, match=field):
+        fl.design_hull(**{**SHIPS["container"], **bad})
+
+
+def _sign_changes(surface, axis, value):
+    from fairlines.fairness import judge_cut
+
+    return judge_cut(fl.plane_cut(surface, axis, float(value), 601))["sign_changes"]
+
+
+def test_midbody_frames_are_convex():
+    """Frames of the container ship from the end of the run to the start of the entrance: no
+    curvature sign change (a conventional hull's sections are convex there)."""
+    s = fl.Hull.from_json(EXAMPLE.read_text()).bare_hull_surface()
+    for x in np.linspace(70.0, 150.0, 9):
+        assert _sign_changes(s, 0, x) == 0, x
+
+
+@pytest.mark.xfail(strict=True, reason="frames at the fore shoulder (x 160-190 m) flare hollow above the waterline; "
+                                       "frames in the run (x 50-60 m) turn back by 0.14-0.6 deg")
+def test_no_s_shaped_frames():
+    s = fl.Hull.from_json(EXAMPLE.read_text()).bare_hull_surface()
+    for x in np.linspace(10.0, 230.0, 23):
+        assert _sign_changes(s, 0, x) == 0, x
+
+
+@pytest.mark.xfail(strict=True, reason="waterlines below 4 m wobble in the run (x 45-90 m) where the keel rises")
+def test_waterlines_have_no_wobble():
+    """At most one inflection aft (hollow run) and one forward (hollow entrance) per waterline."""
+    s = fl.Hull.from_json(EXAMPLE.read_text()).bare_hull_surface()
+    for z in np.linspace(1.0, 17.0, 9):
+        assert _sign_changes(s, 2, z) <= 2, z
+
+
+@pytest.mark.xfail(strict=True, reason="buttocks step where the bilge meets the rising keel in the run")
+def test_buttocks_have_no_steps():
+    s = fl.Hull.from_json(EXAMPLE.read_text()).bare_hull_surface()
+    for y in np.linspace(2.0, 14.0, 7):
+        assert _sign_changes(s, 1, y) <= 2, y
+
+
+def test_designed_hull_is_editable():
+    hull = fl.design_hull(**SHIPS["tanker"])
+    v0 = hull.hydrostatics().volume
+    d = json.loads(hull.to_json())
+    d["basic_curves"]["sac"]["volume"] *= 1.02
+    edited = fl.Hull.from_json(d)
+    assert edited.hydrostatics().volume == pytest.approx(1.02 * v0, rel=2e-3)
+    assert math.isfinite(edited.hydrostatics().lcb)
