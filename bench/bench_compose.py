@@ -1,4 +1,4 @@
-"""Issue 5 on the real hull (the Panamax bare forebody of examples/panamax_forebody.json with
+"""On the real hull (the whole container ship of examples/container_ship.json with
 the bulb of its "bulb" section): bulb + blend + composition at the default resolution (goal
 <= 30 ms), against manifold3d (PyPI) doing the mesh union of the same two tessellated solids
 (full bare hull and full bulb) in the same run. Timed two ways: with the blend boundaries as
@@ -14,7 +14,7 @@ import fairlines as fl
 from common import median_time, report
 
 GOAL_MS = 30.0
-EXAMPLE = __import__("pathlib").Path(__file__).resolve().parents[1] / "examples" / "panamax_forebody.json"
+EXAMPLE = __import__("pathlib").Path(__file__).resolve().parents[1] / "examples" / "container_ship.json"
 
 
 def bulb_solid(surface, nu=40, nv=24):

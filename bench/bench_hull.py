@@ -1,11 +1,14 @@
-"""Bare-hull speed (issue 4 goals): description -> surface for the Panamax forebody (33
-sections), one form-parameter change and rebuild (what a Blender slider does), fair skinning
-alone, and hydrostatics. Prints figures; run by bench/run_all.py.
+"""Hull designer speed and breadth: particulars -> whole hull (fl.design_hull, matched to the
+volume, LCB and Cwp), description -> surface (the container ship of examples/container_ship.json),
+one form-parameter change and rebuild (a Blender slider), particulars -> composed hull, and the
+success rate over Latin-hypercube samples of the design space. Prints figures; run by
+bench/run_all.py (FAIRLINES_BENCH_SAMPLES overrides the sample count, default 1000).
 
-Goal: the whole bare hull (>= 30 sections) from description to surface in <= 20 ms.
+Goals: particulars -> composed whole hull <= 50 ms, description -> surface <= 20 ms, success 100 %.
 """
 
 import json
+import os
 import pathlib
 import statistics
 import time
@@ -14,11 +17,13 @@ import numpy as np
 
 import fairlines as fl
 
-EXAMPLE = pathlib.Path(__file__).resolve().parents[1] / "examples" / "panamax_forebody.json"
-GOAL_MS = 20.0
+EXAMPLE = pathlib.Path(__file__).resolve().parents[1] / "examples" / "container_ship.json"
+CONTAINER = dict(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.65, lcb=118.73, bulb=True)
+SPACE = dict(cb=(0.50, 0.87), lcb_pct=(-4.0, 4.0), l_over_b=(4.0, 9.0), b_over_t=(2.0, 4.5))
+SAMPLES = int(os.environ.get("FAIRLINES_BENCH_SAMPLES", "1000"))
 
 
-def best_of(fn, repeat=15):
+def timed(fn, repeat=9):
     times = []
     for _ in range(repeat):
         t = time.perf_counter()
@@ -27,54 +32,49 @@ def best_of(fn, repeat=15):
     return min(times) * 1e3, statistics.median(times) * 1e3
 
 
+def sample(n, seed=7):
+    from scipy.stats import qmc
+
+    for r in qmc.LatinHypercube(d=4, seed=seed).random(n):
+        cb, lcb, lb, bt = (lo + x * (hi - lo) for x, (lo, hi) in zip(r, SPACE.values()))
+        lpp = 60.0 + 240.0 * ((r.sum() * 7.31) % 1.0)
+        b = lpp / lb
+        t = b / bt
+        yield dict(lpp=lpp, breadth=b, draft=t, depth=1.6 * t, cb=cb, lcb=lpp / 2 + lcb / 100 * lpp)
+
+
 def main():
     desc = json.loads(EXAMPLE.read_text())
-
-    def full_build():
-        h = fl.Hull.from_json(desc)
-        h.bare_hull_surface()
-        return h
-
-    h = full_build()
-    n_sections = len(h.sections)
-    best, med = best_of(full_build)
-    print(f"bare hull, description -> surface ({n_sections} sections): best {best:.2f} ms, median {med:.2f} ms "
-          f"(goal <= {GOAL_MS:.0f} ms: {'met' if best <= GOAL_MS else 'NOT met'})")
-
-    vols = iter(np.linspace(26000.0, 27000.0, 1000))
+    best, med = timed(lambda: fl.Hull.from_json(desc).bare_hull_surface())
+    print(f"description -> surface (container ship, 61 stations): best {best:.1f} ms, median {med:.1f} ms (goal <= 20 ms)")
+    h = fl.Hull.from_json(desc)
+    vols = iter(np.linspace(0.99, 1.01, 100) * desc["basic_curves"]["sac"]["volume"])
 
     def slider():
         h.set("sac", "volume", float(next(vols)))
         h.bare_hull_surface()
 
-    best, med = best_of(slider)
-    print(f"one form-parameter change (sac.volume) and rebuild: best {best:.2f} ms, median {med:.2f} ms")
-
-    secs = h.sections
-    n = h.description.section_n_control
-    groups = fl.section_straight_groups(n)
-    skin = h.skin()
-    net = skin.surface.control_points.shape
-    best, med = best_of(lambda: fl.fair_skin(secs, start="parallel", e2=0.0, e3=1.0, straight_groups=groups))
-    print(f"fair_skin alone ({n_sections} sections on one knot vector, held runs, {net[0]} x {net[1]} control net): "
-          f"best {best:.2f} ms, median {med:.2f} ms")
-    best, med = best_of(lambda: fl.fair_skin(secs, n_control=32, start="parallel"))
-    print(f"fair_skin with seed 000's refit to 32 common knots (for comparison): best {best:.2f} ms, median {med:.2f} ms")
-
-    fields = h.section_parameters()
-    best, med = best_of(lambda: fl._native._design_sections(fields, n, 3, desc["principal"]["B"] / 2))
-    print(f"{n_sections} sections from basic curves (one C++ call): best {best:.3f} ms, median {med:.3f} ms")
-
-    t = time.perf_counter()
-    rep = h.fairness_report()
-    t_rep = (time.perf_counter() - t) * 1e3
-    counts = {k: (sum(c["sign_changes"] for c in v), sum(c["false_inflections"] for c in v)) for k, v in rep.items()}
-    print(f"fairness report (8 waterlines, 6 buttocks, 12 frames judged against the designed family): {t_rep:.0f} ms; "
-          + ", ".join(f"{k}s {n_all} sign changes, {n_false} false" for k, (n_all, n_false) in counts.items()))
-
-    surf = h.bare_hull_surface()
-    best, med = best_of(lambda: fl.hydrostatics(surf, desc["principal"]["T"]), repeat=5)
-    print(f"hydrostatics at T (quadrature on the surface, SAC at 41 stations): best {best:.1f} ms, median {med:.1f} ms")
+    best, med = timed(slider)
+    print(f"one form-parameter change (sac.volume) and rebuild: best {best:.1f} ms, median {med:.1f} ms")
+    no_bulb = {**CONTAINER, "bulb": False}
+    best, med = timed(lambda: fl.design_hull(**no_bulb))
+    print(f"particulars -> matched whole hull (design_hull): best {best:.1f} ms, median {med:.1f} ms")
+    best, med = timed(lambda: fl.design_hull(**CONTAINER).composed_hull(), repeat=5)
+    print(f"particulars -> composed whole hull with bulb and blend: best {best:.1f} ms, median {med:.1f} ms "
+          f"(goal <= 50 ms)")
+    ok, times, fails = 0, [], {}
+    for p in sample(SAMPLES):
+        t = time.perf_counter()
+        try:
+            v = fl.design_hull(**p).hydrostatics().volume
+            ok += abs(v / (p["cb"] * p["lpp"] * p["breadth"] * p["draft"]) - 1) <= 1e-4
+            times.append(time.perf_counter() - t)
+        except (fl.InfeasibleFormParameters, fl.InvalidInput) as e:
+            key = str(e).split(":")[0]
+            fails[key] = fails.get(key, 0) + 1
+    print(f"design space (Cb 0.50-0.87, LCB -4..+4 % Lpp, L/B 4-9, B/T 2-4.5), {SAMPLES} Latin-hypercube samples: "
+          f"{ok} built and matched ({100 * ok / SAMPLES:.1f} %, goal 100 %), median {1e3 * statistics.median(times):.0f} ms; "
+          f"failures by curve: {fails}")
 
 
 if __name__ == "__main__":
