@@ -4,6 +4,7 @@
     fairlines fit POINTS.csv [--degree 3] [--n-control N] [--parameterization chord] -o curve.json
     fairlines import TABLE --lpp L --beam B --draft T [--format auto] [--stations 20] -o hull.json
     fairlines build hull.json -o OUTDIR
+    fairlines design --lpp L --breadth B --draft T --depth D --cb CB --lcb LCB [--bulb] -o hull.json
     fairlines export | lines | hydrostatics ...   (see fairlines.cli_output)
     fairlines mesh HULL.json --size 2.0 [--draft T] [--open] [--full] [--format gdf] -o mesh.msh
 """
@@ -134,8 +135,9 @@ def main(argv=None) -> int:
                                      "hydrostatics")
     b.add_argument("hull", help="hull.json written by 'fairlines import'")
     b.add_argument("-o", "--output", required=True, help="output folder")
-    from . import cli_output
+    from . import cli_design, cli_output
     cli_output.add_parsers(sub)
+    cli_design.add_parser(sub)
     me = sub.add_parser("mesh", help="quad-dominant mesh of a hull description's composed hull (CFD / BEM files)")
     me.add_argument("hull", help="hull description JSON (bare hull, and bulb if it has a 'bulb' section)")
     me.add_argument("--size", type=float, required=True, help="maximum element edge length, m")
@@ -157,6 +159,8 @@ def main(argv=None) -> int:
             return _import(args)
         if args.command == "build":
             return _build(args)
+        if args.command == cli_design.COMMAND:
+            return cli_design.run(args)
         if args.command in cli_output.COMMANDS:
             return cli_output.run(args)
         if args.command == "mesh":

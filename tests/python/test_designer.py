@@ -199,3 +199,16 @@ def test_designed_hull_is_editable():
     edited = fl.Hull.from_json(d)
     assert edited.hydrostatics().volume == pytest.approx(1.02 * v0, rel=2e-3)
     assert math.isfinite(edited.hydrostatics().lcb)
+
+
+def test_command_line_design_writes_a_description_that_rebuilds(tmp_path, capsys):
+    from fairlines.cli import main
+
+    out = tmp_path / "coaster.json"
+    args = ["design", "--lpp", "100", "--breadth", "16", "--draft", "6", "--depth", "9", "--cb", "0.75", "--lcb", "51",
+            "--stern", "cruiser", "-o", str(out)]
+    assert main(args) == 0
+    h = fl.Hull.from_json(out.read_text()).hydrostatics()
+    assert h.volume == pytest.approx(0.75 * 100 * 16 * 6, rel=MATCH_TOL)
+    assert main(args[:-2] + ["--cb", "1.5", "-o", str(out)]) == 2
+    assert "cb is 1.5" in capsys.readouterr().err

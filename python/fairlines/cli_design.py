@@ -1,0 +1,42 @@
+"""`fairlines design`: a whole-ship hull description from principal particulars."""
+
+from __future__ import annotations
+
+import pathlib
+import sys
+import time
+
+COMMAND = "design"
+
+
+def add_parser(sub) -> None:
+    d = sub.add_parser(COMMAND, help="design a whole hull from particulars; write its description JSON")
+    for key, unit in (("lpp", "m"), ("breadth", "m"), ("draft", "m"), ("depth", "m"), ("cb", ""), ("lcb", "m from the AP")):
+        d.add_argument(f"--{key}", type=float, required=True, help=f"{key} ({unit})" if unit else key)
+    for key, what in (("cm", "midship coefficient (default: Kerlen)"), ("cwp", "waterplane coefficient (default sqrt(Cb) + 0.01)"),
+                      ("lcf", "LCF, m from the AP"), ("parallel-length", "parallel middle body, m"),
+                      ("transom-immersion", "transom's lower edge below the waterline, m (< 0: dry)"),
+                      ("stem-rake", "stem rake above the waterline, deg from the vertical")):
+        d.add_argument(f"--{key}", type=float, default=None, help=what)
+    d.add_argument("--stern", choices=["transom", "cruiser"], default="transom")
+    d.add_argument("--bulb", action="store_true", help="a bulbous bow (default Kracht coefficients)")
+    d.add_argument("--name", default="designed hull")
+    d.add_argument("-o", "--output", required=True, help="hull description JSON to write")
+
+
+def run(args) -> int:
+    from .designer import design_hull
+
+    keys = ("lpp", "breadth", "draft", "depth", "cb", "lcb", "cm", "cwp", "lcf", "parallel_length",
+            "transom_immersion", "stem_rake", "stern", "bulb", "name")
+    given = {k: getattr(args, k) for k in keys if getattr(args, k) is not None}
+    t0 = time.perf_counter()
+    print("  .. designing the hull and matching volume, LCB and Cwp on its surface", file=sys.stderr, flush=True)
+    hull = design_hull(**given)
+    h = hull.hydrostatics()
+    pathlib.Path(args.output).write_text(hull.to_json())
+    print(f"{given['name']}: volume {h.volume:.1f} m^3, LCB {h.lcb:.3f} m from the AP, Cb {h.cb:.4f}, Cm {h.cm:.4f}, "
+          f"Cp {h.cp:.4f}, Cwp {h.cwp:.4f}, wetted surface {h.wetted_surface:.1f} m^2 "
+          f"({1e3 * (time.perf_counter() - t0):.0f} ms)")
+    print(f"wrote {args.output}")
+    return 0
