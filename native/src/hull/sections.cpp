@@ -70,6 +70,11 @@ constexpr double kCorrectionSmoothing = 1.0;
 /// ... and the correction stays near Q: its weight grows as the fourth power of the distance
 /// from Q beyond this many knot spans.
 constexpr double kCorrectionReach = 2.0;
+/// A flared section's side leans this much more than the line from Q to the deck point, so
+/// its top still turns inward (convex) ...
+constexpr double kFlareMargin = 1.05;
+/// ... but its bilge corner keeps at least this fraction of the waterline half-breadth.
+constexpr double kMinCornerBreadth = 0.75;
 /// Sections shorter than this fraction of B/2 are a point (the stem head).
 constexpr double kPointSection = 1e-9;
 /// Samples per template piece of the check that the template is a graph over its chord.
@@ -222,9 +227,18 @@ Section setup(const SectionSpec& s) {
 /// inside B/2, so sin(lean) <= (B/2 - b) / (top_corner |D - Q|). With little room the bottom
 /// rises (deadrise) under a wall-sided waterline instead of the side leaning in, and the
 /// section can still fine down.
+/// Least lean of the side below Q (run over depth) that keeps a flared section convex: the
+/// side's extension above Q must pass outboard of the deck point D, or the top turns outward
+/// against the bilge (hollow flare, an S-shaped section).
+double flare_lean(const Section& S) {
+  const V2& D = S.f.D;
+  const double rise = D.y() - S.Q.y();
+  return rise > 0 ? std::max(0.0, kFlareMargin * (D.x() - S.b) / rise) : 0.0;
+}
+
 V2 heading(const Section& S) {
   const SectionSpec& s = S.s;
-  const double chord = S.b / S.d;
+  const double chord = std::max(S.b / S.d, flare_lean(S));
   const double sin_room = (s.y_max - S.b) / std::max(s.top_corner * (S.f.D - S.Q).norm(), 1e-12);
   const double room = sin_room >= 1.0 ? std::numeric_limits<double>::infinity() : sin_room / std::sqrt(1.0 - sin_room * sin_room);
   const double r = room / chord;
@@ -237,7 +251,7 @@ std::vector<Piece> immersed_template(const Section& S, double lambda) {
   const SectionSpec& s = S.s;
   const V2 &D = S.f.D, &K = S.K, &Q = S.Q;
   const double rise = std::min(S.b * std::tan(s.deadrise * std::numbers::pi / 180.0), 0.5 * S.d);
-  const V2 C(S.b, K.y() + rise);
+  const V2 C(std::max(S.b - flare_lean(S) * (S.d - rise), kMinCornerBreadth * S.b), K.y() + rise);
   const V2 M = heading(S);
   const double sr = smoothstep(lambda / kRoundEnd);
   const double sx = smoothstep((lambda - kLeanStart) / (kMaxShapeKnob - kLeanStart));
