@@ -69,7 +69,7 @@ constexpr double kStraightScale = 1e-5;
 constexpr double kCorrectionSmoothing = 1.0;
 /// ... and the correction stays near Q: its weight grows as the fourth power of the distance
 /// from Q beyond this many knot spans.
-constexpr double kCorrectionReach = 2.0;
+constexpr double kCorrectionReach = 3.0;
 /// A flared section's side leans this much more than the line from Q to the deck point, so
 /// its top still turns inward (convex) ...
 constexpr double kFlareMargin = 1.05;

@@ -1,0 +1,127 @@
+// Sections of the hull designer: each checked against exact geometry (the end points, the
+// waterline point, the area below T by Green's theorem on a dense sample, the sign of the
+// curvature along the curve) rather than against the template it was built from.
+#include <cmath>
+
+#include <Eigen/Core>
+#include <gtest/gtest.h>
+
+#include "fairlines/errors.hpp"
+#include "fairlines/sections.hpp"
+
+namespace fairlines {
+namespace {
+
+constexpr int kSamples = 4001;
+constexpr double kMinTurn = 0.1 * 3.141592653589793 / 180.0;  // the fairness report's threshold, rad
+
+// A midship-like section of a 32.25 m beam, 11 m draft, 19 m deep ship.
+SectionSpec midship() {
+  SectionSpec s;
+  s.x = 120.0;
+  s.y_deck = 16.125;
+  s.z_deck = 19.0;
+  s.z_keel = 0.0;
+  s.y_max = 16.125;
+  s.draft = 11.0;
+  s.y_dwl = 16.125;
+  s.half_area = 0.97 * 16.125 * 11.0;
+  return s;
+}
+
+// (y, z) samples of a designed section, deck to keel.
+Eigen::MatrixXd samples(const SectionDesign& d) {
+  const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(kSamples, 0.0, 1.0);
+  const Eigen::MatrixXd p = d.curve.evaluate(t);
+  return p.rightCols(2);
+}
+
+// Area below z = T between the sampled curve and the centre plane (trapezoids on a fine sample).
+double area_below(const Eigen::MatrixXd& yz, double T) {
+  double a = 0;
+  for (int i = 0; i + 1 < yz.rows(); ++i) {
+    const double z0 = std::min(yz(i, 1), T), z1 = std::min(yz(i + 1, 1), T);
+    a += 0.5 * (yz(i, 0) + yz(i + 1, 0)) * (z0 - z1) * ((yz(i, 1) < T || yz(i + 1, 1) < T) ? 1.0 : 0.0);
+  }
+  return a;
+}
+
+// Number of sign changes of the turning direction along the sample, ignoring turns under tol rad.
+int turn_sign_changes(const Eigen::MatrixXd& yz, double tol) {
+  int changes = 0, last = 0;
+  double acc = 0;
+  for (int i = 1; i + 1 < yz.rows(); i += 20) {
+    const int j = std::min<int>(i + 20, yz.rows() - 1);
+    const Eigen::Vector2d a = yz.row(i) - yz.row(i - 1), b = yz.row(j) - yz.row(j - 1);
+    const double turn = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+    acc += turn;
+    if (std::abs(acc) < tol) continue;
+    const int sign = acc > 0 ? 1 : -1;
+    if (last != 0 && sign != last) ++changes;
+    last = sign;
+    acc = 0;
+  }
+  return changes;
+}
+
+TEST(Sections, EndsAndWaterlinePointAreExact) {
+  const SectionSpec s = midship();
+  const SectionDesign d = design_section(s);
+  const Eigen::MatrixXd yz = samples(d);
+  EXPECT_NEAR(yz(0, 0), s.y_deck, 1e-12);
+  EXPECT_NEAR(yz(0, 1), s.z_deck, 1e-12);
+  EXPECT_NEAR(yz(kSamples - 1, 0), 0.0, 1e-12);
+  EXPECT_NEAR(yz(kSamples - 1, 1), s.z_keel, 1e-12);
+  double best = 1e9;  // the curve passes through (y_dwl, T)
+  for (int i = 0; i < kSamples; ++i) best = std::min(best, std::hypot(yz(i, 0) - s.y_dwl, yz(i, 1) - s.draft));
+  EXPECT_LT(best, 2e-3);
+}
+
+TEST(Sections, AreaBelowTheWaterlineIsMet) {
+  for (double cm : {0.75, 0.9, 0.97}) {
+    SectionSpec s = midship();
+    s.half_area = cm * s.y_dwl * s.draft;
+    const SectionDesign d = design_section(s);
+    ASSERT_TRUE(d.area_met) << cm;
+    EXPECT_NEAR(area_below(samples(d), s.draft) / s.half_area, 1.0, 2e-4) << cm;
+  }
+}
+
+TEST(Sections, StayInsideHalfBreadthAndAboveBase) {
+  const SectionDesign d = design_section(midship());
+  const Eigen::MatrixXd yz = samples(d);
+  EXPECT_GE(yz.col(0).minCoeff(), -1e-9);
+  EXPECT_LE(yz.col(0).maxCoeff(), 16.125 * (1 + 1e-4));
+  EXPECT_GE(yz.col(1).minCoeff(), -1e-3);
+}
+
+TEST(Sections, FlaredBowSectionIsConvex) {
+  // Deck 1.5 m outboard of the waterline over 8 m of freeboard: a flared shoulder, convex
+  // to the fairness report's threshold (0.1 deg of turn). A flare stronger than the bilge
+  // corner's least breadth allows still turns hollow at the top.
+  SectionSpec s = midship();
+  s.x = 200.0;
+  s.y_deck = 9.5;
+  s.y_dwl = 8.0;
+  s.half_area = 0.6 * 8.0 * 11.0;
+  const SectionDesign d = design_section(s);
+  EXPECT_TRUE(d.area_met);
+  EXPECT_EQ(turn_sign_changes(samples(d), kMinTurn), 0);
+}
+
+TEST(Sections, BadNumbersNameTheField) {
+  SectionSpec s = midship();
+  s.lower_angle = 85.0;
+  try {
+    design_section(s);
+    FAIL() << "lower_angle 85 accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("lower_angle"), std::string::npos) << e.what();
+  }
+  s = midship();
+  s.n_control = 4;
+  EXPECT_THROW(design_section(s), InvalidInput);
+}
+
+}  // namespace
+}  // namespace fairlines
