@@ -23,6 +23,12 @@ def grid_quads(nu, nv):
     return quads
 
 
+_ORIENTATION = [("outward", "Outward", "Face normals point away from the surface's centroid (a hull's "
+                 "outside); what Booleans, shading and volumes need"),
+                ("native", "S_u x S_v", "Normals along the surface's own S_u x S_v"),
+                ("reversed", "Reversed", "Normals opposite to S_u x S_v")]
+
+
 @register
 class FLNodeTessellate(FairlinesNode, bpy.types.Node):
     """Evaluate a surface on a parameter grid into a quad mesh (engine grid evaluation)"""
@@ -33,10 +39,8 @@ class FLNodeTessellate(FairlinesNode, bpy.types.Node):
                    (ids.SOCKET_INT, "Resolution U", {"default": 64}),
                    (ids.SOCKET_INT, "Resolution V", {"default": 32})]
     outputs_spec = [(ids.SOCKET_MESH, "Mesh")]
-    params = ("flip",)
-    flip: props.boolean("Flip Normals", False,
-                        "Reverse the face winding, for surfaces whose S_u x S_v points inward "
-                        "(Booleans need outward normals)")
+    params = ("orientation",)
+    orientation: props.enum("Normals", _ORIENTATION, "outward")
 
     def compute(self, inputs):
         fl, np = engine.require()
@@ -52,10 +56,18 @@ class FLNodeTessellate(FairlinesNode, bpy.types.Node):
         uu, vv = np.meshgrid(us, vs, indexing="ij")
         params = np.column_stack([uu.ravel(), vv.ravel()])
         faces = grid_quads(nu, nv)
-        if self.flip:
+        flip = self.orientation == "reversed"
+        if self.orientation == "outward":
+            # Outward = the faces see their own centroid from inside: the signed volume of the
+            # cone from the centroid (fl.Mesh.volume) is positive. The hull's S_u x S_v
+            # (u deck -> keel, v aft -> fore) points inboard, so a hull surface is flipped.
+            tris = np.concatenate([faces[:, [0, 1, 2]], faces[:, [0, 2, 3]]])
+            flip = fl.Mesh(pts - pts.mean(axis=0), tris).volume < 0.0
+        if flip:
             faces = faces[:, ::-1].copy()
         mesh = MeshData(pts, faces, params=params, surface=s)
-        return {"Mesh": mesh, "__info__": "%d vertices, %d faces" % (len(pts), len(mesh.faces))}
+        return {"Mesh": mesh, "__info__": "%d vertices, %d faces%s" % (
+            len(pts), len(mesh.faces), ", flipped" if flip else "")}
 
 
 @register
