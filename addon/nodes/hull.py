@@ -224,10 +224,10 @@ class FLNodeBasicCurve(FairlinesNode, bpy.types.Node):
                     spec.aliases.pop(alias, None)
             hull.set(self.curve, key, math.degrees(value) if key in ("alphaB", "alphaE") else value)
         bc = hull.basic_curves[self.curve]  # solved here, so an infeasible request is red here
-        if bc.curve is None:
+        if bc.curve is None and bc.value is not None:
             return {"Hull": hull, "__info__": "constant %g" % bc.value}
         fp = bc.form_parameters()
-        info = ", ".join("%s %.6g" % (k, v) for k, v in fp.items() if k in ("Area", "xC", "yB", "yE"))
+        info = ", ".join("%s %.6g" % (k, v) for k, v in fp.items() if k in ("Area", "xC", "yB", "yE") and v is not None)
         return {"Hull": hull, "Curve": bc.curve, "__info__": info}
 
 

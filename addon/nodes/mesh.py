@@ -70,6 +70,15 @@ class FLNodeTessellate(FairlinesNode, bpy.types.Node):
             len(pts), len(mesh.faces), ", flipped" if flip else "")}
 
 
+BOUNDARY_INSET = 1e-6  # fraction of a parameter domain: boundary vertices sampled this far inside
+
+
+def _inset(domain):
+    lo, hi = domain
+    d = BOUNDARY_INSET * (hi - lo)
+    return lo + d, hi - d
+
+
 @register
 class FLNodeCurvature(FairlinesNode, bpy.types.Node):
     """Gaussian and mean curvature of the surface at every vertex, as point attributes
@@ -87,7 +96,13 @@ class FLNodeCurvature(FairlinesNode, bpy.types.Node):
             raise NodeError("Connect a mesh from Tessellate")
         if mesh.surface is None or mesh.params is None:
             raise NodeError("Mesh has no surface parameters; connect Tessellate directly")
-        K, H = mesh.surface.curvature(mesh.params[:, 0], mesh.params[:, 1])
+        s = mesh.surface
+        # A whole-ship hull has degenerate corners (the deck line ends on the stem: no tangent
+        # plane there). Vertices on the domain's boundary take the curvature a hair inside it,
+        # the limit the shading sees; interior vertices are evaluated where they are.
+        u = np.clip(mesh.params[:, 0], *_inset(s.domain_u))
+        v = np.clip(mesh.params[:, 1], *_inset(s.domain_v))
+        K, H = s.curvature(u, v)
         K = np.asarray(K, dtype=np.float32)
         H = np.asarray(H, dtype=np.float32)
         out = mesh.with_attributes({ids.ATTR_GAUSSIAN: K, ids.ATTR_MEAN: H})
