@@ -66,7 +66,7 @@ def build(tree_name=TREE_NAME):
                        material="zebra")
     iso = api.add(tree, "Iso Lines", "Lines", (-250, 600), Count_U=9, Count_V=25)
     lines_out = api.add(tree, "Lines Output", "Lines Output", (0, 600), object_name="Hull Lines")
-    bow = api.add(tree, "Hull Bulb", "Bulbous Bow", (-850, -100))
+    bow = api.add(tree, "Hull Bulb", "Bulbous Bow", (-850, -100), C_LPR=0.025)  # the default, on a slider
     blend = api.add(tree, "Blend Surface", "Blend", (-250, 0))
     comp = api.add(tree, "Compose (Union)", "Compose", (0, 250), output="full")
     ship_out = api.add(tree, "Mesh Output", "Ship Output", (250, 250), object_name="Ship", mirror=False,
