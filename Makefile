@@ -86,7 +86,7 @@ blender-test: build blender-deps
 
 blender-demo: addon blender-deps
 	BLENDER_USER_RESOURCES=$(abspath $(OUT))/blender/user $(BPY_VENV)/bin/python examples/blender_demo.py \
-	  --zip "$$(ls dist/fairlines_blender-*-extension.zip)" --out $(OUT)/blender
+	  --zip "$$(ls dist/fairlines_blender-*-extension.zip)" --out $(OUT)/blender --docs docs
 
 blender-bench: build blender-deps
 	$(PY) bench/bench_blender_latency.py

@@ -16,9 +16,11 @@ bl_info = {
     "category": "Node",
 }
 
+import sys  # noqa: E402
+
 import bpy  # noqa: E402
 
-from . import engine, evaluator, sockets, tree  # noqa: E402
+from . import api, engine, evaluator, sockets, tree  # noqa: E402,F401  (api: fairlines_blender.api)
 from .nodes import NODE_CLASSES  # noqa: E402
 
 
@@ -38,6 +40,7 @@ def _merge_annotations(cls):
 
 
 _registered = []
+ALIAS = "fairlines_blender"
 
 
 def register():
@@ -51,9 +54,17 @@ def register():
             handlers.append(fn)
     if not engine.available():
         print("Fairlines: registered without the engine. " + engine.IMPORT_ERROR)
+    # Scripts import the API as fairlines_blender.api whichever way the add-on was installed
+    # (an extension's package is bl_ext.<repository>.fairlines).
+    if __package__ != ALIAS and ALIAS not in sys.modules:
+        sys.modules[ALIAS] = sys.modules[__package__]
+        sys.modules[ALIAS + ".api"] = api
 
 
 def unregister():
+    if __package__ != ALIAS and sys.modules.get(ALIAS) is sys.modules.get(__package__):
+        sys.modules.pop(ALIAS, None)
+        sys.modules.pop(ALIAS + ".api", None)
     for handlers, fn in tree.HANDLERS:
         while fn in handlers:
             handlers.remove(fn)

@@ -182,6 +182,11 @@ def outputs_of(tree, node_name):
     return None if entry is None or not entry.ok else entry.outputs
 
 
+def peek(tree, node_name):
+    """The cache entry of a node without running its deferred job (for drawing), or None."""
+    return _cache.get((tree.name, node_name))
+
+
 def _link_map(tree):
     """{input socket pointer: link} in one pass. NodeSocket.links scans every link of the
     tree on each access; asking it per socket made the walk quadratic in the graph size."""

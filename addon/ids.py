@@ -67,12 +67,15 @@ NODE_BASIC_CURVE = "FLNodeBasicCurve"
 NODE_SECTIONS = "FLNodeSections"
 NODE_FAIR_SKIN = "FLNodeFairSkin"
 NODE_BARE_HULL = "FLNodeBareHull"
+NODE_PARTICULARS = "FLNodeParticulars"
+NODE_HULL_BULB = "FLNodeHullBulb"
 
 # Operators, menus, panels.
 OP_EVALUATE = "fairlines.evaluate_tree"
 OP_EXPORT = "fairlines.export_node"
 MENU_ADD_PREFIX = "NODE_MT_fairlines_add_"
 PANEL_STATUS = "NODE_PT_fairlines_status"
+PANEL_HYDROSTATICS = "NODE_PT_fairlines_hydrostatics"
 
 # Data written into the scene.
 GN_GROUP = "Fairlines Output"
@@ -80,3 +83,5 @@ GN_MODIFIER = "Fairlines"
 ATTR_GAUSSIAN = "gaussian_curvature"
 ATTR_MEAN = "mean_curvature"
 MESH_TOPOLOGY_KEY = "fairlines_topology"
+MAT_PAINT = "Fairlines Hull Paint"
+MAT_ZEBRA = "Fairlines Zebra"

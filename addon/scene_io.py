@@ -45,8 +45,10 @@ def _topology_key(mesh_data):
                             hash(faces.tobytes()) & 0xFFFFFFFFFFFF)
 
 
-def write_mesh(obj, mesh_data, smooth=True):
-    """Write MeshData into obj.data. Returns True when updated in place."""
+def write_mesh(obj, mesh_data, smooth=True, sharp_angle=None):
+    """Write MeshData into obj.data. Returns True when updated in place. With smooth shading
+    and a sharp_angle (radians), edges whose faces meet at more than it (deck edge, transom,
+    knuckles) are marked sharp and shade as corners; everything else shades smooth."""
     np = engine.np
     me = obj.data
     verts = np.ascontiguousarray(mesh_data.vertices, dtype=np.float32).ravel()
@@ -83,8 +85,20 @@ def write_mesh(obj, mesh_data, smooth=True):
         if name not in mesh_data.attributes:
             me.attributes.remove(me.attributes[name])
     me.update()
+    if smooth and sharp_angle is not None:
+        mark_sharp(me, sharp_angle)
     obj.update_tag()
     return in_place
+
+
+def mark_sharp(me, angle):
+    """Sharp edges by angle with Blender's own tools: the sharp_edge attribute from 4.1 on
+    (kept through the Geometry Nodes mirror), auto smooth before."""
+    if hasattr(me, "set_sharp_from_angle"):
+        me.set_sharp_from_angle(angle=angle)
+    else:
+        me.use_auto_smooth = True
+        me.auto_smooth_angle = angle
 
 
 def write_lines(obj, lines):

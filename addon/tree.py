@@ -3,7 +3,8 @@
 import bpy
 from bpy.app.handlers import persistent
 
-from . import engine, evaluator, ids
+from . import engine, evaluator, ids, report
+from .nodes.base import HYDROSTATICS
 from .nodes import CATEGORIES, NODE_CLASSES
 
 
@@ -19,25 +20,31 @@ class FairlinesTree(bpy.types.NodeTree):
 
 
 class FL_OT_evaluate(bpy.types.Operator):
-    """Re-evaluate the Fairlines tree (from scratch when Full is on)"""
+    """Re-evaluate the Fairlines tree (from scratch when Full is on): the one in the node
+    editor, or the one named by Tree, or every Fairlines tree (works headless too)"""
     bl_idname = ids.OP_EVALUATE
     bl_label = "Evaluate Fairlines Tree"
     bl_options = {"REGISTER"}
 
     full: bpy.props.BoolProperty(name="Full", default=False)
-
-    @classmethod
-    def poll(cls, context):
-        space = context.space_data
-        return space is not None and getattr(space, "tree_type", "") == ids.TREE
+    tree: bpy.props.StringProperty(name="Tree", default="", description="Tree name; empty: the edited tree or all")
 
     def execute(self, context):
-        tree = context.space_data.edit_tree
-        if tree is None:
-            return {"CANCELLED"}
-        if self.full:
-            evaluator.clear(tree.name)
-        evaluator.evaluate(tree)
+        space = getattr(context, "space_data", None)
+        if self.tree:
+            trees = [bpy.data.node_groups.get(self.tree)]
+            if not evaluator.is_fairlines_tree(trees[0]):
+                self.report({"ERROR"}, "No Fairlines tree named %r" % self.tree)
+                return {"CANCELLED"}
+        elif space is not None and getattr(space, "tree_type", "") == ids.TREE and space.edit_tree is not None:
+            trees = [space.edit_tree]
+        else:
+            trees = [t for t in bpy.data.node_groups if evaluator.is_fairlines_tree(t)]
+        for tree in trees:
+            if self.full:
+                evaluator.clear(tree.name)
+            evaluator.request(tree)
+        evaluator.flush()
         return {"FINISHED"}
 
 
@@ -118,6 +125,35 @@ class FL_PT_status(bpy.types.Panel):
         layout.operator(ids.OP_EVALUATE, text="Re-evaluate").full = True
 
 
+class FL_PT_hydrostatics(bpy.types.Panel):
+    """The active node's hydrostatics (Bare Hull, Hydrostatics), as the engine computed them"""
+    bl_idname = ids.PANEL_HYDROSTATICS
+    bl_label = "Hydrostatics"
+    bl_space_type = "NODE_EDITOR"
+    bl_region_type = "UI"
+    bl_category = "Fairlines"
+
+    @classmethod
+    def poll(cls, context):
+        space = context.space_data
+        return space is not None and getattr(space, "tree_type", "") == ids.TREE and space.edit_tree is not None
+
+    def draw(self, context):
+        tree = context.space_data.edit_tree
+        node = tree.nodes.active
+        entry = evaluator.peek(tree, node.name) if node is not None else None
+        h = entry.outputs.get(HYDROSTATICS) if entry is not None else None
+        if h is None:
+            self.layout.label(text="Select a Bare Hull or Hydrostatics node" if entry is None or entry.later is None
+                              else "Computing ...")
+            return
+        self.layout.label(text="%s, T %.3f m" % (node.name, h.draft))
+        grid = self.layout.grid_flow(columns=2, even_columns=False, align=True)
+        for label, value in report.rows(h):
+            grid.label(text=label)
+            grid.label(text=value)
+
+
 # ---- handlers -------------------------------------------------------------------------------
 @persistent
 def _on_load(*_args):
@@ -160,7 +196,7 @@ HANDLERS = ((bpy.app.handlers.load_post, _on_load), (bpy.app.handlers.undo_post,
             (bpy.app.handlers.redo_post, _on_undo),
             (bpy.app.handlers.depsgraph_update_post, _on_depsgraph))
 
-CLASSES = (FairlinesTree, FL_OT_evaluate, FL_OT_export, FL_PT_status) + tuple(MENUS)
+CLASSES = (FairlinesTree, FL_OT_evaluate, FL_OT_export, FL_PT_status, FL_PT_hydrostatics) + tuple(MENUS)
 
 
 class FairlinesPreferences(bpy.types.AddonPreferences):

@@ -1,15 +1,20 @@
-"""`make demo` (Blender part): build the Panamax forebody node graph (hull description ->
-bare hull -> bulbous bow -> blend -> Boolean union -> output) in headless Blender, save the
-.blend and render the hull with Cycles on the CPU.
+"""`make demo` (Blender part): build the whole container ship's node graph (Particulars -> hull
+-> bulb -> blend -> Boolean union -> Ship object) in headless Blender with the scripting API,
+save the .blend and render two pictures with Cycles on the CPU:
 
-    .venv-bpy/bin/python examples/blender_demo.py --zip dist/fairlines_blender-*-extension.zip --out out/blender
+  ship.png   the whole ship, mirrored, on a sea surface at the design draught, its paint split
+             at the design waterline (antifouling below, a black boot-top band above);
+  zebra.png  the same hull out of the water with the zebra (reflection-line) material the Mesh
+             Output node offers: smooth, unbroken stripes mean a fair surface.
+
+    .venv-bpy/bin/python examples/blender_demo.py --zip dist/fairlines_blender-*-extension.zip --out out/blender [--docs docs]
     blender -b --python examples/blender_demo.py -- --zip dist/...-legacy.zip --out out/blender
 """
 
 import argparse
-import importlib
 import math
 import os
+import shutil
 import sys
 
 import bpy
@@ -17,48 +22,63 @@ import bpy
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import blender_graph  # noqa: E402
 
+L, B, T = blender_graph.LPP, blender_graph.BEAM, blender_graph.DRAFT
 
-def stage(scene):
-    """Camera, sun and world for a three-quarter bow view of the composed forebody."""
-    L = blender_graph.LPP
-    target = (0.86 * L, 0.0, 8.0)
-    cam_data = bpy.data.cameras.new("Camera")
-    cam_data.lens = 50
-    cam = bpy.data.objects.new("Camera", cam_data)
-    cam.location = (L + 95.0, -120.0, 55.0)
-    scene.collection.objects.link(cam)
-    aim = bpy.data.objects.new("Aim", None)
-    aim.location = target
-    scene.collection.objects.link(aim)
-    c = cam.constraints.new("TRACK_TO")
-    c.target = aim
-    scene.camera = cam
-    sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
-    sun.data.energy = 3.0
-    sun.rotation_euler = (math.radians(50), math.radians(10), math.radians(-30))
-    scene.collection.objects.link(sun)
-    world = scene.world or bpy.data.worlds.new("World")
-    scene.world = world
+
+def camera(scene, location, target, lens=50):
+    cam = scene.camera
+    if cam is None:
+        cam = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+        scene.collection.objects.link(cam)
+        aim = bpy.data.objects.new("Aim", None)
+        scene.collection.objects.link(aim)
+        cam.constraints.new("TRACK_TO").target = aim
+        scene.camera = cam
+    cam.data.lens = lens
+    cam.location = location
+    cam.constraints[0].target.location = target
+
+
+def world(scene, colour, strength):
+    w = scene.world or bpy.data.worlds.new("World")
+    scene.world = w
     if bpy.app.version < (5, 0, 0):  # always node-based from 5.0 on
-        world.use_nodes = True
-    bg = world.node_tree.nodes.get("Background")
+        w.use_nodes = True
+    bg = w.node_tree.nodes.get("Background")
     if bg is not None:
-        bg.inputs[0].default_value = (0.62, 0.72, 0.85, 1.0)
-        bg.inputs[1].default_value = 0.8
-    paint = bpy.data.materials.new("Hull Paint")
-    paint.diffuse_color = (0.55, 0.08, 0.06, 1.0)
+        bg.inputs[0].default_value = colour
+        bg.inputs[1].default_value = strength
+
+
+def sea(scene):
+    """A large plane at z = T with a dark, glossy, slightly see-through water material."""
+    me = bpy.data.meshes.new("Sea")
+    s = 4.0 * L
+    me.from_pydata([(-s, -s, T), (s, -s, T), (s, s, T), (-s, s, T)], [], [(0, 1, 2, 3)])
+    obj = bpy.data.objects.new("Sea", me)
+    scene.collection.objects.link(obj)
+    mat = bpy.data.materials.new("Sea")
     if bpy.app.version < (5, 0, 0):
-        paint.use_nodes = True
-    bsdf = paint.node_tree.nodes.get("Principled BSDF")
-    if bsdf is not None:
-        bsdf.inputs["Base Color"].default_value = (0.55, 0.08, 0.06, 1.0)
-    fore = bpy.data.objects["Forebody"]
-    if not fore.data.materials:
-        fore.data.materials.append(paint)
-    # The composed hull is the picture; the bare hull it contains and the lines stay in the
-    # viewport only.
-    for name in ("Bare Forebody", "Forebody Lines", "Sections"):
-        bpy.data.objects[name].hide_render = True
+        mat.use_nodes = True
+    bsdf = mat.node_tree.nodes.get("Principled BSDF")
+    bsdf.inputs["Base Color"].default_value = (0.02, 0.07, 0.10, 1.0)
+    bsdf.inputs["Roughness"].default_value = 0.08
+    bsdf.inputs["Alpha"].default_value = 0.8
+    me.materials.append(mat)
+    return obj
+
+
+def sun(scene):
+    light = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+    light.data.energy = 3.5
+    light.rotation_euler = (math.radians(45), math.radians(10), math.radians(-40))
+    scene.collection.objects.link(light)
+
+
+def render(scene, path):
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+    print("wrote %s" % path)
 
 
 def main():
@@ -66,41 +86,53 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--zip", required=True, help="packaged add-on (tools/package_addon.py)")
     ap.add_argument("--out", default="out/blender")
-    ap.add_argument("--samples", type=int, default=24)
-    ap.add_argument("--size", type=int, nargs=2, default=(1280, 720))
+    ap.add_argument("--docs", default="", help="also copy the pictures into this folder (README images)")
+    ap.add_argument("--samples", type=int, default=32)
+    ap.add_argument("--size", type=int, nargs=2, default=(1600, 800))
     a = ap.parse_args(argv)
     out = os.path.abspath(a.out)
     os.makedirs(out, exist_ok=True)
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    module = blender_graph.enable_addon(os.path.abspath(a.zip))
-    evaluator = importlib.import_module(module + ".evaluator")
+    blender_graph.enable_addon(os.path.abspath(a.zip))
+    api = blender_graph._addon_module("api")
     tree = blender_graph.build()
-    evaluator.flush()
-    failed = ["%s: %s" % (n.name, n.fl_message) for n in tree.nodes if n.fl_state != "OK"]
-    if failed:
-        sys.exit("demo graph failed: %s" % failed)
+    api.evaluate(tree)
     for n in tree.nodes:
         print("  %-16s %8.2f ms  %s" % (n.name, n.fl_time_ms, n.fl_info.replace("\n", "; ")))
-    # The graph's default cells are for live editing; the picture gets twice as many each way
-    # (smooth shading of a coarse mesh shows its triangles at the deck edge and the seam).
-    comp = tree.nodes["Compose"]
-    for name in ("Hull Cells U", "Hull Cells V", "Bulb Cells U", "Bulb Cells V"):
-        comp.inputs[name].default_value *= 2
-    evaluator.flush()
-    if comp.fl_state != "OK" or tree.nodes["Forebody Output"].fl_state != "OK":
-        sys.exit("finer composition failed: %s" % comp.fl_message)
-    print("  render mesh: %s" % comp.fl_info.replace("\n", "; "))
+    # The graph's cells are for live editing; the pictures get finer meshes.
+    for name, value in (("Hull Cells U", 160), ("Hull Cells V", 48), ("Bulb Cells U", 48), ("Bulb Cells V", 64)):
+        api.set(tree, "Compose", name, value)
+    api.evaluate(tree)
+    print("  render mesh: %s" % tree.nodes["Compose"].fl_info.replace("\n", "; "))
     scene = bpy.context.scene
-    stage(scene)
+    for name in ("Bare Hull", "Hull Lines", "Sections"):
+        bpy.data.objects[name].hide_render = True
     scene.render.engine = "CYCLES"
     scene.cycles.device = "CPU"
     scene.cycles.samples = a.samples
     scene.render.resolution_x, scene.render.resolution_y = a.size
     scene.render.resolution_percentage = 100
-    scene.render.filepath = os.path.join(out, "forebody.png")
-    bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "forebody.blend"))
-    bpy.ops.render.render(write_still=True)
-    print("wrote %s and %s" % (os.path.join(out, "forebody.blend"), scene.render.filepath))
+    bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "ship.blend"))
+    pictures = []
+    # 1. The ship afloat: bow three-quarter view from above the water.
+    sun(scene)
+    world(scene, (0.62, 0.72, 0.85, 1.0), 0.9)
+    water = sea(scene)
+    camera(scene, (L + 150.0, -175.0, 60.0), (0.55 * L, 0.0, 6.0), lens=50)
+    pictures.append(os.path.join(out, "ship.png"))
+    render(scene, pictures[-1])
+    # 2. Zebra: the same hull, out of the water, reflection-line stripes, closer on the bow.
+    water.hide_render = True
+    api.set(tree, "Ship Output", "material", "zebra")
+    api.evaluate(tree)
+    world(scene, (0.5, 0.5, 0.5, 1.0), 1.0)
+    camera(scene, (L + 55.0, -70.0, 4.0), (0.78 * L, 0.0, 7.0), lens=45)
+    pictures.append(os.path.join(out, "zebra.png"))
+    render(scene, pictures[-1])
+    if a.docs:
+        for p in pictures:
+            shutil.copy(p, os.path.join(os.path.abspath(a.docs), "ship_" + os.path.basename(p)
+                                        if not os.path.basename(p).startswith("ship") else os.path.basename(p)))
 
 
 main()

@@ -29,6 +29,9 @@ NODE_CLASSES = []
 CATEGORIES = []
 
 ERROR_COLOUR = (0.8, 0.12, 0.12)
+# Output key (no socket) under which a node keeps the fl.Hydrostatics it shows; the sidebar's
+# hydrostatics table reads it from the active node.
+HYDROSTATICS = "__hydrostatics__"
 
 
 def register(cls):

@@ -101,12 +101,40 @@ class FLNodeBulbousBow(FairlinesNode, bpy.types.Node):
             kw["x_fp"] = inputs["x FP"]
         if inputs["Aft Length"] is not None:
             kw["aft_length"] = inputs["Aft Length"]
-        bulb = fl.BulbousBow(**kw)
-        s = bulb.shape
-        info = "L_PR %.3f m, B_B %.3f m, Z_B %.3f m\nH %.3f m, n %.3f, m %.3f\nfit deviation %.2g m" % (
-            s["length"], s["breadth"], s["nose_height"], s["height"], s["section_fullness"], s["nose_shape"],
-            bulb.max_fit_deviation)
-        return {"Surface": bulb.surface, "Protrusion": float(s["length"]), "__info__": info}
+        return _bulb_outputs(fl.BulbousBow(**kw))
+
+
+def _bulb_outputs(bulb):
+    s = bulb.shape
+    info = "L_PR %.3f m, B_B %.3f m, Z_B %.3f m\nH %.3f m, n %.3f, m %.3f\nfit deviation %.2g m" % (
+        s["length"], s["breadth"], s["nose_height"], s["height"], s["section_fullness"], s["nose_shape"],
+        bulb.max_fit_deviation)
+    return {"Surface": bulb.surface, "Protrusion": float(s["length"]), "__info__": info}
+
+
+_KRACHT = (("C_LPR", 0.025), ("C_BB", 0.18), ("C_ZB", 0.45), ("C_ABT", 0.10), ("C_ABL", 0.10), ("C_VPR", 0.0022))
+
+
+@register
+class FLNodeHullBulb(FairlinesNode, bpy.types.Node):
+    """The hull's own bulbous bow (Hull.bulbous_bow): sized from the hull's Lpp, B, T, midship
+    area and displacement, with the description's Kracht coefficients; switched-on inputs
+    override them"""
+    bl_idname = ids.NODE_HULL_BULB
+    bl_label = "Hull Bulb"
+    category = "Hull"
+    bl_width_default = 230
+    inputs_spec = [(ids.SOCKET_HULL, "Hull", {})] + [
+        (ids.SOCKET_FLOAT, name, {"default": value, "optional": True, "use": False}) for name, value in _KRACHT]
+    outputs_spec = [(ids.SOCKET_SURFACE, "Surface"), (ids.SOCKET_LENGTH, "Protrusion")]
+
+    def compute(self, inputs):
+        engine.require()
+        hull = inputs["Hull"]
+        if hull is None:
+            raise NodeError("Connect a hull (Particulars or Hull Description)")
+        overrides = {name.lower(): float(inputs[name]) for name, _ in _KRACHT if inputs[name] is not None}
+        return _bulb_outputs(hull.bulbous_bow(**overrides))
 
 
 @register

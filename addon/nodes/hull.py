@@ -11,8 +11,9 @@ import os
 import bpy
 
 from .. import engine, ids, props
+from .. import report
 from ..data import LinesData
-from .base import FairlinesNode, NodeError, register
+from .base import HYDROSTATICS, FairlinesNode, NodeError, register
 
 
 @register
@@ -35,6 +36,56 @@ class FLNodePrincipalDimensions(FairlinesNode, bpy.types.Node):
         pd = fl.PrincipalDimensions.from_dict({k: inputs[k] for k in ("Lpp", "B", "T", "D")})
         return {"Lpp": pd.lpp, "B": pd.breadth, "T": pd.draft, "D": pd.depth,
                 "__info__": "L/B %.2f, B/T %.2f" % (pd.lpp / pd.breadth, pd.breadth / pd.draft)}
+
+
+_STERNS = [("transom", "Transom", "Flat transom aft of the AP"),
+           ("cruiser", "Cruiser", "Cruiser stern rising to the deck")]
+# Optional particulars: socket, Particulars field, socket type, default shown when switched on.
+_OPTIONAL = (("Cm", "cm", ids.SOCKET_FLOAT, 0.98), ("Cwp", "cwp", ids.SOCKET_FLOAT, 0.82),
+             ("LCF", "lcf", ids.SOCKET_LENGTH, 115.06), ("Parallel Length", "parallel_length", ids.SOCKET_LENGTH, 17.0),
+             ("Transom Immersion", "transom_immersion", ids.SOCKET_LENGTH, -0.55))
+
+
+@register
+class FLNodeParticulars(FairlinesNode, bpy.types.Node):
+    """A whole ship designed from its principal particulars (fl.design_hull): Lpp, B, T, D, Cb
+    and LCB (from the AP), optionally Cm, Cwp, LCF, the parallel middle body and the transom
+    immersion; the stern type, the stem rake and a bulbous bow. The hull meets Cb, LCB and Cwp
+    on its own surface; out of the designer's range the node is red with the range named"""
+    bl_idname = ids.NODE_PARTICULARS
+    bl_label = "Particulars"
+    category = "Hull"
+    bl_width_default = 260
+    inputs_spec = [(ids.SOCKET_LENGTH, "Lpp", {"default": 244.8}),
+                   (ids.SOCKET_LENGTH, "B", {"default": 32.25}),
+                   (ids.SOCKET_LENGTH, "T", {"default": 11.0}),
+                   (ids.SOCKET_LENGTH, "D", {"default": 19.0}),
+                   (ids.SOCKET_FLOAT, "Cb", {"default": 0.65}),
+                   (ids.SOCKET_LENGTH, "LCB", {"default": 118.73})] + [
+                  (idname, name, {"default": value, "optional": True, "use": False})
+                  for name, _, idname, value in _OPTIONAL] + [
+                  (ids.SOCKET_ANGLE, "Stem Rake", {"default": math.radians(20.0)})]
+    outputs_spec = [(ids.SOCKET_HULL, "Hull"), (ids.SOCKET_LENGTH, "Lpp"), (ids.SOCKET_LENGTH, "B"),
+                    (ids.SOCKET_LENGTH, "T"), (ids.SOCKET_LENGTH, "D")]
+    params = ("stern", "bulb", "ship_name")
+    stern: props.enum("Stern", _STERNS, "transom")
+    bulb: props.boolean("Bulbous Bow", True, "Give the description a bulbous bow (Kracht's default coefficients)")
+    ship_name: props.text("Name", "designed hull")
+
+    def compute(self, inputs):
+        fl, _ = engine.require()
+        kw = {k: float(inputs[s]) for s, k in (("Lpp", "lpp"), ("B", "breadth"), ("T", "draft"), ("D", "depth"),
+                                                ("Cb", "cb"), ("LCB", "lcb"))}
+        for name, key, _, _ in _OPTIONAL:
+            if inputs[name] is not None:
+                kw[key] = float(inputs[name])
+        p = fl.Particulars(stern=self.stern, bulb=bool(self.bulb), stem_rake=math.degrees(inputs["Stem Rake"]),
+                           name=self.ship_name, **kw)
+        hull = fl.design_hull(p)
+        d = hull.description
+        notes = d.notes.split("designed from particulars: ")[-1].replace(", parallel", "\nparallel")
+        info = "x %.2f .. %.2f m\n%s" % (d.x_aft, d.x_fore, notes)
+        return {"Hull": hull, "Lpp": p.lpp, "B": p.breadth, "T": p.draft, "D": p.depth, "__info__": info}
 
 
 @register
@@ -92,8 +143,9 @@ class FLNodeHullDescription(FairlinesNode, bpy.types.Node):
         hull = fl.Hull.from_json(data)
         d = hull.description
         pr = d.principal
-        info = "%s\nLpp %.2f B %.2f T %.2f D %.2f m\nx %.1f .. %.1f m, %d stations" % (
-            d.name[:40], pr.lpp, pr.breadth, pr.draft, pr.depth, d.x_start, d.x_end, len(d.stations))
+        info = "%s\nLpp %.2f B %.2f T %.2f D %.2f m\nx %.2f .. %.2f m, %d stations%s" % (
+            d.name[:40], pr.lpp, pr.breadth, pr.draft, pr.depth, d.x_aft, d.x_fore, len(hull.stations()),
+            ", bulb" if d.bulb is not None else "")
         return {"Hull": hull, "__info__": info}
 
 
@@ -104,15 +156,16 @@ def _hull(inputs):
     return hull
 
 
-_BASIC = [("sac", "Sectional Area (SAC)", "Sectional area below the DWL, both sides (m^2)"),
-          ("dwl", "Design Waterline", "Half-breadth of the design waterline (m)"),
+_BASIC = [("sac", "Sectional Area (SAC)", "Sectional area below the DWL, both sides (m^2); Area is the "
+           "displaced volume, xC the LCB"),
+          ("dwl", "Design Waterline", "Half-breadth of the design waterline (m); Area is half the waterplane "
+           "area, xC the LCF"),
           ("deck", "Deck Line", "Half-breadth of the deck line (m)"),
-          ("profile", "Centre Profile", "Keel / forefoot height (m)"),
-          ("fos", "Flat of Side", "Height of the lower end of the flat side (m)"),
-          ("fob", "Flat of Bottom", "Half-breadth of the flat bottom (m)"),
-          ("deck_angle", "Deck Angle", "Section tangent angle at the deck (deg; < 0 flare)"),
-          ("bottom_angle", "Bottom Angle", "Section tangent angle at the keel (deg)")]
-_UNITS = {"sac": "m^2", "deck_angle": "deg", "bottom_angle": "deg"}
+          ("profile", "Centre Profile", "Keel / stem / transom height (m)"),
+          ("top_corner", "Top Corner", "Where the section's upper corner sits (fraction)"),
+          ("deadrise", "Deadrise", "Rise of floor (deg)"),
+          ("character", "Character", "Section character, V (low) to U (high)")]
+_UNITS = {"sac": "m^2", "deadrise": "deg", "top_corner": "-", "character": "-"}
 # Socket -> the description's parameter name. Area and xC are the curve's integral and its
 # centroid (for the SAC: displaced volume and LCB).
 _BASIC_PARAMS = (("Flat To", "flat_to"), ("Value", "value"), ("x End", "x_end"), ("yB", "yB"), ("yE", "yE"),
@@ -121,7 +174,7 @@ _BASIC_PARAMS = (("Flat To", "flat_to"), ("Value", "value"), ("x End", "x_end"),
 
 @register
 class FLNodeBasicCurve(FairlinesNode, bpy.types.Node):
-    """One basic curve of the hull (SAC, waterline, deck, profile, flats, angles): switched-on
+    """One basic curve of the hull (SAC, waterline, deck, profile, shape curves): switched-on
     form parameters replace the description's, the curve is solved (fairest B-spline meeting
     them) and the changed hull goes on. Values are in the curve's unit (shown below)"""
     bl_idname = ids.NODE_BASIC_CURVE
@@ -129,29 +182,30 @@ class FLNodeBasicCurve(FairlinesNode, bpy.types.Node):
     category = "Hull"
     bl_width_default = 250
     inputs_spec = [(ids.SOCKET_HULL, "Hull", {}),
-                   (ids.SOCKET_LENGTH, "Flat To", {"default": 130.0, "optional": True, "use": False}),
+                   (ids.SOCKET_LENGTH, "Flat To", {"default": 125.36, "optional": True, "use": False}),
                    (ids.SOCKET_FLOAT, "Value", {"default": 0.0, "optional": True, "use": False}),
                    (ids.SOCKET_LENGTH, "x End", {"default": 244.8, "optional": True, "use": False}),
                    (ids.SOCKET_FLOAT, "yB", {"default": 0.0, "optional": True, "use": False}),
                    (ids.SOCKET_FLOAT, "yE", {"default": 0.0, "optional": True, "use": False}),
                    (ids.SOCKET_ANGLE, "alphaB", {"default": 0.0, "optional": True, "use": False}),
                    (ids.SOCKET_ANGLE, "alphaE", {"default": 0.0, "optional": True, "use": False}),
-                   (ids.SOCKET_FLOAT, "Area", {"default": 0.0, "optional": True, "use": False}),
-                   (ids.SOCKET_LENGTH, "xC", {"default": 166.5, "optional": True, "use": False})]
+                   (ids.SOCKET_FLOAT, "Area", {"default": 56448.8, "optional": True, "use": False}),
+                   (ids.SOCKET_LENGTH, "xC", {"default": 118.73, "optional": True, "use": False})]
     outputs_spec = [(ids.SOCKET_HULL, "Hull"), (ids.SOCKET_CURVE, "Curve")]
     params = ("curve",)
     curve: props.enum("Curve", _BASIC, "sac")
 
     def draw_params(self, context, layout):
         layout.prop(self, "curve", text="")
-        layout.label(text="f in %s, Area in %s.m" % (_UNITS.get(self.curve, "m"), _UNITS.get(self.curve, "m")))
+        unit = _UNITS.get(self.curve, "m")
+        layout.label(text="f in %s, Area in %s.m" % (unit, unit))
 
     def compute(self, inputs):
         fl, _ = engine.require()
+        from fairlines.description import FORM_ALIASES
         src = _hull(inputs)
         if self.curve not in src.description.curves:
             raise NodeError("The description has no '%s' curve" % self.curve)
-        from fairlines.hull import _ALIASES
         # A new description that shares everything with the upstream one except the curve this
         # node edits (Hull.set and the alias clean-up below touch only that curve's spec). A
         # deep copy of the whole description took longer than solving the curve.
@@ -163,17 +217,17 @@ class FLNodeBasicCurve(FairlinesNode, bpy.types.Node):
             value = inputs[sock]
             if value is None:
                 continue
-            # A description may give the same condition by its alias (the SAC's volume is its
-            # Area, lcb its xC): the socket replaces it rather than conflicting with it.
-            for alias, (target, _) in _ALIASES.get(self.curve, {}).items():
+            # The description may give the same condition by its public alias (the SAC's
+            # volume is its Area, lcb its xC): the socket replaces it rather than conflicting.
+            for alias, (target, _) in FORM_ALIASES.get(self.curve, {}).items():
                 if target == key:
                     spec.aliases.pop(alias, None)
             hull.set(self.curve, key, math.degrees(value) if key in ("alphaB", "alphaE") else value)
         bc = hull.basic_curves[self.curve]  # solved here, so an infeasible request is red here
-        fp = bc.form_parameters()
-        info = ", ".join("%s %.4g" % (k, v) for k, v in fp.items() if k in ("Area", "xC", "yB", "yE"))
-        if bc.curve is None:
+        if bc.curve is None and bc.value is not None:
             return {"Hull": hull, "__info__": "constant %g" % bc.value}
+        fp = bc.form_parameters()
+        info = ", ".join("%s %.6g" % (k, v) for k, v in fp.items() if k in ("Area", "xC", "yB", "yE") and v is not None)
         return {"Hull": hull, "Curve": bc.curve, "__info__": info}
 
 
@@ -243,35 +297,32 @@ class FLNodeFairSkin(FairlinesNode, bpy.types.Node):
 
 @register
 class FLNodeBareHull(FairlinesNode, bpy.types.Node):
-    """The fair-skinned bare hull of a hull description (sections skinned with the
-    description's settings): the half hull y >= 0, with its hydrostatics at the design draught"""
+    """The fair-skinned bare hull of a hull description: the half hull y >= 0, with the hull's
+    hydrostatics at the design draught (Hull.hydrostatics: on Lpp and B, midship at Lpp / 2)"""
     bl_idname = ids.NODE_BARE_HULL
     bl_label = "Bare Hull"
     category = "Hull"
-    bl_width_default = 240
+    bl_width_default = 270
     inputs_spec = [(ids.SOCKET_HULL, "Hull", {})]
     outputs_spec = [(ids.SOCKET_SURFACE, "Surface"), (ids.SOCKET_VOLUME, "Volume"), (ids.SOCKET_LENGTH, "LCB"),
                     (ids.SOCKET_FLOAT, "Cb")]
     params = ("hydrostatics",)
-    hydrostatics: props.boolean("Hydrostatics", True, "Integrate volume, LCB and Cb at the design draught")
+    hydrostatics: props.boolean("Hydrostatics", True, "Integrate the hydrostatics at the design draught")
 
     def compute(self, inputs):
         engine.require()
         hull = _hull(inputs)
         surface = hull.bare_hull_surface()
-        skin = hull.skin()
-        info = "%d x %d control points\nsection fit max %.3g m" % (
-            surface.control_points.shape[0], surface.control_points.shape[1], skin.section_fit_max)
+        info = "%d x %d control points" % tuple(surface.control_points.shape[:2])
         out = {"Surface": surface, "__info__": info}
         if self.hydrostatics:
-            # The node shows volume, LCB and Cb, not the SAC: no SAC stations, and 4 Gauss points
-            # per span (on the Panamax forebody the same volume and LCB as 8 to 1e-11, in a
-            # sixth of the time: this runs on every hull change). Nothing on the way to the
-            # meshes needs them, so they are a deferred job (evaluator.py): done when a node
-            # reads Volume / LCB / Cb, else right after the meshes are in the scene.
+            # Nothing on the way to the meshes needs them, so they are a deferred job
+            # (evaluator.py): done when a node reads Volume / LCB / Cb, else right after the
+            # meshes are in the scene. Exactly Hull.hydrostatics(), so the figures are the
+            # engine's wherever they are shown.
             def hydrostatics():
-                h = hull.hydrostatics(gauss=4, sac_stations=2)
-                return {"Volume": float(h.volume), "LCB": float(h.lcb), "Cb": float(h.cb),
-                        "__info__": "\nV %.6g m3, LCB %.4g m, Cb %.4f" % (h.volume, h.lcb, h.cb)}
+                h = hull.hydrostatics()
+                return {"Volume": float(h.volume), "LCB": float(h.lcb), "Cb": float(h.cb), HYDROSTATICS: h,
+                        "__info__": "\n" + report.compact(h)}
             out["__later__"] = hydrostatics
         return out

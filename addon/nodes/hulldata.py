@@ -5,8 +5,8 @@ import os
 
 import bpy
 
-from .. import engine, ids, props
-from .base import FairlinesNode, NodeError, register
+from .. import engine, ids, props, report
+from .base import HYDROSTATICS, FairlinesNode, NodeError, register
 
 _FORMATS = [("auto", "Auto", "Decide from the path (folder contents or CSV header)"),
             ("offsets", "Offsets Table", "CSV, one row per station, one column per waterline"),
@@ -89,32 +89,29 @@ class FLNodeRebuildSurface(FairlinesNode, bpy.types.Node):
 
 @register
 class FLNodeHydrostatics(FairlinesNode, bpy.types.Node):
-    """Hydrostatics of the half-hull surface below the draft (Gauss quadrature on the NURBS
-    surface, both sides): volume, centres, waterplane, coefficients, wetted surface"""
+    """Hydrostatics of a half-hull surface below the draft (fl.hydrostatics: Gauss quadrature
+    on the NURBS surface, both sides), coefficients on Lpp and Beam with the midship section
+    at Lpp / 2, as Hull.hydrostatics does for a designed hull"""
     bl_idname = ids.NODE_HYDROSTATICS
     bl_label = "Hydrostatics"
     category = "Analysis"
-    bl_width_default = 240
+    bl_width_default = 270
     inputs_spec = [(ids.SOCKET_SURFACE, "Surface", {}),
-                   (ids.SOCKET_LENGTH, "Draft", {"default": 6.0}),
-                   (ids.SOCKET_LENGTH, "Lpp", {"default": 100.0}),
-                   (ids.SOCKET_LENGTH, "Beam", {"default": 15.0})]
+                   (ids.SOCKET_LENGTH, "Draft", {"default": 11.0}),
+                   (ids.SOCKET_LENGTH, "Lpp", {"default": 244.8}),
+                   (ids.SOCKET_LENGTH, "Beam", {"default": 32.25})]
     outputs_spec = [(ids.SOCKET_FLOAT, "Volume"), (ids.SOCKET_LENGTH, "LCB"),
                     (ids.SOCKET_FLOAT, "Cb"), (ids.SOCKET_FLOAT, "Wetted Surface")]
 
     def compute(self, inputs):
-        engine.require()
-        from fairlines import preprocess
+        fl, _ = engine.require()
         s = inputs["Surface"]
         if s is None:
             raise NodeError("Connect a hull surface")
         for name in ("Draft", "Lpp", "Beam"):
             if not inputs[name] > 0:
                 raise NodeError("%s is %g m; expected > 0" % (name, inputs[name]))
-        h = preprocess.surface_hydrostatics([s], inputs["Draft"], inputs["Lpp"], inputs["Beam"])
-        info = ("V %.6g m3  LCB %.4g m (%+.2f %% Lpp)\nVCB %.4g m  Awp %.6g m2  LCF %.4g m\n"
-                "Am %.5g m2  S %.6g m2\nCb %.4f  Cp %.4f  Cm %.4f  Cwp %.4f") % (
-            h["volume"], h["LCB"], h["LCB_pct_Lpp_from_midship"], h["VCB"], h["Awp"], h["LCF"],
-            h["Am"], h["wetted_surface"], h["Cb"], h["Cp"], h["Cm"], h["Cwp"])
-        return {"Volume": float(h["volume"]), "LCB": float(h["LCB"]), "Cb": float(h["Cb"]),
-                "Wetted Surface": float(h["wetted_surface"]), "__info__": info}
+        lpp = float(inputs["Lpp"])
+        h = fl.hydrostatics(s, float(inputs["Draft"]), length=lpp, breadth=float(inputs["Beam"]), midship_x=lpp / 2)
+        return {"Volume": float(h.volume), "LCB": float(h.lcb), "Cb": float(h.cb),
+                "Wetted Surface": float(h.wetted_surface), HYDROSTATICS: h, "__info__": report.compact(h)}

@@ -23,6 +23,12 @@ def grid_quads(nu, nv):
     return quads
 
 
+_ORIENTATION = [("outward", "Outward", "Face normals point away from the surface's centroid (a hull's "
+                 "outside); what Booleans, shading and volumes need"),
+                ("native", "S_u x S_v", "Normals along the surface's own S_u x S_v"),
+                ("reversed", "Reversed", "Normals opposite to S_u x S_v")]
+
+
 @register
 class FLNodeTessellate(FairlinesNode, bpy.types.Node):
     """Evaluate a surface on a parameter grid into a quad mesh (engine grid evaluation)"""
@@ -33,10 +39,8 @@ class FLNodeTessellate(FairlinesNode, bpy.types.Node):
                    (ids.SOCKET_INT, "Resolution U", {"default": 64}),
                    (ids.SOCKET_INT, "Resolution V", {"default": 32})]
     outputs_spec = [(ids.SOCKET_MESH, "Mesh")]
-    params = ("flip",)
-    flip: props.boolean("Flip Normals", False,
-                        "Reverse the face winding, for surfaces whose S_u x S_v points inward "
-                        "(Booleans need outward normals)")
+    params = ("orientation",)
+    orientation: props.enum("Normals", _ORIENTATION, "outward")
 
     def compute(self, inputs):
         fl, np = engine.require()
@@ -52,10 +56,27 @@ class FLNodeTessellate(FairlinesNode, bpy.types.Node):
         uu, vv = np.meshgrid(us, vs, indexing="ij")
         params = np.column_stack([uu.ravel(), vv.ravel()])
         faces = grid_quads(nu, nv)
-        if self.flip:
+        flip = self.orientation == "reversed"
+        if self.orientation == "outward":
+            # Outward = the faces see their own centroid from inside: the signed volume of the
+            # cone from the centroid (fl.Mesh.volume) is positive. The hull's S_u x S_v
+            # (u deck -> keel, v aft -> fore) points inboard, so a hull surface is flipped.
+            tris = np.concatenate([faces[:, [0, 1, 2]], faces[:, [0, 2, 3]]])
+            flip = fl.Mesh(pts - pts.mean(axis=0), tris).volume < 0.0
+        if flip:
             faces = faces[:, ::-1].copy()
         mesh = MeshData(pts, faces, params=params, surface=s)
-        return {"Mesh": mesh, "__info__": "%d vertices, %d faces" % (len(pts), len(mesh.faces))}
+        return {"Mesh": mesh, "__info__": "%d vertices, %d faces%s" % (
+            len(pts), len(mesh.faces), ", flipped" if flip else "")}
+
+
+BOUNDARY_INSET = 1e-6  # fraction of a parameter domain: boundary vertices sampled this far inside
+
+
+def _inset(domain):
+    lo, hi = domain
+    d = BOUNDARY_INSET * (hi - lo)
+    return lo + d, hi - d
 
 
 @register
@@ -75,7 +96,13 @@ class FLNodeCurvature(FairlinesNode, bpy.types.Node):
             raise NodeError("Connect a mesh from Tessellate")
         if mesh.surface is None or mesh.params is None:
             raise NodeError("Mesh has no surface parameters; connect Tessellate directly")
-        K, H = mesh.surface.curvature(mesh.params[:, 0], mesh.params[:, 1])
+        s = mesh.surface
+        # A whole-ship hull has degenerate corners (the deck line ends on the stem: no tangent
+        # plane there). Vertices on the domain's boundary take the curvature a hair inside it,
+        # the limit the shading sees; interior vertices are evaluated where they are.
+        u = np.clip(mesh.params[:, 0], *_inset(s.domain_u))
+        v = np.clip(mesh.params[:, 1], *_inset(s.domain_v))
+        K, H = s.curvature(u, v)
         K = np.asarray(K, dtype=np.float32)
         H = np.asarray(H, dtype=np.float32)
         out = mesh.with_attributes({ids.ATTR_GAUSSIAN: K, ids.ATTR_MEAN: H})

@@ -5,7 +5,7 @@ import os
 
 import bpy
 
-from .. import engine, geonodes, ids, props, scene_io
+from .. import engine, geonodes, ids, materials, props, scene_io
 from .base import FairlinesNode, NodeError, register
 
 
@@ -22,6 +22,11 @@ class _ObjectOutput:
             return True
 
 
+_MATERIALS = [("keep", "Keep", "Leave the object's materials alone"),
+              ("paint", "Hull Paint", "Antifouling below the Waterline, a boot-top band, topsides above"),
+              ("zebra", "Zebra", "Reflection-line stripes to judge fairness")]
+
+
 @register
 class FLNodeMeshOutput(_ObjectOutput, FairlinesNode, bpy.types.Node):
     """Write the mesh into an object, with the generated Geometry Nodes modifier (mirror to the
@@ -30,13 +35,18 @@ class FLNodeMeshOutput(_ObjectOutput, FairlinesNode, bpy.types.Node):
     bl_label = "Mesh Output"
     category = "Output"
     bl_width_default = 220
-    inputs_spec = [(ids.SOCKET_MESH, "Mesh", {})]
-    params = ("object_name", "mirror", "union", "cutter", "smooth")
+    inputs_spec = [(ids.SOCKET_MESH, "Mesh", {}),
+                   (ids.SOCKET_LENGTH, "Waterline", {"default": 11.0})]
+    params = ("object_name", "mirror", "union", "cutter", "smooth", "sharp_angle", "material")
     object_name: props.text("Object", "Fairlines Hull")
     mirror: props.boolean("Mirror", True, "Join the mirror image about y = 0 (full hull)")
     union: props.pointer("Union", bpy.types.Collection)
     cutter: props.pointer("Cutter", bpy.types.Object)
-    smooth: props.boolean("Smooth", True, "Smooth shading")
+    smooth: props.boolean("Smooth", True, "Smooth shading, sharp where faces meet at more than Sharp Angle")
+    sharp_angle: bpy.props.FloatProperty(name="Sharp Angle", default=0.5235988, min=0.0, max=3.1415927,
+                                         subtype="ANGLE", update=props._changed,
+                                         description="Edges whose faces meet at more than this shade as corners")
+    material: props.enum("Material", _MATERIALS, "keep")
 
     def compute(self, inputs):
         engine.require()
@@ -45,11 +55,18 @@ class FLNodeMeshOutput(_ObjectOutput, FairlinesNode, bpy.types.Node):
             raise NodeError("Connect a mesh")
         if not self.object_name.strip():
             raise NodeError("Give the object a name")
+        waterline = inputs.get("Waterline")
+        if self.material == "paint" and not (waterline is not None and waterline > 0):
+            raise NodeError("Waterline is %s m; the hull paint needs the design draught > 0" % waterline)
         obj = scene_io.ensure_object(self.object_name, "MESH", self.target)
         if self.target != obj:
             self.target = obj
-        in_place = scene_io.write_mesh(obj, mesh, self.smooth)
+        in_place = scene_io.write_mesh(obj, mesh, self.smooth, self.sharp_angle)
         geonodes.apply_modifier(obj, self.mirror, self.union, self.cutter)
+        if self.material == "paint":
+            materials.assign(obj, materials.hull_paint("%s (%s)" % (ids.MAT_PAINT, obj.name), waterline))
+        elif self.material == "zebra":
+            materials.assign(obj, materials.zebra())
         return {"__info__": "%s: %d vertices%s" % (obj.name, len(mesh.vertices),
                                                     " (in place)" if in_place else "")}
 

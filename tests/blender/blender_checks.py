@@ -156,21 +156,34 @@ def closed_edges(obj):
 
 
 def package_forebody(tree, **bulb_changes):
-    """The composed forebody computed by the engine package alone from the graph's own hull
-    surface, with the Bulbous Bow node's values (and changes): what the nodes must reproduce."""
+    """The composed ship computed by the engine package alone from the graph's own hull
+    surface and the Hull Bulb node's hull (with Kracht changes): what the nodes must reproduce."""
     import fairlines as fl
     ev = sub("evaluator")
-    hull = ev.outputs_of(tree, "Refine")["Surface"]
-    node = tree.nodes["Bulbous Bow"]
-    kw = dict(lpp=node.inputs["Lpp"].default_value, beam=node.inputs["Beam"].default_value,
-              draft_fp=node.inputs["Draft FP"].default_value, midship_area=node.inputs["Midship Area"].default_value,
-              displacement_volume=node.inputs["Displacement"].default_value)
-    for name in fl.KRACHT_NAMES:
-        kw[name] = node.inputs[name.upper()].default_value
-    kw.update(bulb_changes)
-    bulb = fl.BulbousBow(**kw)
-    blend = fl.seam_blend(hull, bulb)
-    return fl.compose([hull, bulb, blend]), kw
+    surface = ev.outputs_of(tree, "Refine")["Surface"]
+    hull = ev.outputs_of(tree, "SAC")["Hull"]
+    bulb = hull.bulbous_bow(**bulb_changes)
+    blend = fl.seam_blend(surface, bulb)
+    return fl.compose([surface, bulb, blend]), hull.ship_particulars()
+
+
+def python_example():
+    """The Python example's hull (the same ship the example graph designs)."""
+    import fairlines as fl
+    return fl.Hull.from_json(blender_graph.DESCRIPTION)
+
+
+def hydro_equal(a, b, rel=1e-6):
+    """Every field of two fl.Hydrostatics agrees to rel (the nodes' sockets hold single precision)."""
+    da, db = a.as_dict(), b.as_dict()
+    bad = {k: (da[k], db[k]) for k in da if abs(da[k] - db[k]) > rel * max(1.0, abs(db[k]))}
+    return not bad, bad
+
+
+def signed_volume_positive(names):
+    """Signed volume (divergence theorem about the origin) of every named object after its
+    modifiers: > 0 when the faces point outward."""
+    return {name: volume(bpy.data.objects[name]) for name in names}
 
 
 def t_build():
@@ -181,43 +194,64 @@ def t_build():
     check(ran == [], "re-evaluating an unchanged tree ran %s" % ran)
     bad = ["%s: %s" % (n.name, n.fl_message) for n in tree.nodes if n.fl_state != "OK"]
     check(not bad, "nodes not OK after build: %s" % bad)
-    hull = bpy.data.objects["Bare Forebody"]
-    check(len(hull.data.vertices) == 96 * 48, "hull has %d vertices" % len(hull.data.vertices))
-    check(len(hull.data.polygons) == 95 * 47, "hull has %d faces" % len(hull.data.polygons))
+    hull = bpy.data.objects["Bare Hull"]
+    check(len(hull.data.vertices) == 48 * 160, "hull has %d vertices" % len(hull.data.vertices))
+    check(len(hull.data.polygons) == 47 * 159, "hull has %d faces" % len(hull.data.polygons))
     ids = sub("ids")
     for attr in (ids.ATTR_GAUSSIAN, ids.ATTR_MEAN):
         a = hull.data.attributes.get(attr)
-        check(a is not None and a.domain == "POINT" and len(a.data) == 96 * 48, "attribute %s missing" % attr)
-    k = np.empty(96 * 48, dtype=np.float32)
+        check(a is not None and a.domain == "POINT" and len(a.data) == 48 * 160, "attribute %s missing" % attr)
+    k = np.empty(48 * 160, dtype=np.float32)
     hull.data.attributes[ids.ATTR_GAUSSIAN].data.foreach_get("value", k)
     check(np.isfinite(k).all() and np.ptp(k) > 0, "gaussian curvature not finite/varying")
     mod = hull.modifiers.get(ids.GN_MODIFIER)
     check(mod is not None and mod.node_group is not None and mod.node_group.name == ids.GN_GROUP,
           "hull lacks the Fairlines Geometry Nodes modifier")
     v_eval, _ = mesh_arrays(hull)
-    # The weld joins the two halves where they meet on the centre plane (keel line and stem).
-    on_plane = int((np.abs(coords(hull)[:, 1]) < 1e-4).sum())
-    check(on_plane >= 96 + 48 - 1, "only %d vertices on the keel line and stem" % on_plane)
-    check(len(v_eval) == 2 * 96 * 48 - on_plane, "mirrored hull has %d vertices, expected %d" % (
-        len(v_eval), 2 * 96 * 48 - on_plane))
+    # The weld joins the two halves where they meet on the centre plane (keel line and stem)
+    # and the points a degenerate edge repeats (the deck line ends on the stem): the mirrored
+    # hull has the distinct points of both halves.
+    half = coords(hull)
+    on_plane = int((np.abs(half[:, 1]) < 1e-4).sum())
+    check(on_plane >= 160 + 48 - 1, "only %d vertices on the keel line and stem" % on_plane)
+    both = np.concatenate([half, half * (1.0, -1.0, 1.0)])
+    distinct = len(np.unique(np.round(both / 1e-4).astype(np.int64), axis=0))
+    check(abs(len(v_eval) - distinct) <= 2, "mirrored hull has %d vertices, expected %d" % (len(v_eval), distinct))
     check(v_eval[:, 1].min() < -10 and v_eval[:, 1].max() > 10, "mirror did not produce the port side")
-    lines = bpy.data.objects["Forebody Lines"]
-    check(lines.type == "CURVE" and len(lines.data.splines) == 13 + 9,
+    lines = bpy.data.objects["Hull Lines"]
+    check(lines.type == "CURVE" and len(lines.data.splines) == 25 + 9,
           "lines object has %d splines" % len(lines.data.splines))
     # The composed forebody: bare hull + bulb + blend, one closed full hull.
-    fore = bpy.data.objects["Forebody"]
+    fore = bpy.data.objects["Ship"]
     check(closed_edges(fore), "composed forebody is not watertight")
     vol = volume(fore, evaluated=False)
     node_vol = ev.outputs_of(tree, "Compose")["Volume"]
     # Blender stores vertices in single precision: object and engine agree to ~1e-7.
     check(abs(vol / node_vol - 1) < 1e-6, "object volume %.3f vs Compose node %.3f" % (vol, node_vol))
-    ref, kw = package_forebody(tree)
+    ref, ship = package_forebody(tree)
     check(abs(vol / (2 * ref.volume) - 1) < 1e-6, "nodes %.6f m3, package %.6f m3" % (vol, 2 * ref.volume))
+    # The Python example (the JSON the designer wrote) is the same hull: same surface, same
+    # hydrostatics, and its composed hull has the graph's volume.
+    example = python_example()
+    cp_graph = np.asarray(ev.outputs_of(tree, "Bare Hull")["Surface"].control_points)
+    cp_example = np.asarray(example.bare_hull_surface().control_points)
+    check(cp_graph.shape == cp_example.shape and np.allclose(cp_graph, cp_example, atol=1e-6),
+          "the graph's bare hull is not the Python example's")
+    ok, bad = hydro_equal(sub("api").hydrostatics(tree, "Bare Hull"), example.hydrostatics())
+    check(ok, "Bare Hull node hydrostatics differ from Hull.hydrostatics(): %s" % bad)
+    composed = example.composed_hull()
+    check(abs(vol / (2 * composed.volume) - 1) < 1e-6, "nodes %.3f m3, Python example composed_hull %.3f m3" % (
+        vol, 2 * composed.volume))
+    results["composed_vs_python_example"] = [round(vol, 3), round(2 * composed.volume, 3)]
     v = coords(fore)
     nose = v[:, 0].max() - blender_graph.LPP
-    check(abs(nose / (kw["c_lpr"] * blender_graph.LPP) - 1) < 0.01, "bulb protrudes %.3f m" % nose)
+    protrusion = ev.outputs_of(tree, "Bulbous Bow")["Protrusion"]
+    check(abs(nose / protrusion - 1) < 0.01, "bulb protrudes %.3f m, node says %.3f" % (nose, protrusion))
     check(v[:, 1].min() < -15 and v[:, 1].max() > 15, "composed hull is not the full (mirrored) hull")
     check("blend" in tree.nodes["Compose"].fl_info, "no blend reported: %s" % tree.nodes["Compose"].fl_info)
+    vols = signed_volume_positive(["Ship", "Bare Hull"])
+    check(all(x > 0 for x in vols.values()), "inside-out output meshes: %s" % vols)
+    results["signed_volumes_m3"] = {k: round(x, 1) for k, x in vols.items()}
     results["forebody_volume_m3"] = round(vol, 2)
     results["compose_info"] = tree.nodes["Compose"].fl_info
     return tree
@@ -239,15 +273,20 @@ def t_bulb_length(tree):
     the whole mesh equals the engine package's composition. Then a fuller bulb (C_VPR up) adds
     about that much volume forward of FP."""
     ev = sub("evaluator")
-    fore = bpy.data.objects["Forebody"]
-    bare = bpy.data.objects["Bare Forebody"]
+    fore = bpy.data.objects["Ship"]
+    bare = bpy.data.objects["Bare Hull"]
     L = blender_graph.LPP
     node = tree.nodes["Bulbous Bow"]
-    disp = node.inputs["Displacement"].default_value
-    c_vpr = node.inputs["C_VPR"].default_value
+    hull = ev.outputs_of(tree, "SAC")["Hull"]
+    disp = hull.ship_particulars()["displacement_volume"]
+    c_vpr = hull.bulbous_bow().kracht["c_vpr"]
     v0, x0, bare0 = volume(fore, False), coords(fore)[:, 0].max(), coords(bare)
     fwd0 = forward_volume(fore, L)
-    check(abs(fwd0 / (c_vpr * disp) - 1) < 0.03, "volume forward of FP %.2f m3, C_VPR asks %.2f" % (fwd0, c_vpr * disp))
+    # On the whole ship the raked stem above the waterline lies forward of FP too: the volume
+    # forward of FP is the bulb's C_VPR x displacement plus that (about 7 m3), and stays so.
+    check(0 < fwd0 - c_vpr * disp < 0.1 * c_vpr * disp, "volume forward of FP %.2f m3, C_VPR asks %.2f" % (
+        fwd0, c_vpr * disp))
+    node.inputs["C_LPR"].use = True
     node.inputs["C_LPR"].default_value = 0.032
     # Deferred: the change queued the tree for a timer; nothing ran inside the callback.
     check(coords(fore)[:, 0].max() == x0, "evaluation ran inside the update callback")
@@ -260,7 +299,7 @@ def t_bulb_length(tree):
           "the Blend node's surface was not deferred")
     ev.flush()
     ran = set(ev.last_stats["evaluated"])
-    check(ran == {"Bulbous Bow", "Blend", "Compose", "Forebody Output"}, "a bulb change re-ran %s" % sorted(ran))
+    check(ran == {"Bulbous Bow", "Blend", "Compose", "Ship Output"}, "a bulb change re-ran %s" % sorted(ran))
     import fairlines as fl
     bi = blend_node.inputs  # single-precision socket values, as the node passes them
     ref_blend = fl.seam_blend(ev.outputs_of(tree, "Refine")["Surface"], ev.outputs_of(tree, "Bulbous Bow")["Surface"],
@@ -279,25 +318,26 @@ def t_bulb_length(tree):
     x1 = coords(fore)[:, 0].max()
     check(abs((x1 - x0) / (0.007 * L) - 1) < 0.02, "nose moved %.3f m, expected %.3f" % (x1 - x0, 0.007 * L))
     fwd1 = forward_volume(fore, L)
-    check(abs(fwd1 / (c_vpr * disp) - 1) < 0.03, "longer bulb: forward volume %.2f m3, C_VPR asks %.2f" % (
-        fwd1, c_vpr * disp))
+    check(abs((fwd1 - fwd0) / (c_vpr * disp)) < 0.03, "longer bulb: forward volume %.2f -> %.2f m3 (C_VPR %.2f)" % (
+        fwd0, fwd1, c_vpr * disp))
     v1 = volume(fore, False)
     check(v1 != v0, "the volume did not change")
-    ref, _ = package_forebody(tree)
+    ref, _ = package_forebody(tree, c_lpr=node.inputs["C_LPR"].default_value)
     check(abs(v1 / (2 * ref.volume) - 1) < 1e-6, "nodes %.4f m3 vs package %.4f m3" % (v1, 2 * ref.volume))
     check(np.array_equal(coords(bare), bare0), "the bare hull changed when only the bulb did")
     results["bulb_length"] = {"nose_dx_m": round(x1 - x0, 4), "forward_volume_m3": [round(fwd0, 2), round(fwd1, 2)],
                               "volume_m3": [round(v0, 2), round(v1, 2)]}
     # A fuller bulb: C_VPR up by 0.0004 adds 0.0004 x displacement forward of FP.
+    node.inputs["C_VPR"].use = True
     node.inputs["C_VPR"].default_value = c_vpr + 0.0004
     ev.flush()
-    check(node.fl_state == "OK" and tree.nodes["Forebody Output"].fl_state == "OK", node.fl_message)
+    check(node.fl_state == "OK" and tree.nodes["Ship Output"].fl_state == "OK", node.fl_message)
     fwd2, v2 = forward_volume(fore, L), volume(fore, False)
     check(abs((fwd2 - fwd1) / (0.0004 * disp) - 1) < 0.1, "forward volume grew %.2f m3, expected %.2f" % (
         fwd2 - fwd1, 0.0004 * disp))
     check(v2 > v1, "a fuller bulb did not add volume (%.2f -> %.2f m3)" % (v1, v2))
     results["bulb_volume"] = {"forward_volume_added_m3": round(fwd2 - fwd1, 2), "expected_m3": round(0.0004 * disp, 2)}
-    node.inputs["C_VPR"].default_value = c_vpr
+    node.inputs["C_VPR"].use = False
     # The timer works in time slices: with a zero budget it runs one node per tick and asks
     # to be called again until the change has reached the object.
     ev.SLICE_MS = 0.0
@@ -329,16 +369,16 @@ def t_rename_output(tree):
     """The Object field names the output object: changing it renames the object in place."""
     ev = sub("evaluator")
     out = tree.nodes["Hull Output"]
-    obj = bpy.data.objects["Bare Forebody"]
+    obj = bpy.data.objects["Bare Hull"]
     n_objects = len(bpy.data.objects)
     out.object_name = "Bare Renamed"
     ev.flush()
-    check(bpy.data.objects.get("Bare Renamed") == obj and "Bare Forebody" not in bpy.data.objects,
+    check(bpy.data.objects.get("Bare Renamed") == obj and "Bare Hull" not in bpy.data.objects,
           "renaming did not rename the object")
     check(len(bpy.data.objects) == n_objects, "renaming created an object")
-    out.object_name = "Bare Forebody"
+    out.object_name = "Bare Hull"
     ev.flush()
-    check(bpy.data.objects.get("Bare Forebody") == obj, "renaming back failed")
+    check(bpy.data.objects.get("Bare Hull") == obj, "renaming back failed")
     smooth = np.empty(len(obj.data.polygons), dtype=bool)
     out.smooth = False
     ev.flush()
@@ -353,7 +393,7 @@ def t_rename_output(tree):
     ev.request(tree)
     ev.flush()
     check(ev.last_stats["evaluated"] == ["Hull Output"], "re-creating ran %s" % ev.last_stats["evaluated"])
-    check("Bare Forebody" in bpy.data.objects and len(bpy.data.objects["Bare Forebody"].data.vertices) == 96 * 48,
+    check("Bare Hull" in bpy.data.objects and len(bpy.data.objects["Bare Hull"].data.vertices) == 48 * 160,
           "deleted output object not re-created")
 
 
@@ -392,6 +432,9 @@ def t_watched_object():
     bpy.data.node_groups.remove(tree)
 
 
+LBT = blender_graph.LPP * blender_graph.BEAM * blender_graph.DRAFT
+
+
 def t_hull_nodes(tree):
     """The bare-hull chain: a bigger displaced volume on the SAC node re-runs the hull and
     everything after it, but not the bulb, and the bare hull's integrated volume follows; an
@@ -399,13 +442,15 @@ def t_hull_nodes(tree):
     of the Sections with the description's settings is the Bare Hull surface."""
     ev, ids = sub("evaluator"), sub("ids")
     sac, bare = tree.nodes["SAC"], tree.nodes["Bare Hull"]
-    fore = bpy.data.objects["Forebody"]
+    fore = bpy.data.objects["Ship"]
     V0 = ev.outputs_of(tree, "Bare Hull")["Volume"]
-    check(abs(V0 / sac.inputs["Area"].default_value - 1) < 0.01, "bare hull volume %.1f vs SAC %.1f" % (
-        V0, sac.inputs["Area"].default_value))
+    check(abs(V0 / (blender_graph.PARTICULARS["cb"] * LBT) - 1) < 1e-5, "bare hull volume %.1f vs Cb L B T %.1f" % (
+        V0, blender_graph.PARTICULARS["cb"] * LBT))
+    area0 = python_example().description.curves["sac"].aliases["volume"]
     f0 = volume(fore, False)
     info0 = bare.fl_info
-    sac.inputs["Area"].default_value = 27000.0
+    sac.inputs["Area"].use = True
+    sac.inputs["Area"].default_value = area0 + 500.0
     # The timer's first tick: the meshes are new, the hydrostatics (a deferred job) still old.
     ev.flush(later=False)
     check(volume(fore, False) > f0 + 250.0, "the forebody waited for the deferred hydrostatics")
@@ -415,7 +460,8 @@ def t_hull_nodes(tree):
     check(bare.fl_info != info0 and "V %.6g m3" % ev.outputs_of(tree, "Bare Hull")["Volume"] in bare.fl_info,
           "deferred hydrostatics not shown: %s" % bare.fl_info)
     ran = set(ev.last_stats["evaluated"])
-    check("Bulbous Bow" not in ran and {"SAC", "Bare Hull", "Compose", "Forebody Output", "Sections"} <= ran,
+    # The bulb is sized from the hull's midship area and displacement: it follows the SAC.
+    check({"SAC", "Bare Hull", "Bulbous Bow", "Compose", "Ship Output", "Sections"} <= ran,
           "a SAC change re-ran %s" % sorted(ran))
     V1 = ev.outputs_of(tree, "Bare Hull")["Volume"]
     check(abs((V1 - V0) / 500.0 - 1) < 0.05, "bare hull volume grew %.1f m3, SAC asks 500" % (V1 - V0))
@@ -430,7 +476,7 @@ def t_hull_nodes(tree):
     reader.name = "Volume Reader"
     tree.links.new(bare.outputs["Volume"], reader.inputs["Radius"])
     ev.flush()
-    sac.inputs["Area"].default_value = 26900.0
+    sac.inputs["Area"].default_value = area0 + 400.0
     ev.flush(later=False)
     entry = ev._cache[(tree.name, "Bare Hull")]
     cp = np.asarray(ev.outputs_of(tree, "Volume Reader")["Surface"].control_points)[..., :3].reshape(-1, 3)
@@ -438,18 +484,18 @@ def t_hull_nodes(tree):
           "a linked deferred output was not computed on read")
     check("V %.6g m3" % entry.outputs["Volume"] in bare.fl_info, "info of a job run on read: %s" % bare.fl_info)
     tree.nodes.remove(reader)
-    sac.inputs["Area"].default_value = 27000.0
+    sac.inputs["Area"].default_value = area0 + 500.0
     ev.flush()
-    sac.inputs["Area"].default_value = 50000.0   # more than Am x length: Cp > 1
+    sac.inputs["Area"].default_value = 1.2 * LBT   # more than the box: Cb > 1
     ev.flush()
     check(sac.fl_state == "ERROR" and "InfeasibleFormParameters" in sac.fl_message, sac.fl_message)
     check(bare.fl_state == "BLOCKED" and tree.nodes["Compose"].fl_state == "BLOCKED", "downstream of the SAC")
     check(abs(volume(fore, False) / f1 - 1) < 1e-12, "a failed SAC changed the forebody")
     results["sac_error_message"] = sac.fl_message
-    sac.inputs["Area"].default_value = 26500.0
+    sac.inputs["Area"].use = False
     ev.flush()
-    check(sac.fl_state == "OK" and abs(volume(fore, False) / f0 - 1) < 1e-9, "did not recover the forebody")
-    dims = tree.nodes["Principal Dimensions"]
+    check(sac.fl_state == "OK" and abs(volume(fore, False) / f0 - 1) < 1e-9, "did not recover the ship")
+    dims = tree.nodes["Particulars"]
     dims.inputs["T"].default_value = 20.0
     ev.flush()
     check(dims.fl_state == "ERROR" and "D" in dims.fl_message, "T > D accepted: %s" % dims.fl_message)
@@ -476,14 +522,15 @@ def t_hull_nodes(tree):
                                 end="free").surface.control_points)
     check(a.shape == b.shape and np.allclose(a, b, atol=1e-12), "Fair Skin differs from fl.fair_skin")
     tree.nodes.remove(skin)
-    check(len(bpy.data.objects["Sections"].data.splines) == 33, "sections object")
+    check(len(bpy.data.objects["Sections"].data.splines) == len(ev.outputs_of(tree, "Sections")["Sections"]),
+          "sections object")
 
 
 def t_boolean(tree):
     """Live Boolean composition in the generated Geometry Nodes group: a sphere on the bulb's
     nose united with / cut from the composed forebody."""
     ev, ids = sub("evaluator"), sub("ids")
-    fore = bpy.data.objects["Forebody"]
+    fore = bpy.data.objects["Ship"]
     nose = coords(fore)[:, 0].max()
     sph = tree.nodes.new(ids.NODE_SPHERE)
     sph.name = "Test Sphere"
@@ -501,7 +548,7 @@ def t_boolean(tree):
     sphere = bpy.data.objects["Test Sphere"]
     coll = bpy.data.collections.new("Subdomains")
     coll.objects.link(sphere)
-    fore_out = tree.nodes["Forebody Output"]
+    fore_out = tree.nodes["Ship Output"]
     vb, vs = volume(fore), volume(sphere)
     fore_out.union = coll
     ev.flush()
@@ -527,7 +574,7 @@ def t_boolean(tree):
 
 def t_errors(tree):
     ev = sub("evaluator")
-    hull = bpy.data.objects["Bare Forebody"]
+    hull = bpy.data.objects["Bare Hull"]
     h0 = coords(hull)
     refine = tree.nodes["Refine"]
     refine.inputs["Parameter"].default_value = 5.0   # outside the knot domain
@@ -562,19 +609,91 @@ def t_errors(tree):
     check(np.array_equal(coords(hull), h0), "hull differs after relinking")
     # A bulb the Kracht coefficients cannot make: red with the engine's message, the blend and
     # the composition wait, the forebody object keeps its last good geometry.
-    fore = bpy.data.objects["Forebody"]
+    fore = bpy.data.objects["Ship"]
     f0 = coords(fore)
     bow = tree.nodes["Bulbous Bow"]
+    bow.inputs["C_BB"].use = True
     bow.inputs["C_BB"].default_value = -0.1
     ev.flush()
     check(bow.fl_state == "ERROR" and bow.use_custom_color and bow.fl_message, "negative bulb breadth accepted")
     check(tree.nodes["Compose"].fl_state == "BLOCKED", "compose not waiting for the bulb")
     check(np.array_equal(coords(fore), f0), "a failed bulb changed the forebody")
     results["bulb_error_message"] = bow.fl_message
-    bow.inputs["C_BB"].default_value = 0.18
+    bow.inputs["C_BB"].use = False
     ev.flush()
     check(bow.fl_state == "OK" and tree.nodes["Compose"].fl_state == "OK", "bulb did not recover")
     check(np.array_equal(coords(fore), f0), "forebody differs after recovery")
+
+
+def t_api_headless():
+    """The scripting API and the evaluate operator work without a node editor: build a tree,
+    evaluate, read results, set a value, see the change, get a TreeError for a bad value."""
+    api = importlib.import_module("fairlines_blender.api")
+    check(api is sub("api"), "fairlines_blender.api is not the installed add-on's api")
+    import fairlines as fl
+    tree = api.new_tree("API Ship")
+    ship = api.add(tree, "Particulars", "Ship", Cb=0.70, LCB=124.0)
+    bare = api.add(tree, "Bare Hull", "Bare")
+    api.link(tree, ship, "Hull", bare, "Hull")
+    times = api.evaluate(tree)
+    check({"Ship", "Bare"} <= set(times), "evaluate ran %s" % times)
+    ref = fl.design_hull(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.70, lcb=124.0, bulb=True)
+    ok, bad = hydro_equal(api.hydrostatics(tree, "Bare"), ref.hydrostatics())
+    check(ok, "API hydrostatics vs fl.design_hull: %s" % bad)
+    api.set(tree, "Ship", "Cb", 0.72)
+    api.evaluate(tree)
+    check(abs(api.result(tree, "Bare", "Cb") - 0.72) < 1e-5, "Cb after set: %.6f" % api.result(tree, "Bare", "Cb"))
+    api.set(tree, ship, "Cb", 0.99)  # outside the designer's range
+    try:
+        api.evaluate(tree)
+        raised = None
+    except api.TreeError as exc:
+        raised = exc
+    check(raised is not None and "Ship" in raised.failed and "cb" in raised.failed["Ship"], "bad Cb: %r" % raised)
+    check(ship.use_custom_color and "0.45 to 0.9" in ship.fl_message, "red node message: %r" % ship.fl_message)
+    results["particulars_error_message"] = ship.fl_message
+    api.set(tree, ship, "Cb", 0.70)
+    check(bpy.ops.fairlines.evaluate_tree(tree=tree.name) == {"FINISHED"}, "evaluate_tree operator headless")
+    check(ship.fl_state == "OK" and bare.fl_state == "OK", "operator did not evaluate: %s" % ship.fl_message)
+    # The description JSON through the Hull Description node is the same hull as the designer's.
+    desc = api.add(tree, "Hull Description", "Description", text=blender_graph.description_text())
+    bare2 = api.add(tree, "Bare Hull", "Bare 2")
+    api.link(tree, desc, "Hull", bare2, "Hull")
+    api.evaluate(tree)
+    ok, bad = hydro_equal(api.hydrostatics(tree, "Bare 2"), python_example().hydrostatics(), rel=1e-12)
+    check(ok, "Hull Description node vs Hull.from_json: %s" % bad)
+    bpy.data.node_groups.remove(tree)
+
+
+def t_shading(tree):
+    """Smooth shading with sharp edges where the ship's faces meet at a corner (deck edge,
+    transom), none on the fair flank; the paint and zebra materials are on their objects."""
+    ship = bpy.data.objects["Ship"]
+    me = ship.data
+    smooth = np.zeros(len(me.polygons), dtype=bool)
+    me.polygons.foreach_get("use_smooth", smooth)
+    check(smooth.all(), "flat faces on the ship")
+    if hasattr(me, "set_sharp_from_angle"):
+        attr = me.attributes.get("sharp_edge")
+        check(attr is not None and attr.domain == "EDGE", "no sharp_edge attribute")
+        sharp = np.zeros(len(me.edges), dtype=bool)
+        attr.data.foreach_get("value", sharp)
+        ev_ = np.empty(len(me.edges) * 2, dtype=np.int64)
+        me.edges.foreach_get("vertices", ev_)
+        v = coords(ship)[ev_.reshape(-1, 2)]  # (edges, 2, 3)
+        at_deck = np.all(np.abs(v[:, :, 2] - blender_graph.DEPTH) < 1e-3, axis=1)
+        deck_edge = at_deck & np.all(np.abs(v[:, :, 1]) > 15.0, axis=1) & np.all(np.abs(v[:, :, 0] - 120) < 20, axis=1)
+        flank = np.all((np.abs(v[:, :, 0] - 120) < 20) & (v[:, :, 2] > 3.0) & (v[:, :, 2] < 17.0), axis=1)
+        check(deck_edge.any() and sharp[deck_edge].all(), "deck edge not sharp (%d of %d)" % (
+            sharp[deck_edge].sum(), deck_edge.sum()))
+        check(flank.any() and not sharp[flank].any(), "%d sharp edges on the flank" % sharp[flank].sum())
+        results["sharp_edges"] = int(sharp.sum())
+    else:
+        check(me.use_auto_smooth and abs(me.auto_smooth_angle - np.radians(30)) < 1e-4, "auto smooth off")
+    mats = sub("materials")
+    check(ship.data.materials[0].name.startswith(sub("ids").MAT_PAINT), "ship not painted")
+    check(ship.data.materials[0].get("fairlines_draft") == blender_graph.DRAFT, "paint not split at T")
+    check(bpy.data.objects["Bare Hull"].data.materials[0] == mats.zebra(), "bare hull has no zebra material")
 
 
 def t_form_curve():
@@ -693,6 +812,7 @@ DATA = os.environ.get("FAIRLINES_DATA", os.path.join(os.path.dirname(ROOT), "sha
 def t_offsets_hydrostatics():
     """Series 60 offsets -> rebuilt surface -> hydrostatics on the node and a hull object."""
     ev, ids = sub("evaluator"), sub("ids")
+    import fairlines as fl
     from fairlines import offsets, preprocess
     path = os.path.join(DATA, "series60_cb080_offsets.csv")
     check(os.path.exists(path), "reference data missing: %s (set FAIRLINES_DATA)" % path)
@@ -719,11 +839,13 @@ def t_offsets_hydrostatics():
     bad = ["%s: %s" % (n.name, n.fl_message) for n in tree.nodes if n.fl_state != "OK"]
     check(not bad, "Series 60 graph: %s" % bad)
     data = offsets.read_hull_data(path, 121.92, 18.757, 7.503)
-    ref = preprocess.surface_hydrostatics(preprocess.rebuild(data, deviation=False).surfaces, 7.503, 121.92, 18.757)
+    surface = preprocess.rebuild(data, deviation=False).surfaces[0]
+    ref = fl.hydrostatics(surface, 7.503, length=121.92, breadth=18.757, midship_x=121.92 / 2)
     got = ev.outputs_of(tree, "Hydrostatics")
     # Equal up to the single precision in which Blender stores the Lpp / B / T sockets.
-    check(abs(got["Volume"] / ref["volume"] - 1) < 1e-6 and abs(got["Cb"] - ref["Cb"]) < 1e-6,
-          "node hydrostatics %s vs package %s" % (got, ref["volume"]))
+    ok, bad = hydro_equal(sub("api").hydrostatics(tree, "Hydrostatics"), ref)
+    check(ok, "node hydrostatics differ from fl.hydrostatics: %s" % bad)
+    check(0.95 < ref.cm <= 1.0 and 0.75 < ref.cp < 0.85, "Series 60 Cm %.4f Cp %.4f" % (ref.cm, ref.cp))
     check(abs(got["Cb"] - 0.80) < 0.005, "Series 60 Cb %.4f" % got["Cb"])
     check("Cb %.4f" % got["Cb"] in hy.fl_info and "deviation max" in rb.fl_info, hy.fl_info + rb.fl_info)
     results["series60"] = {"volume_m3": round(got["Volume"], 1), "Cb": round(got["Cb"], 4),
@@ -750,13 +872,13 @@ def t_export(tree):
     tree.links.new(tree.nodes["Curvature"].outputs["Mesh"], exp.inputs["Mesh"])
     # The package's tessellation keeps S_u x S_v; compare with the node's unflipped winding.
     tess = tree.nodes["Tessellate Hull"]
-    tess.flip = False
+    tess.orientation = "native"
     ev.flush()
     check(not os.path.exists(path), "export wrote before being asked")
     check(bpy.ops.fairlines.export_node(tree=tree.name, node="Export") == {"FINISHED"}, "export failed")
     lines = open(path).read().splitlines()
-    check(sum(l.startswith("v ") for l in lines) == 96 * 48, "OBJ vertex count")
-    check(sum(l.startswith("f ") for l in lines) == 2 * 95 * 47, "OBJ triangle count")
+    check(sum(l.startswith("v ") for l in lines) == 48 * 160, "OBJ vertex count")
+    check(sum(l.startswith("f ") for l in lines) == 2 * 47 * 159, "OBJ triangle count")
     # The same surface through the engine package alone gives the same file.
     import fairlines.io
     surf = ev.outputs_of(tree, "Refine")["Surface"]
@@ -769,14 +891,14 @@ def t_export(tree):
           "OBJ faces differ from fairlines.io.tessellate")
     check([l for l in lines if l.startswith("v ")] == [l for l in ref_lines if l.startswith("v ")],
           "OBJ vertices differ from fairlines.io.tessellate")
-    tess.flip = True
+    tess.orientation = "outward"
     tree.nodes.remove(exp)
     ev.flush()
 
 
 def t_save_reload(tree):
     ev = sub("evaluator")
-    saved = {n: coords(bpy.data.objects[n]) for n in ("Forebody", "Bare Forebody")}
+    saved = {n: coords(bpy.data.objects[n]) for n in ("Ship", "Bare Hull")}
     path = os.path.join(args.tmp, "graph.blend")
     bpy.ops.wm.save_as_mainfile(filepath=path)
     bpy.ops.wm.open_mainfile(filepath=path)
@@ -830,12 +952,11 @@ def bench(tree, n):
     """Median wall time from a property change to the updated mesh in the object."""
     ev = sub("evaluator")
     out = {}
-    cases = [("bulb_length", "Forebody", lambda k: tree.nodes["Bulbous Bow"].inputs["C_LPR"].__setattr__(
-                 "default_value", 0.025 + 0.0002 * (k % 50))),
-             ("hull_knot", "Bare Forebody", lambda k: tree.nodes["Refine"].inputs["Parameter"].__setattr__(
+    api = sub("api")
+    cases = [("bulb_length", "Ship", lambda k: api.set(tree, "Bulbous Bow", "C_LPR", 0.025 + 0.0002 * (k % 50))),
+             ("hull_knot", "Bare Hull", lambda k: tree.nodes["Refine"].inputs["Parameter"].__setattr__(
                  "default_value", 0.80 + 0.001 * (k % 50))),
-             ("sac_volume", "Forebody", lambda k: tree.nodes["SAC"].inputs["Area"].__setattr__(
-                 "default_value", 26500.0 + 10.0 * (k % 50)))]
+             ("sac_volume", "Ship", lambda k: api.set(tree, "SAC", "Area", 56448.8 + 10.0 * (k % 50)))]
     for label, obj_name, change in cases:
         obj = bpy.data.objects[obj_name]
         to_mesh, to_eval, to_all = [], [], []
@@ -876,6 +997,10 @@ def main():
         if args.bench:
             bench(tree, args.bench)
         else:
+            t_shading(tree)
+            steps.append("shading")
+            t_api_headless()
+            steps.append("api headless")
             t_bulb_length(tree)
             steps.append("bulb length")
             t_rename_output(tree)

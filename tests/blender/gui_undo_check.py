@@ -50,7 +50,7 @@ def length():
 
 def nose():
     """Foremost x of the composed forebody (the bulb's nose), metres."""
-    me = bpy.data.objects["Forebody"].data
+    me = bpy.data.objects["Ship"].data
     v = np.empty(len(me.vertices) * 3)
     me.vertices.foreach_get("co", v)
     return float(v.reshape(-1, 3)[:, 0].max())
@@ -109,14 +109,14 @@ def tick():
             state["ev"].flush()
             with ctx():
                 bpy.ops.ed.undo_push(message="example graph")
-            report["v_short"] = volume(bpy.data.objects["Forebody"])
+            report["v_short"] = volume(bpy.data.objects["Ship"])
             report["nose_short"] = nose()
         elif s == 2:
             tree = bpy.data.node_groups[blender_graph.TREE_NAME]
             tree.nodes["Bulbous Bow"].inputs["C_LPR"].default_value = LONG
         elif s == 3:
             wait_for(lambda: abs(nose() - report["nose_short"] - DX) < 0.02 * DX)
-            report["v_long"] = volume(bpy.data.objects["Forebody"])
+            report["v_long"] = volume(bpy.data.objects["Ship"])
             report["nose_long"] = nose()
             check(abs(report["nose_long"] - report["nose_short"] - DX) < 0.02 * DX, "bulb did not lengthen live")
             check(report["v_long"] != report["v_short"], "the volume did not change with the bulb")
@@ -124,9 +124,9 @@ def tick():
                 bpy.ops.ed.undo_push(message="longer bulb")
                 bpy.ops.ed.undo()
         elif s == 4:
-            wait_for(lambda: abs(volume(bpy.data.objects["Forebody"]) / report["v_short"] - 1) < 1e-6)
+            wait_for(lambda: abs(volume(bpy.data.objects["Ship"]) / report["v_short"] - 1) < 1e-6)
             check(length() == SHORT, "undo left C_LPR at %s" % length())
-            v = volume(bpy.data.objects["Forebody"])
+            v = volume(bpy.data.objects["Ship"])
             report["v_after_undo"] = v
             check(abs(v / report["v_short"] - 1) < 1e-6, "undo: volume %.3f, expected %.3f" % (v, report["v_short"]))
             tree = bpy.data.node_groups[blender_graph.TREE_NAME]
@@ -135,9 +135,9 @@ def tick():
             with ctx():
                 bpy.ops.ed.redo()
         elif s == 5:
-            wait_for(lambda: abs(volume(bpy.data.objects["Forebody"]) / report["v_long"] - 1) < 1e-6)
+            wait_for(lambda: abs(volume(bpy.data.objects["Ship"]) / report["v_long"] - 1) < 1e-6)
             check(length() == LONG, "redo left C_LPR at %s" % length())
-            v = volume(bpy.data.objects["Forebody"])
+            v = volume(bpy.data.objects["Ship"])
             report["v_after_redo"] = v
             check(abs(v / report["v_long"] - 1) < 1e-6, "redo: volume %.3f, expected %.3f" % (v, report["v_long"]))
             tree = bpy.data.node_groups[blender_graph.TREE_NAME]
