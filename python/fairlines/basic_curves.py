@@ -242,6 +242,10 @@ def solve_curve(name: str, spec: BasicCurveSpec, x0: float, x1: float, *, lower:
     return BasicCurve(name, plan.xs, plan.xe, _native.design_spline_function(r), None)
 
 
+CROSSING_TOL = 1e-13       # where the profile crosses T: to this fraction of its length
+CROSSING_ITERATIONS = 60
+
+
 def immersed_range(profile: BasicCurve, draft: float, samples: int = 2001) -> tuple[float, float]:
     """The x range where the centre profile is below the draft (the DWL's range): one interval,
     its ends found by bisection to round-off."""
@@ -255,16 +259,26 @@ def immersed_range(profile: BasicCurve, draft: float, samples: int = 2001) -> tu
         raise _native.InfeasibleFormParameters("basic_curves.profile rises above the draft between two immersed parts; "
                                                "expected one immersed stretch (one design waterline)")
 
+    tol = CROSSING_TOL * (profile.x_end - profile.x_start)
+
     def crossing(a: float, b: float) -> float:
-        fa = profile(a)[0] - draft
-        for _ in range(80):
-            m = 0.5 * (a + b)
+        """Illinois regula falsi on the bracket [a, b] (superlinear, keeps the bracket)."""
+        fa, fb = profile(a)[0] - draft, profile(b)[0] - draft
+        side = 0
+        for _ in range(CROSSING_ITERATIONS):
+            m = (a * fb - b * fa) / (fb - fa) if fb != fa else 0.5 * (a + b)
             fm = profile(m)[0] - draft
+            if fm == 0 or abs(b - a) < tol:
+                return m
             if (fm < 0) == (fa < 0):
                 a, fa = m, fm
+                fb = 0.5 * fb if side == -1 else fb
+                side = -1
             else:
-                b = m
-        return 0.5 * (a + b)
+                b, fb = m, fm
+                fa = 0.5 * fa if side == 1 else fa
+                side = 1
+        return m
 
     i0, i1 = idx[0], idx[-1]
     x_a = xs[0] if i0 == 0 else crossing(xs[i0 - 1], xs[i0])
