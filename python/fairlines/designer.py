@@ -272,7 +272,7 @@ def match_targets(hull: Hull, tol: float = MATCH_TOL) -> dict:
     want_awp = dwl.aliases.get("waterplane_area")
     err = {}
     for _ in range(MATCH_ITERATIONS):
-        h = hull.hydrostatics()
+        h = hull.hydrostatics(sac_stations=2)  # volume, LCB and Awp only: no SAC table
         err = {"volume": (h.volume - want_v) / want_v if want_v else 0.0,
                "lcb": (h.lcb - want_lcb) / pr.lpp if want_lcb is not None else 0.0,
                "waterplane_area": (h.waterplane_area - want_awp) / want_awp if want_awp else 0.0}
