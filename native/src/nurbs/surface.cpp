@@ -523,69 +523,135 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> NurbsSurface::curvature(const Eigen:
   return {K, H};
 }
 
+namespace {
+
+// Parameters sampled for the closest-point search: a few per non-empty knot span.
+Eigen::VectorXd closest_point_samples(const Eigen::VectorXd& U, int deg, int n) {
+  std::vector<double> s;
+  const int per = std::max(2, std::min(2 * (deg + 1), 256 / std::max(1, n - deg)));
+  for (int i = deg; i < n; ++i) {
+    if (U[i + 1] <= U[i]) continue;
+    for (int k = 0; k < per; ++k) s.push_back(U[i] + (U[i + 1] - U[i]) * k / per);
+  }
+  s.push_back(U[n]);
+  return Eigen::Map<Eigen::VectorXd>(s.data(), static_cast<Eigen::Index>(s.size()));
+}
+
+// The domain ends and the interior knots of multiplicity >= degree (creases: the surface is
+// only C0 across them), increasing.
+std::vector<double> crease_values(const Eigen::VectorXd& K, int deg, int n) {
+  std::vector<double> out{K[deg]};
+  for (int i = deg + 1; i < n;) {
+    int j = i;
+    while (j + 1 < n && K[j + 1] == K[i]) ++j;
+    if (j - i + 1 >= deg && K[i] > K[deg] && K[i] < K[n]) out.push_back(K[i]);
+    i = j + 1;
+  }
+  out.push_back(K[n]);
+  return out;
+}
+
+// The crease intervals [c_k, c_k+1] holding t: two when t sits on an interior crease.
+std::vector<std::pair<double, double>> crease_boxes(const std::vector<double>& c, double t) {
+  std::vector<std::pair<double, double>> out;
+  for (size_t k = 0; k + 1 < c.size(); ++k)
+    if (t >= c[k] && t <= c[k + 1]) out.emplace_back(c[k], c[k + 1]);
+  return out;
+}
+
+// Indices (into the row-major sample grid) of local minima of the sampled squared distance,
+// nearest first, at most `count`.
+std::vector<Eigen::Index> sampled_minima(const Eigen::VectorXd& d2, Eigen::Index nus, Eigen::Index nvs, size_t count) {
+  std::vector<std::pair<double, Eigen::Index>> cand;
+  for (Eigen::Index a = 0; a < nus; ++a)
+    for (Eigen::Index b = 0; b < nvs; ++b) {
+      const double here = d2[a * nvs + b];
+      bool minimum = true;
+      for (Eigen::Index da = -1; da <= 1 && minimum; ++da)
+        for (Eigen::Index db = -1; db <= 1 && minimum; ++db) {
+          const Eigen::Index aa = a + da, bb = b + db;
+          if ((da || db) && aa >= 0 && aa < nus && bb >= 0 && bb < nvs && d2[aa * nvs + bb] < here) minimum = false;
+        }
+      if (minimum) cand.emplace_back(here, a * nvs + b);
+    }
+  const size_t n = std::min(count, cand.size());
+  std::partial_sort(cand.begin(), cand.begin() + n, cand.end());
+  std::vector<Eigen::Index> out;
+  for (size_t k = 0; k < n; ++k) out.push_back(cand[k].second);
+  return out;
+}
+
+// Newton on the stationarity of |S - p|^2 from (u, v), clamped to a box free of creases.
+std::pair<double, double> newton_closest(const NurbsSurface& s, const Eigen::Vector3d& p, double u, double v,
+                                         const std::pair<double, double>& bu, const std::pair<double, double>& bv,
+                                         double scale) {
+  for (int it = 0; it < 60; ++it) {
+    const Eigen::MatrixXd D = s.derivatives(u, v, 2);
+    const Eigen::Vector3d S = D.row(0).transpose(), Su = D.row(3).transpose(), Sv = D.row(1).transpose();
+    const Eigen::Vector3d Suu = D.row(6).transpose(), Suv = D.row(4).transpose(), Svv = D.row(2).transpose();
+    const Eigen::Vector3d r = S - p;
+    Eigen::Matrix2d J;
+    J << Su.dot(Su) + r.dot(Suu), Su.dot(Sv) + r.dot(Suv), Su.dot(Sv) + r.dot(Suv), Sv.dot(Sv) + r.dot(Svv);
+    const Eigen::Vector2d g(Su.dot(r), Sv.dot(r));
+    Eigen::Vector2d delta = J.ldlt().solve(-g);
+    if (!delta.allFinite() || J.determinant() <= 0.0) delta = -g / std::max(J.diagonal().maxCoeff(), 1e-300);
+    // Backtracking: a step that does not bring the point nearer is halved (a strongly curved
+    // surface sends the full Newton step far past the minimum).
+    double un = u, vn = v;
+    for (int half = 0; half < 30; ++half, delta *= 0.5) {
+      un = std::clamp(u + delta[0], bu.first, bu.second);
+      vn = std::clamp(v + delta[1], bv.first, bv.second);
+      if ((s.evaluate(un, vn) - p).squaredNorm() <= r.squaredNorm()) break;
+    }
+    const double step = (Su * (un - u) + Sv * (vn - v)).norm();
+    u = un;
+    v = vn;
+    // Converged when a step moves the point by less than this relative tolerance.
+    if (step < 1e-15 * scale) break;
+  }
+  return {u, v};
+}
+
+}  // namespace
+
 std::tuple<double, double, Eigen::Vector3d> NurbsSurface::closest_point(const Eigen::Vector3d& p) const {
   detail::require_finite(p, "point");
-  const auto [ua, ub] = domain_u();
-  const auto [va, vb] = domain_v();
-  auto samples = [](const Eigen::VectorXd& U, int deg, int n) {
-    std::vector<double> s;
-    const int per = std::max(2, std::min(2 * (deg + 1), 256 / std::max(1, n - deg)));
-    for (int i = deg; i < n; ++i) {
-      if (U[i + 1] <= U[i]) continue;
-      for (int k = 0; k < per; ++k) s.push_back(U[i] + (U[i + 1] - U[i]) * k / per);
-    }
-    s.push_back(U[n]);
-    return Eigen::VectorXd(Eigen::Map<Eigen::VectorXd>(s.data(), static_cast<Eigen::Index>(s.size())));
-  };
-  const Eigen::VectorXd us = samples(ku_, pu_, nu_), vs = samples(kv_, pv_, nv_);
-  const Eigen::MatrixXd grid = evaluate_grid(us, vs);
-  std::vector<std::pair<double, Eigen::Index>> cand;
-  cand.reserve(grid.rows());
-  for (Eigen::Index i = 0; i < grid.rows(); ++i) cand.emplace_back((grid.row(i).transpose() - p).squaredNorm(), i);
-  const size_t n_starts = std::min<size_t>(4, cand.size());
-  std::partial_sort(cand.begin(), cand.begin() + n_starts, cand.end());
+  const Eigen::VectorXd us = closest_point_samples(ku_, pu_, nu_), vs = closest_point_samples(kv_, pv_, nv_);
+  const Eigen::VectorXd d2 = (evaluate_grid(us, vs).rowwise() - p.transpose()).rowwise().squaredNorm();
   const double scale = std::max(1.0, (points_.colwise().maxCoeff() - points_.colwise().minCoeff()).norm());
-  double best_u = us[cand[0].second / vs.size()], best_v = vs[cand[0].second % vs.size()];
-  double best_d = cand[0].first;
-  for (size_t c = 0; c < n_starts; ++c) {
-    double uu = us[cand[c].second / vs.size()], vv = vs[cand[c].second % vs.size()];
-    for (int it = 0; it < 60; ++it) {
-      const Eigen::MatrixXd D = derivatives(uu, vv, 2);
-      const Eigen::Vector3d S = D.row(0).transpose(), Su = D.row(3).transpose(), Sv = D.row(1).transpose();
-      const Eigen::Vector3d Suu = D.row(6).transpose(), Suv = D.row(4).transpose(), Svv = D.row(2).transpose();
-      const Eigen::Vector3d r = S - p;
-      Eigen::Matrix2d J;
-      J << Su.dot(Su) + r.dot(Suu), Su.dot(Sv) + r.dot(Suv), Su.dot(Sv) + r.dot(Suv), Sv.dot(Sv) + r.dot(Svv);
-      const Eigen::Vector2d g(Su.dot(r), Sv.dot(r));
-      Eigen::Vector2d delta = J.ldlt().solve(-g);
-      if (!delta.allFinite() || J.determinant() <= 0.0) delta = -g / std::max(J.diagonal().maxCoeff(), 1e-300);
-      const double un = std::clamp(uu + delta[0], ua, ub), vn = std::clamp(vv + delta[1], va, vb);
-      const double step = (Su * (un - uu) + Sv * (vn - vv)).norm();
-      uu = un;
-      vv = vn;
-      // Converged when a step moves the point by less than this relative tolerance.
-      if (step < 1e-15 * scale) break;
-    }
-    const double d = (evaluate(uu, vv) - p).squaredNorm();
-    if (d < best_d) {
-      best_d = d;
-      best_u = uu;
-      best_v = vv;
-    }
+  const std::vector<double> cu = crease_values(ku_, pu_, nu_), cv = crease_values(kv_, pv_, nv_);
+  Eigen::Index best = 0;
+  d2.minCoeff(&best);
+  double best_u = us[best / vs.size()], best_v = vs[best % vs.size()], best_d = d2[best];
+  auto keep = [&](double u, double v) {
+    const double d = (evaluate(u, v) - p).squaredNorm();
+    if (d < best_d) best_d = d, best_u = u, best_v = v;
+  };
+  // Newton from the nearest sampled local minima (one per basin), inside the crease-free box
+  // of each; a start on a crease is tried on both sides of it.
+  constexpr size_t kStarts = 6;
+  // Fraction of its box by which a Newton start is moved off the box's edges.
+  constexpr double kStartInset = 1e-6;
+  for (const Eigen::Index k : sampled_minima(d2, us.size(), vs.size(), kStarts)) {
+    const double u0 = us[k / vs.size()], v0 = vs[k % vs.size()];
+    for (const auto& bu : crease_boxes(cu, u0))
+      for (const auto& bv : crease_boxes(cv, v0)) {
+        // Started just inside its box, so the derivatives are those of the box's side.
+        const auto inside = [](double t, const std::pair<double, double>& b) {
+          const double margin = kStartInset * (b.second - b.first);
+          return std::clamp(t, b.first + margin, b.second - margin);
+        };
+        const auto [u, v] = newton_closest(*this, p, inside(u0, bu), inside(v0, bv), bu, bv, scale);
+        keep(u, v);
+      }
   }
-  // Boundary curves: Newton clamped to a corner of the box can stall on an edge.
-  for (int e = 0; e < 4; ++e) {
-    const Direction dir = (e < 2) ? Direction::U : Direction::V;
-    const double t = (e == 0) ? ua : (e == 1) ? ub : (e == 2) ? va : vb;
-    const NurbsCurve edge = iso_curve(dir, t);
-    const auto [s, q] = edge.closest_point(p);
-    const double d = (q - p).squaredNorm();
-    if (d < best_d) {
-      best_d = d;
-      best_u = (dir == Direction::U) ? t : s;
-      best_v = (dir == Direction::U) ? s : t;
+  // Boundary and crease lines: a minimum on them is a 1-D problem along an iso-curve.
+  for (const Direction dir : {Direction::U, Direction::V})
+    for (const double t : dir == Direction::U ? cu : cv) {
+      const auto [s, q] = iso_curve(dir, t).closest_point(p);
+      if (dir == Direction::U) keep(t, s);
+      else keep(s, t);
     }
-  }
   return {best_u, best_v, evaluate(best_u, best_v)};
 }
 

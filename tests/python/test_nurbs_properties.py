@@ -1,0 +1,109 @@
+"""Property-based tests (hypothesis) of the NURBS invariants: knot insertion, degree elevation
+and splitting leave the curve unchanged; evaluate and evaluate_grid agree; closest_point is
+no farther than the nearest point of a dense sample. Each example is a random (rational or
+polynomial) curve or surface drawn from a seed, so hypothesis shrinks to small, readable cases."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import fairlines as fl
+
+# Shape-preserving operations agree with the original to this (metres, on unit-size data).
+SAME_SHAPE_TOL = 1e-10
+PROPERTIES = settings(max_examples=60, deadline=None, database=None)
+
+seeds = st.integers(0, 2**32 - 1)
+degrees = st.integers(1, 5)
+extras = st.integers(0, 8)
+
+
+def random_curve(seed, degree, extra, rational, dim=3):
+    rng = np.random.default_rng(seed)
+    n = degree + 1 + extra
+    interior = np.sort(rng.uniform(0.0, 1.0, n - degree - 1))
+    knots = np.r_[np.zeros(degree + 1), interior, np.ones(degree + 1)]
+    weights = rng.uniform(0.3, 3.0, n) if rational else None
+    return fl.NurbsCurve(degree, knots, rng.normal(size=(n, dim)), weights), rng
+
+
+def random_surface(seed, pu, pv, extra, rational):
+    rng = np.random.default_rng(seed)
+    nu, nv = pu + 1 + extra, pv + 2
+    ku = np.r_[np.zeros(pu + 1), np.sort(rng.uniform(0, 1, nu - pu - 1)), np.ones(pu + 1)]
+    kv = np.r_[np.zeros(pv + 1), np.sort(rng.uniform(0, 1, nv - pv - 1)), np.ones(pv + 1)]
+    weights = rng.uniform(0.3, 3.0, (nu, nv)) if rational else None
+    return fl.NurbsSurface(pu, pv, ku, kv, rng.normal(size=(nu, nv, 3)), weights), rng
+
+
+def max_gap(a, b, t):
+    return float(np.max(np.abs(a.evaluate(t) - b.evaluate(t))))
+
+
+@PROPERTIES
+@given(seeds, degrees, extras, st.booleans(), st.floats(0.0, 1.0), st.integers(1, 5))
+def test_knot_insertion_keeps_the_curve(seed, degree, extra, rational, t, times):
+    c, rng = random_curve(seed, degree, extra, rational)
+    mult = int(np.sum(c.knots == t))
+    times = min(times, degree - mult + (1 if t in (0.0, 1.0) else 0))
+    if times < 1:
+        return
+    inserted = c.insert_knot(t, times)
+    assert inserted.n_control == c.n_control + times
+    assert max_gap(c, inserted, rng.uniform(0, 1, 50)) < SAME_SHAPE_TOL
+
+
+@PROPERTIES
+@given(seeds, degrees, extras, st.booleans(), st.integers(1, 3))
+def test_degree_elevation_keeps_the_curve(seed, degree, extra, rational, times):
+    c, rng = random_curve(seed, degree, extra, rational)
+    elevated = c.elevate_degree(times)
+    assert elevated.degree == degree + times
+    assert max_gap(c, elevated, rng.uniform(0, 1, 50)) < SAME_SHAPE_TOL * 10 ** times
+
+
+@PROPERTIES
+@given(seeds, degrees, extras, st.booleans(), st.floats(0.0, 0.9), st.floats(0.05, 1.0))
+def test_split_piece_matches_the_curve_on_its_range(seed, degree, extra, rational, a, width):
+    c, rng = random_curve(seed, degree, extra, rational)
+    b = min(1.0, a + width)
+    piece = c.split(a, b)
+    assert piece.domain == pytest.approx((a, b))
+    t = rng.uniform(a, b, 50)
+    assert max_gap(c, piece, t) < SAME_SHAPE_TOL
+
+
+@PROPERTIES
+@given(seeds, degrees, degrees, extras, st.booleans())
+def test_evaluate_and_evaluate_grid_agree(seed, pu, pv, extra, rational):
+    s, rng = random_surface(seed, pu, pv, extra, rational)
+    us, vs = np.r_[0.0, rng.uniform(0, 1, 7), 1.0], np.r_[0.0, rng.uniform(0, 1, 5), 1.0]
+    grid = s.evaluate_grid(us, vs)
+    U, V = np.meshgrid(us, vs, indexing="ij")
+    scattered = s.evaluate(U.ravel(), V.ravel()).reshape(grid.shape)
+    assert np.max(np.abs(grid - scattered)) < SAME_SHAPE_TOL
+
+
+@PROPERTIES
+@given(seeds, degrees, extras, st.booleans())
+def test_curve_closest_point_is_no_farther_than_a_dense_sample(seed, degree, extra, rational):
+    c, rng = random_curve(seed, degree, extra, rational)
+    p = rng.normal(size=3) * 2
+    t, q = c.closest_point(p)
+    sample = c.evaluate(np.linspace(0, 1, 4001))
+    nearest = np.min(np.linalg.norm(sample - p, axis=1))
+    assert np.linalg.norm(q - p) <= nearest + 1e-9
+    assert np.allclose(q, c.evaluate(t))
+
+
+@PROPERTIES
+@given(seeds, st.integers(1, 3), st.integers(1, 3), st.integers(0, 4), st.booleans())
+def test_surface_closest_point_is_no_farther_than_a_dense_sample(seed, pu, pv, extra, rational):
+    s, rng = random_surface(seed, pu, pv, extra, rational)
+    p = rng.normal(size=3) * 2
+    u, v, q = s.closest_point(p)
+    g = np.linspace(0, 1, 121)
+    nearest = np.min(np.linalg.norm(s.evaluate_grid(g, g).reshape(-1, 3) - p, axis=1))
+    assert np.linalg.norm(q - p) <= nearest + 1e-9
+    assert np.allclose(q, s.evaluate(u, v))
