@@ -103,8 +103,7 @@ def wigley_patch(L=100.0, B=10.0, T=6.25):
     return fl.NurbsSurface(2, 2, k, k, net)
 
 
-@pytest.mark.xfail(strict=False, reason="the draft check belongs to the hydrostatics module (another branch)")
 def test_hydrostatics_refuses_a_draft_above_the_hull():
-    # Today: Awp and Cb of a waterplane that does not exist (the hull ends at z = 6.25 m).
+    # The hull ends at z = 6.25 m: no waterplane exists above it.
     with pytest.raises(fl.InvalidInput, match="draft"):
         fl.hydrostatics(wigley_patch(), 1.5 * 6.25)
