@@ -58,6 +58,7 @@ FULLNESS_LIMITS = (0.52, 0.97)  # natural end fullness kept inside these
 FIT_END = 0.06              # no fullness points this close (fraction of the waterline's length) to its ends
 MATCH_TOL = 1e-6            # relative tolerance of volume, LCB (on Lpp) and waterplane area on the surface
 MATCH_ITERATIONS = 6
+PROFILE_SPANS = (30, 60, 120)  # knot spans of the profile, tried in turn
 
 
 @dataclass
@@ -195,8 +196,15 @@ def design_description(p: Particulars) -> dict:
     x_aft, x_fore = _ends(p)
     prof = _profile(p, c, x_aft, x_fore)
     par = c["parallel"]
-    profile = solve_curve("profile", BasicCurveSpec.from_dict("profile", prof, "basic_curves.profile"), x_aft, x_fore,
-                          lower=-T, upper=D, maximum=False)
+    for spans in PROFILE_SPANS:  # a short stem over a low freeboard needs finer spans
+        prof["spans"] = spans
+        try:
+            profile = solve_curve("profile", BasicCurveSpec.from_dict("profile", prof, "basic_curves.profile"), x_aft,
+                                  x_fore, lower=-T, upper=D, maximum=False)
+            break
+        except _native.InfeasibleFormParameters:
+            if spans == PROFILE_SPANS[-1]:
+                raise
     xa, xf = immersed_range(profile, T)
     dwl = {"yE": 0.0, "monotone": True, "spans": 24, "waterplane_area": c["cwp"] * L * B, "lcf": c["lcf"]}
     if par[1] > par[0]:
