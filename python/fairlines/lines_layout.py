@@ -25,7 +25,7 @@ __all__ = ["layout"]
 #: Title block size (mm on paper).
 TITLE_MM = (118.0, 92.0)
 #: Characters per line of the title block's notes (1.6 mm text across its width).
-NOTE_CHARS = 100
+NOTE_CHARS = 92
 #: Waterlines are labelled in the half-breadth plan at this fraction of the drawn x range.
 WL_LABEL_AT = 0.72
 #: Clear space kept between two labels (mm on paper).

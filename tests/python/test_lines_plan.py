@@ -68,7 +68,7 @@ def test_title_block_coefficients_from_the_hydrostatics(ship_plan, composed_plan
         assert h[key] == getattr(ref, key), key
     c = composed_plan.hydrostatics  # the bulb adds volume and wetted surface, not midship area
     assert c["cb"] == pytest.approx(c["volume"] / (P["lpp"] * P["beam"] * P["draft"]), rel=1e-14)
-    assert c["cm"] == ref.cm and c["cp"] == pytest.approx(c["cb"] / c["cm"], rel=1e-12)
+    assert c["cm"] == pytest.approx(ref.cm, rel=1e-12) and c["cp"] == pytest.approx(c["cb"] / c["cm"], rel=1e-12)
     assert c["volume"] > ref.volume and c["wetted_surface"] > ref.wetted_surface
 
 
