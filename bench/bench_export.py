@@ -1,4 +1,4 @@
-"""Writing the hull out of the tool (the Panamax forebody of examples/container_ship.json,
+"""Writing the hull out of the tool (the whole Panamax container ship of examples/container_ship.json,
 bare and composed with its bulb and blend): lines plan (geometry, then each format), curves
 of form, and the CAD formats through OpenCASCADE / rhino3dm with their read-back figures.
 Medians of repeated runs; OpenCASCADE and rhino3dm are optional (skipped when missing)."""
@@ -22,10 +22,10 @@ PART = dict(lpp=244.8, beam=32.25, draft=11.0, depth=19.0)
 def main():
     hull = fl.Hull.from_json(str(EXAMPLE))
     bare = hull.bare_hull_surface()
-    composed = fl.compose_with_blend(bare, hull.bulbous_bow())
+    composed = hull.composed_hull()
     out = pathlib.Path(tempfile.mkdtemp())
     print("Lines plan (A3), median of 3-7 runs, this 2-core machine shared with other work")
-    for name, h in (("bare forebody", bare), ("composed (bulb + blend)", composed)):
+    for name, h in (("bare hull", bare), ("composed (bulb + blend)", composed)):
         t = median_time(lambda: lines_plan(h, **PART), repeat=3, min_time=0.0)
         report(f"lines plan geometry + layout, {name}", 1e3 * t, "ms")
     plan = lines_plan(composed, **PART)
@@ -35,7 +35,7 @@ def main():
     drafts = np.arange(1.0, 19.01, 1.0)
     t = median_time(lambda: curves_of_form(bare, drafts, **{k: PART[k] for k in ("lpp", "beam", "depth")}),
                     repeat=5, min_time=0.0)
-    report("curves of form, 19 drafts (bare forebody)", 1e3 * t, "ms")
+    report("curves of form, 19 drafts (bare hull)", 1e3 * t, "ms")
     try:
         from fairlines import cad
     except ImportError:

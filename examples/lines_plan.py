@@ -1,51 +1,67 @@
-"""Lines plan, curves of form and CAD files of the example ship (the Panamax container ship of
-examples/container_ship.json with its bulb and blend composed).
+"""Lines plan, curves of form and (optionally) CAD files of the example ship: the whole Panamax
+container ship of examples/container_ship.json, its bulb and blend composed.
 
-    python examples/lines_plan.py --out out/
+    python examples/lines_plan.py --out out/ [--cad] [--docs docs/]
 
-Writes out/lines/: lines_plan.{png,pdf,svg,dxf} (the whole hull), lines_plan_bow.png (bow
-close-up), curves_of_form.{csv,png}, sac.png, and -- when OpenCASCADE / rhino3dm are
-installed (pip install fairlines[cad]) -- ship.step (AP242), ship.iges (closed solid
-of the full ship) and ship.3dm, each read back and checked.
+Writes out/lines/: lines_plan.{png,pdf,svg,dxf} (the whole ship on A3), lines_plan_bow.png and
+lines_plan_stern.png (close-ups), curves_of_form.{csv,png} (upright and 2 m by the stern) and
+sac.png; docs/lines_plan.png for the README. With --cad (needs pip install fairlines[cad]):
+ship.step (AP242) and ship.iges (closed solid of the full ship), each read back and checked,
+and ship.3dm.
 """
 
 import argparse
-import json
 import pathlib
 
 import numpy as np
 
 import fairlines as fl
-from fairlines.curves_of_form import curves_of_form
+from fairlines.curves_of_form import curves_of_form, highest_draft
 from fairlines.lines_plan import closeup, lines_plan
 
 HERE = pathlib.Path(__file__).resolve().parent
+NAME = "Panamax container ship"
+#: Trims of the curves of form (m by the stern).
+TRIMS = (0.0, 2.0)
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default="out")
-    out = pathlib.Path(ap.parse_args().out) / "lines"
+    ap.add_argument("--docs", default=str(HERE.parent / "docs"), help="where lines_plan.png for the README goes ('' for none)")
+    ap.add_argument("--cad", action="store_true", help="also write STEP, IGES and 3dm and read them back")
+    args = ap.parse_args()
+    out = pathlib.Path(args.out) / "lines"
     out.mkdir(parents=True, exist_ok=True)
-    description = json.loads((HERE / "container_ship.json").read_text())
-    pr = description["principal"]
-    part = dict(lpp=pr["Lpp"], beam=pr["B"], draft=pr["T"], depth=pr["D"])
-    hull = fl.Hull.from_json(description)
-    bare = hull.bare_hull_surface()
-    composed = fl.compose_with_blend(bare, hull.bulbous_bow())
-    plan = lines_plan(composed, **part, name="Panamax container ship")
+    hull = fl.Hull.from_json(str(HERE / "container_ship.json"))
+    pr = hull.description.principal
+    part = dict(lpp=pr.lpp, beam=pr.breadth, draft=pr.draft, depth=pr.depth)
+    bare, composed = hull.bare_hull_surface(), hull.composed_hull()
+    print(composed.blend_note)
+    plan = lines_plan(composed, **part, name=NAME)
     for suffix in (".png", ".pdf", ".svg", ".dxf"):
         plan.save(out / f"lines_plan{suffix}")
-    closeup(composed, "bow", **part, name="Panamax container ship").save(out / "lines_plan_bow.png")
-    print(f"lines plan at 1:{plan.scale:g} on A3: {out}/lines_plan.(png|pdf|svg|dxf), lines_plan_bow.png")
-    cof = curves_of_form(bare, np.arange(1.0, part["depth"] - 1.5, 1.0), lpp=part["lpp"], beam=part["beam"],
-                         depth=part["depth"], trims=(0.0, 2.0), design_draft=part["draft"])
+    if args.docs:
+        plan.save(pathlib.Path(args.docs) / "lines_plan.png", dpi=150)
+    for end in ("bow", "stern"):
+        closeup(composed, end, **part, name=NAME).save(out / f"lines_plan_{end}.png")
+    print(f"lines plan at 1:{plan.scale:g} (body plan 1:{plan.body_scale:g}) on A3: {out}/lines_plan.(png|pdf|svg|dxf), "
+          "lines_plan_bow.png, lines_plan_stern.png")
+    # whole metres up to the highest draft at which the trimmed waterplane stays below the deck
+    top = min(highest_draft(bare, part["depth"], part["lpp"], t) for t in TRIMS)
+    cof = curves_of_form(bare, np.arange(1.0, np.floor(top) + 0.5, 1.0), lpp=part["lpp"], beam=part["beam"],
+                         depth=part["depth"], trims=TRIMS, design_draft=part["draft"])
     cof.write_csv(out / "curves_of_form.csv")
-    cof.plot(out / "curves_of_form.png", "Panamax container ship (bare hull)")
-    cof.plot_sac(out / "sac.png", hull.basic_curves["sac"], "Panamax container ship")
-    d = cof.design
-    print(f"at T = {part['draft']} m: volume {d['volume']:.1f} m3, KMt {d['kmt']:.3f} m, KMl {d['kml']:.2f} m, "
-          f"TPC {d['tpc']:.2f} t/cm, MCT1cm {d['mct1cm']:.1f} t m/cm")
+    cof.plot(out / "curves_of_form.png", f"{NAME} (bare hull)")
+    cof.plot_sac(out / "sac.png", hull.basic_curves["sac"], NAME)
+    d = plan.hydrostatics
+    print(f"at T = {part['draft']} m (with bulb): volume {d['volume']:.1f} m3, Cb {d['cb']:.4f}, KMt {d['kmt']:.3f} m, "
+          f"KMl {d['kml']:.2f} m, TPC {d['tpc']:.2f} t/cm, MCT1cm {d['mct1cm']:.1f} t m/cm, S {d['wetted_surface']:.0f} m2")
+    if args.cad:
+        write_cad(composed, out)
+
+
+def write_cad(composed, out):
     try:
         from fairlines import cad
         for name, kw in (("ship.step", dict(schema="AP242")), ("ship.iges", {})):

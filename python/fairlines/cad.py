@@ -34,6 +34,13 @@ SEW_TOLERANCE = 1e-3
 PLANE_TOLERANCE = 1e-6
 #: Edge tolerance (m) of faces built from (u, v) trimming loops.
 FACE_TOLERANCE = 1e-7
+#: A trimming-loop vertex is looked for on an edge (exactly, by projection) only when within
+#: this distance (m) of the edge's sample polyline.
+COARSE_NEAR = 0.5
+#: Between two trimming-loop vertices on an edge of a face already built, the image of the
+#: (u, v) chord's midpoint may stray from that edge by this fraction of the chord: the loop
+#: is a chordal polygon of the seam (centimetres off it between vertices on a whole ship).
+CHORD_STRAY = 0.25
 #: A trimming loop turning more than this (degrees) at a vertex starts a new edge there.
 CORNER_DEG = 30.0
 #: Linear deflection (m) of the triangulation on which verify() measures the volume: OCCT's
@@ -96,26 +103,6 @@ def _patches(hull):
     return out
 
 
-def _loop_runs(a):
-    """A closed (u, v) polygon split at its corners (turns above CORNER_DEG): each run becomes
-    one edge, so that a seam meets its neighbour's one boundary edge one to one."""
-    a = a[np.r_[True, np.hypot(*np.diff(a, axis=0).T) > 1e-12]]
-    if np.hypot(*(a[-1] - a[0])) <= 1e-12:
-        a = a[:-1]
-    d = np.roll(a, -1, axis=0) - a
-    d_in = np.roll(d, 1, axis=0)
-    cosang = np.einsum("ij,ij->i", d, d_in) / (np.hypot(*d.T) * np.hypot(*d_in.T))
-    corners = np.flatnonzero(cosang < np.cos(np.radians(CORNER_DEG)))
-    if len(corners) == 0:
-        corners = np.array([0])
-    runs = []
-    for k, c in enumerate(corners):
-        nxt = corners[(k + 1) % len(corners)]
-        idx = np.arange(c, nxt + 1) if nxt > c else np.r_[np.arange(c, len(a)), np.arange(0, nxt + 1)]
-        runs.append(a[idx])
-    return runs
-
-
 def _pcurve(run):
     """Degree-1 B-spline through the (u, v) points (the exact polygon), chord-length knots."""
     from OCP.Geom2d import Geom2d_BSplineCurve
@@ -133,26 +120,102 @@ def _pcurve(run):
     return Geom2d_BSplineCurve(poles, knots, mults, 1)
 
 
-def _matching_edge(points, known):
-    """An edge of an already built face whose samples lie within SEW_TOLERANCE of every
-    point (k, 3) of a loop run, or None."""
-    for edge, samples in known:
-        if np.linalg.norm(samples[0] - points[0]) > SEW_TOLERANCE and np.linalg.norm(samples[-1] - points[0]) > SEW_TOLERANCE:
+def _on_polyline(points, line):
+    """Distance (m) of each point (k, 3) from the polyline ``line`` (n, 3)."""
+    a, b = line[:-1], line[1:]
+    ab = b - a
+    w = np.clip(np.einsum("pkj,kj->pk", points[:, None, :] - a[None], ab) / np.maximum(np.einsum("kj,kj->k", ab, ab), 1e-300), 0, 1)
+    return np.min(np.linalg.norm(points[:, None, :] - (a[None] + w[..., None] * ab[None]), axis=2), axis=1)
+
+
+def _loop_vertices(a):
+    """A closed (u, v) polygon's distinct vertices (repeats and the closing point dropped)."""
+    a = a[np.r_[True, np.hypot(*np.diff(a, axis=0).T) > 1e-12]]
+    return a[:-1] if len(a) > 1 and np.hypot(*(a[-1] - a[0])) <= 1e-12 else a
+
+
+def _corners(a):
+    """Indices of the vertices of a closed polygon where it turns more than CORNER_DEG."""
+    d = np.roll(a, -1, axis=0) - a
+    d_in = np.roll(d, 1, axis=0)
+    cosang = np.einsum("ij,ij->i", d, d_in) / (np.hypot(*d.T) * np.hypot(*d_in.T))
+    return set(np.flatnonzero(cosang < np.cos(np.radians(CORNER_DEG))).tolist())
+
+
+def _distance_to_edge(p, edge) -> float:
+    """Distance (m) from the point p (3,) to the edge's 3D curve (its ends included)."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.Extrema import Extrema_ExtPC
+    from OCP.gp import gp_Pnt
+    c = BRepAdaptor_Curve(edge)
+    ends = [c.Value(t) for t in (c.FirstParameter(), c.LastParameter())]
+    best = min(np.linalg.norm(p - [q.X(), q.Y(), q.Z()]) for q in ends)
+    ext = Extrema_ExtPC(gp_Pnt(*map(float, p)), c)
+    if ext.IsDone():
+        best = min([best] + [np.sqrt(ext.SquareDistance(i + 1)) for i in range(ext.NbExt())])
+    return float(best)
+
+
+def _shared_segments(s, a, known):
+    """For each segment a[i] -> a[i+1] of a closed (u, v) polygon on ``s``, the index into
+    ``known`` of the edge it runs along (both vertices on it within SEW_TOLERANCE, the chord's
+    midpoint within CHORD_STRAY of the chord), else None."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve  # noqa: F401 - OpenCASCADE present
+    P = np.asarray(s.evaluate(a[:, 0], a[:, 1]))
+    mid_uv = 0.5 * (a + np.roll(a, -1, axis=0))
+    M = np.asarray(s.evaluate(mid_uv[:, 0], mid_uv[:, 1]))
+    near = []
+    for p in P:
+        near.append({k for k, (e, samples) in enumerate(known)
+                     if _on_polyline(p[None], samples)[0] <= COARSE_NEAR and _distance_to_edge(p, e) <= SEW_TOLERANCE})
+    out = []
+    for i in range(len(a)):
+        j = (i + 1) % len(a)
+        chord = np.linalg.norm(P[j] - P[i])
+        common = [k for k in near[i] & near[j] if _distance_to_edge(M[i], known[k][0]) <= max(SEW_TOLERANCE, CHORD_STRAY * chord)]
+        out.append(common[0] if common else None)
+    return out, P
+
+
+def _loop_pieces(s, loop, known):
+    """A closed (u, v) polygon on ``s`` as pieces in order: ("shared", edge) for a run of
+    segments along one whole edge of a face already built (from one end of it to the other),
+    ("own", (k, 2) run) for the rest, split at corners so that each piece lies on one plane or
+    one seam."""
+    a = _loop_vertices(np.asarray(loop, float))
+    seg, P = _shared_segments(s, a, known)
+    for i, k in enumerate(seg):  # a shared run must span its edge end to end
+        if k is None:
             continue
-        a, b = samples[:-1], samples[1:]
-        ab = b - a
-        w = np.clip(np.einsum("pkj,kj->pk", points[:, None, :] - a[None], ab) / np.maximum(np.einsum("kj,kj->k", ab, ab), 1e-300), 0, 1)
-        d = np.min(np.linalg.norm(points[:, None, :] - (a[None] + w[..., None] * ab[None]), axis=2), axis=1)
-        if d.max() <= SEW_TOLERANCE:
-            return edge
-    return None
+        ends = known[k][1][[0, -1]]
+        lo, hi = i, i
+        while seg[(lo - 1) % len(a)] == k and (lo - 1) % len(a) != i:
+            lo -= 1
+        while seg[(hi + 1) % len(a)] == k and (hi + 1) % len(a) != i:
+            hi += 1
+        first, last = P[lo % len(a)], P[(hi + 1) % len(a)]
+        if min(np.linalg.norm(first - ends[0]) + np.linalg.norm(last - ends[1]),
+               np.linalg.norm(first - ends[1]) + np.linalg.norm(last - ends[0])) > 2 * SEW_TOLERANCE:
+            seg[i] = None
+    n = len(a)
+    breaks = _corners(a) | {i for i in range(n) if seg[i] != seg[i - 1]}
+    start = min(breaks) if breaks else 0
+    pieces, run = [], [start]
+    for step in range(1, n + 1):
+        i = (start + step) % n
+        run.append(i)
+        if i in breaks or step == n:
+            k = seg[run[0]]
+            pieces.append(("shared", known[k][0]) if k is not None else ("own", a[run]))
+            run = [i]
+    return pieces
 
 
 def _trimmed_face(s, geom, loops, known):
-    """A face of ``geom`` bounded by (u, v) polygons. A run of a loop that follows an edge of
-    a face already built (a seam with that subdomain) uses that very edge, with a p-curve on
-    this surface added by projection, so the two faces share it; the other runs get their
-    own degree-1 p-curves."""
+    """A face of ``geom`` bounded by (u, v) polygons. A run of a loop along a whole edge of a
+    face already built (a seam with that subdomain) uses that very edge, with a p-curve on
+    this surface added by projection, so the two faces share it exactly (the polygon is only
+    a chordal approximation of the seam); the other runs get their own degree-1 p-curves."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire
     from OCP.BRepLib import BRepLib
     from OCP.ShapeFix import ShapeFix_Edge, ShapeFix_Face
@@ -161,14 +224,12 @@ def _trimmed_face(s, geom, loops, known):
     face = None
     for loop in loops:
         wire = BRepBuilderAPI_MakeWire()
-        for run in _loop_runs(np.asarray(loop, float)):
-            mid = 0.5 * (run[1:] + run[:-1])
-            pts = np.asarray(s.evaluate(np.r_[run[:, 0], mid[:, 0]], np.r_[run[:, 1], mid[:, 1]]))
-            edge = _matching_edge(pts, known)
-            if edge is not None:
+        for kind, piece in _loop_pieces(s, loop, known):
+            if kind == "shared":
+                edge = piece
                 ShapeFix_Edge().FixAddPCurve(edge, geom, TopLoc_Location(), False, FACE_TOLERANCE)
             else:
-                edge = BRepBuilderAPI_MakeEdge(_pcurve(run), geom).Edge()
+                edge = BRepBuilderAPI_MakeEdge(_pcurve(piece), geom).Edge()
                 BRepLib.BuildCurves3d_s(edge)
             wire.Add(edge)
         if face is None:
@@ -180,16 +241,29 @@ def _trimmed_face(s, geom, loops, known):
     return fix.Face()
 
 
+def _whole_domain(s, loops) -> bool:
+    """Untrimmed: no loops, or one loop that is the parameter rectangle itself."""
+    if loops is None:
+        return True
+    if len(loops) != 1:
+        return False
+    a = _loop_vertices(np.asarray(loops[0], float))
+    box = np.array([[u, v] for u in s.domain_u for v in s.domain_v])
+    return len(a) == 4 and all(np.min(np.hypot(*(box - p).T)) <= 1e-12 for p in a)
+
+
 def _faces(patches):
-    """Faces of the patches: untrimmed ones first, then the trimmed ones, which take over the
-    edges they share with those (see _trimmed_face); returned in the patches' order."""
+    """Faces of the patches: untrimmed ones (whose edges are exact iso-curves) first, then the
+    trimmed ones, which take over the edges they share with those built before them (see
+    _trimmed_face); returned in the patches' order."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
     out: dict = {}
     known = []
-    for k in sorted(range(len(patches)), key=lambda k: patches[k][1] is not None):
+    for k in sorted(range(len(patches)), key=lambda k: not _whole_domain(*patches[k])):
         s, loops = patches[k]
         g = occ_surface(s)
-        out[k] = BRepBuilderAPI_MakeFace(g, FACE_TOLERANCE).Face() if loops is None else _trimmed_face(s, g, loops, known)
+        whole = _whole_domain(s, loops)
+        out[k] = BRepBuilderAPI_MakeFace(g, FACE_TOLERANCE).Face() if whole else _trimmed_face(s, g, loops, known)
         known += [(e, _edge_points(e, 201)) for e in _edges(out[k])]
     return [out[k] for k in range(len(patches))]
 

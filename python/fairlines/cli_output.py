@@ -49,7 +49,7 @@ def add_parsers(sub) -> None:
     hy = sub.add_parser("hydrostatics", help="curves of form over drafts (and trims): CSV and plots")
     _hull_arg(hy)
     hy.add_argument("-o", "--output", required=True, help="CSV table")
-    hy.add_argument("--drafts", default=None, help="FROM:TO:STEP or a comma list (m); default T/10 .. D in 10ths")
+    hy.add_argument("--drafts", default=None, help="FROM:TO:STEP or a comma list (m); default 19 from T/10 up to the deck (at every trim)")
     hy.add_argument("--trims", default="0", help="comma list of trims by the stern (m)")
     hy.add_argument("--plot", help="curves-of-form plot (.png/.pdf/.svg)")
     hy.add_argument("--sac-plot", help="SAC at the design draft (against the description's SAC when known)")
@@ -117,18 +117,20 @@ def _floats(text):
 
 
 def _hydrostatics(args) -> int:
-    from .curves_of_form import curves_of_form
+    from .curves_of_form import curves_of_form, highest_draft
     hull, part, name, hull_obj = _load(args)
     if not isinstance(hull, NurbsSurface):
         raise InvalidInput("curves of form need one surface; expected a single surface or a bare-hull description")
     _need(part, ("lpp", "beam"))
     depth = part.get("depth")
+    trims = _floats(args.trims)
     if args.drafts:
         drafts = _floats(args.drafts)
     else:
         _need(part, ("draft", "depth"))
-        drafts = np.linspace(0.1 * part["draft"], depth, 19)
-    cof = curves_of_form(hull, drafts, lpp=part["lpp"], beam=part["beam"], depth=depth, trims=_floats(args.trims),
+        top = min(highest_draft(hull, depth, part["lpp"], t) for t in trims)
+        drafts = np.linspace(0.1 * part["draft"], top, 19)
+    cof = curves_of_form(hull, drafts, lpp=part["lpp"], beam=part["beam"], depth=depth, trims=trims,
                          design_draft=part.get("draft"))
     cof.write_csv(args.output)
     print(f"wrote {args.output}: {len(cof.rows)} rows")

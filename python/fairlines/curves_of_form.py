@@ -17,7 +17,7 @@ import numpy as np
 from ._native import InvalidInput, NurbsSurface
 from . import _native
 
-__all__ = ["CurvesOfForm", "COLUMNS", "curves_of_form"]
+__all__ = ["CurvesOfForm", "COLUMNS", "curves_of_form", "highest_draft"]
 
 #: Table columns: (key of Hydrostatics.as_dict(), heading with unit).
 COLUMNS = (
@@ -27,6 +27,9 @@ COLUMNS = (
     ("kmt", "KMt_m"), ("kml", "KMl_m"), ("cb", "Cb"), ("cp", "Cp"), ("cm", "Cm"), ("cwp", "Cwp"),
     ("wetted_surface", "wetted_surface_m2"), ("inertia_t", "I_T_m4"), ("inertia_l", "I_L_m4"),
 )
+#: Points along each parameter at which the surface's length is found (its ends are the
+#: clamped boundaries, so the grid's extreme points are exact).
+EXTENT_SAMPLES = 65
 #: Quantities drawn against the draft in :meth:`CurvesOfForm.plot`.
 PLOTTED = ("displacement", "lcb", "vcb", "lcf", "waterplane_area", "tpc", "mct1cm", "kmt", "kml",
            "wetted_surface", "cb", "cp", "cm", "cwp")
@@ -114,10 +117,12 @@ def curves_of_form(surface: NurbsSurface, drafts: Sequence[float], *, lpp: float
     """Hydrostatics of ``surface`` at every draft (m above base) and trim (m by the stern).
 
     lpp, beam    the ship's Lpp (AP at x = 0) and B (m) for the coefficients and the trim.
-    depth        D (m): drafts above it are refused (so are waterplanes above the surface's
-                 highest point, by fl.hydrostatics).
+    depth        D (m): a waterplane above the deck anywhere along the hull is refused
+                 (upright: a draft above D; trimmed: above D at the end the trim sinks), as
+                 is one above the surface's highest point (by fl.hydrostatics).
     design_draft T (m): its upright hydrostatics and SAC are kept for the SAC plot.
-    Raises InvalidInput for a draft <= 0 or above the depth / the surface's top, or bad options.
+    Raises InvalidInput for a draft <= 0, a waterplane above the deck or the surface's top, or
+    bad options.
     """
     drafts = np.atleast_1d(np.asarray(drafts, float))
     if drafts.size == 0 or not np.all(np.isfinite(drafts)) or np.any(drafts <= 0):
@@ -125,6 +130,13 @@ def curves_of_form(surface: NurbsSurface, drafts: Sequence[float], *, lpp: float
     if depth is not None and np.any(drafts > depth):
         raise InvalidInput(f"drafts {drafts[drafts > depth].tolist()} m are above the depth {depth} m (the deck); "
                            "expected drafts <= depth")
+    if depth is not None:
+        for t in trims:
+            top = highest_draft(surface, depth, lpp, t)
+            if np.any(drafts > top):
+                raise InvalidInput(f"at trim {t:g} m the drafts {drafts[drafts > top].tolist()} m put the waterplane above "
+                                   f"the deck (depth {depth} m) at the {'aft' if t > 0 else 'fore'} end; expected drafts "
+                                   f"<= {top:.4g} m at that trim")
     mid = 0.5 * float(lpp)
     rows = []
     for t in trims:
@@ -139,6 +151,21 @@ def curves_of_form(surface: NurbsSurface, drafts: Sequence[float], *, lpp: float
         design = hd.as_dict()
         sac = (np.asarray(hd.sac_x), np.asarray(hd.sac_area))
     return CurvesOfForm(rows, dict(lpp=float(lpp), beam=float(beam), depth=depth), design, sac)
+
+
+def highest_draft(surface: NurbsSurface, depth: float, lpp: float, trim: float = 0.0) -> float:
+    """The largest draft (m, at Lpp / 2) whose waterplane, trimmed by ``trim`` (m by the stern,
+    over ``lpp``), stays at or below the deck z = ``depth`` over the surface's whole length."""
+    x = _x_extent(surface)
+    sink = max(float(trim) * (0.5 * lpp - xe) / lpp for xe in x)  # rise of the waterline above T
+    return float(depth) - max(sink, 0.0)
+
+
+def _x_extent(surface):
+    """(x_min, x_max) of the surface, from a grid of points on it."""
+    g = np.asarray(surface.evaluate_grid(np.linspace(*surface.domain_u, EXTENT_SAMPLES),
+                                         np.linspace(*surface.domain_v, EXTENT_SAMPLES)))[..., 0]
+    return float(g.min()), float(g.max())
 
 
 def midship_x(surface, mid):

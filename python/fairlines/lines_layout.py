@@ -1,12 +1,20 @@
 """Sheet layout of a lines plan: where each view goes on an A3 sheet, at which scale, and the
 drawing primitives (lines, grid, labels, title block) in drawing metres at model scale.
 
-Profile at the top left (x right, z up), half-breadth plan below it on the same x, body plan
-to the right of the profile on the same z, title block in the lower right corner. The scale is
-the largest round 1:N at which all of it fits the sheet without overlaps.
+Two arrangements, whichever draws the profile larger (the stacked one on a tie):
+
+* stacked (a long ship): profile across the top of the sheet, half-breadth plan below it on
+  the same x, both as wide as the sheet allows; body plan below them at a larger scale of its
+  own, title block beside it in the lower right corner;
+* beside (a close-up of one end): body plan to the right of the profile on the same z and
+  scale, half-breadth plan below the profile, title block in the lower right corner.
+
+Scales are round 1:N (``_SCALES``), the largest drawing at which everything fits.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -16,12 +24,46 @@ __all__ = ["layout"]
 
 #: Title block size (mm on paper).
 TITLE_MM = (118.0, 92.0)
+#: Characters per line of the title block's notes (1.6 mm text across its width).
+NOTE_CHARS = 92
 #: Waterlines are labelled in the half-breadth plan at this fraction of the drawn x range.
 WL_LABEL_AT = 0.72
 #: Clear space kept between two labels (mm on paper).
 LABEL_PAD_MM = 0.8
 #: Band left for labels outside a view (mm on paper).
 LABEL_MM = 9.0
+#: Space between the half-breadth plan's labels and the body plan below it (mm on paper).
+BODY_GAP_MM = 2.0
+#: Label bands (in LABEL_MM) above a body plan of its own (title, centre line, station
+#: numbers) and below it (buttock numbers, AFT / FORE).
+BODY_BAND = 1.5
+
+
+@dataclass
+class _Frame:
+    """Model extents the views need (m): x range drawn, z from the lowest point (or the base)
+    to the deck, the largest half-breadth and the largest expanded diagonal offset."""
+
+    x0: float
+    x1: float
+    z_lo: float
+    z_top: float
+    y_max: float
+    d_max: float
+
+
+@dataclass
+class _Body:
+    """Where the body plan goes: centre line at drawing x ``xb``, base at drawing y ``yb``,
+    magnified ``f`` times over the main scale."""
+
+    xb: float
+    yb: float
+    f: float
+
+    def at(self, y, z) -> np.ndarray:
+        """Drawing points of body-plan coordinates (y signed: < 0 aft side, z up)."""
+        return np.column_stack([self.xb + self.f * np.asarray(y, float), self.yb + self.f * np.asarray(z, float)])
 
 
 def _clip_x(p: np.ndarray, x0: float, x1: float) -> list[np.ndarray]:
@@ -32,66 +74,123 @@ def _clip_x(p: np.ndarray, x0: float, x1: float) -> list[np.ndarray]:
     return [p[r] for r in np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1) if len(r) > 1]
 
 
-def _frame(plan, xr, lo, hi):
-    """Model extents the views need: (x0, x1, z_lo, z_top, y_max, d_max)."""
+def _frame(plan, xr, lo, hi) -> _Frame:
     p = plan.particulars
-    z_lo = min(0.0, lo[2])
-    z_top = max(p["depth"], hi[2])
-    y_max = max(0.5 * p["beam"], hi[1])
     d_max = max([np.hypot(piece[:, 1], piece[:, 2] - zc).max() for _, (zc, _a), cuts in plan.diagonals
                  for c in cuts for piece in _clip_x(c, *xr)] + [0.0])
-    return xr[0], xr[1], z_lo, z_top, y_max, d_max
+    return _Frame(xr[0], xr[1], min(0.0, lo[2]), max(p["depth"], hi[2]), max(0.5 * p["beam"], hi[1]), d_max)
 
 
-def _choose_scale(x0, x1, z_lo, z_top, y_max, d_max):
-    """Smallest N (largest drawing) at which the views and the title block fit the sheet."""
+def _beside_scale(f: _Frame):
+    """Smallest N at which profile + body plan side by side, the half-breadth plan and the
+    title block fit the sheet, or None."""
     W, H = SHEET_MM
     for n in _SCALES:
         k = 1000.0 / n  # mm per model metre
-        gap = GAP_MM
-        width = MARGIN_MM + LABEL_MM + (x1 - x0) * k + gap + 2 * y_max * k + LABEL_MM + MARGIN_MM
-        height = MARGIN_MM + LABEL_MM + (z_top - z_lo) * k + gap + (y_max + d_max) * k + LABEL_MM + MARGIN_MM
-        plan_right = MARGIN_MM + LABEL_MM + (x1 - x0) * k + LABEL_MM
-        body_bottom = MARGIN_MM + LABEL_MM + (z_top - z_lo) * k + LABEL_MM
+        width = MARGIN_MM + LABEL_MM + (f.x1 - f.x0) * k + GAP_MM + 2 * f.y_max * k + LABEL_MM + MARGIN_MM
+        height = MARGIN_MM + LABEL_MM + (f.z_top - f.z_lo) * k + GAP_MM + (f.y_max + f.d_max) * k + LABEL_MM + MARGIN_MM
+        plan_right = MARGIN_MM + LABEL_MM + (f.x1 - f.x0) * k + LABEL_MM
+        body_bottom = MARGIN_MM + LABEL_MM + (f.z_top - f.z_lo) * k + LABEL_MM
         title_fits = (W - MARGIN_MM - TITLE_MM[0] >= plan_right) or (H - MARGIN_MM - TITLE_MM[1] >= height - MARGIN_MM)
-        title_below_body = H - MARGIN_MM - TITLE_MM[1] >= body_bottom
-        if width <= W and height <= H and title_fits and title_below_body:
+        if width <= W and height <= H and title_fits and H - MARGIN_MM - TITLE_MM[1] >= body_bottom:
             return n
-    return _SCALES[-1]
+    return None
+
+
+def _stacked_top_mm(f: _Frame, k: float) -> float:
+    """Paper height (mm) from the sheet's top edge to the bottom of the half-breadth plan's
+    labels in the stacked arrangement."""
+    return MARGIN_MM + 2 * LABEL_MM + (f.z_top - f.z_lo) * k + GAP_MM + (f.y_max + f.d_max) * k + LABEL_MM
+
+
+def _stacked_scales(f: _Frame):
+    """(N, N_body) of the stacked arrangement: the smallest N at which profile and plan fit
+    the sheet's width with the title block below them, and the body plan's N_body < N that
+    fills the band left of the title block; or None."""
+    W, H = SHEET_MM
+    for n in _SCALES:
+        k = 1000.0 / n
+        if 2 * (MARGIN_MM + LABEL_MM) + (f.x1 - f.x0) * k > W:
+            continue
+        top = _stacked_top_mm(f, k)
+        if H - MARGIN_MM - TITLE_MM[1] < top:
+            continue
+        band_h = H - MARGIN_MM - top - BODY_GAP_MM - 2 * BODY_BAND * LABEL_MM
+        band_w = W - 2 * MARGIN_MM - TITLE_MM[0] - GAP_MM - 2 * LABEL_MM
+        kb = min(band_h / (f.z_top - f.z_lo), band_w / (2 * f.y_max))
+        nb = next((s for s in _SCALES if 1000.0 / s <= kb), None)
+        return (n, nb) if nb is not None and nb < n else None
+    return None
 
 
 def layout(plan, xr, lo, hi) -> None:
-    """Fill plan.scale, plan.offsets and plan.primitives (see the module docstring)."""
-    x0, x1, z_lo, z_top, y_max, d_max = _frame(plan, xr, lo, hi)
-    n = _choose_scale(x0, x1, z_lo, z_top, y_max, d_max)
+    """Fill plan.scale, plan.body_scale, plan.offsets, plan.factors and plan.primitives (see
+    the module docstring)."""
+    f = _frame(plan, xr, lo, hi)
+    stacked, beside = _stacked_scales(f), _beside_scale(f)
+    if stacked is not None and (beside is None or stacked[0] <= beside):
+        n, nb = stacked
+    else:
+        n = beside if beside is not None else _SCALES[-1]
+        nb = n
     m = n / 1000.0  # model metres per paper mm
-    gap = GAP_MM * m
-    yc = z_lo - gap - y_max            # plan centre line
-    xb = x1 + gap + y_max              # body plan centre line
-    plan.scale = n
-    plan.offsets = {"profile": (0.0, 0.0), "plan": (0.0, yc), "body": (xb, 0.0)}
-    # Sheet placement: the profile's top-left label band starts at the margin.
-    left = x0 - (MARGIN_MM + LABEL_MM) * m
-    top = z_top + (MARGIN_MM + LABEL_MM) * m
-    plan.sheet = (left, top - SHEET_MM[1] * m, left + SHEET_MM[0] * m, top)
+    yc = f.z_lo - GAP_MM * m - f.y_max  # plan centre line
+    W, H = SHEET_MM
+    if nb == n:  # beside
+        body = _Body(f.x1 + GAP_MM * m + f.y_max, 0.0, 1.0)
+        left = f.x0 - (MARGIN_MM + LABEL_MM) * m
+        top = f.z_top + (MARGIN_MM + LABEL_MM) * m
+    else:
+        spare = W - 2 * (MARGIN_MM + LABEL_MM) - (f.x1 - f.x0) * 1000.0 / n
+        left = f.x0 - (MARGIN_MM + LABEL_MM + 0.5 * spare) * m
+        top = f.z_top + (MARGIN_MM + 2 * LABEL_MM) * m
+        body = _body_in_band(f, n, nb, left, top)
+    plan.scale, plan.body_scale = n, nb
+    plan.offsets = {"profile": (0.0, 0.0), "plan": (0.0, yc), "body": (body.xb, body.yb)}
+    plan.factors = {"profile": 1.0, "plan": 1.0, "body": body.f}
+    plan.sheet = (left, top - H * m, left + W * m, top)
     prims: list = []
-    _grid(plan, prims, x0, x1, z_lo, z_top, y_max, d_max, yc, xb, m)
-    _curves(plan, prims, x0, x1, yc, xb)
+    _grid(plan, prims, f, yc, body, m)
+    _curves(plan, prims, f, yc, body)
     _title_block(plan, prims, m)
     plan.primitives = _drop_overlapping_labels(prims, m)
 
 
+def _body_in_band(f: _Frame, n: float, nb: float, left: float, top: float) -> _Body:
+    """The body plan centred in the band below the half-breadth plan, left of the title block."""
+    m = n / 1000.0
+    fb = n / nb
+    band_top = top - (_stacked_top_mm(f, 1000.0 / n) + BODY_GAP_MM) * m
+    band_bottom = top - (SHEET_MM[1] - MARGIN_MM) * m
+    band_left = left + MARGIN_MM * m
+    band_right = left + (SHEET_MM[0] - MARGIN_MM - TITLE_MM[0] - GAP_MM) * m
+    height = fb * (f.z_top - f.z_lo) + 2 * BODY_BAND * LABEL_MM * m
+    yb = band_top - 0.5 * (band_top - band_bottom - height) - BODY_BAND * LABEL_MM * m - fb * f.z_top
+    return _Body(0.5 * (band_left + band_right), yb, fb)
+
+
+def _label_box(x, y, text, size, ha, va, m):
+    w, h = (0.75 * size * len(text) + LABEL_PAD_MM) * m, size * m
+    x0 = x - {"left": 0.0, "center": 0.5, "right": 1.0}[ha] * w
+    y0 = y - {"bottom": 0.0, "baseline": 0.0, "center": 0.5, "top": 1.0}[va] * h
+    return (x0, y0, x0 + w, y0 + h)
+
+
 def _drop_overlapping_labels(prims, m):
-    """Station labels in the body plan crowd where the sections end close together: a
-    label is dropped when it would overlap one already placed (boxes from the text size)."""
+    """Station and waterline labels crowd where the lines close up: a label moves to its first
+    alternative place that overlaps no label already placed, or is dropped (boxes from the
+    text size)."""
     boxes, out = [], []
     for pr in prims:
         if isinstance(pr, Text) and pr.layer in ("STATIONS", "WATERLINES"):
-            w, h = (0.75 * pr.size * len(pr.text) + LABEL_PAD_MM) * m, pr.size * m
-            box = (pr.x - 0.5 * w, pr.y, pr.x + 0.5 * w, pr.y + h)
-            if any(b[0] < box[2] and box[0] < b[2] and b[1] < box[3] and box[1] < b[3] for b in boxes):
+            for x, y, ha, va in ((pr.x, pr.y, pr.ha, pr.va),) + tuple(pr.alternatives):
+                box = _label_box(x, y, pr.text, pr.size, ha, va, m)
+                if not any(b[0] < box[2] and box[0] < b[2] and b[1] < box[3] and box[1] < b[3] for b in boxes):
+                    break
+            else:
                 continue
             boxes.append(box)
+            pr = Text(x, y, pr.text, pr.layer, pr.size, ha, va, pr.rotation)
         out.append(pr)
     return out
 
@@ -100,64 +199,70 @@ def _line(prims, pts, layer, name=""):
     prims.append(Polyline(np.asarray(pts, float), layer, False, name))
 
 
-def _grid(plan, prims, x0, x1, z_lo, z_top, y_max, d_max, yc, xb, m):
+def _grid(plan, prims, f: _Frame, yc, body: _Body, m):
     p = plan.particulars
     lab = 0.5 * LABEL_MM * m
+    x0, x1 = f.x0, f.x1
     spacing = p["lpp"] / STATIONS_PER_LPP
     # Stations: across profile and plan, numbered above the profile and below the plan.
     for label, x, _ in plan.stations:
         n = x / spacing
         layer = "PERPENDICULARS" if abs(n) < 1e-9 or abs(n - STATIONS_PER_LPP) < 1e-9 else "GRID"
-        _line(prims, [[x, z_lo], [x, z_top]], layer)
-        _line(prims, [[x, yc - d_max], [x, yc + y_max]], layer)
+        _line(prims, [[x, f.z_lo], [x, f.z_top]], layer)
+        _line(prims, [[x, yc - f.d_max], [x, yc + f.y_max]], layer)
         size = 2.2 if n == int(n) else 1.6
-        prims.append(Text(x, z_top + lab, label, size=size))
-        prims.append(Text(x, yc - d_max - lab, label, size=size))
+        prims.append(Text(x, f.z_top + lab, label, size=size))
+        prims.append(Text(x, yc - f.d_max - lab, label, size=size))
     for n, tag in ((0, "AP"), (STATIONS_PER_LPP, "FP")):
         x = n * spacing
         if x0 - 1e-9 <= x <= x1 + 1e-9:
-            prims.append(Text(x, z_lo - 0.35 * lab, tag, size=2.2, va="top"))
+            prims.append(Text(x, f.z_lo - 0.35 * lab, tag, size=2.2, va="top"))
     # Waterlines: straight in profile and body plan.
+    right = body.at([f.y_max], [0.0])[0, 0] + 0.3 * lab
     for label, z, _ in plan.waterlines:
         layer = "DWL" if label == "DWL" else "GRID"
         _line(prims, [[x0, z], [x1, z]], layer)
-        _line(prims, [[xb - y_max, z], [xb + y_max, z]], layer)
+        _line(prims, body.at([-f.y_max, f.y_max], [z, z]), layer)
+        zb = body.at([0.0], [z])[0, 1]
         if label == "DWL":  # right of each view, clear of the waterline numbers
             prims.append(Text(x1 + 0.3 * lab, z, "DWL", size=1.8, ha="left", layer="DWL"))
-            prims.append(Text(xb + y_max + 0.3 * lab, z, "DWL", size=1.8, ha="left", layer="DWL"))
+            prims.append(Text(right, zb, "DWL", size=1.8, ha="left", layer="DWL"))
         else:
             prims.append(Text(x0 - 0.3 * lab, z, f"WL {label}", size=1.8, ha="right"))
-            if abs(z - p["draft"]) > 2.0 * m:
-                prims.append(Text(xb + y_max + 0.3 * lab, z, label, size=1.8, ha="left"))
-    for pts, layer in (([[x0, 0], [x1, 0]], "BASELINE"), ([[xb - y_max, 0], [xb + y_max, 0]], "BASELINE")):
-        _line(prims, pts, layer)
+            if abs(z - p["draft"]) * body.f > 2.0 * m:
+                prims.append(Text(right, zb, label, size=1.8, ha="left"))
+    _line(prims, [[x0, 0], [x1, 0]], "BASELINE")
+    _line(prims, body.at([-f.y_max, f.y_max], [0.0, 0.0]), "BASELINE")
     prims.append(Text(x0 - 0.3 * lab, 0.0, "BL", size=1.8, ha="right"))
     # Buttocks: straight in plan and body plan.
+    (_, yb_lo), (_, yb_top) = body.at([0.0, 0.0], [f.z_lo, f.z_top])
     for label, y, _ in plan.buttocks:
         _line(prims, [[x0, yc + y], [x1, yc + y]], "GRID")
         prims.append(Text(x0 - 0.3 * lab, yc + y, f"B {label}", size=1.8, ha="right"))
         for s in (-1, 1):
-            _line(prims, [[xb + s * y, z_lo], [xb + s * y, z_top]], "GRID")
-        prims.append(Text(xb + y, z_lo - 0.35 * lab, f"B{label}", size=1.5, va="top"))
-        prims.append(Text(xb - y, z_lo - 0.35 * lab, f"B{label}", size=1.5, va="top"))
+            _line(prims, body.at([s * y, s * y], [f.z_lo, f.z_top]), "GRID")
+            prims.append(Text(body.at([s * y], [0.0])[0, 0], yb_lo - 0.35 * lab, f"B{label}", size=1.5, va="top"))
     # Centre lines.
     _line(prims, [[x0, yc], [x1, yc]], "CENTRELINE")
     prims.append(Text(x0 - 0.3 * lab, yc, "CL", size=1.8, ha="right"))
-    _line(prims, [[xb, z_lo], [xb, z_top]], "CENTRELINE")
-    prims.append(Text(xb, z_top + 1.15 * lab, "CL", size=2.0))
-    prims.append(Text(xb, z_lo - 0.35 * lab, "CL", size=1.5, va="top"))
-    prims.append(Text(xb - 0.5 * y_max, z_lo - 1.3 * lab, "AFT", size=1.8, va="top"))
-    prims.append(Text(xb + 0.5 * y_max, z_lo - 1.3 * lab, "FORE", size=1.8, va="top"))
+    _line(prims, body.at([0.0, 0.0], [f.z_lo, f.z_top]), "CENTRELINE")
+    prims.append(Text(body.xb, yb_top + 1.15 * lab, "CL", size=2.0))
+    prims.append(Text(body.xb, yb_lo - 0.35 * lab, "CL", size=1.5, va="top"))
+    for s, side in ((-1, "AFT"), (1, "FORE")):
+        prims.append(Text(body.at([0.5 * s * f.y_max], [0.0])[0, 0], yb_lo - 1.3 * lab, side, size=1.8, va="top"))
     # Diagonal traces in the body plan.
     for label, (zc, ang), _ in plan.diagonals:
         t = np.tan(np.radians(ang))
-        y_end = min(y_max, (zc - z_lo) / t if t > 0 else y_max)
+        y_end = min(f.y_max, (zc - f.z_lo) / t if t > 0 else f.y_max)
         for s in (-1, 1):
-            _line(prims, [[xb, zc], [xb + s * y_end, zc - y_end * t]], "DIAGONALS")
-        prims.append(Text(xb + y_end + 0.2 * lab, zc - y_end * t, label, size=1.8, ha="left", layer="DIAGONALS"))
-    prims.append(Text(0.5 * (x0 + x1), z_top + 1.8 * lab, "PROFILE", size=2.5))
-    prims.append(Text(0.5 * (x0 + x1), yc + y_max + 0.6 * lab, "HALF-BREADTH PLAN", size=2.5))
-    prims.append(Text(xb, z_top + 2.0 * lab, "BODY PLAN", size=2.5))
+            _line(prims, body.at([0.0, s * y_end], [zc, zc - y_end * t]), "DIAGONALS")
+        end = body.at([y_end], [zc - y_end * t])[0]
+        prims.append(Text(end[0] + 0.2 * lab, end[1] + 0.3 * lab, label, size=1.8, ha="left", va="bottom",
+                          layer="DIAGONALS"))
+    prims.append(Text(0.5 * (x0 + x1), f.z_top + 1.8 * lab, "PROFILE", size=2.5))
+    prims.append(Text(0.5 * (x0 + x1), yc + f.y_max + 0.6 * lab, "HALF-BREADTH PLAN", size=2.5))
+    title = "BODY PLAN" if body.f == 1.0 else f"BODY PLAN  1:{plan.body_scale:g}"
+    prims.append(Text(body.xb, yb_top + 2.0 * lab, title, size=2.5))
 
 
 def _spread_x(waterlines, x0, x1):
@@ -177,19 +282,17 @@ def _spread_x(waterlines, x0, x1):
     return float(xs[int(np.argmax(gaps))])
 
 
-def _curves(plan, prims, x0, x1, yc, xb):
+def _curves(plan, prims, f: _Frame, yc, body: _Body):
+    x0, x1 = f.x0, f.x1
     mid = 0.5 * plan.particulars["lpp"]
     # Body plan: stations aft of midships on the left, forward on the right, midship both.
     for label, x, cuts in plan.stations:
         sides = [-1] if x < mid - 1e-9 else [1] if x > mid + 1e-9 else [-1, 1]
         for c in cuts:
             for s in sides:
-                prims.append(Polyline(np.column_stack([xb + s * c[:, 1], c[:, 2]]), "STATIONS", True, f"ST {label}"))
-        top = max((c for c in cuts), key=lambda c: c[:, 2].max(), default=None)
-        if top is not None and x0 <= x <= x1:
-            k = int(np.argmax(top[:, 2]))
-            prims.append(Text(xb + sides[0] * top[k, 1], top[k, 2], label, size=1.5, va="bottom",
-                              layer="STATIONS"))
+                prims.append(Polyline(body.at(s * c[:, 1], c[:, 2]), "STATIONS", True, f"ST {label}"))
+        if cuts and x0 <= x <= x1:
+            prims.append(_station_label(label, cuts, sides[0], body, plan.particulars["draft"]))
     x_lab = _spread_x(plan.waterlines, x0, x1)
     for label, z, cuts in plan.waterlines:
         layer = "DWL" if label == "DWL" else "WATERLINES"
@@ -200,25 +303,22 @@ def _curves(plan, prims, x0, x1, yc, xb):
                     k = int(np.argmin(np.abs(piece[:, 0] - x_lab)))
                     prims.append(Text(piece[k, 0], yc + piece[k, 1], label, size=1.4, va="bottom", layer="WATERLINES"))
     for label, y, cuts in plan.buttocks:
-        for c in cuts:
-            for piece in _clip_x(c, x0, x1):
-                prims.append(Polyline(piece[:, [0, 2]], "BUTTOCKS", True, f"B {label}"))
-        longest = max(cuts, key=len, default=None)
-        if longest is not None and len(_clip_x(longest, x0, x1)):
-            piece = max(_clip_x(longest, x0, x1), key=len)
+        pieces = [piece for c in cuts for piece in _clip_x(c, x0, x1)]
+        for piece in pieces:
+            prims.append(Polyline(piece[:, [0, 2]], "BUTTOCKS", True, f"B {label}"))
+        if pieces:
+            piece = max(pieces, key=len)
             k = int(np.argmax(piece[:, 0]))
             prims.append(Text(piece[k, 0], piece[k, 2], f"B{label}", size=1.5, ha="left", layer="BUTTOCKS"))
     for label, (zc, ang), cuts in plan.diagonals:
-        for c in cuts:
-            d = np.hypot(c[:, 1], c[:, 2] - zc)
-            for piece in _clip_x(np.column_stack([c[:, 0], d, c[:, 2]]), x0, x1):
-                prims.append(Polyline(np.column_stack([piece[:, 0], yc - piece[:, 1]]), "DIAGONALS", True, label))
-        if cuts:
-            c = max(cuts, key=len)
-            d = np.hypot(c[:, 1], c[:, 2] - zc)
-            k = int(np.argmax(d))
-            if x0 <= c[k, 0] <= x1:
-                prims.append(Text(c[k, 0], yc - d[k], label, size=1.8, va="top", layer="DIAGONALS"))
+        pieces = [piece for c in cuts
+                  for piece in _clip_x(np.column_stack([c[:, 0], np.hypot(c[:, 1], c[:, 2] - zc), c[:, 2]]), x0, x1)]
+        for piece in pieces:
+            prims.append(Polyline(np.column_stack([piece[:, 0], yc - piece[:, 1]]), "DIAGONALS", True, label))
+        if pieces:
+            piece = max(pieces, key=lambda q: q[:, 1].max())
+            k = int(np.argmax(piece[:, 1]))
+            prims.append(Text(piece[k, 0], yc - piece[k, 1], label, size=1.8, va="top", layer="DIAGONALS"))
     for layer, curves in (("OUTLINE", plan.outline), ("KNUCKLES", plan.knuckles)):
         for c in curves:
             on_cl = np.abs(c[:, 1]).max() <= 1e-7 * plan.particulars["lpp"]
@@ -226,13 +326,36 @@ def _curves(plan, prims, x0, x1, yc, xb):
                 prims.append(Polyline(piece[:, [0, 2]], layer, True))
                 if not on_cl:  # the profile outline lies on the centre line of the other views
                     prims.append(Polyline(np.column_stack([piece[:, 0], yc + piece[:, 1]]), layer, True))
-            if on_cl:
-                continue
-            for s, sel in ((-1, c[:, 0] <= mid), (1, c[:, 0] >= mid)):
-                idx = np.flatnonzero(sel)
-                for r in np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1) if len(idx) else []:
-                    if len(r) > 1 and np.ptp(c[r, 1]) + np.ptp(c[r, 2]) > 0:
-                        prims.append(Polyline(np.column_stack([xb + s * c[r, 1], c[r, 2]]), layer, True))
+                    _body_outline(prims, piece, layer, mid, body)
+
+
+def _station_label(label, cuts, side, body: _Body, draft) -> Text:
+    """A station's number in the body plan: at its top end, else (where the tops crowd) at its
+    lower end on the centre line, else where it crosses half the draft."""
+    pts = np.concatenate(cuts)
+    hi, lo = pts[np.argmax(pts[:, 2])], pts[np.argmin(pts[:, 2])]
+    places = [body.at([side * hi[1]], [hi[2]])[0], body.at([side * lo[1]], [lo[2]])[0]]
+    ha = "right" if side < 0 else "left"
+    alts = [(places[1][0], places[1][1], ha, "bottom")]
+    for c in cuts:
+        k = np.flatnonzero(np.diff(np.sign(c[:, 2] - 0.5 * draft)) != 0)
+        if len(k):
+            y = max(abs(np.interp(0.5 * draft, c[[i, i + 1], 2], c[[i, i + 1], 1])) if c[i, 2] != c[i + 1, 2]
+                    else abs(c[i, 1]) for i in k)
+            q = body.at([side * y], [0.5 * draft])[0]
+            alts.append((q[0], q[1], ha, "bottom"))
+            break
+    return Text(places[0][0], places[0][1], label, size=1.5, va="bottom", layer="STATIONS", alternatives=tuple(alts))
+
+
+def _body_outline(prims, c, layer, mid, body: _Body):
+    """An outline or knuckle curve off the centre plane in the body plan: its part aft of
+    midships on the left, forward on the right."""
+    for s, sel in ((-1, c[:, 0] <= mid), (1, c[:, 0] >= mid)):
+        idx = np.flatnonzero(sel)
+        for r in np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1) if len(idx) else []:
+            if len(r) > 1 and np.ptp(c[r, 1]) + np.ptp(c[r, 2]) > 0:
+                prims.append(Polyline(body.at(s * c[r, 1], c[r, 2]), layer, True))
 
 
 def _fmt(h, key, fmt, unit=""):
@@ -275,9 +398,17 @@ def _title_block(plan, prims, m):
             prims.append(Text(xk, yy, key, layer="TITLE", size=2.0, ha="left"))
             prims.append(Text(xk + 17 * m, yy, val, layer="TITLE", size=2.0, ha="left"))
             yy -= row
-    src = (h or {}).get("source", "no hydrostatics")
-    prims.append(Text(x_l + 3 * m, y_b + 6.5 * m, f"Hydrostatics at the DWL: {src}; coefficients on Lpp, B, T",
-                      layer="TITLE", size=1.6, ha="left"))
-    prims.append(Text(x_l + 3 * m, y_b + 3.0 * m,
-                      "Stations black, waterlines blue, buttocks red, diagonals green, knuckles magenta",
-                      layer="TITLE", size=1.6, ha="left"))
+    src = f"Hydrostatics at the DWL: {(h or {}).get('source', 'none')}; coefficients on Lpp, B, T"
+    notes = _wrap(src, NOTE_CHARS) + ["Stations black, waterlines blue, buttocks red, diagonals green, knuckles magenta"]
+    for k, note in enumerate(reversed(notes)):
+        prims.append(Text(x_l + 3 * m, y_b + (3.0 + 3.0 * k) * m, note, layer="TITLE", size=1.6, ha="left"))
+
+
+def _wrap(text: str, width: int) -> list[str]:
+    """Words of ``text`` in lines of at most ``width`` characters."""
+    lines = [""]
+    for word in text.split():
+        if lines[-1] and len(lines[-1]) + 1 + len(word) > width:
+            lines.append("")
+        lines[-1] = f"{lines[-1]} {word}".strip()
+    return lines

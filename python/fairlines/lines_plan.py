@@ -48,8 +48,8 @@ END_NUDGE = 1e-9
 _CAP_PARTS = (2, 3, 4)
 #: Stations per Lpp.
 STATIONS_PER_LPP = 20
-#: Drawing scales 1:N tried, smallest first (N = {1, 2, 2.5, 3, 4, 5} x 10^k).
-_SCALES = [m * 10 ** k for k in range(0, 5) for m in (1, 2, 2.5, 3, 4, 5)]
+#: Drawing scales 1:N tried, smallest first (N = {1, 1.25, 1.5, 2, 2.5, 3, 4, 5, 6, 7.5} x 10^k).
+_SCALES = [m * 10 ** k for k in range(0, 5) for m in (1, 1.25, 1.5, 2, 2.5, 3, 4, 5, 6, 7.5)]
 #: A3 landscape sheet and its margin (mm).
 SHEET_MM = (420.0, 297.0)
 MARGIN_MM = 10.0
@@ -70,7 +70,8 @@ class Polyline:
 
 @dataclass
 class Text:
-    """A label at (x, y) drawing metres; ``size`` paper height (mm)."""
+    """A label at (x, y) drawing metres; ``size`` paper height (mm); ``alternatives``: other
+    places ((x, y, ha, va) tuples) the layout may move it to when it would overlap a label."""
 
     x: float
     y: float
@@ -80,6 +81,7 @@ class Text:
     ha: str = "center"
     va: str = "center"
     rotation: float = 0.0
+    alternatives: tuple = ()
 
 
 @dataclass
@@ -89,8 +91,11 @@ class LinesPlan:
     ``stations``, ``waterlines``, ``buttocks``, ``diagonals``: lists of (label, value, polylines
     (k, 3) in model metres); ``knuckles`` and ``outline``: lists of (k, 3) polylines;
     ``particulars`` (lpp, beam, draft, depth, name); ``hydrostatics`` (dict or None, with its
-    ``source``); ``scale`` N of 1:N on an A3 sheet; ``primitives``: the drawing (Polyline and
-    Text in drawing metres); ``offsets``: where each view's origin sits in the drawing.
+    ``source``); ``scale`` N of 1:N on an A3 sheet (profile and half-breadth plan);
+    ``body_scale`` N of the body plan (larger when it has a band of the sheet of its own);
+    ``primitives``: the drawing (Polyline and Text in drawing metres at 1:``scale``);
+    ``offsets``: where each view's origin sits in the drawing, ``factors`` each view's
+    magnification over 1:``scale``.
     """
 
     stations: list
@@ -104,6 +109,8 @@ class LinesPlan:
     scale: float = 1.0
     primitives: list = field(default_factory=list)
     offsets: dict = field(default_factory=dict)
+    factors: dict = field(default_factory=dict)
+    body_scale: float = 1.0
     sheet_mm: tuple = SHEET_MM
     title: str = "LINES PLAN"
 
@@ -116,7 +123,7 @@ class LinesPlan:
         """Drawing coordinates (k, 2) of ``view`` back to the model's plane coordinates:
         (x, z) for "profile", (x, y) for "plan", (y, z) for "body" (y signed: < 0 aft side)."""
         ox, oy = self.offsets[view]
-        return np.asarray(points, float)[:, :2] - [ox, oy]
+        return (np.asarray(points, float)[:, :2] - [ox, oy]) / self.factors.get(view, 1.0)
 
 
 def nice_step(span: float, count: float) -> float:
@@ -300,30 +307,61 @@ def _hydrostatics(hull, patches, p, dwl_cuts=()) -> dict | None:
     """Hydrostatics at the design draft for the title block, with where they come from."""
     try:
         if len(patches) == 1 and patches[0][1] is None:
-            s = patches[0][0]
-            from .curves_of_form import midship_x
-            h = _native.hydrostatics(s, p["draft"], length=p["lpp"], breadth=p["beam"],
-                                     midship_x=midship_x(s, 0.5 * p["lpp"])).as_dict()
+            h = _quadrature(patches[0][0], p)
             full = h["x_min"] <= 1e-6 * p["lpp"] and h["x_max"] >= p["lpp"] * (1 - 1e-6)
             h["source"] = "NURBS quadrature" + ("" if full else
                                                 f", modelled part x {h['x_min']:.1f}-{h['x_max']:.1f} m only")
             return h
         if hasattr(hull, "mesh"):
-            from .compose import mesh_hydrostatics
-            m = mesh_hydrostatics(hull.mesh, p["draft"])
-            h = dict(volume=m["volume"], displacement=1.025 * m["volume"], lcb=m["lcb"], vcb=m["kb"],
-                     source="volume, LCB, KB from the composed mesh, waterplane from the DWL section; "
-                            "modelled part only")
-            h.update(waterplane_from_sections(dwl_cuts))
-            if "inertia_t" in h:
-                h["kmt"] = h["vcb"] + h["inertia_t"] / h["volume"]
-                h["kml"] = h["vcb"] + h["inertia_l"] / h["volume"]
-                h["mct1cm"] = h["displacement"] * h["inertia_l"] / h["volume"] / (100 * p["lpp"])
-                h["cwp"] = h["waterplane_area"] / (p["lpp"] * p["beam"])
-            return h
+            return _composed_hydrostatics(hull, patches[0][0], p, dwl_cuts)
     except (ValueError, RuntimeError):
         return None
     return None
+
+
+def _quadrature(s, p) -> dict:
+    from .curves_of_form import midship_x
+    return _native.hydrostatics(s, p["draft"], length=p["lpp"], breadth=p["beam"],
+                                midship_x=midship_x(s, 0.5 * p["lpp"])).as_dict()
+
+
+def _composed_hydrostatics(hull, bare, p, dwl_cuts) -> dict:
+    """A composed hull at the DWL: the bare hull by NURBS quadrature plus what the bulb and
+    blend change, measured as the difference between the composed mesh and the bare hull's
+    own mesh (so the meshes' chordal error cancels); the waterplane from the DWL section;
+    Am (so Cm) of the bare hull at Lpp / 2, which the bulb does not reach."""
+    from .compose import compose, mesh_hydrostatics
+    T = p["draft"]
+    q = _quadrature(bare, p)
+    bare_mesh = compose([bare])
+    mc, mb = mesh_hydrostatics(hull.mesh, T), mesh_hydrostatics(bare_mesh.mesh, T)
+    vol = q["volume"] + mc["volume"] - mb["volume"]
+    h = dict(volume=vol, displacement=q["displacement"] / q["volume"] * vol,
+             lcb=(q["volume"] * q["lcb"] + mc["volume"] * mc["lcb"] - mb["volume"] * mb["lcb"]) / vol,
+             vcb=(q["volume"] * q["vcb"] + mc["volume"] * mc["kb"] - mb["volume"] * mb["kb"]) / vol,
+             wetted_surface=q["wetted_surface"] + _mesh_wetted_surface(hull, T) - _mesh_wetted_surface(bare_mesh, T),
+             cb=vol / (p["lpp"] * p["beam"] * T), cm=q["cm"], cp=vol / (q["midship_area"] * p["lpp"]),
+             source="bare hull by NURBS quadrature, bulb and blend added from the composed mesh; "
+                    "waterplane from the DWL section")
+    h.update(waterplane_from_sections(dwl_cuts))
+    if "inertia_t" in h:
+        h["kmt"] = h["vcb"] + h["inertia_t"] / h["volume"]
+        h["kml"] = h["vcb"] + h["inertia_l"] / h["volume"]
+        h["mct1cm"] = h["displacement"] * h["inertia_l"] / h["volume"] / (100 * p["lpp"])
+        h["cwp"] = h["waterplane_area"] / (p["lpp"] * p["beam"])
+    return h
+
+
+def _mesh_wetted_surface(composed, draft: float) -> float:
+    """Full-ship area (m^2) of a composed hull's surface faces (not its caps) below z = draft."""
+    from .compose import _clip_below
+    tris = np.asarray(composed.mesh.vertices, float)[np.asarray(composed.mesh.faces)]
+    tris = tris[~np.isin(np.asarray(composed.face_part), _CAP_PARTS) & (tris[:, :, 2].min(axis=1) < draft)]
+    area = 0.0
+    for t in tris:
+        for q in _clip_below(t, draft) if t[:, 2].max() > draft else [t]:
+            area += 0.5 * np.linalg.norm(np.cross(q[1] - q[0], q[2] - q[0]))
+    return 2.0 * area
 
 
 def lines_plan(hull, *, lpp: float, beam: float, draft: float, depth: float, name: str = "",

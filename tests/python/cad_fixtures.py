@@ -29,8 +29,7 @@ def example_hull_surface() -> fl.NurbsSurface:
 @functools.lru_cache(maxsize=None)
 def example_composed_hull():
     """The example bare hull + bulb + blend composed into one closed half hull."""
-    h = example_hull()
-    return fl.compose_with_blend(h.bare_hull_surface(), h.bulbous_bow())
+    return example_hull().composed_hull()
 
 
 def box_barge_surface(length: float, breadth: float, depth: float) -> fl.NurbsSurface:
@@ -55,3 +54,10 @@ def wigley_surface(length: float = 100.0, breadth: float = 10.0, draft: float = 
     grid = np.stack([np.broadcast_to(xs[:, None], y.shape), y, np.broadcast_to(zs[None, :], y.shape)], axis=-1)
     grid = np.ascontiguousarray(grid.transpose(1, 0, 2)[::-1])
     return fl.fit_surface(grid, degree_u=3, degree_v=3).surface
+
+
+@functools.lru_cache(maxsize=None)
+def cruiser_stern_hull():
+    """The example ship's particulars designed with a cruiser stern (aft edge on y = 0)."""
+    d = example_hull().to_dict()["design"]
+    return fl.design_hull(**{k: v for k, v in d.items() if v is not None and k not in ("name", "stern")}, stern="cruiser")

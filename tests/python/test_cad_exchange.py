@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import fairlines as fl
-from cad_fixtures import EXAMPLE_PARTICULARS as P, example_composed_hull, example_hull_surface
+from cad_fixtures import EXAMPLE_PARTICULARS as P, cruiser_stern_hull, example_composed_hull, example_hull_surface
 
 pytest.importorskip("OCP")
 from fairlines import cad  # noqa: E402
@@ -16,6 +16,10 @@ STEP_DEVIATION = 1e-7
 IGES_DEVIATION = 2e-7
 #: Solid volume against our hydrostatics (relative).
 VOLUME_TOLERANCE = 5e-4
+#: Transom cap area against the shoelace area of the hull's aft edge sampled at
+#: TRANSOM_SAMPLES points (relative).
+TRANSOM_AREA_TOLERANCE = 1e-5
+TRANSOM_SAMPLES = 2001
 
 
 def _surfaces(hull):
@@ -25,6 +29,7 @@ def _surfaces(hull):
 @pytest.mark.parametrize("schema", ["AP214", "AP242"])
 def test_step_surfaces_round_trip(tmp_path, schema):
     c = example_composed_hull()
+    assert c.blend_note.startswith("blend:")  # bare hull, bulb and blend
     path = tmp_path / "s.step"
     cad.export_cad(c, path, what="surfaces", schema=schema)
     text = path.read_text(errors="replace")
@@ -53,6 +58,52 @@ def test_bare_hull_solid_step_closed_valid_volume(tmp_path, full):
     assert v["valid"] and v["closed"]
     expected = fl.hydrostatics(s, P["depth"]).volume * (1.0 if full else 0.5)
     assert v["volume"] == pytest.approx(expected, rel=VOLUME_TOLERANCE)
+
+
+def _planar_faces_normal_to_x(shape):
+    """(x, area) of the solid's planar faces whose normal is along x."""
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GeomAbs import GeomAbs_Plane
+    from OCP.GProp import GProp_GProps
+    out = []
+    for f in cad._faces_of(shape):
+        a = BRepAdaptor_Surface(f)
+        if a.GetType() != GeomAbs_Plane:
+            continue
+        pln = a.Plane()
+        if abs(pln.Axis().Direction().X()) > 1 - 1e-12:
+            props = GProp_GProps()
+            BRepGProp.SurfaceProperties_s(f, props)
+            out.append((pln.Location().X(), props.Mass()))
+    return out
+
+
+def test_transom_closed_by_one_planar_cap_of_the_transom_area(tmp_path):
+    s = example_hull_surface()
+    x_aft = float(np.asarray(s.control_points)[0, 0, 0])
+    path = tmp_path / "h.step"
+    cad.export_cad(s, path, what="solid")
+    caps = _planar_faces_normal_to_x(cad.read_cad(path))
+    # the transom: the hull's aft edge (v = 0) from the deck down to the centre plane, closed
+    # along the centre line to the deck; its area by the shoelace formula
+    u = np.linspace(*s.domain_u, TRANSOM_SAMPLES)
+    edge = np.asarray(s.evaluate(u, np.full_like(u, s.domain_v[0])))
+    assert np.ptp(edge[:, 0]) < 1e-9
+    yz = np.vstack([edge[:, 1:], [0.0, P["depth"]]])
+    area = 0.5 * abs(np.dot(yz[:, 0], np.roll(yz[:, 1], -1)) - np.dot(yz[:, 1], np.roll(yz[:, 0], -1)))
+    assert len(caps) == 1 and caps[0][0] == pytest.approx(x_aft, abs=1e-9)
+    assert caps[0][1] == pytest.approx(area, rel=TRANSOM_AREA_TOLERANCE)
+
+
+def test_cruiser_stern_solid_closes_without_a_transom_cap(tmp_path):
+    s = cruiser_stern_hull().bare_hull_surface()
+    path = tmp_path / "c.step"
+    cad.export_cad(s, path, what="solid")
+    shape = cad.read_cad(path)
+    v = cad.verify(shape)
+    assert v["valid"] and v["closed"] and not _planar_faces_normal_to_x(shape)
+    assert v["volume"] == pytest.approx(fl.hydrostatics(s, P["depth"]).volume / 2, rel=VOLUME_TOLERANCE)
 
 
 def test_composed_hull_solid_step_closed_valid_volume(tmp_path):

@@ -40,6 +40,17 @@ def test_drafts_above_the_deck_are_refused():
         curves_of_form(box_barge_surface(60, 12, 8), [9.0], lpp=60, beam=12)
 
 
+def test_trimmed_waterplane_above_the_deck_is_refused():
+    # box barge L 60, D 8: trim 2 m by the stern raises the waterline at the AP 1 m above T
+    barge = box_barge_surface(60, 12, 8)
+    curves_of_form(barge, [7.5], lpp=60, beam=12, depth=8)
+    curves_of_form(barge, [7.0], lpp=60, beam=12, depth=8, trims=(2.0,))
+    with pytest.raises(fl.InvalidInput, match="above the deck"):
+        curves_of_form(barge, [7.5], lpp=60, beam=12, depth=8, trims=(2.0,))
+    with pytest.raises(fl.InvalidInput, match="fore end"):
+        curves_of_form(barge, [7.5], lpp=60, beam=12, depth=8, trims=(-2.0,))
+
+
 def test_csv_and_plots(tmp_path):
     pytest.importorskip("matplotlib")
     s = example_hull_surface()

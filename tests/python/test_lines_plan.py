@@ -1,5 +1,5 @@
 """Lines plan: its body plan sections against fl.plane_cut, its DXF against the hull, its views
-and conventions on a forebody, a composed hull and a whole (Wigley) ship."""
+and conventions on the whole example ship (bare and composed) and a Wigley hull."""
 
 import numpy as np
 import pytest
@@ -20,8 +20,8 @@ def _dist_to_polyline(points, poly):
 
 
 @pytest.fixture(scope="module")
-def forebody_plan():
-    return lines_plan(example_hull_surface(), **P, name="Panamax forebody")
+def ship_plan():
+    return lines_plan(example_hull_surface(), **P, name="Panamax container ship")
 
 
 @pytest.fixture(scope="module")
@@ -33,26 +33,49 @@ def _drawn(plan, layer, name):
     return [p for p in plan.primitives if getattr(p, "layer", None) == layer and getattr(p, "name", "") == name]
 
 
-def test_body_plan_sections_equal_plane_cut_frames(forebody_plan):
+def test_body_plan_sections_equal_plane_cut_frames(ship_plan):
     s = example_hull_surface()
     checked = 0
-    for label, x, _ in forebody_plan.stations:
-        if not 123.0 < x < 244.0:
+    for label, x, _ in ship_plan.stations:
+        if not 0.0 < x < P["lpp"] or x == P["lpp"] / 2:
             continue
+        side = 1.0 if x > P["lpp"] / 2 else -1.0  # aft stations left of the centre line, fore right
         cut = fl.plane_cut(s, 0, x).points[:, 1:]
-        (drawn,) = _drawn(forebody_plan, "STATIONS", f"ST {label}")
-        yz = forebody_plan.to_model("body", drawn.points)
-        assert np.all(yz[:, 0] >= -1e-9)  # fore stations on the right of the centre line
+        (drawn,) = _drawn(ship_plan, "STATIONS", f"ST {label}")
+        yz = ship_plan.to_model("body", drawn.points)
+        assert np.all(side * yz[:, 0] >= -1e-9)
+        yz[:, 0] *= side
         assert _dist_to_polyline(cut, yz).max() < CHORD_TOLERANCE
         assert _dist_to_polyline(yz, cut).max() < CHORD_TOLERANCE
         checked += 1
-    assert checked >= 10
+    assert checked >= 20
 
 
-def test_dxf_passes_audit_and_its_dwl_lies_on_the_design_waterline(forebody_plan, tmp_path):
+def test_whole_ship_fills_the_sheet_width_and_the_body_plan_is_larger(ship_plan):
+    lo = min(o[:, 0].min() for o in ship_plan.outline)
+    hi = max(o[:, 0].max() for o in ship_plan.outline)
+    drawn_mm = (hi - lo) * 1000.0 / ship_plan.scale
+    assert drawn_mm > 0.8 * ship_plan.sheet_mm[0]
+    assert ship_plan.body_scale < ship_plan.scale
+    assert ship_plan.factors["body"] == pytest.approx(ship_plan.scale / ship_plan.body_scale)
+
+
+def test_title_block_coefficients_from_the_hydrostatics(ship_plan, composed_plan):
+    ref = fl.hydrostatics(example_hull_surface(), P["draft"], length=P["lpp"], breadth=P["beam"],
+                          midship_x=P["lpp"] / 2)
+    h = ship_plan.hydrostatics
+    for key in ("cb", "cp", "cm", "wetted_surface"):
+        assert h[key] == getattr(ref, key), key
+    c = composed_plan.hydrostatics  # the bulb adds volume and wetted surface, not midship area
+    assert c["cb"] == pytest.approx(c["volume"] / (P["lpp"] * P["beam"] * P["draft"]), rel=1e-14)
+    assert c["cm"] == pytest.approx(ref.cm, rel=1e-12) and c["cp"] == pytest.approx(c["cb"] / c["cm"], rel=1e-12)
+    assert c["volume"] > ref.volume and c["wetted_surface"] > ref.wetted_surface
+
+
+def test_dxf_passes_audit_and_its_dwl_lies_on_the_design_waterline(ship_plan, tmp_path):
     ezdxf = pytest.importorskip("ezdxf")
     path = tmp_path / "lines.dxf"
-    forebody_plan.save(path)
+    ship_plan.save(path)
     doc = ezdxf.readfile(str(path))
     assert len(doc.audit().errors) == 0
     splines = doc.modelspace().query('SPLINE[layer=="DWL"]')
@@ -60,7 +83,7 @@ def test_dxf_passes_audit_and_its_dwl_lies_on_the_design_waterline(forebody_plan
     s = example_hull_surface()
     for sp in splines:
         pts = np.array([[p.x, p.y] for p in sp.construction_tool().points(np.linspace(0, sp.construction_tool().max_t, 60))])
-        xy = forebody_plan.to_model("plan", pts)
+        xy = ship_plan.to_model("plan", pts)
         for x, y in xy:
             q = np.array([x, y, P["draft"]])
             assert np.linalg.norm(s.closest_point(q)[2] - q) < 1e-3
@@ -90,16 +113,16 @@ def test_whole_ship_body_plan_aft_left_fore_right():
                 assert np.all(side >= 0)
 
 
-def test_bow_closeup_has_quarter_stations_and_a_larger_scale(forebody_plan):
+def test_bow_closeup_has_quarter_stations_and_a_larger_scale(ship_plan):
     plan = closeup(example_hull_surface(), "bow", **P)
-    assert plan.scale < forebody_plan.scale
+    assert plan.scale < ship_plan.scale
     assert any(float(n) % 1 == 0.25 for n, _, _ in plan.stations)
 
 
-def test_svg_pdf_written(forebody_plan, tmp_path):
+def test_svg_pdf_written(ship_plan, tmp_path):
     pytest.importorskip("matplotlib")
     for suffix, head in ((".svg", b"<?xml"), (".pdf", b"%PDF")):
-        forebody_plan.save(tmp_path / f"l{suffix}")
+        ship_plan.save(tmp_path / f"l{suffix}")
         assert (tmp_path / f"l{suffix}").read_bytes()[:5].startswith(head)
 
 
@@ -110,9 +133,9 @@ def test_bad_input_is_named():
         lines_plan(example_hull_surface(), **P).save("x.doc")
 
 
-def test_waterplane_from_the_dwl_section_agrees_with_quadrature(forebody_plan):
+def test_waterplane_from_the_dwl_section_agrees_with_quadrature(ship_plan):
     from fairlines.lines_plan import waterplane_from_sections
-    dwl = [cuts for label, _, cuts in forebody_plan.waterlines if label == "DWL"][0]
+    dwl = [cuts for label, _, cuts in ship_plan.waterlines if label == "DWL"][0]
     w = waterplane_from_sections(dwl)
     h = fl.hydrostatics(example_hull_surface(), P["draft"])
     for key in ("waterplane_area", "lcf", "inertia_t", "inertia_l"):
@@ -121,7 +144,7 @@ def test_waterplane_from_the_dwl_section_agrees_with_quadrature(forebody_plan):
 
 def test_composed_title_block_has_waterplane_and_metacentres(composed_plan):
     h = composed_plan.hydrostatics
-    assert "mesh" in h["source"] and h["kmt"] == pytest.approx(h["vcb"] + h["inertia_t"] / h["volume"])
+    assert "quadrature" in h["source"] and "mesh" in h["source"] and h["kmt"] == pytest.approx(h["vcb"] + h["inertia_t"] / h["volume"])
 
 
 def test_example_writes_the_drawings(tmp_path, monkeypatch, capsys):
@@ -129,10 +152,10 @@ def test_example_writes_the_drawings(tmp_path, monkeypatch, capsys):
     import sys
     from cad_fixtures import ROOT
     pytest.importorskip("matplotlib")
-    monkeypatch.setattr(sys, "argv", ["lines_plan.py", "--out", str(tmp_path)])
+    monkeypatch.setattr(sys, "argv", ["lines_plan.py", "--out", str(tmp_path), "--docs", str(tmp_path)])
     runpy.run_path(str(ROOT / "examples" / "lines_plan.py"), run_name="__main__")
     text = capsys.readouterr().out
     assert "lines plan at 1:" in text and "KMt" in text
-    for name in ("lines_plan.png", "lines_plan.pdf", "lines_plan.dxf", "lines_plan_bow.png", "curves_of_form.csv",
-                 "sac.png"):
+    for name in ("lines_plan.png", "lines_plan.pdf", "lines_plan.dxf", "lines_plan_bow.png", "lines_plan_stern.png",
+                 "curves_of_form.csv", "sac.png"):
         assert (tmp_path / "lines" / name).stat().st_size > 1000
