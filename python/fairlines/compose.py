@@ -15,7 +15,13 @@ import numpy as np
 
 from . import _native
 from ._native import NurbsSurface
-from .hull import _integer
+
+
+def _integer(path: str, value: Any, lo: int | None) -> int:
+    """value as an int, or InvalidInput naming `path`."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or (lo is not None and int(value) < lo):
+        raise _native.InvalidInput(f"{path} is {value!r}; expected {'an integer' if lo is None else f'an integer >= {lo}'}")
+    return int(value)
 
 __all__ = [
     "BlendPlacement",

@@ -327,10 +327,3 @@ class Hull:
 
         kwargs.setdefault("draft", self.description.principal.draft)
         return fairness_report(self.bare_hull_surface(), **kwargs)
-
-
-def _integer(path: str, value: Any, lo: int | None) -> int:
-    """value as an int, or InvalidInput naming `path` (kept for fairlines.compose)."""
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or (lo is not None and int(value) < lo):
-        raise _native.InvalidInput(f"{path} is {value!r}; expected {'an integer' if lo is None else f'an integer >= {lo}'}")
-    return int(value)
