@@ -1,6 +1,8 @@
 """Surfaces for the grid and mesh tests and the mesh bench: analytic hulls made here, and the
 one real hull through example_hull_surface() (repoint it when the example hulls change)."""
 
+import pathlib
+
 import numpy as np
 
 import fairlines as fl
@@ -8,7 +10,7 @@ import fairlines as fl
 WIGLEY = dict(L=100.0, B=10.0, T=6.25, D=9.0)
 
 
-EXAMPLE = "examples/container_ship.json"
+EXAMPLE = pathlib.Path(__file__).resolve().parents[2] / "examples" / "container_ship.json"
 EXAMPLE_DRAFT = 11.0  # m, the design draft of the example ship
 
 
