@@ -7,7 +7,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['ConvergenceError', 'CurveFit', 'FairlinesError', 'Hydrostatics', 'InfeasibleFormParameters', 'InvalidInput', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PlaneCut', 'SkinResult', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'ellipse', 'equal_arc_length_points', 'fairness_of', 'fit_curve', 'fit_surface', 'form_parameter_names', 'form_parameters_of', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'plane_cut', 'revolve', 'section_area', 'section_knot_vector', 'section_straight_groups', 'sphere', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
+__all__: list[str] = ['ConvergenceError', 'CurveFit', 'Distribution', 'END_BAND', 'FairlinesError', 'FairnessWeights', 'FitOptions', 'FormBounds', 'FormCurveRequest', 'FormSolverOptions', 'Hydrostatics', 'InfeasibleFormParameters', 'InvalidInput', 'MAX_SHAPE_KNOB', 'MeshOptions', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PlaneCut', 'SectionDesign', 'SectionSpec', 'SkinResult', 'Spacing', 'SplineBound', 'SplineCondition', 'SplineDesignRequest', 'SplineFitPoint', 'SplineFlat', 'SplineIntegral', 'SplineShape', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'design_section', 'design_sections', 'design_spline_function', 'distribute', 'ellipse', 'equal_arc_length_points', 'fairness_of', 'fit_curve', 'fit_surface', 'form_parameter_names', 'form_parameters_of', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics', 'knot_line_parameters', 'mesh_quality', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'parameters_at_arc_length', 'plane_cut', 'revolve', 'scaled_jacobians', 'section_area', 'section_fullness_range', 'section_knot_vector', 'sphere', 'spline_function_knots', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
 class FairlinesError(RuntimeError):
     pass
 class InvalidInput(ValueError):
@@ -30,7 +30,7 @@ class NurbsCurve:
         ...
     def __init__(self, degree: typing.Any, knots: typing.Any, control_points: typing.Any, weights: typing.Any = None) -> None:
         """
-        degree >= 1; knots: n + degree + 1 non-decreasing values; control_points: (n, dim); weights: (n,) > 0 or None.
+        degree in [1, fairlines.limits.MAX_DEGREE]; knots: n + degree + 1 non-decreasing values; control_points: (n, dim); weights: (n,) > 0 or None.
         """
     def __repr__(self) -> str:
         ...
@@ -48,11 +48,11 @@ class NurbsCurve:
         """
     def derivatives(self, t: typing.Any, order: typing.Any = 1) -> typing.Any:
         """
-        Derivatives 0..order: (order + 1, dim) for a scalar t, (m, order + 1, dim) for an array.
+        Derivatives 0..order (order <= fairlines.limits.MAX_DERIVATIVE_ORDER): (order + 1, dim) for a scalar t, (m, order + 1, dim) for an array.
         """
     def elevate_degree(self, times: typing.Any = 1) -> NurbsCurve:
         """
-        New curve of degree + times; same shape.
+        New curve of degree + times (at most fairlines.limits.MAX_DEGREE); same shape.
         """
     def evaluate(self, t: typing.Any) -> typing.Any:
         """
@@ -60,7 +60,7 @@ class NurbsCurve:
         """
     def insert_knot(self, t: typing.SupportsFloat | typing.SupportsIndex, times: typing.Any = 1) -> NurbsCurve:
         """
-        New curve with knot t inserted `times` times; same shape.
+        New curve with knot t inserted `times` times (up to the degree); same shape.
         """
     def refine_knots(self, new_knots: typing.Any) -> NurbsCurve:
         """
@@ -132,7 +132,7 @@ class NurbsSurface:
         ...
     def curvature(self, u: typing.Any, v: typing.Any) -> typing.Any:
         """
-        (gaussian 1/m^2, mean 1/m) curvature; mean > 0 where the surface bends toward its normal.
+        (gaussian 1/m^2, mean 1/m) curvature; mean > 0 where the surface bends toward its normal. At a degenerate point (a pole) the limit from the interior; InvalidInput where there is none (a cone apex).
         """
     def derivatives(self, u: typing.Any, v: typing.Any, order: typing.Any = 1) -> typing.Any:
         """
@@ -140,7 +140,7 @@ class NurbsSurface:
         """
     def elevate_degree(self, direction: str, times: typing.Any = 1) -> NurbsSurface:
         """
-        New surface with the degree in 'u' or 'v' raised; same shape.
+        New surface with the degree in 'u' or 'v' raised (at most fairlines.limits.MAX_DEGREE); same shape.
         """
     def evaluate(self, u: typing.Any, v: typing.Any) -> typing.Any:
         """
@@ -148,7 +148,7 @@ class NurbsSurface:
         """
     def evaluate_grid(self, us: typing.Any, vs: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         """
-        Grid of points (len(us), len(vs), 3); basis values reused along grid lines.
+        Grid of points (len(us), len(vs), 3); basis values reused along grid lines. 3 len(us) len(vs) <= fairlines.limits.MAX_RESULT_VALUES.
         """
     def insert_knot(self, direction: str, t: typing.SupportsFloat | typing.SupportsIndex, times: typing.Any = 1) -> NurbsSurface:
         """
@@ -218,6 +218,44 @@ class NurbsVolume:
     @property
     def shape(self) -> typing.Annotated[list[int], "FixedSize(3)"]:
         ...
+class FitOptions:
+    """
+    Options of fit_curve and fit_surface (one direction); the defaults of both.
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def degree(self) -> int:
+        """
+        B-spline degree, 1 .. fairlines.limits.MAX_DEGREE
+        """
+    @degree.setter
+    def degree(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def knots(self) -> str:
+        """
+        interior knots: 'average' or 'hartley_judd'
+        """
+    @knots.setter
+    def knots(self, arg1: str) -> None:
+        ...
+    @property
+    def n_control(self) -> int:
+        """
+        control points; 0 interpolates (one per datum)
+        """
+    @n_control.setter
+    def n_control(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def parameterization(self) -> str:
+        """
+        data parameters: 'chord', 'centripetal' or 'uniform'
+        """
+    @parameterization.setter
+    def parameterization(self, arg1: str) -> None:
+        ...
 class CurveFit:
     """
     A fitted curve and its deviation from the data (metres).
@@ -256,6 +294,182 @@ class SurfaceFit:
         ...
     @property
     def surface(self) -> NurbsSurface:
+        ...
+class FairnessWeights:
+    """
+    Weights of the fairness objective (all >= 0, one of e1, e2, e3 > 0).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def e1(self) -> float:
+        """
+        weight of E1 = int |C'|^2 dt
+        """
+    @e1.setter
+    def e1(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def e2(self) -> float:
+        """
+        weight of E2 = int |C''|^2 dt
+        """
+    @e2.setter
+    def e2(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def e3(self) -> float:
+        """
+        weight of E3 = int |C'''|^2 dt
+        """
+    @e3.setter
+    def e3(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def length(self) -> float:
+        """
+        weight of the arc length
+        """
+    @length.setter
+    def length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class FormBounds:
+    """
+    Conditions on the control polygon that keep a section a section.
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def min_end_speed(self) -> float:
+        """
+        where an end tangent is given, the end derivative along it is at least this fraction of the chord
+        """
+    @min_end_speed.setter
+    def min_end_speed(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def monotone_axis(self) -> int:
+        """
+        0: x monotone, 1: y monotone, -1: none
+        """
+    @monotone_axis.setter
+    def monotone_axis(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def y_nonnegative(self) -> bool:
+        """
+        all control y >= 0
+        """
+    @y_nonnegative.setter
+    def y_nonnegative(self, arg0: bool) -> None:
+        ...
+class FormSolverOptions:
+    """
+    Options of the form-parameter solver.
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def continuation(self) -> bool:
+        """
+        False: aim at the requested values directly
+        """
+    @continuation.setter
+    def continuation(self, arg0: bool) -> None:
+        ...
+    @property
+    def max_iterations(self) -> int:
+        """
+        Newton iterations per start, 1 .. fairlines.limits.MAX_FORM_CURVE_ITERATIONS
+        """
+    @max_iterations.setter
+    def max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def multistart(self) -> int:
+        """
+        extra randomised starts (fairest kept), 0 .. fairlines.limits.MAX_FORM_CURVE_MULTISTART
+        """
+    @multistart.setter
+    def multistart(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def seed(self) -> int:
+        """
+        random seed of the multistart
+        """
+    @seed.setter
+    def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tolerance(self) -> float:
+        """
+        bound on the scaled constraint residuals, 0 < tol < 1e-3
+        """
+    @tolerance.setter
+    def tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class FormCurveRequest:
+    """
+    A form-parameter curve request without its offset points, tangents and start curve.
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def bounds(self) -> FormBounds:
+        """
+        FormBounds
+        """
+    @bounds.setter
+    def bounds(self, arg0: FormBounds) -> None:
+        ...
+    @property
+    def degree(self) -> int:
+        """
+        B-spline degree, 2 .. 15
+        """
+    @degree.setter
+    def degree(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def dim(self) -> int:
+        """
+        2 (plane curve) or 3 (space curve)
+        """
+    @dim.setter
+    def dim(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def fairness(self) -> FairnessWeights:
+        """
+        FairnessWeights
+        """
+    @fairness.setter
+    def fairness(self, arg0: FairnessWeights) -> None:
+        ...
+    @property
+    def n_control(self) -> int:
+        """
+        control points, degree + 1 .. fairlines.limits.MAX_FORM_CURVE_CONTROL_POINTS
+        """
+    @n_control.setter
+    def n_control(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def options(self) -> FormSolverOptions:
+        """
+        FormSolverOptions
+        """
+    @options.setter
+    def options(self, arg0: FormSolverOptions) -> None:
+        ...
+    @property
+    def params(self) -> dict[str, float]:
+        """
+        form parameters by name (fairlines.FORM_PARAMETERS)
+        """
+    @params.setter
+    def params(self, arg0: collections.abc.Mapping[str, typing.SupportsFloat | typing.SupportsIndex]) -> None:
         ...
 class SkinResult:
     """
@@ -300,6 +514,16 @@ class Hydrostatics:
         Scalar results as a dict.
         """
     @property
+    def bml(self) -> float:
+        """
+        I_L / V (m)
+        """
+    @property
+    def bmt(self) -> float:
+        """
+        I_T / V (m)
+        """
+    @property
     def breadth(self) -> float:
         ...
     @property
@@ -321,6 +545,26 @@ class Hydrostatics:
     def draft(self) -> float:
         ...
     @property
+    def inertia_l(self) -> float:
+        """
+        I_L, waterplane 2nd moment about the axis through F (m^4)
+        """
+    @property
+    def inertia_t(self) -> float:
+        """
+        I_T, waterplane 2nd moment about the centre line (m^4)
+        """
+    @property
+    def kml(self) -> float:
+        """
+        VCB + BMl (m above base)
+        """
+    @property
+    def kmt(self) -> float:
+        """
+        VCB + BMt (m above base)
+        """
+    @property
     def lcb(self) -> float:
         ...
     @property
@@ -329,6 +573,11 @@ class Hydrostatics:
     @property
     def length(self) -> float:
         ...
+    @property
+    def mct1cm(self) -> float:
+        """
+        moment to change trim 1 cm, GML taken as BML (t m/cm)
+        """
     @property
     def midship_area(self) -> float:
         ...
@@ -341,6 +590,16 @@ class Hydrostatics:
     @property
     def sac_x(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
+    @property
+    def tpc(self) -> float:
+        """
+        tonnes per cm immersion (t/cm)
+        """
+    @property
+    def trim(self) -> float:
+        """
+        trim by the stern (m)
+        """
     @property
     def vcb(self) -> float:
         ...
@@ -359,6 +618,11 @@ class Hydrostatics:
     @property
     def x_min(self) -> float:
         ...
+    @property
+    def z_max(self) -> float:
+        """
+        highest point of the surface (m)
+        """
 class PlaneCut:
     """
     A waterline / buttock / frame cut from a surface, with analytic curvature.
@@ -408,6 +672,432 @@ class PlaneCut:
         """
         plane position (m)
         """
+class SplineCondition:
+    """
+    f^(derivative)(x) = value (a form parameter of a basic curve).
+    """
+    name: str
+    def __init__(self, x: typing.SupportsFloat | typing.SupportsIndex, derivative: typing.SupportsInt | typing.SupportsIndex, value: typing.SupportsFloat | typing.SupportsIndex, name: str, combination: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] = []) -> None:
+        ...
+    @property
+    def combination(self) -> list[float]:
+        ...
+    @combination.setter
+    def combination(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def derivative(self) -> int:
+        ...
+    @derivative.setter
+    def derivative(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def value(self) -> float:
+        ...
+    @value.setter
+    def value(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def x(self) -> float:
+        ...
+    @x.setter
+    def x(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SplineIntegral:
+    """
+    int_{from_}^{to} x^power f(x) w(x) dx = value, w the product of the 1-D spline `factors`; with `centroid`
+    the condition is the centroid of f w instead.
+    """
+    name: str
+    def __init__(self, from_: typing.SupportsFloat | typing.SupportsIndex, to: typing.SupportsFloat | typing.SupportsIndex, value: typing.SupportsFloat | typing.SupportsIndex = 0.0, power: typing.SupportsInt | typing.SupportsIndex = 0, factors: collections.abc.Sequence[NurbsCurve] = [], centroid: typing.SupportsFloat | typing.SupportsIndex = ..., name: str = 'integral') -> None:
+        ...
+    @property
+    def centroid(self) -> float:
+        ...
+    @centroid.setter
+    def centroid(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def factors(self) -> list[NurbsCurve]:
+        ...
+    @factors.setter
+    def factors(self, arg0: collections.abc.Sequence[NurbsCurve]) -> None:
+        ...
+    @property
+    def from_(self) -> float:
+        ...
+    @from_.setter
+    def from_(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def power(self) -> int:
+        ...
+    @power.setter
+    def power(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def to(self) -> float:
+        ...
+    @to.setter
+    def to(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def value(self) -> float:
+        ...
+    @value.setter
+    def value(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SplineFlat:
+    """
+    f = value on [from_, to] exactly (left with G2 for cubics).
+    """
+    name: str
+    def __init__(self, from_: typing.SupportsFloat | typing.SupportsIndex, to: typing.SupportsFloat | typing.SupportsIndex, value: typing.SupportsFloat | typing.SupportsIndex, name: str) -> None:
+        ...
+    @property
+    def from_(self) -> float:
+        ...
+    @from_.setter
+    def from_(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def to(self) -> float:
+        ...
+    @to.setter
+    def to(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def value(self) -> float:
+        ...
+    @value.setter
+    def value(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SplineBound:
+    """
+    lower <= f <= upper on [from_, to] (NaN: no bound).
+    """
+    name: str
+    def __init__(self, from_: typing.SupportsFloat | typing.SupportsIndex, to: typing.SupportsFloat | typing.SupportsIndex, lower: typing.SupportsFloat | typing.SupportsIndex = ..., upper: typing.SupportsFloat | typing.SupportsIndex = ..., name: str = 'bound') -> None:
+        ...
+    @property
+    def from_(self) -> float:
+        ...
+    @from_.setter
+    def from_(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def lower(self) -> float:
+        ...
+    @lower.setter
+    def lower(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def to(self) -> float:
+        ...
+    @to.setter
+    def to(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def upper(self) -> float:
+        ...
+    @upper.setter
+    def upper(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SplineShape:
+    """
+    sign * f^(derivative) >= 0 on [from_, to] (derivative 1 or 2, sign +1 / -1).
+    """
+    name: str
+    def __init__(self, from_: typing.SupportsFloat | typing.SupportsIndex, to: typing.SupportsFloat | typing.SupportsIndex, derivative: typing.SupportsInt | typing.SupportsIndex, sign: typing.SupportsInt | typing.SupportsIndex, name: str = 'shape', margin: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    @property
+    def derivative(self) -> int:
+        ...
+    @derivative.setter
+    def derivative(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def from_(self) -> float:
+        ...
+    @from_.setter
+    def from_(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def margin(self) -> float:
+        ...
+    @margin.setter
+    def margin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def sign(self) -> int:
+        ...
+    @sign.setter
+    def sign(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def to(self) -> float:
+        ...
+    @to.setter
+    def to(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SplineFitPoint:
+    """
+    Pass near (x, y) with weight w (least squares).
+    """
+    def __init__(self, x: typing.SupportsFloat | typing.SupportsIndex, y: typing.SupportsFloat | typing.SupportsIndex, weight: typing.SupportsFloat | typing.SupportsIndex = 1.0) -> None:
+        ...
+    @property
+    def weight(self) -> float:
+        ...
+    @weight.setter
+    def weight(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def x(self) -> float:
+        ...
+    @x.setter
+    def x(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def y(self) -> float:
+        ...
+    @y.setter
+    def y(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SplineDesignRequest:
+    """
+    A fairest spline function y = f(x) and its form parameters.
+    """
+    name: str
+    def __init__(self) -> None:
+        ...
+    @property
+    def bounds(self) -> list[SplineBound]:
+        ...
+    @bounds.setter
+    def bounds(self, arg0: collections.abc.Sequence[SplineBound]) -> None:
+        ...
+    @property
+    def conditions(self) -> list[SplineCondition]:
+        ...
+    @conditions.setter
+    def conditions(self, arg0: collections.abc.Sequence[SplineCondition]) -> None:
+        ...
+    @property
+    def degree(self) -> int:
+        ...
+    @degree.setter
+    def degree(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def e2(self) -> float:
+        ...
+    @e2.setter
+    def e2(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def e3(self) -> float:
+        ...
+    @e3.setter
+    def e3(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def fit(self) -> list[SplineFitPoint]:
+        ...
+    @fit.setter
+    def fit(self, arg0: collections.abc.Sequence[SplineFitPoint]) -> None:
+        ...
+    @property
+    def flats(self) -> list[SplineFlat]:
+        ...
+    @flats.setter
+    def flats(self, arg0: collections.abc.Sequence[SplineFlat]) -> None:
+        ...
+    @property
+    def integrals(self) -> list[SplineIntegral]:
+        ...
+    @integrals.setter
+    def integrals(self, arg0: collections.abc.Sequence[SplineIntegral]) -> None:
+        ...
+    @property
+    def knots(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        clamped knot vector in x (m)
+        """
+    @knots.setter
+    def knots(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def linear(self) -> list[SplineIntegral]:
+        ...
+    @linear.setter
+    def linear(self, arg0: collections.abc.Sequence[SplineIntegral]) -> None:
+        ...
+    @property
+    def reference(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        coefficients of a reference function on `knots` (the fairness measures f - reference); empty: none
+        """
+    @reference.setter
+    def reference(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def shapes(self) -> list[SplineShape]:
+        ...
+    @shapes.setter
+    def shapes(self, arg0: collections.abc.Sequence[SplineShape]) -> None:
+        ...
+class SectionSpec:
+    """
+    One hull section's numbers (metres, degrees); see fairlines/sections.hpp.
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def character(self) -> float:
+        """
+        where the bilge corner heads as the section fines (fraction of the chord Q-K)
+        """
+    @character.setter
+    def character(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def deadrise(self) -> float:
+        """
+        bottom rise at the bilge corner (deg)
+        """
+    @deadrise.setter
+    def deadrise(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def draft(self) -> float:
+        """
+        waterline height T (m; NaN: none)
+        """
+    @draft.setter
+    def draft(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def half_area(self) -> float:
+        """
+        area below T, one side (m^2; NaN: free)
+        """
+    @half_area.setter
+    def half_area(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def lower_angle(self) -> float:
+        """
+        above-water sections: arrival angle at the keel point (deg from vertical; NaN: 0)
+        """
+    @lower_angle.setter
+    def lower_angle(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def n_control(self) -> int:
+        """
+        control points of every section of a hull
+        """
+    @n_control.setter
+    def n_control(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def shape(self) -> float:
+        """
+        shape knob when half_area is NaN (0 fullest .. 2 straight V)
+        """
+    @shape.setter
+    def shape(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def top_corner(self) -> float:
+        """
+        height of the top corner, fraction of the freeboard
+        """
+    @top_corner.setter
+    def top_corner(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def x(self) -> float:
+        """
+        station (m from the AP)
+        """
+    @x.setter
+    def x(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def y_deck(self) -> float:
+        """
+        deck-at-side half-breadth (m)
+        """
+    @y_deck.setter
+    def y_deck(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def y_dwl(self) -> float:
+        """
+        waterline half-breadth (m; NaN or <= 0: not immersed)
+        """
+    @y_dwl.setter
+    def y_dwl(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def y_max(self) -> float:
+        """
+        half-breadth bound B/2 (m)
+        """
+    @y_max.setter
+    def y_max(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def z_deck(self) -> float:
+        """
+        deck-at-side height (m)
+        """
+    @z_deck.setter
+    def z_deck(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def z_keel(self) -> float:
+        """
+        keel point height on the centre plane (m)
+        """
+    @z_keel.setter
+    def z_keel(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class SectionDesign:
+    """
+    A designed section and what was needed to build it.
+    """
+    @property
+    def area_met(self) -> bool:
+        """
+        false when the asked area lies outside what the family holds here
+        """
+    @property
+    def curve(self) -> NurbsCurve:
+        ...
+    @property
+    def fullness(self) -> float:
+        """
+        area below T / (y_dwl (T - z_keel)) achieved
+        """
+    @property
+    def fullness_max(self) -> float:
+        ...
+    @property
+    def fullness_min(self) -> float:
+        ...
+    @property
+    def immersion(self) -> float:
+        """
+        weight of the waterline and area conditions (0 .. 1)
+        """
+    @property
+    def shape(self) -> float:
+        """
+        shape knob used
+        """
 class _BulbousBow:
     def __init__(self, lpp: typing.SupportsFloat | typing.SupportsIndex, beam: typing.SupportsFloat | typing.SupportsIndex, draft_fp: typing.SupportsFloat | typing.SupportsIndex, midship_area: typing.SupportsFloat | typing.SupportsIndex, displacement_volume: typing.SupportsFloat | typing.SupportsIndex, c_lpr: typing.SupportsFloat | typing.SupportsIndex, c_bb: typing.SupportsFloat | typing.SupportsIndex, c_zb: typing.SupportsFloat | typing.SupportsIndex, c_abt: typing.SupportsFloat | typing.SupportsIndex, c_abl: typing.SupportsFloat | typing.SupportsIndex, c_vpr: typing.SupportsFloat | typing.SupportsIndex, x_fp: typing.SupportsFloat | typing.SupportsIndex, aft_length: typing.SupportsFloat | typing.SupportsIndex, nose_height_shift: typing.SupportsFloat | typing.SupportsIndex, sections: typing.SupportsInt | typing.SupportsIndex, section_points: typing.SupportsInt | typing.SupportsIndex, control_u: typing.SupportsInt | typing.SupportsIndex, control_v: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
@@ -456,25 +1146,182 @@ class _ComposedHull:
     @property
     def z_deck(self) -> float:
         ...
+class MeshOptions:
+    """
+    Options of the surface and hull mesher (see fairlines.meshing).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def all_quad(self) -> bool:
+        """
+        split into quads only (nodes at twice the size first)
+        """
+    @all_quad.setter
+    def all_quad(self, arg0: bool) -> None:
+        ...
+    @property
+    def chordal_tolerance(self) -> float:
+        """
+        max distance of an element from the surface (m); 0: size / 100
+        """
+    @chordal_tolerance.setter
+    def chordal_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_quad_quality(self) -> float:
+        """
+        triangle pairs whose quad's scaled Jacobian is lower stay triangles
+        """
+    @min_quad_quality.setter
+    def min_quad_quality(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_size(self) -> float:
+        """
+        no edge is made shorter for curvature (m); 0: size / 20
+        """
+    @min_size.setter
+    def min_size(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def size(self) -> float:
+        """
+        maximum element edge length (m), > 0
+        """
+    @size.setter
+    def size(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def smoothing_passes(self) -> int:
+        """
+        sweeps of quality-guarded smoothing
+        """
+    @smoothing_passes.setter
+    def smoothing_passes(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+class Spacing:
+    """
+    How points are spaced along a grid line.
+    
+    Members:
+    
+      uniform
+    
+      sinh
+    
+      tanh
+    
+      tanh_two_sided
+    
+      geometric
+    """
+    __members__: typing.ClassVar[dict[str, Spacing]]
+    geometric: typing.ClassVar[Spacing]
+    sinh: typing.ClassVar[Spacing]
+    tanh: typing.ClassVar[Spacing]
+    tanh_two_sided: typing.ClassVar[Spacing]
+    uniform: typing.ClassVar[Spacing]
+    @typing.overload
+    def __eq__(self, other: Spacing) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: Spacing) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class Distribution:
+    """
+    A point distribution along a line (see fairlines.grids).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def first(self) -> float:
+        """
+        first spacing (m); sinh / tanh: 0 when the last end is clustered
+        """
+    @first.setter
+    def first(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def kind(self) -> Spacing:
+        """
+        Spacing: uniform, sinh, tanh, tanh_two_sided, geometric
+        """
+    @kind.setter
+    def kind(self, arg0: Spacing) -> None:
+        ...
+    @property
+    def last(self) -> float:
+        """
+        last spacing (m): tanh_two_sided, sinh, tanh
+        """
+    @last.setter
+    def last(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_ratio(self) -> float:
+        """
+        geometric: largest ratio of neighbouring spacings (> 1)
+        """
+    @max_ratio.setter
+    def max_ratio(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def points(self) -> int:
+        """
+        number of points (>= 2); geometric: 0 = the fewest within max_ratio
+        """
+    @points.setter
+    def points(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
 def _blend_surface(a: NurbsSurface, boundary_a: typing.Any, b: NurbsSurface, boundary_b: typing.Any, samples: typing.SupportsInt | typing.SupportsIndex = 61, tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, check_samples: typing.SupportsInt | typing.SupportsIndex = 200) -> tuple[NurbsSurface, dict, dict]:
+    ...
+def _cluster_by_knots(surface: NurbsSurface, direction: str, at: typing.SupportsFloat | typing.SupportsIndex, spacing: typing.SupportsFloat | typing.SupportsIndex, count: typing.SupportsInt | typing.SupportsIndex, growth: typing.SupportsFloat | typing.SupportsIndex) -> NurbsSurface:
+    ...
+def _cluster_by_weights(surface: NurbsSurface, direction: str, ratio: typing.SupportsFloat | typing.SupportsIndex) -> NurbsSurface:
     ...
 def _compose_hull(hull: NurbsSurface, bulb: NurbsSurface = None, hull_u: typing.SupportsInt | typing.SupportsIndex = 48, hull_v: typing.SupportsInt | typing.SupportsIndex = 20, bulb_u: typing.SupportsInt | typing.SupportsIndex = 24, bulb_v: typing.SupportsInt | typing.SupportsIndex = 32, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, margin: typing.SupportsFloat | typing.SupportsIndex = 0.3, blend_hull_uv: typing.Any = None, blend_bulb_u: typing.SupportsFloat | typing.SupportsIndex = 0.5, blend_tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, blend_rows: typing.SupportsInt | typing.SupportsIndex = 8, blend_check_samples: typing.SupportsInt | typing.SupportsIndex = 200) -> _ComposedHull:
     ...
-def _design_form_curve(params: dict, n_control: typing.SupportsInt | typing.SupportsIndex, degree: typing.SupportsInt | typing.SupportsIndex, dim: typing.SupportsInt | typing.SupportsIndex, fairness: dict, points: list, bounds: dict, options: dict, tangent_start: typing.Any = None, tangent_end: typing.Any = None, initial_control_points: typing.Any = None) -> dict:
+def _design_form_curve(request: FormCurveRequest, *, points: list = [], tangent_start: typing.Any = None, tangent_end: typing.Any = None, initial_control_points: typing.Any = None) -> dict:
     """
     Form-parameter curve solver (private; use fairlines.design_curve).
     """
-def _design_sections(fields: dict, n_control: typing.SupportsInt | typing.SupportsIndex, degree: typing.SupportsInt | typing.SupportsIndex, y_max: typing.SupportsFloat | typing.SupportsIndex) -> list[NurbsCurve]:
-    """
-    Sections from per-station parameter arrays (see fairlines/sections.hpp SectionSpec), all on
-    section_knot_vector(n_control).
-    """
 def _fair_skin(curves: typing.Any, n_control: typing.Any, mode: str, degree_u: typing.Any, degree_v: typing.Any, samples: typing.Any, smoothing: typing.SupportsFloat | typing.SupportsIndex, start: str, end: str, params: str, c1_sections: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], curvature_weight: typing.SupportsFloat | typing.SupportsIndex, e2: typing.SupportsFloat | typing.SupportsIndex, e3: typing.SupportsFloat | typing.SupportsIndex, flats: collections.abc.Sequence[tuple[typing.SupportsInt | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]] = [], hold_runs: bool = True, straight_groups: collections.abc.Sequence[tuple[typing.SupportsInt | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex]] = []) -> SkinResult:
     ...
-def _form_curve_derivatives(params: dict, n_control: typing.SupportsInt | typing.SupportsIndex, degree: typing.SupportsInt | typing.SupportsIndex, dim: typing.SupportsInt | typing.SupportsIndex, fairness: dict, points: list, z: typing.Any, lambda: typing.Any = None) -> dict:
+def _form_curve_derivatives(params: dict, n_control: typing.Any, degree: typing.Any, dim: typing.Any, fairness: dict, points: list, z: typing.Any, lambda: typing.Any = None) -> dict:
     """
     Testing hook: constraints, Jacobian, sum lambda_i Hess c_i, objective, gradient and Hessian at z.
     """
+def _grid_quality(points: typing.Any, ni: typing.SupportsInt | typing.SupportsIndex, nj: typing.SupportsInt | typing.SupportsIndex) -> dict:
+    ...
 def _hull_bulb_seam(hull: NurbsSurface, bulb: NurbsSurface, bulb_v: typing.SupportsInt | typing.SupportsIndex = 32, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07) -> tuple[NurbsSurface, dict]:
     """
     (oriented hull, seam dict) of compose_hull([hull, bulb]) without meshing (see compose.hpp).
@@ -482,6 +1329,14 @@ def _hull_bulb_seam(hull: NurbsSurface, bulb: NurbsSurface, bulb_v: typing.Suppo
 def _intersect_surfaces(a: NurbsSurface, b: NurbsSurface, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, subdivisions: typing.SupportsInt | typing.SupportsIndex = 12, step: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> list:
     ...
 def _linear_form_curve(name: str, abscissae: typing.Any, degree: typing.SupportsInt | typing.SupportsIndex, yB: typing.Any, yE: typing.Any, slopeB: typing.Any, slopeE: typing.Any, area: typing.Any, xC: typing.Any, area_from: typing.Any, points: typing.Any, y_lower: typing.Any = None, y_upper: typing.Any = None, curvB: typing.Any = None, curvE: typing.Any = None, fixed: collections.abc.Sequence[tuple[typing.SupportsInt | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]] = []) -> NurbsCurve:
+    ...
+def _mesh_hull(composed: _ComposedHull, options: MeshOptions, draft: typing.SupportsFloat | typing.SupportsIndex, lids: bool, full: bool, progress: typing.Any = None) -> tuple:
+    ...
+def _mesh_surface(surface: NurbsSurface, options: MeshOptions) -> tuple:
+    ...
+def _parameter_grid(surface: NurbsSurface, us: typing.Any, vs: typing.Any) -> tuple:
+    ...
+def _surface_grid(surface: NurbsSurface, du: Distribution, dv: Distribution) -> tuple:
     ...
 def arc(center: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, start_angle: typing.SupportsFloat | typing.SupportsIndex, end_angle: typing.SupportsFloat | typing.SupportsIndex, normal: typing.Any = (0.0, 0.0, 1.0), x_axis: typing.Any = None) -> NurbsCurve:
     """
@@ -497,7 +1352,7 @@ def averaged_knots(params: typing.Any, degree: typing.Any, n_control: typing.Any
     """
 def basis_functions(knots: typing.Any, degree: typing.Any, t: typing.Any, order: typing.Any = 0) -> numpy.typing.NDArray[numpy.float64]:
     """
-    All basis functions and derivatives at t: (m, order + 1, n_control) array.
+    All basis functions and derivatives at t: (m, order + 1, n_control) array. order <= fairlines.limits.MAX_DERIVATIVE_ORDER.
     """
 def boundary_continuity(blend: NurbsSurface, at_v1: bool, surface: NurbsSurface, samples: typing.SupportsInt | typing.SupportsIndex = 400) -> dict:
     """
@@ -519,6 +1374,24 @@ def cylinder(base: typing.Any, axis_dir: typing.Any, radius: typing.SupportsFloa
     """
     Exact cylinder (metres).
     """
+def design_section(spec: SectionSpec) -> SectionDesign:
+    """
+    One section: its template (deck, waterline and keel points, rounded corners) sampled on the shared knot vector.
+    Raises InvalidInput (malformed numbers) or InfeasibleFormParameters (no one-curve section through the points).
+    """
+def design_sections(specs: collections.abc.Sequence[SectionSpec]) -> list[SectionDesign]:
+    """
+    design_section for each spec, in order; all on section_knot_vector(n_control).
+    """
+def design_spline_function(request: SplineDesignRequest) -> NurbsCurve:
+    """
+    The fairest spline function meeting the request: a NurbsCurve of dimension 1 whose parameter is x (m).
+    Raises InvalidInput (malformed request) or InfeasibleFormParameters (conditions in conflict, named).
+    """
+def distribute(distribution: Distribution, length: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Positions (m, 0 .. length) of a distribution's points along a line of `length` metres.
+    """
 def ellipse(center: typing.Any, semi_axis_a: typing.Any, semi_axis_b: typing.Any) -> NurbsCurve:
     """
     Exact ellipse; the semi-axis vectors give directions and lengths (metres).
@@ -528,23 +1401,23 @@ def equal_arc_length_points(curve: NurbsCurve, m: typing.Any, curvature_weight: 
     m points at equal arc-length spacing along the curve, ends included: (m, dim). curvature_weight w > 0:
     equal spacing in ds (1 + w L |k|) instead (L the curve length).
     """
-def fairness_of(degree: typing.SupportsInt | typing.SupportsIndex, control_points: typing.Any) -> dict:
+def fairness_of(degree: typing.Any, control_points: typing.Any) -> dict:
     """
     E1, E2, E3 (int |C^(k)|^2 dt over t in [0,1]) and arc length of a clamped uniform B-spline.
     """
 def fit_curve(points: typing.Any, degree: typing.Any = 3, n_control: typing.Any = None, parameterization: str = 'chord', knots: str = 'average') -> CurveFit:
     """
-    Fit (m, dim) points: n_control None interpolates, fewer control points approximate (ends interpolated).
+    Fit (m, dim) points: n_control None interpolates, fewer control points approximate (ends interpolated). m <= fairlines.limits.MAX_FIT_POINTS.
     """
 def fit_surface(grid: typing.Any, degree_u: typing.Any = 3, degree_v: typing.Any = 3, n_control_u: typing.Any = None, n_control_v: typing.Any = None, parameterization: str = 'chord', knots: str = 'average') -> SurfaceFit:
     """
-    Fit a (rows, cols, 3) point grid; u runs over rows, v over columns.
+    Fit a (rows, cols, 3) point grid; u runs over rows, v over columns; rows, cols <= fairlines.limits.MAX_FIT_POINTS.
     """
 def form_parameter_names() -> list[str]:
     """
     Names accepted as form parameters.
     """
-def form_parameters_of(degree: typing.SupportsInt | typing.SupportsIndex, control_points: typing.Any) -> dict[str, float]:
+def form_parameters_of(degree: typing.Any, control_points: typing.Any) -> dict[str, float]:
     """
     Every form parameter (xB.., alphaB/E in degrees, CAB/CAE, Area, xC, yC) of the clamped uniform B-spline with these control points (n x 2 or n x 3).
     """
@@ -554,14 +1427,24 @@ def greville_abscissae(knots: typing.Any, degree: typing.Any) -> numpy.typing.ND
     """
 def hartley_judd_knots(points: typing.Any, degree: typing.Any, n_control: typing.Any, metric: str = 'chord') -> numpy.typing.NDArray[numpy.float64]:
     """
-    Clamped knots on [0, 1] by Hartley-Judd: spacings are sums of `degree` chords measured by 'chord' (length), 'centripetal' (sqrt of length, seed 001 eq. 5) or 'uniform'.
+    Clamped knots on [0, 1] by Hartley-Judd (1980): spacings are sums of `degree` chords measured by 'chord' (length), 'centripetal' (sqrt of length) or 'uniform'.
     """
-def hydrostatics(surface: NurbsSurface, draft: typing.SupportsFloat | typing.SupportsIndex, half_hull: bool = True, length: typing.SupportsFloat | typing.SupportsIndex = 0.0, breadth: typing.SupportsFloat | typing.SupportsIndex = 0.0, midship_x: typing.Any = None, gauss: typing.Any = 8, sac_stations: typing.Any = 41, density: typing.SupportsFloat | typing.SupportsIndex = 1.025) -> Hydrostatics:
+def hydrostatics(surface: NurbsSurface, draft: typing.SupportsFloat | typing.SupportsIndex, half_hull: bool = True, length: typing.SupportsFloat | typing.SupportsIndex = 0.0, breadth: typing.SupportsFloat | typing.SupportsIndex = 0.0, midship_x: typing.Any = None, gauss: typing.Any = 8, sac_stations: typing.Any = 41, density: typing.SupportsFloat | typing.SupportsIndex = 1.025, trim: typing.SupportsFloat | typing.SupportsIndex = 0.0, trim_length: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Hydrostatics:
     """
     Hydrostatics of a hull surface at `draft` (m above base) by Gauss-Legendre quadrature on the surface.
     The surface is the y >= 0 half of the hull when half_hull=True (volume, areas and SAC are then doubled
     to full-ship values); openings other than the centre plane must be transverse planes x = const.
     length / breadth: for the coefficients (0: submerged extent); midship_x: station of Am (None: middle).
+    trim: by the stern (m) over trim_length (AP at x = 0 to FP); draft is then the draft at trim_length / 2.
+    Raises InvalidInput for a bad draft or option, or a waterplane above the surface's highest point.
+    """
+def knot_line_parameters(surface: NurbsSurface, direction: str, per_span: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Knot values of one direction with every span cut into per_span parts.
+    """
+def mesh_quality(vertices: typing.Any, faces: typing.Any) -> dict:
+    """
+    Quality census of a quad / triangle mesh ((n, 3) vertices, (m, 3 or 4) faces, -1 pads a triangle).
     """
 def mesh_volume(vertices: typing.Any, faces: typing.Any) -> float:
     """
@@ -575,6 +1458,10 @@ def parameterize(points: typing.Any, method: str = 'chord') -> numpy.typing.NDAr
     """
     Parameters in [0, 1] for (m, dim) points: 'chord', 'centripetal' or 'uniform'.
     """
+def parameters_at_arc_length(curve: NurbsCurve, s: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Curve parameters at increasing arc lengths s (m from the start).
+    """
 def plane_cut(surface: NurbsSurface, axis: typing.Any, value: typing.SupportsFloat | typing.SupportsIndex, samples: typing.SupportsInt | typing.SupportsIndex = 401) -> PlaneCut:
     """
     Cut a surface by the plane x, y or z = value (axis 'frame' | 'buttock' | 'waterline'); curvature
@@ -584,22 +1471,29 @@ def revolve(profile: NurbsCurve, axis_point: typing.Any, axis_dir: typing.Any, a
     """
     Surface of revolution of a 3-D profile about an axis, angle in radians; u runs around the axis.
     """
+def scaled_jacobians(vertices: typing.Any, faces: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Scaled Jacobian of every element (1: square / equilateral, <= 0: inverted).
+    """
 def section_area(surface: NurbsSurface, x: typing.SupportsFloat | typing.SupportsIndex, draft: typing.SupportsFloat | typing.SupportsIndex, half_hull: bool = True, gauss: typing.SupportsInt | typing.SupportsIndex = 8) -> tuple[float, float]:
     """
     (area below the draft of the section x = const (m^2; full section when half_hull), centroid height (m)).
     """
+def section_fullness_range(spec: SectionSpec) -> tuple[float, float]:
+    """
+    (least, largest) fullness area / (y_dwl (T - z_keel)) the section family holds here (NaN: not immersed).
+    """
 def section_knot_vector(n_control: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
     """
-    The knot vector every bare-hull section with n_control curved-part control points shares:
-    clamped, triple knots at the ends of the top and bottom zones (n_control + 10 values).
-    """
-def section_straight_groups(n_control: typing.SupportsInt | typing.SupportsIndex) -> list[tuple[int, int]]:
-    """
-    Control-point rows (first, last) on one straight segment in every section (the zones and their legs).
+    The clamped uniform cubic knot vector every section of a hull shares.
     """
 def sphere(center: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex) -> NurbsSurface:
     """
     Exact sphere (metres).
+    """
+def spline_function_knots(x0: typing.SupportsFloat | typing.SupportsIndex, x1: typing.SupportsFloat | typing.SupportsIndex, breaks: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] = [], spans: typing.SupportsInt | typing.SupportsIndex = 8, degree: typing.SupportsInt | typing.SupportsIndex = 3, min_piece_spans: typing.SupportsInt | typing.SupportsIndex = 4) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Clamped knots on [x0, x1] keeping `breaks` as knots, about `spans` spans spread by length.
     """
 def triangulate_polygon(points: typing.Any) -> numpy.typing.NDArray[numpy.int32]:
     """
@@ -621,3 +1515,5 @@ def write_stl(vertices: typing.Any, faces: typing.Any, path: str, binary: bool =
     """
     Writes a triangle mesh as binary (or ASCII) STL.
     """
+END_BAND: float = 0.1
+MAX_SHAPE_KNOB: float = 2.0

@@ -29,18 +29,6 @@ constexpr double kTraceStep = 0.25;     ///< waterline trace step / size
 constexpr int kBisections = 60;         ///< bisection steps for an edge's crossing of the cut
 constexpr double kVertexMatch = 1e-9;   ///< vertices closer than this x model size are one
 
-bool inside_polygon(const Vec2& q, const std::vector<Vec2>& poly) {
-  bool in = false;
-  const size_t n = poly.size();
-  for (size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Vec2& a = poly[i];
-    const Vec2& c = poly[j];
-    if ((a.y() > q.y()) != (c.y() > q.y()) && q.x() < (c.x() - a.x()) * (q.y() - a.y()) / (c.y() - a.y()) + a.x())
-      in = !in;
-  }
-  return in;
-}
-
 EdgeSample lerp(const EdgeSample& a, const EdgeSample& b, double t) {
   EdgeSample r;
   r.xyz = (1 - t) * a.xyz + t * b.xyz;
@@ -141,8 +129,8 @@ std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const
   t.normalize();
   {  // into the face
     const double d = step3d / std::max(1e-300, speed(from, t));
-    const bool fwd_in = inside_polygon(from + 0.5 * d * t, poly);
-    const bool back_in = inside_polygon(from - 0.5 * d * t, poly);
+    const bool fwd_in = point_in_polygon(from + 0.5 * d * t, poly);
+    const bool back_in = point_in_polygon(from - 0.5 * d * t, poly);
     if (!fwd_in && back_in) t = -t;
   }
   for (int n = 0; n < 100000; ++n) {
@@ -157,7 +145,7 @@ std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const
     const double d = step3d / std::max(1e-300, speed(q, t));
     const Vec2 next = correct(g.clamp(q + d * t));
     out.push_back(next);
-    if (!inside_polygon(next, poly) || (next - q).norm() < 1e-15) return out;
+    if (!point_in_polygon(next, poly) || (next - q).norm() < 1e-15) return out;
   }
   throw Error("mesh: the waterline trace did not leave the face");
 }

@@ -48,18 +48,6 @@ double cross2(const Vec2& a, const Vec2& b, const Vec2& c) {
   return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
 }
 
-bool point_in_polygon(const Vec2& q, const std::vector<Vec2>& poly) {
-  bool in = false;
-  const size_t n = poly.size();
-  for (size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Vec2& a = poly[i];
-    const Vec2& c = poly[j];
-    if ((a.y() > q.y()) != (c.y() > q.y()) && q.x() < (c.x() - a.x()) * (q.y() - a.y()) / (c.y() - a.y()) + a.x())
-      in = !in;
-  }
-  return in;
-}
-
 double segment_distance(const Vec3& q, const Vec3& a, const Vec3& b) {
   const Vec3 ab = b - a;
   const double l2 = ab.squaredNorm();
@@ -523,6 +511,18 @@ void split_all_quad(Work& w, int loop_size, const LoopMidpoint& midpoint, std::v
 }
 
 }  // namespace
+
+bool point_in_polygon(const Vec2& q, const std::vector<Vec2>& poly) {
+  bool in = false;
+  const size_t n = poly.size();
+  for (size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2& a = poly[i];
+    const Vec2& c = poly[j];
+    if ((a.y() > q.y()) != (c.y() > q.y()) && q.x() < (c.x() - a.x()) * (q.y() - a.y()) / (c.y() - a.y()) + a.x())
+      in = !in;
+  }
+  return in;
+}
 
 // ---- FaceGeometry ------------------------------------------------------------------------
 
