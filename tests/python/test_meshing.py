@@ -209,3 +209,12 @@ def test_bad_mesh_input_is_refused(bilge, blended):
         fl.mesh_hull(blended, size=2.0, draft=40.0)
     with pytest.raises(fl.InvalidInput, match="draft"):
         fl.write_gdf(fl.mesh_surface(bilge, size=2.0), "/tmp/never.gdf")
+
+
+def test_cli_meshes_a_ship_without_a_bulb_into_panels(tmp_path):
+    from fairlines.cli import main
+    src = tmp_path / "cruiser.json"
+    src.write_text(cruiser_stern_ship().to_json())
+    assert main(["mesh", str(src), "--size", "2", "--draft", "5", "--open", "-o", str(tmp_path / "c.gdf")]) == 0
+    rows = (tmp_path / "c.gdf").read_text().split("\n")
+    assert int(rows[3].split()[0]) > 100  # panel count after ULEN/g, symmetry flags
