@@ -85,7 +85,8 @@ from .compose import (  # noqa: F401,E402
 __version__ = "0.1.0"
 from .designer import Particulars, design_description, design_hull  # noqa: F401,E402
 
-# Surface grids and solver meshes (seeds 003 and 004).
+# Surface grids and solver meshes (Yoon 2007 NURBS grid control; Yoon & Kim 1997 hull meshing).
+from . import grids  # noqa: F401,E402
 from . import mesh_io  # noqa: F401,E402
 from ._native import MeshOptions  # noqa: F401,E402
 from .meshing import SurfaceMesh, mesh_hull, mesh_options, mesh_quality, mesh_surface  # noqa: F401,E402

@@ -85,13 +85,15 @@ class SurfaceMesh:
         return mesh_quality(self)
 
     def hydrostatics(self, draft: float | None = None):
-        """Hydrostatics of the body this mesh bounds floating at ``draft`` (default: its own
-        cut), by the divergence theorem (``fairlines.mesh_hydrostatics``)."""
-        from .compose import mesh_hydrostatics
+        """Displaced volume (m^3, both sides of a half hull), LCB and KB (m) of the body this mesh
+        bounds floating at ``draft`` (default: its own cut), by the divergence theorem
+        (``fairlines.mesh_hydrostatics``; a wetted mesh open along the waterline or the centre
+        plane is fine: the fields vanish there). Raises InvalidInput without a draft."""
+        from .compose import Mesh, mesh_hydrostatics
         t = self.draft if draft is None else draft
         if t is None:
             raise InvalidInput("draft is None; this mesh was not cut at a draft, so give one (m)")
-        return mesh_hydrostatics(self, t, half=self.symmetric, full_result=True)
+        return mesh_hydrostatics(Mesh(self.vertices, self.triangulated()), t, half=self.symmetric)
 
     def write(self, path, file_format: str | None = None, **kw) -> None:
         """Writes the mesh (see :func:`fairlines.mesh_io.write_mesh`)."""

@@ -1,6 +1,8 @@
 """Surfaces for the grid and mesh tests and the mesh bench: analytic hulls made here, and the
 one real hull through example_hull_surface() (repoint it when the example hulls change)."""
 
+import pathlib
+
 import numpy as np
 
 import fairlines as fl
@@ -8,9 +10,33 @@ import fairlines as fl
 WIGLEY = dict(L=100.0, B=10.0, T=6.25, D=9.0)
 
 
+EXAMPLE = pathlib.Path(__file__).resolve().parents[2] / "examples" / "container_ship.json"
+EXAMPLE_DRAFT = 11.0  # m, the design draft of the example ship
+
+
+def example_hull():
+    """The real whole ship of the mesh tests and bench (an fl.Hull)."""
+    return fl.Hull.from_json(EXAMPLE)
+
+
 def example_hull_surface():
     """The real bare hull used by the mesh bench."""
-    return fl.Hull.from_json("examples/container_ship.json").bare_hull_surface()
+    return example_hull().bare_hull_surface()
+
+
+_COMPOSED = {}
+
+
+def composed_example_hull():
+    """The whole ship composed: bare hull + bulb + blend, transom stern (built once per run)."""
+    if "c" not in _COMPOSED:
+        _COMPOSED["c"] = example_hull().composed_hull()
+    return _COMPOSED["c"]
+
+
+def cruiser_stern_ship():
+    """A whole ship with a cruiser stern (its aft edge on the centre plane), from particulars."""
+    return fl.design_hull(lpp=120, breadth=20, draft=5, depth=9, cb=0.6, lcb=58.8, stern="cruiser")
 
 
 def wigley_surface(rows=41, cols=21, aft="cruiser", rake_deg=0.0):

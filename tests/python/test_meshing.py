@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 import fairlines as fl
-from mesh_fixtures import (FOREBODY_SHIP, WIGLEY, bilge_patch, closed_volume, edge_census, forebody_surface,
-                           wigley_surface)
+from mesh_fixtures import (EXAMPLE_DRAFT, WIGLEY, bilge_patch, closed_volume, composed_example_hull,
+                           cruiser_stern_ship, edge_census, example_hull, wigley_surface)
 
 MESH_VOLUME_TOL = 2e-3     # closed hull mesh vs NURBS quadrature at about 1 % of L element size
 CAPYTAINE_TOL = 3e-3       # capytaine's panel hydrostatics converge as O(h^2): ~2e-3 at 2 500 panels
@@ -20,10 +20,21 @@ def bilge():
     return bilge_patch()
 
 
+SHIP_SIZE = 3.0           # element size on the whole ship (m, about 1.2 % of Lpp)
+
+
 @pytest.fixture(scope="module")
 def blended():
-    bulb = fl.BulbousBow(**FOREBODY_SHIP)
-    return fl.compose_with_blend(forebody_surface(), bulb)
+    """The whole container ship composed: bare hull + bulb + blend, transom stern."""
+    return composed_example_hull()
+
+
+@pytest.fixture(scope="module")
+def ship_meshes(blended):
+    """Whole-ship meshes: closed whole hull, closed wetted part, open wetted part (BEM)."""
+    return {"whole": fl.mesh_hull(blended, size=SHIP_SIZE),
+            "wetted": fl.mesh_hull(blended, size=SHIP_SIZE, draft=EXAMPLE_DRAFT),
+            "open": fl.mesh_hull(blended, size=SHIP_SIZE, draft=EXAMPLE_DRAFT, lids=False)}
 
 
 @pytest.fixture(scope="module")
@@ -55,34 +66,65 @@ def test_all_quad_mode_has_no_triangles(bilge):
     assert q["triangles"] == 0 and q["inverted"] == 0 and q["min_scaled_jacobian"] > 0.4
 
 
-@pytest.mark.parametrize("draft", [None, 11.0])
-def test_composed_hull_mesh_is_watertight_conforming_and_has_no_duplicates(blended, draft):
-    m = fl.mesh_hull(blended, size=2.0, draft=draft)
+@pytest.mark.parametrize("which", ["whole", "wetted"])
+def test_whole_ship_mesh_is_watertight_conforming_and_has_no_duplicates(ship_meshes, which):
+    m = ship_meshes[which]
     assert {"hull", "bulb", "blend", "centre_plane"} <= set(m.parts)
+    assert ("waterplane" in m.parts) == (which == "wetted") and ("deck" in m.parts) == (which == "whole")
+    assert ("aft" in m.parts) == (which == "whole")  # the transom's lower edge is 0.55 m above T
     assert edge_census(m.faces) == (0, 0, 0)  # closed: every seam's nodes are shared
     assert len(np.unique(np.round(m.vertices, 9), axis=0)) == len(m.vertices)
     assert np.all(fl._native.scaled_jacobians(m.vertices, m.faces) > 0)
     assert closed_volume(m.vertices, m.faces) > 0  # outward
-    if draft is not None:
-        assert m.vertices[:, 2].max() <= draft + 1e-9
+    if which == "wetted":
+        assert m.vertices[:, 2].max() <= EXAMPLE_DRAFT + 1e-9
 
 
-def test_seams_are_shared_by_the_parts_on_both_sides(blended):
-    m = fl.mesh_hull(blended, size=2.0)
+def test_whole_ship_seams_are_shared_by_the_parts_on_both_sides(ship_meshes):
+    m = ship_meshes["whole"]
     edges = {}
     for f, part in zip(m.faces, m.face_part):
         k = 3 if f[3] < 0 else 4
         for i in range(k):
             edges.setdefault(tuple(sorted((f[i], f[(i + 1) % k]))), []).append(m.parts[part])
     pairs = {tuple(sorted(set(p))) for p in edges.values() if len(set(p)) == 2}
-    assert {("blend", "hull"), ("blend", "bulb")} <= pairs
+    assert {("blend", "hull"), ("blend", "bulb"), ("aft", "hull")} <= pairs
+
+
+def test_whole_ship_transom_is_dry_and_the_open_wetted_part_ends_on_the_waterline(blended, ship_meshes):
+    m = ship_meshes["open"]
+    assert "aft" not in m.parts  # the transom lies above the design draft
+    open_, nonman, misor = edge_census(m.faces)
+    assert nonman == 0 and misor == 0 and open_ > 0
+    f = m.faces
+    rows = [(r[i], r[(i + 1) % (3 if r[3] < 0 else 4)]) for r in f for i in range(3 if r[3] < 0 else 4)]
+    und, counts = np.unique(np.sort(np.array(rows), axis=1), axis=0, return_counts=True)
+    rim = m.vertices[np.unique(und[counts == 1])]
+    on_wl = np.abs(rim[:, 2] - EXAMPLE_DRAFT) < 1e-9
+    on_cp = np.abs(rim[:, 1]) < 1e-9
+    assert np.all(on_wl | on_cp)  # open only along the waterline (and the centre plane of the half)
+
+
+def test_whole_ship_mesh_volume_matches_the_composed_hull(blended, ship_meshes):
+    whole = 2 * closed_volume(ship_meshes["whole"].vertices, ship_meshes["whole"].faces)
+    assert whole == pytest.approx(2 * blended.volume, rel=MESH_VOLUME_TOL)
 
 
 def test_bare_hull_mesh_volume_matches_nurbs_hydrostatics():
-    s = forebody_surface()
-    T = 11.0
-    m = fl.mesh_hull(s, size=2.0, draft=T)
-    assert 2 * closed_volume(m.vertices, m.faces) == pytest.approx(fl.hydrostatics(s, T).volume, rel=MESH_VOLUME_TOL)
+    s = example_hull().bare_hull_surface()
+    m = fl.mesh_hull(s, size=SHIP_SIZE, draft=EXAMPLE_DRAFT)
+    ref = fl.hydrostatics(s, EXAMPLE_DRAFT).volume
+    assert 2 * closed_volume(m.vertices, m.faces) == pytest.approx(ref, rel=MESH_VOLUME_TOL)
+
+
+def test_cruiser_stern_ship_meshes_watertight_with_its_volume():
+    s = cruiser_stern_ship().bare_hull_surface()  # no bulb: composed alone
+    for draft in (None, 5.0):
+        m = fl.mesh_hull(s, size=1.5, draft=draft)
+        assert "aft" not in m.parts and edge_census(m.faces) == (0, 0, 0)
+        assert np.all(fl._native.scaled_jacobians(m.vertices, m.faces) > 0)
+    assert 2 * closed_volume(m.vertices, m.faces) == pytest.approx(fl.hydrostatics(s, 5.0).volume,
+                                                                   rel=MESH_VOLUME_TOL)
 
 
 @pytest.mark.parametrize("aft, rake", [("cruiser", 0.0), ("transom", 0.0), ("transom", 20.0)])
@@ -99,8 +141,8 @@ def test_every_aft_closure_composes_and_meshes_watertight(aft, rake):
     assert 2 * closed_volume(m.vertices, m.faces) == pytest.approx(fl.hydrostatics(s, T).volume, rel=MESH_VOLUME_TOL)
 
 
-def test_files_reread_by_meshio_give_the_same_mesh(blended, tmp_path):
-    m = fl.mesh_hull(blended, size=3.0, draft=11.0)
+def test_files_reread_by_meshio_give_the_same_mesh(ship_meshes, tmp_path):
+    m = ship_meshes["wetted"]
     for name in ("hull.msh", "hull.vtu", "hull.obj"):
         fl.write_mesh(m, tmp_path / name)
         r = fl.read_mesh(tmp_path / name)
@@ -130,6 +172,24 @@ def test_panel_files_read_by_capytaine_give_the_same_panels_and_hydrostatics(wig
         assert cob[2] + T == pytest.approx(ref.vcb, abs=CAPYTAINE_TOL * T)
 
 
+def test_whole_ship_wetted_panels_give_capytaine_the_nurbs_hydrostatics(blended, ship_meshes, tmp_path):
+    cpt = pytest.importorskip("capytaine")
+    m, T = ship_meshes["open"], EXAMPLE_DRAFT
+    surface = example_hull().bare_hull_surface()
+    bare = fl.hydrostatics(surface, T)  # NURBS quadrature, both sides
+    # what the bulb and blend add below T (volume and x-moment), from the composition's own meshes
+    comp, alone = fl.mesh_hydrostatics(blended.mesh, T), fl.mesh_hydrostatics(fl.compose([surface]).mesh, T)
+    added = comp["volume"] - alone["volume"]
+    added_moment = comp["volume"] * comp["lcb"] - alone["volume"] * alone["lcb"]
+    volume, lcb = bare.volume + added, (bare.volume * bare.lcb + added_moment) / (bare.volume + added)
+    fl.write_gdf(m, tmp_path / "ship.gdf")
+    cm = cpt.load_mesh(tmp_path / "ship.gdf", file_format="gdf")
+    assert cm.nb_faces == 2 * len(m.faces)
+    assert cm.volume == pytest.approx(volume, rel=CAPYTAINE_TOL)
+    assert cm.waterplane_area == pytest.approx(bare.waterplane_area, rel=CAPYTAINE_TOL)
+    assert cm.center_of_buoyancy[0] == pytest.approx(lcb, abs=CAPYTAINE_TOL * 244.8)
+
+
 def test_plot3d_round_trip(tmp_path):
     a = np.random.default_rng(1).normal(size=(5, 4, 3))
     b = np.random.default_rng(2).normal(size=(3, 7, 3))
@@ -149,3 +209,12 @@ def test_bad_mesh_input_is_refused(bilge, blended):
         fl.mesh_hull(blended, size=2.0, draft=40.0)
     with pytest.raises(fl.InvalidInput, match="draft"):
         fl.write_gdf(fl.mesh_surface(bilge, size=2.0), "/tmp/never.gdf")
+
+
+def test_cli_meshes_a_ship_without_a_bulb_into_panels(tmp_path):
+    from fairlines.cli import main
+    src = tmp_path / "cruiser.json"
+    src.write_text(cruiser_stern_ship().to_json())
+    assert main(["mesh", str(src), "--size", "2", "--draft", "5", "--open", "-o", str(tmp_path / "c.gdf")]) == 0
+    rows = (tmp_path / "c.gdf").read_text().split("\n")
+    assert int(rows[3].split()[0]) > 100  # panel count after ULEN/g, symmetry flags

@@ -29,18 +29,6 @@ constexpr double kTraceStep = 0.25;     ///< waterline trace step / size
 constexpr int kBisections = 60;         ///< bisection steps for an edge's crossing of the cut
 constexpr double kVertexMatch = 1e-9;   ///< vertices closer than this x model size are one
 
-bool inside_polygon(const Vec2& q, const std::vector<Vec2>& poly) {
-  bool in = false;
-  const size_t n = poly.size();
-  for (size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Vec2& a = poly[i];
-    const Vec2& c = poly[j];
-    if ((a.y() > q.y()) != (c.y() > q.y()) && q.x() < (c.x() - a.x()) * (q.y() - a.y()) / (c.y() - a.y()) + a.x())
-      in = !in;
-  }
-  return in;
-}
-
 EdgeSample lerp(const EdgeSample& a, const EdgeSample& b, double t) {
   EdgeSample r;
   r.xyz = (1 - t) * a.xyz + t * b.xyz;
@@ -104,6 +92,20 @@ EdgeSample edge_point(const Brep& b, const Edge& e, int k, double t) {
   return r;
 }
 
+/// uv moved onto z = T by Newton along the gradient of z(u, v) (clamped to the face's domain).
+Vec2 onto_level(const FaceGeometry& g, Vec2 q, double T) {
+  for (int it = 0; it < 6; ++it) {
+    Vec3 p, su, sv;
+    g.first(q, p, su, sv);
+    const Vec2 gr(su.z(), sv.z());
+    const double n2 = gr.squaredNorm();
+    if (n2 <= 0) break;
+    q = g.clamp(q - (p.z() - T) * gr / n2);
+    if (std::abs(p.z() - T) < 1e-12 * std::max(1.0, std::abs(T))) break;
+  }
+  return q;
+}
+
 /// Level-set march of z = T on face f from uv `from` into the face until it leaves `poly`.
 std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const std::vector<Vec2>& poly, double T,
                                   double step3d) {
@@ -118,18 +120,7 @@ std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const
     g.first(q, p, su, sv);
     return (su * t.x() + sv * t.y()).norm();
   };
-  auto correct = [&](Vec2 q) {
-    for (int it = 0; it < 6; ++it) {
-      double z;
-      const Vec2 gr = grad(q, z);
-      const double n2 = gr.squaredNorm();
-      if (n2 <= 0) break;
-      q -= (z - T) * gr / n2;
-      q = g.clamp(q);
-      if (std::abs(z - T) < 1e-12 * std::max(1.0, std::abs(T))) break;
-    }
-    return q;
-  };
+  auto correct = [&](Vec2 q) { return onto_level(g, q, T); };
   std::vector<Vec2> out{from};
   double z0;
   Vec2 gr = grad(from, z0);
@@ -138,8 +129,8 @@ std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const
   t.normalize();
   {  // into the face
     const double d = step3d / std::max(1e-300, speed(from, t));
-    const bool fwd_in = inside_polygon(from + 0.5 * d * t, poly);
-    const bool back_in = inside_polygon(from - 0.5 * d * t, poly);
+    const bool fwd_in = point_in_polygon(from + 0.5 * d * t, poly);
+    const bool back_in = point_in_polygon(from - 0.5 * d * t, poly);
     if (!fwd_in && back_in) t = -t;
   }
   for (int n = 0; n < 100000; ++n) {
@@ -154,7 +145,7 @@ std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const
     const double d = step3d / std::max(1e-300, speed(q, t));
     const Vec2 next = correct(g.clamp(q + d * t));
     out.push_back(next);
-    if (!inside_polygon(next, poly) || (next - q).norm() < 1e-15) return out;
+    if (!point_in_polygon(next, poly) || (next - q).norm() < 1e-15) return out;
   }
   throw Error("mesh: the waterline trace did not leave the face");
 }
@@ -275,6 +266,11 @@ void Brep::cut_below(double T, double size, const std::string& lid_name, bool ke
       s.push_back(last);
       s.front().xyz = vertices[ex];
       const int id = add_edge(static_cast<int>(fi), lid, s);
+      edges[id].refine = [g = f.g, T](EdgeSample& x) {  // nodes between samples: on the waterline too
+        x.uv[0] = onto_level(g, x.uv[0], T);
+        x.xyz = g.point(x.uv[0]);
+        x.xyz.z() = T;
+      };
       traced.push_back(id);
       bridge[ex] = {id, best};
     }
@@ -524,6 +520,7 @@ SurfaceMesh mesh_brep(Brep& b, const MeshOptions& o, const std::function<void(in
     std::vector<LoopNode> loop;
     std::vector<std::pair<int, int>> seg_of;  // loop node i -> (edge, segment) of edge (i, i+1)
     for (const auto& [e, fwd] : f.loop) {
+      if (!f.g.surface && b.edges[e].degenerate) continue;  // a pole is one point of a plane: its copies fold the loop
       const Discrete& d = M.disc[e];
       const int sd = side_of(b.edges[e], static_cast<int>(fi));
       const int n = static_cast<int>(d.ids.size());

@@ -88,6 +88,30 @@ double perimeter(const NurbsSurface& H, const Vec2& uv) {
   return dt <= ds ? (uv.x() - u0) / (u1 - u0) : 1.0 + dt;
 }
 
+/// Iso edges of H's centre-line boundary (keel v = v0 from u0 to u1, then stem u = u1 from v0
+/// to v1; either may be a pole) from uv `a` to uv `c` on it, shared with face fC, in order.
+std::vector<int> centre_line_edges(Brep& b, int fH, int fC, const NurbsSurface& H, Vec2 a, Vec2 c) {
+  const double u1 = H.domain_u().second, v0 = H.domain_v().first;
+  const bool a_keel = perimeter(H, a) < 1.0, c_keel = perimeter(H, c) <= 1.0;
+  std::vector<int> out;
+  auto add = [&](Vec2 p, Vec2 q) {
+    if ((p - q).norm() > 0.0) out.push_back(iso_edge(b, fH, fC, H, p, q));
+  };
+  if (a_keel) a.y() = v0;
+  else a.x() = u1;
+  if (c_keel) c.y() = v0;
+  else c.x() = u1;
+  if (a_keel && !c_keel) {
+    add(a, {u1, v0});
+    add({u1, v0}, c);
+  } else {
+    add(a, c);
+  }
+  for (int e : out)  // exactly on y = 0
+    for (auto& x : b.edges[e].s) x.xyz.y() = 0.0;
+  return out;
+}
+
 /// The trim curve between hull and what replaces its bow part: samples bottom to top with
 /// uv[0] on H and uv[1] on the other face (bulb for a seam, blend for a blend boundary).
 struct Trim {
@@ -191,18 +215,14 @@ SurfaceMesh mesh_hull(const ComposedHull& ch, const MeshOptions& options, const 
     P0 = (reversed ? trim.s.back() : trim.s.front()).uv[0];
     P1 = (reversed ? trim.s.front() : trim.s.back()).uv[0];
   }
-  const bool p0_on_keel = trimmed && perimeter(H, P0) < 1.0;
-  // hull boundary edges
-  const int keel = iso_edge(b, fH, fC, H, {u0, v0}, {p0_on_keel ? P0.x() : u1, v0});
-  int stem_low = -1;
-  if (!trimmed) stem_low = iso_edge(b, fH, fC, H, {u1, v0}, {u1, v1});
-  else if (!p0_on_keel) stem_low = iso_edge(b, fH, fC, H, {u1, v0}, {u1, P0.y()});
-  const int stem_high = trimmed ? iso_edge(b, fH, fC, H, {u1, P1.y()}, {u1, v1}) : -1;
+  // hull boundary edges: the centre line up to the trim curve and on from it (or all of it)
+  const std::vector<int> cl_low = centre_line_edges(b, fH, fC, H, {u0, v0}, trimmed ? P0 : Vec2(u1, v1));
+  const std::vector<int> cl_high = trimmed ? centre_line_edges(b, fH, fC, H, P1, {u1, v1}) : std::vector<int>{};
   const int deck = iso_edge(b, fH, fD, H, {u1, v1}, {u0, v1});
   const int aft_edge = iso_edge(b, fH, aft.on_centre_plane ? fC : fA, H, {u0, v1}, {u0, v0});
-  for (int e : {keel, stem_low, stem_high, aft.on_centre_plane ? aft_edge : -1})  // exactly on y = 0
-    if (e >= 0)
-      for (auto& x : b.edges[e].s) x.xyz.y() = 0.0;
+  if (aft.on_centre_plane)
+    for (auto& x : b.edges[aft_edge].s) x.xyz.y() = 0.0;
+  const int keel = cl_low.front();
   const Vec3 C = b.edges[deck].s.front().xyz, Dk = b.edges[deck].s.back().xyz, A = b.edges[keel].s.front().xyz;
   const Vec3 E = aft.on_centre_plane ? Dk : aft.deck_corner;
   // bow: trim edge, bulb and blend
@@ -213,10 +233,10 @@ SurfaceMesh mesh_hull(const ComposedHull& ch, const MeshOptions& options, const 
     const NurbsSurface* Bs = has_bulb ? &ch.bulb[0] : nullptr;
     const auto [bu0, bu1] = Bs->domain_u();
     const auto [bv0, bv1] = Bs->domain_v();
-    b.faces[fH].loop = {{keel, true}};
-    if (stem_low >= 0) b.faces[fH].loop.push_back({stem_low, true});
+    b.faces[fH].loop.clear();
+    for (int e : cl_low) b.faces[fH].loop.push_back({e, true});
     b.faces[fH].loop.push_back({te, !reversed});
-    b.faces[fH].loop.push_back({stem_high, true});
+    for (int e : cl_high) b.faces[fH].loop.push_back({e, true});
     double ub_bottom = trim.s.front().uv[1].x(), ub_top = trim.s.back().uv[1].x();
     int bulb_side = te;  // the bulb's edge toward the hull
     std::vector<std::pair<int, bool>> blend_centre_low, blend_centre_high;
@@ -275,17 +295,17 @@ SurfaceMesh mesh_hull(const ComposedHull& ch, const MeshOptions& options, const 
     }
     centre_bow = bow;
   } else {
-    b.faces[fH].loop = {{keel, true}, {stem_low, true}};
+    for (int e : cl_low) b.faces[fH].loop.push_back({e, true});
   }
   b.faces[fH].loop.push_back({deck, true});
   b.faces[fH].loop.push_back({aft_edge, true});
   // closing faces
   const int deck_centre = line_edge(b, fC, fD, C, E);
   std::vector<std::pair<int, bool>>& cl = b.faces[fC].loop;
-  cl = {{keel, true}};
-  if (stem_low >= 0) cl.push_back({stem_low, true});
+  cl.clear();
+  for (int e : cl_low) cl.push_back({e, true});
   cl.insert(cl.end(), centre_bow.begin(), centre_bow.end());
-  if (stem_high >= 0) cl.push_back({stem_high, true});
+  for (int e : cl_high) cl.push_back({e, true});
   cl.push_back({deck_centre, true});
   if (aft.on_centre_plane) {
     cl.push_back({aft_edge, true});

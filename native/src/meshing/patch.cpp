@@ -48,18 +48,6 @@ double cross2(const Vec2& a, const Vec2& b, const Vec2& c) {
   return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
 }
 
-bool point_in_polygon(const Vec2& q, const std::vector<Vec2>& poly) {
-  bool in = false;
-  const size_t n = poly.size();
-  for (size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Vec2& a = poly[i];
-    const Vec2& c = poly[j];
-    if ((a.y() > q.y()) != (c.y() > q.y()) && q.x() < (c.x() - a.x()) * (q.y() - a.y()) / (c.y() - a.y()) + a.x())
-      in = !in;
-  }
-  return in;
-}
-
 double segment_distance(const Vec3& q, const Vec3& a, const Vec3& b) {
   const Vec3 ab = b - a;
   const double l2 = ab.squaredNorm();
@@ -346,6 +334,15 @@ struct Work {
         q = std::min(q, -1.0);
     return q;
   }
+  /// Normal distance of an element's centroid from the surface point at its mean (u, v).
+  double chordal(const std::array<int, 4>& e) const {
+    if (!g.surface) return 0.0;
+    const int k = e[3] < 0 ? 3 : 4;
+    Vec3 c = Vec3::Zero();
+    Vec2 m = Vec2::Zero();
+    for (int i = 0; i < k; ++i) c += xyz[e[i]], m += uv[e[i]];
+    return std::abs((c / k - g.point(m / k)).dot(element_normal(e)));
+  }
   int add(const Vec2& q) {
     uv.push_back(q);
     xyz.push_back(g.point(q));
@@ -375,6 +372,10 @@ std::vector<int> match_triangles(const Work& w, const std::vector<std::array<int
       nbr[t][k] = u;
       const int d = tri[u][(it->second.second + 2) % 3];
       q[t][k] = w.quality({a, d, b, c});
+      // a pair across a cell side spans two cells: its quad may sag more than its triangles (the
+      // all-quad split halves every element, so its quads sag a quarter as much)
+      if (!w.o.all_quad && q[t][k] >= w.o.min_quad_quality && w.chordal({a, d, b, c}) > w.o.chordal_tolerance)
+        q[t][k] = -2;
       if (t < u && q[t][k] >= w.o.min_quad_quality) cand.push_back({q[t][k], t, u});
     }
   std::sort(cand.begin(), cand.end(), [](const auto& x, const auto& y) { return std::get<0>(x) > std::get<0>(y); });
@@ -510,6 +511,18 @@ void split_all_quad(Work& w, int loop_size, const LoopMidpoint& midpoint, std::v
 }
 
 }  // namespace
+
+bool point_in_polygon(const Vec2& q, const std::vector<Vec2>& poly) {
+  bool in = false;
+  const size_t n = poly.size();
+  for (size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2& a = poly[i];
+    const Vec2& c = poly[j];
+    if ((a.y() > q.y()) != (c.y() > q.y()) && q.x() < (c.x() - a.x()) * (q.y() - a.y()) / (c.y() - a.y()) + a.x())
+      in = !in;
+  }
+  return in;
+}
 
 // ---- FaceGeometry ------------------------------------------------------------------------
 

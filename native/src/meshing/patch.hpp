@@ -64,4 +64,7 @@ MeshOptions resolved(const MeshOptions& o);
 /// Scaled Jacobian of a quad (d = -1: triangle) with reference normal n.
 double element_quality(const Eigen::Vector3d* p, int corners, const Eigen::Vector3d& n);
 
+/// Even-odd test of q against the closed polygon `poly` (its last point joins its first).
+bool point_in_polygon(const Eigen::Vector2d& q, const std::vector<Eigen::Vector2d>& poly);
+
 }  // namespace fairlines::meshing

@@ -1,0 +1,67 @@
+"""Renders docs/hull_mesh.png: the quad-dominant mesh of the whole container ship (bare hull +
+bulb + blend, transom stern), whole hull and a bow / bulb close-up, elements coloured by part."""
+
+import pathlib
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
+
+import fairlines as fl  # noqa: E402
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+COLOURS = {"hull": "#9ecae1", "bulb": "#fdae6b", "blend": "#a1d99b", "centre_plane": "#dddddd", "deck": "#eeeeee",
+           "aft": "#bcbddc", "waterplane": "#c6dbef"}
+
+
+def draw(ax, mesh, keep, elev, azim, title, box, zoom=1.3):
+    polys, colours = [], []
+    for f, p in zip(mesh.faces, mesh.face_part):
+        name = mesh.parts[p]
+        if name not in keep:
+            continue
+        q = mesh.vertices[f[f >= 0]]
+        if box is not None and not np.all((q >= box[0]) & (q <= box[1])):
+            continue
+        polys.append(q)
+        colours.append(COLOURS.get(name, "w"))
+    ax.add_collection3d(Poly3DCollection(polys, facecolors=colours, edgecolors="k", linewidths=0.15))
+    pts = np.concatenate(polys)
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    ax.set_xlim(lo[0], hi[0])
+    ax.set_ylim(lo[1], hi[1])
+    ax.set_zlim(lo[2], hi[2])
+    ax.set_box_aspect(hi - lo, zoom=zoom)  # true proportions
+    ax.view_init(elev=elev, azim=azim)
+    ax.set_axis_off()
+    ax.set_title(title, fontsize=9)
+
+
+def main(out=ROOT / "docs" / "hull_mesh.png"):
+    hull = fl.Hull.from_json(ROOT / "examples" / "container_ship.json")
+    c = hull.composed_hull()
+    whole = fl.mesh_hull(c, size=3.0, full=True)
+    bow = fl.mesh_hull(c, size=1.0)
+    q = whole.quality()
+    fig = plt.figure(figsize=(14, 10))
+    ax = fig.add_axes((0.0, 0.45, 1.0, 0.55), projection="3d")
+    fig.suptitle(
+         f"whole container ship, size 3 m: {len(whole.faces)} elements, {q['quad_fraction']:.1%} quads, "
+         f"scaled Jacobian min {q['min_scaled_jacobian']:.2f} mean {q['mean_scaled_jacobian']:.2f} (hull blue, "
+        "blend green, bulb orange, deck grey)", y=0.97)
+    draw(ax, whole, ("hull", "bulb", "blend", "deck", "aft"), 18, -60, "", None, zoom=0.95)
+    ax = fig.add_axes((0.0, 0.0, 0.5, 0.47), projection="3d")
+    box = (np.array([215.0, -1.0, -1.0]), np.array([260.0, 40.0, 20.0]))
+    draw(ax, bow, ("hull", "bulb", "blend"), 10, -50, "bow and bulb, size 1 m (hull blue, blend green, bulb orange)", box)
+    ax = fig.add_axes((0.5, 0.0, 0.5, 0.47), projection="3d")
+    draw(ax, bow, ("hull", "bulb", "blend"), -30, -130, "bow and bulb from below", box)
+    fig.savefig(out, dpi=110)
+    print("wrote", out)
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:])
