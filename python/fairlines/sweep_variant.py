@@ -18,7 +18,8 @@ Row columns (``None`` where a stage did not run):
   asked for (``kracht.<name>_target``);
 * ``mesh.*``    checks of the composed half-hull mesh: triangles, boundary and non-manifold
   edges, degenerate triangles, closed (no boundary or non-manifold edge);
-* ``time.*``    wall-clock seconds per stage; ``worker`` host:pid that ran it;
+* ``time.*``    wall-clock seconds per stage and in all, and the CPU seconds of the process
+  (less than the wall clock when other processes share the cores); ``worker`` host:pid;
 * ``file.*``    paths of the optional per-variant outputs (STL, STEP, lines plan).
 """
 
@@ -62,7 +63,7 @@ MEASURE_COLUMNS: dict[str, str] = {
 STATUS_COLUMNS: dict[str, str] = {"status": "str", "error_stage": "str", "error_type": "str",
                                   "error_parameter": "str", "error": "str"}
 TIMING_COLUMNS: dict[str, str] = {**{f"time.{s}_s": "float" for s in STAGES}, "time.total_s": "float",
-                                  "worker": "str"}
+                                  "time.cpu_s": "float", "worker": "str"}
 
 _NAMED = re.compile(r"([A-Za-z_][\w.\[\]]*) is (?=[-+.\d'\"\[({]|nan|inf|None|True|False)")
 
@@ -229,7 +230,7 @@ def run_variant(kind: str, base: dict, params: dict, measure: dict | None = None
     "displacement": bool}; ``outputs``: {"directory": path, "per_variant": ["stl", "step",
     "lines"]}. Returns the row (see the module docstring); raises nothing for a failed variant."""
     row: dict = {"variant": int(variant), "status": "ok"}
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     try:
         _measure(row, kind, apply_parameters(base, params), measure or {}, outputs, variant)
     except _StageError as exc:
@@ -237,6 +238,7 @@ def run_variant(kind: str, base: dict, params: dict, measure: dict | None = None
         row.update(status="failed", error_stage=exc.stage, error_type=type(exc.error).__name__, error=msg,
                    error_parameter=named_parameter(msg, params))
     row["time.total_s"] = time.perf_counter() - t0
+    row["time.cpu_s"] = time.process_time() - c0  # below total_s when other processes hold the cores
     row["worker"] = f"{socket.gethostname()}:{os.getpid()}"
     for k, v in list(row.items()):
         if isinstance(v, float) and not math.isfinite(v) and row["status"] == "ok":

@@ -64,12 +64,15 @@ def dask_cluster(folder: Path, workers: int = 2):
             c.wait_for_workers(workers, timeout=CLUSTER_TIMEOUT)
         yield address, worker_procs
     finally:
-        for p in reversed(procs):
-            if p.poll() is None:
-                os.killpg(p.pid, signal.SIGTERM)
-        for p in procs:
-            try:
-                p.wait(timeout=15)
-            except subprocess.TimeoutExpired:
-                os.killpg(p.pid, signal.SIGKILL)
-                p.wait()
+        for p in reversed(procs):  # workers first: a worker closing after its scheduler can hang
+            _stop(p)
+
+
+def _stop(p: subprocess.Popen) -> None:
+    if p.poll() is None:
+        os.killpg(p.pid, signal.SIGTERM)
+    try:
+        p.wait(timeout=15)
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        p.wait()
