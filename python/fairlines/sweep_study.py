@@ -38,6 +38,7 @@ import hashlib
 import itertools
 import json
 import math
+import os
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -200,7 +201,7 @@ class Study:
     def path(self, key: str, default: str | None = None) -> Path | None:
         """An output path (``outputs.<key>``) resolved against the study's folder."""
         v = self.outputs.get(key, default)
-        return None if v is None else (self.root / v)
+        return None if v is None else Path(os.path.normpath(self.root / v))
 
 
 def variant_key(digest: str, params: dict) -> str:
