@@ -24,12 +24,9 @@ import shutil
 from collections.abc import Callable, Iterator
 from pathlib import Path
 
-import pyarrow as pa
-
 from ._native import InvalidInput
-from .sweep_store import ResultStore, deterministic_columns, parameter_kind, table_schema
 from .sweep_study import Study, variant_key
-from .sweep_variant import run_variant
+from .sweep_variant import TIMING_COLUMNS, run_variant
 
 __all__ = ["sweep", "load_study", "table_path", "SweepIncomplete", "deterministic_columns"]
 
@@ -38,6 +35,11 @@ __all__ = ["sweep", "load_study", "table_path", "SweepIncomplete", "deterministi
 TASK_PREFIX = "fairlines-variant-"
 
 Progress = Callable[[int, int, "dict | None"], None]
+
+
+def deterministic_columns(schema) -> list[str]:
+    """Columns a rerun reproduces exactly, on any scheduler (all but the timings and the worker)."""
+    return [n for n in schema.names if n not in TIMING_COLUMNS]
 
 
 class SweepIncomplete(RuntimeError):
@@ -130,6 +132,8 @@ class _Cluster:
 
 
 def _plan(study: Study):
+    from .sweep_store import parameter_kind, table_schema
+
     plan = study.plan()
     digest = study.base_digest()
     keys = [variant_key(digest, p) for p in plan]
@@ -146,7 +150,7 @@ def table_path(study, table=None) -> Path:
 
 
 def sweep(study, *, scheduler=None, workers: int | None = None, table=None, resume: bool = True,
-          progress: Progress | None = None, plot=None) -> pa.Table:
+          progress: Progress | None = None, plot=None):
     """Run a study (a Study, a dict, or a TOML path; see fairlines.sweep_study) and return its
     table: one row per variant, sorted by variant, failed variants included (``status``,
     ``error*`` columns; fairlines.sweep_variant lists the columns).
@@ -162,6 +166,8 @@ def sweep(study, *, scheduler=None, workers: int | None = None, table=None, resu
     Raises InvalidInput for a bad study or a table of another study, SweepIncomplete when the
     cluster lost variants (the table holds the others: rerun to complete it).
     """
+    from .sweep_store import ResultStore
+
     study = load_study(study)
     plan, keys, schema = _plan(study)
     store = ResultStore(table_path(study, table), schema)
@@ -198,7 +204,7 @@ def sweep(study, *, scheduler=None, workers: int | None = None, table=None, resu
     return result
 
 
-def _maybe_plot(study: Study, table: pa.Table, plot) -> None:
+def _maybe_plot(study: Study, table, plot) -> None:
     path = Path(plot) if plot is not None else study.path("plot")
     if path is None:
         return

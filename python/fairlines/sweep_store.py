@@ -45,11 +45,6 @@ def table_schema(parameters: dict[str, str], study_name: str, digest: str) -> pa
     return pa.schema([pa.field(k, _ARROW[v]) for k, v in cols.items()], metadata=meta)
 
 
-def deterministic_columns(schema: pa.Schema) -> list[str]:
-    """Columns a rerun reproduces exactly (all but the timings and the worker's name)."""
-    return [n for n in schema.names if n not in TIMING_COLUMNS]
-
-
 def _cast(value, kind: str):
     if value is None or kind != "str":
         return value

@@ -39,7 +39,6 @@ import itertools
 import json
 import math
 import os
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -112,6 +111,10 @@ class Study:
     @classmethod
     def from_toml(cls, path) -> Study:
         """Read a study file. Raises InvalidInput for a missing file, bad TOML or bad fields."""
+        try:
+            import tomllib
+        except ModuleNotFoundError:  # Python 3.10
+            import tomli as tomllib
         path = Path(path)
         try:
             data = tomllib.loads(path.read_text())
