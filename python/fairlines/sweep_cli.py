@@ -15,6 +15,8 @@ class ProgressBar:
 
     def __init__(self, stream=sys.stderr):
         self.stream = stream
+        self.tty = stream.isatty()
+        self._step = -1
         self.failed = 0
         self.start = time.monotonic()
         self.first = None
@@ -28,6 +30,10 @@ class ProgressBar:
         now = time.monotonic()
         if done < total and now - self._drawn < REDRAW_SECONDS:
             return
+        step = 10 * done // max(total, 1)
+        if not self.tty and step == self._step:  # a log file: a line every tenth of the study
+            return
+        self._step = step
         self._drawn = now
         ran = done - (self.first or 0)
         rate = ran / max(now - self.start, 1e-9)
@@ -36,8 +42,8 @@ class ProgressBar:
         fill = int(width * done / max(total, 1))
         line = (f"\r[{'#' * fill}{'.' * (width - fill)}] {done}/{total} variants, {self.failed} failed, "
                 f"{rate:.2f}/s {left}")
-        self.stream.write(line.ljust(len(line) + 4))
-        if done >= total:
+        self.stream.write(line.ljust(len(line) + 4) if self.tty else line[1:].rstrip() + "\n")
+        if done >= total and self.tty:
             self.stream.write("\n")
         self.stream.flush()
 
@@ -64,6 +70,11 @@ def run(args) -> int:
     except SweepIncomplete as exc:
         print(f"fairlines sweep: {exc}", file=sys.stderr)
         return 3
+    except KeyboardInterrupt:
+        where = table_path(args.study, args.table)
+        print(f"\nfairlines sweep: stopped; the finished variants are kept ({where} and {where.name}.parts): "
+              "rerun to go on", file=sys.stderr)
+        return 130
     status = table.column("status").to_pylist()
     failed = sum(s != "ok" for s in status)
     ran = len(status) - (bar.first or 0)
