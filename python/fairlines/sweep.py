@@ -160,7 +160,8 @@ def sweep(study, *, scheduler=None, workers: int | None = None, table=None, resu
     table      the Parquet file (default the study's ``outputs.table``, else NAME.parquet beside
                the study). Rows already there are kept and not run again (``resume=False``:
                start afresh, removing the old table).
-    progress   called as progress(done, total, row) after each variant (row None at the start).
+    progress   called as progress(done, total, row) after each variant (row None at the start);
+               an exception it raises stops the sweep, keeping the finished rows.
     plot       a PNG path for the scatter matrix (default the study's ``outputs.plot``, if any).
 
     Raises InvalidInput for a bad study or a table of another study, SweepIncomplete when the

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 import subprocess
@@ -37,8 +38,12 @@ def serial(tmp_path_factory):
 
 
 # ---- plans ----------------------------------------------------------------------------
-def test_lhs_puts_one_sample_in_each_stratum():
+@pytest.mark.parametrize("method", ["lhs", "sobol"])
+def test_samples_fall_one_in_each_stratum(method):
+    """Latin hypercube by construction; scrambled Sobol because its 2^m first points form a
+    (0, m, 1)-net in each coordinate."""
     s = Study.from_dict(study("t.parquet", samples=16))
+    s.method = method
     for p in s.parameters:
         u = (np.array([v[p.path] for v in s.plan()]) - p.low) / (p.high - p.low)
         assert sorted(np.floor(u * 16).astype(int)) == list(range(16))
@@ -59,6 +64,15 @@ def test_sobol_wants_a_power_of_two():
     d["sampling"]["method"] = "sobol"
     with pytest.raises(fl.InvalidInput, match="sampling.samples is 20; expected a power of two"):
         Study.from_dict(d)
+
+
+def test_a_description_file_beside_the_study_is_the_base(tmp_path):
+    desc = base_description()
+    (tmp_path / "hull.json").write_text(json.dumps(desc))
+    (tmp_path / "s.toml").write_text('[base]\ndescription = "hull.json"\n[[parameters]]\n'
+                                     'path = "basic_curves.sac.lcb"\nlow = 118.0\nhigh = 119.0\n')
+    s = Study.from_toml(tmp_path / "s.toml")
+    assert s.base_kind == "description" and s.base == desc
 
 
 def test_a_seed_fixes_the_plan():
