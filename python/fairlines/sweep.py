@@ -182,8 +182,8 @@ def sweep(study, *, scheduler=None, workers: int | None = None, table=None, resu
     if progress:
         progress(count, total, None)
     cluster = _Cluster(scheduler, workers) if pending else _Cluster("serial", None)
+    runner = _serial(study, pending) if cluster.client is None else _dask(cluster.client, study, pending)
     try:
-        runner = _serial(study, pending) if cluster.client is None else _dask(cluster.client, study, pending)
         for i, row, error in runner:
             if row is None:
                 lost.append((i, error))
@@ -194,6 +194,7 @@ def sweep(study, *, scheduler=None, workers: int | None = None, table=None, resu
             if progress:
                 progress(count, total, row)
     finally:
+        runner.close()  # cancels what is still queued (a stopped sweep on a shared scheduler)
         store.flush()
         cluster.close()
     result = store.finish(plan_keys)

@@ -69,6 +69,9 @@ class Parameter:
         if self.values is not None:
             if not isinstance(self.values, list) or not self.values:
                 raise InvalidInput(f"{where}.values is {self.values!r}; expected a non-empty list")
+            if len({json.dumps(v) for v in self.values}) != len(self.values):
+                raise InvalidInput(f"{where}.values is {self.values!r}; expected distinct values (a variant is "
+                                   "identified by its values)")
             return
         for k in ("low", "high"):
             v = getattr(self, k)

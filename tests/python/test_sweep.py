@@ -90,6 +90,13 @@ def test_an_unknown_parameter_path_is_refused(path, match):
         Study.from_dict(d)
 
 
+def test_repeated_values_are_refused():
+    d = study("t.parquet")
+    d["parameters"][0] = {"path": "cb", "values": [0.65, 0.7, 0.65]}
+    with pytest.raises(fl.InvalidInput, match="expected distinct values"):
+        Study.from_dict(d)
+
+
 def test_an_unknown_description_path_is_refused():
     d = study("t.parquet")
     d["base"] = {"description": base_description()}
