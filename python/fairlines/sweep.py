@@ -33,6 +33,8 @@ __all__ = ["sweep", "load_study", "table_path", "SweepIncomplete", "deterministi
 #: Keys Dask gives the variant tasks (their study's key follows), so a shared scheduler's
 #: dashboard shows what they are.
 TASK_PREFIX = "fairlines-variant-"
+#: Seconds to wait for a scheduler given by address before refusing it.
+CONNECT_SECONDS = 20
 
 Progress = Callable[[int, int, "dict | None"], None]
 
@@ -120,7 +122,11 @@ class _Cluster:
             if not scheduler.startswith(("tcp://", "tls://", "inproc://", "ucx://")):
                 raise InvalidInput(f"scheduler is {scheduler!r}; expected 'serial', None or an address like "
                                    "'tcp://host:8786'")
-            self.client, self.owned = Client(scheduler), True
+            try:
+                self.client, self.owned = Client(scheduler, timeout=CONNECT_SECONDS), True
+            except OSError as exc:
+                raise InvalidInput(f"scheduler is {scheduler!r}; could not connect within {CONNECT_SECONDS} s "
+                                   f"({exc}); expected a running Dask scheduler there") from exc
         else:
             self.client = scheduler
 

@@ -218,6 +218,18 @@ def test_a_table_of_another_study_is_refused(serial, tmp_path):
         sweep(d, scheduler="serial")
 
 
+def test_an_unreachable_scheduler_is_refused(tmp_path, monkeypatch):
+    import importlib
+    import socket
+
+    monkeypatch.setattr(importlib.import_module("fairlines.sweep"), "CONNECT_SECONDS", 1)
+    with socket.socket() as s:  # a port nobody listens on
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    with pytest.raises(fl.InvalidInput, match=f"scheduler is 'tcp://127.0.0.1:{port}'; could not connect"):
+        sweep(study(tmp_path / "t.parquet"), scheduler=f"tcp://127.0.0.1:{port}")
+
+
 def test_cli_writes_table_and_plot(tmp_path):
     toml = tmp_path / "s.toml"
     toml.write_text(f"""name = "cli"
