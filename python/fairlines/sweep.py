@@ -67,16 +67,18 @@ def load_study(study) -> Study:
 
 
 def _serial(study: Study, pending: list[tuple[int, dict, str]]) -> Iterator[tuple[int, dict | None, str | None]]:
+    outputs = _outputs(study)
     for i, params, _ in pending:
-        yield i, run_variant(study.base_kind, study.base, params, study.measure, _outputs(study), i), None
+        yield i, run_variant(study.base_kind, study.base, params, study.measure, outputs, i), None
 
 
 def _dask(client, study: Study, pending: list[tuple[int, dict, str]]) -> Iterator[tuple[int, dict | None, str | None]]:
     from distributed import as_completed
 
     futures = {}
+    outputs = _outputs(study)
     for i, params, key in pending:
-        f = client.submit(run_variant, study.base_kind, study.base, params, study.measure, _outputs(study), i,
+        f = client.submit(run_variant, study.base_kind, study.base, params, study.measure, outputs, i,
                           key=TASK_PREFIX + key, pure=False)
         futures[f] = i
     try:
@@ -115,6 +117,8 @@ class _Cluster:
         from distributed import Client, LocalCluster
 
         if scheduler is None:
+            if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+                raise InvalidInput(f"workers is {workers!r}; expected an integer >= 1 (or None: all cores)")
             n = workers or os.cpu_count() or 1
             self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None)
             self.client, self.owned = Client(self.cluster), True

@@ -20,7 +20,8 @@ Row columns (``None`` where a stage did not run):
   edges, degenerate triangles, closed (no boundary or non-manifold edge);
 * ``time.*``    wall-clock seconds per stage and in all, and the CPU seconds of the process
   (less than the wall clock when other processes share the cores); ``worker`` host:pid;
-* ``file.*``    paths of the optional per-variant outputs (STL, STEP, lines plan).
+* ``file.*``    paths of the optional per-variant outputs: STL of the full composed hull, STEP
+  of its trimmed surfaces, lines-plan PNG.
 """
 
 from __future__ import annotations
@@ -199,7 +200,7 @@ def _outputs(row: dict, hull, composed, outputs: dict, variant: int) -> None:
             composed.write_stl(path, full=True)
         elif what == "step":
             from .cad import export_cad
-            export_cad(shape, path)
+            export_cad(shape, path, what="surfaces")  # trimmed surfaces: the whole ship does not sew into a solid yet
         else:
             from .lines_plan import lines_plan
             lines_plan(shape, lpp=pr.lpp, beam=pr.breadth, draft=pr.draft, depth=pr.depth,
