@@ -52,6 +52,12 @@ def cores(rows: list, wall: float) -> float:
     return sum(r["time.cpu_s"] for r in rows) / wall
 
 
+def busy(rows: list, wall: float, workers: int) -> float:
+    """Fraction of the run's wall clock the workers spent inside variants (the rest is waiting
+    on the scheduler, the driver or start-up)."""
+    return sum(r["time.total_s"] for r in rows) / (wall * workers)
+
+
 def main() -> int:
     print(f"{VARIANTS} whole-ship variants (design + compose + full measurement); {os.cpu_count()} cores; "
           f"load average before: {os.getloadavg()[0]:.2f}")
@@ -70,6 +76,9 @@ def main() -> int:
     report("local cluster, 1 worker: variants/s", VARIANTS / one, "1/s", f"on {cores(rows1, one):.2f} cores")
     report("local cluster, 2 workers: variants/s", VARIANTS / two, "1/s", f"on {cores(rows2, two):.2f} cores")
     report("speed-up 1 -> 2 workers, wall clock (goal >= 1.8)", one / two, "x")
+    for n, wall, rs in ((1, one, rows1), (2, two, rows2)):
+        report(f"worker occupancy, {n} worker(s): time in variants / wall", busy(rs, wall, n), "",
+               "(1.0: never idle between variants)")
     eff = (VARIANTS / two / cores(rows2, two)) / (VARIANTS / one / cores(rows1, one))
     report("throughput per core obtained, 2 workers / 1 worker", eff, "",
            "(1.0: no sweep overhead; x 2 = speed-up on two idle cores)")
