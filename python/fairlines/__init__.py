@@ -91,3 +91,6 @@ from . import mesh_io  # noqa: F401,E402
 from ._native import MeshOptions  # noqa: F401,E402
 from .meshing import SurfaceMesh, mesh_hull, mesh_options, mesh_quality, mesh_surface  # noqa: F401,E402
 from .mesh_io import read_mesh, read_plot3d, write_gdf, write_mar, write_mesh, write_plot3d  # noqa: F401,E402
+
+# Design-space sweeps on Dask (the `sweep` extra: dask[distributed], pyarrow, scipy; imported on use).
+from .sweep import sweep  # noqa: F401,E402

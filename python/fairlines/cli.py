@@ -7,6 +7,7 @@
     fairlines design --lpp L --breadth B --draft T --depth D --cb CB --lcb LCB [--bulb] -o hull.json
     fairlines export | lines | hydrostatics ...   (see fairlines.cli_output)
     fairlines mesh HULL.json --size 2.0 [--draft T] [--open] [--full] [--format gdf] -o mesh.msh
+    fairlines sweep STUDY.toml [--scheduler tcp://host:8786] [--workers N] [-o table.parquet] [--fresh]
 """
 
 from __future__ import annotations
@@ -154,6 +155,8 @@ def main(argv=None) -> int:
     me.add_argument("--format", default=None, help="gdf (WAMIT), mar (Nemoh) or a meshio format name; default from "
                                                    "the output suffix (.msh .vtu .stl .obj .med ...)")
     me.add_argument("-o", "--output", required=True, help="mesh file to write")
+    from . import sweep_cli
+    sweep_cli.add_parser(sub)
     args = ap.parse_args(argv)
     try:
         if args.command == "version":
@@ -169,6 +172,8 @@ def main(argv=None) -> int:
             return cli_output.run(args)
         if args.command == "mesh":
             return _mesh(args)
+        if args.command == "sweep":
+            return sweep_cli.run(args)
         return _fit(args)
     except ValueError as exc:  # bad input: a one-line message, no traceback
         print(f"fairlines {args.command}: {exc}", file=sys.stderr)
