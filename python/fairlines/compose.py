@@ -521,7 +521,7 @@ def _arc_over_centre_edge(uv, hull, clearance_u, clearance_v, points, seam, bulb
     side = np.where(uv[:, 0] < uc, a_aft, a_fore)
     scale = float(np.max(np.hypot((uv[:, 0] - uc) / side, np.maximum(uv[:, 1] - vz, 0.0) / b0)))
     R = scale * b0 + clearance_v
-    fore_room = 0.3 * (u1 - uv[:, 0].max())  # keep half the stem above the seam free
+    fore_room = 0.5 * (u1 - uv[:, 0].max())  # keep half the stem above the seam free
     a_aft, a_fore = scale * a_aft + clearance_u, min(scale * a_fore + clearance_u, uv[:, 0].max() + fore_room - uc)
     if vz + R >= v1:
         return "a blend boundary clear of the seam would reach the deck"

@@ -242,9 +242,11 @@ def design_description(p: Particulars) -> dict:
         "design": {k: v for k, v in asdict(p).items() if k != "notes"},
     }
     if p.bulb:
+        # bulb: True, Kracht coefficients, or a whole "bulb" section ({"kracht": ..., "shape": ...})
         given = dict(p.bulb) if isinstance(p.bulb, dict) else {}
+        section = given if {"kracht", "shape"} & set(given) else {"kracht": given}
         defaults = {k: v.default for k, v in inspect.signature(BulbousBow).parameters.items() if k in KRACHT_NAMES}
-        desc["bulb"] = {"kracht": {**defaults, **given}}
+        desc["bulb"] = {**section, "kracht": {**defaults, **section.get("kracht", {})}}
     return desc
 
 
