@@ -8,7 +8,7 @@ import numpy
 import numpy.typing
 import typing
 from . import limits
-__all__: list[str] = ['ConvergenceError', 'CurveFit', 'END_BAND', 'FairlinesError', 'FairnessWeights', 'FitOptions', 'FormBounds', 'FormCurveRequest', 'FormSolverOptions', 'Hydrostatics', 'InfeasibleFormParameters', 'InvalidInput', 'MAX_SHAPE_KNOB', 'MeshOptions', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PlaneCut', 'SectionDesign', 'SectionSpec', 'SkinResult', 'SplineBound', 'SplineCondition', 'SplineDesignRequest', 'SplineFitPoint', 'SplineFlat', 'SplineIntegral', 'SplineShape', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'design_section', 'design_sections', 'design_spline_function', 'ellipse', 'equal_arc_length_points', 'fairness_of', 'fit_curve', 'fit_surface', 'form_parameter_names', 'form_parameters_of', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics', 'limits', 'mesh_quality', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'plane_cut', 'revolve', 'scaled_jacobians', 'section_area', 'section_fullness_range', 'section_knot_vector', 'sphere', 'spline_function_knots', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
+__all__: list[str] = ['ConvergenceError', 'CurveFit', 'Distribution', 'END_BAND', 'FairlinesError', 'FairnessWeights', 'FitOptions', 'FormBounds', 'FormCurveRequest', 'FormSolverOptions', 'Hydrostatics', 'InfeasibleFormParameters', 'InvalidInput', 'MAX_SHAPE_KNOB', 'MeshOptions', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PlaneCut', 'SectionDesign', 'SectionSpec', 'SkinResult', 'Spacing', 'SplineBound', 'SplineCondition', 'SplineDesignRequest', 'SplineFitPoint', 'SplineFlat', 'SplineIntegral', 'SplineShape', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'design_section', 'design_sections', 'design_spline_function', 'distribute', 'ellipse', 'equal_arc_length_points', 'fairness_of', 'fit_curve', 'fit_surface', 'form_parameter_names', 'form_parameters_of', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics', 'knot_line_parameters', 'limits', 'mesh_quality', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'parameters_at_arc_length', 'plane_cut', 'revolve', 'scaled_jacobians', 'section_area', 'section_fullness_range', 'section_knot_vector', 'sphere', 'spline_function_knots', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
 class FairlinesError(RuntimeError):
     pass
 class InvalidInput(ValueError):
@@ -1201,7 +1201,113 @@ class MeshOptions:
     @smoothing_passes.setter
     def smoothing_passes(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
+class Spacing:
+    """
+    How points are spaced along a grid line.
+    
+    Members:
+    
+      uniform
+    
+      sinh
+    
+      tanh
+    
+      tanh_two_sided
+    
+      geometric
+    """
+    __members__: typing.ClassVar[dict[str, Spacing]]
+    geometric: typing.ClassVar[Spacing]
+    sinh: typing.ClassVar[Spacing]
+    tanh: typing.ClassVar[Spacing]
+    tanh_two_sided: typing.ClassVar[Spacing]
+    uniform: typing.ClassVar[Spacing]
+    @typing.overload
+    def __eq__(self, other: Spacing) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: Spacing) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class Distribution:
+    """
+    A point distribution along a line (see fairlines.grids).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def first(self) -> float:
+        """
+        first spacing (m); sinh / tanh: 0 when the last end is clustered
+        """
+    @first.setter
+    def first(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def kind(self) -> Spacing:
+        """
+        Spacing: uniform, sinh, tanh, tanh_two_sided, geometric
+        """
+    @kind.setter
+    def kind(self, arg0: Spacing) -> None:
+        ...
+    @property
+    def last(self) -> float:
+        """
+        last spacing (m): tanh_two_sided, sinh, tanh
+        """
+    @last.setter
+    def last(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_ratio(self) -> float:
+        """
+        geometric: largest ratio of neighbouring spacings (> 1)
+        """
+    @max_ratio.setter
+    def max_ratio(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def points(self) -> int:
+        """
+        number of points (>= 2); geometric: 0 = the fewest within max_ratio
+        """
+    @points.setter
+    def points(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
 def _blend_surface(a: NurbsSurface, boundary_a: typing.Any, b: NurbsSurface, boundary_b: typing.Any, samples: typing.SupportsInt | typing.SupportsIndex = 61, tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, check_samples: typing.SupportsInt | typing.SupportsIndex = 200) -> tuple[NurbsSurface, dict, dict]:
+    ...
+def _cluster_by_knots(surface: NurbsSurface, direction: str, at: typing.SupportsFloat | typing.SupportsIndex, spacing: typing.SupportsFloat | typing.SupportsIndex, count: typing.SupportsInt | typing.SupportsIndex, growth: typing.SupportsFloat | typing.SupportsIndex) -> NurbsSurface:
+    ...
+def _cluster_by_weights(surface: NurbsSurface, direction: str, ratio: typing.SupportsFloat | typing.SupportsIndex) -> NurbsSurface:
     ...
 def _compose_hull(hull: NurbsSurface, bulb: NurbsSurface = None, hull_u: typing.SupportsInt | typing.SupportsIndex = 48, hull_v: typing.SupportsInt | typing.SupportsIndex = 20, bulb_u: typing.SupportsInt | typing.SupportsIndex = 24, bulb_v: typing.SupportsInt | typing.SupportsIndex = 32, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, margin: typing.SupportsFloat | typing.SupportsIndex = 0.3, blend_hull_uv: typing.Any = None, blend_bulb_u: typing.SupportsFloat | typing.SupportsIndex = 0.5, blend_tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, blend_rows: typing.SupportsInt | typing.SupportsIndex = 8, blend_check_samples: typing.SupportsInt | typing.SupportsIndex = 200) -> _ComposedHull:
     ...
@@ -1215,6 +1321,8 @@ def _form_curve_derivatives(params: dict, n_control: typing.Any, degree: typing.
     """
     Testing hook: constraints, Jacobian, sum lambda_i Hess c_i, objective, gradient and Hessian at z.
     """
+def _grid_quality(points: typing.Any, ni: typing.SupportsInt | typing.SupportsIndex, nj: typing.SupportsInt | typing.SupportsIndex) -> dict:
+    ...
 def _hull_bulb_seam(hull: NurbsSurface, bulb: NurbsSurface, bulb_v: typing.SupportsInt | typing.SupportsIndex = 32, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07) -> tuple[NurbsSurface, dict]:
     """
     (oriented hull, seam dict) of compose_hull([hull, bulb]) without meshing (see compose.hpp).
@@ -1226,6 +1334,10 @@ def _linear_form_curve(name: str, abscissae: typing.Any, degree: typing.Supports
 def _mesh_hull(composed: _ComposedHull, options: MeshOptions, draft: typing.SupportsFloat | typing.SupportsIndex, lids: bool, full: bool, progress: typing.Any = None) -> tuple:
     ...
 def _mesh_surface(surface: NurbsSurface, options: MeshOptions) -> tuple:
+    ...
+def _parameter_grid(surface: NurbsSurface, us: typing.Any, vs: typing.Any) -> tuple:
+    ...
+def _surface_grid(surface: NurbsSurface, du: Distribution, dv: Distribution) -> tuple:
     ...
 def arc(center: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, start_angle: typing.SupportsFloat | typing.SupportsIndex, end_angle: typing.SupportsFloat | typing.SupportsIndex, normal: typing.Any = (0.0, 0.0, 1.0), x_axis: typing.Any = None) -> NurbsCurve:
     """
@@ -1277,6 +1389,10 @@ def design_spline_function(request: SplineDesignRequest) -> NurbsCurve:
     The fairest spline function meeting the request: a NurbsCurve of dimension 1 whose parameter is x (m).
     Raises InvalidInput (malformed request) or InfeasibleFormParameters (conditions in conflict, named).
     """
+def distribute(distribution: Distribution, length: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Positions (m, 0 .. length) of a distribution's points along a line of `length` metres.
+    """
 def ellipse(center: typing.Any, semi_axis_a: typing.Any, semi_axis_b: typing.Any) -> NurbsCurve:
     """
     Exact ellipse; the semi-axis vectors give directions and lengths (metres).
@@ -1323,6 +1439,10 @@ def hydrostatics(surface: NurbsSurface, draft: typing.SupportsFloat | typing.Sup
     trim: by the stern (m) over trim_length (AP at x = 0 to FP); draft is then the draft at trim_length / 2.
     Raises InvalidInput for a bad draft or option, or a waterplane above the surface's highest point.
     """
+def knot_line_parameters(surface: NurbsSurface, direction: str, per_span: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Knot values of one direction with every span cut into per_span parts.
+    """
 def mesh_quality(vertices: typing.Any, faces: typing.Any) -> dict:
     """
     Quality census of a quad / triangle mesh ((n, 3) vertices, (m, 3 or 4) faces, -1 pads a triangle).
@@ -1338,6 +1458,10 @@ def orient_bare_hull(hull: NurbsSurface, plane_tolerance: typing.SupportsFloat |
 def parameterize(points: typing.Any, method: str = 'chord') -> numpy.typing.NDArray[numpy.float64]:
     """
     Parameters in [0, 1] for (m, dim) points: 'chord', 'centripetal' or 'uniform'.
+    """
+def parameters_at_arc_length(curve: NurbsCurve, s: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Curve parameters at increasing arc lengths s (m from the start).
     """
 def plane_cut(surface: NurbsSurface, axis: typing.Any, value: typing.SupportsFloat | typing.SupportsIndex, samples: typing.SupportsInt | typing.SupportsIndex = 401) -> PlaneCut:
     """
