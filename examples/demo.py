@@ -6,6 +6,7 @@
 import argparse
 import pathlib
 import runpy
+import shutil
 import sys
 
 HERE = pathlib.Path(__file__).resolve().parent
@@ -19,6 +20,9 @@ STEPS = [
     ("Bulbous bow, blend and Boolean composition into a watertight hull (container ship)", "compose_ship.py"),
     ("Lines plan, curves of form and CAD files (container ship)", "lines_plan.py"),
 ]
+# Pictures for the README written straight to docs/ (their scripts take the picture's path).
+PICTURES = [("Quad-dominant solver mesh of the whole ship", "mesh_picture.py", "hull_mesh.png")]
+SWEEP_STUDY = HERE / "sweep_study.toml"
 
 
 def main():
@@ -35,6 +39,18 @@ def main():
         except SystemExit as e:  # a step ending with sys.exit(0) must not end the demo
             if e.code not in (None, 0):
                 raise
+    for title, script, png in PICTURES:
+        print(f"\n== {title} ({script}) ==", flush=True)
+        sys.argv = [script, str(HERE.parent / "docs" / png)]
+        runpy.run_path(str(HERE / script), run_name="__main__")
+    print(f"\n== Design-space sweep on a local Dask cluster ({SWEEP_STUDY.name}) ==", flush=True)
+    from fairlines.cli import main as fairlines_main
+
+    code = fairlines_main(["sweep", str(SWEEP_STUDY), "-o", str(out / "sweep" / "study.parquet"), "--fresh",
+                           "--plot", str(out / "sweep" / "sweep_study.png")])
+    if code != 0:
+        raise SystemExit(f"the sweep failed (exit status {code})")
+    shutil.copy(out / "sweep" / "sweep_study.png", HERE.parent / "docs" / "sweep_study.png")
     print(f"\nOutputs are in {out}")
 
 
