@@ -71,6 +71,7 @@ def main():
             times.append(time.perf_counter() - t)
         except (fl.InfeasibleFormParameters, fl.InvalidInput) as e:
             key = str(e).split(":")[0]
+            key = "sections" + (" (transom, x < 0)" if " -" in key else "") if key.startswith("section at") else key
             fails[key] = fails.get(key, 0) + 1
     print(f"design space (Cb 0.50-0.87, LCB -4..+4 % Lpp, L/B 4-9, B/T 2-4.5), {SAMPLES} Latin-hypercube samples: "
           f"{ok} built and matched ({100 * ok / SAMPLES:.1f} %, goal 100 %), median {1e3 * statistics.median(times):.0f} ms; "
