@@ -153,7 +153,7 @@ Piece fillet(const V2& A, const V2& X, const V2& B) {
 }
 
 struct Frame {
-  V2 D, dir, nrm;
+  V2 D = V2::Zero(), dir = V2::Zero(), nrm = V2::Zero();
   double L = 0;
   double xi(const V2& q) const { return (q - D).dot(dir); }
   double eta(const V2& q) const { return (q - D).dot(nrm); }
@@ -164,8 +164,8 @@ struct Section {
   const SectionSpec& s;
   const Layout& l;
   std::string at;
-  Frame f;
-  V2 K, Q;
+  Frame f{};
+  V2 K = V2::Zero(), Q = V2::Zero();
   bool immersed = false;
   double b = 0, d = 0, w = 0;  // box and immersion weight
   double t_q = 0;              // parameter of Q (its abscissa over L)
