@@ -126,7 +126,7 @@ def run(api, ids, check, tmp, points, files, seed=17, changes=1500, per_round=4)
     api.evaluate(tree, check=False)
     every = targets(tree)
     done = refused = evaluations = 0
-    states = {}
+    states, last_message = {}, {}
     t0 = time.perf_counter()
     while done < changes:
         chosen = rng.sample(every, per_round)
@@ -146,11 +146,13 @@ def run(api, ids, check, tmp, points, files, seed=17, changes=1500, per_round=4)
             check(node.fl_state == "OK" or node.fl_message.strip(), "%s: %s without a message" % (
                 node.name, node.fl_state))
             states.setdefault(node.bl_idname, set()).add(node.fl_state)
+            if node.fl_state != "OK":
+                last_message[node.bl_idname] = node.fl_message[:160]
         for (node, owner, attr, prop), old in zip(chosen, saved):
             _assign(owner, attr, old)
     api.evaluate(tree, check=False)
     seconds = time.perf_counter() - t0
-    never_ok = sorted(k for k, v in states.items() if "OK" not in v)
+    never_ok = {k: last_message[k] for k, v in sorted(states.items()) if "OK" not in v}
     bpy.data.node_groups.remove(tree)
     return {"changes": done, "refused_by_rna": refused, "evaluations": evaluations, "targets": len(every),
             "node_types": len(states), "never_ok": never_ok,
