@@ -61,9 +61,18 @@ def enum(name, items, default, description=""):
                                   description=description or name, update=_changed)
 
 
+def _blend_relative_option():
+    # Blender 4.5+ warns whenever a "//" (blend-relative) path is set on a path property that
+    # does not declare the option; older releases refuse the option when the class registers.
+    return {"PATH_SUPPORTS_BLEND_RELATIVE"} if bpy.app.version >= (4, 5, 0) else set()
+
+
 def text(name, default="", subtype="NONE", description=""):
+    extra = {}
+    if subtype == "FILE_PATH":
+        extra["options"] = {"ANIMATABLE"} | _blend_relative_option()
     return bpy.props.StringProperty(name=name, default=default, subtype=subtype,
-                                    description=description or name, update=_changed)
+                                    description=description or name, update=_changed, **extra)
 
 
 def pointer(name, type, description=""):

@@ -26,7 +26,7 @@ import re
 
 import numpy as np
 
-from ._native import InvalidInput
+from ._native import InvalidInput, limits
 
 # Two stations closer than this fraction of Lpp are the same station (duplicates).
 STATION_MATCH_TOL = 1e-9
@@ -506,6 +506,9 @@ def read_tecplot(path) -> list:
         if not m:
             continue
         ni, nj = int(m.group(1)), int(m.group(2))
+        if not (1 <= ni and 1 <= nj and ni * nj <= limits.MAX_RESULT_VALUES // 3):
+            raise InvalidInput(f"{path}: line {k}: zone i={ni} j={nj}; expected i, j >= 1 and "
+                               f"i*j <= {limits.MAX_RESULT_VALUES // 3} points")
         vals = []
         while len(vals) < 3 * ni * nj and k < len(lines):
             if re.match(r"\s*zone\b", lines[k], re.IGNORECASE):

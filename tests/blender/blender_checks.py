@@ -27,6 +27,9 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(ROOT, "examples"))
 import blender_graph  # noqa: E402
 
+sys.path.insert(0, HERE)
+import random_properties  # noqa: E402
+
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else sys.argv[1:]
 ap = argparse.ArgumentParser()
 ap.add_argument("--zip", required=True)
@@ -34,6 +37,7 @@ ap.add_argument("--mode", choices=("extension", "legacy"), required=True)
 ap.add_argument("--tmp", required=True)
 ap.add_argument("--bench", type=int, default=0)
 ap.add_argument("--json", default="")
+ap.add_argument("--random-changes", type=int, default=1500, help="random property changes (0: skip)")
 args = ap.parse_args(argv)
 os.makedirs(args.tmp, exist_ok=True)
 
@@ -806,6 +810,19 @@ def t_every_node_alone():
     results["node_types"] = len(kinds)
 
 
+def t_random_properties():
+    """Thousands of seeded random, extreme and degenerate property values on every node type
+    (random_properties.py): every node stays OK or turns red / blocked with a message."""
+    if not args.random_changes:
+        return
+    u, v = np.meshgrid(np.linspace(0, 20, 9), np.linspace(0, 5, 6), indexing="ij")
+    points = blender_graph.points_object(np.stack([u, v, np.sin(u / 6.0) * np.cos(v / 3.0)], axis=-1),
+                                         "Random Points")
+    files = {"offsets": os.path.join(DATA, "series60_cb080_offsets.csv"), "description": blender_graph.DESCRIPTION}
+    results["random_properties"] = random_properties.run(
+        sub("api"), sub("ids"), check, os.path.join(args.tmp, "random"), points, files, changes=args.random_changes)
+
+
 DATA = os.environ.get("FAIRLINES_DATA", os.path.join(os.path.dirname(ROOT), "shared", "data"))
 
 
@@ -1019,6 +1036,8 @@ def main():
             steps.append("curve edit")
             t_every_node_alone()
             steps.append("every node alone")
+            t_random_properties()
+            steps.append("random properties")
             t_offsets_hydrostatics()
             steps.append("offsets and hydrostatics")
             t_export(tree)

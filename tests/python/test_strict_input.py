@@ -80,6 +80,15 @@ def test_grid_readers_raise_invalid_input(tmp_path):
         offsets.read_xyz_grid(x, y, z)
 
 
+@pytest.mark.parametrize("header", ["Zone i=2222222222222222222222 j=0 f=point", "Zone i=0 j=5 f=point",
+                                    "Zone i=100000 j=100000 f=point"])
+def test_tecplot_zone_sizes_are_checked_before_reading(tmp_path, header):
+    """Found by the Tecplot fuzz harness: an empty zone of absurd width raised a bare ValueError."""
+    bad = write(tmp_path, "hull.dat", header + "\n")
+    with pytest.raises(fl.InvalidInput, match="line 1: zone i="):
+        offsets.read_tecplot(bad)
+
+
 def test_a_long_section_list_is_checked_quickly(tmp_path):
     # The fold-back check compares every pair of segments; it is vectorised and bounded.
     z = np.linspace(0, 6, offsets.MAX_SECTION_POINTS)
