@@ -238,7 +238,9 @@ double flare_lean(const Section& S) {
 
 V2 heading(const Section& S) {
   const SectionSpec& s = S.s;
-  const double chord = std::max(S.b / S.d, flare_lean(S));
+  // (The flare does not steer the heading: a wide deck over a narrow, shallow waterline would
+  // send it across the centre plane and fold the section. The corner C leans for it instead.)
+  const double chord = S.b / S.d;
   const double sin_room = (s.y_max - S.b) / std::max(s.top_corner * (S.f.D - S.Q).norm(), 1e-12);
   const double room = sin_room >= 1.0 ? std::numeric_limits<double>::infinity() : sin_room / std::sqrt(1.0 - sin_room * sin_room);
   const double r = room / chord;
