@@ -19,6 +19,7 @@ main module.
 
 from __future__ import annotations
 
+import logging
 import os
 import shutil
 from collections.abc import Callable, Iterator
@@ -120,7 +121,10 @@ class _Cluster:
             if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
                 raise InvalidInput(f"workers is {workers!r}; expected an integer >= 1 (or None: all cores)")
             n = workers or os.cpu_count() or 1
-            self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None)
+            # Worker logs are silenced: a variant's error is its row, and a heartbeat racing the
+            # shutdown would otherwise print a traceback after a finished sweep.
+            self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                                        silence_logs=logging.CRITICAL)
             self.client, self.owned = Client(self.cluster), True
         elif isinstance(scheduler, str):
             if not scheduler.startswith(("tcp://", "tls://", "inproc://", "ucx://")):
