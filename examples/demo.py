@@ -51,7 +51,24 @@ def main():
     if code != 0:
         raise SystemExit(f"the sweep failed (exit status {code})")
     shutil.copy(out / "sweep" / "sweep_study.png", HERE.parent / "docs" / "sweep_study.png")
+    compact_pictures()
     print(f"\nOutputs are in {out}")
+
+
+#: README pictures written by `make demo` (the Blender renders by `make blender-demo` before it).
+DOCS_PICTURES = ("designed_ships.png", "lines_plan.png", "hull_mesh.png", "sweep_study.png", "ship.png",
+                 "ship_zebra.png")
+
+
+def compact_pictures(docs=HERE.parent / "docs"):
+    """Store the README pictures with a 256-colour palette (dithered): a third to a tenth of the
+    size, so the repository does not grow by megabytes each time they are regenerated."""
+    from PIL import Image
+
+    for name in DOCS_PICTURES:
+        path = docs / name
+        if path.exists():
+            Image.open(path).convert("RGB").quantize(256, dither=Image.Dither.FLOYDSTEINBERG).save(path, optimize=True)
 
 
 if __name__ == "__main__":

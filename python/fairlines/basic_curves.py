@@ -464,28 +464,3 @@ class _ProductCurve(BasicCurve):
 
     def factor(self, offset: float = 0.0, scale: float = 1.0):
         raise _native.InvalidInput("the SAC is a product of splines; use its fullness, DWL and profile as factors")
-
-
-class StemKeelAngle(BasicCurve):
-    """Keel angle that follows the stem: forward of `x_from`, where the centre profile rises with
-    slope s = dz/dx at height z, the section leaves the keel at -atan2(1, s cot(i(z))) degrees:
-    i(z) is the half angle of the waterline at the stem, blunt (90 deg) at the keel and fining to
-    `half_angle_deg` at `fine_height` and above (cot(i) = cot(i_E) smoothstep(z / fine_height)),
-    so the keel angle turns from -90 (a flat keel) toward 0 (a knife-edge stem) gradually up the
-    forefoot. Where the base curve's angle is steeper, it wins."""
-
-    def __init__(self, base: BasicCurve, profile: BasicCurve, half_angle_deg: float, x_from: float, fine_height: float):
-        super().__init__("keel_angle", base.x_start, base.x_end, None, None)
-        self.base, self.profile = base, profile
-        self.cot_i = 1.0 / math.tan(math.radians(half_angle_deg))
-        self.x_from, self.fine_height = x_from, fine_height
-
-    def __call__(self, x: Any, outside: float = math.nan) -> np.ndarray:
-        x = np.atleast_1d(np.asarray(x, dtype=float))
-        out = self.base(x, outside)
-        for i in np.flatnonzero((x > self.x_from) & np.isfinite(out)):
-            slope = max(self.profile.derivative(float(x[i]), 1), 0.0)
-            r = min(max(float(self.profile(x[i])[0]) / self.fine_height, 0.0), 1.0)
-            cot = self.cot_i * r * r * r * (10.0 - 15.0 * r + 6.0 * r * r)
-            out[i] = max(out[i], -math.degrees(math.atan2(1.0, slope * cot)))
-        return out

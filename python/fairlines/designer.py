@@ -106,6 +106,13 @@ class Particulars:
             v = getattr(self, key)
             if v is not None and not (self.cb < v <= 1.0):
                 raise _native.InvalidInput(f"{key} is {v}; expected between Cb = {self.cb} and 1")
+        limits = {"lcf": (0.0, self.lpp, "an LCF between the AP and the FP (m from the AP)"),
+                  "parallel_length": (0.0, 0.8 * self.lpp, "a parallel body from 0 to 0.8 Lpp (m)"),
+                  "transom_immersion": (-self.depth, self.draft, "an immersion between -D and T (m; < 0 dry)")}
+        for key, (lo, hi, what) in limits.items():
+            v = getattr(self, key)
+            if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi):
+                raise _native.InvalidInput(f"{key} is {v!r}; expected {what}")
 
 
 def _coefficients(p: Particulars) -> dict:
@@ -250,11 +257,24 @@ def design_description(p: Particulars) -> dict:
     return desc
 
 
+def _particulars(kwargs: dict) -> Particulars:
+    """Particulars from keywords; an unknown one is InvalidInput naming the nearest field."""
+    import difflib
+
+    known = [f for f in Particulars.__dataclass_fields__ if f != "notes"]
+    for key in kwargs:
+        if key not in known:
+            near = difflib.get_close_matches(key, known, n=1)
+            hint = f"; did you mean {near[0]!r}?" if near else ""
+            raise _native.InvalidInput(f"{key} is not a particular{hint} (expected one of {', '.join(known)})")
+    return Particulars(**kwargs)
+
+
 def design_hull(particulars: Particulars | None = None, **kwargs) -> Hull:
     """A Hull designed from particulars (a Particulars, or its fields as keywords), built and
     matched: its surface holds Cb Lpp B T, the LCB and Cwp Lpp B (see the module docstring).
     Raises InvalidInput for particulars outside the designer's range."""
-    p = particulars if particulars is not None else Particulars(**kwargs)
+    p = particulars if particulars is not None else _particulars(kwargs)
     p.check()
     lp = _coefficients(p)["parallel"]
     for attempt in range(PARALLEL_RETRIES + 1):

@@ -12,21 +12,12 @@ from matplotlib.path import Path
 
 import fairlines as fl
 from conftest import edge_census
+from mesh_fixtures import forebody_surface
 
 L, B, T, D = 244.8, 32.25, 11.0, 19.0
 SHIP = dict(lpp=L, beam=B, draft_fp=T, midship_area=0.97 * B * T, displacement_volume=0.65 * L * B * T)
 KRACHT_TOL = 0.02      # issue 5: measured coefficients within 2 %
 VOLUME_TOL = 0.002     # issue 5: composed = bare + added within 0.2 %
-
-
-def forebody_surface(rows=41, cols=25):
-    r = np.arange(rows)[:, None]
-    c = np.arange(cols)[None, :]
-    x = 0.5 * L + 0.5 * L * (1 - np.cos(np.pi * 0.5 * r / (rows - 1))) + 0 * c
-    z = D * (1 - np.cos(np.pi * 0.5 * c / (cols - 1))) + 0 * r
-    xi = (x - 0.5 * L) / (0.5 * L)
-    y = 0.5 * B * (1 - xi**4) * (1 - (1 - z / D) ** 6)
-    return fl.fit_surface(np.stack([x, y, z], axis=-1), n_control_u=16, n_control_v=12).surface
 
 
 @pytest.fixture(scope="module")

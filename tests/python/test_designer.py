@@ -148,7 +148,10 @@ def test_most_of_the_design_space_builds():
 
 @pytest.mark.parametrize("bad, field", [(dict(cb=1.2), "cb"), (dict(lpp=244800.0), "millimetres"),
                                         (dict(draft=25.0), "draft"), (dict(stern="pram"), "stern"),
-                                        (dict(lcb=0.0), "lcb_pct"), (dict(breadth=float("nan")), "breadth")])
+                                        (dict(lcb=0.0), "lcb_pct"), (dict(breadth=float("nan")), "breadth"),
+                                        (dict(lcf=300.0), "lcf"), (dict(parallel_length=-5.0), "parallel_length"),
+                                        (dict(transom_immersion=float("nan")), "transom_immersion"),
+                                        (dict(bredth=32.0), "did you mean 'breadth'")])
 def test_bad_particulars_name_the_value(bad, field):
     with pytest.raises(fl.InvalidInput, match=field):
         fl.design_hull(**{**SHIPS["container"], **bad})

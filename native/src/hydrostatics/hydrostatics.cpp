@@ -231,10 +231,11 @@ double highest_point(const NurbsSurface& s) {
     return t;
   };
   const std::vector<double> us = refine(bu), vs = refine(bv);
-  double zmax = -std::numeric_limits<double>::infinity();
-  for (double u : us)
-    for (double v : vs) zmax = std::max(zmax, s.evaluate(u, v)[2]);
-  return zmax;
+  // One batched grid evaluation (basis functions per line, not per point): this runs on
+  // every hydrostatics call.
+  const Eigen::Map<const Eigen::VectorXd> mu(us.data(), static_cast<Eigen::Index>(us.size()));
+  const Eigen::Map<const Eigen::VectorXd> mv(vs.data(), static_cast<Eigen::Index>(vs.size()));
+  return s.evaluate_grid(mu, mv).col(2).maxCoeff();
 }
 
 void check_options(const HydrostaticsOptions& o) {
