@@ -97,6 +97,12 @@ def draw_add_menu(self, context):
         layout.menu(menu.bl_idname)
 
 
+def _fairlines_editor(context):
+    """The node editor showing a Fairlines tree, or None."""
+    space = context.space_data
+    return space if space is not None and getattr(space, "tree_type", "") == ids.TREE else None
+
+
 class FL_PT_status(bpy.types.Panel):
     """Engine status and tree evaluation time"""
     bl_idname = ids.PANEL_STATUS
@@ -107,8 +113,7 @@ class FL_PT_status(bpy.types.Panel):
 
     @classmethod
     def poll(cls, context):
-        space = context.space_data
-        return space is not None and getattr(space, "tree_type", "") == ids.TREE
+        return _fairlines_editor(context) is not None
 
     def draw(self, context):
         layout = self.layout
@@ -135,8 +140,8 @@ class FL_PT_hydrostatics(bpy.types.Panel):
 
     @classmethod
     def poll(cls, context):
-        space = context.space_data
-        return space is not None and getattr(space, "tree_type", "") == ids.TREE and space.edit_tree is not None
+        space = _fairlines_editor(context)
+        return space is not None and space.edit_tree is not None
 
     def draw(self, context):
         tree = context.space_data.edit_tree

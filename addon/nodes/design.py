@@ -73,7 +73,7 @@ class FLNodeBulbousBow(FairlinesNode, bpy.types.Node):
     category = "Surfaces"
     bl_width_default = 260
     # Panamax container ship (SPEC section 2): Am = 0.985 B T, displacement 0.65 Lpp B T (as in
-    # examples/compose_forebody.py), the engine's default Kracht coefficients.
+    # examples/compose_ship.py), the engine's default Kracht coefficients.
     inputs_spec = [(ids.SOCKET_LENGTH, "Lpp", {"default": 244.8}),
                    (ids.SOCKET_LENGTH, "Beam", {"default": 32.25}),
                    (ids.SOCKET_LENGTH, "Draft FP", {"default": 11.0}),
