@@ -50,7 +50,11 @@ PARALLEL_SLOPE = 1.6        # parallel body length / Lpp per unit Cp above PARAL
 PARALLEL_CP = 0.62
 CM_MAX = 0.99              # the fullest midship section the regression gives (fuller ones leave the SAC no room)
 PARALLEL_RETRIES, PARALLEL_STEP = 3, 0.05  # a SAC the ends cannot hold: parallel body + 5 % Lpp, 3 times
+LCF_RETRIES = (0.0, 0.015)  # LCF - LCB (fraction of Lpp) tried when the default LCF leaves the SAC no room
 PARALLEL_SHIFT = 1.5        # the parallel body's centre moves this many times the LCB's offset
+DECK_CLEAR = 0.97           # the deck stays flat at least to where the waterline narrows to this fraction of B/2 ...
+DECK_TO_MAX = 0.92          # ... but ends its flat part aft of this fraction of Lpp
+DECK_CHECKS = 101           # points of that check
 DECK_TRANSOM = 0.92         # deck half-breadth at the transom, fraction of B/2
 DWL_TRANSOM = 0.7           # waterline half-breadth at an immersed transom, fraction of B/2
 FULLNESS_POINTS = 81        # points of the natural fullness the SAC stays near
@@ -235,6 +239,10 @@ def design_description(p: Particulars) -> dict:
         sac.update(flat_from=par[0], flat_to=par[1], value=c["cm"] * B * T)
     deck_from = max(x_aft + 0.05 * L, par[0] - 0.25 * L)
     deck_to = min(max(par[1], 0.5 * L) + 0.2 * L, 0.85 * L)
+    xs_fore = np.linspace(deck_to, xf, DECK_CHECKS)
+    full = xs_fore[dwl_curve(xs_fore) >= DECK_CLEAR * half]  # a full bow keeps the deck's flat further forward
+    if len(full):
+        deck_to = min(max(deck_to, float(full[-1])), DECK_TO_MAX * L)
     deck = {"flat_from": deck_from, "flat_to": deck_to, "value": half, "yB": DECK_TRANSOM * half if p.stern == "transom" else 0.0,
             "yE": 0.0, "monotone": True, "spans": 24}
     desc = {
@@ -270,26 +278,61 @@ def _particulars(kwargs: dict) -> Particulars:
     return Particulars(**kwargs)
 
 
+def _fallbacks(p: Particulars):
+    """The particulars, then (for a SAC the ends cannot hold) what the designer may still choose:
+    the LCF at and forward of the LCB (a full ship with its LCB far aft), and a parallel middle
+    body longer by PARALLEL_STEP Lpp at a time -- never a value the user gave."""
+    yield p
+    lp = _coefficients(p)["parallel"]
+    for k in range(PARALLEL_RETRIES + 1):
+        q = p if k == 0 or p.parallel_length is not None else \
+            replace(p, parallel_length=(lp[1] - lp[0]) + k * PARALLEL_STEP * p.lpp)
+        if k and q is not p:
+            yield q
+        if p.lcf is None:
+            for shift in LCF_RETRIES:
+                yield replace(q, lcf=p.lcb + shift * p.lpp)
+
+
 def design_hull(particulars: Particulars | None = None, **kwargs) -> Hull:
     """A Hull designed from particulars (a Particulars, or its fields as keywords), built and
     matched: its surface holds Cb Lpp B T, the LCB and Cwp Lpp B (see the module docstring).
-    Raises InvalidInput for particulars outside the designer's range."""
+    Raises InvalidInput for particulars outside the designer's range, InfeasibleFormParameters
+    (naming the basic curve) when no fallback builds."""
     p = particulars if particulars is not None else _particulars(kwargs)
     p.check()
-    lp = _coefficients(p)["parallel"]
-    for attempt in range(PARALLEL_RETRIES + 1):
+    first = None
+    for q in _fallbacks(p):
         try:
-            hull = Hull.from_json(design_description(p))
+            hull = Hull.from_json(design_description(q))
             match_targets(hull)
             return hull
         except _native.InfeasibleFormParameters as exc:
-            # A full ship whose ends cannot hold the volume gets a longer parallel middle body
-            # (unless the user fixed its length).
-            if particulars is not None and particulars.parallel_length is not None or attempt == PARALLEL_RETRIES \
-                    or not str(exc).startswith("basic_curves.sac"):
-                raise
-            p = replace(p, parallel_length=(lp[1] - lp[0]) + (attempt + 1) * PARALLEL_STEP * p.lpp)
-    raise AssertionError("unreachable")
+            first = first or exc
+            if not str(exc).startswith("basic_curves.sac"):
+                raise _explained(exc, p) from exc
+    raise _explained(first, p) from first
+
+
+#: What to change when a basic curve designed from the particulars is infeasible.
+_REMEDIES = {
+    "sac": "the ends cannot hold this volume with its LCB: move lcb toward midships, lower cb, or give a "
+           "longer parallel_length, a fuller cm or cwp",
+    "dwl": "no fair waterline has this area and centroid: change cwp (or lcf), or give a parallel_length",
+    "deck": "no fair deck line clears this waterline: raise depth or lower cwp",
+    "profile": "no fair centre profile fits these ends: change stem_rake, depth or transom_immersion",
+}
+
+
+def _explained(exc: Exception, p: Particulars) -> Exception:
+    """The solver's message prefixed by the particulars involved and what to change."""
+    curve = str(exc).split(":", 1)[0].removeprefix("basic_curves.")
+    c = _coefficients(p)
+    lcb_pct = 100 * (p.lcb - p.lpp / 2) / p.lpp
+    said = (f"cb {p.cb:.4g}, lcb {p.lcb:.6g} m ({lcb_pct:+.2f} % Lpp from midships), cm {c['cm']:.4g}, "
+            f"cwp {c['cwp']:.4g}, lcf {c['lcf']:.6g} m, parallel body {c['parallel'][1] - c['parallel'][0]:.4g} m")
+    remedy = _REMEDIES.get(curve, "change the particulars")
+    return type(exc)(f"design_hull: {said}: {remedy} ({exc})")
 
 
 def match_targets(hull: Hull, tol: float = MATCH_TOL) -> dict:

@@ -75,6 +75,9 @@ constexpr double kCorrectionReach = 3.0;
 constexpr double kFlareMargin = 1.05;
 /// ... but its bilge corner keeps at least this fraction of the waterline half-breadth.
 constexpr double kMinCornerBreadth = 0.75;
+/// A section whose immersion weight is below this is dry: its waterline point and area carry
+/// no weight, and a waterline point a rounding error off the centre plane must not be checked.
+constexpr double kMinImmersion = 1e-9;
 /// Sections shorter than this fraction of B/2 are a point (the stem head).
 constexpr double kPointSection = 1e-9;
 /// Samples per template piece of the check that the template is a graph over its chord.
@@ -211,6 +214,11 @@ Section setup(const SectionSpec& s) {
     S.d = s.draft - S.K.y();
     S.Q = V2(S.b, s.draft);
     S.w = smoothstep(std::min(S.b / (kEndBand * s.y_max), S.d / (kEndBand * s.draft)));
+    if (S.w < kMinImmersion) {
+      S.immersed = false;
+      S.w = 0.0;
+      return S;
+    }
     const double xq = S.f.xi(S.Q);
     if (!(xq > 0 && xq < S.f.L))
       throw InfeasibleFormParameters(S.at + ": the waterline point (" + fmt(S.Q.x()) + ", " + fmt(S.Q.y()) +
