@@ -21,7 +21,8 @@ STEPS = [
     ("Lines plan, curves of form and CAD files (container ship)", "lines_plan.py"),
 ]
 # Pictures for the README written straight to docs/ (their scripts take the picture's path).
-PICTURES = [("Quad-dominant solver mesh of the whole ship", "mesh_picture.py", "hull_mesh.png")]
+PICTURES = [("Quad-dominant solver mesh of the whole ship", "mesh_picture.py", "hull_mesh.png"),
+            ("Fairness of the whole ship's lines: curvature combs", "fairness_combs.py", "fairness_combs.png")]
 SWEEP_STUDY = HERE / "sweep_study.toml"
 
 
@@ -57,7 +58,7 @@ def main():
 
 #: README pictures written by `make demo` (the Blender renders by `make blender-demo` before it).
 DOCS_PICTURES = ("designed_ships.png", "lines_plan.png", "hull_mesh.png", "sweep_study.png", "ship.png",
-                 "ship_zebra.png")
+                 "ship_zebra.png", "fairness_combs.png")
 
 
 def compact_pictures(docs=HERE.parent / "docs"):

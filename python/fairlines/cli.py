@@ -140,9 +140,10 @@ def main(argv=None) -> int:
                                      "hydrostatics")
     b.add_argument("hull", help="hull.json written by 'fairlines import'")
     b.add_argument("-o", "--output", required=True, help="output folder")
-    from . import cli_design, cli_output
+    from . import cli_design, cli_fairness, cli_output
     cli_output.add_parsers(sub)
     cli_design.add_parser(sub)
+    cli_fairness.add_parser(sub)
     me = sub.add_parser("mesh", help="quad-dominant mesh of a hull description's composed hull (CFD / BEM files)")
     me.add_argument("hull", help="hull description JSON (bare hull, and bulb if it has a 'bulb' section)")
     me.add_argument("--size", type=float, required=True, help="maximum element edge length, m")
@@ -168,6 +169,8 @@ def main(argv=None) -> int:
             return _build(args)
         if args.command == cli_design.COMMAND:
             return cli_design.run(args)
+        if args.command == cli_fairness.COMMAND:
+            return cli_fairness.run(args)
         if args.command in cli_output.COMMANDS:
             return cli_output.run(args)
         if args.command == "mesh":
