@@ -10,6 +10,7 @@ Goals: particulars -> composed whole hull <= 50 ms, description -> surface <= 20
 import json
 import os
 import pathlib
+import re
 import statistics
 import time
 
@@ -70,7 +71,8 @@ def main():
             ok += abs(v / (p["cb"] * p["lpp"] * p["breadth"] * p["draft"]) - 1) <= 1e-4
             times.append(time.perf_counter() - t)
         except (fl.InfeasibleFormParameters, fl.InvalidInput) as e:
-            key = str(e).split(":")[0]
+            cause = re.search(r"\((basic_curves\.\w+|section at x = -?)", str(e))  # design_hull: ... (the solver's message)
+            key = cause.group(1) if cause else str(e).split(":")[0]
             key = "sections" + (" (transom, x < 0)" if " -" in key else "") if key.startswith("section at") else key
             fails[key] = fails.get(key, 0) + 1
     print(f"design space (Cb 0.50-0.87, LCB -4..+4 % Lpp, L/B 4-9, B/T 2-4.5), {SAMPLES} Latin-hypercube samples: "

@@ -15,6 +15,7 @@ def add_parser(sub) -> None:
         d.add_argument(f"--{key}", type=float, required=True, help=f"{key} ({unit})" if unit else key)
     for key, what in (("cm", "midship coefficient (default: Kerlen)"), ("cwp", "waterplane coefficient (default sqrt(Cb) + 0.01)"),
                       ("lcf", "LCF, m from the AP"), ("parallel-length", "parallel middle body, m"),
+                      ("parallel-centre", "middle of the parallel body, m from the AP"),
                       ("transom-immersion", "transom's lower edge below the waterline, m (< 0: dry)"),
                       ("stem-rake", "stem rake above the waterline, deg from the vertical")):
         d.add_argument(f"--{key}", type=float, default=None, help=what)
@@ -27,7 +28,7 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     from .designer import design_hull
 
-    keys = ("lpp", "breadth", "draft", "depth", "cb", "lcb", "cm", "cwp", "lcf", "parallel_length",
+    keys = ("lpp", "breadth", "draft", "depth", "cb", "lcb", "cm", "cwp", "lcf", "parallel_length", "parallel_centre",
             "transom_immersion", "stem_rake", "stern", "bulb", "name")
     given = {k: getattr(args, k) for k in keys if getattr(args, k) is not None}
     t0 = time.perf_counter()

@@ -51,6 +51,9 @@ PARALLEL_CP = 0.62
 CM_MAX = 0.99              # the fullest midship section the regression gives (fuller ones leave the SAC no room)
 PARALLEL_RETRIES, PARALLEL_STEP = 3, 0.05  # a SAC the ends cannot hold: parallel body + 5 % Lpp, 3 times
 LCF_RETRIES = (0.0, 0.015)  # LCF - LCB (fraction of Lpp) tried when the default LCF leaves the SAC no room
+PARALLEL_SPAN = (0.2, 0.8)  # the default parallel body lies within these fractions of Lpp ...
+PARALLEL_SPAN_GIVEN = (0.15, 0.9)  # ... one placed by its centre within these
+PARALLEL_SHIFT_RETRY = 3.0  # a SAC the ends cannot hold: the parallel body's centre moves this many times the LCB's offset
 PARALLEL_SHIFT = 1.5        # the parallel body's centre moves this many times the LCB's offset
 DECK_CLEAR = 0.97           # the deck stays flat at least to where the waterline narrows to this fraction of B/2 ...
 DECK_TO_MAX = 0.92          # ... but ends its flat part aft of this fraction of Lpp
@@ -81,6 +84,7 @@ class Particulars:
     cwp: float | None = None
     lcf: float | None = None
     parallel_length: float | None = None
+    parallel_centre: float | None = None  # middle of the parallel body (m from the AP)
     stern: str = "transom"
     transom_immersion: float | None = None  # transom lower edge below the waterline (m); < 0 dry
     bulb: bool | dict = False
@@ -114,6 +118,7 @@ class Particulars:
                 raise _native.InvalidInput(f"{key} is {v}; expected between Cb = {self.cb} and 1")
         limits = {"lcf": (0.0, self.lpp, "an LCF between the AP and the FP (m from the AP)"),
                   "parallel_length": (0.0, 0.8 * self.lpp, "a parallel body from 0 to 0.8 Lpp (m)"),
+                  "parallel_centre": (0.1 * self.lpp, 0.9 * self.lpp, "a parallel body centred 0.1 to 0.9 Lpp from the AP (m)"),
                   "transom_immersion": (-self.depth, self.draft, "an immersion between -D and T (m; < 0 dry)")}
         for key, (lo, hi, what) in limits.items():
             v = getattr(self, key)
@@ -129,9 +134,14 @@ def _coefficients(p: Particulars) -> dict:
     cwp = p.cwp if p.cwp is not None else min(math.sqrt(p.cb) + 0.01, 0.97)
     lcf = p.lcf if p.lcf is not None else p.lcb - LCF_AFT_OF_LCB * L
     lp = p.parallel_length if p.parallel_length is not None else max(0.0, PARALLEL_SLOPE * (cp - PARALLEL_CP) * L)
-    centre = L / 2 + PARALLEL_SHIFT * (p.lcb - L / 2)
     lp = min(lp, 0.6 * L)
-    centre = float(np.clip(centre, 0.2 * L + lp / 2, 0.8 * L - lp / 2)) if lp > 0 else centre
+    if p.parallel_centre is not None:
+        lo, hi = PARALLEL_SPAN_GIVEN
+        centre = p.parallel_centre
+    else:
+        lo, hi = PARALLEL_SPAN
+        centre = L / 2 + PARALLEL_SHIFT * (p.lcb - L / 2)
+    centre = float(np.clip(centre, lo * L + lp / 2, hi * L - lp / 2)) if lp > 0 else centre
     imm = p.transom_immersion if p.transom_immersion is not None else (-0.05 * p.draft if p.cb >= 0.6 else 0.12 * p.draft)
     fine = min(1.0, max(0.0, (0.85 - p.cb) / 0.35))  # 0 full, 1 fine
     return {"cm": cm, "cp": cp, "cwp": cwp, "lcf": lcf, "fine": fine, "parallel": (centre - lp / 2, centre + lp / 2),
@@ -234,7 +244,7 @@ def design_description(p: Particulars) -> dict:
         dwl_curve = solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=half)
     xs, target = natural_fullness(p, c, dwl_curve, profile, xa, xf)
     near_end = FIT_END * (xf - xa)
-    sac = {"volume": p.cb * L * B * T, "lcb": p.lcb, "spans": 24,
+    sac = {"volume": p.cb * L * B * T, "lcb": p.lcb, "spans": 24, "monotone": True,
            "fullness_fit": [[float(x), float(s)] for x, s in zip(xs, target)
                             if xa + near_end <= x <= xf - near_end]}
     if par[1] > par[0]:
@@ -285,19 +295,23 @@ def _particulars(kwargs: dict) -> Particulars:
 
 
 def _fallbacks(p: Particulars):
-    """The particulars, then (for basic curves that cannot be met) what the designer may still choose:
-    the LCF at and forward of the LCB (a full ship with its LCB far aft), and a parallel middle
-    body longer by PARALLEL_STEP Lpp at a time -- never a value the user gave."""
+    """The particulars, then (for basic curves that cannot be met) what the designer may still
+    choose -- never a value the user gave: the LCF at and forward of the LCB, the parallel body
+    moved toward the LCB, and a parallel body longer by PARALLEL_STEP Lpp at a time."""
     yield p
+    L = p.lpp
     lp = _coefficients(p)["parallel"]
-    for k in range(PARALLEL_RETRIES + 1):
-        q = p if k == 0 or p.parallel_length is not None else \
-            replace(p, parallel_length=(lp[1] - lp[0]) + k * PARALLEL_STEP * p.lpp)
-        if k and q is not p:
-            yield q
-        if p.lcf is None:
-            for shift in LCF_RETRIES:
-                yield replace(q, lcf=p.lcb + shift * p.lpp)
+    lcfs = [None] + ([p.lcb + s * L for s in LCF_RETRIES] if p.lcf is None else [])
+    centres = [None] + ([L / 2 + PARALLEL_SHIFT_RETRY * (p.lcb - L / 2)] if p.parallel_centre is None else [])
+    lengths = [None] + ([(lp[1] - lp[0]) + k * PARALLEL_STEP * L for k in range(1, PARALLEL_RETRIES + 1)]
+                        if p.parallel_length is None else [])
+    for length in lengths:
+        for centre in centres:
+            for lcf in lcfs:
+                change = {k: v for k, v in (("parallel_length", length), ("parallel_centre", centre), ("lcf", lcf))
+                          if v is not None}
+                if change:
+                    yield replace(p, **change)
 
 
 def design_hull(particulars: Particulars | None = None, **kwargs) -> Hull:

@@ -56,6 +56,16 @@ def test_particulars_are_met_on_the_surface(ship):
     assert 0 < h.cm <= 1 and h.cb < h.cwp <= 1 and cwp.cwp is None
 
 
+def test_sectional_area_has_no_hump(ship):
+    """The surface's SAC (hydrostatics) rises to the midship area and falls away from it: no
+    section holds more than the largest midship-body section, the SAC is one hill."""
+    p, hull = ship
+    h = hull.hydrostatics(sac_stations=241)
+    a = np.asarray(h.sac_area)
+    top = int(np.argmax(a))
+    assert np.all(np.diff(a[:top + 1]) >= -1e-6 * a[top]) and np.all(np.diff(a[top:]) <= 1e-6 * a[top])
+
+
 def test_whole_ship_geometry(ship):
     """Half hull y >= 0 within B/2, bottom on the baseline, deck edge at D, aft end on one plane
     (a transom) or on the centre plane (a cruiser stern), stem forward of the FP above T."""
@@ -135,9 +145,10 @@ def test_latin_hypercube_of_the_design_space_all_builds():
 
 
 def test_an_impossible_request_names_the_particulars_to_change():
-    """A full ship without parallel body and a waterplane barely fuller than its block: no
-    fair waterline exists; the message names cwp and what to change, then the solver's own."""
-    with pytest.raises(fl.InfeasibleFormParameters, match=r"cwp 0\.88.*change cwp .*basic_curves\.dwl"):
+    """A full ship with its LCB 4 % Lpp forward, no parallel body and a waterplane barely
+    fuller than its block: its ends cannot hold the volume. The message names the particulars
+    and what to change, then the solver's own reason."""
+    with pytest.raises(fl.InfeasibleFormParameters, match=r"cwp 0\.88.*ends cannot hold.*parallel_length.*basic_curves\.sac"):
         fl.design_hull(lpp=150, breadth=25, draft=9, depth=14, cb=0.87, lcb=81, cwp=0.88, parallel_length=0.0)
 
 
@@ -211,3 +222,16 @@ def test_command_line_design_writes_a_description_that_rebuilds(tmp_path, capsys
     assert h.volume == pytest.approx(0.75 * 100 * 16 * 6, rel=MATCH_TOL)
     assert main(args[:-2] + ["--cb", "1.5", "-o", str(out)]) == 2
     assert "cb is 1.5" in capsys.readouterr().err
+
+
+def test_the_parallel_body_lies_where_asked():
+    """The tanker's parallel body of 50 m centred 100 m from the AP: the surface's sectional
+    area (hydrostatics, not the design's SAC) is the midship area along it, less 25 m beyond
+    its ends, and nowhere more (no hump in the SAC)."""
+    p = {**SHIPS["tanker"], "parallel_length": 50.0, "parallel_centre": 100.0}
+    h = fl.design_hull(**p).hydrostatics(sac_stations=361)
+    area = lambda x: float(np.interp(x, h.sac_x, h.sac_area))  # noqa: E731
+    mid = area(100.0)
+    assert all(area(x) == pytest.approx(mid, rel=1e-4) for x in np.linspace(76.0, 124.0, 13))
+    assert area(50.0) < 0.99 * mid and area(150.0) < 0.99 * mid
+    assert np.max(h.sac_area) <= mid * (1 + 1e-4)
