@@ -230,7 +230,9 @@ class Hull:
             s.y_deck = float(np.clip(deck[i], 0.0, half_b))
             s.z_deck = pr.depth
             s.z_keel = float(min(prof[i], pr.depth))
-            s.top_corner, s.deadrise, s.character = (float(shape[k][i]) for k in SHAPE_CURVES)
+            # a spline fitted to a bound may overshoot it by round-off (a deadrise of -4e-13 deg)
+            s.top_corner, s.deadrise, s.character = (float(np.clip(shape[k][i], lo, hi))
+                                                     for k, (_, lo, hi) in SHAPE_CURVES.items())
             if np.isfinite(lower[i]):
                 s.lower_angle = float(lower[i])
             if np.isfinite(dwl[i]) and dwl[i] > 0 and s.z_keel < pr.draft:
