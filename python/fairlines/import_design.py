@@ -1,0 +1,415 @@
+"""Real hull data back as a whole-ship design: measure the data, write a hull description.
+
+``fl.import_design(hull_data)`` (hull_data a :class:`fairlines.offsets.HullData`) returns a
+description dict (fairlines.description) that ``fl.Hull.from_dict`` builds. What is measured:
+
+* stations across the data (its own stations for an offsets table; for point grids, plane
+  cuts x = const of the grid's longitudinal lines), each reduced to its half-breadth y(z): the
+  largest y of the section at each height;
+* Lpp, B, T from the data (as the reader gives them), D the top of the data, the ends
+  (aft-most and fore-most points: transom or stern, stem head);
+* per station: the lowest point (the centre-line contour: keel, counter, forefoot, stem), the
+  half-breadth at T (the design waterline) and at D (the deck line), the area below T;
+  the volume and LCB by Simpson integration of those areas;
+* the transom: its lower edge height and, when immersed, its width at T.
+
+The basic curves pass near these measurements (``fit`` points); the SAC holds the measured
+volume and LCB exactly and stays near the measured section fullness. The section shape curves
+(``deadrise``, ``character``, ``top_corner``) are then fitted per station: each is the value
+whose designed section (``fl.design_section`` on the built basic curves) lies closest, in the
+least-squares sense, to the measured half-breadths. A bulb grid (role 'bulb') is measured
+separately: Kracht coefficients from its own mesh.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from . import _native
+from .offsets import HullData
+
+__all__ = ["import_design", "measure_hull_data", "MeasuredHull", "point_deviation"]
+
+#: Stations cut from a point grid (cosine-clustered toward both ends).
+GRID_STATIONS = 81
+#: Heights at which each station's half-breadth y(z) is sampled.
+Z_SAMPLES = 241
+#: Fit weight of the measured points on the basic curves (relative to fairness).
+FIT_WEIGHT = 1.0e3
+#: Knot spans of the measured basic curves.
+CURVE_SPANS = {"profile": 40, "dwl": 30, "deck": 24, "sac": 30}
+#: Candidate values tried per station for each section shape curve, and the curve's bounds.
+SHAPE_CANDIDATES = {"character": np.linspace(0.1, 0.9, 17), "deadrise": np.linspace(0.0, 30.0, 13),
+                    "top_corner": np.linspace(0.1, 0.9, 9)}
+#: Bounds of the fitted shape curves, inside the section generator's: the spline's own bound is
+#: met to the solver's round-off, which may leave a deadrise of -1e-13 deg that sections refuse.
+SHAPE_BOUNDS = {"character": {"lower": 0.06, "upper": 0.94}, "deadrise": {"lower": 1e-3, "upper": 39.0},
+                "top_corner": {"lower": 0.06, "upper": 0.94}}
+#: A station whose waterline or immersed depth is below this fraction of B/2 or T is an end
+#: station: its shape is not fitted (it follows its neighbours).
+END_FRACTION = 0.08
+#: Volume and LCB corrections on the built surface (as the designer does).
+MATCH_TOL = 1e-5
+
+
+@dataclasses.dataclass
+class MeasuredHull:
+    """What :func:`measure_hull_data` reads off the data (metres, x from the AP)."""
+
+    lpp: float
+    beam: float
+    draft: float
+    depth: float
+    x_aft: float
+    x_fore: float
+    x: np.ndarray           # stations
+    z: np.ndarray           # heights of the half-breadth samples
+    y: np.ndarray           # (stations, heights) half-breadth, NaN where the station has no hull
+    z_low: np.ndarray       # lowest point of each station
+    area: np.ndarray        # area below T (both sides) per station
+    volume: float
+    lcb: float
+    bulb_points: np.ndarray | None = None
+
+    def half_breadth(self, k: int, z0: float) -> float:
+        """Half-breadth of station k at height z0 (NaN outside the section)."""
+        return float(np.interp(z0, self.z, self.y[k], left=np.nan, right=np.nan))
+
+
+def _crossings(lines: np.ndarray, x0: float) -> np.ndarray:
+    """(y, z) where each polyline of `lines` (m lines, n points, 3) crosses the plane x = x0."""
+    p, q = lines[:, :-1], lines[:, 1:]
+    dp, dq = p[..., 0] - x0, q[..., 0] - x0
+    hit = (dp * dq <= 0) & (p[..., 0] != q[..., 0])
+    t = np.where(hit, dp / np.where(hit, dp - dq, 1.0), 0.0)
+    pts = p + t[..., None] * (q - p)
+    return pts[hit][:, 1:]
+
+
+def _longitudinal_lines(points: np.ndarray) -> np.ndarray:
+    """A grid's lines that run along the hull (the index direction in which x changes most)."""
+    dx0 = np.abs(np.diff(points[..., 0], axis=0)).mean()
+    dx1 = np.abs(np.diff(points[..., 0], axis=1)).mean()
+    return points.transpose(1, 0, 2) if dx0 >= dx1 else points
+
+
+def _section_polylines(data: HullData, x0: float, lines: list) -> list:
+    """The data's section at x0 as (y, z) polylines or point sets."""
+    return [_crossings(ln, x0) for ln in lines]
+
+
+def _pchip_slopes(x: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """Shape-preserving cubic Hermite slopes (Fritsch and Carlson 1980; the three-point end
+    formula of Moler's pchip)."""
+    h, delta = np.diff(x), np.diff(f) / np.diff(x)
+    d = np.zeros_like(f)
+    if len(x) == 2:
+        return np.full_like(f, delta[0])
+    w1, w2 = 2 * h[1:] + h[:-1], h[1:] + 2 * h[:-1]
+    same = delta[:-1] * delta[1:] > 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d[1:-1] = np.where(same, (w1 + w2) / (w1 / np.where(same, delta[:-1], 1) + w2 / np.where(same, delta[1:], 1)), 0.0)
+    for end, (h0, h1, d0, d1) in ((0, (h[0], h[1], delta[0], delta[1])), (-1, (h[-1], h[-2], delta[-1], delta[-2]))):
+        v = ((2 * h0 + h1) * d0 - h0 * d1) / (h0 + h1)
+        if np.sign(v) != np.sign(d0):
+            v = 0.0
+        elif np.sign(d0) != np.sign(d1) and abs(v) > abs(3 * d0):
+            v = 3 * d0
+        d[end] = v
+    return d
+
+
+def _pchip(x: np.ndarray, f: np.ndarray, xi: np.ndarray) -> np.ndarray:
+    """The shape-preserving cubic through (x, f) at xi (inside [x0, xn])."""
+    d = _pchip_slopes(x, f)
+    k = np.clip(np.searchsorted(x, xi) - 1, 0, len(x) - 2)
+    h = x[k + 1] - x[k]
+    t = (xi - x[k]) / h
+    h00, h10, h01, h11 = 2 * t**3 - 3 * t**2 + 1, t**3 - 2 * t**2 + t, -2 * t**3 + 3 * t**2, t**3 - t**2
+    return h00 * f[k] + h10 * h * d[k] + h01 * f[k + 1] + h11 * h * d[k + 1]
+
+
+def _pchip_integral(x: np.ndarray, f: np.ndarray) -> float:
+    """Exact integral of the shape-preserving cubic through (x, f) over [x0, xn]."""
+    d, h = _pchip_slopes(x, f), np.diff(x)
+    return float(np.sum(h * (f[:-1] + f[1:]) / 2 + h**2 * (d[:-1] - d[1:]) / 12))
+
+
+def _smooth_in_z(zs: np.ndarray, ys: np.ndarray, z: np.ndarray) -> np.ndarray:
+    """Half-breadths of an offsets column between its waterlines by the shape-preserving
+    cubic, so a round bilge is not cut by chords."""
+    keep = np.concatenate([np.diff(zs) > 0, [True]])  # of equal heights the outermost (last)
+    if keep.sum() < 3:
+        return np.interp(z, zs[keep], ys[keep])
+    return _pchip(zs[keep], ys[keep], z)
+
+
+def _half_breadths(pieces: list, z: np.ndarray, smooth: bool = False) -> np.ndarray:
+    """Largest y at each height z over the section pieces ((n, 2) (y, z), ordered along the
+    section); NaN where no piece reaches. `smooth`: the pieces are offsets (few points per
+    section), interpolated by a monotone cubic instead of chords."""
+    out = np.full(z.shape, np.nan)
+    for p in pieces:
+        if len(p) < 2:
+            continue
+        order = np.argsort(p[:, 1], kind="stable")
+        ys, zs = p[order, 0], p[order, 1]
+        inside = (z >= zs[0]) & (z <= zs[-1])
+        if inside.any():
+            y = _smooth_in_z(zs, ys, z[inside]) if smooth else np.interp(z[inside], zs, ys)
+            out[inside] = np.fmax(out[inside], y)
+    return out
+
+
+def _stations(data: HullData, lines: list) -> np.ndarray:
+    if data.sections:
+        return np.array(sorted(s.x for s in data.sections))
+    xs = np.concatenate([ln[..., 0].ravel() for ln in lines])
+    lo, hi = float(xs.min()), float(xs.max())
+    s = np.linspace(0.0, 1.0, GRID_STATIONS)
+    x = lo + (hi - lo) * 0.5 * (1 - np.cos(np.pi * s))
+    span = hi - lo
+    return np.clip(x, lo + 1e-6 * span, hi - 1e-6 * span)
+
+
+def measure_hull_data(data: HullData, depth: float | None = None) -> MeasuredHull:
+    """Stations, half-breadths, lowest points, areas, volume and LCB of the data (module
+    docstring). Raises InvalidInput for data with fewer than 3 stations with hull below T."""
+    hull_grids = [g for g in data.grids if g.role != "bulb"]
+    lines = [_longitudinal_lines(g.points) for g in hull_grids]
+    xs = _stations(data, lines)
+    allp = np.concatenate([data.all_points()] if data.sections else [g.points.reshape(-1, 3) for g in hull_grids])
+    D = float(depth if depth is not None else allp[:, 2].max())
+    zlo = float(allp[:, 2].min())
+    z = np.linspace(zlo, D, Z_SAMPLES)
+    T = data.draft
+    if not np.any(np.isclose(z, T)):
+        z = np.sort(np.append(z, T))
+    y = np.full((len(xs), len(z)), np.nan)
+    z_low = np.full(len(xs), np.nan)
+    by_x = {s.x: s for s in data.sections}
+    for k, x0 in enumerate(xs):
+        pieces = [by_x[x0].points] if data.sections else _section_polylines(data, x0, lines)
+        pieces = [p for p in pieces if len(p)]
+        if not pieces:
+            continue
+        z_low[k] = min(p[:, 1].min() for p in pieces)
+        y[k] = _half_breadths(pieces, z, smooth=bool(data.sections))
+    below = z <= T
+    yb = np.nan_to_num(y[:, below])
+    area = 2.0 * np.trapezoid(yb, z[below], axis=1)
+    wet = area > 0
+    if wet.sum() < 3:
+        raise _native.InvalidInput(f"{data.name}: {int(wet.sum())} station(s) with hull below T = {T} m; expected at least 3")
+    vol = _pchip_integral(xs, area)
+    lcb = _pchip_integral(xs, area * xs) / vol
+    bulb = [g.points.reshape(-1, 3) for g in data.grids if g.role == "bulb"]
+    return MeasuredHull(data.lpp, data.beam, T, D, float(xs[0]), float(xs[-1]), xs, z, y, z_low, area, vol, lcb,
+                        np.concatenate(bulb) if bulb else None)
+
+
+# ---- basic curves from the measurements ------------------------------------------------
+
+def _flat_run(x: np.ndarray, f: np.ndarray, value: float, tol: float, min_length: float):
+    """(x_from, x_to) of the longest run of stations where |f - value| <= tol, if it is at
+    least min_length long."""
+    ok = np.isfinite(f) & (np.abs(f - value) <= tol)
+    best, start = None, None
+    for k in range(len(x) + 1):
+        if k < len(x) and ok[k]:
+            start = k if start is None else start
+        elif start is not None:
+            run = (float(x[start]), float(x[k - 1]))
+            if best is None or run[1] - run[0] > best[1] - best[0]:
+                best = run
+            start = None
+    return best if best is not None and best[1] - best[0] >= min_length else None
+
+
+def _pairs(x, f, lo=-math.inf, hi=math.inf) -> list:
+    return [[float(a), float(b)] for a, b in zip(x, f) if np.isfinite(b) and lo <= a <= hi]
+
+
+def _profile_spec(m: MeasuredHull) -> dict:
+    """Centre-line contour through the stations' lowest points; the keel flat where it is."""
+    zk = float(np.nanmin(m.z_low))
+    spec = {"fit": _pairs(m.x, m.z_low), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["profile"],
+            "yB": float(m.z_low[0]), "yE": float(m.z_low[-1])}
+    flat = _flat_run(m.x, m.z_low, zk, 1e-3 * m.draft, 0.1 * m.lpp)
+    if flat is not None:
+        spec.update(flat_from=flat[0], flat_to=flat[1], value=zk)
+        spec["fit"] = [p for p in spec["fit"] if not flat[0] <= p[0] <= flat[1]]
+    return spec
+
+
+def _at(m: MeasuredHull, z0: float) -> np.ndarray:
+    return np.array([m.half_breadth(k, z0) for k in range(len(m.x))])
+
+
+def _dwl_spec(m: MeasuredHull, xa: float, xf: float) -> dict:
+    half = m.beam / 2
+    y = np.minimum(_at(m, m.draft), half)
+    inside = (m.x > xa) & (m.x < xf)
+    spec = {"fit": _pairs(m.x[inside], y[inside]), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["dwl"], "yE": 0.0}
+    immersed_transom = xa <= m.x_aft + 1e-9 * m.lpp and np.isfinite(y[0]) and y[0] > END_FRACTION * half
+    spec["yB"] = float(y[0]) if immersed_transom else 0.0
+    flat = _flat_run(m.x, y, half, 2e-3 * half, 0.05 * m.lpp)
+    if flat is not None:
+        spec.update(flat_from=flat[0], flat_to=flat[1], value=half)
+        spec["fit"] = [p for p in spec["fit"] if not flat[0] <= p[0] <= flat[1]]
+    return spec
+
+
+def _deck_spec(m: MeasuredHull) -> dict:
+    half = m.beam / 2
+    y = np.minimum(_at(m, m.depth - 1e-9 * m.depth), half)
+    y[~np.isfinite(y)] = 0.0  # no hull at the deck height: the stem or stern is below it
+    spec = {"fit": _pairs(m.x, y), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["deck"]}
+    flat = _flat_run(m.x, y, half, 2e-3 * half, 0.05 * m.lpp)
+    if flat is not None:
+        spec.update(flat_from=flat[0], flat_to=flat[1], value=half)
+        spec["fit"] = [p for p in spec["fit"] if not flat[0] <= p[0] <= flat[1]]
+    return spec
+
+
+def _sac_spec(m: MeasuredHull, dwl, profile, xa: float, xf: float) -> dict:
+    """Volume and LCB of the data; the measured section fullness away from the ends."""
+    box = 2 * dwl(m.x, outside=0.0) * np.maximum(m.draft - profile(m.x), 0.0)
+    ok = (m.x > xa + 0.03 * (xf - xa)) & (m.x < xf - 0.03 * (xf - xa)) & (box > 0)
+    s = np.where(ok, m.area / np.where(box > 0, box, 1.0), np.nan)
+    s = np.clip(s, 0.05, 1.0)
+    return {"volume": m.volume, "lcb": m.lcb, "spans": CURVE_SPANS["sac"], "fullness_fit": _pairs(m.x[ok], s[ok])}
+
+
+def _base_description(m: MeasuredHull, name: str) -> dict:
+    from .basic_curves import immersed_range, solve_curve
+    from .description import BasicCurveSpec
+
+    prof = _profile_spec(m)
+    profile = solve_curve("profile", BasicCurveSpec.from_dict("profile", prof, "basic_curves.profile"), m.x_aft, m.x_fore,
+                          lower=-m.draft, upper=m.depth, maximum=False)
+    xa, xf = immersed_range(profile, m.draft)
+    dwl = _dwl_spec(m, xa, xf)
+    dwl_curve = solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=m.beam / 2)
+    return {
+        "name": name,
+        "notes": f"imported: volume {m.volume:.6g} m^3, LCB {m.lcb:.6g} m from the AP measured from the data",
+        "principal": {"Lpp": m.lpp, "B": m.beam, "T": m.draft, "D": m.depth},
+        "ends": {"aft": m.x_aft, "fore": m.x_fore},
+        "stations": {"count": 61},
+        "sections": {"n_control": 20},
+        "basic_curves": {"profile": prof, "dwl": dwl, "deck": _deck_spec(m), "sac": _sac_spec(m, dwl_curve, profile, xa, xf)},
+    }
+
+
+# ---- section shape curves, fitted per station -------------------------------------------
+
+def _designed_half_breadth(spec, z: np.ndarray) -> np.ndarray:
+    """y(z) of the section fl.design_section makes of `spec` (NaN outside it)."""
+    curve = _native.design_section(spec).curve
+    kn = np.asarray(curve.knots)
+    pts = np.asarray(curve.evaluate(np.linspace(kn[0], kn[-1], 201)))
+    order = np.argsort(pts[:, 2], kind="stable")
+    return np.interp(z, pts[order, 2], pts[order, 1], left=np.nan, right=np.nan)
+
+
+def _section_misfit(spec, z: np.ndarray, y: np.ndarray) -> float:
+    """RMS of measured minus designed half-breadth over the heights both hold."""
+    try:
+        yd = _designed_half_breadth(spec, z)
+    except (_native.InfeasibleFormParameters, _native.InvalidInput):
+        return math.inf
+    both = np.isfinite(yd) & np.isfinite(y)
+    return float(np.sqrt(np.mean((yd[both] - y[both]) ** 2))) if both.sum() >= 3 else math.inf
+
+
+def fit_section_shapes(hull, m: MeasuredHull, passes: int = 2) -> dict:
+    """Per measured station inside the hull's waterline (not at its ends), the deadrise,
+    character and top_corner whose designed section is closest (least squares over the
+    station's heights) to the data. Returns {curve: [[x, value], ...]}."""
+    xa, xf = hull.immersed_range()
+    half = m.beam / 2
+    out = {name: [] for name in SHAPE_CANDIDATES}
+    for k, x0 in enumerate(m.x):
+        if not xa < x0 < xf:
+            continue
+        spec = hull.section_specs([float(x0)])[0]
+        if spec.y_dwl < END_FRACTION * half or spec.draft - spec.z_keel < END_FRACTION * m.draft:
+            continue
+        y = m.y[k]
+        for _ in range(passes):
+            for name, cands in SHAPE_CANDIDATES.items():
+                best = (math.inf, getattr(spec, name))
+                for v in cands:
+                    setattr(spec, name, float(v))
+                    best = min(best, (_section_misfit(spec, m.z, y), float(v)))
+                setattr(spec, name, best[1])
+        for name in SHAPE_CANDIDATES:
+            out[name].append([float(x0), float(getattr(spec, name))])
+    return out
+
+
+# ---- the whole description ----------------------------------------------------------------
+
+def _bulb_section(m: MeasuredHull, hull) -> dict | None:
+    """Kracht coefficients of the data's bulb grid (its points forward of the FP, below T)."""
+    if m.bulb_points is None:
+        return None
+    p = m.bulb_points
+    fwd = p[(p[:, 0] >= m.lpp) & (p[:, 2] <= m.draft)]
+    if len(fwd) < 3:
+        return None
+    h = hull.hydrostatics()
+    nose = fwd[np.argmax(fwd[:, 0])]
+    at_fp = p[np.abs(p[:, 0] - m.lpp) <= 0.005 * m.lpp]
+    kracht = {"c_lpr": float((nose[0] - m.lpp) / m.lpp), "c_zb": float(nose[2] / m.draft),
+              "c_bb": float(2 * at_fp[:, 1].max() / m.beam) if len(at_fp) else 0.1}
+    del h
+    return {"kracht": kracht}
+
+
+def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes: bool = True,
+                  name: str | None = None, progress=None) -> dict:
+    """A whole-ship hull description (a dict for ``fl.Hull.from_dict``) measured from
+    `hull_data` (fairlines.offsets.HullData; module docstring says what is measured).
+
+    depth       D (m); default the top of the data.
+    fit_shapes  fit the deadrise / character / top_corner curves per station (slower).
+    progress    callable(str) told of each step, or None.
+
+    Raises InvalidInput for data the description cannot hold (no hull below T at 3 stations),
+    InfeasibleFormParameters when the measured basic curves contradict each other.
+    """
+    from .designer import match_targets
+    from .hull import Hull
+
+    say = progress or (lambda _msg: None)
+    m = measure_hull_data(hull_data, depth)
+    say(f"measured {len(m.x)} stations: volume {m.volume:.6g} m^3, LCB {m.lcb:.6g} m, D {m.depth:.4g} m")
+    desc = _base_description(m, name or hull_data.name)
+    hull = Hull.from_json(desc)
+    if fit_shapes:
+        shapes = fit_section_shapes(hull, m)
+        for curve, pts in shapes.items():
+            if len(pts) >= 4:
+                desc["basic_curves"][curve] = {"fit": pts, "fit_weight": FIT_WEIGHT, "spans": 16, **SHAPE_BOUNDS[curve]}
+        say("fitted " + ", ".join(f"{k} at {len(v)} stations" for k, v in shapes.items()))
+        hull = Hull.from_json(desc)
+    match_targets(hull, MATCH_TOL)
+    out = hull.to_dict()
+    out["notes"] = desc["notes"]
+    return out
+
+
+def point_deviation(surfaces, points: np.ndarray) -> np.ndarray:
+    """Distance (m) from each point (n, 3) to the nearest of the surfaces (closest_point)."""
+    pts = np.asarray(points, float)
+    best = np.full(len(pts), np.inf)
+    for s in surfaces:
+        for i, p in enumerate(pts):
+            _u, _v, q = s.closest_point(p)
+            best[i] = min(best[i], float(np.linalg.norm(np.asarray(q) - p)))
+    return best
