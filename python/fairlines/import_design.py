@@ -31,7 +31,7 @@ import numpy as np
 from . import _native
 from .offsets import HullData
 
-__all__ = ["import_design", "measure_hull_data", "MeasuredHull", "point_deviation"]
+__all__ = ["import_design", "measure_hull_data", "MeasuredHull", "point_deviation", "data_points", "fidelity"]
 
 #: Stations cut from a point grid (cosine-clustered toward both ends).
 GRID_STATIONS = 81
@@ -51,6 +51,8 @@ SHAPE_BOUNDS = {"character": {"lower": 0.06, "upper": 0.94}, "deadrise": {"lower
 #: A station whose waterline or immersed depth is below this fraction of B/2 or T is an end
 #: station: its shape is not fitted (it follows its neighbours).
 END_FRACTION = 0.08
+#: Data this far (fraction of T) below the keel line is a dome, not hull.
+KEEL_TOL = 0.01
 #: Volume and LCB corrections on the built surface (as the designer does).
 MATCH_TOL = 1e-5
 
@@ -73,6 +75,7 @@ class MeasuredHull:
     volume: float
     lcb: float
     bulb_points: np.ndarray | None = None
+    notes: list = dataclasses.field(default_factory=list)
 
     def half_breadth(self, k: int, z0: float) -> float:
         """Half-breadth of station k at height z0 (NaN outside the section)."""
@@ -188,6 +191,11 @@ def measure_hull_data(data: HullData, depth: float | None = None) -> MeasuredHul
     T = data.draft
     if not np.any(np.isclose(z, T)):
         z = np.sort(np.append(z, T))
+    keel = _keel_height(allp, data)
+    notes = []
+    if zlo < keel - KEEL_TOL * T:
+        notes.append(f"hull below the keel line (a sonar dome, to z = {zlo:.4g} m) left out: the description has no dome")
+        z = z[z >= keel]
     y = np.full((len(xs), len(z)), np.nan)
     z_low = np.full(len(xs), np.nan)
     by_x = {s.x: s for s in data.sections}
@@ -196,8 +204,8 @@ def measure_hull_data(data: HullData, depth: float | None = None) -> MeasuredHul
         pieces = [p for p in pieces if len(p)]
         if not pieces:
             continue
-        z_low[k] = min(p[:, 1].min() for p in pieces)
         y[k] = _half_breadths(pieces, z, smooth=bool(data.sections))
+        z_low[k] = max(min(p[:, 1].min() for p in pieces), z[0])
     below = z <= T
     yb = np.nan_to_num(y[:, below])
     area = 2.0 * np.trapezoid(yb, z[below], axis=1)
@@ -208,7 +216,14 @@ def measure_hull_data(data: HullData, depth: float | None = None) -> MeasuredHul
     lcb = _pchip_integral(xs, area * xs) / vol
     bulb = [g.points.reshape(-1, 3) for g in data.grids if g.role == "bulb"]
     return MeasuredHull(data.lpp, data.beam, T, D, float(xs[0]), float(xs[-1]), xs, z, y, z_low, area, vol, lcb,
-                        np.concatenate(bulb) if bulb else None)
+                        np.concatenate(bulb) if bulb else None, notes)
+
+
+def _keel_height(points: np.ndarray, data: HullData) -> float:
+    """Height of the keel line: the lowest point between 0.2 and 0.8 Lpp (a dome or bulb at the
+    bow may reach lower)."""
+    mid = (points[:, 0] > 0.2 * data.lpp) & (points[:, 0] < 0.8 * data.lpp)
+    return float(points[mid, 2].min()) if mid.any() else float(points[:, 2].min())
 
 
 # ---- basic curves from the measurements ------------------------------------------------
@@ -240,7 +255,7 @@ def _profile_spec(m: MeasuredHull) -> dict:
             "yB": float(m.z_low[0]), "yE": float(m.z_low[-1])}
     flat = _flat_run(m.x, m.z_low, zk, 1e-3 * m.draft, 0.1 * m.lpp)
     if flat is not None:
-        spec.update(flat_from=flat[0], flat_to=flat[1], value=zk)
+        spec.update(flat_from=flat[0], flat_to=flat[1], value=zk, monotone=True)
         spec["fit"] = [p for p in spec["fit"] if not flat[0] <= p[0] <= flat[1]]
     return spec
 
@@ -296,7 +311,7 @@ def _base_description(m: MeasuredHull, name: str) -> dict:
     dwl_curve = solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=m.beam / 2)
     return {
         "name": name,
-        "notes": f"imported: volume {m.volume:.6g} m^3, LCB {m.lcb:.6g} m from the AP measured from the data",
+        "notes": "; ".join([f"imported: volume {m.volume:.6g} m^3, LCB {m.lcb:.6g} m from the AP measured from the data"] + m.notes),
         "principal": {"Lpp": m.lpp, "B": m.beam, "T": m.draft, "D": m.depth},
         "ends": {"aft": m.x_aft, "fore": m.x_fore},
         "stations": {"count": 61},
@@ -354,21 +369,27 @@ def fit_section_shapes(hull, m: MeasuredHull, passes: int = 2) -> dict:
 
 # ---- the whole description ----------------------------------------------------------------
 
-def _bulb_section(m: MeasuredHull, hull) -> dict | None:
-    """Kracht coefficients of the data's bulb grid (its points forward of the FP, below T)."""
-    if m.bulb_points is None:
-        return None
-    p = m.bulb_points
-    fwd = p[(p[:, 0] >= m.lpp) & (p[:, 2] <= m.draft)]
-    if len(fwd) < 3:
-        return None
-    h = hull.hydrostatics()
-    nose = fwd[np.argmax(fwd[:, 0])]
-    at_fp = p[np.abs(p[:, 0] - m.lpp) <= 0.005 * m.lpp]
-    kracht = {"c_lpr": float((nose[0] - m.lpp) / m.lpp), "c_zb": float(nose[2] / m.draft),
-              "c_bb": float(2 * at_fp[:, 1].max() / m.beam) if len(at_fp) else 0.1}
-    del h
-    return {"kracht": kracht}
+def _buildable(desc: dict, say):
+    """The Hull of `desc`, its SAC's targets relaxed in turn (LCB, then the fullness fit) when
+    the section family cannot hold them; each relaxation is noted in the description."""
+    from .hull import Hull
+
+    sac = desc["basic_curves"]["sac"]
+    for drop in (None, "lcb", "fullness_fit", "volume"):
+        if drop is not None and drop in sac:
+            sac.pop(drop, None)
+            desc["notes"] += f"; SAC {drop} left free: the sections cannot hold the measured one"
+            say(f"relaxed: SAC {drop} left free")
+        elif drop is not None:
+            continue
+        try:
+            hull = Hull.from_json(desc)
+            hull.basic_curves  # noqa: B018 (solves the SAC now)
+            return hull
+        except _native.InfeasibleFormParameters:
+            if drop == "volume":
+                raise
+    raise AssertionError("unreachable")
 
 
 def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes: bool = True,
@@ -390,14 +411,14 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
     m = measure_hull_data(hull_data, depth)
     say(f"measured {len(m.x)} stations: volume {m.volume:.6g} m^3, LCB {m.lcb:.6g} m, D {m.depth:.4g} m")
     desc = _base_description(m, name or hull_data.name)
-    hull = Hull.from_json(desc)
+    hull = _buildable(desc, say)
     if fit_shapes:
         shapes = fit_section_shapes(hull, m)
         for curve, pts in shapes.items():
             if len(pts) >= 4:
                 desc["basic_curves"][curve] = {"fit": pts, "fit_weight": FIT_WEIGHT, "spans": 16, **SHAPE_BOUNDS[curve]}
         say("fitted " + ", ".join(f"{k} at {len(v)} stations" for k, v in shapes.items()))
-        hull = Hull.from_json(desc)
+        hull = _buildable(desc, say)
     match_targets(hull, MATCH_TOL)
     out = hull.to_dict()
     out["notes"] = desc["notes"]
@@ -413,3 +434,28 @@ def point_deviation(surfaces, points: np.ndarray) -> np.ndarray:
             _u, _v, q = s.closest_point(p)
             best[i] = min(best[i], float(np.linalg.norm(np.asarray(q) - p)))
     return best
+
+
+def data_points(data: HullData, depth: float | None = None) -> np.ndarray:
+    """The data's hull points a bare hull is judged against (n, 3): every section point, the
+    'hull' grids' points (not the bulb's or the transom face's), up to the depth, at or above
+    the keel line (a sonar dome below it is not in the description)."""
+    pts = data.all_points() if data.sections else np.concatenate([g.points.reshape(-1, 3) for g in data.grids
+                                                                  if g.role in ("hull", "bow (sonar dome)")])
+    keel = _keel_height(pts, data)
+    top = pts[:, 2].max() if depth is None else depth
+    return pts[(pts[:, 2] >= keel - KEEL_TOL * data.draft) & (pts[:, 2] <= top)]
+
+
+def fidelity(hull, data: HullData, *, max_points: int = 3000) -> dict:
+    """How close the built `hull` (a fl.Hull) lies to the data: RMS and largest distance of the
+    data's points (:func:`data_points`, at most `max_points`, evenly taken) to the bare hull
+    surface as fractions of B, and the surface's volume, LCB (m from the AP) and wetted surface
+    (both sides) at T."""
+    pts = data_points(data, hull.description.principal.depth)
+    pts = pts[:: max(1, len(pts) // max_points)]
+    dev = point_deviation([hull.bare_hull_surface()], pts)
+    h = hull.hydrostatics()
+    return {"rms_of_B": float(np.sqrt(np.mean(dev**2)) / data.beam), "max_of_B": float(dev.max() / data.beam),
+            "worst_point": pts[int(np.argmax(dev))].tolist(), "points": len(pts),
+            "volume": float(h.volume), "lcb": float(h.lcb), "wetted_surface": float(h.wetted_surface)}

@@ -1,0 +1,98 @@
+"""Real ships come back as whole-ship designs: offsets in mm, the four reference ships import,
+and the rebuilt hulls are judged against the data's points and published particulars."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import fairlines as fl
+from fairlines.offsets import read_offsets_csv
+
+from import_fixtures import ROOT, SHIPS, WIGLEY, imported, read, rebuilt, truth
+
+# Fidelity goals (fractions): distance to the data's points on B, volume, LCB on Lpp, wetted surface.
+RMS_GOAL, MAX_GOAL, VOLUME_GOAL, LCB_GOAL, WETTED_GOAL = 0.005, 0.02, 0.005, 0.001, 0.01
+
+# Measured shortfalls (the section family cannot hold these ships yet; docs/import.md says why).
+SHORT = {
+    ("rms", "wigley_table"): "RMS 1.9 % B: sections fuller at the bilge than the parabolic Wigley sections; zero-width end posts",
+    ("max", "wigley_table"): "max 6 % B at the vertical end posts (a section with no waterline bulges)",
+    ("wetted", "wigley_table"): "+1.9 %: the bulging end sections",
+    ("rms", "series60"): "RMS 1.5 % B: the cruiser stern and the forefoot",
+    ("max", "series60"): "max 8.7 % B at the stern above the shaft",
+    ("rms", "kcs"): "RMS 5 % B: skeg and propeller aperture not expressible; bulb not composed",
+    ("max", "kcs"): "max 18 % B at the skeg",
+    ("lcb", "kcs"): "LCB left free: the aft sections cannot hold the skeg's small fullness",
+    ("wetted", "kcs"): "bare hull without the bulb; skeg",
+    ("rms", "dtmb5415"): "RMS 4 % B: sonar dome not expressible, transom stern sections",
+    ("max", "dtmb5415"): "max 18 % B at the transom",
+    ("volume", "dtmb5415"): "volume left free: the sections cannot hold the fine transom stern's SAC",
+    ("lcb", "dtmb5415"): "LCB left free (same reason)",
+    ("wetted", "dtmb5415"): "volume not met",
+}
+
+
+def _goal(kind: str, ship: str):
+    reason = SHORT.get((kind, ship))
+    return pytest.param(ship, marks=pytest.mark.xfail(strict=True, reason=reason)) if reason else ship
+
+
+def test_offsets_in_mm_read_as_metres_with_blank_cells_noted():
+    data = read_offsets_csv(ROOT / "tests" / "data" / "wigley_offsets_mm.csv", **WIGLEY)
+    L, B, T = WIGLEY.values()
+    mid = next(s for s in data.sections if s.x == 50.0)
+    i = np.argmin(np.abs(mid.points[:, 1] - T))
+    assert mid.points[i, 0] == pytest.approx(B / 2, abs=1e-3)  # exact Wigley value, rounded to 1 mm
+    assert sum("blank cell" in n for n in data.notes) == 3
+
+
+@pytest.mark.parametrize("ship", SHIPS)
+def test_imported_description_rebuilds_from_json(ship):
+    desc = imported(ship)
+    hull = fl.Hull.from_json(json.dumps(desc))
+    assert hull.bare_hull_surface() is not None
+    assert desc["principal"]["Lpp"] == pytest.approx(truth(ship)["lpp"])
+
+
+@pytest.mark.parametrize("ship", [_goal("rms", s) for s in SHIPS])
+def test_rebuilt_hull_rms_distance_to_the_data(ship):
+    assert rebuilt(ship)["rms_of_B"] <= RMS_GOAL
+
+
+@pytest.mark.parametrize("ship", [_goal("max", s) for s in SHIPS])
+def test_rebuilt_hull_largest_distance_to_the_data(ship):
+    assert rebuilt(ship)["max_of_B"] <= MAX_GOAL
+
+
+@pytest.mark.parametrize("ship", [_goal("volume", s) for s in SHIPS])
+def test_rebuilt_hull_volume_meets_the_published_one(ship):
+    t = truth(ship)
+    assert abs(rebuilt(ship)["volume"] / t["volume"] - 1) <= VOLUME_GOAL
+
+
+@pytest.mark.parametrize("ship", [_goal("lcb", s) for s in SHIPS])
+def test_rebuilt_hull_lcb_meets_the_published_one(ship):
+    t = truth(ship)
+    assert abs(rebuilt(ship)["lcb"] - t["lcb"]) / t["lpp"] <= LCB_GOAL
+
+
+@pytest.mark.parametrize("ship", [_goal("wetted", s) for s in SHIPS if truth(s)["wetted_surface"]])
+def test_rebuilt_hull_wetted_surface_meets_the_published_one(ship):
+    t = truth(ship)
+    assert abs(rebuilt(ship)["wetted_surface"] / t["wetted_surface"] - 1) <= WETTED_GOAL
+
+
+def test_measured_volume_of_the_typed_wigley_table_is_the_exact_one():
+    m = fl.measure_hull_data(read("wigley_table"))
+    assert m.volume == pytest.approx(truth("wigley_table")["volume"], rel=1e-3)
+    assert m.lcb == pytest.approx(WIGLEY["lpp"] / 2, abs=1e-4 * WIGLEY["lpp"])
+
+
+def test_import_refuses_data_without_hull_below_the_draft(tmp_path):
+    p = tmp_path / "t.csv"
+    p.write_text("x,1.0,2.0\n0,0,0\n5,0,1\n10,0,0\n")
+    with pytest.raises(fl.InvalidInput, match="below T"):
+        fl.import_design(read_offsets_csv(p, 10.0, 2.0, 0.5))
