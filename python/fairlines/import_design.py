@@ -23,6 +23,7 @@ separately: Kracht coefficients from its own mesh.
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import math
 
@@ -53,6 +54,8 @@ SHAPE_BOUNDS = {"character": {"lower": 0.06, "upper": 0.94}, "deadrise": {"lower
 END_FRACTION = 0.08
 #: Data this far (fraction of T) below the keel line is a dome, not hull.
 KEEL_TOL = 0.01
+#: Bisection steps toward the measured LCB when the sections cannot hold it.
+LCB_BISECTIONS = 12
 #: Volume and LCB corrections on the built surface (as the designer does).
 MATCH_TOL = 1e-5
 
@@ -369,27 +372,69 @@ def fit_section_shapes(hull, m: MeasuredHull, passes: int = 2) -> dict:
 
 # ---- the whole description ----------------------------------------------------------------
 
-def _buildable(desc: dict, say):
-    """The Hull of `desc`, its SAC's targets relaxed in turn (LCB, then the fullness fit) when
-    the section family cannot hold them; each relaxation is noted in the description."""
+def _builds(desc: dict):
+    """The Hull of `desc` with its SAC solved, or None when the sections cannot hold it."""
     from .hull import Hull
 
+    try:
+        hull = Hull.from_json(desc)
+        hull.basic_curves  # noqa: B018 (solves the SAC now)
+        return hull
+    except _native.InfeasibleFormParameters:
+        return None
+
+
+def _nearest_lcb(desc: dict, hull_free) -> tuple:
+    """Bisect the SAC's LCB from where it falls when free (`hull_free`, built) toward the
+    measured one; the hull with the nearest LCB the sections hold."""
     sac = desc["basic_curves"]["sac"]
-    for drop in (None, "lcb", "fullness_fit", "volume"):
-        if drop is not None and drop in sac:
-            sac.pop(drop, None)
-            desc["notes"] += f"; SAC {drop} left free: the sections cannot hold the measured one"
-            say(f"relaxed: SAC {drop} left free")
-        elif drop is not None:
-            continue
-        try:
-            hull = Hull.from_json(desc)
-            hull.basic_curves  # noqa: B018 (solves the SAC now)
-            return hull
-        except _native.InfeasibleFormParameters:
-            if drop == "volume":
-                raise
-    raise AssertionError("unreachable")
+    want, free = sac["lcb"], float(hull_free.hydrostatics(sac_stations=2).lcb)
+    best, lo, hi = None, 0.0, 1.0
+    for _ in range(LCB_BISECTIONS):
+        t = 0.5 * (lo + hi)
+        sac["lcb"] = free + t * (want - free)
+        hull = _builds(desc)
+        if hull is None:
+            hi = t
+        else:
+            lo, best = t, (hull, sac["lcb"])
+    if best is None:
+        sac["lcb"] = free
+        return _builds(desc), free
+    sac["lcb"] = best[1]
+    return best
+
+
+def _buildable(desc: dict, say) -> tuple:
+    """(Hull of `desc`, what was relaxed): when the section family cannot hold the measured
+    SAC, its LCB moves to the nearest it holds, then the fullness fit and the volume are left
+    free in turn; each relaxation is noted in the description."""
+    hull = _builds(desc)
+    if hull is not None:
+        return hull, []
+    sac = desc["basic_curves"]["sac"]
+    want = sac.pop("lcb")
+    free = _builds(desc)
+    if free is not None and "volume" in sac:
+        sac["lcb"] = want
+        hull, lcb = _nearest_lcb(desc, free)
+        if hull is not None:
+            desc["notes"] += f"; SAC LCB {lcb:.6g} m, the nearest to the measured {want:.6g} m the sections hold"
+            say(f"relaxed: LCB {lcb:.6g} m (measured {want:.6g} m)")
+            return hull, ["lcb"]
+        sac.pop("lcb", None)
+    relaxed = ["lcb"]
+    for drop in ("fullness_fit", "volume"):
+        if free is not None:
+            break
+        sac.pop(drop, None)
+        relaxed.append(drop)
+        free = _builds(desc)
+    if free is None:
+        raise _native.InfeasibleFormParameters(f"{desc['name']}: no SAC the sections hold, even without its volume and LCB")
+    desc["notes"] += "; SAC " + ", ".join(relaxed) + " left free: the sections cannot hold the measured ones"
+    say("relaxed: " + ", ".join(relaxed) + " left free")
+    return free, relaxed
 
 
 def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes: bool = True,
@@ -410,16 +455,28 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
     say = progress or (lambda _msg: None)
     m = measure_hull_data(hull_data, depth)
     say(f"measured {len(m.x)} stations: volume {m.volume:.6g} m^3, LCB {m.lcb:.6g} m, D {m.depth:.4g} m")
-    desc = _base_description(m, name or hull_data.name)
-    hull = _buildable(desc, say)
+    base = _base_description(m, name or hull_data.name)
+    desc = copy.deepcopy(base)
+    hull, relaxed = _buildable(desc, say)
     if fit_shapes:
+        shaped = copy.deepcopy(base)
         shapes = fit_section_shapes(hull, m)
         for curve, pts in shapes.items():
             if len(pts) >= 4:
-                desc["basic_curves"][curve] = {"fit": pts, "fit_weight": FIT_WEIGHT, "spans": 16, **SHAPE_BOUNDS[curve]}
+                shaped["basic_curves"][curve] = {"fit": pts, "fit_weight": FIT_WEIGHT, "spans": 16, **SHAPE_BOUNDS[curve]}
         say("fitted " + ", ".join(f"{k} at {len(v)} stations" for k, v in shapes.items()))
-        hull = _buildable(desc, say)
-    match_targets(hull, MATCH_TOL)
+        hull_s, relaxed_s = _buildable(shaped, say)
+        if len(relaxed_s) <= len(relaxed):  # the fitted shapes, unless they cost a target
+            hull, desc = hull_s, shaped
+        else:
+            say("fitted section shapes cost a SAC target: kept the default shapes")
+    if "volume" in desc["basic_curves"]["sac"]:
+        matched = Hull.from_json(desc)
+        try:
+            match_targets(matched, MATCH_TOL)
+            hull = matched
+        except _native.InfeasibleFormParameters:
+            say("the surface's volume / LCB correction leaves what the sections hold: SAC targets kept as measured")
     out = hull.to_dict()
     out["notes"] = desc["notes"]
     return out
