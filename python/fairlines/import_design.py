@@ -52,6 +52,8 @@ SHAPE_BOUNDS = {"character": {"lower": 0.06, "upper": 0.94}, "deadrise": {"lower
 #: A station whose waterline or immersed depth is below this fraction of B/2 or T is an end
 #: station: its shape is not fitted (it follows its neighbours).
 END_FRACTION = 0.08
+#: Depth is measured within this fraction of Lpp of midships.
+MIDSHIP_BAND = 0.05
 #: Data this far (fraction of T) below the keel line is a dome, not hull.
 KEEL_TOL = 0.01
 #: Bisection steps toward the measured LCB when the sections cannot hold it.
@@ -188,7 +190,7 @@ def measure_hull_data(data: HullData, depth: float | None = None) -> MeasuredHul
     lines = [_longitudinal_lines(g.points) for g in hull_grids]
     xs = _stations(data, lines)
     allp = np.concatenate([data.all_points()] if data.sections else [g.points.reshape(-1, 3) for g in hull_grids])
-    D = float(depth if depth is not None else allp[:, 2].max())
+    D = float(depth if depth is not None else _depth_at_midship(allp, data))
     zlo = float(allp[:, 2].min())
     z = np.linspace(zlo, D, Z_SAMPLES)
     T = data.draft
@@ -196,6 +198,9 @@ def measure_hull_data(data: HullData, depth: float | None = None) -> MeasuredHul
         z = np.sort(np.append(z, T))
     keel = _keel_height(allp, data)
     notes = []
+    if allp[:, 2].max() > D * (1 + KEEL_TOL):
+        notes.append(f"data above the depth D = {D:.4g} m (a sheer, to z = {allp[:, 2].max():.4g} m) left out: "
+                     "the description has one deck height")
     if zlo < keel - KEEL_TOL * T:
         notes.append(f"hull below the keel line (a sonar dome, to z = {zlo:.4g} m) left out: the description has no dome")
         z = z[z >= keel]
@@ -209,6 +214,8 @@ def measure_hull_data(data: HullData, depth: float | None = None) -> MeasuredHul
             continue
         y[k] = _half_breadths(pieces, z, smooth=bool(data.sections))
         z_low[k] = max(min(p[:, 1].min() for p in pieces), z[0])
+    on = np.isfinite(z_low) & (z_low < D)  # stations with hull below the deck
+    xs, y, z_low = xs[on], y[on], z_low[on]
     below = z <= T
     yb = np.nan_to_num(y[:, below])
     area = 2.0 * np.trapezoid(yb, z[below], axis=1)
@@ -220,6 +227,12 @@ def measure_hull_data(data: HullData, depth: float | None = None) -> MeasuredHul
     bulb = [g.points.reshape(-1, 3) for g in data.grids if g.role == "bulb"]
     return MeasuredHull(data.lpp, data.beam, T, D, float(xs[0]), float(xs[-1]), xs, z, y, z_low, area, vol, lcb,
                         np.concatenate(bulb) if bulb else None, notes)
+
+
+def _depth_at_midship(points: np.ndarray, data: HullData) -> float:
+    """Depth D: the top of the data at midships (the deck at side; a sheer rises beyond it)."""
+    mid = np.abs(points[:, 0] - data.lpp / 2) < MIDSHIP_BAND * data.lpp
+    return float(points[mid, 2].max()) if mid.any() else float(points[:, 2].max())
 
 
 def _keel_height(points: np.ndarray, data: HullData) -> float:
@@ -442,7 +455,7 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
     """A whole-ship hull description (a dict for ``fl.Hull.from_dict``) measured from
     `hull_data` (fairlines.offsets.HullData; module docstring says what is measured).
 
-    depth       D (m); default the top of the data.
+    depth       D (m); default the top of the data at midships.
     fit_shapes  fit the deadrise / character / top_corner curves per station (slower).
     progress    callable(str) told of each step, or None.
 
@@ -465,8 +478,11 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
             if len(pts) >= 4:
                 shaped["basic_curves"][curve] = {"fit": pts, "fit_weight": FIT_WEIGHT, "spans": 16, **SHAPE_BOUNDS[curve]}
         say("fitted " + ", ".join(f"{k} at {len(v)} stations" for k, v in shapes.items()))
-        hull_s, relaxed_s = _buildable(shaped, say)
-        if len(relaxed_s) <= len(relaxed):  # the fitted shapes, unless they cost a target
+        try:
+            hull_s, relaxed_s = _buildable(shaped, say)
+        except _native.InfeasibleFormParameters:
+            hull_s, relaxed_s = None, None
+        if relaxed_s is not None and len(relaxed_s) <= len(relaxed):  # the fitted shapes, unless they cost a target
             hull, desc = hull_s, shaped
         else:
             say("fitted section shapes cost a SAC target: kept the default shapes")
