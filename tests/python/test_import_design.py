@@ -97,3 +97,14 @@ def test_import_refuses_data_without_hull_below_the_draft(tmp_path):
     p.write_text("x,1.0,2.0\n0,0,0\n5,0,1\n10,0,0\n")
     with pytest.raises(fl.InvalidInput, match="below T"):
         fl.import_design(read_offsets_csv(p, 10.0, 2.0, 0.5))
+
+
+def test_cli_import_writes_a_description_hull_from_json_builds(tmp_path, capsys):
+    from fairlines.cli import main
+
+    out = tmp_path / "design.json"
+    table = ROOT / "tests" / "data" / "wigley_offsets_mm.csv"
+    assert main(["import", str(table), "--lpp", "100", "--beam", "10", "--draft", "6.25", "-o", str(out)]) == 0
+    hull = fl.Hull.from_json(str(out))
+    assert hull.hydrostatics().volume == pytest.approx(truth("wigley_table")["volume"], rel=VOLUME_GOAL)
+    assert "whole-ship description" in capsys.readouterr().out
