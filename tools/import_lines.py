@@ -39,7 +39,8 @@ def main() -> int:
         print(f"| {ship} | {dt:.1f} | {100 * f['rms_of_B']:.2f} % | {100 * f['max_of_B']:.2f} % | "
               f"{100 * (f['volume'] / t['volume'] - 1):+.2f} % | {100 * (f['lcb'] - t['lcb']) / t['lpp']:+.3f} % | {ws} |")
         pr = desc["principal"]
-        plan = lines_plan(hull.bare_hull_surface(), lpp=pr["Lpp"], beam=pr["B"], draft=pr["T"], depth=pr["D"],
+        drawn = hull.composed_hull() if hull.description.bulb is not None else hull.bare_hull_surface()
+        plan = lines_plan(drawn, lpp=pr["Lpp"], beam=pr["B"], draft=pr["T"], depth=pr["D"],
                              name=f"{data.name} (imported)")
         plan.save(out / f"imported_{ship}.png", dpi=60)
     return 0

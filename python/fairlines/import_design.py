@@ -17,8 +17,10 @@ The basic curves pass near these measurements (``fit`` points); the SAC holds th
 volume and LCB exactly and stays near the measured section fullness. The section shape curves
 (``deadrise``, ``character``, ``top_corner``) are then fitted per station: each is the value
 whose designed section (``fl.design_section`` on the built basic curves) lies closest, in the
-least-squares sense, to the measured half-breadths. A bulb grid (role 'bulb') is measured
-separately: Kracht coefficients from its own mesh.
+least-squares sense, to the measured half-breadths. A bulb grid (role 'bulb') is left out of
+the bare hull and measured into the ``bulb`` section's Kracht coefficients (cuts of its grid
+from the FP to the nose). Hull below the keel line (a sonar dome) and above the deck at
+midships (a sheer) is left out and noted: the description has neither.
 """
 
 from __future__ import annotations
@@ -32,7 +34,8 @@ import numpy as np
 from . import _native
 from .offsets import HullData
 
-__all__ = ["import_design", "measure_hull_data", "MeasuredHull", "point_deviation", "data_points", "fidelity"]
+__all__ = ["import_design", "measure_hull_data", "measure_kracht", "MeasuredHull", "point_deviation", "data_points",
+           "fidelity"]
 
 #: Stations cut from a point grid (cosine-clustered toward both ends).
 GRID_STATIONS = 81
@@ -56,6 +59,8 @@ END_FRACTION = 0.08
 MIDSHIP_BAND = 0.05
 #: Data this far (fraction of T) below the keel line is a dome, not hull.
 KEEL_TOL = 0.01
+#: Stations cut from a bulb grid between the FP and the nose.
+BULB_STATIONS = 41
 #: Bisection steps toward the measured LCB when the sections cannot hold it.
 LCB_BISECTIONS = 12
 #: Volume and LCB corrections on the built surface (as the designer does).
@@ -269,6 +274,12 @@ def _profile_spec(m: MeasuredHull) -> dict:
     zk = float(np.nanmin(m.z_low))
     spec = {"fit": _pairs(m.x, m.z_low), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["profile"],
             "yB": float(m.z_low[0]), "yE": float(m.z_low[-1])}
+    # An end above the water and narrow at the deck (a stem head, a cruiser stern) closes there:
+    # the profile meets D.
+    top = np.nan_to_num(m.y[:, -1])
+    for key, k in (("yB", 0), ("yE", -1)):
+        if top[k] < END_FRACTION * m.beam / 2 and m.z_low[k] > m.draft:
+            spec[key] = m.depth
     flat = _flat_run(m.x, m.z_low, zk, 1e-3 * m.draft, 0.1 * m.lpp)
     if flat is not None:
         spec.update(flat_from=flat[0], flat_to=flat[1], value=zk, monotone=True)
@@ -298,7 +309,8 @@ def _deck_spec(m: MeasuredHull) -> dict:
     half = m.beam / 2
     y = np.minimum(_at(m, m.depth - 1e-9 * m.depth), half)
     y[~np.isfinite(y)] = 0.0  # no hull at the deck height: the stem or stern is below it
-    spec = {"fit": _pairs(m.x, y), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["deck"]}
+    # the stem head closes on the centre plane; the aft end keeps its measured breadth (a transom)
+    spec = {"fit": _pairs(m.x, y), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["deck"], "yB": float(y[0]), "yE": 0.0}
     flat = _flat_run(m.x, y, half, 2e-3 * half, 0.05 * m.lpp)
     if flat is not None:
         spec.update(flat_from=flat[0], flat_to=flat[1], value=half)
@@ -418,6 +430,40 @@ def _nearest_lcb(desc: dict, hull_free) -> tuple:
     return best
 
 
+def _closed_area(p: np.ndarray) -> float:
+    """Area (both sides) of a half section (y, z) closed along the centre plane (shoelace)."""
+    y, z = p[:, 0], p[:, 1]
+    return float(abs(np.dot(y, np.roll(z, -1)) - np.dot(z, np.roll(y, -1))))
+
+
+def measure_kracht(data: HullData, hull) -> dict | None:
+    """Kracht coefficients of the data's bulb grid (role 'bulb'; its lines along the hull cut
+    at stations from the FP to the nose): protrusion, breadth and area at the FP, nose height,
+    lateral area and volume forward of the FP, on the built hull's midship area and volume.
+    None when the data has no bulb grid reaching forward of the FP."""
+    grids = [g for g in data.grids if g.role == "bulb"]
+    if not grids:
+        return None
+    pts = np.concatenate([g.points.reshape(-1, 3) for g in grids])
+    fp, nose = data.lpp, pts[np.argmax(pts[:, 0])]
+    if nose[0] <= fp:
+        return None
+    lines = [_longitudinal_lines(g.points) for g in grids]
+    xs = np.linspace(fp, nose[0], BULB_STATIONS)
+    area, height, breadth = np.zeros(len(xs)), np.zeros(len(xs)), 0.0
+    for k, x0 in enumerate(xs[:-1]):
+        cut = np.concatenate([_crossings(ln, x0) for ln in lines])
+        below = cut[cut[:, 1] <= data.draft]
+        if len(below) >= 3:
+            area[k], height[k] = _closed_area(below), np.ptp(below[:, 1])
+        if k == 0 and len(cut):
+            breadth = 2 * float(cut[:, 0].max())
+    h = hull.hydrostatics()
+    return {"c_lpr": float((nose[0] - fp) / data.lpp), "c_bb": breadth / data.beam, "c_zb": float(nose[2] / data.draft),
+            "c_abt": float(area[0] / h.midship_area), "c_abl": _pchip_integral(xs, height) / float(h.midship_area),
+            "c_vpr": _pchip_integral(xs, area) / float(h.volume)}
+
+
 def _buildable(desc: dict, say) -> tuple:
     """(Hull of `desc`, what was relaxed): when the section family cannot hold the measured
     SAC, its LCB moves to the nearest it holds, then the fullness fit and the volume are left
@@ -495,6 +541,10 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
             say("the surface's volume / LCB correction leaves what the sections hold: SAC targets kept as measured")
     out = hull.to_dict()
     out["notes"] = desc["notes"]
+    kracht = measure_kracht(hull_data, hull)
+    if kracht is not None:
+        out["bulb"] = {"kracht": kracht}
+        say("bulb: Kracht coefficients " + ", ".join(f"{k} {v:.4g}" for k, v in kracht.items()))
     return out
 
 
@@ -522,13 +572,54 @@ def data_points(data: HullData, depth: float | None = None) -> np.ndarray:
 
 def fidelity(hull, data: HullData, *, max_points: int = 3000) -> dict:
     """How close the built `hull` (a fl.Hull) lies to the data: RMS and largest distance of the
-    data's points (:func:`data_points`, at most `max_points`, evenly taken) to the bare hull
-    surface as fractions of B, and the surface's volume, LCB (m from the AP) and wetted surface
-    (both sides) at T."""
-    pts = data_points(data, hull.description.principal.depth)
+    data's points (:func:`data_points`, at most `max_points`, evenly taken) to the hull as
+    fractions of B, and its volume, LCB (m from the AP) and wetted surface (both sides) at T.
+    A hull with a bulb is judged composed (bare hull, bulb and blend; the bulb grid's points
+    join the data's)."""
+    pr = hull.description.principal
+    pts = data_points(data, pr.depth)
+    if hull.description.bulb is None:
+        surfaces = [hull.bare_hull_surface()]
+        h = hull.hydrostatics()
+        volume, lcb, wetted = float(h.volume), float(h.lcb), float(h.wetted_surface)
+    else:
+        composed = hull.composed_hull()
+        surfaces = [s for s, _loops in composed.trimmed_surfaces]
+        bulb = np.concatenate([g.points.reshape(-1, 3) for g in data.grids if g.role == "bulb"])
+        pts = np.concatenate([pts, bulb[bulb[:, 2] <= pr.depth]])
+        volume, lcb, wetted = _mesh_figures(composed, pr.draft)
     pts = pts[:: max(1, len(pts) // max_points)]
-    dev = point_deviation([hull.bare_hull_surface()], pts)
-    h = hull.hydrostatics()
+    dev = point_deviation(surfaces, pts)
     return {"rms_of_B": float(np.sqrt(np.mean(dev**2)) / data.beam), "max_of_B": float(dev.max() / data.beam),
             "worst_point": pts[int(np.argmax(dev))].tolist(), "points": len(pts),
-            "volume": float(h.volume), "lcb": float(h.lcb), "wetted_surface": float(h.wetted_surface)}
+            "volume": volume, "lcb": lcb, "wetted_surface": wetted}
+
+
+def _mesh_figures(composed, draft: float) -> tuple:
+    """Volume, LCB and wetted surface (both sides) at `draft` of a composed half hull's mesh:
+    the hull, bulb and blend faces below the waterline (clipped) make the wetted surface."""
+    from .compose import FACE_PARTS, mesh_hydrostatics
+
+    h = mesh_hydrostatics(composed.mesh, draft)
+    outer = np.isin(composed.face_part, [FACE_PARTS.index(p) for p in ("hull", "bulb", "blend")])
+    tris = np.asarray(composed.mesh.vertices, float)[np.asarray(composed.mesh.faces)[outer]]
+    area = 0.0
+    for t in tris[tris[:, :, 2].min(axis=1) < draft]:
+        for p in _clip_triangle_below(t, draft):
+            area += 0.5 * float(np.linalg.norm(np.cross(p[1] - p[0], p[2] - p[0])))
+    return float(h["volume"]), float(h["lcb"]), 2.0 * area
+
+
+def _clip_triangle_below(t: np.ndarray, z0: float) -> list:
+    """The part of triangle t (3, 3) below z = z0 as triangles."""
+    below = t[:, 2] <= z0
+    if below.all():
+        return [t]
+    pts = []
+    for i in range(3):
+        p, q = t[i], t[(i + 1) % 3]
+        if p[2] <= z0:
+            pts.append(p)
+        if (p[2] - z0) * (q[2] - z0) < 0:
+            pts.append(p + (z0 - p[2]) / (q[2] - p[2]) * (q - p))
+    return [np.array([pts[0], pts[i], pts[i + 1]]) for i in range(1, len(pts) - 1)]
