@@ -109,11 +109,6 @@ def _longitudinal_lines(points: np.ndarray) -> np.ndarray:
     return points.transpose(1, 0, 2) if dx0 >= dx1 else points
 
 
-def _section_polylines(data: HullData, x0: float, lines: list) -> list:
-    """The data's section at x0 as (y, z) polylines or point sets."""
-    return [_crossings(ln, x0) for ln in lines]
-
-
 def _pchip_slopes(x: np.ndarray, f: np.ndarray) -> np.ndarray:
     """Shape-preserving cubic Hermite slopes (Fritsch and Carlson 1980; the three-point end
     formula of Moler's pchip)."""
@@ -213,7 +208,7 @@ def measure_hull_data(data: HullData, depth: float | None = None) -> MeasuredHul
     z_low = np.full(len(xs), np.nan)
     by_x = {s.x: s for s in data.sections}
     for k, x0 in enumerate(xs):
-        pieces = [by_x[x0].points] if data.sections else _section_polylines(data, x0, lines)
+        pieces = [by_x[x0].points] if data.sections else [_crossings(ln, x0) for ln in lines]
         pieces = [p for p in pieces if len(p)]
         if not pieces:
             continue
@@ -496,6 +491,27 @@ def _buildable(desc: dict, say) -> tuple:
     return free, relaxed
 
 
+def _with_fitted_shapes(base: dict, built: tuple, m: MeasuredHull, say) -> tuple:
+    """(hull, description) with the section shape curves fitted to the data, unless that costs
+    a SAC target the default shapes meet (`built`: the default shapes' hull, description and
+    relaxations)."""
+    hull, desc, relaxed = built
+    shaped = copy.deepcopy(base)
+    shapes = fit_section_shapes(hull, m)
+    for curve, pts in shapes.items():
+        if len(pts) >= 4:
+            shaped["basic_curves"][curve] = {"fit": pts, "fit_weight": FIT_WEIGHT, "spans": 16, **SHAPE_BOUNDS[curve]}
+    say("fitted " + ", ".join(f"{k} at {len(v)} stations" for k, v in shapes.items()))
+    try:
+        hull_s, relaxed_s = _buildable(shaped, say)
+    except _native.InfeasibleFormParameters:
+        hull_s, relaxed_s = None, None
+    if relaxed_s is not None and len(relaxed_s) <= len(relaxed):
+        return hull_s, shaped
+    say("fitted section shapes cost a SAC target: kept the default shapes")
+    return hull, desc
+
+
 def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes: bool = True,
                   name: str | None = None, progress=None) -> dict:
     """A whole-ship hull description (a dict for ``fl.Hull.from_dict``) measured from
@@ -505,12 +521,18 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
     fit_shapes  fit the deadrise / character / top_corner curves per station (slower).
     progress    callable(str) told of each step, or None.
 
-    Raises InvalidInput for data the description cannot hold (no hull below T at 3 stations),
-    InfeasibleFormParameters when the measured basic curves contradict each other.
+    Raises InvalidInput for data that is not HullData, a depth not above T, data the
+    description cannot hold (no hull below T at 3 stations); InfeasibleFormParameters when the
+    measured basic curves contradict each other.
     """
     from .designer import match_targets
     from .hull import Hull
 
+    if not isinstance(hull_data, HullData):
+        raise _native.InvalidInput(f"hull_data is a {type(hull_data).__name__}; expected fairlines.offsets.HullData "
+                                   "(read_hull_data)")
+    if depth is not None and not (isinstance(depth, (int, float)) and math.isfinite(depth) and depth > hull_data.draft):
+        raise _native.InvalidInput(f"depth is {depth!r}; expected a depth D in metres above T = {hull_data.draft} m")
     say = progress or (lambda _msg: None)
     m = measure_hull_data(hull_data, depth)
     say(f"measured {len(m.x)} stations: volume {m.volume:.6g} m^3, LCB {m.lcb:.6g} m, D {m.depth:.4g} m")
@@ -518,20 +540,7 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
     desc = copy.deepcopy(base)
     hull, relaxed = _buildable(desc, say)
     if fit_shapes:
-        shaped = copy.deepcopy(base)
-        shapes = fit_section_shapes(hull, m)
-        for curve, pts in shapes.items():
-            if len(pts) >= 4:
-                shaped["basic_curves"][curve] = {"fit": pts, "fit_weight": FIT_WEIGHT, "spans": 16, **SHAPE_BOUNDS[curve]}
-        say("fitted " + ", ".join(f"{k} at {len(v)} stations" for k, v in shapes.items()))
-        try:
-            hull_s, relaxed_s = _buildable(shaped, say)
-        except _native.InfeasibleFormParameters:
-            hull_s, relaxed_s = None, None
-        if relaxed_s is not None and len(relaxed_s) <= len(relaxed):  # the fitted shapes, unless they cost a target
-            hull, desc = hull_s, shaped
-        else:
-            say("fitted section shapes cost a SAC target: kept the default shapes")
+        hull, desc = _with_fitted_shapes(base, (hull, desc, relaxed), m, say)
     if "volume" in desc["basic_curves"]["sac"]:
         matched = Hull.from_json(desc)
         try:

@@ -107,3 +107,14 @@ def test_cli_import_writes_a_description_hull_from_json_builds(tmp_path, capsys)
     hull = fl.Hull.from_json(str(out))
     assert hull.hydrostatics().volume == pytest.approx(truth("wigley_table")["volume"], rel=VOLUME_GOAL)
     assert "whole-ship description" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("kwargs, message", [({"depth": 1.0}, "depth is 1.0"), ({"depth": float("nan")}, "depth is nan")])
+def test_import_refuses_a_depth_not_above_the_draft(kwargs, message):
+    with pytest.raises(fl.InvalidInput, match=message):
+        fl.import_design(read("wigley_table"), **kwargs)
+
+
+def test_import_refuses_what_is_not_hull_data():
+    with pytest.raises(fl.InvalidInput, match="expected fairlines.offsets.HullData"):
+        fl.import_design({"name": "x"})
