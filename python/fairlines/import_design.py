@@ -607,28 +607,13 @@ def fidelity(hull, data: HullData, *, max_points: int = 3000) -> dict:
 def _mesh_figures(composed, draft: float) -> tuple:
     """Volume, LCB and wetted surface (both sides) at `draft` of a composed half hull's mesh:
     the hull, bulb and blend faces below the waterline (clipped) make the wetted surface."""
-    from .compose import FACE_PARTS, mesh_hydrostatics
+    from .compose import FACE_PARTS, _clip_below, mesh_hydrostatics
 
     h = mesh_hydrostatics(composed.mesh, draft)
     outer = np.isin(composed.face_part, [FACE_PARTS.index(p) for p in ("hull", "bulb", "blend")])
     tris = np.asarray(composed.mesh.vertices, float)[np.asarray(composed.mesh.faces)[outer]]
     area = 0.0
     for t in tris[tris[:, :, 2].min(axis=1) < draft]:
-        for p in _clip_triangle_below(t, draft):
+        for p in _clip_below(t, draft) if t[:, 2].max() > draft else [t]:
             area += 0.5 * float(np.linalg.norm(np.cross(p[1] - p[0], p[2] - p[0])))
     return float(h["volume"]), float(h["lcb"]), 2.0 * area
-
-
-def _clip_triangle_below(t: np.ndarray, z0: float) -> list:
-    """The part of triangle t (3, 3) below z = z0 as triangles."""
-    below = t[:, 2] <= z0
-    if below.all():
-        return [t]
-    pts = []
-    for i in range(3):
-        p, q = t[i], t[(i + 1) % 3]
-        if p[2] <= z0:
-            pts.append(p)
-        if (p[2] - z0) * (q[2] - z0) < 0:
-            pts.append(p + (z0 - p[2]) / (q[2] - p[2]) * (q - p))
-    return [np.array([pts[0], pts[i], pts[i + 1]]) for i in range(1, len(pts) - 1)]
