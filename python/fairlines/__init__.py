@@ -94,3 +94,5 @@ from .mesh_io import read_mesh, read_plot3d, write_gdf, write_mar, write_mesh, w
 
 # Design-space sweeps on Dask (the `sweep` extra: dask[distributed], pyarrow, scipy; imported on use).
 from .sweep import sweep  # noqa: F401,E402
+# Real hull data back as whole-ship designs (offsets tables, KCS, DTMB 5415 grids).
+from .import_design import import_design, measure_hull_data  # noqa: F401,E402

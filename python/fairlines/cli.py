@@ -2,7 +2,7 @@
 
     fairlines version
     fairlines fit POINTS.csv [--degree 3] [--n-control N] [--parameterization chord] -o curve.json
-    fairlines import TABLE --lpp L --beam B --draft T [--format auto] [--stations 20] -o hull.json
+    fairlines import TABLE --lpp L --beam B --draft T [--format auto] [--stations 20] [--depth D] [--analysis] -o hull.json
     fairlines build hull.json -o OUTDIR
     fairlines design --lpp L --breadth B --draft T --depth D --cb CB --lcb LCB [--bulb] -o hull.json
     fairlines export | lines | hydrostatics ...   (see fairlines.cli_output)
@@ -46,8 +46,10 @@ def _import(args) -> int:
     import pathlib
 
     from .offsets import read_hull_data
-    from .preprocess import import_hull
     data = read_hull_data(args.table, args.lpp, args.beam, args.draft, fmt=args.format, n_stations=args.stations)
+    if not args.analysis:
+        return _import_design(data, args)
+    from .preprocess import import_hull
     doc = import_hull(data, progress=_progress)
     h, fp = doc["hydrostatics_input"], doc["form_parameters"]
     print(f"{data.name}: Lpp {data.lpp:g} m, B {data.beam:g} m, T {data.draft:g} m; "
@@ -62,6 +64,24 @@ def _import(args) -> int:
           f"DWL entrance half-angle {fp['DWL']['entrance_angle_deg']:.1f} deg, bow feature: {fp['bow']['kind']}")
     pathlib.Path(args.output).write_text(json.dumps(doc, indent=1))
     print(f"wrote {args.output}")
+    return 0
+
+
+def _import_design(data, args) -> int:
+    import json
+    import pathlib
+
+    from .import_design import import_design
+    desc = import_design(data, depth=args.depth, progress=_progress)
+    for note in data.notes:
+        print(f"note: {note}")
+    bc = desc["basic_curves"]["sac"]
+    print(f"{data.name}: whole-ship description, Lpp {data.lpp:g} m, B {data.beam:g} m, T {data.draft:g} m, "
+          f"D {desc['principal']['D']:.4g} m, ends {desc['ends']['aft']:.4g} .. {desc['ends']['fore']:.4g} m; "
+          f"SAC volume {bc.get('volume', float('nan')):.6g} m3, LCB {bc.get('lcb', float('nan')):.6g} m")
+    print(f"notes: {desc['notes']}")
+    pathlib.Path(args.output).write_text(json.dumps(desc, indent=1))
+    print(f"wrote {args.output} (fl.Hull.from_json builds it)")
     return 0
 
 
@@ -126,7 +146,7 @@ def main(argv=None) -> int:
     f.add_argument("--parameterization", default="chord", choices=["chord", "centripetal", "uniform"])
     f.add_argument("--knots", default="average", choices=["average", "hartley_judd"])
     f.add_argument("-o", "--output", help="write the curve as JSON")
-    im = sub.add_parser("import", help="read offsets / section points / a point grid; find the form parameters")
+    im = sub.add_parser("import", help="read offsets / section points / a point grid; write the whole-ship description")
     im.add_argument("table", help="offsets CSV, x,y,z section CSV, Tecplot point grid in SPEC metres (.dat), "
                                   "or a DTMB 5415 / KCS grid folder")
     im.add_argument("--lpp", type=float, help="length between perpendiculars, m")
@@ -135,10 +155,13 @@ def main(argv=None) -> int:
     im.add_argument("--format", default="auto", choices=["auto", "offsets", "sections", "tecplot", "dtmb5415", "kcs"])
     im.add_argument("--stations", type=int, default=20,
                     help="station intervals between the perpendiculars in a normalised table (default 20)")
-    im.add_argument("-o", "--output", required=True, help="hull description JSON to write")
+    im.add_argument("--depth", type=float, help="depth D, m (default: the top of the data)")
+    im.add_argument("--analysis", action="store_true",
+                    help="write the form-parameter analysis that 'fairlines build' reads instead of the design")
+    im.add_argument("-o", "--output", required=True, help="whole-ship hull description JSON to write")
     b = sub.add_parser("build", help="rebuild the faired hull of an imported description; report deviation and "
                                      "hydrostatics")
-    b.add_argument("hull", help="hull.json written by 'fairlines import'")
+    b.add_argument("hull", help="analysis JSON written by 'fairlines import --analysis'")
     b.add_argument("-o", "--output", required=True, help="output folder")
     from . import cli_design, cli_fairness, cli_output
     cli_output.add_parsers(sub)

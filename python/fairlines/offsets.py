@@ -41,6 +41,8 @@ LENGTH_RANGE_M = (0.1, 1000.0)
 # Points of one station a section list may hold: the fold-back check compares every pair of
 # segments, so this bounds its work.
 MAX_SECTION_POINTS = 5000
+# Metres per millimetre (tables published in mm).
+MM = 1e-3
 # Largest half-breadth fraction a normalised table may hold (fractions of a waterline's own
 # maximum, or of B/2, are at most 1 in principle; measured data overshoots a little).
 HALF_BREADTH_FRACTION_MAX = 10.0
@@ -191,7 +193,7 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
     rows, comments = _csv_rows(path)
     head_line, header = rows[0]
     header = [h.strip() for h in header]
-    first = header[0].lower()
+    first, unit = _unit_of(header[0], comments)
     if normalised is None:
         if first not in ("station", "x"):
             raise InvalidInput(f"{path}: first column is {header[0]!r}; expected 'station' (normalised) or 'x' (metres)")
@@ -202,6 +204,8 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
     if len(wl_cols) < 2:
         raise InvalidInput(f"{path}: {len(wl_cols)} waterline column(s); expected at least 2")
     z = np.array([_waterline_height(header[k], path, draft, normalised) for k in wl_cols])
+    if not normalised:
+        z = z * unit
     if np.any(np.abs(z) > lpp):
         k = wl_cols[int(np.flatnonzero(np.abs(z) > lpp)[0])]
         raise InvalidInput(f"{path}: column header {header[k]!r} puts a waterline {np.abs(z).max():.6g} m from the "
@@ -227,10 +231,10 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
                     raise InvalidInput(f"{path}: row {lineno} station is {lab!r}; expected FP, AP or a number")
             xpos = (n_stations - st) / n_stations * lpp  # stations count from the FP; x from the AP
         else:
-            xpos = _cell(lab, path, lineno, header[0])
+            xpos = _cell(lab, path, lineno, header[0]) * unit
             if np.isnan(xpos):
                 raise InvalidInput(f"{path}: row {lineno} has no x; expected metres forward of the AP")
-        vals = np.array([_cell(row[k], path, lineno, header[k]) for k in wl_cols])
+        vals = np.array([_cell(row[k], path, lineno, header[k]) for k in wl_cols]) * (1.0 if normalised else unit)
         bad = np.flatnonzero(vals < 0)
         if bad.size:
             k = wl_cols[bad[0]]
@@ -299,6 +303,16 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
                     notes=notes, source=str(path))
     data.published = _published_from_comments(comments)
     return data
+
+
+def _unit_of(first_header, comments):
+    """(first column name, metres per table unit): 'x_mm' / 'x [mm]' / 'x (mm)' or a comment
+    line 'units: mm' make an absolute table millimetres (as shipyards publish offsets)."""
+    m = re.fullmatch(r"\s*(\w+?)\s*(?:_|\[|\()?\s*(mm|m)?\s*[\])]?\s*", first_header.lower())
+    name, unit = (m.group(1), m.group(2)) if m else (first_header.strip().lower(), None)
+    if unit is None and any(re.search(r"\bunits?\s*[:=]\s*mm\b", c.lower()) for c in comments):
+        unit = "mm"
+    return name, MM if unit == "mm" else 1.0
 
 
 def _published_from_comments(comments):

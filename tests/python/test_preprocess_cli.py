@@ -31,7 +31,8 @@ def test_import_then_build(tmp_path, capsys):
     table = tmp_path / "wigley.csv"
     L, B, T = _wigley_table(table)
     hull = tmp_path / "hull.json"
-    assert main(["import", str(table), "--lpp", str(L), "--beam", str(B), "--draft", str(T), "-o", str(hull)]) == 0
+    assert main(["import", str(table), "--lpp", str(L), "--beam", str(B), "--draft", str(T), "--analysis",
+                 "-o", str(hull)]) == 0
     out = capsys.readouterr()
     assert "form parameters" in out.out and "wrote" in out.out
     assert ".. skinning" in out.err  # progress on stderr
@@ -56,7 +57,7 @@ def test_import_then_build(tmp_path, capsys):
 
 def test_import_reference_grid_folder(tmp_path, capsys):
     hull = tmp_path / "kcs.json"
-    assert main(["import", str(DATA / "kcs"), "-o", str(hull)]) == 0
+    assert main(["import", str(DATA / "kcs"), "--analysis", "-o", str(hull)]) == 0
     doc = json.loads(hull.read_text())
     assert doc["form_parameters"]["bow"]["kind"] == "bulb"
     assert [s["role"] for s in doc["subdomains"]].count("bulb") == 1
@@ -105,7 +106,8 @@ def test_import_generic_tecplot_grid(tmp_path, capsys):
     p = tmp_path / "wigley.dat"
     p.write_text(f"Zone i= {len(x)} j= {len(z)} f=point\n" + "\n".join(rows) + "\n")
     hull = tmp_path / "h.json"
-    assert main(["import", str(p), "--lpp", str(L), "--beam", str(B), "--draft", str(T), "-o", str(hull)]) == 0
+    assert main(["import", str(p), "--lpp", str(L), "--beam", str(B), "--draft", str(T), "--analysis",
+                 "-o", str(hull)]) == 0
     doc = json.loads(hull.read_text())
     # The triangulated grid is a trapezoid-rule hull: 4/9 to the grid's resolution (17 x 9).
     assert doc["hydrostatics_input"]["Cb"] == pytest.approx(4 / 9, rel=0.02)

@@ -1,0 +1,619 @@
+"""Real hull data back as a whole-ship design: measure the data, write a hull description.
+
+``fl.import_design(hull_data)`` (hull_data a :class:`fairlines.offsets.HullData`) returns a
+description dict (fairlines.description) that ``fl.Hull.from_dict`` builds. What is measured:
+
+* stations across the data (its own stations for an offsets table; for point grids, plane
+  cuts x = const of the grid's longitudinal lines), each reduced to its half-breadth y(z): the
+  largest y of the section at each height;
+* Lpp, B, T from the data (as the reader gives them), D the top of the data, the ends
+  (aft-most and fore-most points: transom or stern, stem head);
+* per station: the lowest point (the centre-line contour: keel, counter, forefoot, stem), the
+  half-breadth at T (the design waterline) and at D (the deck line), the area below T;
+  the volume and LCB by Simpson integration of those areas;
+* the transom: its lower edge height and, when immersed, its width at T.
+
+The basic curves pass near these measurements (``fit`` points); the SAC holds the measured
+volume and LCB exactly and stays near the measured section fullness. The section shape curves
+(``deadrise``, ``character``, ``top_corner``) are then fitted per station: each is the value
+whose designed section (``fl.design_section`` on the built basic curves) lies closest, in the
+least-squares sense, to the measured half-breadths. A bulb grid (role 'bulb') is left out of
+the bare hull and measured into the ``bulb`` section's Kracht coefficients (cuts of its grid
+from the FP to the nose). Hull below the keel line (a sonar dome) and above the deck at
+midships (a sheer) is left out and noted: the description has neither.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import math
+
+import numpy as np
+
+from . import _native
+from .offsets import HullData
+
+__all__ = ["import_design", "measure_hull_data", "measure_kracht", "MeasuredHull", "point_deviation", "data_points",
+           "fidelity"]
+
+#: Stations cut from a point grid (cosine-clustered toward both ends).
+GRID_STATIONS = 81
+#: Heights at which each station's half-breadth y(z) is sampled.
+Z_SAMPLES = 241
+#: Fit weight of the measured points on the basic curves (relative to fairness).
+FIT_WEIGHT = 1.0e3
+#: Knot spans of the measured basic curves.
+CURVE_SPANS = {"profile": 40, "dwl": 30, "deck": 24, "sac": 30}
+#: Candidate values tried per station for each section shape curve, and the curve's bounds.
+SHAPE_CANDIDATES = {"character": np.linspace(0.1, 0.9, 17), "deadrise": np.linspace(0.0, 30.0, 13),
+                    "top_corner": np.linspace(0.1, 0.9, 9)}
+#: Bounds of the fitted shape curves, inside the section generator's: the spline's own bound is
+#: met to the solver's round-off, which may leave a deadrise of -1e-13 deg that sections refuse.
+SHAPE_BOUNDS = {"character": {"lower": 0.06, "upper": 0.94}, "deadrise": {"lower": 1e-3, "upper": 39.0},
+                "top_corner": {"lower": 0.06, "upper": 0.94}}
+#: A station whose waterline or immersed depth is below this fraction of B/2 or T is an end
+#: station: its shape is not fitted (it follows its neighbours).
+END_FRACTION = 0.08
+#: Depth is measured within this fraction of Lpp of midships.
+MIDSHIP_BAND = 0.05
+#: Data this far (fraction of T) below the keel line is a dome, not hull.
+KEEL_TOL = 0.01
+#: Stations cut from a bulb grid between the FP and the nose.
+BULB_STATIONS = 41
+#: Bisection steps toward the measured LCB when the sections cannot hold it.
+LCB_BISECTIONS = 12
+#: Volume and LCB corrections on the built surface (as the designer does).
+MATCH_TOL = 1e-5
+
+
+@dataclasses.dataclass
+class MeasuredHull:
+    """What :func:`measure_hull_data` reads off the data (metres, x from the AP)."""
+
+    lpp: float
+    beam: float
+    draft: float
+    depth: float
+    x_aft: float
+    x_fore: float
+    x: np.ndarray           # stations
+    z: np.ndarray           # heights of the half-breadth samples
+    y: np.ndarray           # (stations, heights) half-breadth, NaN where the station has no hull
+    z_low: np.ndarray       # lowest point of each station
+    area: np.ndarray        # area below T (both sides) per station
+    volume: float
+    lcb: float
+    bulb_points: np.ndarray | None = None
+    notes: list = dataclasses.field(default_factory=list)
+
+    def half_breadth(self, k: int, z0: float) -> float:
+        """Half-breadth of station k at height z0 (NaN outside the section)."""
+        return float(np.interp(z0, self.z, self.y[k], left=np.nan, right=np.nan))
+
+
+def _crossings(lines: np.ndarray, x0: float) -> np.ndarray:
+    """(y, z) where each polyline of `lines` (m lines, n points, 3) crosses the plane x = x0."""
+    p, q = lines[:, :-1], lines[:, 1:]
+    dp, dq = p[..., 0] - x0, q[..., 0] - x0
+    hit = (dp * dq <= 0) & (p[..., 0] != q[..., 0])
+    t = np.where(hit, dp / np.where(hit, dp - dq, 1.0), 0.0)
+    pts = p + t[..., None] * (q - p)
+    return pts[hit][:, 1:]
+
+
+def _longitudinal_lines(points: np.ndarray) -> np.ndarray:
+    """A grid's lines that run along the hull (the index direction in which x changes most)."""
+    dx0 = np.abs(np.diff(points[..., 0], axis=0)).mean()
+    dx1 = np.abs(np.diff(points[..., 0], axis=1)).mean()
+    return points.transpose(1, 0, 2) if dx0 >= dx1 else points
+
+
+def _pchip_slopes(x: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """Shape-preserving cubic Hermite slopes (Fritsch and Carlson 1980; the three-point end
+    formula of Moler's pchip)."""
+    h, delta = np.diff(x), np.diff(f) / np.diff(x)
+    d = np.zeros_like(f)
+    if len(x) == 2:
+        return np.full_like(f, delta[0])
+    w1, w2 = 2 * h[1:] + h[:-1], h[1:] + 2 * h[:-1]
+    same = delta[:-1] * delta[1:] > 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d[1:-1] = np.where(same, (w1 + w2) / (w1 / np.where(same, delta[:-1], 1) + w2 / np.where(same, delta[1:], 1)), 0.0)
+    for end, (h0, h1, d0, d1) in ((0, (h[0], h[1], delta[0], delta[1])), (-1, (h[-1], h[-2], delta[-1], delta[-2]))):
+        v = ((2 * h0 + h1) * d0 - h0 * d1) / (h0 + h1)
+        if np.sign(v) != np.sign(d0):
+            v = 0.0
+        elif np.sign(d0) != np.sign(d1) and abs(v) > abs(3 * d0):
+            v = 3 * d0
+        d[end] = v
+    return d
+
+
+def _pchip(x: np.ndarray, f: np.ndarray, xi: np.ndarray) -> np.ndarray:
+    """The shape-preserving cubic through (x, f) at xi (inside [x0, xn])."""
+    d = _pchip_slopes(x, f)
+    k = np.clip(np.searchsorted(x, xi) - 1, 0, len(x) - 2)
+    h = x[k + 1] - x[k]
+    t = (xi - x[k]) / h
+    h00, h10, h01, h11 = 2 * t**3 - 3 * t**2 + 1, t**3 - 2 * t**2 + t, -2 * t**3 + 3 * t**2, t**3 - t**2
+    return h00 * f[k] + h10 * h * d[k] + h01 * f[k + 1] + h11 * h * d[k + 1]
+
+
+def _pchip_integral(x: np.ndarray, f: np.ndarray) -> float:
+    """Exact integral of the shape-preserving cubic through (x, f) over [x0, xn]."""
+    d, h = _pchip_slopes(x, f), np.diff(x)
+    return float(np.sum(h * (f[:-1] + f[1:]) / 2 + h**2 * (d[:-1] - d[1:]) / 12))
+
+
+def _smooth_in_z(zs: np.ndarray, ys: np.ndarray, z: np.ndarray) -> np.ndarray:
+    """Half-breadths of an offsets column between its waterlines by the shape-preserving
+    cubic, so a round bilge is not cut by chords."""
+    keep = np.concatenate([np.diff(zs) > 0, [True]])  # of equal heights the outermost (last)
+    if keep.sum() < 3:
+        return np.interp(z, zs[keep], ys[keep])
+    return _pchip(zs[keep], ys[keep], z)
+
+
+def _half_breadths(pieces: list, z: np.ndarray, smooth: bool = False) -> np.ndarray:
+    """Largest y at each height z over the section pieces ((n, 2) (y, z), ordered along the
+    section); NaN where no piece reaches. `smooth`: the pieces are offsets (few points per
+    section), interpolated by a monotone cubic instead of chords."""
+    out = np.full(z.shape, np.nan)
+    for p in pieces:
+        if len(p) < 2:
+            continue
+        order = np.argsort(p[:, 1], kind="stable")
+        ys, zs = p[order, 0], p[order, 1]
+        inside = (z >= zs[0]) & (z <= zs[-1])
+        if inside.any():
+            y = _smooth_in_z(zs, ys, z[inside]) if smooth else np.interp(z[inside], zs, ys)
+            out[inside] = np.fmax(out[inside], y)
+    return out
+
+
+def _stations(data: HullData, lines: list) -> np.ndarray:
+    if data.sections:
+        return np.array(sorted(s.x for s in data.sections))
+    xs = np.concatenate([ln[..., 0].ravel() for ln in lines])
+    lo, hi = float(xs.min()), float(xs.max())
+    s = np.linspace(0.0, 1.0, GRID_STATIONS)
+    x = lo + (hi - lo) * 0.5 * (1 - np.cos(np.pi * s))
+    span = hi - lo
+    return np.clip(x, lo + 1e-6 * span, hi - 1e-6 * span)
+
+
+def measure_hull_data(data: HullData, depth: float | None = None) -> MeasuredHull:
+    """Stations, half-breadths, lowest points, areas, volume and LCB of the data (module
+    docstring). Raises InvalidInput for data with fewer than 3 stations with hull below T."""
+    hull_grids = [g for g in data.grids if g.role != "bulb"]
+    lines = [_longitudinal_lines(g.points) for g in hull_grids]
+    xs = _stations(data, lines)
+    allp = np.concatenate([data.all_points()] if data.sections else [g.points.reshape(-1, 3) for g in hull_grids])
+    D = float(depth if depth is not None else _depth_at_midship(allp, data))
+    zlo = float(allp[:, 2].min())
+    z = np.linspace(zlo, D, Z_SAMPLES)
+    T = data.draft
+    if not np.any(np.isclose(z, T)):
+        z = np.sort(np.append(z, T))
+    keel = _keel_height(allp, data)
+    notes = []
+    if allp[:, 2].max() > D * (1 + KEEL_TOL):
+        notes.append(f"data above the depth D = {D:.4g} m (a sheer, to z = {allp[:, 2].max():.4g} m) left out: "
+                     "the description has one deck height")
+    if zlo < keel - KEEL_TOL * T:
+        notes.append(f"hull below the keel line (a sonar dome, to z = {zlo:.4g} m) left out: the description has no dome")
+        z = z[z >= keel]
+    y = np.full((len(xs), len(z)), np.nan)
+    z_low = np.full(len(xs), np.nan)
+    by_x = {s.x: s for s in data.sections}
+    for k, x0 in enumerate(xs):
+        pieces = [by_x[x0].points] if data.sections else [_crossings(ln, x0) for ln in lines]
+        pieces = [p for p in pieces if len(p)]
+        if not pieces:
+            continue
+        y[k] = _half_breadths(pieces, z, smooth=bool(data.sections))
+        z_low[k] = max(min(p[:, 1].min() for p in pieces), z[0])
+    on = np.isfinite(z_low) & (z_low < D)  # stations with hull below the deck
+    xs, y, z_low = xs[on], y[on], z_low[on]
+    below = z <= T
+    yb = np.nan_to_num(y[:, below])
+    area = 2.0 * np.trapezoid(yb, z[below], axis=1)
+    wet = area > 0
+    if wet.sum() < 3:
+        raise _native.InvalidInput(f"{data.name}: {int(wet.sum())} station(s) with hull below T = {T} m; expected at least 3")
+    vol = _pchip_integral(xs, area)
+    lcb = _pchip_integral(xs, area * xs) / vol
+    bulb = [g.points.reshape(-1, 3) for g in data.grids if g.role == "bulb"]
+    return MeasuredHull(data.lpp, data.beam, T, D, float(xs[0]), float(xs[-1]), xs, z, y, z_low, area, vol, lcb,
+                        np.concatenate(bulb) if bulb else None, notes)
+
+
+def _depth_at_midship(points: np.ndarray, data: HullData) -> float:
+    """Depth D: the top of the data at midships (the deck at side; a sheer rises beyond it)."""
+    mid = np.abs(points[:, 0] - data.lpp / 2) < MIDSHIP_BAND * data.lpp
+    return float(points[mid, 2].max()) if mid.any() else float(points[:, 2].max())
+
+
+def _keel_height(points: np.ndarray, data: HullData) -> float:
+    """Height of the keel line: the lowest point between 0.2 and 0.8 Lpp (a dome or bulb at the
+    bow may reach lower)."""
+    mid = (points[:, 0] > 0.2 * data.lpp) & (points[:, 0] < 0.8 * data.lpp)
+    return float(points[mid, 2].min()) if mid.any() else float(points[:, 2].min())
+
+
+# ---- basic curves from the measurements ------------------------------------------------
+
+def _flat_run(x: np.ndarray, f: np.ndarray, value: float, tol: float, min_length: float):
+    """(x_from, x_to) of the longest run of stations where |f - value| <= tol, if it is at
+    least min_length long."""
+    ok = np.isfinite(f) & (np.abs(f - value) <= tol)
+    best, start = None, None
+    for k in range(len(x) + 1):
+        if k < len(x) and ok[k]:
+            start = k if start is None else start
+        elif start is not None:
+            run = (float(x[start]), float(x[k - 1]))
+            if best is None or run[1] - run[0] > best[1] - best[0]:
+                best = run
+            start = None
+    return best if best is not None and best[1] - best[0] >= min_length else None
+
+
+def _pairs(x, f, lo=-math.inf, hi=math.inf) -> list:
+    return [[float(a), float(b)] for a, b in zip(x, f) if np.isfinite(b) and lo <= a <= hi]
+
+
+def _profile_spec(m: MeasuredHull) -> dict:
+    """Centre-line contour through the stations' lowest points; the keel flat where it is."""
+    zk = float(np.nanmin(m.z_low))
+    spec = {"fit": _pairs(m.x, m.z_low), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["profile"],
+            "yB": float(m.z_low[0]), "yE": float(m.z_low[-1])}
+    # An end above the water and narrow at the deck (a stem head, a cruiser stern) closes there:
+    # the profile meets D.
+    top = np.nan_to_num(m.y[:, -1])
+    for key, k in (("yB", 0), ("yE", -1)):
+        if top[k] < END_FRACTION * m.beam / 2 and m.z_low[k] > m.draft:
+            spec[key] = m.depth
+    flat = _flat_run(m.x, m.z_low, zk, 1e-3 * m.draft, 0.1 * m.lpp)
+    if flat is not None:
+        spec.update(flat_from=flat[0], flat_to=flat[1], value=zk, monotone=True)
+        spec["fit"] = [p for p in spec["fit"] if not flat[0] <= p[0] <= flat[1]]
+    return spec
+
+
+def _at(m: MeasuredHull, z0: float) -> np.ndarray:
+    return np.array([m.half_breadth(k, z0) for k in range(len(m.x))])
+
+
+def _dwl_spec(m: MeasuredHull, xa: float, xf: float) -> dict:
+    half = m.beam / 2
+    y = np.minimum(_at(m, m.draft), half)
+    inside = (m.x > xa) & (m.x < xf)
+    spec = {"fit": _pairs(m.x[inside], y[inside]), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["dwl"], "yE": 0.0}
+    immersed_transom = xa <= m.x_aft + 1e-9 * m.lpp and np.isfinite(y[0]) and y[0] > END_FRACTION * half
+    spec["yB"] = float(y[0]) if immersed_transom else 0.0
+    flat = _flat_run(m.x, y, half, 2e-3 * half, 0.05 * m.lpp)
+    if flat is not None:
+        spec.update(flat_from=flat[0], flat_to=flat[1], value=half)
+        spec["fit"] = [p for p in spec["fit"] if not flat[0] <= p[0] <= flat[1]]
+    return spec
+
+
+def _deck_spec(m: MeasuredHull) -> dict:
+    half = m.beam / 2
+    y = np.minimum(_at(m, m.depth - 1e-9 * m.depth), half)
+    y[~np.isfinite(y)] = 0.0  # no hull at the deck height: the stem or stern is below it
+    # the stem head closes on the centre plane; the aft end keeps its measured breadth (a transom)
+    spec = {"fit": _pairs(m.x, y), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["deck"], "yB": float(y[0]), "yE": 0.0}
+    flat = _flat_run(m.x, y, half, 2e-3 * half, 0.05 * m.lpp)
+    if flat is not None:
+        spec.update(flat_from=flat[0], flat_to=flat[1], value=half)
+        spec["fit"] = [p for p in spec["fit"] if not flat[0] <= p[0] <= flat[1]]
+    return spec
+
+
+def _sac_spec(m: MeasuredHull, dwl, profile, xa: float, xf: float) -> dict:
+    """Volume and LCB of the data; the measured section fullness away from the ends."""
+    box = 2 * dwl(m.x, outside=0.0) * np.maximum(m.draft - profile(m.x), 0.0)
+    ok = (m.x > xa + 0.03 * (xf - xa)) & (m.x < xf - 0.03 * (xf - xa)) & (box > 0)
+    s = np.where(ok, m.area / np.where(box > 0, box, 1.0), np.nan)
+    s = np.clip(s, 0.05, 1.0)
+    return {"volume": m.volume, "lcb": m.lcb, "spans": CURVE_SPANS["sac"], "fullness_fit": _pairs(m.x[ok], s[ok])}
+
+
+def _base_description(m: MeasuredHull, name: str) -> dict:
+    from .basic_curves import immersed_range, solve_curve
+    from .description import BasicCurveSpec
+
+    prof = _profile_spec(m)
+    profile = solve_curve("profile", BasicCurveSpec.from_dict("profile", prof, "basic_curves.profile"), m.x_aft, m.x_fore,
+                          lower=-m.draft, upper=m.depth, maximum=False)
+    xa, xf = immersed_range(profile, m.draft)
+    dwl = _dwl_spec(m, xa, xf)
+    dwl_curve = solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=m.beam / 2)
+    return {
+        "name": name,
+        "notes": "; ".join([f"imported: volume {m.volume:.6g} m^3, LCB {m.lcb:.6g} m from the AP measured from the data"] + m.notes),
+        "principal": {"Lpp": m.lpp, "B": m.beam, "T": m.draft, "D": m.depth},
+        "ends": {"aft": m.x_aft, "fore": m.x_fore},
+        "stations": {"count": 61},
+        "sections": {"n_control": 20},
+        "basic_curves": {"profile": prof, "dwl": dwl, "deck": _deck_spec(m), "sac": _sac_spec(m, dwl_curve, profile, xa, xf)},
+    }
+
+
+# ---- section shape curves, fitted per station -------------------------------------------
+
+def _designed_half_breadth(spec, z: np.ndarray) -> np.ndarray:
+    """y(z) of the section fl.design_section makes of `spec` (NaN outside it)."""
+    curve = _native.design_section(spec).curve
+    kn = np.asarray(curve.knots)
+    pts = np.asarray(curve.evaluate(np.linspace(kn[0], kn[-1], 201)))
+    order = np.argsort(pts[:, 2], kind="stable")
+    return np.interp(z, pts[order, 2], pts[order, 1], left=np.nan, right=np.nan)
+
+
+def _section_misfit(spec, z: np.ndarray, y: np.ndarray) -> float:
+    """RMS of measured minus designed half-breadth over the heights both hold."""
+    try:
+        yd = _designed_half_breadth(spec, z)
+    except (_native.InfeasibleFormParameters, _native.InvalidInput):
+        return math.inf
+    both = np.isfinite(yd) & np.isfinite(y)
+    return float(np.sqrt(np.mean((yd[both] - y[both]) ** 2))) if both.sum() >= 3 else math.inf
+
+
+def fit_section_shapes(hull, m: MeasuredHull, passes: int = 2) -> dict:
+    """Per measured station inside the hull's waterline (not at its ends), the deadrise,
+    character and top_corner whose designed section is closest (least squares over the
+    station's heights) to the data. Returns {curve: [[x, value], ...]}."""
+    xa, xf = hull.immersed_range()
+    half = m.beam / 2
+    out = {name: [] for name in SHAPE_CANDIDATES}
+    for k, x0 in enumerate(m.x):
+        if not xa < x0 < xf:
+            continue
+        spec = hull.section_specs([float(x0)])[0]
+        if spec.y_dwl < END_FRACTION * half or spec.draft - spec.z_keel < END_FRACTION * m.draft:
+            continue
+        y = m.y[k]
+        for _ in range(passes):
+            for name, cands in SHAPE_CANDIDATES.items():
+                best = (math.inf, getattr(spec, name))
+                for v in cands:
+                    setattr(spec, name, float(v))
+                    best = min(best, (_section_misfit(spec, m.z, y), float(v)))
+                setattr(spec, name, best[1])
+        for name in SHAPE_CANDIDATES:
+            out[name].append([float(x0), float(getattr(spec, name))])
+    return out
+
+
+# ---- the whole description ----------------------------------------------------------------
+
+def _builds(desc: dict):
+    """The Hull of `desc` with its SAC solved, or None when the sections cannot hold it."""
+    from .hull import Hull
+
+    try:
+        hull = Hull.from_json(desc)
+        hull.basic_curves  # noqa: B018 (solves the SAC now)
+        return hull
+    except _native.InfeasibleFormParameters:
+        return None
+
+
+def _nearest_lcb(desc: dict, hull_free) -> tuple:
+    """Bisect the SAC's LCB from where it falls when free (`hull_free`, built) toward the
+    measured one; the hull with the nearest LCB the sections hold."""
+    sac = desc["basic_curves"]["sac"]
+    want, free = sac["lcb"], float(hull_free.hydrostatics(sac_stations=2).lcb)
+    best, lo, hi = None, 0.0, 1.0
+    for _ in range(LCB_BISECTIONS):
+        t = 0.5 * (lo + hi)
+        sac["lcb"] = free + t * (want - free)
+        hull = _builds(desc)
+        if hull is None:
+            hi = t
+        else:
+            lo, best = t, (hull, sac["lcb"])
+    if best is None:
+        sac["lcb"] = free
+        return _builds(desc), free
+    sac["lcb"] = best[1]
+    return best
+
+
+def _closed_area(p: np.ndarray) -> float:
+    """Area (both sides) of a half section (y, z) closed along the centre plane (shoelace)."""
+    y, z = p[:, 0], p[:, 1]
+    return float(abs(np.dot(y, np.roll(z, -1)) - np.dot(z, np.roll(y, -1))))
+
+
+def measure_kracht(data: HullData, hull) -> dict | None:
+    """Kracht coefficients of the data's bulb grid (role 'bulb'; its lines along the hull cut
+    at stations from the FP to the nose): protrusion, breadth and area at the FP, nose height,
+    lateral area and volume forward of the FP, on the built hull's midship area and volume.
+    None when the data has no bulb grid reaching forward of the FP."""
+    grids = [g for g in data.grids if g.role == "bulb"]
+    if not grids:
+        return None
+    pts = np.concatenate([g.points.reshape(-1, 3) for g in grids])
+    fp, nose = data.lpp, pts[np.argmax(pts[:, 0])]
+    if nose[0] <= fp:
+        return None
+    lines = [_longitudinal_lines(g.points) for g in grids]
+    xs = np.linspace(fp, nose[0], BULB_STATIONS)
+    area, height, breadth = np.zeros(len(xs)), np.zeros(len(xs)), 0.0
+    for k, x0 in enumerate(xs[:-1]):
+        cut = np.concatenate([_crossings(ln, x0) for ln in lines])
+        below = cut[cut[:, 1] <= data.draft]
+        if len(below) >= 3:
+            area[k], height[k] = _closed_area(below), np.ptp(below[:, 1])
+        if k == 0 and len(cut):
+            breadth = 2 * float(cut[:, 0].max())
+    h = hull.hydrostatics()
+    return {"c_lpr": float((nose[0] - fp) / data.lpp), "c_bb": breadth / data.beam, "c_zb": float(nose[2] / data.draft),
+            "c_abt": float(area[0] / h.midship_area), "c_abl": _pchip_integral(xs, height) / float(h.midship_area),
+            "c_vpr": _pchip_integral(xs, area) / float(h.volume)}
+
+
+def _buildable(desc: dict, say) -> tuple:
+    """(Hull of `desc`, what was relaxed): when the section family cannot hold the measured
+    SAC, its LCB moves to the nearest it holds, then the fullness fit and the volume are left
+    free in turn; each relaxation is noted in the description."""
+    hull = _builds(desc)
+    if hull is not None:
+        return hull, []
+    sac = desc["basic_curves"]["sac"]
+    want = sac.pop("lcb")
+    free = _builds(desc)
+    if free is not None and "volume" in sac:
+        sac["lcb"] = want
+        hull, lcb = _nearest_lcb(desc, free)
+        if hull is not None:
+            desc["notes"] += f"; SAC LCB {lcb:.6g} m, the nearest to the measured {want:.6g} m the sections hold"
+            say(f"relaxed: LCB {lcb:.6g} m (measured {want:.6g} m)")
+            return hull, ["lcb"]
+        sac.pop("lcb", None)
+    relaxed = ["lcb"]
+    for drop in ("fullness_fit", "volume"):
+        if free is not None:
+            break
+        sac.pop(drop, None)
+        relaxed.append(drop)
+        free = _builds(desc)
+    if free is None:
+        raise _native.InfeasibleFormParameters(f"{desc['name']}: no SAC the sections hold, even without its volume and LCB")
+    desc["notes"] += "; SAC " + ", ".join(relaxed) + " left free: the sections cannot hold the measured ones"
+    say("relaxed: " + ", ".join(relaxed) + " left free")
+    return free, relaxed
+
+
+def _with_fitted_shapes(base: dict, built: tuple, m: MeasuredHull, say) -> tuple:
+    """(hull, description) with the section shape curves fitted to the data, unless that costs
+    a SAC target the default shapes meet (`built`: the default shapes' hull, description and
+    relaxations)."""
+    hull, desc, relaxed = built
+    shaped = copy.deepcopy(base)
+    shapes = fit_section_shapes(hull, m)
+    for curve, pts in shapes.items():
+        if len(pts) >= 4:
+            shaped["basic_curves"][curve] = {"fit": pts, "fit_weight": FIT_WEIGHT, "spans": 16, **SHAPE_BOUNDS[curve]}
+    say("fitted " + ", ".join(f"{k} at {len(v)} stations" for k, v in shapes.items()))
+    try:
+        hull_s, relaxed_s = _buildable(shaped, say)
+    except _native.InfeasibleFormParameters:
+        hull_s, relaxed_s = None, None
+    if relaxed_s is not None and len(relaxed_s) <= len(relaxed):
+        return hull_s, shaped
+    say("fitted section shapes cost a SAC target: kept the default shapes")
+    return hull, desc
+
+
+def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes: bool = True,
+                  name: str | None = None, progress=None) -> dict:
+    """A whole-ship hull description (a dict for ``fl.Hull.from_dict``) measured from
+    `hull_data` (fairlines.offsets.HullData; module docstring says what is measured).
+
+    depth       D (m); default the top of the data at midships.
+    fit_shapes  fit the deadrise / character / top_corner curves per station (slower).
+    progress    callable(str) told of each step, or None.
+
+    Raises InvalidInput for data that is not HullData, a depth not above T, data the
+    description cannot hold (no hull below T at 3 stations); InfeasibleFormParameters when the
+    measured basic curves contradict each other.
+    """
+    from .designer import match_targets
+    from .hull import Hull
+
+    if not isinstance(hull_data, HullData):
+        raise _native.InvalidInput(f"hull_data is a {type(hull_data).__name__}; expected fairlines.offsets.HullData "
+                                   "(read_hull_data)")
+    if depth is not None and not (isinstance(depth, (int, float)) and math.isfinite(depth) and depth > hull_data.draft):
+        raise _native.InvalidInput(f"depth is {depth!r}; expected a depth D in metres above T = {hull_data.draft} m")
+    say = progress or (lambda _msg: None)
+    m = measure_hull_data(hull_data, depth)
+    say(f"measured {len(m.x)} stations: volume {m.volume:.6g} m^3, LCB {m.lcb:.6g} m, D {m.depth:.4g} m")
+    base = _base_description(m, name or hull_data.name)
+    desc = copy.deepcopy(base)
+    hull, relaxed = _buildable(desc, say)
+    if fit_shapes:
+        hull, desc = _with_fitted_shapes(base, (hull, desc, relaxed), m, say)
+    if "volume" in desc["basic_curves"]["sac"]:
+        matched = Hull.from_json(desc)
+        try:
+            match_targets(matched, MATCH_TOL)
+            hull = matched
+        except _native.InfeasibleFormParameters:
+            say("the surface's volume / LCB correction leaves what the sections hold: SAC targets kept as measured")
+    out = hull.to_dict()
+    out["notes"] = desc["notes"]
+    kracht = measure_kracht(hull_data, hull)
+    if kracht is not None:
+        out["bulb"] = {"kracht": kracht}
+        say("bulb: Kracht coefficients " + ", ".join(f"{k} {v:.4g}" for k, v in kracht.items()))
+    return out
+
+
+def point_deviation(surfaces, points: np.ndarray) -> np.ndarray:
+    """Distance (m) from each point (n, 3) to the nearest of the surfaces (closest_point)."""
+    pts = np.asarray(points, float)
+    best = np.full(len(pts), np.inf)
+    for s in surfaces:
+        for i, p in enumerate(pts):
+            _u, _v, q = s.closest_point(p)
+            best[i] = min(best[i], float(np.linalg.norm(np.asarray(q) - p)))
+    return best
+
+
+def data_points(data: HullData, depth: float | None = None) -> np.ndarray:
+    """The data's hull points a bare hull is judged against (n, 3): every section point, the
+    'hull' grids' points (not the bulb's or the transom face's), up to the depth, at or above
+    the keel line (a sonar dome below it is not in the description)."""
+    pts = data.all_points() if data.sections else np.concatenate([g.points.reshape(-1, 3) for g in data.grids
+                                                                  if g.role in ("hull", "bow (sonar dome)")])
+    keel = _keel_height(pts, data)
+    top = pts[:, 2].max() if depth is None else depth
+    return pts[(pts[:, 2] >= keel - KEEL_TOL * data.draft) & (pts[:, 2] <= top)]
+
+
+def fidelity(hull, data: HullData, *, max_points: int = 3000) -> dict:
+    """How close the built `hull` (a fl.Hull) lies to the data: RMS and largest distance of the
+    data's points (:func:`data_points`, at most `max_points`, evenly taken) to the hull as
+    fractions of B, and its volume, LCB (m from the AP) and wetted surface (both sides) at T.
+    A hull with a bulb is judged composed (bare hull, bulb and blend; the bulb grid's points
+    join the data's)."""
+    pr = hull.description.principal
+    pts = data_points(data, pr.depth)
+    if hull.description.bulb is None:
+        surfaces = [hull.bare_hull_surface()]
+        h = hull.hydrostatics()
+        volume, lcb, wetted = float(h.volume), float(h.lcb), float(h.wetted_surface)
+    else:
+        composed = hull.composed_hull()
+        surfaces = [s for s, _loops in composed.trimmed_surfaces]
+        bulb = np.concatenate([g.points.reshape(-1, 3) for g in data.grids if g.role == "bulb"])
+        pts = np.concatenate([pts, bulb[bulb[:, 2] <= pr.depth]])
+        volume, lcb, wetted = _mesh_figures(composed, pr.draft)
+    pts = pts[:: max(1, len(pts) // max_points)]
+    dev = point_deviation(surfaces, pts)
+    return {"rms_of_B": float(np.sqrt(np.mean(dev**2)) / data.beam), "max_of_B": float(dev.max() / data.beam),
+            "worst_point": pts[int(np.argmax(dev))].tolist(), "points": len(pts),
+            "volume": volume, "lcb": lcb, "wetted_surface": wetted}
+
+
+def _mesh_figures(composed, draft: float) -> tuple:
+    """Volume, LCB and wetted surface (both sides) at `draft` of a composed half hull's mesh:
+    the hull, bulb and blend faces below the waterline (clipped) make the wetted surface."""
+    from .compose import FACE_PARTS, _clip_below, mesh_hydrostatics
+
+    h = mesh_hydrostatics(composed.mesh, draft)
+    outer = np.isin(composed.face_part, [FACE_PARTS.index(p) for p in ("hull", "bulb", "blend")])
+    tris = np.asarray(composed.mesh.vertices, float)[np.asarray(composed.mesh.faces)[outer]]
+    area = 0.0
+    for t in tris[tris[:, :, 2].min(axis=1) < draft]:
+        for p in _clip_below(t, draft) if t[:, 2].max() > draft else [t]:
+            area += 0.5 * float(np.linalg.norm(np.cross(p[1] - p[0], p[2] - p[0])))
+    return float(h["volume"]), float(h["lcb"]), 2.0 * area

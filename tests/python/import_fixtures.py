@@ -1,0 +1,72 @@
+"""Shared helpers of the import tests: the four reference ships, read, imported (once per
+session) and built, with their independent truths (published particulars or exact geometry)."""
+
+from __future__ import annotations
+
+import functools
+import pathlib
+
+import numpy as np
+
+import fairlines as fl
+from fairlines.import_design import fidelity
+from fairlines.offsets import read_hull_data
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+DATA = ROOT.parent / "shared" / "data"
+WIGLEY = dict(lpp=100.0, beam=10.0, draft=6.25)
+# Series 60 Cb 0.80 parent at 400 ft (Todd 1963: L/B 7.5, B/T 2.5).
+SERIES60 = dict(lpp=121.92, beam=16.256, draft=6.5024)
+DTMB_SCALE = 24.83
+
+SHIPS = ("wigley_table", "series60", "kcs", "dtmb5415")
+
+
+def wigley_wetted_surface(lpp: float, beam: float, draft: float, n: int = 400) -> float:
+    """Both sides' area of y = (B/2)(1 - (2 xi/L)^2)(1 - (zeta/T)^2) below the waterline, by
+    Gauss-Legendre quadrature of sqrt(1 + y_x^2 + y_z^2)."""
+    g, w = np.polynomial.legendre.leggauss(n)
+    xi, wx = g * lpp / 2, w * lpp / 2
+    zeta, wz = (g + 1) * draft / 2, w * draft / 2
+    X, Z = np.meshgrid(xi, zeta, indexing="ij")
+    yx = beam / 2 * (-8 * X / lpp**2) * (1 - (Z / draft) ** 2)
+    yz = beam / 2 * (1 - (2 * X / lpp) ** 2) * (-2 * Z / draft**2)
+    return float(2 * np.einsum("i,j,ij->", wx, wz, np.sqrt(1 + yx**2 + yz**2)))
+
+
+def truth(ship: str) -> dict:
+    """Independent truth: volume (m^3), LCB (m from the AP), wetted surface (m^2, None when
+    no published figure), Lpp, B."""
+    if ship == "wigley_table":
+        L, B, T = WIGLEY.values()
+        return {"volume": 4 / 9 * L * B * T, "lcb": L / 2, "wetted_surface": wigley_wetted_surface(L, B, T), "lpp": L, "beam": B}
+    if ship == "series60":
+        L, B, T = SERIES60.values()
+        return {"volume": 0.80 * L * B * T, "lcb": L / 2 + 0.025 * L, "wetted_surface": None, "lpp": L, "beam": B}
+    if ship == "kcs":
+        return {"volume": 52030.0, "lcb": 115.0 - 0.0148 * 230.0, "wetted_surface": 9424.0, "lpp": 230.0, "beam": 32.2}
+    L = 5.719
+    return {"volume": 0.554, "lcb": L / 2 - 0.00683 * L, "wetted_surface": 2972.6 / DTMB_SCALE**2, "lpp": L, "beam": 0.768}
+
+
+def read(ship: str):
+    """The ship's HullData."""
+    if ship == "wigley_table":
+        return read_hull_data(ROOT / "tests" / "data" / "wigley_offsets_mm.csv", **WIGLEY)
+    if ship == "series60":
+        return read_hull_data(DATA / "series60_cb080_offsets.csv", **SERIES60)
+    return read_hull_data(DATA / ("kcs" if ship == "kcs" else "dtmb5415"))
+
+
+@functools.cache
+def imported(ship: str) -> dict:
+    """fl.import_design of the ship (computed once per session; callers must not edit it)."""
+    return fl.import_design(read(ship))
+
+
+@functools.cache
+def rebuilt(ship: str) -> dict:
+    """fidelity of the hull fl.Hull.from_json builds from the imported description's JSON."""
+    import json
+
+    return fidelity(fl.Hull.from_json(json.dumps(imported(ship))), read(ship))

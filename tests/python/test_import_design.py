@@ -1,0 +1,120 @@
+"""Real ships come back as whole-ship designs: offsets in mm, the four reference ships import,
+and the rebuilt hulls are judged against the data's points and published particulars."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import fairlines as fl
+from fairlines.offsets import read_offsets_csv
+
+from import_fixtures import ROOT, SHIPS, WIGLEY, imported, read, rebuilt, truth
+
+# Fidelity goals (fractions): distance to the data's points on B, volume, LCB on Lpp, wetted surface.
+RMS_GOAL, MAX_GOAL, VOLUME_GOAL, LCB_GOAL, WETTED_GOAL = 0.005, 0.02, 0.005, 0.001, 0.01
+
+# Measured shortfalls (the section family cannot hold these ships yet; docs/import.md says why).
+SHORT = {
+    ("rms", "wigley_table"): "RMS 1.6 % B: sections fuller at the bilge than the parabolic Wigley ones; zero-width end posts",
+    ("max", "wigley_table"): "max 5.9 % B at the vertical end posts (a section with no waterline bulges)",
+    ("wetted", "wigley_table"): "+1.1 %: the bulging end sections",
+    ("rms", "series60"): "RMS 1.5 % B: the stern above the shaft and the forefoot",
+    ("max", "series60"): "max 8.7 % B at the stern above the shaft",
+    ("rms", "kcs"): "RMS 4.2 % B: skeg and hollow aft sections (fullness < 0.5) not expressible",
+    ("max", "kcs"): "max 17 % B at the skeg",
+    ("lcb", "kcs"): "-1.5 % Lpp: the nearest LCB the sections hold (hollow aft sections not expressible)",
+    ("wetted", "kcs"): "-2.6 %: no skeg, fuller aft sections",
+    ("rms", "dtmb5415"): "RMS 3.0 % B: sonar dome and bow sheer not expressible; transom stern sections",
+    ("max", "dtmb5415"): "max 19 % B at the transom",
+    ("volume", "dtmb5415"): "-2.2 %: the sonar dome's volume is left out (no dome in the description)",
+    ("lcb", "dtmb5415"): "-0.65 % Lpp: the dome left out (the measured LCB without it is met)",
+    ("wetted", "dtmb5415"): "-4.6 %: no dome, no bow sheer",
+}
+
+
+def _goal(kind: str, ship: str):
+    reason = SHORT.get((kind, ship))
+    return pytest.param(ship, marks=pytest.mark.xfail(strict=True, reason=reason)) if reason else ship
+
+
+def test_offsets_in_mm_read_as_metres_with_blank_cells_noted():
+    data = read_offsets_csv(ROOT / "tests" / "data" / "wigley_offsets_mm.csv", **WIGLEY)
+    L, B, T = WIGLEY.values()
+    mid = next(s for s in data.sections if s.x == 50.0)
+    i = np.argmin(np.abs(mid.points[:, 1] - T))
+    assert mid.points[i, 0] == pytest.approx(B / 2, abs=1e-3)  # exact Wigley value, rounded to 1 mm
+    assert sum("blank cell" in n for n in data.notes) == 3
+
+
+@pytest.mark.parametrize("ship", SHIPS)
+def test_imported_description_rebuilds_from_json(ship):
+    desc = imported(ship)
+    hull = fl.Hull.from_json(json.dumps(desc))
+    assert hull.bare_hull_surface() is not None
+    assert desc["principal"]["Lpp"] == pytest.approx(truth(ship)["lpp"])
+
+
+@pytest.mark.parametrize("ship", [_goal("rms", s) for s in SHIPS])
+def test_rebuilt_hull_rms_distance_to_the_data(ship):
+    assert rebuilt(ship)["rms_of_B"] <= RMS_GOAL
+
+
+@pytest.mark.parametrize("ship", [_goal("max", s) for s in SHIPS])
+def test_rebuilt_hull_largest_distance_to_the_data(ship):
+    assert rebuilt(ship)["max_of_B"] <= MAX_GOAL
+
+
+@pytest.mark.parametrize("ship", [_goal("volume", s) for s in SHIPS])
+def test_rebuilt_hull_volume_meets_the_published_one(ship):
+    t = truth(ship)
+    assert abs(rebuilt(ship)["volume"] / t["volume"] - 1) <= VOLUME_GOAL
+
+
+@pytest.mark.parametrize("ship", [_goal("lcb", s) for s in SHIPS])
+def test_rebuilt_hull_lcb_meets_the_published_one(ship):
+    t = truth(ship)
+    assert abs(rebuilt(ship)["lcb"] - t["lcb"]) / t["lpp"] <= LCB_GOAL
+
+
+@pytest.mark.parametrize("ship", [_goal("wetted", s) for s in SHIPS if truth(s)["wetted_surface"]])
+def test_rebuilt_hull_wetted_surface_meets_the_published_one(ship):
+    t = truth(ship)
+    assert abs(rebuilt(ship)["wetted_surface"] / t["wetted_surface"] - 1) <= WETTED_GOAL
+
+
+def test_measured_volume_of_the_typed_wigley_table_is_the_exact_one():
+    m = fl.measure_hull_data(read("wigley_table"))
+    assert m.volume == pytest.approx(truth("wigley_table")["volume"], rel=1e-3)
+    assert m.lcb == pytest.approx(WIGLEY["lpp"] / 2, abs=1e-4 * WIGLEY["lpp"])
+
+
+def test_import_refuses_data_without_hull_below_the_draft(tmp_path):
+    p = tmp_path / "t.csv"
+    p.write_text("x,1.0,2.0\n0,0,0\n5,0,1\n10,0,0\n")
+    with pytest.raises(fl.InvalidInput, match="below T"):
+        fl.import_design(read_offsets_csv(p, 10.0, 2.0, 0.5))
+
+
+def test_cli_import_writes_a_description_hull_from_json_builds(tmp_path, capsys):
+    from fairlines.cli import main
+
+    out = tmp_path / "design.json"
+    table = ROOT / "tests" / "data" / "wigley_offsets_mm.csv"
+    assert main(["import", str(table), "--lpp", "100", "--beam", "10", "--draft", "6.25", "-o", str(out)]) == 0
+    hull = fl.Hull.from_json(str(out))
+    assert hull.hydrostatics().volume == pytest.approx(truth("wigley_table")["volume"], rel=VOLUME_GOAL)
+    assert "whole-ship description" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("kwargs, message", [({"depth": 1.0}, "depth is 1.0"), ({"depth": float("nan")}, "depth is nan")])
+def test_import_refuses_a_depth_not_above_the_draft(kwargs, message):
+    with pytest.raises(fl.InvalidInput, match=message):
+        fl.import_design(read("wigley_table"), **kwargs)
+
+
+def test_import_refuses_what_is_not_hull_data():
+    with pytest.raises(fl.InvalidInput, match="expected fairlines.offsets.HullData"):
+        fl.import_design({"name": "x"})
