@@ -44,6 +44,13 @@ def main():
         print(f"\n== {title} ({script}) ==", flush=True)
         sys.argv = [script, str(HERE.parent / "docs" / png)]
         runpy.run_path(str(HERE / script), run_name="__main__")
+    print("\n== Real ships imported as whole-ship designs: fidelity and lines (tools/import_lines.py) ==", flush=True)
+    sys.argv = ["import_lines.py", "--out", str(HERE.parent / "docs")]
+    try:
+        runpy.run_path(str(HERE.parent / "tools" / "import_lines.py"), run_name="__main__")
+    except SystemExit as e:
+        if e.code not in (None, 0):
+            raise
     print(f"\n== Design-space sweep on a local Dask cluster ({SWEEP_STUDY.name}) ==", flush=True)
     from fairlines.cli import main as fairlines_main
 
@@ -58,7 +65,8 @@ def main():
 
 #: README pictures written by `make demo` (the Blender renders by `make blender-demo` before it).
 DOCS_PICTURES = ("designed_ships.png", "lines_plan.png", "hull_mesh.png", "sweep_study.png", "ship.png",
-                 "ship_zebra.png", "fairness_combs.png")
+                 "ship_zebra.png", "fairness_combs.png", "imported_wigley_table.png", "imported_series60.png",
+                 "imported_kcs.png", "imported_dtmb5415.png")
 
 
 def compact_pictures(docs=HERE.parent / "docs"):
