@@ -43,6 +43,9 @@ BAND_MARGIN = (0.05, 0.002)
 # Stations whose immersed box is within this many end bands (fairlines.sections kEndBand) of
 # vanishing get no band: their area fades out there anyway.
 BAND_FREE = 2.0
+# Gauss points per span of the hydrostatics a bulb is sized from (volume, midship area): 1e-11
+# of the 8-point figures at half the time.
+SIZING_GAUSS = 4
 # Shape curves: default value and bounds.
 SHAPE_CURVES = {"top_corner": (0.5, 0.05, 0.95), "deadrise": (0.0, 0.0, 40.0), "character": (0.5, 0.05, 0.95)}
 # Points along the waterline's range where the deck line must clear the waterline.
@@ -290,7 +293,7 @@ class Hull:
         key = (id(self.skin()), repr(d.bulb.to_dict() if d.bulb else None))
         if self._ship is not None and self._ship[0] == key:
             return dict(self._ship[1])
-        h = self.hydrostatics()
+        h = self.hydrostatics(gauss=SIZING_GAUSS, sac_stations=2)  # volume and midship area only
         vol = d.bulb.displacement_volume if d.bulb is not None else None
         if vol is None:
             if not (d.x_aft <= 0.0 and d.x_fore >= pr.lpp):
