@@ -74,7 +74,15 @@ $(BPY_VENV)/.bpy-stamp:
 	$(BPY_VENV)/bin/python -m pip install -q bpy==$(BPY_VERSION)
 	touch $@
 
-blender-deps: $(BPY_VENV)/.bpy-stamp
+# The output nodes' optional packages in the bpy module's Python (Debian's Blender keeps none:
+# its file nodes show the pip line). pyarrow < 22: bpy pins NumPy 1.26.
+BPY_EXTRAS := cadquery-ocp-novtk>=8.0 rhino3dm>=8.0 matplotlib>=3.7 ezdxf>=1.3 meshio>=5.3 \
+  dask[distributed]>=2024.1 pyarrow>=14,<22 scipy>=1.10
+$(BPY_VENV)/.extras-stamp: $(BPY_VENV)/.bpy-stamp
+	$(BPY_VENV)/bin/python -m pip install -q $(foreach p,$(BPY_EXTRAS),"$(p)")
+	touch $@
+
+blender-deps: $(BPY_VENV)/.bpy-stamp $(BPY_VENV)/.extras-stamp
 	@dpkg -s $(BLENDER_SYS_PACKAGES) >/dev/null 2>&1 || { \
 	  echo "installing system packages: $(BLENDER_SYS_PACKAGES)"; \
 	  $(SUDO) apt-get update -qq && $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(BLENDER_SYS_PACKAGES); }

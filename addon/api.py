@@ -142,6 +142,25 @@ def result(tree, node, output):
     return outs[output]
 
 
+def export(tree, node):
+    """Press a file node's Export (or Run Sweep) button: write its file now. Returns the path
+    written; raises TreeError when the node is red (a missing package names its pip line)."""
+    tree = _tree(tree)
+    n = _node(tree, node)
+    if not hasattr(n, "export_count"):
+        raise KeyError("%s writes no file; file nodes are %s" % (n.name, sorted(
+            cls.bl_label for cls in NODE_CLASSES if "export_count" in getattr(cls, "__annotations__", {}))))
+    evaluator.flush()
+    try:
+        bpy.ops.fairlines.export_node(tree=tree.name, node=n.name)
+    except RuntimeError:
+        pass  # the operator reported the node's error; it is raised below with the node named
+    evaluator.flush()
+    if n.fl_state != "OK":
+        raise TreeError({n.name: n.fl_message or "waiting for its inputs"})
+    return getattr(n, "written_path", "") or bpy.path.abspath(n.filepath)
+
+
 def hydrostatics(tree, node):
     """The fl.Hydrostatics a node shows (Bare Hull, Hydrostatics)."""
     return result(tree, node, HYDROSTATICS)
