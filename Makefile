@@ -107,7 +107,7 @@ blender-screenshot: addon blender-deps
 	BLENDER_USER_SCRIPTS=$(abspath build/shot/scripts) BLENDER_USER_CONFIG=$(abspath build/shot/config) \
 	  blender -b --factory-startup --python tools/blender_screenshot.py -- --zip none --prefs-only
 	BLENDER_USER_SCRIPTS=$(abspath build/shot/scripts) BLENDER_USER_CONFIG=$(abspath build/shot/config) \
-	  xvfb-run -a -s "-screen 0 1600x1000x24" blender --python tools/blender_screenshot.py -- \
+	  xvfb-run -a -s "-screen 0 2560x1440x24" blender --python tools/blender_screenshot.py -- \
 	  --zip "$$(ls dist/fairlines_blender-*-legacy.zip)" --out docs/node_editor.png
 
 # ---- reliability: fuzzing and sanitizers (docs/reliability.md) ----------------------------
