@@ -11,7 +11,7 @@ SYS_PACKAGES := libeigen3-dev libgtest-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 .PHONY: setup sysdeps pydeps build cpp-test py-test test demo bench stubs clean \
-  blender-deps addon blender-test blender-demo blender-bench blender-screenshot
+  blender-deps addon blender-test blender-demo blender-bench blender-screenshot blender-sweep-picture
 
 setup: sysdeps pydeps
 
@@ -109,6 +109,13 @@ blender-screenshot: addon blender-deps
 	BLENDER_USER_SCRIPTS=$(abspath build/shot/scripts) BLENDER_USER_CONFIG=$(abspath build/shot/config) \
 	  xvfb-run -a -s "-screen 0 2560x1440x24" blender --python tools/blender_screenshot.py -- \
 	  --zip "$$(ls dist/fairlines_blender-*-legacy.zip)" --out docs/node_editor.png
+
+# docs/blender_sweep.png: the Sweep node's nine variants (Workbench, bpy module, headless).
+blender-sweep-picture: addon blender-deps
+	rm -rf build/sweep_pic
+	BLENDER_USER_RESOURCES=$(abspath build/sweep_pic) $(BPY_VENV)/bin/python tools/blender_sweep_picture.py \
+	  --zip "$$(ls dist/fairlines_blender-*-extension.zip)" --out build/sweep_pic/sweep.png
+	$(PY) -c "from PIL import Image; Image.open('build/sweep_pic/sweep.png').convert('RGB').quantize(256, dither=Image.Dither.FLOYDSTEINBERG).save('docs/blender_sweep.png', optimize=True)"
 
 # ---- reliability: fuzzing and sanitizers (docs/reliability.md) ----------------------------
 # atheris harnesses in fuzz/, corpora in fuzz/corpus/<harness>; FUZZ_RUNS runs per harness.

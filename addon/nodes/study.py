@@ -17,6 +17,8 @@ VARIED = (("vary_volume", "basic_curves.sac.volume", "V", "m3", True),
           ("vary_lcb", "basic_curves.sac.lcb", "LCB", "m", False),
           ("vary_bulb", "bulb.kracht.c_lpr", "C_LPR", "", False))
 MAX_VARIANTS = 27
+MAX_COLUMNS = 9  # variants side by side before a new row starts aft of them
+LABEL_BELOW, LABEL_SIZE = 0.08, 0.16  # label aft of its hull (fraction of Lpp); text height (of B)
 GAP = 0.4  # free space between neighbours, as a fraction of the hull's breadth / length
 _SCHEDULERS = [("serial", "Serial", "One variant after the other in Blender's process"),
                ("local", "Local Dask", "A local Dask cluster of worker processes (all cores)")]
@@ -125,6 +127,7 @@ def _hull_mesh(fl, np, surface, name, coll, offset):
     faces = np.concatenate([quads[:, ::-1], quads + len(pts)])  # outward on both sides
     me = bpy.data.meshes.new(name)
     me.from_pydata(verts.tolist(), [], faces.tolist())
+    me.polygons.foreach_set("use_smooth", [True] * len(faces))
     me.update()
     obj = bpy.data.objects.new(name, me)
     coll.objects.link(obj)
@@ -135,8 +138,10 @@ def _label(name, text, coll, location, size):
     cu = bpy.data.curves.new(name, "FONT")
     cu.body = text
     cu.size = size
+    cu.align_x = "CENTER"
     obj = bpy.data.objects.new(name, cu)
     obj.location = location
+    obj.rotation_euler = (0.0, 0.0, -0.5 * math.pi)  # seen from above with the bows up, it reads across
     coll.objects.link(obj)
     return obj
 
@@ -148,7 +153,7 @@ def show_variants(fl, doc, paths, rows, bar=None):
     np = engine.np
     p = doc["principal"]
     lpp, beam, depth = float(p["Lpp"]), float(p["B"]), float(p["D"])
-    cols = int(math.ceil(math.sqrt(len(rows))))
+    cols = min(len(rows), MAX_COLUMNS)
     coll = _collection()
     for k, row in enumerate(rows):
         offset = ((k // cols) * lpp * (1.0 + GAP), (k % cols) * beam * (2.0 + GAP), 0.0)
@@ -157,7 +162,7 @@ def show_variants(fl, doc, paths, rows, bar=None):
             hull = fl.Hull.from_json(apply_parameters(doc, {q: row[q] for q in paths}))
             _hull_mesh(fl, np, hull.bare_hull_surface(), name, coll, offset)
         _label(name + " label", _label_text(row, paths), coll,
-               (offset[0], offset[1] - beam, depth + 0.15 * beam), 0.12 * beam)
+               (offset[0] - LABEL_BELOW * lpp, offset[1], depth), LABEL_SIZE * beam)
         if bar is not None:
             bar.update(k + 1, "laid out", len(rows))
     return coll
