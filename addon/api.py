@@ -11,6 +11,10 @@ name whichever way it was installed):
     h = api.hydrostatics(tree, bare)         # the engine's fl.Hydrostatics
     api.set(tree, ship, "Cb", 0.72)          # a socket value (switched on if optional) or a property
     api.evaluate(tree)
+    cad = api.add(tree, "Export CAD")        # file nodes write only when their button is pressed:
+    cad.filepath = "/tmp/ship.step"
+    api.link(tree, ship, "Hull", cad, "Hull")
+    api.export(tree, cad)                    # -> "/tmp/ship.step"
 
 Node types are given by their menu label ("Particulars") or bl_idname (ids.NODE_*); nodes by
 object or name. Every function raises KeyError for an unknown tree, node, type or socket.
