@@ -45,6 +45,16 @@ def _topology_key(mesh_data):
                             hash(faces.tobytes()) & 0xFFFFFFFFFFFF)
 
 
+def _write_attribute(me, name, domain, values):
+    """A float attribute on the domain ("POINT", "FACE"), replacing one of another kind."""
+    attr = me.attributes.get(name)
+    if attr is None or attr.domain != domain or attr.data_type != "FLOAT":
+        if attr is not None:
+            me.attributes.remove(attr)
+        attr = me.attributes.new(name, "FLOAT", domain)
+    attr.data.foreach_set("value", values)
+
+
 def write_mesh(obj, mesh_data, smooth=True, sharp_angle=None):
     """Write MeshData into obj.data. Returns True when updated in place. With smooth shading
     and a sharp_angle (radians), edges whose faces meet at more than it (deck edge, transom,
@@ -76,20 +86,9 @@ def write_mesh(obj, mesh_data, smooth=True, sharp_angle=None):
         if not smooth or bpy.app.version < (4, 1, 0):
             me.polygons.foreach_set("use_smooth", np.full(nf, bool(smooth)))
         me[ids.MESH_TOPOLOGY_KEY] = topo
-    for name, values in mesh_data.attributes.items():
-        attr = me.attributes.get(name)
-        if attr is None or attr.domain != "POINT" or attr.data_type != "FLOAT":
-            if attr is not None:
-                me.attributes.remove(attr)
-            attr = me.attributes.new(name, "FLOAT", "POINT")
-        attr.data.foreach_set("value", np.ascontiguousarray(values, dtype=np.float32))
-    for name, values in mesh_data.face_attributes.items():
-        attr = me.attributes.get(name)
-        if attr is None or attr.domain != "FACE" or attr.data_type != "FLOAT":
-            if attr is not None:
-                me.attributes.remove(attr)
-            attr = me.attributes.new(name, "FLOAT", "FACE")
-        attr.data.foreach_set("value", np.ascontiguousarray(values, dtype=np.float32))
+    for domain, attributes in (("POINT", mesh_data.attributes), ("FACE", mesh_data.face_attributes)):
+        for name, values in attributes.items():
+            _write_attribute(me, name, domain, np.ascontiguousarray(values, dtype=np.float32))
     for name in [a.name for a in me.attributes if a.name in (ids.ATTR_GAUSSIAN, ids.ATTR_MEAN, ids.ATTR_QUALITY)]:
         if name not in mesh_data.attributes and name not in mesh_data.face_attributes:
             me.attributes.remove(me.attributes[name])

@@ -43,7 +43,7 @@ def _check_size(size, extent):
 class FLNodeHullMesh(FairlinesNode, bpy.types.Node):
     """Quad-dominant mesh of the composed hull (fairlines.mesh_hull): curvature-adaptive,
     conforming across the bulb and blend seams, watertight, normals out of the body. With Draft
-    on, only the wetted part (lid on the waterplane unless Open). Face attribute
+    on, only the wetted part (closed by the waterplane unless Lids is off). Face attribute
     scaled_jacobian: each element's quality (1 square, <= 0 inverted)"""
     bl_idname = ids.NODE_HULL_MESH
     bl_label = "Hull Mesh"
