@@ -4,6 +4,7 @@ laid out side by side in the scene, each labelled with its varied values and dis
 import json
 import math
 import os
+import sys
 
 import bpy
 
@@ -83,12 +84,50 @@ class FLNodeSweep(FileWriter, FairlinesNode, bpy.types.Node):
                  "sampling": {"method": "factorial", "levels": int(self.levels)}, "parameters": params,
                  "measure": {"fairness": False, "compose": False, "displacement": False}}
         with progress.Progress("sweep", self.levels ** len(params)) as bar:
-            table = fl.sweep(study, scheduler="serial" if self.scheduler == "serial" else None, table=path,
-                             resume=False, progress=lambda done, total, row: bar.update(done, "variants", total))
+            if self.scheduler == "serial":
+                table = fl.sweep(study, scheduler="serial", table=path, resume=False,
+                                 progress=lambda done, total, row: bar.update(done, "variants", total))
+            else:
+                table = run_in_child(study, path, bar)
             rows = table.to_pylist()
             show_variants(fl, doc, [p["path"] for p in params], rows, bar)
         failed = sum(r["status"] != "ok" for r in rows)
         return "%d variants, %d failed" % (len(rows), failed)
+
+
+# A local Dask cluster's worker processes re-import the parent's main module, which inside
+# Blender is Blender itself: the study runs in a child Python (Blender's own interpreter, the
+# engine on its path) that starts the cluster and reports progress line by line.
+_CHILD = """import json, sys
+from fairlines.sweep import sweep
+def tell(done, total, row):
+    print("PROGRESS", done, total, flush=True)
+sweep(json.load(open(sys.argv[1])), table=sys.argv[2], resume=False, progress=tell)
+"""
+
+
+def run_in_child(study, path, bar):
+    """fl.sweep on a local Dask cluster in a child process; the table it wrote."""
+    import subprocess
+    import pyarrow.parquet as pq
+    spec = path + ".study.json"
+    with open(spec, "w") as f:
+        json.dump(study, f)
+    env = dict(os.environ)
+    engine_dir = os.path.dirname(engine.SOURCE)
+    env["PYTHONPATH"] = os.pathsep.join(p for p in (engine_dir, env.get("PYTHONPATH", "")) if p)
+    proc = subprocess.Popen([sys.executable, "-c", _CHILD, spec, path], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, env=env)
+    for line in proc.stdout:
+        parts = line.split()
+        if len(parts) == 3 and parts[0] == "PROGRESS":
+            bar.update(int(parts[1]), "variants on Dask", int(parts[2]))
+    err = proc.stderr.read()
+    if proc.wait() != 0:
+        last = [ln for ln in err.strip().splitlines() if ln.strip()][-1:] or ["exit code %d" % proc.returncode]
+        raise NodeError("The local Dask sweep failed: %s" % last[0])
+    os.remove(spec)
+    return pq.read_table(path)
 
 
 def _label_text(row, paths):

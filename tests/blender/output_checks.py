@@ -264,6 +264,12 @@ def t_sweep(api, tree, hull, fl):
           "variants are not laid out side by side")
     results["sweep"] = {"variants": len(ref), "failed": sum(r["status"] != "ok" for r in ref),
                         "labels": [labels["Variant %02d label" % r["variant"]] for r in ref]}
+    if has("distributed"):  # the same study on a local Dask cluster (run from a child process)
+        n.scheduler = "local"
+        api.export(tree, n)
+        dask_labels = {o.name: o.data.body for o in coll.objects if o.type == "FONT"}
+        check(dask_labels == labels, "local Dask sweep labels differ from the serial run's")
+        results["sweep"]["dask_same_as_serial"] = True
 
 
 def missing(api, tree, label, name, pip, **kw):
