@@ -11,7 +11,7 @@ SYS_PACKAGES := libeigen3-dev libgtest-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 .PHONY: setup sysdeps pydeps build cpp-test py-test test demo bench stubs clean \
-  blender-deps addon blender-test blender-demo blender-bench blender-screenshot
+  blender-deps addon blender-test blender-demo blender-bench blender-screenshot blender-sweep-picture
 
 setup: sysdeps pydeps
 
@@ -74,7 +74,15 @@ $(BPY_VENV)/.bpy-stamp:
 	$(BPY_VENV)/bin/python -m pip install -q bpy==$(BPY_VERSION)
 	touch $@
 
-blender-deps: $(BPY_VENV)/.bpy-stamp
+# The output nodes' optional packages in the bpy module's Python (Debian's Blender keeps none:
+# its file nodes show the pip line). pyarrow < 22: bpy pins NumPy 1.26.
+BPY_EXTRAS := cadquery-ocp-novtk>=8.0 rhino3dm>=8.0 matplotlib>=3.7 ezdxf>=1.3 meshio>=5.3 \
+  dask[distributed]>=2024.1 pyarrow>=14,<22 scipy>=1.10
+$(BPY_VENV)/.extras-stamp: $(BPY_VENV)/.bpy-stamp
+	$(BPY_VENV)/bin/python -m pip install -q $(foreach p,$(BPY_EXTRAS),"$(p)")
+	touch $@
+
+blender-deps: $(BPY_VENV)/.bpy-stamp $(BPY_VENV)/.extras-stamp
 	@dpkg -s $(BLENDER_SYS_PACKAGES) >/dev/null 2>&1 || { \
 	  echo "installing system packages: $(BLENDER_SYS_PACKAGES)"; \
 	  $(SUDO) apt-get update -qq && $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(BLENDER_SYS_PACKAGES); }
@@ -99,8 +107,15 @@ blender-screenshot: addon blender-deps
 	BLENDER_USER_SCRIPTS=$(abspath build/shot/scripts) BLENDER_USER_CONFIG=$(abspath build/shot/config) \
 	  blender -b --factory-startup --python tools/blender_screenshot.py -- --zip none --prefs-only
 	BLENDER_USER_SCRIPTS=$(abspath build/shot/scripts) BLENDER_USER_CONFIG=$(abspath build/shot/config) \
-	  xvfb-run -a -s "-screen 0 1600x1000x24" blender --python tools/blender_screenshot.py -- \
+	  xvfb-run -a -s "-screen 0 2560x1440x24" blender --python tools/blender_screenshot.py -- \
 	  --zip "$$(ls dist/fairlines_blender-*-legacy.zip)" --out docs/node_editor.png
+
+# docs/blender_sweep.png: the Sweep node's nine variants (Workbench, bpy module, headless).
+blender-sweep-picture: addon blender-deps
+	rm -rf build/sweep_pic
+	BLENDER_USER_RESOURCES=$(abspath build/sweep_pic) $(BPY_VENV)/bin/python tools/blender_sweep_picture.py \
+	  --zip "$$(ls dist/fairlines_blender-*-extension.zip)" --out build/sweep_pic/sweep.png
+	$(PY) -c "from PIL import Image; Image.open('build/sweep_pic/sweep.png').convert('RGB').quantize(256, dither=Image.Dither.FLOYDSTEINBERG).save('docs/blender_sweep.png', optimize=True)"
 
 # ---- reliability: fuzzing and sanitizers (docs/reliability.md) ----------------------------
 # atheris harnesses in fuzz/, corpora in fuzz/corpus/<harness>; FUZZ_RUNS runs per harness.

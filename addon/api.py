@@ -11,6 +11,10 @@ name whichever way it was installed):
     h = api.hydrostatics(tree, bare)         # the engine's fl.Hydrostatics
     api.set(tree, ship, "Cb", 0.72)          # a socket value (switched on if optional) or a property
     api.evaluate(tree)
+    cad = api.add(tree, "Export CAD")        # file nodes write only when their button is pressed:
+    cad.filepath = "/tmp/ship.step"
+    api.link(tree, ship, "Hull", cad, "Hull")
+    api.export(tree, cad)                    # -> "/tmp/ship.step"
 
 Node types are given by their menu label ("Particulars") or bl_idname (ids.NODE_*); nodes by
 object or name. Every function raises KeyError for an unknown tree, node, type or socket.
@@ -140,6 +144,25 @@ def result(tree, node, output):
     if outs is None or output not in outs:
         raise KeyError("%s has no result %r (state %s: %s)" % (n.name, output, n.fl_state, n.fl_message))
     return outs[output]
+
+
+def export(tree, node):
+    """Press a file node's Export (or Run Sweep) button: write its file now. Returns the path
+    written; raises TreeError when the node is red (a missing package names its pip line)."""
+    tree = _tree(tree)
+    n = _node(tree, node)
+    if not hasattr(n, "export_count"):
+        raise KeyError("%s writes no file; file nodes are %s" % (n.name, sorted(
+            cls.bl_label for cls in NODE_CLASSES if "export_count" in getattr(cls, "__annotations__", {}))))
+    evaluator.flush()
+    try:
+        bpy.ops.fairlines.export_node(tree=tree.name, node=n.name)
+    except RuntimeError:
+        pass  # the operator reported the node's error; it is raised below with the node named
+    evaluator.flush()
+    if n.fl_state != "OK":
+        raise TreeError({n.name: n.fl_message or "waiting for its inputs"})
+    return getattr(n, "written_path", "") or bpy.path.abspath(n.filepath)
 
 
 def hydrostatics(tree, node):

@@ -27,7 +27,7 @@ import time
 
 import bpy
 
-from . import engine, ids
+from . import engine, ids, progress
 from .nodes.base import ERROR_COLOUR, FairlinesNode, NodeError
 from .sockets import compatible
 
@@ -334,11 +334,16 @@ def _run_node(tree, node, links):
         _cache[ckey] = Entry(key, {}, version, -1.0, False)
         return True
     t0 = time.perf_counter()
+    slow = entry is not None and entry.ms > progress.SLOW_MS  # it was slow last time: say it is working
+    if slow:
+        progress.status("Fairlines: %s (about %.1f s) ..." % (node.name, entry.ms * 1e-3))
     try:
         outputs = node.compute(inputs) or {}
         ok, message = True, ""
     except Exception as exc:  # engine errors and anything else: shown on the node, never raised
         outputs, ok, message = {}, False, _message(exc)
+    if slow:
+        progress.status(None)
     ms = (time.perf_counter() - t0) * 1e3
     info = outputs.pop("__info__", "") if ok else None
     later = outputs.pop("__later__", None) if ok else None

@@ -45,6 +45,16 @@ def _topology_key(mesh_data):
                             hash(faces.tobytes()) & 0xFFFFFFFFFFFF)
 
 
+def _write_attribute(me, name, domain, values):
+    """A float attribute on the domain ("POINT", "FACE"), replacing one of another kind."""
+    attr = me.attributes.get(name)
+    if attr is None or attr.domain != domain or attr.data_type != "FLOAT":
+        if attr is not None:
+            me.attributes.remove(attr)
+        attr = me.attributes.new(name, "FLOAT", domain)
+    attr.data.foreach_set("value", values)
+
+
 def write_mesh(obj, mesh_data, smooth=True, sharp_angle=None):
     """Write MeshData into obj.data. Returns True when updated in place. With smooth shading
     and a sharp_angle (radians), edges whose faces meet at more than it (deck edge, transom,
@@ -59,30 +69,28 @@ def write_mesh(obj, mesh_data, smooth=True, sharp_angle=None):
         me.vertices.foreach_set("co", verts)
     else:
         me.clear_geometry()
-        nv, (nf, k) = len(mesh_data.vertices), faces.shape
+        nv, nf = len(mesh_data.vertices), faces.shape[0]
+        corners = faces >= 0  # a mixed mesh pads its triangles with -1
+        sizes = corners.sum(axis=1).astype(np.int32)
         me.vertices.add(nv)
         me.vertices.foreach_set("co", verts)
-        me.loops.add(nf * k)
-        me.loops.foreach_set("vertex_index", faces.ravel())
+        me.loops.add(int(sizes.sum()))
+        me.loops.foreach_set("vertex_index", faces[corners])
         me.polygons.add(nf)
-        me.polygons.foreach_set("loop_start", np.arange(0, nf * k, k, dtype=np.int32))
+        me.polygons.foreach_set("loop_start", (np.cumsum(sizes) - sizes).astype(np.int32))
         if bpy.app.version < (4, 0, 0):  # stores the corner count per face; newer ones derive it
-            me.polygons.foreach_set("loop_total", np.full(nf, k, dtype=np.int32))
+            me.polygons.foreach_set("loop_total", sizes)
         # New faces are flat in 3.x but smooth from 4.1 on (clear_geometry dropped the
         # sharp_face attribute with the rest): write the flag only where the default is wrong.
         # Writing it anyway cost about a third of rebuilding the mesh.
         if not smooth or bpy.app.version < (4, 1, 0):
             me.polygons.foreach_set("use_smooth", np.full(nf, bool(smooth)))
         me[ids.MESH_TOPOLOGY_KEY] = topo
-    for name, values in mesh_data.attributes.items():
-        attr = me.attributes.get(name)
-        if attr is None or attr.domain != "POINT" or attr.data_type != "FLOAT":
-            if attr is not None:
-                me.attributes.remove(attr)
-            attr = me.attributes.new(name, "FLOAT", "POINT")
-        attr.data.foreach_set("value", np.ascontiguousarray(values, dtype=np.float32))
-    for name in [a.name for a in me.attributes if a.name in (ids.ATTR_GAUSSIAN, ids.ATTR_MEAN)]:
-        if name not in mesh_data.attributes:
+    for domain, attributes in (("POINT", mesh_data.attributes), ("FACE", mesh_data.face_attributes)):
+        for name, values in attributes.items():
+            _write_attribute(me, name, domain, np.ascontiguousarray(values, dtype=np.float32))
+    for name in [a.name for a in me.attributes if a.name in (ids.ATTR_GAUSSIAN, ids.ATTR_MEAN, ids.ATTR_QUALITY)]:
+        if name not in mesh_data.attributes and name not in mesh_data.face_attributes:
             me.attributes.remove(me.attributes[name])
     me.update()
     if smooth and sharp_angle is not None:

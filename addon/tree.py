@@ -3,7 +3,7 @@
 import bpy
 from bpy.app.handlers import persistent
 
-from . import engine, evaluator, ids, report
+from . import engine, evaluator, ids, progress, report
 from .nodes.base import HYDROSTATICS
 from .nodes import CATEGORIES, NODE_CLASSES
 
@@ -64,7 +64,8 @@ class FL_OT_export(bpy.types.Operator):
             self.report({"ERROR"}, "Export node %s not found" % self.node)
             return {"CANCELLED"}
         node.export_count += 1
-        evaluator.evaluate(tree)
+        with progress.Progress("%s: %s" % (node.name, getattr(node, "button", "Export").lower())):
+            evaluator.evaluate(tree)
         if node.fl_state == "ERROR":
             self.report({"ERROR"}, node.fl_message)
             return {"CANCELLED"}

@@ -70,9 +70,21 @@ def sea(scene):
 
 def sun(scene):
     light = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
-    light.data.energy = 3.5
+    light.data.energy = 6.0
     light.rotation_euler = (math.radians(45), math.radians(10), math.radians(-40))
     scene.collection.objects.link(light)
+
+
+def high_contrast(scene):
+    """The colour management's high-contrast look (AgX from 4.0, Filmic before)."""
+    items = [i.identifier for i in scene.view_settings.bl_rna.properties["look"].enum_items_static] or []
+    for look in ("AgX - High Contrast", "High Contrast", "Filmic - High Contrast"):
+        try:
+            scene.view_settings.look = look
+            return
+        except TypeError:
+            continue
+    print("no high-contrast look among %s" % items)
 
 
 def render(scene, path):
@@ -112,13 +124,14 @@ def main():
     scene.cycles.samples = a.samples
     scene.render.resolution_x, scene.render.resolution_y = a.size
     scene.render.resolution_percentage = 100
+    high_contrast(scene)
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "ship.blend"))
     pictures = []
     # 1. The ship afloat: bow three-quarter view from above the water.
     sun(scene)
-    world(scene, (0.62, 0.72, 0.85, 1.0), 0.9)
+    world(scene, (0.42, 0.56, 0.78, 1.0), 0.5)
     water = sea(scene)
-    camera(scene, (L + 150.0, -175.0, 60.0), (0.55 * L, 0.0, 6.0), lens=50)
+    camera(scene, (L + 118.0, -142.0, 50.0), (0.6 * L, 0.0, 7.0), lens=50)
     pictures.append(os.path.join(out, "ship.png"))
     render(scene, pictures[-1])
     # 2. Zebra: the same hull, out of the water, reflection-line stripes, closer on the bow.

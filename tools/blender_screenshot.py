@@ -1,7 +1,7 @@
 """Screenshot of the node editor with the example graph (for the README). Runs Blender with
 its interface, under Xvfb when there is no display:
 
-    xvfb-run -a -s "-screen 0 1600x1000x24" blender \
+    xvfb-run -a -s "-screen 0 2560x1440x24" blender \
         --python tools/blender_screenshot.py -- --zip dist/...-legacy.zip --out docs/node_editor.png
 
 Use a throw-away BLENDER_USER_CONFIG whose userpref.blend has the splash screen off (the
@@ -27,7 +27,7 @@ ap.add_argument("--prefs-only", action="store_true", help="save preferences with
 args = ap.parse_args(argv)
 
 state = {"step": 0}
-ZOOM_STEPS = 5
+ZOOM_STEPS = 7
 
 
 def setup():
@@ -79,7 +79,7 @@ def tick():
 
 if args.prefs_only:
     bpy.context.preferences.view.show_splash = False
-    bpy.context.preferences.view.ui_scale = 1.2
+    bpy.context.preferences.view.ui_scale = 1.5
     bpy.ops.wm.save_userpref()
 else:
     bpy.app.timers.register(tick, first_interval=1.0)

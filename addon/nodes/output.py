@@ -102,7 +102,8 @@ def write_obj(path, mesh):
     import fairlines.io
     faces = mesh.faces
     if faces.shape[1] == 4:
-        faces = np.concatenate([faces[:, [0, 1, 2]], faces[:, [0, 2, 3]]])
+        quads, tris = faces[faces[:, 3] >= 0], faces[faces[:, 3] < 0, :3]  # -1 pads a mixed mesh's triangles
+        faces = np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]], tris])
     elif faces.shape[1] != 3:
         raise NodeError("OBJ export takes triangles or quads; got %d-gons" % faces.shape[1])
     fairlines.io.write_obj(path, mesh.vertices, faces)

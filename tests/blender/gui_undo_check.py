@@ -169,6 +169,15 @@ def tick():
             tree = bpy.data.node_groups[blender_graph.TREE_NAME]
             wait_for(lambda: all(n.fl_state == "OK" for n in tree.nodes))
             check(all(n.fl_state == "OK" for n in tree.nodes), "graph did not recover")
+            # An export from the interface runs inside the progress indicator and status text.
+            exp = tree.nodes.new("FLNodeExportOBJ")
+            exp.name = "GUI Export"
+            exp.filepath = os.path.join(bpy.app.tempdir, "gui_export.obj")
+            tree.links.new(tree.nodes["Curvature"].outputs["Mesh"], exp.inputs["Mesh"])
+            with ctx():
+                check(bpy.ops.fairlines.export_node(tree=tree.name, node=exp.name) == {"FINISHED"}, "GUI export")
+            check(os.path.getsize(exp.filepath) > 0, "GUI export wrote nothing")
+            report["gui_export"] = exp.filepath
             finish(True)
         return 0.3
     except _NotYet:

@@ -79,3 +79,24 @@ def test_debian_blender_gui_undo_redo(packages, tmp_path):
                    "BLENDER_USER_CONFIG": str(tmp_path / "config")}, tmp_path)
     assert report["ok"]
     assert abs(report["v_after_undo"] - report["v_short"]) < 1e-6 * report["v_short"]
+
+
+OUTPUT_CHECKS = os.path.join(ROOT, "tests", "blender", "output_checks.py")
+
+
+def test_output_nodes_bpy_module(packages, tmp_path):
+    """Output nodes and the sweep face in the bpy module, whose Python has the optional extras
+    (make blender-deps installs them): each file equals the package's own."""
+    report = _run([BPY_PYTHON, OUTPUT_CHECKS, "--zip", packages["extension"], "--tmp", str(tmp_path / "work")],
+                  {"BLENDER_USER_RESOURCES": str(tmp_path / "user")}, tmp_path)
+    assert "t_export_cad" in report["passed"] and "export_cad" in report, report
+    print(json.dumps(report, indent=1))
+
+
+def test_output_nodes_debian_blender_without_extras(packages, tmp_path):
+    """Debian's Blender has none of the extras: the file nodes are red with the pip line."""
+    report = _run([BLENDER, "-b", "--factory-startup", "--python-exit-code", "1", "--python", OUTPUT_CHECKS,
+                   "--", "--zip", packages["legacy"], "--tmp", str(tmp_path / "work")],
+                  {"BLENDER_USER_SCRIPTS": str(tmp_path / "scripts"),
+                   "BLENDER_USER_CONFIG": str(tmp_path / "config")}, tmp_path)
+    assert report["blender"].startswith("3.4") and len(report["missing_messages"]) == 5, report
