@@ -82,6 +82,7 @@ class Hull:
         self._designs: list | None = None
         self._skin = None
         self._ship = None
+        self._hydro: dict = {}  # (draft, options) -> Hydrostatics of the current surface
 
     # ---- construction ---------------------------------------------------------------
     @classmethod
@@ -281,7 +282,11 @@ class Hull:
         options.setdefault("length", pr.lpp)
         options.setdefault("breadth", pr.breadth)
         options.setdefault("midship_x", pr.lpp / 2)
-        return _native.hydrostatics(self.bare_hull_surface(), pr.draft if draft is None else draft, **options)
+        draft = pr.draft if draft is None else draft
+        key = (float(draft), tuple(sorted(options.items())))
+        if key not in self._hydro:  # several nodes and the bulb ask for the same figures
+            self._hydro[key] = _native.hydrostatics(self.bare_hull_surface(), draft, **options)
+        return self._hydro[key]
 
     # ---- bulbous bow ----------------------------------------------------------------
     def ship_particulars(self) -> dict[str, float]:
@@ -293,7 +298,10 @@ class Hull:
         key = (id(self.skin()), repr(d.bulb.to_dict() if d.bulb else None))
         if self._ship is not None and self._ship[0] == key:
             return dict(self._ship[1])
-        h = self.hydrostatics(gauss=SIZING_GAUSS, sac_stations=2)  # volume and midship area only
+        plain = {"length": pr.lpp, "breadth": pr.breadth, "midship_x": pr.lpp / 2}
+        known = [h for (t, opts), h in self._hydro.items()
+                 if t == pr.draft and {k: v for k, v in opts if k not in ("gauss", "sac_stations")} == plain]
+        h = known[0] if known else self.hydrostatics(gauss=SIZING_GAUSS, sac_stations=2)  # volume, midship area
         vol = d.bulb.displacement_volume if d.bulb is not None else None
         if vol is None:
             if not (d.x_aft <= 0.0 and d.x_fore >= pr.lpp):

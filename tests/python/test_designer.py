@@ -235,3 +235,13 @@ def test_the_parallel_body_lies_where_asked():
     assert all(area(x) == pytest.approx(mid, rel=1e-4) for x in np.linspace(76.0, 124.0, 13))
     assert area(50.0) < 0.99 * mid and area(150.0) < 0.99 * mid
     assert np.max(h.sac_area) <= mid * (1 + 1e-4)
+
+
+def test_hydrostatics_are_cached_until_the_hull_changes():
+    hull = fl.Hull.from_json(EXAMPLE.read_text())
+    a = hull.hydrostatics()
+    assert hull.hydrostatics() is a
+    assert hull.hydrostatics(midship_x=100.0) is not a
+    hull.set("sac", "volume", 1.01 * a.volume)
+    b = hull.hydrostatics()
+    assert b.volume == pytest.approx(1.01 * a.volume, rel=2e-3)
