@@ -35,20 +35,8 @@ double extent(const NurbsSurface& s) {
   return (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
 }
 
-/// Parameters (normalised to [0, 1] over [lo, hi]) of `d` along a boundary curve, or empty
-/// for a pole.
-Eigen::VectorXd boundary(const NurbsCurve& c, const Distribution& d, double size) {
-  const double len = arc_table(c).s.back();
-  if (len < kDegenerate * size) return {};
-  const auto [t0, t1] = c.domain();
-  return ((parameters_at_arc_length(c, distribute(d, len)).array() - t0) / (t1 - t0)).matrix();
-}
-
-}  // namespace
-
-Eigen::VectorXd parameters_at_arc_length(const NurbsCurve& curve, const Eigen::VectorXd& s) {
-  detail::require_finite(s, "s");
-  const detail::ArcTable a = arc_table(curve);
+/// parameters_at_arc_length() on a table built already.
+Eigen::VectorXd parameters_on_table(const NurbsCurve& curve, const detail::ArcTable& a, const Eigen::VectorXd& s) {
   const double total = a.s.back(), tol = kArcTol * std::max(total, 1e-300);
   Eigen::VectorXd t(s.size());
   for (Eigen::Index k = 0; k < s.size(); ++k) {
@@ -58,6 +46,23 @@ Eigen::VectorXd parameters_at_arc_length(const NurbsCurve& curve, const Eigen::V
     t[k] = detail::invert_arc([&](double x) { return speed(curve, x); }, a, s[k], kNewtonSteps, kGaussPoints, tol);
   }
   return t;
+}
+
+/// Parameters (normalised to [0, 1] over [lo, hi]) of `d` along a boundary curve, or empty
+/// for a pole.
+Eigen::VectorXd boundary(const NurbsCurve& c, const Distribution& d, double size) {
+  const detail::ArcTable a = arc_table(c);
+  const double len = a.s.back();
+  if (len < kDegenerate * size) return {};
+  const auto [t0, t1] = c.domain();
+  return ((parameters_on_table(c, a, distribute(d, len)).array() - t0) / (t1 - t0)).matrix();
+}
+
+}  // namespace
+
+Eigen::VectorXd parameters_at_arc_length(const NurbsCurve& curve, const Eigen::VectorXd& s) {
+  detail::require_finite(s, "s");
+  return parameters_on_table(curve, arc_table(curve), s);
 }
 
 StructuredGrid parameter_grid(const NurbsSurface& surface, const Eigen::VectorXd& us, const Eigen::VectorXd& vs) {
