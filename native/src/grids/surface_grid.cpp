@@ -11,7 +11,7 @@
 #include "fairlines/errors.hpp"
 #include "fairlines/grids.hpp"
 #include "nurbs/checks.hpp"
-#include "nurbs/gauss.hpp"
+#include "nurbs/arc_length.hpp"
 
 namespace fairlines {
 
@@ -20,38 +20,14 @@ namespace {
 constexpr int kGaussPoints = 8;       ///< Gauss-Legendre points per piece of a knot span
 constexpr int kPiecesPerSpan = 16;    ///< pieces per knot span of the arc-length table
 constexpr double kDegenerate = 1e-9;  ///< a boundary shorter than this x the surface size is a pole
-
-/// Cumulative arc length of a curve at the ends of small pieces of every knot span.
-struct ArcTable {
-  std::vector<double> t, s;
-};
+constexpr double kArcTol = 1e-12;     ///< arc-length inversion tolerance, relative to the curve's length
+constexpr int kNewtonSteps = 50;      ///< most Newton (or bisection) steps of the inversion
 
 double speed(const NurbsCurve& c, double t) { return c.derivatives(t, 1).row(1).norm(); }
 
-double integrate(const NurbsCurve& c, const detail::GaussRule& g, double a, double b) {
-  double sum = 0.0;
-  for (size_t k = 0; k < g.x.size(); ++k) sum += g.w[k] * speed(c, 0.5 * (a + b) + 0.5 * (b - a) * g.x[k]);
-  return 0.5 * (b - a) * sum;
-}
-
-ArcTable arc_table(const NurbsCurve& c, const detail::GaussRule& g) {
+detail::ArcTable arc_table(const NurbsCurve& c) {
   const auto [t0, t1] = c.domain();
-  std::vector<double> breaks{t0};
-  for (Eigen::Index i = 0; i < c.knots().size(); ++i) {
-    const double k = c.knots()[i];
-    if (k > breaks.back() && k < t1) breaks.push_back(k);
-  }
-  breaks.push_back(t1);
-  ArcTable a;
-  a.t.push_back(t0);
-  a.s.push_back(0.0);
-  for (size_t i = 0; i + 1 < breaks.size(); ++i)
-    for (int p = 1; p <= kPiecesPerSpan; ++p) {
-      const double tb = breaks[i] + (breaks[i + 1] - breaks[i]) * p / kPiecesPerSpan;
-      a.s.push_back(a.s.back() + integrate(c, g, a.t.back(), tb));
-      a.t.push_back(tb);
-    }
-  return a;
+  return detail::arc_table([&](double t) { return speed(c, t); }, c.knots(), t0, t1, kPiecesPerSpan, kGaussPoints);
 }
 
 double extent(const NurbsSurface& s) {
@@ -59,41 +35,34 @@ double extent(const NurbsSurface& s) {
   return (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
 }
 
+/// parameters_at_arc_length() on a table built already.
+Eigen::VectorXd parameters_on_table(const NurbsCurve& curve, const detail::ArcTable& a, const Eigen::VectorXd& s) {
+  const double total = a.s.back(), tol = kArcTol * std::max(total, 1e-300);
+  Eigen::VectorXd t(s.size());
+  for (Eigen::Index k = 0; k < s.size(); ++k) {
+    if (s[k] < -tol || s[k] > total + tol)
+      detail::fail("s[", k, "] is ", s[k], " m; expected within [0, ", total, "] (the arc length)");
+    if (k > 0 && s[k] < s[k - 1]) detail::fail("s[", k, "] is ", s[k], " m; expected increasing arc lengths");
+    t[k] = detail::invert_arc([&](double x) { return speed(curve, x); }, a, s[k], kNewtonSteps, kGaussPoints, tol);
+  }
+  return t;
+}
+
 /// Parameters (normalised to [0, 1] over [lo, hi]) of `d` along a boundary curve, or empty
 /// for a pole.
 Eigen::VectorXd boundary(const NurbsCurve& c, const Distribution& d, double size) {
-  const double len = arc_table(c, detail::gauss_legendre(kGaussPoints)).s.back();
+  const detail::ArcTable a = arc_table(c);
+  const double len = a.s.back();
   if (len < kDegenerate * size) return {};
   const auto [t0, t1] = c.domain();
-  return ((parameters_at_arc_length(c, distribute(d, len)).array() - t0) / (t1 - t0)).matrix();
+  return ((parameters_on_table(c, a, distribute(d, len)).array() - t0) / (t1 - t0)).matrix();
 }
 
 }  // namespace
 
 Eigen::VectorXd parameters_at_arc_length(const NurbsCurve& curve, const Eigen::VectorXd& s) {
   detail::require_finite(s, "s");
-  const detail::GaussRule g = detail::gauss_legendre(kGaussPoints);
-  const ArcTable a = arc_table(curve, g);
-  const double total = a.s.back(), tol = 1e-12 * std::max(total, 1e-300);
-  Eigen::VectorXd t(s.size());
-  for (Eigen::Index k = 0; k < s.size(); ++k) {
-    if (s[k] < -tol || s[k] > total + tol)
-      detail::fail("s[", k, "] is ", s[k], " m; expected within [0, ", total, "] (the arc length)");
-    if (k > 0 && s[k] < s[k - 1]) detail::fail("s[", k, "] is ", s[k], " m; expected increasing arc lengths");
-    const size_t i = std::min<size_t>(a.s.size() - 2, std::upper_bound(a.s.begin(), a.s.end(), s[k]) - a.s.begin() - 1);
-    double lo = a.t[i], hi = a.t[i + 1], x = lo + (hi - lo) * (s[k] - a.s[i]) / std::max(a.s[i + 1] - a.s[i], 1e-300);
-    for (int it = 0; it < 50; ++it) {  // Newton, kept inside the bracket by bisection
-      const double f = a.s[i] + integrate(curve, g, a.t[i], x) - s[k];
-      if (std::abs(f) <= tol) break;
-      (f > 0 ? hi : lo) = x;
-      const double v = speed(curve, x);
-      double nx = v > 0 ? x - f / v : 0.5 * (lo + hi);
-      if (!(nx > lo && nx < hi)) nx = 0.5 * (lo + hi);
-      x = nx;
-    }
-    t[k] = x;
-  }
-  return t;
+  return parameters_on_table(curve, arc_table(curve), s);
 }
 
 StructuredGrid parameter_grid(const NurbsSurface& surface, const Eigen::VectorXd& us, const Eigen::VectorXd& vs) {

@@ -13,6 +13,7 @@
 #include "fairlines/errors.hpp"
 #include "fairlines/knots.hpp"
 #include "nurbs/checks.hpp"
+#include "nurbs/arc_length.hpp"
 #include "nurbs/gauss.hpp"
 #include "nurbs/gram.hpp"
 
@@ -81,75 +82,19 @@ class CurveProbe {
   Eigen::MatrixXd ders_;
 };
 
-/// Piecewise table of arc length: breakpoints t_k (quarter knot spans), cumulative s_k and
-/// the speed |C'| just inside each end of every interval (one-sided: the speed may jump at a
-/// knot of full multiplicity), so that t(s) can be inverted by cubic Hermite interpolation.
-struct ArcTable {
-  std::vector<double> t, s, speed_a, speed_b;  // speed_a[k], speed_b[k]: interval k's ends
-};
+constexpr int kArcGauss = 8;     // Gauss points per piece of the arc-length table
+constexpr int kArcSplit = 4;     // pieces per knot span
+constexpr int kArcNewtonGauss = 5;  // Gauss points of the one Newton step of the inversion
 
-constexpr int kArcGauss = 8;     // Gauss points per sub-interval
-constexpr int kArcSplit = 4;     // sub-intervals per knot span
-
-double arc_piece(CurveProbe& probe, double a, double b) {
-  const auto& g = detail::gauss_rule(kArcGauss);
-  const double h = 0.5 * (b - a), m = 0.5 * (a + b);
-  double s = 0;
-  for (int k = 0; k < kArcGauss; ++k) s += g.w[k] * probe.speed(m + h * g.x[k]);
-  return s * h;
-}
-
-ArcTable arc_table(CurveProbe& probe, const NurbsCurve& c) {
-  ArcTable tab;
-  const Eigen::VectorXd& U = c.knots();
+detail::ArcTable arc_table(CurveProbe& probe, const NurbsCurve& c) {
   const auto [t0, t1] = c.domain();
-  tab.t.push_back(t0);
-  tab.s.push_back(0.0);
-  for (Eigen::Index i = 0; i + 1 < U.size(); ++i) {
-    const double a = std::max(U[i], t0), b = std::min(U[i + 1], t1);
-    if (!(b > a)) continue;
-    for (int k = 0; k < kArcSplit; ++k) {
-      const double ta = a + (b - a) * k / kArcSplit, tb = a + (b - a) * (k + 1) / kArcSplit;
-      const double eps = 1e-9 * (tb - ta);
-      tab.t.push_back(tb);
-      tab.s.push_back(tab.s.back() + arc_piece(probe, ta, tb));
-      tab.speed_a.push_back(probe.speed(ta + eps));
-      tab.speed_b.push_back(probe.speed(tb - eps));
-    }
-  }
-  return tab;
+  return detail::arc_table([&](double t) { return probe.speed(t); }, c.knots(), t0, t1, kArcSplit, kArcGauss);
 }
 
-/// Parameter where the arc length from the start is (nearly) `target`: cubic Hermite
-/// interpolation of t(s) on the table interval, with dt/ds = 1/|C'| at its ends (falls back
-/// to linear where the speed vanishes). The result is clamped to the interval, so t(s) stays
-/// monotone.
-double invert_arc(CurveProbe& probe, const ArcTable& tab, double target) {
-  const auto it = std::upper_bound(tab.s.begin(), tab.s.end(), target);
-  std::size_t k = (it == tab.s.begin()) ? 0 : static_cast<std::size_t>(it - tab.s.begin()) - 1;
-  if (k + 1 >= tab.s.size()) return tab.t.back();
-  const double t0 = tab.t[k], t1 = tab.t[k + 1], s0 = tab.s[k], ds = tab.s[k + 1] - s0;
-  if (!(ds > 0)) return t0;
-  const double x = (target - s0) / ds, dt = t1 - t0;
-  double m0 = dt, m1 = dt;  // d t / d x at the ends (linear fallback)
-  if (tab.speed_a[k] > 1e-12 * ds / dt && tab.speed_b[k] > 1e-12 * ds / dt) {
-    m0 = ds / tab.speed_a[k];
-    m1 = ds / tab.speed_b[k];
-  }
-  const double x2 = x * x, x3 = x2 * x;
-  double t = (2 * x3 - 3 * x2 + 1) * t0 + (x3 - 2 * x2 + x) * m0 + (-2 * x3 + 3 * x2) * t1 + (x3 - x2) * m1;
-  t = std::clamp(t, t0, t1);
-  // One Newton step on s(t) - target (5-point Gauss-Legendre from t0) removes most of the
-  // Hermite error where the speed varies fast inside an interval (tight bends).
-  const double sp = probe.speed(t);
-  if (sp > 0 && t > t0) {
-    const auto& g = detail::gauss_rule(5);
-    const double h = 0.5 * (t - t0), mid = 0.5 * (t + t0);
-    double part = 0;
-    for (int q = 0; q < 5; ++q) part += g.w[q] * probe.speed(mid + h * g.x[q]);
-    t = std::clamp(t - (part * h - (target - s0)) / sp, t0, t1);
-  }
-  return t;
+/// Parameter where the arc length from the start is (nearly) `target`: Hermite guess and one
+/// Newton step, which removes most of the Hermite error where the speed varies fast.
+double invert_arc(CurveProbe& probe, const detail::ArcTable& tab, double target) {
+  return detail::invert_arc([&](double t) { return probe.speed(t); }, tab, target, 1, kArcNewtonGauss, 0.0);
 }
 
 /// A run of consecutive sections [first, last] over which one data column keeps `value`.
@@ -322,7 +267,7 @@ Eigen::MatrixXd equal_arc_length_points(const NurbsCurve& curve, int m, double c
   double w = 0;
   if (curvature_weight > 0) w = curvature_weight * arc_length(curve);
   CurveProbe probe(curve, w);
-  const ArcTable tab = arc_table(probe, curve);
+  const detail::ArcTable tab = arc_table(probe, curve);
   const double L = tab.s.back();
   if (!(L > 0)) fail("curve has zero length; expected a curve of positive length");
   Eigen::MatrixXd out(m, curve.dim());
