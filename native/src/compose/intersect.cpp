@@ -99,6 +99,20 @@ std::vector<Box> patch_boxes(const NurbsSurface& s0, int extra) {
   return boxes;
 }
 
+bool boxes_overlap(const Box& p, const Box& q, double slack) {
+  return !((p.lo.array() > q.hi.array() + slack).any() || (q.lo.array() > p.hi.array() + slack).any());
+}
+
+/// The box holding every box of `boxes` (3-D extent only).
+Box enclosing_box(const std::vector<Box>& boxes) {
+  Box all{boxes[0].lo, boxes[0].hi, {}, {}};
+  for (const auto& x : boxes) {
+    all.lo = all.lo.cwiseMin(x.lo);
+    all.hi = all.hi.cwiseMax(x.hi);
+  }
+  return all;
+}
+
 struct Domain {
   double u0, u1, v0, v1;
   explicit Domain(const NurbsSurface& s) {
@@ -307,25 +321,25 @@ std::vector<IntersectionCurve> intersect_surfaces(const NurbsSurface& a, const N
   if (o.max_points < 10) detail::fail("max_points is ", o.max_points, "; expected >= 10");
   const std::vector<Box> ba = patch_boxes(a, o.subdivisions), bb = patch_boxes(b, o.subdivisions);
   auto diag = [](const std::vector<Box>& bs) {
-    Eigen::Vector3d lo = bs[0].lo, hi = bs[0].hi;
-    for (const auto& x : bs) {
-      lo = lo.cwiseMin(x.lo);
-      hi = hi.cwiseMax(x.hi);
-    }
-    return (hi - lo).norm();
+    const Box all = enclosing_box(bs);
+    return (all.hi - all.lo).norm();
   };
   const double h0 = o.step > 0.0 ? o.step : std::min(diag(ba), diag(bb)) / 150.0;
   const double slack = 1e-9 * std::max(diag(ba), diag(bb));
   const Domain da(a), db(b);
   // seeds: Newton from the centres of every overlapping patch pair
   std::vector<Eigen::Vector4d> seeds;
-  for (const auto& p : ba)
+  const Box all_b = enclosing_box(bb);
+  for (const auto& p : ba) {
+    // a patch clear of b's whole box overlaps none of its patches: skip the inner loop
+    if (!boxes_overlap(p, all_b, slack)) continue;
     for (const auto& q : bb) {
-      if ((p.lo.array() > q.hi.array() + slack).any() || (q.lo.array() > p.hi.array() + slack).any()) continue;
+      if (!boxes_overlap(p, q, slack)) continue;
       Eigen::Vector4d x;
       x << 0.5 * (p.ulo + p.uhi), 0.5 * (q.ulo + q.uhi);
       if (refine_intersection(a, b, x, o.tolerance) < o.tolerance) seeds.push_back(x);
     }
+  }
   std::vector<IntersectionCurve> curves;
   for (const auto& s : seeds) {
     const Eigen::Vector3d ps = a.evaluate(s[0], s[1]);
