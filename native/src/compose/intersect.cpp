@@ -24,9 +24,17 @@ struct Deriv {
   Eigen::Vector3d s, su, sv;
 };
 
+/// Point and first partials at (u, v) clamped to the domain, without heap allocation (the
+/// seed search and the marching call this tens of thousands of times).
 Deriv deriv(const NurbsSurface& f, double u, double v) {
-  const Eigen::MatrixXd d = f.derivatives(u, v, 1);
-  return {d.row(0).transpose(), d.row(2).transpose(), d.row(1).transpose()};
+  if (!std::isfinite(u) || !std::isfinite(v)) f.derivatives(u, v, 1);  // throws InvalidInput naming it
+  const auto [u0, u1] = f.domain_u();
+  const auto [v0, v1] = f.domain_v();
+  u = std::clamp(u, u0, u1);
+  v = std::clamp(v, v0, v1);
+  double d[9];
+  f.evaluate_first_derivatives_into(&u, &v, 1, d);
+  return {Eigen::Vector3d(d[0], d[1], d[2]), Eigen::Vector3d(d[3], d[4], d[5]), Eigen::Vector3d(d[6], d[7], d[8])};
 }
 
 bool clamped(const Eigen::VectorXd& k, int p) {
