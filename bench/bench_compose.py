@@ -62,8 +62,8 @@ def main():
     t_bulb = median_time(make_bulb)
     c = ours()
     bulb = make_bulb()
-    on_hull, on_bulb = fl.seam_blend_boundaries(c)
-    hull_s = c.trimmed_surfaces[0][0]
+    placement = fl.seam_blend_placement(hull, bulb)
+    on_hull, on_bulb, hull_s = placement.boundary_a, placement.boundary_b, placement.hull
 
     def ours_blended():
         b = make_bulb()

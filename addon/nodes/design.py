@@ -141,7 +141,7 @@ class FLNodeHullBulb(FairlinesNode, bpy.types.Node):
 class FLNodeBlendSurface(FairlinesNode, bpy.types.Node):
     """Blending surface between the bare hull and the bulb, tangent (C1) to both: on the hull
     around the seam the bulb makes, on the bulb just ahead of it (clearances in the surfaces'
-    parameters, which run 0 .. 1; see fairlines.seam_blend_boundaries)"""
+    parameters, which run 0 .. 1; see fairlines.seam_blend_placement)"""
     bl_idname = ids.NODE_BLEND
     bl_label = "Blend Surface"
     category = "Surfaces"
@@ -165,7 +165,7 @@ class FLNodeBlendSurface(FairlinesNode, bpy.types.Node):
             raise NodeError("Sections is %d; expected at least 4" % samples)
         # Where the blend goes is all Compose needs (it skins the blend at its mesh resolution
         # itself): that goes on at once. This node's own surface and its measured continuity
-        # (fl.seam_blend = placement + surface) are a deferred job (evaluator.py), run when
+        # (fl.seam_blend_placement(...).blend_surface()) are a deferred job (evaluator.py), run when
         # something reads Surface or else once the meshes are in the scene.
         placement = fl.seam_blend_placement(hull, bulb, clearance_u=inputs["Clearance U"],
                                             clearance_v=inputs["Clearance V"],

@@ -74,11 +74,9 @@ from .compose import (  # noqa: F401,E402
     Mesh,
     compose,
     compose_with_blend,
-    seam_blend_boundaries,
     intersect_surfaces,
     measure_kracht,
     mesh_hydrostatics,
-    seam_blend,
     seam_blend_placement,
 )
 

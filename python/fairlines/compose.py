@@ -32,11 +32,9 @@ __all__ = [
     "Mesh",
     "compose",
     "compose_with_blend",
-    "seam_blend_boundaries",
     "intersect_surfaces",
     "measure_kracht",
     "mesh_hydrostatics",
-    "seam_blend",
     "seam_blend_placement",
     "KRACHT_NAMES",
 ]
@@ -119,25 +117,25 @@ class BulbousBow:
              "shape": {"aft_length": 12.0, "nose_height_shift": 0.0}}
 
         and the ship particulars ``lpp, beam, draft_fp, midship_area, displacement_volume``
-        (optionally ``x_fp``). Unknown keys raise ValueError naming them.
+        (optionally ``x_fp``). Unknown keys raise InvalidInput naming them.
         """
         section = dict(section)
         unknown = set(section) - {"kracht", "shape"}
         if unknown:
-            raise ValueError(f"bulb section has unknown keys {sorted(unknown)}; expected 'kracht', 'shape'")
+            raise _native.InvalidInput(f"bulb section has unknown keys {sorted(unknown)}; expected 'kracht', 'shape'")
         kr = dict(section.get("kracht", {}))
         bad = set(kr) - set(KRACHT_NAMES)
         if bad:
-            raise ValueError(f"bulb 'kracht' has unknown keys {sorted(bad)}; expected some of {list(KRACHT_NAMES)}")
+            raise _native.InvalidInput(f"bulb 'kracht' has unknown keys {sorted(bad)}; expected some of {list(KRACHT_NAMES)}")
         shape = dict(section.get("shape", {}))
         allowed = {"aft_length", "nose_height_shift", "sections", "section_points", "control_u", "control_v"}
         bad = set(shape) - allowed
         if bad:
-            raise ValueError(f"bulb 'shape' has unknown keys {sorted(bad)}; expected some of {sorted(allowed)}")
+            raise _native.InvalidInput(f"bulb 'shape' has unknown keys {sorted(bad)}; expected some of {sorted(allowed)}")
         sh = dict(ship)
         missing = [n for n in _SHIP_NAMES if n not in sh]
         if missing:
-            raise ValueError(f"ship particulars miss {missing}; expected {list(_SHIP_NAMES)}")
+            raise _native.InvalidInput(f"ship particulars miss {missing}; expected {list(_SHIP_NAMES)}")
         kw = {n: sh[n] for n in _SHIP_NAMES}
         if "x_fp" in sh:
             kw["x_fp"] = sh["x_fp"]
@@ -225,31 +223,31 @@ def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int 
                 c.trimmed_surfaces[0][0], n)`` and ``(c.blend, True, bulb, n)``, so a caller
                 can pass 2 and measure them later.
 
-    Raises ValueError ("bulb cannot meet the hull ...") when the bulb does not cross the hull
+    Raises InvalidInput ("bulb cannot meet the hull ...") when the bulb does not cross the hull
     in one seam from the keel/stem line around to the stem.
     """
     if operation != "union":
-        raise ValueError(f"operation is {operation!r}; expected 'union'")
+        raise _native.InvalidInput(f"operation is {operation!r}; expected 'union'")
     subs = list(subdomains)
     if not 1 <= len(subs) <= 3:
-        raise ValueError(f"subdomains has {len(subs)} entries; expected [bare_hull], [bare_hull, bulb] "
+        raise _native.InvalidInput(f"subdomains has {len(subs)} entries; expected [bare_hull], [bare_hull, bulb] "
                          "or [bare_hull, bulb, blend]")
     blend_kw = {}
     if len(subs) == 3:
         bl = subs.pop()
         if not isinstance(bl, (BlendSurface, BlendPlacement)):
-            raise ValueError(f"subdomains[2] is {type(bl).__name__}; expected a BlendSurface from blend_surface() "
+            raise _native.InvalidInput(f"subdomains[2] is {type(bl).__name__}; expected a BlendSurface from blend_surface() "
                              "or a BlendPlacement from seam_blend_placement()")
         bb = bl.boundary_b
         if not (isinstance(bb, tuple) and len(bb) == 2 and bb[0] == "u"):
-            raise ValueError(f"the blend's bulb boundary is {bb!r}; expected a bulb section ('u', value)")
+            raise _native.InvalidInput(f"the blend's bulb boundary is {bb!r}; expected a bulb section ('u', value)")
         blend_kw = dict(blend_hull_uv=np.asarray(bl.boundary_a, float), blend_bulb_u=float(bb[1]),
                         blend_tension=float(bl.tension), blend_rows=_integer("blend_rows", blend_rows, None),
                         blend_check_samples=_integer("blend_check_samples", blend_check_samples, None))
     surfaces = [s.surface if isinstance(s, BulbousBow) else s for s in subs]
     for i, s in enumerate(surfaces):
         if not isinstance(s, NurbsSurface):
-            raise ValueError(f"subdomains[{i}] is {type(s).__name__}; expected a NurbsSurface or BulbousBow")
+            raise _native.InvalidInput(f"subdomains[{i}] is {type(s).__name__}; expected a NurbsSurface or BulbousBow")
     native = _native._compose_hull(surfaces[0], surfaces[1] if len(surfaces) > 1 else None,
                                    _integer("hull_u", hull_u, None), _integer("hull_v", hull_v, None),
                                    _integer("bulb_u", bulb_u, None), _integer("bulb_v", bulb_v, None),
@@ -347,7 +345,7 @@ def mesh_hydrostatics(mesh: Mesh, draft: float, *, half: bool = True) -> dict:
             mx += np.mean(mid[:, 0] * (mid[:, 2] - T)) * nz
             mz += np.mean(0.5 * (mid[:, 2] ** 2 - T * T)) * nz
     if vol <= 0.0:
-        raise ValueError(f"draft {draft} m gives no displaced volume; expected a draft above the keel")
+        raise _native.InvalidInput(f"draft {draft} m gives no displaced volume; expected a draft above the keel")
     f = 2.0 if half else 1.0
     return dict(volume=f * vol, lcb=mx / vol, kb=mz / vol)
 
@@ -362,10 +360,10 @@ def _boundary_uv(surface: NurbsSurface, boundary, what: str) -> np.ndarray:
         if which == "v":
             ku = surface.knots_u
             return np.column_stack([ku[0] + (ku[-1] - ku[0]) * t, np.full_like(t, float(value))])
-        raise ValueError(f"{what} iso-line direction is {which!r}; expected 'u' or 'v'")
+        raise _native.InvalidInput(f"{what} iso-line direction is {which!r}; expected 'u' or 'v'")
     arr = np.asarray(boundary, dtype=float)
     if arr.ndim != 2 or arr.shape[1] != 2:
-        raise ValueError(f"{what} has shape {arr.shape}; expected (k, 2) (u, v) points or ('u'|'v', value)")
+        raise _native.InvalidInput(f"{what} has shape {arr.shape}; expected (k, 2) (u, v) points or ('u'|'v', value)")
     return arr
 
 
@@ -427,21 +425,12 @@ def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, 
     return BlendSurface(s, dict(at_a), dict(at_b), ba, boundary_b, float(tension))
 
 
-def seam_blend_boundaries(union: ComposedHull, *, clearance_u: float = 0.05, clearance_v: float = 0.01,
-                          bulb_clearance: float = 0.01, points: int = 65):
-    """Blend boundaries around the union seam of ``compose([hull, bulb])``.
+class _NoBlendFits(_native.InvalidInput):
+    """No blend boundary fits around the seam (compose_with_blend then keeps the plain union)."""
 
-    On the hull (orient_bare_hull convention: u aft cut -> stem, v keel -> deck) an ellipse
-    arc in (u, v) around the seam, ``clearance_u`` / ``clearance_v`` (parameter units) clear
-    of it: a half ellipse from the stem edge below the bulb to the stem edge above it when
-    the seam ends on the stem at both ends, a quarter ellipse about the forefoot corner (stem
-    foot) from the keel edge to the stem edge when the seam starts on the keel (a bulb reaching
-    below a raised forefoot). On the bulb the section ``bulb_clearance`` ahead of the seam's
-    foremost point. Returns (on_hull (k, 2), ("u", u_b)), or the reason as a string when no
-    such boundary fits on the hull."""
-    return _boundaries_around_seam(union.trimmed_surfaces[0][0], union.intersection_curves[0],
-                                   clearance_u=clearance_u, clearance_v=clearance_v,
-                                   bulb_clearance=bulb_clearance, points=points)
+
+def _no_blend_fits(reason: str):
+    raise _NoBlendFits(f"no blend fits between hull and bulb: {reason}")
 
 
 def _keel_zone_end(hull: NurbsSurface) -> float:
@@ -459,8 +448,17 @@ def _keel_zone_end(hull: NurbsSurface) -> float:
 
 def _boundaries_around_seam(hull: NurbsSurface, seam: dict, *, clearance_u: float, clearance_v: float,
                             bulb_clearance: float, points: int):
-    """seam_blend_boundaries from the oriented hull and the seam (a dict with ``uv_a`` on the
-    hull, ``uv_b`` on the bulb) alone, so that callers without the union mesh can use it."""
+    """The blend's boundaries around a hull/bulb seam: (on_hull (k, 2), ("u", u_b)).
+
+    ``hull`` is in the orient_bare_hull convention (u aft cut -> stem, v keel -> deck),
+    ``seam`` a dict with ``uv_a`` on the hull and ``uv_b`` on the bulb. On the hull an ellipse
+    arc in (u, v) around the seam, ``clearance_u`` / ``clearance_v`` (parameter units) clear
+    of it: a half ellipse from the stem edge below the bulb to the stem edge above it when
+    the seam ends on the stem at both ends, a quarter ellipse about the forefoot corner (stem
+    foot) from the keel edge to the stem edge when the seam starts on the keel (a bulb reaching
+    below a raised forefoot), an arc over the seam when it starts and ends on the keel-and-stem
+    edge of a whole-ship hull. On the bulb the section ``bulb_clearance`` ahead of the seam's
+    foremost point. Raises _NoBlendFits when no such boundary fits on the hull."""
     uv = seam["uv_a"]
     u0, u1 = hull.knots_u[0], hull.knots_u[-1]
     v0, v1 = hull.knots_v[0], hull.knots_v[-1]
@@ -473,7 +471,7 @@ def _boundaries_around_seam(hull: NurbsSurface, seam: dict, *, clearance_u: floa
         tc, R = 0.5 * (tlo + thi), 0.5 * (thi - tlo) + clearance_v
         du = u1 - uv[:, 0].min() + clearance_u
         if tc - R <= v0 or tc + R >= v1:
-            return "a blend boundary clear of the seam would leave the hull between keel and deck"
+            _no_blend_fits("a blend boundary clear of the seam would leave the hull between keel and deck")
     elif (on_keel[0] and on_stem[1]) or (on_keel[1] and on_stem[0]):
         # quarter ellipse about (u1, vz) through (u1 - a, vz) and (u1, vz + b), scaled so that
         # the whole seam lies inside it, then widened by the clearances; vz is the end of a
@@ -481,18 +479,18 @@ def _boundaries_around_seam(hull: NurbsSurface, seam: dict, *, clearance_u: floa
         vz = _keel_zone_end(hull)
         a0, b0 = u1 - uv[:, 0].min(), uv[:, 1].max() - vz
         if not b0 > 0:
-            return "the seam does not rise above the keel zone"
+            _no_blend_fits("the seam does not rise above the keel zone")
         scale = float(np.max(np.hypot((u1 - uv[:, 0]) / a0, np.maximum(uv[:, 1] - vz, 0.0) / b0)))
         du, R, tc = scale * a0 + clearance_u, scale * b0 + clearance_v, vz
         phi_end = 0.5 * np.pi
         if tc + R >= v1:
-            return "a blend boundary clear of the seam would reach the deck"
+            _no_blend_fits("a blend boundary clear of the seam would reach the deck")
     elif all(on_keel):
         return _arc_over_centre_edge(uv, hull, clearance_u, clearance_v, points, seam, bulb_clearance)
     else:
-        return "the seam does not run from the keel or stem edge to the stem edge"
+        _no_blend_fits("the seam does not run from the keel or stem edge to the stem edge")
     if u1 - du <= u0:
-        return "a blend boundary clear of the seam would reach the aft cut"
+        _no_blend_fits("a blend boundary clear of the seam would reach the aft cut")
     phi = np.linspace(0.0, phi_end, points)
     on_hull = np.column_stack([u1 - du * np.sin(phi + (0.5 * np.pi if phi_end < np.pi else 0.0)),
                                tc - R * np.cos(phi) if phi_end == np.pi else tc + R * np.sin(phi)])
@@ -517,16 +515,16 @@ def _arc_over_centre_edge(uv, hull, clearance_u, clearance_v, points, seam, bulb
     uc, b0 = float(uv[top, 0]), float(uv[top, 1] - vz)
     a_aft, a_fore = uc - uv[:, 0].min(), uv[:, 0].max() - uc
     if not (b0 > 0 and a_aft > 0 and a_fore > 0):
-        return "the seam does not rise above the keel zone"
+        _no_blend_fits("the seam does not rise above the keel zone")
     side = np.where(uv[:, 0] < uc, a_aft, a_fore)
     scale = float(np.max(np.hypot((uv[:, 0] - uc) / side, np.maximum(uv[:, 1] - vz, 0.0) / b0)))
     R = scale * b0 + clearance_v
     fore_room = 0.5 * (u1 - uv[:, 0].max())  # keep half the stem above the seam free
     a_aft, a_fore = scale * a_aft + clearance_u, min(scale * a_fore + clearance_u, uv[:, 0].max() + fore_room - uc)
     if vz + R >= v1:
-        return "a blend boundary clear of the seam would reach the deck"
+        _no_blend_fits("a blend boundary clear of the seam would reach the deck")
     if uc - a_aft <= hull.knots_u[0]:
-        return "a blend boundary clear of the seam would reach the aft end"
+        _no_blend_fits("a blend boundary clear of the seam would reach the aft end")
     phi = np.linspace(0.0, np.pi, points)
     on_hull = np.column_stack([uc - np.where(phi <= 0.5 * np.pi, a_aft, a_fore) * np.cos(phi), vz + R * np.sin(phi)])
     if vz > v0:
@@ -538,26 +536,28 @@ def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface
                        clearance_u: float = 0.05, clearance_v: float = 0.01, bulb_clearance: float = 0.01,
                        tension: float = 0.6, **compose_options) -> ComposedHull:
     """Bare hull + bulb composed into one closed half hull, with a C1 blending surface between
-    them when ``blend`` (boundaries from :func:`seam_blend_boundaries`; ``tension`` of the
+    them when ``blend`` (placed by :func:`seam_blend_placement`; ``tension`` of the
     cross-boundary tangents: 0.6 keeps a long blend from the keel to the bottom of a bulb
     that reaches below a raised forefoot from overshooting below the base line and across the
-    centre plane, which 1.0 does on the Panamax forebody). The result carries
-    ``blend_note``: what was done, or why no blend could be placed (then it is the plain
-    union)."""
-    union = compose([bare_hull, bulb], **compose_options)
+    centre plane, which 1.0 does on the Panamax forebody). ``compose_options`` go to
+    :func:`compose`. The result carries ``blend_note``: what was done, or why no blend could be
+    placed (then it is the plain union).
+
+    Raises InvalidInput when the bulb cannot meet the hull (see :func:`compose`) or an option
+    is out of range."""
     if not blend:
+        union = compose([bare_hull, bulb], **compose_options)
         union.blend_note = "no blend requested: plain union"
         return union
-    bounds = seam_blend_boundaries(union, clearance_u=clearance_u, clearance_v=clearance_v,
-                                   bulb_clearance=bulb_clearance)
-    if isinstance(bounds, str):
-        union.blend_note = "no blend: " + bounds + "; plain union"
+    seam_options = {k: compose_options[k] for k in ("bulb_v", "tolerance") if k in compose_options}
+    try:
+        placement = _place_blend(bare_hull, bulb, clearance_u, clearance_v, bulb_clearance, tension, seam_options)
+    except _NoBlendFits as e:
+        union = compose([bare_hull, bulb], **compose_options)
+        union.blend_note = "no blend: " + str(e).split(": ", 1)[1] + "; plain union"
         return union
-    hull_s = union.trimmed_surfaces[0][0]
-    bulb_s = bulb.surface if isinstance(bulb, BulbousBow) else bulb
-    # compose() re-skins the blend at the mesh resolution and measures its continuity itself
-    bl = blend_surface(hull_s, bounds[0], bulb_s, bounds[1], tension=tension, check_samples=2)
-    out = compose([hull_s, bulb, bl], **compose_options)
+    # compose() skins the blend at the mesh resolution and measures its continuity itself
+    out = compose([placement.hull, bulb, placement], **compose_options)
     out.blend_note = "blend: max normal angle %.3f deg at the hull, %.3f deg at the bulb" % tuple(
         d["max_angle_deg"] for d in out.blend_continuity)
     return out
@@ -566,31 +566,28 @@ def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface
 def seam_blend_placement(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, clearance_u: float = 0.05,
                          clearance_v: float = 0.01, bulb_clearance: float = 0.01,
                          tension: float = 0.6) -> BlendPlacement:
-    """Where the blend around the seam a bulb makes on a bare hull goes: the boundaries of
-    :func:`seam_blend_boundaries` on the union of hull and bulb, as a :class:`BlendPlacement`
-    (compose() takes it in place of the surface; ``.blend_surface()`` skins it). Raises
-    ValueError when the bulb cannot meet the hull or no boundary fits (the message says why)."""
+    """Where the blend around the seam a bulb makes on a bare hull goes, as a
+    :class:`BlendPlacement`: ``compose([hull, bulb, placement])`` composes with it (skinning
+    the blend at the mesh resolution), ``placement.blend_surface()`` skins the surface itself.
+
+    On the hull (``placement.hull``: the hull in the orient_bare_hull convention, u aft cut ->
+    stem, v keel -> deck) the boundary is an ellipse arc in (u, v) around the seam,
+    ``clearance_u`` / ``clearance_v`` (parameter units) clear of it; on the bulb the section
+    ``bulb_clearance`` ahead of the seam's foremost point; ``tension``: cross-boundary tangent
+    length relative to a third of the gap.
+
+    Raises InvalidInput when the bulb cannot meet the hull or no boundary fits (the message
+    says why)."""
+    return _place_blend(hull, bulb, clearance_u, clearance_v, bulb_clearance, tension, {})
+
+
+def _place_blend(hull, bulb, clearance_u, clearance_v, bulb_clearance, tension, seam_options) -> BlendPlacement:
     surface_b = bulb.surface if isinstance(bulb, BulbousBow) else bulb
     if not isinstance(hull, NurbsSurface) or not isinstance(surface_b, NurbsSurface):
-        raise ValueError(f"seam_blend_placement takes NurbsSurface hull and bulb; got {type(hull).__name__}, "
-                         f"{type(surface_b).__name__}")
-    # The seam of compose([hull, bulb]) (same tracing, same checks) without meshing the
-    # union, which is all the boundaries need: the union mesh was most of this call's time.
-    oriented, seam = _native._hull_bulb_seam(hull, surface_b)
-    bounds = _boundaries_around_seam(oriented, seam, clearance_u=clearance_u, clearance_v=clearance_v,
-                                     bulb_clearance=bulb_clearance, points=65)
-    if isinstance(bounds, str):
-        raise ValueError(f"no blend fits between hull and bulb: {bounds}")
-    return BlendPlacement(oriented, surface_b, bounds[0], bounds[1], float(tension))
-
-
-def seam_blend(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, clearance_u: float = 0.05,
-               clearance_v: float = 0.01, bulb_clearance: float = 0.01, tension: float = 0.6,
-               samples: int = 61) -> BlendSurface:
-    """The blending surface around the seam a bulb makes on a bare hull, as one call:
-    :func:`seam_blend_placement`, then its surface (:func:`blend_surface`). The result goes
-    into ``compose([hull, bulb, blend])`` with the same hull (orientation is idempotent).
-    Raises ValueError when the bulb cannot meet the hull or no boundary fits (the message
-    says why)."""
-    return seam_blend_placement(hull, bulb, clearance_u=clearance_u, clearance_v=clearance_v,
-                                bulb_clearance=bulb_clearance, tension=tension).blend_surface(samples=samples)
+        raise _native.InvalidInput(f"hull and bulb are {type(hull).__name__}, {type(bulb).__name__}; expected a "
+                                   "NurbsSurface hull and a BulbousBow or NurbsSurface bulb")
+    # the seam compose([hull, bulb]) traces (same checks), without meshing the union
+    oriented, seam = _native._hull_bulb_seam(hull, surface_b, **seam_options)
+    on_hull, on_bulb = _boundaries_around_seam(oriented, seam, clearance_u=clearance_u, clearance_v=clearance_v,
+                                               bulb_clearance=bulb_clearance, points=65)
+    return BlendPlacement(oriented, surface_b, on_hull, on_bulb, float(tension))

@@ -167,7 +167,7 @@ def package_forebody(tree, **bulb_changes):
     surface = ev.outputs_of(tree, "Refine")["Surface"]
     hull = ev.outputs_of(tree, "SAC")["Hull"]
     bulb = hull.bulbous_bow(**bulb_changes)
-    blend = fl.seam_blend(surface, bulb)
+    blend = fl.seam_blend_placement(surface, bulb).blend_surface()
     return fl.compose([surface, bulb, blend]), hull.ship_particulars()
 
 
@@ -306,10 +306,11 @@ def t_bulb_length(tree):
     check(ran == {"Bulbous Bow", "Blend", "Compose", "Ship Output"}, "a bulb change re-ran %s" % sorted(ran))
     import fairlines as fl
     bi = blend_node.inputs  # single-precision socket values, as the node passes them
-    ref_blend = fl.seam_blend(ev.outputs_of(tree, "Refine")["Surface"], ev.outputs_of(tree, "Bulbous Bow")["Surface"],
-                              clearance_u=bi["Clearance U"].default_value, clearance_v=bi["Clearance V"].default_value,
-                              bulb_clearance=bi["Bulb Clearance"].default_value, tension=bi["Tension"].default_value,
-                              samples=bi["Sections"].default_value)
+    ref_blend = fl.seam_blend_placement(
+        ev.outputs_of(tree, "Refine")["Surface"], ev.outputs_of(tree, "Bulbous Bow")["Surface"],
+        clearance_u=bi["Clearance U"].default_value, clearance_v=bi["Clearance V"].default_value,
+        bulb_clearance=bi["Bulb Clearance"].default_value,
+        tension=bi["Tension"].default_value).blend_surface(samples=bi["Sections"].default_value)
     check(np.array_equal(np.asarray(ev.outputs_of(tree, "Blend")["Surface"].control_points),
                          np.asarray(ref_blend.surface.control_points)), "the Blend node's surface is not fl.seam_blend's")
     check(blend_node.fl_info != blend_info0 and "%.3f deg at hull" % ref_blend.at_a["max_angle_deg"] in blend_node.fl_info,

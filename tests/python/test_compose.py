@@ -333,23 +333,27 @@ def test_hull_bulb_and_blend_compose_into_one_watertight_c1_hull(composed, bulb)
 
 
 def test_seam_blend_is_c1_and_composes_with_the_original_hull(hull, bulb):
-    """fl.seam_blend (the Blender Blend node's one call) gives a blend that composes with the
-    *unoriented* hull (orientation is idempotent) into a watertight, C1 hull."""
-    bl = fl.seam_blend(hull, bulb)
+    """fl.seam_blend_placement(...).blend_surface() (the Blender Blend node's call) gives a
+    blend that composes with the *unoriented* hull (orientation is idempotent) into a
+    watertight, C1 hull."""
+    bl = fl.seam_blend_placement(hull, bulb).blend_surface()
     a = fl.compose([hull, bulb, bl])
     assert edge_census(a.mesh.faces) == (0, 0, 0)
     assert max(d["max_angle_deg"] for d in a.blend_continuity) <= MAX_BLEND_ANGLE_DEG
     with pytest.raises(ValueError, match="cannot meet"):
-        fl.seam_blend(hull, fl.BulbousBow(**dict(SHIP, x_fp=L + 60.0)))
+        fl.seam_blend_placement(hull, fl.BulbousBow(**dict(SHIP, x_fp=L + 60.0)))
 
 
 def test_seam_blend_equals_the_blend_around_the_union_seam(hull, bulb):
-    """seam_blend traces the seam without meshing the union (for the Blender latency); its
-    blend must be the one built from compose([hull, bulb])'s seam, bit for bit."""
+    """seam_blend_placement traces the seam without meshing the union (for the Blender
+    latency); its blend must be the one built from compose([hull, bulb])'s seam, bit for bit."""
+    from fairlines.compose import _boundaries_around_seam
+
     union = fl.compose([hull, bulb])
-    on_hull, on_bulb = fl.seam_blend_boundaries(union)
+    on_hull, on_bulb = _boundaries_around_seam(union.trimmed_surfaces[0][0], union.intersection_curves[0],
+                                               clearance_u=0.05, clearance_v=0.01, bulb_clearance=0.01, points=65)
     ref = fl.blend_surface(union.trimmed_surfaces[0][0], on_hull, bulb.surface, on_bulb, tension=0.6)
-    got = fl.seam_blend(hull, bulb, tension=0.6)
+    got = fl.seam_blend_placement(hull, bulb, tension=0.6).blend_surface()
     assert np.array_equal(got.boundary_a, ref.boundary_a) and got.boundary_b == ref.boundary_b
     assert np.array_equal(got.surface.control_points, ref.surface.control_points)
     assert got.at_a == ref.at_a and got.at_b == ref.at_b
@@ -363,7 +367,7 @@ def test_compose_takes_the_blend_placement_for_the_surface(hull, bulb):
     b = fl.compose([hull, bulb, placement.blend_surface()])
     assert np.array_equal(a.mesh.vertices, b.mesh.vertices) and np.array_equal(a.mesh.faces, b.mesh.faces)
     assert a.blend_continuity == b.blend_continuity
-    blend = fl.seam_blend(hull, bulb)
+    blend = fl.blend_surface(placement.hull, placement.boundary_a, bulb.surface, placement.boundary_b, tension=0.6)
     assert np.array_equal(placement.blend_surface().surface.control_points, blend.surface.control_points)
 
 

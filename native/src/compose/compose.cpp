@@ -6,12 +6,33 @@
 // the hole; the band between the cells and the seam is one simple polygon in scaled
 // parameter space, triangulated by ear clipping. The open boundary (centre plane, deck, aft
 // cut) is split into its three planar runs and each is capped by a planar polygon.
+//
+// compose_hull in steps: validate_options -> orient_bare_hull, aft_end -> HullGrid ->
+// join_bulb (trace_seam or seam_from_blend, add_seam_and_blend, add_bulb_strip,
+// cells_under_seam, fill_pockets_and_pinches, trace_staircase, add_band,
+// add_trimming_loops) -> add_kept_cells -> close_half_hull -> finish_mesh (closure check).
+//
+// Notation:
+//   H            the bare hull in the orient_bare_hull convention: u from the aft cut (u0) to
+//                the stem (u1), v from the keel (v0) to the deck (v1)
+//   B            the bulb: u from its aft end (bu0) to the nose pole (bu1), v from the bottom
+//                centre line (bv0) around to the top one (bv1)
+//   I, K         hull cells along u and v (hull_u, hull_v); node (i, k), cell (i, k) has
+//                index i K + k, node key i (K + 1) + k
+//   NV, NU, NT   bulb columns (bulb_v, also seam segments), bulb cells from seam to nose
+//                (bulb_u), blend rows (blend_rows)
+//   x_j          seam point at bulb column j: (u_h, v_h) on H and (u_b, v_b) on B
+//   perimeter p  position along the hull's centre-plane edges: keel p = (u - u0)/(u1 - u0)
+//                in [0, 1), stem p = 1 + (v - v0)/(v1 - v0); the seam spans [pa, pb]
+//   scaled space (u, v) mapped to metres: Ls (u - u0)/(u1 - u0), Lt (v - v0)/(v1 - v0), with
+//                Ls the hull length at half depth and Lt its girth at half length
 #include "fairlines/compose.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <tuple>
 #include <unordered_map>
 
 #include <Eigen/Dense>
@@ -233,15 +254,15 @@ void close_half_hull(MeshBuilder& mb, const AftEnd& aft, double z_deck, double t
 /// The seam of the union of the oriented bare hull H and bulb B: the one intersection branch
 /// that runs around the bulb from its bottom to its top centre line, re-sampled by Newton at the
 /// bulb's mesh columns v_j (j = 0 .. bulb_v) so that hull and bulb meshes can share those
-/// points. sx[j] = (u_h, v_h, u_b, v_b); rs holds the same points with their positions. Used by
+/// points. seam_x[j] = (u_h, v_h, u_b, v_b); curve holds the same points with their positions. Used by
 /// compose_hull and by hull_bulb_seam (the blend boundaries need the seam, not the mesh).
 void trace_seam(const NurbsSurface& H, const NurbsSurface& B, const ComposeOptions& o,
-                std::vector<Eigen::Vector4d>& sx, IntersectionCurve& rs) {
+                std::vector<Eigen::Vector4d>& seam_x, IntersectionCurve& curve) {
   const auto [bu0, bu1] = B.domain_u();
   const auto [bv0, bv1] = B.domain_v();
   const int NV = o.bulb_v;
-  sx.assign(NV + 1, Eigen::Vector4d::Zero());
-  rs = IntersectionCurve{};
+  seam_x.assign(NV + 1, Eigen::Vector4d::Zero());
+  curve = IntersectionCurve{};
   IntersectOptions io;
   io.tolerance = o.tolerance;
   const std::vector<IntersectionCurve> curves = intersect_surfaces(H, B, io);
@@ -294,16 +315,16 @@ void trace_seam(const NurbsSurface& H, const NurbsSurface& B, const ComposeOptio
       os << "compose: seam point at bulb v = " << vj << " did not converge (gap " << r << " m)";
       throw ConvergenceError(os.str());
     }
-    sx[j] = x;
+    seam_x[j] = x;
     const Eigen::Vector3d ph = H.evaluate(x[0], x[1]), pb = B.evaluate(x[2], x[3]);
-    rs.points.push_back({0.5 * (ph + pb), {x[0], x[1]}, {x[2], x[3]}});
-    rs.max_gap = std::max(rs.max_gap, (ph - pb).norm());
+    curve.points.push_back({0.5 * (ph + pb), {x[0], x[1]}, {x[2], x[3]}});
+    curve.max_gap = std::max(curve.max_gap, (ph - pb).norm());
   }
 }
 
 /// Perimeter coordinates of the seam's ends on the hull's centre-plane edges (keel: u in
 /// [0, 1), stem: 1 + v); throws when an end is elsewhere.
-void seam_ends_on_centre_line(const NurbsSurface& H, const std::vector<Eigen::Vector4d>& sx, double& pa,
+void seam_ends_on_centre_line(const NurbsSurface& H, const std::vector<Eigen::Vector4d>& seam_x, double& pa,
                               double& pb) {
   const auto [u0, u1] = H.domain_u();
   const auto [v0, v1] = H.domain_v();
@@ -314,7 +335,7 @@ void seam_ends_on_centre_line(const NurbsSurface& H, const std::vector<Eigen::Ve
     else return false;
     return true;
   };
-  if (!perim(sx.front(), pa) || !perim(sx.back(), pb))
+  if (!perim(seam_x.front(), pa) || !perim(seam_x.back(), pb))
     throw InvalidInput("bulb cannot meet the hull: the seam does not end on the hull's keel/stem centre line "
                        "(the bulb must be attached at the stem)");
 }
@@ -397,15 +418,16 @@ NurbsSurface orient_bare_hull(const NurbsSurface& hull, double tol_rel) {
 HullBulbSeam hull_bulb_seam(const NurbsSurface& hull, const NurbsSurface& bulb, const ComposeOptions& o) {
   if (o.bulb_v < 4) detail::fail("bulb_v is ", o.bulb_v, "; expected >= 4");
   HullBulbSeam out{orient_bare_hull(hull, o.plane_tolerance), {}};
-  std::vector<Eigen::Vector4d> sx;
-  trace_seam(out.hull, bulb, o, sx, out.seam);
+  std::vector<Eigen::Vector4d> seam_x;
+  trace_seam(out.hull, bulb, o, seam_x, out.seam);
   double pa = 0, pb = 0;
-  seam_ends_on_centre_line(out.hull, sx, pa, pb);
+  seam_ends_on_centre_line(out.hull, seam_x, pa, pb);
   return out;
 }
 
-ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb, const ComposeOptions& o,
-                          const BlendSpec* blend) {
+namespace {
+
+void validate_options(const ComposeOptions& o, const NurbsSurface* bulb, const BlendSpec* blend) {
   if (o.hull_u < 4) detail::fail("hull_u is ", o.hull_u, "; expected >= 4");
   if (o.hull_v < 4) detail::fail("hull_v is ", o.hull_v, "; expected >= 4");
   if (o.bulb_u < 2) detail::fail("bulb_u is ", o.bulb_u, "; expected >= 2");
@@ -415,319 +437,392 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
   if (o.blend_check_samples < 2)
     detail::fail("blend_check_samples is ", o.blend_check_samples, "; expected >= 2");
   if (blend && !bulb) detail::fail("a blend needs a bulb to blend into; got no bulb");
-  const NurbsSurface H = orient_bare_hull(hull_in, o.plane_tolerance);
-  ComposedHull out{TriMesh{}, Eigen::VectorXi(), {}, {}, Eigen::VectorXi(), 0.0, 0.0, H, {}, {}, {}};
-  const auto [u0, u1] = H.domain_u();
-  const auto [v0, v1] = H.domain_v();
-  out.x_aft = edge_points(H, true, false).col(0).mean();
-  out.z_deck = edge_points(H, false, true).col(2).mean();
-  AftEnd aft = aft_end(H, out.z_deck, o.plane_tolerance);
-  if (aft.on_centre_plane) aft.normal.setZero();  // the aft edge stays where it is
-  const double plane_tol = o.plane_tolerance * size_of(H);
-  const int I = o.hull_u, K = o.hull_v;
-  Eigen::VectorXd su(I + 1), tv(K + 1);
-  for (int i = 0; i <= I; ++i) su[i] = u0 + (u1 - u0) * i / I;
-  for (int k = 0; k <= K; ++k) tv[k] = v0 + (v1 - v0) * k / K;
-  su[I] = u1;
-  tv[K] = v1;
-  const Eigen::MatrixXd hull_grid = H.evaluate_grid(su, tv);
-  MeshBuilder mb;
-  std::vector<int> gid((I + 1) * (K + 1), -1);
-  auto grid_vertex = [&](int i, int k) {
-    int& g = gid[i * (K + 1) + k];
+}
+
+/// The hull's tessellation grid: I x K cells, node (i, k) at (su[i], tv[k]), node key
+/// i (K + 1) + k. Mesh vertices are added on first use, snapped onto the closing planes.
+struct HullGrid {
+  const NurbsSurface& H;
+  int I, K;
+  double u0, u1, v0, v1;
+  Eigen::VectorXd su, tv;
+  Eigen::MatrixXd pts;  ///< node positions, row = node key
+  AftEnd aft;
+  double z_deck;
+  std::vector<int> gid;  ///< mesh vertex of each node, -1 until used
+  double Ls = 0.0, Lt = 0.0;  ///< lengths (m) of the scaled parameter space along u and v
+
+  HullGrid(const NurbsSurface& hull, int cells_u, int cells_v, const AftEnd& aft_end, double deck)
+      : H(hull), I(cells_u), K(cells_v), aft(aft_end), z_deck(deck) {
+    std::tie(u0, u1) = H.domain_u();
+    std::tie(v0, v1) = H.domain_v();
+    su.resize(I + 1);
+    tv.resize(K + 1);
+    for (int i = 0; i <= I; ++i) su[i] = u0 + (u1 - u0) * i / I;
+    for (int k = 0; k <= K; ++k) tv[k] = v0 + (v1 - v0) * k / K;
+    su[I] = u1;
+    tv[K] = v1;
+    pts = H.evaluate_grid(su, tv);
+    gid.assign((I + 1) * (K + 1), -1);
+    // the stem-to-aft length at half depth and the keel-to-deck girth at half length
+    Ls = (pts.row(key(I, K / 2)) - pts.row(key(0, K / 2))).norm();
+    for (int k = 0; k < K; ++k) Lt += (pts.row(key(I / 2, k + 1)) - pts.row(key(I / 2, k))).norm();
+  }
+  int key(int i, int k) const { return i * (K + 1) + k; }
+  int vertex(MeshBuilder& mb, int i, int k) {
+    int& g = gid[key(i, k)];
     if (g < 0) {
-      Eigen::Vector3d p = hull_grid.row(i * (K + 1) + k).transpose();
+      Eigen::Vector3d p = pts.row(key(i, k)).transpose();
       if (i == 0) p -= (aft.normal.dot(p) - aft.offset) * aft.normal;  // onto the transom plane
       if (k == 0 || i == I || (i == 0 && aft.on_centre_plane)) p.y() = 0.0;
-      if (k == K) p.z() = out.z_deck;
+      if (k == K) p.z() = z_deck;
       g = mb.add(p);
     }
     return g;
-  };
-  std::vector<char> removed(I * K, 0);
-  TrimmedSurface hull_trim;
-  hull_trim.subdomain = 0;
+  }
+  int vertex(MeshBuilder& mb, int node) { return vertex(mb, node / (K + 1), node % (K + 1)); }
+  /// (u, v) mapped to roughly metres, so that distances and ear clipping are not skewed
+  Eigen::Vector2d scaled(double s, double t) const {
+    return {Ls * (s - u0) / (u1 - u0), Lt * (t - v0) / (v1 - v0)};
+  }
+  Eigen::Vector2d scaled_node(int node) const { return scaled(su[node / (K + 1)], tv[node % (K + 1)]); }
+  /// Perimeter coordinate p of a node on the centre-plane edges; false elsewhere.
+  bool perimeter(int node, double& p) const {
+    const int i = node / (K + 1), k = node % (K + 1);
+    if (k == 0) p = (su[i] - u0) / (u1 - u0);
+    else if (i == I) p = 1.0 + (tv[k] - v0) / (v1 - v0);
+    else return false;
+    return true;
+  }
+};
 
-  if (bulb) {
-    out.bulb.push_back(*bulb);
-    const NurbsSurface& B = *bulb;
-    const auto [bu0, bu1] = B.domain_u();
-    const auto [bv0, bv1] = B.domain_v();
-    const int NV = o.bulb_v, NU = o.bulb_u;
-    std::vector<Eigen::Vector4d> sx(NV + 1);
-    IntersectionCurve rs;
-    std::vector<Eigen::Vector3d> blend_pts;  // blend mode: (NV + 1) x (rows - 1) interior points
-    const int NT = o.blend_rows;
-    if (!blend) {
-      trace_seam(H, B, o, sx, rs);
-    } else {
-      Eigen::MatrixXd hb = blend->hull_uv;
-      if (hb.cols() != 2 || hb.rows() < 2)
-        detail::fail("blend hull boundary has shape (", hb.rows(), ", ", hb.cols(), "); expected (k, 2), k >= 2");
-      if (!(blend->bulb_u > bu0 && blend->bulb_u < bu1))
-        detail::fail("blend bulb_u is ", blend->bulb_u, "; expected inside the bulb's u domain (", bu0, ", ", bu1, ")");
-      const Eigen::Vector3d first = H.evaluate(hb(0, 0), hb(0, 1)), last = H.evaluate(hb(hb.rows() - 1, 0), hb(hb.rows() - 1, 1));
-      if (first.z() > last.z()) hb = hb.colwise().reverse().eval();  // bottom -> top, like the bulb's v
-      Eigen::MatrixXd bb(129, 2);
-      for (int q = 0; q < 129; ++q) bb.row(q) << blend->bulb_u, bv0 + (bv1 - bv0) * q / 128.0;
-      BlendOptions bo;
-      constexpr int kSectionsPerColumn = 4;  // the skin is finer than the mesh columns
-      bo.samples = kSectionsPerColumn * NV + 1;
-      bo.tension = blend->tension;
-      bo.check_samples = o.blend_check_samples;  // default: every half per cent of the boundary
-      const BlendSurface bs = blend_surface(H, hb, B, bb, bo);
-      out.blend.push_back(bs.surface);
-      out.blend_params.resize(bs.params_s.size(), 5);
-      out.blend_params << bs.params_s, bs.params_a, bs.params_b;
-      out.blend_at_hull = bs.at_a;
-      out.blend_at_bulb = bs.at_b;
-      for (int j = 0; j <= NV; ++j) {
-        const int q = kSectionsPerColumn * j;
-        sx[j] << bs.params_a(q, 0), bs.params_a(q, 1), bs.params_b(q, 0), bs.params_b(q, 1);
-        const Eigen::Vector3d ph = H.evaluate(sx[j][0], sx[j][1]);
-        rs.points.push_back({ph, {sx[j][0], sx[j][1]}, {bs.params_s[q], 0.0}});
-        for (int k = 1; k < NT; ++k) {
-          Eigen::Vector3d p = bs.surface.evaluate(bs.params_s[q], static_cast<double>(k) / NT);
-          if (j == 0 || j == NV) p.y() = 0.0;
-          blend_pts.push_back(p);
-        }
-      }
-    }
-    // seam ends must sit on the hull's centre-plane edges
-    double pa = 0, pb = 0;
-    seam_ends_on_centre_line(H, sx, pa, pb);
-    const bool seam_reversed = pa > pb;  // walk the seam from lower to higher perimeter coordinate
-    if (seam_reversed) std::swap(pa, pb);
-    // bulb vertices
-    std::vector<int> seam_id(NV + 1), bulb_seam_id(NV + 1);
-    for (int j = 0; j <= NV; ++j) {
-      Eigen::Vector3d p = rs.points[j].point;
+/// The seam at the mesh resolution and its mesh vertices: x[j] = (u_h, v_h, u_b, v_b) at
+/// bulb column j; [pa, pb] the perimeter interval it spans (pa < pb; `reversed` when x runs
+/// from pb to pa).
+struct MeshSeam {
+  std::vector<Eigen::Vector4d> x;
+  IntersectionCurve curve;
+  std::vector<Eigen::Vector3d> blend_pts;  ///< with a blend: (NV + 1) x (NT - 1) interior points
+  double pa = 0.0, pb = 0.0;
+  bool reversed = false;
+  std::vector<int> hull_id, bulb_id;  ///< mesh vertices on the hull side and the bulb side
+  std::vector<Eigen::Vector2d> scaled;  ///< hull side in HullGrid::scaled coordinates
+};
+
+/// With a blend the seam is the blend's two boundaries: skins the blend (finer than the
+/// mesh columns) and reads the hull and bulb boundary points at the bulb columns.
+void seam_from_blend(const NurbsSurface& H, const NurbsSurface& B, const ComposeOptions& o, const BlendSpec& blend,
+                     MeshSeam& seam, ComposedHull& out) {
+  const auto [bu0, bu1] = B.domain_u();
+  const auto [bv0, bv1] = B.domain_v();
+  const int NV = o.bulb_v, NT = o.blend_rows;
+  Eigen::MatrixXd on_hull = blend.hull_uv;
+  if (on_hull.cols() != 2 || on_hull.rows() < 2)
+    detail::fail("blend hull boundary has shape (", on_hull.rows(), ", ", on_hull.cols(), "); expected (k, 2), k >= 2");
+  if (!(blend.bulb_u > bu0 && blend.bulb_u < bu1))
+    detail::fail("blend bulb_u is ", blend.bulb_u, "; expected inside the bulb's u domain (", bu0, ", ", bu1, ")");
+  const Eigen::Index last = on_hull.rows() - 1;
+  if (H.evaluate(on_hull(0, 0), on_hull(0, 1)).z() > H.evaluate(on_hull(last, 0), on_hull(last, 1)).z())
+    on_hull = on_hull.colwise().reverse().eval();  // bottom -> top, like the bulb's v
+  Eigen::MatrixXd on_bulb(129, 2);
+  for (int q = 0; q < 129; ++q) on_bulb.row(q) << blend.bulb_u, bv0 + (bv1 - bv0) * q / 128.0;
+  BlendOptions bo;
+  constexpr int kSectionsPerColumn = 4;  // the skin is finer than the mesh columns
+  bo.samples = kSectionsPerColumn * NV + 1;
+  bo.tension = blend.tension;
+  bo.check_samples = o.blend_check_samples;
+  const BlendSurface bs = blend_surface(H, on_hull, B, on_bulb, bo);
+  out.blend.push_back(bs.surface);
+  out.blend_params.resize(bs.params_s.size(), 5);
+  out.blend_params << bs.params_s, bs.params_a, bs.params_b;
+  out.blend_at_hull = bs.at_a;
+  out.blend_at_bulb = bs.at_b;
+  seam.x.assign(NV + 1, Eigen::Vector4d::Zero());
+  for (int j = 0; j <= NV; ++j) {
+    const int q = kSectionsPerColumn * j;
+    seam.x[j] << bs.params_a(q, 0), bs.params_a(q, 1), bs.params_b(q, 0), bs.params_b(q, 1);
+    seam.curve.points.push_back({H.evaluate(seam.x[j][0], seam.x[j][1]), {seam.x[j][0], seam.x[j][1]}, {bs.params_s[q], 0.0}});
+    for (int k = 1; k < NT; ++k) {
+      Eigen::Vector3d p = bs.surface.evaluate(bs.params_s[q], static_cast<double>(k) / NT);
       if (j == 0 || j == NV) p.y() = 0.0;
-      seam_id[j] = mb.add(p);
+      seam.blend_pts.push_back(p);
     }
-    if (!blend) {
-      bulb_seam_id = seam_id;
-    } else {
-      std::vector<int> col(NT + 1);
-      std::vector<int> prev;
-      for (int j = 0; j <= NV; ++j) {
-        Eigen::Vector3d pb = B.evaluate(sx[j][2], sx[j][3]);
-        if (j == 0 || j == NV) pb.y() = 0.0;
-        bulb_seam_id[j] = mb.add(pb);
-        col[0] = seam_id[j];
-        for (int k = 1; k < NT; ++k) col[k] = mb.add(blend_pts[static_cast<size_t>(j) * (NT - 1) + k - 1]);
-        col[NT] = bulb_seam_id[j];
-        if (j > 0)
-          for (int k = 0; k < NT; ++k) {
-            mb.tri(prev[k], col[k], col[k + 1], FacePart::Blend);
-            mb.tri(prev[k], col[k + 1], prev[k + 1], FacePart::Blend);
-          }
-        prev = col;
+  }
+}
+
+/// Seam vertices on the hull side; with a blend also those on the bulb side and the blend
+/// strip between them (NT rows of quads per column).
+void add_seam_and_blend(MeshBuilder& mb, const NurbsSurface& B, MeshSeam& seam, int NT, bool with_blend) {
+  const int NV = static_cast<int>(seam.x.size()) - 1;
+  seam.hull_id.resize(NV + 1);
+  for (int j = 0; j <= NV; ++j) {
+    Eigen::Vector3d p = seam.curve.points[j].point;
+    if (j == 0 || j == NV) p.y() = 0.0;
+    seam.hull_id[j] = mb.add(p);
+  }
+  if (!with_blend) {
+    seam.bulb_id = seam.hull_id;
+    return;
+  }
+  seam.bulb_id.resize(NV + 1);
+  std::vector<int> col(NT + 1), prev;
+  for (int j = 0; j <= NV; ++j) {
+    Eigen::Vector3d pb = B.evaluate(seam.x[j][2], seam.x[j][3]);
+    if (j == 0 || j == NV) pb.y() = 0.0;
+    seam.bulb_id[j] = mb.add(pb);
+    col[0] = seam.hull_id[j];
+    for (int k = 1; k < NT; ++k) col[k] = mb.add(seam.blend_pts[static_cast<size_t>(j) * (NT - 1) + k - 1]);
+    col[NT] = seam.bulb_id[j];
+    if (j > 0)
+      for (int k = 0; k < NT; ++k) {
+        mb.tri(prev[k], col[k], col[k + 1], FacePart::Blend);
+        mb.tri(prev[k], col[k + 1], prev[k + 1], FacePart::Blend);
       }
+    prev = col;
+  }
+}
+
+/// The bulb ahead of the seam: NU structured cells per column from the seam to the nose
+/// pole, the last closed by a fan to the pole.
+void add_bulb_strip(MeshBuilder& mb, const NurbsSurface& B, const MeshSeam& seam, int NU) {
+  const int NV = static_cast<int>(seam.x.size()) - 1;
+  const auto [bu0, bu1] = B.domain_u();
+  const auto [bv0, bv1] = B.domain_v();
+  Eigen::Vector3d pole = B.evaluate(bu1, 0.5 * (bv0 + bv1));
+  pole.y() = 0.0;
+  const int pole_id = mb.add(pole);
+  std::vector<int> bid((NV + 1) * NU);
+  for (int j = 0; j <= NV; ++j) {
+    bid[j * NU] = seam.bulb_id[j];
+    for (int i = 1; i < NU; ++i) {
+      const double ui = seam.x[j][2] + (bu1 - seam.x[j][2]) * i / NU;
+      Eigen::Vector3d p = B.evaluate(ui, seam.x[j][3]);
+      if (j == 0 || j == NV) p.y() = 0.0;
+      bid[j * NU + i] = mb.add(p);
     }
-    Eigen::Vector3d pole = B.evaluate(bu1, 0.5 * (bv0 + bv1));
-    pole.y() = 0.0;
-    const int pole_id = mb.add(pole);
-    std::vector<int> bid((NV + 1) * NU);
-    for (int j = 0; j <= NV; ++j) {
-      const double vj = sx[j][3];
-      bid[j * NU] = bulb_seam_id[j];
-      for (int i = 1; i < NU; ++i) {
-        const double ui = sx[j][2] + (bu1 - sx[j][2]) * i / NU;
-        Eigen::Vector3d p = B.evaluate(ui, vj);
-        if (j == 0 || j == NV) p.y() = 0.0;
-        bid[j * NU + i] = mb.add(p);
-      }
+  }
+  for (int j = 0; j < NV; ++j) {
+    for (int i = 0; i + 1 < NU; ++i) {
+      const int a = bid[j * NU + i], b = bid[(j + 1) * NU + i], c = bid[(j + 1) * NU + i + 1], d = bid[j * NU + i + 1];
+      mb.tri(a, b, c, FacePart::Bulb);
+      mb.tri(a, c, d, FacePart::Bulb);
     }
-    for (int j = 0; j < NV; ++j) {
-      for (int i = 0; i + 1 < NU; ++i) {
-        const int a = bid[j * NU + i], b = bid[(j + 1) * NU + i], c = bid[(j + 1) * NU + i + 1], d = bid[j * NU + i + 1];
-        mb.tri(a, b, c, FacePart::Bulb);
-        mb.tri(a, c, d, FacePart::Bulb);
-      }
-      mb.tri(bid[j * NU + NU - 1], bid[(j + 1) * NU + NU - 1], pole_id, FacePart::Bulb);
+    mb.tri(bid[j * NU + NU - 1], bid[(j + 1) * NU + NU - 1], pole_id, FacePart::Bulb);
+  }
+}
+
+/// Hull cells (index i K + k) that touch the hole the seam cuts or lie within `margin`
+/// cells of the seam, and every cell the seam passes through.
+std::vector<char> cells_under_seam(const HullGrid& g, const MeshSeam& seam, double margin) {
+  const int I = g.I, K = g.K, NV = static_cast<int>(seam.x.size()) - 1;
+  std::vector<Eigen::Vector2d> hole = seam.scaled;  // closed along the centre-plane edges (short way)
+  const double p_first = seam.reversed ? seam.pb : seam.pa, p_last = seam.reversed ? seam.pa : seam.pb;
+  if ((p_first - 1.0) * (p_last - 1.0) < 0.0) hole.push_back(g.scaled(g.u1, g.v0));  // around the stem foot
+  const double clearance = margin * std::min(g.Ls / I, g.Lt / K);
+  std::vector<char> node_out((I + 1) * (K + 1), 0);
+  for (int i = 0; i <= I; ++i)
+    for (int k = 0; k <= K; ++k) {
+      const Eigen::Vector2d q = g.scaled(g.su[i], g.tv[k]);
+      bool r = point_in_polygon(q, hole);
+      for (int j = 0; j < NV && !r; ++j) r = seg_dist(q, seam.scaled[j], seam.scaled[j + 1]) < clearance;
+      node_out[g.key(i, k)] = r;
     }
-    // hull hole in scaled parameter space
-    const double Ls = (hull_grid.row(I * (K + 1) + K / 2) - hull_grid.row(K / 2)).norm();
-    double Lt = 0.0;
-    for (int k = 0; k < K; ++k) Lt += (hull_grid.row((I / 2) * (K + 1) + k + 1) - hull_grid.row((I / 2) * (K + 1) + k)).norm();
-    auto scaled = [&](double s, double t) { return Eigen::Vector2d(Ls * (s - u0) / (u1 - u0), Lt * (t - v0) / (v1 - v0)); };
-    std::vector<Eigen::Vector2d> seam2(NV + 1);
-    for (int j = 0; j <= NV; ++j) seam2[j] = scaled(sx[j][0], sx[j][1]);
-    std::vector<Eigen::Vector2d> hole = seam2;  // close along the centre-plane edges (short way)
-    const double pj0 = seam_reversed ? pb : pa, pjN = seam_reversed ? pa : pb;
-    if ((pj0 - 1.0) * (pjN - 1.0) < 0.0) hole.push_back(scaled(u1, v0));
-    const double cell = std::min(Ls / I, Lt / K);
-    const double margin = o.margin * cell;
-    std::vector<char> vrem((I + 1) * (K + 1), 0);
-    for (int i = 0; i <= I; ++i)
-      for (int k = 0; k <= K; ++k) {
-        const Eigen::Vector2d q = scaled(su[i], tv[k]);
-        bool r = point_in_polygon(q, hole);
-        for (int j = 0; j < NV && !r; ++j) r = seg_dist(q, seam2[j], seam2[j + 1]) < margin;
-        vrem[i * (K + 1) + k] = r;
+  std::vector<char> removed(I * K, 0);
+  for (int i = 0; i < I; ++i)
+    for (int k = 0; k < K; ++k)
+      removed[i * K + k] = node_out[g.key(i, k)] || node_out[g.key(i + 1, k)] || node_out[g.key(i, k + 1)] ||
+                           node_out[g.key(i + 1, k + 1)];
+  constexpr int kSeamProbes = 16;  // points per seam segment at which its cell is removed
+  for (int j = 0; j < NV; ++j)
+    for (int s = 0; s <= kSeamProbes; ++s) {
+      const Eigen::Vector2d q = seam.scaled[j] + (seam.scaled[j + 1] - seam.scaled[j]) * (s / double(kSeamProbes));
+      const int ci = std::clamp(static_cast<int>(std::floor(q.x() / (g.Ls / I))), 0, I - 1);
+      const int ck = std::clamp(static_cast<int>(std::floor(q.y() / (g.Lt / K))), 0, K - 1);
+      removed[ci * K + ck] = 1;
+    }
+  return removed;
+}
+
+/// Kept cells 4-connected to the aft deck cell (0, K - 1); the others are pockets.
+std::vector<char> reachable_from_aft_deck(const std::vector<char>& removed, int I, int K) {
+  std::vector<char> reach(I * K, 0);
+  std::vector<int> stack;
+  if (!removed[K - 1]) {
+    reach[K - 1] = 1;
+    stack.push_back(K - 1);
+  }
+  while (!stack.empty()) {
+    const int c = stack.back();
+    stack.pop_back();
+    const int ci = c / K, ck = c % K;
+    const int nb[4][2] = {{ci - 1, ck}, {ci + 1, ck}, {ci, ck - 1}, {ci, ck + 1}};
+    for (const auto& q : nb) {
+      if (q[0] < 0 || q[0] >= I || q[1] < 0 || q[1] >= K) continue;
+      const int d = q[0] * K + q[1];
+      if (removed[d] || reach[d]) continue;
+      reach[d] = 1;
+      stack.push_back(d);
+    }
+  }
+  return reach;
+}
+
+/// Regularizes the removed region until it is stable: fills kept pockets and removes the
+/// kept pair of a diagonal pinch, so that its boundary is one simple staircase.
+void fill_pockets_and_pinches(std::vector<char>& removed, int I, int K) {
+  for (bool changed = true; changed;) {
+    changed = false;
+    const std::vector<char> reach = reachable_from_aft_deck(removed, I, K);
+    for (int c = 0; c < I * K; ++c)
+      if (!removed[c] && !reach[c]) {
+        removed[c] = 1;
+        changed = true;
       }
-    auto cell_of = [&](const Eigen::Vector2d& q, int& i, int& k) {
-      i = std::clamp(static_cast<int>(std::floor(q.x() / (Ls / I))), 0, I - 1);
-      k = std::clamp(static_cast<int>(std::floor(q.y() / (Lt / K))), 0, K - 1);
-    };
-    for (int i = 0; i < I; ++i)
-      for (int k = 0; k < K; ++k)
-        removed[i * K + k] = vrem[i * (K + 1) + k] || vrem[(i + 1) * (K + 1) + k] || vrem[i * (K + 1) + k + 1] ||
-                             vrem[(i + 1) * (K + 1) + k + 1];
-    for (int j = 0; j < NV; ++j)
-      for (int s = 0; s <= 16; ++s) {
-        int ci, ck;
-        cell_of(seam2[j] + (seam2[j + 1] - seam2[j]) * (s / 16.0), ci, ck);
-        removed[ci * K + ck] = 1;
-      }
-    // regularize: fill kept pockets (not 4-connected to the aft-deck cell) and diagonal pinches
-    for (bool changed = true; changed;) {
-      changed = false;
-      std::vector<char> reach(I * K, 0);
-      std::vector<int> stack;
-      if (!removed[0 * K + K - 1]) {
-        reach[K - 1] = 1;
-        stack.push_back(K - 1);
-      }
-      while (!stack.empty()) {
-        const int c = stack.back();
-        stack.pop_back();
-        const int ci = c / K, ck = c % K;
-        const int nb[4][2] = {{ci - 1, ck}, {ci + 1, ck}, {ci, ck - 1}, {ci, ck + 1}};
-        for (const auto& q : nb) {
-          if (q[0] < 0 || q[0] >= I || q[1] < 0 || q[1] >= K) continue;
-          const int d = q[0] * K + q[1];
-          if (removed[d] || reach[d]) continue;
-          reach[d] = 1;
-          stack.push_back(d);
-        }
-      }
-      for (int c = 0; c < I * K; ++c)
-        if (!removed[c] && !reach[c]) {
-          removed[c] = 1;
+    for (int i = 0; i + 1 < I; ++i)
+      for (int k = 0; k + 1 < K; ++k) {
+        char& a = removed[i * K + k];
+        char& b = removed[(i + 1) * K + k];
+        char& c = removed[i * K + k + 1];
+        char& d = removed[(i + 1) * K + k + 1];
+        if (a == d && b == c && a != b) {
+          a = b = c = d = 1;
           changed = true;
         }
-      for (int i = 0; i + 1 < I; ++i)
-        for (int k = 0; k + 1 < K; ++k) {
-          const char a = removed[i * K + k], b = removed[(i + 1) * K + k], c = removed[i * K + k + 1],
-                     d = removed[(i + 1) * K + k + 1];
-          if (a == d && b == c && a != b) {  // diagonal pinch: remove the kept pair
-            removed[i * K + k] = removed[(i + 1) * K + k] = removed[i * K + k + 1] = removed[(i + 1) * K + k + 1] = 1;
-            changed = true;
-          }
-        }
-    }
-    for (int i = 0; i < I; ++i)
-      if (removed[i * K + K - 1])
-        throw InvalidInput("bulb cannot meet the hull: the bulb seam reaches the deck; the bulb is too high or too large");
-    for (int k = 0; k < K; ++k)
-      if (removed[0 * K + k])
-        throw InvalidInput("bulb cannot meet the hull: the bulb seam reaches the aft cut of the hull surface");
-    // staircase: boundary edges of the removed region between removed and kept cells, R on the left
-    std::unordered_map<int, int> nxt, has_in;
-    auto vkey = [&](int i, int k) { return i * (K + 1) + k; };
-    for (int i = 0; i < I; ++i)
-      for (int k = 0; k < K; ++k) {
-        if (!removed[i * K + k]) continue;
-        // ccw edges: bottom (i,k)->(i+1,k), right (i+1,k)->(i+1,k+1), top (i+1,k+1)->(i,k+1), left (i,k+1)->(i,k)
-        if (k > 0 && !removed[i * K + k - 1]) nxt[vkey(i, k)] = vkey(i + 1, k);
-        if (i + 1 < I && !removed[(i + 1) * K + k]) nxt[vkey(i + 1, k)] = vkey(i + 1, k + 1);
-        if (k + 1 < K && !removed[i * K + k + 1]) nxt[vkey(i + 1, k + 1)] = vkey(i, k + 1);
-        if (i > 0 && !removed[(i - 1) * K + k]) nxt[vkey(i, k + 1)] = vkey(i, k);
       }
-    for (const auto& [a, b] : nxt) has_in[b] = 1;
-    int st = -1, n_starts = 0;
-    for (const auto& [a, b] : nxt)
-      if (!has_in.count(a)) {
-        st = a;
-        ++n_starts;
-      }
-    if (n_starts != 1)
-      throw Error("compose: the trimmed hull band is not one simple strip; refine hull_u / hull_v");
-    std::vector<int> stair{st};
-    while (nxt.count(stair.back())) {
-      stair.push_back(nxt[stair.back()]);
-      if (stair.size() > nxt.size() + 1) throw Error("compose: staircase of the hull band loops");
-    }
-    if (stair.size() != nxt.size() + 1)
-      throw Error("compose: the removed hull region has more than one boundary; refine hull_u / hull_v");
-    auto perim_v = [&](int key, double& p) {
-      const int i = key / (K + 1), k = key % (K + 1);
-      if (k == 0) p = (su[i] - u0) / (u1 - u0);
-      else if (i == I) p = 1.0 + (tv[k] - v0) / (v1 - v0);
-      else return false;
-      return true;
-    };
-    double ps = 0, pe = 0;
-    if (!perim_v(stair.front(), ps) || !perim_v(stair.back(), pe) || !(pe <= pa && pb <= ps))
-      throw Error("compose: the hull band does not end on the centre-plane edges around the seam; refine the grid");
-    // band polygon: staircase (start -> end), boundary up to the seam, seam, boundary back to start
-    std::vector<int> poly_id;
-    std::vector<Eigen::Vector2d> poly2;
-    for (int key : stair) {
-      const int i = key / (K + 1), k = key % (K + 1);
-      poly_id.push_back(grid_vertex(i, k));
-      poly2.push_back(scaled(su[i], tv[k]));
-    }
-    std::vector<std::pair<double, int>> bnd;  // boundary grid vertices on the centre-plane edges
-    for (int i = 0; i <= I; ++i) bnd.push_back({(su[i] - u0) / (u1 - u0), vkey(i, 0)});
-    for (int k = 1; k <= K; ++k) bnd.push_back({1.0 + (tv[k] - v0) / (v1 - v0), vkey(I, k)});
-    const double peps = 1e-9;
-    for (const auto& [p, key] : bnd)
-      if (p > pe + peps && p < pa - peps) {
-        poly_id.push_back(grid_vertex(key / (K + 1), key % (K + 1)));
-        poly2.push_back(scaled(su[key / (K + 1)], tv[key % (K + 1)]));
-      }
-    for (int j = 0; j <= NV; ++j) {
-      const int jj = seam_reversed ? NV - j : j;
-      poly_id.push_back(seam_id[jj]);
-      poly2.push_back(seam2[jj]);
-    }
-    for (const auto& [p, key] : bnd)
-      if (p > pb + peps && p < ps - peps) {
-        poly_id.push_back(grid_vertex(key / (K + 1), key % (K + 1)));
-        poly2.push_back(scaled(su[key / (K + 1)], tv[key % (K + 1)]));
-      }
-    Eigen::MatrixXd P2(static_cast<Eigen::Index>(poly2.size()), 2);
-    for (size_t q = 0; q < poly2.size(); ++q) P2.row(static_cast<Eigen::Index>(q)) = poly2[q].transpose();
-    std::vector<char> flat(poly_id.size());
-    for (size_t q = 0; q < poly_id.size(); ++q) flat[q] = mb.verts[poly_id[q]].y() == 0.0;
-    for (const auto& t : triangulate_polygon(P2, flat)) mb.tri(poly_id[t[0]], poly_id[t[1]], poly_id[t[2]], FacePart::Hull);
-    // trimming loops in parameter space
-    Eigen::MatrixXd hl(NV + 6, 2);
-    int r = 0;
-    hl.row(r++) << u0, v0;
-    if (pa > 1.0) hl.row(r++) << u1, v0;
-    for (int j = 0; j <= NV; ++j) hl.row(r++) = sx[seam_reversed ? NV - j : j].head<2>().transpose();
-    if (pb < 1.0) hl.row(r++) << u1, v0;
-    hl.row(r++) << u1, v1;
-    hl.row(r++) << u0, v1;
-    hull_trim.loops.push_back(hl.topRows(r));
-    TrimmedSurface bulb_trim;
-    bulb_trim.subdomain = 1;
-    Eigen::MatrixXd bl(NV + 3, 2);
-    bl.row(0) << bu1, bv0;
-    bl.row(1) << bu1, bv1;
-    for (int j = 0; j <= NV; ++j) bl.row(2 + j) << sx[NV - j][2], sx[NV - j][3];
-    bulb_trim.loops.push_back(bl);
-    out.trimmed_surfaces.push_back(std::move(hull_trim));
-    out.trimmed_surfaces.push_back(std::move(bulb_trim));
-    out.intersection_curves.push_back(std::move(rs));
-    out.seam_vertices.resize(NV + 1);
-    for (int j = 0; j <= NV; ++j) out.seam_vertices[j] = seam_id[j];
-  } else {
-    Eigen::MatrixXd hl(4, 2);
-    hl << u0, v0, u1, v0, u1, v1, u0, v1;
-    hull_trim.loops.push_back(hl);
-    out.trimmed_surfaces.push_back(std::move(hull_trim));
   }
   for (int i = 0; i < I; ++i)
+    if (removed[i * K + K - 1])
+      throw InvalidInput("bulb cannot meet the hull: the bulb seam reaches the deck; the bulb is too high or too large");
+  for (int k = 0; k < K; ++k)
+    if (removed[k]) throw InvalidInput("bulb cannot meet the hull: the bulb seam reaches the aft cut of the hull surface");
+}
+
+/// Node keys along the boundary between removed and kept cells, removed region on the left
+/// (its counter-clockwise edges), from one centre-plane edge to the other.
+std::vector<int> trace_staircase(const std::vector<char>& removed, const HullGrid& g) {
+  const int I = g.I, K = g.K;
+  std::unordered_map<int, int> nxt, has_in;
+  for (int i = 0; i < I; ++i)
     for (int k = 0; k < K; ++k) {
-      if (removed[i * K + k]) continue;
-      const int a = grid_vertex(i, k), b = grid_vertex(i + 1, k), c = grid_vertex(i + 1, k + 1), d = grid_vertex(i, k + 1);
+      if (!removed[i * K + k]) continue;
+      if (k > 0 && !removed[i * K + k - 1]) nxt[g.key(i, k)] = g.key(i + 1, k);                  // bottom
+      if (i + 1 < I && !removed[(i + 1) * K + k]) nxt[g.key(i + 1, k)] = g.key(i + 1, k + 1);  // right
+      if (k + 1 < K && !removed[i * K + k + 1]) nxt[g.key(i + 1, k + 1)] = g.key(i, k + 1);    // top
+      if (i > 0 && !removed[(i - 1) * K + k]) nxt[g.key(i, k + 1)] = g.key(i, k);              // left
+    }
+  for (const auto& [a, b] : nxt) has_in[b] = 1;
+  int start = -1, n_starts = 0;
+  for (const auto& [a, b] : nxt)
+    if (!has_in.count(a)) {
+      start = a;
+      ++n_starts;
+    }
+  if (n_starts != 1) throw Error("compose: the trimmed hull band is not one simple strip; refine hull_u / hull_v");
+  std::vector<int> stair{start};
+  while (nxt.count(stair.back())) {
+    stair.push_back(nxt[stair.back()]);
+    if (stair.size() > nxt.size() + 1) throw Error("compose: staircase of the hull band loops");
+  }
+  if (stair.size() != nxt.size() + 1)
+    throw Error("compose: the removed hull region has more than one boundary; refine hull_u / hull_v");
+  return stair;
+}
+
+/// The band between the staircase and the seam as one simple polygon (staircase, the
+/// centre-plane edge up to the seam, the seam, the edge back), ear-clipped in scaled space.
+void add_band(MeshBuilder& mb, HullGrid& g, const std::vector<int>& stair, const MeshSeam& seam) {
+  double ps = 0, pe = 0;
+  if (!g.perimeter(stair.front(), ps) || !g.perimeter(stair.back(), pe) || !(pe <= seam.pa && seam.pb <= ps))
+    throw Error("compose: the hull band does not end on the centre-plane edges around the seam; refine the grid");
+  std::vector<int> poly_id;
+  std::vector<Eigen::Vector2d> poly2;
+  auto push_node = [&](int node) {
+    poly_id.push_back(g.vertex(mb, node));
+    poly2.push_back(g.scaled_node(node));
+  };
+  for (int node : stair) push_node(node);
+  std::vector<std::pair<double, int>> edge_nodes;  // nodes on the centre-plane edges by perimeter
+  for (int i = 0; i <= g.I; ++i) edge_nodes.push_back({(g.su[i] - g.u0) / (g.u1 - g.u0), g.key(i, 0)});
+  for (int k = 1; k <= g.K; ++k) edge_nodes.push_back({1.0 + (g.tv[k] - g.v0) / (g.v1 - g.v0), g.key(g.I, k)});
+  constexpr double kPerimeterEps = 1e-9;
+  for (const auto& [p, node] : edge_nodes)
+    if (p > pe + kPerimeterEps && p < seam.pa - kPerimeterEps) push_node(node);
+  const int NV = static_cast<int>(seam.x.size()) - 1;
+  for (int j = 0; j <= NV; ++j) {
+    const int jj = seam.reversed ? NV - j : j;
+    poly_id.push_back(seam.hull_id[jj]);
+    poly2.push_back(seam.scaled[jj]);
+  }
+  for (const auto& [p, node] : edge_nodes)
+    if (p > seam.pb + kPerimeterEps && p < ps - kPerimeterEps) push_node(node);
+  Eigen::MatrixXd P2(static_cast<Eigen::Index>(poly2.size()), 2);
+  for (size_t q = 0; q < poly2.size(); ++q) P2.row(static_cast<Eigen::Index>(q)) = poly2[q].transpose();
+  std::vector<char> flat(poly_id.size());
+  for (size_t q = 0; q < poly_id.size(); ++q) flat[q] = mb.verts[poly_id[q]].y() == 0.0;
+  for (const auto& t : triangulate_polygon(P2, flat)) mb.tri(poly_id[t[0]], poly_id[t[1]], poly_id[t[2]], FacePart::Hull);
+}
+
+/// Trimming loops in parameter space: the hull outside the seam, the bulb ahead of it.
+void add_trimming_loops(const HullGrid& g, const NurbsSurface& B, const MeshSeam& seam, ComposedHull& out) {
+  const int NV = static_cast<int>(seam.x.size()) - 1;
+  TrimmedSurface hull_trim;
+  hull_trim.subdomain = 0;
+  Eigen::MatrixXd hl(NV + 6, 2);
+  int r = 0;
+  hl.row(r++) << g.u0, g.v0;
+  if (seam.pa > 1.0) hl.row(r++) << g.u1, g.v0;
+  for (int j = 0; j <= NV; ++j) hl.row(r++) = seam.x[seam.reversed ? NV - j : j].head<2>().transpose();
+  if (seam.pb < 1.0) hl.row(r++) << g.u1, g.v0;
+  hl.row(r++) << g.u1, g.v1;
+  hl.row(r++) << g.u0, g.v1;
+  hull_trim.loops.push_back(hl.topRows(r));
+  TrimmedSurface bulb_trim;
+  bulb_trim.subdomain = 1;
+  const auto [bu0, bu1] = B.domain_u();
+  const auto [bv0, bv1] = B.domain_v();
+  Eigen::MatrixXd bl(NV + 3, 2);
+  bl.row(0) << bu1, bv0;
+  bl.row(1) << bu1, bv1;
+  for (int j = 0; j <= NV; ++j) bl.row(2 + j) << seam.x[NV - j][2], seam.x[NV - j][3];
+  bulb_trim.loops.push_back(bl);
+  out.trimmed_surfaces.push_back(std::move(hull_trim));
+  out.trimmed_surfaces.push_back(std::move(bulb_trim));
+}
+
+/// Meshes the bulb (and blend) and the hull band around the seam; returns the hull cells the
+/// bulb removes.
+std::vector<char> join_bulb(MeshBuilder& mb, HullGrid& g, const NurbsSurface& B, const ComposeOptions& o,
+                            const BlendSpec* blend, ComposedHull& out) {
+  out.bulb.push_back(B);
+  MeshSeam seam;
+  if (blend) seam_from_blend(g.H, B, o, *blend, seam, out);
+  else trace_seam(g.H, B, o, seam.x, seam.curve);
+  seam_ends_on_centre_line(g.H, seam.x, seam.pa, seam.pb);
+  seam.reversed = seam.pa > seam.pb;  // walk the seam from lower to higher perimeter coordinate
+  if (seam.reversed) std::swap(seam.pa, seam.pb);
+  add_seam_and_blend(mb, B, seam, o.blend_rows, blend != nullptr);
+  add_bulb_strip(mb, B, seam, o.bulb_u);
+  for (const auto& x : seam.x) seam.scaled.push_back(g.scaled(x[0], x[1]));
+  std::vector<char> removed = cells_under_seam(g, seam, o.margin);
+  fill_pockets_and_pinches(removed, g.I, g.K);
+  add_band(mb, g, trace_staircase(removed, g), seam);
+  add_trimming_loops(g, B, seam, out);
+  const int NV = static_cast<int>(seam.x.size()) - 1;
+  out.seam_vertices.resize(NV + 1);
+  for (int j = 0; j <= NV; ++j) out.seam_vertices[j] = seam.hull_id[j];
+  out.intersection_curves.push_back(std::move(seam.curve));
+  return removed;
+}
+
+/// Two triangles per kept hull cell, split so that no triangle lies in the centre plane.
+void add_kept_cells(MeshBuilder& mb, HullGrid& g, const std::vector<char>& removed) {
+  for (int i = 0; i < g.I; ++i)
+    for (int k = 0; k < g.K; ++k) {
+      if (removed[i * g.K + k]) continue;
+      const int a = g.vertex(mb, i, k), b = g.vertex(mb, i + 1, k), c = g.vertex(mb, i + 1, k + 1),
+                d = g.vertex(mb, i, k + 1);
       auto on_cp = [&](int q) { return mb.verts[q].y() == 0.0; };
-      if (on_cp(a) && on_cp(b) && on_cp(c)) {  // keep triangles out of the centre plane
+      if (on_cp(a) && on_cp(b) && on_cp(c)) {
         mb.tri(a, b, d, FacePart::Hull);
         mb.tri(b, c, d, FacePart::Hull);
       } else {
@@ -735,7 +830,10 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
         mb.tri(a, c, d, FacePart::Hull);
       }
     }
-  close_half_hull(mb, aft, out.z_deck, plane_tol);
+}
+
+/// The builder's mesh, oriented outward, with its face labels; throws unless it is closed.
+void finish_mesh(const MeshBuilder& mb, ComposedHull& out) {
   out.mesh = mb.mesh();
   orient_consistently(out.mesh);
   out.face_part.resize(static_cast<Eigen::Index>(mb.part.size()));
@@ -747,8 +845,37 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
        << " non-manifold, " << er.inconsistent << " inconsistent edges)";
     throw Error(os.str());
   }
+}
+
+}  // namespace
+
+ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb, const ComposeOptions& o,
+                          const BlendSpec* blend) {
+  validate_options(o, bulb, blend);
+  const NurbsSurface H = orient_bare_hull(hull_in, o.plane_tolerance);
+  ComposedHull out{TriMesh{}, Eigen::VectorXi(), {}, {}, Eigen::VectorXi(), 0.0, 0.0, H, {}, {}, {}};
+  out.x_aft = edge_points(H, true, false).col(0).mean();
+  out.z_deck = edge_points(H, false, true).col(2).mean();
+  AftEnd aft = aft_end(H, out.z_deck, o.plane_tolerance);
+  if (aft.on_centre_plane) aft.normal.setZero();  // the aft edge stays where it is
+  HullGrid grid(H, o.hull_u, o.hull_v, aft, out.z_deck);
+  MeshBuilder mb;
+  std::vector<char> removed(o.hull_u * o.hull_v, 0);
+  if (bulb) {
+    removed = join_bulb(mb, grid, *bulb, o, blend, out);
+  } else {
+    TrimmedSurface hull_trim;
+    Eigen::MatrixXd hl(4, 2);
+    hl << grid.u0, grid.v0, grid.u1, grid.v0, grid.u1, grid.v1, grid.u0, grid.v1;
+    hull_trim.loops.push_back(hl);
+    out.trimmed_surfaces.push_back(std::move(hull_trim));
+  }
+  add_kept_cells(mb, grid, removed);
+  close_half_hull(mb, aft, out.z_deck, o.plane_tolerance * size_of(H));
+  finish_mesh(mb, out);
   return out;
 }
+
 
 TriMesh mirror_full_hull(const ComposedHull& c) {
   const TriMesh& m = c.mesh;

@@ -24,9 +24,17 @@ struct Deriv {
   Eigen::Vector3d s, su, sv;
 };
 
+/// Point and first partials at (u, v) clamped to the domain, without heap allocation (the
+/// seed search and the marching call this tens of thousands of times).
 Deriv deriv(const NurbsSurface& f, double u, double v) {
-  const Eigen::MatrixXd d = f.derivatives(u, v, 1);
-  return {d.row(0).transpose(), d.row(2).transpose(), d.row(1).transpose()};
+  if (!std::isfinite(u) || !std::isfinite(v)) f.derivatives(u, v, 1);  // throws InvalidInput naming it
+  const auto [u0, u1] = f.domain_u();
+  const auto [v0, v1] = f.domain_v();
+  u = std::clamp(u, u0, u1);
+  v = std::clamp(v, v0, v1);
+  double d[9];
+  f.evaluate_first_derivatives_into(&u, &v, 1, d);
+  return {Eigen::Vector3d(d[0], d[1], d[2]), Eigen::Vector3d(d[3], d[4], d[5]), Eigen::Vector3d(d[6], d[7], d[8])};
 }
 
 bool clamped(const Eigen::VectorXd& k, int p) {
@@ -97,6 +105,20 @@ std::vector<Box> patch_boxes(const NurbsSurface& s0, int extra) {
       boxes.push_back(bx);
     }
   return boxes;
+}
+
+bool boxes_overlap(const Box& p, const Box& q, double slack) {
+  return !((p.lo.array() > q.hi.array() + slack).any() || (q.lo.array() > p.hi.array() + slack).any());
+}
+
+/// The box holding every box of `boxes` (3-D extent only).
+Box enclosing_box(const std::vector<Box>& boxes) {
+  Box all{boxes[0].lo, boxes[0].hi, {}, {}};
+  for (const auto& x : boxes) {
+    all.lo = all.lo.cwiseMin(x.lo);
+    all.hi = all.hi.cwiseMax(x.hi);
+  }
+  return all;
 }
 
 struct Domain {
@@ -307,25 +329,25 @@ std::vector<IntersectionCurve> intersect_surfaces(const NurbsSurface& a, const N
   if (o.max_points < 10) detail::fail("max_points is ", o.max_points, "; expected >= 10");
   const std::vector<Box> ba = patch_boxes(a, o.subdivisions), bb = patch_boxes(b, o.subdivisions);
   auto diag = [](const std::vector<Box>& bs) {
-    Eigen::Vector3d lo = bs[0].lo, hi = bs[0].hi;
-    for (const auto& x : bs) {
-      lo = lo.cwiseMin(x.lo);
-      hi = hi.cwiseMax(x.hi);
-    }
-    return (hi - lo).norm();
+    const Box all = enclosing_box(bs);
+    return (all.hi - all.lo).norm();
   };
   const double h0 = o.step > 0.0 ? o.step : std::min(diag(ba), diag(bb)) / 150.0;
   const double slack = 1e-9 * std::max(diag(ba), diag(bb));
   const Domain da(a), db(b);
   // seeds: Newton from the centres of every overlapping patch pair
   std::vector<Eigen::Vector4d> seeds;
-  for (const auto& p : ba)
+  const Box all_b = enclosing_box(bb);
+  for (const auto& p : ba) {
+    // a patch clear of b's whole box overlaps none of its patches: skip the inner loop
+    if (!boxes_overlap(p, all_b, slack)) continue;
     for (const auto& q : bb) {
-      if ((p.lo.array() > q.hi.array() + slack).any() || (q.lo.array() > p.hi.array() + slack).any()) continue;
+      if (!boxes_overlap(p, q, slack)) continue;
       Eigen::Vector4d x;
       x << 0.5 * (p.ulo + p.uhi), 0.5 * (q.ulo + q.uhi);
       if (refine_intersection(a, b, x, o.tolerance) < o.tolerance) seeds.push_back(x);
     }
+  }
   std::vector<IntersectionCurve> curves;
   for (const auto& s : seeds) {
     const Eigen::Vector3d ps = a.evaluate(s[0], s[1]);

@@ -1,0 +1,49 @@
+"""The blend of the composed container ship measured from outside the engine: sampled points
+for the side of the centre plane it lies on, finite-difference normals against those of the
+hull and bulb (at closest points) for the angle across each seam."""
+
+import numpy as np
+import pytest
+
+from blend_fixtures import container_ship_composed, fd_normal
+
+#: Largest admissible normal angle across a C1 seam (degrees), as the README's C1 claim states.
+C1_ANGLE_DEG = 0.5
+#: How far below the centre plane a half-hull surface may reach (m): round-off only.
+CENTRE_PLANE_TOL = 1e-9
+SEAM_SAMPLES = 121
+
+
+def _max_angle_across(edge_v: float, neighbour) -> float:
+    blend = container_ship_composed().blend
+    worst = 0.0
+    for s in np.linspace(0.0, 1.0, SEAM_SAMPLES):
+        p = np.asarray(blend.evaluate(s, edge_v))
+        u, v, _ = neighbour.closest_point(p)
+        cos = abs(float(fd_normal(blend, s, edge_v) @ fd_normal(neighbour, u, v)))
+        worst = max(worst, float(np.degrees(np.arccos(min(1.0, cos)))))
+    return worst
+
+
+def test_blend_is_tangent_to_the_hull_along_its_hull_boundary():
+    hull = container_ship_composed().trimmed_surfaces[0][0]
+    assert _max_angle_across(0.0, hull) <= C1_ANGLE_DEG
+
+
+@pytest.mark.xfail(strict=True, reason="known defect: the blend turns the normal by about 8.7 deg where it "
+                   "meets the bulb top at the centre plane (the fore end of the boundary arc on the stem)")
+def test_blend_is_tangent_to_the_bulb_along_its_bulb_boundary():
+    bulb = container_ship_composed().trimmed_surfaces[1][0]
+    assert _max_angle_across(1.0, bulb) <= C1_ANGLE_DEG
+
+
+def test_composed_mesh_stays_on_the_starboard_side():
+    assert container_ship_composed().mesh.vertices[:, 1].min() >= 0.0
+
+
+@pytest.mark.xfail(strict=True, reason="known defect: between the mesh columns the blend surface dips to "
+                   "y = -0.066 m near its top centre-plane end")
+def test_blend_surface_stays_on_the_starboard_side():
+    blend = container_ship_composed().blend
+    pts = np.asarray(blend.evaluate_grid(np.linspace(0.0, 1.0, 801), np.linspace(0.0, 1.0, 101)))
+    assert pts[..., 1].min() >= -CENTRE_PLANE_TOL
