@@ -94,3 +94,12 @@ from .mesh_io import read_mesh, read_plot3d, write_gdf, write_mar, write_mesh, w
 
 # Design-space sweeps on Dask (the `sweep` extra: dask[distributed], pyarrow, scipy; imported on use).
 from .sweep import sweep  # noqa: F401,E402
+
+# Hydrostatics of triangle meshes, one engine function (restructure).
+from .hydrostatics_mesh import (  # noqa: F401,E402
+    MeshHydrostatics,
+    MeshHydrostaticsOptions,
+    displaced_volume_of_mesh,
+    hydrostatics_of_mesh,
+    mesh_hydrostatics_options,
+)

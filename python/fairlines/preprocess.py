@@ -25,6 +25,8 @@ import dataclasses
 import numpy as np
 
 from . import _native
+from ._native import InvalidInput
+from .hydrostatics_mesh import hydrostatics_of_mesh
 from .offsets import HullData, knuckles
 
 # A section point counts as on the flat of side / flat of bottom when within this fraction of
@@ -71,7 +73,7 @@ def _parabola_integral(xs, ys, a, b):
     """∫_a^b of the parabola through three points (exact for quadratics)."""
     h0, h1 = xs[1] - xs[0], xs[2] - xs[1]
     if h0 <= 0 or h1 <= 0:
-        raise ValueError(f"abscissae {list(xs)} are not increasing; expected sorted stations")
+        raise InvalidInput(f"abscissae {list(xs)} are not increasing; expected sorted stations")
     c = np.polyfit(xs - xs[0], ys, 2)
     P = np.polyint(c)
     return float(np.polyval(P, b - xs[0]) - np.polyval(P, a - xs[0]))
@@ -86,7 +88,7 @@ def _section_integrals(hb, z, draft):
     ok = ~np.isnan(hb)
     hb, z = hb[ok], z[ok]
     if z[-1] < draft:
-        raise ValueError(f"offsets reach z = {z[-1]:.6g} m; expected waterlines up to the draft {draft:.6g} m")
+        raise InvalidInput(f"offsets reach z = {z[-1]:.6g} m; expected waterlines up to the draft {draft:.6g} m")
     below = z < draft
     zz = np.append(z[below], draft)
     yy = np.append(hb[below], np.interp(draft, z, hb))
@@ -99,7 +101,7 @@ def offsets_hydrostatics(data: HullData, draft=None) -> dict:
     Integration runs over the stations given (normally AP to FP) and the waterlines up to the
     draft; LCB is reported from the AP and in % Lpp from midships (+ forward)."""
     if data.offsets is None:
-        raise ValueError(f"{data.name}: no offsets table; expected data read by read_offsets_csv")
+        raise InvalidInput(f"{data.name}: no offsets table; expected data read by read_offsets_csv")
     T = data.draft if draft is None else float(draft)
     x, z, hb = data.offsets["x"], data.offsets["z"], data.offsets["half_breadths"]
     a, mz, ywl = np.array([_section_integrals(h, z, T) for h in hb]).T
@@ -159,7 +161,7 @@ def sections_hydrostatics(data: HullData, draft=None) -> dict:
     T = data.draft if draft is None else float(draft)
     x = np.array([s.x for s in data.sections])
     if np.any(np.diff(x) <= 0):
-        raise ValueError(f"{data.name}: stations are not strictly increasing; expected sorted, distinct stations")
+        raise InvalidInput(f"{data.name}: stations are not strictly increasing; expected sorted, distinct stations")
     areas = np.array([2 * _polyline_area(s.points, T) for s in data.sections])
     mz = np.array([2 * _polyline_moment_z(s.points, T) for s in data.sections])
     ywl = np.array([_half_breadth_at(s.points, T) for s in data.sections])
@@ -193,101 +195,17 @@ def grid_mesh(points):
     return points.reshape(-1, 3), faces[area > 0]
 
 
-def _clip(tri, axis, value):
-    """Parts of triangles (m, 3, 3) where coordinate ``axis`` <= value, as triangles."""
-    below = tri[:, :, axis] <= value
-    nb = below.sum(axis=1)
-    out = [tri[nb == 3]]
-    for count in (1, 2):
-        t = tri[nb == count]
-        if not len(t):
-            continue
-        b = below[nb == count]
-        # Rotate each triangle so that the odd vertex (the lone one below or above) comes first,
-        # keeping the orientation.
-        odd = np.argmax(b if count == 1 else ~b, axis=1)
-        r = np.stack([t[np.arange(len(t)), (odd + k) % 3] for k in range(3)], axis=1)
-        p0, p1, p2 = r[:, 0], r[:, 1], r[:, 2]
-
-        def cut(p, q):
-            s = (value - p[:, axis]) / (q[:, axis] - p[:, axis])
-            return p + s[:, None] * (q - p)
-        q1, q2 = cut(p0, p1), cut(p0, p2)
-        if count == 1:
-            out.append(np.stack([p0, q1, q2], axis=1))
-        else:
-            out.append(np.stack([q1, p1, p2], axis=1))
-            out.append(np.stack([q1, p2, q2], axis=1))
-    return np.concatenate(out)
-
-
-def _orientation(tri, x_mid):
-    """+1 or -1 so that the triangles' normals point out of the hull: a side-like patch has
-    ∫ y n_y dS > 0, an end-like patch (a transom face) has ∫ (x - x_mid) n_x dS > 0."""
-    av = 0.5 * np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    c = tri.mean(axis=1)
-    if np.abs(av[:, 1]).sum() >= np.abs(av[:, 0]).sum():
-        s = np.sum(c[:, 1] * av[:, 1])
-    else:
-        s = np.sum((c[:, 0] - x_mid) * av[:, 0])
-    return 1.0 if s >= 0 else -1.0
-
-
-def _triangle_integrals(tri):
-    """Sums over triangles of ∫ y n_y, ∫ x y n_y, ∫ z y n_y dS (edge-midpoint rule, exact for
-    these quadratics on a flat triangle), the area, -∫ n_z dS and -∫ x n_z dS."""
-    av = 0.5 * np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    mids = 0.5 * (tri + np.roll(tri, -1, axis=1))
-    y = tri[:, :, 1].mean(axis=1)
-    xy = (mids[:, :, 0] * mids[:, :, 1]).mean(axis=1)
-    zy = (mids[:, :, 2] * mids[:, :, 1]).mean(axis=1)
-    xm = tri[:, :, 0].mean(axis=1)
-    return {
-        "V": np.sum(y * av[:, 1]), "Mx": np.sum(xy * av[:, 1]), "Mz": np.sum(zy * av[:, 1]),
-        "S": np.sum(np.linalg.norm(av, axis=1)), "Awp": -np.sum(av[:, 2]), "Mwp": -np.sum(xm * av[:, 2]),
-    }
-
-
-def _mesh_section_area(tri, x0):
-    """Half-section area of (outward-oriented) triangles cut by the plane x = x0: Green's
-    theorem ∮ y dz over the cut segments, each traversed so that the triangle's outward
-    normal lies on its right in the (y, z) plane (centreplane and waterline add nothing)."""
-    above = tri[:, :, 0] > x0
-    na = above.sum(axis=1)
-    t = tri[(na == 1) | (na == 2)]
-    if not len(t):
-        return 0.0
-    a = above[(na == 1) | (na == 2)]
-    lone = np.where(a.sum(axis=1) == 1, np.argmax(a, axis=1), np.argmax(~a, axis=1))
-    r = np.stack([t[np.arange(len(t)), (lone + k) % 3] for k in range(3)], axis=1)
-
-    def cut(p, q):
-        s = (x0 - p[:, 0]) / (q[:, 0] - p[:, 0])
-        return p + s[:, None] * (q - p)
-    q1, q2 = cut(r[:, 0], r[:, 1]), cut(r[:, 0], r[:, 2])
-    n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
-    d = q2 - q1
-    sgn = np.sign(d[:, 2] * n[:, 1] - d[:, 1] * n[:, 2])
-    return float(np.sum(sgn * 0.5 * (q1[:, 1] + q2[:, 1]) * (q2[:, 2] - q1[:, 2])))
-
-
 def mesh_hydrostatics(meshes, draft, lpp, beam) -> dict:
     """Hydrostatics of one or more triangle meshes [(vertices, faces), ...] of the half hull,
-    clipped at the draft; both sides reported. Each mesh is oriented on its own."""
-    tot = dict.fromkeys(("V", "Mx", "Mz", "S", "Awp", "Mwp", "Am"), 0.0)
-    for verts, faces in meshes:
-        tri = np.asarray(verts, float)[np.asarray(faces)]
-        sgn = _orientation(tri, lpp / 2)
-        if sgn < 0:
-            tri = tri[:, ::-1]
-        sub = _clip(tri, 2, draft)
-        for k, v in _triangle_integrals(sub).items():
-            tot[k] += v
-        tot["Am"] += _mesh_section_area(sub, lpp / 2)
-    V = 2 * tot["V"]
-    out = _coefficients(V, 2 * tot["Mx"] / V, 2 * tot["Mz"] / V, 2 * tot["Awp"], tot["Mwp"] / tot["Awp"],
-                        2 * tot["Am"], lpp, beam, draft)
-    out["wetted_surface"] = 2 * tot["S"]
+    clipped at the draft (the engine's :func:`fairlines.hydrostatics_of_mesh`); both sides
+    reported. Each mesh is oriented on its own. Raises InvalidInput for malformed meshes."""
+    parts = [hydrostatics_of_mesh(v, f, draft, orient=True, midship_x=lpp / 2) for v, f in meshes]
+    V = sum(h.volume for h in parts)
+    awp = sum(h.waterplane_area for h in parts)
+    out = _coefficients(V, sum(h.volume * h.lcb for h in parts) / V, sum(h.volume * h.vcb for h in parts) / V, awp,
+                        sum(h.waterplane_area * h.lcf for h in parts) / awp, sum(h.midship_area for h in parts),
+                        lpp, beam, draft)
+    out["wetted_surface"] = sum(h.wetted_surface for h in parts)
     out["method"] = "divergence theorem on a triangle mesh"
     return out
 
@@ -809,7 +727,7 @@ def import_hull(data: HullData, progress=None) -> dict:
 
 
 def load_imported(doc) -> tuple:
-    """(document, HullData) from a hull.json path or its dict; ValueError on anything else."""
+    """(document, HullData) from a hull.json path or its dict; InvalidInput on anything else."""
     import json
     import pathlib
 
@@ -819,15 +737,15 @@ def load_imported(doc) -> tuple:
         try:
             doc = json.loads(path.read_text())
         except OSError as exc:
-            raise ValueError(f"cannot read {path}: {exc.strerror or exc}") from None
+            raise InvalidInput(f"cannot read {path}: {exc.strerror or exc}") from None
         except json.JSONDecodeError as exc:
-            raise ValueError(f"{path}: not JSON ({exc.msg} at line {exc.lineno}); expected a hull.json "
+            raise InvalidInput(f"{path}: not JSON ({exc.msg} at line {exc.lineno}); expected a hull.json "
                              "written by 'fairlines import'") from None
     if doc.get("type") != HULL_JSON_TYPE:
-        raise ValueError(f"hull description type is {doc.get('type')!r}; expected {HULL_JSON_TYPE!r} "
+        raise InvalidInput(f"hull description type is {doc.get('type')!r}; expected {HULL_JSON_TYPE!r} "
                          "(written by 'fairlines import')")
     if "input" not in doc:
-        raise ValueError("hull description has no 'input' entry; expected the data written by 'fairlines import'")
+        raise InvalidInput("hull description has no 'input' entry; expected the data written by 'fairlines import'")
     return doc, hull_data_from_dict(doc["input"])
 
 
@@ -918,7 +836,7 @@ def hull_description(fp: dict, data: HullData, *, n_stations=25) -> dict:
     L, B, T = data.lpp, data.beam, data.draft
     st = [s for s in fp["sections"] if s["x"] >= L / 2 - 1e-9 * L and s["x"] <= L]
     if len(st) < 4:
-        raise ValueError(f"{data.name}: {len(st)} stations between midships and the FP; expected at least 4")
+        raise InvalidInput(f"{data.name}: {len(st)} stations between midships and the FP; expected at least 4")
     x = np.array([s["x"] for s in st])
     # The description's stem is vertical at the end of its range: end the range at the last
     # station whose keel is still below STEM_KEEL_FRACTION of the draft (a raked forefoot
