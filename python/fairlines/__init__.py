@@ -103,3 +103,4 @@ from .hydrostatics_mesh import (  # noqa: F401,E402
     hydrostatics_of_mesh,
     mesh_hydrostatics_options,
 )
+from .grid_faces import grid_quads, grid_triangles  # noqa: F401,E402

@@ -26,6 +26,7 @@ import numpy as np
 
 from . import _native
 from ._native import InvalidInput
+from .grid_faces import grid_triangles
 from .hydrostatics_mesh import hydrostatics_of_mesh
 from .offsets import HullData, knuckles
 
@@ -185,11 +186,10 @@ def _coefficients(V, lcb, vcb, awp, lcf, am, lpp, beam, draft):
 # ---- triangle meshes ---------------------------------------------------------------------
 
 def grid_mesh(points):
-    """Triangles of a structured (rows, cols, 3) grid: vertices (n, 3), faces (m, 3)."""
+    """Triangles of a structured (rows, cols, 3) grid: vertices (n, 3), faces (m, 3); faces of
+    zero area (a grid row collapsed to a point) are dropped."""
     ni, nj = points.shape[:2]
-    idx = np.arange(ni * nj).reshape(ni, nj)
-    a, b, c, d = idx[:-1, :-1], idx[1:, :-1], idx[1:, 1:], idx[:-1, 1:]
-    faces = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3), np.stack([a, c, d], -1).reshape(-1, 3)])
+    faces = grid_triangles(ni, nj)
     tri = points.reshape(-1, 3)[faces]
     area = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
     return points.reshape(-1, 3), faces[area > 0]
