@@ -1,6 +1,6 @@
 """Fairlines: fair parametric hull design on a compiled NURBS engine.
 
-Conventions (SPEC §6): metres; x forward from the aft perpendicular, y half-breadth >= 0,
+Conventions: metres; x forward from the aft perpendicular, y half-breadth >= 0,
 z up from the baseline. Every geometric routine runs in the compiled module
 ``fairlines._native``; this package re-exports it and adds thin Python conveniences.
 """
@@ -104,3 +104,64 @@ from .hydrostatics_mesh import (  # noqa: F401,E402
     mesh_hydrostatics_options,
 )
 from .grid_faces import grid_quads, grid_triangles  # noqa: F401,E402
+
+# Hull data import and pre-processing in the fl namespace (fl.preprocess.mesh_hydrostatics keeps its
+# module name: fl.mesh_hydrostatics is the composed hull's).
+from . import preprocess  # noqa: F401,E402
+from .offsets import (  # noqa: F401,E402
+    HullData,
+    PointGrid,
+    Section,
+    check_sections,
+    check_station_range,
+    hull_data_from_dict,
+    hull_data_to_dict,
+    knuckles,
+    read_dtmb5415,
+    read_hull_data,
+    read_kcs,
+    read_offsets_csv,
+    read_sections_csv,
+    read_tecplot,
+    read_tecplot_hull,
+    read_xyz_grid,
+    section_from_offsets,
+)
+from .preprocess import (  # noqa: F401,E402
+    SECTION_SAMPLES_U,
+    SECTION_SAMPLES_V,
+    dense_samples,
+    simpson,
+    offsets_hydrostatics,
+    AREA_FRACTION_TOL,
+    sections_hydrostatics,
+    section_at,
+    grid_mesh,
+    surface_meshes,
+    input_hydrostatics,
+    GAUSS_POINTS,
+    V_SUBINTERVALS,
+    CROSSING_SAMPLES,
+    surface_hydrostatics,
+    FLAT_TOL,
+    FOB_MIN_HALF_WIDTH,
+    DOME_MIN_DEPTH,
+    section_parameters,
+    form_parameters,
+    DEVIATION_EXACT_TOL,
+    GRID_MIN_CONTROL,
+    Rebuild,
+    sections_grid,
+    rebuild,
+    deviation_report,
+    project_points,
+    PARALLEL_TOL,
+    STEM_KEEL_FRACTION,
+    DESCRIPTION_POINTS,
+    hull_description,
+    HULL_JSON_TYPE,
+    import_hull,
+    load_imported,
+    build_hull,
+    comparison_table,
+)
