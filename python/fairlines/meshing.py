@@ -4,7 +4,7 @@ The engine (``fairlines._native``) does the work: curvature-adaptive nodes, cons
 Delaunay triangulation, 3-D edge swaps, quadrilaterals by matching triangle pairs, an optional
 all-quad split, and smoothing that keeps nodes on the surface and never lowers an element's
 quality (docs/meshing.md). A composed hull is meshed face by face with every seam's nodes
-shared, optionally cut at a draft along the exact waterline. Conventions (SPEC §6): metres, x
+shared, optionally cut at a draft along the exact waterline. Conventions: metres, x
 forward from AP, y >= 0 the starboard half, z up; normals point out of the body.
 """
 
