@@ -5,7 +5,6 @@
 #include <limits>
 #include <numbers>
 #include <random>
-#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
@@ -33,7 +32,7 @@ constexpr double kMeritRoundoff = 1e-14;
 constexpr double kStallStep = 1e-13;
 }  // namespace
 
-Solver::Solver(Problem& problem) : pb(problem) {
+Solver::Solver(Problem& problem, int iteration_budget) : pb(problem), max_total(iteration_budget) {
   m = static_cast<int>(pb.cons.size());
   // Linear equality system L z = b
   std::vector<int> lin;
@@ -128,7 +127,6 @@ bool Solver::newton(Eigen::VectorXd& z, Eigen::VectorXd& lam, double mu, double 
     const double stat = (gt + J.transpose() * lam).lpNorm<Eigen::Infinity>();
     last_violation = viol;
     last_stationarity = stat / gscale;
-    if (debug) std::fprintf(stderr, "  it %d mu %.2e f %.6g viol %.3e stat %.3e\n", it, mu, f, viol, stat / gscale);
     if (viol <= tol_c && stat <= tol_g * gscale) return true;
     ++total_iterations;
 
@@ -231,7 +229,6 @@ bool Solver::newton(Eigen::VectorXd& z, Eigen::VectorXd& lam, double mu, double 
       alpha *= 0.5;
       if (alpha < 1e-14) break;
     }
-    if (debug) std::fprintf(stderr, "     alpha %.3e amax %.3e |d| %.3e nu %.3e accepted %d\n", alpha, amax, d.norm(), nu, int(accepted));
     if (!accepted) {
       // no decrease possible: converged to the accuracy the merit can resolve?
       return viol <= tol_c && stat <= 1e3 * tol_g * gscale;
@@ -443,7 +440,6 @@ bool Solver::restore(Eigen::VectorXd& z, int maxit) {
     if (!c.allFinite() || !J.allFinite()) return false;
     const Eigen::VectorXd sc = c.cwiseProduct(sinv);
     const double res = sc.lpNorm<Eigen::Infinity>();
-    if (debug) std::fprintf(stderr, "  restore it %d res %.3e lm %.1e\n", it, res, lm);
     if (res <= restore_tol) return true;
     stall = res > 0.98 * prev_res ? stall + 1 : 0;
     prev_res = res;
@@ -486,11 +482,6 @@ bool Solver::restore(Eigen::VectorXd& z, int maxit) {
       }
       const Eigen::VectorXd zt = z + amax * d;
       const double phi = phi_of(zt, ct, mu);
-      if (debug && k == 0) {
-        Eigen::JacobiSVD<Eigen::MatrixXd> svd(Js);
-        std::fprintf(stderr, "    amax %.2e |d| %.2e mins %.2e sigmin %.2e phi0 %.6e phi %.6e\n", amax, d.norm(),
-                     s.size() ? s.minCoeff() : 0.0, svd.singularValues().minCoeff(), phi0, phi);
-      }
       if (phi < phi0) {
         z = zt;
         accepted = true;
@@ -505,6 +496,7 @@ bool Solver::restore(Eigen::VectorXd& z, int maxit) {
 }
 
 RunOutcome Solver::run(const Eigen::VectorXd& z0, bool continuation) {
+  total_iterations = 0;
   RunOutcome out;
   out.z = z0;
   out.lam = Eigen::VectorXd::Zero(m);
@@ -527,7 +519,6 @@ RunOutcome Solver::run(const Eigen::VectorXd& z0, bool continuation) {
       out.steps = 1;
     } else {
       vdual.resize(0);
-      if (debug) std::fprintf(stderr, "direct phase failed; continuation\n");
     }
   }
   dtau = 0.5;
@@ -536,7 +527,6 @@ RunOutcome Solver::run(const Eigen::VectorXd& z0, bool continuation) {
     set_targets(tn);
     Eigen::VectorXd z = out.z, lam = out.lam;
     const bool ok = newton(z, lam, mu0, tn < 1 ? 1e-8 : 1e-10, 1e-5, 15);
-    if (debug) std::fprintf(stderr, "tau %.5f -> %d\n", tn, int(ok));
     if (ok) {
       out.z = z;
       out.lam = lam;
