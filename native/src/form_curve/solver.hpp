@@ -22,6 +22,14 @@ struct RunOutcome {
   bool converged = false;  // and KKT conditions met
 };
 
+/// The barrier model at an iterate: objective f, gradient g, Hessian H; constraints c,
+/// Jacobian J, constraint Hessian HL; slacks s = G z - h > 0; barrier gradient gt, Hessian Ht.
+struct NewtonModel {
+  double f = 0;
+  Eigen::VectorXd g, c, s, gt;
+  Eigen::MatrixXd H, J, HL, Ht;
+};
+
 /// The solver of one problem: state (linear system, kept inequalities, duals, iteration
 /// count) is private; design_form_curve asks it for start curves and runs it from each.
 class Solver {
@@ -58,6 +66,20 @@ class Solver {
   void set_starts(const Eigen::VectorXd& z);
   void set_targets(double tau);
   bool newton(Eigen::VectorXd& z, Eigen::VectorXd& lam, double mu, double tol_c, double tol_g, int maxit);
+  // Steps of newton():
+  bool model_at(const Eigen::VectorXd& z, const Eigen::VectorXd& lam, double mu, NewtonModel& md);
+  /// KKT step d and multipliers: null-space (QR of J^T, inertia-corrected), or without
+  /// constraints an inertia-corrected Newton step, or for dependent gradients a regularised
+  /// KKT solve (regular = false). False when no finite step exists.
+  bool kkt_step(const NewtonModel& md, Eigen::VectorXd& d, Eigen::VectorXd& lam_new, bool& regular);
+  /// False when J^T is rank deficient; d empty when the reduced Hessian cannot be corrected.
+  bool null_space_step(const NewtonModel& md, Eigen::VectorXd& d, Eigen::VectorXd& lam_new);
+  bool regularised_step(const NewtonModel& md, Eigen::VectorXd& d, Eigen::VectorXd& lam_new) const;
+  /// Backtracking on the l1 merit with fraction-to-boundary and second-order corrections;
+  /// moves z and returns true when a step is accepted (alpha its length).
+  bool line_search(Eigen::VectorXd& z, const Eigen::VectorXd& d, const NewtonModel& md, double mu, double nu,
+                   bool regular, double& alpha);
+  void dual_step(const NewtonModel& md, const Eigen::VectorXd& d, double mu);
   double merit(const Eigen::VectorXd& z, double mu, double nu, Eigen::VectorXd& c) const;
   /// The merit from already computed objective f, constraints c and slacks s = G z - h > 0.
   double merit_of(double f, const Eigen::VectorXd& c, const Eigen::VectorXd& s, double mu, double nu) const;
