@@ -79,7 +79,8 @@ from .report import (  # noqa: F401
 )
 
 __all__ = [
-    "SECTION_SAMPLES_U", "SECTION_SAMPLES_V", "dense_samples", "simpson", "offsets_hydrostatics", "AREA_FRACTION_TOL", "sections_hydrostatics", "section_at",
+    "SECTION_SAMPLES_U", "SECTION_SAMPLES_V", "dense_samples", "simpson", "offsets_hydrostatics",
+    "AREA_FRACTION_TOL", "sections_hydrostatics", "section_at",
     "grid_mesh", "mesh_hydrostatics", "surface_meshes", "input_hydrostatics", "GAUSS_POINTS",
     "V_SUBINTERVALS", "CROSSING_SAMPLES", "surface_hydrostatics", "FLAT_TOL", "FOB_MIN_HALF_WIDTH",
     "DOME_MIN_DEPTH", "section_parameters", "form_parameters", "DEVIATION_EXACT_TOL", "GRID_MIN_CONTROL",
