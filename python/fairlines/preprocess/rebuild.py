@@ -55,8 +55,9 @@ def _hermite_slopes(s, f, corners):
 def _resample_section(points, n):
     """n points along a section at equal steps of chord length (the fair-skinning
     parametrisation of Kim & Hwangbo 2008), on a shape-preserving cubic Hermite curve
-    through the offsets that keeps flats flat and knuckles sharp. (A global interpolating cubic through a flat bottom and a tight bilge
-    overshoots below the baseline and across the centreplane.)"""
+    through the offsets that keeps flats flat and knuckles sharp. (A global interpolating
+    cubic through a flat bottom and a tight bilge overshoots below the baseline and across
+    the centreplane.)"""
     p = np.asarray(points, float)
     s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))])
     corners = knuckles(p)
