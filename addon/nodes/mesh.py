@@ -11,14 +11,11 @@ from .base import FairlinesNode, NodeError, register
 
 @functools.lru_cache(maxsize=16)
 def grid_quads(nu, nv):
-    """Quad faces of an nu x nv point grid stored row-major (index = i * nv + j). Corners run
-    (i,j) -> (i+1,j) -> (i+1,j+1) -> (i,j+1), so face normals follow S_u x S_v like the
-    engine's surface normal. Cached (read-only) because a slider drag re-tessellates at the
-    same resolution every time."""
-    np = engine.np
-    i, j = np.meshgrid(np.arange(nu - 1, dtype=np.int32), np.arange(nv - 1, dtype=np.int32), indexing="ij")
-    a = (i * nv + j).ravel()
-    quads = np.column_stack([a, a + nv, a + nv + 1, a + 1]).astype(np.int32)
+    """Quad faces of an nu x nv point grid (fairlines.grid_quads: row-major, normals along
+    S_u x S_v like the engine's surface normal) as int32. Cached (read-only) because a slider
+    drag re-tessellates at the same resolution every time."""
+    fl, np = engine.require()
+    quads = fl.grid_quads(nu, nv).astype(np.int32)
     quads.flags.writeable = False
     return quads
 

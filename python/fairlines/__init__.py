@@ -1,6 +1,6 @@
 """Fairlines: fair parametric hull design on a compiled NURBS engine.
 
-Conventions (SPEC §6): metres; x forward from the aft perpendicular, y half-breadth >= 0,
+Conventions: metres; x forward from the aft perpendicular, y half-breadth >= 0,
 z up from the baseline. Every geometric routine runs in the compiled module
 ``fairlines._native``; this package re-exports it and adds thin Python conveniences.
 """
@@ -94,3 +94,37 @@ from .mesh_io import read_mesh, read_plot3d, write_gdf, write_mar, write_mesh, w
 from .sweep import sweep  # noqa: F401,E402
 # Real hull data back as whole-ship designs (offsets tables, KCS, DTMB 5415 grids).
 from .import_design import import_design, measure_hull_data  # noqa: F401,E402
+
+# Hydrostatics of triangle meshes, one engine function (restructure).
+from .hydrostatics_mesh import (  # noqa: F401,E402
+    MeshHydrostatics,
+    MeshHydrostaticsOptions,
+    displaced_volume_of_mesh,
+    hydrostatics_of_mesh,
+    mesh_hydrostatics_options,
+)
+from .grid_faces import grid_quads, grid_triangles  # noqa: F401,E402
+
+# Hull data import and pre-processing in the fl namespace (fl.preprocess.mesh_hydrostatics keeps its
+# module name: fl.mesh_hydrostatics is the composed hull's).
+from . import preprocess  # noqa: F401,E402
+from .offsets import (  # noqa: F401,E402
+    HullData,
+    PointGrid,
+    Section,
+    check_sections,
+    check_station_range,
+    hull_data_from_dict,
+    hull_data_to_dict,
+    knuckles,
+    read_dtmb5415,
+    read_hull_data,
+    read_kcs,
+    read_offsets_csv,
+    read_sections_csv,
+    read_tecplot,
+    read_tecplot_hull,
+    read_xyz_grid,
+    section_from_offsets,
+)
+globals().update({name: getattr(preprocess, name) for name in preprocess.__all__ if name != "mesh_hydrostatics"})

@@ -147,8 +147,8 @@ def main(argv=None) -> int:
     f.add_argument("--knots", default="average", choices=["average", "hartley_judd"])
     f.add_argument("-o", "--output", help="write the curve as JSON")
     im = sub.add_parser("import", help="read offsets / section points / a point grid; write the whole-ship description")
-    im.add_argument("table", help="offsets CSV, x,y,z section CSV, Tecplot point grid in SPEC metres (.dat), "
-                                  "or a DTMB 5415 / KCS grid folder")
+    im.add_argument("table", help="offsets CSV, x,y,z section CSV, Tecplot point grid in metres (x from the AP, "
+                                  "y >= 0, z up; .dat), or a DTMB 5415 / KCS grid folder")
     im.add_argument("--lpp", type=float, help="length between perpendiculars, m")
     im.add_argument("--beam", type=float, help="moulded beam, m")
     im.add_argument("--draft", type=float, help="design draft, m")

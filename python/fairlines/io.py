@@ -9,6 +9,7 @@ import pathlib
 import numpy as np
 
 from ._native import NurbsCurve, NurbsSurface
+from .grid_faces import grid_triangles
 
 
 def curve_to_dict(curve: NurbsCurve) -> dict:
@@ -63,11 +64,7 @@ def tessellate(surface: NurbsSurface, n_u: int = 64, n_v: int = 32):
         raise ValueError(f"tessellation is {n_u} x {n_v}; expected at least 2 x 2")
     us = np.linspace(*surface.domain_u, n_u)
     vs = np.linspace(*surface.domain_v, n_v)
-    verts = surface.evaluate_grid(us, vs).reshape(-1, 3)
-    idx = np.arange(n_u * n_v).reshape(n_u, n_v)
-    a, b, c, d = idx[:-1, :-1], idx[1:, :-1], idx[1:, 1:], idx[:-1, 1:]
-    faces = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3), np.stack([a, c, d], -1).reshape(-1, 3)])
-    return verts, faces
+    return surface.evaluate_grid(us, vs).reshape(-1, 3), grid_triangles(n_u, n_v)
 
 
 def write_obj(path, vertices, faces) -> None:

@@ -330,15 +330,16 @@ def _composed_hydrostatics(hull, bare, p, dwl_cuts) -> dict:
     blend change, measured as the difference between the composed mesh and the bare hull's
     own mesh (so the meshes' chordal error cancels); the waterplane from the DWL section;
     Am (so Cm) of the bare hull at Lpp / 2, which the bulb does not reach."""
-    from .compose import compose, mesh_hydrostatics
+    from .compose import compose
+    from .hydrostatics_mesh import displaced_volume_of_mesh
     T = p["draft"]
     q = _quadrature(bare, p)
     bare_mesh = compose([bare])
-    mc, mb = mesh_hydrostatics(hull.mesh, T), mesh_hydrostatics(bare_mesh.mesh, T)
-    vol = q["volume"] + mc["volume"] - mb["volume"]
+    mc, mb = (displaced_volume_of_mesh(m.mesh.vertices, m.mesh.faces, T) for m in (hull, bare_mesh))
+    vol = q["volume"] + mc.volume - mb.volume
     h = dict(volume=vol, displacement=q["displacement"] / q["volume"] * vol,
-             lcb=(q["volume"] * q["lcb"] + mc["volume"] * mc["lcb"] - mb["volume"] * mb["lcb"]) / vol,
-             vcb=(q["volume"] * q["vcb"] + mc["volume"] * mc["kb"] - mb["volume"] * mb["kb"]) / vol,
+             lcb=(q["volume"] * q["lcb"] + mc.volume * mc.lcb - mb.volume * mb.lcb) / vol,
+             vcb=(q["volume"] * q["vcb"] + mc.volume * mc.vcb - mb.volume * mb.vcb) / vol,
              wetted_surface=q["wetted_surface"] + _mesh_wetted_surface(hull, T) - _mesh_wetted_surface(bare_mesh, T),
              cb=vol / (p["lpp"] * p["beam"] * T), cm=q["cm"], cp=vol / (q["midship_area"] * p["lpp"]),
              source="bare hull by NURBS quadrature, bulb and blend added from the composed mesh; "
@@ -354,14 +355,9 @@ def _composed_hydrostatics(hull, bare, p, dwl_cuts) -> dict:
 
 def _mesh_wetted_surface(composed, draft: float) -> float:
     """Full-ship area (m^2) of a composed hull's surface faces (not its caps) below z = draft."""
-    from .compose import _clip_below
-    tris = np.asarray(composed.mesh.vertices, float)[np.asarray(composed.mesh.faces)]
-    tris = tris[~np.isin(np.asarray(composed.face_part), _CAP_PARTS) & (tris[:, :, 2].min(axis=1) < draft)]
-    area = 0.0
-    for t in tris:
-        for q in _clip_below(t, draft) if t[:, 2].max() > draft else [t]:
-            area += 0.5 * np.linalg.norm(np.cross(q[1] - q[0], q[2] - q[0]))
-    return 2.0 * area
+    from .hydrostatics_mesh import hydrostatics_of_mesh
+    faces = np.asarray(composed.mesh.faces)[~np.isin(np.asarray(composed.face_part), _CAP_PARTS)]
+    return hydrostatics_of_mesh(composed.mesh.vertices, faces, draft).wetted_surface
 
 
 def lines_plan(hull, *, lpp: float, beam: float, draft: float, depth: float, name: str = "",

@@ -4,7 +4,7 @@ The engine (``fairlines._native``) does the work: curvature-adaptive nodes, cons
 Delaunay triangulation, 3-D edge swaps, quadrilaterals by matching triangle pairs, an optional
 all-quad split, and smoothing that keeps nodes on the surface and never lowers an element's
 quality (docs/meshing.md). A composed hull is meshed face by face with every seam's nodes
-shared, optionally cut at a draft along the exact waterline. Conventions (SPEC §6): metres, x
+shared, optionally cut at a draft along the exact waterline. Conventions: metres, x
 forward from AP, y >= 0 the starboard half, z up; normals point out of the body.
 """
 
@@ -84,16 +84,17 @@ class SurfaceMesh:
         """Element quality census (:func:`mesh_quality`)."""
         return mesh_quality(self)
 
-    def hydrostatics(self, draft: float | None = None):
-        """Displaced volume (m^3, both sides of a half hull), LCB and KB (m) of the body this mesh
-        bounds floating at ``draft`` (default: its own cut), by the divergence theorem
-        (``fairlines.mesh_hydrostatics``; a wetted mesh open along the waterline or the centre
-        plane is fine: the fields vanish there). Raises InvalidInput without a draft."""
-        from .compose import Mesh, mesh_hydrostatics
+    def hydrostatics(self, draft: float | None = None) -> "_native.MeshHydrostatics":
+        """Hydrostatics (``volume`` m^3, both sides of a half hull; ``lcb``, ``vcb`` m; ...) of
+        the body this mesh bounds floating at ``draft`` (default: its own cut), by the
+        divergence theorem (:func:`fairlines.hydrostatics_of_mesh`; a wetted mesh open along
+        the waterline or the centre plane is fine: the fields vanish there). Raises
+        InvalidInput without a draft or when the draft leaves no displaced volume."""
+        from .hydrostatics_mesh import displaced_volume_of_mesh
         t = self.draft if draft is None else draft
         if t is None:
             raise InvalidInput("draft is None; this mesh was not cut at a draft, so give one (m)")
-        return mesh_hydrostatics(Mesh(self.vertices, self.triangulated()), t, half=self.symmetric)
+        return displaced_volume_of_mesh(self.vertices, self.triangulated(), t, half_hull=self.symmetric)
 
     def write(self, path, file_format: str | None = None, **kw) -> None:
         """Writes the mesh (see :func:`fairlines.mesh_io.write_mesh`)."""

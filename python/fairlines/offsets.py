@@ -117,7 +117,7 @@ def _dimensions(lpp, beam, draft):
 
 
 def _cell(text, path, row, col):
-    """A table cell as float, NaN when blank; ValueError naming the cell otherwise."""
+    """A table cell as float, NaN when blank; InvalidInput naming the cell otherwise."""
     t = text.strip()
     if t == "" or t.lower() in ("nan", "na", "-"):
         return np.nan
@@ -684,7 +684,7 @@ def hull_data_to_dict(data: HullData) -> dict:
 
 
 def hull_data_from_dict(d: dict) -> HullData:
-    """Inverse of hull_data_to_dict; ValueError naming a missing entry."""
+    """Inverse of hull_data_to_dict; InvalidInput naming a missing entry."""
     try:
         data = HullData(d["name"], _positive("lpp", d["lpp"]), _positive("beam", d["beam"]),
                         _positive("draft", d["draft"]), source=d.get("source", ""),

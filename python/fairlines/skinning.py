@@ -1,4 +1,4 @@
-"""Fair skinning of section curves into one B-spline surface (SPEC §5, seed 000 eq. 6-9)."""
+"""Fair skinning of section curves into one B-spline surface (Kim & Hwangbo 2008, eq. 6-9)."""
 
 from __future__ import annotations
 
@@ -40,7 +40,7 @@ def fair_skin(
     (default max(12, 2 x the largest section control count)), ends interpolated, the rest by
     least squares; (f) for each control-point row a longitudinal B-spline of ``degree_v`` with a
     knot at every section that, in ``mode="interpolate"``, passes through the row and has the
-    least E2 = int |C''(v)|^2 dv (seed 000 eq. 9), and in ``mode="approximate"`` minimises
+    least E2 = int |C''(v)|^2 dv (Kim & Hwangbo 2008, eq. 9), and in ``mode="approximate"`` minimises
     (1/q) sum |C(v_d) - P_d|^2 + smoothing h^4 E2 with h = 1/(q - 1).
 
     ``start`` / ``end``: "free" (natural) or "parallel" (dy/dv = dz/dv = 0, so the surface meets
@@ -51,10 +51,10 @@ def fair_skin(
 
     ``curvature_weight`` w > 0 spaces the section points equally in ds (1 + w L |k|) (L the
     section length) instead of plain arc length, so the common knots crowd where the sections
-    bend (tight bilges next to flat sides); 0 is seed 000's plain equal spacing.
+    bend (tight bilges next to flat sides); 0 is Kim & Hwangbo's (2008) plain equal spacing.
 
     ``e2`` / ``e3``: fairness of the longitudinal curves, e2 E2 + e3 h^2 E3 (h = 1/(q-1)).
-    The default (1, 0) is seed 000 eq. 9, whose interpolant is the natural spline (zero
+    The default (1, 0) is Kim & Hwangbo 2008 eq. 9, whose interpolant is the natural spline (zero
     curvature forced at the end sections); (0, 1) reproduces quadratic variation along the
     hull exactly and keeps the end curvature.
 

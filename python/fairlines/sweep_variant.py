@@ -162,14 +162,14 @@ def mesh_checks(vertices: np.ndarray, faces: np.ndarray) -> dict:
 
 
 def _compose(row: dict, hull, displacement: bool):
-    from .compose import mesh_hydrostatics
+    from .hydrostatics_mesh import displaced_volume_of_mesh
 
     bulb = hull.bulbous_bow()
     composed = hull.composed_hull(bulb=bulb)
     row["compose.half_volume"] = float(composed.volume)
     if displacement:
-        d = mesh_hydrostatics(composed.mesh, hull.description.principal.draft)
-        row["compose.displacement"], row["compose.lcb"] = float(d["volume"]), float(d["lcb"])
+        d = displaced_volume_of_mesh(composed.mesh.vertices, composed.mesh.faces, hull.description.principal.draft)
+        row["compose.displacement"], row["compose.lcb"] = d.volume, d.lcb
     if composed.blend_continuity:
         at_hull, at_bulb = composed.blend_continuity
         row["compose.blend_angle_hull_deg"] = float(at_hull["max_angle_deg"])

@@ -1,4 +1,4 @@
-// Blending surface between two surfaces (seed 000 step 4): fair skinning of cubic Hermite
+// Blending surface between two surfaces (Kim & Hwangbo 2008, step 4): fair skinning of cubic Hermite
 // sections with C1 (tangent-plane) continuity along both boundary curves.
 #pragma once
 

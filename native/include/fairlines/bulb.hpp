@@ -1,4 +1,4 @@
-// Bulbous bow from the Kracht (1978) coefficients (SPEC §7), fair-skinned into a NURBS surface.
+// Bulbous bow from the Kracht (1978) coefficients, fair-skinned into a NURBS surface.
 #pragma once
 
 #include <Eigen/Core>

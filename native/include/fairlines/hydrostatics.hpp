@@ -1,7 +1,7 @@
 // Hydrostatics of a hull surface at any draft, by Gauss-Legendre quadrature on the NURBS
 // surface itself (no meshing), clipped exactly at the draft plane.
 //
-// The surface is a HALF hull (y >= 0, the starboard side; SPEC §6). The enclosed body is the
+// The surface is a HALF hull (y >= 0, the starboard side). The enclosed body is the
 // region between the surface, the centre plane y = 0 and the waterplane z = draft; any other
 // opening of the surface (e.g. the aft cut of a forebody at a station) must lie in a plane
 // x = const (a vertical transverse plane). Volume, areas and the SAC are returned for the

@@ -1,4 +1,4 @@
-// Fair skinning of section curves into one B-spline surface (SPEC §5; seed 000 eq. 6-9,
+// Fair skinning of section curves into one B-spline surface (Kim & Hwangbo 2008, eq. 6-9;
 // Fig. 2): equally spaced points along every section, one common knot vector and control
 // count for all sections, then for each row of section control points a longitudinal
 // B-spline through (or near) the row that minimises E2 = int |C''(v)|^2 dv.
@@ -40,12 +40,12 @@ struct SkinOptions {
   int degree_v = 3;       ///< degree of the longitudinal curves (>= 2)
   int samples = 0;        ///< equally spaced points per section; 0: 4 x n_control. >= n_control
   /// Spacing metric of the section points: ds (1 + curvature_weight L |k|), L the section's
-  /// length. 0 is plain arc length (seed 000 Fig. 2b); > 0 puts more points -- and, through
+  /// length. 0 is plain arc length (Kim & Hwangbo 2008, Fig. 2b); > 0 puts more points -- and, through
   /// the common uniform knots, more control points -- where sections bend (tight bilges).
   double curvature_weight = 0.0;
   SkinMode mode = SkinMode::Interpolate;
   /// Fairness of the longitudinal curves: e2 E2 + e3 h^2 E3 (E_k = int |C^(k)(v)|^2 dv,
-  /// h = 1/(q-1)). e2 = 1, e3 = 0 is seed 000 eq. 9: the interpolant is then the natural
+  /// h = 1/(q-1)). e2 = 1, e3 = 0 is Kim & Hwangbo 2008 eq. 9: the interpolant is then the natural
   /// spline, whose curvature is forced to 0 at the first and last section. e3 > 0 (degree_v
   /// >= 3) penalises the jumps of the third derivative instead: data varying quadratically
   /// along the hull are reproduced exactly and the ends keep their curvature.

@@ -95,8 +95,7 @@ FormCurveResult design_form_curve(const FormCurveRequest& request) {
   check_form_parameters_feasible(request);
   FormCurveRequest req = request;
   Problem pb(req);
-  Solver solver(pb);
-  solver.max_total = req.options.max_iterations;
+  Solver solver(pb, req.options.max_iterations);
 
   std::vector<Eigen::VectorXd> starts;
   if (req.initial_control_points.size() > 0) {
@@ -136,9 +135,8 @@ FormCurveResult design_form_curve(const FormCurveRequest& request) {
       if (!ok) continue;
     }
     if (!solver.interior(z0)) continue;
-    solver.total_iterations = 0;  // the iteration budget applies per start
-    RunOutcome out = solver.run(z0, req.options.continuation);
-    all_iterations += solver.total_iterations;
+    RunOutcome out = solver.run(z0, req.options.continuation);  // the iteration budget applies per start
+    all_iterations += solver.iterations();
     steps += out.steps;
     if (out.feasible && (!have || out.objective < best.objective)) {
       best = out;

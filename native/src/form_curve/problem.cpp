@@ -285,15 +285,11 @@ void Problem::point_derivs(const Eigen::VectorXd& z, double t, Eigen::MatrixXd& 
     for (int k = 0; k <= p; ++k) C.col(c) += ders.col(k) * z[var(c, f + k)];
 }
 
-void Problem::constraints(const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::MatrixXd* J,
-                          const Eigen::VectorXd* lambda, Eigen::MatrixXd* HL) const {
+Problem::AreaIntegrals Problem::area_integrals(const Eigen::VectorXd& z, Eigen::MatrixXd* J,
+                                               const Eigen::VectorXd* lambda, Eigen::MatrixXd* HL) const {
   const int m = static_cast<int>(cons.size());
-  c.resize(m);
-  if (J) J->setZero(m, nv);
+  if (!need_area) return {};
   const bool hess = HL && lambda;
-  if (hess) HL->setZero(nv, nv);
-
-  // Area-type integrals in one pass
   double A = 0, My = 0, Mx = 0;
   int iA = -1, iX = -1, iY = -1;
   for (int i = 0; i < m; ++i) {
@@ -301,97 +297,169 @@ void Problem::constraints(const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::M
     if (cons[i].kind == ConKind::MomentXC) iX = i;
     if (cons[i].kind == ConKind::MomentYC) iY = i;
   }
-  if (need_area) {
-    const double xc = iX >= 0 ? cons[iX].target : 0, yc = iY >= 0 ? cons[iY].target : 0;
-    double cA = 0, cMy = 0, cMx = 0;
-    if (hess) {
-      if (iA >= 0) cA += (*lambda)[iA];
-      if (iX >= 0) cA -= xc * (*lambda)[iX], cMy = (*lambda)[iX];
-      if (iY >= 0) cA -= yc * (*lambda)[iY], cMx = (*lambda)[iY];
-    }
-    Eigen::VectorXd gA, gMy, gMx;
-    if (J) gA = gMy = gMx = Eigen::VectorXd::Zero(nv);
-    // Plain loops over raw pointers: with a run-time degree, Eigen's dynamic-size
-    // expressions on these (p+1)-vectors cost a call and often an allocation each.
-    // Hessian of cA A + cMy My + cMx Mx: accumulated per span in (p+1) x (p+1) blocks
-    // (xx, yy, and xy: rows x, columns y), scattered once per span.
-    const int pp = p + 1;
-    Eigen::MatrixXd hxx, hyy, hxy;
-    if (hess) hxx.resize(pp, pp), hyy.resize(pp, pp), hxy.resize(pp, pp);
-    double u[16];  // u_i = alpha N1_i + beta N0_i: on the stack for p + 1 <= 16, else on the heap
-    std::vector<double> ubuf;
-    double* uu = u;
-    if (pp > 16) ubuf.resize(pp), uu = ubuf.data();
-    const double* zd = z.data();
-    for (int q0 = 0; q0 < tab.nqa; q0 += tab.per_span_area) {
-      const int f = q0 / tab.per_span_area;
-      const double* zx = zd + f;
-      const double* zy = zd + n + f;
-      if (hess) hxx.setZero(), hyy.setZero(), hxy.setZero();
-      for (int q = q0; q < q0 + tab.per_span_area; ++q) {
-        const double* N0 = tab.Na[0].col(q).data();
-        const double* N1 = tab.Na[1].col(q).data();
-        double x = 0, y = 0, xp = 0;
+  const double xc = iX >= 0 ? cons[iX].target : 0, yc = iY >= 0 ? cons[iY].target : 0;
+  double cA = 0, cMy = 0, cMx = 0;
+  if (hess) {
+    if (iA >= 0) cA += (*lambda)[iA];
+    if (iX >= 0) cA -= xc * (*lambda)[iX], cMy = (*lambda)[iX];
+    if (iY >= 0) cA -= yc * (*lambda)[iY], cMx = (*lambda)[iY];
+  }
+  Eigen::VectorXd gA, gMy, gMx;
+  if (J) gA = gMy = gMx = Eigen::VectorXd::Zero(nv);
+  // Plain loops over raw pointers: with a run-time degree, Eigen's dynamic-size
+  // expressions on these (p+1)-vectors cost a call and often an allocation each.
+  // Hessian of cA A + cMy My + cMx Mx: accumulated per span in (p+1) x (p+1) blocks
+  // (xx, yy, and xy: rows x, columns y), scattered once per span.
+  const int pp = p + 1;
+  Eigen::MatrixXd hxx, hyy, hxy;
+  if (hess) hxx.resize(pp, pp), hyy.resize(pp, pp), hxy.resize(pp, pp);
+  double u[16];  // u_i = alpha N1_i + beta N0_i: on the stack for p + 1 <= 16, else on the heap
+  std::vector<double> ubuf;
+  double* uu = u;
+  if (pp > 16) ubuf.resize(pp), uu = ubuf.data();
+  const double* zd = z.data();
+  for (int q0 = 0; q0 < tab.nqa; q0 += tab.per_span_area) {
+    const int f = q0 / tab.per_span_area;
+    const double* zx = zd + f;
+    const double* zy = zd + n + f;
+    if (hess) hxx.setZero(), hyy.setZero(), hxy.setZero();
+    for (int q = q0; q < q0 + tab.per_span_area; ++q) {
+      const double* N0 = tab.Na[0].col(q).data();
+      const double* N1 = tab.Na[1].col(q).data();
+      double x = 0, y = 0, xp = 0;
+      for (int k = 0; k < pp; ++k) {
+        x += N0[k] * zx[k];
+        y += N0[k] * zy[k];
+        xp += N1[k] * zx[k];
+      }
+      const double w = tab.wa[q];
+      A += w * y * xp;
+      My += w * x * y * xp;
+      Mx += w * 0.5 * y * y * xp;
+      if (J) {
+        double* gAx = gA.data() + f;
+        double* gAy = gA.data() + n + f;
+        double* gMyx = gMy.data() + f;
+        double* gMyy = gMy.data() + n + f;
+        double* gMxx = gMx.data() + f;
+        double* gMxy = gMx.data() + n + f;
+        const double a1 = w * y, a0 = w * xp, b0 = w * y * xp, b1 = w * x * y, b2 = w * x * xp,
+                     c1 = w * 0.5 * y * y;
         for (int k = 0; k < pp; ++k) {
-          x += N0[k] * zx[k];
-          y += N0[k] * zy[k];
-          xp += N1[k] * zx[k];
-        }
-        const double w = tab.wa[q];
-        A += w * y * xp;
-        My += w * x * y * xp;
-        Mx += w * 0.5 * y * y * xp;
-        if (J) {
-          double* gAx = gA.data() + f;
-          double* gAy = gA.data() + n + f;
-          double* gMyx = gMy.data() + f;
-          double* gMyy = gMy.data() + n + f;
-          double* gMxx = gMx.data() + f;
-          double* gMxy = gMx.data() + n + f;
-          const double a1 = w * y, a0 = w * xp, b0 = w * y * xp, b1 = w * x * y, b2 = w * x * xp,
-                       c1 = w * 0.5 * y * y;
-          for (int k = 0; k < pp; ++k) {
-            gAx[k] += a1 * N1[k];
-            gAy[k] += a0 * N0[k];
-            gMyx[k] += b0 * N0[k] + b1 * N1[k];
-            gMyy[k] += b2 * N0[k];
-            gMxx[k] += c1 * N1[k];
-            gMxy[k] += b0 * N0[k];
-          }
-        }
-        if (hess) {
-          const double a = w * cMy * y, b = w * cMx * xp;
-          const double al = w * (cA + cMy * x + cMx * y), be = w * cMy * xp;
-          for (int i = 0; i < pp; ++i) uu[i] = al * N1[i] + be * N0[i];
-          for (int k = 0; k < pp; ++k) {  // column k (column-major blocks)
-            double* cxx = hxx.col(k).data();
-            double* cyy = hyy.col(k).data();
-            double* cxy = hxy.col(k).data();
-            const double aN1 = a * N1[k], aN0 = a * N0[k], bN0 = b * N0[k], n0 = N0[k];
-            for (int i = 0; i < pp; ++i) {
-              cxx[i] += aN1 * N0[i] + aN0 * N1[i];
-              cyy[i] += bN0 * N0[i];
-              cxy[i] += uu[i] * n0;
-            }
-          }
+          gAx[k] += a1 * N1[k];
+          gAy[k] += a0 * N0[k];
+          gMyx[k] += b0 * N0[k] + b1 * N1[k];
+          gMyy[k] += b2 * N0[k];
+          gMxx[k] += c1 * N1[k];
+          gMxy[k] += b0 * N0[k];
         }
       }
       if (hess) {
-        Eigen::MatrixXd& H = *HL;
-        H.block(f, f, pp, pp) += hxx;
-        H.block(n + f, n + f, pp, pp) += hyy;
-        H.block(f, n + f, pp, pp) += hxy;
-        H.block(n + f, f, pp, pp) += hxy.transpose();
+        const double a = w * cMy * y, b = w * cMx * xp;
+        const double al = w * (cA + cMy * x + cMx * y), be = w * cMy * xp;
+        for (int i = 0; i < pp; ++i) uu[i] = al * N1[i] + be * N0[i];
+        for (int k = 0; k < pp; ++k) {  // column k (column-major blocks)
+          double* cxx = hxx.col(k).data();
+          double* cyy = hyy.col(k).data();
+          double* cxy = hxy.col(k).data();
+          const double aN1 = a * N1[k], aN0 = a * N0[k], bN0 = b * N0[k], n0 = N0[k];
+          for (int i = 0; i < pp; ++i) {
+            cxx[i] += aN1 * N0[i] + aN0 * N1[i];
+            cyy[i] += bN0 * N0[i];
+            cxy[i] += uu[i] * n0;
+          }
+        }
       }
     }
-    if (J) {
-      if (iA >= 0) J->row(iA) = gA.transpose();
-      if (iX >= 0) J->row(iX) = (gMy - xc * gA).transpose();
-      if (iY >= 0) J->row(iY) = (gMx - yc * gA).transpose();
+    if (hess) {
+      Eigen::MatrixXd& H = *HL;
+      H.block(f, f, pp, pp) += hxx;
+      H.block(n + f, n + f, pp, pp) += hyy;
+      H.block(f, n + f, pp, pp) += hxy;
+      H.block(n + f, f, pp, pp) += hxy.transpose();
     }
   }
+  if (J) {
+    if (iA >= 0) J->row(iA) = gA.transpose();
+    if (iX >= 0) J->row(iX) = (gMy - xc * gA).transpose();
+    if (iY >= 0) J->row(iY) = (gMx - yc * gA).transpose();
+  }
+  return {A, My, Mx};
+}
 
+void Problem::curvature_constraint(int i, const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::MatrixXd* J,
+                                   const Eigen::VectorXd* lambda, Eigen::MatrixXd* HL) const {
+  const Constraint& k = cons[i];
+  const bool hess = HL && lambda;
+  const Eigen::MatrixXd& R = tab.end_rows[k.end];
+  const Eigen::Vector4d d(R.row(1).dot(z.segment(0, n)), R.row(1).dot(z.segment(n, n)),
+                          R.row(2).dot(z.segment(0, n)), R.row(2).dot(z.segment(n, n)));
+  const double u = d[0] * d[3] - d[1] * d[2];
+  const double s = d[0] * d[0] + d[1] * d[1];
+  const double s15 = s * std::sqrt(s);
+  c[i] = u / s15 - k.target;
+  if (!J && !hess) return;
+  const Eigen::Vector4d du(d[3], -d[2], -d[1], d[0]);
+  const Eigen::Vector4d ds(2 * d[0], 2 * d[1], 0, 0);
+  const Eigen::Vector4d dk = du / s15 - 1.5 * u / (s15 * s) * ds;
+  if (J) {
+    J->row(i).segment(0, n) = dk[0] * R.row(1) + dk[2] * R.row(2);
+    J->row(i).segment(n, n) = dk[1] * R.row(1) + dk[3] * R.row(2);
+  }
+  if (hess) {
+    Eigen::Matrix4d d2u = Eigen::Matrix4d::Zero();
+    d2u(0, 3) = d2u(3, 0) = 1;
+    d2u(1, 2) = d2u(2, 1) = -1;
+    Eigen::Matrix4d d2s = Eigen::Matrix4d::Zero();
+    d2s(0, 0) = d2s(1, 1) = 2;
+    const Eigen::Matrix4d Hk = d2u / s15 - 1.5 / (s15 * s) * (du * ds.transpose() + ds * du.transpose()) +
+                               3.75 * u / (s15 * s * s) * ds * ds.transpose() - 1.5 * u / (s15 * s) * d2s;
+    // d = (x1, y1, x2, y2) depends only on the p+1 control points next to the end:
+    // d_x = B zx, d_y = B zy with B = end rows 1, 2 restricted to them
+    const int pp = p + 1, r0 = k.end == 0 ? 0 : n - pp;
+    Eigen::MatrixXd B(2, pp);
+    B.row(0) = R.row(1).segment(r0, pp);
+    B.row(1) = R.row(2).segment(r0, pp);
+    const double l = (*lambda)[i];
+    for (int a = 0; a < 2; ++a)
+      for (int bb = 0; bb < 2; ++bb) {
+        Eigen::Matrix2d Hab;  // Hk restricted to (coord a) x (coord bb): d indices a, a+2
+        Hab << Hk(a, bb), Hk(a, bb + 2), Hk(a + 2, bb), Hk(a + 2, bb + 2);
+        HL->block(a * n + r0, bb * n + r0, pp, pp).noalias() += l * (B.transpose() * Hab * B);
+      }
+  }
+}
+
+void Problem::point_constraint(int i, const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::MatrixXd* J,
+                               const Eigen::VectorXd* lambda, Eigen::MatrixXd* HL) const {
+  const Constraint& k = cons[i];
+  const bool hess = HL && lambda;
   Eigen::MatrixXd C, ders;
+  const int tv = tvar(k.point);
+  int f = 0;
+  point_derivs(z, z[tv], C, ders, f);
+  c[i] = C(0, k.coord) - k.target;
+  if (J) {
+    for (int j = 0; j <= p; ++j) (*J)(i, var(k.coord, f + j)) = ders(0, j);
+    (*J)(i, tv) = C(1, k.coord);
+  }
+  if (hess) {
+    const double l = (*lambda)[i];
+    for (int j = 0; j <= p; ++j) {
+      (*HL)(var(k.coord, f + j), tv) += l * ders(1, j);
+      (*HL)(tv, var(k.coord, f + j)) += l * ders(1, j);
+    }
+    (*HL)(tv, tv) += l * C(2, k.coord);
+  }
+}
+
+void Problem::constraints(const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::MatrixXd* J,
+                          const Eigen::VectorXd* lambda, Eigen::MatrixXd* HL) const {
+  const int m = static_cast<int>(cons.size());
+  c.resize(m);
+  if (J) J->setZero(m, nv);
+  if (HL && lambda) HL->setZero(nv, nv);
+  const auto [A, My, Mx] = area_integrals(z, J, lambda, HL);
   for (int i = 0; i < m; ++i) {
     const Constraint& k = cons[i];
     switch (k.kind) {
@@ -402,65 +470,8 @@ void Problem::constraints(const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::M
       case ConKind::Area: c[i] = A - k.target; break;
       case ConKind::MomentXC: c[i] = My - k.target * A; break;
       case ConKind::MomentYC: c[i] = Mx - k.target * A; break;
-      case ConKind::Curvature: {
-        const Eigen::MatrixXd& R = tab.end_rows[k.end];
-        const Eigen::Vector4d d(R.row(1).dot(z.segment(0, n)), R.row(1).dot(z.segment(n, n)),
-                                R.row(2).dot(z.segment(0, n)), R.row(2).dot(z.segment(n, n)));
-        const double u = d[0] * d[3] - d[1] * d[2];
-        const double s = d[0] * d[0] + d[1] * d[1];
-        const double s15 = s * std::sqrt(s);
-        c[i] = u / s15 - k.target;
-        if (!J && !hess) break;
-        const Eigen::Vector4d du(d[3], -d[2], -d[1], d[0]);
-        const Eigen::Vector4d ds(2 * d[0], 2 * d[1], 0, 0);
-        const Eigen::Vector4d dk = du / s15 - 1.5 * u / (s15 * s) * ds;
-        if (J) {
-          J->row(i).segment(0, n) = dk[0] * R.row(1) + dk[2] * R.row(2);
-          J->row(i).segment(n, n) = dk[1] * R.row(1) + dk[3] * R.row(2);
-        }
-        if (hess) {
-          Eigen::Matrix4d d2u = Eigen::Matrix4d::Zero();
-          d2u(0, 3) = d2u(3, 0) = 1;
-          d2u(1, 2) = d2u(2, 1) = -1;
-          Eigen::Matrix4d d2s = Eigen::Matrix4d::Zero();
-          d2s(0, 0) = d2s(1, 1) = 2;
-          const Eigen::Matrix4d Hk = d2u / s15 - 1.5 / (s15 * s) * (du * ds.transpose() + ds * du.transpose()) +
-                                     3.75 * u / (s15 * s * s) * ds * ds.transpose() - 1.5 * u / (s15 * s) * d2s;
-          // d = (x1, y1, x2, y2) depends only on the p+1 control points next to the end:
-          // d_x = B zx, d_y = B zy with B = end rows 1, 2 restricted to them
-          const int pp = p + 1, r0 = k.end == 0 ? 0 : n - pp;
-          Eigen::MatrixXd B(2, pp);
-          B.row(0) = R.row(1).segment(r0, pp);
-          B.row(1) = R.row(2).segment(r0, pp);
-          const double l = (*lambda)[i];
-          for (int a = 0; a < 2; ++a)
-            for (int bb = 0; bb < 2; ++bb) {
-              Eigen::Matrix2d Hab;  // Hk restricted to (coord a) x (coord bb): d indices a, a+2
-              Hab << Hk(a, bb), Hk(a, bb + 2), Hk(a + 2, bb), Hk(a + 2, bb + 2);
-              HL->block(a * n + r0, bb * n + r0, pp, pp).noalias() += l * (B.transpose() * Hab * B);
-            }
-        }
-        break;
-      }
-      case ConKind::Point: {
-        const int tv = tvar(k.point);
-        int f = 0;
-        point_derivs(z, z[tv], C, ders, f);
-        c[i] = C(0, k.coord) - k.target;
-        if (J) {
-          for (int j = 0; j <= p; ++j) (*J)(i, var(k.coord, f + j)) = ders(0, j);
-          (*J)(i, tv) = C(1, k.coord);
-        }
-        if (hess) {
-          const double l = (*lambda)[i];
-          for (int j = 0; j <= p; ++j) {
-            (*HL)(var(k.coord, f + j), tv) += l * ders(1, j);
-            (*HL)(tv, var(k.coord, f + j)) += l * ders(1, j);
-          }
-          (*HL)(tv, tv) += l * C(2, k.coord);
-        }
-        break;
-      }
+      case ConKind::Curvature: curvature_constraint(i, z, c, J, lambda, HL); break;
+      case ConKind::Point: point_constraint(i, z, c, J, lambda, HL); break;
     }
   }
 }

@@ -68,6 +68,19 @@ struct Problem {
   /// Constraints, Jacobian and sum lambda_i Hess c_i (HL only if lambda non-empty).
   void constraints(const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::MatrixXd* J,
                    const Eigen::VectorXd* lambda, Eigen::MatrixXd* HL) const;
+  /// Area A and first moments My = int x y dx, Mx = int y^2/2 dx of the curve, with the
+  /// Jacobian rows of the area-type constraints and their Hessian terms (weighted by lambda).
+  struct AreaIntegrals {
+    double A = 0, My = 0, Mx = 0;
+  };
+  AreaIntegrals area_integrals(const Eigen::VectorXd& z, Eigen::MatrixXd* J, const Eigen::VectorXd* lambda,
+                               Eigen::MatrixXd* HL) const;
+  /// End curvature constraint i: value, Jacobian row, Hessian term.
+  void curvature_constraint(int i, const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::MatrixXd* J,
+                            const Eigen::VectorXd* lambda, Eigen::MatrixXd* HL) const;
+  /// Point constraint i (a coordinate at a free parameter): value, Jacobian row, Hessian term.
+  void point_constraint(int i, const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::MatrixXd* J,
+                        const Eigen::VectorXd* lambda, Eigen::MatrixXd* HL) const;
   /// Objective, gradient and Hessian (g, H optional).
   double objective(const Eigen::VectorXd& z, Eigen::VectorXd* g, Eigen::MatrixXd* H) const;
   /// Fairness measures of control points z.

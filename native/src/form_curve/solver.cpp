@@ -5,7 +5,6 @@
 #include <limits>
 #include <numbers>
 #include <random>
-#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
@@ -33,7 +32,7 @@ constexpr double kMeritRoundoff = 1e-14;
 constexpr double kStallStep = 1e-13;
 }  // namespace
 
-Solver::Solver(Problem& problem) : pb(problem) {
+Solver::Solver(Problem& problem, int iteration_budget) : pb(problem), max_total(iteration_budget) {
   m = static_cast<int>(pb.cons.size());
   // Linear equality system L z = b
   std::vector<int> lin;
@@ -101,153 +100,176 @@ double Solver::merit_of(double f, const Eigen::VectorXd& c, const Eigen::VectorX
   return std::isfinite(val) ? val : kInf;
 }
 
-bool Solver::newton(Eigen::VectorXd& z, Eigen::VectorXd& lam, double mu, double tol_c, double tol_g, int maxit) {
+namespace {
+/// LLT of A + delta I with the smallest delta of 0, 1e-10 scale, x10, ... that factors
+/// (inertia correction); false when none of 40 shifts does.
+bool factor_shifted(const Eigen::MatrixXd& A, Eigen::LLT<Eigen::MatrixXd>& llt) {
+  double delta = 0;
+  const double hs = std::max(1e-12, A.diagonal().cwiseAbs().maxCoeff());
+  for (int k = 0; k < 40; ++k) {
+    llt.compute(A + delta * Eigen::MatrixXd::Identity(A.rows(), A.cols()));
+    if (llt.info() == Eigen::Success) return true;
+    delta = delta == 0 ? 1e-10 * hs : delta * 10;
+  }
+  return false;
+}
+}  // namespace
+
+bool Solver::model_at(const Eigen::VectorXd& z, const Eigen::VectorXd& lam, double mu, NewtonModel& md) {
+  md.f = pb.objective(z, &md.g, &md.H);
+  pb.constraints(z, md.c, &md.J, &lam, &md.HL);
+  if (!std::isfinite(md.f) || !md.c.allFinite() || !md.J.allFinite()) return false;
+  md.s = G * z - h;
+  md.gt = md.g;
+  md.Ht = md.H + md.HL;
+  if (md.s.size() > 0) {
+    // primal-dual barrier: the Hessian term uses the dual estimates v (v_i s_i -> mu)
+    if (vdual.size() != md.s.size()) vdual = mu * md.s.cwiseInverse();
+    for (int r = 0; r < md.s.size(); ++r)
+      vdual[r] = std::clamp(vdual[r], mu / (1e10 * md.s[r]), 1e10 * mu / md.s[r]);
+    const Eigen::VectorXd inv = md.s.cwiseInverse();
+    md.gt.noalias() -= mu * (G.transpose() * inv);
+    md.Ht.noalias() += G.transpose() * vdual.cwiseProduct(inv).asDiagonal() * G;
+  }
+  return true;
+}
+
+bool Solver::null_space_step(const NewtonModel& md, Eigen::VectorXd& d, Eigen::VectorXd& lam_new) {
   const int nv = pb.nv;
-  Eigen::VectorXd c, g, gb, s, d, lam_new, ctrial;
-  Eigen::MatrixXd J, HL, H;
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr(md.J.transpose());
+  const Eigen::MatrixXd R = qr.matrixQR().topRows(m).triangularView<Eigen::Upper>();
+  const double rmax = R.diagonal().cwiseAbs().maxCoeff();
+  if (!(R.diagonal().cwiseAbs().minCoeff() > 1e-11 * std::max(rmax, 1e-300))) return false;
+  const Eigen::MatrixXd Q = qr.householderQ();
+  const auto Y = Q.leftCols(m);
+  const auto Z = Q.rightCols(nv - m);
+  const Eigen::VectorXd py = R.transpose().triangularView<Eigen::Lower>().solve(-md.c);
+  d = Y * py;
+  if (nv > m) {
+    const Eigen::MatrixXd Hr = Z.transpose() * md.Ht * Z;
+    const Eigen::VectorXd rhs = -(Z.transpose() * (md.gt + md.Ht * d));
+    Eigen::LLT<Eigen::MatrixXd> llt;
+    if (!factor_shifted(Hr, llt)) {
+      d.resize(0);  // the reduced Hessian cannot be corrected: no step
+      return true;
+    }
+    d.noalias() += Z * llt.solve(rhs);
+  }
+  lam_new = R.triangularView<Eigen::Upper>().solve(-(Y.transpose() * (md.gt + md.Ht * d)));
+  soc_Y = Y;
+  soc_R = R;
+  return true;
+}
+
+bool Solver::regularised_step(const NewtonModel& md, Eigen::VectorXd& d, Eigen::VectorXd& lam_new) const {
+  const int nv = pb.nv;
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nv + m, nv + m);
+  const double hs = std::max(1e-12, md.Ht.diagonal().cwiseAbs().maxCoeff());
+  K.topLeftCorner(nv, nv) = md.Ht + 1e-8 * hs * Eigen::MatrixXd::Identity(nv, nv);
+  K.topRightCorner(nv, m) = md.J.transpose();
+  K.bottomLeftCorner(m, nv) = md.J;
+  K.bottomRightCorner(m, m) = -1e-10 * Eigen::MatrixXd::Identity(m, m);
+  Eigen::VectorXd rhs(nv + m);
+  rhs << -md.gt, -md.c;
+  const Eigen::VectorXd sol = K.partialPivLu().solve(rhs);
+  if (!sol.allFinite()) return false;
+  d = sol.head(nv);
+  lam_new = sol.tail(m);
+  return true;
+}
+
+bool Solver::kkt_step(const NewtonModel& md, Eigen::VectorXd& d, Eigen::VectorXd& lam_new, bool& regular) {
+  regular = true;
+  if (m == 0) {
+    Eigen::LLT<Eigen::MatrixXd> llt;
+    if (!factor_shifted(md.Ht, llt)) return false;
+    d = llt.solve(-md.gt);
+    lam_new.resize(0);
+  } else if (null_space_step(md, d, lam_new)) {
+    if (d.size() == 0) return false;
+  } else {
+    // dependent constraint gradients: regularised KKT, LU with partial pivoting
+    regular = false;
+    if (!regularised_step(md, d, lam_new)) return false;
+  }
+  return d.allFinite();
+}
+
+bool Solver::line_search(Eigen::VectorXd& z, const Eigen::VectorXd& d, const NewtonModel& md, double mu, double nu,
+                         bool regular, double& alpha) {
+  double amax = 1;
+  if (md.s.size() > 0) {
+    const Eigen::VectorXd Gd = G * d;
+    for (int r = 0; r < md.s.size(); ++r)
+      if (Gd[r] < 0) amax = std::min(amax, -0.995 * md.s[r] / Gd[r]);
+  }
+  // z is interior (s > 0) and f, c are its values: no re-evaluation needed
+  const double phi0 = merit_of(md.f, md.c, md.s, mu, nu);
+  const double dphi = md.gt.dot(d) - nu * md.c.lpNorm<1>();
+  Eigen::VectorXd ctrial;
+  alpha = amax;
+  for (int k = 0; k < 40; ++k) {
+    Eigen::VectorXd zt = z + alpha * d;
+    double phi = merit(zt, mu, nu, ctrial);
+    if (!(phi <= phi0 + 1e-4 * alpha * std::min(dphi, 0.0)) && m > 0 && regular && std::isfinite(phi)) {
+      // second-order corrections: pull the trial point back onto the constraint
+      // manifold with the current factorization (curved constraints, Maratos effect)
+      for (int corr = 0; corr < 3; ++corr) {
+        const Eigen::VectorXd py = soc_R.transpose().triangularView<Eigen::Lower>().solve(-ctrial);
+        const Eigen::VectorXd zs = zt + soc_Y * py;
+        const double phis = merit(zs, mu, nu, ctrial);
+        if (!std::isfinite(phis)) break;
+        zt = zs;
+        phi = phis;
+        if (phi <= phi0 + 1e-4 * alpha * std::min(dphi, 0.0)) break;
+      }
+    }
+    if (phi <= phi0 + 1e-4 * alpha * std::min(dphi, 0.0)) {
+      // a step below representable size is a stall, not progress
+      const bool accepted = (zt - z).norm() > kStallStep * (1 + z.norm());
+      if (accepted) z = zt;
+      return accepted;
+    }
+    alpha *= 0.5;
+    if (alpha < 1e-14) break;
+  }
+  return false;
+}
+
+void Solver::dual_step(const NewtonModel& md, const Eigen::VectorXd& d, double mu) {
+  // dv = mu/s - v - (v/s) G d, fraction-to-boundary on v
+  const Eigen::VectorXd Gd = G * d;
+  Eigen::VectorXd dv(md.s.size());
+  double av = 1;
+  for (int r = 0; r < md.s.size(); ++r) {
+    dv[r] = mu / md.s[r] - vdual[r] - vdual[r] / md.s[r] * Gd[r];
+    if (dv[r] < 0) av = std::min(av, -0.995 * vdual[r] / dv[r]);
+  }
+  vdual += av * dv;
+}
+
+bool Solver::newton(Eigen::VectorXd& z, Eigen::VectorXd& lam, double mu, double tol_c, double tol_g, int maxit) {
+  NewtonModel md;
+  Eigen::VectorXd d, lam_new;
   double nu = 0;
   for (int it = 0; it < maxit; ++it) {
     if (total_iterations >= max_total) return false;
-    const double f = pb.objective(z, &g, &H);
-    pb.constraints(z, c, &J, &lam, &HL);
-    if (!std::isfinite(f) || !c.allFinite() || !J.allFinite()) return false;
-    s = G * z - h;
-    Eigen::VectorXd gt = g;
-    Eigen::MatrixXd Ht = H + HL;
-    if (s.size() > 0) {
-      // primal-dual barrier: the Hessian term uses the dual estimates v (v_i s_i -> mu)
-      if (vdual.size() != s.size()) vdual = mu * s.cwiseInverse();
-      for (int r = 0; r < s.size(); ++r)
-        vdual[r] = std::clamp(vdual[r], mu / (1e10 * s[r]), 1e10 * mu / s[r]);
-      const Eigen::VectorXd inv = s.cwiseInverse();
-      gt.noalias() -= mu * (G.transpose() * inv);
-      Ht.noalias() += G.transpose() * vdual.cwiseProduct(inv).asDiagonal() * G;
-    }
-    const double viol = pb.scaled_violation(c);
-    const double gscale = 1 + g.lpNorm<Eigen::Infinity>();
-    const double stat = (gt + J.transpose() * lam).lpNorm<Eigen::Infinity>();
+    if (!model_at(z, lam, mu, md)) return false;
+    const double viol = pb.scaled_violation(md.c);
+    const double gscale = 1 + md.g.lpNorm<Eigen::Infinity>();
+    const double stat = (md.gt + md.J.transpose() * lam).lpNorm<Eigen::Infinity>();
     last_violation = viol;
     last_stationarity = stat / gscale;
-    if (debug) std::fprintf(stderr, "  it %d mu %.2e f %.6g viol %.3e stat %.3e\n", it, mu, f, viol, stat / gscale);
     if (viol <= tol_c && stat <= tol_g * gscale) return true;
     ++total_iterations;
-
-    // --- KKT step by the null-space method (QR of J^T), inertia-corrected
     bool regular = true;
-    if (m > 0) {
-      Eigen::HouseholderQR<Eigen::MatrixXd> qr(J.transpose());
-      const Eigen::MatrixXd R = qr.matrixQR().topRows(m).triangularView<Eigen::Upper>();
-      const double rmax = R.diagonal().cwiseAbs().maxCoeff();
-      if (!(R.diagonal().cwiseAbs().minCoeff() > 1e-11 * std::max(rmax, 1e-300))) regular = false;
-      if (regular) {
-        const Eigen::MatrixXd Q = qr.householderQ();
-        const auto Y = Q.leftCols(m);
-        const auto Z = Q.rightCols(nv - m);
-        const Eigen::VectorXd py = R.transpose().triangularView<Eigen::Lower>().solve(-c);
-        d = Y * py;
-        if (nv > m) {
-          Eigen::MatrixXd Hr = Z.transpose() * Ht * Z;
-          const Eigen::VectorXd rhs = -(Z.transpose() * (gt + Ht * d));
-          double delta = 0;
-          const double hs = std::max(1e-12, Hr.diagonal().cwiseAbs().maxCoeff());
-          Eigen::LLT<Eigen::MatrixXd> llt;
-          for (int k = 0; k < 40; ++k) {
-            llt.compute(Hr + delta * Eigen::MatrixXd::Identity(nv - m, nv - m));
-            if (llt.info() == Eigen::Success) break;
-            delta = delta == 0 ? 1e-10 * hs : delta * 10;
-          }
-          if (llt.info() != Eigen::Success) return false;
-          d.noalias() += Z * llt.solve(rhs);
-        }
-        lam_new = R.triangularView<Eigen::Upper>().solve(-(Y.transpose() * (gt + Ht * d)));
-        soc_Y = Y;
-        soc_R = R;
-      }
-    }
-    if (m == 0) {
-      Eigen::LLT<Eigen::MatrixXd> llt;
-      double delta = 0;
-      const double hs = std::max(1e-12, Ht.diagonal().cwiseAbs().maxCoeff());
-      for (int k = 0; k < 40; ++k) {
-        llt.compute(Ht + delta * Eigen::MatrixXd::Identity(nv, nv));
-        if (llt.info() == Eigen::Success) break;
-        delta = delta == 0 ? 1e-10 * hs : delta * 10;
-      }
-      if (llt.info() != Eigen::Success) return false;
-      d = llt.solve(-gt);
-      lam_new.resize(0);
-    } else if (!regular) {
-      // dependent constraint gradients: regularised KKT, LU with partial pivoting
-      Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nv + m, nv + m);
-      const double hs = std::max(1e-12, Ht.diagonal().cwiseAbs().maxCoeff());
-      K.topLeftCorner(nv, nv) = Ht + 1e-8 * hs * Eigen::MatrixXd::Identity(nv, nv);
-      K.topRightCorner(nv, m) = J.transpose();
-      K.bottomLeftCorner(m, nv) = J;
-      K.bottomRightCorner(m, m) = -1e-10 * Eigen::MatrixXd::Identity(m, m);
-      Eigen::VectorXd rhs(nv + m);
-      rhs << -gt, -c;
-      const Eigen::VectorXd sol = K.partialPivLu().solve(rhs);
-      if (!sol.allFinite()) return false;
-      d = sol.head(nv);
-      lam_new = sol.tail(m);
-    }
-    if (!d.allFinite()) return false;
-
-    // --- line search on the l1 merit with fraction-to-boundary and second-order correction
+    if (!kkt_step(md, d, lam_new, regular)) return false;
     if (m > 0) nu = std::max(nu, 1.1 * lam_new.lpNorm<Eigen::Infinity>() + 1e-8);
-    double amax = 1;
-    if (s.size() > 0) {
-      const Eigen::VectorXd Gd = G * d;
-      for (int r = 0; r < s.size(); ++r)
-        if (Gd[r] < 0) amax = std::min(amax, -0.995 * s[r] / Gd[r]);
-    }
-    // z is interior (s > 0) and f, c are its values: no re-evaluation needed
-    const double phi0 = merit_of(f, c, s, mu, nu);
-    const double dphi = gt.dot(d) - nu * c.lpNorm<1>();
-    double alpha = amax;
-    bool accepted = false;
-    for (int k = 0; k < 40 && !accepted; ++k) {
-      Eigen::VectorXd zt = z + alpha * d;
-      double phi = merit(zt, mu, nu, ctrial);
-      if (!(phi <= phi0 + 1e-4 * alpha * std::min(dphi, 0.0)) && m > 0 && regular && std::isfinite(phi)) {
-        // second-order corrections: pull the trial point back onto the constraint
-        // manifold with the current factorization (curved constraints, Maratos effect)
-        for (int corr = 0; corr < 3; ++corr) {
-          const Eigen::VectorXd py = soc_R.transpose().triangularView<Eigen::Lower>().solve(-ctrial);
-          const Eigen::VectorXd zs = zt + soc_Y * py;
-          const double phis = merit(zs, mu, nu, ctrial);
-          if (!std::isfinite(phis)) break;
-          zt = zs;
-          phi = phis;
-          if (phi <= phi0 + 1e-4 * alpha * std::min(dphi, 0.0)) break;
-        }
-      }
-      if (phi <= phi0 + 1e-4 * alpha * std::min(dphi, 0.0)) {
-        // a step below representable size is a stall, not progress
-        accepted = (zt - z).norm() > kStallStep * (1 + z.norm());
-        if (accepted) z = zt;
-        break;
-      }
-      alpha *= 0.5;
-      if (alpha < 1e-14) break;
-    }
-    if (debug) std::fprintf(stderr, "     alpha %.3e amax %.3e |d| %.3e nu %.3e accepted %d\n", alpha, amax, d.norm(), nu, int(accepted));
-    if (!accepted) {
-      // no decrease possible: converged to the accuracy the merit can resolve?
-      return viol <= tol_c && stat <= 1e3 * tol_g * gscale;
-    }
+    double alpha = 0;
+    // No decrease possible: converged to the accuracy the merit can resolve?
+    if (!line_search(z, d, md, mu, nu, regular, alpha)) return viol <= tol_c && stat <= 1e3 * tol_g * gscale;
     if (m > 0) lam += std::min(alpha, 1.0) * (lam_new - lam);
-    if (s.size() > 0) {
-      // dual step dv = mu/s - v - (v/s) G d, fraction-to-boundary on v
-      const Eigen::VectorXd Gd = G * d;
-      Eigen::VectorXd dv(s.size());
-      double av = 1;
-      for (int r = 0; r < s.size(); ++r) {
-        dv[r] = mu / s[r] - vdual[r] - vdual[r] / s[r] * Gd[r];
-        if (dv[r] < 0) av = std::min(av, -0.995 * vdual[r] / dv[r]);
-      }
-      vdual += av * dv;
-    }
+    if (md.s.size() > 0) dual_step(md, d, mu);
   }
   return false;
 }
@@ -443,7 +465,6 @@ bool Solver::restore(Eigen::VectorXd& z, int maxit) {
     if (!c.allFinite() || !J.allFinite()) return false;
     const Eigen::VectorXd sc = c.cwiseProduct(sinv);
     const double res = sc.lpNorm<Eigen::Infinity>();
-    if (debug) std::fprintf(stderr, "  restore it %d res %.3e lm %.1e\n", it, res, lm);
     if (res <= restore_tol) return true;
     stall = res > 0.98 * prev_res ? stall + 1 : 0;
     prev_res = res;
@@ -486,11 +507,6 @@ bool Solver::restore(Eigen::VectorXd& z, int maxit) {
       }
       const Eigen::VectorXd zt = z + amax * d;
       const double phi = phi_of(zt, ct, mu);
-      if (debug && k == 0) {
-        Eigen::JacobiSVD<Eigen::MatrixXd> svd(Js);
-        std::fprintf(stderr, "    amax %.2e |d| %.2e mins %.2e sigmin %.2e phi0 %.6e phi %.6e\n", amax, d.norm(),
-                     s.size() ? s.minCoeff() : 0.0, svd.singularValues().minCoeff(), phi0, phi);
-      }
       if (phi < phi0) {
         z = zt;
         accepted = true;
@@ -505,6 +521,7 @@ bool Solver::restore(Eigen::VectorXd& z, int maxit) {
 }
 
 RunOutcome Solver::run(const Eigen::VectorXd& z0, bool continuation) {
+  total_iterations = 0;
   RunOutcome out;
   out.z = z0;
   out.lam = Eigen::VectorXd::Zero(m);
@@ -527,7 +544,6 @@ RunOutcome Solver::run(const Eigen::VectorXd& z0, bool continuation) {
       out.steps = 1;
     } else {
       vdual.resize(0);
-      if (debug) std::fprintf(stderr, "direct phase failed; continuation\n");
     }
   }
   dtau = 0.5;
@@ -536,7 +552,6 @@ RunOutcome Solver::run(const Eigen::VectorXd& z0, bool continuation) {
     set_targets(tn);
     Eigen::VectorXd z = out.z, lam = out.lam;
     const bool ok = newton(z, lam, mu0, tn < 1 ? 1e-8 : 1e-10, 1e-5, 15);
-    if (debug) std::fprintf(stderr, "tau %.5f -> %d\n", tn, int(ok));
     if (ok) {
       out.z = z;
       out.lam = lam;

@@ -1,7 +1,6 @@
 // Internal: SQP / barrier / continuation solver of the form-parameter curve problem.
 #pragma once
 
-#include <cstdlib>
 #include <random>
 #include <string>
 #include <vector>
@@ -23,7 +22,32 @@ struct RunOutcome {
   bool converged = false;  // and KKT conditions met
 };
 
-struct Solver {
+/// The barrier model at an iterate: objective f, gradient g, Hessian H; constraints c,
+/// Jacobian J, constraint Hessian HL; slacks s = G z - h > 0; barrier gradient gt, Hessian Ht.
+struct NewtonModel {
+  double f = 0;
+  Eigen::VectorXd g, c, s, gt;
+  Eigen::MatrixXd H, J, HL, Ht;
+};
+
+/// The solver of one problem: state (linear system, kept inequalities, duals, iteration
+/// count) is private; design_form_curve asks it for start curves and runs it from each.
+class Solver {
+ public:
+  /// `iteration_budget`: Newton and restoration iterations allowed per run (per start).
+  Solver(Problem& problem, int iteration_budget);
+  Eigen::VectorXd start_curve(std::mt19937* rng) const;
+  Eigen::VectorXd fair_linear_start(const Eigen::VectorXd& zc) const;
+  Eigen::VectorXd project_linear(const Eigen::VectorXd& z) const;
+  bool interior(const Eigen::VectorXd& z) const;
+  /// One solve from z0 (the iteration count starts again at 0).
+  RunOutcome run(const Eigen::VectorXd& z0, bool continuation);
+  /// Iterations the last run took.
+  int iterations() const { return total_iterations; }
+
+ private:
+  friend std::string failure_report(Solver& solver, const RunOutcome& best);
+
   Problem& pb;
   int m = 0;
   Eigen::MatrixXd L;            // linear equalities L z = b
@@ -37,22 +61,29 @@ struct Solver {
   double last_violation = 0, last_stationarity = 0;
   Eigen::MatrixXd soc_Y, soc_R;
   Eigen::VectorXd vdual;        // dual estimates of the inequalities
-  bool debug = std::getenv("FAIRLINES_FC_DEBUG") != nullptr;
+  double restore_tol = 1e-3;
 
-  explicit Solver(Problem& problem);
-  Eigen::VectorXd start_curve(std::mt19937* rng) const;
-  Eigen::VectorXd fair_linear_start(const Eigen::VectorXd& zc) const;
-  Eigen::VectorXd project_linear(const Eigen::VectorXd& z) const;
-  bool interior(const Eigen::VectorXd& z) const;
   void set_starts(const Eigen::VectorXd& z);
   void set_targets(double tau);
   bool newton(Eigen::VectorXd& z, Eigen::VectorXd& lam, double mu, double tol_c, double tol_g, int maxit);
+  // Steps of newton():
+  bool model_at(const Eigen::VectorXd& z, const Eigen::VectorXd& lam, double mu, NewtonModel& md);
+  /// KKT step d and multipliers: null-space (QR of J^T, inertia-corrected), or without
+  /// constraints an inertia-corrected Newton step, or for dependent gradients a regularised
+  /// KKT solve (regular = false). False when no finite step exists.
+  bool kkt_step(const NewtonModel& md, Eigen::VectorXd& d, Eigen::VectorXd& lam_new, bool& regular);
+  /// False when J^T is rank deficient; d empty when the reduced Hessian cannot be corrected.
+  bool null_space_step(const NewtonModel& md, Eigen::VectorXd& d, Eigen::VectorXd& lam_new);
+  bool regularised_step(const NewtonModel& md, Eigen::VectorXd& d, Eigen::VectorXd& lam_new) const;
+  /// Backtracking on the l1 merit with fraction-to-boundary and second-order corrections;
+  /// moves z and returns true when a step is accepted (alpha its length).
+  bool line_search(Eigen::VectorXd& z, const Eigen::VectorXd& d, const NewtonModel& md, double mu, double nu,
+                   bool regular, double& alpha);
+  void dual_step(const NewtonModel& md, const Eigen::VectorXd& d, double mu);
   double merit(const Eigen::VectorXd& z, double mu, double nu, Eigen::VectorXd& c) const;
   /// The merit from already computed objective f, constraints c and slacks s = G z - h > 0.
   double merit_of(double f, const Eigen::VectorXd& c, const Eigen::VectorXd& s, double mu, double nu) const;
-  double restore_tol = 1e-3;
   bool restore(Eigen::VectorXd& z, int maxit);
-  RunOutcome run(const Eigen::VectorXd& z0, bool continuation);
 };
 
 /// Input validation (InvalidInput) and closed-form necessary conditions

@@ -1,4 +1,4 @@
-// Fair skinning (seed 000 eq. 6-9): see fairlines/skinning.hpp.
+// Fair skinning (Kim & Hwangbo 2008, eq. 6-9): see fairlines/skinning.hpp.
 #include "fairlines/skinning.hpp"
 
 #include <algorithm>
@@ -331,7 +331,16 @@ SkinParams parse_skin_params(const std::string& name) {
   fail("params is '", name, "'; expected 'auto', 'station' or 'chord'");
 }
 
-SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions& o) {
+// fair_skin in named steps. Notation: q sections d = 0..q-1, n control rows i per section
+// (one knot vector Ku of degree_u), a data column 3 i + k holds coordinate k of row i through
+// the sections; v (q) the sections' longitudinal parameters, Kv / pv the longitudinal knots and
+// degree, nv their control count, Nv (q, nv) the basis at the sections, G the fairness Gram
+// matrix e2 E2 + e3 h^2 E3, H the objective's Hessian, cs the constraint-row scale and lon
+// (nv, 3 n) the longitudinal control columns.
+namespace {
+
+/// Largest control count of the sections; refuses fewer than 2 sections or non-3-D ones.
+int check_sections(const std::vector<NurbsCurve>& sections) {
   const int q = static_cast<int>(sections.size());
   if (q < 2) fail("sections has ", q, " curves; expected at least 2");
   int largest = 0;
@@ -340,17 +349,13 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
       fail("sections[", d, "] is a ", sections[d].dim(), "-D curve; expected a 3-D curve (x, y, z)");
     largest = std::max(largest, sections[d].n_control());
   }
+  return largest;
+}
+
+void check_degrees_and_weights(const SkinOptions& o) {
   detail::require_degree(o.degree_u, "degree_u");
   if (o.degree_v < 2) fail("degree_v is ", o.degree_v, "; expected an integer >= 2 (E2 needs C'')");
   if (o.n_control < 0) fail("n_control is ", o.n_control, "; expected 0 (automatic) or >= degree_u + 1");
-  // Sections already on one knot vector of degree degree_u (the hull's sections are designed so):
-  // their control points are the rows, exactly. Seed 000's steps (b)-(d) only exist to make
-  // such a knot vector, and their refit ripples about flats and tight bilges.
-  const bool exact = shared_knot_vector(sections, o);
-  const int n = exact ? sections[0].n_control() : (o.n_control > 0 ? o.n_control : std::max(12, 2 * largest));
-  if (n < o.degree_u + 1) fail("n_control is ", n, "; expected at least degree_u + 1 = ", o.degree_u + 1);
-  const int m = o.samples > 0 ? o.samples : 4 * n;
-  if (o.samples < 0 || (!exact && m < n)) fail("samples is ", o.samples, "; expected 0 (automatic) or >= n_control = ", n);
   if (!(o.curvature_weight >= 0) || !std::isfinite(o.curvature_weight))
     fail("curvature_weight is ", o.curvature_weight, "; expected a finite value >= 0");
   if (!(o.e2 >= 0) || !(o.e3 >= 0) || !std::isfinite(o.e2) || !std::isfinite(o.e3) || !(o.e2 + o.e3 > 0))
@@ -358,46 +363,45 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
   if (o.e3 > 0 && o.degree_v < 3) fail("e3 is ", o.e3, " but degree_v is ", o.degree_v, "; E3 needs degree_v >= 3");
   if (!(o.smoothing >= 0) || !std::isfinite(o.smoothing))
     fail("smoothing is ", o.smoothing, "; expected a finite value >= 0");
+}
+
+void check_row_counts(const SkinOptions& o, int n, int m, bool exact) {
+  if (n < o.degree_u + 1) fail("n_control is ", n, "; expected at least degree_u + 1 = ", o.degree_u + 1);
+  if (o.samples < 0 || (!exact && m < n)) fail("samples is ", o.samples, "; expected 0 (automatic) or >= n_control = ", n);
   for (std::size_t g = 0; g < o.straight_groups.size(); ++g) {
     const auto [first, last] = o.straight_groups[g];
     if (first < 0 || last < first || last >= n)
       fail("straight_groups[", g, "] is (", first, ", ", last, "); expected row indices 0 <= first <= last < ", n);
   }
+}
 
-  Eigen::VectorXd Ku;
-  std::vector<Eigen::MatrixXd> ctrl(q);
-  double fit_max = 0;
-  if (exact) {
-    Ku = sections[0].knots();
-    for (int d = 0; d < q; ++d) ctrl[d] = sections[d].control_points();
-  } else {
-    fit_max = refit_sections(sections, o, n, m, Ku, ctrl);
+/// Station parameters apply when every section is planar at one x and the x are monotone.
+SkinParams resolve_params(const std::vector<Eigen::MatrixXd>& ctrl, SkinParams mode) {
+  if (mode == SkinParams::Chord) return mode;
+  const int q = static_cast<int>(ctrl.size());
+  bool planar = true, monotone = true;
+  double scale = 0;
+  for (int d = 0; d < q; ++d) scale = std::max(scale, ctrl[d].cwiseAbs().maxCoeff());
+  for (int d = 0; d < q; ++d) {
+    const double spread = ctrl[d].col(0).maxCoeff() - ctrl[d].col(0).minCoeff();
+    if (spread > 1e-9 * std::max(scale, 1.0)) planar = false;
   }
-
-  // Longitudinal parameters of the sections.
-  Eigen::VectorXd v(q);
-  SkinParams mode = o.params;
-  if (mode != SkinParams::Chord) {
-    bool planar = true, monotone = true;
-    double scale = 0;
-    for (int d = 0; d < q; ++d) scale = std::max(scale, ctrl[d].cwiseAbs().maxCoeff());
-    for (int d = 0; d < q; ++d) {
-      const double spread = ctrl[d].col(0).maxCoeff() - ctrl[d].col(0).minCoeff();
-      if (spread > 1e-9 * std::max(scale, 1.0)) planar = false;
-    }
-    const double dir = ctrl[q - 1](0, 0) - ctrl[0](0, 0);
-    for (int d = 0; d + 1 < q; ++d)
-      if (!((ctrl[d + 1](0, 0) - ctrl[d](0, 0)) * dir > 0)) monotone = false;
-    if (planar && monotone) {
-      mode = SkinParams::Station;
-    } else if (mode == SkinParams::Station) {
-      if (!planar) fail("params is 'station' but the sections are not planar at constant x");
-      fail("params is 'station' but the section x positions are not strictly monotone");
-    } else {
-      mode = SkinParams::Chord;
-    }
-  }
+  const double dir = ctrl[q - 1](0, 0) - ctrl[0](0, 0);
+  for (int d = 0; d + 1 < q; ++d)
+    if (!((ctrl[d + 1](0, 0) - ctrl[d](0, 0)) * dir > 0)) monotone = false;
+  if (planar && monotone) return SkinParams::Station;
   if (mode == SkinParams::Station) {
+    if (!planar) fail("params is 'station' but the sections are not planar at constant x");
+    fail("params is 'station' but the section x positions are not strictly monotone");
+  }
+  return SkinParams::Chord;
+}
+
+/// v: the sections' x scaled to [0, 1] (station) or the mean control-row chord (chord).
+Eigen::VectorXd section_parameters(const std::vector<Eigen::MatrixXd>& ctrl, SkinParams mode, int n) {
+  const int q = static_cast<int>(ctrl.size());
+  Eigen::VectorXd v(q);
+  if (resolve_params(ctrl, mode) == SkinParams::Station) {
     const double x0 = ctrl[0](0, 0), x1 = ctrl[q - 1](0, 0);
     for (int d = 0; d < q; ++d) v[d] = (ctrl[d](0, 0) - x0) / (x1 - x0);
   } else {
@@ -415,38 +419,49 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
   }
   v[0] = 0;
   v[q - 1] = 1;
+  return v;
+}
 
-  // Longitudinal knots: a knot at every interior section parameter (multiplicity degree_v - 1
-  // at C1 joints), one more in the interval next to each end of a held run (below), clamped ends.
-  const int pv = o.degree_v;
-  std::set<int> joints;
-  for (int j : o.c1_sections) {
-    if (j < 1 || j > q - 2) fail("c1_sections contains ", j, "; expected interior section indices 1..", q - 2);
-    joints.insert(j);
-  }
-
-  // Data columns: for coordinate k of row i, the q values ctrl[d](i, k). Column 3 i + k.
+/// (q, 3 n) data: column 3 i + k holds ctrl[d](i, k) through the sections d.
+Eigen::MatrixXd data_columns(const std::vector<Eigen::MatrixXd>& ctrl, int n) {
+  const int q = static_cast<int>(ctrl.size());
   Eigen::MatrixXd data(q, 3 * n);
   for (int d = 0; d < q; ++d)
     for (int i = 0; i < n; ++i)
       for (int k = 0; k < 3; ++k) data(d, 3 * i + k) = ctrl[d](i, k);
+  return data;
+}
 
-  // Held runs (SkinOptions::hold_runs): per column, the maximal runs of at least kMinHeldRun
-  // consecutive sections with one value (y and z only; x moves with the stations).
-  std::vector<std::vector<HeldRun>> runs(3 * n);
-  if (o.hold_runs) {
-    double extent = 1.0;
-    for (int d = 0; d < q; ++d) extent = std::max(extent, ctrl[d].cwiseAbs().maxCoeff());
-    const double tol = kRunTolerance * extent;
-    for (int col = 0; col < 3 * n; ++col)
-      if (col % 3 != 0) runs[col] = find_runs(data.col(col), tol);
-  }
-  // Straight groups: the interior rows are at one fraction s of the segment from the group's
-  // first row to its last in every section; their longitudinal curves are built as the same
-  // combination of the end rows' curves, so the segment stays straight between the sections
-  // whatever the end rows hold. A group whose fractions differ between sections is refused.
-  std::vector<std::pair<int, double>> derived;  // (row, s) with its group's ends below
-  std::vector<std::pair<int, int>> derived_ends;
+/// Held runs (SkinOptions::hold_runs): per column, the maximal runs of at least kMinHeldRun
+/// consecutive sections with one value (y and z only; x moves with the stations).
+std::vector<std::vector<HeldRun>> held_runs(const std::vector<Eigen::MatrixXd>& ctrl, const Eigen::MatrixXd& data,
+                                            bool hold) {
+  std::vector<std::vector<HeldRun>> runs(data.cols());
+  if (!hold) return runs;
+  double extent = 1.0;
+  for (const Eigen::MatrixXd& c : ctrl) extent = std::max(extent, c.cwiseAbs().maxCoeff());
+  const double tol = kRunTolerance * extent;
+  for (Eigen::Index col = 0; col < data.cols(); ++col)
+    if (col % 3 != 0) runs[col] = find_runs(data.col(col), tol);
+  return runs;
+}
+
+/// An interior row of a straight group: at fraction `frac` of the segment first -> last.
+struct DerivedRow {
+  int row;
+  double frac;
+  int first, last;
+};
+
+/// Straight groups: the interior rows are at one fraction s of the segment from the group's
+/// first row to its last in every section; their longitudinal curves are built as the same
+/// combination of the end rows' curves, so the segment stays straight between the sections
+/// whatever the end rows hold. A group whose fractions differ between sections is refused.
+/// Derived rows hold no runs of their own (cleared in `runs`).
+std::vector<DerivedRow> straight_rows(const std::vector<Eigen::MatrixXd>& ctrl, const SkinOptions& o,
+                                      std::vector<std::vector<HeldRun>>& runs) {
+  const int q = static_cast<int>(ctrl.size());
+  std::vector<DerivedRow> derived;
   for (std::size_t gi = 0; gi < o.straight_groups.size(); ++gi) {
     const auto [first, last] = o.straight_groups[gi];
     if (last - first < 2) continue;
@@ -464,77 +479,104 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
           fail("straight_groups[", gi, "]: row ", i, " is not at one fraction of the segment from row ", first, " to row ", last,
                " in every section (off by ", err, " m at section ", d, "); expected straight zones");
       }
-      derived.emplace_back(i, frac);
-      derived_ends.emplace_back(first, last);
+      derived.push_back({i, frac, first, last});
       for (int k = 0; k < 3; ++k) runs[3 * i + k].clear();
     }
+  }
+  return derived;
+}
+
+/// Longitudinal knots: a knot at every interior section parameter (multiplicity degree_v - 1
+/// at C1 joints), one more in the interval next to each end of a held run, clamped ends.
+Eigen::VectorXd longitudinal_knots(const Eigen::VectorXd& v, const SkinOptions& o,
+                                   const std::vector<std::vector<HeldRun>>& runs) {
+  const int q = static_cast<int>(v.size()), pv = o.degree_v;
+  std::set<int> joints;
+  for (int j : o.c1_sections) {
+    if (j < 1 || j > q - 2) fail("c1_sections contains ", j, "; expected interior section indices 1..", q - 2);
+    joints.insert(j);
   }
   std::vector<double> kv(pv + 1, 0.0);
   for (int d = 1; d < q - 1; ++d) {
     const int mult = joints.count(d) ? pv - 1 : 1;
     for (int r = 0; r < mult; ++r) kv.push_back(v[d]);
   }
-  {
-    // One knot in the middle of the interval after each held run and before it: the run's
-    // controls are fixed, and this knot gives the curve beyond one free control, so it leaves
-    // the run with C^(degree_v - 1) continuity through a well-posed boundary value problem
-    // (without it the curve would be an initial value spline, growing by ~3.7 per interval).
-    std::set<double> extra;
-    for (const auto& col_runs : runs)
-      for (const HeldRun& h : col_runs) {
-        if (h.last < q - 1) extra.insert(0.5 * (v[h.last] + v[h.last + 1]));
-        if (h.first > 0) extra.insert(0.5 * (v[h.first - 1] + v[h.first]));
-      }
-    kv.insert(kv.end(), extra.begin(), extra.end());
-    std::sort(kv.begin() + pv + 1, kv.end());
-  }
+  // One knot in the middle of the interval after each held run and before it: the run's
+  // controls are fixed, and this knot gives the curve beyond one free control, so it leaves
+  // the run with C^(degree_v - 1) continuity through a well-posed boundary value problem
+  // (without it the curve would be an initial value spline, growing by ~3.7 per interval).
+  std::set<double> extra;
+  for (const auto& col_runs : runs)
+    for (const HeldRun& h : col_runs) {
+      if (h.last < q - 1) extra.insert(0.5 * (v[h.last] + v[h.last + 1]));
+      if (h.first > 0) extra.insert(0.5 * (v[h.first - 1] + v[h.first]));
+    }
+  kv.insert(kv.end(), extra.begin(), extra.end());
+  std::sort(kv.begin() + pv + 1, kv.end());
   for (int r = 0; r <= pv; ++r) kv.push_back(1.0);
-  const Eigen::VectorXd Kv = Eigen::Map<Eigen::VectorXd>(kv.data(), static_cast<Eigen::Index>(kv.size()));
-  const int nv = static_cast<int>(Kv.size()) - pv - 1;
+  return Eigen::Map<Eigen::VectorXd>(kv.data(), static_cast<Eigen::Index>(kv.size()));
+}
 
-  Eigen::MatrixXd Nv(q, nv);
-  for (int d = 0; d < q; ++d) Nv.row(d) = basis_row(Kv, pv, v[d]);
-  // Fairness matrix: e2 E2 + e3 h^2 E3 (h = 1/(q-1) makes the two terms commensurate).
-  const double hq = 1.0 / (q - 1);
-  Eigen::MatrixXd G = o.e2 * detail::derivative_gram(Kv, pv, 2);
-  if (o.e3 > 0) G += o.e3 * hq * hq * detail::derivative_gram(Kv, pv, 3);
-  const Eigen::RowVectorXd D0 = basis_row(Kv, pv, 0.0, 1), D1 = basis_row(Kv, pv, 1.0, 1);
+/// The longitudinal least-squares problem shared by every column: objective
+/// 1/2 c' H c - b' c with constraints C c = e. Interpolate: H = 2 G, C = [Nv; ends],
+/// e = [data; 0]. Approximate: H = (2/q) Nv'Nv + 2 lam G, b = (2/q) Nv' data, C = ends.
+/// Constraint rows are scaled to the fairness block's magnitude (cs): with E3 (entries ~ q^3)
+/// the unscaled KKT pivots of the O(1) interpolation rows fall under FullPivLU's rank threshold.
+struct LongitudinalSystem {
+  const SkinOptions& o;
+  const Eigen::VectorXd& Kv;
+  const Eigen::MatrixXd& data;
+  int q, pv, nv;
+  bool interp;
+  Eigen::MatrixXd Nv, H;
+  Eigen::RowVectorXd D0, D1;  ///< first derivative rows at v = 0 and v = 1 (parallel ends)
+  double cs;
 
-  // Objective 1/2 c' H c - b' c with constraints C c = e: Interpolate: H = 2 G, C = [Nv; ends],
-  // e = [data; 0]. Approximate: H = (2/q) Nv'Nv + 2 lam G, b = (2/q) Nv' data, C = ends.
-  // Constraint rows are scaled to the fairness block's magnitude: with E3 (entries ~ q^3) the
-  // unscaled KKT pivots of the O(1) interpolation rows fall under FullPivLU's rank threshold.
-  const bool interp = o.mode == SkinMode::Interpolate;
-  const double lam = o.smoothing * hq * hq * hq * hq;
-  const Eigen::MatrixXd H = interp ? Eigen::MatrixXd(2.0 * G) : Eigen::MatrixXd((2.0 / q) * Nv.transpose() * Nv + 2.0 * lam * G);
-  const double cs = std::max(1e-300, H.cwiseAbs().maxCoeff());
+  LongitudinalSystem(const SkinOptions& opt, const Eigen::VectorXd& knots, const Eigen::VectorXd& v,
+                     const Eigen::MatrixXd& columns)
+      : o(opt), Kv(knots), data(columns), q(static_cast<int>(v.size())), pv(opt.degree_v),
+        nv(static_cast<int>(knots.size()) - opt.degree_v - 1), interp(opt.mode == SkinMode::Interpolate) {
+    Nv.resize(q, nv);
+    for (int d = 0; d < q; ++d) Nv.row(d) = basis_row(Kv, pv, v[d]);
+    const double hq = 1.0 / (q - 1);  // makes E2 and h^2 E3 commensurate
+    Eigen::MatrixXd G = o.e2 * detail::derivative_gram(Kv, pv, 2);
+    if (o.e3 > 0) G += o.e3 * hq * hq * detail::derivative_gram(Kv, pv, 3);
+    D0 = basis_row(Kv, pv, 0.0, 1);
+    D1 = basis_row(Kv, pv, 1.0, 1);
+    const double lam = o.smoothing * hq * hq * hq * hq;
+    H = interp ? Eigen::MatrixXd(2.0 * G) : Eigen::MatrixXd((2.0 / q) * Nv.transpose() * Nv + 2.0 * lam * G);
+    cs = std::max(1e-300, H.cwiseAbs().maxCoeff());
+  }
 
-  // Held controls of each column: those whose support meets a held run (open interval).
-  std::vector<std::vector<char>> held_mask(3 * n, std::vector<char>(nv, 0));
-  std::vector<Eigen::VectorXd> held_val(3 * n, Eigen::VectorXd::Zero(nv));
-  for (int col = 0; col < 3 * n; ++col)
-    for (const HeldRun& h : runs[col])
-      for (int j = 0; j < nv; ++j)
-        if (Kv[j] < v[h.last] && Kv[j + pv + 1] > v[h.first]) held_mask[col][j] = 1, held_val[col][j] = h.value;
-
-  // Columns that share a held set and end conditions share one factorisation.
-  Eigen::MatrixXd lon(nv, 3 * n);
-  std::map<std::pair<std::vector<char>, bool>, std::vector<int>> groups;
-  for (int col = 0; col < 3 * n; ++col) groups[{held_mask[col], col % 3 != 0}].push_back(col);
-  for (const auto& [key, cols] : groups) {
-    const auto& [mask, with_ends] = key;
-    std::vector<int> freev;
-    for (int j = 0; j < nv; ++j)
-      if (!mask[j]) freev.push_back(j);
-    const int nf = static_cast<int>(freev.size());
-    // Constraint rows over all controls, then keep the ones that still involve a free control
-    // (a station inside a held run is met by the held controls themselves).
-    std::vector<Eigen::RowVectorXd> crow;
-    std::vector<int> data_row;  // station index of an interpolation row, -1 for an end row
+  /// Constraint rows over all controls, each with its station (-1 for an end row).
+  void constraint_rows(bool with_ends, std::vector<Eigen::RowVectorXd>& crow, std::vector<int>& data_row) const {
     if (interp)
       for (int d = 0; d < q; ++d) crow.push_back(Nv.row(d)), data_row.push_back(d);
     if (with_ends && o.start == SkinEnd::Parallel) crow.push_back(D0), data_row.push_back(-1);
     if (with_ends && o.end == SkinEnd::Parallel) crow.push_back(D1), data_row.push_back(-1);
+  }
+
+  [[noreturn]] void singular() const {
+    if (interp)
+      fail("the longitudinal interpolation problem is singular (", q, " sections, degree_v ", pv,
+           "); expected distinct section parameters");
+    fail("the longitudinal approximation problem is singular (", q, " sections, degree_v ", pv,
+         ", smoothing ", o.smoothing, "); expected smoothing > 0 or more sections");
+  }
+
+  /// Solves the columns `cols`, which share the held controls `mask` (values in held_val)
+  /// and whether their ends are constrained, writing their controls into lon.
+  void solve_group(const std::vector<char>& mask, bool with_ends, const std::vector<int>& cols,
+                   const std::vector<Eigen::VectorXd>& held_val, Eigen::MatrixXd& lon) const {
+    std::vector<int> freev;
+    for (int j = 0; j < nv; ++j)
+      if (!mask[j]) freev.push_back(j);
+    const int nf = static_cast<int>(freev.size());
+    // Keep the constraint rows that still involve a free control (a station inside a held
+    // run is met by the held controls themselves).
+    std::vector<Eigen::RowVectorXd> crow;
+    std::vector<int> data_row;
+    constraint_rows(with_ends, crow, data_row);
     std::vector<int> keep;
     for (std::size_t r = 0; r < crow.size(); ++r) {
       double f = 0;
@@ -564,13 +606,7 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
     const Eigen::MatrixXd sol = lu.solve(rhs);
     // A singular system shows as a residual the solve cannot remove (the pivot-based rank is
     // unreliable here: E3 and interpolation rows differ by many orders of magnitude).
-    if (!sol.allFinite() || (K * sol - rhs).norm() > 1e-10 * (K.norm() * sol.norm() + rhs.norm())) {
-      if (interp)
-        fail("the longitudinal interpolation problem is singular (", q, " sections, degree_v ", pv,
-             "); expected distinct section parameters");
-      fail("the longitudinal approximation problem is singular (", q, " sections, degree_v ", pv,
-           ", smoothing ", o.smoothing, "); expected smoothing > 0 or more sections");
-    }
+    if (!sol.allFinite() || (K * sol - rhs).norm() > 1e-10 * (K.norm() * sol.norm() + rhs.norm())) singular();
     for (std::size_t c = 0; c < cols.size(); ++c) {
       Eigen::VectorXd z = held_val[cols[c]];
       for (int a = 0; a < nf; ++a) z[freev[a]] = sol(a, c);
@@ -578,37 +614,92 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
     }
   }
 
-  for (std::size_t r = 0; r < derived.size(); ++r) {
-    const auto [i, frac] = derived[r];
-    const auto [first, last] = derived_ends[r];
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::VectorXd a = lon.col(3 * first + k), b = lon.col(3 * last + k);
-      lon.col(3 * i + k) = a + frac * (b - a);  // a + s (b - a): exact where a == b (flats)
-    }
+  /// lon (nv, 3 n): every column's longitudinal controls. Controls whose support meets a
+  /// held run (open interval) are held at the run's value; columns that share a held set and
+  /// end conditions share one factorisation.
+  Eigen::MatrixXd solve(const Eigen::VectorXd& v, const std::vector<std::vector<HeldRun>>& runs) const {
+    const Eigen::Index cols = data.cols();
+    std::vector<std::vector<char>> held_mask(cols, std::vector<char>(nv, 0));
+    std::vector<Eigen::VectorXd> held_val(cols, Eigen::VectorXd::Zero(nv));
+    for (Eigen::Index col = 0; col < cols; ++col)
+      for (const HeldRun& h : runs[col])
+        for (int j = 0; j < nv; ++j)
+          if (Kv[j] < v[h.last] && Kv[j + pv + 1] > v[h.first]) held_mask[col][j] = 1, held_val[col][j] = h.value;
+    std::map<std::pair<std::vector<char>, bool>, std::vector<int>> groups;
+    for (int col = 0; col < cols; ++col) groups[{held_mask[col], col % 3 != 0}].push_back(col);
+    Eigen::MatrixXd lon(nv, cols);
+    for (const auto& [key, members] : groups) solve_group(key.first, key.second, members, held_val, lon);
+    return lon;
   }
+};
 
-  SkinResult res{NurbsSurface(o.degree_u, pv, Ku, Kv, n, nv, Eigen::MatrixXd::Zero(n * nv, 3)),
-                 v, fit_max, 0.0, Eigen::VectorXd(n)};
+/// Rows of straight groups as the same combination of their end rows' longitudinal curves.
+void apply_straight_rows(const std::vector<DerivedRow>& derived, Eigen::MatrixXd& lon) {
+  for (const DerivedRow& r : derived)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::VectorXd a = lon.col(3 * r.first + k), b = lon.col(3 * r.last + k);
+      lon.col(3 * r.row + k) = a + r.frac * (b - a);  // a + s (b - a): exact where a == b (flats)
+    }
+}
+
+/// The skinned surface and its diagnostics from the longitudinal controls.
+SkinResult skin_result(const LongitudinalSystem& sys, const Eigen::VectorXd& Ku, const Eigen::VectorXd& v,
+                       const Eigen::MatrixXd& lon, double fit_max, const std::vector<std::vector<HeldRun>>& runs) {
+  const int n = static_cast<int>(lon.cols() / 3), nv = sys.nv, pv = sys.pv;
   Eigen::MatrixXd P(n * nv, 3);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < nv; ++j)
       for (int k = 0; k < 3; ++k) P(i * nv + j, k) = lon(j, 3 * i + k);
-  res.surface = NurbsSurface(o.degree_u, pv, Ku, Kv, n, nv, P);
-  const Eigen::MatrixXd fitted = Nv * lon;
+  SkinResult res{NurbsSurface(sys.o.degree_u, pv, Ku, sys.Kv, n, nv, P), v, fit_max, 0.0, Eigen::VectorXd(n)};
+  const Eigen::MatrixXd fitted = sys.Nv * lon;
   double lmax = 0;
-  for (int d = 0; d < q; ++d)
+  for (int d = 0; d < sys.q; ++d)
     for (int i = 0; i < n; ++i)
-      lmax = std::max(lmax, (fitted.block(d, 3 * i, 1, 3) - data.block(d, 3 * i, 1, 3)).norm());
+      lmax = std::max(lmax, (fitted.block(d, 3 * i, 1, 3) - sys.data.block(d, 3 * i, 1, 3)).norm());
   res.longitudinal_max = lmax;
   res.held_columns = 0;
   for (const auto& r : runs) res.held_columns += !r.empty();
-  const Eigen::MatrixXd G2 = detail::derivative_gram(Kv, pv, 2);
+  const Eigen::MatrixXd G2 = detail::derivative_gram(sys.Kv, pv, 2);
   for (int i = 0; i < n; ++i) {
     double e = 0;
     for (int k = 0; k < 3; ++k) e += lon.col(3 * i + k).dot(G2 * lon.col(3 * i + k));
     res.row_e2[i] = e;
   }
   return res;
+}
+
+}  // namespace
+
+SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions& o) {
+  const int q = static_cast<int>(sections.size());
+  const int largest = check_sections(sections);
+  check_degrees_and_weights(o);
+  // Sections already on one knot vector of degree degree_u (the hull's sections are designed
+  // so): their control points are the rows, exactly. The refit (Kim & Hwangbo 2008, steps
+  // b-d) only exists to make such a knot vector, and it ripples about flats and tight bilges.
+  const bool exact = shared_knot_vector(sections, o);
+  const int n = exact ? sections[0].n_control() : (o.n_control > 0 ? o.n_control : std::max(12, 2 * largest));
+  const int m = o.samples > 0 ? o.samples : 4 * n;
+  check_row_counts(o, n, m, exact);
+
+  Eigen::VectorXd Ku;
+  std::vector<Eigen::MatrixXd> ctrl(q);
+  double fit_max = 0;
+  if (exact) {
+    Ku = sections[0].knots();
+    for (int d = 0; d < q; ++d) ctrl[d] = sections[d].control_points();
+  } else {
+    fit_max = refit_sections(sections, o, n, m, Ku, ctrl);
+  }
+  const Eigen::VectorXd v = section_parameters(ctrl, o.params, n);
+  const Eigen::MatrixXd data = data_columns(ctrl, n);
+  std::vector<std::vector<HeldRun>> runs = held_runs(ctrl, data, o.hold_runs);
+  const std::vector<DerivedRow> derived = straight_rows(ctrl, o, runs);
+  const Eigen::VectorXd Kv = longitudinal_knots(v, o, runs);
+  const LongitudinalSystem sys(o, Kv, v, data);
+  Eigen::MatrixXd lon = sys.solve(v, runs);
+  apply_straight_rows(derived, lon);
+  return skin_result(sys, Ku, v, lon, fit_max, runs);
 }
 
 }  // namespace fairlines

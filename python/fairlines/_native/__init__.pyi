@@ -8,7 +8,7 @@ import numpy
 import numpy.typing
 import typing
 from . import limits
-__all__: list[str] = ['ConvergenceError', 'CurveFit', 'Distribution', 'END_BAND', 'FairlinesError', 'FairnessWeights', 'FitOptions', 'FormBounds', 'FormCurveRequest', 'FormSolverOptions', 'Hydrostatics', 'InfeasibleFormParameters', 'InvalidInput', 'MAX_SHAPE_KNOB', 'MeshOptions', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PlaneCut', 'SectionDesign', 'SectionSpec', 'SkinResult', 'Spacing', 'SplineBound', 'SplineCondition', 'SplineDesignRequest', 'SplineFitPoint', 'SplineFlat', 'SplineIntegral', 'SplineShape', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'design_section', 'design_sections', 'design_spline_function', 'distribute', 'ellipse', 'equal_arc_length_points', 'fairness_of', 'fit_curve', 'fit_surface', 'form_parameter_names', 'form_parameters_of', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics', 'knot_line_parameters', 'limits', 'mesh_quality', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'parameters_at_arc_length', 'plane_cut', 'revolve', 'scaled_jacobians', 'section_area', 'section_fullness_range', 'section_knot_vector', 'sphere', 'spline_function_knots', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
+__all__: list[str] = ['ConvergenceError', 'CurveFit', 'Distribution', 'END_BAND', 'FairlinesError', 'FairnessWeights', 'FitOptions', 'FormBounds', 'FormCurveRequest', 'FormSolverOptions', 'Hydrostatics', 'InfeasibleFormParameters', 'InvalidInput', 'MAX_SHAPE_KNOB', 'MeshHydrostatics', 'MeshHydrostaticsOptions', 'MeshOptions', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PlaneCut', 'SectionDesign', 'SectionSpec', 'SkinResult', 'Spacing', 'SplineBound', 'SplineCondition', 'SplineDesignRequest', 'SplineFitPoint', 'SplineFlat', 'SplineIntegral', 'SplineShape', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'design_section', 'design_sections', 'design_spline_function', 'distribute', 'ellipse', 'equal_arc_length_points', 'fairness_of', 'fit_curve', 'fit_surface', 'form_parameter_names', 'form_parameters_of', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics', 'knot_line_parameters', 'limits', 'mesh_hydrostatics', 'mesh_quality', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'parameters_at_arc_length', 'plane_cut', 'revolve', 'scaled_jacobians', 'section_area', 'section_fullness_range', 'section_knot_vector', 'sphere', 'spline_function_knots', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
 class FairlinesError(RuntimeError):
     pass
 class InvalidInput(ValueError):
@@ -1303,6 +1303,80 @@ class Distribution:
     @points.setter
     def points(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
+class MeshHydrostaticsOptions:
+    """
+    Options of mesh_hydrostatics.
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def half_hull(self) -> bool:
+        """
+        the mesh is the y >= 0 half: volume and areas doubled, centroids kept
+        """
+    @half_hull.setter
+    def half_hull(self, arg0: bool) -> None:
+        ...
+    @property
+    def midship_x(self) -> float:
+        """
+        x of the section measured as midship_area (m); NaN: the middle of the mesh's x extent
+        """
+    @midship_x.setter
+    def midship_x(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def orient(self) -> bool:
+        """
+        flip an inward mesh: a side-like mesh must have int y n_y dS > 0, an end-like one int (x - midship_x) n_x dS > 0
+        """
+    @orient.setter
+    def orient(self, arg0: bool) -> None:
+        ...
+class MeshHydrostatics:
+    """
+    Hydrostatics of a triangle mesh at one draft (full ship when half_hull): lengths m, areas m^2, volume m^3.
+    """
+    @property
+    def draft(self) -> float:
+        ...
+    @property
+    def flipped(self) -> bool:
+        """
+        the mesh was reoriented (options.orient)
+        """
+    @property
+    def lcb(self) -> float:
+        """
+        x of the centre of buoyancy (m)
+        """
+    @property
+    def lcf(self) -> float:
+        """
+        x of the waterplane centroid (m)
+        """
+    @property
+    def midship_area(self) -> float:
+        """
+        section area below the draft at midship_x
+        """
+    @property
+    def midship_x(self) -> float:
+        ...
+    @property
+    def vcb(self) -> float:
+        """
+        z of the centre of buoyancy, KB (m)
+        """
+    @property
+    def volume(self) -> float:
+        ...
+    @property
+    def waterplane_area(self) -> float:
+        ...
+    @property
+    def wetted_surface(self) -> float:
+        ...
 def _blend_surface(a: NurbsSurface, boundary_a: typing.Any, b: NurbsSurface, boundary_b: typing.Any, samples: typing.SupportsInt | typing.SupportsIndex = 61, tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, check_samples: typing.SupportsInt | typing.SupportsIndex = 200) -> tuple[NurbsSurface, dict, dict]:
     ...
 def _cluster_by_knots(surface: NurbsSurface, direction: str, at: typing.SupportsFloat | typing.SupportsIndex, spacing: typing.SupportsFloat | typing.SupportsIndex, count: typing.SupportsInt | typing.SupportsIndex, growth: typing.SupportsFloat | typing.SupportsIndex) -> NurbsSurface:
@@ -1442,6 +1516,11 @@ def hydrostatics(surface: NurbsSurface, draft: typing.SupportsFloat | typing.Sup
 def knot_line_parameters(surface: NurbsSurface, direction: str, per_span: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
     """
     Knot values of one direction with every span cut into per_span parts.
+    """
+def mesh_hydrostatics(vertices: typing.Any, faces: typing.Any, draft: typing.SupportsFloat | typing.SupportsIndex, options: MeshHydrostaticsOptions = ...) -> MeshHydrostatics:
+    """
+    Hydrostatics of a half-hull triangle mesh (vertices (n, 3) m, faces (m, 3)) clipped at z = draft,
+    by the divergence theorem. Raises InvalidInput for bad shapes, indices or a non-finite draft.
     """
 def mesh_quality(vertices: typing.Any, faces: typing.Any) -> dict:
     """

@@ -1,0 +1,76 @@
+// Binding of mesh hydrostatics (python/fairlines/mesh_hydrostatics.py wraps it).
+#include <cmath>
+#include <string>
+
+#include <pybind11/pybind11.h>
+
+#include "convert.hpp"
+#include "fairlines/mesh_hydrostatics.hpp"
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+namespace fairlines {
+
+namespace {
+
+TriMesh tri_mesh(py::handle vertices, py::handle faces) {
+  TriMesh m;
+  m.vertices = py_convert::matrix(vertices, "vertices", 3);
+  const Eigen::MatrixXd f = py_convert::matrix(faces, "faces", 3);
+  m.faces.resize(f.rows(), 3);
+  for (Eigen::Index i = 0; i < f.size(); ++i) {
+    const double x = f.data()[i];
+    if (x != std::floor(x) || x < 0 || x >= static_cast<double>(m.vertices.rows()))
+      throw InvalidInput("faces hold " + std::to_string(x) + "; expected vertex indices 0 <= i < " +
+                         std::to_string(m.vertices.rows()));
+    m.faces.data()[i] = static_cast<int>(x);
+  }
+  return m;
+}
+
+void bind_options(py::module_& m) {
+  py::class_<MeshHydrostaticsOptions>(m, "MeshHydrostaticsOptions", "Options of mesh_hydrostatics.")
+      .def(py::init<>())
+      .def_readwrite("half_hull", &MeshHydrostaticsOptions::half_hull,
+                     "the mesh is the y >= 0 half: volume and areas doubled, centroids kept")
+      .def_readwrite("orient", &MeshHydrostaticsOptions::orient,
+                     "flip an inward mesh: a side-like mesh must have int y n_y dS > 0, an end-like one "
+                     "int (x - midship_x) n_x dS > 0")
+      .def_readwrite("midship_x", &MeshHydrostaticsOptions::midship_x,
+                     "x of the section measured as midship_area (m); NaN: the middle of the mesh's x extent");
+}
+
+void bind_result(py::module_& m) {
+  py::class_<MeshHydrostatics>(m, "MeshHydrostatics",
+                               "Hydrostatics of a triangle mesh at one draft (full ship when half_hull): "
+                               "lengths m, areas m^2, volume m^3.")
+      .def_readonly("draft", &MeshHydrostatics::draft)
+      .def_readonly("volume", &MeshHydrostatics::volume)
+      .def_readonly("lcb", &MeshHydrostatics::lcb, "x of the centre of buoyancy (m)")
+      .def_readonly("vcb", &MeshHydrostatics::vcb, "z of the centre of buoyancy, KB (m)")
+      .def_readonly("waterplane_area", &MeshHydrostatics::waterplane_area)
+      .def_readonly("lcf", &MeshHydrostatics::lcf, "x of the waterplane centroid (m)")
+      .def_readonly("wetted_surface", &MeshHydrostatics::wetted_surface)
+      .def_readonly("midship_x", &MeshHydrostatics::midship_x)
+      .def_readonly("midship_area", &MeshHydrostatics::midship_area, "section area below the draft at midship_x")
+      .def_readonly("flipped", &MeshHydrostatics::flipped, "the mesh was reoriented (options.orient)");
+}
+
+}  // namespace
+
+void bind_mesh_hydrostatics(py::module_& m) {
+  bind_options(m);
+  bind_result(m);
+  m.def("mesh_hydrostatics",
+        [](py::handle vertices, py::handle faces, double draft, const MeshHydrostaticsOptions& options) {
+          const TriMesh mesh = tri_mesh(vertices, faces);
+          py::gil_scoped_release release;
+          return mesh_hydrostatics(mesh, draft, options);
+        },
+        "vertices"_a, "faces"_a, "draft"_a, "options"_a = MeshHydrostaticsOptions{},
+        "Hydrostatics of a half-hull triangle mesh (vertices (n, 3) m, faces (m, 3)) clipped at z = draft,\n"
+        "by the divergence theorem. Raises InvalidInput for bad shapes, indices or a non-finite draft.");
+}
+
+}  // namespace fairlines
