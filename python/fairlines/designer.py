@@ -169,6 +169,17 @@ def _profile(p: Particulars, c: dict, x_aft: float, x_fore: float) -> dict:
             "yE": D, "slopeE": stem, "points": [[L, T]], "slopes": [[L, stem]], "monotone": True, "spans": 30}
 
 
+def _midship_place(p: Particulars) -> float:
+    """Where a ship without parallel body has its largest section: midships, where Cm is measured."""
+    return 0.5 * p.lpp
+
+
+def _cm_note(p: Particulars, c: dict) -> str:
+    if p.cm is None and c["parallel"][1] <= c["parallel"][0]:
+        return f"free (no parallel body; Kerlen's {c['cm']:.4f} not imposed)"
+    return f"{c['cm']:.4f}"
+
+
 def _smoothstep(r):
     r = np.clip(r, 0.0, 1.0)
     return r * r * r * (10.0 - 15.0 * r + 6.0 * r * r)
@@ -232,8 +243,8 @@ def design_description(p: Particulars) -> dict:
     dwl = {"yE": 0.0, "monotone": True, "spans": 24, "waterplane_area": c["cwp"] * L * B, "lcf": c["lcf"]}
     if par[1] > par[0]:
         dwl.update(flat_from=par[0], flat_to=par[1], value=half)
-    else:
-        dwl["upper"] = half
+    else:  # no parallel body: the waterline still reaches B/2, at midships
+        dwl.update(upper=half, points=[[_midship_place(p), half]], slopes=[[_midship_place(p), 0.0]])
     dwl["yB"] = DWL_TRANSOM * half if xa <= x_aft + 1e-9 * L else 0.0
     try:
         dwl_curve = solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=half)
@@ -249,6 +260,8 @@ def design_description(p: Particulars) -> dict:
                             if xa + near_end <= x <= xf - near_end]}
     if par[1] > par[0]:
         sac.update(flat_from=par[0], flat_to=par[1], value=c["cm"] * B * T)
+    elif p.cm is not None:  # ... and the SAC holds a given midship area there
+        sac["fit"] = [[_midship_place(p), c["cm"] * B * T]]
     deck_from = max(x_aft + 0.05 * L, par[0] - 0.25 * L)
     xs_aft = np.linspace(xa, deck_from, DECK_CHECKS)
     full = xs_aft[dwl_curve(xs_aft) >= DECK_CLEAR * half]  # so does a full stern aft
@@ -263,7 +276,7 @@ def design_description(p: Particulars) -> dict:
             "yE": 0.0, "monotone": True, "spans": 24}
     desc = {
         "name": p.name,
-        "notes": "; ".join(p.notes + [f"designed from particulars: Cm {c['cm']:.4f}, Cp {c['cp']:.4f}, Cwp {c['cwp']:.4f}, "
+        "notes": "; ".join(p.notes + [f"designed from particulars: Cm {_cm_note(p, c)}, Cp {c['cp']:.4f}, Cwp {c['cwp']:.4f}, "
                                       f"LCF {c['lcf']:.3f} m, parallel body {par[0]:.2f} .. {par[1]:.2f} m"]),
         "principal": {"Lpp": L, "B": B, "T": T, "D": D},
         "ends": {"aft": x_aft, "fore": x_fore},

@@ -56,6 +56,14 @@ def test_particulars_are_met_on_the_surface(ship):
     assert 0 < h.cm <= 1 and h.cb < h.cwp <= 1 and cwp.cwp is None
 
 
+def test_the_waterline_reaches_the_breadth(ship):
+    """B is a particular: the surface's design waterline reaches B/2 (a fine ship without
+    parallel body too, at midships), and never exceeds it."""
+    p, hull = ship
+    cut = np.asarray(fl.plane_cut(hull.bare_hull_surface(), 2, p["draft"], 2001).points)
+    assert cut[:, 1].max() == pytest.approx(p["breadth"] / 2, abs=1e-4 * p["breadth"])
+
+
 def test_sectional_area_has_no_hump(ship):
     """The surface's SAC (hydrostatics) rises to the midship area and falls away from it: no
     section holds more than the largest midship-body section, the SAC is one hill."""
