@@ -39,9 +39,15 @@ PlaneCut plane_cut(const NurbsSurface& s, int axis, double value, int samples) {
       const double r = r0 + (r1 - r0) * k / kScan;
       const double f = eval(w, r)[axis] - value;
       if (prev_f == 0 || (prev_f < 0) != (f < 0)) {
-        double lo = prev_r, hi = r, flo = prev_f;
+        // A sample exactly on the plane is the root (a cut along the surface's own edge):
+        // bisecting from it would walk to the far end of the bracket.
+        double lo = prev_r, hi = prev_f == 0 ? prev_r : r, flo = prev_f;
         for (int it = 0; it < 60 && hi - lo > 1e-15; ++it) {
           const double mid = 0.5 * (lo + hi), fm = eval(w, mid)[axis] - value;
+          if (fm == 0) {
+            lo = hi = mid;
+            break;
+          }
           if ((fm < 0) == (flo < 0)) lo = mid, flo = fm;
           else hi = mid;
         }
