@@ -103,7 +103,7 @@ class FLSocketLines(_DataSocket, bpy.types.NodeSocket):
 
 
 class FLSocketHullData(_DataSocket, bpy.types.NodeSocket):
-    """Imported hull data (offsets, sections or grids with Lpp, B, T), SPEC metres"""
+    """Imported hull data (offsets, sections or grids with Lpp, B, T), metres, x from the AP"""
     bl_idname = ids.SOCKET_HULL_DATA
     bl_label = "Hull Data"
 

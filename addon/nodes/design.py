@@ -72,7 +72,7 @@ class FLNodeBulbousBow(FairlinesNode, bpy.types.Node):
     bl_label = "Bulbous Bow"
     category = "Surfaces"
     bl_width_default = 260
-    # Panamax container ship (SPEC section 2): Am = 0.985 B T, displacement 0.65 Lpp B T (as in
+    # Panamax container ship: Am = 0.985 B T, displacement 0.65 Lpp B T (as in
     # examples/compose_ship.py), the engine's default Kracht coefficients.
     inputs_spec = [(ids.SOCKET_LENGTH, "Lpp", {"default": 244.8}),
                    (ids.SOCKET_LENGTH, "Beam", {"default": 32.25}),

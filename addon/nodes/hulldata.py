@@ -17,7 +17,7 @@ _FORMATS = [("auto", "Auto", "Decide from the path (folder contents or CSV heade
 
 @register
 class FLNodeOffsetsImport(FairlinesNode, bpy.types.Node):
-    """Read an offsets table, section list or reference grid folder into SPEC metres (Lpp,
+    """Read an offsets table, section list or reference grid folder into the project's metres (Lpp,
     beam and draft are needed for tables and section lists; switch them off for grid folders,
     which know their own)"""
     bl_idname = ids.NODE_OFFSETS_IMPORT

@@ -1,9 +1,9 @@
-"""Bulbous bow, Boolean composition of hull subdomains and mesh export (issue 5).
+"""Bulbous bow, Boolean composition of hull subdomains and mesh export.
 
 The geometry runs in the compiled engine (``fairlines._native``); this module gives it a
 Pythonic face: :class:`BulbousBow`, :func:`compose` returning a :class:`ComposedHull`, and
 :func:`measure_kracht`, which reads the Kracht quantities back off a composed mesh.
-Conventions (SPEC §6): metres, x forward from AP, y >= 0 the starboard half, z up.
+Conventions: metres, x forward from AP, y >= 0 the starboard half, z up.
 """
 
 from __future__ import annotations
@@ -39,7 +39,7 @@ __all__ = [
     "KRACHT_NAMES",
 ]
 
-#: The six Kracht (1978) coefficients, SPEC §7.
+#: The six Kracht (1978) coefficients.
 KRACHT_NAMES = ("c_lpr", "c_bb", "c_zb", "c_abt", "c_abl", "c_vpr")
 _SHIP_NAMES = ("lpp", "beam", "draft_fp", "midship_area", "displacement_volume")
 
@@ -76,7 +76,7 @@ def intersect_surfaces(a: NurbsSurface, b: NurbsSurface, *, tolerance: float = 1
 
 
 class BulbousBow:
-    """Bulbous bow from the six Kracht coefficients (SPEC §7) and the ship's particulars.
+    """Bulbous bow from the six Kracht (1978) coefficients and the ship's particulars.
 
     The bulb forward of FP has superelliptic sections (exponent ``section_fullness``) whose
     breadth and height follow a superelliptic outline (exponent ``nose_shape``) to the nose at
@@ -409,7 +409,7 @@ class BlendPlacement:
 def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, boundary_b, *,
                   samples: int = 61, tension: float = 1.0, check_samples: int = 200) -> BlendSurface:
     """Blending surface between two surfaces with C1 (tangent-plane) continuity along both
-    boundary curves (seed 000 step 4), by fair skinning of cubic Hermite sections.
+    boundary curves (Kim and Hwangbo 2008), by fair skinning of cubic Hermite sections.
 
     boundary_a, boundary_b   curves on each surface: a (k, 2) polyline of (u, v) parameters, or
                              an iso-line ``("u", value)`` / ``("v", value)``; both run the

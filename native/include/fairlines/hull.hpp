@@ -1,5 +1,5 @@
-// Basic curves of the bare hull (seed 000 step 2; SPEC §2) and plane cuts for its fairness
-// check (SPEC §5). The sections themselves are in fairlines/sections.hpp.
+// Basic curves of the bare hull (Kim and Hwangbo 2008) and plane cuts for its fairness
+// check. The sections themselves are in fairlines/sections.hpp.
 //
 // Every basic curve is a form-parameter curve: the E2-fairest clamped uniform B-spline
 // meeting its form parameters exactly. With the control-point abscissae fixed in advance
@@ -62,7 +62,7 @@ struct LinearFormRequest {
 /// conditions contradict each other (the message lists them).
 NurbsCurve design_linear_form_curve(const LinearFormRequest& request);
 
-/// A plane cut of a hull surface for the fairness check (SPEC §5): a waterline (plane
+/// A plane cut of a hull surface for the fairness check: a waterline (plane
 /// z = value), buttock (y = value) or frame (x = value), sampled densely, with its curvature
 /// computed ANALYTICALLY from the surface's first and second derivatives (implicit
 /// differentiation of the cut condition; no fitting, no finite differences).
