@@ -58,7 +58,7 @@ PARALLEL_SHIFT = 1.5        # the parallel body's centre moves this many times t
 DECK_CLEAR = 0.97           # the deck stays flat at least to where the waterline narrows to this fraction of B/2 ...
 DECK_TO_MAX = 0.92          # ... but ends its flat part aft of this fraction of Lpp
 DECK_FROM_MIN = 0.02        # ... and starts it at least this fraction of Lpp forward of the stern
-DECK_CHECKS = 101           # points of that check
+DECK_FLAT_CHECKS = 101           # points of that check
 DECK_TRANSOM = 0.92         # deck half-breadth at the transom, fraction of B/2
 DWL_TRANSOM = 0.7           # waterline half-breadth at an immersed transom, fraction of B/2
 FULLNESS_POINTS = 81        # points of the natural fullness the SAC stays near
@@ -263,12 +263,12 @@ def design_description(p: Particulars) -> dict:
     elif p.cm is not None:  # ... and the SAC holds a given midship area there
         sac["fit"] = [[_midship_place(p), c["cm"] * B * T]]
     deck_from = max(x_aft + 0.05 * L, par[0] - 0.25 * L)
-    xs_aft = np.linspace(xa, deck_from, DECK_CHECKS)
+    xs_aft = np.linspace(xa, deck_from, DECK_FLAT_CHECKS)
     full = xs_aft[dwl_curve(xs_aft) >= DECK_CLEAR * half]  # so does a full stern aft
     if len(full):
         deck_from = max(min(deck_from, float(full[0])), x_aft + DECK_FROM_MIN * L)
     deck_to = min(max(par[1], 0.5 * L) + 0.2 * L, 0.85 * L)
-    xs_fore = np.linspace(deck_to, xf, DECK_CHECKS)
+    xs_fore = np.linspace(deck_to, xf, DECK_FLAT_CHECKS)
     full = xs_fore[dwl_curve(xs_fore) >= DECK_CLEAR * half]  # a full bow keeps the deck's flat further forward
     if len(full):
         deck_to = min(max(deck_to, float(full[-1])), DECK_TO_MAX * L)

@@ -93,6 +93,12 @@ def judge_cut(cut, min_turn_deg: float = MIN_TURN_DEG) -> dict:
             "max_curvature": float(np.max(np.abs(k))) if len(k) else 0.0}
 
 
+def surface_extent(surface) -> tuple[np.ndarray, np.ndarray]:
+    """Least and largest (x, y, z) of a surface, m, from a 41 x 81 sample of it."""
+    g = np.asarray(surface.evaluate_grid(np.linspace(*surface.domain_u, 41), np.linspace(*surface.domain_v, 81))).reshape(-1, 3)
+    return g.min(axis=0), g.max(axis=0)
+
+
 def fairness_report(surface, draft: float, n_waterlines: int = 8, n_buttocks: int = 6, n_frames: int = 20,
                     samples: int = 601, min_turn_deg: float = MIN_TURN_DEG, z_max: float | None = None) -> dict:
     """Waterlines, buttocks and frames cut from `surface` and judged on their own (judge_cut).
@@ -101,8 +107,7 @@ def fairness_report(surface, draft: float, n_waterlines: int = 8, n_buttocks: in
     of the surface), buttocks at fractions of the largest half-breadth, frames at equal x strictly
     inside the surface. Returns {"waterline": [...], "buttock": [...], "frame": [...], "summary"}.
     """
-    g = np.asarray(surface.evaluate_grid(np.linspace(*surface.domain_u, 41), np.linspace(*surface.domain_v, 81))).reshape(-1, 3)
-    lo, hi = g.min(axis=0), g.max(axis=0)
+    lo, hi = surface_extent(surface)
     z_top = hi[2] if z_max is None else min(z_max, hi[2])
     plan = {
         "waterline": (2, np.linspace(max(lo[2], 0.0), z_top, n_waterlines + 2)[1:-1]),

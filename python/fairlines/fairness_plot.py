@@ -16,7 +16,7 @@ import pathlib
 import numpy as np
 
 from . import _native
-from .fairness import MIN_TURN_DEG, judge_cut
+from .fairness import MIN_TURN_DEG, judge_cut, surface_extent
 
 __all__ = ["comb_spines", "fairness_figure", "write_fairness_plot"]
 
@@ -65,8 +65,7 @@ def _cuts(surface, kind: str, values) -> list:
 
 
 def _positions(surface) -> dict:
-    g = np.asarray(surface.evaluate_grid(np.linspace(*surface.domain_u, 41), np.linspace(*surface.domain_v, 81))).reshape(-1, 3)
-    lo, hi = g.min(axis=0), g.max(axis=0)
+    lo, hi = surface_extent(surface)
     z0 = max(lo[2], 0.0)
     return {"waterline": [z0 + f * (hi[2] - z0) for f in WATERLINES],
             "buttock": [f * hi[1] for f in BUTTOCKS],

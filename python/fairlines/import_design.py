@@ -607,13 +607,10 @@ def fidelity(hull, data: HullData, *, max_points: int = 3000) -> dict:
 def _mesh_figures(composed, draft: float) -> tuple:
     """Volume, LCB and wetted surface (both sides) at `draft` of a composed half hull's mesh:
     the hull, bulb and blend faces below the waterline (clipped) make the wetted surface."""
-    from .compose import FACE_PARTS, _clip_below, mesh_hydrostatics
+    from .compose import FACE_PARTS
+    from .hydrostatics_mesh import hydrostatics_of_mesh
 
-    h = mesh_hydrostatics(composed.mesh, draft)
+    v, f = np.asarray(composed.mesh.vertices, float), np.asarray(composed.mesh.faces)
+    h = hydrostatics_of_mesh(v, f, draft)
     outer = np.isin(composed.face_part, [FACE_PARTS.index(p) for p in ("hull", "bulb", "blend")])
-    tris = np.asarray(composed.mesh.vertices, float)[np.asarray(composed.mesh.faces)[outer]]
-    area = 0.0
-    for t in tris[tris[:, :, 2].min(axis=1) < draft]:
-        for p in _clip_below(t, draft) if t[:, 2].max() > draft else [t]:
-            area += 0.5 * float(np.linalg.norm(np.cross(p[1] - p[0], p[2] - p[0])))
-    return float(h["volume"]), float(h["lcb"]), 2.0 * area
+    return float(h.volume), float(h.lcb), float(hydrostatics_of_mesh(v, f[outer], draft).wetted_surface)
