@@ -115,7 +115,7 @@ blender-sweep-picture: addon blender-deps
 	rm -rf build/sweep_pic
 	BLENDER_USER_RESOURCES=$(abspath build/sweep_pic) $(BPY_VENV)/bin/python tools/blender_sweep_picture.py \
 	  --zip "$$(ls dist/fairlines_blender-*-extension.zip)" --out build/sweep_pic/sweep.png
-	$(PY) -c "from PIL import Image; Image.open('build/sweep_pic/sweep.png').convert('RGB').quantize(256, dither=Image.Dither.FLOYDSTEINBERG).save('docs/blender_sweep.png', optimize=True)"
+	$(PY) -c "from PIL import Image; Image.open('build/sweep_pic/sweep.png').convert('RGB').resize((1200, 667), Image.LANCZOS).quantize(256, dither=Image.Dither.FLOYDSTEINBERG).save('docs/blender_sweep.png', optimize=True)"
 
 # ---- reliability: fuzzing and sanitizers (docs/reliability.md) ----------------------------
 # atheris harnesses in fuzz/, corpora in fuzz/corpus/<harness>; FUZZ_RUNS runs per harness.
