@@ -16,12 +16,10 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    import pathlib
-
     from .fairness_plot import write_fairness_plot
     from .hull import Hull
 
-    hull = Hull.from_json(pathlib.Path(args.hull).read_text())
+    hull = Hull.from_json(args.hull)
     print("  .. cutting waterlines, buttocks and frames and drawing their curvature combs", file=sys.stderr, flush=True)
     judged = write_fairness_plot(hull.bare_hull_surface(), args.output, title=hull.description.name)
     units = {"waterline": "z", "buttock": "y", "frame": "x"}

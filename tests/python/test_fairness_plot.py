@@ -49,3 +49,10 @@ def test_command_line_draws_the_combs_and_lists_the_sign_changes(tmp_path, capsy
     text = capsys.readouterr().out
     assert out.stat().st_size > 10_000
     assert "waterline z =" in text and "total: waterlines" in text
+
+
+def test_command_line_refuses_a_missing_description(tmp_path, capsys):
+    from fairlines.cli import main
+
+    assert main(["fairness", str(tmp_path / "none.json"), "-o", str(tmp_path / "c.png")]) == 2
+    assert "none.json" in capsys.readouterr().err
