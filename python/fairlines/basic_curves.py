@@ -286,8 +286,10 @@ def immersed_range(profile: BasicCurve, draft: float, samples: int = 2001) -> tu
     return float(x_a), float(x_f)
 
 
-def _sac_request(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft: float, fullness, bands, targets: bool):
-    """The fullness design request of the SAC (with or without its volume and LCB)."""
+def _sac_request(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft: float, fullness, bands, targets: bool,
+                 wedge_flat: bool = True):
+    """The fullness design request of the SAC (with or without its volume and LCB; with or
+    without the level fullness where the waterline ends on the centre plane)."""
     path = "basic_curves.sac"
     plan = _plan(spec, dwl.x_start, dwl.x_end, path)
     params = _form_params("sac", spec, path)
@@ -322,6 +324,10 @@ def _sac_request(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, dra
     for x_end in (plan.xs, plan.xe):
         if dwl(x_end)[0] <= WEDGE_BREADTH * widest:
             conditions.append(_native.SplineCondition(x_end, 0, WEDGE_FULLNESS, "fullness where the waterline ends (a wedge)"))
+            # ... and stays near one half for a while (no slope), so the sections there stay near
+            # the straight V that the dry sections beyond continue
+            if wedge_flat:
+                conditions.append(_native.SplineCondition(x_end, 1, 0.0, "fullness slope where the waterline ends"))
     r.conditions = conditions
     for x, a in spec.points:
         r.conditions += through_fullness(x, [1.0], a, "points")
@@ -419,9 +425,13 @@ def solve_sac(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft:
     `bands`: [(x, least, largest), ...] fullness the section at x can have (the sections'
     own limits, fairlines.section_fullness_bands), kept at those points. An infeasible request
     names the volume and LCB ranges the sections can hold."""
-    r, plan, params, factors = _sac_request(spec, dwl, profile, draft, fullness, bands, True)
     try:
-        s = _native.design_spline_function(r)
+        try:
+            r, plan, params, factors = _sac_request(spec, dwl, profile, draft, fullness, bands, True)
+            s = _native.design_spline_function(r)
+        except _native.InfeasibleFormParameters:  # a short run: the fullness may rise at once
+            r, plan, params, factors = _sac_request(spec, dwl, profile, draft, fullness, bands, True, wedge_flat=False)
+            s = _native.design_spline_function(r)
     except _native.InfeasibleFormParameters as e:
         r2, plan2, params2, factors2 = _sac_request(spec, dwl, profile, draft, fullness, bands, False)
         raise _native.InfeasibleFormParameters(

@@ -67,7 +67,8 @@ FIT_END = 0.06              # no fullness points this close (fraction of the wat
 MATCH_TOL = 1e-6            # relative tolerance of volume, LCB (on Lpp) and waterplane area on the surface
 MATCH_ITERATIONS = 6
 MATCH_GAUSS = 4             # Gauss points per span of the matching hydrostatics: 1e-11 of the 8-point volume, twice as fast
-PROFILE_SPANS = (30, 60, 120)  # knot spans of the profile, tried in turn
+PROFILE_SPANS = (30, 60, 120)
+BULB_AFT_LENGTH = 2.6       # the bulb runs on into the hull this many times L_PR + B_B (the bulb's own default is 2)  # knot spans of the profile, tried in turn
 
 
 @dataclass
@@ -290,7 +291,11 @@ def design_description(p: Particulars) -> dict:
         given = dict(p.bulb) if isinstance(p.bulb, dict) else {}
         section = given if {"kracht", "shape"} & set(given) else {"kracht": given}
         defaults = {k: v.default for k, v in inspect.signature(BulbousBow).parameters.items() if k in KRACHT_NAMES}
-        desc["bulb"] = {**section, "kracht": {**defaults, **section.get("kracht", {})}}
+        kracht = {**defaults, **section.get("kracht", {})}
+        shape = dict(section.get("shape", {}))
+        # the bulb's constant aft part reaches back to where the forefoot is wide enough to take it
+        shape.setdefault("aft_length", BULB_AFT_LENGTH * (kracht["c_lpr"] * L + kracht["c_bb"] * B))
+        desc["bulb"] = {**section, "kracht": kracht, "shape": shape}
     return desc
 
 

@@ -195,20 +195,27 @@ class Hull:
     # ---- sections ---------------------------------------------------------------------
     def _lower_angles(self, xs: np.ndarray) -> np.ndarray:
         """Arrival angle (deg) at the keel point of sections above the water beyond the
-        waterline's ends: the hull's tangent plane along the centre-line contour holds the
-        contour's tangent and the waterline's end direction, so a section arrives at
-        atan(tan(i) / |dz/dx|), i the waterline's end half angle."""
+        waterline's ends: the angle of the line from the keel point to the virtual waterline
+        point (b_v, T), b_v the waterline's cubic continued past its end (negative there), so a
+        dry section continues the immersed ones' chord K -> Q, whose lean is b / (T - z_keel)."""
         bc = self._curves
         dwl, prof = bc["dwl"], bc["profile"]
+        draft = self.description.principal.draft
         out = np.full(xs.shape, np.nan)
-        for side, x_end, sign in (("fore", dwl.x_end, -1.0), ("aft", dwl.x_start, 1.0)):
+        for side, x_end in (("fore", dwl.x_end), ("aft", dwl.x_start)):
             if dwl(x_end)[0] > 1e-9 * self.description.principal.breadth:
                 continue  # an immersed transom: no sections beyond the waterline's end
-            tan_i = max(sign * dwl.derivative(x_end, 1), 0.0)
+            taylor = [dwl.derivative(x_end, k) / math.factorial(k) for k in (1, 2, 3)]
             mask = xs >= x_end if side == "fore" else xs <= x_end
             for k in np.flatnonzero(mask):
-                slope = max(abs(prof.derivative(float(xs[k]), 1)), MIN_STEM_SLOPE)
-                out[k] = min(math.degrees(math.atan(tan_i / slope)), MAX_LOWER_ANGLE)
+                h = float(xs[k]) - x_end
+                b_v = sum(c * h ** (j + 1) for j, c in enumerate(taylor))
+                d_v = draft - float(prof(float(xs[k]))[0])
+                if d_v < 0 and b_v < 0:
+                    lean = b_v / d_v
+                else:  # at the end itself: the limit of the lean, the end slopes' ratio
+                    lean = abs(taylor[0]) / max(abs(prof.derivative(float(xs[k]), 1)), MIN_STEM_SLOPE)
+                out[k] = min(math.degrees(math.atan(lean)), MAX_LOWER_ANGLE)
         return out
 
     def section_specs(self, x: Any = None, with_area: bool = True) -> list:
@@ -239,6 +246,7 @@ class Hull:
                                                      for k, (_, lo, hi) in SHAPE_CURVES.items())
             if np.isfinite(lower[i]):
                 s.lower_angle = float(lower[i])
+                s.draft = pr.draft  # where the dry section's virtual waterline point lies
             if np.isfinite(dwl[i]) and dwl[i] > 0 and s.z_keel < pr.draft:
                 s.draft, s.y_dwl = pr.draft, float(min(dwl[i], half_b))
                 if with_area and np.isfinite(sac[i]):

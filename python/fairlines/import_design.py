@@ -554,7 +554,37 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
     if kracht is not None:
         out["bulb"] = {"kracht": kracht}
         say("bulb: Kracht coefficients " + ", ".join(f"{k} {v:.4g}" for k, v in kracht.items()))
+        out = _without_bulb_overlap(out, kracht["c_vpr"] * hull.hydrostatics().volume, say)
     return out
+
+
+def _without_bulb_overlap(desc: dict, v_pr: float, say) -> dict:
+    """The description with the SAC's volume lowered by what the composed bulb adds aft of the
+    FP outside the bare hull (the data's hull grids already hold the bulb's neck), so the
+    composed hull holds the measured volume plus the bulb's V_PR. Unchanged when the hull
+    cannot be composed or rebuilt."""
+    from .designer import match_targets
+    from .hull import Hull
+
+    sac = desc["basic_curves"]["sac"]
+    if "volume" not in sac:
+        return desc
+    try:
+        hull = Hull.from_json(desc)
+        composed_volume = _mesh_figures(hull.composed_hull(), desc["principal"]["T"])[0]
+        overlap = composed_volume - hull.hydrostatics().volume - v_pr
+        if overlap <= 0:
+            return desc
+        out = copy.deepcopy(desc)
+        out["basic_curves"]["sac"]["volume"] = sac["volume"] - overlap
+        rebuilt = Hull.from_json(out)
+        match_targets(rebuilt, MATCH_TOL)
+    except (_native.InvalidInput, _native.InfeasibleFormParameters):
+        return desc
+    say(f"bulb: {overlap:.4g} m^3 of it aft of the FP lies outside the bare hull; taken off the SAC's volume")
+    result = rebuilt.to_dict()
+    result["notes"], result["bulb"] = desc["notes"], desc["bulb"]
+    return result
 
 
 def point_deviation(surfaces, points: np.ndarray) -> np.ndarray:

@@ -4,15 +4,15 @@
 // point K on the centre plane. Where the hull is immersed it passes through the design-
 // waterline point Q = (y_dwl, T) and holds the asked area below T. It is built in two steps:
 //
-//  1. A template: the guide polygon D -> Y -> Q -> X -> K with its corners rounded. X is the
-//     bilge corner (where the side below the waterline would meet the bottom), Y the top corner
-//     on the waterline tangent's upward extension. The top D..Q is one rounded corner at Y (a
-//     flared top where D lies outboard of the line Y-Q, a convex shoulder where it lies inboard,
-//     straight where it lies on it); below Q the section runs straight along Q-X, round a bilge
-//     at X and straight along X-K: a flat of side and a flat of bottom appear by themselves
-//     where the bilge is small. One number, the shape knob lambda, moves the template from the
-//     fullest (a tight bilge in the box corner) through rounder bilges (lambda 0 .. 1) to a
-//     straight V (lambda 2, X on the chord Q-K); lambda is solved so that the area below the
+//  1. A template: the guide polygon D -> Y -> Q -> X -> K. X is the bilge corner (where the
+//     side below the waterline would meet the bottom), Y the top corner on the waterline
+//     tangent's upward extension. The top D..Q is one rounded corner at Y (a flared top where D
+//     lies outboard of the line Y-Q, a convex shoulder where it lies inboard, straight where it
+//     lies on it); below Q the section is one conic arc Q -> X -> K (a rational quadratic, no
+//     inflection). One number, the shape knob lambda, moves the template from the fullest (the
+//     arc hugging the box corner: flat of side and flat of bottom in all but name) through
+//     rounder, leaning bilges to a straight V (lambda 2, X on the chord Q-K); every point of
+//     the arc moves inward as lambda grows, and lambda is solved so that the area below the
 //     waterline is the asked one.
 //  2. The section spline: a cubic B-spline on one knot vector shared by every section of a hull
 //     (fair skinning uses its control points as the surface's rows). It is a graph over the

@@ -7,8 +7,8 @@
 //               where it heads (the point at `character` of the chord Q-K)
 //   X, Y        bilge corner and top corner of the guide polygon D -> Y -> Q -> X -> K
 //   t_w         unit direction Q -> X: the section's tangent at the waterline, going down
-//   lambda      the shape knob: the bilge fillet grows over [0, kRoundEnd], the bilge corner
-//               moves from C to M over [kLeanStart, kMaxShapeKnob]
+//   lambda      the shape knob: the bilge arc's weight falls and its corner X moves from C to M
+//               over [0, kMaxShapeKnob]
 //   L, dir, nrm chord length |K - D|, its unit direction and the unit normal (-dir_z, dir_y),
 //               which points out of the hull
 //   xi, eta     abscissa along dir and ordinate along nrm from D; control point k of the
@@ -46,12 +46,15 @@ constexpr int kDegree = 3;
 /// line), so a straight part and a fillet join with continuous curvature.
 constexpr double kFilletNear = 0.105;
 constexpr double kFilletFar = 0.611;
-/// The bilge fillet's extent along both legs, as a fraction of the shorter leg, at lambda 0.
-constexpr double kMinFillet = 0.03;
-/// The bilge fillet reaches the shorter leg's whole length at lambda = kRoundEnd; the bilge
-/// corner starts moving at kLeanStart. The two overlap so the area falls strictly all along.
-constexpr double kRoundEnd = 1.4;
-constexpr double kLeanStart = 0.6;
+/// Below the waterline the section is one conic arc Q -> X -> K. Its middle weight falls
+/// geometrically from kFullWeight (lambda 0: the arc hugs the box corner, fullness about 0.997)
+/// to kFineWeight (lambda kMaxShapeKnob), while the corner X leans from the box corner C toward
+/// the heading M as (lambda / kMaxShapeKnob)^kLeanPower: the bilge rounds first and leans later.
+/// Both motions move every point of the arc inward, so the half-breadth at any height falls
+/// strictly as lambda grows (no plateau, no shoulder-hollow-shoulder along a waterline).
+constexpr double kFullWeight = 60.0;
+constexpr double kFineWeight = 0.7;
+constexpr double kLeanPower = 3.0;
 /// Sharpness of the smooth minimum of the chord's lean and the top's room (see heading()).
 constexpr double kHeadingSharpness = 4.0;
 /// Knob solve: area tolerance relative to the immersed box, and iteration limit.
@@ -78,6 +81,12 @@ constexpr double kMinCornerBreadth = 0.75;
 /// A section whose immersion weight is below this is dry: its waterline point and area carry
 /// no weight, and a waterline point a rounding error off the centre plane must not be checked.
 constexpr double kMinImmersion = 1e-9;
+/// How far below the keel point a dry section's virtual waterline point may lie, as a fraction of
+/// the reach that keeps its top corner above K (see above_template).
+constexpr double kVirtualReach = 0.5;
+/// A dry section's template ends this smoothly at K: the miss at K is taken out of the
+/// ordinates as g^kEndFixPower (g the Greville abscissa).
+constexpr double kEndFixPower = 6.0;
 /// Sections shorter than this fraction of B/2 are a point (the stem head).
 constexpr double kPointSection = 1e-9;
 /// Samples per template piece of the check that the template is a graph over its chord.
@@ -120,12 +129,19 @@ const Layout& layout(int n) {
   return cache.back();
 }
 
-/// A straight piece (two points) or a quintic Bezier fillet (six), in (y, z).
+/// A straight piece (two points), a quintic Bezier fillet (six) or a conic arc (a rational
+/// quadratic Bezier: three points and the middle weight w), in (y, z).
 struct Piece {
   std::array<V2, 6> p;
   bool line = true;
+  bool conic = false;
+  double w = 1.0;
   V2 at(double s) const {
     if (line) return (1.0 - s) * p[0] + s * p[1];
+    if (conic) {
+      const double b0 = (1.0 - s) * (1.0 - s), b1 = 2.0 * w * s * (1.0 - s), b2 = s * s;
+      return (b0 * p[0] + b1 * p[1] + b2 * p[2]) / (b0 + b1 + b2);
+    }
     std::array<V2, 6> q = p;  // de Casteljau
     for (int r = 1; r < 6; ++r)
       for (int i = 0; i < 6 - r; ++i) q[i] = (1.0 - s) * q[i] + s * q[i + 1];
@@ -133,6 +149,13 @@ struct Piece {
   }
   V2 tangent(double s) const {
     if (line) return p[1] - p[0];
+    if (conic) {
+      const double b0 = (1.0 - s) * (1.0 - s), b1 = 2.0 * w * s * (1.0 - s), b2 = s * s;
+      const double d0 = -2.0 * (1.0 - s), d1 = 2.0 * w * (1.0 - 2.0 * s), d2 = 2.0 * s;
+      const double den = b0 + b1 + b2, dden = d0 + d1 + d2;
+      const V2 num = b0 * p[0] + b1 * p[1] + b2 * p[2], dnum = d0 * p[0] + d1 * p[1] + d2 * p[2];
+      return (dnum * den - num * dden) / (den * den);
+    }
     std::array<V2, 5> q;
     for (int i = 0; i < 5; ++i) q[i] = 5.0 * (p[i + 1] - p[i]);
     for (int r = 1; r < 5; ++r)
@@ -141,9 +164,12 @@ struct Piece {
   }
 };
 
-Piece line(const V2& a, const V2& b) {
+/// The conic arc from A to B with corner X and middle weight w (a line for w = 0, a parabola
+/// for w = 1, toward the corner as w grows).
+Piece conic(const V2& A, const V2& X, const V2& B, double w) {
   Piece pc;
-  pc.p[0] = a, pc.p[1] = b;
+  pc.line = false, pc.conic = true, pc.w = w;
+  pc.p[0] = A, pc.p[1] = X, pc.p[2] = B;
   return pc;
 }
 
@@ -263,26 +289,36 @@ std::vector<Piece> immersed_template(const Section& S, double lambda) {
   const double rise = std::min(S.b * std::tan(s.deadrise * std::numbers::pi / 180.0), 0.5 * S.d);
   const V2 C(std::max(S.b - flare_lean(S) * (S.d - rise), kMinCornerBreadth * S.b), K.y() + rise);
   const V2 M = heading(S);
-  const double sr = smoothstep(lambda / kRoundEnd);
-  const double sx = smoothstep((lambda - kLeanStart) / (kMaxShapeKnob - kLeanStart));
-  const V2 X = C + sx * (M - C);
-  const double l1 = (X - Q).norm(), l2 = (K - X).norm();
+  const double t = std::clamp(lambda / kMaxShapeKnob, 0.0, 1.0);
+  const V2 X = C + std::pow(t, kLeanPower) * (M - C);
+  const double w = std::exp((1.0 - t) * std::log(kFullWeight) + t * std::log(kFineWeight));
+  const double l1 = (X - Q).norm();
   const V2 tw = l1 > 0 ? V2((X - Q) / l1) : V2((K - Q).normalized());
-  const double r = std::min(l1, l2) * (kMinFillet + (1.0 - kMinFillet) * sr);
-  const V2 A = X - r * tw;
-  const V2 B = l2 > 0 ? V2(X + r * (K - X) / l2) : K;
   const V2 Y = Q - s.top_corner * (D - Q).norm() * tw;
-  return {fillet(D, Y, Q), line(Q, A), fillet(A, X, B), line(B, K)};
+  return {fillet(D, Y, Q), conic(Q, X, K, w)};
 }
 
 /// Above the water: one rounded corner from the deck point to the keel point, arriving at
-/// lower_angle.
+/// lower_angle. Beyond a waterline's end it continues the immersed family's fine end (a top
+/// corner over a straight leg to the waterline point): the leg runs on from K, at lower_angle,
+/// down to a virtual waterline point Q_v at z = T, and the corner is rounded to Q_v and the
+/// section cut at K. So sections change at the same rate on both sides of the waterline's end
+/// (no knee in the waterlines and buttocks above it); Q_v's distance below K saturates at
+/// kVirtualReach of what keeps the corner above K.
 std::vector<Piece> above_template(const Section& S) {
   const SectionSpec& s = S.s;
   const double a = (std::isnan(s.lower_angle) ? 0.0 : s.lower_angle) * std::numbers::pi / 180.0;
-  const V2 t_low(-std::sin(a), -std::cos(a));
-  const V2 Y = S.K - s.top_corner * (S.f.D - S.K).norm() * t_low;
-  return {fillet(S.f.D, Y, S.K)};
+  const V2 up(std::sin(a), std::cos(a));
+  const double lk = (S.f.D - S.K).norm();
+  double e = 0.0;
+  if (!std::isnan(s.lower_angle) && !std::isnan(s.draft) && S.K.y() > s.draft) {
+    const double cap = kVirtualReach * s.top_corner / (1.0 + s.top_corner) * lk;
+    const double raw = (S.K.y() - s.draft) / up.y();
+    e = cap > 0 ? raw * cap / (raw + cap) : 0.0;
+  }
+  const V2 Qv = S.K - e * up;
+  const V2 Y = Qv + s.top_corner * (S.f.D - Qv).norm() * up;
+  return {fillet(S.f.D, Y, Qv)};
 }
 
 /// The template ordinates at the Greville abscissae (the spline's control ordinates). Throws
@@ -326,6 +362,10 @@ Eigen::VectorXd sample(const Section& S, const std::vector<Piece>& pieces) {
     eta[k] = f.eta(pc.at(s));
   }
   eta[0] = 0.0;
+  // A template running on past K (a dry section's virtual leg) misses K by a little: take the
+  // miss out smoothly, from nothing at the deck to all of it at K.
+  const double miss = eta[n - 1] - f.eta(S.K);
+  for (int k = 1; k < n; ++k) eta[k] -= miss * std::pow(S.l.g[k], kEndFixPower);
   eta[n - 1] = f.eta(S.K);
   return eta;
 }
