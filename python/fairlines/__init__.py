@@ -60,7 +60,7 @@ from ._native import (  # noqa: F401  (re-exported API)
 from .basic_curves import BasicCurve  # noqa: F401
 from .description import BasicCurveSpec, BulbSpec, HullDescription, PrincipalDimensions  # noqa: F401
 from .hull import Hull  # noqa: F401
-from .skinning import fair_skin  # noqa: F401
+from .skinning import SkinOptions, fair_skin  # noqa: F401
 
 from .form_curve import FORM_PARAMETERS, FormCurveResult, design_curve, fairness_of, form_parameters_of  # noqa: F401,E402
 from ._native import boundary_continuity, mesh_volume, orient_bare_hull, triangulate_polygon  # noqa: F401,E402
