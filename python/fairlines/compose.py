@@ -15,6 +15,7 @@ import numpy as np
 
 from . import _native
 from ._native import NurbsSurface
+from .hydrostatics_mesh import displaced_volume_of_mesh
 
 
 def _integer(path: str, value: Any, lo: int | None) -> int:
@@ -255,99 +256,29 @@ def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int 
     return ComposedHull(native, surfaces)
 
 
-def _clip_positive(tri: np.ndarray, c: float) -> list[np.ndarray]:
-    """Part of triangle tri (3, 3) with x >= c, as a fan of triangles."""
-    poly = []
-    for k in range(3):
-        p, q = tri[k], tri[(k + 1) % 3]
-        if p[0] >= c:
-            poly.append(p)
-        if (p[0] - c) * (q[0] - c) < 0:
-            t = (c - p[0]) / (q[0] - p[0])
-            poly.append(p + t * (q - p))
-    return [np.array([poly[0], poly[i], poly[i + 1]]) for i in range(1, len(poly) - 1)]
-
-
 def measure_kracht(mesh: Mesh, *, x_fp: float, lpp: float, beam: float, draft_fp: float,
                    midship_area: float, displacement_volume: float) -> dict:
-    """Kracht coefficients measured on a closed, outward-oriented half-hull mesh (y >= 0),
-    on its part below the waterline z = draft_fp (a raked stem reaches forward of the FP
-    above it, and is not bulb).
-
-    Protrusion = max x - x_fp; nose height = z of the foremost point; bulb breadth = 2 max y
-    on the section x = x_fp; section area at FP = 2 * x-component of the area vector of the
-    surface forward of FP (closed-surface identity: the waterplane's n_x is 0); lateral area =
-    centre-plane area forward of FP; volume forward of FP = 2 * sum (x - x_fp) n_x dA over the
-    surface forward of FP (divergence theorem with the field (x - x_fp, 0, 0), which vanishes
-    on the cut and has no flux through the waterplane).
-    """
-    V = np.asarray(mesh.vertices, float)
-    tris = V[np.asarray(mesh.faces)]
-    keep = (tris[:, :, 0].max(axis=1) > x_fp) & (tris[:, :, 2].min(axis=1) < draft_fp)
-    ax = vol = lat = ymax = 0.0
-    nose = np.array([-np.inf, 0.0, 0.0])
-    for t in tris[keep]:
-        cp = bool(np.all(t[:, 1] == 0.0))
-        for low in _clip_below(t, draft_fp) if t[:, 2].max() > draft_fp else [t]:
-            for k in range(3):  # section crossing points
-                p, q = low[k], low[(k + 1) % 3]
-                if (p[0] - x_fp) * (q[0] - x_fp) <= 0 and p[0] != q[0]:
-                    s = (x_fp - p[0]) / (q[0] - p[0])
-                    ymax = max(ymax, p[1] + s * (q[1] - p[1]))
-            for piece in _clip_positive(low, x_fp):
-                n = 0.5 * np.cross(piece[1] - piece[0], piece[2] - piece[0])
-                ax += n[0]
-                vol += (piece[:, 0].mean() - x_fp) * n[0]
-                if cp:
-                    lat += np.linalg.norm(n)
-                front = piece[np.argmax(piece[:, 0])]
-                if front[0] > nose[0]:
-                    nose = front
-    return dict(
-        c_lpr=(nose[0] - x_fp) / lpp,
-        c_bb=2.0 * ymax / beam,
-        c_zb=float(nose[2]) / draft_fp,
-        c_abt=2.0 * ax / midship_area,
-        c_abl=lat / midship_area,
-        c_vpr=2.0 * vol / displacement_volume,
-    )
-
-
-def _clip_below(tri: np.ndarray, z0: float) -> list[np.ndarray]:
-    """Part of triangle tri (3, 3) with z <= z0, as a fan of triangles."""
-    poly = []
-    for k in range(3):
-        p, q = tri[k], tri[(k + 1) % 3]
-        if p[2] <= z0:
-            poly.append(p)
-        if (p[2] - z0) * (q[2] - z0) < 0:
-            t = (z0 - p[2]) / (q[2] - p[2])
-            poly.append(p + t * (q - p))
-    return [np.array([poly[0], poly[i], poly[i + 1]]) for i in range(1, len(poly) - 1)]
+    """Kracht coefficients (:data:`KRACHT_NAMES`) measured by the engine on a closed,
+    outward-oriented half-hull mesh (y >= 0), on its part below the waterline z = draft_fp (a
+    raked stem reaches forward of the FP above it, and is not bulb): protrusion of the foremost
+    point, breadth of the section x = x_fp, nose height, section area at the FP, centre-plane
+    area and volume forward of the FP, each made dimensionless by the ship's figures.
+    Raises InvalidInput for a bad mesh or a non-finite / non-positive ship dimension."""
+    ship = _native.KrachtShip()
+    for name, value in dict(x_fp=x_fp, lpp=lpp, beam=beam, draft_fp=draft_fp, midship_area=midship_area,
+                            displacement_volume=displacement_volume).items():
+        setattr(ship, name, float(value))
+    k = _native._measure_kracht(np.asarray(mesh.vertices, float), np.asarray(mesh.faces), ship)
+    return {name: getattr(k, name) for name in KRACHT_NAMES}
 
 
 def mesh_hydrostatics(mesh: Mesh, draft: float, *, half: bool = True) -> dict:
     """Displaced volume (m^3), LCB and KB (m) of a closed, outward-oriented mesh floating at
-    z = draft, by the divergence theorem over the surface below the waterline with fields
-    that vanish on the waterplane: (0, 0, z - T) for the volume, (0, 0, x (z - T)) for the
-    x-moment and (0, 0, (z^2 - T^2) / 2) for the z-moment. ``half``: the mesh is the
-    starboard half (volume doubled, centroid unchanged)."""
-    tris = np.asarray(mesh.vertices, float)[np.asarray(mesh.faces)]
-    T = float(draft)
-    vol = mx = mz = 0.0
-    for t in tris[tris[:, :, 2].min(axis=1) < T]:
-        for p in _clip_below(t, T) if t[:, 2].max() > T else [t]:
-            nz = 0.5 * np.cross(p[1] - p[0], p[2] - p[0])[2]
-            # exact for linear integrands: mean over the vertices; quadratic z^2 and x z use
-            # the edge-midpoint rule (exact for quadratics on a triangle)
-            mid = 0.5 * (p + np.roll(p, -1, axis=0))
-            vol += (p[:, 2].mean() - T) * nz
-            mx += np.mean(mid[:, 0] * (mid[:, 2] - T)) * nz
-            mz += np.mean(0.5 * (mid[:, 2] ** 2 - T * T)) * nz
-    if vol <= 0.0:
-        raise _native.InvalidInput(f"draft {draft} m gives no displaced volume; expected a draft above the keel")
-    f = 2.0 if half else 1.0
-    return dict(volume=f * vol, lcb=mx / vol, kb=mz / vol)
+    z = draft, by the engine's mesh hydrostatics (:func:`fl.hydrostatics_of_mesh`). ``half``:
+    the mesh is the starboard half (volume doubled, centroid unchanged). Raises InvalidInput
+    when the draft leaves no displaced volume or the mesh is malformed."""
+    h = displaced_volume_of_mesh(mesh.vertices, mesh.faces, draft, half_hull=half)
+    return dict(volume=h.volume, lcb=h.lcb, kb=h.vcb)
 
 
 def _boundary_uv(surface: NurbsSurface, boundary, what: str) -> np.ndarray:
