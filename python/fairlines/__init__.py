@@ -128,3 +128,6 @@ from .offsets import (  # noqa: F401,E402
     section_from_offsets,
 )
 globals().update({name: getattr(preprocess, name) for name in preprocess.__all__ if name != "mesh_hydrostatics"})
+
+# Hydrostatics of several NURBS patches bounding a hull together (the pre-processor's surfaces).
+from ._native import PatchHydrostatics, hydrostatics_of_patches  # noqa: F401,E402
