@@ -131,3 +131,6 @@ globals().update({name: getattr(preprocess, name) for name in preprocess.__all__
 
 # Hydrostatics of several NURBS patches bounding a hull together (the pre-processor's surfaces).
 from ._native import PatchHydrostatics, hydrostatics_of_patches  # noqa: F401,E402
+# Option structs of the composition and the blend (defaults in the engine's headers).
+from ._native import BlendOptions, ComposeOptions  # noqa: F401,E402
+from .compose import compose_options  # noqa: F401,E402

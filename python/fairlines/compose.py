@@ -15,6 +15,7 @@ import numpy as np
 
 from . import _native
 from ._native import NurbsSurface
+from ._options import fill_options
 from .hydrostatics_mesh import displaced_volume_of_mesh
 
 
@@ -32,6 +33,7 @@ __all__ = [
     "ComposedHull",
     "Mesh",
     "compose",
+    "compose_options",
     "compose_with_blend",
     "intersect_surfaces",
     "measure_kracht",
@@ -200,9 +202,7 @@ class ComposedHull:
         (self.full_mesh() if full else self.mesh).write_stl(path, binary)
 
 
-def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int = 48,
-            hull_v: int = 20, bulb_u: int = 24, bulb_v: int = 32, tolerance: float = 1e-7,
-            margin: float = 0.3, blend_rows: int = 8, blend_check_samples: int = 200) -> ComposedHull:
+def compose(subdomains: Sequence[Any], operation: str = "union", **options) -> ComposedHull:
     """Boolean composition of hull subdomains into one closed half hull.
 
     subdomains  [bare_hull], [bare_hull, bulb] or [bare_hull, bulb, blend]: NurbsSurface (or
@@ -216,8 +216,10 @@ def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int 
                 the mesh resolution, C1 along both) joins them with shared vertices.
     operation   "union" (the only Boolean a hull needs: the bulb's part inside the hull is
                 removed, and the hull's part inside the bulb).
+    options     fields of :class:`fl.ComposeOptions` by keyword (defaults in the engine):
     hull_u, hull_v, bulb_u, bulb_v   tessellation cells; tolerance: intersection (m, <= 1e-6);
     margin      clearance between the seam and whole hull cells (fraction of a cell).
+    blend_rows  blend cells from the hull boundary to the bulb boundary.
     blend_check_samples   points per boundary at which the blend's continuity
                 ``blend_continuity`` is measured (>= 2; each is a projection onto hull or
                 bulb). The same figures come from ``boundary_continuity(c.blend, False,
@@ -225,15 +227,16 @@ def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int 
                 can pass 2 and measure them later.
 
     Raises InvalidInput ("bulb cannot meet the hull ...") when the bulb does not cross the hull
-    in one seam from the keel/stem line around to the stem.
+    in one seam from the keel/stem line around to the stem, and for an unknown or bad option.
     """
+    o = compose_options(**options)
     if operation != "union":
         raise _native.InvalidInput(f"operation is {operation!r}; expected 'union'")
     subs = list(subdomains)
     if not 1 <= len(subs) <= 3:
         raise _native.InvalidInput(f"subdomains has {len(subs)} entries; expected [bare_hull], [bare_hull, bulb] "
                          "or [bare_hull, bulb, blend]")
-    blend_kw = {}
+    blend = None
     if len(subs) == 3:
         bl = subs.pop()
         if not isinstance(bl, (BlendSurface, BlendPlacement)):
@@ -242,18 +245,25 @@ def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int 
         bb = bl.boundary_b
         if not (isinstance(bb, tuple) and len(bb) == 2 and bb[0] == "u"):
             raise _native.InvalidInput(f"the blend's bulb boundary is {bb!r}; expected a bulb section ('u', value)")
-        blend_kw = dict(blend_hull_uv=np.asarray(bl.boundary_a, float), blend_bulb_u=float(bb[1]),
-                        blend_tension=float(bl.tension), blend_rows=_integer("blend_rows", blend_rows, None),
-                        blend_check_samples=_integer("blend_check_samples", blend_check_samples, None))
+        blend = fill_options(_native.BlendSpec, "blend", dict(hull_uv=np.asarray(bl.boundary_a, float),
+                                                              bulb_u=float(bb[1]), tension=float(bl.tension)))
     surfaces = [s.surface if isinstance(s, BulbousBow) else s for s in subs]
     for i, s in enumerate(surfaces):
         if not isinstance(s, NurbsSurface):
             raise _native.InvalidInput(f"subdomains[{i}] is {type(s).__name__}; expected a NurbsSurface or BulbousBow")
-    native = _native._compose_hull(surfaces[0], surfaces[1] if len(surfaces) > 1 else None,
-                                   _integer("hull_u", hull_u, None), _integer("hull_v", hull_v, None),
-                                   _integer("bulb_u", bulb_u, None), _integer("bulb_v", bulb_v, None),
-                                   float(tolerance), float(margin), **blend_kw)
+    native = _native._compose_hull(surfaces[0], surfaces[1] if len(surfaces) > 1 else None, o, blend)
     return ComposedHull(native, surfaces)
+
+
+_COUNTS = ("hull_u", "hull_v", "bulb_u", "bulb_v", "blend_rows", "blend_check_samples")
+
+
+def compose_options(**options) -> _native.ComposeOptions:
+    """A :class:`fl.ComposeOptions` with the given fields set (counts must be integers; the
+    defaults live in the engine). Raises InvalidInput for an unknown name or a non-integer count."""
+    checks = {name: (lambda v, n=name: _integer(n, v, None)) for name in _COUNTS}
+    return fill_options(_native.ComposeOptions, "compose", options,
+                        {**checks, "tolerance": float, "margin": float, "plane_tolerance": float})
 
 
 def measure_kracht(mesh: Mesh, *, x_fp: float, lpp: float, beam: float, draft_fp: float,
@@ -331,29 +341,35 @@ class BlendPlacement:
     boundary_b: tuple
     tension: float
 
-    def blend_surface(self, samples: int = 61, check_samples: int = 200) -> BlendSurface:
-        """The blending surface itself (see :func:`blend_surface`)."""
-        return blend_surface(self.hull, self.boundary_a, self.bulb, self.boundary_b, samples=samples,
-                             tension=self.tension, check_samples=check_samples)
+    def blend_surface(self, **options) -> BlendSurface:
+        """The blending surface itself, at this placement's tension; ``options`` as for
+        :func:`blend_surface`. Raises InvalidInput for a bad option."""
+        return blend_surface(self.hull, self.boundary_a, self.bulb, self.boundary_b,
+                             **{"tension": self.tension, **options})
 
 
-def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, boundary_b, *,
-                  samples: int = 61, tension: float = 1.0, check_samples: int = 200) -> BlendSurface:
+def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, boundary_b,
+                  **options) -> BlendSurface:
     """Blending surface between two surfaces with C1 (tangent-plane) continuity along both
     boundary curves (Kim and Hwangbo 2008), by fair skinning of cubic Hermite sections.
 
     boundary_a, boundary_b   curves on each surface: a (k, 2) polyline of (u, v) parameters, or
                              an iso-line ``("u", value)`` / ``("v", value)``; both run the
                              same way (first point to first point).
-    samples                  sections along the boundaries; tension: cross-boundary tangent
-                             length relative to a third of the gap; check_samples: points per
-                             boundary at which the normal angle and gap are measured.
+    options                  fields of :class:`fl.BlendOptions` by keyword (defaults in the
+                             engine): samples, sections along the boundaries; tension,
+                             cross-boundary tangent length relative to a third of the gap;
+                             check_samples, points per boundary at which the normal angle and
+                             gap are measured; centre_plane_ends.
+
+    Raises InvalidInput for a bad boundary or option.
     """
     ba = _boundary_uv(surface_a, boundary_a, "boundary_a")
     bb = _boundary_uv(surface_b, boundary_b, "boundary_b")
-    s, at_a, at_b = _native._blend_surface(surface_a, ba, surface_b, bb, int(samples), float(tension),
-                                           int(check_samples))
-    return BlendSurface(s, dict(at_a), dict(at_b), ba, boundary_b, float(tension))
+    checks = {"samples": int, "check_samples": int, "tension": float, "centre_plane_ends": bool}
+    o = fill_options(_native.BlendOptions, "blend_surface", options, checks)
+    s, at_a, at_b = _native._blend_surface(surface_a, ba, surface_b, bb, o)
+    return BlendSurface(s, dict(at_a), dict(at_b), ba, boundary_b, o.tension)
 
 
 class _NoBlendFits(_native.InvalidInput):
@@ -518,7 +534,7 @@ def _place_blend(hull, bulb, clearance_u, clearance_v, bulb_clearance, tension, 
         raise _native.InvalidInput(f"hull and bulb are {type(hull).__name__}, {type(bulb).__name__}; expected a "
                                    "NurbsSurface hull and a BulbousBow or NurbsSurface bulb")
     # the seam compose([hull, bulb]) traces (same checks), without meshing the union
-    oriented, seam = _native._hull_bulb_seam(hull, surface_b, **seam_options)
+    oriented, seam = _native._hull_bulb_seam(hull, surface_b, compose_options(**seam_options))
     on_hull, on_bulb = _boundaries_around_seam(oriented, seam, clearance_u=clearance_u, clearance_v=clearance_v,
                                                bulb_clearance=bulb_clearance, points=65)
     return BlendPlacement(oriented, surface_b, on_hull, on_bulb, float(tension))

@@ -6,6 +6,7 @@ from collections.abc import Sequence
 
 from . import _native
 from ._native import SkinOptions
+from ._options import fill_options
 
 __all__ = ["fair_skin", "SkinOptions"]
 
@@ -65,18 +66,9 @@ def fair_skin(curves: Sequence[_native.NurbsCurve], n_control: int | None = None
 
     Raises InvalidInput naming the bad curve or option (an unknown option name included).
     """
-    o = SkinOptions()
-    for name, value in {"n_control": n_control, "mode": mode, **options}.items():
-        if name not in _OPTION_NAMES:
-            raise _native.InvalidInput(f"fair_skin option {name!r} is unknown; expected one of "
-                                       + ", ".join(_OPTION_NAMES))
-        if value is not None:
-            setattr(o, name, _CONVERT.get(name, _same)(value))
+    values = {"n_control": n_control, "mode": mode, **options}
+    o = fill_options(SkinOptions, "fair_skin", {k: v for k, v in values.items() if v is not None}, _CONVERT)
     return _native._fair_skin(list(curves), o)
-
-
-def _same(value):
-    return value
 
 
 def _flats(planes) -> list[tuple[int, float]]:
@@ -87,7 +79,6 @@ def _pairs(groups) -> list[tuple[int, int]]:
     return [(int(a), int(b)) for a, b in groups]
 
 
-_OPTION_NAMES = tuple(n for n in dir(SkinOptions) if not n.startswith("_"))
 # Sequences the bound fields take as lists of plain ints / pairs (numpy values, tuples of arrays).
 _CONVERT = {"c1_sections": lambda s: [int(i) for i in s], "flats": _flats, "straight_groups": _pairs}
 
