@@ -33,16 +33,17 @@ std::vector<double> breakpoints(const Eigen::VectorXd& U, int degree) {
 }
 
 /// Sub-intervals of [breaks.front(), breaks.back()] where f(t) <= 0, each split at the breaks.
-/// f is sampled kClipSamples times per break interval; sign changes are refined by bisection.
-template <typename F>
-std::vector<std::pair<double, double>> inside_pieces(const std::vector<double>& breaks, F&& f) {
+/// f is sampled kClipSamples times per break interval (all samples at once by
+/// sample_all(ts, fs)); sign changes are refined by bisection on f.
+template <typename F, typename Fs>
+std::vector<std::pair<double, double>> inside_pieces(const std::vector<double>& breaks, F&& f, Fs&& sample_all) {
   std::vector<double> ts;
   for (std::size_t i = 0; i + 1 < breaks.size(); ++i)
     for (int k = 0; k < kClipSamples; ++k)
       ts.push_back(breaks[i] + (breaks[i + 1] - breaks[i]) * k / kClipSamples);
   ts.push_back(breaks.back());
   std::vector<double> fs(ts.size());
-  for (std::size_t i = 0; i < ts.size(); ++i) fs[i] = f(ts[i]);
+  sample_all(ts, fs);
   // Collect boundaries of the inside set.
   std::vector<std::pair<double, double>> ivs;
   bool in = fs[0] <= 0;
@@ -169,14 +170,23 @@ SurfaceSums integrate_below(const NurbsSurface& s, int gauss, Z&& waterline_z) {
   const std::vector<double> bv = breakpoints(s.knots_v(), s.degree_v());
   const auto& g = detail::gauss_rule(gauss);
   SurfaceSums out;
+  std::vector<double> points, line_v;
   for (std::size_t jv = 0; jv + 1 < bv.size(); ++jv) {
     const double hv = 0.5 * (bv[jv + 1] - bv[jv]), mv = 0.5 * (bv[jv + 1] + bv[jv]);
     for (int kv = 0; kv < gauss; ++kv) {
       const double v = mv + hv * g.x[kv];
-      const auto pieces = inside_pieces(bu, [&](double u) {
+      auto height = [&](double u) {
         const Eigen::Vector3d P = s.evaluate(u, v);
         return P[2] - waterline_z(P[0]);
-      });
+      };
+      // The samples of this line in one batched evaluation.
+      auto heights = [&](const std::vector<double>& ts, std::vector<double>& fs) {
+        points.resize(3 * ts.size());
+        line_v.assign(ts.size(), v);
+        s.evaluate_into(ts.data(), line_v.data(), static_cast<long>(ts.size()), points.data());
+        for (std::size_t i = 0; i < ts.size(); ++i) fs[i] = points[3 * i + 2] - waterline_z(points[3 * i]);
+      };
+      const auto pieces = inside_pieces(bu, height, heights);
       for (const auto& [pa, pb] : pieces) add_piece(s, g, gauss, v, g.w[kv] * hv, pa, pb, out);
     }
   }
@@ -267,7 +277,9 @@ std::pair<double, double> section_area(const NurbsSurface& s, double x0, double 
     b_warm = b;
     return point(a, b)[2] - draft;
   };
-  const auto pieces = inside_pieces(br_a, zfun);
+  const auto pieces = inside_pieces(br_a, zfun, [&](const std::vector<double>& ts, std::vector<double>& fs) {
+    for (std::size_t i = 0; i < ts.size(); ++i) fs[i] = zfun(ts[i]);
+  });
   const auto& g = detail::gauss_rule(gauss);
   double area = 0, mz = 0;
   for (const auto& [pa, pb] : pieces) {
