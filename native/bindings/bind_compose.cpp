@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "option_docs.hpp"
 #include "fairlines/blend.hpp"
 #include "fairlines/bulb.hpp"
 #include "fairlines/compose.hpp"
@@ -58,35 +59,36 @@ py::dict curve_dict(const IntersectionCurve& c) {
 }
 
 void bind_compose_options(py::module_& m) {
-  py::class_<ComposeOptions>(m, "ComposeOptions", "Options of compose (fairlines.compose sets them by keyword).")
-      .def(py::init<>())
-      .def_readwrite("hull_u", &ComposeOptions::hull_u, "hull tessellation cells along u (>= 4)")
-      .def_readwrite("hull_v", &ComposeOptions::hull_v, "hull tessellation cells along v (>= 4)")
-      .def_readwrite("bulb_u", &ComposeOptions::bulb_u, "bulb cells from the seam to the nose (>= 2)")
-      .def_readwrite("bulb_v", &ComposeOptions::bulb_v, "bulb cells around the half section; also seam segments (>= 4)")
-      .def_readwrite("tolerance", &ComposeOptions::tolerance, "surface-surface intersection tolerance (m, <= 1e-6)")
-      .def_readwrite("margin", &ComposeOptions::margin, "clearance kept between the seam and whole hull cells (in cells)")
-      .def_readwrite("plane_tolerance", &ComposeOptions::plane_tolerance,
-                     "relative tolerance of the centre plane / deck / aft checks")
-      .def_readwrite("blend_rows", &ComposeOptions::blend_rows, "blend cells from the hull boundary to the bulb boundary (>= 1)")
-      .def_readwrite("blend_check_samples", &ComposeOptions::blend_check_samples,
-                     "boundary points at which the blend's continuity is measured (>= 2)");
-  py::class_<BlendSpec>(m, "BlendSpec", "The blend of a composition: its boundary on the hull and on the bulb.")
-      .def(py::init<>())
-      .def_property(
-          "hull_uv", [](const BlendSpec& s) { return to_array(s.hull_uv); },
-          [](BlendSpec& s, py::handle uv) { s.hull_uv = py_convert::matrix(uv, "blend hull boundary", 2); },
-          "(k, 2) (u, v) polyline on the oriented hull from one centre-plane edge point to another")
-      .def_readwrite("bulb_u", &BlendSpec::bulb_u, "the bulb section u = bulb_u where the blend meets the bulb")
-      .def_readwrite("tension", &BlendSpec::tension, "cross-boundary tangent length / (|B - A| / 3), > 0");
-  py::class_<BlendOptions>(m, "BlendOptions", "Options of blend_surface (fairlines.blend_surface sets them by keyword).")
-      .def(py::init<>())
-      .def_readwrite("samples", &BlendOptions::samples, "sections skinned along the boundaries (>= 4)")
-      .def_readwrite("tension", &BlendOptions::tension, "cross-boundary tangent length / (|B - A| / 3), > 0")
-      .def_readwrite("check_samples", &BlendOptions::check_samples,
-                     "boundary points at which continuity is measured (>= 2)")
-      .def_readwrite("centre_plane_ends", &BlendOptions::centre_plane_ends,
-                     "when both boundaries start (end) on y = 0, keep that end section in the centre plane");
+  using option_docs::field;
+  py::class_<ComposeOptions> c(m, "ComposeOptions", "Options of compose (fairlines.compose sets them by keyword).");
+  c.def(py::init<>());
+  field(c, "hull_u", &ComposeOptions::hull_u, "hull tessellation cells along u (>= 4)");
+  field(c, "hull_v", &ComposeOptions::hull_v, "hull tessellation cells along v (>= 4)");
+  field(c, "bulb_u", &ComposeOptions::bulb_u, "bulb cells from the seam to the nose (>= 2)");
+  field(c, "bulb_v", &ComposeOptions::bulb_v, "bulb cells around the half section; also seam segments (>= 4)");
+  field(c, "tolerance", &ComposeOptions::tolerance, "surface-surface intersection tolerance (m, <= 1e-6)");
+  field(c, "margin", &ComposeOptions::margin, "clearance kept between the seam and whole hull cells (in cells)");
+  field(c, "plane_tolerance", &ComposeOptions::plane_tolerance, "relative tolerance of the centre plane / deck / aft checks");
+  field(c, "blend_rows", &ComposeOptions::blend_rows, "blend cells from the hull boundary to the bulb boundary (>= 1)");
+  field(c, "blend_check_samples", &ComposeOptions::blend_check_samples,
+        "boundary points at which the blend's continuity is measured (>= 2)");
+
+  py::class_<BlendSpec> s(m, "BlendSpec", "The blend of a composition: its boundary on the hull and on the bulb.");
+  s.def(py::init<>());
+  s.def_property(
+      "hull_uv", [](const BlendSpec& b) { return to_array(b.hull_uv); },
+      [](BlendSpec& b, py::handle uv) { b.hull_uv = py_convert::matrix(uv, "blend hull boundary", 2); },
+      "(k, 2) (u, v) polyline on the oriented hull from one centre-plane edge point to another");
+  field(s, "bulb_u", &BlendSpec::bulb_u, "the bulb section u = bulb_u where the blend meets the bulb");
+  field(s, "tension", &BlendSpec::tension, "cross-boundary tangent length / (|B - A| / 3), > 0");
+
+  py::class_<BlendOptions> b(m, "BlendOptions", "Options of blend_surface (fairlines.blend_surface sets them by keyword).");
+  b.def(py::init<>());
+  field(b, "samples", &BlendOptions::samples, "sections skinned along the boundaries (>= 4)");
+  field(b, "tension", &BlendOptions::tension, "cross-boundary tangent length / (|B - A| / 3), > 0");
+  field(b, "check_samples", &BlendOptions::check_samples, "boundary points at which continuity is measured (>= 2)");
+  field(b, "centre_plane_ends", &BlendOptions::centre_plane_ends,
+        "when both boundaries start (end) on y = 0, keep that end section in the centre plane");
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 
 #include "convert.hpp"
+#include "option_docs.hpp"
 #include "fairlines/kracht.hpp"
 #include "fairlines/mesh_hydrostatics.hpp"
 
@@ -31,15 +32,16 @@ TriMesh tri_mesh(py::handle vertices, py::handle faces) {
 }
 
 void bind_options(py::module_& m) {
-  py::class_<MeshHydrostaticsOptions>(m, "MeshHydrostaticsOptions", "Options of mesh_hydrostatics.")
-      .def(py::init<>())
-      .def_readwrite("half_hull", &MeshHydrostaticsOptions::half_hull,
-                     "the mesh is the y >= 0 half: volume and areas doubled, centroids kept")
-      .def_readwrite("orient", &MeshHydrostaticsOptions::orient,
-                     "flip an inward mesh: a side-like mesh must have int y n_y dS > 0, an end-like one "
-                     "int (x - midship_x) n_x dS > 0")
-      .def_readwrite("midship_x", &MeshHydrostaticsOptions::midship_x,
-                     "x of the section measured as midship_area (m); NaN: the middle of the mesh's x extent");
+  using option_docs::field;
+  py::class_<MeshHydrostaticsOptions> c(m, "MeshHydrostaticsOptions", "Options of mesh_hydrostatics.");
+  c.def(py::init<>());
+  field(c, "half_hull", &MeshHydrostaticsOptions::half_hull,
+        "the mesh is the y >= 0 half: volume and areas doubled, centroids kept");
+  field(c, "orient", &MeshHydrostaticsOptions::orient,
+        "flip an inward mesh: a side-like mesh must have int y n_y dS > 0, an end-like one "
+        "int (x - midship_x) n_x dS > 0");
+  field(c, "midship_x", &MeshHydrostaticsOptions::midship_x,
+        "x of the section measured as midship_area (m); NaN: the middle of the mesh's x extent");
 }
 
 void bind_result(py::module_& m) {

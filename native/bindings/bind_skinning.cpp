@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "option_docs.hpp"
 #include "fairlines/hydrostatics.hpp"
 #include "fairlines/skinning.hpp"
 
@@ -47,45 +48,51 @@ template <int SkinOptions::*field>
 void def_int(py::class_<SkinOptions>& c, const char* name, const char* doc) {
   c.def_property(
       name, [](const SkinOptions& o) { return o.*field; },
-      [name](SkinOptions& o, py::handle value) { o.*field = as_int(value, name); }, doc);
+      [name](SkinOptions& o, py::handle value) { o.*field = as_int(value, name); },
+      option_docs::with_default(doc, SkinOptions{}.*field).c_str());
 }
 
 void bind_skin_options(py::module_& m) {
+  using option_docs::field;
   py::class_<SkinOptions> c(m, "SkinOptions", "Options of fair_skin (fairlines.fair_skin sets them by keyword).");
   c.def(py::init<>());
   def_int<&SkinOptions::n_control>(c, "n_control", "control points per section in u; 0: max(12, 2 x largest section count)");
   def_int<&SkinOptions::degree_u>(c, "degree_u", "degree across the sections (>= 1)");
   def_int<&SkinOptions::degree_v>(c, "degree_v", "degree of the longitudinal curves (>= 2)");
   def_int<&SkinOptions::samples>(c, "samples", "equally spaced points per section; 0: 4 x n_control, else >= n_control");
-  c.def_readwrite("curvature_weight", &SkinOptions::curvature_weight,
-                  "w >= 0: section points equally spaced in ds (1 + w L |k|), L the section length; 0 plain arc length");
+  field(c, "curvature_weight", &SkinOptions::curvature_weight,
+        "w >= 0: section points equally spaced in ds (1 + w L |k|), L the section length; 0 plain arc length");
   c.def_property(
       "mode", [](const SkinOptions& o) { return skin_mode_name(o.mode); },
       [](SkinOptions& o, const std::string& v) { o.mode = parse_skin_mode(v); },
-      "'interpolate' (through every row point, least E2) or 'approximate' (least squares + smoothing h^4 E2)");
-  c.def_readwrite("e2", &SkinOptions::e2, "weight of E2 = int |C''(v)|^2 dv in the longitudinal fairness");
-  c.def_readwrite("e3", &SkinOptions::e3, "weight of h^2 E3 = h^2 int |C'''(v)|^2 dv, h = 1/(q-1)");
-  c.def_readwrite("smoothing", &SkinOptions::smoothing, "approximate mode: weight of h^4 E2 (>= 0)");
+      option_docs::with_default("'interpolate' (through every row point, least E2) or 'approximate' (least squares + "
+                                "smoothing h^4 E2)", skin_mode_name(SkinOptions{}.mode)).c_str());
+  field(c, "e2", &SkinOptions::e2, "weight of E2 = int |C''(v)|^2 dv in the longitudinal fairness");
+  field(c, "e3", &SkinOptions::e3, "weight of h^2 E3 = h^2 int |C'''(v)|^2 dv, h = 1/(q-1)");
+  field(c, "smoothing", &SkinOptions::smoothing, "approximate mode: weight of h^4 E2 (>= 0)");
   c.def_property(
       "start", [](const SkinOptions& o) { return skin_end_name(o.start); },
       [](SkinOptions& o, const std::string& v) { o.start = parse_skin_end(v); },
-      "'free' (natural) or 'parallel' (dy/dv = dz/dv = 0) at the first section");
+      option_docs::with_default("'free' (natural) or 'parallel' (dy/dv = dz/dv = 0) at the first section",
+                                skin_end_name(SkinOptions{}.start)).c_str());
   c.def_property(
       "end", [](const SkinOptions& o) { return skin_end_name(o.end); },
       [](SkinOptions& o, const std::string& v) { o.end = parse_skin_end(v); },
-      "'free' (natural) or 'parallel' (dy/dv = dz/dv = 0) at the last section");
+      option_docs::with_default("'free' (natural) or 'parallel' (dy/dv = dz/dv = 0) at the last section",
+                                skin_end_name(SkinOptions{}.end)).c_str());
   c.def_property(
       "params", [](const SkinOptions& o) { return skin_params_name(o.params); },
       [](SkinOptions& o, const std::string& v) { o.params = parse_skin_params(v); },
-      "section parameters v: 'station' (proportional to x), 'chord', or 'auto' (station when planar at monotone x)");
-  c.def_readwrite("c1_sections", &SkinOptions::c1_sections,
-                  "interior section indices where the longitudinal curves are only C1");
-  c.def_readwrite("flats", &SkinOptions::flats,
-                  "planes (axis 0 / 1 / 2 for x / y / z, value m) the sections' fits keep exactly where they lie in them");
-  c.def_readwrite("hold_runs", &SkinOptions::hold_runs,
-                  "hold a row coordinate constant over three or more sections where the rows keep it");
-  c.def_readwrite("straight_groups", &SkinOptions::straight_groups,
-                  "row ranges (first, last) kept straight between their end rows' longitudinal curves");
+      option_docs::with_default("section parameters v: 'station' (proportional to x), 'chord', or 'auto' (station when "
+                                "planar at monotone x)", skin_params_name(SkinOptions{}.params)).c_str());
+  field(c, "c1_sections", &SkinOptions::c1_sections,
+        "interior section indices where the longitudinal curves are only C1");
+  field(c, "flats", &SkinOptions::flats,
+        "planes (axis 0 / 1 / 2 for x / y / z, value m) the sections' fits keep exactly where they lie in them");
+  field(c, "hold_runs", &SkinOptions::hold_runs,
+        "hold a row coordinate constant over three or more sections where the rows keep it");
+  field(c, "straight_groups", &SkinOptions::straight_groups,
+        "row ranges (first, last) kept straight between their end rows' longitudinal curves");
 }
 
 }  // namespace
