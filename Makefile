@@ -61,7 +61,7 @@ stubs: build
 clean:
 	rm -rf build $(OUT) dist
 
-# ---- Blender add-on (issue 7) -------------------------------------------------------------
+# ---- Blender add-on ----------------------------------------------------------------------
 # Two Blenders, both on CPython 3.11: the newest `bpy` module from PyPI (extension install,
 # into .venv-bpy) and Debian's `blender` package (3.4, legacy add-on install, system python3
 # with python3-numpy). xvfb is for the node-editor screenshot.

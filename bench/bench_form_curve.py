@@ -1,4 +1,4 @@
-"""Benchmark of the form-parameter curve solver (issue 3).
+"""Benchmark of the form-parameter curve solver.
 
 Random parameter sets that are feasible by construction: a random fair section curve
 (x monotone, y >= 0, cubic, 8 control points) is made first and all 11 of its form

@@ -14,7 +14,7 @@ HERE = pathlib.Path(__file__).resolve().parent
 # Pipeline steps in order; each is a script in examples/ taking --out.
 STEPS = [
     ("NURBS core: fit a surface to hull offsets", "fit_wigley_surface.py"),
-    ("Form-parameter curves: Area and yC families (seed 002 Figs. 3-4)", "form_curve_families.py"),
+    ("Form-parameter curves: Area and yC families (Kim, Shin & Kim 2002, Figs. 3-4)", "form_curve_families.py"),
     ("Pre-processor: form parameters and faired surfaces of the reference hulls", "import_reference_hulls.py"),
     ("Hull designer: whole ships from particulars (container ship, tanker, ferry, coaster)", "design_ship.py"),
     ("Bulbous bow, blend and Boolean composition into a watertight hull (container ship)", "compose_ship.py"),

@@ -1,6 +1,6 @@
-"""Families of form-parameter curves (seed 002, Figs. 3-4): sweep Area and yC.
+"""Families of form-parameter curves (Kim, Shin & Kim 2002, Figs. 3-4): sweep Area and yC.
 
-Base request: seed 002 Table 3 (xB=0, yB=0.569026, xE=1, yE=0, alphaB=-31,
+Base request: Kim, Shin & Kim 2002, Table 3 (xB=0, yB=0.569026, xE=1, yE=0, alphaB=-31,
 alphaE=-58, CAB=-1.5, CAE=-4.41, Area=0.1925, xC=0.28489, yC=0.16952).
 
   * Area family: every parameter but xC and yC kept, Area swept.
@@ -70,7 +70,7 @@ def main(argv=None) -> int:
         for k, (v, res) in enumerate(fam):
             pts = np.asarray(res.curve.evaluate(t))
             ax.plot(pts[:, 0], pts[:, 1], color=cmap(k / max(1, len(fam) - 1)), label=f"{name} = {v:.4f}")
-        ax.set_title(f"Seed 002 Table 3, {name} swept" + (" (xC, yC free)" if name == "Area" else ""))
+        ax.set_title(f"Kim, Shin & Kim 2002, Table 3: {name} swept" + (" (xC, yC free)" if name == "Area" else ""))
         ax.set_xlabel("x")
         ax.set_ylabel("y")
         ax.set_aspect("equal")

@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "option_docs.hpp"
 #include "fairlines/blend.hpp"
 #include "fairlines/bulb.hpp"
 #include "fairlines/compose.hpp"
@@ -57,9 +58,43 @@ py::dict curve_dict(const IntersectionCurve& c) {
                   "max_gap"_a = c.max_gap);
 }
 
+void bind_compose_options(py::module_& m) {
+  using option_docs::field;
+  py::class_<ComposeOptions> c(m, "ComposeOptions", "Options of compose (fairlines.compose sets them by keyword).");
+  c.def(py::init<>());
+  field(c, "hull_u", &ComposeOptions::hull_u, "hull tessellation cells along u (>= 4)");
+  field(c, "hull_v", &ComposeOptions::hull_v, "hull tessellation cells along v (>= 4)");
+  field(c, "bulb_u", &ComposeOptions::bulb_u, "bulb cells from the seam to the nose (>= 2)");
+  field(c, "bulb_v", &ComposeOptions::bulb_v, "bulb cells around the half section; also seam segments (>= 4)");
+  field(c, "tolerance", &ComposeOptions::tolerance, "surface-surface intersection tolerance (m, <= 1e-6)");
+  field(c, "margin", &ComposeOptions::margin, "clearance kept between the seam and whole hull cells (in cells)");
+  field(c, "plane_tolerance", &ComposeOptions::plane_tolerance, "relative tolerance of the centre plane / deck / aft checks");
+  field(c, "blend_rows", &ComposeOptions::blend_rows, "blend cells from the hull boundary to the bulb boundary (>= 1)");
+  field(c, "blend_check_samples", &ComposeOptions::blend_check_samples,
+        "boundary points at which the blend's continuity is measured (>= 2)");
+
+  py::class_<BlendSpec> s(m, "BlendSpec", "The blend of a composition: its boundary on the hull and on the bulb.");
+  s.def(py::init<>());
+  s.def_property(
+      "hull_uv", [](const BlendSpec& b) { return to_array(b.hull_uv); },
+      [](BlendSpec& b, py::handle uv) { b.hull_uv = py_convert::matrix(uv, "blend hull boundary", 2); },
+      "(k, 2) (u, v) polyline on the oriented hull from one centre-plane edge point to another");
+  field(s, "bulb_u", &BlendSpec::bulb_u, "the bulb section u = bulb_u where the blend meets the bulb");
+  field(s, "tension", &BlendSpec::tension, "cross-boundary tangent length / (|B - A| / 3), > 0");
+
+  py::class_<BlendOptions> b(m, "BlendOptions", "Options of blend_surface (fairlines.blend_surface sets them by keyword).");
+  b.def(py::init<>());
+  field(b, "samples", &BlendOptions::samples, "sections skinned along the boundaries (>= 4)");
+  field(b, "tension", &BlendOptions::tension, "cross-boundary tangent length / (|B - A| / 3), > 0");
+  field(b, "check_samples", &BlendOptions::check_samples, "boundary points at which continuity is measured (>= 2)");
+  field(b, "centre_plane_ends", &BlendOptions::centre_plane_ends,
+        "when both boundaries start (end) on y = 0, keep that end section in the centre plane");
+}
+
 }  // namespace
 
 void bind_compose(py::module_& m) {
+  bind_compose_options(m);
   m.def(
       "_intersect_surfaces",
       [](const NurbsSurface& a, const NurbsSurface& b, double tolerance, int subdivisions, double step) {
@@ -143,63 +178,35 @@ void bind_compose(py::module_& m) {
 
   m.def(
       "_compose_hull",
-      [](const NurbsSurface& hull, const NurbsSurface* bulb, int hull_u, int hull_v, int bulb_u, int bulb_v,
-         double tolerance, double margin, py::handle blend_hull_uv, double blend_bulb_u, double blend_tension,
-         int blend_rows, int blend_check_samples) {
-        ComposeOptions o;
-        o.hull_u = hull_u;
-        o.hull_v = hull_v;
-        o.bulb_u = bulb_u;
-        o.bulb_v = bulb_v;
-        o.tolerance = tolerance;
-        o.margin = margin;
-        o.blend_rows = blend_rows;
-        o.blend_check_samples = blend_check_samples;
-        BlendSpec spec;
-        const bool with_blend = !blend_hull_uv.is_none();
-        if (with_blend) {
-          spec.hull_uv = py_convert::matrix(blend_hull_uv, "blend hull boundary", 2);
-          spec.bulb_u = blend_bulb_u;
-          spec.tension = blend_tension;
-        }
+      [](const NurbsSurface& hull, const NurbsSurface* bulb, const ComposeOptions& options, const BlendSpec* blend) {
         py::gil_scoped_release release;
-        return compose_hull(hull, bulb, o, with_blend ? &spec : nullptr);
+        return compose_hull(hull, bulb, options, blend);
       },
-      "hull"_a, "bulb"_a = nullptr, "hull_u"_a = 48, "hull_v"_a = 20, "bulb_u"_a = 24, "bulb_v"_a = 32,
-      "tolerance"_a = 1e-7, "margin"_a = 0.3, "blend_hull_uv"_a = py::none(), "blend_bulb_u"_a = 0.5,
-      "blend_tension"_a = 1.0, "blend_rows"_a = 8, "blend_check_samples"_a = 200);
+      "hull"_a, "bulb"_a = nullptr, "options"_a = ComposeOptions{}, "blend"_a = nullptr);
 
   m.def(
       "_hull_bulb_seam",
-      [](const NurbsSurface& hull, const NurbsSurface& bulb, int bulb_v, double tolerance) {
-        ComposeOptions o;
-        o.bulb_v = bulb_v;
-        o.tolerance = tolerance;
+      [](const NurbsSurface& hull, const NurbsSurface& bulb, const ComposeOptions& options) {
         HullBulbSeam r = [&] {
           py::gil_scoped_release release;
-          return hull_bulb_seam(hull, bulb, o);
+          return hull_bulb_seam(hull, bulb, options);
         }();
         return py::make_tuple(r.hull, curve_dict(r.seam));
       },
-      "hull"_a, "bulb"_a, "bulb_v"_a = 32, "tolerance"_a = 1e-7,
+      "hull"_a, "bulb"_a, "options"_a = ComposeOptions{},
       "(oriented hull, seam dict) of compose_hull([hull, bulb]) without meshing (see compose.hpp).");
 
   m.def(
       "_blend_surface",
-      [](const NurbsSurface& a, py::handle ba, const NurbsSurface& b, py::handle bb, int samples, double tension,
-         int check_samples) {
-        BlendOptions o;
-        o.samples = samples;
-        o.tension = tension;
-        o.check_samples = check_samples;
+      [](const NurbsSurface& a, py::handle ba, const NurbsSurface& b, py::handle bb, const BlendOptions& options) {
         const BlendSurface r = blend_surface(a, py_convert::matrix(ba, "boundary_a", 2), b,
-                                             py_convert::matrix(bb, "boundary_b", 2), o);
+                                             py_convert::matrix(bb, "boundary_b", 2), options);
         auto cont = [](const BoundaryContinuity& c) {
           return py::dict("max_angle_deg"_a = c.max_angle_deg, "max_gap"_a = c.max_gap);
         };
         return py::make_tuple(r.surface, cont(r.at_a), cont(r.at_b));
       },
-      "a"_a, "boundary_a"_a, "b"_a, "boundary_b"_a, "samples"_a = 61, "tension"_a = 1.0, "check_samples"_a = 200);
+      "a"_a, "boundary_a"_a, "b"_a, "boundary_b"_a, "options"_a = BlendOptions{});
   m.def(
       "boundary_continuity",
       [](const NurbsSurface& blend, bool at_v1, const NurbsSurface& s, int samples) {

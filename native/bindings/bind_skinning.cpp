@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "option_docs.hpp"
 #include "fairlines/hydrostatics.hpp"
 #include "fairlines/skinning.hpp"
 
@@ -42,6 +43,58 @@ std::vector<NurbsCurve> as_curves(const py::handle& obj) {
   return out;
 }
 
+// Integer fields keep the bound functions' rule: an integral float is accepted, a bool is not.
+template <int SkinOptions::*field>
+void def_int(py::class_<SkinOptions>& c, const char* name, const char* doc) {
+  c.def_property(
+      name, [](const SkinOptions& o) { return o.*field; },
+      [name](SkinOptions& o, py::handle value) { o.*field = as_int(value, name); },
+      option_docs::with_default(doc, SkinOptions{}.*field).c_str());
+}
+
+void bind_skin_options(py::module_& m) {
+  using option_docs::field;
+  py::class_<SkinOptions> c(m, "SkinOptions", "Options of fair_skin (fairlines.fair_skin sets them by keyword).");
+  c.def(py::init<>());
+  def_int<&SkinOptions::n_control>(c, "n_control", "control points per section in u; 0: max(12, 2 x largest section count)");
+  def_int<&SkinOptions::degree_u>(c, "degree_u", "degree across the sections (>= 1)");
+  def_int<&SkinOptions::degree_v>(c, "degree_v", "degree of the longitudinal curves (>= 2)");
+  def_int<&SkinOptions::samples>(c, "samples", "equally spaced points per section; 0: 4 x n_control, else >= n_control");
+  field(c, "curvature_weight", &SkinOptions::curvature_weight,
+        "w >= 0: section points equally spaced in ds (1 + w L |k|), L the section length; 0 plain arc length");
+  c.def_property(
+      "mode", [](const SkinOptions& o) { return skin_mode_name(o.mode); },
+      [](SkinOptions& o, const std::string& v) { o.mode = parse_skin_mode(v); },
+      option_docs::with_default("'interpolate' (through every row point, least E2) or 'approximate' (least squares + "
+                                "smoothing h^4 E2)", skin_mode_name(SkinOptions{}.mode)).c_str());
+  field(c, "e2", &SkinOptions::e2, "weight of E2 = int |C''(v)|^2 dv in the longitudinal fairness");
+  field(c, "e3", &SkinOptions::e3, "weight of h^2 E3 = h^2 int |C'''(v)|^2 dv, h = 1/(q-1)");
+  field(c, "smoothing", &SkinOptions::smoothing, "approximate mode: weight of h^4 E2 (>= 0)");
+  c.def_property(
+      "start", [](const SkinOptions& o) { return skin_end_name(o.start); },
+      [](SkinOptions& o, const std::string& v) { o.start = parse_skin_end(v); },
+      option_docs::with_default("'free' (natural) or 'parallel' (dy/dv = dz/dv = 0) at the first section",
+                                skin_end_name(SkinOptions{}.start)).c_str());
+  c.def_property(
+      "end", [](const SkinOptions& o) { return skin_end_name(o.end); },
+      [](SkinOptions& o, const std::string& v) { o.end = parse_skin_end(v); },
+      option_docs::with_default("'free' (natural) or 'parallel' (dy/dv = dz/dv = 0) at the last section",
+                                skin_end_name(SkinOptions{}.end)).c_str());
+  c.def_property(
+      "params", [](const SkinOptions& o) { return skin_params_name(o.params); },
+      [](SkinOptions& o, const std::string& v) { o.params = parse_skin_params(v); },
+      option_docs::with_default("section parameters v: 'station' (proportional to x), 'chord', or 'auto' (station when "
+                                "planar at monotone x)", skin_params_name(SkinOptions{}.params)).c_str());
+  field(c, "c1_sections", &SkinOptions::c1_sections,
+        "interior section indices where the longitudinal curves are only C1");
+  field(c, "flats", &SkinOptions::flats,
+        "planes (axis 0 / 1 / 2 for x / y / z, value m) the sections' fits keep exactly where they lie in them");
+  field(c, "hold_runs", &SkinOptions::hold_runs,
+        "hold a row coordinate constant over three or more sections where the rows keep it");
+  field(c, "straight_groups", &SkinOptions::straight_groups,
+        "row ranges (first, last) kept straight between their end rows' longitudinal curves");
+}
+
 }  // namespace
 
 void bind_skinning(py::module_& m) {
@@ -58,40 +111,14 @@ void bind_skinning(py::module_& m) {
       .def_readonly("held_columns", &SkinResult::held_columns,
                     "row coordinates (y or z of a control row) held constant over at least one run of sections");
 
+  bind_skin_options(m);
   m.def("_fair_skin",
-        [](py::handle curves, py::handle n_control, const std::string& mode, py::handle degree_u, py::handle degree_v,
-           py::handle samples, double smoothing, const std::string& start, const std::string& end,
-           const std::string& params, const std::vector<int>& c1_sections, double curvature_weight, double e2, double e3,
-           const std::vector<std::pair<int, double>>& flats, bool hold_runs, const std::vector<std::pair<int, int>>& straight_groups) {
-          SkinOptions o;
-          o.n_control = n_control.is_none() ? 0 : as_int(n_control, "n_control");
-          if (!n_control.is_none() && o.n_control <= 0)
-            throw InvalidInput("n_control is " + std::to_string(o.n_control) + "; expected None or an integer >= degree_u + 1");
-          o.mode = parse_skin_mode(mode);
-          o.degree_u = as_int(degree_u, "degree_u");
-          o.degree_v = as_int(degree_v, "degree_v");
-          o.samples = samples.is_none() ? 0 : as_int(samples, "samples");
-          if (!samples.is_none() && o.samples <= 0)
-            throw InvalidInput("samples is " + std::to_string(o.samples) + "; expected None or an integer >= n_control");
-          o.smoothing = smoothing;
-          o.start = parse_skin_end(start);
-          o.end = parse_skin_end(end);
-          o.params = parse_skin_params(params);
-          o.c1_sections = c1_sections;
-          o.curvature_weight = curvature_weight;
-          o.e2 = e2;
-          o.e3 = e3;
-          o.flats = flats;
-          o.hold_runs = hold_runs;
-          o.straight_groups = straight_groups;
+        [](py::handle curves, const SkinOptions& options) {
           const std::vector<NurbsCurve> cs = as_curves(curves);
           py::gil_scoped_release release;
-          return fair_skin(cs, o);
+          return fair_skin(cs, options);
         },
-        "curves"_a, "n_control"_a, "mode"_a, "degree_u"_a, "degree_v"_a, "samples"_a, "smoothing"_a, "start"_a,
-        "end"_a, "params"_a, "c1_sections"_a, "curvature_weight"_a, "e2"_a, "e3"_a,
-        "flats"_a = std::vector<std::pair<int, double>>{}, "hold_runs"_a = true,
-        "straight_groups"_a = std::vector<std::pair<int, int>>{});
+        "curves"_a, "options"_a = SkinOptions{});
 
   m.def("equal_arc_length_points", [](const NurbsCurve& c, py::handle mobj, double w) { return to_array(equal_arc_length_points(c, as_int(mobj, "m"), w)); },
         "curve"_a, "m"_a, "curvature_weight"_a = 0.0,

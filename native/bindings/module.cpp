@@ -16,6 +16,7 @@ void bind_form_curve(py::module_& m);
 void bind_meshing(py::module_& m);
 void bind_grids(py::module_& m);
 void bind_mesh_hydrostatics(py::module_& m);
+void bind_patch_hydrostatics(py::module_& m);
 }  // namespace fairlines
 
 PYBIND11_MODULE(_native, m) {
@@ -34,4 +35,5 @@ PYBIND11_MODULE(_native, m) {
   fairlines::bind_meshing(m);
   fairlines::bind_grids(m);
   fairlines::bind_mesh_hydrostatics(m);
+  fairlines::bind_patch_hydrostatics(m);
 }

@@ -60,7 +60,7 @@ from ._native import (  # noqa: F401  (re-exported API)
 from .basic_curves import BasicCurve  # noqa: F401
 from .description import BasicCurveSpec, BulbSpec, HullDescription, PrincipalDimensions  # noqa: F401
 from .hull import Hull  # noqa: F401
-from .skinning import fair_skin  # noqa: F401
+from .skinning import SkinOptions, fair_skin  # noqa: F401
 
 from .form_curve import FORM_PARAMETERS, FormCurveResult, design_curve, fairness_of, form_parameters_of  # noqa: F401,E402
 from ._native import boundary_continuity, mesh_volume, orient_bare_hull, triangulate_polygon  # noqa: F401,E402
@@ -128,3 +128,9 @@ from .offsets import (  # noqa: F401,E402
     section_from_offsets,
 )
 globals().update({name: getattr(preprocess, name) for name in preprocess.__all__ if name != "mesh_hydrostatics"})
+
+# Hydrostatics of several NURBS patches bounding a hull together (the pre-processor's surfaces).
+from ._native import PatchHydrostatics, hydrostatics_of_patches  # noqa: F401,E402
+# Option structs of the composition and the blend (defaults in the engine's headers).
+from ._native import BlendOptions, ComposeOptions  # noqa: F401,E402
+from .compose import compose_options  # noqa: F401,E402

@@ -15,6 +15,8 @@ import numpy as np
 
 from . import _native
 from ._native import NurbsSurface
+from ._options import fill_options
+from .hydrostatics_mesh import displaced_volume_of_mesh
 
 
 def _integer(path: str, value: Any, lo: int | None) -> int:
@@ -31,6 +33,7 @@ __all__ = [
     "ComposedHull",
     "Mesh",
     "compose",
+    "compose_options",
     "compose_with_blend",
     "intersect_surfaces",
     "measure_kracht",
@@ -199,9 +202,7 @@ class ComposedHull:
         (self.full_mesh() if full else self.mesh).write_stl(path, binary)
 
 
-def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int = 48,
-            hull_v: int = 20, bulb_u: int = 24, bulb_v: int = 32, tolerance: float = 1e-7,
-            margin: float = 0.3, blend_rows: int = 8, blend_check_samples: int = 200) -> ComposedHull:
+def compose(subdomains: Sequence[Any], operation: str = "union", **options) -> ComposedHull:
     """Boolean composition of hull subdomains into one closed half hull.
 
     subdomains  [bare_hull], [bare_hull, bulb] or [bare_hull, bulb, blend]: NurbsSurface (or
@@ -215,8 +216,10 @@ def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int 
                 the mesh resolution, C1 along both) joins them with shared vertices.
     operation   "union" (the only Boolean a hull needs: the bulb's part inside the hull is
                 removed, and the hull's part inside the bulb).
+    options     fields of :class:`fl.ComposeOptions` by keyword (defaults in the engine):
     hull_u, hull_v, bulb_u, bulb_v   tessellation cells; tolerance: intersection (m, <= 1e-6);
     margin      clearance between the seam and whole hull cells (fraction of a cell).
+    blend_rows  blend cells from the hull boundary to the bulb boundary.
     blend_check_samples   points per boundary at which the blend's continuity
                 ``blend_continuity`` is measured (>= 2; each is a projection onto hull or
                 bulb). The same figures come from ``boundary_continuity(c.blend, False,
@@ -224,15 +227,16 @@ def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int 
                 can pass 2 and measure them later.
 
     Raises InvalidInput ("bulb cannot meet the hull ...") when the bulb does not cross the hull
-    in one seam from the keel/stem line around to the stem.
+    in one seam from the keel/stem line around to the stem, and for an unknown or bad option.
     """
+    o = compose_options(**options)
     if operation != "union":
         raise _native.InvalidInput(f"operation is {operation!r}; expected 'union'")
     subs = list(subdomains)
     if not 1 <= len(subs) <= 3:
         raise _native.InvalidInput(f"subdomains has {len(subs)} entries; expected [bare_hull], [bare_hull, bulb] "
                          "or [bare_hull, bulb, blend]")
-    blend_kw = {}
+    blend = None
     if len(subs) == 3:
         bl = subs.pop()
         if not isinstance(bl, (BlendSurface, BlendPlacement)):
@@ -241,113 +245,50 @@ def compose(subdomains: Sequence[Any], operation: str = "union", *, hull_u: int 
         bb = bl.boundary_b
         if not (isinstance(bb, tuple) and len(bb) == 2 and bb[0] == "u"):
             raise _native.InvalidInput(f"the blend's bulb boundary is {bb!r}; expected a bulb section ('u', value)")
-        blend_kw = dict(blend_hull_uv=np.asarray(bl.boundary_a, float), blend_bulb_u=float(bb[1]),
-                        blend_tension=float(bl.tension), blend_rows=_integer("blend_rows", blend_rows, None),
-                        blend_check_samples=_integer("blend_check_samples", blend_check_samples, None))
+        blend = fill_options(_native.BlendSpec, "blend", dict(hull_uv=np.asarray(bl.boundary_a, float),
+                                                              bulb_u=float(bb[1]), tension=float(bl.tension)))
     surfaces = [s.surface if isinstance(s, BulbousBow) else s for s in subs]
     for i, s in enumerate(surfaces):
         if not isinstance(s, NurbsSurface):
             raise _native.InvalidInput(f"subdomains[{i}] is {type(s).__name__}; expected a NurbsSurface or BulbousBow")
-    native = _native._compose_hull(surfaces[0], surfaces[1] if len(surfaces) > 1 else None,
-                                   _integer("hull_u", hull_u, None), _integer("hull_v", hull_v, None),
-                                   _integer("bulb_u", bulb_u, None), _integer("bulb_v", bulb_v, None),
-                                   float(tolerance), float(margin), **blend_kw)
+    native = _native._compose_hull(surfaces[0], surfaces[1] if len(surfaces) > 1 else None, o, blend)
     return ComposedHull(native, surfaces)
 
 
-def _clip_positive(tri: np.ndarray, c: float) -> list[np.ndarray]:
-    """Part of triangle tri (3, 3) with x >= c, as a fan of triangles."""
-    poly = []
-    for k in range(3):
-        p, q = tri[k], tri[(k + 1) % 3]
-        if p[0] >= c:
-            poly.append(p)
-        if (p[0] - c) * (q[0] - c) < 0:
-            t = (c - p[0]) / (q[0] - p[0])
-            poly.append(p + t * (q - p))
-    return [np.array([poly[0], poly[i], poly[i + 1]]) for i in range(1, len(poly) - 1)]
+_COUNTS = ("hull_u", "hull_v", "bulb_u", "bulb_v", "blend_rows", "blend_check_samples")
+
+
+def compose_options(**options) -> _native.ComposeOptions:
+    """A :class:`fl.ComposeOptions` with the given fields set (counts must be integers; the
+    defaults live in the engine). Raises InvalidInput for an unknown name or a non-integer count."""
+    checks = {name: (lambda v, n=name: _integer(n, v, None)) for name in _COUNTS}
+    return fill_options(_native.ComposeOptions, "compose", options,
+                        {**checks, "tolerance": float, "margin": float, "plane_tolerance": float})
 
 
 def measure_kracht(mesh: Mesh, *, x_fp: float, lpp: float, beam: float, draft_fp: float,
                    midship_area: float, displacement_volume: float) -> dict:
-    """Kracht coefficients measured on a closed, outward-oriented half-hull mesh (y >= 0),
-    on its part below the waterline z = draft_fp (a raked stem reaches forward of the FP
-    above it, and is not bulb).
-
-    Protrusion = max x - x_fp; nose height = z of the foremost point; bulb breadth = 2 max y
-    on the section x = x_fp; section area at FP = 2 * x-component of the area vector of the
-    surface forward of FP (closed-surface identity: the waterplane's n_x is 0); lateral area =
-    centre-plane area forward of FP; volume forward of FP = 2 * sum (x - x_fp) n_x dA over the
-    surface forward of FP (divergence theorem with the field (x - x_fp, 0, 0), which vanishes
-    on the cut and has no flux through the waterplane).
-    """
-    V = np.asarray(mesh.vertices, float)
-    tris = V[np.asarray(mesh.faces)]
-    keep = (tris[:, :, 0].max(axis=1) > x_fp) & (tris[:, :, 2].min(axis=1) < draft_fp)
-    ax = vol = lat = ymax = 0.0
-    nose = np.array([-np.inf, 0.0, 0.0])
-    for t in tris[keep]:
-        cp = bool(np.all(t[:, 1] == 0.0))
-        for low in _clip_below(t, draft_fp) if t[:, 2].max() > draft_fp else [t]:
-            for k in range(3):  # section crossing points
-                p, q = low[k], low[(k + 1) % 3]
-                if (p[0] - x_fp) * (q[0] - x_fp) <= 0 and p[0] != q[0]:
-                    s = (x_fp - p[0]) / (q[0] - p[0])
-                    ymax = max(ymax, p[1] + s * (q[1] - p[1]))
-            for piece in _clip_positive(low, x_fp):
-                n = 0.5 * np.cross(piece[1] - piece[0], piece[2] - piece[0])
-                ax += n[0]
-                vol += (piece[:, 0].mean() - x_fp) * n[0]
-                if cp:
-                    lat += np.linalg.norm(n)
-                front = piece[np.argmax(piece[:, 0])]
-                if front[0] > nose[0]:
-                    nose = front
-    return dict(
-        c_lpr=(nose[0] - x_fp) / lpp,
-        c_bb=2.0 * ymax / beam,
-        c_zb=float(nose[2]) / draft_fp,
-        c_abt=2.0 * ax / midship_area,
-        c_abl=lat / midship_area,
-        c_vpr=2.0 * vol / displacement_volume,
-    )
-
-
-def _clip_below(tri: np.ndarray, z0: float) -> list[np.ndarray]:
-    """Part of triangle tri (3, 3) with z <= z0, as a fan of triangles."""
-    poly = []
-    for k in range(3):
-        p, q = tri[k], tri[(k + 1) % 3]
-        if p[2] <= z0:
-            poly.append(p)
-        if (p[2] - z0) * (q[2] - z0) < 0:
-            t = (z0 - p[2]) / (q[2] - p[2])
-            poly.append(p + t * (q - p))
-    return [np.array([poly[0], poly[i], poly[i + 1]]) for i in range(1, len(poly) - 1)]
+    """Kracht coefficients (:data:`KRACHT_NAMES`) measured by the engine on a closed,
+    outward-oriented half-hull mesh (y >= 0), on its part below the waterline z = draft_fp (a
+    raked stem reaches forward of the FP above it, and is not bulb): protrusion of the foremost
+    point, breadth of the section x = x_fp, nose height, section area at the FP, centre-plane
+    area and volume forward of the FP, each made dimensionless by the ship's figures.
+    Raises InvalidInput for a bad mesh or a non-finite / non-positive ship dimension."""
+    ship = _native.KrachtShip()
+    for name, value in dict(x_fp=x_fp, lpp=lpp, beam=beam, draft_fp=draft_fp, midship_area=midship_area,
+                            displacement_volume=displacement_volume).items():
+        setattr(ship, name, float(value))
+    k = _native._measure_kracht(np.asarray(mesh.vertices, float), np.asarray(mesh.faces), ship)
+    return {name: getattr(k, name) for name in KRACHT_NAMES}
 
 
 def mesh_hydrostatics(mesh: Mesh, draft: float, *, half: bool = True) -> dict:
     """Displaced volume (m^3), LCB and KB (m) of a closed, outward-oriented mesh floating at
-    z = draft, by the divergence theorem over the surface below the waterline with fields
-    that vanish on the waterplane: (0, 0, z - T) for the volume, (0, 0, x (z - T)) for the
-    x-moment and (0, 0, (z^2 - T^2) / 2) for the z-moment. ``half``: the mesh is the
-    starboard half (volume doubled, centroid unchanged)."""
-    tris = np.asarray(mesh.vertices, float)[np.asarray(mesh.faces)]
-    T = float(draft)
-    vol = mx = mz = 0.0
-    for t in tris[tris[:, :, 2].min(axis=1) < T]:
-        for p in _clip_below(t, T) if t[:, 2].max() > T else [t]:
-            nz = 0.5 * np.cross(p[1] - p[0], p[2] - p[0])[2]
-            # exact for linear integrands: mean over the vertices; quadratic z^2 and x z use
-            # the edge-midpoint rule (exact for quadratics on a triangle)
-            mid = 0.5 * (p + np.roll(p, -1, axis=0))
-            vol += (p[:, 2].mean() - T) * nz
-            mx += np.mean(mid[:, 0] * (mid[:, 2] - T)) * nz
-            mz += np.mean(0.5 * (mid[:, 2] ** 2 - T * T)) * nz
-    if vol <= 0.0:
-        raise _native.InvalidInput(f"draft {draft} m gives no displaced volume; expected a draft above the keel")
-    f = 2.0 if half else 1.0
-    return dict(volume=f * vol, lcb=mx / vol, kb=mz / vol)
+    z = draft, by the engine's mesh hydrostatics (:func:`fl.hydrostatics_of_mesh`). ``half``:
+    the mesh is the starboard half (volume doubled, centroid unchanged). Raises InvalidInput
+    when the draft leaves no displaced volume or the mesh is malformed."""
+    h = displaced_volume_of_mesh(mesh.vertices, mesh.faces, draft, half_hull=half)
+    return dict(volume=h.volume, lcb=h.lcb, kb=h.vcb)
 
 
 def _boundary_uv(surface: NurbsSurface, boundary, what: str) -> np.ndarray:
@@ -400,29 +341,35 @@ class BlendPlacement:
     boundary_b: tuple
     tension: float
 
-    def blend_surface(self, samples: int = 61, check_samples: int = 200) -> BlendSurface:
-        """The blending surface itself (see :func:`blend_surface`)."""
-        return blend_surface(self.hull, self.boundary_a, self.bulb, self.boundary_b, samples=samples,
-                             tension=self.tension, check_samples=check_samples)
+    def blend_surface(self, **options) -> BlendSurface:
+        """The blending surface itself, at this placement's tension; ``options`` as for
+        :func:`blend_surface`. Raises InvalidInput for a bad option."""
+        return blend_surface(self.hull, self.boundary_a, self.bulb, self.boundary_b,
+                             **{"tension": self.tension, **options})
 
 
-def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, boundary_b, *,
-                  samples: int = 61, tension: float = 1.0, check_samples: int = 200) -> BlendSurface:
+def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, boundary_b,
+                  **options) -> BlendSurface:
     """Blending surface between two surfaces with C1 (tangent-plane) continuity along both
     boundary curves (Kim and Hwangbo 2008), by fair skinning of cubic Hermite sections.
 
     boundary_a, boundary_b   curves on each surface: a (k, 2) polyline of (u, v) parameters, or
                              an iso-line ``("u", value)`` / ``("v", value)``; both run the
                              same way (first point to first point).
-    samples                  sections along the boundaries; tension: cross-boundary tangent
-                             length relative to a third of the gap; check_samples: points per
-                             boundary at which the normal angle and gap are measured.
+    options                  fields of :class:`fl.BlendOptions` by keyword (defaults in the
+                             engine): samples, sections along the boundaries; tension,
+                             cross-boundary tangent length relative to a third of the gap;
+                             check_samples, points per boundary at which the normal angle and
+                             gap are measured; centre_plane_ends.
+
+    Raises InvalidInput for a bad boundary or option.
     """
     ba = _boundary_uv(surface_a, boundary_a, "boundary_a")
     bb = _boundary_uv(surface_b, boundary_b, "boundary_b")
-    s, at_a, at_b = _native._blend_surface(surface_a, ba, surface_b, bb, int(samples), float(tension),
-                                           int(check_samples))
-    return BlendSurface(s, dict(at_a), dict(at_b), ba, boundary_b, float(tension))
+    checks = {"samples": int, "check_samples": int, "tension": float, "centre_plane_ends": bool}
+    o = fill_options(_native.BlendOptions, "blend_surface", options, checks)
+    s, at_a, at_b = _native._blend_surface(surface_a, ba, surface_b, bb, o)
+    return BlendSurface(s, dict(at_a), dict(at_b), ba, boundary_b, o.tension)
 
 
 class _NoBlendFits(_native.InvalidInput):
@@ -587,7 +534,7 @@ def _place_blend(hull, bulb, clearance_u, clearance_v, bulb_clearance, tension, 
         raise _native.InvalidInput(f"hull and bulb are {type(hull).__name__}, {type(bulb).__name__}; expected a "
                                    "NurbsSurface hull and a BulbousBow or NurbsSurface bulb")
     # the seam compose([hull, bulb]) traces (same checks), without meshing the union
-    oriented, seam = _native._hull_bulb_seam(hull, surface_b, **seam_options)
+    oriented, seam = _native._hull_bulb_seam(hull, surface_b, compose_options(**seam_options))
     on_hull, on_bulb = _boundaries_around_seam(oriented, seam, clearance_u=clearance_u, clearance_v=clearance_v,
                                                bulb_clearance=bulb_clearance, points=65)
     return BlendPlacement(oriented, surface_b, on_hull, on_bulb, float(tension))

@@ -9,23 +9,16 @@ import numpy as np
 
 from . import _native
 from ._native import InvalidInput, MeshHydrostatics, MeshHydrostaticsOptions
+from ._options import fill_options
 
 __all__ = ["MeshHydrostatics", "MeshHydrostaticsOptions", "hydrostatics_of_mesh", "mesh_hydrostatics_options",
            "displaced_volume_of_mesh"]
-
-_OPTION_NAMES = ("half_hull", "orient", "midship_x")
 
 
 def mesh_hydrostatics_options(**options) -> MeshHydrostaticsOptions:
     """A :class:`MeshHydrostaticsOptions` with the given fields set (``half_hull``, ``orient``,
     ``midship_x``; the defaults live in the engine). Raises InvalidInput for an unknown name."""
-    o = MeshHydrostaticsOptions()
-    for name, value in options.items():
-        if name not in _OPTION_NAMES:
-            raise InvalidInput(f"mesh hydrostatics option {name!r} is unknown; expected one of "
-                               + ", ".join(_OPTION_NAMES))
-        setattr(o, name, value)
-    return o
+    return fill_options(MeshHydrostaticsOptions, "mesh hydrostatics", options)
 
 
 def hydrostatics_of_mesh(vertices, faces, draft: float, **options) -> MeshHydrostatics:

@@ -5,30 +5,14 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from . import _native
+from ._native import SkinOptions
+from ._options import fill_options
 
-__all__ = ["fair_skin"]
+__all__ = ["fair_skin", "SkinOptions"]
 
 
-def fair_skin(
-    curves: Sequence[_native.NurbsCurve],
-    n_control: int | None = None,
-    mode: str = "interpolate",
-    *,
-    degree_u: int = 3,
-    degree_v: int = 3,
-    samples: int | None = None,
-    smoothing: float = 1e-3,
-    start: str = "free",
-    end: str = "free",
-    params: str = "auto",
-    c1_sections: Sequence[int] = (),
-    curvature_weight: float = 0.0,
-    e2: float = 1.0,
-    e3: float = 0.0,
-    flats: Sequence[tuple[int, float]] = (),
-    hold_runs: bool = True,
-    straight_groups: Sequence[tuple[int, int]] = (),
-) -> _native.SkinResult:
+def fair_skin(curves: Sequence[_native.NurbsCurve], n_control: int | None = None, mode: str | None = None,
+              **options) -> _native.SkinResult:
     """Skin section curves (3-D NurbsCurves, ordered along the hull, metres) into one surface.
 
     Sections that already share one knot vector of degree ``degree_u`` (as fl.Hull's sections
@@ -74,13 +58,29 @@ def fair_skin(
 
     Returns a SkinResult: ``surface`` (u across the sections, v along the hull),
     ``section_params``, ``section_fit_max``, ``longitudinal_max`` and ``row_e2``.
+
+    Options by keyword are the fields of :class:`fl.SkinOptions` (``degree_u``, ``degree_v``,
+    ``samples``, ``smoothing``, ``start``, ``end``, ``params``, ``c1_sections``,
+    ``curvature_weight``, ``e2``, ``e3``, ``flats``, ``hold_runs``, ``straight_groups``); their
+    defaults live in the engine. ``n_control`` / ``samples`` None: automatic.
+
+    Raises InvalidInput naming the bad curve or option (an unknown option name included).
     """
-    return _native._fair_skin(
-        list(curves), n_control, mode, degree_u, degree_v, samples, float(smoothing), start, end, params,
-        [int(i) for i in c1_sections], float(curvature_weight), float(e2), float(e3),
-        [_flat(k, f) for k, f in enumerate(flats)], bool(hold_runs),
-        [(int(a), int(b)) for a, b in straight_groups],
-    )
+    values = {"n_control": n_control, "mode": mode, **options}
+    o = fill_options(SkinOptions, "fair_skin", {k: v for k, v in values.items() if v is not None}, _CONVERT)
+    return _native._fair_skin(list(curves), o)
+
+
+def _flats(planes) -> list[tuple[int, float]]:
+    return [_flat(k, f) for k, f in enumerate(planes)]
+
+
+def _pairs(groups) -> list[tuple[int, int]]:
+    return [(int(a), int(b)) for a, b in groups]
+
+
+# Sequences the bound fields take as lists of plain ints / pairs (numpy values, tuples of arrays).
+_CONVERT = {"c1_sections": lambda s: [int(i) for i in s], "flats": _flats, "straight_groups": _pairs}
 
 
 def _flat(k: int, plane) -> tuple[int, float]:

@@ -1,4 +1,4 @@
-"""Form-parameter curve solver (issue 3): definitions against independent computations,
+"""Form-parameter curve solver: definitions against independent computations,
 exactness, infeasible requests, bad input, fairness against random multistarts."""
 
 import itertools

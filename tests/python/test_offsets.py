@@ -1,4 +1,4 @@
-"""Pre-processor (issue 6): readers, hydrostatics of the input and of the rebuilt surface,
+"""Pre-processor: readers, hydrostatics of the input and of the rebuilt surface,
 form parameters, poor data. Truth comes from the Wigley hull's exact coefficients, the
 published particulars of the reference hulls (data README), and independent computation paths
 (Simpson vs. trapezoid, NURBS quadrature vs. a triangle mesh)."""
@@ -386,7 +386,7 @@ def test_grid_deviation_projection_agrees_with_closest_point(kcs):
 
 
 def test_series60_editable_description(series60):
-    """The forebody as basic curves with form parameters (issue 4's hull description)."""
+    """The forebody as basic curves with form parameters (the editable forebody description)."""
     data, rb = series60
     fp = pp.form_parameters(rb.surfaces, data, roles=rb.roles)
     desc = pp.hull_description(fp, data)

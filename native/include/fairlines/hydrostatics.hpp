@@ -31,6 +31,7 @@
 #pragma once
 
 #include <limits>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -83,6 +84,25 @@ struct Hydrostatics {
 /// above the surface's highest point anywhere along the surface (naming both), or a
 /// surface with nothing below the draft.
 Hydrostatics hydrostatics(const NurbsSurface& surface, double draft, const HydrostaticsOptions& options = {});
+
+/// Hydrostatics of several half-hull patches (y >= 0) that bound the body together, at an
+/// upright `draft` (m, > 0): the integrals above summed over every patch's part below the
+/// draft, each patch turned outward first (a side-like patch, int |n_y| >= int |n_x|, must
+/// have int y n_y dS > 0; an end-like one int (x - end_x) n_x dS > 0, end_x the x of a
+/// station between the ends, metres). A patch wholly above the draft adds nothing; none is
+/// required to reach the waterplane. Volume, areas: full ship when half_hull. `gauss`:
+/// Gauss-Legendre points per knot span (2..32). Throws InvalidInput for a non-positive or
+/// non-finite draft, a non-finite end_x or a bad gauss.
+struct PatchHydrostatics {
+  double draft = 0;            ///< m above the baseline
+  double volume = 0;           ///< m^3 (full ship when half_hull)
+  double lcb = 0, vcb = 0;     ///< centre of buoyancy x, z (m); 0 when the volume is 0
+  double waterplane_area = 0;  ///< Awp (m^2)
+  double lcf = 0;              ///< x of the waterplane centroid (m); 0 when Awp is 0
+  double wetted_surface = 0;   ///< m^2 of the patches below the draft
+};
+PatchHydrostatics hydrostatics_of_patches(const std::vector<NurbsSurface>& patches, double draft, double end_x,
+                                          bool half_hull = true, int gauss = 8);
 
 /// Area (m^2) below `draft` of the section of the surface by the plane x = `x` (half the
 /// section when half_hull is false, the full section when true) and its centroid height

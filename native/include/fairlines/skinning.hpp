@@ -129,5 +129,8 @@ double curve_e2(const NurbsCurve& curve);
 SkinMode parse_skin_mode(const std::string& name);   ///< "interpolate" | "approximate"
 SkinEnd parse_skin_end(const std::string& name);     ///< "free" | "parallel"
 SkinParams parse_skin_params(const std::string& name);  ///< "auto" | "station" | "chord"
+const char* skin_mode_name(SkinMode mode);       ///< inverse of parse_skin_mode
+const char* skin_end_name(SkinEnd end);          ///< inverse of parse_skin_end
+const char* skin_params_name(SkinParams params); ///< inverse of parse_skin_params
 
 }  // namespace fairlines

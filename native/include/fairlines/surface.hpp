@@ -68,6 +68,13 @@ class NurbsSurface {
   /// Closest point to p: sampled start, 2-D Newton clamped to the domain, boundary
   /// curves checked. Returns (u, v, point).
   std::tuple<double, double, Eigen::Vector3d> closest_point(const Eigen::Vector3d& p) const;
+  /// Foot points of many points near known parameters: for each row k of `points` (m x 3,
+  /// metres) the 2-D Newton of closest_point started at (u0[k], v0[k]) (clamped to the
+  /// domain), which never moves the foot point further from the point. A local search: the
+  /// starts must lie in the basin of the wanted foot point. Returns (u (m), v (m), feet m x 3).
+  std::tuple<Eigen::VectorXd, Eigen::VectorXd, Eigen::MatrixXd> closest_points(const Eigen::MatrixXd& points,
+                                                                              const Eigen::VectorXd& u0,
+                                                                              const Eigen::VectorXd& v0) const;
 
   NurbsSurface insert_knot(Direction dir, double t, int times = 1) const;
   NurbsSurface refine_knots(Direction dir, const Eigen::VectorXd& new_knots) const;

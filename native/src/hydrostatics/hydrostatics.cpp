@@ -33,16 +33,17 @@ std::vector<double> breakpoints(const Eigen::VectorXd& U, int degree) {
 }
 
 /// Sub-intervals of [breaks.front(), breaks.back()] where f(t) <= 0, each split at the breaks.
-/// f is sampled kClipSamples times per break interval; sign changes are refined by bisection.
-template <typename F>
-std::vector<std::pair<double, double>> inside_pieces(const std::vector<double>& breaks, F&& f) {
+/// f is sampled kClipSamples times per break interval (all samples at once by
+/// sample_all(ts, fs)); sign changes are refined by bisection on f.
+template <typename F, typename Fs>
+std::vector<std::pair<double, double>> inside_pieces(const std::vector<double>& breaks, F&& f, Fs&& sample_all) {
   std::vector<double> ts;
   for (std::size_t i = 0; i + 1 < breaks.size(); ++i)
     for (int k = 0; k < kClipSamples; ++k)
       ts.push_back(breaks[i] + (breaks[i + 1] - breaks[i]) * k / kClipSamples);
   ts.push_back(breaks.back());
   std::vector<double> fs(ts.size());
-  for (std::size_t i = 0; i < ts.size(); ++i) fs[i] = f(ts[i]);
+  sample_all(ts, fs);
   // Collect boundaries of the inside set.
   std::vector<std::pair<double, double>> ivs;
   bool in = fs[0] <= 0;
@@ -89,17 +90,19 @@ int longitudinal_direction(const NurbsSurface& s) {
   return dv >= du ? 1 : 0;
 }
 
-/// Direction along which z varies most on the control net: 1 (v) or 0 (u).
+/// Direction whose control lines span the larger z range on average: 1 (v) or 0 (u). The
+/// girth of a hull section spans keel to deck; a line along the hull only the rise of the keel
+/// or sheer, however much it zigzags at a raked stem or a stern (which a sum of |dz| counts).
 int vertical_direction(const NurbsSurface& s) {
   const Eigen::MatrixXd& P = s.control_points();
   const int nu = s.nu(), nv = s.nv();
-  double du = 0, dv = 0;
+  // z(i, j) = P(i nv + j, 2): a u line keeps j, a v line keeps i.
+  Eigen::MatrixXd z(nu, nv);
   for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      if (i + 1 < nu) du += std::abs(P((i + 1) * nv + j, 2) - P(i * nv + j, 2));
-      if (j + 1 < nv) dv += std::abs(P(i * nv + j + 1, 2) - P(i * nv + j, 2));
-    }
-  return dv > du ? 1 : 0;
+    for (int j = 0; j < nv; ++j) z(i, j) = P(i * nv + j, 2);
+  const double along_u = (z.colwise().maxCoeff() - z.colwise().minCoeff()).mean();
+  const double along_v = (z.rowwise().maxCoeff() - z.rowwise().minCoeff()).mean();
+  return along_v > along_u ? 1 : 0;
 }
 
 /// The same surface with u and v exchanged.
@@ -110,6 +113,90 @@ NurbsSurface transposed(const NurbsSurface& s) {
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j < nv; ++j) q.row(j * nu + i) = pw.row(i * nv + j);
   return NurbsSurface::from_homogeneous(s.degree_v(), s.degree_u(), s.knots_v(), s.knots_u(), nv, nu, q);
+}
+
+/// Surface integrals over the part of a surface below the waterline (see the header): acc =
+/// V, Mx, Mz (flux of y); A, Ax, Ayy, Axx (flux of n_z); wetted area. The orientation sums
+/// are int |n_y|, int |n_x|, int x n_x and int n_x dS. The extent is that of the Gauss points
+/// and piece ends below the waterline.
+struct SurfaceSums {
+  std::array<double, 8> acc{};
+  double abs_ny = 0, abs_nx = 0, x_nx = 0, nx = 0;
+  double xmin = std::numeric_limits<double>::infinity(), xmax = -std::numeric_limits<double>::infinity(), ymax = 0;
+
+  void extend(const Eigen::Vector3d& P) {
+    xmin = std::min(xmin, P[0]);
+    xmax = std::max(xmax, P[0]);
+    ymax = std::max(ymax, P[1]);
+  }
+};
+
+/// Adds the Gauss points of one submerged piece [pa, pb] of the u line at v (weight wv).
+void add_piece(const NurbsSurface& s, const detail::GaussRule& g, int gauss, double v, double wv, double pa,
+               double pb, SurfaceSums& out) {
+  std::array<double, 32> us{}, vs{};
+  std::array<double, 9 * 32> d1{};
+  const double hu = 0.5 * (pb - pa), mu = 0.5 * (pa + pb);
+  for (int ku = 0; ku < gauss; ++ku) us[ku] = mu + hu * g.x[ku], vs[ku] = v;
+  s.evaluate_first_derivatives_into(us.data(), vs.data(), gauss, d1.data());
+  for (int ku = 0; ku < gauss; ++ku) {
+    const double* row = &d1[9 * ku];
+    const Eigen::Vector3d P(row[0], row[1], row[2]), Su(row[3], row[4], row[5]), Sv(row[6], row[7], row[8]);
+    const Eigen::Vector3d N = Su.cross(Sv);
+    const double w = wv * g.w[ku] * hu;
+    auto& acc = out.acc;
+    acc[0] += w * P[1] * N[1];
+    acc[1] += w * P[0] * P[1] * N[1];
+    acc[2] += w * P[2] * P[1] * N[1];
+    acc[3] += w * N[2];
+    acc[4] += w * P[0] * N[2];
+    acc[5] += w * P[1] * P[1] * N[2];
+    acc[6] += w * P[0] * P[0] * N[2];
+    acc[7] += w * N.norm();
+    out.abs_ny += w * std::abs(N[1]);
+    out.abs_nx += w * std::abs(N[0]);
+    out.x_nx += w * P[0] * N[0];
+    out.nx += w * N[0];
+    out.extend(P);
+  }
+  // The piece ends are on the surface too: include them in the extent.
+  for (double ue : {pa, pb}) out.extend(s.evaluate(ue, v));
+}
+
+/// Integrals over the part of `s` (lines of u crossing the waterline) below waterline_z(x).
+template <typename Z>
+SurfaceSums integrate_below(const NurbsSurface& s, int gauss, Z&& waterline_z) {
+  const std::vector<double> bu = breakpoints(s.knots_u(), s.degree_u());
+  const std::vector<double> bv = breakpoints(s.knots_v(), s.degree_v());
+  const auto& g = detail::gauss_rule(gauss);
+  SurfaceSums out;
+  std::vector<double> points, line_v;
+  for (std::size_t jv = 0; jv + 1 < bv.size(); ++jv) {
+    const double hv = 0.5 * (bv[jv + 1] - bv[jv]), mv = 0.5 * (bv[jv + 1] + bv[jv]);
+    for (int kv = 0; kv < gauss; ++kv) {
+      const double v = mv + hv * g.x[kv];
+      auto height = [&](double u) {
+        const Eigen::Vector3d P = s.evaluate(u, v);
+        return P[2] - waterline_z(P[0]);
+      };
+      // The samples of this line in one batched evaluation.
+      auto heights = [&](const std::vector<double>& ts, std::vector<double>& fs) {
+        points.resize(3 * ts.size());
+        line_v.assign(ts.size(), v);
+        s.evaluate_into(ts.data(), line_v.data(), static_cast<long>(ts.size()), points.data());
+        for (std::size_t i = 0; i < ts.size(); ++i) fs[i] = points[3 * i + 2] - waterline_z(points[3 * i]);
+      };
+      const auto pieces = inside_pieces(bu, height, heights);
+      for (const auto& [pa, pb] : pieces) add_piece(s, g, gauss, v, g.w[kv] * hv, pa, pb, out);
+    }
+  }
+  return out;
+}
+
+/// `surface` with u the direction along which z varies most, so every line of u that the
+/// waterplane cuts is clipped (a draft between two Gauss lines of v would not be).
+NurbsSurface vertical_u(const NurbsSurface& surface) {
+  return vertical_direction(surface) == 1 ? transposed(surface) : surface;
 }
 
 }  // namespace
@@ -190,7 +277,9 @@ std::pair<double, double> section_area(const NurbsSurface& s, double x0, double 
     b_warm = b;
     return point(a, b)[2] - draft;
   };
-  const auto pieces = inside_pieces(br_a, zfun);
+  const auto pieces = inside_pieces(br_a, zfun, [&](const std::vector<double>& ts, std::vector<double>& fs) {
+    for (std::size_t i = 0; i < ts.size(); ++i) fs[i] = zfun(ts[i]);
+  });
   const auto& g = detail::gauss_rule(gauss);
   double area = 0, mz = 0;
   for (const auto& [pa, pb] : pieces) {
@@ -302,71 +391,23 @@ void fill_results(Hydrostatics& h, const NurbsSurface& s, double draft, const Hy
 Hydrostatics hydrostatics(const NurbsSurface& surface, double draft, const HydrostaticsOptions& o) {
   detail::require_positive(draft, "draft");
   check_options(o);
-  // Lines of the inner (clipped) direction must cross the waterplane: make that u, the
-  // direction along which z varies most, or a draft between two Gauss lines is not clipped.
-  const NurbsSurface s = vertical_direction(surface) == 1 ? transposed(surface) : surface;
+  const NurbsSurface s = vertical_u(surface);
   // Waterplane z = draft + slope (x - x_ref): level when untrimmed.
   const double slope = o.trim != 0 ? -o.trim / o.trim_length : 0.0;
   const double x_ref = 0.5 * o.trim_length;
   auto waterline_z = [&](double x) { return draft + slope * (x - x_ref); };
-
+  SurfaceSums sums = integrate_below(s, o.gauss, waterline_z);
+  if (sums.acc[0] == 0) fail("the surface has nothing below draft ", draft, " m; expected a draft above its lowest point");
+  // Also sample the domain edges in v so the extent includes the surface ends.
   const std::vector<double> bu = breakpoints(s.knots_u(), s.degree_u());
   const std::vector<double> bv = breakpoints(s.knots_v(), s.degree_v());
-  const auto& g = detail::gauss_rule(o.gauss);
-  // Accumulators: V, Mx, Mz (flux of y); A, Ax, Ayy, Axx (flux of n_z); wetted area.
-  std::array<double, 8> acc{};
-  std::vector<double> us(o.gauss), vs(o.gauss), d1(9 * static_cast<size_t>(o.gauss));
-  double xmin = std::numeric_limits<double>::infinity(), xmax = -xmin, ymax = 0;
-  for (std::size_t jv = 0; jv + 1 < bv.size(); ++jv) {
-    const double hv = 0.5 * (bv[jv + 1] - bv[jv]), mv = 0.5 * (bv[jv + 1] + bv[jv]);
-    for (int kv = 0; kv < o.gauss; ++kv) {
-      const double v = mv + hv * g.x[kv];
-      const auto pieces = inside_pieces(bu, [&](double u) {
-        const Eigen::Vector3d P = s.evaluate(u, v);
-        return P[2] - waterline_z(P[0]);
-      });
-      for (const auto& [pa, pb] : pieces) {
-        const double hu = 0.5 * (pb - pa), mu = 0.5 * (pa + pb);
-        // All Gauss points of this piece in one allocation-free batch: rows [S, S_u, S_v].
-        for (int ku = 0; ku < o.gauss; ++ku) {
-          us[ku] = mu + hu * g.x[ku];
-          vs[ku] = v;
-        }
-        s.evaluate_first_derivatives_into(us.data(), vs.data(), o.gauss, d1.data());
-        for (int ku = 0; ku < o.gauss; ++ku) {
-          const double* row = &d1[9 * ku];
-          const Eigen::Vector3d P(row[0], row[1], row[2]), Su(row[3], row[4], row[5]), Sv(row[6], row[7], row[8]);
-          const Eigen::Vector3d N = Su.cross(Sv);
-          const double w = g.w[kv] * hv * g.w[ku] * hu;
-          acc[0] += w * P[1] * N[1];
-          acc[1] += w * P[0] * P[1] * N[1];
-          acc[2] += w * P[2] * P[1] * N[1];
-          acc[3] += w * N[2];
-          acc[4] += w * P[0] * N[2];
-          acc[5] += w * P[1] * P[1] * N[2];
-          acc[6] += w * P[0] * P[0] * N[2];
-          acc[7] += w * N.norm();
-          xmin = std::min(xmin, P[0]);
-          xmax = std::max(xmax, P[0]);
-          ymax = std::max(ymax, P[1]);
-        }
-        // The piece ends are on the surface too: include them in the extent.
-        for (double ue : {pa, pb}) {
-          const Eigen::Vector3d P = s.evaluate(ue, v);
-          xmin = std::min(xmin, P[0]);
-          xmax = std::max(xmax, P[0]);
-          ymax = std::max(ymax, P[1]);
-        }
-      }
-    }
-  }
-  if (acc[0] == 0) fail("the surface has nothing below draft ", draft, " m; expected a draft above its lowest point");
-  // Also sample the domain edges in v so the extent includes the surface ends.
   for (double v : {bv.front(), bv.back()})
     for (double u : bu) {
       const Eigen::Vector3d P = s.evaluate(u, v);
-      if (P[2] <= waterline_z(P[0])) xmin = std::min(xmin, P[0]), xmax = std::max(xmax, P[0]), ymax = std::max(ymax, P[1]);
+      if (P[2] <= waterline_z(P[0])) sums.extend(P);
     }
+  const double xmin = sums.xmin, xmax = sums.xmax, ymax = sums.ymax;
+  const std::array<double, 8>& acc = sums.acc;
   Hydrostatics h;
   h.z_max = highest_point(s);
   // The body is closed only up to the surface's top: a waterplane above it anywhere along the
@@ -376,6 +417,33 @@ Hydrostatics hydrostatics(const NurbsSurface& surface, double draft, const Hydro
     fail("draft ", draft, " m puts the waterplane at z = ", z_wl_top, " m, above the surface's highest point z = ",
          h.z_max, " m (the deck); expected a waterplane at or below it");
   fill_results(h, s, draft, o, acc, xmin, xmax, ymax, slope, waterline_z);
+  return h;
+}
+
+PatchHydrostatics hydrostatics_of_patches(const std::vector<NurbsSurface>& patches, double draft, double end_x,
+                                          bool half_hull, int gauss) {
+  detail::require_positive(draft, "draft");
+  detail::require_finite(end_x, "end_x");
+  if (gauss < 2 || gauss > 32) fail("gauss is ", gauss, "; expected 2..32 points per knot span");
+  auto level = [draft](double) { return draft; };
+  std::array<double, 8> total{};
+  for (const NurbsSurface& patch : patches) {
+    const SurfaceSums p = integrate_below(vertical_u(patch), gauss, level);
+    // Outward by the mesh rule: a side-like patch has int y n_y > 0, an end-like one
+    // int (x - end_x) n_x > 0.
+    const double flux = p.abs_ny >= p.abs_nx ? p.acc[0] : p.x_nx - end_x * p.nx;
+    const double sign = flux < 0 ? -1.0 : 1.0;
+    for (std::size_t k = 0; k < total.size(); ++k) total[k] += k == 7 ? p.acc[k] : sign * p.acc[k];
+  }
+  const double factor = half_hull ? 2.0 : 1.0;
+  PatchHydrostatics h;
+  h.draft = draft;
+  h.volume = factor * total[0];
+  h.lcb = total[0] != 0 ? total[1] / total[0] : 0.0;
+  h.vcb = total[0] != 0 ? total[2] / total[0] : 0.0;
+  h.waterplane_area = -factor * total[3];
+  h.lcf = total[3] != 0 ? total[4] / total[3] : 0.0;
+  h.wetted_surface = factor * total[7];
   return h;
 }
 

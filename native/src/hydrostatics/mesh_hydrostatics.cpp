@@ -6,40 +6,27 @@
 
 #include <array>
 #include <cmath>
-#include <sstream>
 #include <vector>
 
 #include <Eigen/Geometry>
 
 #include "fairlines/errors.hpp"
+#include "triangles.hpp"
 
 namespace fairlines {
 
 namespace {
 
-using Vec3 = Eigen::Vector3d;
-using Tri = std::array<Vec3, 3>;
+using triangles::area_vector;
+using triangles::Keep;
+using triangles::Tri;
+using triangles::triangle;
+using triangles::Vec3;
 
 /// Sums of the surface integrals over the submerged triangles (half hull, before doubling).
 struct Sums {
   double V = 0, Mx = 0, Mz = 0, S = 0, Awp = 0, Mwp = 0, Am = 0;
 };
-
-Vec3 area_vector(const Tri& t) { return 0.5 * (t[1] - t[0]).cross(t[2] - t[0]); }
-
-/// Appends to `out` the part of `t` with coordinate `axis` <= value, as a fan of triangles
-/// (a triangle or a quadrilateral cut from it, in the triangle's own orientation).
-void clip_one(const Tri& t, int axis, double value, std::vector<Tri>& out) {
-  std::array<Vec3, 4> poly;
-  int n = 0;
-  for (int k = 0; k < 3; ++k) {
-    const Vec3& p = t[k];
-    const Vec3& q = t[(k + 1) % 3];
-    if (p[axis] <= value) poly[n++] = p;
-    if ((p[axis] - value) * (q[axis] - value) < 0) poly[n++] = p + (value - p[axis]) / (q[axis] - p[axis]) * (q - p);
-  }
-  for (int i = 1; i + 1 < n; ++i) out.push_back({poly[0], poly[i], poly[i + 1]});
-}
 
 /// Adds one submerged triangle's volume, moment, area and waterplane terms.
 void add_triangle(const Tri& t, Sums& s) {
@@ -80,28 +67,6 @@ double section_term(const Tri& t, double xm) {
   return sgn * 0.5 * (q1.y() + q2.y()) * (q2.z() - q1.z());
 }
 
-Tri triangle(const TriMesh& mesh, Eigen::Index f, bool flip) {
-  Tri t;
-  for (int k = 0; k < 3; ++k) t[k] = mesh.vertices.row(mesh.faces(f, flip ? 2 - k : k)).transpose();
-  return t;
-}
-
-void check_mesh(const TriMesh& mesh, double draft) {
-  if (!std::isfinite(draft)) throw InvalidInput("draft is not finite; expected a finite height in metres");
-  if (mesh.vertices.cols() != 3) throw InvalidInput("vertices must have 3 columns (x, y, z)");
-  if (mesh.faces.size() && mesh.faces.cols() != 3) throw InvalidInput("faces must have 3 columns (triangles)");
-  if (!mesh.vertices.allFinite()) throw InvalidInput("vertices contain NaN or inf; expected finite coordinates");
-  const long n = static_cast<long>(mesh.vertices.rows());
-  for (Eigen::Index i = 0; i < mesh.faces.size(); ++i) {
-    const int v = mesh.faces.data()[i];
-    if (v < 0 || v >= n) {
-      std::ostringstream os;
-      os << "face index " << v << " is out of range; expected 0 <= index < " << n;
-      throw InvalidInput(os.str());
-    }
-  }
-}
-
 /// True when the mesh is oriented inwards by the side / end rule of the options.
 bool inward(const TriMesh& mesh, double xm) {
   double ay = 0, ax = 0, side = 0, end = 0;
@@ -120,7 +85,8 @@ bool inward(const TriMesh& mesh, double xm) {
 }  // namespace
 
 MeshHydrostatics mesh_hydrostatics(const TriMesh& mesh, double draft, const MeshHydrostaticsOptions& options) {
-  check_mesh(mesh, draft);
+  if (!std::isfinite(draft)) throw InvalidInput("draft is not finite; expected a finite height in metres");
+  triangles::check_mesh(mesh);
   MeshHydrostatics h;
   h.draft = draft;
   h.midship_x = options.midship_x;
@@ -131,7 +97,7 @@ MeshHydrostatics mesh_hydrostatics(const TriMesh& mesh, double draft, const Mesh
   std::vector<Tri> below;
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
     below.clear();
-    clip_one(triangle(mesh, f, h.flipped), 2, draft, below);
+    triangles::clip(triangle(mesh, f, h.flipped), 2, draft, Keep::Below, below);
     for (const Tri& t : below) {
       add_triangle(t, s);
       s.Am += section_term(t, h.midship_x);

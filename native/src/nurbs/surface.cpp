@@ -655,6 +655,27 @@ std::tuple<double, double, Eigen::Vector3d> NurbsSurface::closest_point(const Ei
   return {best_u, best_v, evaluate(best_u, best_v)};
 }
 
+std::tuple<Eigen::VectorXd, Eigen::VectorXd, Eigen::MatrixXd> NurbsSurface::closest_points(
+    const Eigen::MatrixXd& points, const Eigen::VectorXd& u0, const Eigen::VectorXd& v0) const {
+  if (points.cols() != 3) fail("points have ", points.cols(), " columns; expected (m, 3)");
+  if (u0.size() != points.rows() || v0.size() != points.rows())
+    fail("u0 / v0 have ", u0.size(), " / ", v0.size(), " values; expected one per point (", points.rows(), ")");
+  detail::require_finite(points, "points");
+  detail::require_finite(u0, "u0");
+  detail::require_finite(v0, "v0");
+  const std::pair<double, double> bu{ku_[pu_], ku_[nu_]}, bv{kv_[pv_], kv_[nv_]};
+  const double scale = std::max(1.0, (points_.colwise().maxCoeff() - points_.colwise().minCoeff()).norm());
+  Eigen::VectorXd u(points.rows()), v(points.rows());
+  Eigen::MatrixXd feet(points.rows(), 3);
+  for (Eigen::Index k = 0; k < points.rows(); ++k) {
+    const Eigen::Vector3d p = points.row(k).transpose();
+    std::tie(u[k], v[k]) = newton_closest(*this, p, std::clamp(u0[k], bu.first, bu.second),
+                                          std::clamp(v0[k], bv.first, bv.second), bu, bv, scale);
+    feet.row(k) = evaluate(u[k], v[k]).transpose();
+  }
+  return {u, v, feet};
+}
+
 Eigen::MatrixXd NurbsSurface::homogeneous() const {
   return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor>>(pw_.data(), points_.rows(), 4);
 }

@@ -331,6 +331,14 @@ SkinParams parse_skin_params(const std::string& name) {
   fail("params is '", name, "'; expected 'auto', 'station' or 'chord'");
 }
 
+const char* skin_mode_name(SkinMode mode) { return mode == SkinMode::Interpolate ? "interpolate" : "approximate"; }
+
+const char* skin_end_name(SkinEnd end) { return end == SkinEnd::Free ? "free" : "parallel"; }
+
+const char* skin_params_name(SkinParams params) {
+  return params == SkinParams::Auto ? "auto" : (params == SkinParams::Station ? "station" : "chord");
+}
+
 // fair_skin in named steps. Notation: q sections d = 0..q-1, n control rows i per section
 // (one knot vector Ku of degree_u), a data column 3 i + k holds coordinate k of row i through
 // the sections; v (q) the sections' longitudinal parameters, Kv / pv the longitudinal knots and

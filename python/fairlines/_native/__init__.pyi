@@ -8,7 +8,7 @@ import numpy
 import numpy.typing
 import typing
 from . import limits
-__all__: list[str] = ['ConvergenceError', 'CurveFit', 'Distribution', 'END_BAND', 'FairlinesError', 'FairnessWeights', 'FitOptions', 'FormBounds', 'FormCurveRequest', 'FormSolverOptions', 'Hydrostatics', 'InfeasibleFormParameters', 'InvalidInput', 'MAX_SHAPE_KNOB', 'MeshHydrostatics', 'MeshHydrostaticsOptions', 'MeshOptions', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PlaneCut', 'SectionDesign', 'SectionSpec', 'SkinResult', 'Spacing', 'SplineBound', 'SplineCondition', 'SplineDesignRequest', 'SplineFitPoint', 'SplineFlat', 'SplineIntegral', 'SplineShape', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'design_section', 'design_sections', 'design_spline_function', 'distribute', 'ellipse', 'equal_arc_length_points', 'fairness_of', 'fit_curve', 'fit_surface', 'form_parameter_names', 'form_parameters_of', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics', 'knot_line_parameters', 'limits', 'mesh_hydrostatics', 'mesh_quality', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'parameters_at_arc_length', 'plane_cut', 'revolve', 'scaled_jacobians', 'section_area', 'section_fullness_range', 'section_knot_vector', 'sphere', 'spline_function_knots', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
+__all__: list[str] = ['BlendOptions', 'BlendSpec', 'ComposeOptions', 'ConvergenceError', 'CurveFit', 'Distribution', 'END_BAND', 'FairlinesError', 'FairnessWeights', 'FitOptions', 'FormBounds', 'FormCurveRequest', 'FormSolverOptions', 'Hydrostatics', 'InfeasibleFormParameters', 'InvalidInput', 'Kracht', 'KrachtShip', 'MAX_SHAPE_KNOB', 'MeshHydrostatics', 'MeshHydrostaticsOptions', 'MeshOptions', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PatchHydrostatics', 'PlaneCut', 'SectionDesign', 'SectionSpec', 'SkinOptions', 'SkinResult', 'Spacing', 'SplineBound', 'SplineCondition', 'SplineDesignRequest', 'SplineFitPoint', 'SplineFlat', 'SplineIntegral', 'SplineShape', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'design_section', 'design_sections', 'design_spline_function', 'distribute', 'ellipse', 'equal_arc_length_points', 'fairness_of', 'fit_curve', 'fit_surface', 'form_parameter_names', 'form_parameters_of', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics', 'hydrostatics_of_patches', 'knot_line_parameters', 'limits', 'mesh_hydrostatics', 'mesh_quality', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'parameters_at_arc_length', 'plane_cut', 'revolve', 'scaled_jacobians', 'section_area', 'section_fullness_range', 'section_knot_vector', 'sphere', 'spline_function_knots', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
 class FairlinesError(RuntimeError):
     pass
 class InvalidInput(ValueError):
@@ -128,6 +128,11 @@ class NurbsSurface:
     def closest_point(self, point: typing.Any) -> tuple[float, float, numpy.typing.NDArray[numpy.float64]]:
         """
         Closest point on the surface: (u, v, point).
+        """
+    def closest_points(self, points: typing.Any, u0: typing.Any, v0: typing.Any) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+        """
+        Foot points of points (m, 3) near parameters (u0, v0) (m,): local Newton from each start, never
+        moving away from the point. Returns (u (m,), v (m,), feet (m, 3)). Raises InvalidInput for bad shapes.
         """
     def copy(self) -> NurbsSurface:
         ...
@@ -506,6 +511,140 @@ class SkinResult:
         """
         NurbsSurface: u across the sections, v along the hull (v = 0 first section).
         """
+class SkinOptions:
+    """
+    Options of fair_skin (fairlines.fair_skin sets them by keyword).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def c1_sections(self) -> list[int]:
+        """
+        interior section indices where the longitudinal curves are only C1 (default [])
+        """
+    @c1_sections.setter
+    def c1_sections(self, arg0: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def curvature_weight(self) -> float:
+        """
+        w >= 0: section points equally spaced in ds (1 + w L |k|), L the section length; 0 plain arc length (default 0.0)
+        """
+    @curvature_weight.setter
+    def curvature_weight(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def degree_u(self) -> int:
+        """
+        degree across the sections (>= 1) (default 3)
+        """
+    @degree_u.setter
+    def degree_u(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def degree_v(self) -> int:
+        """
+        degree of the longitudinal curves (>= 2) (default 3)
+        """
+    @degree_v.setter
+    def degree_v(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def e2(self) -> float:
+        """
+        weight of E2 = int |C''(v)|^2 dv in the longitudinal fairness (default 1.0)
+        """
+    @e2.setter
+    def e2(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def e3(self) -> float:
+        """
+        weight of h^2 E3 = h^2 int |C'''(v)|^2 dv, h = 1/(q-1) (default 0.0)
+        """
+    @e3.setter
+    def e3(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def end(self) -> str:
+        """
+        'free' (natural) or 'parallel' (dy/dv = dz/dv = 0) at the last section (default 'free')
+        """
+    @end.setter
+    def end(self, arg1: str) -> None:
+        ...
+    @property
+    def flats(self) -> list[tuple[int, float]]:
+        """
+        planes (axis 0 / 1 / 2 for x / y / z, value m) the sections' fits keep exactly where they lie in them (default [])
+        """
+    @flats.setter
+    def flats(self, arg0: collections.abc.Sequence[tuple[typing.SupportsInt | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]]) -> None:
+        ...
+    @property
+    def hold_runs(self) -> bool:
+        """
+        hold a row coordinate constant over three or more sections where the rows keep it (default True)
+        """
+    @hold_runs.setter
+    def hold_runs(self, arg0: bool) -> None:
+        ...
+    @property
+    def mode(self) -> str:
+        """
+        'interpolate' (through every row point, least E2) or 'approximate' (least squares + smoothing h^4 E2) (default 'interpolate')
+        """
+    @mode.setter
+    def mode(self, arg1: str) -> None:
+        ...
+    @property
+    def n_control(self) -> int:
+        """
+        control points per section in u; 0: max(12, 2 x largest section count) (default 0)
+        """
+    @n_control.setter
+    def n_control(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def params(self) -> str:
+        """
+        section parameters v: 'station' (proportional to x), 'chord', or 'auto' (station when planar at monotone x) (default 'auto')
+        """
+    @params.setter
+    def params(self, arg1: str) -> None:
+        ...
+    @property
+    def samples(self) -> int:
+        """
+        equally spaced points per section; 0: 4 x n_control, else >= n_control (default 0)
+        """
+    @samples.setter
+    def samples(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def smoothing(self) -> float:
+        """
+        approximate mode: weight of h^4 E2 (>= 0) (default 0.001)
+        """
+    @smoothing.setter
+    def smoothing(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def start(self) -> str:
+        """
+        'free' (natural) or 'parallel' (dy/dv = dz/dv = 0) at the first section (default 'free')
+        """
+    @start.setter
+    def start(self, arg1: str) -> None:
+        ...
+    @property
+    def straight_groups(self) -> list[tuple[int, int]]:
+        """
+        row ranges (first, last) kept straight between their end rows' longitudinal curves (default [])
+        """
+    @straight_groups.setter
+    def straight_groups(self, arg0: collections.abc.Sequence[tuple[typing.SupportsInt | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex]]) -> None:
+        ...
 class Hydrostatics:
     """
     Hydrostatics at one draft. Volume, areas and SAC are for the full ship when the surface was a half hull (half_hull=True); lengths in m, areas m^2, volume m^3, displacement t.
@@ -1099,6 +1238,152 @@ class SectionDesign:
         """
         shape knob used
         """
+class ComposeOptions:
+    """
+    Options of compose (fairlines.compose sets them by keyword).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def blend_check_samples(self) -> int:
+        """
+        boundary points at which the blend's continuity is measured (>= 2) (default 200)
+        """
+    @blend_check_samples.setter
+    def blend_check_samples(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def blend_rows(self) -> int:
+        """
+        blend cells from the hull boundary to the bulb boundary (>= 1) (default 8)
+        """
+    @blend_rows.setter
+    def blend_rows(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def bulb_u(self) -> int:
+        """
+        bulb cells from the seam to the nose (>= 2) (default 24)
+        """
+    @bulb_u.setter
+    def bulb_u(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def bulb_v(self) -> int:
+        """
+        bulb cells around the half section; also seam segments (>= 4) (default 32)
+        """
+    @bulb_v.setter
+    def bulb_v(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def hull_u(self) -> int:
+        """
+        hull tessellation cells along u (>= 4) (default 48)
+        """
+    @hull_u.setter
+    def hull_u(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def hull_v(self) -> int:
+        """
+        hull tessellation cells along v (>= 4) (default 20)
+        """
+    @hull_v.setter
+    def hull_v(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def margin(self) -> float:
+        """
+        clearance kept between the seam and whole hull cells (in cells) (default 0.3)
+        """
+    @margin.setter
+    def margin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def plane_tolerance(self) -> float:
+        """
+        relative tolerance of the centre plane / deck / aft checks (default 1e-06)
+        """
+    @plane_tolerance.setter
+    def plane_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tolerance(self) -> float:
+        """
+        surface-surface intersection tolerance (m, <= 1e-6) (default 1e-07)
+        """
+    @tolerance.setter
+    def tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class BlendSpec:
+    """
+    The blend of a composition: its boundary on the hull and on the bulb.
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def bulb_u(self) -> float:
+        """
+        the bulb section u = bulb_u where the blend meets the bulb (default 0.5)
+        """
+    @bulb_u.setter
+    def bulb_u(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def hull_uv(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (k, 2) (u, v) polyline on the oriented hull from one centre-plane edge point to another
+        """
+    @hull_uv.setter
+    def hull_uv(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def tension(self) -> float:
+        """
+        cross-boundary tangent length / (|B - A| / 3), > 0 (default 1.0)
+        """
+    @tension.setter
+    def tension(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class BlendOptions:
+    """
+    Options of blend_surface (fairlines.blend_surface sets them by keyword).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def centre_plane_ends(self) -> bool:
+        """
+        when both boundaries start (end) on y = 0, keep that end section in the centre plane (default True)
+        """
+    @centre_plane_ends.setter
+    def centre_plane_ends(self, arg0: bool) -> None:
+        ...
+    @property
+    def check_samples(self) -> int:
+        """
+        boundary points at which continuity is measured (>= 2) (default 200)
+        """
+    @check_samples.setter
+    def check_samples(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def samples(self) -> int:
+        """
+        sections skinned along the boundaries (>= 4) (default 61)
+        """
+    @samples.setter
+    def samples(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tension(self) -> float:
+        """
+        cross-boundary tangent length / (|B - A| / 3), > 0 (default 1.0)
+        """
+    @tension.setter
+    def tension(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class _BulbousBow:
     def __init__(self, lpp: typing.SupportsFloat | typing.SupportsIndex, beam: typing.SupportsFloat | typing.SupportsIndex, draft_fp: typing.SupportsFloat | typing.SupportsIndex, midship_area: typing.SupportsFloat | typing.SupportsIndex, displacement_volume: typing.SupportsFloat | typing.SupportsIndex, c_lpr: typing.SupportsFloat | typing.SupportsIndex, c_bb: typing.SupportsFloat | typing.SupportsIndex, c_zb: typing.SupportsFloat | typing.SupportsIndex, c_abt: typing.SupportsFloat | typing.SupportsIndex, c_abl: typing.SupportsFloat | typing.SupportsIndex, c_vpr: typing.SupportsFloat | typing.SupportsIndex, x_fp: typing.SupportsFloat | typing.SupportsIndex, aft_length: typing.SupportsFloat | typing.SupportsIndex, nose_height_shift: typing.SupportsFloat | typing.SupportsIndex, sections: typing.SupportsInt | typing.SupportsIndex, section_points: typing.SupportsInt | typing.SupportsIndex, control_u: typing.SupportsInt | typing.SupportsIndex, control_v: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
@@ -1312,7 +1597,7 @@ class MeshHydrostaticsOptions:
     @property
     def half_hull(self) -> bool:
         """
-        the mesh is the y >= 0 half: volume and areas doubled, centroids kept
+        the mesh is the y >= 0 half: volume and areas doubled, centroids kept (default True)
         """
     @half_hull.setter
     def half_hull(self, arg0: bool) -> None:
@@ -1320,7 +1605,7 @@ class MeshHydrostaticsOptions:
     @property
     def midship_x(self) -> float:
         """
-        x of the section measured as midship_area (m); NaN: the middle of the mesh's x extent
+        x of the section measured as midship_area (m); NaN: the middle of the mesh's x extent (default nan)
         """
     @midship_x.setter
     def midship_x(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
@@ -1328,7 +1613,7 @@ class MeshHydrostaticsOptions:
     @property
     def orient(self) -> bool:
         """
-        flip an inward mesh: a side-like mesh must have int y n_y dS > 0, an end-like one int (x - midship_x) n_x dS > 0
+        flip an inward mesh: a side-like mesh must have int y n_y dS > 0, an end-like one int (x - midship_x) n_x dS > 0 (default False)
         """
     @orient.setter
     def orient(self, arg0: bool) -> None:
@@ -1377,19 +1662,138 @@ class MeshHydrostatics:
     @property
     def wetted_surface(self) -> float:
         ...
-def _blend_surface(a: NurbsSurface, boundary_a: typing.Any, b: NurbsSurface, boundary_b: typing.Any, samples: typing.SupportsInt | typing.SupportsIndex = 61, tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, check_samples: typing.SupportsInt | typing.SupportsIndex = 200) -> tuple[NurbsSurface, dict, dict]:
+class KrachtShip:
+    """
+    The ship Kracht's coefficients are made dimensionless by (all required).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def beam(self) -> float:
+        """
+        moulded breadth (m), > 0
+        """
+    @beam.setter
+    def beam(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def displacement_volume(self) -> float:
+        """
+        displaced volume V (m^3), > 0
+        """
+    @displacement_volume.setter
+    def displacement_volume(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def draft_fp(self) -> float:
+        """
+        draft at the FP (m), > 0: the mesh above it is not bulb
+        """
+    @draft_fp.setter
+    def draft_fp(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def lpp(self) -> float:
+        """
+        length between perpendiculars (m), > 0
+        """
+    @lpp.setter
+    def lpp(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def midship_area(self) -> float:
+        """
+        midship section area A_M (m^2), > 0
+        """
+    @midship_area.setter
+    def midship_area(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def x_fp(self) -> float:
+        """
+        x of the forward perpendicular (m)
+        """
+    @x_fp.setter
+    def x_fp(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class Kracht:
+    """
+    Kracht's (1978) bulbous-bow coefficients measured on a mesh.
+    """
+    @property
+    def c_abl(self) -> float:
+        """
+        centre-plane area forward of the FP / A_M
+        """
+    @property
+    def c_abt(self) -> float:
+        """
+        section area at the FP / A_M
+        """
+    @property
+    def c_bb(self) -> float:
+        """
+        breadth of the section at the FP / B
+        """
+    @property
+    def c_lpr(self) -> float:
+        """
+        protrusion of the foremost submerged point / Lpp
+        """
+    @property
+    def c_vpr(self) -> float:
+        """
+        volume forward of the FP / V
+        """
+    @property
+    def c_zb(self) -> float:
+        """
+        height of the foremost point / T_FP
+        """
+class PatchHydrostatics:
+    """
+    Hydrostatics of half-hull surface patches at one draft (full ship when half_hull): lengths m, areas m^2, volume m^3.
+    """
+    @property
+    def draft(self) -> float:
+        ...
+    @property
+    def lcb(self) -> float:
+        """
+        x of the centre of buoyancy (m)
+        """
+    @property
+    def lcf(self) -> float:
+        """
+        x of the waterplane centroid (m)
+        """
+    @property
+    def vcb(self) -> float:
+        """
+        z of the centre of buoyancy, KB (m)
+        """
+    @property
+    def volume(self) -> float:
+        ...
+    @property
+    def waterplane_area(self) -> float:
+        ...
+    @property
+    def wetted_surface(self) -> float:
+        ...
+def _blend_surface(a: NurbsSurface, boundary_a: typing.Any, b: NurbsSurface, boundary_b: typing.Any, options: BlendOptions = ...) -> tuple[NurbsSurface, dict, dict]:
     ...
 def _cluster_by_knots(surface: NurbsSurface, direction: str, at: typing.SupportsFloat | typing.SupportsIndex, spacing: typing.SupportsFloat | typing.SupportsIndex, count: typing.SupportsInt | typing.SupportsIndex, growth: typing.SupportsFloat | typing.SupportsIndex) -> NurbsSurface:
     ...
 def _cluster_by_weights(surface: NurbsSurface, direction: str, ratio: typing.SupportsFloat | typing.SupportsIndex) -> NurbsSurface:
     ...
-def _compose_hull(hull: NurbsSurface, bulb: NurbsSurface = None, hull_u: typing.SupportsInt | typing.SupportsIndex = 48, hull_v: typing.SupportsInt | typing.SupportsIndex = 20, bulb_u: typing.SupportsInt | typing.SupportsIndex = 24, bulb_v: typing.SupportsInt | typing.SupportsIndex = 32, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, margin: typing.SupportsFloat | typing.SupportsIndex = 0.3, blend_hull_uv: typing.Any = None, blend_bulb_u: typing.SupportsFloat | typing.SupportsIndex = 0.5, blend_tension: typing.SupportsFloat | typing.SupportsIndex = 1.0, blend_rows: typing.SupportsInt | typing.SupportsIndex = 8, blend_check_samples: typing.SupportsInt | typing.SupportsIndex = 200) -> _ComposedHull:
+def _compose_hull(hull: NurbsSurface, bulb: NurbsSurface = None, options: ComposeOptions = ..., blend: BlendSpec = None) -> _ComposedHull:
     ...
 def _design_form_curve(request: FormCurveRequest, *, points: list = [], tangent_start: typing.Any = None, tangent_end: typing.Any = None, initial_control_points: typing.Any = None) -> dict:
     """
     Form-parameter curve solver (private; use fairlines.design_curve).
     """
-def _fair_skin(curves: typing.Any, n_control: typing.Any, mode: str, degree_u: typing.Any, degree_v: typing.Any, samples: typing.Any, smoothing: typing.SupportsFloat | typing.SupportsIndex, start: str, end: str, params: str, c1_sections: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], curvature_weight: typing.SupportsFloat | typing.SupportsIndex, e2: typing.SupportsFloat | typing.SupportsIndex, e3: typing.SupportsFloat | typing.SupportsIndex, flats: collections.abc.Sequence[tuple[typing.SupportsInt | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]] = [], hold_runs: bool = True, straight_groups: collections.abc.Sequence[tuple[typing.SupportsInt | typing.SupportsIndex, typing.SupportsInt | typing.SupportsIndex]] = []) -> SkinResult:
+def _fair_skin(curves: typing.Any, options: SkinOptions = ...) -> SkinResult:
     ...
 def _form_curve_derivatives(params: dict, n_control: typing.Any, degree: typing.Any, dim: typing.Any, fairness: dict, points: list, z: typing.Any, lambda: typing.Any = None) -> dict:
     """
@@ -1397,7 +1801,7 @@ def _form_curve_derivatives(params: dict, n_control: typing.Any, degree: typing.
     """
 def _grid_quality(points: typing.Any, ni: typing.SupportsInt | typing.SupportsIndex, nj: typing.SupportsInt | typing.SupportsIndex) -> dict:
     ...
-def _hull_bulb_seam(hull: NurbsSurface, bulb: NurbsSurface, bulb_v: typing.SupportsInt | typing.SupportsIndex = 32, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07) -> tuple[NurbsSurface, dict]:
+def _hull_bulb_seam(hull: NurbsSurface, bulb: NurbsSurface, options: ComposeOptions = ...) -> tuple[NurbsSurface, dict]:
     """
     (oriented hull, seam dict) of compose_hull([hull, bulb]) without meshing (see compose.hpp).
     """
@@ -1405,6 +1809,11 @@ def _intersect_surfaces(a: NurbsSurface, b: NurbsSurface, tolerance: typing.Supp
     ...
 def _linear_form_curve(name: str, abscissae: typing.Any, degree: typing.SupportsInt | typing.SupportsIndex, yB: typing.Any, yE: typing.Any, slopeB: typing.Any, slopeE: typing.Any, area: typing.Any, xC: typing.Any, area_from: typing.Any, points: typing.Any, y_lower: typing.Any = None, y_upper: typing.Any = None, curvB: typing.Any = None, curvE: typing.Any = None, fixed: collections.abc.Sequence[tuple[typing.SupportsInt | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]] = []) -> NurbsCurve:
     ...
+def _measure_kracht(vertices: typing.Any, faces: typing.Any, ship: KrachtShip) -> Kracht:
+    """
+    Kracht coefficients of a closed, outward half-hull mesh (vertices (n, 3) m, faces (m, 3)) below
+    ship.draft_fp. Raises InvalidInput for bad shapes, indices or ship dimensions.
+    """
 def _mesh_hull(composed: _ComposedHull, options: MeshOptions, draft: typing.SupportsFloat | typing.SupportsIndex, lids: bool, full: bool, progress: typing.Any = None) -> tuple:
     ...
 def _mesh_surface(surface: NurbsSurface, options: MeshOptions) -> tuple:
@@ -1512,6 +1921,13 @@ def hydrostatics(surface: NurbsSurface, draft: typing.SupportsFloat | typing.Sup
     length / breadth: for the coefficients (0: submerged extent); midship_x: station of Am (None: middle).
     trim: by the stern (m) over trim_length (AP at x = 0 to FP); draft is then the draft at trim_length / 2.
     Raises InvalidInput for a bad draft or option, or a waterplane above the surface's highest point.
+    """
+def hydrostatics_of_patches(patches: collections.abc.Sequence[NurbsSurface], draft: typing.SupportsFloat | typing.SupportsIndex, end_x: typing.SupportsFloat | typing.SupportsIndex, half_hull: bool = True, gauss: typing.SupportsInt | typing.SupportsIndex = 8) -> PatchHydrostatics:
+    """
+    Hydrostatics of half-hull NURBS patches that bound the body together, upright at `draft` (m), by
+    Gauss-Legendre quadrature on each patch clipped at the waterplane; each patch is turned outward
+    first (side-like: int y n_y > 0, end-like: int (x - end_x) n_x > 0). Raises InvalidInput for a bad
+    draft, end_x or gauss.
     """
 def knot_line_parameters(surface: NurbsSurface, direction: str, per_span: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
     """

@@ -39,12 +39,7 @@ from .meshes import (  # noqa: F401
     surface_meshes,
     input_hydrostatics,
 )
-from .quadrature import (  # noqa: F401
-    GAUSS_POINTS,
-    V_SUBINTERVALS,
-    CROSSING_SAMPLES,
-    surface_hydrostatics,
-)
+from .quadrature import surface_hydrostatics  # noqa: F401
 from .parameters import (  # noqa: F401
     FLAT_TOL,
     FOB_MIN_HALF_WIDTH,
@@ -81,8 +76,8 @@ from .report import (  # noqa: F401
 __all__ = [
     "SECTION_SAMPLES_U", "SECTION_SAMPLES_V", "dense_samples", "simpson", "offsets_hydrostatics",
     "AREA_FRACTION_TOL", "sections_hydrostatics", "section_at",
-    "grid_mesh", "mesh_hydrostatics", "surface_meshes", "input_hydrostatics", "GAUSS_POINTS",
-    "V_SUBINTERVALS", "CROSSING_SAMPLES", "surface_hydrostatics", "FLAT_TOL", "FOB_MIN_HALF_WIDTH",
+    "grid_mesh", "mesh_hydrostatics", "surface_meshes", "input_hydrostatics",
+    "surface_hydrostatics", "FLAT_TOL", "FOB_MIN_HALF_WIDTH",
     "DOME_MIN_DEPTH", "section_parameters", "form_parameters", "DEVIATION_EXACT_TOL", "GRID_MIN_CONTROL",
     "Rebuild", "sections_grid", "rebuild", "deviation_report", "project_points", "PARALLEL_TOL",
     "STEM_KEEL_FRACTION", "DESCRIPTION_POINTS", "hull_description", "HULL_JSON_TYPE", "import_hull",

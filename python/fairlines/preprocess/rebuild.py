@@ -174,20 +174,8 @@ def deviation_report(data: HullData, surfaces, names, fits=None) -> dict:
             "rms_pct_B": 100 * float(np.sqrt(np.mean(d ** 2))) / data.beam}
 
 
-def project_points(surface, pts, u0, v0, iterations=12):
-    """Foot points on the surface of points near parameters (u0, v0), by Gauss-Newton on
-    |S(u, v) - P|^2 for all points at once, kept inside the domain."""
-    u, v = np.array(u0, float), np.array(v0, float)
-    (ua, ub), (va, vb) = surface.domain_u, surface.domain_v
-    for _ in range(iterations):
-        d = surface.derivatives(u, v, 1)
-        r = pts - d[:, 0, 0]
-        su, sv = d[:, 1, 0], d[:, 0, 1]
-        a, b, c = np.sum(su * su, 1), np.sum(su * sv, 1), np.sum(sv * sv, 1)
-        f, g = np.sum(su * r, 1), np.sum(sv * r, 1)
-        det = a * c - b * b
-        ok = det > 1e-300
-        du = np.where(ok, (c * f - b * g) / np.where(ok, det, 1), 0)
-        dv = np.where(ok, (a * g - b * f) / np.where(ok, det, 1), 0)
-        u, v = np.clip(u + du, ua, ub), np.clip(v + dv, va, vb)
-    return surface.evaluate(u, v)
+def project_points(surface, pts, u0, v0):
+    """Foot points (m, 3) on the surface of points ``pts`` (m, 3) near parameters (u0, v0):
+    the engine's local Newton (``NurbsSurface.closest_points``), kept inside the domain.
+    Raises InvalidInput for bad shapes or non-finite values."""
+    return surface.closest_points(pts, u0, v0)[2]

@@ -1,0 +1,36 @@
+// Binding of the hydrostatics of several surface patches (python/fairlines/preprocess/quadrature.py
+// wraps it).
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "fairlines/hydrostatics.hpp"
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+namespace fairlines {
+
+void bind_patch_hydrostatics(py::module_& m) {
+  py::class_<PatchHydrostatics>(m, "PatchHydrostatics",
+                                "Hydrostatics of half-hull surface patches at one draft (full ship when half_hull): "
+                                "lengths m, areas m^2, volume m^3.")
+      .def_readonly("draft", &PatchHydrostatics::draft)
+      .def_readonly("volume", &PatchHydrostatics::volume)
+      .def_readonly("lcb", &PatchHydrostatics::lcb, "x of the centre of buoyancy (m)")
+      .def_readonly("vcb", &PatchHydrostatics::vcb, "z of the centre of buoyancy, KB (m)")
+      .def_readonly("waterplane_area", &PatchHydrostatics::waterplane_area)
+      .def_readonly("lcf", &PatchHydrostatics::lcf, "x of the waterplane centroid (m)")
+      .def_readonly("wetted_surface", &PatchHydrostatics::wetted_surface);
+  m.def("hydrostatics_of_patches",
+        [](const std::vector<NurbsSurface>& patches, double draft, double end_x, bool half_hull, int gauss) {
+          py::gil_scoped_release release;
+          return hydrostatics_of_patches(patches, draft, end_x, half_hull, gauss);
+        },
+        "patches"_a, "draft"_a, "end_x"_a, "half_hull"_a = true, "gauss"_a = 8,
+        "Hydrostatics of half-hull NURBS patches that bound the body together, upright at `draft` (m), by\n"
+        "Gauss-Legendre quadrature on each patch clipped at the waterplane; each patch is turned outward\n"
+        "first (side-like: int y n_y > 0, end-like: int (x - end_x) n_x > 0). Raises InvalidInput for a bad\n"
+        "draft, end_x or gauss.");
+}
+
+}  // namespace fairlines

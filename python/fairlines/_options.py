@@ -1,0 +1,27 @@
+"""Engine option structs filled by keyword: their fields and defaults live in the C++ headers."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from typing import Any
+
+from ._native import InvalidInput
+
+
+def option_names(options_type: type) -> tuple[str, ...]:
+    """The fields of a bound option struct."""
+    return tuple(n for n in dir(options_type) if not n.startswith("_"))
+
+
+def fill_options(options_type: type, what: str, values: Mapping[str, Any],
+                 convert: Mapping[str, Callable[[Any], Any]] | None = None):
+    """``options_type()`` with the fields in ``values`` set, each through ``convert[name]`` when
+    given (a check or a conversion the bound field does not make). Raises InvalidInput naming
+    an unknown field, and whatever a conversion raises."""
+    o = options_type()
+    names = option_names(options_type)
+    for name, value in values.items():
+        if name not in names:
+            raise InvalidInput(f"{what} option {name!r} is unknown; expected one of " + ", ".join(names))
+        setattr(o, name, convert[name](value) if convert and name in convert else value)
+    return o
