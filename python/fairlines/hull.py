@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import math
+from collections import OrderedDict
 from typing import Any
 
 import numpy as np
@@ -53,6 +54,42 @@ DECK_CHECKS = 81
 # Least slope (dz/dx) of the profile used for the arrival angle of above-water sections.
 MIN_STEM_SLOPE = 0.05
 MAX_LOWER_ANGLE = 75.0      # deg: a flat counter under a full waterline end arrives no flatter (sections allow < 80)
+# Recent hulls whose solved shape curves and fullness bands are kept (see _BuildCache).
+BUILD_CACHE_SIZE = 8
+
+
+class _BuildCache:
+    """Results of pure build steps kept by the value of everything they read, shared by every
+    Hull: a hull copied with only its SAC changed (a slider in the Blender add-on) re-solves
+    the SAC alone. A hit returns the very objects a miss would have computed from the same
+    inputs, so the geometry is bit for bit the same; callers never modify them."""
+
+    def __init__(self, size: int):
+        self.size = size
+        self.entries: OrderedDict = OrderedDict()
+
+    def get(self, key, compute):
+        if key in self.entries:
+            self.entries.move_to_end(key)
+            return self.entries[key]
+        value = compute()
+        self.entries[key] = value
+        if len(self.entries) > self.size:
+            self.entries.popitem(last=False)
+        return value
+
+    def clear(self) -> None:
+        self.entries.clear()
+
+
+_shape_cache = _BuildCache(BUILD_CACHE_SIZE)
+_band_cache = _BuildCache(BUILD_CACHE_SIZE)
+
+
+def _clear_build_caches() -> None:
+    """Forget every cached build step (tests compare cold and warm builds)."""
+    _shape_cache.clear()
+    _band_cache.clear()
 
 
 def station_positions(x_aft: float, x_fore: float, count: int, junctions: list[float] = ()) -> np.ndarray:
@@ -124,12 +161,18 @@ class Hull:
     def basic_curves(self) -> dict[str, BasicCurve]:
         """Solved basic curves: profile, dwl, deck, sac, fullness and the shape curves."""
         if self._curves is None:
-            curves = self._shape_curves()
+            d = self.description
+            pr = d.principal
+            # Everything the shape curves read; the SAC is solved below.
+            shape_key = (pr.lpp, pr.breadth, pr.draft, pr.depth, d.x_aft, d.x_fore,
+                         tuple((name, repr(spec)) for name, spec in sorted(d.curves.items()) if name != "sac"))
+            curves = dict(_shape_cache.get(shape_key, self._shape_curves))
             self._curves = curves  # the bands below read them
             try:
-                pr = self.description.principal
-                curves["sac"], curves["fullness"] = solve_sac(self.description.curves["sac"], curves["dwl"], curves["profile"],
-                                                              pr.draft, bands=self._fullness_bands())
+                band_key = (shape_key, self.stations().tobytes(), d.section_n_control)
+                bands = _band_cache.get(band_key, self._fullness_bands)
+                curves["sac"], curves["fullness"] = solve_sac(d.curves["sac"], curves["dwl"], curves["profile"],
+                                                              pr.draft, bands=bands)
             except BaseException:
                 self._curves = None
                 raise
