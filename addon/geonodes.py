@@ -14,7 +14,7 @@ import bpy
 
 from . import ids
 
-GROUP_VERSION = 4
+GROUP_VERSION = 5
 WELD = 1e-4  # metres
 
 INPUTS = [("NodeSocketGeometry", "Geometry"), ("NodeSocketBool", "Mirror"),
@@ -64,6 +64,22 @@ def _boolean(nodes, operation):
     return node
 
 
+def _near_centre_plane(nodes, links):
+    """Selection |y| < 2 WELD: the only vertices the mirror weld can join (each half is welded
+    already), so it searches a few hundred points instead of the whole hull."""
+    pos = nodes.new("GeometryNodeInputPosition")
+    sep = nodes.new("ShaderNodeSeparateXYZ")
+    links.new(pos.outputs[0], sep.inputs[0])
+    absolute = nodes.new("ShaderNodeMath")
+    absolute.operation = "ABSOLUTE"
+    links.new(_sock(sep.outputs, "Y"), absolute.inputs[0])
+    near = nodes.new("ShaderNodeMath")
+    near.operation = "LESS_THAN"
+    links.new(absolute.outputs[0], near.inputs[0])
+    near.inputs[1].default_value = 2.0 * WELD
+    return near.outputs[0]
+
+
 def ensure_group():
     group = bpy.data.node_groups.get(ids.GN_GROUP)
     if group is not None and group.bl_idname == "GeometryNodeTree" \
@@ -105,6 +121,7 @@ def ensure_group():
     weld = nodes.new("GeometryNodeMergeByDistance")
     _sock(weld.inputs, "Distance").default_value = WELD
     links.new(join.outputs[0], weld.inputs[0])
+    links.new(_near_centre_plane(nodes, links), _sock(weld.inputs, "Selection"))
     stage = _switch(nodes, links, gin.outputs["Mirror"], geo, weld.outputs[0])
 
     # Union with the other subdomains gathered in a collection.
