@@ -440,6 +440,49 @@ def t_watched_object():
 LBT = blender_graph.LPP * blender_graph.BEAM * blender_graph.DRAFT
 
 
+def _point_attribute(obj, name):
+    a = obj.data.attributes[name]
+    out = np.empty(len(a.data), dtype=np.float32)
+    a.data.foreach_get("value", out)
+    return out
+
+
+def t_deferred_curvature(tree):
+    """Curvature attributes are deferred work: a new resolution puts the new mesh in the object
+    before them, and the next tick writes the curvature of the surface at the new vertices
+    (the engine's, at the tessellation's parameters). A material reading one gets them with
+    the mesh."""
+    ev, ids = sub("evaluator"), sub("ids")
+    hull, tess, out = bpy.data.objects["Bare Hull"], tree.nodes["Tessellate Hull"], tree.nodes["Hull Output"]
+    tess.inputs["Resolution V"].default_value = 150
+    ev.flush(later=False)
+    check(len(hull.data.vertices) == 48 * 150 and hull.data.attributes.get(ids.ATTR_MEAN) is None,
+          "curvature written with the mesh")
+    ev.flush()
+    mesh = ev.outputs_of(tree, "Tessellate Hull")["Mesh"]
+    s = ev.outputs_of(tree, "Refine")["Surface"]
+    inset = lambda d: (d[0] + 1e-6 * (d[1] - d[0]), d[1] - 1e-6 * (d[1] - d[0]))  # noqa: E731
+    _, H = s.curvature(np.clip(mesh.params[:, 0], *inset(s.domain_u)), np.clip(mesh.params[:, 1], *inset(s.domain_v)))
+    check(np.array_equal(_point_attribute(hull, ids.ATTR_MEAN), np.asarray(H, dtype=np.float32)),
+          "deferred curvature is not the surface's at the new vertices")
+    # Shown by a material: written with the mesh.
+    mat = bpy.data.materials.new("Reads Curvature")
+    mat.use_nodes = True
+    mat.node_tree.nodes.new("ShaderNodeAttribute").attribute_name = ids.ATTR_MEAN
+    out.material = "keep"
+    ev.flush()
+    hull.data.materials.clear()
+    hull.data.materials.append(mat)
+    tess.inputs["Resolution V"].default_value = 160
+    ev.flush(later=False)
+    check(hull.data.attributes.get(ids.ATTR_MEAN) is not None and len(hull.data.vertices) == 48 * 160,
+          "a material reads the curvature but it came later")
+    ev.flush()
+    out.material = "zebra"
+    ev.flush()
+    bpy.data.materials.remove(mat)
+
+
 def t_hull_nodes(tree):
     """The bare-hull chain: a bigger displaced volume on the SAC node re-runs the hull and
     everything after it, but not the bulb, and the bare hull's integrated volume follows; an
@@ -1025,6 +1068,8 @@ def main():
             steps.append("rename output")
             t_watched_object()
             steps.append("watched object")
+            t_deferred_curvature(tree)
+            steps.append("deferred curvature")
             t_hull_nodes(tree)
             steps.append("hull nodes")
             t_boolean(tree)
