@@ -119,6 +119,7 @@ class Hull:
         self._designs: list | None = None
         self._skin = None
         self._ship = None
+        self._stations: np.ndarray | None = None
         self._hydro: dict = {}  # (draft, options) -> Hydrostatics of the current surface
 
     # ---- construction ---------------------------------------------------------------
@@ -230,10 +231,13 @@ class Hull:
     def stations(self) -> np.ndarray:
         """Stations of the designed sections (m): the description's list, or its count clustered
         toward the ends with stations on the junctions."""
-        d = self.description
-        if d.station_x is not None:
-            return np.asarray(d.station_x, dtype=float)
-        return station_positions(d.x_aft, d.x_fore, d.station_count, self.junctions())
+        if self._stations is None:  # asked by the band cache's key and by every section step
+            d = self.description
+            if d.station_x is not None:
+                self._stations = np.asarray(d.station_x, dtype=float)
+            else:
+                self._stations = station_positions(d.x_aft, d.x_fore, d.station_count, self.junctions())
+        return self._stations.copy()
 
     # ---- sections ---------------------------------------------------------------------
     def _lower_angles(self, xs: np.ndarray) -> np.ndarray:
@@ -265,21 +269,20 @@ class Hull:
         if np.any(xs < d.x_aft - tol) or np.any(xs > d.x_fore + tol):
             raise _native.InvalidInput(f"x is {xs.tolist()}; expected stations on the hull ({d.x_aft} to {d.x_fore} m)")
         half_b = pr.breadth / 2
-        deck, prof = bc["deck"](xs), bc["profile"](xs)
+        deck, prof = np.clip(bc["deck"](xs), 0.0, half_b), bc["profile"](xs)
         dwl = bc["dwl"](xs, outside=math.nan)
         sac = bc["sac"](xs, outside=math.nan) if with_area else None
-        shape = {name: bc[name](xs) for name in SHAPE_CURVES}
+        # a spline fitted to a bound may overshoot it by round-off (a deadrise of -4e-13 deg)
+        shape = {name: np.clip(bc[name](xs), lo, hi) for name, (_, lo, hi) in SHAPE_CURVES.items()}
         lower = self._lower_angles(xs)
         specs = []
         for i, xi in enumerate(xs):
             s = _native.SectionSpec()
             s.x, s.y_max, s.n_control = float(xi), half_b, d.section_n_control
-            s.y_deck = float(np.clip(deck[i], 0.0, half_b))
+            s.y_deck = float(deck[i])
             s.z_deck = pr.depth
             s.z_keel = float(min(prof[i], pr.depth))
-            # a spline fitted to a bound may overshoot it by round-off (a deadrise of -4e-13 deg)
-            s.top_corner, s.deadrise, s.character = (float(np.clip(shape[k][i], lo, hi))
-                                                     for k, (_, lo, hi) in SHAPE_CURVES.items())
+            s.top_corner, s.deadrise, s.character = (float(shape[k][i]) for k in SHAPE_CURVES)
             if np.isfinite(lower[i]):
                 s.lower_angle = float(lower[i])
             if np.isfinite(dwl[i]) and dwl[i] > 0 and s.z_keel < pr.draft:
