@@ -483,6 +483,22 @@ def t_deferred_curvature(tree):
     bpy.data.materials.remove(mat)
 
 
+def t_outputs_tree():
+    """The example's second tree (blender_graph.build_outputs): every node OK, or red only for
+    an optional package this Blender lacks; its Hydrostatics node shows Hull.hydrostatics()."""
+    api = sub("api")
+    tree = blender_graph.build_outputs()
+    api.evaluate(tree, check=False)
+    bad = {k: v[1] for k, v in api.status(tree).items() if v[0] != "OK" and "pip install" not in v[1]}
+    check(not bad, "outputs tree: %s" % bad)
+    h = api.hydrostatics(tree, "Hydrostatics")
+    ref = api.result(tree, "Particulars", "Hull").hydrostatics()
+    check(abs(h.volume - ref.volume) < 1e-9 * ref.volume and abs(h.lcb - ref.lcb) < 1e-9 * ref.lcb,
+          "Hydrostatics node %r vs Hull.hydrostatics() %r" % ((h.volume, h.lcb), (ref.volume, ref.lcb)))
+    check(len(bpy.data.objects["Quad Hull"].data.polygons) > 1000, "no Hull Mesh object")
+    bpy.data.node_groups.remove(tree)
+
+
 def t_hull_nodes(tree):
     """The bare-hull chain: a bigger displaced volume on the SAC node re-runs the hull and
     everything after it, but not the bulb, and the bare hull's integrated volume follows; an
@@ -1072,6 +1088,8 @@ def main():
             steps.append("watched object")
             t_deferred_curvature(tree)
             steps.append("deferred curvature")
+            t_outputs_tree()
+            steps.append("outputs tree")
             t_hull_nodes(tree)
             steps.append("hull nodes")
             t_boolean(tree)
