@@ -101,14 +101,25 @@ blender-demo: addon blender-deps
 blender-bench: build blender-deps
 	$(PY) bench/bench_blender_latency.py
 
-# docs/node_editor.png: Debian's Blender with its interface under Xvfb (throw-away user dirs).
+# docs/node_editor.png and docs/node_editor_outputs.png: Debian's Blender with its interface
+# under Xvfb (throw-away user dirs). The output nodes' optional packages go into build/shot/site
+# for the second picture, in versions that run on Debian's NumPy 1.24 (matplotlib < 3.9).
+SHOT_SITE_PACKAGES := "matplotlib>=3.7,<3.9" "contourpy<1.3" cycler kiwisolver fonttools python-dateutil six \
+  pyparsing packaging pillow ezdxf typing_extensions rhino3dm meshio rich markdown-it-py mdurl pygments
 blender-screenshot: addon blender-deps
 	rm -rf build/shot
+	$(PIP) install -q --no-deps --target build/shot/site $(SHOT_SITE_PACKAGES)
 	BLENDER_USER_SCRIPTS=$(abspath build/shot/scripts) BLENDER_USER_CONFIG=$(abspath build/shot/config) \
 	  blender -b --factory-startup --python tools/blender_screenshot.py -- --zip none --prefs-only
 	BLENDER_USER_SCRIPTS=$(abspath build/shot/scripts) BLENDER_USER_CONFIG=$(abspath build/shot/config) \
 	  xvfb-run -a -s "-screen 0 2560x1440x24" blender --python tools/blender_screenshot.py -- \
 	  --zip "$$(ls dist/fairlines_blender-*-legacy.zip)" --out docs/node_editor.png
+	BLENDER_USER_SCRIPTS=$(abspath build/shot/scripts) BLENDER_USER_CONFIG=$(abspath build/shot/config) \
+	  xvfb-run -a -s "-screen 0 2560x1440x24" blender --python tools/blender_screenshot.py -- \
+	  --zip "$$(ls dist/fairlines_blender-*-legacy.zip)" --outputs --site build/shot/site \
+	  --out docs/node_editor_outputs.png
+	for f in docs/node_editor.png docs/node_editor_outputs.png; do \
+	  $(PY) -c "import sys; from PIL import Image; Image.open(sys.argv[1]).convert('RGB').quantize(256).save(sys.argv[1], optimize=True)" $$f; done
 
 # docs/blender_sweep.png: the Sweep node's nine variants (Workbench, bpy module, headless).
 blender-sweep-picture: addon blender-deps

@@ -27,7 +27,7 @@ import time
 
 import bpy
 
-from . import engine, ids, progress
+from . import engine, progress, queue
 from .nodes.base import ERROR_COLOUR, FairlinesNode, NodeError
 from .sockets import compatible
 
@@ -42,26 +42,24 @@ class Entry:
 
 SLICE_MS = 30.0
 _cache = {}          # (tree name, node name) -> Entry
-_pending = set()     # names of trees waiting for evaluation
+_pending = queue.pending  # names of trees waiting for evaluation (queue.py fills it)
 _deferred = []       # cache keys of entries that still hold a deferred job, oldest first
-_busy = False
 last_stats = {"tree": "", "evaluated": [], "ms": 0.0}
 
 
-def is_fairlines_tree(tree):
-    return tree is not None and getattr(tree, "bl_idname", "") == ids.TREE
+is_fairlines_tree = queue.is_fairlines_tree
+request = queue.push  # queue a tree for evaluation
 
 
-def request(tree):
-    """Queue a tree for evaluation (called from property update callbacks)."""
-    if _busy or not is_fairlines_tree(tree):
-        return
-    _pending.add(tree.name)
+def _wake():
     # Ask Blender, not a flag of ours, whether the timer is live: Blender can drop timers
     # (file load, undo) without calling them. A running timer picks the tree up before it
     # stops (it returns None only when nothing is pending).
     if not bpy.app.timers.is_registered(_on_timer):
         bpy.app.timers.register(_on_timer, first_interval=0.0, persistent=True)
+
+
+queue.set_waker(_wake)
 
 
 def drop_timer():
@@ -129,7 +127,6 @@ def _finish(tree, node, entry):
     """Run an entry's deferred job: its outputs join the entry's, its info the node's. A failing
     job fails the node as a failing compute() would: red, outputs dropped, and its version bumped
     so that the nodes which already used it re-run (and show they are blocked)."""
-    global _busy
     job, entry.later = entry.later, None
     t0 = time.perf_counter()
     try:
@@ -138,7 +135,7 @@ def _finish(tree, node, entry):
     except Exception as exc:
         more, ok, message = {}, False, _message(exc)
     entry.ms += (time.perf_counter() - t0) * 1e3
-    busy, _busy = _busy, True  # writing the node's status must not queue an evaluation
+    busy, queue.busy = queue.busy, True  # writing the node's status must not queue an evaluation
     try:
         if ok:
             info = entry.info + more.pop("__info__", "")
@@ -149,11 +146,10 @@ def _finish(tree, node, entry):
             entry.version += 1
             _show(node, "ERROR", message, entry.ms)
     finally:
-        _busy = busy
+        queue.busy = busy
     if not ok:
         _pending.add(tree.name)  # the nodes downstream of it must now show they are blocked
-        if not bpy.app.timers.is_registered(_on_timer):
-            bpy.app.timers.register(_on_timer, first_interval=0.0, persistent=True)
+        _wake()
 
 
 def clear(tree_name=None, outputs_only=False):
@@ -261,10 +257,9 @@ def _message(exc):
 def evaluate(tree, deadline=None):
     """Evaluate a tree; returns the names of the nodes that ran. With a deadline
     (perf_counter seconds) it stops between nodes once past it and queues the tree again."""
-    global _busy
-    if _busy:
+    if queue.busy:
         return []
-    _busy = True
+    queue.busy = True
     t_start = time.perf_counter()
     ran = []
     try:
@@ -288,7 +283,7 @@ def evaluate(tree, deadline=None):
         for key in [k for k in _cache if (k[0] == tree.name and k[1] not in live) or k[0] not in trees]:
             del _cache[key]  # deleted nodes, and trees deleted or renamed
     finally:
-        _busy = False
+        queue.busy = False
     last_stats.update(tree=tree.name, evaluated=ran, ms=(time.perf_counter() - t_start) * 1e3)
     return ran
 

@@ -1,13 +1,13 @@
-"""Property constructors shared by nodes and sockets: every user-editable value asks the
-evaluator for a (deferred) re-evaluation of its tree when it changes."""
+"""Property constructors shared by nodes and sockets: every user-editable value queues its
+tree for a (deferred) re-evaluation when it changes (queue.py; the evaluator drains it)."""
 
 import bpy
 
+from . import queue
+
 
 def _changed(self, context):
-    # Imported late: evaluator imports the node modules' base, which imports this module.
-    from . import evaluator
-    evaluator.request(self.id_data)
+    queue.push(self.id_data)
 
 
 def length(name, default=1.0, min=-1e6, max=1e6, soft_min=None, soft_max=None, description=""):

@@ -86,17 +86,46 @@ def write_mesh(obj, mesh_data, smooth=True, sharp_angle=None):
         if not smooth or bpy.app.version < (4, 1, 0):
             me.polygons.foreach_set("use_smooth", np.full(nf, bool(smooth)))
         me[ids.MESH_TOPOLOGY_KEY] = topo
-    for domain, attributes in (("POINT", mesh_data.attributes), ("FACE", mesh_data.face_attributes)):
+    # Lazy attributes not computed yet are written later (write_point_attributes); until then
+    # an in-place update keeps their previous values.
+    point = mesh_data.ready_attributes()
+    for domain, attributes in (("POINT", point), ("FACE", mesh_data.face_attributes)):
         for name, values in attributes.items():
             _write_attribute(me, name, domain, np.ascontiguousarray(values, dtype=np.float32))
+    keep = set(point) | set(mesh_data.face_attributes) | set(mesh_data.pending_names())
     for name in [a.name for a in me.attributes if a.name in (ids.ATTR_GAUSSIAN, ids.ATTR_MEAN, ids.ATTR_QUALITY)]:
-        if name not in mesh_data.attributes and name not in mesh_data.face_attributes:
+        if name not in keep:
             me.attributes.remove(me.attributes[name])
     me.update()
     if smooth and sharp_angle is not None:
         mark_sharp(me, sharp_angle)
     obj.update_tag()
     return in_place
+
+
+def write_point_attributes(obj, attributes):
+    """Write {name: (n,) values} as float point attributes of obj's mesh (same vertex count)."""
+    np = engine.np
+    me = obj.data
+    for name, values in attributes.items():
+        _write_attribute(me, name, "POINT", np.ascontiguousarray(values, dtype=np.float32))
+    me.update()
+    obj.update_tag()
+
+
+def reads_attribute(obj, names):
+    """Whether a material or Geometry Nodes modifier of obj reads one of the named attributes
+    (an Attribute shader node, a Named Attribute node at the group's top level)."""
+    trees = [slot.material.node_tree for slot in obj.material_slots
+             if slot.material is not None and slot.material.node_tree is not None]
+    trees += [m.node_group for m in obj.modifiers if m.type == "NODES" and m.node_group is not None]
+    for tree in trees:
+        for node in tree.nodes:
+            if node.bl_idname == "ShaderNodeAttribute" and node.attribute_name in names:
+                return True
+            if node.bl_idname == "GeometryNodeInputNamedAttribute" and node.inputs["Name"].default_value in names:
+                return True
+    return False
 
 
 def mark_sharp(me, angle):

@@ -84,6 +84,36 @@ def build(tree_name=TREE_NAME):
     return tree
 
 
+OUTPUTS_TREE_NAME = "Fairlines Ship Outputs"
+
+
+def build_outputs(tree_name=OUTPUTS_TREE_NAME):
+    """A second tree with the output nodes on the same ship: the engine's quad-dominant Hull
+    Mesh (into an object and to a mesh file), Hydrostatics of the bare hull at T on Lpp and B,
+    and the file writers (CAD, lines plan, curves of form; they write when Export is pressed).
+    Kept apart from build()'s tree, whose every change must redraw within a frame."""
+    api = _addon_module("api")
+    tree = api.new_tree(tree_name)
+    P = PARTICULARS
+    ship = api.add(tree, "Particulars", "Particulars", (-1000, 250), Lpp=P["lpp"], B=P["breadth"], T=P["draft"],
+                   D=P["depth"], Cb=P["cb"], LCB=P["lcb"], bulb=P["bulb"], ship_name="Panamax container ship")
+    bare = api.add(tree, "Bare Hull", "Bare Hull", (-650, 650))
+    hydro = api.add(tree, "Hydrostatics", "Hydrostatics", (-300, 700))
+    mesh = api.add(tree, "Hull Mesh", "Hull Mesh", (-650, 150), Size=8.0)
+    mesh_out = api.add(tree, "Mesh Output", "Quad Hull Output", (-300, 250), object_name="Quad Hull", mirror=True)
+    export_mesh = api.add(tree, "Export Mesh", "Export Mesh", (-300, -150))
+    cad = api.add(tree, "Export CAD", "Export CAD", (100, 700))
+    plan = api.add(tree, "Lines Plan", "Lines Plan", (100, 350))
+    cof = api.add(tree, "Curves of Form", "Curves of Form", (100, 0))
+    for a, x, b, y in ((ship, "Hull", bare, "Hull"), (bare, "Surface", hydro, "Surface"), (ship, "T", hydro, "Draft"),
+                       (ship, "Lpp", hydro, "Lpp"), (ship, "B", hydro, "Beam"), (ship, "Hull", mesh, "Hull"),
+                       (mesh, "Mesh", mesh_out, "Mesh"), (ship, "T", mesh_out, "Waterline"),
+                       (mesh, "Mesh", export_mesh, "Mesh"), (ship, "Hull", cad, "Hull"),
+                       (ship, "Hull", plan, "Hull"), (ship, "Hull", cof, "Hull")):
+        api.link(tree, a, x, b, y)
+    return tree
+
+
 def enable_addon(zip_path, tmp_user_dir=None):
     """Install and enable the packaged add-on the way a user does: as an extension on
     Blender 4.2+, as a legacy add-on before. Returns the add-on's module name."""

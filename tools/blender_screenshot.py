@@ -4,6 +4,10 @@ its interface, under Xvfb when there is no display:
     xvfb-run -a -s "-screen 0 2560x1440x24" blender \
         --python tools/blender_screenshot.py -- --zip dist/...-legacy.zip --out docs/node_editor.png
 
+--outputs shows the example's second tree instead, the output nodes (blender_graph.build_outputs);
+--site DIR appends a folder of optional packages (matplotlib, ezdxf, rhino3dm, meshio) to
+Blender's Python path so the file nodes show what they do rather than the pip line.
+
 Use a throw-away BLENDER_USER_CONFIG whose userpref.blend has the splash screen off (the
 Makefile target writes one with --prefs-only first).
 """
@@ -24,7 +28,11 @@ ap = argparse.ArgumentParser()
 ap.add_argument("--zip", required=True)
 ap.add_argument("--out", default="")
 ap.add_argument("--prefs-only", action="store_true", help="save preferences without the splash, quit")
+ap.add_argument("--outputs", action="store_true", help="the tree of output nodes instead of the example graph")
+ap.add_argument("--site", default="", help="folder of optional packages to append to sys.path")
 args = ap.parse_args(argv)
+if args.site:
+    sys.path.append(os.path.abspath(args.site))
 
 state = {"step": 0}
 ZOOM_STEPS = 7
@@ -33,9 +41,12 @@ ZOOM_STEPS = 7
 def setup():
     module = blender_graph.enable_addon(os.path.abspath(args.zip))
     ev = importlib.import_module(module + ".evaluator")
-    tree = blender_graph.build()
+    if args.outputs:
+        tree = blender_graph.build_outputs()
+        tree.nodes["Export CAD"].filepath = "//hull.3dm"  # Rhino: rhino3dm, no OpenCASCADE needed
+    else:
+        tree = blender_graph.build()
     ev.flush()
-    # Show one node failing, to show how errors look: a knot outside the domain.
     window = bpy.context.window_manager.windows[0]
     screen = window.screen
     areas = sorted(screen.areas, key=lambda a: a.width * a.height, reverse=True)

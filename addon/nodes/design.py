@@ -220,20 +220,21 @@ class FLNodeCompose(FairlinesNode, bpy.types.Node):
         # boundary it measures by default are a deferred job below (same figures).
         composed = fl.compose(subdomains, hull_u=cells[0], hull_v=cells[1], bulb_u=cells[2], bulb_v=cells[3],
                               blend_check_samples=2)
-        mesh = composed.full_mesh() if self.output == "full" else composed.mesh
-        volume = composed.volume * (2.0 if self.output == "full" else 1.0)
+        full = self.output == "full"
+        mesh = composed.full_mesh() if full else composed.mesh
         data = MeshData(np.asarray(mesh.vertices, dtype=np.float64), np.asarray(mesh.faces, dtype=np.int32))
-        info = "%d vertices, %d triangles\nvolume %.6g m3 (%s)" % (
-            len(data.vertices), len(data.faces), volume, "both sides" if self.output == "full" else "half")
+        info = "%d vertices, %d triangles" % (len(data.vertices), len(data.faces))
         if composed.intersection_curves:
             info += "\nseam gap %.2g m" % max(c["max_gap"] for c in composed.intersection_curves)
-        out = {"Mesh": data, "Volume": float(volume), "__info__": info}
-        if composed.blend is not None:
-            surface_b = bulb.surface if isinstance(bulb, fl.BulbousBow) else bulb
+        surface_b = bulb.surface if isinstance(bulb, fl.BulbousBow) else bulb
 
-            def continuity():
+        def later():
+            # Volume and the blend's continuity change nothing in the mesh: a deferred job.
+            volume = composed.volume * (2.0 if full else 1.0)
+            more = "\nvolume %.6g m3 (%s)" % (volume, "both sides" if full else "half")
+            if composed.blend is not None:
                 at_hull = fl.boundary_continuity(composed.blend, False, composed.trimmed_surfaces[0][0], 200)
                 at_bulb = fl.boundary_continuity(composed.blend, True, surface_b, 200)
-                return {"__info__": "\nblend %.3f / %.3f deg" % (at_hull["max_angle_deg"], at_bulb["max_angle_deg"])}
-            out["__later__"] = continuity
-        return out
+                more += "\nblend %.3f / %.3f deg" % (at_hull["max_angle_deg"], at_bulb["max_angle_deg"])
+            return {"Volume": float(volume), "__info__": more}
+        return {"Mesh": data, "__info__": info, "__later__": later}

@@ -226,9 +226,12 @@ class FLNodeBasicCurve(FairlinesNode, bpy.types.Node):
         bc = hull.basic_curves[self.curve]  # solved here, so an infeasible request is red here
         if bc.curve is None and bc.value is not None:
             return {"Hull": hull, "__info__": "constant %g" % bc.value}
-        fp = bc.form_parameters()
-        info = ", ".join("%s %.6g" % (k, v) for k, v in fp.items() if k in ("Area", "xC", "yB", "yE") and v is not None)
-        return {"Hull": hull, "Curve": bc.curve, "__info__": info}
+
+        def info():  # integrals of the solved curve, only shown: a deferred job (evaluator.py)
+            fp = bc.form_parameters()
+            return {"__info__": ", ".join("%s %.6g" % (k, v) for k, v in fp.items()
+                                          if k in ("Area", "xC", "yB", "yE") and v is not None)}
+        return {"Hull": hull, "Curve": bc.curve, "__later__": info}
 
 
 @register

@@ -5,7 +5,7 @@ import functools
 import bpy
 
 from .. import engine, ids, props
-from ..data import LinesData, MeshData
+from ..data import LazyAttributes, LinesData, MeshData
 from .base import FairlinesNode, NodeError, register
 
 
@@ -94,17 +94,26 @@ class FLNodeCurvature(FairlinesNode, bpy.types.Node):
         if mesh.surface is None or mesh.params is None:
             raise NodeError("Mesh has no surface parameters; connect Tessellate directly")
         s = mesh.surface
-        # A whole-ship hull has degenerate corners (the deck line ends on the stem: no tangent
-        # plane there). Vertices on the domain's boundary take the curvature a hair inside it,
-        # the limit the shading sees; interior vertices are evaluated where they are.
-        u = np.clip(mesh.params[:, 0], *_inset(s.domain_u))
-        v = np.clip(mesh.params[:, 1], *_inset(s.domain_v))
-        K, H = s.curvature(u, v)
-        K = np.asarray(K, dtype=np.float32)
-        H = np.asarray(H, dtype=np.float32)
-        out = mesh.with_attributes({ids.ATTR_GAUSSIAN: K, ids.ATTR_MEAN: H})
-        return {"Mesh": out,
-                "__info__": "K %.3g .. %.3g 1/m2\nH %.3g .. %.3g 1/m" % (K.min(), K.max(), H.min(), H.max())}
+        params = mesh.params
+
+        def curvature():
+            # A whole-ship hull has degenerate corners (the deck line ends on the stem: no
+            # tangent plane there). Vertices on the domain's boundary take the curvature a hair
+            # inside it, the limit the shading sees; interior vertices are evaluated where they are.
+            u = np.clip(params[:, 0], *_inset(s.domain_u))
+            v = np.clip(params[:, 1], *_inset(s.domain_v))
+            K, H = s.curvature(u, v)
+            return {ids.ATTR_GAUSSIAN: np.asarray(K, dtype=np.float32), ids.ATTR_MEAN: np.asarray(H, dtype=np.float32)}
+        # The attributes are computed when first read: by a node downstream, by a Mesh Output
+        # whose material or modifier reads them, or else after the meshes are drawn (the mesh
+        # itself does not wait for them; see data.LazyAttributes and evaluator.py).
+        lazy = LazyAttributes((ids.ATTR_GAUSSIAN, ids.ATTR_MEAN), curvature)
+
+        def info():
+            values = lazy.values()
+            K, H = values[ids.ATTR_GAUSSIAN], values[ids.ATTR_MEAN]
+            return {"__info__": "K %.3g .. %.3g 1/m2\nH %.3g .. %.3g 1/m" % (K.min(), K.max(), H.min(), H.max())}
+        return {"Mesh": mesh.with_attributes(lazy=lazy), "__later__": info}
 
 
 @register

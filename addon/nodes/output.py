@@ -67,8 +67,24 @@ class FLNodeMeshOutput(_ObjectOutput, FairlinesNode, bpy.types.Node):
             materials.assign(obj, materials.hull_paint("%s (%s)" % (ids.MAT_PAINT, obj.name), waterline))
         elif self.material == "zebra":
             materials.assign(obj, materials.zebra())
-        return {"__info__": "%s: %d vertices%s" % (obj.name, len(mesh.vertices),
-                                                    " (in place)" if in_place else "")}
+        out = {"__info__": "%s: %d vertices%s" % (obj.name, len(mesh.vertices), " (in place)" if in_place else "")}
+        pending = mesh.pending_names()
+        if pending and scene_io.reads_attribute(obj, pending):
+            scene_io.write_point_attributes(obj, mesh.lazy.values())  # shown: needed now
+        elif pending:
+            out["__later__"] = lambda: _write_later(obj, mesh)
+        return out
+
+
+def _write_later(obj, mesh):
+    """Deferred job of Mesh Output: the lazy attributes nothing showed, once the mesh is drawn."""
+    try:
+        same = len(obj.data.vertices) == len(mesh.vertices)
+    except (ReferenceError, AttributeError):
+        same = False  # the object or its mesh went away meanwhile
+    if same:
+        scene_io.write_point_attributes(obj, mesh.lazy.values())
+    return {}
 
 
 @register

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import math
+from collections import OrderedDict
 from typing import Any
 
 import numpy as np
@@ -53,6 +54,42 @@ DECK_CHECKS = 81
 # Least slope (dz/dx) of the profile used for the arrival angle of above-water sections.
 MIN_STEM_SLOPE = 0.05
 MAX_LOWER_ANGLE = 75.0      # deg: a flat counter under a full waterline end arrives no flatter (sections allow < 80)
+# Recent hulls whose solved shape curves and fullness bands are kept (see _BuildCache).
+BUILD_CACHE_SIZE = 8
+
+
+class _BuildCache:
+    """Results of pure build steps kept by the value of everything they read, shared by every
+    Hull: a hull copied with only its SAC changed (a slider in the Blender add-on) re-solves
+    the SAC alone. A hit returns the very objects a miss would have computed from the same
+    inputs, so the geometry is bit for bit the same; callers never modify them."""
+
+    def __init__(self, size: int):
+        self.size = size
+        self.entries: OrderedDict = OrderedDict()
+
+    def get(self, key, compute):
+        if key in self.entries:
+            self.entries.move_to_end(key)
+            return self.entries[key]
+        value = compute()
+        self.entries[key] = value
+        if len(self.entries) > self.size:
+            self.entries.popitem(last=False)
+        return value
+
+    def clear(self) -> None:
+        self.entries.clear()
+
+
+_shape_cache = _BuildCache(BUILD_CACHE_SIZE)
+_band_cache = _BuildCache(BUILD_CACHE_SIZE)
+
+
+def _clear_build_caches() -> None:
+    """Forget every cached build step (tests compare cold and warm builds)."""
+    _shape_cache.clear()
+    _band_cache.clear()
 
 
 def station_positions(x_aft: float, x_fore: float, count: int, junctions: list[float] = ()) -> np.ndarray:
@@ -82,6 +119,7 @@ class Hull:
         self._designs: list | None = None
         self._skin = None
         self._ship = None
+        self._stations: np.ndarray | None = None
         self._hydro: dict = {}  # (draft, options) -> Hydrostatics of the current surface
 
     # ---- construction ---------------------------------------------------------------
@@ -124,12 +162,18 @@ class Hull:
     def basic_curves(self) -> dict[str, BasicCurve]:
         """Solved basic curves: profile, dwl, deck, sac, fullness and the shape curves."""
         if self._curves is None:
-            curves = self._shape_curves()
+            d = self.description
+            pr = d.principal
+            # Everything the shape curves read; the SAC is solved below.
+            shape_key = (pr.lpp, pr.breadth, pr.draft, pr.depth, d.x_aft, d.x_fore,
+                         tuple((name, repr(spec)) for name, spec in sorted(d.curves.items()) if name != "sac"))
+            curves = dict(_shape_cache.get(shape_key, self._shape_curves))
             self._curves = curves  # the bands below read them
             try:
-                pr = self.description.principal
-                curves["sac"], curves["fullness"] = solve_sac(self.description.curves["sac"], curves["dwl"], curves["profile"],
-                                                              pr.draft, bands=self._fullness_bands())
+                band_key = (shape_key, self.stations().tobytes(), d.section_n_control)
+                bands = _band_cache.get(band_key, self._fullness_bands)
+                curves["sac"], curves["fullness"] = solve_sac(d.curves["sac"], curves["dwl"], curves["profile"],
+                                                              pr.draft, bands=bands)
             except BaseException:
                 self._curves = None
                 raise
@@ -187,10 +231,13 @@ class Hull:
     def stations(self) -> np.ndarray:
         """Stations of the designed sections (m): the description's list, or its count clustered
         toward the ends with stations on the junctions."""
-        d = self.description
-        if d.station_x is not None:
-            return np.asarray(d.station_x, dtype=float)
-        return station_positions(d.x_aft, d.x_fore, d.station_count, self.junctions())
+        if self._stations is None:  # asked by the band cache's key and by every section step
+            d = self.description
+            if d.station_x is not None:
+                self._stations = np.asarray(d.station_x, dtype=float)
+            else:
+                self._stations = station_positions(d.x_aft, d.x_fore, d.station_count, self.junctions())
+        return self._stations.copy()
 
     # ---- sections ---------------------------------------------------------------------
     def _lower_angles(self, xs: np.ndarray) -> np.ndarray:
@@ -229,21 +276,20 @@ class Hull:
         if np.any(xs < d.x_aft - tol) or np.any(xs > d.x_fore + tol):
             raise _native.InvalidInput(f"x is {xs.tolist()}; expected stations on the hull ({d.x_aft} to {d.x_fore} m)")
         half_b = pr.breadth / 2
-        deck, prof = bc["deck"](xs), bc["profile"](xs)
+        deck, prof = np.clip(bc["deck"](xs), 0.0, half_b), bc["profile"](xs)
         dwl = bc["dwl"](xs, outside=math.nan)
         sac = bc["sac"](xs, outside=math.nan) if with_area else None
-        shape = {name: bc[name](xs) for name in SHAPE_CURVES}
+        # a spline fitted to a bound may overshoot it by round-off (a deadrise of -4e-13 deg)
+        shape = {name: np.clip(bc[name](xs), lo, hi) for name, (_, lo, hi) in SHAPE_CURVES.items()}
         lower = self._lower_angles(xs)
         specs = []
         for i, xi in enumerate(xs):
             s = _native.SectionSpec()
             s.x, s.y_max, s.n_control = float(xi), half_b, d.section_n_control
-            s.y_deck = float(np.clip(deck[i], 0.0, half_b))
+            s.y_deck = float(deck[i])
             s.z_deck = pr.depth
             s.z_keel = float(min(prof[i], pr.depth))
-            # a spline fitted to a bound may overshoot it by round-off (a deadrise of -4e-13 deg)
-            s.top_corner, s.deadrise, s.character = (float(np.clip(shape[k][i], lo, hi))
-                                                     for k, (_, lo, hi) in SHAPE_CURVES.items())
+            s.top_corner, s.deadrise, s.character = (float(shape[k][i]) for k in SHAPE_CURVES)
             if np.isfinite(lower[i]):
                 s.lower_angle = float(lower[i])
                 s.draft = pr.draft  # where the dry section's virtual waterline point lies
