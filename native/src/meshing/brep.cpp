@@ -28,6 +28,9 @@ constexpr int kPoleSegments = 4;        ///< copies of a pole node along its par
 constexpr double kTraceStep = 0.25;     ///< waterline trace step / size
 constexpr int kBisections = 60;         ///< bisection steps for an edge's crossing of the cut
 constexpr double kVertexMatch = 1e-9;   ///< vertices closer than this x model size are one
+constexpr double kSubstep = 0.25;       ///< integration step of an edge's size / the size
+constexpr int kMaxSubsteps = 64;        ///< sub-steps between two samples at most
+constexpr double kEdgeGrading = 0.6;    ///< an edge's size grows by at most this x the distance from its ends' sizes
 
 EdgeSample lerp(const EdgeSample& a, const EdgeSample& b, double t) {
   EdgeSample r;
@@ -364,6 +367,31 @@ struct Mesher {
   std::vector<Discrete> disc;
   std::map<std::pair<int, int>, LoopNode> mids;  // (edge, segment) -> midpoint node (all-quad)
   std::vector<std::vector<double>> cum_I;         // I at every sample of every edge
+  std::vector<double> vertex_h;                   // size at each end vertex, over all its edges
+
+  /// Arc length (m) from the first sample at every sample of edge e.
+  std::vector<double> arc(const Edge& e) const {
+    std::vector<double> s(e.s.size(), 0.0);
+    for (size_t k = 1; k < e.s.size(); ++k) s[k] = s[k - 1] + (e.s[k].xyz - e.s[k - 1].xyz).norm();
+    return s;
+  }
+
+  /// The smallest size each vertex sees along any of its edges, graded by the distance, so an
+  /// edge that meets a finely divided one (at a cone-like corner such as a stem top) is graded
+  /// down to it instead of ending in a fan of slivers.
+  void vertex_sizes(const std::vector<char>& needed) {
+    vertex_h.assign(nodes.size(), 1e300);
+    for (size_t ei = 0; ei < b.edges.size(); ++ei) {
+      const Edge& e = b.edges[ei];
+      if (!needed[ei] || e.degenerate) continue;
+      const std::vector<double> s = arc(e);
+      for (size_t k = 0; k < e.s.size(); ++k) {
+        const double h = h_at(e, e.s[k]);
+        vertex_h[e.v0] = std::min(vertex_h[e.v0], h + kEdgeGrading * s[k]);
+        vertex_h[e.v1] = std::min(vertex_h[e.v1], h + kEdgeGrading * (s.back() - s[k]));
+      }
+    }
+  }
 
   double h_at(const Edge& e, const EdgeSample& x) const {
     double h = o.size;
@@ -395,11 +423,23 @@ struct Mesher {
       return;
     }
     auto& c = cum_I[ei];
-    double prev_h = h_at(e, e.s[0]);
+    const std::vector<double> s = arc(e);
+    auto graded = [&](const EdgeSample& x, double at) {
+      return std::min({h_at(e, x), vertex_h[e.v0] + kEdgeGrading * at, vertex_h[e.v1] + kEdgeGrading * (s.back() - at)});
+    };
+    double prev_h = graded(e.s[0], 0.0);
     for (size_t k = 1; k < e.s.size(); ++k) {
-      const double h = h_at(e, e.s[k]);
-      c[k] = c[k - 1] + (e.s[k].xyz - e.s[k - 1].xyz).norm() * 0.5 * (1.0 / h + 1.0 / prev_h);
-      prev_h = h;
+      // sub-steps where the size is small against the sample spacing (a straight edge has two
+      // samples; its graded size still varies along it)
+      const double len = s[k] - s[k - 1];
+      const int m = std::clamp(static_cast<int>(std::ceil(len / (kSubstep * prev_h))), 1, kMaxSubsteps);
+      c[k] = c[k - 1];
+      for (int j = 1; j <= m; ++j) {
+        const double t = static_cast<double>(j) / m;
+        const double h = graded(lerp(e.s[k - 1], e.s[k], t), s[k - 1] + t * len);
+        c[k] += len / m * 0.5 * (1.0 / h + 1.0 / prev_h);
+        prev_h = h;
+      }
     }
     const int n = std::max(1, static_cast<int>(std::ceil(c.back() - 1e-6)));
     d.ids.push_back(e.v0);
@@ -507,6 +547,7 @@ SurfaceMesh mesh_brep(Brep& b, const MeshOptions& o, const std::function<void(in
   for (const Face& f : b.faces)
     if (f.keep)
       for (const auto& [e, fwd] : f.loop) needed[e] = 1;
+  M.vertex_sizes(needed);
   for (size_t e = 0; e < b.edges.size(); ++e)
     if (needed[e]) M.discretise(static_cast<int>(e));
   std::vector<std::array<int, 4>> el;

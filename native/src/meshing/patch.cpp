@@ -29,6 +29,7 @@ constexpr double kDefaultMinSize = 0.05;   ///< minimum size / size when not giv
 constexpr int kSwapPasses = 8;             ///< sweeps of 3-D edge swaps
 constexpr int kAugmentVisits = 400;        ///< triangles one alternating-path search may visit
 constexpr double kGrading = 0.6;           ///< size may grow by this x the distance from the boundary
+constexpr double kFanSpread = 4.0;         ///< iso-line length ratio from which a face is a fan
 
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
@@ -294,6 +295,52 @@ class ArcMap {
   std::vector<double> s_;
 };
 
+/// Length of the iso-lines across one direction relative to their mean, as a function of the
+/// other parameter: r(t) = |iso-line at t| / mean. Scaling the cross coordinate by r makes a
+/// face whose iso-lines shrink to a pole (a stem top, a bulb's nose) a fan in the planar
+/// coordinates, as it is in 3-D, instead of a rectangle of slivers.
+class IsoWidth {
+ public:
+  IsoWidth(const FaceGeometry& g, double a, double b, double c0, double c1, bool along_u) : a_(a), b_(b) {
+    r_.assign(kSamples + 1, 1.0);
+    double mean = 0.0;
+    for (int k = 0; k <= kSamples; ++k) {
+      const double t = a + (b - a) * k / kSamples;
+      Vec3 prev = g.point(along_u ? Vec2(t, c0) : Vec2(c0, t));
+      double len = 0.0;
+      for (int j = 1; j <= kAcross; ++j) {
+        const double c = c0 + (c1 - c0) * j / kAcross;
+        const Vec3 p = g.point(along_u ? Vec2(t, c) : Vec2(c, t));
+        len += (p - prev).norm();
+        prev = p;
+      }
+      r_[k] = len;
+      mean += len / (kSamples + 1);
+    }
+    lo_ = 1e300;
+    hi_ = 0.0;
+    for (double& x : r_) {
+      x = mean > 0 ? std::max(x / mean, kFloor) : 1.0;
+      lo_ = std::min(lo_, x);
+      hi_ = std::max(hi_, x);
+    }
+  }
+  double operator()(double t) const {
+    const double f = b_ > a_ ? std::clamp((t - a_) / (b_ - a_), 0.0, 1.0) * kSamples : 0.0;
+    const int k = std::min(static_cast<int>(std::floor(f)), kSamples - 1);
+    return r_[k] + (r_[k + 1] - r_[k]) * (f - k);
+  }
+  /// max r / min r: how far the iso-lines are from equal length.
+  double spread() const { return hi_ / lo_; }
+
+ private:
+  static constexpr int kSamples = 128;    ///< iso-lines tabulated
+  static constexpr int kAcross = 32;      ///< chords along each iso-line
+  static constexpr double kFloor = 1e-3;  ///< r never below this: the pole's copies stay apart
+  double a_, b_, lo_ = 1, hi_ = 1;
+  std::vector<double> r_;
+};
+
 // ---- elements ---------------------------------------------------------------------------
 
 struct Work {
@@ -469,19 +516,55 @@ void smooth(Work& w, int passes) {
   }
 }
 
+/// A pole's copies along its parameter edge (consecutive loop nodes with one global id) are
+/// one node: elements are rewritten on the first copy and those left with fewer than three
+/// corners dropped, so the all-quad split sees a plain fan of triangles about the pole.
+/// Returns the canonical local id of every node.
+std::vector<int> merge_pole_copies(Work& w, const std::vector<LoopNode>& loop) {
+  const int nb = static_cast<int>(loop.size());
+  std::vector<int> canon(w.xyz.size());
+  for (size_t i = 0; i < canon.size(); ++i) canon[i] = static_cast<int>(i);
+  int start = 0;  // a run of copies may wrap round the loop's start
+  while (start < nb && loop[start].id == loop[(start + nb - 1) % nb].id) ++start;
+  if (start == nb) return canon;
+  for (int k = 1; k < nb; ++k) {
+    const int i = (start + k) % nb, prev = (start + k - 1) % nb;
+    if (loop[i].id == loop[prev].id) canon[i] = canon[prev];
+  }
+  std::vector<std::array<int, 4>> kept;
+  for (const auto& e : w.el) {
+    std::array<int, 4> r{-1, -1, -1, -1};
+    int k = 0;
+    for (int c = 0; c < (e[3] < 0 ? 3 : 4); ++c) {
+      const int id = canon[e[c]];
+      if (k == 0 || r[k - 1] != id) r[k++] = id;
+    }
+    if (k > 1 && r[k - 1] == r[0]) r[--k] = -1;
+    if (k >= 3) kept.push_back(r);
+  }
+  w.el = std::move(kept);
+  return canon;
+}
+
 /// Each quad into four and each triangle into three quads (edge midpoints and centre).
-void split_all_quad(Work& w, int loop_size, const LoopMidpoint& midpoint, std::vector<int>& global) {
+/// `canon`: canonical local id of each node (pole copies merged).
+void split_all_quad(Work& w, const std::vector<int>& canon, int loop_size, const LoopMidpoint& midpoint,
+                    std::vector<int>& global) {
   std::unordered_map<long long, int> mid;
   const long long N = static_cast<long long>(w.xyz.size()) + 1;
+  std::unordered_map<long long, int> loop_edge;  // canonical end pair -> loop edge index
+  for (int i = 0; i < loop_size; ++i) {
+    const int a = canon[i], b = canon[(i + 1) % loop_size];
+    if (a != b) loop_edge[std::min(a, b) * N + std::max(a, b)] = i;
+  }
   auto edge_mid = [&](int a, int b) {
     const long long key = std::min(a, b) * N + std::max(a, b);
     auto it = mid.find(key);
     if (it != mid.end()) return it->second;
     int id;
-    const bool on_loop = a < loop_size && b < loop_size &&
-                         ((b == (a + 1) % loop_size) || (a == (b + 1) % loop_size));
-    if (on_loop) {
-      const int i = b == (a + 1) % loop_size ? a : b;
+    const auto on_loop = loop_edge.find(key);
+    if (on_loop != loop_edge.end()) {
+      const int i = on_loop->second;
       const LoopNode m = midpoint(i);
       w.uv.push_back(m.uv);
       w.xyz.push_back(m.xyz);
@@ -527,8 +610,16 @@ bool point_in_polygon(const Vec2& q, const std::vector<Vec2>& poly) {
 // ---- FaceGeometry ------------------------------------------------------------------------
 
 Vec3 FaceGeometry::point(const Vec2& q) const {
-  if (surface) return surface->evaluate(q.x(), q.y());
-  return origin + q.x() * ax + q.y() * ay;
+  if (!surface) return origin + q.x() * ax + q.y() * ay;
+  Vec3 p;
+  if (ruled(q.x())) {
+    const double t = (q.x() - ruled_u0) / (ruled_u1 - ruled_u0);
+    p = (1 - t) * surface->evaluate(ruled_u0, q.y()) + t * surface->evaluate(ruled_u1, q.y());
+  } else {
+    p = surface->evaluate(q.x(), q.y());
+  }
+  if (clamp_y) p.y() = std::max(p.y(), 0.0);
+  return p;
 }
 
 void FaceGeometry::first(const Vec2& q, Vec3& p, Vec3& su, Vec3& sv) const {
@@ -539,15 +630,32 @@ void FaceGeometry::first(const Vec2& q, Vec3& p, Vec3& su, Vec3& sv) const {
     return;
   }
   double out[9];
-  surface->evaluate_first_derivatives_into(&q.x(), &q.y(), 1, out);
-  p = Vec3(out[0], out[1], out[2]);
+  if (ruled(q.x())) {  // (1 - t) S(u0, v) + t S(u1, v)
+    const double t = (q.x() - ruled_u0) / (ruled_u1 - ruled_u0);
+    double a[9], b[9];
+    const double u0 = ruled_u0, u1 = ruled_u1;
+    surface->evaluate_first_derivatives_into(&u0, &q.y(), 1, a);
+    surface->evaluate_first_derivatives_into(&u1, &q.y(), 1, b);
+    for (int k = 0; k < 3; ++k) {
+      out[k] = (1 - t) * a[k] + t * b[k];
+      out[3 + k] = (b[k] - a[k]) / (u1 - u0);
+      out[6 + k] = (1 - t) * a[6 + k] + t * b[6 + k];
+    }
+  } else {
+    surface->evaluate_first_derivatives_into(&q.x(), &q.y(), 1, out);
+  }
+  p = Vec3(out[0], clamp_y ? std::max(out[1], 0.0) : out[1], out[2]);
   su = Vec3(out[3], out[4], out[5]);
   sv = Vec3(out[6], out[7], out[8]);
 }
 
+bool FaceGeometry::ruled(double u) const { return surface && u > ruled_u0 && u < ruled_u1; }
+
 double FaceGeometry::curvature_sum(const Vec2& q) const {
   if (!surface) return 0.0;
-  const Eigen::MatrixXd d = surface->derivatives(q.x(), q.y(), 2);
+  // in a ruled strip: the curvature of the surface where the strip starts
+  const double u = ruled(q.x()) ? ruled_u0 : q.x();
+  const Eigen::MatrixXd d = surface->derivatives(u, q.y(), 2);
   const Vec3 sv = d.row(1), svv = d.row(2), su = d.row(3), suv = d.row(4), suu = d.row(6);
   Vec3 n = su.cross(sv);
   const double len = n.norm();
@@ -643,6 +751,19 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   // mean arc length along three iso-lines (monotone, so orientation is kept), which evens out
   // parametrisations whose speed jumps (a hull's flat-of-side zone between triple knots)
   const ArcMap amap_u(g, lo.x(), hi.x(), lo.y(), hi.y(), true), amap_v(g, lo.y(), hi.y(), lo.x(), hi.x(), false);
+  // the cross coordinate of the direction whose iso-lines vary most in length is scaled by
+  // their length (one direction only, so the map stays one-to-one)
+  const IsoWidth width_v(g, lo.x(), hi.x(), lo.y(), hi.y(), true);   // iso-u lines: lengths along v
+  const IsoWidth width_u(g, lo.y(), hi.y(), lo.x(), hi.x(), false);  // iso-v lines: lengths along u
+  const bool scale_v = width_v.spread() >= width_u.spread();
+  const bool fan = std::max(width_v.spread(), width_u.spread()) > kFanSpread;
+  auto scaled = [&](const Vec2& q) {
+    if (!fan) return Vec2(amap_u(q.x()), amap_v(q.y()));
+    return scale_v ? Vec2(amap_u(q.x()), amap_v(q.y()) * width_v(q.x()))
+                   : Vec2(amap_u(q.x()) * width_u(q.y()), amap_v(q.y()));
+  };
+  auto speed_u = [&](const Vec2& q) { return amap_u.speed(q.x()) * (fan && !scale_v ? width_u(q.y()) : 1.0); };
+  auto speed_v = [&](const Vec2& q) { return amap_v.speed(q.y()) * (fan && scale_v ? width_v(q.x()) : 1.0); };
   const double size_scale = o.all_quad ? 2.0 : 1.0;
   // interior nodes: corners of the balanced subdivision, inside and clear of the boundary
   const auto ru = root_lines(g, lo.x(), hi.x(), lo.y(), hi.y(), true, size_scale * o.size);
@@ -662,7 +783,6 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   const double bucket = size_scale * o.size;
   std::unordered_map<long long, std::vector<int>> buckets;
   auto bkey = [&](long long i, long long j) { return i * 1000003LL + j; };
-  auto scaled = [&](const Vec2& q) { return Vec2(amap_u(q.x()), amap_v(q.y())); };
   for (int i = 0; i < nb; ++i) {
     const Vec2 a = scaled(poly[i]), b = scaled(poly[(i + 1) % nb]);
     const long long i0 = static_cast<long long>(std::floor(std::min(a.x(), b.x()) / bucket));
@@ -682,7 +802,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
     const double h = size_at(q, p);
     const double clear = kClearance * h;
     // search radius in scaled coordinates: the slowest direction bounds the reach
-    const double slow = std::max(1e-300, std::min(su.norm() / amap_u.speed(q.x()), sv.norm() / amap_v.speed(q.y())));
+    const double slow = std::max(1e-300, std::min(su.norm() / speed_u(q), sv.norm() / speed_v(q)));
     const double reach = std::min(clear / slow, 50.0 * bucket);
     const Vec2 s = scaled(q);
     const long long i0 = static_cast<long long>(std::floor((s.x() - reach) / bucket));
@@ -741,9 +861,10 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   }
   std::vector<int> global(w.xyz.size(), -1);
   for (int i = 0; i < nb; ++i) global[i] = loop[i].id;
+  const std::vector<int> canon = merge_pole_copies(w, loop);
   if (o.all_quad) {
     smooth(w, o.smoothing_passes);
-    split_all_quad(w, nb, midpoint, global);
+    split_all_quad(w, canon, nb, midpoint, global);
     // split-off boundary midpoints stay where the edge put them
     std::vector<int> perm;  // move loop-midpoint nodes before the free ones: renumber
     const int n = static_cast<int>(w.xyz.size());
