@@ -794,6 +794,8 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   }
   std::vector<Vec2> pts2;
   for (const Vec2& q : poly) pts2.push_back(scaled(q));
+  double longest_side = 0.0;
+  for (int i = 0; i < nb; ++i) longest_side = std::max(longest_side, (w.xyz[(i + 1) % nb] - w.xyz[i]).norm());
   for (const auto& [U, V] : sub.corners()) {
     const Vec2 q(sub.u(U), sub.v(V));
     if (!point_in_polygon(q, poly)) continue;
@@ -803,7 +805,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
     const double clear = kClearance * h;
     // search radius in scaled coordinates: the slowest direction bounds the reach
     const double slow = std::max(1e-300, std::min(su.norm() / speed_u(q), sv.norm() / speed_v(q)));
-    const double reach = std::min(clear / slow, 50.0 * bucket);
+    const double reach = std::min(kClearance * std::max(h, longest_side) / slow, 50.0 * bucket);
     const Vec2 s = scaled(q);
     const long long i0 = static_cast<long long>(std::floor((s.x() - reach) / bucket));
     const long long i1 = static_cast<long long>(std::floor((s.x() + reach) / bucket));
@@ -815,7 +817,11 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
         auto it = buckets.find(bkey(x, y));
         if (it == buckets.end()) continue;
         for (int i : it->second)
-          if (segment_distance(p, w.xyz[i], w.xyz[(i + 1) % nb]) < clear) {
+          // clear of the side by the local size or the side's own length, whichever is
+          // more: a node close to a long side (a boundary coarser than the curvature inside
+          // wants) would be joined to its ends by slivers
+          if (segment_distance(p, w.xyz[i], w.xyz[(i + 1) % nb]) <
+              std::max(clear, kClearance * (w.xyz[(i + 1) % nb] - w.xyz[i]).norm())) {
             near = true;
             break;
           }
