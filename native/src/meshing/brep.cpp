@@ -29,7 +29,7 @@ constexpr double kTraceStep = 0.25;     ///< waterline trace step / size
 constexpr int kBisections = 60;         ///< bisection steps for an edge's crossing of the cut
 constexpr double kVertexMatch = 1e-9;   ///< vertices closer than this x model size are one
 constexpr double kSubstep = 0.25;       ///< integration step of an edge's size / the size
-constexpr int kMaxSubsteps = 64;        ///< sub-steps between two samples at most
+constexpr double kMinSubstep = 1e-3;    ///< sub-steps are at least this fraction of the sample spacing
 constexpr double kEdgeGrading = 0.6;    ///< an edge's size grows by at most this x the distance from its ends' sizes
 
 EdgeSample lerp(const EdgeSample& a, const EdgeSample& b, double t) {
@@ -366,7 +366,12 @@ struct Mesher {
   std::vector<Vec3> nodes;
   std::vector<Discrete> disc;
   std::map<std::pair<int, int>, LoopNode> mids;  // (edge, segment) -> midpoint node (all-quad)
-  std::vector<std::vector<double>> cum_I;         // I at every sample of every edge
+  /// I along every edge: (sample interval k, fraction t in it, I) at every integration step
+  struct Station {
+    int k;
+    double t, I;
+  };
+  std::vector<std::vector<Station>> cum_I;
   std::vector<double> vertex_h;                   // size at each end vertex, over all its edges
 
   /// Arc length (m) from the first sample at every sample of edge e.
@@ -403,16 +408,18 @@ struct Mesher {
   EdgeSample point_at_I(int ei, double I) const {
     const Edge& e = b.edges[ei];
     const auto& c = cum_I[ei];
-    size_t k = 1;
-    while (k + 1 < c.size() && c[k] < I) ++k;
-    const double w = c[k] > c[k - 1] ? std::clamp((I - c[k - 1]) / (c[k] - c[k - 1]), 0.0, 1.0) : 0.0;
-    return edge_point(b, e, static_cast<int>(k) - 1, w);
+    const auto it = std::lower_bound(c.begin() + 1, c.end() - 1, I, [](const Station& a, double x) { return a.I < x; });
+    const Station& hi = *it;
+    Station lo = *(it - 1);
+    if (lo.k != hi.k) lo = {hi.k, 0.0, lo.I};  // a step that starts at a sample
+    const double w = hi.I > lo.I ? std::clamp((I - lo.I) / (hi.I - lo.I), 0.0, 1.0) : 0.0;
+    return edge_point(b, e, hi.k, lo.t + w * (hi.t - lo.t));
   }
 
   void discretise(int ei) {
     const Edge& e = b.edges[ei];
     Discrete d;
-    cum_I[ei].assign(e.s.size(), 0.0);
+    cum_I[ei].clear();
     if (e.degenerate) {
       for (int k = 0; k <= kPoleSegments; ++k) {
         d.pts.push_back(lerp(e.s.front(), e.s.back(), static_cast<double>(k) / kPoleSegments));
@@ -427,35 +434,37 @@ struct Mesher {
     auto graded = [&](const EdgeSample& x, double at) {
       return std::min({h_at(e, x), vertex_h[e.v0] + kEdgeGrading * at, vertex_h[e.v1] + kEdgeGrading * (s.back() - at)});
     };
-    double prev_h = graded(e.s[0], 0.0);
+    double prev_h = graded(e.s[0], 0.0), I = 0.0;
+    c.push_back({0, 0.0, 0.0});
     for (size_t k = 1; k < e.s.size(); ++k) {
       // sub-steps where the size is small against the sample spacing (a straight edge has two
       // samples; its graded size still varies along it)
       const double len = s[k] - s[k - 1];
-      const int m = std::clamp(static_cast<int>(std::ceil(len / (kSubstep * prev_h))), 1, kMaxSubsteps);
-      c[k] = c[k - 1];
-      for (int j = 1; j <= m; ++j) {
-        const double t = static_cast<double>(j) / m;
-        const double h = graded(lerp(e.s[k - 1], e.s[k], t), s[k - 1] + t * len);
-        c[k] += len / m * 0.5 * (1.0 / h + 1.0 / prev_h);
+      for (double t = 0.0; t < 1.0;) {
+        const double next = std::min(1.0, t + std::max(kSubstep * prev_h / std::max(len, 1e-300), kMinSubstep));
+        const double h = graded(lerp(e.s[k - 1], e.s[k], next), s[k - 1] + next * len);
+        I += (next - t) * len * 0.5 * (1.0 / h + 1.0 / prev_h);
+        c.push_back({static_cast<int>(k) - 1, next, I});
         prev_h = h;
+        t = next;
       }
     }
-    const int n = std::max(1, static_cast<int>(std::ceil(c.back() - 1e-6)));
+    const double total = c.back().I;
+    const int n = std::max(1, static_cast<int>(std::ceil(total - 1e-6)));
     d.ids.push_back(e.v0);
     d.pts.push_back(e.s.front());
     d.at.push_back(0.0);
     for (int i = 1; i < n; ++i) {
-      const double I = c.back() * i / n;
-      EdgeSample x = point_at_I(ei, I);
+      const double Ii = total * i / n;
+      EdgeSample x = point_at_I(ei, Ii);
       d.ids.push_back(static_cast<int>(nodes.size()));
       nodes.push_back(x.xyz);
       d.pts.push_back(x);
-      d.at.push_back(I);
+      d.at.push_back(Ii);
     }
     d.ids.push_back(e.v1);
     d.pts.push_back(e.s.back());
-    d.at.push_back(c.back());
+    d.at.push_back(total);
     disc[ei] = std::move(d);
   }
 
