@@ -29,6 +29,7 @@ constexpr double kDefaultMinSize = 0.05;   ///< minimum size / size when not giv
 constexpr int kSwapPasses = 8;             ///< sweeps of 3-D edge swaps
 constexpr int kAugmentVisits = 400;        ///< triangles one alternating-path search may visit
 constexpr double kGrading = 0.6;           ///< size may grow by this x the distance from the boundary
+constexpr double kFlat = 1e-2;             ///< a triangle with |2 area| below this x its longest side^2 is flat
 constexpr double kFanSpread = 4.0;         ///< iso-line length ratio from which a face is a fan
 
 using Vec2 = Eigen::Vector2d;
@@ -516,6 +517,66 @@ void smooth(Work& w, int passes) {
   }
 }
 
+/// Canonical local id of every node: a pole's copies along its parameter edge (consecutive
+/// loop nodes with one global id) map to the first copy.
+std::vector<int> pole_canon(const std::vector<LoopNode>& loop, size_t nodes) {
+  const int nb = static_cast<int>(loop.size());
+  std::vector<int> canon(nodes);
+  for (size_t i = 0; i < nodes; ++i) canon[i] = static_cast<int>(i);
+  int start = 0;  // a run of copies may wrap round the loop's start
+  while (start < nb && loop[start].id == loop[(start + nb - 1) % nb].id) ++start;
+  if (start == nb) return canon;
+  for (int k = 1; k < nb; ++k) {
+    const int i = (start + k) % nb, prev = (start + k - 1) % nb;
+    if (loop[i].id == loop[prev].id) canon[i] = canon[prev];
+  }
+  return canon;
+}
+
+/// Triangles on the canonical nodes: those collapsed by a pole dropped, and a flat one left
+/// beside the pole (three nodes of one straight boundary run, joined across the pole's copies
+/// in the planar triangulation) flipped with its neighbour across its longest side.
+std::vector<std::array<int, 3>> merged_triangles(const Work& w, const std::vector<std::array<int, 3>>& in,
+                                                 const std::vector<int>& canon) {
+  std::vector<std::array<int, 3>> tri;
+  for (const auto& t : in) {
+    const std::array<int, 3> r{canon[t[0]], canon[t[1]], canon[t[2]]};
+    if (r[0] != r[1] && r[1] != r[2] && r[2] != r[0]) tri.push_back(r);
+  }
+  const long long N = static_cast<long long>(w.xyz.size());
+  std::unordered_map<long long, int> half;  // directed edge -> triangle
+  for (int t = 0; t < static_cast<int>(tri.size()); ++t)
+    for (int k = 0; k < 3; ++k) half[tri[t][k] * N + tri[t][(k + 1) % 3]] = t;
+  for (int t = 0; t < static_cast<int>(tri.size()); ++t) {
+    const Vec3 &a = w.xyz[tri[t][0]], &b = w.xyz[tri[t][1]], &c = w.xyz[tri[t][2]];
+    double longest = 0.0;
+    int k = 0;  // edge k: from corner k to corner k + 1
+    for (int j = 0; j < 3; ++j) {
+      const double l = (w.xyz[tri[t][(j + 1) % 3]] - w.xyz[tri[t][j]]).squaredNorm();
+      if (l > longest) longest = l, k = j;
+    }
+    if ((b - a).cross(c - a).norm() > kFlat * longest) continue;
+    const int p = tri[t][k], q = tri[t][(k + 1) % 3], m = tri[t][(k + 2) % 3];
+    auto it = half.find(q * N + p);
+    if (it == half.end()) continue;
+    const int u = it->second;
+    int x = -1;
+    for (int j = 0; j < 3; ++j)
+      if (tri[u][j] != p && tri[u][j] != q) x = tri[u][j];
+    const double before = std::min(min_angle(w.xyz[p], w.xyz[q], w.xyz[m]), min_angle(w.xyz[q], w.xyz[p], w.xyz[x]));
+    const double after = std::min(min_angle(w.xyz[p], w.xyz[m], w.xyz[x]), min_angle(w.xyz[m], w.xyz[q], w.xyz[x]));
+    const Vec3 n0 = (w.xyz[q] - w.xyz[p]).cross(w.xyz[x] - w.xyz[p]);  // the neighbour's side
+    const bool same_side = (w.xyz[m] - w.xyz[p]).cross(w.xyz[x] - w.xyz[p]).dot(n0) > 0 &&
+                           (w.xyz[q] - w.xyz[m]).cross(w.xyz[x] - w.xyz[m]).dot(n0) > 0;
+    if (!(after > before) || !same_side) continue;
+    tri[t] = {p, m, x};  // (p, q, m) + (q, p, x) -> (p, m, x) + (m, q, x)
+    tri[u] = {m, q, x};
+    for (int v : {t, u})
+      for (int j = 0; j < 3; ++j) half[tri[v][j] * N + tri[v][(j + 1) % 3]] = v;
+  }
+  return tri;
+}
+
 /// A pole's copies along its parameter edge (consecutive loop nodes with one global id) are
 /// one node: elements are rewritten on the first copy and those left with fewer than three
 /// corners dropped, so the all-quad split sees a plain fan of triangles about the pole.
@@ -845,7 +906,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
         return then > now + 1e-9;
       },
       kSwapPasses);
-  const auto& tri = tr.triangles();
+  const std::vector<std::array<int, 3>> tri = merged_triangles(w, tr.triangles(), pole_canon(loop, w.xyz.size()));
   std::vector<std::array<int, 3>> nbr;
   std::vector<std::array<double, 3>> q;
   const std::vector<int> mate = match_triangles(w, tri, nbr, q);
