@@ -30,6 +30,7 @@ constexpr int kBisections = 60;         ///< bisection steps for an edge's cross
 constexpr double kVertexMatch = 1e-9;   ///< vertices closer than this x model size are one
 constexpr double kSubstep = 0.25;       ///< integration step of an edge's size / the size
 constexpr double kMinSubstep = 1e-3;    ///< sub-steps are at least this fraction of the sample spacing
+constexpr double kAllQuadTolerance = 0.8;  ///< chordal tolerance factor of the all-quad split's coarse pass
 constexpr double kEdgeGrading = 0.6;    ///< an edge's size grows by at most this x the distance from its ends' sizes
 
 EdgeSample lerp(const EdgeSample& a, const EdgeSample& b, double t) {
@@ -547,8 +548,12 @@ void orient(std::vector<std::array<int, 4>>& el, const std::vector<Vec3>& x) {
 
 }  // namespace
 
-SurfaceMesh mesh_brep(Brep& b, const MeshOptions& o, const std::function<void(int, int, const std::string&)>& progress,
+SurfaceMesh mesh_brep(Brep& b, const MeshOptions& options, const std::function<void(int, int, const std::string&)>& progress,
                       bool outward) {
+  // the all-quad split's coarse pass sizes for a tighter tolerance: a coarse quad's split
+  // quarters sag about a quarter as much, but smoothing and the 2:1 steps of the sizes add some
+  MeshOptions o = options;
+  if (o.all_quad) o.chordal_tolerance *= kAllQuadTolerance;
   Mesher M{b, o, o.all_quad ? 2.0 : 1.0, b.vertices, {}, {}, {}};
   M.disc.resize(b.edges.size());
   M.cum_I.resize(b.edges.size());
