@@ -216,6 +216,20 @@ class Subdivision {
   int roots_ = 0;
 };
 
+/// Cumulative chord length (m) at n + 1 points of an iso-line: the parameter that varies
+/// (u if `vary_u`) runs from a to b, the other is held at `fixed`.
+std::vector<double> iso_line_arc(const FaceGeometry& g, bool vary_u, double fixed, double a, double b, int n) {
+  auto at = [&](double t) { return g.point(vary_u ? Vec2(t, fixed) : Vec2(fixed, t)); };
+  std::vector<double> s(n + 1, 0.0);
+  Vec3 prev = at(a);
+  for (int k = 1; k <= n; ++k) {
+    const Vec3 p = at(a + (b - a) * k / n);
+    s[k] = s[k - 1] + (p - prev).norm();
+    prev = p;
+  }
+  return s;
+}
+
 /// Root lines in one direction: equal arc length along the face's middle iso-line, as many
 /// as the longest of three iso-lines needs at the maximum size.
 std::vector<double> root_lines(const FaceGeometry& g, double a, double b, double c0, double c1, bool along_u,
@@ -224,18 +238,8 @@ std::vector<double> root_lines(const FaceGeometry& g, double a, double b, double
   double longest = 0.0;
   std::vector<double> s(kSamples + 1, 0.0);
   for (double f : {0.0, 0.5, 1.0}) {
-    const double c = c0 + (c1 - c0) * f;
-    double len = 0.0;
-    Vec3 prev = g.point(along_u ? Vec2(a, c) : Vec2(c, a));
-    std::vector<double> cum(kSamples + 1, 0.0);
-    for (int k = 1; k <= kSamples; ++k) {
-      const double t = a + (b - a) * k / kSamples;
-      const Vec3 p = g.point(along_u ? Vec2(t, c) : Vec2(c, t));
-      len += (p - prev).norm();
-      cum[k] = len;
-      prev = p;
-    }
-    longest = std::max(longest, len);
+    const std::vector<double> cum = iso_line_arc(g, along_u, c0 + (c1 - c0) * f, a, b, kSamples);
+    longest = std::max(longest, cum.back());
     if (f == 0.5) s = cum;
   }
   const int n = std::max(1, static_cast<int>(std::ceil(longest / h - 1e-9)));
@@ -263,16 +267,8 @@ class ArcMap {
   ArcMap(const FaceGeometry& g, double a, double b, double c0, double c1, bool along_u) : a_(a), b_(b) {
     s_.assign(kSamples + 1, 0.0);
     for (double f : {0.25, 0.5, 0.75}) {
-      const double c = c0 + (c1 - c0) * f;
-      Vec3 prev = g.point(along_u ? Vec2(a, c) : Vec2(c, a));
-      double len = 0.0;
-      for (int k = 1; k <= kSamples; ++k) {
-        const double t = a + (b - a) * k / kSamples;
-        const Vec3 p = g.point(along_u ? Vec2(t, c) : Vec2(c, t));
-        len += (p - prev).norm();
-        s_[k] += len / 3.0;
-        prev = p;
-      }
+      const std::vector<double> arc = iso_line_arc(g, along_u, c0 + (c1 - c0) * f, a, b, kSamples);
+      for (int k = 1; k <= kSamples; ++k) s_[k] += arc[k] / 3.0;
     }
     const double total = std::max(s_.back(), 1e-300);
     for (int k = 1; k <= kSamples; ++k)  // strictly increasing, even across a pole
@@ -306,17 +302,8 @@ class IsoWidth {
     r_.assign(kSamples + 1, 1.0);
     double mean = 0.0;
     for (int k = 0; k <= kSamples; ++k) {
-      const double t = a + (b - a) * k / kSamples;
-      Vec3 prev = g.point(along_u ? Vec2(t, c0) : Vec2(c0, t));
-      double len = 0.0;
-      for (int j = 1; j <= kAcross; ++j) {
-        const double c = c0 + (c1 - c0) * j / kAcross;
-        const Vec3 p = g.point(along_u ? Vec2(t, c) : Vec2(c, t));
-        len += (p - prev).norm();
-        prev = p;
-      }
-      r_[k] = len;
-      mean += len / (kSamples + 1);
+      r_[k] = iso_line_arc(g, !along_u, a + (b - a) * k / kSamples, c0, c1, kAcross).back();
+      mean += r_[k] / (kSamples + 1);
     }
     lo_ = 1e300;
     hi_ = 0.0;
