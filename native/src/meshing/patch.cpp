@@ -564,36 +564,6 @@ std::vector<std::array<int, 3>> merged_triangles(const Work& w, const std::vecto
   return tri;
 }
 
-/// A pole's copies along its parameter edge (consecutive loop nodes with one global id) are
-/// one node: elements are rewritten on the first copy and those left with fewer than three
-/// corners dropped, so the all-quad split sees a plain fan of triangles about the pole.
-/// Returns the canonical local id of every node.
-std::vector<int> merge_pole_copies(Work& w, const std::vector<LoopNode>& loop) {
-  const int nb = static_cast<int>(loop.size());
-  std::vector<int> canon(w.xyz.size());
-  for (size_t i = 0; i < canon.size(); ++i) canon[i] = static_cast<int>(i);
-  int start = 0;  // a run of copies may wrap round the loop's start
-  while (start < nb && loop[start].id == loop[(start + nb - 1) % nb].id) ++start;
-  if (start == nb) return canon;
-  for (int k = 1; k < nb; ++k) {
-    const int i = (start + k) % nb, prev = (start + k - 1) % nb;
-    if (loop[i].id == loop[prev].id) canon[i] = canon[prev];
-  }
-  std::vector<std::array<int, 4>> kept;
-  for (const auto& e : w.el) {
-    std::array<int, 4> r{-1, -1, -1, -1};
-    int k = 0;
-    for (int c = 0; c < (e[3] < 0 ? 3 : 4); ++c) {
-      const int id = canon[e[c]];
-      if (k == 0 || r[k - 1] != id) r[k++] = id;
-    }
-    if (k > 1 && r[k - 1] == r[0]) r[--k] = -1;
-    if (k >= 3) kept.push_back(r);
-  }
-  w.el = std::move(kept);
-  return canon;
-}
-
 /// Each quad into four and each triangle into three quads (edge midpoints and centre).
 /// `canon`: canonical local id of each node (pole copies merged).
 void split_all_quad(Work& w, const std::vector<int>& canon, int loop_size, const LoopMidpoint& midpoint,
@@ -915,7 +885,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   }
   std::vector<int> global(w.xyz.size(), -1);
   for (int i = 0; i < nb; ++i) global[i] = loop[i].id;
-  const std::vector<int> canon = merge_pole_copies(w, loop);
+  const std::vector<int> canon = pole_canon(loop, w.xyz.size());  // the triangles were merged on it
   if (o.all_quad) {
     smooth(w, o.smoothing_passes);
     split_all_quad(w, canon, nb, midpoint, global);
