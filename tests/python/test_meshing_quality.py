@@ -133,3 +133,10 @@ def test_all_quad_open_wetted_mesh_ends_on_the_waterline_or_centre_plane(ship):
     und, counts = np.unique(np.sort(rows, axis=1), axis=0, return_counts=True)
     rim = m.vertices[np.unique(und[counts == 1])]
     assert np.all((np.abs(rim[:, 2] - EXAMPLE_DRAFT) < 1e-9) | (np.abs(rim[:, 1]) < 1e-9))
+
+
+def test_all_quad_cut_through_the_bulb_is_watertight(ship):
+    """A waterline below the bulb's top cuts the bulb face; its nose pole edge (one vertex at
+    both ends) must stay in the bulb's loop, not become a face of its own."""
+    m = fl.mesh_hull(ship, size=2.0, draft=8.0, all_quad=True)
+    assert edge_census(m.faces) == (0, 0, 0) and np.all(m.faces[:, 3] >= 0)

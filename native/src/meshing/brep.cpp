@@ -294,9 +294,13 @@ void Brep::cut_below(double T, double size, const std::string& lid_name, bool ke
           g.loop.push_back({br->second.first, true});
           i = br->second.second;
         } else {
+          // the next piece in the face's own order first: a pole edge starts and ends at one
+          // vertex, where the piece after it starts too, and must stay between them
+          const size_t next = (i + 1) % kept.size();
           auto st = start_index.find(ex);
-          if (st == start_index.end()) throw Error("mesh: the cut loop of face '" + f.name + "' does not close");
-          i = st->second;
+          if (!used[next] && start_of(kept[next]) == ex) i = next;
+          else if (st == start_index.end()) throw Error("mesh: the cut loop of face '" + f.name + "' does not close");
+          else i = st->second;
         }
       }
       out_faces.push_back(g);
