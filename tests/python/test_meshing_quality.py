@@ -87,7 +87,7 @@ def test_composed_ship_stem_top_wedge_has_no_sliver(ship, bare, size, all_quad):
 
 
 def test_composed_ship_quad_dominant_mesh_has_no_inverted_element(ship):
-    for size in (3.0, 1.5):
+    for size in (4.0, 3.0, 1.5):  # at 4 m smoothing folded a quad in the blend's creased keel end
         assert fl.mesh_hull(ship, size=size).quality()["inverted"] == 0
 
 

@@ -564,6 +564,31 @@ std::vector<std::array<int, 3>> merged_triangles(const Work& w, const std::vecto
   return tri;
 }
 
+/// A quad that smoothing on a sharply curved surface left folded (non-positive scaled Jacobian
+/// about its own diagonal normal, the census's measure) is cut into two triangles along the
+/// diagonal that gives the better pair.
+void split_folded_quads(Work& w) {
+  std::vector<std::array<int, 4>> out;
+  for (const auto& e : w.el) {
+    if (e[3] < 0) {
+      out.push_back(e);
+      continue;
+    }
+    Vec3 p[4];
+    for (int i = 0; i < 4; ++i) p[i] = w.xyz[e[i]];
+    const Vec3 n = (p[2] - p[0]).cross(p[3] - p[1]);
+    if (n.norm() > 0 && element_quality(p, 4, n.normalized()) > 0) {
+      out.push_back(e);
+      continue;
+    }
+    const std::array<int, 4> a{e[0], e[1], e[2], -1}, b{e[0], e[2], e[3], -1}, c{e[0], e[1], e[3], -1}, d{e[1], e[2], e[3], -1};
+    const bool first = std::min(w.quality(a), w.quality(b)) >= std::min(w.quality(c), w.quality(d));
+    out.push_back(first ? a : c);
+    out.push_back(first ? b : d);
+  }
+  w.el = std::move(out);
+}
+
 /// Each quad into four and each triangle into three quads (edge midpoints and centre).
 /// `canon`: canonical local id of each node (pole copies merged).
 void split_all_quad(Work& w, const std::vector<int>& canon, int loop_size, const LoopMidpoint& midpoint,
@@ -915,6 +940,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
     return {std::move(r.xyz), std::move(r.uv), std::move(r.el), std::move(g2)};
   }
   smooth(w, o.smoothing_passes);
+  split_folded_quads(w);
   global.resize(w.xyz.size(), -1);
   return {std::move(w.xyz), std::move(w.uv), std::move(w.el), std::move(global)};
 }
