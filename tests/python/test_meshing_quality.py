@@ -19,6 +19,7 @@ CORNER_SHARE = 0.98      # share of quad corners within 45-135 deg (the goal, 0.
 WEDGE_RADIUS = 8.0       # m, the stem-top wedge: hull elements this close to the stem top
 CLAMP_VOLUME_TOL = 1e-4  # volume the y >= 0 clamp may remove, relative to the half hull's
 MESH_VOLUME_TOL = 2e-3   # closed mesh vs NURBS quadrature at this element size
+CAPYTAINE_TOL = 3e-3     # capytaine's panel hydrostatics converge as O(h^2)
 
 
 @pytest.fixture(scope="module")
@@ -140,3 +141,14 @@ def test_all_quad_cut_through_the_bulb_is_watertight(ship):
     both ends) must stay in the bulb's loop, not become a face of its own."""
     m = fl.mesh_hull(ship, size=2.0, draft=8.0, all_quad=True)
     assert edge_census(m.faces) == (0, 0, 0) and np.all(m.faces[:, 3] >= 0)
+
+
+def test_all_quad_open_wetted_panels_give_capytaine_the_nurbs_volume(bare, tmp_path):
+    cpt = pytest.importorskip("capytaine")
+    m = fl.mesh_hull(bare, size=SHIP_SIZE, draft=EXAMPLE_DRAFT, lids=False, all_quad=True)
+    fl.write_gdf(m, tmp_path / "quads.gdf")
+    cm = cpt.load_mesh(tmp_path / "quads.gdf", file_format="gdf")
+    ref = fl.hydrostatics(bare, EXAMPLE_DRAFT)
+    assert cm.nb_faces == 2 * len(m.faces)
+    assert cm.volume == pytest.approx(ref.volume, rel=CAPYTAINE_TOL)
+    assert cm.waterplane_area == pytest.approx(ref.waterplane_area, rel=CAPYTAINE_TOL)
