@@ -77,7 +77,7 @@ def test_bare_hull_with_its_stem_top_pole_has_no_sliver(bare, all_quad):
     assert q["inverted"] == 0 and q["min_scaled_jacobian"] >= MIN_SJ
 
 
-@pytest.mark.parametrize("size, all_quad", [(3.0, False), (3.0, True), (1.5, True)])
+@pytest.mark.parametrize("size, all_quad", [(3.0, False), (3.0, True), (1.5, False), (1.5, True)])
 def test_composed_ship_stem_top_wedge_has_no_sliver(ship, bare, size, all_quad):
     m = fl.mesh_hull(ship, size=size, all_quad=all_quad)
     sj = fl._native.scaled_jacobians(m.vertices, m.faces)

@@ -30,6 +30,8 @@ constexpr int kSwapPasses = 8;             ///< sweeps of 3-D edge swaps
 constexpr int kAugmentVisits = 400;        ///< triangles one alternating-path search may visit
 constexpr double kGrading = 0.6;           ///< size may grow by this x the distance from the boundary
 constexpr double kFlat = 1e-2;             ///< a triangle with |2 area| below this x its longest side^2 is flat
+constexpr double kPoleZone = 2.0;          ///< interior nodes within this x h of a pole are thinned
+constexpr double kPoleSpacing = 0.4;       ///< to this x h apart
 constexpr double kFanSpread = 4.0;         ///< iso-line length ratio from which a face is a fan
 
 using Vec2 = Eigen::Vector2d;
@@ -837,6 +839,20 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   }
   std::vector<Vec2> pts2;
   for (const Vec2& q : poly) pts2.push_back(scaled(q));
+  // near a pole the subdivision's lines converge and their corners crowd: there an interior
+  // node keeps kPoleSpacing x h from the nodes already taken (not in the all-quad coarse pass:
+  // on the bulb's nose its split quads then fold, 9 inverted at 1.5 m instead of 3)
+  std::vector<Vec3> poles;
+  for (int i = 0; i < nb && !o.all_quad; ++i)
+    if (loop[i].id == loop[(i + 1) % nb].id) poles.push_back(w.xyz[i]);
+  auto crowded_at_pole = [&](const Vec3& p, double h) {
+    bool close = false;
+    for (const Vec3& c : poles) close = close || (p - c).norm() < kPoleZone * h;
+    if (!close) return false;
+    for (size_t i = nb; i < w.xyz.size(); ++i)
+      if ((w.xyz[i] - p).norm() < kPoleSpacing * h) return true;
+    return false;
+  };
   double longest_side = 0.0;
   for (int i = 0; i < nb; ++i) longest_side = std::max(longest_side, (w.xyz[(i + 1) % nb] - w.xyz[i]).norm());
   for (const auto& [U, V] : sub.corners()) {
@@ -869,7 +885,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
             break;
           }
       }
-    if (near) continue;
+    if (near || crowded_at_pole(p, h)) continue;
     w.uv.push_back(q);
     w.xyz.push_back(p);
     const Vec3 n = su.cross(sv);
