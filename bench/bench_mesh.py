@@ -82,6 +82,29 @@ def census(name, surface, V, F, dt, extra=""):
     return q
 
 
+# main at 3563222 (before the all-quad / pole work), measured on this machine by the same census:
+# (elements, quad fraction, inverted, SJ min, SJ mean, corners in 45-135, open edges)
+BEFORE = {
+    ("whole, closed", 3.0, False): (9084, 0.8965, 0, 0.002, 0.902, 0.9765, 0),
+    ("whole, closed", 1.5, False): (19321, 0.9281, 1, -0.136, 0.921, 0.9792, 0),
+    ("wetted, closed", 3.0, False): (7742, 0.8910, 0, 0.075, 0.896, 0.9754, 0),
+    ("wetted, closed", 1.5, False): (15794, 0.9328, 0, 0.067, 0.917, 0.9676, 0),
+    ("wetted, open (BEM)", 3.0, False): (6621, 0.8896, 0, 0.096, 0.893, 0.9729, 315),
+    ("wetted, open (BEM)", 1.5, False): (12656, 0.9264, 0, 0.067, 0.908, 0.9603, 499),
+    ("whole, closed", 3.0, True): (14106, 0.9989, 13, -0.918, 0.914, 0.9804, 0),
+    ("whole, closed", 1.5, True): (33178, 0.9995, 24, -0.900, 0.932, 0.9850, 0),
+    ("wetted, closed", 3.0, True): (11646, 0.9993, 2, -0.543, 0.911, 0.9551, 0),
+    ("wetted, closed", 1.5, True): (28126, 0.9997, 1, -0.085, 0.922, 0.9668, 0),
+    ("wetted, open (BEM)", 3.0, True): (10283, 0.9992, 2, -0.543, 0.913, 0.9525, 318),
+    ("wetted, open (BEM)", 1.5, True): (24430, 0.9997, 1, -0.085, 0.925, 0.9630, 504),
+}
+
+
+def figures(n, quads, inverted, sj_min, sj_mean, corners, open_edges):
+    return (f"{n:6d} el, quads {quads:7.2%}, inverted {inverted:2d}, SJ min {sj_min:6.3f} mean {sj_mean:.3f}, "
+            f"45-135 {corners:7.2%}, open {open_edges}")
+
+
 def surface_case(name, surface, size, tol):
     print(f"\n{name}: element size {size} m, chordal tolerance {tol * 1e3:.0f} mm")
     for all_quad in (False, True):
@@ -107,18 +130,22 @@ def main():
     surface_case("bilge-like bicubic patch (20 m)", bilge_patch(), 0.5, 0.005)
     surface_case("whole-ship bare hull surface (Lpp 244.8 m)", bare, 3.0, 0.03)
 
-    print("\nwhole composed ship (bare hull + bulb + blend, transom stern), half hull:")
+    print(f"\nwhole composed ship (bare hull + bulb + blend, transom stern), half hull, wetted at T = {EXAMPLE_DRAFT} m;"
+          "\n'before' is main at 3563222 measured on this machine, 'now' this run (no gmsh peer: it would need our B-rep):")
     c = hull.composed_hull()
-    for label, kw in (("whole, closed", {}), (f"wetted T={EXAMPLE_DRAFT}, closed", dict(draft=EXAMPLE_DRAFT)),
-                      ("wetted, open (BEM)", dict(draft=EXAMPLE_DRAFT, lids=False))):
-        for size in (3.0, 1.5):
-            m = fl.mesh_hull(c, size=size, **kw)
-            t = median_time(lambda: fl.mesh_hull(c, size=size, **kw), repeat=3, min_time=0.0)
-            q = m.quality()
-            report(f"{label}, size {size} m: time", t * 1e3, "ms",
-                   f"{len(m.faces)} elements, quads {q['quad_fraction']:.2%}, inverted {q['inverted']}, "
-                   f"SJ min {q['min_scaled_jacobian']:.3f} mean {q['mean_scaled_jacobian']:.3f}, "
-                   f"45-135 {q['corners_in_45_135']:.2%}, open edges {q['open_edges']}")
+    for all_quad in (False, True):
+        print(f" {'all-quad (all_quad=True)' if all_quad else 'quad-dominant (default)'}:")
+        for label, kw in (("whole, closed", {}), ("wetted, closed", dict(draft=EXAMPLE_DRAFT)),
+                          ("wetted, open (BEM)", dict(draft=EXAMPLE_DRAFT, lids=False))):
+            for size in (3.0, 1.5):
+                m = fl.mesh_hull(c, size=size, all_quad=all_quad, **kw)
+                t = median_time(lambda: fl.mesh_hull(c, size=size, all_quad=all_quad, **kw), repeat=3, min_time=0.0)
+                q = m.quality()
+                now = (len(m.faces), q["quad_fraction"], q["inverted"], q["min_scaled_jacobian"],
+                       q["mean_scaled_jacobian"], q["corners_in_45_135"], q["open_edges"])
+                case = f"{label}, {size} m"
+                print(f"  {case:<26s} before {figures(*BEFORE[(label, size, all_quad)])}")
+                print(f"  {'':<26s} now    {figures(*now)}, {t * 1e3:.0f} ms")
 
     print("\nstructured grids (arc-length distributions, parametric transfinite interpolation):")
     u = fl.grids.distribution("tanh_two_sided", 241, first=0.2, last=0.2)

@@ -57,7 +57,7 @@ void bind_meshing(py::module_& m) {
       .def_readwrite("chordal_tolerance", &MeshOptions::chordal_tolerance,
                      "max distance of an element from the surface (m); 0: size / 100")
       .def_readwrite("min_size", &MeshOptions::min_size, "no edge is made shorter for curvature (m); 0: size / 20")
-      .def_readwrite("all_quad", &MeshOptions::all_quad, "split into quads only (nodes at twice the size first)")
+      .def_readwrite("all_quad", &MeshOptions::all_quad, "quads only: a mesh at twice the size (for 0.8 x the tolerance) split into quads")
       .def_readwrite("smoothing_passes", &MeshOptions::smoothing_passes, "sweeps of quality-guarded smoothing")
       .def_readwrite("min_quad_quality", &MeshOptions::min_quad_quality,
                      "triangle pairs whose quad's scaled Jacobian is lower stay triangles");

@@ -23,7 +23,7 @@ struct MeshOptions {
   double size = 1.0;               ///< maximum element edge length (m), > 0
   double chordal_tolerance = 0.0;  ///< max distance of an element from the surface (m); 0: size / 100
   double min_size = 0.0;           ///< no element edge is made shorter for curvature (m); 0: size / 20
-  bool all_quad = false;           ///< split into quads only (nodes at twice the size first)
+  bool all_quad = false;           ///< quads only: a mesh at twice the size (for 0.8 x the tolerance) split into quads
   int smoothing_passes = 6;        ///< sweeps of quality-guarded smoothing (>= 0)
   double min_quad_quality = 0.3;   ///< triangle pairs whose quad's scaled Jacobian is lower stay triangles
 };

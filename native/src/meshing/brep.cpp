@@ -28,6 +28,10 @@ constexpr int kPoleSegments = 4;        ///< copies of a pole node along its par
 constexpr double kTraceStep = 0.25;     ///< waterline trace step / size
 constexpr int kBisections = 60;         ///< bisection steps for an edge's crossing of the cut
 constexpr double kVertexMatch = 1e-9;   ///< vertices closer than this x model size are one
+constexpr double kSubstep = 0.25;       ///< integration step of an edge's size / the size
+constexpr double kMinSubstep = 1e-3;    ///< sub-steps are at least this fraction of the sample spacing
+constexpr double kAllQuadTolerance = 0.8;  ///< chordal tolerance factor of the all-quad split's coarse pass
+constexpr double kEdgeGrading = 0.6;    ///< an edge's size grows by at most this x the distance from its ends' sizes
 
 EdgeSample lerp(const EdgeSample& a, const EdgeSample& b, double t) {
   EdgeSample r;
@@ -290,9 +294,13 @@ void Brep::cut_below(double T, double size, const std::string& lid_name, bool ke
           g.loop.push_back({br->second.first, true});
           i = br->second.second;
         } else {
+          // the next piece in the face's own order first: a pole edge starts and ends at one
+          // vertex, where the piece after it starts too, and must stay between them
+          const size_t next = (i + 1) % kept.size();
           auto st = start_index.find(ex);
-          if (st == start_index.end()) throw Error("mesh: the cut loop of face '" + f.name + "' does not close");
-          i = st->second;
+          if (!used[next] && start_of(kept[next]) == ex) i = next;
+          else if (st == start_index.end()) throw Error("mesh: the cut loop of face '" + f.name + "' does not close");
+          else i = st->second;
         }
       }
       out_faces.push_back(g);
@@ -363,7 +371,37 @@ struct Mesher {
   std::vector<Vec3> nodes;
   std::vector<Discrete> disc;
   std::map<std::pair<int, int>, LoopNode> mids;  // (edge, segment) -> midpoint node (all-quad)
-  std::vector<std::vector<double>> cum_I;         // I at every sample of every edge
+  /// I along every edge: (sample interval k, fraction t in it, I) at every integration step
+  struct Station {
+    int k;
+    double t, I;
+  };
+  std::vector<std::vector<Station>> cum_I;
+  std::vector<double> vertex_h;                   // size at each end vertex, over all its edges
+
+  /// Arc length (m) from the first sample at every sample of edge e.
+  std::vector<double> arc(const Edge& e) const {
+    std::vector<double> s(e.s.size(), 0.0);
+    for (size_t k = 1; k < e.s.size(); ++k) s[k] = s[k - 1] + (e.s[k].xyz - e.s[k - 1].xyz).norm();
+    return s;
+  }
+
+  /// The smallest size each vertex sees along any of its edges, graded by the distance, so an
+  /// edge that meets a finely divided one (at a cone-like corner such as a stem top) is graded
+  /// down to it instead of ending in a fan of slivers.
+  void vertex_sizes(const std::vector<char>& needed) {
+    vertex_h.assign(nodes.size(), 1e300);
+    for (size_t ei = 0; ei < b.edges.size(); ++ei) {
+      const Edge& e = b.edges[ei];
+      if (!needed[ei] || e.degenerate) continue;
+      const std::vector<double> s = arc(e);
+      for (size_t k = 0; k < e.s.size(); ++k) {
+        const double h = h_at(e, e.s[k]);
+        vertex_h[e.v0] = std::min(vertex_h[e.v0], h + kEdgeGrading * s[k]);
+        vertex_h[e.v1] = std::min(vertex_h[e.v1], h + kEdgeGrading * (s.back() - s[k]));
+      }
+    }
+  }
 
   double h_at(const Edge& e, const EdgeSample& x) const {
     double h = o.size;
@@ -375,16 +413,18 @@ struct Mesher {
   EdgeSample point_at_I(int ei, double I) const {
     const Edge& e = b.edges[ei];
     const auto& c = cum_I[ei];
-    size_t k = 1;
-    while (k + 1 < c.size() && c[k] < I) ++k;
-    const double w = c[k] > c[k - 1] ? std::clamp((I - c[k - 1]) / (c[k] - c[k - 1]), 0.0, 1.0) : 0.0;
-    return edge_point(b, e, static_cast<int>(k) - 1, w);
+    const auto it = std::lower_bound(c.begin() + 1, c.end() - 1, I, [](const Station& a, double x) { return a.I < x; });
+    const Station& hi = *it;
+    Station lo = *(it - 1);
+    if (lo.k != hi.k) lo = {hi.k, 0.0, lo.I};  // a step that starts at a sample
+    const double w = hi.I > lo.I ? std::clamp((I - lo.I) / (hi.I - lo.I), 0.0, 1.0) : 0.0;
+    return edge_point(b, e, hi.k, lo.t + w * (hi.t - lo.t));
   }
 
   void discretise(int ei) {
     const Edge& e = b.edges[ei];
     Discrete d;
-    cum_I[ei].assign(e.s.size(), 0.0);
+    cum_I[ei].clear();
     if (e.degenerate) {
       for (int k = 0; k <= kPoleSegments; ++k) {
         d.pts.push_back(lerp(e.s.front(), e.s.back(), static_cast<double>(k) / kPoleSegments));
@@ -395,27 +435,41 @@ struct Mesher {
       return;
     }
     auto& c = cum_I[ei];
-    double prev_h = h_at(e, e.s[0]);
+    const std::vector<double> s = arc(e);
+    auto graded = [&](const EdgeSample& x, double at) {
+      return std::min({h_at(e, x), vertex_h[e.v0] + kEdgeGrading * at, vertex_h[e.v1] + kEdgeGrading * (s.back() - at)});
+    };
+    double prev_h = graded(e.s[0], 0.0), I = 0.0;
+    c.push_back({0, 0.0, 0.0});
     for (size_t k = 1; k < e.s.size(); ++k) {
-      const double h = h_at(e, e.s[k]);
-      c[k] = c[k - 1] + (e.s[k].xyz - e.s[k - 1].xyz).norm() * 0.5 * (1.0 / h + 1.0 / prev_h);
-      prev_h = h;
+      // sub-steps where the size is small against the sample spacing (a straight edge has two
+      // samples; its graded size still varies along it)
+      const double len = s[k] - s[k - 1];
+      for (double t = 0.0; t < 1.0;) {
+        const double next = std::min(1.0, t + std::max(kSubstep * prev_h / std::max(len, 1e-300), kMinSubstep));
+        const double h = graded(lerp(e.s[k - 1], e.s[k], next), s[k - 1] + next * len);
+        I += (next - t) * len * 0.5 * (1.0 / h + 1.0 / prev_h);
+        c.push_back({static_cast<int>(k) - 1, next, I});
+        prev_h = h;
+        t = next;
+      }
     }
-    const int n = std::max(1, static_cast<int>(std::ceil(c.back() - 1e-6)));
+    const double total = c.back().I;
+    const int n = std::max(1, static_cast<int>(std::ceil(total - 1e-6)));
     d.ids.push_back(e.v0);
     d.pts.push_back(e.s.front());
     d.at.push_back(0.0);
     for (int i = 1; i < n; ++i) {
-      const double I = c.back() * i / n;
-      EdgeSample x = point_at_I(ei, I);
+      const double Ii = total * i / n;
+      EdgeSample x = point_at_I(ei, Ii);
       d.ids.push_back(static_cast<int>(nodes.size()));
       nodes.push_back(x.xyz);
       d.pts.push_back(x);
-      d.at.push_back(I);
+      d.at.push_back(Ii);
     }
     d.ids.push_back(e.v1);
     d.pts.push_back(e.s.back());
-    d.at.push_back(c.back());
+    d.at.push_back(total);
     disc[ei] = std::move(d);
   }
 
@@ -498,8 +552,12 @@ void orient(std::vector<std::array<int, 4>>& el, const std::vector<Vec3>& x) {
 
 }  // namespace
 
-SurfaceMesh mesh_brep(Brep& b, const MeshOptions& o, const std::function<void(int, int, const std::string&)>& progress,
+SurfaceMesh mesh_brep(Brep& b, const MeshOptions& options, const std::function<void(int, int, const std::string&)>& progress,
                       bool outward) {
+  // the all-quad split's coarse pass sizes for a tighter tolerance: a coarse quad's split
+  // quarters sag about a quarter as much, but smoothing and the 2:1 steps of the sizes add some
+  MeshOptions o = options;
+  if (o.all_quad) o.chordal_tolerance *= kAllQuadTolerance;
   Mesher M{b, o, o.all_quad ? 2.0 : 1.0, b.vertices, {}, {}, {}};
   M.disc.resize(b.edges.size());
   M.cum_I.resize(b.edges.size());
@@ -507,6 +565,7 @@ SurfaceMesh mesh_brep(Brep& b, const MeshOptions& o, const std::function<void(in
   for (const Face& f : b.faces)
     if (f.keep)
       for (const auto& [e, fwd] : f.loop) needed[e] = 1;
+  M.vertex_sizes(needed);
   for (size_t e = 0; e < b.edges.size(); ++e)
     if (needed[e]) M.discretise(static_cast<int>(e));
   std::vector<std::array<int, 4>> el;

@@ -29,6 +29,7 @@ using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 
 constexpr int kIsoSamples = 129;       ///< samples of an iso-parameter edge
+constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegenerate = 1e-9;   ///< an edge shorter than this x model size is a pole
 
 double extent(const NurbsSurface& s) {
@@ -44,13 +45,65 @@ int iso_edge(Brep& b, int f, int g, const NurbsSurface& s, Vec2 a, Vec2 c) {
   return b.sampled_edge(
       f, g, kIsoSamples,
       [&](double t) {
+        // samples crowd the ends (cosine spacing): a curvature spike at a corner such as the
+        // cone-like stem top is then seen by the edge as by the faces' interiors
+        const double w = 0.5 * (1.0 - std::cos(kPi * t));
         EdgeSample x;
-        x.uv[0] = a + t * (c - a);
+        x.uv[0] = a + w * (c - a);
         x.uv[1] = Vec2::Zero();
         x.xyz = s.evaluate(x.uv[0].x(), x.uv[0].y());
         return x;
       },
       pole);
+}
+
+constexpr double kFoldDepth = 1e-6;       ///< y below -this x model size is a crossing of the centre plane
+constexpr double kFoldScan = 0.1;         ///< fraction of the u range at each end searched for a fold
+constexpr int kFoldWidths = 10;           ///< candidate strip widths (kFoldScan / kFoldWidths apart)
+constexpr double kRuledNormalCos = 0.7;   ///< a ruled strip's normals stay within ~45 deg of the surface's
+
+/// Unit normal of (1 - t) S(ua, v) + t S(ub, v) at t (ua < ub; derivatives rows: S, S_v, S_u).
+Vec3 ruled_normal(const NurbsSurface& s, double ua, double ub, double v, double t) {
+  const Eigen::MatrixXd a = s.derivatives(ua, v, 1), b = s.derivatives(ub, v, 1);
+  const Vec3 su = (b.row(0) - a.row(0)).transpose(), sv = ((1 - t) * a.row(1) + t * b.row(1)).transpose();
+  return su.cross(sv).normalized();
+}
+
+/// A blend skinned to end sections on the centre plane can fold over itself next to such an
+/// end (its cross-boundary tangents turn against the neighbouring sections'), which shows as
+/// the surface crossing y = 0. The face is then meshed on the ruled surface across the
+/// narrowest strip at that end whose normals stay near the surface's (only one end is
+/// handled; the u1 end first).
+void guard_fold(const NurbsSurface& s, meshing::FaceGeometry& g) {
+  const auto [u0, u1] = s.domain_u();
+  const auto [v0, v1] = s.domain_v();
+  const double depth = kFoldDepth * extent(s);
+  constexpr int kU = 21, kV = 17, kT = 11;
+  for (double end : {u1, u0}) {
+    const double dir = end == u1 ? -1.0 : 1.0, range = kFoldScan * (u1 - u0);
+    bool crosses = false;
+    for (int i = 0; i < kU && !crosses; ++i)
+      for (int j = 0; j < kV && !crosses; ++j)
+        crosses = s.evaluate(end + dir * range * i / (kU - 1), v0 + (v1 - v0) * j / (kV - 1)).y() < -depth;
+    if (!crosses) continue;
+    for (int k = 2; k <= kFoldWidths; ++k) {
+      const double uf = end + dir * range * k / kFoldWidths;
+      double worst = 1.0;
+      for (int j = 0; j < kV; ++j) {
+        const double v = v0 + (v1 - v0) * j / (kV - 1);
+        const Eigen::MatrixXd d = s.derivatives(uf, v, 1);
+        const Vec3 n = Vec3(d.row(2)).cross(Vec3(d.row(1))).normalized();  // S_u x S_v
+        for (int t = 0; t < kT; ++t)
+          worst = std::min(worst, std::abs(n.dot(ruled_normal(s, std::min(uf, end), std::max(uf, end), v,
+                                                              static_cast<double>(t) / (kT - 1)))));
+      }
+      if (worst >= kRuledNormalCos) {
+        g.ruled_u0 = std::min(uf, end);
+        g.ruled_u1 = std::max(uf, end);
+        return;
+      }
+    }
+  }
 }
 
 /// Straight edge between planar faces f and g from p to q.
@@ -151,16 +204,20 @@ SurfaceMesh mesh_hull(const ComposedHull& ch, const MeshOptions& options, const 
   Brep b;
   meshing::FaceGeometry gh;
   gh.surface = &H;
+  gh.clamp_y = true;
   const int fH = add_face(b, gh, "hull");
   int fB = -1, fL = -1;
   if (has_bulb) {
     meshing::FaceGeometry g;
     g.surface = &ch.bulb[0];
+    g.clamp_y = true;
     fB = add_face(b, g, "bulb");
   }
   if (has_blend) {
     meshing::FaceGeometry g;
     g.surface = &ch.blend[0];
+    g.clamp_y = true;
+    guard_fold(ch.blend[0], g);
     fL = add_face(b, g, "blend");
   }
   const bool half = !ho.full;

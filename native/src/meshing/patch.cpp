@@ -29,6 +29,10 @@ constexpr double kDefaultMinSize = 0.05;   ///< minimum size / size when not giv
 constexpr int kSwapPasses = 8;             ///< sweeps of 3-D edge swaps
 constexpr int kAugmentVisits = 400;        ///< triangles one alternating-path search may visit
 constexpr double kGrading = 0.6;           ///< size may grow by this x the distance from the boundary
+constexpr double kFlat = 1e-2;             ///< a triangle with |2 area| below this x its longest side^2 is flat
+constexpr double kPoleZone = 2.0;          ///< interior nodes within this x h of a pole are thinned
+constexpr double kPoleSpacing = 0.4;       ///< to this x h apart
+constexpr double kFanSpread = 4.0;         ///< iso-line length ratio from which a face is a fan
 
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
@@ -214,6 +218,20 @@ class Subdivision {
   int roots_ = 0;
 };
 
+/// Cumulative chord length (m) at n + 1 points of an iso-line: the parameter that varies
+/// (u if `vary_u`) runs from a to b, the other is held at `fixed`.
+std::vector<double> iso_line_arc(const FaceGeometry& g, bool vary_u, double fixed, double a, double b, int n) {
+  auto at = [&](double t) { return g.point(vary_u ? Vec2(t, fixed) : Vec2(fixed, t)); };
+  std::vector<double> s(n + 1, 0.0);
+  Vec3 prev = at(a);
+  for (int k = 1; k <= n; ++k) {
+    const Vec3 p = at(a + (b - a) * k / n);
+    s[k] = s[k - 1] + (p - prev).norm();
+    prev = p;
+  }
+  return s;
+}
+
 /// Root lines in one direction: equal arc length along the face's middle iso-line, as many
 /// as the longest of three iso-lines needs at the maximum size.
 std::vector<double> root_lines(const FaceGeometry& g, double a, double b, double c0, double c1, bool along_u,
@@ -222,18 +240,8 @@ std::vector<double> root_lines(const FaceGeometry& g, double a, double b, double
   double longest = 0.0;
   std::vector<double> s(kSamples + 1, 0.0);
   for (double f : {0.0, 0.5, 1.0}) {
-    const double c = c0 + (c1 - c0) * f;
-    double len = 0.0;
-    Vec3 prev = g.point(along_u ? Vec2(a, c) : Vec2(c, a));
-    std::vector<double> cum(kSamples + 1, 0.0);
-    for (int k = 1; k <= kSamples; ++k) {
-      const double t = a + (b - a) * k / kSamples;
-      const Vec3 p = g.point(along_u ? Vec2(t, c) : Vec2(c, t));
-      len += (p - prev).norm();
-      cum[k] = len;
-      prev = p;
-    }
-    longest = std::max(longest, len);
+    const std::vector<double> cum = iso_line_arc(g, along_u, c0 + (c1 - c0) * f, a, b, kSamples);
+    longest = std::max(longest, cum.back());
     if (f == 0.5) s = cum;
   }
   const int n = std::max(1, static_cast<int>(std::ceil(longest / h - 1e-9)));
@@ -261,16 +269,8 @@ class ArcMap {
   ArcMap(const FaceGeometry& g, double a, double b, double c0, double c1, bool along_u) : a_(a), b_(b) {
     s_.assign(kSamples + 1, 0.0);
     for (double f : {0.25, 0.5, 0.75}) {
-      const double c = c0 + (c1 - c0) * f;
-      Vec3 prev = g.point(along_u ? Vec2(a, c) : Vec2(c, a));
-      double len = 0.0;
-      for (int k = 1; k <= kSamples; ++k) {
-        const double t = a + (b - a) * k / kSamples;
-        const Vec3 p = g.point(along_u ? Vec2(t, c) : Vec2(c, t));
-        len += (p - prev).norm();
-        s_[k] += len / 3.0;
-        prev = p;
-      }
+      const std::vector<double> arc = iso_line_arc(g, along_u, c0 + (c1 - c0) * f, a, b, kSamples);
+      for (int k = 1; k <= kSamples; ++k) s_[k] += arc[k] / 3.0;
     }
     const double total = std::max(s_.back(), 1e-300);
     for (int k = 1; k <= kSamples; ++k)  // strictly increasing, even across a pole
@@ -292,6 +292,43 @@ class ArcMap {
   static constexpr int kSamples = 256;
   double a_, b_;
   std::vector<double> s_;
+};
+
+/// Length of the iso-lines across one direction relative to their mean, as a function of the
+/// other parameter: r(t) = |iso-line at t| / mean. Scaling the cross coordinate by r makes a
+/// face whose iso-lines shrink to a pole (a stem top, a bulb's nose) a fan in the planar
+/// coordinates, as it is in 3-D, instead of a rectangle of slivers.
+class IsoWidth {
+ public:
+  IsoWidth(const FaceGeometry& g, double a, double b, double c0, double c1, bool along_u) : a_(a), b_(b) {
+    r_.assign(kSamples + 1, 1.0);
+    double mean = 0.0;
+    for (int k = 0; k <= kSamples; ++k) {
+      r_[k] = iso_line_arc(g, !along_u, a + (b - a) * k / kSamples, c0, c1, kAcross).back();
+      mean += r_[k] / (kSamples + 1);
+    }
+    lo_ = 1e300;
+    hi_ = 0.0;
+    for (double& x : r_) {
+      x = mean > 0 ? std::max(x / mean, kFloor) : 1.0;
+      lo_ = std::min(lo_, x);
+      hi_ = std::max(hi_, x);
+    }
+  }
+  double operator()(double t) const {
+    const double f = b_ > a_ ? std::clamp((t - a_) / (b_ - a_), 0.0, 1.0) * kSamples : 0.0;
+    const int k = std::min(static_cast<int>(std::floor(f)), kSamples - 1);
+    return r_[k] + (r_[k + 1] - r_[k]) * (f - k);
+  }
+  /// max r / min r: how far the iso-lines are from equal length.
+  double spread() const { return hi_ / lo_; }
+
+ private:
+  static constexpr int kSamples = 128;    ///< iso-lines tabulated
+  static constexpr int kAcross = 32;      ///< chords along each iso-line
+  static constexpr double kFloor = 1e-3;  ///< r never below this: the pole's copies stay apart
+  double a_, b_, lo_ = 1, hi_ = 1;
+  std::vector<double> r_;
 };
 
 // ---- elements ---------------------------------------------------------------------------
@@ -469,19 +506,110 @@ void smooth(Work& w, int passes) {
   }
 }
 
+/// Canonical local id of every node: a pole's copies along its parameter edge (consecutive
+/// loop nodes with one global id) map to the first copy.
+std::vector<int> pole_canon(const std::vector<LoopNode>& loop, size_t nodes) {
+  const int nb = static_cast<int>(loop.size());
+  std::vector<int> canon(nodes);
+  for (size_t i = 0; i < nodes; ++i) canon[i] = static_cast<int>(i);
+  int start = 0;  // a run of copies may wrap round the loop's start
+  while (start < nb && loop[start].id == loop[(start + nb - 1) % nb].id) ++start;
+  if (start == nb) return canon;
+  for (int k = 1; k < nb; ++k) {
+    const int i = (start + k) % nb, prev = (start + k - 1) % nb;
+    if (loop[i].id == loop[prev].id) canon[i] = canon[prev];
+  }
+  return canon;
+}
+
+/// Triangles on the canonical nodes: those collapsed by a pole dropped, and a flat one left
+/// beside the pole (three nodes of one straight boundary run, joined across the pole's copies
+/// in the planar triangulation) flipped with its neighbour across its longest side.
+std::vector<std::array<int, 3>> merged_triangles(const Work& w, const std::vector<std::array<int, 3>>& in,
+                                                 const std::vector<int>& canon) {
+  std::vector<std::array<int, 3>> tri;
+  for (const auto& t : in) {
+    const std::array<int, 3> r{canon[t[0]], canon[t[1]], canon[t[2]]};
+    if (r[0] != r[1] && r[1] != r[2] && r[2] != r[0]) tri.push_back(r);
+  }
+  const long long N = static_cast<long long>(w.xyz.size());
+  std::unordered_map<long long, int> half;  // directed edge -> triangle
+  for (int t = 0; t < static_cast<int>(tri.size()); ++t)
+    for (int k = 0; k < 3; ++k) half[tri[t][k] * N + tri[t][(k + 1) % 3]] = t;
+  for (int t = 0; t < static_cast<int>(tri.size()); ++t) {
+    const Vec3 &a = w.xyz[tri[t][0]], &b = w.xyz[tri[t][1]], &c = w.xyz[tri[t][2]];
+    double longest = 0.0;
+    int k = 0;  // edge k: from corner k to corner k + 1
+    for (int j = 0; j < 3; ++j) {
+      const double l = (w.xyz[tri[t][(j + 1) % 3]] - w.xyz[tri[t][j]]).squaredNorm();
+      if (l > longest) longest = l, k = j;
+    }
+    if ((b - a).cross(c - a).norm() > kFlat * longest) continue;
+    const int p = tri[t][k], q = tri[t][(k + 1) % 3], m = tri[t][(k + 2) % 3];
+    auto it = half.find(q * N + p);
+    if (it == half.end()) continue;
+    const int u = it->second;
+    int x = -1;
+    for (int j = 0; j < 3; ++j)
+      if (tri[u][j] != p && tri[u][j] != q) x = tri[u][j];
+    const double before = std::min(min_angle(w.xyz[p], w.xyz[q], w.xyz[m]), min_angle(w.xyz[q], w.xyz[p], w.xyz[x]));
+    const double after = std::min(min_angle(w.xyz[p], w.xyz[m], w.xyz[x]), min_angle(w.xyz[m], w.xyz[q], w.xyz[x]));
+    const Vec3 n0 = (w.xyz[q] - w.xyz[p]).cross(w.xyz[x] - w.xyz[p]);  // the neighbour's side
+    const bool same_side = (w.xyz[m] - w.xyz[p]).cross(w.xyz[x] - w.xyz[p]).dot(n0) > 0 &&
+                           (w.xyz[q] - w.xyz[m]).cross(w.xyz[x] - w.xyz[m]).dot(n0) > 0;
+    if (!(after > before) || !same_side) continue;
+    tri[t] = {p, m, x};  // (p, q, m) + (q, p, x) -> (p, m, x) + (m, q, x)
+    tri[u] = {m, q, x};
+    for (int v : {t, u})
+      for (int j = 0; j < 3; ++j) half[tri[v][j] * N + tri[v][(j + 1) % 3]] = v;
+  }
+  return tri;
+}
+
+/// A quad that smoothing on a sharply curved surface left folded (non-positive scaled Jacobian
+/// about its own diagonal normal, the census's measure) is cut into two triangles along the
+/// diagonal that gives the better pair.
+void split_folded_quads(Work& w) {
+  std::vector<std::array<int, 4>> out;
+  for (const auto& e : w.el) {
+    if (e[3] < 0) {
+      out.push_back(e);
+      continue;
+    }
+    Vec3 p[4];
+    for (int i = 0; i < 4; ++i) p[i] = w.xyz[e[i]];
+    const Vec3 n = (p[2] - p[0]).cross(p[3] - p[1]);
+    if (n.norm() > 0 && element_quality(p, 4, n.normalized()) > 0) {
+      out.push_back(e);
+      continue;
+    }
+    const std::array<int, 4> a{e[0], e[1], e[2], -1}, b{e[0], e[2], e[3], -1}, c{e[0], e[1], e[3], -1}, d{e[1], e[2], e[3], -1};
+    const bool first = std::min(w.quality(a), w.quality(b)) >= std::min(w.quality(c), w.quality(d));
+    out.push_back(first ? a : c);
+    out.push_back(first ? b : d);
+  }
+  w.el = std::move(out);
+}
+
 /// Each quad into four and each triangle into three quads (edge midpoints and centre).
-void split_all_quad(Work& w, int loop_size, const LoopMidpoint& midpoint, std::vector<int>& global) {
+/// `canon`: canonical local id of each node (pole copies merged).
+void split_all_quad(Work& w, const std::vector<int>& canon, int loop_size, const LoopMidpoint& midpoint,
+                    std::vector<int>& global) {
   std::unordered_map<long long, int> mid;
   const long long N = static_cast<long long>(w.xyz.size()) + 1;
+  std::unordered_map<long long, int> loop_edge;  // canonical end pair -> loop edge index
+  for (int i = 0; i < loop_size; ++i) {
+    const int a = canon[i], b = canon[(i + 1) % loop_size];
+    if (a != b) loop_edge[std::min(a, b) * N + std::max(a, b)] = i;
+  }
   auto edge_mid = [&](int a, int b) {
     const long long key = std::min(a, b) * N + std::max(a, b);
     auto it = mid.find(key);
     if (it != mid.end()) return it->second;
     int id;
-    const bool on_loop = a < loop_size && b < loop_size &&
-                         ((b == (a + 1) % loop_size) || (a == (b + 1) % loop_size));
-    if (on_loop) {
-      const int i = b == (a + 1) % loop_size ? a : b;
+    const auto on_loop = loop_edge.find(key);
+    if (on_loop != loop_edge.end()) {
+      const int i = on_loop->second;
       const LoopNode m = midpoint(i);
       w.uv.push_back(m.uv);
       w.xyz.push_back(m.xyz);
@@ -527,8 +655,16 @@ bool point_in_polygon(const Vec2& q, const std::vector<Vec2>& poly) {
 // ---- FaceGeometry ------------------------------------------------------------------------
 
 Vec3 FaceGeometry::point(const Vec2& q) const {
-  if (surface) return surface->evaluate(q.x(), q.y());
-  return origin + q.x() * ax + q.y() * ay;
+  if (!surface) return origin + q.x() * ax + q.y() * ay;
+  Vec3 p;
+  if (ruled(q.x())) {
+    const double t = (q.x() - ruled_u0) / (ruled_u1 - ruled_u0);
+    p = (1 - t) * surface->evaluate(ruled_u0, q.y()) + t * surface->evaluate(ruled_u1, q.y());
+  } else {
+    p = surface->evaluate(q.x(), q.y());
+  }
+  if (clamp_y) p.y() = std::max(p.y(), 0.0);
+  return p;
 }
 
 void FaceGeometry::first(const Vec2& q, Vec3& p, Vec3& su, Vec3& sv) const {
@@ -539,15 +675,32 @@ void FaceGeometry::first(const Vec2& q, Vec3& p, Vec3& su, Vec3& sv) const {
     return;
   }
   double out[9];
-  surface->evaluate_first_derivatives_into(&q.x(), &q.y(), 1, out);
-  p = Vec3(out[0], out[1], out[2]);
+  if (ruled(q.x())) {  // (1 - t) S(u0, v) + t S(u1, v)
+    const double t = (q.x() - ruled_u0) / (ruled_u1 - ruled_u0);
+    double a[9], b[9];
+    const double u0 = ruled_u0, u1 = ruled_u1;
+    surface->evaluate_first_derivatives_into(&u0, &q.y(), 1, a);
+    surface->evaluate_first_derivatives_into(&u1, &q.y(), 1, b);
+    for (int k = 0; k < 3; ++k) {
+      out[k] = (1 - t) * a[k] + t * b[k];
+      out[3 + k] = (b[k] - a[k]) / (u1 - u0);
+      out[6 + k] = (1 - t) * a[6 + k] + t * b[6 + k];
+    }
+  } else {
+    surface->evaluate_first_derivatives_into(&q.x(), &q.y(), 1, out);
+  }
+  p = Vec3(out[0], clamp_y ? std::max(out[1], 0.0) : out[1], out[2]);
   su = Vec3(out[3], out[4], out[5]);
   sv = Vec3(out[6], out[7], out[8]);
 }
 
+bool FaceGeometry::ruled(double u) const { return surface && u > ruled_u0 && u < ruled_u1; }
+
 double FaceGeometry::curvature_sum(const Vec2& q) const {
   if (!surface) return 0.0;
-  const Eigen::MatrixXd d = surface->derivatives(q.x(), q.y(), 2);
+  // in a ruled strip: the curvature of the surface where the strip starts
+  const double u = ruled(q.x()) ? ruled_u0 : q.x();
+  const Eigen::MatrixXd d = surface->derivatives(u, q.y(), 2);
   const Vec3 sv = d.row(1), svv = d.row(2), su = d.row(3), suv = d.row(4), suu = d.row(6);
   Vec3 n = su.cross(sv);
   const double len = n.norm();
@@ -643,6 +796,19 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   // mean arc length along three iso-lines (monotone, so orientation is kept), which evens out
   // parametrisations whose speed jumps (a hull's flat-of-side zone between triple knots)
   const ArcMap amap_u(g, lo.x(), hi.x(), lo.y(), hi.y(), true), amap_v(g, lo.y(), hi.y(), lo.x(), hi.x(), false);
+  // the cross coordinate of the direction whose iso-lines vary most in length is scaled by
+  // their length (one direction only, so the map stays one-to-one)
+  const IsoWidth width_v(g, lo.x(), hi.x(), lo.y(), hi.y(), true);   // iso-u lines: lengths along v
+  const IsoWidth width_u(g, lo.y(), hi.y(), lo.x(), hi.x(), false);  // iso-v lines: lengths along u
+  const bool scale_v = width_v.spread() >= width_u.spread();
+  const bool fan = std::max(width_v.spread(), width_u.spread()) > kFanSpread;
+  auto scaled = [&](const Vec2& q) {
+    if (!fan) return Vec2(amap_u(q.x()), amap_v(q.y()));
+    return scale_v ? Vec2(amap_u(q.x()), amap_v(q.y()) * width_v(q.x()))
+                   : Vec2(amap_u(q.x()) * width_u(q.y()), amap_v(q.y()));
+  };
+  auto speed_u = [&](const Vec2& q) { return amap_u.speed(q.x()) * (fan && !scale_v ? width_u(q.y()) : 1.0); };
+  auto speed_v = [&](const Vec2& q) { return amap_v.speed(q.y()) * (fan && scale_v ? width_v(q.x()) : 1.0); };
   const double size_scale = o.all_quad ? 2.0 : 1.0;
   // interior nodes: corners of the balanced subdivision, inside and clear of the boundary
   const auto ru = root_lines(g, lo.x(), hi.x(), lo.y(), hi.y(), true, size_scale * o.size);
@@ -662,7 +828,6 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   const double bucket = size_scale * o.size;
   std::unordered_map<long long, std::vector<int>> buckets;
   auto bkey = [&](long long i, long long j) { return i * 1000003LL + j; };
-  auto scaled = [&](const Vec2& q) { return Vec2(amap_u(q.x()), amap_v(q.y())); };
   for (int i = 0; i < nb; ++i) {
     const Vec2 a = scaled(poly[i]), b = scaled(poly[(i + 1) % nb]);
     const long long i0 = static_cast<long long>(std::floor(std::min(a.x(), b.x()) / bucket));
@@ -674,6 +839,22 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   }
   std::vector<Vec2> pts2;
   for (const Vec2& q : poly) pts2.push_back(scaled(q));
+  // near a pole the subdivision's lines converge and their corners crowd: there an interior
+  // node keeps kPoleSpacing x h from the nodes already taken (not in the all-quad coarse pass:
+  // on the bulb's nose its split quads then fold, 9 inverted at 1.5 m instead of 3)
+  std::vector<Vec3> poles;
+  for (int i = 0; i < nb && !o.all_quad; ++i)
+    if (loop[i].id == loop[(i + 1) % nb].id) poles.push_back(w.xyz[i]);
+  auto crowded_at_pole = [&](const Vec3& p, double h) {
+    bool close = false;
+    for (const Vec3& c : poles) close = close || (p - c).norm() < kPoleZone * h;
+    if (!close) return false;
+    for (size_t i = nb; i < w.xyz.size(); ++i)
+      if ((w.xyz[i] - p).norm() < kPoleSpacing * h) return true;
+    return false;
+  };
+  double longest_side = 0.0;
+  for (int i = 0; i < nb; ++i) longest_side = std::max(longest_side, (w.xyz[(i + 1) % nb] - w.xyz[i]).norm());
   for (const auto& [U, V] : sub.corners()) {
     const Vec2 q(sub.u(U), sub.v(V));
     if (!point_in_polygon(q, poly)) continue;
@@ -682,8 +863,8 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
     const double h = size_at(q, p);
     const double clear = kClearance * h;
     // search radius in scaled coordinates: the slowest direction bounds the reach
-    const double slow = std::max(1e-300, std::min(su.norm() / amap_u.speed(q.x()), sv.norm() / amap_v.speed(q.y())));
-    const double reach = std::min(clear / slow, 50.0 * bucket);
+    const double slow = std::max(1e-300, std::min(su.norm() / speed_u(q), sv.norm() / speed_v(q)));
+    const double reach = std::min(kClearance * std::max(h, longest_side) / slow, 50.0 * bucket);
     const Vec2 s = scaled(q);
     const long long i0 = static_cast<long long>(std::floor((s.x() - reach) / bucket));
     const long long i1 = static_cast<long long>(std::floor((s.x() + reach) / bucket));
@@ -695,12 +876,16 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
         auto it = buckets.find(bkey(x, y));
         if (it == buckets.end()) continue;
         for (int i : it->second)
-          if (segment_distance(p, w.xyz[i], w.xyz[(i + 1) % nb]) < clear) {
+          // clear of the side by the local size or the side's own length, whichever is
+          // more: a node close to a long side (a boundary coarser than the curvature inside
+          // wants) would be joined to its ends by slivers
+          if (segment_distance(p, w.xyz[i], w.xyz[(i + 1) % nb]) <
+              std::max(clear, kClearance * (w.xyz[(i + 1) % nb] - w.xyz[i]).norm())) {
             near = true;
             break;
           }
       }
-    if (near) continue;
+    if (near || crowded_at_pole(p, h)) continue;
     w.uv.push_back(q);
     w.xyz.push_back(p);
     const Vec3 n = su.cross(sv);
@@ -719,7 +904,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
         return then > now + 1e-9;
       },
       kSwapPasses);
-  const auto& tri = tr.triangles();
+  const std::vector<std::array<int, 3>> tri = merged_triangles(w, tr.triangles(), pole_canon(loop, w.xyz.size()));
   std::vector<std::array<int, 3>> nbr;
   std::vector<std::array<double, 3>> q;
   const std::vector<int> mate = match_triangles(w, tri, nbr, q);
@@ -741,9 +926,10 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   }
   std::vector<int> global(w.xyz.size(), -1);
   for (int i = 0; i < nb; ++i) global[i] = loop[i].id;
+  const std::vector<int> canon = pole_canon(loop, w.xyz.size());  // the triangles were merged on it
   if (o.all_quad) {
     smooth(w, o.smoothing_passes);
-    split_all_quad(w, nb, midpoint, global);
+    split_all_quad(w, canon, nb, midpoint, global);
     // split-off boundary midpoints stay where the edge put them
     std::vector<int> perm;  // move loop-midpoint nodes before the free ones: renumber
     const int n = static_cast<int>(w.xyz.size());
@@ -770,6 +956,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
     return {std::move(r.xyz), std::move(r.uv), std::move(r.el), std::move(g2)};
   }
   smooth(w, o.smoothing_passes);
+  split_folded_quads(w);
   global.resize(w.xyz.size(), -1);
   return {std::move(w.xyz), std::move(w.uv), std::move(w.el), std::move(global)};
 }

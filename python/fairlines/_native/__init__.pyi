@@ -1441,7 +1441,7 @@ class MeshOptions:
     @property
     def all_quad(self) -> bool:
         """
-        split into quads only (nodes at twice the size first)
+        quads only: a mesh at twice the size (for 0.8 x the tolerance) split into quads
         """
     @all_quad.setter
     def all_quad(self, arg0: bool) -> None:

