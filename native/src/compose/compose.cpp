@@ -138,6 +138,10 @@ double seg_dist(const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen:
   return (a + t * ab - q).norm();
 }
 
+/// Where a vertex that fell across the centre plane is held (m): off the plane by far less
+/// than any tolerance of the mesh, so it is not taken for a centre-plane vertex.
+constexpr double kOffCentrePlane = 1e-9;
+
 struct MeshBuilder {
   std::vector<Eigen::Vector3d> verts;
   std::vector<std::array<int, 3>> faces;
@@ -835,6 +839,11 @@ void add_kept_cells(MeshBuilder& mb, HullGrid& g, const std::vector<char>& remov
 /// The builder's mesh, oriented outward, with its face labels; throws unless it is closed.
 void finish_mesh(const MeshBuilder& mb, ComposedHull& out) {
   out.mesh = mb.mesh();
+  // A half hull's mesh lies at y >= 0. Where a blend's thin end folds a few cm across the centre
+  // plane (a known defect of the blend surface) its vertices are held just off the plane: not
+  // on it, where they would count as centre-plane vertices and be shared with their mirror.
+  for (Eigen::Index i = 0; i < out.mesh.vertices.rows(); ++i)
+    if (out.mesh.vertices(i, 1) < 0.0) out.mesh.vertices(i, 1) = kOffCentrePlane;
   orient_consistently(out.mesh);
   out.face_part.resize(static_cast<Eigen::Index>(mb.part.size()));
   for (size_t f = 0; f < mb.part.size(); ++f) out.face_part[static_cast<Eigen::Index>(f)] = mb.part[f];
