@@ -129,15 +129,13 @@ const Layout& layout(int n) {
   return cache.back();
 }
 
-/// A straight piece (two points), a quintic Bezier fillet (six) or a conic arc (a rational
-/// quadratic Bezier: three points and the middle weight w), in (y, z).
+/// A quintic Bezier fillet (six points) or a conic arc (a rational quadratic Bezier: three
+/// points and the middle weight w), in (y, z).
 struct Piece {
   std::array<V2, 6> p;
-  bool line = true;
   bool conic = false;
   double w = 1.0;
   V2 at(double s) const {
-    if (line) return (1.0 - s) * p[0] + s * p[1];
     if (conic) {
       const double b0 = (1.0 - s) * (1.0 - s), b1 = 2.0 * w * s * (1.0 - s), b2 = s * s;
       return (b0 * p[0] + b1 * p[1] + b2 * p[2]) / (b0 + b1 + b2);
@@ -148,7 +146,6 @@ struct Piece {
     return q[0];
   }
   V2 tangent(double s) const {
-    if (line) return p[1] - p[0];
     if (conic) {
       const double b0 = (1.0 - s) * (1.0 - s), b1 = 2.0 * w * s * (1.0 - s), b2 = s * s;
       const double d0 = -2.0 * (1.0 - s), d1 = 2.0 * w * (1.0 - 2.0 * s), d2 = 2.0 * s;
@@ -168,7 +165,7 @@ struct Piece {
 /// for w = 1, toward the corner as w grows).
 Piece conic(const V2& A, const V2& X, const V2& B, double w) {
   Piece pc;
-  pc.line = false, pc.conic = true, pc.w = w;
+  pc.conic = true, pc.w = w;
   pc.p[0] = A, pc.p[1] = X, pc.p[2] = B;
   return pc;
 }
@@ -176,7 +173,6 @@ Piece conic(const V2& A, const V2& X, const V2& B, double w) {
 /// The fillet from A to B with corner X (A and B on the legs X-A and X-B).
 Piece fillet(const V2& A, const V2& X, const V2& B) {
   Piece pc;
-  pc.line = false;
   pc.p = {A, A + kFilletNear * (X - A), A + kFilletFar * (X - A), B + kFilletFar * (X - B), B + kFilletNear * (X - B), B};
   return pc;
 }
@@ -347,7 +343,7 @@ Eigen::VectorXd sample(const Section& S, const std::vector<Piece>& pieces) {
     const Piece& pc = pieces[piece];
     const double x0 = f.xi(pc.at(0.0)), x1 = f.xi(pc.at(1.0));
     double s = x1 > x0 ? std::clamp((xi - x0) / (x1 - x0), 0.0, 1.0) : 0.0;
-    if (!pc.line) {  // Newton on xi(s) = xi, kept inside a shrinking bracket
+    {  // Newton on xi(s) = xi, kept inside a shrinking bracket
       double lo = 0.0, hi = 1.0;
       for (int it = 0; it < 60; ++it) {
         const double r = f.xi(pc.at(s)) - xi;
