@@ -30,7 +30,7 @@ def test_blend_is_tangent_to_the_hull_along_its_hull_boundary():
     assert _max_angle_across(0.0, hull) <= C1_ANGLE_DEG
 
 
-@pytest.mark.xfail(strict=True, reason="known defect: the blend turns the normal by about 8.7 deg where it "
+@pytest.mark.xfail(strict=True, reason="known defect: the blend turns the normal by about 13 deg where it "
                    "meets the bulb top at the centre plane (the fore end of the boundary arc on the stem)")
 def test_blend_is_tangent_to_the_bulb_along_its_bulb_boundary():
     bulb = container_ship_composed().trimmed_surfaces[1][0]
