@@ -19,6 +19,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
+#include <optional>
+#include <thread>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -89,6 +92,9 @@ constexpr double kVirtualReach = 0.5;
 constexpr double kEndFixPower = 6.0;
 /// Sections shorter than this fraction of B/2 are a point (the stem head).
 constexpr double kPointSection = 1e-9;
+/// design_sections: at most this many threads, each with at least kSectionsPerThread sections.
+constexpr std::size_t kSectionThreads = 4;
+constexpr std::size_t kSectionsPerThread = 16;
 /// Samples per template piece of the check that the template is a graph over its chord.
 constexpr int kGraphChecks = 8;
 
@@ -532,10 +538,30 @@ SectionDesign design_section(const SectionSpec& spec) {
 }
 
 std::vector<SectionDesign> design_sections(const std::vector<SectionSpec>& specs) {
-  std::vector<SectionDesign> out;
-  out.reserve(specs.size());
-  for (const SectionSpec& s : specs) out.push_back(design_section(s));
-  return out;
+  // Sections are independent: contiguous chunks on up to kSectionThreads threads. The first
+  // failing section in station order is the one reported (its chunk is the earliest to fail).
+  const std::size_t n = specs.size();
+  const std::size_t threads = std::min<std::size_t>(
+      {kSectionThreads, std::max(1u, std::thread::hardware_concurrency()), std::max<std::size_t>(1, n / kSectionsPerThread)});
+  std::vector<std::optional<SectionDesign>> out(n);
+  std::vector<std::exception_ptr> failed(threads);
+  auto work = [&](std::size_t t) {
+    try {
+      for (std::size_t i = t * n / threads; i < (t + 1) * n / threads; ++i) out[i] = design_section(specs[i]);
+    } catch (...) {
+      failed[t] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (auto& th : pool) th.join();
+  for (const auto& e : failed)
+    if (e) std::rethrow_exception(e);
+  std::vector<SectionDesign> result;
+  result.reserve(n);
+  for (auto& d : out) result.push_back(std::move(*d));
+  return result;
 }
 
 }  // namespace fairlines
