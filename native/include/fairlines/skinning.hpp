@@ -60,7 +60,7 @@ struct SkinOptions {
   std::vector<int> c1_sections;
   /// Planes the hull lies in over parts of its sections: (axis 0 / 1 / 2 for x / y / z, value
   /// in metres), e.g. the flat of side y = B/2 and the flat of bottom z = 0. Where a section
-  /// lies in such a plane (to kFlatTolerance of the sections' size) the common-knot fit (c)
+  /// lies in such a plane (to kFlatTolerance of the sections' size) the common-knot refit
   /// keeps every control point whose support lies there exactly on it, so the fitted section
   /// is exactly flat there instead of rippling about the plane by the fit's residuals.
   std::vector<std::pair<int, double>> flats;
@@ -107,8 +107,9 @@ struct SkinResult {
 /// Skin q >= 2 section curves (each a 3-D NurbsCurve, ordered along the hull; metres) into one
 /// surface. Sections that already share one non-rational knot vector of degree degree_u (and
 /// n_control, when given, equal to their count) are used as they are: their control points
-/// are the rows (section_fit_max 0); otherwise steps (b)-(d) refit them to a common knot vector. Throws InvalidInput naming the bad section / option (2-D curves, zero-length
-/// sections, coincident section parameters, bad counts).
+/// are the rows (section_fit_max 0); otherwise they are resampled at equal arc length and
+/// refitted to a common knot vector (Kim & Hwangbo 2008). Throws InvalidInput naming the bad
+/// section / option (2-D curves, zero-length sections, coincident section parameters, bad counts).
 SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions& options = {});
 
 /// Points at equal arc-length spacing along a curve: m >= 2 rows (curve dim columns), first

@@ -129,14 +129,10 @@ bool shared_knot_vector(const std::vector<NurbsCurve>& sections, const SkinOptio
   return true;
 }
 
-/// Seed 000's steps (b)-(d): m equally spaced points along every section, refitted with one
-/// clamped uniform knot vector Ku of n control points (ctrl[d]: n x 3). Returns the largest
-/// distance between the points and the fits (m).
-double refit_sections(const std::vector<NurbsCurve>& sections, const SkinOptions& o, int n, int m, Eigen::VectorXd& Ku,
-                      std::vector<Eigen::MatrixXd>& ctrl) {
+/// The section-resampling step of Kim & Hwangbo (2008): m points equally spaced by (optionally
+/// curvature-weighted) arc length along every section (pts[d]: m x 3).
+std::vector<Eigen::MatrixXd> resample_sections(const std::vector<NurbsCurve>& sections, const SkinOptions& o, int m) {
   const int q = static_cast<int>(sections.size());
-  double fit_max = 0;
-  // (b) equally spaced points along every section.
   std::vector<Eigen::MatrixXd> pts(q);
   for (int d = 0; d < q; ++d) {
     try {
@@ -145,110 +141,145 @@ double refit_sections(const std::vector<NurbsCurve>& sections, const SkinOptions
       fail("sections[", d, "]: ", e.what());
     }
   }
+  return pts;
+}
 
-  // Flat planes (SkinOptions::flats) and the distance within which a point lies in one.
-  double extent = 1.0;
-  for (int d = 0; d < q; ++d) extent = std::max(extent, pts[d].cwiseAbs().maxCoeff());
-  const double flat_tol = kFlatTolerance * extent;
-  for (std::size_t f = 0; f < o.flats.size(); ++f) {
-    const auto [axis, value] = o.flats[f];
-    if (axis < 0 || axis > 2) fail("flats[", f, "] has axis ", axis, "; expected 0 (x), 1 (y) or 2 (z)");
-    if (!std::isfinite(value)) fail("flats[", f, "] has value ", value, "; expected a finite coordinate (m)");
+/// The flat planes of SkinOptions::flats, checked, and the distance within which a set of
+/// samples counts as lying in one (kFlatTolerance of the samples' extent).
+class FlatPlanes {
+ public:
+  FlatPlanes(const SkinOptions& o, const std::vector<Eigen::MatrixXd>& pts) : flats_(o.flats) {
+    double extent = 1.0;
+    for (const Eigen::MatrixXd& p : pts) extent = std::max(extent, p.cwiseAbs().maxCoeff());
+    tol_ = kFlatTolerance * extent;
+    for (std::size_t f = 0; f < flats_.size(); ++f) {
+      const auto [axis, value] = flats_[f];
+      if (axis < 0 || axis > 2) fail("flats[", f, "] has axis ", axis, "; expected 0 (x), 1 (y) or 2 (z)");
+      if (!std::isfinite(value)) fail("flats[", f, "] has value ", value, "; expected a finite coordinate (m)");
+    }
   }
-  // The plane value a set of coordinates all lie in (to flat_tol), or NaN.
-  auto flat_value = [&](int axis, auto&& coords) {
-    for (const auto& [a, c] : o.flats) {
+  bool empty() const { return flats_.empty(); }
+  /// The value of the first plane normal to `axis` that coords[0..count) all lie in, or NaN.
+  double value(int axis, const double* coords, int count) const {
+    for (const auto& [a, c] : flats_) {
       if (a != axis) continue;
       bool all = true;
-      for (double x : coords)
-        if (!(std::abs(x - c) <= flat_tol)) { all = false; break; }
+      for (int k = 0; k < count; ++k)
+        if (!(std::abs(coords[k] - c) <= tol_)) { all = false; break; }
       if (all) return c;
     }
     return std::numeric_limits<double>::quiet_NaN();
-  };
+  }
 
-  // (c)-(d) one knot vector and control count for all sections; ends interpolated, the rest
-  // by least squares (QR of the collocation matrix, factorised once for all sections).
-  Ku = clamped_uniform_knots(n, o.degree_u);
+ private:
+  const std::vector<std::pair<int, double>>& flats_;
+  double tol_ = 0;
+};
+
+/// Collocation matrix Nu (m x n): the basis of knot vector Ku of degree p at m uniform parameters.
+Eigen::MatrixXd collocation_matrix(const Eigen::VectorXd& Ku, int p, int n, int m) {
   Eigen::MatrixXd Nu(m, n);
-  for (int k = 0; k < m; ++k) Nu.row(k) = basis_row(Ku, o.degree_u, static_cast<double>(k) / (m - 1));
-  // ctrl[d] : n x 3
-  ctrl.assign(q, Eigen::MatrixXd(n, 3));
-  {
-    Eigen::MatrixXd rhs(m, 3 * q);
-    for (int d = 0; d < q; ++d) rhs.middleCols(3 * d, 3) = pts[d];
-    Eigen::MatrixXd sol(n, 3 * q);
-    if (m == n) {
-      sol = Nu.partialPivLu().solve(rhs);
-    } else {
-      // Fix the end control points to the end samples, least squares on the interior.
-      sol.row(0) = rhs.row(0);
-      sol.row(n - 1) = rhs.row(m - 1);
-      const Eigen::MatrixXd A = Nu.block(1, 1, m - 2, n - 2);
-      const Eigen::MatrixXd b = rhs.middleRows(1, m - 2) - Nu.block(1, 0, m - 2, 1) * sol.row(0) -
-                                Nu.block(1, n - 1, m - 2, 1) * sol.row(n - 1);
-      sol.middleRows(1, n - 2) = A.householderQr().solve(b);
-      if (!o.flats.empty()) {
-        // Control points whose whole support lies in a flat keep exactly to it; the others are
-        // the least-squares fit with those fixed (normal equations of the free ones, one
-        // Cholesky factorisation per distinct set of fixed points).
-        const Eigen::MatrixXd M = Nu.transpose() * Nu;
-        // Samples strictly inside each interior control point's support (the same for every
-        // section): [first, last], empty when first > last.
-        std::vector<std::pair<int, int>> inside(n, {1, 0});
-        for (int j = 1; j < n - 1; ++j) {
-          int first = m, last = -1;
-          for (int k = 1; k < m - 1; ++k) {
-            const double u = static_cast<double>(k) / (m - 1);
-            if (u > Ku[j] && u < Ku[j + o.degree_u + 1]) first = std::min(first, k), last = k;
-          }
-          inside[j] = {first, last};
-        }
-        std::map<std::vector<char>, Eigen::LLT<Eigen::MatrixXd>> factors;
-        for (int col = 0; col < 3 * q; ++col) {
-          const int axis = col % 3;
-          std::vector<char> fixed(n, 0);
-          Eigen::VectorXd z = sol.col(col), held = Eigen::VectorXd::Zero(n);  // held: z where fixed
-          fixed[0] = fixed[n - 1] = 1;
-          held[0] = z[0], held[n - 1] = z[n - 1];
-          bool any = false;
-          for (int j = 1; j < n - 1; ++j) {
-            const auto [first, last] = inside[j];
-            if (first > last) continue;
-            const double* col_data = rhs.col(col).data();
-            const double c = flat_value(axis, std::vector<double>(col_data + first, col_data + last + 1));
-            if (!std::isnan(c)) fixed[j] = 1, z[j] = held[j] = c, any = true;
-          }
-          if (!any) continue;
-          std::vector<int> freev;
-          for (int j = 0; j < n; ++j)
-            if (!fixed[j]) freev.push_back(j);
-          if (freev.empty()) {
-            sol.col(col) = z;
-            continue;
-          }
-          const int r = static_cast<int>(freev.size());
-          auto it = factors.find(fixed);
-          if (it == factors.end()) {
-            Eigen::MatrixXd Mrr(r, r);
-            for (int a = 0; a < r; ++a)
-              for (int b2 = 0; b2 < r; ++b2) Mrr(a, b2) = M(freev[a], freev[b2]);
-            it = factors.emplace(fixed, Eigen::LLT<Eigen::MatrixXd>(Mrr)).first;
-          }
-          const Eigen::VectorXd g = Nu.transpose() * rhs.col(col) - M * held;
-          Eigen::VectorXd gr(r);
-          for (int a = 0; a < r; ++a) gr[a] = g[freev[a]];
-          const Eigen::VectorXd zr = it->second.solve(gr);
-          for (int a = 0; a < r; ++a) z[freev[a]] = zr[a];
-          sol.col(col) = z;
-        }
+  for (int k = 0; k < m; ++k) Nu.row(k) = basis_row(Ku, p, static_cast<double>(k) / (m - 1));
+  return Nu;
+}
+
+/// Control points (n x cols) for the sample columns rhs (m x cols): interpolation when m == n,
+/// else the end control points fixed to the end samples and the interior by least squares
+/// (QR of the collocation matrix, factorised once for every column).
+Eigen::MatrixXd fit_with_fixed_ends(const Eigen::MatrixXd& Nu, const Eigen::MatrixXd& rhs) {
+  const int m = static_cast<int>(Nu.rows()), n = static_cast<int>(Nu.cols());
+  Eigen::MatrixXd sol(n, rhs.cols());
+  if (m == n) {
+    sol = Nu.partialPivLu().solve(rhs);
+    return sol;
+  }
+  sol.row(0) = rhs.row(0);
+  sol.row(n - 1) = rhs.row(m - 1);
+  const Eigen::MatrixXd A = Nu.block(1, 1, m - 2, n - 2);
+  const Eigen::MatrixXd b = rhs.middleRows(1, m - 2) - Nu.block(1, 0, m - 2, 1) * sol.row(0) -
+                            Nu.block(1, n - 1, m - 2, 1) * sol.row(n - 1);
+  sol.middleRows(1, n - 2) = A.householderQr().solve(b);
+  return sol;
+}
+
+/// For each interior control point j, the interior samples [first, last] strictly inside its
+/// support (Ku[j], Ku[j + p + 1]); empty (first > last) when none. The same for every section.
+std::vector<std::pair<int, int>> samples_in_supports(const Eigen::VectorXd& Ku, int p, int n, int m) {
+  std::vector<std::pair<int, int>> inside(n, {1, 0});
+  for (int j = 1; j < n - 1; ++j) {
+    int first = m, last = -1;
+    for (int k = 1; k < m - 1; ++k) {
+      const double u = static_cast<double>(k) / (m - 1);
+      if (u > Ku[j] && u < Ku[j + p + 1]) first = std::min(first, k), last = k;
+    }
+    inside[j] = {first, last};
+  }
+  return inside;
+}
+
+/// Control points whose whole support lies in a flat keep exactly to it; the others are the
+/// least-squares fit with those fixed (normal equations of the free ones, one Cholesky
+/// factorisation per distinct set of fixed points). Columns of sol are x, y, z per section.
+void hold_flats(const Eigen::MatrixXd& Nu, const Eigen::MatrixXd& rhs, const FlatPlanes& flats,
+                const std::vector<std::pair<int, int>>& inside, Eigen::MatrixXd& sol) {
+  const int n = static_cast<int>(Nu.cols());
+  const Eigen::MatrixXd M = Nu.transpose() * Nu;
+  std::map<std::vector<char>, Eigen::LLT<Eigen::MatrixXd>> factors;
+  for (int col = 0; col < rhs.cols(); ++col) {
+    std::vector<char> fixed(n, 0);
+    Eigen::VectorXd z = sol.col(col), held = Eigen::VectorXd::Zero(n);  // held: z where fixed
+    fixed[0] = fixed[n - 1] = 1;
+    held[0] = z[0], held[n - 1] = z[n - 1];
+    bool any = false;
+    for (int j = 1; j < n - 1; ++j) {
+      const auto [first, last] = inside[j];
+      if (first > last) continue;
+      const double c = flats.value(col % 3, rhs.col(col).data() + first, last - first + 1);
+      if (!std::isnan(c)) fixed[j] = 1, z[j] = held[j] = c, any = true;
+    }
+    if (!any) continue;
+    std::vector<int> freev;
+    for (int j = 0; j < n; ++j)
+      if (!fixed[j]) freev.push_back(j);
+    const int r = static_cast<int>(freev.size());
+    if (r > 0) {
+      auto it = factors.find(fixed);
+      if (it == factors.end()) {
+        Eigen::MatrixXd Mrr(r, r);
+        for (int a = 0; a < r; ++a)
+          for (int b = 0; b < r; ++b) Mrr(a, b) = M(freev[a], freev[b]);
+        it = factors.emplace(fixed, Eigen::LLT<Eigen::MatrixXd>(Mrr)).first;
       }
+      const Eigen::VectorXd g = Nu.transpose() * rhs.col(col) - M * held;
+      Eigen::VectorXd gr(r);
+      for (int a = 0; a < r; ++a) gr[a] = g[freev[a]];
+      const Eigen::VectorXd zr = it->second.solve(gr);
+      for (int a = 0; a < r; ++a) z[freev[a]] = zr[a];
     }
-    const Eigen::MatrixXd resid = Nu * sol - rhs;
-    for (int d = 0; d < q; ++d) {
-      ctrl[d] = sol.middleCols(3 * d, 3);
-      for (int k = 0; k < m; ++k) fit_max = std::max(fit_max, resid.block(k, 3 * d, 1, 3).norm());
-    }
+    sol.col(col) = z;
+  }
+}
+
+/// The resampling and refitting steps of Kim & Hwangbo (2008): m points equally spaced along
+/// every section, refitted with one common clamped uniform knot vector Ku of n control points
+/// (ctrl[d]: n x 3). Returns the largest distance between the points and the fits (m).
+double refit_sections(const std::vector<NurbsCurve>& sections, const SkinOptions& o, int n, int m, Eigen::VectorXd& Ku,
+                      std::vector<Eigen::MatrixXd>& ctrl) {
+  const int q = static_cast<int>(sections.size());
+  const std::vector<Eigen::MatrixXd> pts = resample_sections(sections, o, m);
+  const FlatPlanes flats(o, pts);
+  Ku = clamped_uniform_knots(n, o.degree_u);
+  const Eigen::MatrixXd Nu = collocation_matrix(Ku, o.degree_u, n, m);
+  Eigen::MatrixXd rhs(m, 3 * q);  // the samples, x y z per section
+  for (int d = 0; d < q; ++d) rhs.middleCols(3 * d, 3) = pts[d];
+  Eigen::MatrixXd sol = fit_with_fixed_ends(Nu, rhs);
+  if (m != n && !flats.empty()) hold_flats(Nu, rhs, flats, samples_in_supports(Ku, o.degree_u, n, m), sol);
+  const Eigen::MatrixXd resid = Nu * sol - rhs;
+  double fit_max = 0;
+  ctrl.assign(q, Eigen::MatrixXd(n, 3));
+  for (int d = 0; d < q; ++d) {
+    ctrl[d] = sol.middleCols(3 * d, 3);
+    for (int k = 0; k < m; ++k) fit_max = std::max(fit_max, resid.block(k, 3 * d, 1, 3).norm());
   }
   return fit_max;
 }
@@ -683,8 +714,8 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
   const int largest = check_sections(sections);
   check_degrees_and_weights(o);
   // Sections already on one knot vector of degree degree_u (the hull's sections are designed
-  // so): their control points are the rows, exactly. The refit (Kim & Hwangbo 2008, steps
-  // b-d) only exists to make such a knot vector, and it ripples about flats and tight bilges.
+  // so): their control points are the rows, exactly. The refit (Kim & Hwangbo 2008: equal
+  // arc-length resampling and a common-knot fit) only exists to make such a knot vector, and it ripples about flats and tight bilges.
   const bool exact = shared_knot_vector(sections, o);
   const int n = exact ? sections[0].n_control() : (o.n_control > 0 ? o.n_control : std::max(12, 2 * largest));
   const int m = o.samples > 0 ? o.samples : 4 * n;
