@@ -11,7 +11,7 @@ from .. import engine, ids, props
 from ..data import MeshData
 from .base import FairlinesNode, NodeError, register
 
-# Seed 002 Table 3 (the test request of the form-curve paper), centroid switched off: a
+# The test request of Kim, Shin & Kim (2002), Table 3, with the centroid switched off: a
 # feasible request out of the box that shows every kind of parameter.
 _FORM_DEFAULTS = [
     ("xB", ids.SOCKET_LENGTH, 0.0, True), ("yB", ids.SOCKET_LENGTH, 0.569026, True),

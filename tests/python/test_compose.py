@@ -1,4 +1,4 @@
-"""Issue 5: bulbous bow, surface-surface intersection and the composed watertight hull.
+"""Bulbous bow, surface-surface intersection and the composed watertight hull.
 
 Analytic stand-in (the real Panamax hull is in test_compose_panamax.py): a Wigley-type
 forebody y = B/2 (1 - xi^4) (1 - (1 - z/D)^6) fitted as a bicubic surface, with Panamax particulars. Every check below
@@ -16,8 +16,8 @@ from mesh_fixtures import forebody_surface
 
 L, B, T, D = 244.8, 32.25, 11.0, 19.0
 SHIP = dict(lpp=L, beam=B, draft_fp=T, midship_area=0.97 * B * T, displacement_volume=0.65 * L * B * T)
-KRACHT_TOL = 0.02      # issue 5: measured coefficients within 2 %
-VOLUME_TOL = 0.002     # issue 5: composed = bare + added within 0.2 %
+KRACHT_TOL = 0.02      # bulb's Kracht coefficients measured on its mesh vs the requested ones: within 2 %
+VOLUME_TOL = 0.002     # composing keeps volume: composed = bare + bulb's added volume within 0.2 %
 
 
 @pytest.fixture(scope="module")
@@ -233,7 +233,7 @@ def test_compose_ship_example_runs(tmp_path, monkeypatch, capsys):
     assert (tmp_path / "container_ship_full.stl").stat().st_size > 84
 
 
-MAX_BLEND_ANGLE_DEG = 0.5  # issue 5: normals across each blend boundary within 0.5 degrees
+MAX_BLEND_ANGLE_DEG = 0.5  # a tangent-continuous blend: normals across each blend boundary within 0.5 degrees
 
 
 def _normal_angle_profile(blend, at_v1, surface, n=300):
@@ -286,7 +286,7 @@ def test_blend_of_plane_and_cylinder_is_c1():
 
 
 def test_any_parameter_orientation_of_the_bare_hull_is_accepted(hull, composed):
-    """Issue 4's hull may run u/v the other way: transposed and reversed copies compose to
+    """The bare-hull description's surface may run u/v the other way: transposed and reversed copies compose to
     the same closed half hull volume."""
     P = np.asarray(hull.control_points)
     ku, kv = np.asarray(hull.knots_u), np.asarray(hull.knots_v)

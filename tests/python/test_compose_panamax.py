@@ -16,11 +16,11 @@ from conftest import edge_census
 EXAMPLE = pathlib.Path(__file__).resolve().parents[2] / "examples" / "container_ship.json"
 KRACHT_TOL = 0.02           # measured coefficients within 2 % ...
 KRACHT_TOL_BLENDED = 0.025  # ... 2.5 % with the blend, whose fillet adds about 2 % of A_BT at the FP
-VOLUME_TOL = 0.002          # issue 5: composed = bare + added within 0.2 %
-MAX_BLEND_ANGLE_DEG = 0.5   # issue 5: normals across each blend boundary within 0.5 degrees
+VOLUME_TOL = 0.002          # composing keeps volume: composed = bare + bulb's added volume within 0.2 %
+MAX_BLEND_ANGLE_DEG = 0.5   # a tangent-continuous blend: normals across each blend boundary within 0.5 degrees
 QUAD_N = 240                # quadrature cells per parameter direction
 MIDSHIP_TOL = 1e-5          # skinning the sections moves the midship area by a few 1e-6
-# Kracht ranges of container ships swept over (issue 5): length and breadth ratios
+# Kracht ranges of container ships swept over: length and breadth ratios
 C_LPR_SWEEP = (0.018, 0.031)
 C_BB_SWEEP = (0.15, 0.21)
 

@@ -96,7 +96,7 @@ def test_console_script_exit_code(tmp_path):
 
 
 def test_import_generic_tecplot_grid(tmp_path, capsys):
-    """A Wigley hull as one Tecplot zone in SPEC metres, imported and built from the command line."""
+    """A Wigley hull as one Tecplot zone in the project's axes (metres), imported and built from the command line."""
     L, B, T = 40.0, 4.0, 2.5
     x, z = np.linspace(0, L, 17), np.linspace(0, T * 1.2, 9)
     X, Z = np.meshgrid(x, z, indexing="ij")
