@@ -1,8 +1,5 @@
-// Python bindings of the bare-hull section builder (fairlines/hull.hpp). The hull
-// description, its validation and the orchestration live in python/fairlines/hull.py.
-#include <cmath>
-#include <limits>
-
+// Python bindings of the hull fairness check: plane cuts of a surface with analytic curvature
+// (fairlines/hull.hpp). The hull description and its orchestration live in python/fairlines/hull.py.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -16,37 +13,7 @@ namespace fairlines {
 
 using namespace py_convert;
 
-namespace {
-
-double opt(const py::handle& h) { return h.is_none() ? std::numeric_limits<double>::quiet_NaN() : h.cast<double>(); }
-
-}  // namespace
-
 void bind_hull(py::module_& m) {
-  m.def("_linear_form_curve",
-        [](const std::string& name, py::handle abscissae, int degree, py::handle yB, py::handle yE, py::handle slopeB,
-           py::handle slopeE, py::handle area, py::handle xC, py::handle area_from, py::handle points, py::handle y_lower, py::handle y_upper,
-           py::handle curvB, py::handle curvE, const std::vector<std::pair<int, double>>& fixed) {
-          LinearFormRequest r;
-          r.name = name;
-          r.degree = degree;
-          r.abscissae = vector(abscissae, (name + ": abscissae").c_str());
-          r.yB = opt(yB), r.yE = opt(yE), r.slopeB = opt(slopeB), r.slopeE = opt(slopeE);
-          r.curvB = opt(curvB), r.curvE = opt(curvE);
-          r.fixed = fixed;
-          r.area = opt(area), r.xC = opt(xC);
-          if (!area_from.is_none()) r.area_from = area_from.cast<double>();
-          r.y_lower = opt(y_lower), r.y_upper = opt(y_upper);
-          if (!points.is_none()) {
-            const Eigen::MatrixXd P = matrix(points, (name + ": points").c_str(), 2);
-            for (Eigen::Index i = 0; i < P.rows(); ++i) r.points.emplace_back(P(i, 0), P(i, 1));
-          }
-          return design_linear_form_curve(r);
-        },
-        "name"_a, "abscissae"_a, "degree"_a, "yB"_a, "yE"_a, "slopeB"_a, "slopeE"_a, "area"_a, "xC"_a, "area_from"_a,
-        "points"_a, "y_lower"_a = py::none(), "y_upper"_a = py::none(), "curvB"_a = py::none(), "curvE"_a = py::none(),
-        "fixed"_a = std::vector<std::pair<int, double>>{});
-
   py::class_<PlaneCut>(m, "PlaneCut", "A waterline / buttock / frame cut from a surface, with analytic curvature.")
       .def_readonly("axis", &PlaneCut::axis, "0 frame (x = value), 1 buttock (y = value), 2 waterline (z = value)")
       .def_readonly("value", &PlaneCut::value, "plane position (m)")

@@ -1807,8 +1807,6 @@ def _hull_bulb_seam(hull: NurbsSurface, bulb: NurbsSurface, options: ComposeOpti
     """
 def _intersect_surfaces(a: NurbsSurface, b: NurbsSurface, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, subdivisions: typing.SupportsInt | typing.SupportsIndex = 12, step: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> list:
     ...
-def _linear_form_curve(name: str, abscissae: typing.Any, degree: typing.SupportsInt | typing.SupportsIndex, yB: typing.Any, yE: typing.Any, slopeB: typing.Any, slopeE: typing.Any, area: typing.Any, xC: typing.Any, area_from: typing.Any, points: typing.Any, y_lower: typing.Any = None, y_upper: typing.Any = None, curvB: typing.Any = None, curvE: typing.Any = None, fixed: collections.abc.Sequence[tuple[typing.SupportsInt | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]] = []) -> NurbsCurve:
-    ...
 def _measure_kracht(vertices: typing.Any, faces: typing.Any, ship: KrachtShip) -> Kracht:
     """
     Kracht coefficients of a closed, outward half-hull mesh (vertices (n, 3) m, faces (m, 3)) below
