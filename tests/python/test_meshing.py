@@ -117,6 +117,14 @@ def test_bare_hull_mesh_volume_matches_nurbs_hydrostatics():
     assert 2 * closed_volume(m.vertices, m.faces) == pytest.approx(ref, rel=MESH_VOLUME_TOL)
 
 
+def test_coarse_wetted_mesh_follows_the_waterline_round_its_tight_turn(blended):
+    """At 8 m the waterline trace's step is longer than the level curve's turn near the DWL's
+    end on the centre plane: the corrector must not jump across the face (it looped there)."""
+    m = fl.mesh_hull(blended, size=8.0, draft=EXAMPLE_DRAFT)
+    assert edge_census(m.faces) == (0, 0, 0)
+    assert m.vertices[:, 2].max() <= EXAMPLE_DRAFT + 1e-9
+
+
 def test_cruiser_stern_ship_meshes_watertight_with_its_volume():
     s = cruiser_stern_ship().bare_hull_surface()  # no bulb: composed alone
     for draft in (None, 5.0):

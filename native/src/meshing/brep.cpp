@@ -26,6 +26,9 @@ using Vec3 = Eigen::Vector3d;
 
 constexpr int kPoleSegments = 4;        ///< copies of a pole node along its parameter edge, minus one
 constexpr double kTraceStep = 0.25;     ///< waterline trace step / size
+constexpr double kTraceStall = 1e-3;    ///< a trace step shorter than this fraction of its stride has stalled
+constexpr double kTraceDrift = 0.5;     ///< corrector move / predictor step above which the step is halved
+constexpr int kTraceHalvings = 30;     ///< at most this many halvings of one trace step
 constexpr int kBisections = 60;         ///< bisection steps for an edge's crossing of the cut
 constexpr double kVertexMatch = 1e-9;   ///< vertices closer than this x model size are one
 constexpr double kSubstep = 0.25;       ///< integration step of an edge's size / the size
@@ -146,10 +149,19 @@ std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const
     tn.normalize();
     if (tn.dot(t) < 0) tn = -tn;
     t = tn;
-    const double d = step3d / std::max(1e-300, speed(q, t));
-    const Vec2 next = correct(g.clamp(q + d * t));
+    // predictor along the level curve's tangent, corrector onto z = T; where the corrector
+    // lands far from the prediction (a tight turn of the level curve) the step is halved
+    double d = step3d / std::max(1e-300, speed(q, t));
+    Vec2 next = q;
+    for (int h = 0; h < kTraceHalvings; ++h, d *= 0.5) {
+      const Vec2 pred = g.clamp(q + d * t);
+      next = correct(pred);
+      if ((next - pred).norm() <= kTraceDrift * (pred - q).norm()) break;
+    }
     out.push_back(next);
-    if (!point_in_polygon(next, poly) || (next - q).norm() < 1e-15) return out;
+    // out of the face, or pinned against its parameter domain's edge (the clamp holds it
+    // there): the waterline has reached the face's boundary
+    if (!point_in_polygon(next, poly) || (next - q).norm() < kTraceStall * d) return out;
   }
   throw Error("mesh: the waterline trace did not leave the face");
 }
