@@ -30,7 +30,7 @@ void bind_patch_hydrostatics(py::module_& m) {
         "Hydrostatics of half-hull NURBS patches that bound the body together, upright at `draft` (m), by\n"
         "Gauss-Legendre quadrature on each patch clipped at the waterplane; each patch is turned outward\n"
         "first (side-like: int y n_y > 0, end-like: int (x - end_x) n_x > 0). Raises InvalidInput for a bad\n"
-        "draft, end_x or gauss.");
+        "draft, end_x or gauss, or no patches.");
 }
 
 }  // namespace fairlines

@@ -58,7 +58,7 @@ PARALLEL_SHIFT = 1.5        # the parallel body's centre moves this many times t
 DECK_CLEAR = 0.97           # the deck stays flat at least to where the waterline narrows to this fraction of B/2 ...
 DECK_TO_MAX = 0.92          # ... but ends its flat part aft of this fraction of Lpp
 DECK_FROM_MIN = 0.02        # ... and starts it at least this fraction of Lpp forward of the stern
-DECK_FLAT_CHECKS = 101           # points of that check
+DECK_FLAT_CHECKS = 101      # points of that check
 DECK_TRANSOM = 0.92         # deck half-breadth at the transom, fraction of B/2
 DWL_TRANSOM = 0.7           # waterline half-breadth at an immersed transom, fraction of B/2
 FULLNESS_POINTS = 81        # points of the natural fullness the SAC stays near
@@ -67,8 +67,8 @@ FIT_END = 0.06              # no fullness points this close (fraction of the wat
 MATCH_TOL = 1e-6            # relative tolerance of volume, LCB (on Lpp) and waterplane area on the surface
 MATCH_ITERATIONS = 6
 MATCH_GAUSS = 4             # Gauss points per span of the matching hydrostatics: 1e-11 of the 8-point volume, twice as fast
-PROFILE_SPANS = (30, 60, 120)
-BULB_AFT_LENGTH = 2.6       # the bulb runs on into the hull this many times L_PR + B_B (the bulb's own default is 2)  # knot spans of the profile, tried in turn
+PROFILE_SPANS = (30, 60, 120)  # knot spans of the profile, tried in turn
+BULB_AFT_LENGTH = 2.6       # the bulb runs on into the hull this many times L_PR + B_B (the bulb's own default is 2)
 
 
 @dataclass

@@ -554,15 +554,15 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
     if kracht is not None:
         out["bulb"] = {"kracht": kracht}
         say("bulb: Kracht coefficients " + ", ".join(f"{k} {v:.4g}" for k, v in kracht.items()))
-        out = _without_bulb_overlap(out, kracht["c_vpr"] * hull.hydrostatics().volume, say)
+        out = _without_bulb_overlap(out, hull, kracht, say)
     return out
 
 
-def _without_bulb_overlap(desc: dict, v_pr: float, say) -> dict:
-    """The description with the SAC's volume lowered by what the composed bulb adds aft of the
-    FP outside the bare hull (the data's hull grids already hold the bulb's neck), so the
-    composed hull holds the measured volume plus the bulb's V_PR. Unchanged when the hull
-    cannot be composed or rebuilt."""
+def _without_bulb_overlap(desc: dict, hull, kracht: dict, say) -> dict:
+    """The description (`hull`'s, with the bulb's Kracht coefficients) with the SAC's volume
+    lowered by what the composed bulb adds aft of the FP outside the bare hull (the data's hull
+    grids already hold the bulb's neck), so the composed hull holds the measured volume plus
+    the bulb's V_PR. Unchanged when the hull cannot be composed or rebuilt."""
     from .designer import match_targets
     from .hull import Hull
 
@@ -570,9 +570,9 @@ def _without_bulb_overlap(desc: dict, v_pr: float, say) -> dict:
     if "volume" not in sac:
         return desc
     try:
-        hull = Hull.from_json(desc)
-        composed_volume = _mesh_figures(hull.composed_hull(), desc["principal"]["T"])[0]
-        overlap = composed_volume - hull.hydrostatics().volume - v_pr
+        bare = hull.hydrostatics().volume
+        composed_volume = _mesh_figures(hull.composed_hull(bulb=hull.bulbous_bow(**kracht)), desc["principal"]["T"])[0]
+        overlap = composed_volume - bare - kracht["c_vpr"] * bare
         if overlap <= 0:
             return desc
         out = copy.deepcopy(desc)

@@ -17,6 +17,7 @@ import numpy as np
 
 from . import _native
 from ._native import InvalidInput, NurbsSurface
+from ._options import fill_options
 
 __all__ = ["SurfaceMesh", "mesh_options", "mesh_surface", "mesh_hull", "mesh_quality"]
 
@@ -25,14 +26,8 @@ def mesh_options(**options) -> "_native.MeshOptions":
     """A :class:`fairlines._native.MeshOptions` with the given fields set (``size``,
     ``chordal_tolerance``, ``min_size``, ``all_quad``, ``smoothing_passes``,
     ``min_quad_quality``; the defaults live in the engine). Raises InvalidInput for an unknown
-    name."""
-    o = _native.MeshOptions()
-    for name, value in options.items():
-        if name.startswith("_") or not hasattr(o, name):
-            raise InvalidInput(f"mesh option {name!r} is unknown; expected one of size, chordal_tolerance, "
-                               "min_size, all_quad, smoothing_passes, min_quad_quality")
-        setattr(o, name, value)
-    return o
+    name or a value of the wrong type."""
+    return fill_options(_native.MeshOptions, "mesh", options)
 
 
 @dataclass(frozen=True)

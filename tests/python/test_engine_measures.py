@@ -77,6 +77,11 @@ def test_a_patch_above_the_waterline_adds_nothing():
         fl.hydrostatics_of_patches([deck], -1.0, L / 2)
 
 
+def test_patch_hydrostatics_refuse_an_empty_patch_list():
+    with pytest.raises(fl.InvalidInput, match="patches is empty"):
+        fl.hydrostatics_of_patches([], 1.0, 0.0)
+
+
 def test_foot_points_on_a_cylinder_from_nearby_starts():
     r, length = 2.0, 5.0
     arc = fl.arc([0, 0, 0], r, 0.0, np.pi / 2)  # quarter circle in the (x, y) plane

@@ -208,6 +208,11 @@ def test_plot3d_round_trip(tmp_path):
     assert head == ["2", "5 4 1", "3 7 1"]
 
 
+def test_a_mesh_option_of_the_wrong_type_is_refused_by_name(bilge):
+    with pytest.raises(fl.InvalidInput, match="mesh option all_quad is 'yes'; expected a bool"):
+        fl.mesh_surface(bilge, size=1.0, all_quad="yes")
+
+
 def test_bad_mesh_input_is_refused(bilge, blended):
     with pytest.raises(fl.InvalidInput, match="size is -1"):
         fl.mesh_surface(bilge, size=-1.0)

@@ -92,7 +92,7 @@ Hydrostatics hydrostatics(const NurbsSurface& surface, double draft, const Hydro
 /// station between the ends, metres). A patch wholly above the draft adds nothing; none is
 /// required to reach the waterplane. Volume, areas: full ship when half_hull. `gauss`:
 /// Gauss-Legendre points per knot span (2..32). Throws InvalidInput for a non-positive or
-/// non-finite draft, a non-finite end_x or a bad gauss.
+/// non-finite draft, a non-finite end_x, a bad gauss or no patches.
 struct PatchHydrostatics {
   double draft = 0;            ///< m above the baseline
   double volume = 0;           ///< m^3 (full ship when half_hull)

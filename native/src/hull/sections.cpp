@@ -90,6 +90,9 @@ constexpr double kVirtualReach = 0.5;
 /// A dry section's template ends this smoothly at K: the miss at K is taken out of the
 /// ordinates as g^kEndFixPower (g the Greville abscissa).
 constexpr double kEndFixPower = 6.0;
+/// ... when it misses by more than this fraction of the chord (a template ending at K misses
+/// it only by the abscissa solve's round-off).
+constexpr double kEndMissTol = 1e-12;
 /// Sections shorter than this fraction of B/2 are a point (the stem head).
 constexpr double kPointSection = 1e-9;
 /// design_sections: at most this many threads, each with at least kSectionsPerThread sections.
@@ -293,7 +296,7 @@ std::vector<Piece> immersed_template(const Section& S, double lambda) {
   const V2 M = heading(S);
   const double t = std::clamp(lambda / kMaxShapeKnob, 0.0, 1.0);
   const V2 X = C + std::pow(t, kLeanPower) * (M - C);
-  const double w = std::exp((1.0 - t) * std::log(kFullWeight) + t * std::log(kFineWeight));
+  const double w = kFullWeight * std::pow(kFineWeight / kFullWeight, t);
   const double l1 = (X - Q).norm();
   const V2 tw = l1 > 0 ? V2((X - Q) / l1) : V2((K - Q).normalized());
   const V2 Y = Q - s.top_corner * (D - Q).norm() * tw;
@@ -367,7 +370,8 @@ Eigen::VectorXd sample(const Section& S, const std::vector<Piece>& pieces) {
   // A template running on past K (a dry section's virtual leg) misses K by a little: take the
   // miss out smoothly, from nothing at the deck to all of it at K.
   const double miss = eta[n - 1] - f.eta(S.K);
-  for (int k = 1; k < n; ++k) eta[k] -= miss * std::pow(S.l.g[k], kEndFixPower);
+  if (std::abs(miss) > kEndMissTol * f.L)
+    for (int k = 1; k < n; ++k) eta[k] -= miss * std::pow(S.l.g[k], kEndFixPower);
   eta[n - 1] = f.eta(S.K);
   return eta;
 }

@@ -422,6 +422,7 @@ Hydrostatics hydrostatics(const NurbsSurface& surface, double draft, const Hydro
 
 PatchHydrostatics hydrostatics_of_patches(const std::vector<NurbsSurface>& patches, double draft, double end_x,
                                           bool half_hull, int gauss) {
+  if (patches.empty()) fail("patches is empty; expected the NURBS patches that bound the body");
   detail::require_positive(draft, "draft");
   detail::require_finite(end_x, "end_x");
   if (gauss < 2 || gauss > 32) fail("gauss is ", gauss, "; expected 2..32 points per knot span");
