@@ -6,6 +6,7 @@
 #include "convert.hpp"
 #include "option_docs.hpp"
 #include "fairlines/blend.hpp"
+#include "fairlines/blend_placement.hpp"
 #include "fairlines/bulb.hpp"
 #include "fairlines/compose.hpp"
 #include "fairlines/intersect.hpp"
@@ -89,6 +90,18 @@ void bind_compose_options(py::module_& m) {
   field(b, "check_samples", &BlendOptions::check_samples, "boundary points at which continuity is measured (>= 2)");
   field(b, "centre_plane_ends", &BlendOptions::centre_plane_ends,
         "when both boundaries start (end) on y = 0, keep that end section in the centre plane");
+
+  py::class_<BlendPlacementOptions> p(m, "BlendPlacementOptions",
+                                      "Options of seam_blend_placement (fairlines.seam_blend_placement sets them by keyword).");
+  p.def(py::init<>());
+  field(p, "clearance_u", &BlendPlacementOptions::clearance_u,
+        "hull u between the seam and the blend's boundary (parameter units, >= 0)");
+  field(p, "clearance_v", &BlendPlacementOptions::clearance_v,
+        "hull v between the seam and the blend's boundary (parameter units, >= 0)");
+  field(p, "bulb_clearance", &BlendPlacementOptions::bulb_clearance,
+        "bulb u between the seam's foremost point and the blend's boundary (>= 0)");
+  field(p, "tension", &BlendPlacementOptions::tension, "cross-boundary tangent length / (|B - A| / 3), > 0");
+  field(p, "points", &BlendPlacementOptions::points, "points on the hull boundary's arc (>= 3)");
 }
 
 }  // namespace
@@ -185,17 +198,27 @@ void bind_compose(py::module_& m) {
       "hull"_a, "bulb"_a = nullptr, "options"_a = ComposeOptions{}, "blend"_a = nullptr);
 
   m.def(
-      "_hull_bulb_seam",
-      [](const NurbsSurface& hull, const NurbsSurface& bulb, const ComposeOptions& options) {
-        HullBulbSeam r = [&] {
+      "_seam_blend_placement",
+      [](const NurbsSurface& hull, const NurbsSurface& bulb, const ComposeOptions& compose_options,
+         const BlendPlacementOptions& options) {
+        auto [oriented, spec] = [&] {
           py::gil_scoped_release release;
-          return hull_bulb_seam(hull, bulb, options);
+          return seam_blend_placement(hull, bulb, compose_options, options);
         }();
-        return py::make_tuple(r.hull, curve_dict(r.seam));
+        return py::make_tuple(oriented, py_convert::to_array(spec.hull_uv), spec.bulb_u, spec.tension);
       },
-      "hull"_a, "bulb"_a, "options"_a = ComposeOptions{},
-      "(oriented hull, seam dict) of compose_hull([hull, bulb]) without meshing (see compose.hpp).");
-
+      "hull"_a, "bulb"_a, "compose_options"_a = ComposeOptions{}, "options"_a = BlendPlacementOptions{},
+      "(oriented hull, boundary on it (k, 2) (u, v), bulb u of the boundary on the bulb, tension) "
+      "of the blend around the seam (see blend_placement.hpp).");
+  m.def(
+      "_blend_boundaries_around_seam",
+      [](const NurbsSurface& oriented_hull, py::handle uv_hull, py::handle uv_bulb, const BlendPlacementOptions& options) {
+        const BlendSpec spec = blend_boundaries_around_seam(oriented_hull, py_convert::matrix(uv_hull, "seam_uv_hull", 2),
+                                                            py_convert::matrix(uv_bulb, "seam_uv_bulb", 2), options);
+        return py::make_tuple(py_convert::to_array(spec.hull_uv), spec.bulb_u);
+      },
+      "oriented_hull"_a, "seam_uv_hull"_a, "seam_uv_bulb"_a, "options"_a = BlendPlacementOptions{},
+      "(boundary on the hull (k, 2) (u, v), bulb u) of the blend around a seam (see blend_placement.hpp).");
   m.def(
       "_blend_surface",
       [](const NurbsSurface& a, py::handle ba, const NurbsSurface& b, py::handle bb, const BlendOptions& options) {

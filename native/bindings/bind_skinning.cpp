@@ -1,6 +1,7 @@
 // Python bindings of fair skinning (fairlines/skinning.hpp) and hydrostatics
 // (fairlines/hydrostatics.hpp).
 #include <cmath>
+#include <limits>
 
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -44,22 +45,49 @@ std::vector<NurbsCurve> as_curves(const py::handle& obj) {
 }
 
 // Integer fields keep the bound functions' rule: an integral float is accepted, a bool is not.
-template <int SkinOptions::*field>
-void def_int(py::class_<SkinOptions>& c, const char* name, const char* doc) {
+template <typename Options, int Options::*field>
+void def_int(py::class_<Options>& c, const char* name, const char* doc) {
   c.def_property(
-      name, [](const SkinOptions& o) { return o.*field; },
-      [name](SkinOptions& o, py::handle value) { o.*field = as_int(value, name); },
-      option_docs::with_default(doc, SkinOptions{}.*field).c_str());
+      name, [](const Options& o) { return o.*field; },
+      [name](Options& o, py::handle value) { o.*field = as_int(value, name); },
+      option_docs::with_default(doc, Options{}.*field).c_str());
+}
+
+void bind_hydrostatics_options(py::module_& m) {
+  using option_docs::field;
+  using O = HydrostaticsOptions;
+  py::class_<O> c(m, "HydrostaticsOptions", "Options of hydrostatics (fairlines.hydrostatics sets them by keyword).");
+  c.def(py::init<>());
+  field(c, "half_hull", &O::half_hull, "the surface is the y >= 0 half: volume, areas and SAC are doubled");
+  field(c, "length", &O::length, "length for the coefficients (m); 0: submerged length x_max - x_min");
+  field(c, "breadth", &O::breadth, "breadth for the coefficients (m); 0: 2 x max submerged half-breadth");
+  c.def_property(
+      "midship_x",
+      [](const O& o) -> py::object {
+        if (std::isnan(o.midship_x)) return py::none();
+        return py::float_(o.midship_x);
+      },
+      [](O& o, py::handle x) {
+        if (x.is_none()) { o.midship_x = std::numeric_limits<double>::quiet_NaN(); return; }
+        o.midship_x = x.cast<double>();
+        if (std::isnan(o.midship_x)) throw InvalidInput("midship_x is nan; expected a finite x (m) or None");
+      },
+      "x of the midship section for Am and Cm (m); None: the middle of [x_min, x_max] (default None)");
+  def_int<O, &O::gauss>(c, "gauss", "Gauss-Legendre points per knot span in each direction (2..32)");
+  def_int<O, &O::sac_stations>(c, "sac_stations", "equally spaced stations of the returned SAC (>= 2), ends included");
+  field(c, "density", &O::density, "water density (t/m^3) for the displacement mass");
+  field(c, "trim", &O::trim, "trim by the stern (m) over trim_length; draft is then the draft at trim_length / 2");
+  field(c, "trim_length", &O::trim_length, "AP to FP (m) over which trim is measured; > 0 when trim != 0");
 }
 
 void bind_skin_options(py::module_& m) {
   using option_docs::field;
   py::class_<SkinOptions> c(m, "SkinOptions", "Options of fair_skin (fairlines.fair_skin sets them by keyword).");
   c.def(py::init<>());
-  def_int<&SkinOptions::n_control>(c, "n_control", "control points per section in u; 0: max(12, 2 x largest section count)");
-  def_int<&SkinOptions::degree_u>(c, "degree_u", "degree across the sections (>= 1)");
-  def_int<&SkinOptions::degree_v>(c, "degree_v", "degree of the longitudinal curves (>= 2)");
-  def_int<&SkinOptions::samples>(c, "samples", "equally spaced points per section; 0: 4 x n_control, else >= n_control");
+  def_int<SkinOptions, &SkinOptions::n_control>(c, "n_control", "control points per section in u; 0: max(12, 2 x largest section count)");
+  def_int<SkinOptions, &SkinOptions::degree_u>(c, "degree_u", "degree across the sections (>= 1)");
+  def_int<SkinOptions, &SkinOptions::degree_v>(c, "degree_v", "degree of the longitudinal curves (>= 2)");
+  def_int<SkinOptions, &SkinOptions::samples>(c, "samples", "equally spaced points per section; 0: 4 x n_control, else >= n_control");
   field(c, "curvature_weight", &SkinOptions::curvature_weight,
         "w >= 0: section points equally spaced in ds (1 + w L |k|), L the section length; 0 plain arc length");
   c.def_property(
@@ -174,32 +202,16 @@ void bind_skinning(py::module_& m) {
         return d;
       }, "Scalar results as a dict.");
 
-  m.def("hydrostatics",
-        [](const NurbsSurface& s, double draft, bool half_hull, double length, double breadth, py::handle midship_x,
-           py::handle gauss, py::handle sac_stations, double density, double trim, double trim_length) {
-          HydrostaticsOptions o;
-          o.half_hull = half_hull;
-          o.length = length;
-          o.breadth = breadth;
-          if (!midship_x.is_none()) o.midship_x = midship_x.cast<double>();
-          if (!midship_x.is_none() && std::isnan(o.midship_x))
-            throw InvalidInput("midship_x is nan; expected a finite x (m) or None");
-          o.gauss = as_int(gauss, "gauss");
-          o.sac_stations = as_int(sac_stations, "sac_stations");
-          o.density = density;
-          o.trim = trim;
-          o.trim_length = trim_length;
-          py::gil_scoped_release release;
-          return hydrostatics(s, draft, o);
-        },
-        "surface"_a, "draft"_a, "half_hull"_a = true, "length"_a = 0.0, "breadth"_a = 0.0, "midship_x"_a = py::none(),
-        "gauss"_a = 8, "sac_stations"_a = 41, "density"_a = 1.025, "trim"_a = 0.0, "trim_length"_a = 0.0,
-        "Hydrostatics of a hull surface at `draft` (m above base) by Gauss-Legendre quadrature on the surface.\n"
-        "The surface is the y >= 0 half of the hull when half_hull=True (volume, areas and SAC are then doubled\n"
-        "to full-ship values); openings other than the centre plane must be transverse planes x = const.\n"
-        "length / breadth: for the coefficients (0: submerged extent); midship_x: station of Am (None: middle).\n"
-        "trim: by the stern (m) over trim_length (AP at x = 0 to FP); draft is then the draft at trim_length / 2.\n"
-        "Raises InvalidInput for a bad draft or option, or a waterplane above the surface's highest point.");
+  bind_hydrostatics_options(m);
+  m.def(
+      "_hydrostatics",
+      [](const NurbsSurface& s, double draft, const HydrostaticsOptions& o) {
+        py::gil_scoped_release release;
+        return hydrostatics(s, draft, o);
+      },
+      "surface"_a, "draft"_a, "options"_a = HydrostaticsOptions{},
+      "Hydrostatics of a hull surface at `draft` (m above base) by Gauss-Legendre quadrature on the surface\n"
+      "(fairlines.hydrostatics takes the options by keyword).");
   m.def("section_area", &section_area, "surface"_a, "x"_a, "draft"_a, "half_hull"_a = true, "gauss"_a = 8,
         "(area below the draft of the section x = const (m^2; full section when half_hull), centroid height (m)).");
 }

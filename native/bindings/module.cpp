@@ -25,6 +25,7 @@ PYBIND11_MODULE(_native, m) {
   auto base = py::register_exception<fairlines::Error>(m, "FairlinesError", PyExc_RuntimeError);
   auto invalid = py::register_exception<fairlines::InvalidInput>(m, "InvalidInput", PyExc_ValueError);
   py::register_exception<fairlines::InfeasibleFormParameters>(m, "InfeasibleFormParameters", invalid.ptr());
+  py::register_exception<fairlines::NoBlendFits>(m, "NoBlendFits", invalid.ptr());
   py::register_exception<fairlines::ConvergenceError>(m, "ConvergenceError", base.ptr());
   fairlines::bind_nurbs(m);
   fairlines::bind_form_curve(m);

@@ -12,6 +12,7 @@ from ._native import (  # noqa: F401  (re-exported API)
     Hydrostatics,
     InfeasibleFormParameters,
     InvalidInput,
+    NoBlendFits,
     NurbsCurve,
     NurbsSurface,
     NurbsVolume,
@@ -21,7 +22,6 @@ from ._native import (  # noqa: F401  (re-exported API)
     arc_length,
     curve_e2,
     equal_arc_length_points,
-    hydrostatics,
     section_area,
     arc,
     averaged_knots,
@@ -62,8 +62,9 @@ from .description import BasicCurveSpec, BulbSpec, HullDescription, PrincipalDim
 from .hull import Hull  # noqa: F401
 from .skinning import SkinOptions, fair_skin  # noqa: F401
 
+from .hydrostatics_surface import hydrostatics, hydrostatics_options  # noqa: F401,E402
 from .form_curve import FORM_PARAMETERS, FormCurveResult, design_curve, fairness_of, form_parameters_of  # noqa: F401,E402
-from ._native import boundary_continuity, mesh_volume, orient_bare_hull, triangulate_polygon  # noqa: F401,E402
+from ._native import BlendPlacementOptions, HydrostaticsOptions, boundary_continuity, mesh_volume, orient_bare_hull, triangulate_polygon  # noqa: F401,E402
 from .compose import (  # noqa: F401,E402
     KRACHT_NAMES,
     BlendPlacement,
@@ -77,6 +78,7 @@ from .compose import (  # noqa: F401,E402
     intersect_surfaces,
     measure_kracht,
     mesh_hydrostatics,
+    placement_options,
     seam_blend_placement,
 )
 

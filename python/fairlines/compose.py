@@ -15,7 +15,7 @@ import numpy as np
 
 from . import _native
 from ._native import NurbsSurface
-from ._options import fill_options
+from ._options import fill_options, option_names
 from .hydrostatics_mesh import displaced_volume_of_mesh
 
 
@@ -38,6 +38,7 @@ __all__ = [
     "intersect_surfaces",
     "measure_kracht",
     "mesh_hydrostatics",
+    "placement_options",
     "seam_blend_placement",
     "KRACHT_NAMES",
 ]
@@ -372,134 +373,44 @@ def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, 
     return BlendSurface(s, dict(at_a), dict(at_b), ba, boundary_b, o.tension)
 
 
-class _NoBlendFits(_native.InvalidInput):
-    """No blend boundary fits around the seam (compose_with_blend then keeps the plain union)."""
+def placement_options(**options) -> "_native.BlendPlacementOptions":
+    """A :class:`fl.BlendPlacementOptions` with the given fields set (defaults in the engine):
+    clearance_u, clearance_v (hull parameter units between the seam and the blend's boundary),
+    bulb_clearance (bulb u ahead of the seam), tension, points. Raises InvalidInput naming an
+    unknown field or a value of the wrong type."""
+    return fill_options(_native.BlendPlacementOptions, "seam_blend_placement", options)
 
 
-def _no_blend_fits(reason: str):
-    raise _NoBlendFits(f"no blend fits between hull and bulb: {reason}")
-
-
-def _keel_zone_end(hull: NurbsSurface) -> float:
-    """v where a straight keel zone ends on an oriented bare hull: the first knot of full
-    multiplicity (a C0 joint) in the first tenth of the v range above the keel edge -- the
-    bottom zone of fairlines.sections -- or the keel edge itself when there is none."""
-    kv = np.asarray(hull.knots_v)
-    v0, v1 = kv[0], kv[-1]
-    vals, counts = np.unique(kv, return_counts=True)
-    for val, cnt in zip(vals, counts):
-        if v0 < val < v0 + 0.1 * (v1 - v0) and cnt >= hull.degree_v:
-            return float(val)
-    return float(v0)
-
-
-def _boundaries_around_seam(hull: NurbsSurface, seam: dict, *, clearance_u: float, clearance_v: float,
-                            bulb_clearance: float, points: int):
-    """The blend's boundaries around a hull/bulb seam: (on_hull (k, 2), ("u", u_b)).
-
-    ``hull`` is in the orient_bare_hull convention (u aft cut -> stem, v keel -> deck),
-    ``seam`` a dict with ``uv_a`` on the hull and ``uv_b`` on the bulb. On the hull an ellipse
-    arc in (u, v) around the seam, ``clearance_u`` / ``clearance_v`` (parameter units) clear
-    of it: a half ellipse from the stem edge below the bulb to the stem edge above it when
-    the seam ends on the stem at both ends, a quarter ellipse about the forefoot corner (stem
-    foot) from the keel edge to the stem edge when the seam starts on the keel (a bulb reaching
-    below a raised forefoot), an arc over the seam when it starts and ends on the keel-and-stem
-    edge of a whole-ship hull. On the bulb the section ``bulb_clearance`` ahead of the seam's
-    foremost point. Raises _NoBlendFits when no such boundary fits on the hull."""
-    uv = seam["uv_a"]
-    u0, u1 = hull.knots_u[0], hull.knots_u[-1]
-    v0, v1 = hull.knots_v[0], hull.knots_v[-1]
-    tol = 1e-6 * (u1 - u0)
-    on_stem = [abs(uv[k, 0] - u1) < tol for k in (0, -1)]
-    on_keel = [abs(uv[k, 1] - v0) < tol * (v1 - v0) / (u1 - u0) for k in (0, -1)]
-    phi_end = np.pi
-    if all(on_stem):
-        tlo, thi = uv[:, 1].min(), uv[:, 1].max()
-        tc, R = 0.5 * (tlo + thi), 0.5 * (thi - tlo) + clearance_v
-        du = u1 - uv[:, 0].min() + clearance_u
-        if tc - R <= v0 or tc + R >= v1:
-            _no_blend_fits("a blend boundary clear of the seam would leave the hull between keel and deck")
-    elif (on_keel[0] and on_stem[1]) or (on_keel[1] and on_stem[0]):
-        # quarter ellipse about (u1, vz) through (u1 - a, vz) and (u1, vz + b), scaled so that
-        # the whole seam lies inside it, then widened by the clearances; vz is the end of a
-        # straight keel zone (fairlines.sections), which the boundary crosses straight along v
-        vz = _keel_zone_end(hull)
-        a0, b0 = u1 - uv[:, 0].min(), uv[:, 1].max() - vz
-        if not b0 > 0:
-            _no_blend_fits("the seam does not rise above the keel zone")
-        scale = float(np.max(np.hypot((u1 - uv[:, 0]) / a0, np.maximum(uv[:, 1] - vz, 0.0) / b0)))
-        du, R, tc = scale * a0 + clearance_u, scale * b0 + clearance_v, vz
-        phi_end = 0.5 * np.pi
-        if tc + R >= v1:
-            _no_blend_fits("a blend boundary clear of the seam would reach the deck")
-    elif all(on_keel):
-        return _arc_over_centre_edge(uv, hull, clearance_u, clearance_v, points, seam, bulb_clearance)
-    else:
-        _no_blend_fits("the seam does not run from the keel or stem edge to the stem edge")
-    if u1 - du <= u0:
-        _no_blend_fits("a blend boundary clear of the seam would reach the aft cut")
-    phi = np.linspace(0.0, phi_end, points)
-    on_hull = np.column_stack([u1 - du * np.sin(phi + (0.5 * np.pi if phi_end < np.pi else 0.0)),
-                               tc - R * np.cos(phi) if phi_end == np.pi else tc + R * np.sin(phi)])
-    if phi_end < np.pi and tc > v0:
-        # From the keel edge across the keel zone along v: there the zone is a few centimetres
-        # of a straight leg, so the boundary enters the curved part along the section without
-        # a kink (an oblique crossing would run along the hull inside the zone).
-        on_hull = np.vstack([[on_hull[0, 0], v0], on_hull])
-    on_bulb = ("u", float(seam["uv_b"][:, 0].max()) + bulb_clearance)
-    return on_hull, on_bulb
-
-
-def _arc_over_centre_edge(uv, hull, clearance_u, clearance_v, points, seam, bulb_clearance):
-    """Blend boundary for a whole-ship hull, whose keel edge runs on up the stem (the stem head
-    is the corner u1): the seam starts and ends on that edge, so the boundary is an arc from
-    the edge aft of the seam over it to the edge between the seam and the stem head -- two
-    quarter ellipses meeting at the seam's highest point, scaled to hold the whole seam."""
-    u1 = hull.knots_u[-1]
-    v0, v1 = hull.knots_v[0], hull.knots_v[-1]
-    vz = _keel_zone_end(hull)
-    top = int(np.argmax(uv[:, 1]))
-    uc, b0 = float(uv[top, 0]), float(uv[top, 1] - vz)
-    a_aft, a_fore = uc - uv[:, 0].min(), uv[:, 0].max() - uc
-    if not (b0 > 0 and a_aft > 0 and a_fore > 0):
-        _no_blend_fits("the seam does not rise above the keel zone")
-    side = np.where(uv[:, 0] < uc, a_aft, a_fore)
-    scale = float(np.max(np.hypot((uv[:, 0] - uc) / side, np.maximum(uv[:, 1] - vz, 0.0) / b0)))
-    R = scale * b0 + clearance_v
-    fore_room = 0.5 * (u1 - uv[:, 0].max())  # keep half the stem above the seam free
-    a_aft, a_fore = scale * a_aft + clearance_u, min(scale * a_fore + clearance_u, uv[:, 0].max() + fore_room - uc)
-    if vz + R >= v1:
-        _no_blend_fits("a blend boundary clear of the seam would reach the deck")
-    if uc - a_aft <= hull.knots_u[0]:
-        _no_blend_fits("a blend boundary clear of the seam would reach the aft end")
-    phi = np.linspace(0.0, np.pi, points)
-    on_hull = np.column_stack([uc - np.where(phi <= 0.5 * np.pi, a_aft, a_fore) * np.cos(phi), vz + R * np.sin(phi)])
-    if vz > v0:
-        on_hull = np.vstack([[on_hull[0, 0], v0], on_hull, [on_hull[-1, 0], v0]])
-    return on_hull, ("u", float(seam["uv_b"][:, 0].max()) + bulb_clearance)
+def _boundaries_around_seam(hull: NurbsSurface, seam: dict, **options):
+    """The blend's boundaries around a hull/bulb seam (``hull`` oriented, ``seam`` a dict with
+    ``uv_a`` on the hull and ``uv_b`` on the bulb): (on_hull (k, 2), ("u", u_b)), placed by the
+    engine (see :func:`seam_blend_placement`). Raises NoBlendFits when none fits."""
+    on_hull, bulb_u = _native._blend_boundaries_around_seam(hull, seam["uv_a"], seam["uv_b"],
+                                                            placement_options(**options))
+    return on_hull, ("u", float(bulb_u))
 
 
 def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, blend: bool = True,
-                       clearance_u: float = 0.05, clearance_v: float = 0.01, bulb_clearance: float = 0.01,
-                       tension: float = 0.6, **compose_options) -> ComposedHull:
+                       **options) -> ComposedHull:
     """Bare hull + bulb composed into one closed half hull, with a C1 blending surface between
-    them when ``blend`` (placed by :func:`seam_blend_placement`; ``tension`` of the
-    cross-boundary tangents: 0.6 keeps a long blend from the keel to the bottom of a bulb
-    that reaches below a raised forefoot from overshooting below the base line and across the
-    centre plane, which 1.0 does on the Panamax forebody). ``compose_options`` go to
-    :func:`compose`. The result carries ``blend_note``: what was done, or why no blend could be
-    placed (then it is the plain union).
+    them when ``blend`` (placed by :func:`seam_blend_placement`). ``options`` by keyword: the
+    fields of :class:`fl.BlendPlacementOptions` (clearance_u, clearance_v, bulb_clearance,
+    tension, points) place the blend, the rest go to :func:`compose`. The result carries
+    ``blend_note``: what was done, or why no blend could be placed (then it is the plain union).
 
     Raises InvalidInput when the bulb cannot meet the hull (see :func:`compose`) or an option
     is out of range."""
+    names = set(option_names(_native.BlendPlacementOptions))
+    placing = {k: v for k, v in options.items() if k in names}
+    compose_options = {k: v for k, v in options.items() if k not in names}
     if not blend:
         union = compose([bare_hull, bulb], **compose_options)
         union.blend_note = "no blend requested: plain union"
         return union
     seam_options = {k: compose_options[k] for k in ("bulb_v", "tolerance") if k in compose_options}
     try:
-        placement = _place_blend(bare_hull, bulb, clearance_u, clearance_v, bulb_clearance, tension, seam_options)
-    except _NoBlendFits as e:
+        placement = _place_blend(bare_hull, bulb, placement_options(**placing), seam_options)
+    except _native.NoBlendFits as e:
         union = compose([bare_hull, bulb], **compose_options)
         union.blend_note = "no blend: " + str(e).split(": ", 1)[1] + "; plain union"
         return union
@@ -510,9 +421,7 @@ def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface
     return out
 
 
-def seam_blend_placement(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, clearance_u: float = 0.05,
-                         clearance_v: float = 0.01, bulb_clearance: float = 0.01,
-                         tension: float = 0.6) -> BlendPlacement:
+def seam_blend_placement(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", **options) -> BlendPlacement:
     """Where the blend around the seam a bulb makes on a bare hull goes, as a
     :class:`BlendPlacement`: ``compose([hull, bulb, placement])`` composes with it (skinning
     the blend at the mesh resolution), ``placement.blend_surface()`` skins the surface itself.
@@ -521,20 +430,20 @@ def seam_blend_placement(hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", 
     stem, v keel -> deck) the boundary is an ellipse arc in (u, v) around the seam,
     ``clearance_u`` / ``clearance_v`` (parameter units) clear of it; on the bulb the section
     ``bulb_clearance`` ahead of the seam's foremost point; ``tension``: cross-boundary tangent
-    length relative to a third of the gap.
+    length relative to a third of the gap. ``options``: the fields of
+    :class:`fl.BlendPlacementOptions` by keyword (defaults in the engine).
 
-    Raises InvalidInput when the bulb cannot meet the hull or no boundary fits (the message
-    says why)."""
-    return _place_blend(hull, bulb, clearance_u, clearance_v, bulb_clearance, tension, {})
+    Raises InvalidInput when the bulb cannot meet the hull or an option is bad, NoBlendFits (an
+    InvalidInput) when no boundary fits (the message says why)."""
+    return _place_blend(hull, bulb, placement_options(**options), {})
 
 
-def _place_blend(hull, bulb, clearance_u, clearance_v, bulb_clearance, tension, seam_options) -> BlendPlacement:
+def _place_blend(hull, bulb, options, seam_options) -> BlendPlacement:
     surface_b = bulb.surface if isinstance(bulb, BulbousBow) else bulb
     if not isinstance(hull, NurbsSurface) or not isinstance(surface_b, NurbsSurface):
         raise _native.InvalidInput(f"hull and bulb are {type(hull).__name__}, {type(bulb).__name__}; expected a "
                                    "NurbsSurface hull and a BulbousBow or NurbsSurface bulb")
     # the seam compose([hull, bulb]) traces (same checks), without meshing the union
-    oriented, seam = _native._hull_bulb_seam(hull, surface_b, compose_options(**seam_options))
-    on_hull, on_bulb = _boundaries_around_seam(oriented, seam, clearance_u=clearance_u, clearance_v=clearance_v,
-                                               bulb_clearance=bulb_clearance, points=65)
-    return BlendPlacement(oriented, surface_b, on_hull, on_bulb, float(tension))
+    oriented, on_hull, bulb_u, tension = _native._seam_blend_placement(
+        hull, surface_b, compose_options(**seam_options), options)
+    return BlendPlacement(oriented, surface_b, on_hull, ("u", float(bulb_u)), float(tension))

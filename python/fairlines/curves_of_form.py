@@ -15,7 +15,7 @@ from typing import Callable, Sequence
 import numpy as np
 
 from ._native import InvalidInput, NurbsSurface
-from . import _native
+from .hydrostatics_surface import hydrostatics
 
 __all__ = ["CurvesOfForm", "COLUMNS", "curves_of_form", "highest_draft"]
 
@@ -145,7 +145,7 @@ def curves_of_form(surface: NurbsSurface, drafts: Sequence[float], *, lpp: float
             rows.append({k: h[k] for k, _ in COLUMNS})
     design = sac = None
     if design_draft is not None:
-        hd = _native.hydrostatics(surface, float(design_draft), half_hull=half_hull, length=float(lpp),
+        hd = hydrostatics(surface, float(design_draft), half_hull=half_hull, length=float(lpp),
                                   breadth=float(beam), gauss=gauss, sac_stations=sac_stations, density=density,
                                   midship_x=midship_x(surface, mid))
         design = hd.as_dict()
@@ -175,6 +175,6 @@ def midship_x(surface, mid):
 
 
 def _hydro(surface, T, lpp, beam, mid, trim, density, half_hull, gauss, sac_stations):
-    return _native.hydrostatics(surface, T, half_hull=half_hull, length=float(lpp), breadth=float(beam),
+    return hydrostatics(surface, T, half_hull=half_hull, length=float(lpp), breadth=float(beam),
                                 midship_x=midship_x(surface, mid), gauss=gauss, sac_stations=sac_stations,
                                 density=density, trim=trim, trim_length=float(lpp)).as_dict()

@@ -27,6 +27,7 @@ import numpy as np
 from . import _native
 from .basic_curves import BasicCurve, immersed_range, solve_curve, solve_sac
 from .description import FORM_ALIASES, FORM_KEYS, BasicCurveSpec, HullDescription, load_description
+from .hydrostatics_surface import hydrostatics
 from .skinning import fair_skin
 
 __all__ = ["Hull", "station_positions"]
@@ -339,7 +340,7 @@ class Hull:
         draft = pr.draft if draft is None else draft
         key = (float(draft), tuple(sorted(options.items())))
         if key not in self._hydro:  # several nodes and the bulb ask for the same figures
-            self._hydro[key] = _native.hydrostatics(self.bare_hull_surface(), draft, **options)
+            self._hydro[key] = hydrostatics(self.bare_hull_surface(), draft, **options)
         return self._hydro[key]
 
     # ---- bulbous bow ----------------------------------------------------------------

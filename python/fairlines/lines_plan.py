@@ -30,7 +30,7 @@ from typing import Sequence
 import numpy as np
 
 from ._native import InvalidInput, NurbsSurface
-from . import _native
+from .hydrostatics_surface import hydrostatics
 from .plane_sections import boundary_curves, plane_sections
 
 __all__ = ["LinesPlan", "Polyline", "Text", "lines_plan", "closeup", "default_stations", "nice_step", "KNUCKLE_ANGLE_DEG"]
@@ -321,7 +321,7 @@ def _hydrostatics(hull, patches, p, dwl_cuts=()) -> dict | None:
 
 def _quadrature(s, p) -> dict:
     from .curves_of_form import midship_x
-    return _native.hydrostatics(s, p["draft"], length=p["lpp"], breadth=p["beam"],
+    return hydrostatics(s, p["draft"], length=p["lpp"], breadth=p["beam"],
                                 midship_x=midship_x(s, 0.5 * p["lpp"])).as_dict()
 
 

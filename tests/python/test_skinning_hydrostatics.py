@@ -314,3 +314,13 @@ def test_fair_skin_bad_flats(flats, match):
     secs = [box_bilge_section(x, 10.0, 12.0, 2.0) for x in (0.0, 10.0, 20.0)]
     with pytest.raises(ValueError, match=match):
         fl.fair_skin(secs, flats=flats)
+
+
+@pytest.mark.parametrize("option, value, says", [
+    ("gaus", 4, "option 'gaus' is unknown; expected one of"),
+    ("gauss", 8.5, "gauss is 8.5; expected an integer"),
+    ("half_hull", "yes", "option half_hull is 'yes'; expected a bool"),
+])
+def test_hydrostatics_option_of_wrong_name_or_type_is_refused_by_name(wigley, option, value, says):
+    with pytest.raises(fl.InvalidInput, match=says):
+        fl.hydrostatics(wigley.surface, T, **{option: value})

@@ -24,6 +24,12 @@ struct InfeasibleFormParameters : InvalidInput {
   using InvalidInput::InvalidInput;
 };
 
+/// Thrown when no blending surface fits clear of a hull/bulb seam on the hull (the boundary
+/// would leave the hull); a caller may fall back to the plain union. Python: fl.NoBlendFits.
+struct NoBlendFits : InvalidInput {
+  using InvalidInput::InvalidInput;
+};
+
 /// Thrown when an iterative method fails to reach its tolerance on valid input.
 /// Python: RuntimeError (fl.ConvergenceError).
 struct ConvergenceError : Error {

@@ -8,12 +8,14 @@ import numpy
 import numpy.typing
 import typing
 from . import limits
-__all__: list[str] = ['BlendOptions', 'BlendSpec', 'ComposeOptions', 'ConvergenceError', 'CurveFit', 'Distribution', 'END_BAND', 'FairlinesError', 'FairnessWeights', 'FitOptions', 'FormBounds', 'FormCurveRequest', 'FormSolverOptions', 'Hydrostatics', 'InfeasibleFormParameters', 'InvalidInput', 'Kracht', 'KrachtShip', 'MAX_SHAPE_KNOB', 'MeshHydrostatics', 'MeshHydrostaticsOptions', 'MeshOptions', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PatchHydrostatics', 'PlaneCut', 'SectionDesign', 'SectionSpec', 'SkinOptions', 'SkinResult', 'Spacing', 'SplineBound', 'SplineCondition', 'SplineDesignRequest', 'SplineFitPoint', 'SplineFlat', 'SplineIntegral', 'SplineShape', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'design_section', 'design_sections', 'design_spline_function', 'distribute', 'ellipse', 'equal_arc_length_points', 'fairness_of', 'fit_curve', 'fit_surface', 'form_parameter_names', 'form_parameters_of', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics', 'hydrostatics_of_patches', 'knot_line_parameters', 'limits', 'mesh_hydrostatics', 'mesh_quality', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'parameters_at_arc_length', 'plane_cut', 'revolve', 'scaled_jacobians', 'section_area', 'section_fullness_range', 'section_knot_vector', 'sphere', 'spline_function_knots', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
+__all__: list[str] = ['BlendOptions', 'BlendPlacementOptions', 'BlendSpec', 'ComposeOptions', 'ConvergenceError', 'CurveFit', 'Distribution', 'END_BAND', 'FairlinesError', 'FairnessWeights', 'FitOptions', 'FormBounds', 'FormCurveRequest', 'FormSolverOptions', 'Hydrostatics', 'HydrostaticsOptions', 'InfeasibleFormParameters', 'InvalidInput', 'Kracht', 'KrachtShip', 'MAX_SHAPE_KNOB', 'MeshHydrostatics', 'MeshHydrostaticsOptions', 'MeshOptions', 'NoBlendFits', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PatchHydrostatics', 'PlaneCut', 'SectionDesign', 'SectionSpec', 'SkinOptions', 'SkinResult', 'Spacing', 'SplineBound', 'SplineCondition', 'SplineDesignRequest', 'SplineFitPoint', 'SplineFlat', 'SplineIntegral', 'SplineShape', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'design_section', 'design_sections', 'design_spline_function', 'distribute', 'ellipse', 'equal_arc_length_points', 'fairness_of', 'fit_curve', 'fit_surface', 'form_parameter_names', 'form_parameters_of', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics_of_patches', 'knot_line_parameters', 'limits', 'mesh_hydrostatics', 'mesh_quality', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'parameters_at_arc_length', 'plane_cut', 'revolve', 'scaled_jacobians', 'section_area', 'section_fullness_range', 'section_knot_vector', 'sphere', 'spline_function_knots', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
 class FairlinesError(RuntimeError):
     pass
 class InvalidInput(ValueError):
     pass
 class InfeasibleFormParameters(InvalidInput):
+    pass
+class NoBlendFits(InvalidInput):
     pass
 class ConvergenceError(FairlinesError):
     pass
@@ -763,6 +765,84 @@ class Hydrostatics:
         """
         highest point of the surface (m)
         """
+class HydrostaticsOptions:
+    """
+    Options of hydrostatics (fairlines.hydrostatics sets them by keyword).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def breadth(self) -> float:
+        """
+        breadth for the coefficients (m); 0: 2 x max submerged half-breadth (default 0.0)
+        """
+    @breadth.setter
+    def breadth(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def density(self) -> float:
+        """
+        water density (t/m^3) for the displacement mass (default 1.025)
+        """
+    @density.setter
+    def density(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def gauss(self) -> int:
+        """
+        Gauss-Legendre points per knot span in each direction (2..32) (default 8)
+        """
+    @gauss.setter
+    def gauss(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def half_hull(self) -> bool:
+        """
+        the surface is the y >= 0 half: volume, areas and SAC are doubled (default True)
+        """
+    @half_hull.setter
+    def half_hull(self, arg0: bool) -> None:
+        ...
+    @property
+    def length(self) -> float:
+        """
+        length for the coefficients (m); 0: submerged length x_max - x_min (default 0.0)
+        """
+    @length.setter
+    def length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def midship_x(self) -> typing.Any:
+        """
+        x of the midship section for Am and Cm (m); None: the middle of [x_min, x_max] (default None)
+        """
+    @midship_x.setter
+    def midship_x(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def sac_stations(self) -> int:
+        """
+        equally spaced stations of the returned SAC (>= 2), ends included (default 41)
+        """
+    @sac_stations.setter
+    def sac_stations(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def trim(self) -> float:
+        """
+        trim by the stern (m) over trim_length; draft is then the draft at trim_length / 2 (default 0.0)
+        """
+    @trim.setter
+    def trim(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def trim_length(self) -> float:
+        """
+        AP to FP (m) over which trim is measured; > 0 when trim != 0 (default 0.0)
+        """
+    @trim_length.setter
+    def trim_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class PlaneCut:
     """
     A waterline / buttock / frame cut from a surface, with analytic curvature.
@@ -1384,6 +1464,52 @@ class BlendOptions:
     @tension.setter
     def tension(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+class BlendPlacementOptions:
+    """
+    Options of seam_blend_placement (fairlines.seam_blend_placement sets them by keyword).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def bulb_clearance(self) -> float:
+        """
+        bulb u between the seam's foremost point and the blend's boundary (>= 0) (default 0.01)
+        """
+    @bulb_clearance.setter
+    def bulb_clearance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def clearance_u(self) -> float:
+        """
+        hull u between the seam and the blend's boundary (parameter units, >= 0) (default 0.05)
+        """
+    @clearance_u.setter
+    def clearance_u(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def clearance_v(self) -> float:
+        """
+        hull v between the seam and the blend's boundary (parameter units, >= 0) (default 0.01)
+        """
+    @clearance_v.setter
+    def clearance_v(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def points(self) -> int:
+        """
+        points on the hull boundary's arc (>= 3) (default 65)
+        """
+    @points.setter
+    def points(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tension(self) -> float:
+        """
+        cross-boundary tangent length / (|B - A| / 3), > 0 (default 0.6)
+        """
+    @tension.setter
+    def tension(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class _BulbousBow:
     def __init__(self, lpp: typing.SupportsFloat | typing.SupportsIndex, beam: typing.SupportsFloat | typing.SupportsIndex, draft_fp: typing.SupportsFloat | typing.SupportsIndex, midship_area: typing.SupportsFloat | typing.SupportsIndex, displacement_volume: typing.SupportsFloat | typing.SupportsIndex, c_lpr: typing.SupportsFloat | typing.SupportsIndex, c_bb: typing.SupportsFloat | typing.SupportsIndex, c_zb: typing.SupportsFloat | typing.SupportsIndex, c_abt: typing.SupportsFloat | typing.SupportsIndex, c_abl: typing.SupportsFloat | typing.SupportsIndex, c_vpr: typing.SupportsFloat | typing.SupportsIndex, x_fp: typing.SupportsFloat | typing.SupportsIndex, aft_length: typing.SupportsFloat | typing.SupportsIndex, nose_height_shift: typing.SupportsFloat | typing.SupportsIndex, sections: typing.SupportsInt | typing.SupportsIndex, section_points: typing.SupportsInt | typing.SupportsIndex, control_u: typing.SupportsInt | typing.SupportsIndex, control_v: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
@@ -1781,6 +1907,10 @@ class PatchHydrostatics:
     @property
     def wetted_surface(self) -> float:
         ...
+def _blend_boundaries_around_seam(oriented_hull: NurbsSurface, seam_uv_hull: typing.Any, seam_uv_bulb: typing.Any, options: BlendPlacementOptions = ...) -> tuple[numpy.typing.NDArray[numpy.float64], float]:
+    """
+    (boundary on the hull (k, 2) (u, v), bulb u) of the blend around a seam (see blend_placement.hpp).
+    """
 def _blend_surface(a: NurbsSurface, boundary_a: typing.Any, b: NurbsSurface, boundary_b: typing.Any, options: BlendOptions = ...) -> tuple[NurbsSurface, dict, dict]:
     ...
 def _cluster_by_knots(surface: NurbsSurface, direction: str, at: typing.SupportsFloat | typing.SupportsIndex, spacing: typing.SupportsFloat | typing.SupportsIndex, count: typing.SupportsInt | typing.SupportsIndex, growth: typing.SupportsFloat | typing.SupportsIndex) -> NurbsSurface:
@@ -1801,9 +1931,10 @@ def _form_curve_derivatives(params: dict, n_control: typing.Any, degree: typing.
     """
 def _grid_quality(points: typing.Any, ni: typing.SupportsInt | typing.SupportsIndex, nj: typing.SupportsInt | typing.SupportsIndex) -> dict:
     ...
-def _hull_bulb_seam(hull: NurbsSurface, bulb: NurbsSurface, options: ComposeOptions = ...) -> tuple[NurbsSurface, dict]:
+def _hydrostatics(surface: NurbsSurface, draft: typing.SupportsFloat | typing.SupportsIndex, options: HydrostaticsOptions = ...) -> Hydrostatics:
     """
-    (oriented hull, seam dict) of compose_hull([hull, bulb]) without meshing (see compose.hpp).
+    Hydrostatics of a hull surface at `draft` (m above base) by Gauss-Legendre quadrature on the surface
+    (fairlines.hydrostatics takes the options by keyword).
     """
 def _intersect_surfaces(a: NurbsSurface, b: NurbsSurface, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, subdivisions: typing.SupportsInt | typing.SupportsIndex = 12, step: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> list:
     ...
@@ -1818,6 +1949,10 @@ def _mesh_surface(surface: NurbsSurface, options: MeshOptions) -> tuple:
     ...
 def _parameter_grid(surface: NurbsSurface, us: typing.Any, vs: typing.Any) -> tuple:
     ...
+def _seam_blend_placement(hull: NurbsSurface, bulb: NurbsSurface, compose_options: ComposeOptions = ..., options: BlendPlacementOptions = ...) -> tuple[NurbsSurface, numpy.typing.NDArray[numpy.float64], float, float]:
+    """
+    (oriented hull, boundary on it (k, 2) (u, v), bulb u of the boundary on the bulb, tension) of the blend around the seam (see blend_placement.hpp).
+    """
 def _surface_grid(surface: NurbsSurface, du: Distribution, dv: Distribution) -> tuple:
     ...
 def arc(center: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex, start_angle: typing.SupportsFloat | typing.SupportsIndex, end_angle: typing.SupportsFloat | typing.SupportsIndex, normal: typing.Any = (0.0, 0.0, 1.0), x_axis: typing.Any = None) -> NurbsCurve:
@@ -1911,21 +2046,12 @@ def hartley_judd_knots(points: typing.Any, degree: typing.Any, n_control: typing
     """
     Clamped knots on [0, 1] by Hartley-Judd (1980): spacings are sums of `degree` chords measured by 'chord' (length), 'centripetal' (sqrt of length) or 'uniform'.
     """
-def hydrostatics(surface: NurbsSurface, draft: typing.SupportsFloat | typing.SupportsIndex, half_hull: bool = True, length: typing.SupportsFloat | typing.SupportsIndex = 0.0, breadth: typing.SupportsFloat | typing.SupportsIndex = 0.0, midship_x: typing.Any = None, gauss: typing.Any = 8, sac_stations: typing.Any = 41, density: typing.SupportsFloat | typing.SupportsIndex = 1.025, trim: typing.SupportsFloat | typing.SupportsIndex = 0.0, trim_length: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> Hydrostatics:
-    """
-    Hydrostatics of a hull surface at `draft` (m above base) by Gauss-Legendre quadrature on the surface.
-    The surface is the y >= 0 half of the hull when half_hull=True (volume, areas and SAC are then doubled
-    to full-ship values); openings other than the centre plane must be transverse planes x = const.
-    length / breadth: for the coefficients (0: submerged extent); midship_x: station of Am (None: middle).
-    trim: by the stern (m) over trim_length (AP at x = 0 to FP); draft is then the draft at trim_length / 2.
-    Raises InvalidInput for a bad draft or option, or a waterplane above the surface's highest point.
-    """
 def hydrostatics_of_patches(patches: collections.abc.Sequence[NurbsSurface], draft: typing.SupportsFloat | typing.SupportsIndex, end_x: typing.SupportsFloat | typing.SupportsIndex, half_hull: bool = True, gauss: typing.SupportsInt | typing.SupportsIndex = 8) -> PatchHydrostatics:
     """
     Hydrostatics of half-hull NURBS patches that bound the body together, upright at `draft` (m), by
     Gauss-Legendre quadrature on each patch clipped at the waterplane; each patch is turned outward
     first (side-like: int y n_y > 0, end-like: int (x - end_x) n_x > 0). Raises InvalidInput for a bad
-    draft, end_x or gauss.
+    draft, end_x or gauss, or no patches.
     """
 def knot_line_parameters(surface: NurbsSurface, direction: str, per_span: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
     """
