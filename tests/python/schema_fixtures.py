@@ -48,6 +48,11 @@ def schema_errors(doc) -> list[str]:
     return [f"{e.json_path}: {e.message}" for e in validator().iter_errors(doc)]
 
 
+def schema_error_paths(doc) -> list[tuple]:
+    """Where in doc (a tuple of keys / indices) each of the schema's complaints points."""
+    return [tuple(e.absolute_path) for e in validator().iter_errors(doc)]
+
+
 def example_description() -> dict:
     """The whole container ship example as a dict (a fresh copy each call)."""
     return example("container_ship.json")
@@ -93,6 +98,7 @@ def put(path: tuple, value):
             node = node[key]
         node[path[-1]] = value
         return doc
+    edit.path = path
     return edit
 
 
@@ -105,6 +111,7 @@ def drop(path: tuple):
             node = node[key]
         del node[path[-1]]
         return doc
+    edit.path = path
     return edit
 
 

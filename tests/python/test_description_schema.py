@@ -11,8 +11,9 @@ from jsonschema import Draft202012Validator
 
 import fairlines as fl
 from fairlines.description import HullDescription
-from schema_fixtures import (DESIGNS, EXAMPLES, both, designed_description, documented_example, drop,
-                             example, example_description, imported_description, put, schema, schema_errors)
+from schema_fixtures import (DESIGNS, EXAMPLES, both, designed_description, documented_example, drop, example,
+                             example_description, imported_description, put, schema, schema_error_paths,
+                             schema_errors)
 
 BC = "basic_curves"
 #: How a description names a unit: (m ... ), (m^2 ...), (deg), (-), (1/m), the curve's unit, or true / false.
@@ -169,9 +170,12 @@ def test_loader_accepts_valid_variant(case):
 
 
 @pytest.mark.parametrize("case", list(REFUSED_AT_LOAD) + list(REFUSED_AT_BUILD) + list(LOADER_ACCEPTS))
-def test_schema_refuses_malformed(case):
+def test_schema_refuses_malformed_where_it_was_edited(case):
+    """A complaint points at the edited key, at an object that holds it, or inside its new value."""
     edit = {**REFUSED_AT_LOAD, **REFUSED_AT_BUILD, **LOADER_ACCEPTS}[case]
-    assert schema_errors(edit(example_description())) != []
+    paths = schema_error_paths(edit(example_description()))
+    n = len(edit.path)
+    assert any(p[:n] == edit.path or edit.path[:len(p)] == p for p in paths), paths
 
 
 @pytest.mark.parametrize("case", list(REFUSED_AT_LOAD))
