@@ -26,7 +26,8 @@ EXAMPLES = ("container_ship.json", "panamax_forebody.json")
 DESIGNS = {
     "container_bulb": dict(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.65, lcb=118.73, bulb=True),
     "ferry_no_parallel_body": dict(lpp=140.0, breadth=17.0, draft=5.5, depth=10.0, cb=0.50, lcb=67.2),
-    "ferry_parallel_body": dict(lpp=140.0, breadth=17.0, draft=5.5, depth=10.0, cb=0.55, lcb=68.6, parallel_length=10.0),
+    "ferry_parallel_body": dict(lpp=140.0, breadth=17.0, draft=5.5, depth=10.0, cb=0.55, lcb=68.6,
+                                parallel_length=10.0),
     "coaster_cruiser_stern": dict(lpp=100.0, breadth=16.0, draft=6.0, depth=9.0, cb=0.75, lcb=51.0, stern="cruiser"),
     "tanker_given_kracht": dict(lpp=180.0, breadth=32.0, draft=11.5, depth=17.0, cb=0.82, lcb=95.4,
                                 bulb={"c_lpr": 0.03, "c_bb": 0.16}, parallel_length=50.0, parallel_centre=100.0),
@@ -83,7 +84,7 @@ def imported_description(out_dir: pathlib.Path) -> dict:
 
 def documented_example() -> dict:
     """The minimal example of docs/hull_description.md (its first ```json block)."""
-    block = re.search(r"```json\n(.*?)\n```", DOC_PATH.read_text(encoding="utf-8"), re.S)
+    block = re.search(r"```json\n(.*?)\n```", DOC_PATH.read_text(encoding="utf-8"), re.DOTALL)
     assert block, f"{DOC_PATH} has no ```json block"
     return json.loads(block.group(1))
 
