@@ -333,6 +333,13 @@ class BulbSpec:
         return d
 
 
+def _text(path: str, value: Any) -> str:
+    """value when it is text, else InvalidInput naming `path`."""
+    if not isinstance(value, str):
+        raise _native.InvalidInput(f"{path} is {value!r}; expected text (a JSON string)")
+    return value
+
+
 TOP_KEYS = ("name", "notes", "principal", "ends", "stations", "sections", "basic_curves", "skinning", "bulb", "design")
 
 
@@ -366,8 +373,8 @@ class HullDescription:
             raise _native.InvalidInput(f"ends.fore is {x_fore}; expected more than ends.aft = {x_aft}")
         if x_aft < -0.25 * lpp or x_fore > 1.25 * lpp:
             raise _native.InvalidInput(f"ends are {x_aft} .. {x_fore} m; expected the hull within -0.25 Lpp .. 1.25 Lpp of the AP")
-        desc = cls(name=str(d.get("name", "hull")), principal=principal, x_aft=x_aft, x_fore=x_fore, curves={},
-                   notes=str(d.get("notes", "")))
+        desc = cls(name=_text("name", d.get("name", "hull")), principal=principal, x_aft=x_aft, x_fore=x_fore,
+                   curves={}, notes=_text("notes", d.get("notes", "")))
         desc._parse_stations(d.get("stations", {"count": 61}))
         sec = _object("sections", d.get("sections", {}), ("n_control",))
         desc.section_n_control = _integer("sections.n_control", sec.get("n_control", 20), *SECTION_CONTROLS)

@@ -19,7 +19,7 @@ from import_fixtures import DATA, SERIES60
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 SCHEMA_PATH = ROOT / "docs" / "hull_description.schema.json"
 DOC_PATH = ROOT / "docs" / "hull_description.md"
-EXAMPLES = ("container_ship.json", "panamax_forebody.json")
+EXAMPLES = ("container_ship.json",)
 
 #: Particulars of designed hulls whose to_json() must validate: a cargo ship with a bulb, a fine
 #: ferry without a bulb with and without a parallel body, a cruiser stern, given Kracht coefficients.
