@@ -31,7 +31,7 @@ import numpy as np
 
 from ._native import InvalidInput, NurbsSurface
 from .hydrostatics_surface import hydrostatics
-from .plane_sections import boundary_curves, plane_sections
+from .plane_sections import boundary_curves, chain_segments, even_odd_inside, plane_sections
 
 __all__ = ["LinesPlan", "Polyline", "Text", "lines_plan", "closeup", "default_stations", "nice_step", "KNUCKLE_ANGLE_DEG"]
 
@@ -192,8 +192,7 @@ def _knuckles(patches) -> list[np.ndarray]:
                 n1 = np.asarray(s.normal(*uv[1]))
                 sharp = np.einsum("ij,ij->i", n0, n1) < cos_lim
                 if loops is not None:
-                    from .plane_sections import _even_odd_inside
-                    sharp &= _even_odd_inside(np.column_stack(uv[0]), loops)
+                    sharp &= even_odd_inside(np.column_stack(uv[0]), loops)
                 pts = np.asarray(s.evaluate(*uv[0]))
                 for run in _runs(sharp):
                     if len(run) > 1:
@@ -246,8 +245,7 @@ def _mesh_outline(composed) -> list[np.ndarray]:
     same = np.all(key[1:] == key[:-1], axis=1)
     pairs = np.flatnonzero(same & (owner_cap[1:] != owner_cap[:-1]))
     segs = [tuple(k) for k in key[pairs]]
-    from .plane_sections import _chain
-    return [V[chain + [chain[0]] if closed else chain] for chain, closed in _chain(segs)]
+    return [V[chain + [chain[0]] if closed else chain] for chain, closed in chain_segments(segs)]
 
 
 def _split_on_centre_plane(curves, lpp):

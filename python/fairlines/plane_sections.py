@@ -19,7 +19,7 @@ import numpy as np
 
 from ._native import InvalidInput, NurbsSurface
 
-__all__ = ["Cut", "plane_sections", "boundary_curves", "domain_samples"]
+__all__ = ["Cut", "plane_sections", "boundary_curves", "domain_samples", "chain_segments", "even_odd_inside"]
 
 #: Bisection steps for a crossing on a grid edge: the bracket shrinks by 2^-52 of the edge.
 _BISECTION_STEPS = 52
@@ -50,7 +50,7 @@ def domain_samples(knots: np.ndarray, degree: int, per_span: int, minimum: int) 
     return np.concatenate(t + [b[-1:]])
 
 
-def _even_odd_inside(uv: np.ndarray, loops: list[np.ndarray]) -> np.ndarray:
+def even_odd_inside(uv: np.ndarray, loops: list[np.ndarray]) -> np.ndarray:
     """True where a (u, v) point is inside an odd number of the loops (closed polygons)."""
     crossings = np.zeros(len(uv), int)
     for loop in loops:
@@ -101,7 +101,7 @@ def _cell_segments(sign, f_centre, nu, nv):
     return segs
 
 
-def _chain(segs):
+def chain_segments(segs):
     """Polylines (lists of node ids) from undirected segments; each node has degree <= 2."""
     adj: dict[int, list[int]] = {}
     for p, q in segs:
@@ -142,7 +142,7 @@ def _onto_plane(surface, normal, offset, uv):
 
 def _trim(surface, normal, offset, chain_uv, closed, loops):
     """The parts of one chain inside the loops, each ending exactly on the loop boundary."""
-    inside = _even_odd_inside(chain_uv, loops)
+    inside = even_odd_inside(chain_uv, loops)
     if inside.all():
         return [(chain_uv, closed)]
     if not inside.any():
@@ -157,7 +157,7 @@ def _trim(surface, normal, offset, chain_uv, closed, loops):
     hi = np.where(inside[ks - 1][:, None], chain_uv[ks], chain_uv[ks - 1])
     for _ in range(_BISECTION_STEPS):
         mid = 0.5 * (lo + hi)
-        m_in = _even_odd_inside(mid, loops)
+        m_in = even_odd_inside(mid, loops)
         lo[m_in], hi[~m_in] = mid[m_in], mid[~m_in]
     ends = _onto_plane(surface, normal, offset, lo)
     out, run, j = [], [], 0
@@ -232,7 +232,7 @@ def plane_sections(surface: NurbsSurface, normal, offset: float, *, loops=None, 
     uv_nodes = _bisect_edges(surface, n, offset, lo, hi, f[i, j])
     where = {e: k for k, e in enumerate(nodes)}
     cuts = []
-    for chain, closed in _chain(segs):
+    for chain, closed in chain_segments(segs):
         uv = uv_nodes[[where[e] for e in chain]]
         parts = [(uv, closed)] if loops is None else _trim(surface, n, offset, uv, closed, list(loops))
         for part_uv, part_closed in parts:
