@@ -91,6 +91,44 @@ void bind_compose_options(py::module_& m) {
   field(b, "centre_plane_ends", &BlendOptions::centre_plane_ends,
         "when both boundaries start (end) on y = 0, keep that end section in the centre plane");
 
+  py::class_<IntersectOptions> io(m, "IntersectOptions",
+                                  "Options of intersect_surfaces (fairlines.intersect_surfaces sets them by keyword).");
+  io.def(py::init<>());
+  field(io, "subdivisions", &IntersectOptions::subdivisions, "extra breakpoints per direction before the Bezier split (>= 1)");
+  field(io, "tolerance", &IntersectOptions::tolerance, "Newton target |S_a - S_b| (m), > 0, <= 1e-6");
+  field(io, "step", &IntersectOptions::step, "marching step (m); 0: 1/150 of the smaller box diagonal");
+  field(io, "max_turn_deg", &IntersectOptions::max_turn_deg, "tangent turn per step above which the step is halved (deg)");
+  field(io, "max_points", &IntersectOptions::max_points, "cap on points per branch (> 10)");
+
+  py::class_<KrachtCoefficients> k(m, "KrachtCoefficients", "Kracht's (1978) six bulb coefficients.");
+  k.def(py::init<>());
+  field(k, "c_lpr", &KrachtCoefficients::c_lpr, "protrusion beyond FP / Lpp");
+  field(k, "c_bb", &KrachtCoefficients::c_bb, "bulb breadth at FP / B");
+  field(k, "c_zb", &KrachtCoefficients::c_zb, "height of the bulb's foremost point / T_FP");
+  field(k, "c_abt", &KrachtCoefficients::c_abt, "bulb section area at FP (both sides) / midship section area");
+  field(k, "c_abl", &KrachtCoefficients::c_abl, "lateral (profile) area forward of FP / midship section area");
+  field(k, "c_vpr", &KrachtCoefficients::c_vpr, "bulb volume forward of FP (both sides) / displacement volume");
+
+  py::class_<ShipParticulars> sp(m, "BulbShip", "The ship quantities Kracht's coefficients are relative to (all required).");
+  sp.def(py::init<>());
+  field(sp, "lpp", &ShipParticulars::lpp, "length between perpendiculars (m), > 0");
+  field(sp, "beam", &ShipParticulars::beam, "moulded breadth B (m), > 0");
+  field(sp, "draft_fp", &ShipParticulars::draft_fp, "draught at FP (m), > 0");
+  field(sp, "midship_area", &ShipParticulars::midship_area, "midship section area A_MS, both sides (m^2), > 0");
+  field(sp, "displacement_volume", &ShipParticulars::displacement_volume, "moulded displacement volume, both sides (m^3), > 0");
+  field(sp, "x_fp", &ShipParticulars::x_fp, "x of FP from AP (m); < 0 means x_fp = lpp");
+
+  py::class_<BulbOptions> bo(m, "BulbOptions", "Shape controls and resolution of the bulb surface (fairlines.BulbousBow).");
+  bo.def(py::init<>());
+  field(bo, "aft_length", &BulbOptions::aft_length,
+        "length of the constant-section body aft of FP that runs into the hull (m); 0: 2 (protrusion + breadth)");
+  field(bo, "nose_height_shift", &BulbOptions::nose_height_shift,
+        "z of the section centres minus the nose height at FP (m): > 0 lifts the bulb body behind a lower nose");
+  field(bo, "sections", &BulbOptions::sections, "sampled sections along the bulb (>= 8)");
+  field(bo, "section_points", &BulbOptions::section_points, "sampled points per half section (>= 8)");
+  field(bo, "control_u", &BulbOptions::control_u, "control points along (>= 4)");
+  field(bo, "control_v", &BulbOptions::control_v, "control points around the half section (>= 4)");
+
   py::class_<BlendPlacementOptions> p(m, "BlendPlacementOptions",
                                       "Options of seam_blend_placement (fairlines.seam_blend_placement sets them by keyword).");
   p.def(py::init<>());
@@ -110,30 +148,15 @@ void bind_compose(py::module_& m) {
   bind_compose_options(m);
   m.def(
       "_intersect_surfaces",
-      [](const NurbsSurface& a, const NurbsSurface& b, double tolerance, int subdivisions, double step) {
-        IntersectOptions o;
-        o.tolerance = tolerance;
-        o.subdivisions = subdivisions;
-        o.step = step;
+      [](const NurbsSurface& a, const NurbsSurface& b, const IntersectOptions& options) {
         py::list out;
-        for (const auto& c : intersect_surfaces(a, b, o)) out.append(curve_dict(c));
+        for (const auto& c : intersect_surfaces(a, b, options)) out.append(curve_dict(c));
         return out;
       },
-      "a"_a, "b"_a, "tolerance"_a = 1e-7, "subdivisions"_a = 12, "step"_a = 0.0);
+      "a"_a, "b"_a, "options"_a = IntersectOptions{});
 
   py::class_<BulbousBow>(m, "_BulbousBow")
-      .def(py::init([](double lpp, double beam, double draft_fp, double midship_area, double displacement_volume,
-                       double c_lpr, double c_bb, double c_zb, double c_abt, double c_abl, double c_vpr, double x_fp,
-                       double aft_length, double nose_height_shift, int sections, int section_points, int control_u,
-                       int control_v) {
-             KrachtCoefficients k{c_lpr, c_bb, c_zb, c_abt, c_abl, c_vpr};
-             ShipParticulars s{lpp, beam, draft_fp, midship_area, displacement_volume, x_fp};
-             BulbOptions o{aft_length, nose_height_shift, sections, section_points, control_u, control_v};
-             return make_bulbous_bow(k, s, o);
-           }),
-           "lpp"_a, "beam"_a, "draft_fp"_a, "midship_area"_a, "displacement_volume"_a, "c_lpr"_a, "c_bb"_a, "c_zb"_a,
-           "c_abt"_a, "c_abl"_a, "c_vpr"_a, "x_fp"_a, "aft_length"_a, "nose_height_shift"_a, "sections"_a,
-           "section_points"_a, "control_u"_a, "control_v"_a)
+      .def(py::init(&make_bulbous_bow), "kracht"_a, "ship"_a, "options"_a = BulbOptions{})
       .def_property_readonly("surface", [](const BulbousBow& b) { return b.surface; })
       .def_property_readonly("max_fit_deviation", [](const BulbousBow& b) { return b.max_fit_deviation; })
       .def_property_readonly("shape", [](const BulbousBow& b) {

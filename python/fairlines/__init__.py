@@ -64,7 +64,17 @@ from .skinning import SkinOptions, fair_skin  # noqa: F401
 
 from .hydrostatics_surface import hydrostatics, hydrostatics_options  # noqa: F401,E402
 from .form_curve import FORM_PARAMETERS, FormCurveResult, design_curve, fairness_of, form_parameters_of  # noqa: F401,E402
-from ._native import BlendPlacementOptions, HydrostaticsOptions, boundary_continuity, mesh_volume, orient_bare_hull, triangulate_polygon  # noqa: F401,E402
+from ._native import (  # noqa: F401,E402
+    BlendPlacementOptions,
+    BulbOptions,
+    HydrostaticsOptions,
+    IntersectOptions,
+    KrachtCoefficients,
+    boundary_continuity,
+    mesh_volume,
+    orient_bare_hull,
+    triangulate_polygon,
+)
 from .compose import (  # noqa: F401,E402
     KRACHT_NAMES,
     BlendPlacement,

@@ -17,7 +17,7 @@ def fill_options(options_type: type, what: str, values: Mapping[str, Any],
                  convert: Mapping[str, Callable[[Any], Any]] | None = None):
     """``options_type()`` with the fields in ``values`` set, each through ``convert[name]`` when
     given (a check or a conversion the bound field does not make). Raises InvalidInput naming
-    an unknown field or a value of the wrong type, and whatever a conversion raises."""
+    an unknown field or a value of the wrong type (one the field or its conversion refuses)."""
     o = options_type()
     names = option_names(options_type)
     for name, value in values.items():
@@ -25,7 +25,9 @@ def fill_options(options_type: type, what: str, values: Mapping[str, Any],
             raise InvalidInput(f"{what} option {name!r} is unknown; expected one of " + ", ".join(names))
         try:
             setattr(o, name, convert[name](value) if convert and name in convert else value)
-        except TypeError:
+        except InvalidInput:
+            raise
+        except (TypeError, ValueError):
             expected = type(getattr(options_type(), name)).__name__
             raise InvalidInput(f"{what} option {name} is {value!r}; expected a {expected}") from None
     return o

@@ -19,6 +19,16 @@ from ._options import fill_options, option_names
 from .hydrostatics_mesh import displaced_volume_of_mesh
 
 
+def _whole(name: str):
+    """Conversion of an integer option: an int, or a float with an integral value."""
+    def convert(value):
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
+                or not float(value).is_integer():
+            raise _native.InvalidInput(f"BulbousBow option {name} is {value!r}; expected an integer")
+        return int(value)
+    return convert
+
+
 def _integer(path: str, value: Any, lo: int | None) -> int:
     """value as an int, or InvalidInput naming `path`."""
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or (lo is not None and int(value) < lo):
@@ -68,15 +78,18 @@ class Mesh:
         _native.write_stl(self.vertices, self.faces, str(path), binary)
 
 
-def intersect_surfaces(a: NurbsSurface, b: NurbsSurface, *, tolerance: float = 1e-7,
-                       subdivisions: int = 12, step: float = 0.0) -> list[dict]:
+def intersect_surfaces(a: NurbsSurface, b: NurbsSurface, **options) -> list[dict]:
     """Every intersection branch of two clamped NURBS surfaces.
 
     Subdivision by control-net boxes of Bezier patches, Newton seeds, marching with Newton
-    correction to ``tolerance`` metres (<= 1e-6). Each branch is a dict with ``points`` (k, 3),
-    ``uv_a`` (k, 2), ``uv_b`` (k, 2), ``closed`` and ``max_gap`` (m).
+    correction. ``options``: the fields of :class:`fl.IntersectOptions` by keyword (defaults in
+    the engine): tolerance (m, <= 1e-6), subdivisions, step (m), max_turn_deg, max_points. Each
+    branch is a dict with ``points`` (k, 3), ``uv_a`` (k, 2), ``uv_b`` (k, 2), ``closed`` and
+    ``max_gap`` (m). Raises InvalidInput for unclamped surfaces or a bad option,
+    ConvergenceError when a branch cannot be traced to the tolerance.
     """
-    return list(_native._intersect_surfaces(a, b, tolerance, subdivisions, step))
+    o = fill_options(_native.IntersectOptions, "intersect_surfaces", options)
+    return list(_native._intersect_surfaces(a, b, o))
 
 
 class BulbousBow:
@@ -92,21 +105,28 @@ class BulbousBow:
     """
 
     def __init__(self, *, lpp: float, beam: float, draft_fp: float, midship_area: float,
-                 displacement_volume: float, c_lpr: float = 0.025, c_bb: float = 0.18,
-                 c_zb: float = 0.45, c_abt: float = 0.10, c_abl: float = 0.10,
-                 c_vpr: float = 0.0022, x_fp: float | None = None, aft_length: float = 0.0,
-                 nose_height_shift: float = 0.0, sections: int = 81, section_points: int = 41,
-                 control_u: int = 24, control_v: int = 12):
-        self.ship = dict(lpp=lpp, beam=beam, draft_fp=draft_fp, midship_area=midship_area,
-                         displacement_volume=displacement_volume,
-                         x_fp=lpp if x_fp is None else x_fp)
-        self.kracht = dict(c_lpr=c_lpr, c_bb=c_bb, c_zb=c_zb, c_abt=c_abt, c_abl=c_abl, c_vpr=c_vpr)
-        self._bow = _native._BulbousBow(
-            float(lpp), float(beam), float(draft_fp), float(midship_area),
-            float(displacement_volume), float(c_lpr), float(c_bb), float(c_zb), float(c_abt),
-            float(c_abl), float(c_vpr), -1.0 if x_fp is None else float(x_fp), float(aft_length),
-            float(nose_height_shift), int(sections), int(section_points), int(control_u),
-            int(control_v))
+                 displacement_volume: float, x_fp: float | None = None, **options):
+        """``options`` by keyword (defaults in the engine): the Kracht coefficients (fields of
+        :class:`fl.KrachtCoefficients`: c_lpr, c_bb, c_zb, c_abt, c_abl, c_vpr) and the shape
+        (fields of :class:`fl.BulbOptions`: aft_length, nose_height_shift, sections,
+        section_points, control_u, control_v). Raises InvalidInput naming an unknown option, a
+        value of the wrong type or out of range."""
+        kracht = {n: v for n, v in options.items() if n in KRACHT_NAMES}
+        shape = {n: v for n, v in options.items() if n not in KRACHT_NAMES}
+        unknown = set(shape) - set(option_names(_native.BulbOptions))
+        if unknown:
+            raise _native.InvalidInput(f"BulbousBow option {sorted(unknown)[0]!r} is unknown; expected one of "
+                                       + ", ".join(KRACHT_NAMES + option_names(_native.BulbOptions)))
+        ship = dict(lpp=lpp, beam=beam, draft_fp=draft_fp, midship_area=midship_area,
+                    displacement_volume=displacement_volume, x_fp=-1.0 if x_fp is None else x_fp)
+        as_float = {n: float for n in (*KRACHT_NAMES, *ship, "aft_length", "nose_height_shift")}
+        whole = {n: _whole(n) for n in ("sections", "section_points", "control_u", "control_v")}
+        k = fill_options(_native.KrachtCoefficients, "BulbousBow", kracht, as_float)
+        o = fill_options(_native.BulbOptions, "BulbousBow", shape, {**as_float, **whole})
+        sh = fill_options(_native.BulbShip, "BulbousBow", ship, as_float)
+        self.ship = {**ship, "x_fp": lpp if x_fp is None else x_fp}
+        self.kracht = {n: getattr(k, n) for n in KRACHT_NAMES}
+        self._bow = _native._BulbousBow(k, sh, o)
         self.surface: NurbsSurface = self._bow.surface
         #: Derived dimensions and shape exponents (metres, m^2, m^3).
         self.shape: dict = dict(self._bow.shape)
@@ -132,7 +152,7 @@ class BulbousBow:
         if bad:
             raise _native.InvalidInput(f"bulb 'kracht' has unknown keys {sorted(bad)}; expected some of {list(KRACHT_NAMES)}")
         shape = dict(section.get("shape", {}))
-        allowed = {"aft_length", "nose_height_shift", "sections", "section_points", "control_u", "control_v"}
+        allowed = set(option_names(_native.BulbOptions))
         bad = set(shape) - allowed
         if bad:
             raise _native.InvalidInput(f"bulb 'shape' has unknown keys {sorted(bad)}; expected some of {sorted(allowed)}")

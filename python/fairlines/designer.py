@@ -24,7 +24,6 @@ or two), so the surface meets the request to MATCH_TOL.
 
 from __future__ import annotations
 
-import inspect
 import math
 from dataclasses import asdict, dataclass, field, replace
 
@@ -32,7 +31,7 @@ import numpy as np
 
 from . import _native
 from .basic_curves import immersed_range, solve_curve
-from .compose import KRACHT_NAMES, BulbousBow
+from .compose import KRACHT_NAMES
 from .description import BasicCurveSpec
 from .hull import Hull
 
@@ -290,7 +289,8 @@ def design_description(p: Particulars) -> dict:
         # bulb: True, Kracht coefficients, or a whole "bulb" section ({"kracht": ..., "shape": ...})
         given = dict(p.bulb) if isinstance(p.bulb, dict) else {}
         section = given if {"kracht", "shape"} & set(given) else {"kracht": given}
-        defaults = {k: v.default for k, v in inspect.signature(BulbousBow).parameters.items() if k in KRACHT_NAMES}
+        engine = _native.KrachtCoefficients()
+        defaults = {k: getattr(engine, k) for k in KRACHT_NAMES}
         kracht = {**defaults, **section.get("kracht", {})}
         shape = dict(section.get("shape", {}))
         # the bulb's constant aft part reaches back to where the forefoot is wide enough to take it

@@ -103,3 +103,23 @@ def test_bad_calls_never_abort_the_interpreter():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     assert "caught 9 of 9" in out.stdout
+
+
+BULB_SHIP = dict(lpp=200.0, beam=32.0, draft_fp=11.0, midship_area=340.0, displacement_volume=50000.0)
+
+
+@pytest.mark.parametrize("option, value, says", [
+    ("c_lprr", 0.03, "BulbousBow option 'c_lprr' is unknown; expected one of c_lpr"),
+    ("sections", 8.5, "BulbousBow option sections is 8.5; expected an integer"),
+    ("sections", True, "BulbousBow option sections is True; expected an integer"),
+    ("c_bb", "wide", "BulbousBow option c_bb is 'wide'; expected a float"),
+])
+def test_bulb_option_of_wrong_name_or_type_is_refused(option, value, says):
+    with pytest.raises(ValueError, match=says):
+        fl.BulbousBow(**BULB_SHIP, **{option: value})
+
+
+def test_intersection_option_is_refused_by_name():
+    plane = fl.NurbsSurface(1, 1, [0, 0, 1, 1], [0, 0, 1, 1], np.array([[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 0]]], float))
+    with pytest.raises(fl.InvalidInput, match="intersect_surfaces option 'tol' is unknown"):
+        fl.intersect_surfaces(plane, plane, tol=1e-7)

@@ -8,7 +8,7 @@ import numpy
 import numpy.typing
 import typing
 from . import limits
-__all__: list[str] = ['BlendOptions', 'BlendPlacementOptions', 'BlendSpec', 'ComposeOptions', 'ConvergenceError', 'CurveFit', 'Distribution', 'END_BAND', 'FairlinesError', 'FairnessWeights', 'FitOptions', 'FormBounds', 'FormCurveRequest', 'FormSolverOptions', 'Hydrostatics', 'HydrostaticsOptions', 'InfeasibleFormParameters', 'InvalidInput', 'Kracht', 'KrachtShip', 'MAX_SHAPE_KNOB', 'MeshHydrostatics', 'MeshHydrostaticsOptions', 'MeshOptions', 'NoBlendFits', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PatchHydrostatics', 'PlaneCut', 'SectionDesign', 'SectionSpec', 'SkinOptions', 'SkinResult', 'Spacing', 'SplineBound', 'SplineCondition', 'SplineDesignRequest', 'SplineFitPoint', 'SplineFlat', 'SplineIntegral', 'SplineShape', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'design_section', 'design_sections', 'design_spline_function', 'distribute', 'ellipse', 'equal_arc_length_points', 'fairness_of', 'fit_curve', 'fit_surface', 'form_parameter_names', 'form_parameters_of', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics_of_patches', 'knot_line_parameters', 'limits', 'mesh_hydrostatics', 'mesh_quality', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'parameters_at_arc_length', 'plane_cut', 'revolve', 'scaled_jacobians', 'section_area', 'section_fullness_range', 'section_knot_vector', 'sphere', 'spline_function_knots', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
+__all__: list[str] = ['BlendOptions', 'BlendPlacementOptions', 'BlendSpec', 'BulbOptions', 'BulbShip', 'ComposeOptions', 'ConvergenceError', 'CurveFit', 'Distribution', 'END_BAND', 'FairlinesError', 'FairnessWeights', 'FitOptions', 'FormBounds', 'FormCurveRequest', 'FormSolverOptions', 'Hydrostatics', 'HydrostaticsOptions', 'InfeasibleFormParameters', 'IntersectOptions', 'InvalidInput', 'Kracht', 'KrachtCoefficients', 'KrachtShip', 'MAX_SHAPE_KNOB', 'MeshHydrostatics', 'MeshHydrostaticsOptions', 'MeshOptions', 'NoBlendFits', 'NurbsCurve', 'NurbsSurface', 'NurbsVolume', 'PatchHydrostatics', 'PlaneCut', 'SectionDesign', 'SectionSpec', 'SkinOptions', 'SkinResult', 'Spacing', 'SplineBound', 'SplineCondition', 'SplineDesignRequest', 'SplineFitPoint', 'SplineFlat', 'SplineIntegral', 'SplineShape', 'SurfaceFit', 'arc', 'arc_length', 'averaged_knots', 'basis_functions', 'boundary_continuity', 'circle', 'clamped_uniform_knots', 'curve_e2', 'cylinder', 'design_section', 'design_sections', 'design_spline_function', 'distribute', 'ellipse', 'equal_arc_length_points', 'fairness_of', 'fit_curve', 'fit_surface', 'form_parameter_names', 'form_parameters_of', 'greville_abscissae', 'hartley_judd_knots', 'hydrostatics_of_patches', 'knot_line_parameters', 'limits', 'mesh_hydrostatics', 'mesh_quality', 'mesh_volume', 'orient_bare_hull', 'parameterize', 'parameters_at_arc_length', 'plane_cut', 'revolve', 'scaled_jacobians', 'section_area', 'section_fullness_range', 'section_knot_vector', 'sphere', 'spline_function_knots', 'triangulate_polygon', 'unclamped_uniform_knots', 'validate_knots', 'write_obj', 'write_stl']
 class FairlinesError(RuntimeError):
     pass
 class InvalidInput(ValueError):
@@ -1464,6 +1464,214 @@ class BlendOptions:
     @tension.setter
     def tension(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+class IntersectOptions:
+    """
+    Options of intersect_surfaces (fairlines.intersect_surfaces sets them by keyword).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def max_points(self) -> int:
+        """
+        cap on points per branch (> 10) (default 100000)
+        """
+    @max_points.setter
+    def max_points(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_turn_deg(self) -> float:
+        """
+        tangent turn per step above which the step is halved (deg) (default 4.0)
+        """
+    @max_turn_deg.setter
+    def max_turn_deg(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def step(self) -> float:
+        """
+        marching step (m); 0: 1/150 of the smaller box diagonal (default 0.0)
+        """
+    @step.setter
+    def step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def subdivisions(self) -> int:
+        """
+        extra breakpoints per direction before the Bezier split (>= 1) (default 12)
+        """
+    @subdivisions.setter
+    def subdivisions(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tolerance(self) -> float:
+        """
+        Newton target |S_a - S_b| (m), > 0, <= 1e-6 (default 1e-07)
+        """
+    @tolerance.setter
+    def tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class KrachtCoefficients:
+    """
+    Kracht's (1978) six bulb coefficients.
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def c_abl(self) -> float:
+        """
+        lateral (profile) area forward of FP / midship section area (default 0.1)
+        """
+    @c_abl.setter
+    def c_abl(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def c_abt(self) -> float:
+        """
+        bulb section area at FP (both sides) / midship section area (default 0.1)
+        """
+    @c_abt.setter
+    def c_abt(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def c_bb(self) -> float:
+        """
+        bulb breadth at FP / B (default 0.18)
+        """
+    @c_bb.setter
+    def c_bb(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def c_lpr(self) -> float:
+        """
+        protrusion beyond FP / Lpp (default 0.025)
+        """
+    @c_lpr.setter
+    def c_lpr(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def c_vpr(self) -> float:
+        """
+        bulb volume forward of FP (both sides) / displacement volume (default 0.0022)
+        """
+    @c_vpr.setter
+    def c_vpr(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def c_zb(self) -> float:
+        """
+        height of the bulb's foremost point / T_FP (default 0.45)
+        """
+    @c_zb.setter
+    def c_zb(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class BulbShip:
+    """
+    The ship quantities Kracht's coefficients are relative to (all required).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def beam(self) -> float:
+        """
+        moulded breadth B (m), > 0 (default 0.0)
+        """
+    @beam.setter
+    def beam(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def displacement_volume(self) -> float:
+        """
+        moulded displacement volume, both sides (m^3), > 0 (default 0.0)
+        """
+    @displacement_volume.setter
+    def displacement_volume(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def draft_fp(self) -> float:
+        """
+        draught at FP (m), > 0 (default 0.0)
+        """
+    @draft_fp.setter
+    def draft_fp(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def lpp(self) -> float:
+        """
+        length between perpendiculars (m), > 0 (default 0.0)
+        """
+    @lpp.setter
+    def lpp(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def midship_area(self) -> float:
+        """
+        midship section area A_MS, both sides (m^2), > 0 (default 0.0)
+        """
+    @midship_area.setter
+    def midship_area(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def x_fp(self) -> float:
+        """
+        x of FP from AP (m); < 0 means x_fp = lpp (default -1.0)
+        """
+    @x_fp.setter
+    def x_fp(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class BulbOptions:
+    """
+    Shape controls and resolution of the bulb surface (fairlines.BulbousBow).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def aft_length(self) -> float:
+        """
+        length of the constant-section body aft of FP that runs into the hull (m); 0: 2 (protrusion + breadth) (default 0.0)
+        """
+    @aft_length.setter
+    def aft_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def control_u(self) -> int:
+        """
+        control points along (>= 4) (default 24)
+        """
+    @control_u.setter
+    def control_u(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def control_v(self) -> int:
+        """
+        control points around the half section (>= 4) (default 12)
+        """
+    @control_v.setter
+    def control_v(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nose_height_shift(self) -> float:
+        """
+        z of the section centres minus the nose height at FP (m): > 0 lifts the bulb body behind a lower nose (default 0.0)
+        """
+    @nose_height_shift.setter
+    def nose_height_shift(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def section_points(self) -> int:
+        """
+        sampled points per half section (>= 8) (default 41)
+        """
+    @section_points.setter
+    def section_points(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def sections(self) -> int:
+        """
+        sampled sections along the bulb (>= 8) (default 81)
+        """
+    @sections.setter
+    def sections(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
 class BlendPlacementOptions:
     """
     Options of seam_blend_placement (fairlines.seam_blend_placement sets them by keyword).
@@ -1511,7 +1719,7 @@ class BlendPlacementOptions:
     def tension(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 class _BulbousBow:
-    def __init__(self, lpp: typing.SupportsFloat | typing.SupportsIndex, beam: typing.SupportsFloat | typing.SupportsIndex, draft_fp: typing.SupportsFloat | typing.SupportsIndex, midship_area: typing.SupportsFloat | typing.SupportsIndex, displacement_volume: typing.SupportsFloat | typing.SupportsIndex, c_lpr: typing.SupportsFloat | typing.SupportsIndex, c_bb: typing.SupportsFloat | typing.SupportsIndex, c_zb: typing.SupportsFloat | typing.SupportsIndex, c_abt: typing.SupportsFloat | typing.SupportsIndex, c_abl: typing.SupportsFloat | typing.SupportsIndex, c_vpr: typing.SupportsFloat | typing.SupportsIndex, x_fp: typing.SupportsFloat | typing.SupportsIndex, aft_length: typing.SupportsFloat | typing.SupportsIndex, nose_height_shift: typing.SupportsFloat | typing.SupportsIndex, sections: typing.SupportsInt | typing.SupportsIndex, section_points: typing.SupportsInt | typing.SupportsIndex, control_u: typing.SupportsInt | typing.SupportsIndex, control_v: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def __init__(self, kracht: KrachtCoefficients, ship: BulbShip, options: BulbOptions = ...) -> None:
         ...
     @property
     def max_fit_deviation(self) -> float:
@@ -1936,7 +2144,7 @@ def _hydrostatics(surface: NurbsSurface, draft: typing.SupportsFloat | typing.Su
     Hydrostatics of a hull surface at `draft` (m above base) by Gauss-Legendre quadrature on the surface
     (fairlines.hydrostatics takes the options by keyword).
     """
-def _intersect_surfaces(a: NurbsSurface, b: NurbsSurface, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-07, subdivisions: typing.SupportsInt | typing.SupportsIndex = 12, step: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> list:
+def _intersect_surfaces(a: NurbsSurface, b: NurbsSurface, options: IntersectOptions = ...) -> list:
     ...
 def _measure_kracht(vertices: typing.Any, faces: typing.Any, ship: KrachtShip) -> Kracht:
     """
