@@ -17,6 +17,7 @@ def add_parser(sub) -> None:
                       ("lcf", "LCF, m from the AP"), ("parallel-length", "parallel middle body, m"),
                       ("parallel-centre", "middle of the parallel body, m from the AP"),
                       ("transom-immersion", "transom's lower edge below the waterline, m (< 0: dry)"),
+                      ("transom-breadth", "waterline half-breadth at an immersed transom, m"),
                       ("stem-rake", "stem rake above the waterline, deg from the vertical")):
         d.add_argument(f"--{key}", type=float, default=None, help=what)
     d.add_argument("--stern", choices=["transom", "cruiser"], default="transom")
@@ -29,7 +30,7 @@ def run(args) -> int:
     from .designer import design_hull
 
     keys = ("lpp", "breadth", "draft", "depth", "cb", "lcb", "cm", "cwp", "lcf", "parallel_length", "parallel_centre",
-            "transom_immersion", "stem_rake", "stern", "bulb", "name")
+            "transom_immersion", "transom_breadth", "stem_rake", "stern", "bulb", "name")
     given = {k: getattr(args, k) for k in keys if getattr(args, k) is not None}
     t0 = time.perf_counter()
     print("  .. designing the hull and matching volume, LCB and Cwp on its surface", file=sys.stderr, flush=True)

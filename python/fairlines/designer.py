@@ -7,12 +7,14 @@ textbook defaults when left out (each named in the description's notes):
 
 * Cm from Kerlen's regression, Cm = 1.006 - 0.0056 Cb^-3.56 (at most CM_MAX);
 * Cwp = sqrt(Cb) + 0.01 (a vertical prismatic coefficient Cb / Cwp of 0.70 at Cb 0.5 to 0.92
-  at Cb 0.87);
+  at Cb 0.87), 0.015 fuller when a full ship's ends cannot hold its LCB with it;
 * the LCF 1.5 % Lpp aft of the LCB;
 * a parallel middle body of 1.6 (Cp - 0.62) Lpp (none below Cp 0.62), centred a little
   forward of the LCB's offset from midships;
 * a transom stern 2.5 % Lpp aft of the AP, its lower edge 5 % of T above the waterline above
-  Cb 0.6 (dry) and 12 % of T below it otherwise; a stem raked 20 deg above the waterline.
+  Cb 0.6 (dry) and 12 % of T below it otherwise, an immersed one 0.7 B/2 wide at the waterline
+  (0.5 B/2 when a fine ship's ends cannot hold its LCB with the wider one); a stem raked
+  20 deg above the waterline.
 
 The particulars become basic curves (fairlines.description): the centre profile, the design
 waterline with Cwp and the LCF, the deck line, and the sectional area curve with the volume and
@@ -49,7 +51,10 @@ PARALLEL_SLOPE = 1.6        # parallel body length / Lpp per unit Cp above PARAL
 PARALLEL_CP = 0.62
 CM_MAX = 0.99              # the fullest midship section the regression gives (fuller ones leave the SAC no room)
 PARALLEL_RETRIES, PARALLEL_STEP = 3, 0.05  # a SAC the ends cannot hold: parallel body + 5 % Lpp, 3 times
-LCF_RETRIES = (0.0, 0.015)  # LCF - LCB (fraction of Lpp) tried when the default LCF leaves the SAC no room
+FINE_ENDS_CP = 0.45         # ends finer than this (prismatic outside the parallel body) ask for a shorter one
+CWP_MAX = 0.97              # the fullest default waterplane
+CWP_RETRY = 0.015           # a full ship's ends cannot hold its LCB: the default Cwp this much fuller
+LCF_RETRIES = (0.0, 0.015, -0.03)  # LCF - LCB (fraction of Lpp) tried when the default LCF leaves the SAC no room
 PARALLEL_SPAN = (0.2, 0.8)  # the default parallel body lies within these fractions of Lpp ...
 PARALLEL_SPAN_GIVEN = (0.15, 0.9)  # ... one placed by its centre within these
 PARALLEL_SHIFT_RETRY = 3.0  # a SAC the ends cannot hold: the parallel body's centre moves this many times the LCB's offset
@@ -59,7 +64,8 @@ DECK_TO_MAX = 0.92          # ... but ends its flat part aft of this fraction of
 DECK_FROM_MIN = 0.02        # ... and starts it at least this fraction of Lpp forward of the stern
 DECK_FLAT_CHECKS = 101      # points of that check
 DECK_TRANSOM = 0.92         # deck half-breadth at the transom, fraction of B/2
-DWL_TRANSOM = 0.7           # waterline half-breadth at an immersed transom, fraction of B/2
+DWL_TRANSOM = 0.7           # waterline half-breadth at an immersed transom, fraction of B/2 ...
+DWL_TRANSOM_RETRY = 0.5     # ... and when a fine ship's ends cannot hold its LCB with that wide a transom
 FULLNESS_POINTS = 81        # points of the natural fullness the SAC stays near
 FULLNESS_LIMITS = (0.52, 0.97)  # natural end fullness kept inside these
 FIT_END = 0.06              # no fullness points this close (fraction of the waterline's length) to its ends
@@ -87,6 +93,7 @@ class Particulars:
     parallel_centre: float | None = None  # middle of the parallel body (m from the AP)
     stern: str = "transom"
     transom_immersion: float | None = None  # transom lower edge below the waterline (m); < 0 dry
+    transom_breadth: float | None = None  # waterline half-breadth at an immersed transom (m)
     bulb: bool | dict = False
     stem_rake: float = STEM_RAKE
     name: str = "designed hull"
@@ -119,7 +126,8 @@ class Particulars:
         limits = {"lcf": (0.0, self.lpp, "an LCF between the AP and the FP (m from the AP)"),
                   "parallel_length": (0.0, 0.8 * self.lpp, "a parallel body from 0 to 0.8 Lpp (m)"),
                   "parallel_centre": (0.1 * self.lpp, 0.9 * self.lpp, "a parallel body centred 0.1 to 0.9 Lpp from the AP (m)"),
-                  "transom_immersion": (-self.depth, self.draft, "an immersion between -D and T (m; < 0 dry)")}
+                  "transom_immersion": (-self.depth, self.draft, "an immersion between -D and T (m; < 0 dry)"),
+                  "transom_breadth": (0.0, 0.5 * self.breadth, "a waterline half-breadth at the transom from 0 to B/2 (m)")}
         for key, (lo, hi, what) in limits.items():
             v = getattr(self, key)
             if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi):
@@ -131,7 +139,7 @@ def _coefficients(p: Particulars) -> dict:
     L = p.lpp
     cm = p.cm if p.cm is not None else min(1.006 - 0.0056 * p.cb ** -3.56, CM_MAX)
     cp = p.cb / cm
-    cwp = p.cwp if p.cwp is not None else min(math.sqrt(p.cb) + 0.01, 0.97)
+    cwp = p.cwp if p.cwp is not None else min(math.sqrt(p.cb) + 0.01, CWP_MAX)
     lcf = p.lcf if p.lcf is not None else p.lcb - LCF_AFT_OF_LCB * L
     lp = p.parallel_length if p.parallel_length is not None else max(0.0, PARALLEL_SLOPE * (cp - PARALLEL_CP) * L)
     lp = min(lp, 0.6 * L)
@@ -245,7 +253,8 @@ def design_description(p: Particulars) -> dict:
         dwl.update(flat_from=par[0], flat_to=par[1], value=half)
     else:  # no parallel body: the waterline still reaches B/2, at midships
         dwl.update(upper=half, points=[[_midship_place(p), half]], slopes=[[_midship_place(p), 0.0]])
-    dwl["yB"] = DWL_TRANSOM * half if xa <= x_aft + 1e-9 * L else 0.0
+    transom = p.transom_breadth if p.transom_breadth is not None else DWL_TRANSOM * half
+    dwl["yB"] = transom if xa <= x_aft + 1e-9 * L else 0.0
     try:
         dwl_curve = solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=half)
     except _native.InfeasibleFormParameters:
@@ -315,7 +324,18 @@ def _particulars(kwargs: dict) -> Particulars:
 def _fallbacks(p: Particulars):
     """The particulars, then (for basic curves that cannot be met) what the designer may still
     choose -- never a value the user gave: the LCF at and forward of the LCB, the parallel body
-    moved toward the LCB, and a parallel body longer by PARALLEL_STEP Lpp at a time."""
+    moved toward the LCB, a parallel body longer by PARALLEL_STEP Lpp at a time; then the same
+    with an immersed transom narrowed to DWL_TRANSOM_RETRY B/2, and with a waterplane fuller
+    by CWP_RETRY."""
+    yield from _choices(p)
+    if p.transom_breadth is None:
+        yield from _choices(replace(p, transom_breadth=DWL_TRANSOM_RETRY * p.breadth / 2))
+    if p.cwp is None:
+        cwp = _coefficients(p)["cwp"]
+        yield from _choices(replace(p, cwp=min(cwp + CWP_RETRY, CWP_MAX)))
+
+
+def _choices(p: Particulars):
     yield p
     L = p.lpp
     lp = _coefficients(p)["parallel"]
@@ -368,6 +388,10 @@ def _explained(exc: Exception, p: Particulars) -> Exception:
     said = (f"cb {p.cb:.4g}, lcb {p.lcb:.6g} m ({lcb_pct:+.2f} % Lpp from midships), cm {c['cm']:.4g}, "
             f"cwp {c['cwp']:.4g}, lcf {c['lcf']:.6g} m, parallel body {c['parallel'][1] - c['parallel'][0]:.4g} m")
     remedy = _REMEDIES.get(curve, "change the particulars")
+    lp = (c["parallel"][1] - c["parallel"][0]) / p.lpp
+    if curve == "sac" and lp > 0 and (c["cp"] - lp) / (1 - lp) < FINE_ENDS_CP:
+        remedy = (f"the ends outside this parallel body would need a prismatic coefficient of "
+                  f"{(c['cp'] - lp) / (1 - lp):.3f}: give a shorter parallel_length, raise cb or move lcb toward midships")
     return type(exc)(f"design_hull: {said}: {remedy} ({exc})")
 
 

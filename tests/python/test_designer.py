@@ -152,6 +152,43 @@ def test_latin_hypercube_of_the_design_space_all_builds():
     assert fails == []
 
 
+def test_latin_hypercube_with_a_given_parallel_body_and_bulb_all_builds():
+    """The same space with a parallel body of 2 .. 30 % Lpp given (as a designer gives it, also
+    on fine ships) and every other ship with a bulb: each builds and meets its volume and LCB."""
+    from scipy.stats import qmc
+
+    fails = []
+    for i, r in enumerate(qmc.LatinHypercube(d=5, seed=11).random(30)):
+        cb, lcb, lb, bt, par = (lo + x * (hi - lo) for x, (lo, hi) in zip(r, (*SPACE.values(), (0.02, 0.3))))
+        lpp = 150.0
+        b = lpp / lb
+        p = dict(lpp=lpp, breadth=b, draft=b / bt, depth=1.6 * b / bt, cb=cb, lcb=lpp / 2 + lcb / 100 * lpp,
+                 parallel_length=par * lpp, bulb=bool(i % 2))
+        try:
+            h = fl.design_hull(**p).hydrostatics()
+            assert h.volume == pytest.approx(_asked(p), rel=1e-4)
+            assert abs(h.lcb - p["lcb"]) <= 1e-4 * p["lpp"]
+        except (fl.InfeasibleFormParameters, AssertionError) as e:
+            fails.append((p, str(e)[:80]))
+    assert fails == []
+
+
+def test_a_fine_ship_with_a_short_parallel_body_and_lcb_at_midships_builds():
+    """Cb 0.50 with 6 m of parallel body and the LCB at midships: the default immersed transom
+    (0.7 B/2) leaves the ends too full for the LCB; the designer narrows it."""
+    hull = fl.design_hull(lpp=140, breadth=17, draft=5.5, depth=9, cb=0.50, lcb=70.0, parallel_length=6.0)
+    h = hull.hydrostatics()
+    assert h.volume == pytest.approx(0.50 * 140 * 17 * 5.5, rel=1e-4)
+    assert hull.basic_curves["dwl"](hull.description.x_aft)[0] < 0.7 * 17 / 2
+
+
+def test_too_long_a_parallel_body_on_a_fine_ship_asks_for_a_shorter_one():
+    """Cb 0.51 with 30 % Lpp of parallel body: the ends would need a prismatic of 0.35, which
+    no fair SAC within the sections' fullness holds; the message says which way to go."""
+    with pytest.raises(fl.InfeasibleFormParameters, match=r"prismatic coefficient of 0\.347: give a shorter parallel_length"):
+        fl.design_hull(lpp=150, breadth=19.531, draft=6.807, depth=10.891, cb=0.51, lcb=71.837, parallel_length=44.37)
+
+
 def test_an_impossible_request_names_the_particulars_to_change():
     """A full ship with its LCB 4 % Lpp forward, no parallel body and a waterplane barely
     fuller than its block: its ends cannot hold the volume. The message names the particulars
