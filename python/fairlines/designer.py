@@ -51,6 +51,7 @@ PARALLEL_SLOPE = 1.6        # parallel body length / Lpp per unit Cp above PARAL
 PARALLEL_CP = 0.62
 CM_MAX = 0.99              # the fullest midship section the regression gives (fuller ones leave the SAC no room)
 PARALLEL_RETRIES, PARALLEL_STEP = 3, 0.05  # a SAC the ends cannot hold: parallel body + 5 % Lpp, 3 times
+EDGE_STEPS = 7              # bisections of a given particular toward one that builds (1/128 of the gap)
 FINE_ENDS_CP = 0.45         # ends finer than this (prismatic outside the parallel body) ask for a shorter one
 CWP_MAX = 0.97              # the fullest default waterplane
 CWP_RETRY = 0.015           # a full ship's ends cannot hold its LCB: the default Cwp this much fuller
@@ -356,18 +357,56 @@ def design_hull(particulars: Particulars | None = None, **kwargs) -> Hull:
     """A Hull designed from particulars (a Particulars, or its fields as keywords), built and
     matched: its surface holds Cb Lpp B T, the LCB and Cwp Lpp B (see the module docstring).
     Raises InvalidInput for particulars outside the designer's range, InfeasibleFormParameters
-    (naming the basic curve) when no fallback builds."""
+    (naming the basic curve, what to change and, for a given Cwp, LCF, LCB or parallel body,
+    the nearest value that builds) when no fallback builds."""
     p = particulars if particulars is not None else _particulars(kwargs)
     p.check()
     first = None
     for q in _fallbacks(p):
-        try:
-            hull = Hull.from_json(design_description(q))
-            match_targets(hull)
+        hull, exc = _try_design(q)
+        if hull is not None:
             return hull
-        except _native.InfeasibleFormParameters as exc:
-            first = first or exc
-    raise _explained(first, p) from first
+        first = first or exc
+    raise _explained(first, p, _feasible_edge(p)) from first
+
+
+def _try_design(p: Particulars) -> tuple[Hull | None, Exception | None]:
+    try:
+        hull = Hull.from_json(design_description(p))
+        match_targets(hull)
+        return hull, None
+    except _native.InfeasibleFormParameters as exc:
+        return None, exc
+
+
+def _feasible_edge(p: Particulars) -> str:
+    """For the first of the given Cwp, LCF, LCB, parallel body whose designer's default (the
+    LCB: midships) builds with the others as given, the value nearest the given one that
+    builds, by EDGE_STEPS bisections; "" when there is none."""
+    L = p.lpp
+    toward = {"cwp": None, "lcf": None, "lcb": 0.5 * L, "parallel_length": None}
+    for name, target in toward.items():
+        given = getattr(p, name)
+        if given is None or (name == "lcb" and abs(given - target) < 1e-9 * L):
+            continue
+        good = replace(p, **{name: target})
+        if target is None:
+            target = _coefficients(good)[name] if name != "parallel_length" else None
+        if _try_design(good)[0] is None:
+            continue
+        bad = given
+        if target is None:  # the default parallel body: bisect its length from the given one
+            par = _coefficients(good)["parallel"]
+            target = par[1] - par[0]
+        for _ in range(EDGE_STEPS):
+            mid = 0.5 * (bad + target)
+            if _try_design(replace(p, **{name: mid}))[0] is None:
+                bad = mid
+            else:
+                target = mid
+        unit = "" if name == "cwp" else " m"
+        return f"; with the other particulars as given, {name} {target:.4g}{unit} builds (asked {given:.4g}{unit})"
+    return ""
 
 
 #: What to change when a basic curve designed from the particulars is infeasible.
@@ -380,7 +419,7 @@ _REMEDIES = {
 }
 
 
-def _explained(exc: Exception, p: Particulars) -> Exception:
+def _explained(exc: Exception, p: Particulars, edge: str = "") -> Exception:
     """The solver's message prefixed by the particulars involved and what to change."""
     curve = str(exc).split(":", 1)[0].removeprefix("basic_curves.")
     c = _coefficients(p)
@@ -392,7 +431,7 @@ def _explained(exc: Exception, p: Particulars) -> Exception:
     if curve == "sac" and lp > 0 and (c["cp"] - lp) / (1 - lp) < FINE_ENDS_CP:
         remedy = (f"the ends outside this parallel body would need a prismatic coefficient of "
                   f"{(c['cp'] - lp) / (1 - lp):.3f}: give a shorter parallel_length, raise cb or move lcb toward midships")
-    return type(exc)(f"design_hull: {said}: {remedy} ({exc})")
+    return type(exc)(f"design_hull: {said}: {remedy}{edge} ({exc})")
 
 
 def match_targets(hull: Hull, tol: float = MATCH_TOL) -> dict:

@@ -8,6 +8,7 @@ ends (deck, baseline, transom plane, centre plane); the curvature of the cut cur
 import json
 import math
 import pathlib
+import re
 
 import numpy as np
 import pytest
@@ -187,6 +188,17 @@ def test_too_long_a_parallel_body_on_a_fine_ship_asks_for_a_shorter_one():
     no fair SAC within the sections' fullness holds; the message says which way to go."""
     with pytest.raises(fl.InfeasibleFormParameters, match=r"prismatic coefficient of 0\.347: give a shorter parallel_length"):
         fl.design_hull(lpp=150, breadth=19.531, draft=6.807, depth=10.891, cb=0.51, lcb=71.837, parallel_length=44.37)
+
+
+def test_a_waterplane_too_fine_for_the_volume_names_a_cwp_that_builds():
+    """The coaster with Cwp 10 % below its own (0.876 -> 0.788, a vertical prismatic of 0.95)
+    is refused; the message names a Cwp that builds, and it does."""
+    p = {**SHIPS["coaster_cruiser"], "cwp": 0.788}
+    with pytest.raises(fl.InfeasibleFormParameters, match=r"cwp (0\.\d+) builds \(asked 0\.788\)") as info:
+        fl.design_hull(**p)
+    cwp = float(re.search(r"cwp (0\.\d+) builds", str(info.value)).group(1))
+    assert 0.788 < cwp < 0.876
+    assert fl.design_hull(**{**p, "cwp": cwp}).hydrostatics().cwp == pytest.approx(cwp, rel=MATCH_TOL)
 
 
 def test_an_impossible_request_names_the_particulars_to_change():
