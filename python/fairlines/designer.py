@@ -12,9 +12,10 @@ textbook defaults when left out (each named in the description's notes):
 * a parallel middle body of 1.6 (Cp - 0.62) Lpp (none below Cp 0.62), centred a little
   forward of the LCB's offset from midships;
 * a transom stern 2.5 % Lpp aft of the AP, its lower edge 5 % of T above the waterline above
-  Cb 0.6 (dry) and 12 % of T below it otherwise, an immersed one 0.7 B/2 wide at the waterline
-  (0.5 B/2 when a fine ship's ends cannot hold its LCB with the wider one); a stem raked
-  20 deg above the waterline.
+  Cb 0.6 (dry) and 12 % of T below it otherwise, an immersed one 0.7 B/2 wide at the waterline,
+  narrowed in steps of 0.1 B/2 until the waterline widens all the way from the transom to its
+  widest (and to 0.5 B/2 when a fine ship's ends cannot hold its LCB with the wider one); a
+  stem raked 20 deg above the waterline.
 
 The particulars become basic curves (fairlines.description): the centre profile, the design
 waterline with Cwp and the LCF, the deck line, and the sectional area curve with the volume and
@@ -66,6 +67,9 @@ DECK_FROM_MIN = 0.02        # ... and starts it at least this fraction of Lpp fo
 DECK_FLAT_CHECKS = 101      # points of that check
 DECK_TRANSOM = 0.92         # deck half-breadth at the transom, fraction of B/2
 DWL_TRANSOM = 0.7           # waterline half-breadth at an immersed transom, fraction of B/2 ...
+TRANSOM_WIDTHS = (DWL_TRANSOM, 0.6, 0.5, 0.4, 0.3)  # ... narrowed through these until the run widens to the peak
+MONOTONE_CHECKS = 101       # points of that check
+MONOTONE_TOL = 1e-6         # narrowing by less than this fraction of B/2 counts as widening
 DWL_TRANSOM_RETRY = 0.5     # ... and when a fine ship's ends cannot hold its LCB with that wide a transom
 FULLNESS_POINTS = 81        # points of the natural fullness the SAC stays near
 FULLNESS_LIMITS = (0.52, 0.97)  # natural end fullness kept inside these
@@ -229,6 +233,44 @@ def natural_fullness(p: Particulars, c: dict, dwl, profile, xa: float, xf: float
     return xs, cm - (cm - s_aft) * ga - (cm - s_fore) * gf
 
 
+def _solve_dwl(p: Particulars, dwl: dict, xa: float, xf: float):
+    half = p.breadth / 2
+    try:
+        return solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=half)
+    except _native.InfeasibleFormParameters:
+        if p.lcf is not None or "lcf" not in dwl:
+            raise
+        del dwl["lcf"]  # the default LCF does not suit this waterline: let it fall where it is fairest
+        return solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=half)
+
+
+def _waterline(p: Particulars, dwl: dict, xa: float, xf: float, peak: float, immersed_transom: bool):
+    """The design waterline; at an immersed transom not given a breadth, the widest of
+    TRANSOM_WIDTHS whose waterline widens all the way from the transom to its peak (a wide
+    transom on a fine waterplane otherwise pinches the run into a waist)."""
+    half = p.breadth / 2
+    if not immersed_transom:
+        dwl["yB"] = 0.0
+        return _solve_dwl(p, dwl, xa, xf)
+    widths = [p.transom_breadth] if p.transom_breadth is not None else [f * half for f in TRANSOM_WIDTHS]
+    best = None
+    for yb in widths:
+        trial = {**dwl, "yB": yb}
+        try:
+            curve = _solve_dwl(p, trial, xa, xf)
+        except _native.InfeasibleFormParameters:
+            if best is None:
+                raise
+            break
+        best = curve, trial
+        y = curve(np.linspace(xa, peak, MONOTONE_CHECKS))
+        if np.all(np.diff(y) >= -MONOTONE_TOL * half):
+            break
+    dwl.clear()
+    dwl.update(best[1])  # the description keeps the transom breadth (and LCF) the waterline was solved with
+    return best[0]
+
+
 def design_description(p: Particulars) -> dict:
     """The hull description (a dict) for the particulars (see the module docstring). Raises
     InvalidInput for particulars outside the designer's range."""
@@ -254,15 +296,8 @@ def design_description(p: Particulars) -> dict:
         dwl.update(flat_from=par[0], flat_to=par[1], value=half)
     else:  # no parallel body: the waterline still reaches B/2, at midships
         dwl.update(upper=half, points=[[_midship_place(p), half]], slopes=[[_midship_place(p), 0.0]])
-    transom = p.transom_breadth if p.transom_breadth is not None else DWL_TRANSOM * half
-    dwl["yB"] = transom if xa <= x_aft + 1e-9 * L else 0.0
-    try:
-        dwl_curve = solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=half)
-    except _native.InfeasibleFormParameters:
-        if p.lcf is not None:
-            raise
-        del dwl["lcf"]  # the default LCF does not suit this waterline: let it fall where it is fairest
-        dwl_curve = solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=half)
+    peak = par[0] if par[1] > par[0] else _midship_place(p)
+    dwl_curve = _waterline(p, dwl, xa, xf, peak, immersed_transom=xa <= x_aft + 1e-9 * L)
     xs, target = natural_fullness(p, c, dwl_curve, profile, xa, xf)
     near_end = FIT_END * (xf - xa)
     sac = {"volume": p.cb * L * B * T, "lcb": p.lcb, "spans": 24, "monotone": True,

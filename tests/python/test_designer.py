@@ -65,6 +65,17 @@ def test_the_waterline_reaches_the_breadth(ship):
     assert cut[:, 1].max() == pytest.approx(p["breadth"] / 2, abs=1e-4 * p["breadth"])
 
 
+def test_the_waterline_widens_from_the_stern_to_its_widest(ship):
+    """Cut from the surface, the design waterline's half-breadth never narrows going forward
+    from the stern to where it is widest (no waist in the run, also behind a wide immersed
+    transom on a fine ship)."""
+    p, hull = ship
+    cut = np.asarray(fl.plane_cut(hull.bare_hull_surface(), 2, p["draft"], 2001).points)
+    cut = cut[np.argsort(cut[:, 0])]
+    run = cut[: int(np.argmax(cut[:, 1])) + 1, 1]
+    assert np.all(np.diff(run) >= -1e-4 * p["breadth"])
+
+
 def test_sectional_area_has_no_hump(ship):
     """The surface's SAC (hydrostatics) rises to the midship area and falls away from it: no
     section holds more than the largest midship-body section, the SAC is one hill."""
