@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 
 #include "convert.hpp"
+#include "hydrostatics_fields.hpp"
 #include "option_docs.hpp"
 #include "fairlines/kracht.hpp"
 #include "fairlines/mesh_hydrostatics.hpp"
@@ -45,16 +46,10 @@ void bind_options(py::module_& m) {
 }
 
 void bind_result(py::module_& m) {
-  py::class_<MeshHydrostatics>(m, "MeshHydrostatics",
-                               "Hydrostatics of a triangle mesh at one draft (full ship when half_hull): "
-                               "lengths m, areas m^2, volume m^3.")
-      .def_readonly("draft", &MeshHydrostatics::draft)
-      .def_readonly("volume", &MeshHydrostatics::volume)
-      .def_readonly("lcb", &MeshHydrostatics::lcb, "x of the centre of buoyancy (m)")
-      .def_readonly("vcb", &MeshHydrostatics::vcb, "z of the centre of buoyancy, KB (m)")
-      .def_readonly("waterplane_area", &MeshHydrostatics::waterplane_area)
-      .def_readonly("lcf", &MeshHydrostatics::lcf, "x of the waterplane centroid (m)")
-      .def_readonly("wetted_surface", &MeshHydrostatics::wetted_surface)
+  py::class_<MeshHydrostatics> c(m, "MeshHydrostatics",
+                                 "Hydrostatics of a triangle mesh at one draft (full ship when half_hull): "
+                                 "lengths m, areas m^2, volume m^3.");
+  hydrostatics_fields::bind(c)
       .def_readonly("midship_x", &MeshHydrostatics::midship_x)
       .def_readonly("midship_area", &MeshHydrostatics::midship_area, "section area below the draft at midship_x")
       .def_readonly("flipped", &MeshHydrostatics::flipped, "the mesh was reoriented (options.orient)");

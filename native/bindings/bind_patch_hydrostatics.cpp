@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "fairlines/hydrostatics.hpp"
+#include "hydrostatics_fields.hpp"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -11,16 +12,10 @@ using namespace pybind11::literals;
 namespace fairlines {
 
 void bind_patch_hydrostatics(py::module_& m) {
-  py::class_<PatchHydrostatics>(m, "PatchHydrostatics",
-                                "Hydrostatics of half-hull surface patches at one draft (full ship when half_hull): "
-                                "lengths m, areas m^2, volume m^3.")
-      .def_readonly("draft", &PatchHydrostatics::draft)
-      .def_readonly("volume", &PatchHydrostatics::volume)
-      .def_readonly("lcb", &PatchHydrostatics::lcb, "x of the centre of buoyancy (m)")
-      .def_readonly("vcb", &PatchHydrostatics::vcb, "z of the centre of buoyancy, KB (m)")
-      .def_readonly("waterplane_area", &PatchHydrostatics::waterplane_area)
-      .def_readonly("lcf", &PatchHydrostatics::lcf, "x of the waterplane centroid (m)")
-      .def_readonly("wetted_surface", &PatchHydrostatics::wetted_surface);
+  py::class_<PatchHydrostatics> c(m, "PatchHydrostatics",
+                                  "Hydrostatics of half-hull surface patches at one draft (full ship when half_hull): "
+                                  "lengths m, areas m^2, volume m^3.");
+  hydrostatics_fields::bind(c);
   m.def("hydrostatics_of_patches",
         [](const std::vector<NurbsSurface>& patches, double draft, double end_x, bool half_hull, int gauss) {
           py::gil_scoped_release release;

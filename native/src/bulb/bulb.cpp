@@ -63,17 +63,10 @@ constexpr double kSectionExponentMin = 1.6;  // sections: below, a diamond a fai
 }  // namespace
 
 BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& ship, const BulbOptions& o) {
-  detail::require_positive(ship.lpp, "lpp");
-  detail::require_positive(ship.beam, "beam");
-  detail::require_positive(ship.draft_fp, "draft_fp");
-  detail::require_positive(ship.midship_area, "midship_area");
-  detail::require_positive(ship.displacement_volume, "displacement_volume");
-  detail::require_positive(k.c_lpr, "c_lpr");
-  detail::require_positive(k.c_bb, "c_bb");
-  detail::require_positive(k.c_zb, "c_zb");
-  detail::require_positive(k.c_abt, "c_abt");
-  detail::require_positive(k.c_abl, "c_abl");
-  detail::require_positive(k.c_vpr, "c_vpr");
+  detail::require_positive({{ship.lpp, "lpp"}, {ship.beam, "beam"}, {ship.draft_fp, "draft_fp"},
+                            {ship.midship_area, "midship_area"}, {ship.displacement_volume, "displacement_volume"}});
+  detail::require_positive({{k.c_lpr, "c_lpr"}, {k.c_bb, "c_bb"}, {k.c_zb, "c_zb"}, {k.c_abt, "c_abt"},
+                            {k.c_abl, "c_abl"}, {k.c_vpr, "c_vpr"}});
   detail::require_finite(o.nose_height_shift, "nose_height_shift");
   if (o.aft_length < 0.0 || !std::isfinite(o.aft_length))
     detail::fail("aft_length is ", o.aft_length, "; expected >= 0 metres (0: twice protrusion + breadth)");

@@ -152,26 +152,35 @@ std::vector<std::array<int, 3>> triangulate_polygon(const Eigen::MatrixXd& point
   return out;
 }
 
-double mesh_volume(const TriMesh& mesh) {
-  double v = 0.0;
-  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
-    const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0));
-    const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, 1));
-    const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2));
-    v += a.dot(b.cross(c));
-  }
-  return v / 6.0;
-}
+namespace {
 
-double mesh_area(const TriMesh& mesh) {
+/// The sum over the faces of term(a, b, c), the face's corners in their order (metres).
+template <typename Term>
+double sum_over_faces(const TriMesh& mesh, Term term) {
   double s = 0.0;
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
     const Eigen::Vector3d a = mesh.vertices.row(mesh.faces(f, 0));
     const Eigen::Vector3d b = mesh.vertices.row(mesh.faces(f, 1));
     const Eigen::Vector3d c = mesh.vertices.row(mesh.faces(f, 2));
-    s += 0.5 * (b - a).cross(c - a).norm();
+    s += term(a, b, c);
   }
   return s;
+}
+
+}  // namespace
+
+double mesh_volume(const TriMesh& mesh) {
+  const auto six_tetra_volume = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    return a.dot(b.cross(c));
+  };
+  return sum_over_faces(mesh, six_tetra_volume) / 6.0;
+}
+
+double mesh_area(const TriMesh& mesh) {
+  const auto area = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    return 0.5 * (b - a).cross(c - a).norm();
+  };
+  return sum_over_faces(mesh, area);
 }
 
 long orient_consistently(TriMesh& mesh) {

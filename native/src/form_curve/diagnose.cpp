@@ -9,6 +9,7 @@
 
 #include "fairlines/errors.hpp"
 #include "fairlines/limits.hpp"
+#include "nurbs/checks.hpp"
 #include "solver.hpp"
 
 namespace fairlines {
@@ -21,12 +22,7 @@ const std::vector<std::string>& form_parameter_names() {
 
 namespace {
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
+std::string fmt(double v) { return detail::format_number(v, 10); }
 
 [[noreturn]] void infeasible(const std::vector<std::string>& names, const std::string& why) {
   std::ostringstream os;

@@ -45,12 +45,7 @@ double invert_abscissa(const Eigen::VectorXd& U, int p, const Eigen::VectorXd& a
   return 0.5 * (lo + hi);
 }
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
+std::string fmt(double v) { return detail::format_number(v, 10); }
 
 /// The curve being designed: its name (for messages), degree, abscissae and knots.
 struct FormCurve {

@@ -106,12 +106,7 @@ double smoothstep(double r) {
   return r * r * r * (10.0 - 15.0 * r + 6.0 * r * r);
 }
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
+std::string fmt(double v) { return detail::format_number(v, 6); }
 
 /// What every section with n control points shares: knots, Greville abscissae, and the basis
 /// (value and first derivative) at kAreaGauss points per span.

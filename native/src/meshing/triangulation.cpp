@@ -80,9 +80,14 @@ int Triangulation::edge_index(int t, int a, int b) const {
   return -1;
 }
 
-void Triangulation::link(int t, int k, int u, int j) {
-  if (t >= 0) n_[t][k] = u;
-  if (u >= 0) n_[u][j] = t;
+int Triangulation::append_triangle(const std::array<int, 3>& corners) {
+  v_.push_back(corners);
+  n_.push_back({-1, -1, -1});
+  return static_cast<int>(v_.size()) - 1;
+}
+
+void Triangulation::point_across(int outer, int a, int b, int t) {
+  if (outer >= 0) n_[outer][edge_index(outer, a, b)] = t;
 }
 
 int Triangulation::locate(const Eigen::Vector2d& q) const {
@@ -163,17 +168,13 @@ void Triangulation::legalize(std::vector<std::pair<int, int>> stack) {
 void Triangulation::split_triangle(int t, int idx) {
   const int a = v_[t][0], b = v_[t][1], c = v_[t][2];
   const int n_ab = n_[t][0], n_bc = n_[t][1], n_ca = n_[t][2];
-  const int t1 = static_cast<int>(v_.size()), t2 = t1 + 1;
   v_[t] = {a, b, idx};
-  v_.push_back({b, c, idx});
-  v_.push_back({c, a, idx});
-  n_.push_back({-1, -1, -1});
-  n_.push_back({-1, -1, -1});
+  const int t1 = append_triangle({b, c, idx}), t2 = append_triangle({c, a, idx});
   n_[t] = {n_ab, t1, t2};
   n_[t1] = {n_bc, t2, t};
   n_[t2] = {n_ca, t, t1};
-  if (n_bc >= 0) n_[n_bc][edge_index(n_bc, c, b)] = t1;
-  if (n_ca >= 0) n_[n_ca][edge_index(n_ca, a, c)] = t2;
+  point_across(n_bc, c, b, t1);
+  point_across(n_ca, a, c, t2);
   legalize({{t, 0}, {t1, 0}, {t2, 0}});
 }
 
@@ -184,20 +185,16 @@ void Triangulation::split_edge(int t, int k, int idx) {
   const int d = v_[u][(j + 2) % 3];
   const int n_bc = n_[t][(k + 1) % 3], n_ca = n_[t][(k + 2) % 3];
   const int n_ad = n_[u][(j + 1) % 3], n_db = n_[u][(j + 2) % 3];
-  const int t2 = static_cast<int>(v_.size()), u2 = t2 + 1;
   // t: (a, idx, c)  t2: (idx, b, c)  u: (b, idx, d)  u2: (idx, a, d)
   v_[t] = {a, idx, c};
   v_[u] = {b, idx, d};
-  v_.push_back({idx, b, c});
-  v_.push_back({idx, a, d});
-  n_.push_back({-1, -1, -1});
-  n_.push_back({-1, -1, -1});
+  const int t2 = append_triangle({idx, b, c}), u2 = append_triangle({idx, a, d});
   n_[t] = {u2, t2, n_ca};
   n_[t2] = {u, n_bc, t};
   n_[u] = {t2, u2, n_db};
   n_[u2] = {t, n_ad, u};
-  if (n_bc >= 0) n_[n_bc][edge_index(n_bc, c, b)] = t2;
-  if (n_ad >= 0) n_[n_ad][edge_index(n_ad, d, a)] = u2;
+  point_across(n_bc, c, b, t2);
+  point_across(n_ad, d, a, u2);
   legalize({{t, 2}, {t2, 1}, {u, 2}, {u2, 1}});
 }
 

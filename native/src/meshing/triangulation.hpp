@@ -40,7 +40,10 @@ class Triangulation {
   double orient(int a, int b, const Eigen::Vector2d& q) const;
   bool in_circle(int a, int b, int c, int d) const;
   int locate(const Eigen::Vector2d& q) const;
-  void link(int t, int k, int u, int j);
+  /// Appends triangle `corners` (counter-clockwise) with no neighbours yet; returns its index.
+  int append_triangle(const std::array<int, 3>& corners);
+  /// Triangle `outer` (-1: none), which holds the directed edge (a, b), now has t across it.
+  void point_across(int outer, int a, int b, int t);
   int edge_index(int t, int a, int b) const;
   bool flip(int t, int k);
   void legalize(std::vector<std::pair<int, int>> stack);

@@ -3,8 +3,10 @@
 #pragma once
 
 #include <cmath>
+#include <initializer_list>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include <Eigen/Core>
 
@@ -18,6 +20,14 @@ template <typename... Parts>
   std::ostringstream os;
   (os << ... << parts);
   throw InvalidInput(os.str());
+}
+
+/// v with `digits` significant digits, for messages.
+inline std::string format_number(double v, int digits) {
+  std::ostringstream os;
+  os.precision(digits);
+  os << v;
+  return os.str();
 }
 
 template <typename Derived>
@@ -58,11 +68,23 @@ inline void require_positive(double x, const std::string& what) {
   if (!(x > 0.0) || !std::isfinite(x)) fail(what, " is ", x, "; expected a finite value > 0");
 }
 
+/// require_positive over a list of {value, name} pairs (the fields of one struct).
+inline void require_positive(std::initializer_list<std::pair<double, const char*>> named) {
+  for (const auto& [x, what] : named) require_positive(x, what);
+}
+
 inline void require_weights(const Eigen::VectorXd& w, Eigen::Index n, const std::string& what = "weights") {
   if (w.size() != n) fail(what, " has ", w.size(), " entries; expected ", n, " (one per control point)");
   for (Eigen::Index i = 0; i < w.size(); ++i)
     if (!(w[i] > 0.0) || !std::isfinite(w[i]))
       fail(what, "[", i, "] is ", w[i], "; expected a finite weight > 0");
+}
+
+/// The weights of n control points: `w`, checked, or all ones when `w` is empty (non-rational).
+inline Eigen::VectorXd weights_or_ones(Eigen::VectorXd w, Eigen::Index n) {
+  if (w.size() == 0) return Eigen::VectorXd::Ones(n);
+  require_weights(w, n);
+  return w;
 }
 
 inline void require_times(int times, const std::string& what = "times") {

@@ -11,6 +11,7 @@
 #include "checks.hpp"
 #include "fairlines/basis.hpp"
 #include "fairlines/knots.hpp"
+#include "homogeneous.hpp"
 
 namespace fairlines {
 
@@ -46,21 +47,13 @@ NurbsCurve::NurbsCurve(int degree, Eigen::VectorXd knots, Eigen::MatrixXd contro
     fail("control_points is empty (", points_.rows(), " x ", points_.cols(), "); expected an n x dim array");
   detail::require_finite(points_, "control_points");
   validate_knots(knots_, degree_, static_cast<int>(points_.rows()));
-  if (weights_.size() == 0)
-    weights_ = Eigen::VectorXd::Ones(points_.rows());
-  else
-    detail::require_weights(weights_, points_.rows());
+  weights_ = detail::weights_or_ones(std::move(weights_), points_.rows());
   refresh();
 }
 
 void NurbsCurve::refresh() {
   rational_ = (weights_.array() != 1.0).any();
-  const int d = dim(), n = n_control();
-  pw_.resize(static_cast<size_t>(n) * (d + 1));
-  for (int i = 0; i < n; ++i) {
-    for (int c = 0; c < d; ++c) pw_[i * (d + 1) + c] = points_(i, c) * weights_[i];
-    pw_[i * (d + 1) + d] = weights_[i];
-  }
+  detail::pack_homogeneous(points_, weights_, pw_);
 }
 
 std::pair<double, double> NurbsCurve::domain() const {

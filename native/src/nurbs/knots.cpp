@@ -57,7 +57,10 @@ void validate_knots(const Eigen::VectorXd& U, int p, int n, const std::string& w
   }
 }
 
-Eigen::VectorXd clamped_uniform_knots(int n, int p, double t0, double t1) {
+namespace {
+
+/// The arguments of a uniform knot vector: n control points of degree p over [t0, t1].
+void require_uniform_knot_request(int n, int p, double t0, double t1) {
   detail::require_degree(p);
   if (n < p + 1) fail("control point count is ", n, "; a degree-", p, " B-spline needs at least ", p + 1);
   if (n > limits::kMaxControlPoints)
@@ -65,6 +68,12 @@ Eigen::VectorXd clamped_uniform_knots(int n, int p, double t0, double t1) {
   detail::require_finite(t0, "t0");
   detail::require_finite(t1, "t1");
   if (!(t1 > t0)) fail("knot range [", t0, ", ", t1, "] is empty; expected t0 < t1");
+}
+
+}  // namespace
+
+Eigen::VectorXd clamped_uniform_knots(int n, int p, double t0, double t1) {
+  require_uniform_knot_request(n, p, t0, t1);
   Eigen::VectorXd U(n + p + 1);
   const int segments = n - p;
   for (int i = 0; i <= p; ++i) {
@@ -76,13 +85,7 @@ Eigen::VectorXd clamped_uniform_knots(int n, int p, double t0, double t1) {
 }
 
 Eigen::VectorXd unclamped_uniform_knots(int n, int p, double t0, double t1) {
-  detail::require_degree(p);
-  if (n < p + 1) fail("control point count is ", n, "; a degree-", p, " B-spline needs at least ", p + 1);
-  if (n > limits::kMaxControlPoints)
-    fail("control point count is ", n, "; the limit is ", limits::kMaxControlPoints, " per direction");
-  detail::require_finite(t0, "t0");
-  detail::require_finite(t1, "t1");
-  if (!(t1 > t0)) fail("knot range [", t0, ", ", t1, "] is empty; expected t0 < t1");
+  require_uniform_knot_request(n, p, t0, t1);
   Eigen::VectorXd U(n + p + 1);
   const double h = (t1 - t0) / (n - p);
   for (int i = 0; i < n + p + 1; ++i) U[i] = t0 + (i - p) * h;

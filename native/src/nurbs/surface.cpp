@@ -11,6 +11,7 @@
 #include "checks.hpp"
 #include "fairlines/basis.hpp"
 #include "fairlines/knots.hpp"
+#include "homogeneous.hpp"
 
 namespace fairlines {
 
@@ -268,10 +269,7 @@ NurbsSurface::NurbsSurface(int degree_u, int degree_v, Eigen::VectorXd knots_u, 
   detail::require_finite(points_, "control_points");
   validate_knots(ku_, pu_, nu_, "knots_u");
   validate_knots(kv_, pv_, nv_, "knots_v");
-  if (weights_.size() == 0)
-    weights_ = Eigen::VectorXd::Ones(points_.rows());
-  else
-    detail::require_weights(weights_, points_.rows());
+  weights_ = detail::weights_or_ones(std::move(weights_), points_.rows());
   refresh();
 }
 
@@ -283,11 +281,7 @@ void NurbsSurface::refresh() {
   pow_v_ = detail::make_power_table(kv_, pv_);
   span_u_ = std::make_shared<const SpanLocator>(ku_, pu_);
   span_v_ = std::make_shared<const SpanLocator>(kv_, pv_);
-  pw_.resize(static_cast<size_t>(points_.rows()) * 4);
-  for (Eigen::Index i = 0; i < points_.rows(); ++i) {
-    for (int c = 0; c < 3; ++c) pw_[i * 4 + c] = points_(i, c) * weights_[i];
-    pw_[i * 4 + 3] = weights_[i];
-  }
+  detail::pack_homogeneous(points_, weights_, pw_);
 }
 
 std::pair<double, double> NurbsSurface::domain_u() const { return {ku_[pu_], ku_[nu_]}; }

@@ -10,6 +10,19 @@ namespace fairlines {
 
 using detail::fail;
 
+namespace {
+
+/// Parameters (s, t, r) of the points to evaluate: finite, one of each per point.
+void require_parameters(const Eigen::VectorXd& s, const Eigen::VectorXd& t, const Eigen::VectorXd& r) {
+  if (s.size() != t.size() || s.size() != r.size())
+    fail("s, t, r have ", s.size(), ", ", t.size(), ", ", r.size(), " values; expected equal lengths");
+  detail::require_finite(s, "s");
+  detail::require_finite(t, "t");
+  detail::require_finite(r, "r");
+}
+
+}  // namespace
+
 NurbsVolume::NurbsVolume(std::array<int, 3> degrees, std::array<Eigen::VectorXd, 3> knots, std::array<int, 3> counts,
                          Eigen::MatrixXd control_points, Eigen::VectorXd weights)
     : degrees_(degrees), knots_(std::move(knots)), counts_(counts), points_(std::move(control_points)),
@@ -23,18 +36,11 @@ NurbsVolume::NurbsVolume(std::array<int, 3> degrees, std::array<Eigen::VectorXd,
   if (points_.rows() != n || points_.cols() != 3)
     fail("control_points has shape (", points_.rows(), ", ", points_.cols(), "); expected (", n, ", 3)");
   detail::require_finite(points_, "control_points");
-  if (weights_.size() == 0)
-    weights_ = Eigen::VectorXd::Ones(n);
-  else
-    detail::require_weights(weights_, n);
+  weights_ = detail::weights_or_ones(std::move(weights_), n);
 }
 
 Eigen::MatrixXd NurbsVolume::evaluate(const Eigen::VectorXd& s, const Eigen::VectorXd& t, const Eigen::VectorXd& r) const {
-  if (s.size() != t.size() || s.size() != r.size())
-    fail("s, t, r have ", s.size(), ", ", t.size(), ", ", r.size(), " values; expected equal lengths");
-  detail::require_finite(s, "s");
-  detail::require_finite(t, "t");
-  detail::require_finite(r, "r");
+  require_parameters(s, t, r);
   const auto& [ps, pt, pr] = degrees_;
   std::vector<double> Ns(ps + 1), Nt(pt + 1), Nr(pr + 1);
   Eigen::MatrixXd out(s.size(), 3);
@@ -64,11 +70,7 @@ Eigen::MatrixXd NurbsVolume::evaluate(const Eigen::VectorXd& s, const Eigen::Vec
 }
 
 Eigen::MatrixXd NurbsVolume::derivatives(const Eigen::VectorXd& s, const Eigen::VectorXd& t, const Eigen::VectorXd& r) const {
-  if (s.size() != t.size() || s.size() != r.size())
-    fail("s, t, r have ", s.size(), ", ", t.size(), ", ", r.size(), " values; expected equal lengths");
-  detail::require_finite(s, "s");
-  detail::require_finite(t, "t");
-  detail::require_finite(r, "r");
+  require_parameters(s, t, r);
   const int nt = counts_[1], nr = counts_[2];
   std::array<Eigen::MatrixXd, 3> D;
   for (int a = 0; a < 3; ++a) D[a].resize(2, degrees_[a] + 1);
