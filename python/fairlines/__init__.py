@@ -75,21 +75,16 @@ from ._native import (  # noqa: F401,E402
     orient_bare_hull,
     triangulate_polygon,
 )
+from .bulb import KRACHT_NAMES, BulbousBow, measure_kracht  # noqa: F401,E402
+from .blend import BlendPlacement, BlendSurface, blend_surface, placement_options, seam_blend_placement  # noqa: F401,E402
 from .compose import (  # noqa: F401,E402
-    KRACHT_NAMES,
-    BlendPlacement,
-    BlendSurface,
-    BulbousBow,
-    blend_surface,
     ComposedHull,
     Mesh,
     compose,
+    compose_options,
     compose_with_blend,
     intersect_surfaces,
-    measure_kracht,
     mesh_hydrostatics,
-    placement_options,
-    seam_blend_placement,
 )
 
 __version__ = "0.1.0"
@@ -145,4 +140,3 @@ globals().update({name: getattr(preprocess, name) for name in preprocess.__all__
 from ._native import PatchHydrostatics, hydrostatics_of_patches  # noqa: F401,E402
 # Option structs of the composition and the blend (defaults in the engine's headers).
 from ._native import BlendOptions, ComposeOptions  # noqa: F401,E402
-from .compose import compose_options  # noqa: F401,E402

@@ -55,16 +55,13 @@ end, deg). Unknown keys anywhere are refused with the nearest valid one.
 from __future__ import annotations
 
 import copy
-import difflib
 import json
-import math
 import os
 from dataclasses import dataclass, field
 from typing import Any
 
-import numpy as np
-
 from . import _native
+from .validation import bad, integer, keyed_object, number, text_value
 
 __all__ = [
     "BASIC_CURVES",
@@ -99,47 +96,14 @@ SECTION_CONTROLS = (8, 64)
 LENGTH_RANGE = (1.0, 600.0)
 
 
-def _bad(path: str, value: Any, expected: str) -> ValueError:
-    return _native.InvalidInput(f"{path} is {value!r}; expected {expected}")
-
-
-def _number(path: str, value: Any, *, positive: bool = False) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
-        raise _bad(path, value, "a number")
-    v = float(value)
-    if not math.isfinite(v):
-        raise _bad(path, v, "a finite number")
-    if positive and not v > 0:
-        raise _bad(path, v, "a number > 0")
-    return v
-
-
-def _integer(path: str, value: Any, lo: int, hi: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not lo <= int(value) <= hi:
-        raise _bad(path, value, f"an integer from {lo} to {hi}")
-    return int(value)
-
-
-def _object(path: str, value: Any, known: tuple[str, ...] | list[str]) -> dict:
-    """value as a dict whose keys are all in `known`; an unknown key names the nearest valid one."""
-    if not isinstance(value, dict):
-        raise _bad(path, value, "an object with keys from " + ", ".join(known))
-    for key in value:
-        if key not in known:
-            near = difflib.get_close_matches(str(key), list(known), n=1)
-            hint = f"; did you mean {near[0]!r}?" if near else ""
-            raise _native.InvalidInput(f"{path}.{key} is not a known key{hint} (expected one of {', '.join(known)})")
-    return value
-
-
 def _pairs(path: str, value: Any) -> list[tuple[float, float]]:
     if not isinstance(value, (list, tuple)):
-        raise _bad(path, value, "a list of [x, value] pairs")
+        raise bad(path, value, "a list of [x, value] pairs")
     out = []
     for i, p in enumerate(value):
         if not isinstance(p, (list, tuple)) or len(p) != 2:
-            raise _bad(f"{path}[{i}]", p, "an [x, value] pair")
-        out.append((_number(f"{path}[{i}][0]", p[0]), _number(f"{path}[{i}][1]", p[1])))
+            raise bad(f"{path}[{i}]", p, "an [x, value] pair")
+        out.append((number(f"{path}[{i}][0]", p[0]), number(f"{path}[{i}][1]", p[1])))
     return out
 
 
@@ -154,12 +118,12 @@ class PrincipalDimensions:
 
     @classmethod
     def from_dict(cls, d: Any, path: str = "principal") -> PrincipalDimensions:
-        d = _object(path, d, ("Lpp", "B", "T", "D"))
+        d = keyed_object(path, d, ("Lpp", "B", "T", "D"))
         vals = {}
         for key in ("Lpp", "B", "T", "D"):
             if key not in d:
                 raise _native.InvalidInput(f"{path}.{key} is missing; expected a length in metres")
-            vals[key] = _number(f"{path}.{key}", d[key], positive=True)
+            vals[key] = number(f"{path}.{key}", d[key], positive=True)
         lo, hi = LENGTH_RANGE
         if not lo <= vals["Lpp"] <= hi:
             hint = " (millimetres? divide by 1000)" if vals["Lpp"] > 1000 * lo else ""
@@ -202,54 +166,54 @@ class BasicCurveSpec:
     @classmethod
     def from_dict(cls, name: str, d: Any, path: str) -> BasicCurveSpec:
         extra = (FULLNESS_KEY,) if name == "sac" else ()
-        d = _object(path, d, CURVE_KEYS + tuple(FORM_ALIASES.get(name, {})) + extra)
+        d = keyed_object(path, d, CURVE_KEYS + tuple(FORM_ALIASES.get(name, {})) + extra)
         spec = cls()
         for key in ("x_start", "x_end", "flat_from", "flat_to", "value", "lower", "upper"):
             if d.get(key) is not None:
-                setattr(spec, key, _number(f"{path}.{key}", d[key]))
+                setattr(spec, key, number(f"{path}.{key}", d[key]))
         if "spans" in d and "n_control" in d:
             raise _native.InvalidInput(f"{path}.spans and {path}.n_control are both given; expected one of them")
         if "spans" in d:
-            spec.spans = _integer(f"{path}.spans", d["spans"], 1, MAX_SPANS)
+            spec.spans = integer(f"{path}.spans", d["spans"], 1, MAX_SPANS)
         elif "n_control" in d:
-            spec.spans = _integer(f"{path}.n_control", d["n_control"], 4, MAX_SPANS + 3) - 3
+            spec.spans = integer(f"{path}.n_control", d["n_control"], 4, MAX_SPANS + 3) - 3
         for key in FORM_KEYS:
             if d.get(key) is not None:
-                spec.params[key] = _number(f"{path}.{key}", d[key])
+                spec.params[key] = number(f"{path}.{key}", d[key])
         for key in FORM_ALIASES.get(name, {}):
             if d.get(key) is not None:
-                spec.aliases[key] = _number(f"{path}.{key}", d[key])
+                spec.aliases[key] = number(f"{path}.{key}", d[key])
         for key in ("alphaB", "alphaE"):
             if key in spec.params and not -90 < spec.params[key] < 90:
-                raise _bad(f"{path}.{key}", spec.params[key], "an angle between -90 and 90 degrees")
+                raise bad(f"{path}.{key}", spec.params[key], "an angle between -90 and 90 degrees")
         spec.points = _pairs(f"{path}.points", d.get("points", []))
         spec.slopes = _pairs(f"{path}.slopes", d.get("slopes", []))
         spec.fit = _pairs(f"{path}.fit", d.get("fit", []))
         if "breaks" in d:
             if not isinstance(d["breaks"], (list, tuple)) or len(d["breaks"]) > MAX_SPANS:
-                raise _bad(f"{path}.breaks", d["breaks"], f"a list of at most {MAX_SPANS} knot positions (m)")
-            spec.breaks = sorted(_number(f"{path}.breaks[{i}]", v) for i, v in enumerate(d["breaks"]))
+                raise bad(f"{path}.breaks", d["breaks"], f"a list of at most {MAX_SPANS} knot positions (m)")
+            spec.breaks = sorted(number(f"{path}.breaks[{i}]", v) for i, v in enumerate(d["breaks"]))
         for key in ("convex", "concave"):
             ranges = d.get(key, [])
             if not isinstance(ranges, (list, tuple)):
-                raise _bad(f"{path}.{key}", ranges, "a list of [x_from, x_to, least curvature] triples")
+                raise bad(f"{path}.{key}", ranges, "a list of [x_from, x_to, least curvature] triples")
             for i, r in enumerate(ranges):
                 if not isinstance(r, (list, tuple)) or len(r) != 3:
-                    raise _bad(f"{path}.{key}[{i}]", r, "an [x_from, x_to, least curvature (1/m, >= 0)] triple")
-                a, b, k = (_number(f"{path}.{key}[{i}][{j}]", v) for j, v in enumerate(r))
+                    raise bad(f"{path}.{key}[{i}]", r, "an [x_from, x_to, least curvature (1/m, >= 0)] triple")
+                a, b, k = (number(f"{path}.{key}[{i}][{j}]", v) for j, v in enumerate(r))
                 if not a < b or k < 0:
-                    raise _bad(f"{path}.{key}[{i}]", list(r), "x_from < x_to and a least curvature >= 0")
+                    raise bad(f"{path}.{key}[{i}]", list(r), "x_from < x_to and a least curvature >= 0")
                 getattr(spec, key).append((a, b, k))
         if FULLNESS_KEY in d:
             spec.fullness_fit = _pairs(f"{path}.{FULLNESS_KEY}", d[FULLNESS_KEY])
             for i, (_, v) in enumerate(spec.fullness_fit):
                 if not 0 < v <= 1:
-                    raise _bad(f"{path}.{FULLNESS_KEY}[{i}][1]", v, "a section fullness between 0 and 1")
+                    raise bad(f"{path}.{FULLNESS_KEY}[{i}][1]", v, "a section fullness between 0 and 1")
         if "fit_weight" in d:
-            spec.fit_weight = _number(f"{path}.fit_weight", d["fit_weight"], positive=True)
+            spec.fit_weight = number(f"{path}.fit_weight", d["fit_weight"], positive=True)
         if "monotone" in d:
             if not isinstance(d["monotone"], bool):
-                raise _bad(f"{path}.monotone", d["monotone"], "true or false")
+                raise bad(f"{path}.monotone", d["monotone"], "true or false")
             spec.monotone = d["monotone"]
         if (spec.flat_to is not None or spec.flat_from is not None) and spec.value is None:
             raise _native.InvalidInput(f"{path}.value is missing; expected the constant value of the flat part")
@@ -309,21 +273,21 @@ class BulbSpec:
 
     @classmethod
     def from_dict(cls, d: Any, path: str = "bulb") -> BulbSpec:
-        d = _object(path, d, ("kracht", "shape", "displacement_volume"))
+        d = keyed_object(path, d, ("kracht", "shape", "displacement_volume"))
         spec = cls()
-        for key, val in _object(f"{path}.kracht", d.get("kracht", {}), KRACHT).items():
-            spec.kracht[key] = _number(f"{path}.kracht.{key}", val, positive=True)
+        for key, val in keyed_object(f"{path}.kracht", d.get("kracht", {}), KRACHT).items():
+            spec.kracht[key] = number(f"{path}.kracht.{key}", val, positive=True)
         shape_keys = BULB_SHAPE_NUMBERS + tuple(BULB_SHAPE_INTEGERS)
-        for key, val in _object(f"{path}.shape", d.get("shape", {}), shape_keys).items():
+        for key, val in keyed_object(f"{path}.shape", d.get("shape", {}), shape_keys).items():
             if key in BULB_SHAPE_NUMBERS:
-                v = _number(f"{path}.shape.{key}", val)
+                v = number(f"{path}.shape.{key}", val)
                 if key == "aft_length" and v < 0:
-                    raise _bad(f"{path}.shape.{key}", v, "a length >= 0 m (0: the default 2 (L_PR + B_B))")
+                    raise bad(f"{path}.shape.{key}", v, "a length >= 0 m (0: the default 2 (L_PR + B_B))")
                 spec.shape[key] = v
             else:
-                spec.shape[key] = _integer(f"{path}.shape.{key}", val, *BULB_SHAPE_INTEGERS[key])
+                spec.shape[key] = integer(f"{path}.shape.{key}", val, *BULB_SHAPE_INTEGERS[key])
         if d.get("displacement_volume") is not None:
-            spec.displacement_volume = _number(f"{path}.displacement_volume", d["displacement_volume"], positive=True)
+            spec.displacement_volume = number(f"{path}.displacement_volume", d["displacement_volume"], positive=True)
         return spec
 
     def to_dict(self) -> dict:
@@ -331,13 +295,6 @@ class BulbSpec:
         if self.displacement_volume is not None:
             d["displacement_volume"] = self.displacement_volume
         return d
-
-
-def _text(path: str, value: Any) -> str:
-    """value when it is text, else InvalidInput naming `path`."""
-    if not isinstance(value, str):
-        raise _native.InvalidInput(f"{path} is {value!r}; expected text (a JSON string)")
-    return value
 
 
 TOP_KEYS = ("name", "notes", "principal", "ends", "stations", "sections", "basic_curves", "skinning", "bulb", "design")
@@ -363,36 +320,36 @@ class HullDescription:
 
     @classmethod
     def from_dict(cls, d: Any) -> HullDescription:
-        d = _object("description", d, TOP_KEYS)
+        d = keyed_object("description", d, TOP_KEYS)
         principal = PrincipalDimensions.from_dict(d.get("principal"), "principal")
-        ends = _object("ends", d.get("ends", {}), ("aft", "fore"))
-        x_aft = _number("ends.aft", ends.get("aft", 0.0))
-        x_fore = _number("ends.fore", ends.get("fore", principal.lpp))
+        ends = keyed_object("ends", d.get("ends", {}), ("aft", "fore"))
+        x_aft = number("ends.aft", ends.get("aft", 0.0))
+        x_fore = number("ends.fore", ends.get("fore", principal.lpp))
         lpp = principal.lpp
         if not x_aft < x_fore:
             raise _native.InvalidInput(f"ends.fore is {x_fore}; expected more than ends.aft = {x_aft}")
         if x_aft < -0.25 * lpp or x_fore > 1.25 * lpp:
             raise _native.InvalidInput(f"ends are {x_aft} .. {x_fore} m; expected the hull within -0.25 Lpp .. 1.25 Lpp of the AP")
-        desc = cls(name=_text("name", d.get("name", "hull")), principal=principal, x_aft=x_aft, x_fore=x_fore,
-                   curves={}, notes=_text("notes", d.get("notes", "")))
+        desc = cls(name=text_value("name", d.get("name", "hull")), principal=principal, x_aft=x_aft, x_fore=x_fore,
+                   curves={}, notes=text_value("notes", d.get("notes", "")))
         desc._parse_stations(d.get("stations", {"count": 61}))
-        sec = _object("sections", d.get("sections", {}), ("n_control",))
-        desc.section_n_control = _integer("sections.n_control", sec.get("n_control", 20), *SECTION_CONTROLS)
-        bc = _object("basic_curves", d.get("basic_curves"), BASIC_CURVES)
+        sec = keyed_object("sections", d.get("sections", {}), ("n_control",))
+        desc.section_n_control = integer("sections.n_control", sec.get("n_control", 20), *SECTION_CONTROLS)
+        bc = keyed_object("basic_curves", d.get("basic_curves"), BASIC_CURVES)
         for name in REQUIRED_CURVES:
             if name not in bc:
                 raise _native.InvalidInput(f"basic_curves.{name} is missing; expected the {name} basic curve")
         desc.curves = {name: BasicCurveSpec.from_dict(name, spec, f"basic_curves.{name}") for name, spec in bc.items()}
-        sk = _object("skinning", d.get("skinning", {}), ("e2", "e3"))
-        desc.skin_e2 = _number("skinning.e2", sk.get("e2", 1.0))
-        desc.skin_e3 = _number("skinning.e3", sk.get("e3", 0.0))
+        sk = keyed_object("skinning", d.get("skinning", {}), ("e2", "e3"))
+        desc.skin_e2 = number("skinning.e2", sk.get("e2", 1.0))
+        desc.skin_e3 = number("skinning.e3", sk.get("e3", 0.0))
         if desc.skin_e2 < 0 or desc.skin_e3 < 0 or desc.skin_e2 + desc.skin_e3 <= 0:
             raise _native.InvalidInput(f"skinning.e2 / e3 are {desc.skin_e2} / {desc.skin_e3}; expected weights >= 0, not both 0")
         if d.get("bulb") is not None:
             desc.bulb = BulbSpec.from_dict(d["bulb"], "bulb")
         if d.get("design") is not None:
             if not isinstance(d["design"], dict):
-                raise _bad("design", d["design"], "an object (the particulars the hull was designed from)")
+                raise bad("design", d["design"], "an object (the particulars the hull was designed from)")
             desc.design = copy.deepcopy(d["design"])
         if desc.bulb is not None and desc.bulb.displacement_volume is None and not (x_aft <= 0.0 and x_fore >= lpp):
             raise _native.InvalidInput(
@@ -401,14 +358,14 @@ class HullDescription:
         return desc
 
     def _parse_stations(self, st: Any) -> None:
-        st = _object("stations", st, ("count", "x"))
+        st = keyed_object("stations", st, ("count", "x"))
         if "count" in st and "x" in st:
             raise _native.InvalidInput("stations.count and stations.x are both given; expected one of them")
         if "x" in st:
             xs = st["x"]
             if not isinstance(xs, (list, tuple)) or not 4 <= len(xs) <= MAX_STATIONS:
-                raise _bad("stations.x", xs, f"a list of 4 to {MAX_STATIONS} station positions (m)")
-            vals = [_number(f"stations.x[{i}]", v) for i, v in enumerate(xs)]
+                raise bad("stations.x", xs, f"a list of 4 to {MAX_STATIONS} station positions (m)")
+            vals = [number(f"stations.x[{i}]", v) for i, v in enumerate(xs)]
             tol = 1e-9 * self.principal.lpp
             for i, xs_ in enumerate(vals):
                 if xs_ < self.x_aft - tol or xs_ > self.x_fore + tol:
@@ -417,7 +374,7 @@ class HullDescription:
                     raise _native.InvalidInput(f"stations.x[{i}] is {xs_}; expected increasing x (previous {vals[i - 1]})")
             self.station_x, self.station_count = vals, None
         else:
-            self.station_count, self.station_x = _integer("stations.count", st.get("count", 61), 5, MAX_STATIONS), None
+            self.station_count, self.station_x = integer("stations.count", st.get("count", 61), 5, MAX_STATIONS), None
 
     def to_dict(self) -> dict:
         d = {
@@ -455,6 +412,6 @@ def load_description(path_or_text_or_dict: Any) -> dict:
         except json.JSONDecodeError as e:
             raise _native.InvalidInput(f"description is not valid JSON: {e}") from None
         if not isinstance(data, dict):
-            raise _bad("description", type(data).__name__, "a JSON object")
+            raise bad("description", type(data).__name__, "a JSON object")
         return data
-    raise _bad("description", type(src).__name__, "a path, JSON text or a dict")
+    raise bad("description", type(src).__name__, "a path, JSON text or a dict")

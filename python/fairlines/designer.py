@@ -34,7 +34,7 @@ import numpy as np
 
 from . import _native
 from .basic_curves import immersed_range, solve_curve
-from .compose import KRACHT_NAMES
+from .bulb import KRACHT_NAMES
 from .description import BasicCurveSpec
 from .hull import Hull
 

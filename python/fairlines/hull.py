@@ -371,7 +371,7 @@ class Hull:
         """The BulbousBow of the ``"bulb"`` section sized from :meth:`ship_particulars`; keyword
         overrides (Kracht coefficients or shape controls) replace the section's. Raises
         InvalidInput when the description has no bulb and no overrides are given."""
-        from .compose import BulbousBow
+        from .bulb import BulbousBow
         from .description import BulbSpec
 
         d = self.description

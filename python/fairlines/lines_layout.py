@@ -9,7 +9,7 @@ Two arrangements, whichever draws the profile larger (the stacked one on a tie):
 * beside (a close-up of one end): body plan to the right of the profile on the same z and
   scale, half-breadth plan below the profile, title block in the lower right corner.
 
-Scales are round 1:N (``_SCALES``), the largest drawing at which everything fits.
+Scales are round 1:N (``SCALES``), the largest drawing at which everything fits.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .lines_plan import GAP_MM, MARGIN_MM, SHEET_MM, STATIONS_PER_LPP, _SCALES, Polyline, Text
+from .lines_plan import GAP_MM, MARGIN_MM, SHEET_MM, STATIONS_PER_LPP, SCALES, Polyline, Text
 
 __all__ = ["layout"]
 
@@ -85,7 +85,7 @@ def _beside_scale(f: _Frame):
     """Smallest N at which profile + body plan side by side, the half-breadth plan and the
     title block fit the sheet, or None."""
     W, H = SHEET_MM
-    for n in _SCALES:
+    for n in SCALES:
         k = 1000.0 / n  # mm per model metre
         width = MARGIN_MM + LABEL_MM + (f.x1 - f.x0) * k + GAP_MM + 2 * f.y_max * k + LABEL_MM + MARGIN_MM
         height = MARGIN_MM + LABEL_MM + (f.z_top - f.z_lo) * k + GAP_MM + (f.y_max + f.d_max) * k + LABEL_MM + MARGIN_MM
@@ -108,7 +108,7 @@ def _stacked_scales(f: _Frame):
     the sheet's width with the title block below them, and the body plan's N_body < N that
     fills the band left of the title block; or None."""
     W, H = SHEET_MM
-    for n in _SCALES:
+    for n in SCALES:
         k = 1000.0 / n
         if 2 * (MARGIN_MM + LABEL_MM) + (f.x1 - f.x0) * k > W:
             continue
@@ -118,7 +118,7 @@ def _stacked_scales(f: _Frame):
         band_h = H - MARGIN_MM - top - BODY_GAP_MM - 2 * BODY_BAND * LABEL_MM
         band_w = W - 2 * MARGIN_MM - TITLE_MM[0] - GAP_MM - 2 * LABEL_MM
         kb = min(band_h / (f.z_top - f.z_lo), band_w / (2 * f.y_max))
-        nb = next((s for s in _SCALES if 1000.0 / s <= kb), None)
+        nb = next((s for s in SCALES if 1000.0 / s <= kb), None)
         return (n, nb) if nb is not None and nb < n else None
     return None
 
@@ -131,7 +131,7 @@ def layout(plan, xr, lo, hi) -> None:
     if stacked is not None and (beside is None or stacked[0] <= beside):
         n, nb = stacked
     else:
-        n = beside if beside is not None else _SCALES[-1]
+        n = beside if beside is not None else SCALES[-1]
         nb = n
     m = n / 1000.0  # model metres per paper mm
     yc = f.z_lo - GAP_MM * m - f.y_max  # plan centre line

@@ -49,7 +49,7 @@ _CAP_PARTS = (2, 3, 4)
 #: Stations per Lpp.
 STATIONS_PER_LPP = 20
 #: Drawing scales 1:N tried, smallest first (N = {1, 1.25, 1.5, 2, 2.5, 3, 4, 5, 6, 7.5} x 10^k).
-_SCALES = [m * 10 ** k for k in range(0, 5) for m in (1, 1.25, 1.5, 2, 2.5, 3, 4, 5, 6, 7.5)]
+SCALES = [m * 10 ** k for k in range(0, 5) for m in (1, 1.25, 1.5, 2, 2.5, 3, 4, 5, 6, 7.5)]
 #: A3 landscape sheet and its margin (mm).
 SHEET_MM = (420.0, 297.0)
 MARGIN_MM = 10.0

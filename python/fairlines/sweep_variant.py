@@ -37,7 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .compose import KRACHT_NAMES
+from .bulb import KRACHT_NAMES
 
 #: A triangle with less area than this fraction of the mesh's mean triangle area is degenerate.
 DEGENERATE_AREA_FRACTION = 1e-10
@@ -179,7 +179,7 @@ def _compose(row: dict, hull, displacement: bool):
 
 
 def _kracht(row: dict, bulb, composed) -> None:
-    from .compose import measure_kracht
+    from .bulb import measure_kracht
 
     got = measure_kracht(composed.mesh, **bulb.ship)
     for k in KRACHT_NAMES:

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import fairlines as fl
-from fairlines.compose import _boundaries_around_seam
+from fairlines.blend import _boundaries_around_seam
 
 CLEAR_U, CLEAR_V = 0.05, 0.01
 

@@ -347,7 +347,7 @@ def test_seam_blend_is_c1_and_composes_with_the_original_hull(hull, bulb):
 def test_seam_blend_equals_the_blend_around_the_union_seam(hull, bulb):
     """seam_blend_placement traces the seam without meshing the union (for the Blender
     latency); its blend must be the one built from compose([hull, bulb])'s seam, bit for bit."""
-    from fairlines.compose import _boundaries_around_seam
+    from fairlines.blend import _boundaries_around_seam
 
     union = fl.compose([hull, bulb])
     on_hull, on_bulb = _boundaries_around_seam(union.trimmed_surfaces[0][0], union.intersection_curves[0],

@@ -333,7 +333,7 @@ def test_knuckle_is_kept_sharp(tmp_path):
     # A knuckle next to an end point does not displace the end point.
     early = np.array([(0, 0), (0.1, 0), (0.3, 0.8), (0.5, 1.6), (0.6, 2.4)], float)
     assert offsets.knuckles(early).tolist() == [1]
-    res = pp._resample_section(early, 9)
+    res = pp.resample_section(early, 9)
     assert res[0].tolist() == [0.0, 0.0] and res[-1] == pytest.approx([0.6, 2.4])
     assert np.min(np.linalg.norm(res - early[1], axis=1)) < 1e-12
 

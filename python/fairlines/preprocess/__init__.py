@@ -51,7 +51,7 @@ from .rebuild import (  # noqa: F401
     DEVIATION_EXACT_TOL,
     GRID_MIN_CONTROL,
     Rebuild,
-    _resample_section,
+    resample_section,
     sections_grid,
     rebuild,
     deviation_report,

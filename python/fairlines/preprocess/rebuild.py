@@ -52,7 +52,7 @@ def _hermite_slopes(s, f, corners):
     return left, right
 
 
-def _resample_section(points, n):
+def resample_section(points, n):
     """n points along a section at equal steps of chord length (the fair-skinning
     parametrisation of Kim & Hwangbo 2008), on a shape-preserving cubic Hermite curve
     through the offsets that keeps flats flat and knuckles sharp. (A global interpolating
@@ -89,7 +89,7 @@ def sections_grid(data: HullData, n_v=61):
     """The offsets' sections as one (stations, n_v, 3) grid for skinning."""
     rows = []
     for s in data.sections:
-        yz = _resample_section(s.points, n_v)
+        yz = resample_section(s.points, n_v)
         rows.append(np.column_stack([np.full(n_v, s.x), yz]))
     return np.array(rows)
 

@@ -1,0 +1,74 @@
+"""The package's module graph read from its source: no module imports a private name of a
+sibling, and the imports made when a module loads form no cycle."""
+
+import ast
+import pathlib
+
+PACKAGE = pathlib.Path(__file__).resolve().parents[2] / "python" / "fairlines"
+#: Private modules meant to be shared inside the package.
+SHARED_PRIVATE = {"_native", "_options"}
+
+
+def _modules() -> dict[str, tuple[ast.Module, bool]]:
+    """Dotted name inside the package ("" for the package itself) -> (syntax tree, is a package)."""
+    out = {}
+    for path in PACKAGE.rglob("*.py"):
+        parts = path.relative_to(PACKAGE).with_suffix("").parts
+        is_package = parts[-1] == "__init__"
+        name = ".".join(parts[:-1] if is_package else parts)
+        out[name] = (ast.parse(path.read_text(encoding="utf-8")), is_package)
+    return out
+
+
+def _targets(module: str, is_package: bool, node: ast.ImportFrom) -> list[tuple[str, str]]:
+    """(package module, imported name) of each name a `from ... import` takes from the package."""
+    if node.level == 0:
+        if not (node.module or "").startswith("fairlines"):
+            return []
+        base = node.module.removeprefix("fairlines").lstrip(".")
+    else:
+        package = module if is_package else module.rpartition(".")[0]
+        parts = package.split(".") if package else []
+        parts = parts[: len(parts) - (node.level - 1)]
+        base = ".".join(parts + ([node.module] if node.module else []))
+    return [(base, a.name) for a in node.names]
+
+
+def test_no_module_imports_a_private_name_of_a_sibling():
+    modules, found = _modules(), []
+    for module, (tree, is_package) in modules.items():
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom):
+                for base, name in _targets(module, is_package, node):
+                    shared = base.split(".")[-1] in SHARED_PRIVATE or name in SHARED_PRIVATE
+                    if name.startswith("_") and not name.startswith("__") and not shared:
+                        found.append(f"{module or 'fairlines'} imports {name} from {base or 'fairlines'}")
+    assert found == []
+
+
+def test_module_level_imports_form_no_cycle():
+    modules = _modules()
+    graph = {m: set() for m in modules}
+    for module, (tree, is_package) in modules.items():
+        for node in tree.body:  # what runs when the module loads
+            if isinstance(node, ast.ImportFrom):
+                for base, name in _targets(module, is_package, node):
+                    sub = f"{base}.{name}".lstrip(".")
+                    target = sub if sub in modules else base
+                    if target in modules and target != module and target != "":
+                        graph[module].add(target)
+    state, cycles = {}, []
+
+    def visit(m, path):
+        state[m] = "open"
+        for n in sorted(graph[m]):
+            if state.get(n) == "open":
+                cycles.append(path[path.index(n):] + [n])
+            elif n not in state:
+                visit(n, path + [n])
+        state[m] = "done"
+
+    for m in sorted(graph):
+        if m not in state:
+            visit(m, [m])
+    assert cycles == []
