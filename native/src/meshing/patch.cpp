@@ -657,9 +657,9 @@ bool point_in_polygon(const Vec2& q, const std::vector<Vec2>& poly) {
 Vec3 FaceGeometry::point(const Vec2& q) const {
   if (!surface) return origin + q.x() * ax + q.y() * ay;
   Vec3 p;
-  if (ruled(q.x())) {
-    const double t = (q.x() - ruled_u0) / (ruled_u1 - ruled_u0);
-    p = (1 - t) * surface->evaluate(ruled_u0, q.y()) + t * surface->evaluate(ruled_u1, q.y());
+  if (const RuledStrip* r = ruled(q.x())) {
+    const double t = (q.x() - r->a) / (r->b - r->a);
+    p = (1 - t) * surface->evaluate(r->a, q.y()) + t * surface->evaluate(r->b, q.y());
   } else {
     p = surface->evaluate(q.x(), q.y());
   }
@@ -675,10 +675,10 @@ void FaceGeometry::first(const Vec2& q, Vec3& p, Vec3& su, Vec3& sv) const {
     return;
   }
   double out[9];
-  if (ruled(q.x())) {  // (1 - t) S(u0, v) + t S(u1, v)
-    const double t = (q.x() - ruled_u0) / (ruled_u1 - ruled_u0);
+  if (const RuledStrip* r = ruled(q.x())) {  // (1 - t) S(u0, v) + t S(u1, v)
+    const double t = (q.x() - r->a) / (r->b - r->a);
     double a[9], b[9];
-    const double u0 = ruled_u0, u1 = ruled_u1;
+    const double u0 = r->a, u1 = r->b;
     surface->evaluate_first_derivatives_into(&u0, &q.y(), 1, a);
     surface->evaluate_first_derivatives_into(&u1, &q.y(), 1, b);
     for (int k = 0; k < 3; ++k) {
@@ -694,12 +694,17 @@ void FaceGeometry::first(const Vec2& q, Vec3& p, Vec3& su, Vec3& sv) const {
   sv = Vec3(out[6], out[7], out[8]);
 }
 
-bool FaceGeometry::ruled(double u) const { return surface && u > ruled_u0 && u < ruled_u1; }
+const FaceGeometry::RuledStrip* FaceGeometry::ruled(double u) const {
+  for (const RuledStrip& r : ruled_strips)
+    if (surface && u > r.a && u < r.b) return &r;
+  return nullptr;
+}
 
 double FaceGeometry::curvature_sum(const Vec2& q) const {
   if (!surface) return 0.0;
-  // in a ruled strip: the curvature of the surface where the strip starts
-  const double u = ruled(q.x()) ? ruled_u0 : q.x();
+  // in a ruled strip: the curvature of the surface where the strip joins it
+  const RuledStrip* r = ruled(q.x());
+  const double u = r ? r->inner : q.x();
   const Eigen::MatrixXd d = surface->derivatives(u, q.y(), 2);
   const Vec3 sv = d.row(1), svv = d.row(2), su = d.row(3), suv = d.row(4), suu = d.row(6);
   Vec3 n = su.cross(sv);
