@@ -33,6 +33,12 @@ constexpr double kFlat = 1e-2;             ///< a triangle with |2 area| below t
 constexpr double kPoleZone = 2.0;          ///< interior nodes within this x h of a pole are thinned
 constexpr double kPoleSpacing = 0.4;       ///< to this x h apart
 constexpr double kFanSpread = 4.0;         ///< iso-line length ratio from which a face is a fan
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kImproveBelow = 0.3;      ///< nodes of elements scoring below this are optimised one by one
+constexpr int kImprovePasses = 4;          ///< sweeps of that node optimisation
+constexpr double kImproveStep = 0.25;      ///< its first trial step / the node's mean edge length
+constexpr double kImproveMinStep = 0.01;   ///< and its last
+constexpr double kSplitFloor = 0.1;        ///< all-quad: a quad still scoring below this becomes two triangles
 
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
@@ -371,6 +377,16 @@ struct Work {
         q = std::min(q, -1.0);
     return q;
   }
+  /// The worse of quality() and the scaled Jacobian about the element's own normal (the
+  /// census's measure: a quad's diagonal cross product), so neither sees it folded.
+  double strict_quality(const std::array<int, 4>& e) const {
+    const double q = quality(e);
+    if (e[3] < 0) return q;
+    Vec3 p[4];
+    for (int i = 0; i < 4; ++i) p[i] = xyz[e[i]];
+    const Vec3 n = (p[2] - p[0]).cross(p[3] - p[1]);
+    return n.norm() > 0 ? std::min(q, element_quality(p, 4, n.normalized())) : std::min(q, 0.0);
+  }
   /// Normal distance of an element's centroid from the surface point at its mean (u, v).
   double chordal(const std::array<int, 4>& e) const {
     if (!g.surface) return 0.0;
@@ -506,6 +522,73 @@ void smooth(Work& w, int passes) {
   }
 }
 
+/// Max-min node optimisation (after Freitag & Plassmann 2000): each free node of an element
+/// scoring below kImproveBelow (strict_quality) moves by a compass search in its tangent plane,
+/// every trial put back onto the face, to where the worst of its elements scores highest. A
+/// move is kept only when it raises that worst, so no element gets worse than its
+/// neighbourhood's worst; it untangles the folded elements the Laplacian step cannot.
+void improve_worst(Work& w) {
+  const int n = static_cast<int>(w.xyz.size());
+  std::vector<std::vector<int>> around(n);
+  for (int e = 0; e < static_cast<int>(w.el.size()); ++e)
+    for (int k = 0; k < (w.el[e][3] < 0 ? 3 : 4); ++k) around[w.el[e][k]].push_back(e);
+  auto worst_at = [&](int i) {
+    double q = 1e9;
+    for (int e : around[i]) q = std::min(q, w.strict_quality(w.el[e]));
+    return q;
+  };
+  auto place = [&](int i, const Vec2& q) {
+    w.uv[i] = q;
+    w.xyz[i] = w.g.point(q);
+    w.normal[i] = w.surface_normal(q);
+  };
+  constexpr int kMaxSteps = 40;  // trial rounds per node and sweep
+  for (int pass = 0; pass < kImprovePasses; ++pass) {
+    std::vector<char> poor(n, 0);
+    for (const auto& e : w.el)
+      if (w.strict_quality(e) < kImproveBelow)
+        for (int k = 0; k < (e[3] < 0 ? 3 : 4); ++k) poor[e[k]] = 1;
+    int moved = 0;
+    for (int i = w.fixed; i < n; ++i) {
+      if (!poor[i] || around[i].empty()) continue;
+      double len = 0.0;
+      int edges = 0;
+      for (int e : around[i]) {
+        const int k = w.el[e][3] < 0 ? 3 : 4;
+        for (int c = 0; c < k; ++c)
+          if (w.el[e][c] == i) {
+            len += (w.xyz[w.el[e][(c + 1) % k]] - w.xyz[i]).norm() + (w.xyz[w.el[e][(c + k - 1) % k]] - w.xyz[i]).norm();
+            edges += 2;
+          }
+      }
+      len /= std::max(edges, 1);
+      double best = worst_at(i), step = kImproveStep * len;
+      for (int round = 0; round < kMaxSteps && step >= kImproveMinStep * len; ++round) {
+        Vec3 p, su, sv;
+        w.g.first(w.uv[i], p, su, sv);
+        const Vec3 nn = su.cross(sv);
+        if (nn.norm() <= 0 || su.norm() <= 0) break;
+        const Vec3 t1 = su.normalized(), t2 = nn.normalized().cross(t1);
+        const Vec2 from = w.uv[i];
+        const Vec3 x0 = w.xyz[i];
+        Vec2 to = from;
+        for (int k = 0; k < 8; ++k) {
+          const double a = k * kPi / 4;
+          const Vec2 q = w.g.locate(x0 + step * (std::cos(a) * t1 + std::sin(a) * t2), from);
+          if ((q - from).norm() == 0.0) continue;
+          place(i, q);
+          const double now = worst_at(i);
+          if (now > best + 1e-12) best = now, to = q;
+        }
+        place(i, to);
+        if ((to - from).norm() > 0) ++moved;
+        else step *= 0.5;
+      }
+    }
+    if (!moved) break;
+  }
+}
+
 /// Canonical local id of every node: a pole's copies along its parameter edge (consecutive
 /// loop nodes with one global id) map to the first copy.
 std::vector<int> pole_canon(const std::vector<LoopNode>& loop, size_t nodes) {
@@ -566,27 +649,26 @@ std::vector<std::array<int, 3>> merged_triangles(const Work& w, const std::vecto
   return tri;
 }
 
-/// A quad that smoothing on a sharply curved surface left folded (non-positive scaled Jacobian
-/// about its own diagonal normal, the census's measure) is cut into two triangles along the
-/// diagonal that gives the better pair.
-void split_folded_quads(Work& w) {
+/// A quad that smoothing on a sharply curved surface left folded (strict_quality <= 0: about
+/// the surface's normal or its own diagonal one, the census's measure) is cut into two
+/// triangles along the diagonal that gives the better pair; so is one scoring below `floor`
+/// whose better pair scores higher than it (both triangles then positive).
+void split_poor_quads(Work& w, double floor) {
   std::vector<std::array<int, 4>> out;
   for (const auto& e : w.el) {
-    if (e[3] < 0) {
-      out.push_back(e);
-      continue;
-    }
-    Vec3 p[4];
-    for (int i = 0; i < 4; ++i) p[i] = w.xyz[e[i]];
-    const Vec3 n = (p[2] - p[0]).cross(p[3] - p[1]);
-    if (n.norm() > 0 && element_quality(p, 4, n.normalized()) > 0) {
+    const double q = e[3] < 0 ? 1.0 : w.strict_quality(e);
+    if (q > 0 && q >= floor) {
       out.push_back(e);
       continue;
     }
     const std::array<int, 4> a{e[0], e[1], e[2], -1}, b{e[0], e[2], e[3], -1}, c{e[0], e[1], e[3], -1}, d{e[1], e[2], e[3], -1};
-    const bool first = std::min(w.quality(a), w.quality(b)) >= std::min(w.quality(c), w.quality(d));
-    out.push_back(first ? a : c);
-    out.push_back(first ? b : d);
+    const double first = std::min(w.quality(a), w.quality(b)), second = std::min(w.quality(c), w.quality(d));
+    if (q > 0 && std::max(first, second) <= q) {
+      out.push_back(e);
+      continue;
+    }
+    out.push_back(first >= second ? a : c);
+    out.push_back(first >= second ? b : d);
   }
   w.el = std::move(out);
 }
@@ -696,7 +778,7 @@ void FaceGeometry::first(const Vec2& q, Vec3& p, Vec3& su, Vec3& sv) const {
 
 const FaceGeometry::RuledStrip* FaceGeometry::ruled(double u) const {
   for (const RuledStrip& r : ruled_strips)
-    if (surface && u > r.a && u < r.b) return &r;
+    if (surface && u >= r.a && u <= r.b) return &r;  // its edges too: the folded end's normal is wrong
   return nullptr;
 }
 
@@ -958,10 +1040,13 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
       r.el.push_back(e);
     }
     smooth(r, o.smoothing_passes);
+    if (o.smoothing_passes > 0) improve_worst(r);
+    split_poor_quads(r, kSplitFloor);
     return {std::move(r.xyz), std::move(r.uv), std::move(r.el), std::move(g2)};
   }
   smooth(w, o.smoothing_passes);
-  split_folded_quads(w);
+  if (o.smoothing_passes > 0) improve_worst(w);
+  split_poor_quads(w, 0.0);
   global.resize(w.xyz.size(), -1);
   return {std::move(w.xyz), std::move(w.uv), std::move(w.el), std::move(global)};
 }
