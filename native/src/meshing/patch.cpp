@@ -38,7 +38,6 @@ constexpr double kImproveBelow = 0.3;      ///< nodes of elements scoring below 
 constexpr int kImprovePasses = 4;          ///< sweeps of that node optimisation
 constexpr double kImproveStep = 0.25;      ///< its first trial step / the node's mean edge length
 constexpr double kImproveMinStep = 0.01;   ///< and its last
-constexpr double kSplitFloor = 0.1;        ///< all-quad: a quad still scoring below this becomes two triangles
 
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
@@ -365,11 +364,16 @@ struct Work {
     }
     return n.normalized();
   }
-  double quality(const std::array<int, 4>& e) const {
+  /// Scaled Jacobian about the surface normals at the element's nodes (3-D only).
+  double spatial_quality(const std::array<int, 4>& e) const {
     const int k = e[3] < 0 ? 3 : 4;
     Vec3 p[4];
     for (int i = 0; i < k; ++i) p[i] = xyz[e[i]];
-    double q = element_quality(p, k, element_normal(e));
+    return element_quality(p, k, element_normal(e));
+  }
+  double quality(const std::array<int, 4>& e) const {
+    const int k = e[3] < 0 ? 3 : 4;
+    double q = spatial_quality(e);
     // folded in the parameter plane: as bad as inverted
     for (int i = 0; i < k; ++i)
       if (cross2(uv[e[i]], uv[e[(i + 1) % k]], uv[e[(i + k - 1) % k]]) <= 0 &&
@@ -377,10 +381,11 @@ struct Work {
         q = std::min(q, -1.0);
     return q;
   }
-  /// The worse of quality() and the scaled Jacobian about the element's own normal (the
-  /// census's measure: a quad's diagonal cross product), so neither sees it folded.
-  double strict_quality(const std::array<int, 4>& e) const {
-    const double q = quality(e);
+  /// The worse of quality() (spatial_quality() without `in_parameters`) and the scaled
+  /// Jacobian about the element's own normal (the census's measure: a quad's diagonal cross
+  /// product), so neither sees it folded.
+  double strict_quality(const std::array<int, 4>& e, bool in_parameters = true) const {
+    const double q = in_parameters ? quality(e) : spatial_quality(e);
     if (e[3] < 0) return q;
     Vec3 p[4];
     for (int i = 0; i < 4; ++i) p[i] = xyz[e[i]];
@@ -480,13 +485,19 @@ std::vector<int> match_triangles(const Work& w, const std::vector<std::array<int
   return mate;
 }
 
+/// The elements at each node.
+std::vector<std::vector<int>> elements_at_nodes(const Work& w) {
+  std::vector<std::vector<int>> around(w.xyz.size());
+  for (int e = 0; e < static_cast<int>(w.el.size()); ++e)
+    for (int k = 0; k < (w.el[e][3] < 0 ? 3 : 4); ++k) around[w.el[e][k]].push_back(e);
+  return around;
+}
+
 /// Moves each free node toward the mean of its elements' centroids, back onto the face,
 /// when the worst of its elements does not get worse.
 void smooth(Work& w, int passes) {
   const int n = static_cast<int>(w.xyz.size());
-  std::vector<std::vector<int>> around(n);
-  for (int e = 0; e < static_cast<int>(w.el.size()); ++e)
-    for (int k = 0; k < (w.el[e][3] < 0 ? 3 : 4); ++k) around[w.el[e][k]].push_back(e);
+  const std::vector<std::vector<int>> around = elements_at_nodes(w);
   for (int pass = 0; pass < passes; ++pass) {
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
@@ -523,18 +534,16 @@ void smooth(Work& w, int passes) {
 }
 
 /// Max-min node optimisation (after Freitag & Plassmann 2000): each free node of an element
-/// scoring below kImproveBelow (strict_quality) moves by a compass search in its tangent plane,
+/// scoring below kImproveBelow (strict_quality in space) moves by a compass search in its tangent plane,
 /// every trial put back onto the face, to where the worst of its elements scores highest. A
 /// move is kept only when it raises that worst, so no element gets worse than its
 /// neighbourhood's worst; it untangles the folded elements the Laplacian step cannot.
 void improve_worst(Work& w) {
   const int n = static_cast<int>(w.xyz.size());
-  std::vector<std::vector<int>> around(n);
-  for (int e = 0; e < static_cast<int>(w.el.size()); ++e)
-    for (int k = 0; k < (w.el[e][3] < 0 ? 3 : 4); ++k) around[w.el[e][k]].push_back(e);
+  const std::vector<std::vector<int>> around = elements_at_nodes(w);
   auto worst_at = [&](int i) {
     double q = 1e9;
-    for (int e : around[i]) q = std::min(q, w.strict_quality(w.el[e]));
+    for (int e : around[i]) q = std::min(q, w.strict_quality(w.el[e], false));
     return q;
   };
   auto place = [&](int i, const Vec2& q) {
@@ -546,7 +555,7 @@ void improve_worst(Work& w) {
   for (int pass = 0; pass < kImprovePasses; ++pass) {
     std::vector<char> poor(n, 0);
     for (const auto& e : w.el)
-      if (w.strict_quality(e) < kImproveBelow)
+      if (w.strict_quality(e, false) < kImproveBelow)
         for (int k = 0; k < (e[3] < 0 ? 3 : 4); ++k) poor[e[k]] = 1;
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
@@ -649,26 +658,21 @@ std::vector<std::array<int, 3>> merged_triangles(const Work& w, const std::vecto
   return tri;
 }
 
-/// A quad that smoothing on a sharply curved surface left folded (strict_quality <= 0: about
-/// the surface's normal or its own diagonal one, the census's measure) is cut into two
-/// triangles along the diagonal that gives the better pair; so is one scoring below `floor`
-/// whose better pair scores higher than it (both triangles then positive).
-void split_poor_quads(Work& w, double floor) {
+/// A quad left folded (strict_quality in space <= 0: about the surface's normals or its own
+/// diagonal one, the census's measure) is cut into two triangles along the diagonal that gives
+/// the better pair. Judged in space: where the parametrisation shears across a knot a convex
+/// quad on the surface can have a reflex corner in (u, v).
+void split_folded_quads(Work& w) {
   std::vector<std::array<int, 4>> out;
   for (const auto& e : w.el) {
-    const double q = e[3] < 0 ? 1.0 : w.strict_quality(e);
-    if (q > 0 && q >= floor) {
+    if (e[3] < 0 || w.strict_quality(e, false) > 0) {
       out.push_back(e);
       continue;
     }
     const std::array<int, 4> a{e[0], e[1], e[2], -1}, b{e[0], e[2], e[3], -1}, c{e[0], e[1], e[3], -1}, d{e[1], e[2], e[3], -1};
-    const double first = std::min(w.quality(a), w.quality(b)), second = std::min(w.quality(c), w.quality(d));
-    if (q > 0 && std::max(first, second) <= q) {
-      out.push_back(e);
-      continue;
-    }
-    out.push_back(first >= second ? a : c);
-    out.push_back(first >= second ? b : d);
+    const bool first = std::min(w.quality(a), w.quality(b)) >= std::min(w.quality(c), w.quality(d));
+    out.push_back(first ? a : c);
+    out.push_back(first ? b : d);
   }
   w.el = std::move(out);
 }
@@ -1041,12 +1045,12 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
     }
     smooth(r, o.smoothing_passes);
     if (o.smoothing_passes > 0) improve_worst(r);
-    split_poor_quads(r, kSplitFloor);
+    split_folded_quads(r);  // the last resort: none on the composed ship at 3 and 1.5 m
     return {std::move(r.xyz), std::move(r.uv), std::move(r.el), std::move(g2)};
   }
   smooth(w, o.smoothing_passes);
   if (o.smoothing_passes > 0) improve_worst(w);
-  split_poor_quads(w, 0.0);
+  split_folded_quads(w);
   global.resize(w.xyz.size(), -1);
   return {std::move(w.xyz), std::move(w.uv), std::move(w.el), std::move(global)};
 }
