@@ -782,7 +782,8 @@ void FaceGeometry::first(const Vec2& q, Vec3& p, Vec3& su, Vec3& sv) const {
 
 const FaceGeometry::RuledStrip* FaceGeometry::ruled(double u) const {
   for (const RuledStrip& r : ruled_strips)
-    if (surface && u >= r.a && u <= r.b) return &r;  // its edges too: the folded end's normal is wrong
+    // its outer edge too (the folded end's NURBS normal is wrong there), not the inner one
+    if (surface && (u > r.a || (u == r.a && r.a != r.inner)) && (u < r.b || (u == r.b && r.b != r.inner))) return &r;
   return nullptr;
 }
 

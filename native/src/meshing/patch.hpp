@@ -36,7 +36,7 @@ struct FaceGeometry {
   /// (u, v) of a point on the plane; for a surface, Newton from `start` (clamped to the domain).
   Eigen::Vector2d locate(const Eigen::Vector3d& p, const Eigen::Vector2d& start) const;
   Eigen::Vector2d clamp(const Eigen::Vector2d& uv) const;
-  /// The ruled strip u lies in (edges included), or null.
+  /// The ruled strip u lies in (its outer edge, the domain end, included), or null.
   const RuledStrip* ruled(double u) const;
 };
 
