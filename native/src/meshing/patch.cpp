@@ -38,6 +38,7 @@ constexpr double kImproveBelow = 0.3;      ///< nodes of elements scoring below 
 constexpr int kImprovePasses = 4;          ///< sweeps of that node optimisation
 constexpr double kImproveStep = 0.25;      ///< its first trial step / the node's mean edge length
 constexpr double kImproveMinStep = 0.01;   ///< and its last
+constexpr double kImproveShortest = 0.3;   ///< no trial shortens a node's edges below this x their mean
 
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
@@ -551,6 +552,20 @@ void improve_worst(Work& w) {
     w.xyz[i] = w.g.point(q);
     w.normal[i] = w.surface_normal(q);
   };
+  auto edge_lengths = [&](int i, double& mean, double& shortest) {  // of the edges at node i
+    mean = 0.0, shortest = 1e300;
+    int edges = 0;
+    for (int e : around[i]) {
+      const int k = w.el[e][3] < 0 ? 3 : 4;
+      for (int c = 0; c < k; ++c)
+        if (w.el[e][c] == i)
+          for (int j : {w.el[e][(c + 1) % k], w.el[e][(c + k - 1) % k]}) {
+            const double l = (w.xyz[j] - w.xyz[i]).norm();
+            mean += l, shortest = std::min(shortest, l), ++edges;
+          }
+    }
+    mean /= std::max(edges, 1);
+  };
   constexpr int kMaxSteps = 40;  // trial rounds per node and sweep
   for (int pass = 0; pass < kImprovePasses; ++pass) {
     std::vector<char> poor(n, 0);
@@ -560,17 +575,10 @@ void improve_worst(Work& w) {
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
       if (!poor[i] || around[i].empty()) continue;
-      double len = 0.0;
-      int edges = 0;
-      for (int e : around[i]) {
-        const int k = w.el[e][3] < 0 ? 3 : 4;
-        for (int c = 0; c < k; ++c)
-          if (w.el[e][c] == i) {
-            len += (w.xyz[w.el[e][(c + 1) % k]] - w.xyz[i]).norm() + (w.xyz[w.el[e][(c + k - 1) % k]] - w.xyz[i]).norm();
-            edges += 2;
-          }
-      }
-      len /= std::max(edges, 1);
+      double len, shortest, mean_now, shortest_now;
+      edge_lengths(i, len, shortest);
+      // the scaled Jacobian does not see size: a search for it alone can collapse an edge
+      const double floor = std::min(kImproveShortest * len, shortest);
       double best = worst_at(i), step = kImproveStep * len;
       for (int round = 0; round < kMaxSteps && step >= kImproveMinStep * len; ++round) {
         Vec3 p, su, sv;
@@ -586,7 +594,8 @@ void improve_worst(Work& w) {
           const Vec2 q = w.g.locate(x0 + step * (std::cos(a) * t1 + std::sin(a) * t2), from);
           if ((q - from).norm() == 0.0) continue;
           place(i, q);
-          const double now = worst_at(i);
+          edge_lengths(i, mean_now, shortest_now);
+          const double now = shortest_now >= floor ? worst_at(i) : -1e9;
           if (now > best + 1e-12) best = now, to = q;
         }
         place(i, to);
