@@ -534,75 +534,83 @@ void smooth(Work& w, int passes) {
   }
 }
 
-/// Max-min node optimisation (after Freitag & Plassmann 2000): each free node of an element
-/// scoring below kImproveBelow (strict_quality in space) moves by a compass search in its tangent plane,
-/// every trial put back onto the face, to where the worst of its elements scores highest. A
-/// move is kept only when it raises that worst, so no element gets worse than its
-/// neighbourhood's worst; it untangles the folded elements the Laplacian step cannot.
-void improve_worst(Work& w) {
-  const int n = static_cast<int>(w.xyz.size());
-  const std::vector<std::vector<int>> around = elements_at_nodes(w);
-  auto worst_at = [&](int i) {
+/// The mean and shortest length of the edges at node i (`around`: the elements at each node).
+void edge_lengths(const Work& w, const std::vector<int>& around, int i, double& mean, double& shortest) {
+  mean = 0.0, shortest = 1e300;
+  int edges = 0;
+  for (int e : around) {
+    const int k = w.el[e][3] < 0 ? 3 : 4;
+    for (int c = 0; c < k; ++c)
+      if (w.el[e][c] == i)
+        for (int j : {w.el[e][(c + 1) % k], w.el[e][(c + k - 1) % k]}) {
+          const double l = (w.xyz[j] - w.xyz[i]).norm();
+          mean += l, shortest = std::min(shortest, l), ++edges;
+        }
+  }
+  mean /= std::max(edges, 1);
+}
+
+/// Compass search for node i (see improve_worst); true when it moved.
+bool optimise_node(Work& w, const std::vector<int>& around, int i) {
+  auto worst = [&]() {
     double q = 1e9;
-    for (int e : around[i]) q = std::min(q, w.strict_quality(w.el[e], false));
+    for (int e : around) q = std::min(q, w.strict_quality(w.el[e], false));
     return q;
   };
-  auto place = [&](int i, const Vec2& q) {
+  auto place = [&](const Vec2& q) {
     w.uv[i] = q;
     w.xyz[i] = w.g.point(q);
     w.normal[i] = w.surface_normal(q);
   };
-  auto edge_lengths = [&](int i, double& mean, double& shortest) {  // of the edges at node i
-    mean = 0.0, shortest = 1e300;
-    int edges = 0;
-    for (int e : around[i]) {
-      const int k = w.el[e][3] < 0 ? 3 : 4;
-      for (int c = 0; c < k; ++c)
-        if (w.el[e][c] == i)
-          for (int j : {w.el[e][(c + 1) % k], w.el[e][(c + k - 1) % k]}) {
-            const double l = (w.xyz[j] - w.xyz[i]).norm();
-            mean += l, shortest = std::min(shortest, l), ++edges;
-          }
+  constexpr int kMaxSteps = 40;  // trial rounds
+  double len, shortest, mean_now, shortest_now;
+  edge_lengths(w, around, i, len, shortest);
+  // the scaled Jacobian does not see size: a search for it alone can collapse an edge
+  const double floor = std::min(kImproveShortest * len, shortest);
+  double best = worst(), step = kImproveStep * len;
+  bool moved = false;
+  for (int round = 0; round < kMaxSteps && step >= kImproveMinStep * len; ++round) {
+    Vec3 p, su, sv;
+    w.g.first(w.uv[i], p, su, sv);
+    const Vec3 nn = su.cross(sv);
+    if (nn.norm() <= 0 || su.norm() <= 0) break;
+    const Vec3 t1 = su.normalized(), t2 = nn.normalized().cross(t1);
+    const Vec2 from = w.uv[i];
+    const Vec3 x0 = w.xyz[i];
+    Vec2 to = from;
+    for (int k = 0; k < 8; ++k) {
+      const double a = k * kPi / 4;
+      const Vec2 q = w.g.locate(x0 + step * (std::cos(a) * t1 + std::sin(a) * t2), from);
+      if ((q - from).norm() == 0.0) continue;
+      place(q);
+      edge_lengths(w, around, i, mean_now, shortest_now);
+      const double now = shortest_now >= floor ? worst() : -1e9;
+      if (now > best + 1e-12) best = now, to = q;
     }
-    mean /= std::max(edges, 1);
-  };
-  constexpr int kMaxSteps = 40;  // trial rounds per node and sweep
+    place(to);
+    if ((to - from).norm() > 0) moved = true;
+    else step *= 0.5;
+  }
+  return moved;
+}
+
+/// Max-min node optimisation (after Freitag & Plassmann 2000): each free node of an element
+/// scoring below kImproveBelow (strict_quality in space) moves by a compass search in its
+/// tangent plane, every trial put back onto the face, to where the worst of its elements
+/// scores highest. A move is kept only when it raises that worst (and keeps the node's edges
+/// above kImproveShortest x their mean), so no element gets worse than its neighbourhood's
+/// worst; it untangles the folded elements the Laplacian step cannot.
+void improve_worst(Work& w) {
+  const int n = static_cast<int>(w.xyz.size());
+  const std::vector<std::vector<int>> around = elements_at_nodes(w);
   for (int pass = 0; pass < kImprovePasses; ++pass) {
     std::vector<char> poor(n, 0);
     for (const auto& e : w.el)
       if (w.strict_quality(e, false) < kImproveBelow)
         for (int k = 0; k < (e[3] < 0 ? 3 : 4); ++k) poor[e[k]] = 1;
     int moved = 0;
-    for (int i = w.fixed; i < n; ++i) {
-      if (!poor[i] || around[i].empty()) continue;
-      double len, shortest, mean_now, shortest_now;
-      edge_lengths(i, len, shortest);
-      // the scaled Jacobian does not see size: a search for it alone can collapse an edge
-      const double floor = std::min(kImproveShortest * len, shortest);
-      double best = worst_at(i), step = kImproveStep * len;
-      for (int round = 0; round < kMaxSteps && step >= kImproveMinStep * len; ++round) {
-        Vec3 p, su, sv;
-        w.g.first(w.uv[i], p, su, sv);
-        const Vec3 nn = su.cross(sv);
-        if (nn.norm() <= 0 || su.norm() <= 0) break;
-        const Vec3 t1 = su.normalized(), t2 = nn.normalized().cross(t1);
-        const Vec2 from = w.uv[i];
-        const Vec3 x0 = w.xyz[i];
-        Vec2 to = from;
-        for (int k = 0; k < 8; ++k) {
-          const double a = k * kPi / 4;
-          const Vec2 q = w.g.locate(x0 + step * (std::cos(a) * t1 + std::sin(a) * t2), from);
-          if ((q - from).norm() == 0.0) continue;
-          place(i, q);
-          edge_lengths(i, mean_now, shortest_now);
-          const double now = shortest_now >= floor ? worst_at(i) : -1e9;
-          if (now > best + 1e-12) best = now, to = q;
-        }
-        place(i, to);
-        if ((to - from).norm() > 0) ++moved;
-        else step *= 0.5;
-      }
-    }
+    for (int i = w.fixed; i < n; ++i)
+      if (poor[i] && !around[i].empty() && optimise_node(w, around[i], i)) ++moved;
     if (!moved) break;
   }
 }
