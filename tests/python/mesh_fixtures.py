@@ -108,3 +108,31 @@ def closed_volume(vertices, faces):
         tris += [(row[0], row[i], row[i + 1]) for i in range(1, k - 1)]
     t = v[np.array(tris)]
     return float(np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0)
+
+
+def knupp_scaled_jacobians(vertices, faces):
+    """Scaled Jacobian of every element (Knupp 2000) by numpy alone: the least over its corners
+    of (e_next x e_prev) . n / (|e_next| |e_prev|), n the quad's diagonal cross product or the
+    triangle's normal, triangles times 2 / sqrt(3); <= 0 is an inverted element."""
+    v, f = np.asarray(vertices), np.asarray(faces)
+    out = np.empty(len(f))
+    for i, row in enumerate(f):
+        p = v[row[row >= 0]]
+        n = np.cross(p[2] - p[0], p[3] - p[1]) if len(p) == 4 else np.cross(p[1] - p[0], p[2] - p[0])
+        n = n / np.linalg.norm(n)
+        e1, e2 = np.roll(p, -1, axis=0) - p, np.roll(p, 1, axis=0) - p
+        s = np.cross(e1, e2) @ n / (np.linalg.norm(e1, axis=1) * np.linalg.norm(e2, axis=1))
+        out[i] = s.min() * (2 / np.sqrt(3) if len(p) == 3 else 1.0)
+    return out
+
+
+def composed_wetted_hydrostatics(composed, draft):
+    """(volume m^3 both sides, lcb m) of the example's composed ship at `draft`: NURBS quadrature
+    of the bare hull (fl.hydrostatics) plus what the bulb and blend add below the draft (volume and
+    x-moment), from the composition's own meshes."""
+    surface = example_hull_surface()
+    bare = fl.hydrostatics(surface, draft)
+    comp, alone = fl.mesh_hydrostatics(composed.mesh, draft), fl.mesh_hydrostatics(fl.compose([surface]).mesh, draft)
+    added = comp["volume"] - alone["volume"]
+    added_moment = comp["volume"] * comp["lcb"] - alone["volume"] * alone["lcb"]
+    return bare.volume + added, (bare.volume * bare.lcb + added_moment) / (bare.volume + added)

@@ -9,7 +9,8 @@ import pytest
 
 import fairlines as fl
 from mesh_fixtures import (EXAMPLE_DRAFT, WIGLEY, bilge_patch, closed_volume, composed_example_hull,
-                           cruiser_stern_ship, edge_census, example_hull, wigley_surface)
+                           composed_wetted_hydrostatics, cruiser_stern_ship, edge_census, example_hull,
+                           wigley_surface)
 
 MESH_VOLUME_TOL = 2e-3     # closed hull mesh vs NURBS quadrature at about 1 % of L element size
 CAPYTAINE_TOL = 3e-3       # capytaine's panel hydrostatics converge as O(h^2): ~2e-3 at 2 500 panels
@@ -183,13 +184,8 @@ def test_panel_files_read_by_capytaine_give_the_same_panels_and_hydrostatics(wig
 def test_whole_ship_wetted_panels_give_capytaine_the_nurbs_hydrostatics(blended, ship_meshes, tmp_path):
     cpt = pytest.importorskip("capytaine")
     m, T = ship_meshes["open"], EXAMPLE_DRAFT
-    surface = example_hull().bare_hull_surface()
-    bare = fl.hydrostatics(surface, T)  # NURBS quadrature, both sides
-    # what the bulb and blend add below T (volume and x-moment), from the composition's own meshes
-    comp, alone = fl.mesh_hydrostatics(blended.mesh, T), fl.mesh_hydrostatics(fl.compose([surface]).mesh, T)
-    added = comp["volume"] - alone["volume"]
-    added_moment = comp["volume"] * comp["lcb"] - alone["volume"] * alone["lcb"]
-    volume, lcb = bare.volume + added, (bare.volume * bare.lcb + added_moment) / (bare.volume + added)
+    bare = fl.hydrostatics(example_hull().bare_hull_surface(), T)  # NURBS quadrature, both sides
+    volume, lcb = composed_wetted_hydrostatics(blended, T)
     fl.write_gdf(m, tmp_path / "ship.gdf")
     cm = cpt.load_mesh(tmp_path / "ship.gdf", file_format="gdf")
     assert cm.nb_faces == 2 * len(m.faces)

@@ -72,8 +72,8 @@ Vec3 ruled_normal(const NurbsSurface& s, double ua, double ub, double v, double 
 /// A blend skinned to end sections on the centre plane can fold over itself next to such an
 /// end (its cross-boundary tangents turn against the neighbouring sections'), which shows as
 /// the surface crossing y = 0. The face is then meshed on the ruled surface across the
-/// narrowest strip at that end whose normals stay near the surface's (only one end is
-/// handled; the u1 end first).
+/// narrowest strip at that end that covers every crossing and whose normals stay near the
+/// surface's (each end on its own: a blend can fold at its stem end and at its keel end).
 void guard_fold(const NurbsSurface& s, meshing::FaceGeometry& g) {
   const auto [u0, u1] = s.domain_u();
   const auto [v0, v1] = s.domain_v();
@@ -81,12 +81,14 @@ void guard_fold(const NurbsSurface& s, meshing::FaceGeometry& g) {
   constexpr int kU = 21, kV = 17, kT = 11;
   for (double end : {u1, u0}) {
     const double dir = end == u1 ? -1.0 : 1.0, range = kFoldScan * (u1 - u0);
-    bool crosses = false;
-    for (int i = 0; i < kU && !crosses; ++i)
-      for (int j = 0; j < kV && !crosses; ++j)
-        crosses = s.evaluate(end + dir * range * i / (kU - 1), v0 + (v1 - v0) * j / (kV - 1)).y() < -depth;
-    if (!crosses) continue;
+    double reach = -1.0;  // farthest crossing from the end (fraction of range)
+    for (int i = 0; i < kU; ++i)
+      for (int j = 0; j < kV; ++j)
+        if (s.evaluate(end + dir * range * i / (kU - 1), v0 + (v1 - v0) * j / (kV - 1)).y() < -depth)
+          reach = std::max(reach, static_cast<double>(i) / (kU - 1));
+    if (reach < 0) continue;
     for (int k = 2; k <= kFoldWidths; ++k) {
+      if (static_cast<double>(k) / kFoldWidths <= reach) continue;  // the strip must cover the fold
       const double uf = end + dir * range * k / kFoldWidths;
       double worst = 1.0;
       for (int j = 0; j < kV; ++j) {
@@ -98,9 +100,8 @@ void guard_fold(const NurbsSurface& s, meshing::FaceGeometry& g) {
                                                               static_cast<double>(t) / (kT - 1)))));
       }
       if (worst >= kRuledNormalCos) {
-        g.ruled_u0 = std::min(uf, end);
-        g.ruled_u1 = std::max(uf, end);
-        return;
+        g.ruled_strips.push_back({std::min(uf, end), std::max(uf, end), uf});
+        break;
       }
     }
   }

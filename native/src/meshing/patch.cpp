@@ -33,6 +33,12 @@ constexpr double kFlat = 1e-2;             ///< a triangle with |2 area| below t
 constexpr double kPoleZone = 2.0;          ///< interior nodes within this x h of a pole are thinned
 constexpr double kPoleSpacing = 0.4;       ///< to this x h apart
 constexpr double kFanSpread = 4.0;         ///< iso-line length ratio from which a face is a fan
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kImproveBelow = 0.3;      ///< nodes of elements scoring below this are optimised one by one
+constexpr int kImprovePasses = 4;          ///< sweeps of that node optimisation
+constexpr double kImproveStep = 0.25;      ///< its first trial step / the node's mean edge length
+constexpr double kImproveMinStep = 0.01;   ///< and its last
+constexpr double kImproveShortest = 0.3;   ///< no trial shortens a node's edges below this x their mean
 
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
@@ -359,17 +365,33 @@ struct Work {
     }
     return n.normalized();
   }
-  double quality(const std::array<int, 4>& e) const {
+  /// Scaled Jacobian about the surface normals at the element's nodes (3-D only).
+  double spatial_quality(const std::array<int, 4>& e) const {
     const int k = e[3] < 0 ? 3 : 4;
     Vec3 p[4];
     for (int i = 0; i < k; ++i) p[i] = xyz[e[i]];
-    double q = element_quality(p, k, element_normal(e));
+    return element_quality(p, k, element_normal(e));
+  }
+  double quality(const std::array<int, 4>& e) const {
+    const int k = e[3] < 0 ? 3 : 4;
+    double q = spatial_quality(e);
     // folded in the parameter plane: as bad as inverted
     for (int i = 0; i < k; ++i)
       if (cross2(uv[e[i]], uv[e[(i + 1) % k]], uv[e[(i + k - 1) % k]]) <= 0 &&
           (xyz[e[i]] - xyz[e[(i + 1) % k]]).norm() > 0 && (xyz[e[i]] - xyz[e[(i + k - 1) % k]]).norm() > 0)
         q = std::min(q, -1.0);
     return q;
+  }
+  /// The worse of quality() (spatial_quality() without `in_parameters`) and the scaled
+  /// Jacobian about the element's own normal (the census's measure: a quad's diagonal cross
+  /// product), so neither sees it folded.
+  double strict_quality(const std::array<int, 4>& e, bool in_parameters = true) const {
+    const double q = in_parameters ? quality(e) : spatial_quality(e);
+    if (e[3] < 0) return q;
+    Vec3 p[4];
+    for (int i = 0; i < 4; ++i) p[i] = xyz[e[i]];
+    const Vec3 n = (p[2] - p[0]).cross(p[3] - p[1]);
+    return n.norm() > 0 ? std::min(q, element_quality(p, 4, n.normalized())) : std::min(q, 0.0);
   }
   /// Normal distance of an element's centroid from the surface point at its mean (u, v).
   double chordal(const std::array<int, 4>& e) const {
@@ -464,13 +486,19 @@ std::vector<int> match_triangles(const Work& w, const std::vector<std::array<int
   return mate;
 }
 
+/// The elements at each node.
+std::vector<std::vector<int>> elements_at_nodes(const Work& w) {
+  std::vector<std::vector<int>> around(w.xyz.size());
+  for (int e = 0; e < static_cast<int>(w.el.size()); ++e)
+    for (int k = 0; k < (w.el[e][3] < 0 ? 3 : 4); ++k) around[w.el[e][k]].push_back(e);
+  return around;
+}
+
 /// Moves each free node toward the mean of its elements' centroids, back onto the face,
 /// when the worst of its elements does not get worse.
 void smooth(Work& w, int passes) {
   const int n = static_cast<int>(w.xyz.size());
-  std::vector<std::vector<int>> around(n);
-  for (int e = 0; e < static_cast<int>(w.el.size()); ++e)
-    for (int k = 0; k < (w.el[e][3] < 0 ? 3 : 4); ++k) around[w.el[e][k]].push_back(e);
+  const std::vector<std::vector<int>> around = elements_at_nodes(w);
   for (int pass = 0; pass < passes; ++pass) {
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
@@ -502,6 +530,87 @@ void smooth(Work& w, int passes) {
         ++moved;
       }
     }
+    if (!moved) break;
+  }
+}
+
+/// The mean and shortest length of the edges at node i (`around`: the elements at each node).
+void edge_lengths(const Work& w, const std::vector<int>& around, int i, double& mean, double& shortest) {
+  mean = 0.0, shortest = 1e300;
+  int edges = 0;
+  for (int e : around) {
+    const int k = w.el[e][3] < 0 ? 3 : 4;
+    for (int c = 0; c < k; ++c)
+      if (w.el[e][c] == i)
+        for (int j : {w.el[e][(c + 1) % k], w.el[e][(c + k - 1) % k]}) {
+          const double l = (w.xyz[j] - w.xyz[i]).norm();
+          mean += l, shortest = std::min(shortest, l), ++edges;
+        }
+  }
+  mean /= std::max(edges, 1);
+}
+
+/// Compass search for node i (see improve_worst); true when it moved.
+bool optimise_node(Work& w, const std::vector<int>& around, int i) {
+  auto worst = [&]() {
+    double q = 1e9;
+    for (int e : around) q = std::min(q, w.strict_quality(w.el[e], false));
+    return q;
+  };
+  auto place = [&](const Vec2& q) {
+    w.uv[i] = q;
+    w.xyz[i] = w.g.point(q);
+    w.normal[i] = w.surface_normal(q);
+  };
+  constexpr int kMaxSteps = 40;  // trial rounds
+  double len, shortest, mean_now, shortest_now;
+  edge_lengths(w, around, i, len, shortest);
+  // the scaled Jacobian does not see size: a search for it alone can collapse an edge
+  const double floor = std::min(kImproveShortest * len, shortest);
+  double best = worst(), step = kImproveStep * len;
+  bool moved = false;
+  for (int round = 0; round < kMaxSteps && step >= kImproveMinStep * len; ++round) {
+    Vec3 p, su, sv;
+    w.g.first(w.uv[i], p, su, sv);
+    const Vec3 nn = su.cross(sv);
+    if (nn.norm() <= 0 || su.norm() <= 0) break;
+    const Vec3 t1 = su.normalized(), t2 = nn.normalized().cross(t1);
+    const Vec2 from = w.uv[i];
+    const Vec3 x0 = w.xyz[i];
+    Vec2 to = from;
+    for (int k = 0; k < 8; ++k) {
+      const double a = k * kPi / 4;
+      const Vec2 q = w.g.locate(x0 + step * (std::cos(a) * t1 + std::sin(a) * t2), from);
+      if ((q - from).norm() == 0.0) continue;
+      place(q);
+      edge_lengths(w, around, i, mean_now, shortest_now);
+      const double now = shortest_now >= floor ? worst() : -1e9;
+      if (now > best + 1e-12) best = now, to = q;
+    }
+    place(to);
+    if ((to - from).norm() > 0) moved = true;
+    else step *= 0.5;
+  }
+  return moved;
+}
+
+/// Max-min node optimisation (after Freitag & Plassmann 2000): each free node of an element
+/// scoring below kImproveBelow (strict_quality in space) moves by a compass search in its
+/// tangent plane, every trial put back onto the face, to where the worst of its elements
+/// scores highest. A move is kept only when it raises that worst (and keeps the node's edges
+/// above kImproveShortest x their mean), so no element gets worse than its neighbourhood's
+/// worst; it untangles the folded elements the Laplacian step cannot.
+void improve_worst(Work& w) {
+  const int n = static_cast<int>(w.xyz.size());
+  const std::vector<std::vector<int>> around = elements_at_nodes(w);
+  for (int pass = 0; pass < kImprovePasses; ++pass) {
+    std::vector<char> poor(n, 0);
+    for (const auto& e : w.el)
+      if (w.strict_quality(e, false) < kImproveBelow)
+        for (int k = 0; k < (e[3] < 0 ? 3 : 4); ++k) poor[e[k]] = 1;
+    int moved = 0;
+    for (int i = w.fixed; i < n; ++i)
+      if (poor[i] && !around[i].empty() && optimise_node(w, around[i], i)) ++moved;
     if (!moved) break;
   }
 }
@@ -566,20 +675,14 @@ std::vector<std::array<int, 3>> merged_triangles(const Work& w, const std::vecto
   return tri;
 }
 
-/// A quad that smoothing on a sharply curved surface left folded (non-positive scaled Jacobian
-/// about its own diagonal normal, the census's measure) is cut into two triangles along the
-/// diagonal that gives the better pair.
+/// A quad left folded (strict_quality in space <= 0: about the surface's normals or its own
+/// diagonal one, the census's measure) is cut into two triangles along the diagonal that gives
+/// the better pair. Judged in space: where the parametrisation shears across a knot a convex
+/// quad on the surface can have a reflex corner in (u, v).
 void split_folded_quads(Work& w) {
   std::vector<std::array<int, 4>> out;
   for (const auto& e : w.el) {
-    if (e[3] < 0) {
-      out.push_back(e);
-      continue;
-    }
-    Vec3 p[4];
-    for (int i = 0; i < 4; ++i) p[i] = w.xyz[e[i]];
-    const Vec3 n = (p[2] - p[0]).cross(p[3] - p[1]);
-    if (n.norm() > 0 && element_quality(p, 4, n.normalized()) > 0) {
+    if (e[3] < 0 || w.strict_quality(e, false) > 0) {
       out.push_back(e);
       continue;
     }
@@ -657,9 +760,9 @@ bool point_in_polygon(const Vec2& q, const std::vector<Vec2>& poly) {
 Vec3 FaceGeometry::point(const Vec2& q) const {
   if (!surface) return origin + q.x() * ax + q.y() * ay;
   Vec3 p;
-  if (ruled(q.x())) {
-    const double t = (q.x() - ruled_u0) / (ruled_u1 - ruled_u0);
-    p = (1 - t) * surface->evaluate(ruled_u0, q.y()) + t * surface->evaluate(ruled_u1, q.y());
+  if (const RuledStrip* r = ruled(q.x())) {
+    const double t = (q.x() - r->a) / (r->b - r->a);
+    p = (1 - t) * surface->evaluate(r->a, q.y()) + t * surface->evaluate(r->b, q.y());
   } else {
     p = surface->evaluate(q.x(), q.y());
   }
@@ -675,10 +778,10 @@ void FaceGeometry::first(const Vec2& q, Vec3& p, Vec3& su, Vec3& sv) const {
     return;
   }
   double out[9];
-  if (ruled(q.x())) {  // (1 - t) S(u0, v) + t S(u1, v)
-    const double t = (q.x() - ruled_u0) / (ruled_u1 - ruled_u0);
+  if (const RuledStrip* r = ruled(q.x())) {  // (1 - t) S(u0, v) + t S(u1, v)
+    const double t = (q.x() - r->a) / (r->b - r->a);
     double a[9], b[9];
-    const double u0 = ruled_u0, u1 = ruled_u1;
+    const double u0 = r->a, u1 = r->b;
     surface->evaluate_first_derivatives_into(&u0, &q.y(), 1, a);
     surface->evaluate_first_derivatives_into(&u1, &q.y(), 1, b);
     for (int k = 0; k < 3; ++k) {
@@ -694,12 +797,18 @@ void FaceGeometry::first(const Vec2& q, Vec3& p, Vec3& su, Vec3& sv) const {
   sv = Vec3(out[6], out[7], out[8]);
 }
 
-bool FaceGeometry::ruled(double u) const { return surface && u > ruled_u0 && u < ruled_u1; }
+const FaceGeometry::RuledStrip* FaceGeometry::ruled(double u) const {
+  for (const RuledStrip& r : ruled_strips)
+    // its outer edge too (the folded end's NURBS normal is wrong there), not the inner one
+    if (surface && (u > r.a || (u == r.a && r.a != r.inner)) && (u < r.b || (u == r.b && r.b != r.inner))) return &r;
+  return nullptr;
+}
 
 double FaceGeometry::curvature_sum(const Vec2& q) const {
   if (!surface) return 0.0;
-  // in a ruled strip: the curvature of the surface where the strip starts
-  const double u = ruled(q.x()) ? ruled_u0 : q.x();
+  // in a ruled strip: the curvature of the surface where the strip joins it
+  const RuledStrip* r = ruled(q.x());
+  const double u = r ? r->inner : q.x();
   const Eigen::MatrixXd d = surface->derivatives(u, q.y(), 2);
   const Vec3 sv = d.row(1), svv = d.row(2), su = d.row(3), suv = d.row(4), suu = d.row(6);
   Vec3 n = su.cross(sv);
@@ -953,9 +1062,12 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
       r.el.push_back(e);
     }
     smooth(r, o.smoothing_passes);
+    if (o.smoothing_passes > 0) improve_worst(r);
+    split_folded_quads(r);  // the last resort: none on the composed ship at 3 and 1.5 m
     return {std::move(r.xyz), std::move(r.uv), std::move(r.el), std::move(g2)};
   }
   smooth(w, o.smoothing_passes);
+  if (o.smoothing_passes > 0) improve_worst(w);
   split_folded_quads(w);
   global.resize(w.xyz.size(), -1);
   return {std::move(w.xyz), std::move(w.uv), std::move(w.el), std::move(global)};

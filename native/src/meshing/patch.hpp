@@ -19,10 +19,13 @@ struct FaceGeometry {
   /// Points held at y >= 0: a half hull's surface that dips across the centre plane (a blend
   /// skinned to an end section on it can overshoot by centimetres) is meshed on the plane there.
   bool clamp_y = false;
-  /// Between the iso-lines u = ruled_u0 and u = ruled_u1 (ruled_u0 < ruled_u1; NaN: none) the
-  /// surface is replaced by the ruled surface joining them: a strip where the surface folds
-  /// over itself (see fold_strip in hull_mesh.cpp) is meshed on its chord surface.
-  double ruled_u0 = std::numeric_limits<double>::quiet_NaN(), ruled_u1 = std::numeric_limits<double>::quiet_NaN();
+  /// A strip between the iso-lines u = a and u = b (a < b) where the surface is replaced by the
+  /// ruled surface joining them: a strip where the surface folds over itself (see guard_fold in
+  /// hull_mesh.cpp) is meshed on its chord surface. `inner`: the strip's end inside the domain.
+  struct RuledStrip {
+    double a, b, inner;
+  };
+  std::vector<RuledStrip> ruled_strips;  ///< at most one at each end of the u range
   Eigen::Vector3d origin = Eigen::Vector3d::Zero(), ax = Eigen::Vector3d::UnitX(), ay = Eigen::Vector3d::UnitY();
 
   Eigen::Vector3d point(const Eigen::Vector2d& uv) const;
@@ -33,8 +36,8 @@ struct FaceGeometry {
   /// (u, v) of a point on the plane; for a surface, Newton from `start` (clamped to the domain).
   Eigen::Vector2d locate(const Eigen::Vector3d& p, const Eigen::Vector2d& start) const;
   Eigen::Vector2d clamp(const Eigen::Vector2d& uv) const;
-  /// u lies inside the ruled strip.
-  bool ruled(double u) const;
+  /// The ruled strip u lies in (its outer edge, the domain end, included), or null.
+  const RuledStrip* ruled(double u) const;
 };
 
 /// One fixed node of the boundary loop: global node id, (u, v) on this face and position.
