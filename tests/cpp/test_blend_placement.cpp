@@ -31,12 +31,16 @@ void stem_seam(double vc, double a, double b, int n, Eigen::MatrixXd& uv, Eigen:
   }
 }
 
+/// The seam on the half ellipse of semi-axes 0.2 (u) and 0.15 (v) about (1, 0.5).
+struct BlendPlacement : ::testing::Test {
+  BlendPlacement() { stem_seam(0.5, 0.2, 0.15, 41, uv, uv_b); }
+  Eigen::MatrixXd uv, uv_b;
+  BlendPlacementOptions o;
+};
+
 }  // namespace
 
-TEST(BlendPlacement, HalfEllipseAboutTheStemHoldsTheSeamWithItsClearance) {
-  Eigen::MatrixXd uv, uv_b;
-  stem_seam(0.5, 0.2, 0.15, 41, uv, uv_b);
-  BlendPlacementOptions o;
+TEST_F(BlendPlacement, HalfEllipseAboutTheStemHoldsTheSeamWithItsClearance) {
   const BlendSpec spec = blend_boundaries_around_seam(unit_patch(), uv, uv_b, o);
   ASSERT_EQ(spec.hull_uv.rows(), o.points);
   EXPECT_NEAR(spec.hull_uv(0, 0), 1.0, 1e-15);
@@ -51,18 +55,12 @@ TEST(BlendPlacement, HalfEllipseAboutTheStemHoldsTheSeamWithItsClearance) {
   EXPECT_DOUBLE_EQ(spec.tension, o.tension);
 }
 
-TEST(BlendPlacement, ABoundaryReachingTheDeckIsNoBlendFits) {
-  Eigen::MatrixXd uv, uv_b;
-  stem_seam(0.5, 0.2, 0.15, 41, uv, uv_b);
-  BlendPlacementOptions o;
+TEST_F(BlendPlacement, ABoundaryReachingTheDeckIsNoBlendFits) {
   o.clearance_v = 0.5;
   EXPECT_THROW(blend_boundaries_around_seam(unit_patch(), uv, uv_b, o), NoBlendFits);
 }
 
-TEST(BlendPlacement, BadShapesAndOptionsAreInvalidInput) {
-  Eigen::MatrixXd uv, uv_b;
-  stem_seam(0.5, 0.2, 0.15, 41, uv, uv_b);
-  BlendPlacementOptions o;
+TEST_F(BlendPlacement, BadShapesAndOptionsAreInvalidInput) {
   o.points = 2;
   EXPECT_THROW(blend_boundaries_around_seam(unit_patch(), uv, uv_b, o), InvalidInput);
   o = {};
