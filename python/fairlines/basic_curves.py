@@ -270,7 +270,17 @@ CROSSING_ITERATIONS = 60
 
 def immersed_range(profile: BasicCurve, draft: float, samples: int = 2001) -> tuple[float, float]:
     """The x range where the centre profile is below the draft (the DWL's range): one interval,
-    its ends found by bisection to round-off."""
+    its ends found by bisection to round-off. Kept on the profile (a solved curve does not
+    change): the designer and the hull's builds ask for it again and again. Raises
+    InfeasibleFormParameters when the profile is nowhere below the draft, or rises above it
+    between two immersed parts."""
+    known = profile.__dict__.setdefault("_immersed", {})
+    if (draft, samples) not in known:
+        known[(draft, samples)] = _immersed_range(profile, draft, samples)
+    return known[(draft, samples)]
+
+
+def _immersed_range(profile: BasicCurve, draft: float, samples: int) -> tuple[float, float]:
     xs = np.linspace(profile.x_start, profile.x_end, samples)
     below = profile(xs) < draft
     if not below.any():

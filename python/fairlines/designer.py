@@ -33,7 +33,7 @@ import numpy as np
 from . import _native
 from .basic_curves import immersed_range, solve_curve
 from .compose import KRACHT_NAMES, BulbousBow
-from .description import BasicCurveSpec
+from .description import BasicCurveSpec, HullDescription
 from .hull import Hull
 
 __all__ = ["Particulars", "design_hull", "design_description", "match_targets", "RANGES"]
@@ -68,6 +68,7 @@ MATCH_TOL = 1e-6            # relative tolerance of volume, LCB (on Lpp) and wat
 MATCH_ITERATIONS = 6
 MATCH_GAUSS = 4             # Gauss points per span of the matching hydrostatics: 1e-11 of the 8-point volume, twice as fast
 PROFILE_SPANS = (30, 60, 120)  # knot spans of the profile, tried in turn
+_GAUSS8 = np.polynomial.legendre.leggauss(8)  # the natural fullness's quadrature
 BULB_AFT_LENGTH = 2.6       # the bulb runs on into the hull this many times L_PR + B_B (the bulb's own default is 2)
 
 
@@ -197,7 +198,7 @@ def natural_fullness(p: Particulars, c: dict, dwl, profile, xa: float, xf: float
     """Section fullness Cm - (Cm - s_aft) g_aft(x) - (Cm - s_fore) g_fore(x) with the end
     fullness s_aft, s_fore that give the volume and the LCB (two linear conditions on the
     box 2 y_dwl (T - z_keel)), kept inside FULLNESS_LIMITS. Returns (x, fullness)."""
-    g, w = np.polynomial.legendre.leggauss(8)
+    g, w = _GAUSS8
     br = np.linspace(xa, xf, 161)
     a, b = br[:-1, None], br[1:, None]
     x = (0.5 * (a + b) + 0.5 * (b - a) * g).ravel()
@@ -342,7 +343,7 @@ def design_hull(particulars: Particulars | None = None, **kwargs) -> Hull:
     first = None
     for q in _fallbacks(p):
         try:
-            hull = Hull.from_json(design_description(q))
+            hull = Hull(HullDescription.from_dict(design_description(q)))  # a fresh dict: no defensive copy
             match_targets(hull)
             return hull
         except _native.InfeasibleFormParameters as exc:
