@@ -27,6 +27,7 @@ from __future__ import annotations
 import inspect
 import math
 from dataclasses import asdict, dataclass, field, replace
+from functools import lru_cache
 
 import numpy as np
 
@@ -291,13 +292,18 @@ def design_description(p: Particulars) -> dict:
         # bulb: True, Kracht coefficients, or a whole "bulb" section ({"kracht": ..., "shape": ...})
         given = dict(p.bulb) if isinstance(p.bulb, dict) else {}
         section = given if {"kracht", "shape"} & set(given) else {"kracht": given}
-        defaults = {k: v.default for k, v in inspect.signature(BulbousBow).parameters.items() if k in KRACHT_NAMES}
-        kracht = {**defaults, **section.get("kracht", {})}
+        kracht = {**_kracht_defaults(), **section.get("kracht", {})}
         shape = dict(section.get("shape", {}))
         # the bulb's constant aft part reaches back to where the forefoot is wide enough to take it
         shape.setdefault("aft_length", BULB_AFT_LENGTH * (kracht["c_lpr"] * L + kracht["c_bb"] * B))
         desc["bulb"] = {**section, "kracht": kracht, "shape": shape}
     return desc
+
+
+@lru_cache(maxsize=1)
+def _kracht_defaults() -> dict:
+    """BulbousBow's default Kracht coefficients (read once from its signature)."""
+    return {k: v.default for k, v in inspect.signature(BulbousBow).parameters.items() if k in KRACHT_NAMES}
 
 
 def _particulars(kwargs: dict) -> Particulars:
