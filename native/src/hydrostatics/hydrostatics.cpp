@@ -20,7 +20,7 @@ namespace {
 using detail::fail;
 
 constexpr int kClipSamples = 8;        // samples per knot span when looking for draft crossings
-constexpr long kGridLines = 8;     // u lines per batch of highest_point's grid evaluation
+constexpr long kGridLines = 8;         // u lines per batch of highest_point's grid evaluation
 constexpr int kBisection = 60;         // bisection steps (interval shrinks below 1e-16 of the span)
 // A waterplane this far (relative) above the surface's sampled top still counts as at the top.
 constexpr double kAboveTopTolerance = 1e-9;
