@@ -220,9 +220,12 @@ def solve_curve(name: str, spec: BasicCurveSpec, x0: float, x1: float, *, lower:
     A repeated request returns the curve solved before (callers never modify it). Raises
     InvalidInput for a bad form parameter, InfeasibleFormParameters when none fits."""
     key = (name, repr(spec), float(x0), float(x1), lower, upper, maximum, repr(defaults), repr(at_least))
-    if key in _curve_cache:
+    try:
+        curve = _curve_cache[key]
         _curve_cache.move_to_end(key)
-        return _curve_cache[key]
+        return curve
+    except KeyError:  # not solved yet (or dropped by another thread meanwhile)
+        pass
     curve = _solve_curve(name, spec, x0, x1, lower, upper, maximum, defaults, at_least)
     _curve_cache[key] = curve
     if len(_curve_cache) > CURVE_CACHE_SIZE:
