@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
+from functools import lru_cache
 from typing import Any
 
 from ._native import InvalidInput
 
 
+@lru_cache(maxsize=None)
 def option_names(options_type: type) -> tuple[str, ...]:
-    """The fields of a bound option struct."""
+    """The fields of a bound option struct (a bound class does not change: kept per type)."""
     return tuple(n for n in dir(options_type) if not n.startswith("_"))
 
 

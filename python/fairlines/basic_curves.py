@@ -13,6 +13,7 @@ does.
 from __future__ import annotations
 
 import math
+from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Any
 
@@ -202,13 +203,37 @@ def _request(name: str, plan: _Plan, spec: BasicCurveSpec, path: str, stations=(
     return r
 
 
+# Recent solved curves kept by the value of everything solve_curve reads: the designer solves
+# the profile and the waterline, then the hull it builds solves them again, and a match
+# rebuild that changes only the SAC and the waterline's area solves the rest again.
+CURVE_CACHE_SIZE = 32
+_curve_cache: OrderedDict = OrderedDict()
+
+
 def solve_curve(name: str, spec: BasicCurveSpec, x0: float, x1: float, *, lower: float | None = None,
                 upper: float | None = None, maximum: bool = True, defaults: dict | None = None,
                 at_least: list | None = None) -> BasicCurve:
     """Solve one basic curve on its range [x0, x1] (the spec may narrow it). `lower` / `upper`:
     physical bounds unless the spec gives its own; `maximum`: a flat part is its maximum
     (monotone away from it); `defaults`: form parameters used unless the spec gives them;
-    `at_least`: [(x, y, what), ...] points where f(x) >= y (another curve it must clear)."""
+    `at_least`: [(x, y, what), ...] points where f(x) >= y (another curve it must clear).
+    A repeated request returns the curve solved before (callers never modify it). Raises
+    InvalidInput for a bad form parameter, InfeasibleFormParameters when none fits."""
+    key = (name, repr(spec), float(x0), float(x1), lower, upper, maximum, repr(defaults), repr(at_least))
+    try:
+        curve = _curve_cache[key]
+        _curve_cache.move_to_end(key)
+        return curve
+    except KeyError:  # not solved yet (or dropped by another thread meanwhile)
+        pass
+    curve = _solve_curve(name, spec, x0, x1, lower, upper, maximum, defaults, at_least)
+    _curve_cache[key] = curve
+    if len(_curve_cache) > CURVE_CACHE_SIZE:
+        _curve_cache.popitem(last=False)
+    return curve
+
+
+def _solve_curve(name, spec, x0, x1, lower, upper, maximum, defaults, at_least) -> BasicCurve:
     path = f"basic_curves.{name}"
     plan = _plan(spec, x0, x1, path)
     if spec.constant:
@@ -248,7 +273,17 @@ CROSSING_ITERATIONS = 60
 
 def immersed_range(profile: BasicCurve, draft: float, samples: int = 2001) -> tuple[float, float]:
     """The x range where the centre profile is below the draft (the DWL's range): one interval,
-    its ends found by bisection to round-off."""
+    its ends found by bisection to round-off. Kept on the profile (a solved curve does not
+    change): the designer and the hull's builds ask for it again and again. Raises
+    InfeasibleFormParameters when the profile is nowhere below the draft, or rises above it
+    between two immersed parts."""
+    known = profile.__dict__.setdefault("_immersed", {})
+    if (draft, samples) not in known:
+        known[(draft, samples)] = _immersed_range(profile, draft, samples)
+    return known[(draft, samples)]
+
+
+def _immersed_range(profile: BasicCurve, draft: float, samples: int) -> tuple[float, float]:
     xs = np.linspace(profile.x_start, profile.x_end, samples)
     below = profile(xs) < draft
     if not below.any():

@@ -29,13 +29,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field, replace
+from functools import lru_cache
 
 import numpy as np
 
 from . import _native
 from .basic_curves import immersed_range, solve_curve
 from .bulb import KRACHT_NAMES
-from .description import BasicCurveSpec
+from .description import BasicCurveSpec, HullDescription
 from .hull import Hull
 
 __all__ = ["Particulars", "design_hull", "design_description", "match_targets", "RANGES"]
@@ -78,6 +79,7 @@ MATCH_TOL = 1e-6            # relative tolerance of volume, LCB (on Lpp) and wat
 MATCH_ITERATIONS = 6
 MATCH_GAUSS = 4             # Gauss points per span of the matching hydrostatics: 1e-11 of the 8-point volume, twice as fast
 PROFILE_SPANS = (30, 60, 120)  # knot spans of the profile, tried in turn
+_GAUSS8 = np.polynomial.legendre.leggauss(8)  # the natural fullness's quadrature
 BULB_AFT_LENGTH = 2.6       # the bulb runs on into the hull this many times L_PR + B_B (the bulb's own default is 2)
 
 
@@ -209,7 +211,7 @@ def natural_fullness(p: Particulars, c: dict, dwl, profile, xa: float, xf: float
     """Section fullness Cm - (Cm - s_aft) g_aft(x) - (Cm - s_fore) g_fore(x) with the end
     fullness s_aft, s_fore that give the volume and the LCB (two linear conditions on the
     box 2 y_dwl (T - z_keel)), kept inside FULLNESS_LIMITS. Returns (x, fullness)."""
-    g, w = np.polynomial.legendre.leggauss(8)
+    g, w = _GAUSS8
     br = np.linspace(xa, xf, 161)
     a, b = br[:-1, None], br[1:, None]
     x = (0.5 * (a + b) + 0.5 * (b - a) * g).ravel()
@@ -334,14 +336,19 @@ def design_description(p: Particulars) -> dict:
         # bulb: True, Kracht coefficients, or a whole "bulb" section ({"kracht": ..., "shape": ...})
         given = dict(p.bulb) if isinstance(p.bulb, dict) else {}
         section = given if {"kracht", "shape"} & set(given) else {"kracht": given}
-        engine = _native.KrachtCoefficients()
-        defaults = {k: getattr(engine, k) for k in KRACHT_NAMES}
-        kracht = {**defaults, **section.get("kracht", {})}
+        kracht = {**_kracht_defaults(), **section.get("kracht", {})}
         shape = dict(section.get("shape", {}))
         # the bulb's constant aft part reaches back to where the forefoot is wide enough to take it
         shape.setdefault("aft_length", BULB_AFT_LENGTH * (kracht["c_lpr"] * L + kracht["c_bb"] * B))
         desc["bulb"] = {**section, "kracht": kracht, "shape": shape}
     return desc
+
+
+@lru_cache(maxsize=1)
+def _kracht_defaults() -> dict:
+    """The engine's default Kracht coefficients (fl.KrachtCoefficients), read once."""
+    engine = _native.KrachtCoefficients()
+    return {k: getattr(engine, k) for k in KRACHT_NAMES}
 
 
 def _particulars(kwargs: dict) -> Particulars:
@@ -407,7 +414,7 @@ def design_hull(particulars: Particulars | None = None, **kwargs) -> Hull:
 
 def _try_design(p: Particulars) -> tuple[Hull | None, Exception | None]:
     try:
-        hull = Hull.from_json(design_description(p))
+        hull = Hull(HullDescription.from_dict(design_description(p)))  # a fresh dict: no defensive copy
         match_targets(hull)
         return hull, None
     except _native.InfeasibleFormParameters as exc:

@@ -25,6 +25,7 @@ from typing import Any
 import numpy as np
 
 from . import _native
+from . import basic_curves as _basic_curves
 from .basic_curves import BasicCurve, immersed_range, solve_curve, solve_sac
 from .description import FORM_ALIASES, FORM_KEYS, BasicCurveSpec, HullDescription, load_description
 from .hydrostatics_surface import hydrostatics
@@ -91,6 +92,7 @@ def _clear_build_caches() -> None:
     """Forget every cached build step (tests compare cold and warm builds)."""
     _shape_cache.clear()
     _band_cache.clear()
+    _basic_curves._curve_cache.clear()
 
 
 def station_positions(x_aft: float, x_fore: float, count: int, junctions: list[float] = ()) -> np.ndarray:

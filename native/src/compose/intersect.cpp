@@ -10,6 +10,7 @@
 
 #include "fairlines/errors.hpp"
 #include "nurbs/checks.hpp"
+#include "nurbs/knot_refinement.hpp"
 
 namespace fairlines {
 
@@ -77,6 +78,70 @@ Eigen::VectorXd bezier_insertions(const Eigen::VectorXd& k, int p, int extra, st
   return out;
 }
 
+/// The Bezier patches' control points of `s` refined by the knots iu (along u) and iv (along
+/// v), one u strip at a time (the whole refined net is megabytes; a strip, kilobytes). The
+/// values are those of s.refine_knots(U, iu).refine_knots(V, iv).control_points(), bit for
+/// bit: each line a non-rational 4-D curve of the homogeneous net with a weight of its own
+/// (1, refined with it and divided out), and a surface again between the two steps.
+class RefinedNet {
+ public:
+  RefinedNet(const NurbsSurface& s, const Eigen::VectorXd& iu, const Eigen::VectorXd& iv)
+      : s_(s), iv_(iv), nv_(s.nv()), P_(s.control_points()), pw_(s.homogeneous()) {
+    if (!iu.size()) return;
+    detail::RowMatrix A(s.nu(), nv_ * kW);  // lines of u: row i, line j
+    for (int i = 0; i < s.nu(); ++i)
+      for (int j = 0; j < nv_; ++j) {
+        for (int c = 0; c < 4; ++c) A(i, j * kW + c) = pw_(i * nv_ + j, c);
+        A(i, j * kW + 4) = 1.0;
+      }
+    A = detail::refine_rows(s.degree_u(), s.knots_u(), iu, A).first;
+    P_.resize(A.rows() * nv_, 3);
+    pw_.resize(A.rows() * nv_, 4);
+    for (Eigen::Index i = 0; i < A.rows(); ++i)
+      for (int j = 0; j < nv_; ++j) {
+        double q[4];
+        for (int c = 0; c < 4; ++c) q[c] = A(i, j * kW + c) / A(i, j * kW + 4);
+        for (int c = 0; c < 3; ++c) P_(i * nv_ + j, c) = q[c] / q[3], pw_(i * nv_ + j, c) = P_(i * nv_ + j, c) * q[3];
+        pw_(i * nv_ + j, 3) = q[3];
+      }
+  }
+
+  /// Control points of rows first .. first + count - 1 of the refined net: strip(r, j) a
+  /// point (count x nv_out, 3 columns per row).
+  Eigen::MatrixXd strip(int first, int count, int& nv_out) const {
+    if (!iv_.size()) {
+      nv_out = nv_;
+      Eigen::MatrixXd out(count, 3 * nv_);
+      for (int r = 0; r < count; ++r)
+        for (int j = 0; j < nv_; ++j) out.block(r, 3 * j, 1, 3) = P_.row((first + r) * nv_ + j);
+      return out;
+    }
+    detail::RowMatrix B(nv_, count * kW);  // lines of v: row j, line r
+    for (int r = 0; r < count; ++r)
+      for (int j = 0; j < nv_; ++j) {
+        for (int c = 0; c < 4; ++c) B(j, r * kW + c) = pw_((first + r) * nv_ + j, c);
+        B(j, r * kW + 4) = 1.0;
+      }
+    B = detail::refine_rows(s_.degree_v(), s_.knots_v(), iv_, B).first;
+    nv_out = static_cast<int>(B.rows());
+    Eigen::MatrixXd out(count, 3 * nv_out);
+    for (int r = 0; r < count; ++r)
+      for (int j = 0; j < nv_out; ++j) {
+        double q[4];
+        for (int c = 0; c < 4; ++c) q[c] = B(j, r * kW + c) / B(j, r * kW + 4);
+        for (int c = 0; c < 3; ++c) out(r, 3 * j + c) = q[c] / q[3];
+      }
+    return out;
+  }
+
+ private:
+  static constexpr int kW = 5;  // x w, y w, z w, w and the line curve's own weight
+  const NurbsSurface& s_;
+  const Eigen::VectorXd& iv_;
+  int nv_;
+  Eigen::MatrixXd P_, pw_;  // the net after the u step, rows i nv + j
+};
+
 std::vector<Box> patch_boxes(const NurbsSurface& s0, int extra) {
   const int pu = s0.degree_u(), pv = s0.degree_v();
   if (!clamped(s0.knots_u(), pu) || !clamped(s0.knots_v(), pv))
@@ -84,19 +149,18 @@ std::vector<Box> patch_boxes(const NurbsSurface& s0, int extra) {
   std::vector<double> bu, bv;
   const Eigen::VectorXd iu = bezier_insertions(s0.knots_u(), pu, extra, bu);
   const Eigen::VectorXd iv = bezier_insertions(s0.knots_v(), pv, extra, bv);
-  NurbsSurface s = iu.size() ? s0.refine_knots(Direction::U, iu) : s0;
-  if (iv.size()) s = s.refine_knots(Direction::V, iv);
-  const int nv = s.nv();
-  const Eigen::MatrixXd& P = s.control_points();
+  const RefinedNet net(s0, iu, iv);
   std::vector<Box> boxes;
-  for (size_t i = 0; i + 1 < bu.size(); ++i)
+  for (size_t i = 0; i + 1 < bu.size(); ++i) {
+    int nv = 0;
+    const Eigen::MatrixXd P = net.strip(static_cast<int>(i) * pu, pu + 1, nv);
     for (size_t j = 0; j + 1 < bv.size(); ++j) {
       Box bx;
       bx.lo.setConstant(1e300);
       bx.hi.setConstant(-1e300);
       for (int r = 0; r <= pu; ++r)
         for (int c = 0; c <= pv; ++c) {
-          const Eigen::Vector3d q = P.row((static_cast<int>(i) * pu + r) * nv + static_cast<int>(j) * pv + c);
+          const Eigen::Vector3d q = P.block(r, 3 * (static_cast<int>(j) * pv + c), 1, 3).transpose();
           bx.lo = bx.lo.cwiseMin(q);
           bx.hi = bx.hi.cwiseMax(q);
         }
@@ -104,6 +168,7 @@ std::vector<Box> patch_boxes(const NurbsSurface& s0, int extra) {
       bx.uhi = {bu[i + 1], bv[j + 1]};
       boxes.push_back(bx);
     }
+  }
   return boxes;
 }
 

@@ -185,11 +185,35 @@ double mesh_area(const TriMesh& mesh) {
 
 long orient_consistently(TriMesh& mesh) {
   const Eigen::Index m = mesh.faces.rows();
-  std::unordered_map<std::uint64_t, std::vector<int>> edge_faces;
-  edge_faces.reserve(static_cast<size_t>(m) * 2);
+  // The faces on each undirected edge, in face order: (edge, face, side) sorted, then each
+  // face side's run of equal edges (one sort instead of a hash map of vectors).
+  struct Side {
+    std::uint64_t edge;
+    int face, side;
+  };
+  std::vector<Side> sides(static_cast<size_t>(m) * 3);
   for (Eigen::Index f = 0; f < m; ++f)
     for (int k = 0; k < 3; ++k)
-      edge_faces[edge_key(mesh.faces(f, k), mesh.faces(f, (k + 1) % 3))].push_back(static_cast<int>(f));
+      sides[f * 3 + k] = {edge_key(mesh.faces(f, k), mesh.faces(f, (k + 1) % 3)), static_cast<int>(f), k};
+  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
+    return x.edge != y.edge ? x.edge < y.edge : x.face != y.face ? x.face < y.face : x.side < y.side;
+  });
+  std::vector<std::pair<int, int>> run_of(sides.size());  // (first, count) in sides of each face side's edge
+  for (size_t i = 0; i < sides.size();) {
+    size_t j = i;
+    while (j < sides.size() && sides[j].edge == sides[i].edge) ++j;
+    for (size_t r = i; r < j; ++r)
+      run_of[static_cast<size_t>(sides[r].face) * 3 + sides[r].side] = {static_cast<int>(i), static_cast<int>(j - i)};
+    i = j;
+  }
+  // A flipped face lists its edges in another order: find the side by its edge.
+  std::vector<std::uint64_t> side_edge(sides.size());
+  for (const Side& x : sides) side_edge[static_cast<size_t>(x.face) * 3 + x.side] = x.edge;
+  auto edge_run = [&](int f, std::uint64_t e) {
+    int k = 0;
+    while (k < 2 && side_edge[static_cast<size_t>(f) * 3 + k] != e) ++k;
+    return run_of[static_cast<size_t>(f) * 3 + k];
+  };
   auto directed = [&](int f, int a, int b) {  // does face f traverse a -> b ?
     for (int k = 0; k < 3; ++k)
       if (mesh.faces(f, k) == a && mesh.faces(f, (k + 1) % 3) == b) return true;
@@ -207,9 +231,9 @@ long orient_consistently(TriMesh& mesh) {
       q.pop();
       for (int k = 0; k < 3; ++k) {
         const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
-        const auto& nb = edge_faces[edge_key(a, b)];
-        if (nb.size() != 2) continue;
-        const int g = nb[0] == f ? nb[1] : nb[0];
+        const auto [first, count] = edge_run(f, edge_key(a, b));
+        if (count != 2) continue;
+        const int g = sides[first].face == f ? sides[first + 1].face : sides[first].face;
         if (seen[g]) continue;
         seen[g] = 1;
         if (directed(g, a, b)) {  // same direction: flip g

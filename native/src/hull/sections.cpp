@@ -113,6 +113,13 @@ std::string fmt(double v) { return detail::format_number(v, 6); }
 struct Layout {
   int n = 0;
   Eigen::VectorXd U, g;
+  /// Basis rows (value N, first derivative dN) at the kAreaGauss points of each whole knot
+  /// span [a, b]: the area row's quadrature, the same for every section.
+  struct SpanRows {
+    double a, b;
+    std::vector<Eigen::RowVectorXd> N, dN;
+  };
+  std::vector<SpanRows> span_rows;
 };
 
 Layout make_layout(int n) {
@@ -122,6 +129,17 @@ Layout make_layout(int n) {
   l.n = n;
   l.U = clamped_uniform_knots(n, kDegree);
   l.g = greville_abscissae(l.U, kDegree);
+  const auto& gr = detail::gauss_rule(kAreaGauss);
+  for (int i = kDegree; i < n; ++i) {
+    if (!(l.U[i + 1] > l.U[i])) continue;
+    const double h = 0.5 * (l.U[i + 1] - l.U[i]), m = 0.5 * (l.U[i + 1] + l.U[i]);
+    Layout::SpanRows& rows = l.span_rows.emplace_back(Layout::SpanRows{l.U[i], l.U[i + 1], {}, {}});
+    for (std::size_t q = 0; q < gr.x.size(); ++q) {
+      const double t = m + h * gr.x[q];
+      rows.N.push_back(basis_row(l.U, kDegree, t));
+      rows.dN.push_back(basis_row(l.U, kDegree, t, 1));
+    }
+  }
   return l;
 }
 
@@ -388,9 +406,14 @@ std::pair<Eigen::RowVectorXd, double> area_row(const Section& S) {
   if (br.back() < 1.0) br.push_back(1.0);
   for (std::size_t k = 0; k + 1 < br.size(); ++k) {
     const double h = 0.5 * (br[k + 1] - br[k]), m = 0.5 * (br[k + 1] + br[k]);
+    const auto whole = std::find_if(S.l.span_rows.begin(), S.l.span_rows.end(),
+                                    [&](const Layout::SpanRows& r) { return r.a == br[k] && r.b == br[k + 1]; });
+    Eigen::RowVectorXd Nt, dNt;
     for (std::size_t q = 0; q < gr.x.size(); ++q) {
       const double t = m + h * gr.x[q], wq = gr.w[q] * h;
-      const Eigen::RowVectorXd N = basis_row(S.l.U, kDegree, t), dN = basis_row(S.l.U, kDegree, t, 1);
+      if (whole == S.l.span_rows.end()) Nt = basis_row(S.l.U, kDegree, t), dNt = basis_row(S.l.U, kDegree, t, 1);
+      const Eigen::RowVectorXd& N = whole == S.l.span_rows.end() ? Nt : whole->N[q];
+      const Eigen::RowVectorXd& dN = whole == S.l.span_rows.end() ? dNt : whole->dN[q];
       c += wq * f.L * DxD;
       row += wq * (DxN * dN + dxn * (f.L * t * dN - f.L * N));
     }

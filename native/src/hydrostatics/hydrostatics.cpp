@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -19,6 +20,7 @@ namespace {
 using detail::fail;
 
 constexpr int kClipSamples = 8;        // samples per knot span when looking for draft crossings
+constexpr long kGridLines = 8;         // u lines per batch of highest_point's grid evaluation
 constexpr int kBisection = 60;         // bisection steps (interval shrinks below 1e-16 of the span)
 // A waterplane this far (relative) above the surface's sampled top still counts as at the top.
 constexpr double kAboveTopTolerance = 1e-9;
@@ -320,11 +322,18 @@ double highest_point(const NurbsSurface& s) {
     return t;
   };
   const std::vector<double> us = refine(bu), vs = refine(bv);
-  // One batched grid evaluation (basis functions per line, not per point): this runs on
-  // every hydrostatics call.
-  const Eigen::Map<const Eigen::VectorXd> mu(us.data(), static_cast<Eigen::Index>(us.size()));
-  const Eigen::Map<const Eigen::VectorXd> mv(vs.data(), static_cast<Eigen::Index>(vs.size()));
-  return s.evaluate_grid(mu, mv).col(2).maxCoeff();
+  // Batched grid evaluation (basis functions per line, not per point), a few u lines at a
+  // time into one small buffer: this runs on every hydrostatics call, and the whole grid
+  // (~70 000 points) would be megabytes allocated and faulted in each time.
+  const long n_u = static_cast<long>(us.size()), n_v = static_cast<long>(vs.size());
+  std::vector<double> pts(static_cast<std::size_t>(kGridLines * n_v * 3));
+  double top = -std::numeric_limits<double>::infinity();
+  for (long a = 0; a < n_u; a += kGridLines) {
+    const long lines = std::min(kGridLines, n_u - a);
+    s.evaluate_grid_into(us.data() + a, lines, vs.data(), n_v, pts.data());
+    for (long k = 0; k < lines * n_v; ++k) top = std::max(top, pts[3 * k + 2]);
+  }
+  return top;
 }
 
 void check_options(const HydrostaticsOptions& o) {

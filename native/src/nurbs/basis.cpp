@@ -1,6 +1,7 @@
 #include "fairlines/basis.hpp"
 
 #include <algorithm>
+#include <array>
 #include <vector>
 
 namespace fairlines {
@@ -56,11 +57,13 @@ void basis_functions(int span, double t, int degree, const Eigen::VectorXd& knot
   basis_functions(span, t, degree, knots.data(), N);
 }
 
-void basis_derivatives(int span, double t, int p, int n, const Eigen::VectorXd& knots,
-                       Eigen::Ref<Eigen::MatrixXd> ders) {
-  const double* U = knots.data();
-  Eigen::MatrixXd ndu(p + 1, p + 1);
-  std::vector<double> left(p + 1), right(p + 1);
+namespace {
+
+/// Piegl & Tiller A2.3 with its scratch (ndu: (p+1)^2, a: 2 x (p+1), left and right: p+1)
+/// passed in, so that low degrees keep it on the stack.
+template <typename Scratch>
+void basis_derivatives_with(int span, double t, int p, int n, const double* U, Eigen::Ref<Eigen::MatrixXd> ders,
+                            Scratch& ndu, Scratch& a, double* left, double* right) {
   ndu(0, 0) = 1.0;
   for (int j = 1; j <= p; ++j) {
     left[j] = t - U[span + 1 - j];
@@ -77,7 +80,6 @@ void basis_derivatives(int span, double t, int p, int n, const Eigen::VectorXd& 
   ders.setZero();
   for (int j = 0; j <= p; ++j) ders(0, j) = ndu(j, p);
   const int nmax = std::min(n, p);
-  Eigen::MatrixXd a(2, p + 1);
   for (int r = 0; r <= p; ++r) {
     int s1 = 0, s2 = 1;
     a.setZero();
@@ -108,6 +110,23 @@ void basis_derivatives(int span, double t, int p, int n, const Eigen::VectorXd& 
     for (int j = 0; j <= p; ++j) ders(k, j) *= factor;
     factor *= (p - k);
   }
+}
+
+}  // namespace
+
+void basis_derivatives(int span, double t, int p, int n, const Eigen::VectorXd& knots,
+                       Eigen::Ref<Eigen::MatrixXd> ders) {
+  constexpr int kStackDegree = 7;  // degrees up to this one work without heap allocation
+  if (p <= kStackDegree) {
+    using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kStackDegree + 1, kStackDegree + 1>;
+    Small ndu(p + 1, p + 1), a(2, p + 1);
+    std::array<double, kStackDegree + 1> left{}, right{};
+    basis_derivatives_with(span, t, p, n, knots.data(), ders, ndu, a, left.data(), right.data());
+    return;
+  }
+  Eigen::MatrixXd ndu(p + 1, p + 1), a(2, p + 1);
+  std::vector<double> left(p + 1), right(p + 1);
+  basis_derivatives_with(span, t, p, n, knots.data(), ders, ndu, a, left.data(), right.data());
 }
 
 Eigen::RowVectorXd basis_row(const Eigen::VectorXd& knots, int degree, double t, int order) {

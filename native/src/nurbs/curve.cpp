@@ -9,6 +9,7 @@
 #include <Eigen/SparseLU>
 
 #include "checks.hpp"
+#include "knot_refinement.hpp"
 #include "fairlines/basis.hpp"
 #include "fairlines/knots.hpp"
 #include "homogeneous.hpp"
@@ -237,43 +238,8 @@ NurbsCurve NurbsCurve::refine_knots(const Eigen::VectorXd& X_in) const {
   const auto [a0, b0] = domain();
   if (X[0] < a0 || X[X.size() - 1] > b0)
     fail("new_knots span [", X[0], ", ", X[X.size() - 1], "] outside the domain [", a0, ", ", b0, "]");
-  // P&T A5.4 on homogeneous points.
-  const int p = degree_, n = n_control() - 1, m = n + p + 1, r = static_cast<int>(X.size()) - 1;
-  const Eigen::MatrixXd Pw = homogeneous();
-  const Eigen::VectorXd& U = knots_;
-  const int aa = find_span(p, U, X[0]);
-  int bb = find_span(p, U, X[r]);
-  // find_span returns the span containing X[r]; A5.4 wants the span after it.
-  bb = bb + 1;
-  Eigen::MatrixXd Qw(n + r + 2, Pw.cols());
-  Eigen::VectorXd Ubar(m + r + 2);
-  for (int j = 0; j <= aa - p; ++j) Qw.row(j) = Pw.row(j);
-  for (int j = bb - 1; j <= n; ++j) Qw.row(j + r + 1) = Pw.row(j);
-  for (int j = 0; j <= aa; ++j) Ubar[j] = U[j];
-  for (int j = bb + p; j <= m; ++j) Ubar[j + r + 1] = U[j];
-  int i = bb + p - 1, k = bb + p + r;
-  for (int j = r; j >= 0; --j) {
-    while (X[j] <= U[i] && i > aa) {
-      Qw.row(k - p - 1) = Pw.row(i - p - 1);
-      Ubar[k] = U[i];
-      --k;
-      --i;
-    }
-    Qw.row(k - p - 1) = Qw.row(k - p);
-    for (int l = 1; l <= p; ++l) {
-      const int ind = k - p + l;
-      double alfa = Ubar[k + l] - X[j];
-      if (std::abs(alfa) == 0.0) {
-        Qw.row(ind - 1) = Qw.row(ind);
-      } else {
-        alfa = alfa / (Ubar[k + l] - U[i - p + l]);
-        Qw.row(ind - 1) = alfa * Qw.row(ind - 1) + (1.0 - alfa) * Qw.row(ind);
-      }
-    }
-    Ubar[k] = X[j];
-    --k;
-  }
-  return from_homogeneous(p, Ubar, Qw);
+  auto [Qw, Ubar] = detail::refine_rows(degree_, knots_, X, homogeneous());
+  return from_homogeneous(degree_, std::move(Ubar), Qw);
 }
 
 NurbsCurve NurbsCurve::split_range(double a, double b) const {

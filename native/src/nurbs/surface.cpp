@@ -9,6 +9,7 @@
 
 #include "basis_table.hpp"
 #include "checks.hpp"
+#include "knot_refinement.hpp"
 #include "fairlines/basis.hpp"
 #include "fairlines/knots.hpp"
 #include "homogeneous.hpp"
@@ -720,7 +721,35 @@ NurbsSurface NurbsSurface::insert_knot(Direction dir, double t, int times) const
 }
 
 NurbsSurface NurbsSurface::refine_knots(Direction dir, const Eigen::VectorXd& X) const {
-  return map_lines(*this, dir, [&](const NurbsCurve& c) { return c.refine_knots(X); });
+  if (X.size() == 0) return map_lines(*this, dir, [&](const NurbsCurve& c) { return c.refine_knots(X); });
+  detail::require_finite(X, "new_knots");
+  const bool along_u = (dir == Direction::U);
+  const auto [a0, b0] = along_u ? domain_u() : domain_v();
+  if (X.minCoeff() < a0 || X.maxCoeff() > b0)
+    fail("new_knots span [", X.minCoeff(), ", ", X.maxCoeff(), "] outside the domain [", a0, ", ", b0, "]");
+  // Every line at once: row k holds point k of each line as the line curve of map_lines has
+  // it (a non-rational 4-D curve of the homogeneous net, with a weight of its own, 1), so the
+  // result is that of refining the lines one by one, bit for bit, without a curve per line.
+  constexpr int W = 5;
+  const int lines = along_u ? nv_ : nu_, len = along_u ? nu_ : nv_;
+  detail::RowMatrix A(len, static_cast<Eigen::Index>(lines) * W);
+  for (int k = 0; k < len; ++k)
+    for (int l = 0; l < lines; ++l) {
+      const size_t idx = along_u ? static_cast<size_t>(k) * nv_ + l : static_cast<size_t>(l) * nv_ + k;
+      for (int c = 0; c < 4; ++c) A(k, l * W + c) = pw_[idx * 4 + c];
+      A(k, l * W + 4) = 1.0;
+    }
+  auto [Q, knots] = detail::refine_rows(along_u ? pu_ : pv_, along_u ? ku_ : kv_, X, A);
+  const int new_len = static_cast<int>(Q.rows());
+  const int nu2 = along_u ? new_len : nu_, nv2 = along_u ? nv_ : new_len;
+  Eigen::MatrixXd pw2(static_cast<Eigen::Index>(nu2) * nv2, 4);
+  for (int k = 0; k < new_len; ++k)
+    for (int l = 0; l < lines; ++l) {
+      const Eigen::Index row = along_u ? static_cast<Eigen::Index>(k) * nv2 + l : static_cast<Eigen::Index>(l) * nv2 + k;
+      for (int c = 0; c < 4; ++c) pw2(row, c) = Q(k, l * W + c) / Q(k, l * W + 4);
+    }
+  if (along_u) return from_homogeneous(pu_, pv_, std::move(knots), kv_, nu2, nv2, pw2);
+  return from_homogeneous(pu_, pv_, ku_, std::move(knots), nu2, nv2, pw2);
 }
 
 NurbsSurface NurbsSurface::elevate_degree(Direction dir, int times) const {

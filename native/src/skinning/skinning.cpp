@@ -3,9 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <set>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -556,6 +561,46 @@ Eigen::VectorXd longitudinal_knots(const Eigen::VectorXd& v, const SkinOptions& 
   return Eigen::Map<Eigen::VectorXd>(kv.data(), static_cast<Eigen::Index>(kv.size()));
 }
 
+/// Recent factorisations of the longitudinal KKT matrix, kept by its exact value: a hull
+/// rebuilt with only its sections' offsets changed (the designer's match loop, a slider) has
+/// the same stations, knots and held runs, so the same matrix. A hit returns the factorisation
+/// a miss would compute from those very bytes, so the solution is bit for bit the same.
+class KktCache {
+ public:
+  static constexpr std::size_t kSize = 16;  ///< matrices kept (a hull has a few column groups)
+
+  std::shared_ptr<const Eigen::FullPivLU<Eigen::MatrixXd>> get(const Eigen::MatrixXd& K) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      for (auto it = entries_.begin(); it != entries_.end(); ++it)
+        if (same(it->first, K)) {
+          auto hit = *it;
+          entries_.erase(it);
+          entries_.insert(entries_.begin(), hit);
+          return hit.second;
+        }
+    }
+    auto lu = std::make_shared<const Eigen::FullPivLU<Eigen::MatrixXd>>(K);
+    const std::lock_guard<std::mutex> lock(mutex_);
+    entries_.insert(entries_.begin(), {K, lu});
+    if (entries_.size() > kSize) entries_.pop_back();
+    return lu;
+  }
+
+ private:
+  static bool same(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+    return a.rows() == b.rows() && a.cols() == b.cols() &&
+           std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+  }
+  std::mutex mutex_;
+  std::vector<std::pair<Eigen::MatrixXd, std::shared_ptr<const Eigen::FullPivLU<Eigen::MatrixXd>>>> entries_;
+};
+
+KktCache& kkt_cache() {
+  static KktCache cache;
+  return cache;
+}
+
 /// The longitudinal least-squares problem shared by every column: objective
 /// 1/2 c' H c - b' c with constraints C c = e. Interpolate: H = 2 G, C = [Nv; ends],
 /// e = [data; 0]. Approximate: H = (2/q) Nv'Nv + 2 lam G, b = (2/q) Nv' data, C = ends.
@@ -641,8 +686,8 @@ struct LongitudinalSystem {
         rhs(nf + r, c) = cs * ((dr >= 0 ? data(dr, col) : 0.0) - crow[keep[r]].dot(hv));
       }
     }
-    const Eigen::FullPivLU<Eigen::MatrixXd> lu(K);
-    const Eigen::MatrixXd sol = lu.solve(rhs);
+    const auto lu = kkt_cache().get(K);
+    const Eigen::MatrixXd sol = lu->solve(rhs);
     // A singular system shows as a residual the solve cannot remove (the pivot-based rank is
     // unreliable here: E3 and interpolation rows differ by many orders of magnitude).
     if (!sol.allFinite() || (K * sol - rhs).norm() > 1e-10 * (K.norm() * sol.norm() + rhs.norm())) singular();
