@@ -155,6 +155,16 @@ void bind_compose(py::module_& m) {
       },
       "a"_a, "b"_a, "options"_a = IntersectOptions{});
 
+  m.def(
+      "_bulb_section_fullness",
+      [](const KrachtCoefficients& k, const ShipParticulars& ship) {
+        const SectionFullness f = bulb_section_fullness(k, ship);
+        return py::make_tuple(f.kappa, f.lo, f.hi);
+      },
+      "kracht"_a, "ship"_a,
+      "(A_BT / (B_B H) the coefficients ask of the bulb's sections, least and largest a section can have); "
+      "scales as 1 / c_abl (see bulb.hpp).");
+
   py::class_<BulbousBow>(m, "_BulbousBow")
       .def(py::init(&make_bulbous_bow), "kracht"_a, "ship"_a, "options"_a = BulbOptions{})
       .def_property_readonly("surface", [](const BulbousBow& b) { return b.surface; })

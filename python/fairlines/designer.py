@@ -34,6 +34,7 @@ from functools import lru_cache
 import numpy as np
 
 from . import _native
+from ._options import fill_options
 from .basic_curves import immersed_range, solve_curve
 from .bulb import KRACHT_NAMES
 from .description import BasicCurveSpec, HullDescription
@@ -80,6 +81,7 @@ MATCH_ITERATIONS = 6
 MATCH_GAUSS = 4             # Gauss points per span of the matching hydrostatics: 1e-11 of the 8-point volume, twice as fast
 PROFILE_SPANS = (30, 60, 120)  # knot spans of the profile, tried in turn
 _GAUSS8 = np.polynomial.legendre.leggauss(8)  # the natural fullness's quadrature
+BULB_FULLNESS_MARGIN = 0.1  # the designer's bulb sections keep this fraction of their fullness range from its ends
 BULB_AFT_LENGTH = 2.6       # the bulb runs on into the hull this many times L_PR + B_B (the bulb's own default is 2)
 
 
@@ -337,11 +339,28 @@ def design_description(p: Particulars) -> dict:
         given = dict(p.bulb) if isinstance(p.bulb, dict) else {}
         section = given if {"kracht", "shape"} & set(given) else {"kracht": given}
         kracht = {**_kracht_defaults(), **section.get("kracht", {})}
+        if "c_abl" not in section.get("kracht", {}):
+            kracht["c_abl"] = _fitting_lateral_area(p, c, kracht)
         shape = dict(section.get("shape", {}))
         # the bulb's constant aft part reaches back to where the forefoot is wide enough to take it
         shape.setdefault("aft_length", BULB_AFT_LENGTH * (kracht["c_lpr"] * L + kracht["c_bb"] * B))
         desc["bulb"] = {**section, "kracht": kracht, "shape": shape}
     return desc
+
+
+def _fitting_lateral_area(p: Particulars, c: dict, kracht: dict) -> float:
+    """c_abl for the designer's bulb: the default, unless it asks the bulb's sections for a
+    fullness A_BT / (B_B H) outside the middle of what a bulb section can have (a short, beamy
+    ship or a long, slender one); then the c_abl whose height H gives the nearest fullness inside
+    it. The ship is estimated from the particulars (A_MS = Cm B T, V = Cb Lpp B T)."""
+    ship = fill_options(_native.BulbShip, "bulb ship", dict(
+        lpp=p.lpp, beam=p.breadth, draft_fp=p.draft, midship_area=c["cm"] * p.breadth * p.draft,
+        displacement_volume=p.cb * p.lpp * p.breadth * p.draft))
+    k = fill_options(_native.KrachtCoefficients, "bulb", kracht)
+    kappa, lo, hi = _native._bulb_section_fullness(k, ship)
+    margin = BULB_FULLNESS_MARGIN * (hi - lo)
+    target = min(max(kappa, lo + margin), hi - margin)
+    return float(kracht["c_abl"]) if target == kappa else float(kracht["c_abl"] * kappa / target)
 
 
 @lru_cache(maxsize=1)

@@ -184,6 +184,33 @@ def test_latin_hypercube_with_a_given_parallel_body_and_bulb_all_builds():
     assert _failures(ships) == []
 
 
+@pytest.mark.parametrize("p", [
+    dict(lpp=150.0, breadth=36.701, draft=11.138, depth=17.821, cb=0.641, lcb=77.56),  # L/B 4.1: beamy
+    dict(lpp=150.0, breadth=16.714, draft=5.82, depth=9.312, cb=0.774, lcb=70.381),  # L/B 9.0: slender
+])
+def test_a_designed_bulb_fits_short_beamy_and_long_slender_ships(p):
+    """The default Kracht coefficients ask a short, beamy ship's bulb for sections fuller than
+    a superellipse can be (and a long, slender one's for sections too lean); the designer sizes
+    the bulb's lateral area to the nearest it can have, and the ship composes watertight with
+    its bulb and blend."""
+    c = fl.design_hull(**p, bulb=True).composed_hull()
+    assert edge_census(c.mesh.faces) == (0, 0, 0)
+    assert c.blend is not None
+
+
+@pytest.mark.xfail(strict=True, reason="2 of 40 (L/B 7.1, B/T 2.8, Cb 0.63) are refused: the bulb meets the hull "
+                                       "in two curves")
+def test_latin_hypercube_with_bulbs_all_compose():
+    """Every designed ship of the space with a bulb composes: bare hull, bulb and blend."""
+    fails = []
+    for p in _space_sample(40, 7):
+        try:
+            fl.design_hull(**p, bulb=True).composed_hull()
+        except fl.InvalidInput as e:
+            fails.append((p, str(e)[:80]))
+    assert fails == []
+
+
 def test_a_fine_ship_with_a_short_parallel_body_and_lcb_at_midships_builds():
     """Cb 0.50 with 6 m of parallel body and the LCB at midships: the default immersed transom
     (0.7 B/2) leaves the ends too full for the LCB; the designer narrows it."""

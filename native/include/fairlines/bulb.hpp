@@ -64,4 +64,14 @@ struct BulbousBow {
 BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& ship,
                             const BulbOptions& options = {});
 
+/// The section fullness A_BT / (B_B H) the coefficients ask of the bulb's sections (H from
+/// c_abl through the nose shape), and the range [lo, hi] a bulb section can have (superellipse
+/// exponents kSectionExponentMin .. kExponentMax). It scales as 1 / c_abl: c_abl kappa / k
+/// gives fullness k. Throws InvalidInput as make_bulbous_bow does for bad values and
+/// InfeasibleFormParameters when c_vpr, c_abt and c_lpr leave no nose shape.
+struct SectionFullness {
+  double kappa, lo, hi;
+};
+SectionFullness bulb_section_fullness(const KrachtCoefficients& k, const ShipParticulars& ship);
+
 }  // namespace fairlines

@@ -62,21 +62,18 @@ constexpr double kSectionExponentMin = 1.6;  // sections: below, a diamond a fai
 
 }  // namespace
 
-BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& ship, const BulbOptions& o) {
+namespace {
+
+void require_coefficients(const KrachtCoefficients& k, const ShipParticulars& ship) {
   detail::require_positive({{ship.lpp, "lpp"}, {ship.beam, "beam"}, {ship.draft_fp, "draft_fp"},
                             {ship.midship_area, "midship_area"}, {ship.displacement_volume, "displacement_volume"}});
   detail::require_positive({{k.c_lpr, "c_lpr"}, {k.c_bb, "c_bb"}, {k.c_zb, "c_zb"}, {k.c_abt, "c_abt"},
                             {k.c_abl, "c_abl"}, {k.c_vpr, "c_vpr"}});
-  detail::require_finite(o.nose_height_shift, "nose_height_shift");
-  if (o.aft_length < 0.0 || !std::isfinite(o.aft_length))
-    detail::fail("aft_length is ", o.aft_length, "; expected >= 0 metres (0: twice protrusion + breadth)");
-  if (o.sections < 8) detail::fail("sections is ", o.sections, "; expected >= 8");
-  if (o.section_points < 8) detail::fail("section_points is ", o.section_points, "; expected >= 8");
-  if (o.control_u < 4 || o.control_u > o.sections)
-    detail::fail("control_u is ", o.control_u, "; expected 4 <= control_u <= sections (", o.sections, ")");
-  if (o.control_v < 4 || o.control_v > o.section_points)
-    detail::fail("control_v is ", o.control_v, "; expected 4 <= control_v <= section_points (", o.section_points, ")");
+}
 
+/// The requested dimensions, the nose exponent m from the volume and the section height H from
+/// the lateral area (the section exponent is left to the caller).
+BulbShape dimensions(const KrachtCoefficients& k, const ShipParticulars& ship) {
   BulbShape s{};
   s.x_fp = ship.x_fp < 0.0 ? ship.lpp : ship.x_fp;
   s.length = k.c_lpr * ship.lpp;
@@ -96,6 +93,30 @@ BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& 
   }
   // A_BL = H L_PR phi1(m): the section height.
   s.height = s.lateral_area / (s.length * outline_integral(s.nose_shape, 1.0));
+  return s;
+}
+
+}  // namespace
+
+SectionFullness bulb_section_fullness(const KrachtCoefficients& k, const ShipParticulars& ship) {
+  require_coefficients(k, ship);
+  const BulbShape s = dimensions(k, ship);
+  return {s.section_area / (s.breadth * s.height), kappa(kSectionExponentMin), kappa(kExponentMax)};
+}
+
+BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& ship, const BulbOptions& o) {
+  require_coefficients(k, ship);
+  detail::require_finite(o.nose_height_shift, "nose_height_shift");
+  if (o.aft_length < 0.0 || !std::isfinite(o.aft_length))
+    detail::fail("aft_length is ", o.aft_length, "; expected >= 0 metres (0: twice protrusion + breadth)");
+  if (o.sections < 8) detail::fail("sections is ", o.sections, "; expected >= 8");
+  if (o.section_points < 8) detail::fail("section_points is ", o.section_points, "; expected >= 8");
+  if (o.control_u < 4 || o.control_u > o.sections)
+    detail::fail("control_u is ", o.control_u, "; expected 4 <= control_u <= sections (", o.sections, ")");
+  if (o.control_v < 4 || o.control_v > o.section_points)
+    detail::fail("control_v is ", o.control_v, "; expected 4 <= control_v <= section_points (", o.section_points, ")");
+
+  BulbShape s = dimensions(k, ship);
   // A_BT = B_B H kappa(n): the section fullness.
   const double kap = s.section_area / (s.breadth * s.height);
   if (!bisect(kappa, kSectionExponentMin, kExponentMax, kap, s.section_fullness)) {

@@ -2121,6 +2121,10 @@ def _blend_boundaries_around_seam(oriented_hull: NurbsSurface, seam_uv_hull: typ
     """
 def _blend_surface(a: NurbsSurface, boundary_a: typing.Any, b: NurbsSurface, boundary_b: typing.Any, options: BlendOptions = ...) -> tuple[NurbsSurface, dict, dict]:
     ...
+def _bulb_section_fullness(kracht: KrachtCoefficients, ship: BulbShip) -> tuple[float, float, float]:
+    """
+    (A_BT / (B_B H) the coefficients ask of the bulb's sections, least and largest a section can have); scales as 1 / c_abl (see bulb.hpp).
+    """
 def _cluster_by_knots(surface: NurbsSurface, direction: str, at: typing.SupportsFloat | typing.SupportsIndex, spacing: typing.SupportsFloat | typing.SupportsIndex, count: typing.SupportsInt | typing.SupportsIndex, growth: typing.SupportsFloat | typing.SupportsIndex) -> NurbsSurface:
     ...
 def _cluster_by_weights(surface: NurbsSurface, direction: str, ratio: typing.SupportsFloat | typing.SupportsIndex) -> NurbsSurface:
