@@ -72,6 +72,24 @@ def main():
     print(f"the same space with a given parallel body of 2-30 % Lpp and a bulb on every other ship, {n} samples: "
           f"{ok} built and matched ({100 * ok / n:.1f} %), median {1e3 * statistics.median(times):.0f} ms; "
           f"failures by curve: {fails}")
+    ok, times, fails = compose_pass(sample(n, seed=11))
+    print(f"the space with a bulb, {n} samples, particulars -> composed hull (bare hull + bulb + blend): "
+          f"{ok} composed ({100 * ok / n:.1f} %), median {1e3 * statistics.median(times):.0f} ms; failures: {fails}")
+
+
+def compose_pass(particulars):
+    """(composed with bulb and blend, times of those, failures by the first words of the error)."""
+    ok, times, fails = 0, [], {}
+    for p in particulars:
+        t = time.perf_counter()
+        try:
+            fl.design_hull(**p, bulb=True).composed_hull()
+            ok += 1
+            times.append(time.perf_counter() - t)
+        except (fl.InfeasibleFormParameters, fl.InvalidInput) as e:
+            key = str(e).split(":")[0][:60]
+            fails[key] = fails.get(key, 0) + 1
+    return ok, times, fails
 
 
 def sample_given_parallel(n, seed=5):
