@@ -589,8 +589,9 @@ class KktCache {
 
  private:
   static bool same(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+    // an empty matrix has no data pointer, and memcmp must not be given one
     return a.rows() == b.rows() && a.cols() == b.cols() &&
-           std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+           (a.size() == 0 || std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0);
   }
   std::mutex mutex_;
   std::vector<std::pair<Eigen::MatrixXd, std::shared_ptr<const Eigen::FullPivLU<Eigen::MatrixXd>>>> entries_;
