@@ -27,6 +27,7 @@ or two), so the surface meets the request to MATCH_TOL.
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import asdict, dataclass, field, replace
 from functools import lru_cache
@@ -82,7 +83,8 @@ MATCH_GAUSS = 4             # Gauss points per span of the matching hydrostatics
 PROFILE_SPANS = (30, 60, 120)  # knot spans of the profile, tried in turn
 _GAUSS8 = np.polynomial.legendre.leggauss(8)  # the natural fullness's quadrature
 BULB_FULLNESS_MARGIN = 0.1  # the designer's bulb sections keep this fraction of their fullness range from its ends
-BULB_AFT_LENGTH = 2.6       # the bulb runs on into the hull this many times L_PR + B_B (the bulb's own default is 2)
+BULB_AFT_LENGTH = 2.6       # the bulb runs on into the hull this many times L_PR + B_B (the bulb's own default is 2) ...
+BULB_AFT_RETRIES = (3.0, 3.5, 4.0)  # ... or these when it leaves a fine forefoot again (meets the hull in two curves)
 
 
 @dataclass
@@ -426,9 +428,36 @@ def design_hull(particulars: Particulars | None = None, **kwargs) -> Hull:
     for q in _fallbacks(p):
         hull, exc = _try_design(q)
         if hull is not None:
-            return hull
+            return _bulb_that_meets(hull, p)
         first = first or exc
     raise _explained(first, p, _feasible_edge(p)) from first
+
+
+def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
+    """The hull, its designer-sized bulb run further aft (BULB_AFT_RETRIES) when the bulb meets
+    the bare hull in more than one curve: a bulb that leaves a fine forefoot again before its
+    aft end. A bulb whose aft length the user gave is left as given."""
+    from .blend import seam_blend_placement
+
+    given = p.bulb if isinstance(p.bulb, dict) else {}
+    if hull.description.bulb is None or "aft_length" in given.get("shape", {}):
+        return hull
+    desc = None
+    for factor in (None, *BULB_AFT_RETRIES):
+        if factor is not None:
+            desc = desc or json.loads(hull.to_json())
+            k = desc["bulb"]["kracht"]
+            desc["bulb"]["shape"]["aft_length"] = factor * (k["c_lpr"] * p.lpp + k["c_bb"] * p.breadth)
+            hull = Hull(HullDescription.from_dict(desc))
+        try:
+            seam_blend_placement(hull.bare_hull_surface(), hull.bulbous_bow())
+            return hull
+        except _native.NoBlendFits:
+            return hull  # the bulb meets the hull; the composition keeps the plain union
+        except _native.InvalidInput as e:
+            if "cannot meet the hull" not in str(e):
+                return hull
+    return hull
 
 
 def _try_design(p: Particulars) -> tuple[Hull | None, Exception | None]:
