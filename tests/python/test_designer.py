@@ -260,6 +260,7 @@ def test_an_impossible_request_names_the_particulars_to_change():
                                         (dict(lcb=0.0), "lcb_pct"), (dict(breadth=float("nan")), "breadth"),
                                         (dict(lcf=300.0), "lcf"), (dict(parallel_length=-5.0), "parallel_length"),
                                         (dict(transom_immersion=float("nan")), "transom_immersion"),
+                                        (dict(transom_breadth=20.0), "transom_breadth is 20.0; expected a waterline"),
                                         (dict(bredth=32.0), "did you mean 'breadth'")])
 def test_bad_particulars_name_the_value(bad, field):
     with pytest.raises(fl.InvalidInput, match=field):
