@@ -473,21 +473,15 @@ def _feasible_edge(p: Particulars) -> str:
     """For the first of the given Cwp, LCF, LCB, parallel body whose designer's default (the
     LCB: midships) builds with the others as given, the value nearest the given one that
     builds, by EDGE_STEPS bisections; "" when there is none."""
-    L = p.lpp
-    toward = {"cwp": None, "lcf": None, "lcb": 0.5 * L, "parallel_length": None}
-    for name, target in toward.items():
+    for name in ("cwp", "lcf", "lcb", "parallel_length"):
         given = getattr(p, name)
-        if given is None or (name == "lcb" and abs(given - target) < 1e-9 * L):
+        if given is None:
             continue
-        good = replace(p, **{name: target})
-        if target is None:
-            target = _coefficients(good)[name] if name != "parallel_length" else None
-        if _try_design(good)[0] is None:
+        good = replace(p, **{name: 0.5 * p.lpp if name == "lcb" else None})
+        target = _value_of(good, name)
+        if abs(given - target) < 1e-9 * p.lpp or _try_design(good)[0] is None:
             continue
         bad = given
-        if target is None:  # the default parallel body: bisect its length from the given one
-            par = _coefficients(good)["parallel"]
-            target = par[1] - par[0]
         for _ in range(EDGE_STEPS):
             mid = 0.5 * (bad + target)
             if _try_design(replace(p, **{name: mid}))[0] is None:
@@ -497,6 +491,14 @@ def _feasible_edge(p: Particulars) -> str:
         unit = "" if name == "cwp" else " m"
         return f"; with the other particulars as given, {name} {target:.4g}{unit} builds (asked {given:.4g}{unit})"
     return ""
+
+
+def _value_of(p: Particulars, name: str) -> float:
+    """A particular's value as the designer takes it (given, or its default)."""
+    if name == "lcb":
+        return p.lcb
+    c = _coefficients(p)
+    return c["parallel"][1] - c["parallel"][0] if name == "parallel_length" else c[name]
 
 
 #: What to change when a basic curve designed from the particulars is infeasible.
