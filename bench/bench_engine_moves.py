@@ -45,7 +45,7 @@ def series60_quadrature(fl) -> None:
     t_p = median_time(lambda: peers.python_surface_hydrostatics(*args, roles=rb.roles), repeat=5)
     report("Series 60 surface hydrostatics: engine", 1e3 * t_e, "ms")
     report("Series 60 surface hydrostatics: Python quadrature (peer)", 1e3 * t_p, "ms")
-    difference("Series 60 volume: engine / Python - 1", engine["volume"] / python["volume"] - 1)
+    difference("Series 60 volume: engine / Python - 1", engine.volume / python.volume - 1)
 
 
 def kcs_projection(fl) -> None:

@@ -148,7 +148,7 @@ def _submerged_intervals(surface, us, draft):
     return np.array(out_i, int), np.array(out_a), np.array(out_b)
 
 
-def python_surface_hydrostatics(surfaces, draft, lpp, beam, *, roles=None) -> dict:
+def python_surface_hydrostatics(surfaces, draft, lpp, beam, *, roles=None):
     """Hydrostatics of NURBS half-hull surfaces below the draft by Gauss quadrature: in u per
     knot span, in v over each submerged interval (cut at the waterline by bisection). Midship
     area Am is the section of the surfaces at x = Lpp/2 (Green's theorem on the cut)."""
@@ -183,11 +183,8 @@ def python_surface_hydrostatics(surfaces, draft, lpp, beam, *, roles=None) -> di
             tot[k] += terms[k] if k == "S" else sgn * terms[k]
     V = 2 * tot["V"]
     am = 2 * sum(polyline_area(p, draft) for p in section_at(surfaces, lpp / 2, roles=roles))
-    out = coefficients(V, 2 * tot["Mx"] / V, 2 * tot["Mz"] / V, 2 * tot["Awp"], tot["Mwp"] / tot["Awp"], am,
-                        lpp, beam, draft)
-    out["wetted_surface"] = 2 * tot["S"]
-    out["method"] = "Gauss quadrature on the NURBS surface"
-    return out
+    return coefficients(V, 2 * tot["Mx"] / V, 2 * tot["Mz"] / V, 2 * tot["Awp"], tot["Mwp"] / tot["Awp"], am,
+                        lpp, beam, draft, method="Gauss quadrature on the NURBS surface", wetted_surface=2 * tot["S"])
 
 
 def python_project_points(surface, pts, u0, v0, iterations=12):

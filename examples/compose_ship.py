@@ -53,7 +53,7 @@ def compose_ship(bare_hull, ship, kracht=None, bulb_shape=None, out=None, name="
         half_volume_bare_m3=bare.volume,
         half_volume_composed_m3=composed.volume,
         volume_added_by_bulb_m3=2.0 * (composed.volume - bare.volume),
-        hydrostatics_at_draft_fp=hydro,
+        hydrostatics_at_draft_fp=dict(volume=hydro.volume, lcb=hydro.lcb, vcb=hydro.vcb),
         mesh=dict(vertices=len(composed.mesh.vertices), faces=len(composed.mesh.faces)),
         time_ms=dict(bulb=1e3 * (t1 - t0), blend_and_compose=1e3 * (t2 - t1)),
     )
@@ -95,7 +95,7 @@ def main():
     hb = hull.hydrostatics()
     print(f"  bulb adds {rep['volume_added_by_bulb_m3']:.1f} m^3 (both sides, whole bulb); displacement at "
           f"T = {T} m: bare {hb.volume:.0f} m^3 (NURBS quadrature), with bulb {h['volume']:.0f} m^3 (mesh), "
-          f"LCB {h['lcb']:.2f} m, KB {h['kb']:.2f} m")
+          f"LCB {h['lcb']:.2f} m, KB {h['vcb']:.2f} m")
     print(f"  wrote {args.out}/{name}_{{half,full}}.{{obj,stl}} and {name}.json")
 
 

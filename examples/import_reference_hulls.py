@@ -48,9 +48,10 @@ def main():
         extra = ", ".join(f"{k} {v:.4g}" for k, v in bow.items() if k != "kind" and isinstance(v, float))
         print(f"bow feature: {bow['kind']}" + (f" ({extra})" if extra else ""))
         pub = data.published
-        if "S_over_L2" in pub:
-            s = report["hydrostatics"]["surface"]["wetted_surface"] / data.lpp ** 2
-            print(f"wetted surface S/L^2: surface {s:.4f}, published bare hull {pub['S_over_L2']}")
+        if "wetted_surface" in pub:
+            s = report["hydrostatics"]["surface"]["wetted_surface"]
+            print(f"wetted surface S/L^2: surface {s / data.lpp ** 2:.4f}, published bare hull "
+                  f"{pub['wetted_surface'] / data.lpp ** 2:.4f}")
         for note in data.notes:
             print(f"note: {note}")
     print(f"\nhull descriptions and rebuilt surfaces are in {out}")

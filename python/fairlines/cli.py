@@ -56,8 +56,8 @@ def _import(args) -> int:
           f"{len(data.sections)} sections, {len(data.grids)} grids")
     for note in data.notes:
         print(f"note: {note}")
-    print(f"input ({h['method']}): volume {h['volume']:.6g} m3, LCB {h['LCB_pct_Lpp_from_midship']:+.3f} % Lpp, "
-          f"Cb {h['Cb']:.4f}, Cp {h['Cp']:.4f}, Cm {h['Cm']:.4f}, Cwp {h['Cwp']:.4f}")
+    print(f"input ({h['method']}): volume {h['volume']:.6g} m3, LCB {h['lcb_pct']:+.3f} % Lpp, "
+          f"Cb {h['cb']:.4f}, Cp {h['cp']:.4f}, Cm {h['cm']:.4f}, Cwp {h['cwp']:.4f}")
     def span(d):
         return "none" if d["x_aft"] is None else f"x {d['x_aft']:.4g}..{d['x_fwd']:.4g} m"
     print(f"form parameters: flat of side {span(fp['FOS'])}, flat of bottom {span(fp['FOB'])}, "

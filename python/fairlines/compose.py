@@ -13,7 +13,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from . import _native
-from ._native import NurbsSurface
+from ._native import MeshHydrostatics, NurbsSurface
 from ._options import fill_options, option_names
 from .blend import BlendPlacement, BlendSurface, seam_blend_placement
 from .bulb import BulbousBow
@@ -173,13 +173,12 @@ def compose_options(**options) -> _native.ComposeOptions:
                         {**checks, "tolerance": float, "margin": float, "plane_tolerance": float})
 
 
-def mesh_hydrostatics(mesh: Mesh, draft: float, *, half: bool = True) -> dict:
-    """Displaced volume (m^3), LCB and KB (m) of a closed, outward-oriented mesh floating at
-    z = draft, by the engine's mesh hydrostatics (:func:`fl.hydrostatics_of_mesh`). ``half``:
-    the mesh is the starboard half (volume doubled, centroid unchanged). Raises InvalidInput
-    when the draft leaves no displaced volume or the mesh is malformed."""
-    h = displaced_volume_of_mesh(mesh.vertices, mesh.faces, draft, half_hull=half)
-    return dict(volume=h.volume, lcb=h.lcb, kb=h.vcb)
+def mesh_hydrostatics(mesh: Mesh, draft: float, *, half: bool = True) -> MeshHydrostatics:
+    """Hydrostatics (volume m^3, lcb and vcb m, waterplane, wetted surface ...) of a closed,
+    outward-oriented mesh floating at z = draft, by the engine (:func:`fl.hydrostatics_of_mesh`).
+    ``half``: the mesh is the starboard half (volume doubled, centroid unchanged). Raises
+    InvalidInput when the draft leaves no displaced volume or the mesh is malformed."""
+    return displaced_volume_of_mesh(mesh.vertices, mesh.faces, draft, half_hull=half)
 
 
 def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, blend: bool = True,

@@ -73,7 +73,8 @@ class HullData:
     ``sections`` (offsets tables, section lists) or ``grids`` (structured grids) hold the
     geometry; ``offsets`` keeps the table itself (x of the stations, z of the waterlines,
     half-breadths with NaN where a cell was blank) for Simpson integration. ``notes`` lists
-    every repair made to the data. ``published`` carries particulars stated by the source."""
+    every repair made to the data. ``published`` carries particulars stated by the source, in the names of
+    :class:`fairlines.preprocess.ImportHydrostatics` (volume, lcb_pct, cb, cm, cp, cwp, wetted_surface)."""
     name: str
     lpp: float
     beam: float
@@ -186,12 +187,42 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
     Absolute tables have an ``x`` column (metres forward of the AP), headers giving z in
     metres, half-breadths in metres. Extra columns such as ``area_fraction`` are kept in
     ``offsets['extra']``. ``normalised`` None decides from the first header ('station' or 'x').
+    Raises InvalidInput naming the row, column and value of any cell it cannot use.
     """
     lpp, beam, draft = _dimensions(lpp, beam, draft)
     if isinstance(n_stations, bool) or not isinstance(n_stations, (int, np.integer)) or not 1 <= n_stations <= 1000:
         raise InvalidInput(f"n_stations is {n_stations!r}; expected an integer from 1 to 1000 (intervals between the perpendiculars)")
     rows, comments = _csv_rows(path)
-    head_line, header = rows[0]
+    t = _table_layout(path, rows[0][1], comments, lpp, beam, draft, n_stations, normalised)
+    labels, xs, table, extra = _station_rows(t, rows[1:])
+    notes = []
+    z, table = _waterlines_rising(t, table, notes)
+    labels, xs, table, extra = _stations_from_ap(t, labels, xs, table, extra, notes)
+    sections = _sections_of_table(t, labels, xs, table, z, notes)
+    data = HullData(name or pathlib.Path(path).stem, lpp, beam, draft, sections=sections,
+                    offsets={"x": xs, "z": z, "half_breadths": table, "labels": labels, "extra": extra},
+                    notes=notes, source=str(path))
+    data.published = _published_from_comments(comments)
+    return data
+
+
+@dataclasses.dataclass
+class _Layout:
+    """What an offsets table's header says: its columns, units and the ship they scale to."""
+    path: object
+    header: list
+    normalised: bool
+    unit: float  # metres per table unit of an absolute table
+    wl_cols: list
+    extra_cols: list
+    z: np.ndarray  # waterline heights (m), in column order
+    lpp: float
+    beam: float
+    n_stations: int
+
+
+def _table_layout(path, header, comments, lpp, beam, draft, n_stations, normalised) -> _Layout:
+    """Read the header row: which columns are waterlines (and their heights) and which extra."""
     header = [h.strip() for h in header]
     first, unit = _unit_of(header[0], comments)
     if normalised is None:
@@ -210,99 +241,109 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
         k = wl_cols[int(np.flatnonzero(np.abs(z) > lpp)[0])]
         raise InvalidInput(f"{path}: column header {header[k]!r} puts a waterline {np.abs(z).max():.6g} m from the "
                            f"baseline but Lpp is {lpp} m; expected heights in metres")
-    notes = []
+    return _Layout(path, header, normalised, unit, wl_cols, extra_cols, z, lpp, beam, n_stations)
+
+
+def _station_rows(t: _Layout, rows):
+    """(labels, x (m), half-breadths (m), extra cells) of the station rows, in table order."""
     scale_row = None
     labels, xs, table, extra = [], [], [], []
-    for lineno, row in rows[1:]:
-        if len(row) < len(header):
-            row = row + [""] * (len(header) - len(row))
+    for lineno, row in rows:
+        row = row + [""] * max(0, len(t.header) - len(row))
         lab = row[0].strip()
         if lab.lower() in ("max_half_beam", "scale"):
-            scale_row = np.array([_cell(row[k], path, lineno, header[k]) for k in wl_cols])
+            scale_row = np.array([_cell(row[k], t.path, lineno, t.header[k]) for k in t.wl_cols])
             continue
-        if normalised:
-            if lab.upper() == "FP":
-                st = 0.0
-            elif lab.upper() == "AP":
-                st = float(n_stations)
-            else:
-                st = _float_or_none(lab)
-                if st is None:
-                    raise InvalidInput(f"{path}: row {lineno} station is {lab!r}; expected FP, AP or a number")
-            xpos = (n_stations - st) / n_stations * lpp  # stations count from the FP; x from the AP
-        else:
-            xpos = _cell(lab, path, lineno, header[0]) * unit
-            if np.isnan(xpos):
-                raise InvalidInput(f"{path}: row {lineno} has no x; expected metres forward of the AP")
-        vals = np.array([_cell(row[k], path, lineno, header[k]) for k in wl_cols]) * (1.0 if normalised else unit)
-        bad = np.flatnonzero(vals < 0)
-        if bad.size:
-            k = wl_cols[bad[0]]
-            raise InvalidInput(f"{path}: row {lineno}, column {header[k]!r} is {vals[bad[0]]}; "
-                             "expected a half-breadth >= 0")
-        wide = np.flatnonzero(vals > (HALF_BREADTH_FRACTION_MAX if normalised else beam))
-        if wide.size:
-            k = wl_cols[wide[0]]
-            raise InvalidInput(f"{path}: row {lineno}, column {header[k]!r} is {vals[wide[0]]}; expected a half-breadth "
-                               + ("fraction <= " + str(HALF_BREADTH_FRACTION_MAX) if normalised else f"<= B = {beam} m (metres?)"))
         labels.append(lab)
-        xs.append(xpos)
-        table.append(vals)
-        extra.append({header[k]: _cell(row[k], path, lineno, header[k]) for k in extra_cols})
+        xs.append(_station_x(t, lab, lineno))
+        table.append(_half_breadths(t, row, lineno))
+        extra.append({t.header[k]: _cell(row[k], t.path, lineno, t.header[k]) for k in t.extra_cols})
     if len(xs) < 3:
-        raise InvalidInput(f"{path}: {len(xs)} station(s); expected at least 3")
+        raise InvalidInput(f"{t.path}: {len(xs)} station(s); expected at least 3")
     xs, table = np.array(xs), np.array(table)
-    check_station_range(xs, lpp, str(path))
-    if normalised:
-        hb_scale = scale_row if scale_row is not None else np.ones(len(wl_cols))
+    check_station_range(xs, t.lpp, str(t.path))
+    if t.normalised:
+        hb_scale = scale_row if scale_row is not None else np.ones(len(t.wl_cols))
         if np.any(np.isnan(hb_scale)) or np.any(hb_scale <= 0):
-            raise InvalidInput(f"{path}: max_half_beam row has blank or non-positive entries; expected one per waterline")
-        table = table * hb_scale * beam / 2
-    # Waterlines must rise left to right: sort them (noted), refuse duplicates.
+            raise InvalidInput(f"{t.path}: max_half_beam row has blank or non-positive entries; expected one per waterline")
+        table = table * hb_scale * t.beam / 2
+    return labels, xs, table, extra
+
+
+def _station_x(t: _Layout, lab: str, lineno: int) -> float:
+    """x (m from the AP) of a row: a station number counted from the FP, or x in table units."""
+    if not t.normalised:
+        xpos = _cell(lab, t.path, lineno, t.header[0]) * t.unit
+        if np.isnan(xpos):
+            raise InvalidInput(f"{t.path}: row {lineno} has no x; expected metres forward of the AP")
+        return xpos
+    st = {"FP": 0.0, "AP": float(t.n_stations)}.get(lab.upper(), None)
+    if st is None:
+        st = _float_or_none(lab)
+        if st is None:
+            raise InvalidInput(f"{t.path}: row {lineno} station is {lab!r}; expected FP, AP or a number")
+    return (t.n_stations - st) / t.n_stations * t.lpp
+
+
+def _half_breadths(t: _Layout, row, lineno: int) -> np.ndarray:
+    """A row's half-breadths (m, or fractions in a normalised table), each checked for range."""
+    vals = np.array([_cell(row[k], t.path, lineno, t.header[k]) for k in t.wl_cols]) * (1.0 if t.normalised else t.unit)
+    bad = np.flatnonzero(vals < 0)
+    if bad.size:
+        k = t.wl_cols[bad[0]]
+        raise InvalidInput(f"{t.path}: row {lineno}, column {t.header[k]!r} is {vals[bad[0]]}; "
+                           "expected a half-breadth >= 0")
+    wide = np.flatnonzero(vals > (HALF_BREADTH_FRACTION_MAX if t.normalised else t.beam))
+    if wide.size:
+        k = t.wl_cols[wide[0]]
+        raise InvalidInput(f"{t.path}: row {lineno}, column {t.header[k]!r} is {vals[wide[0]]}; expected a half-breadth "
+                           + ("fraction <= " + str(HALF_BREADTH_FRACTION_MAX) if t.normalised
+                              else f"<= B = {t.beam} m (metres?)"))
+    return vals
+
+
+def _waterlines_rising(t: _Layout, table, notes):
+    """Waterlines must rise left to right: sort them (noted), refuse duplicates."""
+    z = t.z
     zo = np.argsort(z, kind="stable")
     if np.any(np.diff(z[zo]) <= 0):
         i = np.flatnonzero(np.diff(z[zo]) <= 0)[0]
-        raise InvalidInput(f"{path}: two waterline columns at z = {z[zo][i]:.6g} m; expected distinct waterlines")
+        raise InvalidInput(f"{t.path}: two waterline columns at z = {z[zo][i]:.6g} m; expected distinct waterlines")
     if np.any(zo != np.arange(len(z))):
         notes.append("waterline columns were not in rising order; sorted")
-        z, table = z[zo], table[:, zo]
-    # Stations: sort from AP forward, merge exact duplicates, refuse conflicting ones.
+    return z[zo], table[:, zo]
+
+
+def _stations_from_ap(t: _Layout, labels, xs, table, extra, notes):
+    """Stations sorted from the AP forward, exact duplicates merged (noted), conflicting ones refused."""
     so = np.argsort(xs, kind="stable")
-    if np.any(so != np.arange(len(xs))):
-        if not np.all(so == np.arange(len(xs))[::-1]):
-            notes.append("stations were not in order; sorted from AP to FP")
-    xs, table = xs[so], table[so]
-    labels = [labels[i] for i in so]
-    extra = [extra[i] for i in so]
-    keep = [0]
-    for i in range(1, len(xs)):
-        if abs(xs[i] - xs[keep[-1]]) <= STATION_MATCH_TOL * lpp:
-            a, b = table[keep[-1]], table[i]
-            same = np.allclose(np.nan_to_num(a, nan=-1), np.nan_to_num(b, nan=-1), rtol=0, atol=1e-9 * beam)
-            if not same:
-                raise InvalidInput(f"{path}: station {labels[i]!r} appears twice with different half-breadths; "
-                                 "expected one row per station")
-            notes.append(f"station {labels[i]!r} appeared twice with the same values; merged")
+    if np.any(so != np.arange(len(xs))) and not np.all(so == np.arange(len(xs))[::-1]):
+        notes.append("stations were not in order; sorted from AP to FP")
+    keep = [so[0]]
+    for i in so[1:]:
+        if abs(xs[i] - xs[keep[-1]]) > STATION_MATCH_TOL * t.lpp:
+            keep.append(i)
             continue
-        keep.append(i)
-    xs, table = xs[keep], table[keep]
-    labels = [labels[i] for i in keep]
-    extra = [extra[i] for i in keep]
+        a, b = table[keep[-1]], table[i]
+        if not np.allclose(np.nan_to_num(a, nan=-1), np.nan_to_num(b, nan=-1), rtol=0, atol=1e-9 * t.beam):
+            raise InvalidInput(f"{t.path}: station {labels[i]!r} appears twice with different half-breadths; "
+                               "expected one row per station")
+        notes.append(f"station {labels[i]!r} appeared twice with the same values; merged")
+    return [labels[i] for i in keep], xs[keep], table[keep], [extra[i] for i in keep]
+
+
+def _sections_of_table(t: _Layout, labels, xs, table, z, notes):
+    """One (y, z) section per station; blank cells are left out of it (noted)."""
     sections = []
     for lab, xpos, hb in zip(labels, xs, table):
         missing = np.isnan(hb)
         if missing.all():
-            raise InvalidInput(f"{path}: station {lab!r} has no half-breadths; expected at least one number")
+            raise InvalidInput(f"{t.path}: station {lab!r} has no half-breadths; expected at least one number")
         if missing.any():
             notes.append(f"station {lab!r}: {int(missing.sum())} blank cell(s) at z = "
                          + ", ".join(f"{v:.4g}" for v in z[missing]) + " m left out of the section")
-        pts = section_from_offsets(hb, z)
-        sections.append(Section(float(xpos), pts, lab))
-    data = HullData(name or pathlib.Path(path).stem, lpp, beam, draft, sections=sections,
-                    offsets={"x": xs, "z": z, "half_breadths": table, "labels": labels, "extra": extra},
-                    notes=notes, source=str(path))
-    data.published = _published_from_comments(comments)
-    return data
+        sections.append(Section(float(xpos), section_from_offsets(hb, z), lab))
+    return sections
 
 
 def _unit_of(first_header, comments):
@@ -322,10 +363,10 @@ def _published_from_comments(comments):
     for key in ("Cp", "Cm", "Cwp", "Cb"):
         m = re.search(rf"\b{key}\s+(0?\.\d+)", text)
         if m:
-            out[key] = float(m.group(1))
+            out[key.lower()] = float(m.group(1))
     m = re.search(r"LCB\s+([0-9.]+)\s*%\s*Lpp\s+(forward|aft)", text.replace("\n", " "))
     if m:
-        out["LCB_pct_Lpp_from_midship"] = float(m.group(1)) * (1 if m.group(2) == "forward" else -1)
+        out["lcb_pct"] = float(m.group(1)) * (1 if m.group(2) == "forward" else -1)
     return out
 
 
@@ -585,7 +626,7 @@ def read_dtmb5415(folder, *, published=None) -> HullData:
     main.role = "hull"
     bow.role = "bow (sonar dome)"
     grids["transom"].role = "transom"
-    pub = {"volume": 0.554, "LCB_pct_Lpp_from_midship": -0.683, "Cb": 0.507, "Cm": 0.821}
+    pub = {"volume": 0.554, "lcb_pct": -0.683, "cb": 0.507, "cm": 0.821}
     pub.update(published or {})
     return HullData("DTMB 5415 (model 1:24.83)", lpp, beam, draft,
                     grids=[grids["main"], bow, grids["transom"]],
@@ -613,8 +654,7 @@ def read_kcs(folder, *, lpp=230.0, beam=32.2, draft=10.8) -> HullData:
             name, role = roles[(fname, z)]
             _check_grid(conv, f"{folder / fname} zone {z + 1}")
             grids.append(PointGrid(name, conv, role))
-    pub = {"volume": 52030.0, "Cb": 0.6505, "Cm": 0.9849, "LCB_pct_Lpp_from_midship": -1.48,
-           "wetted_surface": 9424.0, "S_over_L2": 0.178}
+    pub = {"volume": 52030.0, "cb": 0.6505, "cm": 0.9849, "lcb_pct": -1.48, "wetted_surface": 9424.0}
     return HullData("KCS", lpp, beam, draft, grids=grids, published=pub, source=str(folder))
 
 

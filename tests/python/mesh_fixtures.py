@@ -133,6 +133,6 @@ def composed_wetted_hydrostatics(composed, draft):
     surface = example_hull_surface()
     bare = fl.hydrostatics(surface, draft)
     comp, alone = fl.mesh_hydrostatics(composed.mesh, draft), fl.mesh_hydrostatics(fl.compose([surface]).mesh, draft)
-    added = comp["volume"] - alone["volume"]
-    added_moment = comp["volume"] * comp["lcb"] - alone["volume"] * alone["lcb"]
+    added = comp.volume - alone.volume
+    added_moment = comp.volume * comp.lcb - alone.volume * alone.lcb
     return bare.volume + added, (bare.volume * bare.lcb + added_moment) / (bare.volume + added)

@@ -216,9 +216,9 @@ def test_mesh_hydrostatics_of_the_bare_forebody_match_the_analytic_integrals(hul
     w = 1 - (1 - zs / D) ** 6
     trap = lambda f: float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(zs)))  # noqa: E731
     kb = trap(zs * w) / trap(w)
-    assert h["volume"] == pytest.approx(vol, rel=3e-3)
-    assert h["lcb"] == pytest.approx(lcb, rel=1e-3)
-    assert h["kb"] == pytest.approx(kb, rel=3e-3)
+    assert h.volume == pytest.approx(vol, rel=3e-3)
+    assert h.lcb == pytest.approx(lcb, rel=1e-3)
+    assert h.vcb == pytest.approx(kb, rel=3e-3)
 
 
 def test_compose_ship_example_runs(tmp_path, monkeypatch, capsys):

@@ -212,7 +212,7 @@ def test_volume_identity_two_ways_on_the_real_hull(hull, union, blended, bulb):
     # (the default 48 x 20 cells give -0.25 %: chords inside the convex sections)
     T = hull.description.principal.draft
     fine = fl.compose([hull.bare_hull_surface()], hull_u=96, hull_v=40)
-    assert fl.mesh_hydrostatics(fine.mesh, T)["volume"] == pytest.approx(hull.hydrostatics().volume, rel=VOLUME_TOL)
+    assert fl.mesh_hydrostatics(fine.mesh, T).volume == pytest.approx(hull.hydrostatics().volume, rel=VOLUME_TOL)
     for c in (union, blended):
         v_q = sum(_y_flux(s, loops) for s, loops in c.trimmed_surfaces)
         added_q = v_q - v_bare_q

@@ -110,7 +110,7 @@ def test_composed_whole_ship_is_watertight_and_holds_the_volume(ship):
     assert edge_census(c.mesh.faces) == (0, 0, 0)
     assert edge_census(c.full_mesh().faces) == (0, 0, 0)
     if not p.get("bulb"):
-        assert fl.mesh_hydrostatics(c.mesh, p["draft"])["volume"] == pytest.approx(_asked(p), rel=MESH_TOL)
+        assert fl.mesh_hydrostatics(c.mesh, p["draft"]).volume == pytest.approx(_asked(p), rel=MESH_TOL)
 
 
 def test_round_trip_through_json_rebuilds_the_same_hull():

@@ -83,11 +83,11 @@ def test_simpson_is_exact_for_quadratics_on_irregular_spacing_and_cubics_on_even
 def test_wigley_offsets_give_exact_coefficients(wigley):
     h = pp.offsets_hydrostatics(wigley)
     # Simpson is exact for the Wigley hull's quadratic offsets in both directions.
-    assert h["Cb"] == pytest.approx(4 / 9, rel=1e-9)
-    for k in ("Cm", "Cwp", "Cp"):
-        assert h[k] == pytest.approx(2 / 3, rel=1e-9)
-    assert h["LCB_pct_Lpp_from_midship"] == pytest.approx(0, abs=1e-9)
-    assert h["VCB"] == pytest.approx(5 * 6.25 / 8, rel=1e-9)  # KB = 5T/8
+    assert h.cb == pytest.approx(4 / 9, rel=1e-9)
+    for k in ("cm", "cwp", "cp"):
+        assert getattr(h, k) == pytest.approx(2 / 3, rel=1e-9)
+    assert h.lcb_pct == pytest.approx(0, abs=1e-9)
+    assert h.vcb == pytest.approx(5 * 6.25 / 8, rel=1e-9)  # KB = 5T/8
 
 
 def test_wigley_rebuilt_surface_matches_exact_and_mesh(wigley):
@@ -96,11 +96,11 @@ def test_wigley_rebuilt_surface_matches_exact_and_mesh(wigley):
     hm = pp.mesh_hydrostatics(pp.surface_meshes(rb.surfaces), wigley.draft, wigley.lpp, wigley.beam)
     # The skinned surface reproduces the quadratic hull to the accuracy of its shape-preserving
     # section curves (third order in the waterline spacing: 0.05 % on 9 waterlines).
-    assert hs["Cb"] == pytest.approx(4 / 9, rel=SKIN_TOL)
-    assert hs["Cm"] == pytest.approx(2 / 3, rel=SKIN_TOL)
-    assert hs["Cwp"] == pytest.approx(2 / 3, rel=SKIN_TOL)
-    for k in ("volume", "VCB", "Awp", "wetted_surface"):
-        assert hm[k] == pytest.approx(hs[k], rel=MESH_AGREEMENT)
+    assert hs.cb == pytest.approx(4 / 9, rel=SKIN_TOL)
+    assert hs.cm == pytest.approx(2 / 3, rel=SKIN_TOL)
+    assert hs.cwp == pytest.approx(2 / 3, rel=SKIN_TOL)
+    for k in ("volume", "vcb", "waterplane_area", "wetted_surface"):
+        assert getattr(hm, k) == pytest.approx(getattr(hs, k), rel=MESH_AGREEMENT)
     assert rb.deviation["max"] < 1e-4 * wigley.beam
 
 
@@ -113,12 +113,12 @@ def test_triangle_mesh_of_a_box_is_exact():
                           np.column_stack([np.full(len(zs) - 1, B / 2), zs[1:]])])
     grid = np.array([np.column_stack([np.full(len(sec), x), sec]) for x in np.linspace(0, L, 6)])
     h = pp.mesh_hydrostatics([pp.grid_mesh(grid)], T, L, B)
-    assert h["volume"] == pytest.approx(L * B * T, rel=1e-12)
-    assert h["VCB"] == pytest.approx(T / 2, rel=1e-12)
-    assert h["LCB"] == pytest.approx(L / 2, rel=1e-12)
-    assert h["Awp"] == pytest.approx(L * B, rel=1e-12)
-    assert h["Am"] == pytest.approx(B * T, rel=1e-12)
-    assert h["wetted_surface"] == pytest.approx(L * B + 2 * L * T, rel=1e-12)
+    assert h.volume == pytest.approx(L * B * T, rel=1e-12)
+    assert h.vcb == pytest.approx(T / 2, rel=1e-12)
+    assert h.lcb == pytest.approx(L / 2, rel=1e-12)
+    assert h.waterplane_area == pytest.approx(L * B, rel=1e-12)
+    assert h.midship_area == pytest.approx(B * T, rel=1e-12)
+    assert h.wetted_surface == pytest.approx(L * B + 2 * L * T, rel=1e-12)
 
 
 # ---- Series 60 Cb 0.80 ---------------------------------------------------------------------
@@ -130,7 +130,7 @@ LCB_TOL_PCT = 0.2
 
 def test_series60_reader_reads_header_and_converts(series60):
     data, _ = series60
-    assert data.published == {"Cp": 0.805, "Cm": 0.994, "Cwp": 0.864, "LCB_pct_Lpp_from_midship": 2.5}
+    assert data.published == {"cp": 0.805, "cm": 0.994, "cwp": 0.864, "lcb_pct": 2.5}
     xs = [s.x for s in data.sections]
     assert xs[0] == 0.0 and xs[-1] == pytest.approx(S60_LPP)  # AP first, FP at Lpp
     mid = data.sections[int(np.argmin(np.abs(np.array(xs) - S60_LPP / 2)))]
@@ -143,15 +143,15 @@ def test_series60_reader_reads_header_and_converts(series60):
 def test_series60_input_coefficients_against_published(series60):
     data, _ = series60
     h = pp.offsets_hydrostatics(data)
-    assert h["Cp"] == pytest.approx(0.805, rel=COEFF_TOL)
-    assert h["Cm"] == pytest.approx(0.994, rel=COEFF_TOL)
-    assert abs(h["LCB_pct_Lpp_from_midship"] - 2.5) <= LCB_TOL_PCT
+    assert h.cp == pytest.approx(0.805, rel=COEFF_TOL)
+    assert h.cm == pytest.approx(0.994, rel=COEFF_TOL)
+    assert abs(h.lcb_pct - 2.5) <= LCB_TOL_PCT
     # The table's own area_fraction column is an independent record of the section areas.
     frac = np.array([e["area_fraction"] for e in data.offsets["extra"]])
-    ok = np.array([c["station"] for c in h["area_fraction_check"]])
+    ok = np.array([c["station"] for c in h.area_fraction_check])
     assert ok.tolist() == ["AP"]  # its 0.100 contradicts its own zero offsets below 0.75 T
     keep = np.array([lab != "AP" for lab in data.offsets["labels"]])
-    assert np.max(np.abs(h["section_areas"][keep] / h["Am"] - frac[keep])) < pp.AREA_FRACTION_TOL
+    assert np.max(np.abs(h.section_areas[keep] / h.midship_area - frac[keep])) < pp.AREA_FRACTION_TOL
 
 
 def test_series60_cwp_is_the_tables_own_waterline(series60):
@@ -163,21 +163,21 @@ def test_series60_cwp_is_the_tables_own_waterline(series60):
     k = int(np.flatnonzero(np.isclose(data.offsets["z"], S60_T))[0])
     x, y = data.offsets["x"], data.offsets["half_breadths"][:, k]
     trap = 2 * np.sum(0.5 * (y[1:] + y[:-1]) * np.diff(x)) / (S60_LPP * S60_B)
-    assert h["Cwp"] == pytest.approx(trap, rel=COEFF_TOL)
-    assert h["Cwp"] / 0.864 - 1 == pytest.approx(0.011, abs=0.002)
+    assert h.cwp == pytest.approx(trap, rel=COEFF_TOL)
+    assert h.cwp / 0.864 - 1 == pytest.approx(0.011, abs=0.002)
 
 
 def test_series60_rebuilt_surface(series60):
     data, rb = series60
     hs = pp.surface_hydrostatics(rb.surfaces, S60_T, S60_LPP, S60_B, roles=rb.roles)
-    assert hs["Cp"] == pytest.approx(0.805, rel=COEFF_TOL)
-    assert hs["Cm"] == pytest.approx(0.994, rel=COEFF_TOL)
-    assert abs(hs["LCB_pct_Lpp_from_midship"] - 2.5) <= LCB_TOL_PCT
+    assert hs.cp == pytest.approx(0.805, rel=COEFF_TOL)
+    assert hs.cm == pytest.approx(0.994, rel=COEFF_TOL)
+    assert abs(hs.lcb_pct - 2.5) <= LCB_TOL_PCT
     assert rb.deviation["rms"] <= 0.001 * S60_B
     assert rb.deviation["n_points"] == sum(len(s.points) for s in data.sections)
     hm = pp.mesh_hydrostatics(pp.surface_meshes(rb.surfaces), S60_T, S60_LPP, S60_B)
-    for k in ("volume", "LCB", "VCB", "Awp", "wetted_surface"):
-        assert hm[k] == pytest.approx(hs[k], rel=MESH_AGREEMENT)
+    for k in ("volume", "lcb", "vcb", "waterplane_area", "wetted_surface"):
+        assert getattr(hm, k) == pytest.approx(getattr(hs, k), rel=MESH_AGREEMENT)
 
 
 def test_series60_form_parameters(series60):
@@ -212,13 +212,13 @@ def test_dtmb5415_reader_frame(dtmb):
 def test_dtmb5415_volume_and_dome(dtmb):
     data, rb = dtmb
     hs = pp.surface_hydrostatics(rb.surfaces, data.draft, data.lpp, data.beam, roles=rb.roles)
-    assert hs["volume"] == pytest.approx(0.554, rel=0.01)
-    assert np.isfinite(hs["LCB_pct_Lpp_from_midship"])
+    assert hs.volume == pytest.approx(0.554, rel=0.01)
+    assert np.isfinite(hs.lcb_pct)
     hi = pp.input_hydrostatics(data)
-    assert hi["volume"] == pytest.approx(0.554, rel=0.01)
+    assert hi.volume == pytest.approx(0.554, rel=0.01)
     hm = pp.mesh_hydrostatics(pp.surface_meshes(rb.surfaces), data.draft, data.lpp, data.beam)
-    for k in ("volume", "LCB", "VCB", "Awp", "wetted_surface"):
-        assert hm[k] == pytest.approx(hs[k], rel=MESH_AGREEMENT)
+    for k in ("volume", "lcb", "vcb", "waterplane_area", "wetted_surface"):
+        assert getattr(hm, k) == pytest.approx(getattr(hs, k), rel=MESH_AGREEMENT)
     fp = pp.form_parameters(rb.surfaces, data, roles=rb.roles)
     assert fp["bow"]["kind"] == "sonar dome"
     assert fp["bow"]["depth_below_baseline"] == pytest.approx(0.121, rel=0.05)
@@ -229,16 +229,16 @@ def test_dtmb5415_volume_and_dome(dtmb):
 def test_kcs_volume_wetted_surface_and_bulb(kcs):
     data, rb = kcs
     hs = pp.surface_hydrostatics(rb.surfaces, data.draft, data.lpp, data.beam, roles=rb.roles)
-    assert hs["volume"] == pytest.approx(52030.0, rel=0.005)
-    assert abs(hs["LCB_pct_Lpp_from_midship"] - (-1.48)) <= LCB_TOL_PCT
+    assert hs.volume == pytest.approx(52030.0, rel=0.005)
+    assert abs(hs.lcb_pct - (-1.48)) <= LCB_TOL_PCT
     # Published bare-hull S/L^2 0.178; the NMRI grid's wetted surface comes out 1.3 % above it.
-    assert hs["wetted_surface"] / data.lpp ** 2 == pytest.approx(0.178, rel=0.02)
+    assert hs.wetted_surface / data.lpp ** 2 == pytest.approx(0.178, rel=0.02)
     hm = pp.mesh_hydrostatics(pp.surface_meshes(rb.surfaces), data.draft, data.lpp, data.beam)
-    for k in ("volume", "LCB", "VCB", "Awp", "wetted_surface"):
-        assert hm[k] == pytest.approx(hs[k], rel=MESH_AGREEMENT)
+    for k in ("volume", "lcb", "vcb", "waterplane_area", "wetted_surface"):
+        assert getattr(hm, k) == pytest.approx(getattr(hs, k), rel=MESH_AGREEMENT)
     fp = pp.form_parameters(rb.surfaces, data, roles=rb.roles)
     assert fp["bow"]["kind"] == "bulb"
-    assert 0.0 < fp["bow"]["C_LPR"] < 0.05 and 0.0 < fp["bow"]["C_ABT"] < 0.2
+    assert 0.0 < fp["bow"]["c_lpr"] < 0.05 and 0.0 < fp["bow"]["c_abt"] < 0.2
     assert "bulb" in rb.roles
 
 
@@ -267,7 +267,7 @@ def test_unsorted_and_duplicate_stations(tmp_path):
     shuffled = [BOX_ROWS[k] for k in (3, 0, 4, 2, 1)] + [BOX_ROWS[2]]
     data = offsets.read_offsets_csv(_table(tmp_path, shuffled), 20, 4, 2)
     assert any("sorted" in n for n in data.notes) and any("merged" in n for n in data.notes)
-    assert pp.offsets_hydrostatics(data)["volume"] == pytest.approx(pp.offsets_hydrostatics(good)["volume"])
+    assert pp.offsets_hydrostatics(data).volume == pytest.approx(pp.offsets_hydrostatics(good).volume)
     with pytest.raises(ValueError, match=r"station '10' appears twice with different"):
         offsets.read_offsets_csv(_table(tmp_path, BOX_ROWS + ["10,1,2,2,1.9"]), 20, 4, 2)
 
@@ -310,8 +310,8 @@ def test_sections_reader_and_fold_back(tmp_path):
     assert [s.x for s in data.sections] == [0, 5, 10] and any("sorted" in n for n in data.notes)
     h = pp.input_hydrostatics(data)
     area = 2 * (0.5 * 1.5 * 0.2 + 0.5 * (1.5 + 2) * 0.8 + 2 * 0.5)  # trapezoids up to z = 1.5
-    assert h["Am"] == pytest.approx(area)
-    assert h["volume"] == pytest.approx(area * 10)
+    assert h.midship_area == pytest.approx(area)
+    assert h.volume == pytest.approx(area * 10)
     folded = [(0, 0), (2, 0.5), (2, 1.5), (1, 0.2), (1, 2)]
     with pytest.raises(ValueError, match=r"station x=5 folds back: segment 1 crosses segment 3"):
         offsets.read_sections_csv(_sections_csv(tmp_path, [(0, sec), (5, folded), (10, sec)]), 10, 4, 1.5)
@@ -364,7 +364,7 @@ def test_xyz_grid_reader_and_bad_shapes(tmp_path):
 def test_hull_data_round_trip(tmp_path, series60):
     data, _ = series60
     back = offsets.hull_data_from_dict(offsets.hull_data_to_dict(data))
-    assert pp.offsets_hydrostatics(back)["volume"] == pytest.approx(pp.offsets_hydrostatics(data)["volume"])
+    assert pp.offsets_hydrostatics(back).volume == pytest.approx(pp.offsets_hydrostatics(data).volume)
     with pytest.raises(ValueError, match=r"no 'lpp' entry"):
         offsets.hull_data_from_dict({"name": "x"})
 

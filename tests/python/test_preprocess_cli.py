@@ -42,13 +42,13 @@ def test_import_then_build(tmp_path, capsys):
     fp = doc["form_parameters"]
     assert {"SAC", "DWL", "deck", "profile", "FOS", "FOB", "bow", "sections"} <= set(fp)
     assert max(fp["DWL"]["half_breadth"]) == pytest.approx(B / 2, rel=1e-3)
-    assert doc["hydrostatics_input"]["Cb"] == pytest.approx(4 / 9, rel=1e-9)  # Simpson, exact
+    assert doc["hydrostatics_input"]["cb"] == pytest.approx(4 / 9, rel=1e-9)  # Simpson, exact
     outdir = tmp_path / "out"
     assert main(["build", str(hull), "-o", str(outdir)]) == 0
     text = capsys.readouterr().out
     assert "deviation of the surface from" in text and "published" in text
     report = json.loads((outdir / "report.json").read_text())
-    assert report["hydrostatics"]["surface"]["Cb"] == pytest.approx(4 / 9, rel=2e-3)
+    assert report["hydrostatics"]["surface"]["cb"] == pytest.approx(4 / 9, rel=2e-3)
     assert report["deviation"]["rms"] < 1e-3 * B
     surf = from_dict(json.loads((outdir / "surface_hull.json").read_text()))
     assert surf.evaluate(0.5, 0.5)[0] == pytest.approx(L / 2, rel=0.05)
@@ -110,7 +110,7 @@ def test_import_generic_tecplot_grid(tmp_path, capsys):
                  "-o", str(hull)]) == 0
     doc = json.loads(hull.read_text())
     # The triangulated grid is a trapezoid-rule hull: 4/9 to the grid's resolution (17 x 9).
-    assert doc["hydrostatics_input"]["Cb"] == pytest.approx(4 / 9, rel=0.02)
+    assert doc["hydrostatics_input"]["cb"] == pytest.approx(4 / 9, rel=0.02)
     assert main(["build", str(hull), "-o", str(tmp_path / "o")]) == 0
     report = json.loads((tmp_path / "o" / "report.json").read_text())
-    assert report["hydrostatics"]["surface"]["Cb"] == pytest.approx(4 / 9, rel=0.005)
+    assert report["hydrostatics"]["surface"]["cb"] == pytest.approx(4 / 9, rel=0.005)

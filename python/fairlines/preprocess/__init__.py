@@ -20,6 +20,7 @@ transom or a perpendicular, needs closing.
 
 # One concern per module; the public names (and the two helpers the tests use) are re-exported here.
 from .integrate import (  # noqa: F401
+    ImportHydrostatics,
     simpson,
     offsets_hydrostatics,
     AREA_FRACTION_TOL,
@@ -74,7 +75,7 @@ from .report import (  # noqa: F401
 )
 
 __all__ = [
-    "SECTION_SAMPLES_U", "SECTION_SAMPLES_V", "dense_samples", "simpson", "offsets_hydrostatics",
+    "ImportHydrostatics", "SECTION_SAMPLES_U", "SECTION_SAMPLES_V", "dense_samples", "simpson", "offsets_hydrostatics",
     "AREA_FRACTION_TOL", "sections_hydrostatics", "section_at",
     "grid_mesh", "mesh_hydrostatics", "surface_meshes", "input_hydrostatics",
     "surface_hydrostatics", "FLAT_TOL", "FOB_MIN_HALF_WIDTH",

@@ -26,7 +26,7 @@ def import_hull(data: HullData, progress=None) -> dict:
     say = progress or (lambda msg: None)
     say("integrating the input (Simpson / trapezoid)")
     hyd = input_hydrostatics(data)
-    for c in hyd.get("area_fraction_check", []):
+    for c in hyd.area_fraction_check:
         data.notes.append(f"station {c['station']!r}: tabulated area fraction {c['tabulated']:.3f} but the "
                           f"half-breadths integrate to {c['integrated']:.3f}; the half-breadths are used")
     say("skinning the sections into surfaces")
@@ -45,7 +45,7 @@ def import_hull(data: HullData, progress=None) -> dict:
         "principal": {"lpp": data.lpp, "beam": data.beam, "draft": data.draft},
         "form_parameters": fp,
         "subdomains": [{"name": n, "role": r} for n, r in zip(rb.names, rb.roles)],
-        "hydrostatics_input": {k: v for k, v in hyd.items() if k not in ("section_x", "section_areas")},
+        "hydrostatics_input": hyd.as_dict(arrays=False),
         "published": data.published,
         "notes": data.notes,
         "input": hull_data_to_dict(data),
@@ -88,8 +88,8 @@ def build_hull(doc, out_dir=None, *, progress=None, mesh=(240, 160)) -> dict:
     report = jsonable({
         "name": data.name, "principal": {"lpp": data.lpp, "beam": data.beam, "draft": data.draft},
         "deviation": rb.deviation,
-        "hydrostatics": {"input": {k: v for k, v in hin.items() if k not in ("section_x", "section_areas")},
-                         "surface": hs, "surface_mesh": hm},
+        "hydrostatics": {"input": hin.as_dict(arrays=False), "surface": hs.as_dict(arrays=False),
+                         "surface_mesh": hm.as_dict(arrays=False)},
         "published": data.published, "subdomains": [{"name": n, "role": r} for n, r in zip(rb.names, rb.roles)],
         "notes": data.notes,
     })

@@ -3,6 +3,8 @@ section polylines, and the hydrostatic coefficients from volume, centroids and a
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from .._native import InvalidInput
@@ -50,7 +52,7 @@ def _section_integrals(hb, z, draft):
     return simpson(yy, zz), simpson(yy * zz, zz), yy[-1]
 
 
-def offsets_hydrostatics(data: HullData, draft=None) -> dict:
+def offsets_hydrostatics(data: HullData, draft=None) -> ImportHydrostatics:
     """Volume, centres and coefficients of the input offsets by Simpson's rule (both sides).
 
     Integration runs over the stations given (normally AP to FP) and the waterlines up to the
@@ -68,15 +70,13 @@ def offsets_hydrostatics(data: HullData, draft=None) -> dict:
     lcf = 2 * simpson(ywl * x, x) / awp
     imid = int(np.argmin(np.abs(x - data.lpp / 2)))
     am = np.interp(data.lpp / 2, x, areas)
-    out = coefficients(V, lcb, vcb, awp, lcf, am, data.lpp, data.beam, T)
-    out.update(method="Simpson on the offsets table", section_x=x, section_areas=areas,
-               midship_station=data.offsets["labels"][imid])
-    out["area_fraction_check"] = _area_fraction_check(data, areas, am)
     # Girth method: each section's wetted girth below the draft, integrated along the ship
     # (ignores the longitudinal slope of the surface, so it reads a little low at the ends).
     girth = np.array([_girth(s.points, T) for s in data.sections])
-    out["wetted_surface"] = 2 * simpson(girth, np.array([s.x for s in data.sections]))
-    return out
+    return coefficients(V, lcb, vcb, awp, lcf, am, data.lpp, data.beam, T, method="Simpson on the offsets table",
+                        section_x=x, section_areas=areas, midship_station=data.offsets["labels"][imid],
+                        area_fraction_check=_area_fraction_check(data, areas, am),
+                        wetted_surface=2 * simpson(girth, np.array([s.x for s in data.sections])))
 
 
 def _girth(p, draft):
@@ -110,7 +110,7 @@ def _area_fraction_check(data, areas, am):
     return out
 
 
-def sections_hydrostatics(data: HullData, draft=None) -> dict:
+def sections_hydrostatics(data: HullData, draft=None) -> ImportHydrostatics:
     """Hydrostatics of section polylines: each section's area and moment by the trapezoid rule
     (Green's theorem on the polyline), then Simpson's rule along the stations."""
     T = data.draft if draft is None else float(draft)
@@ -122,19 +122,49 @@ def sections_hydrostatics(data: HullData, draft=None) -> dict:
     ywl = np.array([half_breadth_at(s.points, T) for s in data.sections])
     V = simpson(areas, x)
     awp = 2 * simpson(ywl, x)
-    out = coefficients(V, simpson(areas * x, x) / V, simpson(mz, x) / V, awp, 2 * simpson(ywl * x, x) / awp,
-                        np.interp(data.lpp / 2, x, areas), data.lpp, data.beam, T)
-    out.update(method="trapezoid on the sections, Simpson along the ship", section_x=x, section_areas=areas)
-    return out
+    return coefficients(V, simpson(areas * x, x) / V, simpson(mz, x) / V, awp, 2 * simpson(ywl * x, x) / awp,
+                        np.interp(data.lpp / 2, x, areas), data.lpp, data.beam, T,
+                        method="trapezoid on the sections, Simpson along the ship", section_x=x, section_areas=areas)
 
 
-def coefficients(V, lcb, vcb, awp, lcf, am, lpp, beam, draft):
-    return {
-        "draft": draft, "volume": V, "LCB": lcb, "LCB_pct_Lpp_from_midship": 100 * (lcb - lpp / 2) / lpp,
-        "VCB": vcb, "Awp": awp, "LCF": lcf, "Am": am,
-        "Cb": V / (lpp * beam * draft), "Cm": am / (beam * draft), "Cp": V / (am * lpp),
-        "Cwp": awp / (lpp * beam),
-    }
+@dataclasses.dataclass
+class ImportHydrostatics:
+    """Hydrostatics of an imported hull at one draft (its input, or its rebuilt surfaces or
+    meshes), both sides, in the names of :class:`fairlines.Hydrostatics`: lengths m from the
+    AP / above base, areas m^2, volume m^3. ``lcb_pct`` is the LCB in % Lpp from midships
+    (+ forward); ``wetted_surface`` is None where the method gives none."""
+    draft: float
+    volume: float
+    lcb: float
+    lcb_pct: float
+    vcb: float
+    waterplane_area: float
+    lcf: float
+    midship_area: float
+    cb: float
+    cm: float
+    cp: float
+    cwp: float
+    method: str
+    wetted_surface: float | None = None
+    section_x: np.ndarray | None = None
+    section_areas: np.ndarray | None = None
+    midship_station: str | None = None
+    area_fraction_check: list = dataclasses.field(default_factory=list)
+
+    def as_dict(self, *, arrays: bool = True) -> dict:
+        """The scalars (and, with ``arrays``, the section areas) as a plain dict of the same names."""
+        d = dataclasses.asdict(self)
+        return d if arrays else {k: v for k, v in d.items() if k not in ("section_x", "section_areas")}
+
+
+def coefficients(V, lcb, vcb, awp, lcf, am, lpp, beam, draft, *, method, **extra) -> ImportHydrostatics:
+    """The form coefficients of volume V (m^3), centres lcb, vcb (m), waterplane area awp (m^2)
+    with centroid lcf (m), midship area am (m^2) on Lpp x B x T."""
+    return ImportHydrostatics(
+        draft=draft, volume=V, lcb=lcb, lcb_pct=100 * (lcb - lpp / 2) / lpp, vcb=vcb, waterplane_area=awp,
+        lcf=lcf, midship_area=am, cb=V / (lpp * beam * draft), cm=am / (beam * draft), cp=V / (am * lpp),
+        cwp=awp / (lpp * beam), method=method, **extra)
 
 
 def polyline_area(p, draft):

@@ -8,7 +8,7 @@ import numpy as np
 from ..grid_faces import grid_triangles
 from ..hydrostatics_mesh import hydrostatics_of_mesh
 from ..offsets import HullData
-from .integrate import coefficients, offsets_hydrostatics, sections_hydrostatics
+from .integrate import ImportHydrostatics, coefficients, offsets_hydrostatics, sections_hydrostatics
 
 
 def grid_mesh(points):
@@ -21,19 +21,17 @@ def grid_mesh(points):
     return points.reshape(-1, 3), faces[area > 0]
 
 
-def mesh_hydrostatics(meshes, draft, lpp, beam) -> dict:
+def mesh_hydrostatics(meshes, draft, lpp, beam) -> ImportHydrostatics:
     """Hydrostatics of one or more triangle meshes [(vertices, faces), ...] of the half hull,
     clipped at the draft (the engine's :func:`fairlines.hydrostatics_of_mesh`); both sides
     reported. Each mesh is oriented on its own. Raises InvalidInput for malformed meshes."""
     parts = [hydrostatics_of_mesh(v, f, draft, orient=True, midship_x=lpp / 2) for v, f in meshes]
     V = sum(h.volume for h in parts)
     awp = sum(h.waterplane_area for h in parts)
-    out = coefficients(V, sum(h.volume * h.lcb for h in parts) / V, sum(h.volume * h.vcb for h in parts) / V, awp,
+    return coefficients(V, sum(h.volume * h.lcb for h in parts) / V, sum(h.volume * h.vcb for h in parts) / V, awp,
                         sum(h.waterplane_area * h.lcf for h in parts) / awp, sum(h.midship_area for h in parts),
-                        lpp, beam, draft)
-    out["wetted_surface"] = sum(h.wetted_surface for h in parts)
-    out["method"] = "divergence theorem on a triangle mesh"
-    return out
+                        lpp, beam, draft, method="divergence theorem on a triangle mesh",
+                        wetted_surface=sum(h.wetted_surface for h in parts))
 
 
 def surface_meshes(surfaces, n_u=240, n_v=160):
@@ -46,7 +44,7 @@ def surface_meshes(surfaces, n_u=240, n_v=160):
     return out
 
 
-def input_hydrostatics(data: HullData) -> dict:
+def input_hydrostatics(data: HullData) -> ImportHydrostatics:
     """Hydrostatics of the input itself: Simpson on an offsets table, or the exact integrals
     of the triangulated point grids (the trapezoid rule's surface counterpart)."""
     if data.offsets is not None:

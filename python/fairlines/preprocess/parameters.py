@@ -100,8 +100,8 @@ def form_parameters(surfaces, data: HullData, n_stations=41, roles=None) -> dict
         tip = bulb_pts[np.argmax(bulb_pts[:, 0])]
         bb = 2 * max((p[p[:, 1] <= 0.8 * T, 0].max() if np.any(p[:, 1] <= 0.8 * T) else 0.0) for p in at_fp) \
             if at_fp else 0.0
-        bow = {"kind": "bulb", "C_LPR": protrusion / L, "C_BB": bb / B, "C_ZB": float(tip[2]) / T,
-               "C_ABT": abt / am, "length_beyond_fp": protrusion}
+        bow = {"kind": "bulb", "c_lpr": protrusion / L, "c_bb": bb / B, "c_zb": float(tip[2]) / T,
+               "c_abt": abt / am, "length_beyond_fp": protrusion}
     roles = roles or []
     if "bulb" in roles and bow["kind"] != "bulb":
         bow["kind"] = "bulb"

@@ -4,11 +4,11 @@
 from __future__ import annotations
 
 from .. import _native
-from .integrate import coefficients, polyline_area
+from .integrate import ImportHydrostatics, coefficients, polyline_area
 from .sections import section_at
 
 
-def surface_hydrostatics(surfaces, draft, lpp, beam, *, roles=None) -> dict:
+def surface_hydrostatics(surfaces, draft, lpp, beam, *, roles=None) -> ImportHydrostatics:
     """Hydrostatics of NURBS half-hull surfaces below the draft: the engine's Gauss quadrature
     over every patch clipped at the waterline, each patch turned outward about the station
     x = Lpp/2 (full ship). Midship area Am is the section of the surfaces at x = Lpp/2 (Green's
@@ -18,7 +18,5 @@ def surface_hydrostatics(surfaces, draft, lpp, beam, *, roles=None) -> dict:
     if h.volume <= 0.0:
         raise _native.InvalidInput(f"draft {draft} m leaves no volume below it; expected a draft above the keel")
     am = 2 * sum(polyline_area(p, draft) for p in section_at(surfaces, lpp / 2, roles=roles))
-    out = coefficients(h.volume, h.lcb, h.vcb, h.waterplane_area, h.lcf, am, lpp, beam, draft)
-    out["wetted_surface"] = h.wetted_surface
-    out["method"] = "Gauss quadrature on the NURBS surface"
-    return out
+    return coefficients(h.volume, h.lcb, h.vcb, h.waterplane_area, h.lcf, am, lpp, beam, draft,
+                        method="Gauss quadrature on the NURBS surface", wetted_surface=h.wetted_surface)

@@ -7,10 +7,9 @@ def comparison_table(report) -> str:
     """Text table: input, surface, mesh of the surface, published, for the main particulars."""
     h = report["hydrostatics"]
     pub = report.get("published", {})
-    rows = [("volume", "volume", "m3", "{:.6g}"), ("LCB % Lpp fwd of midship", "LCB_pct_Lpp_from_midship", "%",
-                                                   "{:+.3f}"),
-            ("Cb", "Cb", "", "{:.4f}"), ("Cp", "Cp", "", "{:.4f}"), ("Cm", "Cm", "", "{:.4f}"),
-            ("Cwp", "Cwp", "", "{:.4f}"), ("wetted surface (no deck)", "wetted_surface", "m2", "{:.6g}")]
+    rows = [("volume", "volume", "m3", "{:.6g}"), ("LCB % Lpp fwd of midship", "lcb_pct", "%", "{:+.3f}"),
+            ("Cb", "cb", "", "{:.4f}"), ("Cp", "cp", "", "{:.4f}"), ("Cm", "cm", "", "{:.4f}"),
+            ("Cwp", "cwp", "", "{:.4f}"), ("wetted surface (no deck)", "wetted_surface", "m2", "{:.6g}")]
     lines = [f"{'':28s}{'input':>12s}{'surface':>12s}{'mesh':>12s}{'published':>12s}"]
     for label, key, _, fmt in rows:
         def cell(d):
