@@ -56,6 +56,116 @@ EdgeReport edge_report(const TriMesh& mesh) {
   return r;
 }
 
+namespace {
+
+// Ear clipping of a simple polygon that clips, at each step, the best-shaped ear of the
+// remaining polygon (largest area over the sum of squared sides; the first in polygon order
+// among equals). Per vertex the triangle with its neighbours is kept with its convexity, score
+// and the number of remaining vertices inside it: a clip changes the triangles of the two
+// neighbours only, and for every other vertex it can only remove the clipped vertex from inside
+// its triangle. That makes ear clipping O(n^2) instead of re-testing every vertex against every
+// triangle at each step (O(n^3)), with the same choices, so the same triangles.
+class EarClipper {
+ public:
+  EarClipper(std::vector<Eigen::Vector2d> p, const std::vector<char>& avoid)
+      : p_(std::move(p)), avoid_(avoid), n_(static_cast<int>(p_.size())), idx_(n_), ta_(n_), tc_(n_),
+        blockers_(n_, 0), convex_(n_), score_(n_, -1.0), candidate_(n_, 0) {
+    double area2 = 0.0;
+    for (int i = 0; i < n_; ++i) {
+      const auto& a = p_[i];
+      const auto& b = p_[(i + 1) % n_];
+      area2 += a.x() * b.y() - a.y() * b.x();
+    }
+    sign_ = area2 >= 0.0 ? 1.0 : -1.0;  // work as if counter-clockwise
+    for (int i = 0; i < n_; ++i) idx_[i] = i;
+  }
+
+  std::vector<std::array<int, 3>> run() {
+    std::vector<std::array<int, 3>> out;
+    out.reserve(n_ - 2);
+    for (int k = 0; k < n_; ++k) measure(k);
+    while (idx_.size() > 3) out.push_back(clip(best_ear()));
+    out.push_back({idx_[0], idx_[1], idx_[2]});
+    return out;
+  }
+
+ private:
+  // Closed triangle test (points on an edge count as inside, which keeps ears honest).
+  bool inside(const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+              const Eigen::Vector2d& c) const {
+    const double d1 = sign_ * cross2(a, b, q), d2 = sign_ * cross2(b, c, q), d3 = sign_ * cross2(c, a, q);
+    return d1 >= 0.0 && d2 >= 0.0 && d3 >= 0.0;
+  }
+
+  // Does remaining vertex iq keep the triangle (ia, ib, ic) from being an ear? Vertices of the
+  // triangle, and points that coincide with one of them, do not.
+  bool blocks(int iq, int ia, int ib, int ic) const {
+    if (iq == ia || iq == ib || iq == ic) return false;
+    if (p_[iq] == p_[ia] || p_[iq] == p_[ib] || p_[iq] == p_[ic]) return false;
+    return inside(p_[iq], p_[ia], p_[ib], p_[ic]);
+  }
+
+  // The triangle of the vertex at position k of the remaining polygon with its neighbours.
+  void measure(int k) {
+    const int m = static_cast<int>(idx_.size());
+    const int ia = idx_[(k + m - 1) % m], ib = idx_[k], ic = idx_[(k + 1) % m];
+    ta_[ib] = ia;
+    tc_[ib] = ic;
+    const double c = sign_ * cross2(p_[ia], p_[ib], p_[ic]);
+    convex_[ib] = c;
+    candidate_[ib] = c > 0.0 && !(!avoid_.empty() && avoid_[ia] && avoid_[ib] && avoid_[ic]);
+    blockers_[ib] = 0;
+    if (!candidate_[ib]) return;
+    for (const int iq : idx_) blockers_[ib] += blocks(iq, ia, ib, ic);
+    const double s = (p_[ia] - p_[ib]).squaredNorm() + (p_[ib] - p_[ic]).squaredNorm() + (p_[ic] - p_[ia]).squaredNorm();
+    score_[ib] = c / s;
+  }
+
+  // Position of the ear to clip; in a numerically degenerate remainder, the most convex vertex.
+  int best_ear() const {
+    const int m = static_cast<int>(idx_.size());
+    int best = -1;
+    double best_score = -1.0;
+    for (int k = 0; k < m; ++k) {
+      const int ib = idx_[k];
+      if (candidate_[ib] && blockers_[ib] == 0 && score_[ib] > best_score) best_score = score_[ib], best = k;
+    }
+    if (best >= 0) return best;
+    double bc = -1e300;
+    for (int k = 0; k < m; ++k)
+      if (convex_[idx_[k]] > bc) bc = convex_[idx_[k]], best = k;
+    return best;
+  }
+
+  // Clip the vertex at position best; update its neighbours' triangles and the others' blockers.
+  std::array<int, 3> clip(int best) {
+    const int m = static_cast<int>(idx_.size());
+    const int x = idx_[best];
+    const std::array<int, 3> tri{idx_[(best + m - 1) % m], x, idx_[(best + 1) % m]};
+    idx_.erase(idx_.begin() + best);
+    const int mm = m - 1;
+    const int kp = (best + mm - 1) % mm, kn = best % mm;  // the clipped vertex's neighbours, now adjacent
+    const int vp = idx_[kp], vn = idx_[kn];
+    for (const int v : idx_)
+      if (v != vp && v != vn && candidate_[v] && blocks(x, ta_[v], v, tc_[v])) --blockers_[v];
+    if (mm > 3) {
+      measure(kp);
+      measure(kn);
+    }
+    return tri;
+  }
+
+  std::vector<Eigen::Vector2d> p_;
+  const std::vector<char>& avoid_;
+  int n_;
+  double sign_ = 1.0;
+  std::vector<int> idx_, ta_, tc_, blockers_;
+  std::vector<double> convex_, score_;
+  std::vector<char> candidate_;
+};
+
+}  // namespace
+
 std::vector<std::array<int, 3>> triangulate_polygon(const Eigen::MatrixXd& points, const std::vector<char>& avoid) {
   const int n = static_cast<int>(points.rows());
   if (n < 3) detail::fail("polygon has ", n, " points; expected at least 3");
@@ -65,91 +175,7 @@ std::vector<std::array<int, 3>> triangulate_polygon(const Eigen::MatrixXd& point
     detail::fail("avoid has ", avoid.size(), " flags; expected one per polygon point (", n, ")");
   std::vector<Eigen::Vector2d> p(n);
   for (int i = 0; i < n; ++i) p[i] = points.row(i).transpose();
-  double area2 = 0.0;
-  for (int i = 0; i < n; ++i) {
-    const auto& a = p[i];
-    const auto& b = p[(i + 1) % n];
-    area2 += a.x() * b.y() - a.y() * b.x();
-  }
-  const double sign = area2 >= 0.0 ? 1.0 : -1.0;  // work as if counter-clockwise
-  std::vector<int> idx(n);
-  for (int i = 0; i < n; ++i) idx[i] = i;
-  std::vector<std::array<int, 3>> out;
-  out.reserve(n - 2);
-  auto inside = [&](const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                    const Eigen::Vector2d& c) {
-    // closed triangle test (points on an edge count as inside, which keeps ears honest)
-    const double d1 = sign * cross2(a, b, q), d2 = sign * cross2(b, c, q), d3 = sign * cross2(c, a, q);
-    return d1 >= 0.0 && d2 >= 0.0 && d3 >= 0.0;
-  };
-  // Does remaining vertex iq keep the triangle (ia, ib, ic) from being an ear? Vertices of the
-  // triangle, and points that coincide with one of them, do not.
-  auto blocks = [&](int iq, int ia, int ib, int ic) {
-    if (iq == ia || iq == ib || iq == ic) return false;
-    if (p[iq] == p[ia] || p[iq] == p[ib] || p[iq] == p[ic]) return false;
-    return inside(p[iq], p[ia], p[ib], p[ic]);
-  };
-  // Each step clips the best-shaped ear of the remaining polygon (largest area over the sum of
-  // squared sides; the first in polygon order among equals). Per vertex the triangle with its
-  // neighbours is kept with its convexity, score and the number of remaining vertices inside
-  // it: a clip changes the triangles of the two neighbours only, and for every other vertex it
-  // can only remove the clipped vertex from inside its triangle. That makes ear clipping
-  // O(n^2) instead of re-testing every vertex against every triangle at each step (O(n^3)),
-  // with the same choices, so the same triangles.
-  std::vector<int> ta(n), tc(n), blockers(n, 0);
-  std::vector<double> convex(n), score(n, -1.0);
-  std::vector<char> candidate(n, 0);
-  auto measure = [&](int k) {
-    const int m = static_cast<int>(idx.size());
-    const int ia = idx[(k + m - 1) % m], ib = idx[k], ic = idx[(k + 1) % m];
-    ta[ib] = ia;
-    tc[ib] = ic;
-    const double c = sign * cross2(p[ia], p[ib], p[ic]);
-    convex[ib] = c;
-    candidate[ib] = c > 0.0 && !(!avoid.empty() && avoid[ia] && avoid[ib] && avoid[ic]);
-    blockers[ib] = 0;
-    if (!candidate[ib]) return;
-    for (const int iq : idx) blockers[ib] += blocks(iq, ia, ib, ic);
-    const double s = (p[ia] - p[ib]).squaredNorm() + (p[ib] - p[ic]).squaredNorm() + (p[ic] - p[ia]).squaredNorm();
-    score[ib] = c / s;
-  };
-  for (int k = 0; k < n; ++k) measure(k);
-  while (idx.size() > 3) {
-    const int m = static_cast<int>(idx.size());
-    int best = -1;
-    double best_score = -1.0;
-    for (int k = 0; k < m; ++k) {
-      const int ib = idx[k];
-      if (!candidate[ib] || blockers[ib] != 0) continue;
-      if (score[ib] > best_score) {
-        best_score = score[ib];
-        best = k;
-      }
-    }
-    if (best < 0) {
-      // numerically degenerate remainder: clip the most convex vertex
-      double bc = -1e300;
-      for (int k = 0; k < m; ++k)
-        if (convex[idx[k]] > bc) {
-          bc = convex[idx[k]];
-          best = k;
-        }
-    }
-    const int x = idx[best];
-    out.push_back({idx[(best + m - 1) % m], x, idx[(best + 1) % m]});
-    idx.erase(idx.begin() + best);
-    const int mm = m - 1;
-    const int kp = (best + mm - 1) % mm, kn = best % mm;  // the clipped vertex's neighbours, now adjacent
-    const int vp = idx[kp], vn = idx[kn];
-    for (const int v : idx)
-      if (v != vp && v != vn && candidate[v] && blocks(x, ta[v], v, tc[v])) --blockers[v];
-    if (mm > 3) {
-      measure(kp);
-      measure(kn);
-    }
-  }
-  out.push_back({idx[0], idx[1], idx[2]});
-  return out;
+  return EarClipper(std::move(p), avoid).run();
 }
 
 namespace {
