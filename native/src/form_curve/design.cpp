@@ -90,13 +90,11 @@ FairnessMeasures fairness_of(int degree, const Eigen::MatrixXd& control_points) 
   return pb.measures(flatten(control_points));
 }
 
-FormCurveResult design_form_curve(const FormCurveRequest& request) {
-  form_curve_impl::validate_request(request);
-  check_form_parameters_feasible(request);
-  FormCurveRequest req = request;
-  Problem pb(req);
-  Solver solver(pb, req.options.max_iterations);
+namespace {
 
+// The deterministic start curves: the user's control points projected onto the linear form
+// parameters, or the fairest curve meeting only those (when inside the bounds) and the straight one.
+std::vector<Eigen::VectorXd> deterministic_starts(Solver& solver, const Problem& pb, const FormCurveRequest& req) {
   std::vector<Eigen::VectorXd> starts;
   if (req.initial_control_points.size() > 0) {
     Eigen::VectorXd z0 = solver.start_curve(nullptr);
@@ -105,26 +103,35 @@ FormCurveResult design_form_curve(const FormCurveRequest& request) {
     if (!solver.interior(z0))
       throw InvalidInput("initial_control_points (after projection onto the linear form parameters) violate the bounds");
     starts.push_back(z0);
-  } else {
-    const Eigen::VectorXd zc = solver.start_curve(nullptr);
-    const Eigen::VectorXd zf = solver.fair_linear_start(zc);
-    if (solver.interior(zf)) starts.push_back(zf);
-    starts.push_back(zc);
+    return starts;
   }
-  std::mt19937 rng(req.options.seed);
-  const int extra_fallback = 6;  // random restarts tried when the main run fails
-  RunOutcome best;
+  const Eigen::VectorXd zc = solver.start_curve(nullptr);
+  const Eigen::VectorXd zf = solver.fair_linear_start(zc);
+  if (solver.interior(zf)) starts.push_back(zf);
+  starts.push_back(zc);
+  return starts;
+}
+
+struct Runs {
+  RunOutcome best, furthest;  // the fairest feasible run; the infeasible run that got furthest
   bool have = false;
-  RunOutcome furthest;
-  furthest.tau = -1;
-  int steps = 0, all_iterations = 0;
+  int steps = 0, iterations = 0;
+};
+
+// Runs from the deterministic starts, then 1 + multistart random ones (kFallbackRestarts more
+// when none has succeeded); a deterministic start after the first is tried only while none has.
+Runs run_starts(Solver& solver, const std::vector<Eigen::VectorXd>& starts, const FormCurveRequest& req) {
+  constexpr int kFallbackRestarts = 6;
+  std::mt19937 rng(req.options.seed);
+  Runs r;
+  r.furthest.tau = -1;
   const int wanted = 1 + req.options.multistart;
   const int n_det = static_cast<int>(starts.size());
-  for (int attempt = 0; attempt < wanted + extra_fallback; ++attempt) {
-    if (attempt >= wanted && have) break;
-    if (attempt >= 1 && attempt < n_det && have) continue;
+  for (int attempt = 0; attempt < wanted + kFallbackRestarts; ++attempt) {
+    if (attempt >= wanted && r.have) break;
+    if (attempt >= 1 && attempt < n_det && r.have) continue;
     Eigen::VectorXd z0;
-    if (attempt < static_cast<int>(starts.size())) {
+    if (attempt < n_det) {
       z0 = starts[attempt];
     } else {
       bool ok = false;
@@ -136,27 +143,34 @@ FormCurveResult design_form_curve(const FormCurveRequest& request) {
     }
     if (!solver.interior(z0)) continue;
     RunOutcome out = solver.run(z0, req.options.continuation);  // the iteration budget applies per start
-    all_iterations += solver.iterations();
-    steps += out.steps;
-    if (out.feasible && (!have || out.objective < best.objective)) {
-      best = out;
-      have = true;
+    r.iterations += solver.iterations();
+    r.steps += out.steps;
+    if (out.feasible && (!r.have || out.objective < r.best.objective)) {
+      r.best = out;
+      r.have = true;
     }
-    if (!out.feasible && out.tau > furthest.tau) furthest = out;
+    if (!out.feasible && out.tau > r.furthest.tau) r.furthest = out;
   }
-  if (!have) {
-    if (furthest.tau < 0) {
-      furthest.z = starts.front();
-      furthest.tau = 0;
-    }
-    if (furthest.tau >= 1)
-      throw ConvergenceError("form-parameter solver reached the requested values but not the tolerance (violation " +
-                             std::to_string(furthest.violation) + ")");
-    // restore the continuation origin of the furthest run for the report
-    for (size_t i = 0; i < pb.cons.size() && i < furthest.starts.size(); ++i) pb.cons[i].start = furthest.starts[i];
-    throw InfeasibleFormParameters(form_curve_impl::failure_report(solver, furthest));
-  }
+  return r;
+}
 
+// No run met the request: ConvergenceError when the furthest reached the values, else
+// InfeasibleFormParameters with the report of the furthest run.
+[[noreturn]] void fail_runs(Solver& solver, Problem& pb, RunOutcome furthest, const Eigen::VectorXd& first_start) {
+  if (furthest.tau < 0) {
+    furthest.z = first_start;
+    furthest.tau = 0;
+  }
+  if (furthest.tau >= 1)
+    throw ConvergenceError("form-parameter solver reached the requested values but not the tolerance (violation " +
+                           std::to_string(furthest.violation) + ")");
+  // restore the continuation origin of the furthest run for the report
+  for (size_t i = 0; i < pb.cons.size() && i < furthest.starts.size(); ++i) pb.cons[i].start = furthest.starts[i];
+  throw InfeasibleFormParameters(form_curve_impl::failure_report(solver, furthest));
+}
+
+FormCurveResult result_of(Problem& pb, const FormCurveRequest& req, const Runs& r) {
+  const RunOutcome& best = r.best;
   FormCurveResult res;
   res.degree = pb.p;
   res.knots = pb.tab.knots;
@@ -177,10 +191,24 @@ FormCurveResult design_form_curve(const FormCurveRequest& request) {
   }
   res.fairness = pb.measures(best.z);
   res.objective = best.objective;
-  res.iterations = all_iterations;
-  res.continuation_steps = steps;
+  res.iterations = r.iterations;
+  res.continuation_steps = r.steps;
   res.converged = best.converged;
   return res;
+}
+
+}  // namespace
+
+FormCurveResult design_form_curve(const FormCurveRequest& request) {
+  form_curve_impl::validate_request(request);
+  check_form_parameters_feasible(request);
+  FormCurveRequest req = request;
+  Problem pb(req);
+  Solver solver(pb, req.options.max_iterations);
+  const std::vector<Eigen::VectorXd> starts = deterministic_starts(solver, pb, req);
+  const Runs runs = run_starts(solver, starts, req);
+  if (!runs.have) fail_runs(solver, pb, runs.furthest, starts.front());
+  return result_of(pb, req, runs);
 }
 
 namespace form_curve_detail {

@@ -100,98 +100,116 @@ void check_counts(const FormCurveRequest& req) {
 
 }  // namespace
 
-void check_form_parameters_feasible(const FormCurveRequest& req) {
-  const auto& P = req.params;
-  auto has = [&](const char* k) { return P.count(k) > 0; };
-  auto v = [&](const char* k) { return P.at(k); };
-  constexpr double deg = std::numbers::pi / 180.0;
-  const int ax = req.bounds.monotone_axis;
-  const bool ynn = req.bounds.y_nonnegative;
+namespace {
 
-  double sgn = 1;  // direction of the monotone coordinate
-  if (ax >= 0) {
-    const char* bn = ax == 0 ? "xB" : "yB";
-    const char* en = ax == 0 ? "xE" : "yE";
-    const char* an = ax == 0 ? "x" : "y";
-    if (has(bn) && has(en)) {
-      if (v(bn) == v(en))
-        infeasible({bn, en}, std::string(an) + "-monotone curve needs " + en + " != " + bn + " (both " + fmt(v(bn)) +
-                                 "); pass bounds with monotone=None for a closed or returning curve");
-      sgn = v(en) > v(bn) ? 1 : -1;
-    }
-    for (const char* a : {"alphaB", "alphaE"})
-      if (has(a)) {
-        const double comp = ax == 0 ? std::cos(v(a) * deg) : std::sin(v(a) * deg);
-        if (sgn * comp < -1e-12) {
-          std::ostringstream os;
-          os << "the tangent " << a << "=" << fmt(v(a)) << " deg makes " << an << " run "
-             << (sgn > 0 ? "backwards" : "forwards") << " at the " << (a[5] == 'B' ? "start" : "end") << ", but the curve must be "
-             << an << "-monotone " << (sgn > 0 ? "increasing" : "decreasing") << "; achievable " << a << " range: "
-             << (ax == 0 ? (sgn > 0 ? "[-90, 90]" : "[90, 270]") : (sgn > 0 ? "[0, 180]" : "[-180, 0]"));
-          std::vector<std::string> names = {a};
-          if (has(bn) && has(en)) names.insert(names.begin(), {bn, en});
-          infeasible(names, os.str());
-        }
-      }
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+// The requested form parameters, read by name.
+struct Named {
+  const std::map<std::string, double>& P;
+  bool has(const char* k) const { return P.count(k) > 0; }
+  double v(const char* k) const { return P.at(k); }
+};
+
+// A monotone curve runs one way from start to end; its end angles must agree. Returns the
+// direction of the monotone coordinate (+1 increasing, -1 decreasing).
+double check_monotone_direction(const Named& q, int ax) {
+  double sgn = 1;
+  if (ax < 0) return sgn;
+  const char* bn = ax == 0 ? "xB" : "yB";
+  const char* en = ax == 0 ? "xE" : "yE";
+  const char* an = ax == 0 ? "x" : "y";
+  if (q.has(bn) && q.has(en)) {
+    if (q.v(bn) == q.v(en))
+      infeasible({bn, en}, std::string(an) + "-monotone curve needs " + en + " != " + bn + " (both " + fmt(q.v(bn)) +
+                               "); pass bounds with monotone=None for a closed or returning curve");
+    sgn = q.v(en) > q.v(bn) ? 1 : -1;
   }
-  if (ynn) {
-    for (const char* k : {"yB", "yE"})
-      if (has(k) && v(k) < 0)
-        infeasible({k}, std::string(k) + "=" + fmt(v(k)) + " is below the bound y >= 0; achievable range [0, inf)");
-    if (has("yB") && v("yB") == 0 && has("alphaB") && std::sin(v("alphaB") * deg) < -1e-12)
-      infeasible({"yB", "alphaB"}, "starting on y = 0 with alphaB=" + fmt(v("alphaB")) +
-                                       " deg would leave y >= 0; achievable alphaB range [0, 180]");
-    if (has("yE") && v("yE") == 0 && has("alphaE") && std::sin(v("alphaE") * deg) > 1e-12)
-      infeasible({"yE", "alphaE"}, "ending on y = 0 with alphaE=" + fmt(v("alphaE")) +
-                                       " deg needs the curve below y = 0 just before; achievable alphaE range [-180, 0]");
+  for (const char* a : {"alphaB", "alphaE"}) {
+    if (!q.has(a)) continue;
+    const double comp = ax == 0 ? std::cos(q.v(a) * kDegree) : std::sin(q.v(a) * kDegree);
+    if (sgn * comp >= -1e-12) continue;
+    std::ostringstream os;
+    os << "the tangent " << a << "=" << fmt(q.v(a)) << " deg makes " << an << " run "
+       << (sgn > 0 ? "backwards" : "forwards") << " at the " << (a[5] == 'B' ? "start" : "end") << ", but the curve must be "
+       << an << "-monotone " << (sgn > 0 ? "increasing" : "decreasing") << "; achievable " << a << " range: "
+       << (ax == 0 ? (sgn > 0 ? "[-90, 90]" : "[90, 270]") : (sgn > 0 ? "[0, 180]" : "[-180, 0]"));
+    std::vector<std::string> names = {a};
+    if (q.has(bn) && q.has(en)) names.insert(names.begin(), {bn, en});
+    infeasible(names, os.str());
   }
-  // Conditions for a curve that is a graph y(x) over [xB, xE] (x-monotone).
-  if (ax == 0 && has("xB") && has("xE")) {
-    const double x0 = std::min(v("xB"), v("xE")), x1 = std::max(v("xB"), v("xE"));
-    const double L = x1 - x0, xm = 0.5 * (x0 + x1);
-    if (ynn && has("Area")) {
-      const double Aabs = sgn * v("Area");  // area in |dx|
-      const bool positive_ends = (has("yB") && v("yB") > 0) || (has("yE") && v("yE") > 0);
-      if (Aabs < 0 || (Aabs == 0 && (positive_ends || has("xC") || has("yC"))))
-        infeasible({"xB", "xE", "Area"}, "with y >= 0 and x running from xB to xE the area must have the sign of "
-                                         "xE - xB and be non-zero; requested Area=" +
-                                             fmt(v("Area")) + ", achievable " + (sgn > 0 ? "(0, inf)" : "(-inf, 0)"));
-    }
-    if (ynn && has("xC") && !(v("xC") > x0 && v("xC") < x1))
-      infeasible({"xB", "xE", "xC"}, "the centroid of an area under a curve with y >= 0 over x in [" + fmt(x0) + ", " +
-                                         fmt(x1) + "] lies strictly inside that range; requested xC=" + fmt(v("xC")) +
-                                         ", achievable (" + fmt(x0) + ", " + fmt(x1) + ")");
-    if (ynn && has("yC") && !(v("yC") > 0))
-      infeasible({"yC"}, "with y >= 0 the centroid height is positive; requested yC=" + fmt(v("yC")) +
-                             ", achievable (0, inf)");
-    if (has("Area") && has("yC") && v("Area") != 0) {
-      // Cauchy-Schwarz / Bessel: over a graph, int y^2 dx >= (A^2/L)(1 + 12 ((xC - xm)/L)^2),
-      // equality for a straight line; hence yC >= (|A|/(2L))(1 + 12 ((xC - xm)/L)^2).
-      const double Aabs = sgn * v("Area");
-      if (Aabs > 0) {
-        const double dx = has("xC") ? (v("xC") - xm) / L : 0.0;
-        const double ymin = Aabs / (2 * L) * (1 + 12 * dx * dx);
-        if (v("yC") < ymin * (1 - 1e-12)) {
-          std::ostringstream os;
-          os << "a curve that does not fold back (x monotone from xB to xE) has int y^2 dx >= "
-             << "(A^2/L)(1 + 12((xC - xm)/L)^2) (Cauchy-Schwarz; equality only for a straight line), so yC >= "
-             << fmt(ymin) << " here; requested yC=" << fmt(v("yC")) << ". Achievable: yC in [" << fmt(ymin)
-             << ", inf)";
-          if (has("xC")) {
-            const double r = L * std::sqrt(std::max(0.0, (2 * v("yC") * L / Aabs - 1) / 12));
-            os << "; or, keeping yC and Area, xC in [" << fmt(xm - r) << ", " << fmt(xm + r) << "]";
-            os << "; or, keeping xC and yC, |Area| <= " << fmt(2 * v("yC") * L / (1 + 12 * dx * dx));
-          } else {
-            os << "; or, keeping yC, |Area| <= " << fmt(2 * v("yC") * L);
-          }
-          std::vector<std::string> names = {"xB", "xE", "Area"};
-          if (has("xC")) names.push_back("xC");
-          names.push_back("yC");
-          infeasible(names, os.str());
-        }
-      }
-    }
+  return sgn;
+}
+
+// End heights and end angles that the bound y >= 0 rules out.
+void check_y_bound(const Named& q) {
+  for (const char* k : {"yB", "yE"})
+    if (q.has(k) && q.v(k) < 0)
+      infeasible({k}, std::string(k) + "=" + fmt(q.v(k)) + " is below the bound y >= 0; achievable range [0, inf)");
+  if (q.has("yB") && q.v("yB") == 0 && q.has("alphaB") && std::sin(q.v("alphaB") * kDegree) < -1e-12)
+    infeasible({"yB", "alphaB"}, "starting on y = 0 with alphaB=" + fmt(q.v("alphaB")) +
+                                     " deg would leave y >= 0; achievable alphaB range [0, 180]");
+  if (q.has("yE") && q.v("yE") == 0 && q.has("alphaE") && std::sin(q.v("alphaE") * kDegree) > 1e-12)
+    infeasible({"yE", "alphaE"}, "ending on y = 0 with alphaE=" + fmt(q.v("alphaE")) +
+                                     " deg needs the curve below y = 0 just before; achievable alphaE range [-180, 0]");
+}
+
+// Cauchy-Schwarz / Bessel: over a graph, int y^2 dx >= (A^2/L)(1 + 12 ((xC - xm)/L)^2),
+// equality for a straight line; hence yC >= (|A|/(2L))(1 + 12 ((xC - xm)/L)^2).
+void check_centroid_height(const Named& q, double sgn, double L, double xm) {
+  const double Aabs = sgn * q.v("Area");
+  if (!(Aabs > 0)) return;
+  const double dx = q.has("xC") ? (q.v("xC") - xm) / L : 0.0;
+  const double ymin = Aabs / (2 * L) * (1 + 12 * dx * dx);
+  if (q.v("yC") >= ymin * (1 - 1e-12)) return;
+  std::ostringstream os;
+  os << "a curve that does not fold back (x monotone from xB to xE) has int y^2 dx >= "
+     << "(A^2/L)(1 + 12((xC - xm)/L)^2) (Cauchy-Schwarz; equality only for a straight line), so yC >= "
+     << fmt(ymin) << " here; requested yC=" << fmt(q.v("yC")) << ". Achievable: yC in [" << fmt(ymin)
+     << ", inf)";
+  if (q.has("xC")) {
+    const double r = L * std::sqrt(std::max(0.0, (2 * q.v("yC") * L / Aabs - 1) / 12));
+    os << "; or, keeping yC and Area, xC in [" << fmt(xm - r) << ", " << fmt(xm + r) << "]";
+    os << "; or, keeping xC and yC, |Area| <= " << fmt(2 * q.v("yC") * L / (1 + 12 * dx * dx));
+  } else {
+    os << "; or, keeping yC, |Area| <= " << fmt(2 * q.v("yC") * L);
   }
+  std::vector<std::string> names = {"xB", "xE", "Area"};
+  if (q.has("xC")) names.push_back("xC");
+  names.push_back("yC");
+  infeasible(names, os.str());
+}
+
+// Area and centroid conditions for a curve that is a graph y(x) over [xB, xE] (x-monotone).
+void check_graph_integrals(const Named& q, double sgn, bool ynn) {
+  const double x0 = std::min(q.v("xB"), q.v("xE")), x1 = std::max(q.v("xB"), q.v("xE"));
+  const double L = x1 - x0, xm = 0.5 * (x0 + x1);
+  if (ynn && q.has("Area")) {
+    const double Aabs = sgn * q.v("Area");  // area in |dx|
+    const bool positive_ends = (q.has("yB") && q.v("yB") > 0) || (q.has("yE") && q.v("yE") > 0);
+    if (Aabs < 0 || (Aabs == 0 && (positive_ends || q.has("xC") || q.has("yC"))))
+      infeasible({"xB", "xE", "Area"}, "with y >= 0 and x running from xB to xE the area must have the sign of "
+                                       "xE - xB and be non-zero; requested Area=" +
+                                           fmt(q.v("Area")) + ", achievable " + (sgn > 0 ? "(0, inf)" : "(-inf, 0)"));
+  }
+  if (ynn && q.has("xC") && !(q.v("xC") > x0 && q.v("xC") < x1))
+    infeasible({"xB", "xE", "xC"}, "the centroid of an area under a curve with y >= 0 over x in [" + fmt(x0) + ", " +
+                                       fmt(x1) + "] lies strictly inside that range; requested xC=" + fmt(q.v("xC")) +
+                                       ", achievable (" + fmt(x0) + ", " + fmt(x1) + ")");
+  if (ynn && q.has("yC") && !(q.v("yC") > 0))
+    infeasible({"yC"}, "with y >= 0 the centroid height is positive; requested yC=" + fmt(q.v("yC")) +
+                           ", achievable (0, inf)");
+  if (q.has("Area") && q.has("yC") && q.v("Area") != 0) check_centroid_height(q, sgn, L, xm);
+}
+
+}  // namespace
+
+void check_form_parameters_feasible(const FormCurveRequest& req) {
+  const Named q{req.params};
+  const int ax = req.bounds.monotone_axis;
+  const double sgn = check_monotone_direction(q, ax);
+  if (req.bounds.y_nonnegative) check_y_bound(q);
+  if (ax == 0 && q.has("xB") && q.has("xE")) check_graph_integrals(q, sgn, req.bounds.y_nonnegative);
 }
 
 namespace form_curve_impl {
