@@ -165,13 +165,9 @@ struct MeshBuilder {
   }
 };
 
-/// Caps the planar boundary runs of an open half-hull surface (oriented consistently): the
-/// centre plane, the deck and, unless the aft end lies on the centre plane, the transom plane.
-void close_half_hull(MeshBuilder& mb, const AftEnd& aft, double z_deck, double tol) {
-  TriMesh open = mb.mesh();
-  orient_consistently(open);
-  for (size_t f = 0; f < mb.faces.size(); ++f)
-    for (int k = 0; k < 3; ++k) mb.faces[f][k] = open.faces(static_cast<Eigen::Index>(f), k);
+/// The open boundary of the oriented surface faces as one loop, run against the surface (so a
+/// cap made on it faces the other way). Throws when the boundary branches or is not one loop.
+std::vector<int> boundary_loop(const MeshBuilder& mb) {
   std::map<std::pair<int, int>, int> count;
   for (const auto& f : mb.faces)
     for (int k = 0; k < 3; ++k) {
@@ -188,7 +184,6 @@ void close_half_hull(MeshBuilder& mb, const AftEnd& aft, double z_deck, double t
       }
     }
   if (next.empty()) throw Error("compose: the hull surface has no open boundary to close");
-  // one loop
   std::vector<int> loop;
   const int start = next.begin()->first;
   int v = start;
@@ -201,50 +196,61 @@ void close_half_hull(MeshBuilder& mb, const AftEnd& aft, double z_deck, double t
   } while (v != start);
   if (loop.size() != next.size())
     throw Error("compose: the open hull boundary has several loops; expected one (centre plane, deck, aft cut)");
-  const auto& P = mb.verts;
-  auto edge_class = [&](int a, int b) {
-    if (P[a].y() == 0.0 && P[b].y() == 0.0) return 0;           // centre plane
-    if (P[a].z() == z_deck && P[b].z() == z_deck) return 1;     // deck
-    if (!aft.on_centre_plane && std::abs(aft.normal.dot(P[a]) - aft.offset) <= tol &&
-        std::abs(aft.normal.dot(P[b]) - aft.offset) <= tol)
-      return 2;  // aft cut (transom plane)
-    std::ostringstream os;
-    os << "compose: a boundary edge from (" << P[a].transpose() << ") to (" << P[b].transpose()
-       << ") lies on none of the centre plane, deck or aft cut";
-    throw Error(os.str());
-  };
+  return loop;
+}
+
+/// The plane of the boundary edge a-b: 0 centre plane, 1 deck, 2 aft cut (transom plane).
+int boundary_plane(const std::vector<Eigen::Vector3d>& P, int a, int b, const AftEnd& aft, double z_deck, double tol) {
+  if (P[a].y() == 0.0 && P[b].y() == 0.0) return 0;
+  if (P[a].z() == z_deck && P[b].z() == z_deck) return 1;
+  if (!aft.on_centre_plane && std::abs(aft.normal.dot(P[a]) - aft.offset) <= tol &&
+      std::abs(aft.normal.dot(P[b]) - aft.offset) <= tol)
+    return 2;
+  std::ostringstream os;
+  os << "compose: a boundary edge from (" << P[a].transpose() << ") to (" << P[b].transpose()
+     << ") lies on none of the centre plane, deck or aft cut";
+  throw Error(os.str());
+}
+
+/// Triangulates one planar run of boundary vertices (closed by the deck corner of a transom
+/// when there is one) in its plane's coordinates, as a cap of that plane.
+void cap_run(MeshBuilder& mb, std::vector<int> run, int plane, int corner) {
+  if (corner >= 0) run.push_back(corner);
+  Eigen::MatrixXd poly(static_cast<Eigen::Index>(run.size()), 2);
+  for (size_t k = 0; k < run.size(); ++k) {
+    const Eigen::Vector3d& q = mb.verts[run[k]];
+    if (plane == 0) poly.row(static_cast<Eigen::Index>(k)) << q.x(), q.z();
+    else if (plane == 1) poly.row(static_cast<Eigen::Index>(k)) << q.x(), q.y();
+    else poly.row(static_cast<Eigen::Index>(k)) << q.y(), q.z();
+  }
+  const FacePart part = plane == 0 ? FacePart::CentrePlane : plane == 1 ? FacePart::Deck : FacePart::AftCut;
+  for (const auto& t : triangulate_polygon(poly)) mb.tri(run[t[0]], run[t[1]], run[t[2]], part);
+}
+
+/// Caps the planar boundary runs of an open half-hull surface (oriented consistently): the
+/// centre plane, the deck and, unless the aft end lies on the centre plane, the transom plane.
+void close_half_hull(MeshBuilder& mb, const AftEnd& aft, double z_deck, double tol) {
+  TriMesh open = mb.mesh();
+  orient_consistently(open);
+  for (size_t f = 0; f < mb.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) mb.faces[f][k] = open.faces(static_cast<Eigen::Index>(f), k);
+  const std::vector<int> loop = boundary_loop(mb);
   const int n = static_cast<int>(loop.size());
   std::vector<int> cls(n);
-  for (int i = 0; i < n; ++i) cls[i] = edge_class(loop[i], loop[(i + 1) % n]);
+  for (int i = 0; i < n; ++i) cls[i] = boundary_plane(mb.verts, loop[i], loop[(i + 1) % n], aft, z_deck, tol);
   int s0 = -1;
-  for (int i = 0; i < n; ++i)
-    if (cls[i] != cls[(i + n - 1) % n]) {
-      s0 = i;
-      break;
-    }
+  for (int i = 0; i < n && s0 < 0; ++i)
+    if (cls[i] != cls[(i + n - 1) % n]) s0 = i;
   if (s0 < 0) throw Error("compose: the open boundary lies in one plane only");
   const int corner = aft.on_centre_plane ? -1 : mb.add(aft.deck_corner);
-  int runs = 0;
-  int seen_mask = 0;
+  int runs = 0, seen_mask = 0;
   for (int i = 0; i < n;) {
     const int c = cls[(s0 + i) % n];
     std::vector<int> run{loop[(s0 + i) % n]};
-    while (i < n && cls[(s0 + i) % n] == c) {
-      run.push_back(loop[(s0 + i + 1) % n]);
-      ++i;
-    }
+    for (; i < n && cls[(s0 + i) % n] == c; ++i) run.push_back(loop[(s0 + i + 1) % n]);
     ++runs;
     seen_mask |= 1 << c;
-    if (corner >= 0) run.push_back(corner);
-    Eigen::MatrixXd poly(static_cast<Eigen::Index>(run.size()), 2);
-    for (size_t k = 0; k < run.size(); ++k) {
-      const Eigen::Vector3d& q = mb.verts[run[k]];
-      if (c == 0) poly.row(static_cast<Eigen::Index>(k)) << q.x(), q.z();
-      else if (c == 1) poly.row(static_cast<Eigen::Index>(k)) << q.x(), q.y();
-      else poly.row(static_cast<Eigen::Index>(k)) << q.y(), q.z();
-    }
-    for (const auto& t : triangulate_polygon(poly))
-      mb.tri(run[t[0]], run[t[1]], run[t[2]], c == 0 ? FacePart::CentrePlane : c == 1 ? FacePart::Deck : FacePart::AftCut);
+    cap_run(mb, std::move(run), c, corner);
   }
   const int want = aft.on_centre_plane ? 2 : 3;
   if (runs != want || seen_mask != (aft.on_centre_plane ? 3 : 7)) {
