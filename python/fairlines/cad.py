@@ -487,7 +487,8 @@ def _write_iges(shape, path):
 def read_cad(path, sew: bool = True):
     """Read a STEP or IGES file back with OpenCASCADE: its shape (TopoDS_Shape). IGES trimmed
     surfaces carry no shared edges: with ``sew`` they are sewn (SEW_TOLERANCE) and a closed
-    shell becomes a solid, as a CAD system does on import."""
+    shell becomes a solid, as a CAD system does on import.
+    Raises InvalidInput for an unknown file type, OSError when OpenCASCADE cannot read the file, ImportError without OpenCASCADE."""
     _occ()
     path = pathlib.Path(path)
     fmt = FORMATS.get(path.suffix.lower())
@@ -569,7 +570,8 @@ def verify(shape, surfaces: Sequence[NurbsSurface] = (), samples: int = 11) -> d
 
 def write_3dm(surfaces: Sequence[NurbsSurface], path, mesh=None) -> None:
     """Rhino .3dm (rhino3dm): each surface as a Rhino NURBS surface, metres; ``mesh`` (a
-    fairlines Mesh) as a Rhino mesh when given."""
+    fairlines Mesh) as a Rhino mesh when given.
+    Raises ImportError without rhino3dm, OSError when the file cannot be written."""
     try:
         import rhino3dm
     except ImportError as exc:  # pragma: no cover - depends on the environment
@@ -606,7 +608,8 @@ def _rhino_surface(rhino3dm, s):
 
 
 def read_3dm(path) -> list[NurbsSurface]:
-    """The NURBS surfaces of a .3dm file as fairlines surfaces."""
+    """The NURBS surfaces of a .3dm file as fairlines surfaces.
+    Raises ImportError without rhino3dm, OSError when the file cannot be read."""
     import rhino3dm
     model = rhino3dm.File3dm.Read(str(path))
     if model is None:

@@ -8,7 +8,7 @@ import pathlib
 
 import numpy as np
 
-from ._native import NurbsCurve, NurbsSurface
+from ._native import InvalidInput, NurbsCurve, NurbsSurface
 from .grid_faces import grid_triangles
 
 
@@ -38,7 +38,8 @@ def surface_to_dict(surface: NurbsSurface) -> dict:
 
 
 def from_dict(data: dict):
-    """Inverse of curve_to_dict / surface_to_dict; raises ValueError naming a missing key."""
+    """Inverse of curve_to_dict / surface_to_dict. Raises InvalidInput naming a missing key or an
+    unknown type, and the engine's InvalidInput for degrees, knots or points that make no curve."""
     kind = data.get("type")
     try:
         if kind == "nurbs_curve":
@@ -47,8 +48,8 @@ def from_dict(data: dict):
             return NurbsSurface(data["degree_u"], data["degree_v"], data["knots_u"], data["knots_v"],
                                 data["control_points"], data.get("weights"))
     except KeyError as exc:
-        raise ValueError(f"{kind} data has no {exc.args[0]!r} entry") from None
-    raise ValueError(f"type is {kind!r}; expected 'nurbs_curve' or 'nurbs_surface'")
+        raise InvalidInput(f"{kind} data has no {exc.args[0]!r} entry") from None
+    raise InvalidInput(f"type is {kind!r}; expected 'nurbs_curve' or 'nurbs_surface'")
 
 
 def save_json(obj, path) -> None:
@@ -59,9 +60,10 @@ def save_json(obj, path) -> None:
 
 def tessellate(surface: NurbsSurface, n_u: int = 64, n_v: int = 32):
     """Quad-split triangle mesh of a surface on an n_u x n_v parameter grid:
-    vertices (n_u * n_v, 3) in metres, faces (2 (n_u - 1)(n_v - 1), 3) vertex indices."""
+    vertices (n_u * n_v, 3) in metres, faces (2 (n_u - 1)(n_v - 1), 3) vertex indices.
+    Raises InvalidInput for a grid smaller than 2 x 2."""
     if n_u < 2 or n_v < 2:
-        raise ValueError(f"tessellation is {n_u} x {n_v}; expected at least 2 x 2")
+        raise InvalidInput(f"tessellation is {n_u} x {n_v}; expected at least 2 x 2")
     us = np.linspace(*surface.domain_u, n_u)
     vs = np.linspace(*surface.domain_v, n_v)
     return surface.evaluate_grid(us, vs).reshape(-1, 3), grid_triangles(n_u, n_v)

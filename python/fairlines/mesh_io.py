@@ -72,7 +72,8 @@ def write_mesh(mesh: SurfaceMesh, path, file_format: str | None = None, **kw) ->
 
 def read_mesh(path) -> SurfaceMesh:
     """Reads a surface mesh of triangles and quads with meshio (the ``part`` cell data, when
-    present, becomes ``face_part``)."""
+    present, becomes ``face_part``).
+    Raises InvalidInput for a file meshio cannot read or one with no triangles or quadrilaterals."""
     import meshio
     m = meshio.read(path)
     faces, part = [], []
@@ -135,7 +136,8 @@ def write_mar(mesh: SurfaceMesh, path, *, draft: float | None = None, symmetric:
 def write_plot3d(grids, path) -> None:
     """Multi-block Plot3D (ASCII, whole, 3-D coordinates): the block count, each block's
     ``ni nj 1``, then per block all x, all y, all z with i running fastest. ``grids``: one
-    (ni, nj, 3) array of points (metres) per block."""
+    (ni, nj, 3) array of points (metres) per block.
+    Raises InvalidInput for a grid not shaped (ni, nj, 3)."""
     blocks = [np.asarray(g, float) for g in grids]
     for k, g in enumerate(blocks):
         if g.ndim != 3 or g.shape[2] != 3:
@@ -149,7 +151,8 @@ def write_plot3d(grids, path) -> None:
 
 
 def read_plot3d(path) -> list:
-    """The blocks of a multi-block ASCII Plot3D file as (ni, nj, 3) arrays (nk must be 1)."""
+    """The blocks of a multi-block ASCII Plot3D file as (ni, nj, 3) arrays (nk must be 1).
+    Raises InvalidInput for a malformed file or a block with nk != 1."""
     tok = pathlib.Path(path).read_text().split()
     nb = int(tok[0])
     dims = [tuple(int(x) for x in tok[1 + 3 * k: 4 + 3 * k]) for k in range(nb)]

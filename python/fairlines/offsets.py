@@ -479,7 +479,8 @@ def _first_crossing(p):
 
 
 def check_station_range(xs, lpp, source=""):
-    """Stations must lie near the perpendiculars: x from -margin to (1 + margin) Lpp."""
+    """Stations must lie near the perpendiculars: x from -margin to (1 + margin) Lpp.
+    Raises InvalidInput naming the first station outside."""
     if len(xs) == 0:
         raise InvalidInput(f"{source}: no stations; expected at least one")
     lo, hi = float(np.min(xs)), float(np.max(xs))
@@ -491,7 +492,8 @@ def check_station_range(xs, lpp, source=""):
 
 def check_sections(sections, source=""):
     """Refuse sections that fold back on themselves (a polyline that crosses itself) or
-    repeat a point; such data has no fair surface through it."""
+    repeat a point; such data has no fair surface through it.
+    Raises InvalidInput naming the section and the point."""
     for s in sections:
         p = s.points
         seg = np.linalg.norm(np.diff(p, axis=0), axis=1)
@@ -529,7 +531,8 @@ def _check_grid(points, where):
 
 
 def read_xyz_grid(x_path, y_path, z_path, name="grid", role="hull") -> PointGrid:
-    """A structured grid from three whitespace-separated matrices of x, y and z (same shape)."""
+    """A structured grid from three whitespace-separated matrices of x, y and z (same shape).
+    Raises InvalidInput for unreadable or mismatched matrices."""
     mats = []
     for p in (x_path, y_path, z_path):
         try:
@@ -547,7 +550,8 @@ def read_xyz_grid(x_path, y_path, z_path, name="grid", role="hull") -> PointGrid
 
 def read_tecplot(path) -> list:
     """Zones of a Tecplot ASCII file with ``f=point`` data as (i, j, 3) arrays, i fastest in the
-    file (Windows line endings accepted)."""
+    file (Windows line endings accepted).
+    Raises InvalidInput for a file that is not point-format Tecplot or a zone whose size does not match its data."""
     try:
         text = pathlib.Path(path).read_text(errors="strict")
     except (OSError, UnicodeDecodeError) as exc:
@@ -602,7 +606,8 @@ def read_dtmb5415(folder, *, published=None) -> HullData:
     Source frame: metres, FP near x = 0, AP at x = -5.719, z = 0 at the keel line. The main
     grid's rows are stations; it overlaps the bow grid forward of the bow grid's first row (a
     plane section), so the main grid is cut there (a section interpolated linearly between its
-    neighbouring rows) and the bow grid, which carries the sonar dome, covers the rest."""
+    neighbouring rows) and the bow grid, which carries the sonar dome, covers the rest.
+    Raises InvalidInput for a missing or malformed grid file."""
     folder = pathlib.Path(folder)
     lpp, beam, draft = 5.719, 0.768, 0.248
     grids = {}
@@ -638,7 +643,8 @@ def read_kcs(folder, *, lpp=230.0, beam=32.2, draft=10.8) -> HullData:
     """KCS: the NMRI two-block grids ``kcs_bow2.dat`` and ``kcs_stn2.dat`` scaled by Lpp.
 
     Source frame: coordinates / Lpp, origin midship on the calm waterline, X downstream (FP at
-    X = -0.5), Y starboard, Z up. In the project's axes: x = (0.5 - X) Lpp, y = Y Lpp, z = Z Lpp + T."""
+    X = -0.5), Y starboard, Z up. In the project's axes: x = (0.5 - X) Lpp, y = Y Lpp, z = Z Lpp + T.
+    Raises InvalidInput for a missing or malformed grid file."""
     folder = pathlib.Path(folder)
     lpp, beam, draft = _dimensions(lpp, beam, draft)
     grids = []
@@ -665,7 +671,8 @@ def read_hull_data(path, lpp=None, beam=None, draft=None, *, fmt="auto", n_stati
     'dtmb5415' (folder of the three grid triples), 'kcs' (folder with kcs_bow2.dat and
     kcs_stn2.dat) or 'auto' (from the path: a folder by its files, a CSV by its header).
     Lpp, beam and draft (metres) are needed for tables and section lists; the reference grids
-    default to their published model/ship dimensions."""
+    default to their published model/ship dimensions.
+    Raises InvalidInput for a missing path, an unknown format or any value the reader refuses."""
     p = pathlib.Path(path)
     if not p.exists():
         raise InvalidInput(f"{p} does not exist; expected an offsets CSV, a section CSV or a grid folder")
@@ -724,7 +731,8 @@ def hull_data_to_dict(data: HullData) -> dict:
 
 
 def hull_data_from_dict(d: dict) -> HullData:
-    """Inverse of hull_data_to_dict; InvalidInput naming a missing entry."""
+    """Inverse of hull_data_to_dict; InvalidInput naming a missing entry.
+    Raises InvalidInput naming a missing entry."""
     try:
         data = HullData(d["name"], _positive("lpp", d["lpp"]), _positive("beam", d["beam"]),
                         _positive("draft", d["draft"]), source=d.get("source", ""),

@@ -19,7 +19,8 @@ def bad(path: str, value: Any, expected: str) -> InvalidInput:
 
 
 def number(path: str, value: Any, *, positive: bool = False) -> float:
-    """value as a finite float (> 0 when `positive`)."""
+    """value as a finite float (> 0 when `positive`).
+    Raises InvalidInput naming the value."""
     if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
         raise bad(path, value, "a number")
     v = float(value)
@@ -31,7 +32,8 @@ def number(path: str, value: Any, *, positive: bool = False) -> float:
 
 
 def integer(path: str, value: Any, lo: int | None = None, hi: int | None = None) -> int:
-    """value as an int (not a bool, not a float) within [lo, hi] where given."""
+    """value as an int (not a bool, not a float) within [lo, hi] where given.
+    Raises InvalidInput naming the value."""
     ok = not isinstance(value, bool) and isinstance(value, (int, np.integer))
     if ok and ((lo is not None and int(value) < lo) or (hi is not None and int(value) > hi)):
         ok = False
@@ -44,7 +46,8 @@ def integer(path: str, value: Any, lo: int | None = None, hi: int | None = None)
 
 
 def integral(path: str) -> Callable[[Any], int]:
-    """A conversion to int that takes an int or a float with an integral value (not a bool)."""
+    """A conversion to int that takes an int or a float with an integral value (not a bool);
+    the conversion raises InvalidInput naming the value."""
     def convert(value):
         if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
                 or not float(value).is_integer():
@@ -54,7 +57,8 @@ def integral(path: str) -> Callable[[Any], int]:
 
 
 def keyed_object(path: str, value: Any, known: tuple[str, ...] | list[str]) -> dict:
-    """value as a dict whose keys are all in `known`; an unknown key names the nearest valid one."""
+    """value as a dict whose keys are all in `known`; an unknown key names the nearest valid one.
+    Raises InvalidInput naming the value or the unknown key."""
     if not isinstance(value, dict):
         raise bad(path, value, "an object with keys from " + ", ".join(known))
     for key in value:
@@ -66,7 +70,8 @@ def keyed_object(path: str, value: Any, known: tuple[str, ...] | list[str]) -> d
 
 
 def text_value(path: str, value: Any) -> str:
-    """value when it is text (a JSON string)."""
+    """value when it is text (a JSON string).
+    Raises InvalidInput naming the value."""
     if not isinstance(value, str):
         raise bad(path, value, "text (a JSON string)")
     return value

@@ -53,7 +53,8 @@ def import_hull(data: HullData, progress=None) -> dict:
 
 
 def load_imported(doc) -> tuple:
-    """(document, HullData) from a hull.json path or its dict; InvalidInput on anything else."""
+    """(document, HullData) from a hull.json path or its dict; InvalidInput on anything else.
+    Raises InvalidInput for an unreadable file, non-JSON text or a document of another type."""
     if not isinstance(doc, dict):
         path = pathlib.Path(doc)
         try:

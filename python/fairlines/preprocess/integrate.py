@@ -56,7 +56,8 @@ def offsets_hydrostatics(data: HullData, draft=None) -> ImportHydrostatics:
     """Volume, centres and coefficients of the input offsets by Simpson's rule (both sides).
 
     Integration runs over the stations given (normally AP to FP) and the waterlines up to the
-    draft; LCB is reported from the AP and in % Lpp from midships (+ forward)."""
+    draft; LCB is reported from the AP and in % Lpp from midships (+ forward).
+    Raises InvalidInput for data without an offsets table or offsets below the draft."""
     if data.offsets is None:
         raise InvalidInput(f"{data.name}: no offsets table; expected data read by read_offsets_csv")
     T = data.draft if draft is None else float(draft)
@@ -112,7 +113,8 @@ def _area_fraction_check(data, areas, am):
 
 def sections_hydrostatics(data: HullData, draft=None) -> ImportHydrostatics:
     """Hydrostatics of section polylines: each section's area and moment by the trapezoid rule
-    (Green's theorem on the polyline), then Simpson's rule along the stations."""
+    (Green's theorem on the polyline), then Simpson's rule along the stations.
+    Raises InvalidInput for stations not strictly increasing."""
     T = data.draft if draft is None else float(draft)
     x = np.array([s.x for s in data.sections])
     if np.any(np.diff(x) <= 0):
