@@ -2,12 +2,16 @@
 #include "fairlines/blend.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <tuple>
 #include <vector>
 
 #include <Eigen/Geometry>
 
+#include <Eigen/LU>
+
+#include "fairlines/basis.hpp"
 #include "fairlines/errors.hpp"
 #include "fairlines/fitting.hpp"
 #include "fairlines/knots.hpp"
@@ -97,6 +101,60 @@ bool project(const NurbsSurface& s, const Eigen::Vector3d& p, double& u, double&
   return false;
 }
 
+
+/// The largest |n_y| of a surface's unit normal at a centre-plane point for the surface to count
+/// as smooth across the centre plane (its mirror image meets it within about 6 degrees).
+constexpr double kSmoothAcrossPlane = 0.1;
+
+/// Per row (P0 .. P3) and end (start, end): the unit tangent the row must arrive with at a
+/// centre-plane end, or zero where it keeps its own. Where the surface the row lies on (or next
+/// to) is smooth across the centre plane, the row runs along e_y projected onto that surface's
+/// tangent plane, so the blend stays tangent to the surface and joins its mirror image smoothly.
+using EndTangents = std::array<std::array<Eigen::Vector3d, 2>, 4>;
+
+Eigen::Vector3d across_plane(const Eigen::Vector3d& n) {
+  if (std::abs(n.y()) > kSmoothAcrossPlane) return Eigen::Vector3d::Zero();
+  return (Eigen::Vector3d::UnitY() - n.y() * n).normalized();
+}
+
+/// Control points (n + ends, 12) of the four section rows (n, 12 together) interpolated at
+/// parameters par with the end tangents given (P&T 9.2.2: interpolation with end derivatives,
+/// each derivative taking a repeated parameter in the knot averaging; its length is the end
+/// chord's speed). A row with a zero tangent keeps the end derivative of the plain interpolant.
+Eigen::MatrixXd rows_with_end_tangents(const Eigen::MatrixXd& all, const Eigen::VectorXd& par, int p,
+                                       const EndTangents& t, bool at_start, bool at_end, Eigen::VectorXd& knots) {
+  const Eigen::Index n = all.rows();
+  const NurbsCurve plain = fit_curve_with(all, par, averaged_knots(par, p, static_cast<int>(n)), p).curve;
+  const Eigen::Index N = n + at_start + at_end;
+  Eigen::VectorXd ext(N);
+  ext << Eigen::VectorXd::Constant(at_start ? 1 : 0, par[0]), par, Eigen::VectorXd::Constant(at_end ? 1 : 0, par[n - 1]);
+  knots = averaged_knots(ext, p, static_cast<int>(N));
+  Eigen::MatrixXd A(N, N), rhs(N, all.cols());
+  for (Eigen::Index k = 0; k < n; ++k) {
+    A.row(k) = basis_row(knots, p, par[k]);
+    rhs.row(k) = all.row(k);
+  }
+  Eigen::Index r = n;
+  for (const int e : {0, 1}) {
+    if (!(e == 0 ? at_start : at_end)) continue;
+    const double te = e == 0 ? par[0] : par[n - 1];
+    const Eigen::Index a = e == 0 ? 0 : n - 2, b = e == 0 ? 1 : n - 1;  // the end chord
+    A.row(r) = basis_row(knots, p, te, 1);
+    rhs.row(r) = plain.derivatives(te, 1).row(1);
+    for (int q = 0; q < 4; ++q) {
+      if (t[q][e].isZero()) continue;
+      const Eigen::Vector3d chord = (all.block<1, 3>(b, 3 * q) - all.block<1, 3>(a, 3 * q)).transpose();
+      const double sign = chord.dot(t[q][e]) >= 0.0 ? 1.0 : -1.0;
+      rhs.block<1, 3>(r, 3 * q) = (sign * chord.norm() / (par[b] - par[a]) * t[q][e]).transpose();
+    }
+    ++r;
+  }
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
+  const Eigen::MatrixXd c = lu.solve(rhs);
+  if (!c.allFinite()) detail::fail("the blend's rows with centre-plane end tangents have no interpolant");
+  return c;
+}
+
 }  // namespace
 
 BoundaryContinuity measure_boundary_continuity(const NurbsSurface& blend, bool at_v1, const NurbsSurface& s,
@@ -169,6 +227,9 @@ BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundar
     rows[2].row(j) = (fb[j].p + h * db).transpose();
     rows[3].row(j) = fb[j].p.transpose();
   }
+  bool plane_start = false, plane_end = false;  // an end section lies in the centre plane
+  EndTangents end_tangent;
+  for (auto& row : end_tangent) row.fill(Eigen::Vector3d::Zero());
   if (o.centre_plane_ends) {
     // An end section on the centre plane y = 0 must stay in it (the mirrored hull is then
     // smooth across it), and for C1 its cross-boundary tangent must lie in the surface's
@@ -179,6 +240,10 @@ BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundar
     const Eigen::Vector3d ey(0.0, 1.0, 0.0);
     for (int j : {0, n - 1})
       if (std::abs(fa[j].p.y()) <= tol && std::abs(fb[j].p.y()) <= tol) {
+        const int e = j == 0 ? 0 : 1;
+        (e == 0 ? plane_start : plane_end) = true;
+        end_tangent[0][e] = end_tangent[1][e] = across_plane(fa[j].n);
+        end_tangent[2][e] = end_tangent[3][e] = across_plane(fb[j].n);
         const Eigen::Vector3d gap = fb[j].p - fa[j].p;
         const double h = o.tension * gap.norm() / 3.0;
         Eigen::Vector3d da = fa[j].n.cross(ey), db = fb[j].n.cross(ey);
@@ -205,16 +270,23 @@ BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundar
   }
   par /= par[n - 1];
   const int p = 3;
-  const Eigen::VectorXd K = averaged_knots(par, p, n);
-  Eigen::MatrixXd ctrl(static_cast<Eigen::Index>(n) * 4, 3);
   Eigen::MatrixXd all(n, 12);  // the four rows share one interpolation matrix: one solve
   for (int r = 0; r < 4; ++r) all.middleCols(3 * r, 3) = rows[r];
-  const Eigen::MatrixXd c = fit_curve_with(all, par, K, p).curve.control_points();
+  Eigen::VectorXd K;
+  Eigen::MatrixXd c;
+  if (plane_start || plane_end) {
+    c = rows_with_end_tangents(all, par, p, end_tangent, plane_start, plane_end, K);
+  } else {
+    K = averaged_knots(par, p, n);
+    c = fit_curve_with(all, par, K, p).curve.control_points();
+  }
+  const int nc = static_cast<int>(c.rows());
+  Eigen::MatrixXd ctrl(static_cast<Eigen::Index>(nc) * 4, 3);
   for (int r = 0; r < 4; ++r)
-    for (int i = 0; i < n; ++i) ctrl.row(i * 4 + r) = c.block<1, 3>(i, 3 * r);
+    for (int i = 0; i < nc; ++i) ctrl.row(i * 4 + r) = c.block<1, 3>(i, 3 * r);
   Eigen::VectorXd kt(8);
   kt << 0, 0, 0, 0, 1, 1, 1, 1;
-  NurbsSurface s(p, 3, K, kt, n, 4, ctrl);
+  NurbsSurface s(p, 3, K, kt, nc, 4, ctrl);
   BlendSurface out{s, {}, {}, ua, ub, par};
   out.at_a = measure_boundary_continuity(s, false, a, o.check_samples);
   out.at_b = measure_boundary_continuity(s, true, b, o.check_samples);
