@@ -458,8 +458,9 @@ def solve_sac(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft:
     """The SAC (m^2, both sides) and the section fullness it is designed through, on the DWL's
     range. Every SAC form parameter is mapped onto the fullness (see the module docstring).
     `bands`: [(x, least, largest), ...] fullness the section at x can have (the sections'
-    own limits, fairlines.section_fullness_bands), kept at those points. An infeasible request
-    names the volume and LCB ranges the sections can hold."""
+    own limits, fairlines.section_fullness_bands), kept at those points. Raises
+    InfeasibleFormParameters for an infeasible request, naming the volume and LCB ranges the
+    sections can hold."""
     try:
         try:
             r, plan, params, factors = _sac_request(spec, dwl, profile, draft, fullness, bands, True)

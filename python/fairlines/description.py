@@ -395,7 +395,8 @@ class HullDescription:
 
 
 def load_description(path_or_text_or_dict: Any) -> dict:
-    """A description as a dict, from a dict (copied), JSON text or a path to a JSON file."""
+    """A description as a dict, from a dict (copied), JSON text or a path to a JSON file.
+    Raises InvalidInput for an unreadable file, text that is not JSON, or anything else."""
     src = path_or_text_or_dict
     if isinstance(src, dict):
         return copy.deepcopy(src)

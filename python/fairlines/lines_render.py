@@ -34,7 +34,7 @@ _MM_PER_PT = 25.4 / 72.0
 
 
 def figure(plan):
-    """A matplotlib Figure of the A3 sheet at the plan's scale."""
+    """A matplotlib Figure of the A3 sheet at the plan's scale. Raises ImportError without matplotlib."""
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -64,7 +64,8 @@ def figure(plan):
 
 def write_dxf(plan, path) -> None:
     """DXF R2010, model space in metres: one layer per family, SPLINE through the section points
-    (ezdxf's CAD-style control frame), LINE / LWPOLYLINE for the grid, TEXT for labels."""
+    (ezdxf's CAD-style control frame), LINE / LWPOLYLINE for the grid, TEXT for labels.
+    Raises ImportError without ezdxf."""
     try:
         import ezdxf
         from ezdxf import units

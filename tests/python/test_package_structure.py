@@ -1,5 +1,5 @@
-"""The package's module graph read from its source: no module imports a private name of a
-sibling, and the imports made when a module loads form no cycle."""
+"""The package read from its source: no module imports a private name of a sibling, the imports
+made when a module loads form no cycle, and every public function that raises says what."""
 
 import ast
 import pathlib
@@ -72,3 +72,15 @@ def test_module_level_imports_form_no_cycle():
         if m not in state:
             visit(m, [m])
     assert cycles == []
+
+
+def test_every_public_function_that_raises_names_what_in_its_docstring():
+    """A public module-level function with a raise statement documents it ("Raises ...")."""
+    silent = []
+    for module, (tree, _) in _modules().items():
+        for node in tree.body:
+            if isinstance(node, ast.FunctionDef) and not node.name.startswith("_"):
+                raises = any(isinstance(n, ast.Raise) for n in ast.walk(node))
+                if raises and "raise" not in (ast.get_docstring(node) or "").lower():
+                    silent.append(f"{module}.{node.name}")
+    assert silent == []
