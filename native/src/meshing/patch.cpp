@@ -28,14 +28,16 @@ constexpr double kDefaultTolerance = 0.01; ///< chordal tolerance / size when no
 constexpr double kDefaultMinSize = 0.05;   ///< minimum size / size when not given
 constexpr int kSwapPasses = 8;             ///< sweeps of 3-D edge swaps
 constexpr int kAugmentVisits = 4000;       ///< triangles one augmenting-path search may reach
-constexpr double kRelaxedPair = -0.1;      ///< pairs whose quad scores at least this (in space) may be matched at last
+constexpr double kRelaxedPair = -0.5;      ///< pairs whose quad scores at least this (in space) may be matched at last
 constexpr double kGrading = 0.6;           ///< size may grow by this x the distance from the boundary
 constexpr double kFlat = 1e-2;             ///< a triangle with |2 area| below this x its longest side^2 is flat
 constexpr double kPoleZone = 2.0;          ///< interior nodes within this x h of a pole are thinned
 constexpr double kPoleSpacing = 0.4;       ///< to this x h apart
 constexpr double kFanSpread = 4.0;         ///< iso-line length ratio from which a face is a fan
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kImproveBelow = 0.3;      ///< nodes of elements scoring below this are optimised one by one
+constexpr double kImproveBelow = 0.75;     ///< nodes of elements scoring below this are optimised one by one
+                                           ///< (a quad corner outside 45-135 deg scores below sin 45 deg)
+constexpr double kCornerSlack = 40.0;      ///< quad corners further than this from 90 deg (deg) are penalised
 constexpr int kImprovePasses = 4;          ///< sweeps of that node optimisation
 constexpr double kImproveStep = 0.25;      ///< its first trial step / the node's mean edge length
 constexpr double kImproveMinStep = 0.01;   ///< and its last
@@ -639,12 +641,37 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i) {
     w.xyz[i] = w.g.point(q);
     w.normal[i] = w.surface_normal(q);
   };
+  // second objective: quad corners pushed back toward 45-135 deg (the squared excess of
+  // |cos| over sin kCornerSlack), so a node whose worst element it cannot raise still
+  // straightens the others
+  const double slack = std::sin(kCornerSlack * kPi / 180.0);
+  auto corner_excess = [&]() {
+    double sum = 0.0;
+    for (int e : around) {
+      if (w.el[e][3] < 0) continue;
+      for (int c = 0; c < 4; ++c) {
+        const Vec3& x = w.xyz[w.el[e][c]];
+        const Vec3 a = w.xyz[w.el[e][(c + 1) % 4]] - x, b = w.xyz[w.el[e][(c + 3) % 4]] - x;
+        const double l = a.norm() * b.norm();
+        const double over = l > 0 ? std::max(0.0, std::abs(a.dot(b)) / l - slack) : 1.0;
+        sum += over * over;
+      }
+    }
+    return sum;
+  };
   constexpr int kMaxSteps = 40;  // trial rounds
   double len, shortest, mean_now, shortest_now;
   edge_lengths(w, around, i, len, shortest);
   // the scaled Jacobian does not see size: a search for it alone can collapse an edge
   const double floor = std::min(kImproveShortest * len, shortest);
-  double best = worst(), step = kImproveStep * len;
+  // no move takes an element further from the surface than the tolerance (or than it was)
+  auto sag = [&]() {
+    double d = 0.0;
+    for (int e : around) d = std::max(d, w.chordal(w.el[e]));
+    return d;
+  };
+  const double sag_limit = std::max(sag(), w.o.chordal_tolerance);
+  double best = worst(), best_excess = corner_excess(), step = kImproveStep * len;
   bool moved = false;
   for (int round = 0; round < kMaxSteps && step >= kImproveMinStep * len; ++round) {
     Vec3 p, su, sv;
@@ -661,8 +688,10 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i) {
       if ((q - from).norm() == 0.0) continue;
       place(q);
       edge_lengths(w, around, i, mean_now, shortest_now);
-      const double now = shortest_now >= floor ? worst() : -1e9;
-      if (now > best + 1e-12) best = now, to = q;
+      if (shortest_now < floor) continue;
+      const double now = worst(), excess = corner_excess();
+      if (!(now > best + 1e-12 || (now >= best && excess < best_excess - 1e-9)) || sag() > sag_limit) continue;
+      best = now, best_excess = excess, to = q;
     }
     place(to);
     if ((to - from).norm() > 0) moved = true;
