@@ -84,8 +84,6 @@ def test_all_quad_split_keeps_the_chordal_tolerance():
     assert len(centroids) > 1000 and max(dev) <= tol
 
 
-@pytest.mark.xfail(strict=True, reason="97.1 % of the whole ship's all-quad corners lie within 45-135 deg (goal 99 %): "
-                                       "the blend's keel end and the bulb's nose")
 def test_all_quad_corners_lie_within_45_135_degrees(all_quad_ship):
     assert all_quad_ship.quality()["corners_in_45_135"] >= CORNER_SHARE
 
@@ -124,6 +122,12 @@ def test_default_mesh_of_the_composed_ship_is_nearly_all_quadrilaterals(default_
 def test_default_mesh_of_the_composed_ship_has_no_sliver(default_meshes, size):
     m = default_meshes[size]
     assert knupp_scaled_jacobians(m.vertices, m.faces).min() >= MIN_SJ
+
+
+@pytest.mark.xfail(strict=True, reason="98.6 % of the default mesh's corners lie within 45-135 deg at 3 m (goal 99 %): "
+                                       "the 2:1 steps between the fine bilge and the coarse bottom")
+def test_default_mesh_corners_lie_within_45_135_degrees(default_meshes):
+    assert default_meshes[SHIP_SIZE].quality()["corners_in_45_135"] >= CORNER_SHARE
 
 
 def test_composed_ship_quad_dominant_mesh_has_no_inverted_element(ship):

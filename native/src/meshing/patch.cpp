@@ -40,7 +40,7 @@ constexpr double kImproveBelow = 0.75;     ///< nodes of elements scoring below 
 constexpr double kCornerSlack = 40.0;      ///< quad corners further than this from 90 deg (deg) are penalised
 constexpr int kImprovePasses = 4;          ///< sweeps of that node optimisation
 constexpr double kImproveStep = 0.25;      ///< its first trial step / the node's mean edge length
-constexpr double kImproveMinStep = 0.01;   ///< and its last
+constexpr double kImproveMinStep = 0.04;   ///< and its last
 constexpr double kImproveShortest = 0.3;   ///< no trial shortens a node's edges below this x their mean
 
 using Vec2 = Eigen::Vector2d;
@@ -800,6 +800,16 @@ void split_folded_quads(Work& w) {
   w.el = std::move(out);
 }
 
+/// Scaled Jacobian of quad e's corner at node i (about the quad's diagonal normal).
+double corner_quality(const Work& w, const std::array<int, 4>& e, int i) {
+  int c = 0;
+  while (c < 3 && e[c] != i) ++c;
+  const Vec3 n = (w.xyz[e[2]] - w.xyz[e[0]]).cross(w.xyz[e[3]] - w.xyz[e[1]]);
+  const Vec3 a = w.xyz[e[(c + 1) % 4]] - w.xyz[i], b = w.xyz[e[(c + 3) % 4]] - w.xyz[i];
+  const double l = a.norm() * b.norm() * n.norm();
+  return l > 0 ? a.cross(b).dot(n) / l : -1.0;
+}
+
 /// A triangle pair matched only below min_quad_quality: its two elements and its quad.
 struct WeakPair {
   int t1, t2;
@@ -839,10 +849,20 @@ void merge_weak_pairs(Work& w, const std::vector<WeakPair>& pairs) {
     w.el[p.t1] = p.quad;
     w.el[p.t2] = kDead;
     for (int node : p.quad) around[node].push_back(p.t1);
-    for (int sweep = 0; sweep < 2; ++sweep)
-      for (const auto& x : saved) optimise_node(w, live(std::get<0>(x)), std::get<0>(x));
-    if (w.strict_quality(p.quad, false) >= w.o.min_quad_quality && worst() >= std::min(before, w.o.min_quad_quality))
-      continue;
+    // the quad's free nodes, its worst corner's first (the step's middle node), until it is good
+    std::sort(saved.begin(), saved.end(), [&](const auto& a, const auto& b) {
+      return corner_quality(w, p.quad, std::get<0>(a)) < corner_quality(w, p.quad, std::get<0>(b));
+    });
+    auto good = [&] {
+      return w.strict_quality(p.quad, false) >= w.o.min_quad_quality && worst() >= std::min(before, w.o.min_quad_quality);
+    };
+    bool merged = false;
+    for (int sweep = 0; sweep < 2 && !merged; ++sweep)
+      for (size_t k = 0; k < saved.size() && !merged; ++k) {
+        optimise_node(w, live(std::get<0>(saved[k])), std::get<0>(saved[k]));
+        merged = good();
+      }
+    if (merged) continue;
     w.el[p.t1] = e1;
     w.el[p.t2] = e2;
     for (const auto& [node, uv, xyz, n] : saved) w.uv[node] = uv, w.xyz[node] = xyz, w.normal[node] = n;
