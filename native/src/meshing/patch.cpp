@@ -629,6 +629,32 @@ void edge_lengths(const Work& w, const std::vector<int>& around, int i, double& 
   mean /= std::max(edges, 1);
 }
 
+/// The second objective of optimise_node: the squared excess of |cos| over sin kCornerSlack
+/// summed over the quad corners of the elements `around`, so a node whose worst element cannot
+/// rise still moves quad corners back toward 45-135 deg.
+double corner_excess(const Work& w, const std::vector<int>& around) {
+  const double slack = std::sin(kCornerSlack * kPi / 180.0);
+  double sum = 0.0;
+  for (int e : around) {
+    if (w.el[e][3] < 0) continue;
+    for (int c = 0; c < 4; ++c) {
+      const Vec3& x = w.xyz[w.el[e][c]];
+      const Vec3 a = w.xyz[w.el[e][(c + 1) % 4]] - x, b = w.xyz[w.el[e][(c + 3) % 4]] - x;
+      const double l = a.norm() * b.norm();
+      const double over = l > 0 ? std::max(0.0, std::abs(a.dot(b)) / l - slack) : 1.0;
+      sum += over * over;
+    }
+  }
+  return sum;
+}
+
+/// The largest chordal deviation (m) of the elements `around`.
+double largest_sag(const Work& w, const std::vector<int>& around) {
+  double d = 0.0;
+  for (int e : around) d = std::max(d, w.chordal(w.el[e]));
+  return d;
+}
+
 /// Compass search for node i (see improve_worst); true when it moved.
 bool optimise_node(Work& w, const std::vector<int>& around, int i) {
   auto worst = [&]() {
@@ -641,37 +667,14 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i) {
     w.xyz[i] = w.g.point(q);
     w.normal[i] = w.surface_normal(q);
   };
-  // second objective: quad corners pushed back toward 45-135 deg (the squared excess of
-  // |cos| over sin kCornerSlack), so a node whose worst element it cannot raise still
-  // straightens the others
-  const double slack = std::sin(kCornerSlack * kPi / 180.0);
-  auto corner_excess = [&]() {
-    double sum = 0.0;
-    for (int e : around) {
-      if (w.el[e][3] < 0) continue;
-      for (int c = 0; c < 4; ++c) {
-        const Vec3& x = w.xyz[w.el[e][c]];
-        const Vec3 a = w.xyz[w.el[e][(c + 1) % 4]] - x, b = w.xyz[w.el[e][(c + 3) % 4]] - x;
-        const double l = a.norm() * b.norm();
-        const double over = l > 0 ? std::max(0.0, std::abs(a.dot(b)) / l - slack) : 1.0;
-        sum += over * over;
-      }
-    }
-    return sum;
-  };
   constexpr int kMaxSteps = 40;  // trial rounds
   double len, shortest, mean_now, shortest_now;
   edge_lengths(w, around, i, len, shortest);
   // the scaled Jacobian does not see size: a search for it alone can collapse an edge
   const double floor = std::min(kImproveShortest * len, shortest);
   // no move takes an element further from the surface than the tolerance (or than it was)
-  auto sag = [&]() {
-    double d = 0.0;
-    for (int e : around) d = std::max(d, w.chordal(w.el[e]));
-    return d;
-  };
-  const double sag_limit = std::max(sag(), w.o.chordal_tolerance);
-  double best = worst(), best_excess = corner_excess(), step = kImproveStep * len;
+  const double sag_limit = std::max(largest_sag(w, around), w.o.chordal_tolerance);
+  double best = worst(), best_excess = corner_excess(w, around), step = kImproveStep * len;
   bool moved = false;
   for (int round = 0; round < kMaxSteps && step >= kImproveMinStep * len; ++round) {
     Vec3 p, su, sv;
@@ -689,8 +692,9 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i) {
       place(q);
       edge_lengths(w, around, i, mean_now, shortest_now);
       if (shortest_now < floor) continue;
-      const double now = worst(), excess = corner_excess();
-      if (!(now > best + 1e-12 || (now >= best && excess < best_excess - 1e-9)) || sag() > sag_limit) continue;
+      const double now = worst(), excess = corner_excess(w, around);
+      if (!(now > best + 1e-12 || (now >= best && excess < best_excess - 1e-9)) || largest_sag(w, around) > sag_limit)
+        continue;
       best = now, best_excess = excess, to = q;
     }
     place(to);
