@@ -82,28 +82,29 @@ def census(name, surface, V, F, dt, extra=""):
     return q
 
 
-# main at 4e18525 (before the fold guard at the blend's keel end and the node optimisation), the
-# conic-bilge container ship, measured on this machine by the same census:
-# (elements, quad fraction, inverted, SJ min, SJ mean, corners in 45-135, open edges)
+# main at 211788a (before the blossom matching, the merged 2:1 pairs and the corner-aware node
+# optimisation), the conic-bilge container ship, measured on this machine by the same census
+# (README of that commit): (elements, quad fraction, inverted, SJ min, SJ mean, corners in 45-135)
 BEFORE = {
-    ("whole, closed", 3.0, False): (9626, 0.8722, 0, 0.078, 0.886, 0.9714, 0),
-    ("whole, closed", 1.5, False): (20714, 0.9029, 0, 0.044, 0.912, 0.9719, 0),
-    ("wetted, closed", 3.0, False): (8238, 0.8558, 0, 0.078, 0.873, 0.9562, 0),
-    ("wetted, closed", 1.5, False): (17262, 0.8840, 0, 0.044, 0.909, 0.9781, 0),
-    ("wetted, open (BEM)", 3.0, False): (6821, 0.8528, 0, 0.078, 0.867, 0.9502, 388),
-    ("wetted, open (BEM)", 1.5, False): (13654, 0.8721, 0, 0.044, 0.904, 0.9736, 626),
-    ("whole, closed", 3.0, True): (18526, 1.0000, 18, -0.890, 0.894, 0.9656, 0),
-    ("whole, closed", 1.5, True): (37710, 1.0000, 45, -0.916, 0.918, 0.9789, 0),
-    ("wetted, closed", 3.0, True): (13852, 1.0000, 18, -0.890, 0.909, 0.9670, 0),
-    ("wetted, closed", 1.5, True): (31898, 1.0000, 45, -0.916, 0.912, 0.9711, 0),
-    ("wetted, open (BEM)", 3.0, True): (11780, 1.0000, 18, -0.890, 0.909, 0.9637, 424),
-    ("wetted, open (BEM)", 1.5, True): (26956, 1.0000, 45, -0.916, 0.911, 0.9671, 672),
+    ("whole, closed", 3.0, False): (8966, 0.895, 0, 0.221, 0.89, 0.968),
+    ("whole, closed", 1.5, False): (19520, 0.927, 0, 0.224, 0.92, 0.969),
+    ("wetted, closed", 3.0, False): (7593, 0.879, 0, 0.221, 0.88, 0.954),
+    ("wetted, closed", 1.5, False): (16113, 0.911, 0, 0.224, 0.91, 0.977),
+    ("wetted, open (BEM)", 3.0, False): (6516, 0.876, 0, 0.221, 0.87, 0.948),
+    ("wetted, open (BEM)", 1.5, False): (12985, 0.899, 0, 0.224, 0.91, 0.972),
+    ("whole, closed", 3.0, True): (17354, 1.0, 0, 0.175, 0.90, 0.971),
+    ("whole, closed", 1.5, True): (35508, 1.0, 0, 0.141, 0.92, 0.983),
+    ("wetted, closed", 3.0, True): (12762, 1.0, 0, 0.009, 0.92, 0.974),
+    ("wetted, closed", 1.5, True): (29768, 1.0, 0, 0.141, 0.92, 0.975),
+    ("wetted, open (BEM)", 3.0, True): (11346, 1.0, 0, 0.009, 0.92, 0.973),
+    ("wetted, open (BEM)", 1.5, True): (26035, 1.0, 0, 0.141, 0.92, 0.972),
 }
+CUT_DRAFTS = (2.0, 8.0, 11.0, 14.0, 17.0)  # m, keel to deck (above 11.55 m failed on 211788a)
 
 
-def figures(n, quads, inverted, sj_min, sj_mean, corners, open_edges):
+def figures(n, quads, inverted, sj_min, sj_mean, corners, open_edges=None):
     return (f"{n:6d} el, quads {quads:7.2%}, inverted {inverted:2d}, SJ min {sj_min:6.3f} mean {sj_mean:.3f}, "
-            f"45-135 {corners:7.2%}, open {open_edges}")
+            f"45-135 {corners:7.2%}" + ("" if open_edges is None else f", open {open_edges}"))
 
 
 def surface_case(name, surface, size, tol):
@@ -132,7 +133,7 @@ def main():
     surface_case("whole-ship bare hull surface (Lpp 244.8 m)", bare, 3.0, 0.03)
 
     print(f"\nwhole composed ship (bare hull + bulb + blend, transom stern), half hull, wetted at T = {EXAMPLE_DRAFT} m;"
-          "\n'before' is main at 4e18525 measured on this machine, 'now' this run (no gmsh peer: it would need our B-rep):")
+          "\n'before' is main at 211788a measured on this machine, 'now' this run (no gmsh peer: it would need our B-rep):")
     c = hull.composed_hull()
     for all_quad in (False, True):
         print(f" {'all-quad (all_quad=True)' if all_quad else 'quad-dominant (default)'}:")
@@ -147,6 +148,16 @@ def main():
                 case = f"{label}, {size} m"
                 print(f"  {case:<26s} before {figures(*BEFORE[(label, size, all_quad)])}")
                 print(f"  {'':<26s} now    {figures(*now)}, {t * 1e3:.0f} ms")
+
+    print("\nclosed wetted half hull at drafts from the keel to the deck, 3 m: open edges, volume vs NURBS "
+          "quadrature of the bare hull plus the bulb and blend's share")
+    from mesh_fixtures import closed_volume, composed_wetted_hydrostatics, edge_census
+    for draft in CUT_DRAFTS:
+        m = fl.mesh_hull(c, size=3.0, draft=draft)
+        volume, _ = composed_wetted_hydrostatics(c, draft)
+        print(f"  T = {draft:4.1f} m  {len(m.faces):5d} el, open/non-manifold/misoriented {edge_census(m.faces)}, "
+              f"volume {2 * closed_volume(m.vertices, m.faces):9.1f} m^3 vs {volume:9.1f} "
+              f"({2 * closed_volume(m.vertices, m.faces) / volume - 1:+.2%})")
 
     print("\nstructured grids (arc-length distributions, parametric transfinite interpolation):")
     u = fl.grids.distribution("tanh_two_sided", 241, first=0.2, last=0.2)

@@ -17,6 +17,7 @@ SHIP_SIZE = 3.0          # m, element size on the whole ship (about 1.2 % of Lpp
 SHIP_TOL = 0.03          # m, chordal tolerance of the bench's whole-ship cases
 MIN_SJ = 0.2             # scaled Jacobian below which an element is a sliver
 CORNER_SHARE = 0.99      # share of quad corners within 45-135 deg (the goal)
+QUAD_SHARE = 0.98        # share of quadrilaterals in the default (quad-dominant) mesh (the goal)
 WEDGE_RADIUS = 8.0       # m, the stem-top wedge: hull elements this close to the stem top
 CLAMP_VOLUME_TOL = 1e-4  # volume the y >= 0 clamp may remove, relative to the half hull's
 MESH_VOLUME_TOL = 2e-3   # closed mesh vs NURBS quadrature at this element size
@@ -83,8 +84,6 @@ def test_all_quad_split_keeps_the_chordal_tolerance():
     assert len(centroids) > 1000 and max(dev) <= tol
 
 
-@pytest.mark.xfail(strict=True, reason="97.1 % of the whole ship's all-quad corners lie within 45-135 deg (goal 99 %): "
-                                       "the blend's keel end and the bulb's nose")
 def test_all_quad_corners_lie_within_45_135_degrees(all_quad_ship):
     assert all_quad_ship.quality()["corners_in_45_135"] >= CORNER_SHARE
 
@@ -103,6 +102,32 @@ def test_composed_ship_stem_top_wedge_has_no_sliver(ship, bare, size, all_quad):
     wedge = (m.face_part == m.parts.index("hull")) & (np.linalg.norm(centroids - stem_top(bare), axis=1) < WEDGE_RADIUS)
     assert wedge.sum() > 50
     assert sj[wedge].min() >= MIN_SJ
+
+
+@pytest.fixture(scope="module")
+def default_meshes(ship):
+    """The whole ship's default (quad-dominant) meshes at 3 and 1.5 m."""
+    return {size: fl.mesh_hull(ship, size=size) for size in (SHIP_SIZE, SHIP_SIZE / 2)}
+
+
+@pytest.mark.parametrize("size", [SHIP_SIZE, SHIP_SIZE / 2])
+def test_default_mesh_of_the_composed_ship_is_nearly_all_quadrilaterals(default_meshes, size):
+    """Triangle pairs across the 2:1 steps of the subdivision (a straight corner at the step's
+    middle node) are merged once their node is moved off the line; counted by numpy."""
+    faces = default_meshes[size].faces
+    assert np.mean(faces[:, 3] >= 0) >= QUAD_SHARE
+
+
+@pytest.mark.parametrize("size", [SHIP_SIZE, SHIP_SIZE / 2])
+def test_default_mesh_of_the_composed_ship_has_no_sliver(default_meshes, size):
+    m = default_meshes[size]
+    assert knupp_scaled_jacobians(m.vertices, m.faces).min() >= MIN_SJ
+
+
+@pytest.mark.xfail(strict=True, reason="98.6 % of the default mesh's corners lie within 45-135 deg at 3 m (goal 99 %): "
+                                       "the 2:1 steps between the fine bilge and the coarse bottom")
+def test_default_mesh_corners_lie_within_45_135_degrees(default_meshes):
+    assert default_meshes[SHIP_SIZE].quality()["corners_in_45_135"] >= CORNER_SHARE
 
 
 def test_composed_ship_quad_dominant_mesh_has_no_inverted_element(ship):

@@ -113,6 +113,15 @@ Vec2 onto_level(const FaceGeometry& g, Vec2 q, double T) {
   return q;
 }
 
+/// Fraction of the segment a -> b (a inside the face's parameter domain) that stays inside it.
+double domain_fraction(const FaceGeometry& g, const Vec2& a, const Vec2& b) {
+  const Vec2 c = g.clamp(b);
+  double f = 1.0;
+  for (int k = 0; k < 2; ++k)
+    if (c[k] != b[k] && b[k] != a[k]) f = std::min(f, std::clamp((c[k] - a[k]) / (b[k] - a[k]), 0.0, 1.0));
+  return f;
+}
+
 /// Level-set march of z = T on face f from uv `from` into the face until it leaves `poly`.
 std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const std::vector<Vec2>& poly, double T,
                                   double step3d) {
@@ -152,6 +161,14 @@ std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const
     // predictor along the level curve's tangent, corrector onto z = T; where the corrector
     // lands far from the prediction (a tight turn of the level curve) the step is halved
     double d = step3d / std::max(1e-300, speed(q, t));
+    // the level curve leaves the parameter domain within this step (where the loop runs along
+    // the domain's edge, as a transom's): end on the edge, where the clamped corrector would
+    // slide along it instead
+    const Vec2 raw = q + d * t;
+    if (n > 0 && g.clamp(raw) != raw) {
+      out.push_back(q + domain_fraction(g, q, raw) * (raw - q));
+      return out;
+    }
     Vec2 next = q;
     for (int h = 0; h < kTraceHalvings; ++h, d *= 0.5) {
       const Vec2 pred = g.clamp(q + d * t);
@@ -163,7 +180,10 @@ std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const
     // there): the waterline has reached the face's boundary
     if (!point_in_polygon(next, poly) || (next - q).norm() < kTraceStall * d) return out;
   }
-  throw Error("mesh: the waterline trace did not leave the face");
+  std::ostringstream msg;
+  msg << "mesh: the waterline trace did not leave the face (from uv " << from.transpose() << ", at uv "
+      << out.back().transpose() << ")";
+  throw Error(msg.str());
 }
 
 }  // namespace
@@ -251,7 +271,12 @@ void Brep::cut_below(double T, double size, const std::string& lid_name, bool ke
     for (size_t i = 0; i < kept.size(); ++i) {
       const int ex = end_of(kept[i]);
       if (start_index.count(ex)) continue;
-      const std::vector<Vec2> tr = trace_waterline(f.g, uv_at(kept[i], true), poly, T, kTraceStep * size);
+      std::vector<Vec2> tr;
+      try {
+        tr = trace_waterline(f.g, uv_at(kept[i], true), poly, T, kTraceStep * size);
+      } catch (const Error& err) {
+        throw Error(std::string(err.what()) + " on face '" + f.name + "'");
+      }
       // the entry the trace reached: the nearest piece start with no predecessor
       size_t best = kept.size();
       double bd = 1e300;

@@ -27,17 +27,20 @@ constexpr double kCurvatureSafety = 0.8;   ///< size from curvature times this (
 constexpr double kDefaultTolerance = 0.01; ///< chordal tolerance / size when not given
 constexpr double kDefaultMinSize = 0.05;   ///< minimum size / size when not given
 constexpr int kSwapPasses = 8;             ///< sweeps of 3-D edge swaps
-constexpr int kAugmentVisits = 400;        ///< triangles one alternating-path search may visit
+constexpr int kAugmentVisits = 4000;       ///< triangles one augmenting-path search may reach
+constexpr double kRelaxedPair = -0.5;      ///< pairs whose quad scores at least this (in space) may be matched at last
 constexpr double kGrading = 0.6;           ///< size may grow by this x the distance from the boundary
 constexpr double kFlat = 1e-2;             ///< a triangle with |2 area| below this x its longest side^2 is flat
 constexpr double kPoleZone = 2.0;          ///< interior nodes within this x h of a pole are thinned
 constexpr double kPoleSpacing = 0.4;       ///< to this x h apart
 constexpr double kFanSpread = 4.0;         ///< iso-line length ratio from which a face is a fan
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kImproveBelow = 0.3;      ///< nodes of elements scoring below this are optimised one by one
+constexpr double kImproveBelow = 0.75;     ///< nodes of elements scoring below this are optimised one by one
+                                           ///< (a quad corner outside 45-135 deg scores below sin 45 deg)
+constexpr double kCornerSlack = 40.0;      ///< quad corners further than this from 90 deg (deg) are penalised
 constexpr int kImprovePasses = 4;          ///< sweeps of that node optimisation
 constexpr double kImproveStep = 0.25;      ///< its first trial step / the node's mean edge length
-constexpr double kImproveMinStep = 0.01;   ///< and its last
+constexpr double kImproveMinStep = 0.04;   ///< and its last
 constexpr double kImproveShortest = 0.3;   ///< no trial shortens a node's edges below this x their mean
 
 using Vec2 = Eigen::Vector2d;
@@ -410,18 +413,119 @@ struct Work {
   }
 };
 
-/// Greedy matching by quad quality, then alternating-path augmentation (Edmonds' idea without
-/// blossoms) so that as few triangles as possible stay unpaired.
+/// Augmenting-path search of Edmonds' (1965) blossom algorithm on the triangles' adjacency
+/// graph: odd cycles of triangles (blossoms) are contracted, so the paths a search without
+/// them misses (a triangle mesh's dual graph is full of odd cycles) are found too. The state
+/// of one search is reset only where it touched it.
+class BlossomSearch {
+ public:
+  BlossomSearch(const std::vector<std::vector<int>>& adj, std::vector<int>& mate)
+      : adj_(adj), mate_(mate), parent_(adj.size(), -1), base_(adj.size()), in_tree_(adj.size(), 0),
+        mark_(adj.size(), 0), seen_(adj.size(), 0) {
+    for (size_t i = 0; i < adj.size(); ++i) base_[i] = static_cast<int>(i);
+  }
+
+  /// Augments the matching along a path from the free vertex `root` found within `limit`
+  /// vertices of the search; false if there is none.
+  bool augment(int root, int limit) {
+    const bool found = search(root, limit);
+    for (int v : touched_) parent_[v] = -1, base_[v] = v, in_tree_[v] = 0;
+    touched_.clear();
+    return found;
+  }
+
+ private:
+  void touch(int v) {
+    if (!in_tree_[v] && parent_[v] < 0 && base_[v] == v) touched_.push_back(v);
+  }
+  int lca(int a, int b) {  // the base of the blossom an edge a-b between two even vertices closes
+    ++stamp_;
+    for (;;) {
+      a = base_[a];
+      seen_[a] = stamp_;
+      if (mate_[a] < 0) break;
+      a = parent_[mate_[a]];
+    }
+    for (;;) {
+      b = base_[b];
+      if (seen_[b] == stamp_) return b;
+      b = parent_[mate_[b]];
+    }
+  }
+  void mark_path(int v, int b, int child) {
+    while (base_[v] != b) {
+      mark_[base_[v]] = mark_[base_[mate_[v]]] = stamp_;
+      parent_[v] = child;
+      child = mate_[v];
+      v = parent_[mate_[v]];
+    }
+  }
+  bool search(int root, int limit) {
+    std::vector<int> queue{root};
+    touch(root);
+    in_tree_[root] = 1;
+    for (size_t head = 0; head < queue.size() && static_cast<int>(touched_.size()) < limit; ++head) {
+      const int v = queue[head];
+      for (int to : adj_[v]) {
+        if (base_[v] == base_[to] || mate_[v] == to) continue;
+        if (to == root || (mate_[to] >= 0 && parent_[mate_[to]] >= 0)) {  // an odd cycle: contract it
+          const int b = lca(v, to);
+          ++stamp_;
+          mark_path(v, b, to);
+          mark_path(to, b, v);
+          for (size_t k = 0; k < touched_.size(); ++k) {
+            const int i = touched_[k];
+            if (mark_[base_[i]] != stamp_) continue;
+            base_[i] = b;
+            if (!in_tree_[i]) in_tree_[i] = 1, queue.push_back(i);
+          }
+        } else if (parent_[to] < 0) {
+          touch(to);
+          parent_[to] = v;
+          if (mate_[to] < 0) {
+            flip(to);
+            return true;
+          }
+          touch(mate_[to]);
+          in_tree_[mate_[to]] = 1;
+          queue.push_back(mate_[to]);
+        }
+      }
+    }
+    return false;
+  }
+  void flip(int v) {  // the path root .. v alternates: swap its matched and unmatched edges
+    while (v >= 0) {
+      const int pv = parent_[v], next = mate_[pv];
+      mate_[v] = pv;
+      mate_[pv] = v;
+      v = next;
+    }
+  }
+
+  const std::vector<std::vector<int>>& adj_;
+  std::vector<int>& mate_;
+  std::vector<int> parent_, base_, touched_;
+  std::vector<char> in_tree_;
+  std::vector<int> mark_, seen_;
+  int stamp_ = 0;
+};
+
+/// Greedy matching by quad quality, then augmenting paths (BlossomSearch) so that as few
+/// triangles as possible stay unpaired: first among the pairs whose quad scores at least
+/// min_quad_quality, then also among those that are only not folded in space (kRelaxedPair:
+/// the quads across a 2:1 step of the subdivision, with a straight corner at its middle node,
+/// which merge_weak_pairs bends where it can).
 std::vector<int> match_triangles(const Work& w, const std::vector<std::array<int, 3>>& tri,
-                                 std::vector<std::array<int, 3>>& nbr, std::vector<std::array<double, 3>>& q) {
+                                 std::vector<std::array<int, 3>>& nbr) {
   const int n = static_cast<int>(tri.size());
   std::unordered_map<long long, std::pair<int, int>> half;
   const long long N = static_cast<long long>(w.xyz.size());
   for (int t = 0; t < n; ++t)
     for (int k = 0; k < 3; ++k) half[tri[t][k] * N + tri[t][(k + 1) % 3]] = {t, k};
   nbr.assign(n, {-1, -1, -1});
-  q.assign(n, {-2, -2, -2});
   std::vector<std::tuple<double, int, int>> cand;
+  std::vector<std::pair<int, int>> weak;
   for (int t = 0; t < n; ++t)
     for (int k = 0; k < 3; ++k) {
       const int a = tri[t][k], b = tri[t][(k + 1) % 3], c = tri[t][(k + 2) % 3];
@@ -429,60 +533,35 @@ std::vector<int> match_triangles(const Work& w, const std::vector<std::array<int
       if (it == half.end()) continue;
       const int u = it->second.first;
       nbr[t][k] = u;
+      if (t > u) continue;
       const int d = tri[u][(it->second.second + 2) % 3];
-      q[t][k] = w.quality({a, d, b, c});
       // a pair across a cell side spans two cells: its quad may sag more than its triangles (the
       // all-quad split halves every element, so its quads sag a quarter as much)
-      if (!w.o.all_quad && q[t][k] >= w.o.min_quad_quality && w.chordal({a, d, b, c}) > w.o.chordal_tolerance)
-        q[t][k] = -2;
-      if (t < u && q[t][k] >= w.o.min_quad_quality) cand.push_back({q[t][k], t, u});
+      if (!w.o.all_quad && w.chordal({a, d, b, c}) > w.o.chordal_tolerance) continue;
+      const double q = w.quality({a, d, b, c});
+      if (q >= w.o.min_quad_quality) cand.push_back({q, t, u});
+      else if (!w.o.all_quad && w.spatial_quality({a, d, b, c}) >= kRelaxedPair) weak.push_back({t, u});
     }
   std::sort(cand.begin(), cand.end(), [](const auto& x, const auto& y) { return std::get<0>(x) > std::get<0>(y); });
   std::vector<int> mate(n, -1);
-  for (const auto& [qq, t, u] : cand)
+  std::vector<std::vector<int>> adj(n);
+  for (const auto& [qq, t, u] : cand) {
+    adj[t].push_back(u);
+    adj[u].push_back(t);
     if (mate[t] < 0 && mate[u] < 0) {
       mate[t] = u;
       mate[u] = t;
     }
-  auto good = [&](int t, int k) { return nbr[t][k] >= 0 && q[t][k] >= w.o.min_quad_quality; };
-  std::vector<int> parent(n, -1), via(n, -1), stamp(n, -1);
-  for (int f = 0; f < n; ++f) {
-    if (mate[f] >= 0) continue;
-    // breadth-first over even triangles (f and mates); odd ones are entered by a good edge
-    std::vector<int> queue{f};
-    stamp[f] = f;
-    parent[f] = -1;
-    int found = -1, found_from = -1;
-    for (size_t head = 0; head < queue.size() && found < 0 && static_cast<int>(queue.size()) < kAugmentVisits; ++head) {
-      const int x = queue[head];
-      for (int k = 0; k < 3 && found < 0; ++k) {
-        if (!good(x, k)) continue;
-        const int y = nbr[x][k];
-        if (stamp[y] == f || y == mate[x]) continue;
-        if (mate[y] < 0) {
-          found = y;
-          found_from = x;
-          break;
-        }
-        const int z = mate[y];
-        if (stamp[z] == f) continue;
-        stamp[y] = stamp[z] = f;
-        parent[z] = x;
-        via[z] = y;
-        queue.push_back(z);
-      }
-    }
-    if (found < 0) continue;
-    int x = found_from, y = found;
-    while (true) {  // flip the path: y-x becomes a pair, x's old mate pairs with x's parent
-      const int old = mate[x];
-      mate[x] = y;
-      mate[y] = x;
-      if (x == f) break;
-      y = old;  // == via[x]
-      x = parent[x];
-    }
   }
+  BlossomSearch search(adj, mate);
+  for (int f = 0; f < n; ++f)
+    if (mate[f] < 0 && !adj[f].empty()) search.augment(f, kAugmentVisits);
+  for (const auto& [t, u] : weak) {
+    adj[t].push_back(u);
+    adj[u].push_back(t);
+  }
+  for (int f = 0; f < n; ++f)
+    if (mate[f] < 0 && !adj[f].empty()) search.augment(f, kAugmentVisits);
   return mate;
 }
 
@@ -550,6 +629,32 @@ void edge_lengths(const Work& w, const std::vector<int>& around, int i, double& 
   mean /= std::max(edges, 1);
 }
 
+/// The second objective of optimise_node: the squared excess of |cos| over sin kCornerSlack
+/// summed over the quad corners of the elements `around`, so a node whose worst element cannot
+/// rise still moves quad corners back toward 45-135 deg.
+double corner_excess(const Work& w, const std::vector<int>& around) {
+  const double slack = std::sin(kCornerSlack * kPi / 180.0);
+  double sum = 0.0;
+  for (int e : around) {
+    if (w.el[e][3] < 0) continue;
+    for (int c = 0; c < 4; ++c) {
+      const Vec3& x = w.xyz[w.el[e][c]];
+      const Vec3 a = w.xyz[w.el[e][(c + 1) % 4]] - x, b = w.xyz[w.el[e][(c + 3) % 4]] - x;
+      const double l = a.norm() * b.norm();
+      const double over = l > 0 ? std::max(0.0, std::abs(a.dot(b)) / l - slack) : 1.0;
+      sum += over * over;
+    }
+  }
+  return sum;
+}
+
+/// The largest chordal deviation (m) of the elements `around`.
+double largest_sag(const Work& w, const std::vector<int>& around) {
+  double d = 0.0;
+  for (int e : around) d = std::max(d, w.chordal(w.el[e]));
+  return d;
+}
+
 /// Compass search for node i (see improve_worst); true when it moved.
 bool optimise_node(Work& w, const std::vector<int>& around, int i) {
   auto worst = [&]() {
@@ -567,7 +672,9 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i) {
   edge_lengths(w, around, i, len, shortest);
   // the scaled Jacobian does not see size: a search for it alone can collapse an edge
   const double floor = std::min(kImproveShortest * len, shortest);
-  double best = worst(), step = kImproveStep * len;
+  // no move takes an element further from the surface than the tolerance (or than it was)
+  const double sag_limit = std::max(largest_sag(w, around), w.o.chordal_tolerance);
+  double best = worst(), best_excess = corner_excess(w, around), step = kImproveStep * len;
   bool moved = false;
   for (int round = 0; round < kMaxSteps && step >= kImproveMinStep * len; ++round) {
     Vec3 p, su, sv;
@@ -584,8 +691,11 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i) {
       if ((q - from).norm() == 0.0) continue;
       place(q);
       edge_lengths(w, around, i, mean_now, shortest_now);
-      const double now = shortest_now >= floor ? worst() : -1e9;
-      if (now > best + 1e-12) best = now, to = q;
+      if (shortest_now < floor) continue;
+      const double now = worst(), excess = corner_excess(w, around);
+      if (!(now > best + 1e-12 || (now >= best && excess < best_excess - 1e-9)) || largest_sag(w, around) > sag_limit)
+        continue;
+      best = now, best_excess = excess, to = q;
     }
     place(to);
     if ((to - from).norm() > 0) moved = true;
@@ -692,6 +802,76 @@ void split_folded_quads(Work& w) {
     out.push_back(first ? b : d);
   }
   w.el = std::move(out);
+}
+
+/// Scaled Jacobian of quad e's corner at node i (about the quad's diagonal normal).
+double corner_quality(const Work& w, const std::array<int, 4>& e, int i) {
+  int c = 0;
+  while (c < 3 && e[c] != i) ++c;
+  const Vec3 n = (w.xyz[e[2]] - w.xyz[e[0]]).cross(w.xyz[e[3]] - w.xyz[e[1]]);
+  const Vec3 a = w.xyz[e[(c + 1) % 4]] - w.xyz[i], b = w.xyz[e[(c + 3) % 4]] - w.xyz[i];
+  const double l = a.norm() * b.norm() * n.norm();
+  return l > 0 ? a.cross(b).dot(n) / l : -1.0;
+}
+
+/// A triangle pair matched only below min_quad_quality: its two elements and its quad.
+struct WeakPair {
+  int t1, t2;
+  std::array<int, 4> quad;
+};
+
+/// Each weak pair (a quad across a 2:1 step of the subdivision, with a straight corner at the
+/// step's middle node) is merged into its quad where a max-min search of the quad's free nodes
+/// (optimise_node) raises it to min_quad_quality and leaves every element about its nodes at
+/// least as good as the worst there before (or at min_quad_quality); else it stays two triangles.
+void merge_weak_pairs(Work& w, const std::vector<WeakPair>& pairs) {
+  constexpr std::array<int, 4> kDead{-2, -2, -2, -2};
+  std::vector<std::vector<int>> around = elements_at_nodes(w);
+  auto live = [&](int node) {
+    std::vector<int> r;
+    for (int e : around[node])
+      if (w.el[e][0] != -2) r.push_back(e);
+    return r;
+  };
+  for (const WeakPair& p : pairs) {
+    std::vector<int> touched;
+    for (int node : p.quad)
+      for (int e : live(node)) touched.push_back(e);
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    auto worst = [&] {
+      double q = 1e9;
+      for (int e : touched)
+        if (w.el[e][0] != -2) q = std::min(q, w.strict_quality(w.el[e], false));
+      return q;
+    };
+    const double before = worst();
+    std::vector<std::tuple<int, Vec2, Vec3, Vec3>> saved;
+    for (int node : p.quad)
+      if (node >= w.fixed) saved.push_back({node, w.uv[node], w.xyz[node], w.normal[node]});
+    const std::array<int, 4> e1 = w.el[p.t1], e2 = w.el[p.t2];
+    w.el[p.t1] = p.quad;
+    w.el[p.t2] = kDead;
+    for (int node : p.quad) around[node].push_back(p.t1);
+    // the quad's free nodes, its worst corner's first (the step's middle node), until it is good
+    std::sort(saved.begin(), saved.end(), [&](const auto& a, const auto& b) {
+      return corner_quality(w, p.quad, std::get<0>(a)) < corner_quality(w, p.quad, std::get<0>(b));
+    });
+    auto good = [&] {
+      return w.strict_quality(p.quad, false) >= w.o.min_quad_quality && worst() >= std::min(before, w.o.min_quad_quality);
+    };
+    bool merged = false;
+    for (int sweep = 0; sweep < 2 && !merged; ++sweep)
+      for (size_t k = 0; k < saved.size() && !merged; ++k) {
+        optimise_node(w, live(std::get<0>(saved[k])), std::get<0>(saved[k]));
+        merged = good();
+      }
+    if (merged) continue;
+    w.el[p.t1] = e1;
+    w.el[p.t2] = e2;
+    for (const auto& [node, uv, xyz, n] : saved) w.uv[node] = uv, w.xyz[node] = xyz, w.normal[node] = n;
+  }
+  w.el.erase(std::remove(w.el.begin(), w.el.end(), kDead), w.el.end());
 }
 
 /// Each quad into four and each triangle into three quads (edge midpoints and centre).
@@ -1015,8 +1195,8 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
       kSwapPasses);
   const std::vector<std::array<int, 3>> tri = merged_triangles(w, tr.triangles(), pole_canon(loop, w.xyz.size()));
   std::vector<std::array<int, 3>> nbr;
-  std::vector<std::array<double, 3>> q;
-  const std::vector<int> mate = match_triangles(w, tri, nbr, q);
+  const std::vector<int> mate = match_triangles(w, tri, nbr);
+  std::vector<WeakPair> weak;
   for (int t = 0; t < static_cast<int>(tri.size()); ++t) {
     if (mate[t] < 0) {
       w.el.push_back({tri[t][0], tri[t][1], tri[t][2], -1});
@@ -1030,7 +1210,15 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
         int d = -1;
         for (int j = 0; j < 3; ++j)
           if (tri[u][j] != a && tri[u][j] != b) d = tri[u][j];
-        w.el.push_back({a, d, b, c});
+        const std::array<int, 4> quad{a, d, b, c};
+        if (o.all_quad || w.quality(quad) >= o.min_quad_quality) {
+          w.el.push_back(quad);
+          continue;
+        }
+        const int first = static_cast<int>(w.el.size());
+        w.el.push_back({tri[t][0], tri[t][1], tri[t][2], -1});
+        w.el.push_back({tri[u][0], tri[u][1], tri[u][2], -1});
+        weak.push_back({first, first + 1, quad});
       }
   }
   std::vector<int> global(w.xyz.size(), -1);
@@ -1068,6 +1256,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   }
   smooth(w, o.smoothing_passes);
   if (o.smoothing_passes > 0) improve_worst(w);
+  merge_weak_pairs(w, weak);
   split_folded_quads(w);
   global.resize(w.xyz.size(), -1);
   return {std::move(w.xyz), std::move(w.uv), std::move(w.el), std::move(global)};
