@@ -45,13 +45,23 @@ Z_SAMPLES = 241
 FIT_WEIGHT = 1.0e3
 #: Knot spans of the measured basic curves.
 CURVE_SPANS = {"profile": 40, "dwl": 30, "deck": 24, "sac": 30}
-#: Candidate values tried per station for each section shape curve, and the curve's bounds.
-SHAPE_CANDIDATES = {"character": np.linspace(0.1, 0.9, 17), "deadrise": np.linspace(0.0, 30.0, 13),
-                    "top_corner": np.linspace(0.1, 0.9, 9)}
+#: Candidate values tried per station for each section shape curve: the bilge corner (its
+#: breadth and height fractions, searched together on this grid) and the top corner.
+CORNER_GRID = {"corner_breadth": np.linspace(0.05, 1.0, 20), "corner_height": np.linspace(0.0, 0.9, 19)}
+TOP_CANDIDATES = np.linspace(0.1, 0.9, 9)
+#: Refinement of the grid's best corner: coordinate steps (fractions), halved each pass.
+CORNER_STEP, CORNER_PASSES = 0.025, 4
 #: Bounds of the fitted shape curves, inside the section generator's: the spline's own bound is
-#: met to the solver's round-off, which may leave a deadrise of -1e-13 deg that sections refuse.
-SHAPE_BOUNDS = {"character": {"lower": 0.06, "upper": 0.94}, "deadrise": {"lower": 1e-3, "upper": 39.0},
+#: met to the solver's round-off only.
+SHAPE_BOUNDS = {"corner_breadth": {"lower": 0.03, "upper": 1.0}, "corner_height": {"lower": 0.0, "upper": 0.92},
                 "top_corner": {"lower": 0.06, "upper": 0.94}}
+#: A fitted top corner must lower the station's misfit by this fraction to replace the default.
+MISFIT_GAIN = 0.01
+#: Knot spans of the fitted shape curves.
+SHAPE_SPANS = 16
+#: An end station whose half-breadth stays below this fraction of B/2 at every height is a
+#: vertical post of zero width.
+POST_FRACTION = 1e-3
 #: A station whose waterline or immersed depth is below this fraction of B/2 or T is an end
 #: station: its shape is not fitted (it follows its neighbours).
 END_FRACTION = 0.08
@@ -322,6 +332,16 @@ def _sac_spec(m: MeasuredHull, dwl, profile, xa: float, xf: float) -> dict:
     return {"volume": m.volume, "lcb": m.lcb, "spans": CURVE_SPANS["sac"], "fullness_fit": _pairs(m.x[ok], s[ok])}
 
 
+def _posts(m: MeasuredHull) -> dict:
+    """ends.aft_post / fore_post for an end station that reaches below T and has no breadth at
+    any height (a vertical post of zero width)."""
+    out = {}
+    for end, k in (("aft", 0), ("fore", -1)):
+        if m.z_low[k] < m.draft and np.nanmax(np.nan_to_num(m.y[k])) <= POST_FRACTION * m.beam / 2:
+            out[f"{end}_post"] = True
+    return out
+
+
 def _base_description(m: MeasuredHull, name: str) -> dict:
     from .basic_curves import immersed_range, solve_curve
     from .description import BasicCurveSpec
@@ -336,7 +356,7 @@ def _base_description(m: MeasuredHull, name: str) -> dict:
         "name": name,
         "notes": "; ".join([f"imported: volume {m.volume:.6g} m^3, LCB {m.lcb:.6g} m from the AP measured from the data"] + m.notes),
         "principal": {"Lpp": m.lpp, "B": m.beam, "T": m.draft, "D": m.depth},
-        "ends": {"aft": m.x_aft, "fore": m.x_fore},
+        "ends": {"aft": m.x_aft, "fore": m.x_fore, **_posts(m)},
         "stations": {"count": 61},
         "sections": {"n_control": 20},
         "basic_curves": {"profile": prof, "dwl": dwl, "deck": _deck_spec(m), "sac": _sac_spec(m, dwl_curve, profile, xa, xf)},
@@ -364,29 +384,55 @@ def _section_misfit(spec, z: np.ndarray, y: np.ndarray) -> float:
     return float(np.sqrt(np.mean((yd[both] - y[both]) ** 2))) if both.sum() >= 3 else math.inf
 
 
-def fit_section_shapes(hull, m: MeasuredHull, passes: int = 2) -> dict:
-    """Per measured station inside the hull's waterline (not at its ends), the deadrise,
-    character and top_corner whose designed section is closest (least squares over the
-    station's heights) to the data. Returns {curve: [[x, value], ...]}."""
+def _corner_misfit(spec, m: MeasuredHull, y: np.ndarray, breadth: float, height: float) -> float:
+    spec.corner_y, spec.corner_z = float(breadth), float(height)
+    return _section_misfit(spec, m.z, y)
+
+
+def _fit_corner(spec, m: MeasuredHull, y: np.ndarray) -> float:
+    """Set spec's bilge corner to the grid point closest to the data, refined by coordinate
+    steps; returns the misfit."""
+    grid = [(_corner_misfit(spec, m, y, b, h), b, h) for b in CORNER_GRID["corner_breadth"] for h in CORNER_GRID["corner_height"]]
+    best = min(grid)
+    lo, hi = SHAPE_BOUNDS["corner_breadth"], SHAPE_BOUNDS["corner_height"]
+    step = CORNER_STEP
+    for _ in range(CORNER_PASSES):
+        for db, dh in ((step, 0), (-step, 0), (0, step), (0, -step)):
+            b = min(max(best[1] + db, lo["lower"]), lo["upper"])
+            h = min(max(best[2] + dh, hi["lower"]), hi["upper"])
+            best = min(best, (_corner_misfit(spec, m, y, b, h), b, h))
+        step /= 2
+    spec.corner_y, spec.corner_z = float(best[1]), float(best[2])
+    return best[0]
+
+
+def fit_section_shapes(hull, m: MeasuredHull) -> dict:
+    """Per measured station inside the hull's waterline (not at its ends), the bilge corner
+    (corner_breadth, corner_height) and top_corner whose designed section is closest (least
+    squares over the station's heights) to the data, the measured area setting the arc's weight.
+    Returns {curve: [[x, value], ...]}."""
     xa, xf = hull.immersed_range()
     half = m.beam / 2
-    out = {name: [] for name in SHAPE_CANDIDATES}
+    out = {"corner_breadth": [], "corner_height": [], "top_corner": []}
     for k, x0 in enumerate(m.x):
         if not xa < x0 < xf:
             continue
         spec = hull.section_specs([float(x0)])[0]
         if spec.y_dwl < END_FRACTION * half or spec.draft - spec.z_keel < END_FRACTION * m.draft:
             continue
+        spec.half_area = float(m.area[k] / 2)  # the data's own, which the SAC's fullness fit follows
         y = m.y[k]
-        for _ in range(passes):
-            for name, cands in SHAPE_CANDIDATES.items():
-                best = (math.inf, getattr(spec, name))
-                for v in cands:
-                    setattr(spec, name, float(v))
-                    best = min(best, (_section_misfit(spec, m.z, y), float(v)))
-                setattr(spec, name, best[1])
-        for name in SHAPE_CANDIDATES:
-            out[name].append([float(x0), float(getattr(spec, name))])
+        if not math.isfinite(_fit_corner(spec, m, y)):
+            continue
+        best = (_section_misfit(spec, m.z, y), spec.top_corner)
+        for v in TOP_CANDIDATES:  # a top corner the data does not tell from the default keeps it
+            spec.top_corner = float(v)
+            misfit = _section_misfit(spec, m.z, y)
+            best = (misfit, float(v)) if misfit < (1 - MISFIT_GAIN) * best[0] else best
+        spec.top_corner = best[1]
+        _fit_corner(spec, m, y)
+        for name, value in (("corner_breadth", spec.corner_y), ("corner_height", spec.corner_z), ("top_corner", spec.top_corner)):
+            out[name].append([float(x0), float(value)])
     return out
 
 
@@ -498,9 +544,10 @@ def _with_fitted_shapes(base: dict, built: tuple, m: MeasuredHull, say) -> tuple
     hull, desc, relaxed = built
     shaped = copy.deepcopy(base)
     shapes = fit_section_shapes(hull, m)
+    if len(shapes["corner_breadth"]) < 4:
+        return hull, desc
     for curve, pts in shapes.items():
-        if len(pts) >= 4:
-            shaped["basic_curves"][curve] = {"fit": pts, "fit_weight": FIT_WEIGHT, "spans": 16, **SHAPE_BOUNDS[curve]}
+        shaped["basic_curves"][curve] = {"fit": pts, "fit_weight": FIT_WEIGHT, "spans": SHAPE_SPANS, **SHAPE_BOUNDS[curve]}
     say("fitted " + ", ".join(f"{k} at {len(v)} stations" for k, v in shapes.items()))
     try:
         hull_s, relaxed_s = _buildable(shaped, say)
