@@ -26,7 +26,7 @@ import numpy as np
 
 from . import _native
 from . import basic_curves as _basic_curves
-from .basic_curves import BasicCurve, immersed_range, solve_curve, solve_sac
+from .basic_curves import CORNER_FULLNESS_BOUNDS, FULLNESS_BOUNDS, BasicCurve, immersed_range, solve_curve, solve_sac
 from .description import FORM_ALIASES, FORM_KEYS, BasicCurveSpec, HullDescription, load_description
 from .hydrostatics_surface import hydrostatics
 from .skinning import fair_skin
@@ -179,9 +179,12 @@ class Hull:
             try:
                 band_key = (shape_key, self.stations().tobytes(), d.section_n_control)
                 bands = _band_cache.get(band_key, self._fullness_bands)
-                posts = tuple(d.x_aft if end == "aft" else d.x_fore for end in d.posts)
-                curves["sac"], curves["fullness"] = solve_sac(d.curves["sac"], curves["dwl"], curves["profile"],
-                                                              pr.draft, bands=bands, posts=posts)
+                free = tuple(d.x_aft if end == "aft" else d.x_fore for end in d.posts)
+                limits = FULLNESS_BOUNDS
+                if "corner_breadth" in d.curves:
+                    free, limits = self.immersed_range(), CORNER_FULLNESS_BOUNDS
+                curves["sac"], curves["fullness"] = solve_sac(d.curves["sac"], curves["dwl"], curves["profile"], pr.draft,
+                                                              fullness=limits, bands=bands, free_ends=free)
             except BaseException:
                 self._curves = None
                 raise

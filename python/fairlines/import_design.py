@@ -58,7 +58,7 @@ SHAPE_BOUNDS = {"corner_breadth": {"lower": 0.03, "upper": 1.0}, "corner_height"
 #: A fitted top corner must lower the station's misfit by this fraction to replace the default.
 MISFIT_GAIN = 0.01
 #: Knot spans of the fitted shape curves.
-SHAPE_SPANS = 16
+SHAPE_SPANS = 24
 #: An end station whose half-breadth stays below this fraction of B/2 at every height is a
 #: vertical post of zero width.
 POST_FRACTION = 1e-3
@@ -67,6 +67,9 @@ POST_FRACTION = 1e-3
 END_FRACTION = 0.08
 #: Depth is measured within this fraction of Lpp of midships.
 MIDSHIP_BAND = 0.05
+#: Heights within this fraction of a section's height above its keel point are not compared
+#: in the section fits.
+KEEL_BAND = 1e-3
 #: Data this far (fraction of T) below the keel line is a dome, not hull.
 KEEL_TOL = 0.01
 #: Stations cut from a bulb grid between the FP and the nose.
@@ -314,8 +317,10 @@ def _deck_spec(m: MeasuredHull) -> dict:
     half = m.beam / 2
     y = np.minimum(_at(m, m.depth - 1e-9 * m.depth), half)
     y[~np.isfinite(y)] = 0.0  # no hull at the deck height: the stem or stern is below it
-    # the stem head closes on the centre plane; the aft end keeps its measured breadth (a transom)
-    spec = {"fit": _pairs(m.x, y), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["deck"], "yB": float(y[0]), "yE": 0.0}
+    # the aft end keeps its measured breadth (a transom); the stem head closes on the centre
+    # plane where a bulb is to be composed with it, else it keeps its measured flare
+    y_fore = 0.0 if m.bulb_points is not None else float(y[-1])
+    spec = {"fit": _pairs(m.x, y), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["deck"], "yB": float(y[0]), "yE": y_fore}
     flat = _flat_run(m.x, y, half, 2e-3 * half, 0.05 * m.lpp)
     if flat is not None:
         spec.update(flat_from=flat[0], flat_to=flat[1], value=half)
@@ -375,12 +380,14 @@ def _designed_half_breadth(spec, z: np.ndarray) -> np.ndarray:
 
 
 def _section_misfit(spec, z: np.ndarray, y: np.ndarray) -> float:
-    """RMS of measured minus designed half-breadth over the heights both hold."""
+    """RMS of measured minus designed half-breadth over the heights both hold above the keel
+    point (at the keel's own height a flat bottom's half-breadth is any of its width)."""
     try:
         yd = _designed_half_breadth(spec, z)
     except (_native.InfeasibleFormParameters, _native.InvalidInput):
         return math.inf
-    both = np.isfinite(yd) & np.isfinite(y)
+    above = z > spec.z_keel + KEEL_BAND * (spec.z_deck - spec.z_keel)
+    both = np.isfinite(yd) & np.isfinite(y) & above
     return float(np.sqrt(np.mean((yd[both] - y[both]) ** 2))) if both.sum() >= 3 else math.inf
 
 
@@ -415,10 +422,10 @@ def fit_section_shapes(hull, m: MeasuredHull) -> dict:
     half = m.beam / 2
     out = {"corner_breadth": [], "corner_height": [], "top_corner": []}
     for k, x0 in enumerate(m.x):
-        if not xa < x0 < xf:
+        if not xa <= x0 <= xf:
             continue
         spec = hull.section_specs([float(x0)])[0]
-        if spec.y_dwl < END_FRACTION * half or spec.draft - spec.z_keel < END_FRACTION * m.draft:
+        if not spec.y_dwl > 0 or spec.y_dwl < END_FRACTION * half or spec.draft - spec.z_keel < END_FRACTION * m.draft:
             continue
         spec.half_area = float(m.area[k] / 2)  # the data's own, which the SAC's fullness fit follows
         y = m.y[k]

@@ -18,9 +18,6 @@ RMS_GOAL, MAX_GOAL, VOLUME_GOAL, LCB_GOAL, WETTED_GOAL = 0.005, 0.02, 0.005, 0.0
 
 # Measured shortfalls (the section family cannot hold these ships yet; docs/import.md says why).
 SHORT = {
-    ("rms", "wigley_table"): "RMS 1.9 % B: sections fuller at the bilge than the parabolic Wigley ones; zero-width end posts",
-    ("max", "wigley_table"): "max 6.0 % B at the vertical end posts (a section with no waterline bulges)",
-    ("wetted", "wigley_table"): "+1.7 %: the bulging end sections",
     ("rms", "series60"): "RMS 1.7 % B: the stern above the shaft and the forefoot",
     ("max", "series60"): "max 8.7 % B at the stern above the shaft",
     ("rms", "kcs"): "RMS 4.7 % B: skeg and hollow aft sections (fullness < 0.5) not expressible",
