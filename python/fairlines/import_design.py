@@ -49,6 +49,10 @@ CURVE_SPANS = {"profile": 40, "dwl": 30, "deck": 24, "sac": 30}
 #: breadth and height fractions, searched together on this grid) and the top corner.
 CORNER_GRID = {"corner_breadth": np.linspace(0.05, 1.0, 20), "corner_height": np.linspace(0.0, 0.9, 19)}
 TOP_CANDIDATES = np.linspace(0.1, 0.9, 9)
+#: Pull of a station's corner toward its neighbour's (toward midships), as a misfit of this
+#: fraction of B per unit distance in the (breadth, height) fractions: of near-equal fits the
+#: one that continues the neighbour's wins, so the fitted curves stay fair.
+CORNER_PULL = 0.01
 #: Refinement of the grid's best corner: coordinate steps (fractions), halved each pass.
 CORNER_STEP, CORNER_PASSES = 0.025, 4
 #: Bounds of the fitted shape curves, inside the section generator's: the spline's own bound is
@@ -331,7 +335,7 @@ def _deck_spec(m: MeasuredHull) -> dict:
 def _sac_spec(m: MeasuredHull, dwl, profile, xa: float, xf: float) -> dict:
     """Volume and LCB of the data; the measured section fullness away from the ends."""
     box = 2 * dwl(m.x, outside=0.0) * np.maximum(m.draft - profile(m.x), 0.0)
-    ok = (m.x > xa + 0.03 * (xf - xa)) & (m.x < xf - 0.03 * (xf - xa)) & (box > 0)
+    ok = (m.x >= xa) & (m.x <= xf) & (box > 0)
     s = np.where(ok, m.area / np.where(box > 0, box, 1.0), np.nan)
     s = np.clip(s, 0.05, 1.0)
     return {"volume": m.volume, "lcb": m.lcb, "spans": CURVE_SPANS["sac"], "fullness_fit": _pairs(m.x[ok], s[ok])}
@@ -371,8 +375,12 @@ def _base_description(m: MeasuredHull, name: str) -> dict:
 # ---- section shape curves, fitted per station -------------------------------------------
 
 def _designed_half_breadth(spec, z: np.ndarray) -> np.ndarray:
-    """y(z) of the section fl.design_section makes of `spec` (NaN outside it)."""
-    curve = _native.design_section(spec).curve
+    """y(z) of the section fl.design_section makes of `spec` (NaN outside it; all NaN when the
+    section cannot hold spec's area)."""
+    design = _native.design_section(spec)
+    if not design.area_met:
+        return np.full(z.shape, np.nan)
+    curve = design.curve
     kn = np.asarray(curve.knots)
     pts = np.asarray(curve.evaluate(np.linspace(kn[0], kn[-1], 201)))
     order = np.argsort(pts[:, 2], kind="stable")
@@ -391,15 +399,17 @@ def _section_misfit(spec, z: np.ndarray, y: np.ndarray) -> float:
     return float(np.sqrt(np.mean((yd[both] - y[both]) ** 2))) if both.sum() >= 3 else math.inf
 
 
-def _corner_misfit(spec, m: MeasuredHull, y: np.ndarray, breadth: float, height: float) -> float:
+def _corner_misfit(spec, m: MeasuredHull, y: np.ndarray, breadth: float, height: float, near) -> float:
     spec.corner_y, spec.corner_z = float(breadth), float(height)
-    return _section_misfit(spec, m.z, y)
+    pull = 0.0 if near is None else CORNER_PULL * m.beam * math.hypot(breadth - near[0], height - near[1])
+    return _section_misfit(spec, m.z, y) + pull
 
 
-def _fit_corner(spec, m: MeasuredHull, y: np.ndarray) -> float:
-    """Set spec's bilge corner to the grid point closest to the data, refined by coordinate
-    steps; returns the misfit."""
-    grid = [(_corner_misfit(spec, m, y, b, h), b, h) for b in CORNER_GRID["corner_breadth"] for h in CORNER_GRID["corner_height"]]
+def _fit_corner(spec, m: MeasuredHull, y: np.ndarray, near=None) -> float:
+    """Set spec's bilge corner to the grid point closest to the data (pulled toward `near`,
+    the neighbouring station's corner), refined by coordinate steps; returns the misfit."""
+    grid = [(_corner_misfit(spec, m, y, b, h, near), b, h) for b in CORNER_GRID["corner_breadth"]
+            for h in CORNER_GRID["corner_height"]]
     best = min(grid)
     lo, hi = SHAPE_BOUNDS["corner_breadth"], SHAPE_BOUNDS["corner_height"]
     step = CORNER_STEP
@@ -407,39 +417,52 @@ def _fit_corner(spec, m: MeasuredHull, y: np.ndarray) -> float:
         for db, dh in ((step, 0), (-step, 0), (0, step), (0, -step)):
             b = min(max(best[1] + db, lo["lower"]), lo["upper"])
             h = min(max(best[2] + dh, hi["lower"]), hi["upper"])
-            best = min(best, (_corner_misfit(spec, m, y, b, h), b, h))
+            best = min(best, (_corner_misfit(spec, m, y, b, h, near), b, h))
         step /= 2
     spec.corner_y, spec.corner_z = float(best[1]), float(best[2])
     return best[0]
 
 
+def _fit_station(hull, m: MeasuredHull, k: int, near):
+    """The fitted section spec of measured station k (None where it is not fitted)."""
+    spec = hull.section_specs([float(m.x[k])])[0]
+    if not spec.y_dwl > 0 or spec.y_dwl < END_FRACTION * m.beam / 2 or spec.draft - spec.z_keel < END_FRACTION * m.draft:
+        return None
+    spec.half_area = float(m.area[k] / 2)  # the data's own, which the SAC's fullness fit follows
+    y = m.y[k]
+    if not math.isfinite(_fit_corner(spec, m, y, near)):
+        return None
+    best = (_section_misfit(spec, m.z, y), spec.top_corner)
+    for v in TOP_CANDIDATES:  # a top corner the data does not tell from the default keeps it
+        spec.top_corner = float(v)
+        misfit = _section_misfit(spec, m.z, y)
+        best = (misfit, float(v)) if misfit < (1 - MISFIT_GAIN) * best[0] else best
+    spec.top_corner = best[1]
+    _fit_corner(spec, m, y, near)
+    return spec
+
+
 def fit_section_shapes(hull, m: MeasuredHull) -> dict:
     """Per measured station inside the hull's waterline (not at its ends), the bilge corner
     (corner_breadth, corner_height) and top_corner whose designed section is closest (least
-    squares over the station's heights) to the data, the measured area setting the arc's weight.
-    Returns {curve: [[x, value], ...]}."""
+    squares over the station's heights) to the data, the measured area setting the arc's
+    weight. Stations are fitted from midships toward each end, each pulled toward the corner of
+    the one before (CORNER_PULL). Returns {curve: [[x, value], ...]}."""
     xa, xf = hull.immersed_range()
-    half = m.beam / 2
+    inside = [k for k in range(len(m.x)) if xa <= m.x[k] <= xf]
+    mid = min(inside, key=lambda k: abs(m.x[k] - m.lpp / 2), default=None)
+    fitted = {}
+    for order in ([k for k in inside if k >= mid], [k for k in reversed(inside) if k <= mid]) if inside else ():
+        near = fitted.get(mid)
+        for k in order:
+            spec = fitted.get(k) or _fit_station(hull, m, k, near)
+            if spec is not None:
+                fitted[k], near = spec, (spec.corner_y, spec.corner_z)
     out = {"corner_breadth": [], "corner_height": [], "top_corner": []}
-    for k, x0 in enumerate(m.x):
-        if not xa <= x0 <= xf:
-            continue
-        spec = hull.section_specs([float(x0)])[0]
-        if not spec.y_dwl > 0 or spec.y_dwl < END_FRACTION * half or spec.draft - spec.z_keel < END_FRACTION * m.draft:
-            continue
-        spec.half_area = float(m.area[k] / 2)  # the data's own, which the SAC's fullness fit follows
-        y = m.y[k]
-        if not math.isfinite(_fit_corner(spec, m, y)):
-            continue
-        best = (_section_misfit(spec, m.z, y), spec.top_corner)
-        for v in TOP_CANDIDATES:  # a top corner the data does not tell from the default keeps it
-            spec.top_corner = float(v)
-            misfit = _section_misfit(spec, m.z, y)
-            best = (misfit, float(v)) if misfit < (1 - MISFIT_GAIN) * best[0] else best
-        spec.top_corner = best[1]
-        _fit_corner(spec, m, y)
+    for k in sorted(fitted):
+        spec = fitted[k]
         for name, value in (("corner_breadth", spec.corner_y), ("corner_height", spec.corner_z), ("top_corner", spec.top_corner)):
-            out[name].append([float(x0), float(value)])
+            out[name].append([float(m.x[k]), float(value)])
     return out
 
 
