@@ -14,10 +14,11 @@ description dict (fairlines.description) that ``fl.Hull.from_dict`` builds. What
 * the transom: its lower edge height and, when immersed, its width at T.
 
 The basic curves pass near these measurements (``fit`` points); the SAC holds the measured
-volume and LCB exactly and stays near the measured section fullness. The section shape curves
-(``deadrise``, ``character``, ``top_corner``) are then fitted per station: each is the value
-whose designed section (``fl.design_section`` on the built basic curves) lies closest, in the
-least-squares sense, to the measured half-breadths. A bulb grid (role 'bulb') is left out of
+volume and LCB exactly and stays near the measured section fullness. An end station with no
+breadth at any height below T is a vertical post (``ends.aft_post`` / ``fore_post``). The section
+shape curves (the bilge corner ``corner_breadth`` / ``corner_height`` and ``top_corner``) are then
+fitted per station: each is the value whose designed section (``fl.design_section`` with the
+station's measured area) lies closest, in the least-squares sense, to the measured half-breadths. A bulb grid (role 'bulb') is left out of
 the bare hull and measured into the ``bulb`` section's Kracht coefficients (cuts of its grid
 from the FP to the nose). Hull below the keel line (a sonar dome) and above the deck at
 midships (a sheer) is left out and noted: the description has neither.
@@ -53,12 +54,18 @@ TOP_CANDIDATES = np.linspace(0.1, 0.9, 9)
 #: fraction of B per unit distance in the (breadth, height) fractions: of near-equal fits the
 #: one that continues the neighbour's wins, so the fitted curves stay fair.
 CORNER_PULL = 0.01
+#: Candidates of the template family's shape curves (fitted where a bulb cannot be composed
+#: with the fitted corners' bow).
+TEMPLATE_CANDIDATES = {"character": np.linspace(0.1, 0.9, 17), "deadrise": np.linspace(0.0, 30.0, 13),
+                       "top_corner": TOP_CANDIDATES}
+TEMPLATE_PASSES = 2
 #: Refinement of the grid's best corner: coordinate steps (fractions), halved each pass.
 CORNER_STEP, CORNER_PASSES = 0.025, 4
 #: Bounds of the fitted shape curves, inside the section generator's: the spline's own bound is
 #: met to the solver's round-off only.
 SHAPE_BOUNDS = {"corner_breadth": {"lower": 0.03, "upper": 1.0}, "corner_height": {"lower": 0.0, "upper": 0.92},
-                "top_corner": {"lower": 0.06, "upper": 0.94}}
+                "top_corner": {"lower": 0.06, "upper": 0.94}, "character": {"lower": 0.06, "upper": 0.94},
+                "deadrise": {"lower": 1e-3, "upper": 39.0}}
 #: A fitted top corner must lower the station's misfit by this fraction to replace the default.
 MISFIT_GAIN = 0.01
 #: Knot spans of the fitted shape curves.
@@ -335,7 +342,7 @@ def _deck_spec(m: MeasuredHull) -> dict:
 def _sac_spec(m: MeasuredHull, dwl, profile, xa: float, xf: float) -> dict:
     """Volume and LCB of the data; the measured section fullness away from the ends."""
     box = 2 * dwl(m.x, outside=0.0) * np.maximum(m.draft - profile(m.x), 0.0)
-    ok = (m.x >= xa) & (m.x <= xf) & (box > 0)
+    ok = (m.x > xa + 0.03 * (xf - xa)) & (m.x < xf - 0.03 * (xf - xa)) & (box > 0)
     s = np.where(ok, m.area / np.where(box > 0, box, 1.0), np.nan)
     s = np.clip(s, 0.05, 1.0)
     return {"volume": m.volume, "lcb": m.lcb, "spans": CURVE_SPANS["sac"], "fullness_fit": _pairs(m.x[ok], s[ok])}
@@ -374,11 +381,11 @@ def _base_description(m: MeasuredHull, name: str) -> dict:
 
 # ---- section shape curves, fitted per station -------------------------------------------
 
-def _designed_half_breadth(spec, z: np.ndarray) -> np.ndarray:
+def _designed_half_breadth(spec, z: np.ndarray, need_area: bool = True) -> np.ndarray:
     """y(z) of the section fl.design_section makes of `spec` (NaN outside it; all NaN when the
-    section cannot hold spec's area)."""
+    section cannot hold spec's area and `need_area`)."""
     design = _native.design_section(spec)
-    if not design.area_met:
+    if need_area and not design.area_met:
         return np.full(z.shape, np.nan)
     curve = design.curve
     kn = np.asarray(curve.knots)
@@ -387,11 +394,11 @@ def _designed_half_breadth(spec, z: np.ndarray) -> np.ndarray:
     return np.interp(z, pts[order, 2], pts[order, 1], left=np.nan, right=np.nan)
 
 
-def _section_misfit(spec, z: np.ndarray, y: np.ndarray) -> float:
+def _section_misfit(spec, z: np.ndarray, y: np.ndarray, need_area: bool = True) -> float:
     """RMS of measured minus designed half-breadth over the heights both hold above the keel
     point (at the keel's own height a flat bottom's half-breadth is any of its width)."""
     try:
-        yd = _designed_half_breadth(spec, z)
+        yd = _designed_half_breadth(spec, z, need_area)
     except (_native.InfeasibleFormParameters, _native.InvalidInput):
         return math.inf
     above = z > spec.z_keel + KEEL_BAND * (spec.z_deck - spec.z_keel)
@@ -463,6 +470,29 @@ def fit_section_shapes(hull, m: MeasuredHull) -> dict:
         spec = fitted[k]
         for name, value in (("corner_breadth", spec.corner_y), ("corner_height", spec.corner_z), ("top_corner", spec.top_corner)):
             out[name].append([float(m.x[k]), float(value)])
+    return out
+
+
+def fit_template_shapes(hull, m: MeasuredHull) -> dict:
+    """Per measured station inside the hull's waterline (not at its ends), the deadrise,
+    character and top_corner of the template family (no corner given) whose designed section is
+    closest (least squares over the station's heights) to the data, the SAC's area setting the
+    knob (clamped where the candidate cannot hold it). Returns {curve: [[x, value], ...]}."""
+    xa, xf = hull.immersed_range()
+    out = {name: [] for name in TEMPLATE_CANDIDATES}
+    for k, x0 in enumerate(m.x):
+        spec = hull.section_specs([float(x0)])[0] if xa < x0 < xf else None
+        if spec is None or spec.y_dwl < END_FRACTION * m.beam / 2 or spec.draft - spec.z_keel < END_FRACTION * m.draft:
+            continue
+        for _ in range(TEMPLATE_PASSES):
+            for name, cands in TEMPLATE_CANDIDATES.items():
+                best = (math.inf, getattr(spec, name))
+                for v in cands:
+                    setattr(spec, name, float(v))
+                    best = min(best, (_section_misfit(spec, m.z, m.y[k], need_area=False), float(v)))
+                setattr(spec, name, best[1])
+        for name in TEMPLATE_CANDIDATES:
+            out[name].append([float(x0), float(getattr(spec, name))])
     return out
 
 
@@ -567,14 +597,14 @@ def _buildable(desc: dict, say) -> tuple:
     return free, relaxed
 
 
-def _with_fitted_shapes(base: dict, built: tuple, m: MeasuredHull, say) -> tuple:
-    """(hull, description) with the section shape curves fitted to the data, unless that costs
-    a SAC target the default shapes meet (`built`: the default shapes' hull, description and
-    relaxations)."""
+def _with_fitted_shapes(base: dict, built: tuple, m: MeasuredHull, say, fit) -> tuple:
+    """(hull, description) with the section shape curves fitted to the data by `fit`
+    (fit_section_shapes or fit_template_shapes), unless that costs a SAC target the default
+    shapes meet (`built`: the default shapes' hull, description and relaxations)."""
     hull, desc, relaxed = built
     shaped = copy.deepcopy(base)
-    shapes = fit_section_shapes(hull, m)
-    if len(shapes["corner_breadth"]) < 4:
+    shapes = fit(hull, m)
+    if min(len(v) for v in shapes.values()) < 4:
         return hull, desc
     for curve, pts in shapes.items():
         shaped["basic_curves"][curve] = {"fit": pts, "fit_weight": FIT_WEIGHT, "spans": SHAPE_SPANS, **SHAPE_BOUNDS[curve]}
@@ -595,16 +625,15 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
     `hull_data` (fairlines.offsets.HullData; module docstring says what is measured).
 
     depth       D (m); default the top of the data at midships.
-    fit_shapes  fit the deadrise / character / top_corner curves per station (slower).
+    fit_shapes  fit the bilge corner (corner_breadth, corner_height) and top_corner curves per
+                station (slower); where the measured bulb cannot be composed with their bow,
+                the template family's deadrise, character and top_corner instead.
     progress    callable(str) told of each step, or None.
 
     Raises InvalidInput for data that is not HullData, a depth not above T, data the
     description cannot hold (no hull below T at 3 stations); InfeasibleFormParameters when the
     measured basic curves contradict each other.
     """
-    from .designer import match_targets
-    from .hull import Hull
-
     if not isinstance(hull_data, HullData):
         raise _native.InvalidInput(f"hull_data is a {type(hull_data).__name__}; expected fairlines.offsets.HullData "
                                    "(read_hull_data)")
@@ -614,10 +643,35 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
     m = measure_hull_data(hull_data, depth)
     say(f"measured {len(m.x)} stations: volume {m.volume:.6g} m^3, LCB {m.lcb:.6g} m, D {m.depth:.4g} m")
     base = _base_description(m, name or hull_data.name)
+    out = _designed(base, m, hull_data, fit_section_shapes if fit_shapes else None, say)
+    if fit_shapes and "bulb" in out and not _composes(out):
+        say("the fitted bilge corners leave a bow the measured bulb cannot meet in one seam: fitting the template's shapes")
+        out = _designed(base, m, hull_data, fit_template_shapes, say)
+        out["notes"] += "; template section shapes fitted: the bulb could not be composed with the fitted corners' bow"
+    return out
+
+
+def _composes(desc: dict) -> bool:
+    """Whether the hull of `desc` composes with its bulb."""
+    from .hull import Hull
+
+    try:
+        Hull.from_json(desc).composed_hull()
+        return True
+    except _native.InvalidInput:
+        return False
+
+
+def _designed(base: dict, m: MeasuredHull, hull_data: HullData, fit, say) -> dict:
+    """The description of `base` built, its section shapes fitted by `fit` (None: the defaults),
+    its volume and LCB corrected on the surface, and its bulb measured."""
+    from .designer import match_targets
+    from .hull import Hull
+
     desc = copy.deepcopy(base)
     hull, relaxed = _buildable(desc, say)
-    if fit_shapes:
-        hull, desc = _with_fitted_shapes(base, (hull, desc, relaxed), m, say)
+    if fit is not None:
+        hull, desc = _with_fitted_shapes(base, (hull, desc, relaxed), m, say, fit)
     if "volume" in desc["basic_curves"]["sac"]:
         matched = Hull.from_json(desc)
         try:
