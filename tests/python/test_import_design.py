@@ -114,3 +114,16 @@ def test_import_refuses_a_depth_not_above_the_draft(kwargs, message):
 def test_import_refuses_what_is_not_hull_data():
     with pytest.raises(fl.InvalidInput, match="expected fairlines.offsets.HullData"):
         fl.import_design({"name": "x"})
+
+
+@pytest.mark.parametrize("ship, posts", [("wigley_table", {"aft_post": True, "fore_post": True}), ("series60", {})])
+def test_end_posts_of_zero_width_are_read_only_where_the_data_has_them(ship, posts):
+    ends = imported(ship)["ends"]
+    assert {k: v for k, v in ends.items() if k.endswith("_post")} == posts
+
+
+def test_imported_wigley_sections_have_the_parabolas_bilge_corner():
+    curves = imported("wigley_table")["basic_curves"]
+    # y = b (1 - (zeta / T)^2): the tangents at the waterline and the keel meet at (b, T / 2)
+    assert np.allclose([v for _, v in curves["corner_breadth"]["fit"]], 1.0, atol=0.02)
+    assert np.allclose([v for _, v in curves["corner_height"]["fit"]], 0.5, atol=0.02)
