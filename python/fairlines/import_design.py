@@ -48,7 +48,7 @@ FIT_WEIGHT = 1.0e3
 CURVE_SPANS = {"profile": 40, "dwl": 30, "deck": 24, "sac": 30}
 #: Candidate values tried per station for each section shape curve: the bilge corner (its
 #: breadth and height fractions, searched together on this grid) and the top corner.
-CORNER_GRID = {"corner_breadth": np.linspace(0.05, 1.0, 20), "corner_height": np.linspace(0.0, 0.9, 19)}
+CORNER_GRID = {"corner_breadth": np.linspace(0.05, 1.0, 11), "corner_height": np.linspace(0.0, 0.9, 10)}
 TOP_CANDIDATES = np.linspace(0.1, 0.9, 9)
 #: Pull of a station's corner toward its neighbour's (toward midships), as a misfit of this
 #: fraction of B per unit distance in the (breadth, height) fractions: of near-equal fits the
@@ -60,7 +60,7 @@ TEMPLATE_CANDIDATES = {"character": np.linspace(0.1, 0.9, 17), "deadrise": np.li
                        "top_corner": TOP_CANDIDATES}
 TEMPLATE_PASSES = 2
 #: Refinement of the grid's best corner: coordinate steps (fractions), halved each pass.
-CORNER_STEP, CORNER_PASSES = 0.025, 4
+CORNER_STEP, CORNER_PASSES = 0.05, 5
 #: Bounds of the fitted shape curves, inside the section generator's: the spline's own bound is
 #: met to the solver's round-off only.
 SHAPE_BOUNDS = {"corner_breadth": {"lower": 0.03, "upper": 1.0}, "corner_height": {"lower": 0.0, "upper": 0.92},
