@@ -172,7 +172,7 @@ class Hull:
             d = self.description
             pr = d.principal
             # Everything the shape curves read; the SAC is solved below.
-            shape_key = (pr.lpp, pr.breadth, pr.draft, pr.depth, d.x_aft, d.x_fore,
+            shape_key = (pr.lpp, pr.breadth, pr.draft, pr.depth, d.x_aft, d.x_fore, d.posts,
                          tuple((name, repr(spec)) for name, spec in sorted(d.curves.items()) if name != "sac"))
             curves = dict(_shape_cache.get(shape_key, self._shape_curves))
             self._curves = curves  # the bands below read them
