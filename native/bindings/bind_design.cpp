@@ -93,6 +93,8 @@ void bind_sections(py::module_& m) {
       .def_readwrite("deadrise", &SectionSpec::deadrise, "bottom rise at the bilge corner (deg)")
       .def_readwrite("character", &SectionSpec::character, "where the bilge corner heads as the section fines (fraction of the chord Q-K)")
       .def_readwrite("lower_angle", &SectionSpec::lower_angle, "above-water sections: arrival angle at the keel point (deg from vertical; NaN: 0)")
+      .def_readwrite("corner_y", &SectionSpec::corner_y, "bilge corner half-breadth, fraction of y_dwl (NaN: from the template)")
+      .def_readwrite("corner_z", &SectionSpec::corner_z, "bilge corner height above the keel, fraction of T - z_keel (NaN: from the template)")
       .def_readwrite("n_control", &SectionSpec::n_control, "control points of every section of a hull");
   py::class_<SectionDesign>(m, "SectionDesign", "A designed section and what was needed to build it.")
       .def_readonly("curve", &SectionDesign::curve)

@@ -27,6 +27,8 @@ __all__ = ["BasicCurve", "solve_curve", "solve_sac", "immersed_range", "FULLNESS
 #: Section fullness A / (2 y_dwl (T - z_keel)) a designed SAC keeps within (a convex section
 #: through the DWL point with a flat keel has at least half its box; at most the box).
 FULLNESS_BOUNDS = (0.45, 0.995)
+#: ... and with the bilge corner given (hollow sections hold less than half their box).
+CORNER_FULLNESS_BOUNDS = (0.1, 0.995)
 #: Weight of the fairness (int s''^2 dx, times the range cubed) against the fit when the SAC's
 #: reference fullness is fitted to its fullness_fit points (and its flat part).
 REFERENCE_FAIRNESS = 1e-6
@@ -322,7 +324,7 @@ def _immersed_range(profile: BasicCurve, draft: float, samples: int) -> tuple[fl
 
 
 def _sac_request(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft: float, fullness, bands, targets: bool,
-                 wedge_flat: bool = True):
+                 wedge_flat: bool = True, free_ends: tuple = ()):
     """The fullness design request of the SAC (with or without its volume and LCB; with or
     without the level fullness where the waterline ends on the centre plane)."""
     path = "basic_curves.sac"
@@ -356,8 +358,10 @@ def _sac_request(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, dra
     # Where the waterline ends on the centre plane the immersed part is a wedge between the
     # waterline and the centre-line contour: its sections are straight, of fullness one half.
     widest = max(dwl.value or 0.0, float(np.max(dwl(np.linspace(dwl.x_start, dwl.x_end, 33)))))
+    # (Not at `free_ends`: a post's sections shrink to a line keeping their shape; sections with
+    # a given bilge corner keep it to the waterline's end.)
     for x_end in (plan.xs, plan.xe):
-        if dwl(x_end)[0] <= WEDGE_BREADTH * widest:
+        if dwl(x_end)[0] <= WEDGE_BREADTH * widest and not any(abs(x_end - xp) <= 1e-9 * (plan.xe - plan.xs) for xp in free_ends):
             conditions.append(_native.SplineCondition(x_end, 0, WEDGE_FULLNESS, "fullness where the waterline ends (a wedge)"))
             # ... and stays near one half for a while (no slope), so the sections there stay near
             # the straight V that the dry sections beyond continue
@@ -454,22 +458,25 @@ def _weighted_integral(f: BasicCurve, factors, power: int) -> float:
 
 
 def solve_sac(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft: float,
-              fullness: tuple[float, float] = FULLNESS_BOUNDS, bands: list | None = None) -> tuple[BasicCurve, BasicCurve]:
+              fullness: tuple[float, float] = FULLNESS_BOUNDS, bands: list | None = None,
+              free_ends: tuple = ()) -> tuple[BasicCurve, BasicCurve]:
     """The SAC (m^2, both sides) and the section fullness it is designed through, on the DWL's
     range. Every SAC form parameter is mapped onto the fullness (see the module docstring).
     `bands`: [(x, least, largest), ...] fullness the section at x can have (the sections'
-    own limits, fairlines.section_fullness_bands), kept at those points. Raises
+    own limits, fairlines.section_fullness_bands), kept at those points. `free_ends`: x of
+    waterline ends where the fullness is free (not the wedge's 1/2). Raises
     InfeasibleFormParameters for an infeasible request, naming the volume and LCB ranges the
     sections can hold."""
     try:
         try:
-            r, plan, params, factors = _sac_request(spec, dwl, profile, draft, fullness, bands, True)
+            r, plan, params, factors = _sac_request(spec, dwl, profile, draft, fullness, bands, True, free_ends=free_ends)
             s = _native.design_spline_function(r)
         except _native.InfeasibleFormParameters:  # a short run: the fullness may rise at once
-            r, plan, params, factors = _sac_request(spec, dwl, profile, draft, fullness, bands, True, wedge_flat=False)
+            r, plan, params, factors = _sac_request(spec, dwl, profile, draft, fullness, bands, True, wedge_flat=False,
+                                                      free_ends=free_ends)
             s = _native.design_spline_function(r)
     except _native.InfeasibleFormParameters as e:
-        r2, plan2, params2, factors2 = _sac_request(spec, dwl, profile, draft, fullness, bands, False)
+        r2, plan2, params2, factors2 = _sac_request(spec, dwl, profile, draft, fullness, bands, False, free_ends=free_ends)
         raise _native.InfeasibleFormParameters(
             f"basic_curves.sac: volume {params.get('Area', float('nan')):.6g} m^3 / lcb {params.get('xC', float('nan')):.6g} m "
             f"cannot be met by fair sections: {_sac_ranges(r2, plan2, params2, factors2)} ({e})") from None

@@ -6,7 +6,9 @@ Format (JSON; ``docs/hull_description.schema.json`` is its JSON Schema)::
       "name": "...", "notes": "...",
       "principal": {"Lpp": 244.8, "B": 32.25, "T": 11.0, "D": 19.0},      # metres
       "ends": {"aft": -5.0, "fore": 247.0},       # x of the hull's aft end (transom / stern) and
-                                                  # forward end (stem head); default 0 and Lpp
+                                                  # forward end (stem head); default 0 and Lpp;
+                                                  # "aft_post" / "fore_post": true, that end is a
+                                                  # vertical post of zero width (default false)
       "stations": {"count": 61} | {"x": [...]},    # default {"count": 61}, clustered at the ends
       "sections": {"n_control": 20},
       "basic_curves": {"profile": ..., "dwl": ..., "deck": ..., "sac": ...,
@@ -33,6 +35,14 @@ deadrise        (optional) rise of the bottom at the bilge, deg; default 0      
 character       (optional) where the bilge heads as the sections fine, as a      ends
                 fraction of the chord from the waterline point to the keel: 0.5
                 a symmetric V, smaller the side leans in first; default 0.5
+corner_breadth  (optional, with corner_height) the bilge corner of each section's  ends
+                arc below T given directly: its half-breadth as a fraction of the
+                waterline's (0 .. 1]; the SAC's area then sets only the arc's
+                weight (deadrise and character no longer place the corner)
+corner_height   (optional, with corner_breadth) the bilge corner's height above  ends
+                the keel as a fraction of the immersed depth [0 .. 1): (1, 0.5)
+                holds a parabolic (Wigley) section, a corner inside the chord from
+                the waterline point to the keel a hollow one
 ==============  ==============================================================  ================
 
 A basic curve is ``{"value": v}`` (constant) or a spline with any of: ``x_start``, ``x_end``
@@ -74,7 +84,11 @@ __all__ = [
 ]
 
 REQUIRED_CURVES = ("profile", "dwl", "deck", "sac")
-OPTIONAL_CURVES = ("top_corner", "deadrise", "character")
+OPTIONAL_CURVES = ("top_corner", "deadrise", "character", "corner_breadth", "corner_height")
+#: Curves that are given together or not at all (the bilge corner given directly).
+PAIRED_CURVES = (("corner_breadth", "corner_height"),)
+#: ``ends`` keys that make an end a vertical post of zero width.
+POST_KEYS = {"aft": "aft_post", "fore": "fore_post"}
 BASIC_CURVES = REQUIRED_CURVES + OPTIONAL_CURVES
 FORM_KEYS = ("yB", "yE", "alphaB", "alphaE", "slopeB", "slopeE", "CAB", "CAE", "Area", "xC")
 #: Public aliases of form parameters per curve: alias -> (form parameter, factor).
@@ -94,6 +108,12 @@ MAX_SPANS = 200
 SECTION_CONTROLS = (8, 64)
 # Plausible ship sizes: a length outside this range is a unit mistake far more often than a ship.
 LENGTH_RANGE = (1.0, 600.0)
+
+
+def _flag(path: str, value: Any) -> bool:
+    if not isinstance(value, bool):
+        raise bad(path, value, "true or false")
+    return value
 
 
 def _pairs(path: str, value: Any) -> list[tuple[float, float]]:
@@ -317,12 +337,14 @@ class HullDescription:
     notes: str = ""
     bulb: BulbSpec | None = None
     design: dict | None = None  # the particulars a designer built it from (kept, not used)
+    posts: tuple = ()  # ends ("aft", "fore") that are vertical posts of zero width
 
     @classmethod
     def from_dict(cls, d: Any) -> HullDescription:
         d = keyed_object("description", d, TOP_KEYS)
         principal = PrincipalDimensions.from_dict(d.get("principal"), "principal")
-        ends = keyed_object("ends", d.get("ends", {}), ("aft", "fore"))
+        ends = keyed_object("ends", d.get("ends", {}), ("aft", "fore", *POST_KEYS.values()))
+        posts = tuple(end for end, key in POST_KEYS.items() if _flag(f"ends.{key}", ends.get(key, False)))
         x_aft = number("ends.aft", ends.get("aft", 0.0))
         x_fore = number("ends.fore", ends.get("fore", principal.lpp))
         lpp = principal.lpp
@@ -331,7 +353,7 @@ class HullDescription:
         if x_aft < -0.25 * lpp or x_fore > 1.25 * lpp:
             raise _native.InvalidInput(f"ends are {x_aft} .. {x_fore} m; expected the hull within -0.25 Lpp .. 1.25 Lpp of the AP")
         desc = cls(name=text_value("name", d.get("name", "hull")), principal=principal, x_aft=x_aft, x_fore=x_fore,
-                   curves={}, notes=text_value("notes", d.get("notes", "")))
+                   curves={}, notes=text_value("notes", d.get("notes", "")), posts=posts)
         desc._parse_stations(d.get("stations", {"count": 61}))
         sec = keyed_object("sections", d.get("sections", {}), ("n_control",))
         desc.section_n_control = integer("sections.n_control", sec.get("n_control", 20), *SECTION_CONTROLS)
@@ -340,6 +362,11 @@ class HullDescription:
             if name not in bc:
                 raise _native.InvalidInput(f"basic_curves.{name} is missing; expected the {name} basic curve")
         desc.curves = {name: BasicCurveSpec.from_dict(name, spec, f"basic_curves.{name}") for name, spec in bc.items()}
+        for pair in PAIRED_CURVES:
+            if sum(name in bc for name in pair) == 1:
+                given, missing = pair if pair[0] in bc else pair[::-1]
+                raise _native.InvalidInput(f"basic_curves.{missing} is missing; expected it with basic_curves.{given} "
+                                           "(the bilge corner's breadth and height are given together)")
         sk = keyed_object("skinning", d.get("skinning", {}), ("e2", "e3"))
         desc.skin_e2 = number("skinning.e2", sk.get("e2", 1.0))
         desc.skin_e3 = number("skinning.e3", sk.get("e3", 0.0))
@@ -381,7 +408,7 @@ class HullDescription:
             "name": self.name,
             "notes": self.notes,
             "principal": self.principal.to_dict(),
-            "ends": {"aft": self.x_aft, "fore": self.x_fore},
+            "ends": {"aft": self.x_aft, "fore": self.x_fore, **{POST_KEYS[end]: True for end in self.posts}},
             "stations": {"x": list(map(float, self.station_x))} if self.station_x else {"count": self.station_count},
             "sections": {"n_control": self.section_n_control},
             "basic_curves": {k: v.to_dict() for k, v in self.curves.items()},

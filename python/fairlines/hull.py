@@ -26,7 +26,7 @@ import numpy as np
 
 from . import _native
 from . import basic_curves as _basic_curves
-from .basic_curves import BasicCurve, immersed_range, solve_curve, solve_sac
+from .basic_curves import CORNER_FULLNESS_BOUNDS, FULLNESS_BOUNDS, BasicCurve, immersed_range, solve_curve, solve_sac
 from .description import FORM_ALIASES, FORM_KEYS, BasicCurveSpec, HullDescription, load_description
 from .hydrostatics_surface import hydrostatics
 from .skinning import fair_skin
@@ -51,6 +51,10 @@ BAND_FREE = 2.0
 SIZING_GAUSS = 4
 # Shape curves: default value and bounds.
 SHAPE_CURVES = {"top_corner": (0.5, 0.05, 0.95), "deadrise": (0.0, 0.0, 40.0), "character": (0.5, 0.05, 0.95)}
+# The bilge corner given directly (optional, together): bounds of its breadth and height fractions.
+CORNER_CURVES = {"corner_breadth": ("corner_y", 0.02, 1.0), "corner_height": ("corner_z", 0.0, 0.95)}
+# A post end: the deck line's and waterline's half-breadth there at most this fraction of B/2.
+POST_TOL = 1e-6
 # Points along the waterline's range where the deck line must clear the waterline.
 DECK_CHECKS = 81
 # Least slope (dz/dx) of the profile used for the arrival angle of above-water sections.
@@ -168,15 +172,19 @@ class Hull:
             d = self.description
             pr = d.principal
             # Everything the shape curves read; the SAC is solved below.
-            shape_key = (pr.lpp, pr.breadth, pr.draft, pr.depth, d.x_aft, d.x_fore,
+            shape_key = (pr.lpp, pr.breadth, pr.draft, pr.depth, d.x_aft, d.x_fore, d.posts,
                          tuple((name, repr(spec)) for name, spec in sorted(d.curves.items()) if name != "sac"))
             curves = dict(_shape_cache.get(shape_key, self._shape_curves))
             self._curves = curves  # the bands below read them
             try:
                 band_key = (shape_key, self.stations().tobytes(), d.section_n_control)
                 bands = _band_cache.get(band_key, self._fullness_bands)
-                curves["sac"], curves["fullness"] = solve_sac(d.curves["sac"], curves["dwl"], curves["profile"],
-                                                              pr.draft, bands=bands)
+                free = tuple(d.x_aft if end == "aft" else d.x_fore for end in d.posts)
+                limits = FULLNESS_BOUNDS
+                if "corner_breadth" in d.curves:
+                    free, limits = self.immersed_range(), CORNER_FULLNESS_BOUNDS
+                curves["sac"], curves["fullness"] = solve_sac(d.curves["sac"], curves["dwl"], curves["profile"], pr.draft,
+                                                              fullness=limits, bands=bands, free_ends=free)
             except BaseException:
                 self._curves = None
                 raise
@@ -198,7 +206,26 @@ class Hull:
         out["deck"] = solve_curve("deck", c["deck"], x0, x1, lower=0.0, upper=half_b, at_least=clear)
         for name, (default, lo, hi) in SHAPE_CURVES.items():
             out[name] = solve_curve(name, c.get(name, BasicCurveSpec(value=default)), x0, x1, lower=lo, upper=hi, maximum=False)
+        for name, (_, lo, hi) in CORNER_CURVES.items():
+            if name in c:
+                out[name] = solve_curve(name, c[name], x0, x1, lower=lo, upper=hi, maximum=False)
+        self._check_posts(out)
         return out
+
+    def _check_posts(self, curves: dict) -> None:
+        """A post end (ends.aft_post / fore_post) needs the waterline to reach that end, and the
+        deck line and waterline to close on the centre plane there. Raises InvalidInput."""
+        d = self.description
+        tol = POST_TOL * d.principal.breadth / 2
+        for end in d.posts:
+            x = d.x_aft if end == "aft" else d.x_fore
+            dwl = curves["dwl"]
+            reach = dwl.x_start if end == "aft" else dwl.x_end
+            deck, wl = float(curves["deck"](x)[0]), float(dwl(reach)[0])
+            if abs(reach - x) > 1e-9 * d.principal.lpp or deck > tol or wl > tol:
+                raise _native.InvalidInput(
+                    f"ends.{end}_post is true; expected the profile below T at the {end} end (x = {x} m; the waterline "
+                    f"ends at {reach:.6g} m) and the deck line and waterline at 0 there (deck {deck:.6g} m, waterline {wl:.6g} m)")
 
     def _fullness_bands(self) -> list[tuple[float, float, float]]:
         """(x, least, largest) fullness the section family holds at each station inside the
@@ -266,6 +293,9 @@ class Hull:
                 else:  # at the end itself: the limit of the lean, the end slopes' ratio
                     lean = abs(taylor[0]) / max(abs(prof.derivative(float(xs[k]), 1)), MIN_STEM_SLOPE)
                 out[k] = min(math.degrees(math.atan(lean)), MAX_LOWER_ANGLE)
+        for end in self.description.posts:  # a vertical post: the end section is the line deck -> keel
+            x_end = self.description.x_aft if end == "aft" else self.description.x_fore
+            out[np.abs(xs - x_end) <= 1e-9 * self.description.principal.lpp] = 0.0
         return out
 
     def section_specs(self, x: Any = None, with_area: bool = True) -> list:
@@ -284,6 +314,7 @@ class Hull:
         sac = bc["sac"](xs, outside=math.nan) if with_area else None
         # a spline fitted to a bound may overshoot it by round-off (a deadrise of -4e-13 deg)
         shape = {name: np.clip(bc[name](xs), lo, hi) for name, (_, lo, hi) in SHAPE_CURVES.items()}
+        corner = {field: np.clip(bc[name](xs), lo, hi) for name, (field, lo, hi) in CORNER_CURVES.items() if name in bc}
         lower = self._lower_angles(xs)
         specs = []
         for i, xi in enumerate(xs):
@@ -293,6 +324,8 @@ class Hull:
             s.z_deck = pr.depth
             s.z_keel = float(min(prof[i], pr.depth))
             s.top_corner, s.deadrise, s.character = (float(shape[k][i]) for k in SHAPE_CURVES)
+            for field, values in corner.items():
+                setattr(s, field, float(values[i]))
             if np.isfinite(lower[i]):
                 s.lower_angle = float(lower[i])
                 s.draft = pr.draft  # where the dry section's virtual waterline point lies

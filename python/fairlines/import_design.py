@@ -14,10 +14,11 @@ description dict (fairlines.description) that ``fl.Hull.from_dict`` builds. What
 * the transom: its lower edge height and, when immersed, its width at T.
 
 The basic curves pass near these measurements (``fit`` points); the SAC holds the measured
-volume and LCB exactly and stays near the measured section fullness. The section shape curves
-(``deadrise``, ``character``, ``top_corner``) are then fitted per station: each is the value
-whose designed section (``fl.design_section`` on the built basic curves) lies closest, in the
-least-squares sense, to the measured half-breadths. A bulb grid (role 'bulb') is left out of
+volume and LCB exactly and stays near the measured section fullness. An end station with no
+breadth at any height below T is a vertical post (``ends.aft_post`` / ``fore_post``). The section
+shape curves (the bilge corner ``corner_breadth`` / ``corner_height`` and ``top_corner``) are then
+fitted per station: each is the value whose designed section (``fl.design_section`` with the
+station's measured area) lies closest, in the least-squares sense, to the measured half-breadths. A bulb grid (role 'bulb') is left out of
 the bare hull and measured into the ``bulb`` section's Kracht coefficients (cuts of its grid
 from the FP to the nose). Hull below the keel line (a sonar dome) and above the deck at
 midships (a sheer) is left out and noted: the description has neither.
@@ -45,18 +46,41 @@ Z_SAMPLES = 241
 FIT_WEIGHT = 1.0e3
 #: Knot spans of the measured basic curves.
 CURVE_SPANS = {"profile": 40, "dwl": 30, "deck": 24, "sac": 30}
-#: Candidate values tried per station for each section shape curve, and the curve's bounds.
-SHAPE_CANDIDATES = {"character": np.linspace(0.1, 0.9, 17), "deadrise": np.linspace(0.0, 30.0, 13),
-                    "top_corner": np.linspace(0.1, 0.9, 9)}
+#: Candidate values tried per station for each section shape curve: the bilge corner (its
+#: breadth and height fractions, searched together on this grid) and the top corner.
+CORNER_GRID = {"corner_breadth": np.linspace(0.05, 1.0, 11), "corner_height": np.linspace(0.0, 0.9, 10)}
+TOP_CANDIDATES = np.linspace(0.1, 0.9, 9)
+#: Pull of a station's corner toward its neighbour's (toward midships), as a misfit of this
+#: fraction of B per unit distance in the (breadth, height) fractions: of near-equal fits the
+#: one that continues the neighbour's wins, so the fitted curves stay fair.
+CORNER_PULL = 0.01
+#: Candidates of the template family's shape curves (fitted where a bulb cannot be composed
+#: with the fitted corners' bow).
+TEMPLATE_CANDIDATES = {"character": np.linspace(0.1, 0.9, 17), "deadrise": np.linspace(0.0, 30.0, 13),
+                       "top_corner": TOP_CANDIDATES}
+TEMPLATE_PASSES = 2
+#: Refinement of the grid's best corner: coordinate steps (fractions), halved each pass.
+CORNER_STEP, CORNER_PASSES = 0.05, 5
 #: Bounds of the fitted shape curves, inside the section generator's: the spline's own bound is
-#: met to the solver's round-off, which may leave a deadrise of -1e-13 deg that sections refuse.
-SHAPE_BOUNDS = {"character": {"lower": 0.06, "upper": 0.94}, "deadrise": {"lower": 1e-3, "upper": 39.0},
-                "top_corner": {"lower": 0.06, "upper": 0.94}}
+#: met to the solver's round-off only.
+SHAPE_BOUNDS = {"corner_breadth": {"lower": 0.03, "upper": 1.0}, "corner_height": {"lower": 0.0, "upper": 0.92},
+                "top_corner": {"lower": 0.06, "upper": 0.94}, "character": {"lower": 0.06, "upper": 0.94},
+                "deadrise": {"lower": 1e-3, "upper": 39.0}}
+#: A fitted top corner must lower the station's misfit by this fraction to replace the default.
+MISFIT_GAIN = 0.01
+#: Knot spans of the fitted shape curves.
+SHAPE_SPANS = 24
+#: An end station whose half-breadth stays below this fraction of B/2 at every height is a
+#: vertical post of zero width.
+POST_FRACTION = 1e-3
 #: A station whose waterline or immersed depth is below this fraction of B/2 or T is an end
 #: station: its shape is not fitted (it follows its neighbours).
 END_FRACTION = 0.08
 #: Depth is measured within this fraction of Lpp of midships.
 MIDSHIP_BAND = 0.05
+#: Heights within this fraction of a section's height above its keel point are not compared
+#: in the section fits.
+KEEL_BAND = 1e-3
 #: Data this far (fraction of T) below the keel line is a dome, not hull.
 KEEL_TOL = 0.01
 #: Stations cut from a bulb grid between the FP and the nose.
@@ -304,8 +328,10 @@ def _deck_spec(m: MeasuredHull) -> dict:
     half = m.beam / 2
     y = np.minimum(_at(m, m.depth - 1e-9 * m.depth), half)
     y[~np.isfinite(y)] = 0.0  # no hull at the deck height: the stem or stern is below it
-    # the stem head closes on the centre plane; the aft end keeps its measured breadth (a transom)
-    spec = {"fit": _pairs(m.x, y), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["deck"], "yB": float(y[0]), "yE": 0.0}
+    # the aft end keeps its measured breadth (a transom); the stem head closes on the centre
+    # plane where a bulb is to be composed with it, else it keeps its measured flare
+    y_fore = 0.0 if m.bulb_points is not None else float(y[-1])
+    spec = {"fit": _pairs(m.x, y), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["deck"], "yB": float(y[0]), "yE": y_fore}
     flat = _flat_run(m.x, y, half, 2e-3 * half, 0.05 * m.lpp)
     if flat is not None:
         spec.update(flat_from=flat[0], flat_to=flat[1], value=half)
@@ -322,6 +348,16 @@ def _sac_spec(m: MeasuredHull, dwl, profile, xa: float, xf: float) -> dict:
     return {"volume": m.volume, "lcb": m.lcb, "spans": CURVE_SPANS["sac"], "fullness_fit": _pairs(m.x[ok], s[ok])}
 
 
+def _posts(m: MeasuredHull) -> dict:
+    """ends.aft_post / fore_post for an end station that reaches below T and has no breadth at
+    any height (a vertical post of zero width)."""
+    out = {}
+    for end, k in (("aft", 0), ("fore", -1)):
+        if m.z_low[k] < m.draft and np.nanmax(np.nan_to_num(m.y[k])) <= POST_FRACTION * m.beam / 2:
+            out[f"{end}_post"] = True
+    return out
+
+
 def _base_description(m: MeasuredHull, name: str) -> dict:
     from .basic_curves import immersed_range, solve_curve
     from .description import BasicCurveSpec
@@ -336,7 +372,7 @@ def _base_description(m: MeasuredHull, name: str) -> dict:
         "name": name,
         "notes": "; ".join([f"imported: volume {m.volume:.6g} m^3, LCB {m.lcb:.6g} m from the AP measured from the data"] + m.notes),
         "principal": {"Lpp": m.lpp, "B": m.beam, "T": m.draft, "D": m.depth},
-        "ends": {"aft": m.x_aft, "fore": m.x_fore},
+        "ends": {"aft": m.x_aft, "fore": m.x_fore, **_posts(m)},
         "stations": {"count": 61},
         "sections": {"n_control": 20},
         "basic_curves": {"profile": prof, "dwl": dwl, "deck": _deck_spec(m), "sac": _sac_spec(m, dwl_curve, profile, xa, xf)},
@@ -345,47 +381,117 @@ def _base_description(m: MeasuredHull, name: str) -> dict:
 
 # ---- section shape curves, fitted per station -------------------------------------------
 
-def _designed_half_breadth(spec, z: np.ndarray) -> np.ndarray:
-    """y(z) of the section fl.design_section makes of `spec` (NaN outside it)."""
-    curve = _native.design_section(spec).curve
+def _designed_half_breadth(spec, z: np.ndarray, need_area: bool = True) -> np.ndarray:
+    """y(z) of the section fl.design_section makes of `spec` (NaN outside it; all NaN when the
+    section cannot hold spec's area and `need_area`)."""
+    design = _native.design_section(spec)
+    if need_area and not design.area_met:
+        return np.full(z.shape, np.nan)
+    curve = design.curve
     kn = np.asarray(curve.knots)
     pts = np.asarray(curve.evaluate(np.linspace(kn[0], kn[-1], 201)))
     order = np.argsort(pts[:, 2], kind="stable")
     return np.interp(z, pts[order, 2], pts[order, 1], left=np.nan, right=np.nan)
 
 
-def _section_misfit(spec, z: np.ndarray, y: np.ndarray) -> float:
-    """RMS of measured minus designed half-breadth over the heights both hold."""
+def _section_misfit(spec, z: np.ndarray, y: np.ndarray, need_area: bool = True) -> float:
+    """RMS of measured minus designed half-breadth over the heights both hold above the keel
+    point (at the keel's own height a flat bottom's half-breadth is any of its width)."""
     try:
-        yd = _designed_half_breadth(spec, z)
+        yd = _designed_half_breadth(spec, z, need_area)
     except (_native.InfeasibleFormParameters, _native.InvalidInput):
         return math.inf
-    both = np.isfinite(yd) & np.isfinite(y)
+    above = z > spec.z_keel + KEEL_BAND * (spec.z_deck - spec.z_keel)
+    both = np.isfinite(yd) & np.isfinite(y) & above
     return float(np.sqrt(np.mean((yd[both] - y[both]) ** 2))) if both.sum() >= 3 else math.inf
 
 
-def fit_section_shapes(hull, m: MeasuredHull, passes: int = 2) -> dict:
-    """Per measured station inside the hull's waterline (not at its ends), the deadrise,
-    character and top_corner whose designed section is closest (least squares over the
-    station's heights) to the data. Returns {curve: [[x, value], ...]}."""
+def _corner_misfit(spec, m: MeasuredHull, y: np.ndarray, breadth: float, height: float, near) -> float:
+    spec.corner_y, spec.corner_z = float(breadth), float(height)
+    pull = 0.0 if near is None else CORNER_PULL * m.beam * math.hypot(breadth - near[0], height - near[1])
+    return _section_misfit(spec, m.z, y) + pull
+
+
+def _fit_corner(spec, m: MeasuredHull, y: np.ndarray, near=None) -> float:
+    """Set spec's bilge corner to the grid point closest to the data (pulled toward `near`,
+    the neighbouring station's corner), refined by coordinate steps; returns the misfit."""
+    grid = [(_corner_misfit(spec, m, y, b, h, near), b, h) for b in CORNER_GRID["corner_breadth"]
+            for h in CORNER_GRID["corner_height"]]
+    best = min(grid)
+    lo, hi = SHAPE_BOUNDS["corner_breadth"], SHAPE_BOUNDS["corner_height"]
+    step = CORNER_STEP
+    for _ in range(CORNER_PASSES):
+        for db, dh in ((step, 0), (-step, 0), (0, step), (0, -step)):
+            b = min(max(best[1] + db, lo["lower"]), lo["upper"])
+            h = min(max(best[2] + dh, hi["lower"]), hi["upper"])
+            best = min(best, (_corner_misfit(spec, m, y, b, h, near), b, h))
+        step /= 2
+    spec.corner_y, spec.corner_z = float(best[1]), float(best[2])
+    return best[0]
+
+
+def _fit_station(hull, m: MeasuredHull, k: int, near):
+    """The fitted section spec of measured station k (None where it is not fitted)."""
+    spec = hull.section_specs([float(m.x[k])])[0]
+    if not spec.y_dwl > 0 or spec.y_dwl < END_FRACTION * m.beam / 2 or spec.draft - spec.z_keel < END_FRACTION * m.draft:
+        return None
+    spec.half_area = float(m.area[k] / 2)  # the data's own, which the SAC's fullness fit follows
+    y = m.y[k]
+    if not math.isfinite(_fit_corner(spec, m, y, near)):
+        return None
+    best = (_section_misfit(spec, m.z, y), spec.top_corner)
+    for v in TOP_CANDIDATES:  # a top corner the data does not tell from the default keeps it
+        spec.top_corner = float(v)
+        misfit = _section_misfit(spec, m.z, y)
+        best = (misfit, float(v)) if misfit < (1 - MISFIT_GAIN) * best[0] else best
+    spec.top_corner = best[1]
+    _fit_corner(spec, m, y, near)
+    return spec
+
+
+def fit_section_shapes(hull, m: MeasuredHull) -> dict:
+    """Per measured station inside the hull's waterline (not at its ends), the bilge corner
+    (corner_breadth, corner_height) and top_corner whose designed section is closest (least
+    squares over the station's heights) to the data, the measured area setting the arc's
+    weight. Stations are fitted from midships toward each end, each pulled toward the corner of
+    the one before (CORNER_PULL). Returns {curve: [[x, value], ...]}."""
     xa, xf = hull.immersed_range()
-    half = m.beam / 2
-    out = {name: [] for name in SHAPE_CANDIDATES}
+    inside = [k for k in range(len(m.x)) if xa <= m.x[k] <= xf]
+    mid = min(inside, key=lambda k: abs(m.x[k] - m.lpp / 2), default=None)
+    fitted = {}
+    for order in ([k for k in inside if k >= mid], [k for k in reversed(inside) if k <= mid]) if inside else ():
+        near = fitted.get(mid)
+        for k in order:
+            spec = fitted.get(k) or _fit_station(hull, m, k, near)
+            if spec is not None:
+                fitted[k], near = spec, (spec.corner_y, spec.corner_z)
+    out = {"corner_breadth": [], "corner_height": [], "top_corner": []}
+    for k in sorted(fitted):
+        spec = fitted[k]
+        for name, value in (("corner_breadth", spec.corner_y), ("corner_height", spec.corner_z), ("top_corner", spec.top_corner)):
+            out[name].append([float(m.x[k]), float(value)])
+    return out
+
+
+def fit_template_shapes(hull, m: MeasuredHull) -> dict:
+    """Per measured station inside the hull's waterline (not at its ends), the deadrise,
+    character and top_corner of the template family (no corner given) whose designed section is
+    closest (least squares over the station's heights) to the data, the SAC's area setting the
+    knob (clamped where the candidate cannot hold it). Returns {curve: [[x, value], ...]}."""
+    xa, xf = hull.immersed_range()
+    out = {name: [] for name in TEMPLATE_CANDIDATES}
     for k, x0 in enumerate(m.x):
-        if not xa < x0 < xf:
+        spec = hull.section_specs([float(x0)])[0] if xa < x0 < xf else None
+        if spec is None or spec.y_dwl < END_FRACTION * m.beam / 2 or spec.draft - spec.z_keel < END_FRACTION * m.draft:
             continue
-        spec = hull.section_specs([float(x0)])[0]
-        if spec.y_dwl < END_FRACTION * half or spec.draft - spec.z_keel < END_FRACTION * m.draft:
-            continue
-        y = m.y[k]
-        for _ in range(passes):
-            for name, cands in SHAPE_CANDIDATES.items():
+        for _ in range(TEMPLATE_PASSES):
+            for name, cands in TEMPLATE_CANDIDATES.items():
                 best = (math.inf, getattr(spec, name))
                 for v in cands:
                     setattr(spec, name, float(v))
-                    best = min(best, (_section_misfit(spec, m.z, y), float(v)))
+                    best = min(best, (_section_misfit(spec, m.z, m.y[k], need_area=False), float(v)))
                 setattr(spec, name, best[1])
-        for name in SHAPE_CANDIDATES:
+        for name in TEMPLATE_CANDIDATES:
             out[name].append([float(x0), float(getattr(spec, name))])
     return out
 
@@ -491,16 +597,17 @@ def _buildable(desc: dict, say) -> tuple:
     return free, relaxed
 
 
-def _with_fitted_shapes(base: dict, built: tuple, m: MeasuredHull, say) -> tuple:
-    """(hull, description) with the section shape curves fitted to the data, unless that costs
-    a SAC target the default shapes meet (`built`: the default shapes' hull, description and
-    relaxations)."""
+def _with_fitted_shapes(base: dict, built: tuple, m: MeasuredHull, say, fit) -> tuple:
+    """(hull, description) with the section shape curves fitted to the data by `fit`
+    (fit_section_shapes or fit_template_shapes), unless that costs a SAC target the default
+    shapes meet (`built`: the default shapes' hull, description and relaxations)."""
     hull, desc, relaxed = built
     shaped = copy.deepcopy(base)
-    shapes = fit_section_shapes(hull, m)
+    shapes = fit(hull, m)
+    if min(len(v) for v in shapes.values()) < 4:
+        return hull, desc
     for curve, pts in shapes.items():
-        if len(pts) >= 4:
-            shaped["basic_curves"][curve] = {"fit": pts, "fit_weight": FIT_WEIGHT, "spans": 16, **SHAPE_BOUNDS[curve]}
+        shaped["basic_curves"][curve] = {"fit": pts, "fit_weight": FIT_WEIGHT, "spans": SHAPE_SPANS, **SHAPE_BOUNDS[curve]}
     say("fitted " + ", ".join(f"{k} at {len(v)} stations" for k, v in shapes.items()))
     try:
         hull_s, relaxed_s = _buildable(shaped, say)
@@ -518,16 +625,15 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
     `hull_data` (fairlines.offsets.HullData; module docstring says what is measured).
 
     depth       D (m); default the top of the data at midships.
-    fit_shapes  fit the deadrise / character / top_corner curves per station (slower).
+    fit_shapes  fit the bilge corner (corner_breadth, corner_height) and top_corner curves per
+                station (slower); where the measured bulb cannot be composed with their bow,
+                the template family's deadrise, character and top_corner instead.
     progress    callable(str) told of each step, or None.
 
     Raises InvalidInput for data that is not HullData, a depth not above T, data the
     description cannot hold (no hull below T at 3 stations); InfeasibleFormParameters when the
     measured basic curves contradict each other.
     """
-    from .designer import match_targets
-    from .hull import Hull
-
     if not isinstance(hull_data, HullData):
         raise _native.InvalidInput(f"hull_data is a {type(hull_data).__name__}; expected fairlines.offsets.HullData "
                                    "(read_hull_data)")
@@ -537,10 +643,35 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
     m = measure_hull_data(hull_data, depth)
     say(f"measured {len(m.x)} stations: volume {m.volume:.6g} m^3, LCB {m.lcb:.6g} m, D {m.depth:.4g} m")
     base = _base_description(m, name or hull_data.name)
+    out = _designed(base, m, hull_data, fit_section_shapes if fit_shapes else None, say)
+    if fit_shapes and "bulb" in out and not _composes(out):
+        say("the fitted bilge corners leave a bow the measured bulb cannot meet in one seam: fitting the template's shapes")
+        out = _designed(base, m, hull_data, fit_template_shapes, say)
+        out["notes"] += "; template section shapes fitted: the bulb could not be composed with the fitted corners' bow"
+    return out
+
+
+def _composes(desc: dict) -> bool:
+    """Whether the hull of `desc` composes with its bulb."""
+    from .hull import Hull
+
+    try:
+        Hull.from_json(desc).composed_hull()
+        return True
+    except _native.InvalidInput:
+        return False
+
+
+def _designed(base: dict, m: MeasuredHull, hull_data: HullData, fit, say) -> dict:
+    """The description of `base` built, its section shapes fitted by `fit` (None: the defaults),
+    its volume and LCB corrected on the surface, and its bulb measured."""
+    from .designer import match_targets
+    from .hull import Hull
+
     desc = copy.deepcopy(base)
     hull, relaxed = _buildable(desc, say)
-    if fit_shapes:
-        hull, desc = _with_fitted_shapes(base, (hull, desc, relaxed), m, say)
+    if fit is not None:
+        hull, desc = _with_fitted_shapes(base, (hull, desc, relaxed), m, say, fit)
     if "volume" in desc["basic_curves"]["sac"]:
         matched = Hull.from_json(desc)
         try:

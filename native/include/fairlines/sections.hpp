@@ -74,6 +74,15 @@ struct SectionSpec {
   /// angle at which the section arrives at the keel point, deg from the downward vertical
   /// toward the centre plane (0 a vertical knife edge). NaN: 0.
   double lower_angle = kNaN;
+  /// The bilge corner X of the arc below the waterline given directly (both or neither): its
+  /// half-breadth as a fraction of y_dwl (0 < corner_y <= 1) and its height above the keel
+  /// point as a fraction of the immersed depth T - z_keel (0 <= corner_z < 1). The waterline
+  /// tangent then heads from Q to X, the keel tangent from K to X, and the shape knob (or
+  /// half_area) sets only the arc's weight: X at (1, 0.5) with the weight of a parabola holds a
+  /// parabolic (Wigley) section, X inside the chord Q-K a hollow one. NaN: the template family
+  /// places X from deadrise and character.
+  double corner_y = kNaN;
+  double corner_z = kNaN;
   int n_control = 20;  ///< control points of every section of a hull (kMinSectionControls .. kMaxSectionControls)
 };
 

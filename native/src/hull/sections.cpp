@@ -58,6 +58,9 @@ constexpr double kFilletFar = 0.611;
 constexpr double kFullWeight = 60.0;
 constexpr double kFineWeight = 0.7;
 constexpr double kLeanPower = 3.0;
+/// With the bilge corner given (corner_y, corner_z) the weight alone falls over the knob's
+/// range, from kFullWeight to this (a near chord: hollow corners need weights below 1).
+constexpr double kCornerFineWeight = 0.2;
 /// Sharpness of the smooth minimum of the chord's lean and the top's room (see heading()).
 constexpr double kHeadingSharpness = 4.0;
 /// Knob solve: area tolerance relative to the immersed box, and iteration limit.
@@ -239,6 +242,12 @@ void validate(const SectionSpec& s, const std::string& at) {
   if (!(s.top_corner > 0 && s.top_corner < 1)) fail(at, ": top_corner is ", s.top_corner, "; expected a fraction between 0 and 1");
   if (!(s.deadrise >= 0 && s.deadrise < 45)) fail(at, ": deadrise is ", s.deadrise, " deg; expected 0 <= deadrise < 45");
   if (!(s.character > 0 && s.character < 1)) fail(at, ": character is ", s.character, "; expected a fraction between 0 and 1");
+  if (std::isnan(s.corner_y) != std::isnan(s.corner_z))
+    fail(at, ": corner_y is ", s.corner_y, " and corner_z is ", s.corner_z, "; expected both given or both NaN");
+  if (!std::isnan(s.corner_y) && !(s.corner_y > 0 && s.corner_y <= 1))
+    fail(at, ": corner_y is ", s.corner_y, "; expected a fraction of the waterline half-breadth in (0, 1]");
+  if (!std::isnan(s.corner_z) && !(s.corner_z >= 0 && s.corner_z < 1))
+    fail(at, ": corner_z is ", s.corner_z, "; expected a fraction of the immersed depth in [0, 1)");
   if (!std::isnan(s.lower_angle) && !(s.lower_angle > -80 && s.lower_angle < 80))
     fail(at, ": lower_angle is ", s.lower_angle, " deg; expected -80 < angle < 80");
 }
@@ -308,8 +317,9 @@ std::vector<Piece> immersed_template(const Section& S, double lambda) {
   const V2 C(std::max(S.b - flare_lean(S) * (S.d - rise), kMinCornerBreadth * S.b), K.y() + rise);
   const V2 M = heading(S);
   const double t = std::clamp(lambda / kMaxShapeKnob, 0.0, 1.0);
-  const V2 X = C + std::pow(t, kLeanPower) * (M - C);
-  const double w = kFullWeight * std::pow(kFineWeight / kFullWeight, t);
+  const bool given = !std::isnan(s.corner_y);
+  const V2 X = given ? V2(s.corner_y * S.b, K.y() + s.corner_z * S.d) : V2(C + std::pow(t, kLeanPower) * (M - C));
+  const double w = kFullWeight * std::pow((given ? kCornerFineWeight : kFineWeight) / kFullWeight, t);
   const double l1 = (X - Q).norm();
   const V2 tw = l1 > 0 ? V2((X - Q) / l1) : V2((K - Q).normalized());
   const V2 Y = Q - s.top_corner * (D - Q).norm() * tw;
@@ -426,8 +436,10 @@ std::pair<Eigen::RowVectorXd, double> area_row(const Section& S) {
 /// The spline's ordinate row at t (basis functions).
 Eigen::RowVectorXd point_row(const Section& S, double t) { return basis_row(S.l.U, kDegree, std::clamp(t, 0.0, 1.0)); }
 
-/// Knob range [0, hi]: the top corner must stay inside B/2 (past it the top would bulge out).
+/// Knob range [0, hi]: the top corner must stay inside B/2 (past it the top would bulge out;
+/// the section is clamped to B/2 where a given bilge corner leans its top out).
 double knob_limit(const Section& S) {
+  if (!std::isnan(S.s.corner_y)) return kMaxShapeKnob;  // a given corner fixes the top: the knob moves the weight only
   auto corner_y = [&](double lam) {  // the top fillet's third control point lies at kFilletFar from D toward Y
     const Piece top = immersed_template(S, lam)[0];
     return (top.p[0] + (top.p[2] - top.p[0]) / kFilletFar).x();
@@ -487,14 +499,17 @@ struct KnobSolve {
   bool met = true;
 };
 
-/// The knob whose spline holds `target` below T (clamped to [0, hi]); area(lambda) falls.
+/// The knob whose spline holds `target` below T (clamped to [0, hi]); area(lambda) is monotone
+/// (falling in the template family; rising too where a given corner lies inside the chord).
 KnobSolve solve_knob(const Section& S, const Eigen::RowVectorXd& arow, double ac, double target, double hi) {
   auto area = [&](double lam) { return arow.dot(sample(S, immersed_template(S, lam))) + ac; };
   KnobSolve out;
   double a = 0.0, b = hi, fa = area(a) - target, fb = area(b) - target;
-  out.hi_area = fa + target, out.lo_area = fb + target;
-  if (fa <= 0) return out.lambda = 0.0, out.met = -fa <= kAreaMetTol * S.b * S.d, out;
-  if (fb >= 0) return out.lambda = hi, out.met = fb <= kAreaMetTol * S.b * S.d, out;
+  out.hi_area = std::max(fa, fb) + target, out.lo_area = std::min(fa, fb) + target;
+  if (fa * fb >= 0) {  // target outside the range (or at an end): the nearer end
+    const bool at_a = std::abs(fa) <= std::abs(fb);
+    return out.lambda = at_a ? 0.0 : hi, out.met = std::abs(at_a ? fa : fb) <= kAreaMetTol * S.b * S.d, out;
+  }
   int side = 0;  // Illinois regula falsi
   for (int it = 0; it < kKnobIterations; ++it) {
     const double c = (a * fb - b * fa) / (fb - fa), fc = area(c) - target;
@@ -523,7 +538,9 @@ std::pair<double, double> section_fullness_range(const SectionSpec& spec) {
   const auto [arow, ac] = area_row(S);
   const double hi = knob_limit(S);
   const double box = S.b * S.d;
-  return {(arow.dot(sample(S, immersed_template(S, hi))) + ac) / box, (arow.dot(sample(S, immersed_template(S, 0.0))) + ac) / box};
+  const double f_hi = (arow.dot(sample(S, immersed_template(S, hi))) + ac) / box;
+  const double f_0 = (arow.dot(sample(S, immersed_template(S, 0.0))) + ac) / box;
+  return {std::min(f_hi, f_0), std::max(f_hi, f_0)};
 }
 
 SectionDesign design_section(const SectionSpec& spec) {

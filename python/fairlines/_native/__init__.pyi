@@ -1182,6 +1182,22 @@ class SectionSpec:
     def character(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def corner_y(self) -> float:
+        """
+        bilge corner half-breadth, fraction of y_dwl (NaN: from the template)
+        """
+    @corner_y.setter
+    def corner_y(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def corner_z(self) -> float:
+        """
+        bilge corner height above the keel, fraction of T - z_keel (NaN: from the template)
+        """
+    @corner_z.setter
+    def corner_z(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def deadrise(self) -> float:
         """
         bottom rise at the bilge corner (deg)
