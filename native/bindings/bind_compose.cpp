@@ -66,16 +66,12 @@ void bind_compose_options(py::module_& m) {
   bind_options<ComposeOptions>(m, "ComposeOptions", "Options of compose (fairlines.compose sets them by keyword).");
   py::class_<BlendSpec> s(m, "BlendSpec", "The blend of a composition: its boundary on the hull and on the bulb.");
   s.def(py::init<>());
-  option_docs::bind_fields(s, [](auto& cls, const char* name, auto member, const char* doc) {
-    if constexpr (!std::is_same_v<decltype(member), Eigen::MatrixXd BlendSpec::*>) {
-      return false;
-    } else {
-      cls.def_property(
-          name, [member](const BlendSpec& b) { return to_array(b.*member); },
-          [member](BlendSpec& b, py::handle uv) { b.*member = py_convert::matrix(uv, "blend hull boundary", 2); }, doc);
-      return true;
-    }
-  });
+  const auto hull_uv = [](py::class_<BlendSpec>& cls, const char* name, const char* doc) {
+    cls.def_property(
+        name, [](const BlendSpec& b) { return to_array(b.hull_uv); },
+        [](BlendSpec& b, py::handle uv) { b.hull_uv = py_convert::matrix(uv, "blend hull boundary", 2); }, doc);
+  };
+  option_docs::bind_fields(s, option_docs::for_member(&BlendSpec::hull_uv, hull_uv));
   bind_options<BlendOptions>(m, "BlendOptions", "Options of blend_surface (fairlines.blend_surface sets them by keyword).");
   bind_options<IntersectOptions>(m, "IntersectOptions",
                                  "Options of intersect_surfaces (fairlines.intersect_surfaces sets them by keyword).");

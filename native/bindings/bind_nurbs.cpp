@@ -562,20 +562,11 @@ void bind_fit_results(py::module_& m) {
 }
 
 void bind_fit_options(py::module_& m) {
-  using O = FitOptions;
-  py::class_<O> c(m, "FitOptions", "Options of fit_curve and fit_surface (one direction); the defaults of both.");
+  py::class_<FitOptions> c(m, "FitOptions", "Options of fit_curve and fit_surface (one direction); the defaults of both.");
   c.def(py::init<>());
-  option_docs::bind_fields(c, [](py::class_<O>& cls, const char* name, auto member, const char* doc) {
-    using M = decltype(member);
-    if constexpr (std::is_same_v<M, Parameterization O::*>) {
-      option_docs::def_named(cls, name, member, doc, parameterization_name, parse_parameterization);
-    } else if constexpr (std::is_same_v<M, KnotMethod O::*>) {
-      option_docs::def_named(cls, name, member, doc, knot_method_name, parse_knot_method);
-    } else {
-      return false;
-    }
-    return true;
-  });
+  using option_docs::by_name;
+  option_docs::bind_fields(c, by_name(parameterization_name, parse_parameterization),
+                           by_name(knot_method_name, parse_knot_method));
 }
 
 void bind_fitting(py::module_& m) {

@@ -56,54 +56,37 @@ void def_int(py::class_<Options>& c, const char* name, int Options::*member, con
       option_docs::with_default(doc, Options{}.*member).c_str());
 }
 
+// The integer fields of an options struct, by def_int.
+const auto integral_ints = option_docs::for_type<int>(
+    [](auto& cls, const char* name, auto member, const char* doc) { def_int(cls, name, member, doc); });
+
 void bind_hydrostatics_options(py::module_& m) {
   using O = HydrostaticsOptions;
   py::class_<O> c(m, "HydrostaticsOptions", "Options of hydrostatics (fairlines.hydrostatics sets them by keyword).");
   c.def(py::init<>());
-  option_docs::bind_fields(c, [](py::class_<O>& cls, const char* name, auto member, const char* doc) {
-    if constexpr (std::is_same_v<decltype(member), int O::*>) {
-      def_int(cls, name, member, doc);
-      return true;
-    } else if constexpr (std::is_same_v<decltype(member), double O::*>) {
-      if (member != &O::midship_x) return false;
-      cls.def_property(
-          name,
-          [](const O& o) -> py::object {
-            if (std::isnan(o.midship_x)) return py::none();
-            return py::float_(o.midship_x);
-          },
-          [](O& o, py::handle x) {
-            if (x.is_none()) { o.midship_x = std::numeric_limits<double>::quiet_NaN(); return; }
-            o.midship_x = x.cast<double>();
-            if (std::isnan(o.midship_x)) throw InvalidInput("midship_x is nan; expected a finite x (m) or None");
-          },
-          std::string(doc).append(" (default None)").c_str());
-      return true;
-    } else {
-      return false;
-    }
+  const auto midship_none = option_docs::for_member(&O::midship_x, [](py::class_<O>& cls, const char* name, const char* doc) {
+    cls.def_property(
+        name,
+        [](const O& o) -> py::object {
+          if (std::isnan(o.midship_x)) return py::none();
+          return py::float_(o.midship_x);
+        },
+        [](O& o, py::handle x) {
+          if (x.is_none()) { o.midship_x = std::numeric_limits<double>::quiet_NaN(); return; }
+          o.midship_x = x.cast<double>();
+          if (std::isnan(o.midship_x)) throw InvalidInput("midship_x is nan; expected a finite x (m) or None");
+        },
+        std::string(doc).append(" (default None)").c_str());
   });
+  option_docs::bind_fields(c, integral_ints, midship_none);
 }
 
 void bind_skin_options(py::module_& m) {
-  using O = SkinOptions;
-  py::class_<O> c(m, "SkinOptions", "Options of fair_skin (fairlines.fair_skin sets them by keyword).");
+  py::class_<SkinOptions> c(m, "SkinOptions", "Options of fair_skin (fairlines.fair_skin sets them by keyword).");
   c.def(py::init<>());
-  option_docs::bind_fields(c, [](py::class_<O>& cls, const char* name, auto member, const char* doc) {
-    using M = decltype(member);
-    if constexpr (std::is_same_v<M, int O::*>) {
-      def_int(cls, name, member, doc);
-    } else if constexpr (std::is_same_v<M, SkinMode O::*>) {
-      option_docs::def_named(cls, name, member, doc, skin_mode_name, parse_skin_mode);
-    } else if constexpr (std::is_same_v<M, SkinEnd O::*>) {
-      option_docs::def_named(cls, name, member, doc, skin_end_name, parse_skin_end);
-    } else if constexpr (std::is_same_v<M, SkinParams O::*>) {
-      option_docs::def_named(cls, name, member, doc, skin_params_name, parse_skin_params);
-    } else {
-      return false;
-    }
-    return true;
-  });
+  using option_docs::by_name;
+  option_docs::bind_fields(c, integral_ints, by_name(skin_mode_name, parse_skin_mode),
+                           by_name(skin_end_name, parse_skin_end), by_name(skin_params_name, parse_skin_params));
 }
 
 void bind_hydrostatics_result(py::module_& m) {

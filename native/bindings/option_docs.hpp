@@ -6,6 +6,7 @@
 
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -49,19 +50,52 @@ void def_named(py::class_<Options>& c, const char* name, E Options::*member, con
       with_default(doc, to_name(Options{}.*member)).c_str());
 }
 
-/// Every field of Options' table bound with `field`, except those `special(cls, name, member,
-/// doc)` binds itself (it returns true for them: a field whose Python value is converted).
-template <typename Options, typename Special>
-py::class_<Options>& bind_fields(py::class_<Options>& cls, Special&& special) {
-  Options::fields([&](const char* name, auto member, const char* doc) {
-    if (!special(cls, name, member, doc)) field(cls, name, member, doc);
-  });
-  return cls;
+/// A special binder for the fields of member type T: bind(cls, name, member, doc) binds each
+/// (returns true for a field it bound, false for any other).
+template <typename T, typename Bind>
+auto for_type(Bind bind) {
+  return [bind](auto& cls, const char* name, auto member, const char* doc) {
+    using Options = typename std::remove_reference_t<decltype(cls)>::type;
+    if constexpr (std::is_same_v<decltype(member), T Options::*>) {
+      bind(cls, name, member, doc);
+      return true;
+    } else {
+      return false;
+    }
+  };
 }
 
-template <typename Options>
-py::class_<Options>& bind_fields(py::class_<Options>& cls) {
-  return bind_fields(cls, [](auto&...) { return false; });
+/// A special binder for one field: bind(cls, name, doc) binds `which`.
+template <typename Options, typename T, typename Bind>
+auto for_member(T Options::*which, Bind bind) {
+  return [which, bind](py::class_<Options>& cls, const char* name, auto member, const char* doc) {
+    if constexpr (std::is_same_v<decltype(member), T Options::*>) {
+      if (member == which) {
+        bind(cls, name, doc);
+        return true;
+      }
+    }
+    return false;
+  };
+}
+
+/// A special binder for the fields of enum type E (parse's result): read and set by name.
+template <typename Name, typename Parse>
+auto by_name(Name to_name, Parse parse) {
+  using E = std::invoke_result_t<Parse, const std::string&>;
+  return for_type<E>([to_name, parse](auto& cls, const char* name, auto member, const char* doc) {
+    def_named(cls, name, member, doc, to_name, parse);
+  });
+}
+
+/// Every field of Options' table bound with `field`, except those one of `specials` binds (a
+/// field whose Python value is converted).
+template <typename Options, typename... Special>
+py::class_<Options>& bind_fields(py::class_<Options>& cls, Special... specials) {
+  Options::fields([&](const char* name, auto member, const char* doc) {
+    if (!(specials(cls, name, member, doc) || ...)) field(cls, name, member, doc);
+  });
+  return cls;
 }
 
 /// An options class with a default constructor and every field of its table.
