@@ -64,7 +64,8 @@ void bind_hydrostatics_options(py::module_& m) {
   using O = HydrostaticsOptions;
   py::class_<O> c(m, "HydrostaticsOptions", "Options of hydrostatics (fairlines.hydrostatics sets them by keyword).");
   c.def(py::init<>());
-  const auto midship_none = option_docs::for_member(&O::midship_x, [](py::class_<O>& cls, const char* name, const char* doc) {
+  // midship_x reads and takes None for NaN (the middle of the submerged length).
+  const auto none_for_nan = [](py::class_<O>& cls, const char* name, const char* doc) {
     cls.def_property(
         name,
         [](const O& o) -> py::object {
@@ -77,8 +78,8 @@ void bind_hydrostatics_options(py::module_& m) {
           if (std::isnan(o.midship_x)) throw InvalidInput("midship_x is nan; expected a finite x (m) or None");
         },
         std::string(doc).append(" (default None)").c_str());
-  });
-  option_docs::bind_fields(c, integral_ints, midship_none);
+  };
+  option_docs::bind_fields(c, integral_ints, option_docs::for_member(&O::midship_x, none_for_nan));
 }
 
 void bind_skin_options(py::module_& m) {
