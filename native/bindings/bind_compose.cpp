@@ -1,5 +1,7 @@
 // Bindings of the composition area: surface-surface intersection, the Kracht bulb, the
 // composed hull and mesh export (python/fairlines/compose.py wraps them).
+#include <type_traits>
+
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -60,86 +62,24 @@ py::dict curve_dict(const IntersectionCurve& c) {
 }
 
 void bind_compose_options(py::module_& m) {
-  using option_docs::field;
-  py::class_<ComposeOptions> c(m, "ComposeOptions", "Options of compose (fairlines.compose sets them by keyword).");
-  c.def(py::init<>());
-  field(c, "hull_u", &ComposeOptions::hull_u, "hull tessellation cells along u (>= 4)");
-  field(c, "hull_v", &ComposeOptions::hull_v, "hull tessellation cells along v (>= 4)");
-  field(c, "bulb_u", &ComposeOptions::bulb_u, "bulb cells from the seam to the nose (>= 2)");
-  field(c, "bulb_v", &ComposeOptions::bulb_v, "bulb cells around the half section; also seam segments (>= 4)");
-  field(c, "tolerance", &ComposeOptions::tolerance, "surface-surface intersection tolerance (m, <= 1e-6)");
-  field(c, "margin", &ComposeOptions::margin, "clearance kept between the seam and whole hull cells (in cells)");
-  field(c, "plane_tolerance", &ComposeOptions::plane_tolerance, "relative tolerance of the centre plane / deck / aft checks");
-  field(c, "blend_rows", &ComposeOptions::blend_rows, "blend cells from the hull boundary to the bulb boundary (>= 1)");
-  field(c, "blend_check_samples", &ComposeOptions::blend_check_samples,
-        "boundary points at which the blend's continuity is measured (>= 2)");
-
+  using option_docs::bind_options;
+  bind_options<ComposeOptions>(m, "ComposeOptions", "Options of compose (fairlines.compose sets them by keyword).");
   py::class_<BlendSpec> s(m, "BlendSpec", "The blend of a composition: its boundary on the hull and on the bulb.");
   s.def(py::init<>());
-  s.def_property(
-      "hull_uv", [](const BlendSpec& b) { return to_array(b.hull_uv); },
-      [](BlendSpec& b, py::handle uv) { b.hull_uv = py_convert::matrix(uv, "blend hull boundary", 2); },
-      "(k, 2) (u, v) polyline on the oriented hull from one centre-plane edge point to another");
-  field(s, "bulb_u", &BlendSpec::bulb_u, "the bulb section u = bulb_u where the blend meets the bulb");
-  field(s, "tension", &BlendSpec::tension, "cross-boundary tangent length / (|B - A| / 3), > 0");
-
-  py::class_<BlendOptions> b(m, "BlendOptions", "Options of blend_surface (fairlines.blend_surface sets them by keyword).");
-  b.def(py::init<>());
-  field(b, "samples", &BlendOptions::samples, "sections skinned along the boundaries (>= 4)");
-  field(b, "tension", &BlendOptions::tension, "cross-boundary tangent length / (|B - A| / 3), > 0");
-  field(b, "check_samples", &BlendOptions::check_samples, "boundary points at which continuity is measured (>= 2)");
-  field(b, "centre_plane_ends", &BlendOptions::centre_plane_ends,
-        "when both boundaries start (end) on y = 0, keep that end section in the centre plane");
-
-  py::class_<IntersectOptions> io(m, "IntersectOptions",
-                                  "Options of intersect_surfaces (fairlines.intersect_surfaces sets them by keyword).");
-  io.def(py::init<>());
-  field(io, "subdivisions", &IntersectOptions::subdivisions, "extra breakpoints per direction before the Bezier split (>= 1)");
-  field(io, "tolerance", &IntersectOptions::tolerance, "Newton target |S_a - S_b| (m), > 0, <= 1e-6");
-  field(io, "step", &IntersectOptions::step, "marching step (m); 0: 1/150 of the smaller box diagonal");
-  field(io, "max_turn_deg", &IntersectOptions::max_turn_deg, "tangent turn per step above which the step is halved (deg)");
-  field(io, "max_points", &IntersectOptions::max_points, "cap on points per branch (> 10)");
-
-  py::class_<KrachtCoefficients> k(m, "KrachtCoefficients", "Kracht's (1978) six bulb coefficients.");
-  k.def(py::init<>());
-  field(k, "c_lpr", &KrachtCoefficients::c_lpr, "protrusion beyond FP / Lpp");
-  field(k, "c_bb", &KrachtCoefficients::c_bb, "bulb breadth at FP / B");
-  field(k, "c_zb", &KrachtCoefficients::c_zb, "height of the bulb's foremost point / T_FP");
-  field(k, "c_abt", &KrachtCoefficients::c_abt, "bulb section area at FP (both sides) / midship section area");
-  field(k, "c_abl", &KrachtCoefficients::c_abl, "lateral (profile) area forward of FP / midship section area");
-  field(k, "c_vpr", &KrachtCoefficients::c_vpr, "bulb volume forward of FP (both sides) / displacement volume");
-
-  py::class_<ShipParticulars> sp(m, "BulbShip", "The ship quantities Kracht's coefficients are relative to (all required).");
-  sp.def(py::init<>());
-  field(sp, "lpp", &ShipParticulars::lpp, "length between perpendiculars (m), > 0");
-  field(sp, "beam", &ShipParticulars::beam, "moulded breadth B (m), > 0");
-  field(sp, "draft_fp", &ShipParticulars::draft_fp, "draught at FP (m), > 0");
-  field(sp, "midship_area", &ShipParticulars::midship_area, "midship section area A_MS, both sides (m^2), > 0");
-  field(sp, "displacement_volume", &ShipParticulars::displacement_volume, "moulded displacement volume, both sides (m^3), > 0");
-  field(sp, "x_fp", &ShipParticulars::x_fp, "x of FP from AP (m); < 0 means x_fp = lpp");
-
-  py::class_<BulbOptions> bo(m, "BulbOptions", "Shape controls and resolution of the bulb surface (fairlines.BulbousBow).");
-  bo.def(py::init<>());
-  field(bo, "aft_length", &BulbOptions::aft_length,
-        "length of the constant-section body aft of FP that runs into the hull (m); 0: 2 (protrusion + breadth)");
-  field(bo, "nose_height_shift", &BulbOptions::nose_height_shift,
-        "z of the section centres minus the nose height at FP (m): > 0 lifts the bulb body behind a lower nose");
-  field(bo, "sections", &BulbOptions::sections, "sampled sections along the bulb (>= 8)");
-  field(bo, "section_points", &BulbOptions::section_points, "sampled points per half section (>= 8)");
-  field(bo, "control_u", &BulbOptions::control_u, "control points along (>= 4)");
-  field(bo, "control_v", &BulbOptions::control_v, "control points around the half section (>= 4)");
-
-  py::class_<BlendPlacementOptions> p(m, "BlendPlacementOptions",
+  const auto hull_uv = [](py::class_<BlendSpec>& cls, const char* name, const char* doc) {
+    cls.def_property(
+        name, [](const BlendSpec& b) { return to_array(b.hull_uv); },
+        [](BlendSpec& b, py::handle uv) { b.hull_uv = py_convert::matrix(uv, "blend hull boundary", 2); }, doc);
+  };
+  option_docs::bind_fields(s, option_docs::for_member(&BlendSpec::hull_uv, hull_uv));
+  bind_options<BlendOptions>(m, "BlendOptions", "Options of blend_surface (fairlines.blend_surface sets them by keyword).");
+  bind_options<IntersectOptions>(m, "IntersectOptions",
+                                 "Options of intersect_surfaces (fairlines.intersect_surfaces sets them by keyword).");
+  bind_options<KrachtCoefficients>(m, "KrachtCoefficients", "Kracht's (1978) six bulb coefficients.");
+  bind_options<ShipParticulars>(m, "BulbShip", "The ship quantities Kracht's coefficients are relative to (all required).");
+  bind_options<BulbOptions>(m, "BulbOptions", "Shape controls and resolution of the bulb surface (fairlines.BulbousBow).");
+  bind_options<BlendPlacementOptions>(m, "BlendPlacementOptions",
                                       "Options of seam_blend_placement (fairlines.seam_blend_placement sets them by keyword).");
-  p.def(py::init<>());
-  field(p, "clearance_u", &BlendPlacementOptions::clearance_u,
-        "hull u between the seam and the blend's boundary (parameter units, >= 0)");
-  field(p, "clearance_v", &BlendPlacementOptions::clearance_v,
-        "hull v between the seam and the blend's boundary (parameter units, >= 0)");
-  field(p, "bulb_clearance", &BlendPlacementOptions::bulb_clearance,
-        "bulb u between the seam's foremost point and the blend's boundary (>= 0)");
-  field(p, "tension", &BlendPlacementOptions::tension, "cross-boundary tangent length / (|B - A| / 3), > 0");
-  field(p, "points", &BlendPlacementOptions::points, "points on the hull boundary's arc (>= 3)");
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "option_docs.hpp"
 #include "fairlines/sections.hpp"
 #include "fairlines/spline_design.hpp"
 
@@ -78,24 +79,7 @@ void bind_spline_design(py::module_& m) {
 }
 
 void bind_sections(py::module_& m) {
-  py::class_<SectionSpec>(m, "SectionSpec", "One hull section's numbers (metres, degrees); see fairlines/sections.hpp.")
-      .def(py::init<>())
-      .def_readwrite("x", &SectionSpec::x, "station (m from the AP)")
-      .def_readwrite("y_deck", &SectionSpec::y_deck, "deck-at-side half-breadth (m)")
-      .def_readwrite("z_deck", &SectionSpec::z_deck, "deck-at-side height (m)")
-      .def_readwrite("z_keel", &SectionSpec::z_keel, "keel point height on the centre plane (m)")
-      .def_readwrite("y_max", &SectionSpec::y_max, "half-breadth bound B/2 (m)")
-      .def_readwrite("draft", &SectionSpec::draft, "waterline height T (m; NaN: none)")
-      .def_readwrite("y_dwl", &SectionSpec::y_dwl, "waterline half-breadth (m; NaN or <= 0: not immersed)")
-      .def_readwrite("half_area", &SectionSpec::half_area, "area below T, one side (m^2; NaN: free)")
-      .def_readwrite("shape", &SectionSpec::shape, "shape knob when half_area is NaN (0 fullest .. 2 straight V)")
-      .def_readwrite("top_corner", &SectionSpec::top_corner, "height of the top corner, fraction of the freeboard")
-      .def_readwrite("deadrise", &SectionSpec::deadrise, "bottom rise at the bilge corner (deg)")
-      .def_readwrite("character", &SectionSpec::character, "where the bilge corner heads as the section fines (fraction of the chord Q-K)")
-      .def_readwrite("lower_angle", &SectionSpec::lower_angle, "above-water sections: arrival angle at the keel point (deg from vertical; NaN: 0)")
-      .def_readwrite("corner_y", &SectionSpec::corner_y, "bilge corner half-breadth, fraction of y_dwl (NaN: from the template)")
-      .def_readwrite("corner_z", &SectionSpec::corner_z, "bilge corner height above the keel, fraction of T - z_keel (NaN: from the template)")
-      .def_readwrite("n_control", &SectionSpec::n_control, "control points of every section of a hull");
+  option_docs::bind_options<SectionSpec>(m, "SectionSpec", "One hull section's numbers (metres, degrees); see fairlines/sections.hpp.");
   py::class_<SectionDesign>(m, "SectionDesign", "A designed section and what was needed to build it.")
       .def_readonly("curve", &SectionDesign::curve)
       .def_readonly("shape", &SectionDesign::shape, "shape knob used")

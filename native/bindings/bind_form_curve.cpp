@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "option_docs.hpp"
 #include "fairlines/errors.hpp"
 #include "fairlines/form_curve.hpp"
 
@@ -93,38 +94,12 @@ py::dict result_dict(const FormCurveResult& res) {
 }
 
 void bind_option_structs(py::module_& m) {
-  py::class_<FairnessWeights>(m, "FairnessWeights", "Weights of the fairness objective (all >= 0, one of e1, e2, e3 > 0).")
-      .def(py::init<>())
-      .def_readwrite("e1", &FairnessWeights::e1, "weight of E1 = int |C'|^2 dt")
-      .def_readwrite("e2", &FairnessWeights::e2, "weight of E2 = int |C''|^2 dt")
-      .def_readwrite("e3", &FairnessWeights::e3, "weight of E3 = int |C'''|^2 dt")
-      .def_readwrite("length", &FairnessWeights::length, "weight of the arc length");
-  py::class_<FormBounds>(m, "FormBounds", "Conditions on the control polygon that keep a section a section.")
-      .def(py::init<>())
-      .def_readwrite("monotone_axis", &FormBounds::monotone_axis, "0: x monotone, 1: y monotone, -1: none")
-      .def_readwrite("y_nonnegative", &FormBounds::y_nonnegative, "all control y >= 0")
-      .def_readwrite("min_end_speed", &FormBounds::min_end_speed,
-                     "where an end tangent is given, the end derivative along it is at least this fraction of the chord");
-  py::class_<FormSolverOptions>(m, "FormSolverOptions", "Options of the form-parameter solver.")
-      .def(py::init<>())
-      .def_readwrite("tolerance", &FormSolverOptions::tolerance, "bound on the scaled constraint residuals, 0 < tol < 1e-3")
-      .def_readwrite("max_iterations", &FormSolverOptions::max_iterations,
-                     "Newton iterations per start, 1 .. fairlines.limits.MAX_FORM_CURVE_ITERATIONS")
-      .def_readwrite("continuation", &FormSolverOptions::continuation, "False: aim at the requested values directly")
-      .def_readwrite("multistart", &FormSolverOptions::multistart,
-                     "extra randomised starts (fairest kept), 0 .. fairlines.limits.MAX_FORM_CURVE_MULTISTART")
-      .def_readwrite("seed", &FormSolverOptions::seed, "random seed of the multistart");
-  py::class_<FormCurveRequest>(m, "FormCurveRequest",
-                               "A form-parameter curve request without its offset points, tangents and start curve.")
-      .def(py::init<>())
-      .def_readwrite("dim", &FormCurveRequest::dim, "2 (plane curve) or 3 (space curve)")
-      .def_readwrite("n_control", &FormCurveRequest::n_control,
-                     "control points, degree + 1 .. fairlines.limits.MAX_FORM_CURVE_CONTROL_POINTS")
-      .def_readwrite("degree", &FormCurveRequest::degree, "B-spline degree, 2 .. 15")
-      .def_readwrite("params", &FormCurveRequest::params, "form parameters by name (fairlines.FORM_PARAMETERS)")
-      .def_readwrite("fairness", &FormCurveRequest::fairness, "FairnessWeights")
-      .def_readwrite("bounds", &FormCurveRequest::bounds, "FormBounds")
-      .def_readwrite("options", &FormCurveRequest::options, "FormSolverOptions");
+  using option_docs::bind_options;
+  bind_options<FairnessWeights>(m, "FairnessWeights", "Weights of the fairness objective (all >= 0, one of e1, e2, e3 > 0).");
+  bind_options<FormBounds>(m, "FormBounds", "Conditions on the control polygon that keep a section a section.");
+  bind_options<FormSolverOptions>(m, "FormSolverOptions", "Options of the form-parameter solver.");
+  bind_options<FormCurveRequest>(m, "FormCurveRequest",
+                                 "A form-parameter curve request without its offset points, tangents and start curve.");
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "option_docs.hpp"
 #include "fairlines/grids.hpp"
 
 namespace py = pybind11;
@@ -25,13 +26,7 @@ void bind_grids(py::module_& m) {
       .value("tanh", Spacing::Tanh)
       .value("tanh_two_sided", Spacing::TanhTwoSided)
       .value("geometric", Spacing::Geometric);
-  py::class_<Distribution>(m, "Distribution", "A point distribution along a line (see fairlines.grids).")
-      .def(py::init<>())
-      .def_readwrite("kind", &Distribution::kind, "Spacing: uniform, sinh, tanh, tanh_two_sided, geometric")
-      .def_readwrite("points", &Distribution::points, "number of points (>= 2); geometric: 0 = the fewest within max_ratio")
-      .def_readwrite("first", &Distribution::first, "first spacing (m); sinh / tanh: 0 when the last end is clustered")
-      .def_readwrite("last", &Distribution::last, "last spacing (m): tanh_two_sided, sinh, tanh")
-      .def_readwrite("max_ratio", &Distribution::max_ratio, "geometric: largest ratio of neighbouring spacings (> 1)");
+  option_docs::bind_options<Distribution>(m, "Distribution", "A point distribution along a line (see fairlines.grids).");
   m.def(
       "distribute", [](const Distribution& d, double length) { return to_array(distribute(d, length)); }, "distribution"_a,
       "length"_a,

@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "option_docs.hpp"
 #include "fairlines/compose.hpp"
 #include "fairlines/meshing.hpp"
 
@@ -51,16 +52,7 @@ SurfaceMesh mesh_from(py::handle vertices, py::handle faces) {
 }  // namespace
 
 void bind_meshing(py::module_& m) {
-  py::class_<MeshOptions>(m, "MeshOptions", "Options of the surface and hull mesher (see fairlines.meshing).")
-      .def(py::init<>())
-      .def_readwrite("size", &MeshOptions::size, "maximum element edge length (m), > 0")
-      .def_readwrite("chordal_tolerance", &MeshOptions::chordal_tolerance,
-                     "max distance of an element from the surface (m); 0: size / 100")
-      .def_readwrite("min_size", &MeshOptions::min_size, "no edge is made shorter for curvature (m); 0: size / 20")
-      .def_readwrite("all_quad", &MeshOptions::all_quad, "quads only: a mesh at twice the size (for 0.8 x the tolerance) split into quads")
-      .def_readwrite("smoothing_passes", &MeshOptions::smoothing_passes, "sweeps of quality-guarded smoothing")
-      .def_readwrite("min_quad_quality", &MeshOptions::min_quad_quality,
-                     "triangle pairs whose quad's scaled Jacobian is lower stay triangles");
+  option_docs::bind_options<MeshOptions>(m, "MeshOptions", "Options of the surface and hull mesher (see fairlines.meshing).");
   m.def(
       "_mesh_surface",
       [](const NurbsSurface& s, const MeshOptions& o) {

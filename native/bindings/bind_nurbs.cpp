@@ -2,6 +2,7 @@
 // curves, surfaces, volumes, conics and revolutions, fitting.
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 
 #include <Eigen/Dense>
 
@@ -9,6 +10,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "option_docs.hpp"
 #include "fairlines/basis.hpp"
 #include "fairlines/conics.hpp"
 #include "fairlines/curve.hpp"
@@ -560,16 +562,11 @@ void bind_fit_results(py::module_& m) {
 }
 
 void bind_fit_options(py::module_& m) {
-  py::class_<FitOptions>(m, "FitOptions", "Options of fit_curve and fit_surface (one direction); the defaults of both.")
-      .def(py::init<>())
-      .def_readwrite("degree", &FitOptions::degree, "B-spline degree, 1 .. fairlines.limits.MAX_DEGREE")
-      .def_readwrite("n_control", &FitOptions::n_control, "control points; 0 interpolates (one per datum)")
-      .def_property("parameterization", [](const FitOptions& o) { return parameterization_name(o.parameterization); },
-                    [](FitOptions& o, const std::string& s) { o.parameterization = parse_parameterization(s); },
-                    "data parameters: 'chord', 'centripetal' or 'uniform'")
-      .def_property("knots", [](const FitOptions& o) { return knot_method_name(o.knot_method); },
-                    [](FitOptions& o, const std::string& s) { o.knot_method = parse_knot_method(s); },
-                    "interior knots: 'average' or 'hartley_judd'");
+  py::class_<FitOptions> c(m, "FitOptions", "Options of fit_curve and fit_surface (one direction); the defaults of both.");
+  c.def(py::init<>());
+  using option_docs::by_name;
+  option_docs::bind_fields(c, by_name(parameterization_name, parse_parameterization),
+                           by_name(knot_method_name, parse_knot_method));
 }
 
 void bind_fitting(py::module_& m) {

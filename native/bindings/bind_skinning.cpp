@@ -2,11 +2,14 @@
 // (fairlines/hydrostatics.hpp).
 #include <cmath>
 #include <limits>
+#include <string>
+#include <type_traits>
 
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "hydrostatics_fields.hpp"
 #include "option_docs.hpp"
 #include "fairlines/hydrostatics.hpp"
 #include "fairlines/skinning.hpp"
@@ -45,82 +48,61 @@ std::vector<NurbsCurve> as_curves(const py::handle& obj) {
 }
 
 // Integer fields keep the bound functions' rule: an integral float is accepted, a bool is not.
-template <typename Options, int Options::*field>
-void def_int(py::class_<Options>& c, const char* name, const char* doc) {
+template <typename Options>
+void def_int(py::class_<Options>& c, const char* name, int Options::*member, const char* doc) {
   c.def_property(
-      name, [](const Options& o) { return o.*field; },
-      [name](Options& o, py::handle value) { o.*field = as_int(value, name); },
-      option_docs::with_default(doc, Options{}.*field).c_str());
+      name, [member](const Options& o) { return o.*member; },
+      [name, member](Options& o, py::handle value) { o.*member = as_int(value, name); },
+      option_docs::with_default(doc, Options{}.*member).c_str());
 }
 
+// The integer fields of an options struct, by def_int.
+const auto integral_ints = option_docs::for_type<int>(
+    [](auto& cls, const char* name, auto member, const char* doc) { def_int(cls, name, member, doc); });
+
 void bind_hydrostatics_options(py::module_& m) {
-  using option_docs::field;
   using O = HydrostaticsOptions;
   py::class_<O> c(m, "HydrostaticsOptions", "Options of hydrostatics (fairlines.hydrostatics sets them by keyword).");
   c.def(py::init<>());
-  field(c, "half_hull", &O::half_hull, "the surface is the y >= 0 half: volume, areas and SAC are doubled");
-  field(c, "length", &O::length, "length for the coefficients (m); 0: submerged length x_max - x_min");
-  field(c, "breadth", &O::breadth, "breadth for the coefficients (m); 0: 2 x max submerged half-breadth");
-  c.def_property(
-      "midship_x",
-      [](const O& o) -> py::object {
-        if (std::isnan(o.midship_x)) return py::none();
-        return py::float_(o.midship_x);
-      },
-      [](O& o, py::handle x) {
-        if (x.is_none()) { o.midship_x = std::numeric_limits<double>::quiet_NaN(); return; }
-        o.midship_x = x.cast<double>();
-        if (std::isnan(o.midship_x)) throw InvalidInput("midship_x is nan; expected a finite x (m) or None");
-      },
-      "x of the midship section for Am and Cm (m); None: the middle of [x_min, x_max] (default None)");
-  def_int<O, &O::gauss>(c, "gauss", "Gauss-Legendre points per knot span in each direction (2..32)");
-  def_int<O, &O::sac_stations>(c, "sac_stations", "equally spaced stations of the returned SAC (>= 2), ends included");
-  field(c, "density", &O::density, "water density (t/m^3) for the displacement mass");
-  field(c, "trim", &O::trim, "trim by the stern (m) over trim_length; draft is then the draft at trim_length / 2");
-  field(c, "trim_length", &O::trim_length, "AP to FP (m) over which trim is measured; > 0 when trim != 0");
+  // midship_x reads and takes None for NaN (the middle of the submerged length).
+  const auto none_for_nan = [](py::class_<O>& cls, const char* name, const char* doc) {
+    cls.def_property(
+        name,
+        [](const O& o) -> py::object {
+          if (std::isnan(o.midship_x)) return py::none();
+          return py::float_(o.midship_x);
+        },
+        [](O& o, py::handle x) {
+          if (x.is_none()) { o.midship_x = std::numeric_limits<double>::quiet_NaN(); return; }
+          o.midship_x = x.cast<double>();
+          if (std::isnan(o.midship_x)) throw InvalidInput("midship_x is nan; expected a finite x (m) or None");
+        },
+        std::string(doc).append(" (default None)").c_str());
+  };
+  option_docs::bind_fields(c, integral_ints, option_docs::for_member(&O::midship_x, none_for_nan));
 }
 
 void bind_skin_options(py::module_& m) {
-  using option_docs::field;
   py::class_<SkinOptions> c(m, "SkinOptions", "Options of fair_skin (fairlines.fair_skin sets them by keyword).");
   c.def(py::init<>());
-  def_int<SkinOptions, &SkinOptions::n_control>(c, "n_control", "control points per section in u; 0: max(12, 2 x largest section count)");
-  def_int<SkinOptions, &SkinOptions::degree_u>(c, "degree_u", "degree across the sections (>= 1)");
-  def_int<SkinOptions, &SkinOptions::degree_v>(c, "degree_v", "degree of the longitudinal curves (>= 2)");
-  def_int<SkinOptions, &SkinOptions::samples>(c, "samples", "equally spaced points per section; 0: 4 x n_control, else >= n_control");
-  field(c, "curvature_weight", &SkinOptions::curvature_weight,
-        "w >= 0: section points equally spaced in ds (1 + w L |k|), L the section length; 0 plain arc length");
-  c.def_property(
-      "mode", [](const SkinOptions& o) { return skin_mode_name(o.mode); },
-      [](SkinOptions& o, const std::string& v) { o.mode = parse_skin_mode(v); },
-      option_docs::with_default("'interpolate' (through every row point, least E2) or 'approximate' (least squares + "
-                                "smoothing h^4 E2)", skin_mode_name(SkinOptions{}.mode)).c_str());
-  field(c, "e2", &SkinOptions::e2, "weight of E2 = int |C''(v)|^2 dv in the longitudinal fairness");
-  field(c, "e3", &SkinOptions::e3, "weight of h^2 E3 = h^2 int |C'''(v)|^2 dv, h = 1/(q-1)");
-  field(c, "smoothing", &SkinOptions::smoothing, "approximate mode: weight of h^4 E2 (>= 0)");
-  c.def_property(
-      "start", [](const SkinOptions& o) { return skin_end_name(o.start); },
-      [](SkinOptions& o, const std::string& v) { o.start = parse_skin_end(v); },
-      option_docs::with_default("'free' (natural) or 'parallel' (dy/dv = dz/dv = 0) at the first section",
-                                skin_end_name(SkinOptions{}.start)).c_str());
-  c.def_property(
-      "end", [](const SkinOptions& o) { return skin_end_name(o.end); },
-      [](SkinOptions& o, const std::string& v) { o.end = parse_skin_end(v); },
-      option_docs::with_default("'free' (natural) or 'parallel' (dy/dv = dz/dv = 0) at the last section",
-                                skin_end_name(SkinOptions{}.end)).c_str());
-  c.def_property(
-      "params", [](const SkinOptions& o) { return skin_params_name(o.params); },
-      [](SkinOptions& o, const std::string& v) { o.params = parse_skin_params(v); },
-      option_docs::with_default("section parameters v: 'station' (proportional to x), 'chord', or 'auto' (station when "
-                                "planar at monotone x)", skin_params_name(SkinOptions{}.params)).c_str());
-  field(c, "c1_sections", &SkinOptions::c1_sections,
-        "interior section indices where the longitudinal curves are only C1");
-  field(c, "flats", &SkinOptions::flats,
-        "planes (axis 0 / 1 / 2 for x / y / z, value m) the sections' fits keep exactly where they lie in them");
-  field(c, "hold_runs", &SkinOptions::hold_runs,
-        "hold a row coordinate constant over three or more sections where the rows keep it");
-  field(c, "straight_groups", &SkinOptions::straight_groups,
-        "row ranges (first, last) kept straight between their end rows' longitudinal curves");
+  using option_docs::by_name;
+  option_docs::bind_fields(c, integral_ints, by_name(skin_mode_name, parse_skin_mode),
+                           by_name(skin_end_name, parse_skin_end), by_name(skin_params_name, parse_skin_params));
+}
+
+void bind_hydrostatics_result(py::module_& m) {
+  py::class_<Hydrostatics> c(m, "Hydrostatics",
+                             "Hydrostatics at one draft. Volume, areas and SAC are for the full ship when the "
+                             "surface was a half hull (half_hull=True); lengths in m, areas m^2, volume m^3, "
+                             "displacement t.");
+  hydrostatics_fields::bind_readonly(c, [](auto&& f) { Hydrostatics::fields(f); })
+      .def_property_readonly("sac_x", [](const Hydrostatics& h) { return to_array(h.sac_x); })
+      .def_property_readonly("sac_area", [](const Hydrostatics& h) { return to_array(h.sac_area); })
+      .def("as_dict", [](const Hydrostatics& h) {
+        py::dict d;
+        Hydrostatics::fields([&](const char* name, auto member, const char*) { d[name] = h.*member; });
+        return d;
+      }, "Scalar results as a dict.");
 }
 
 }  // namespace
@@ -155,53 +137,7 @@ void bind_skinning(py::module_& m) {
   m.def("arc_length", &arc_length, "curve"_a, "Arc length of the curve (m).");
   m.def("curve_e2", &curve_e2, "curve"_a, "E2 = integral of |C''(t)|^2 dt over the curve's parameter domain.");
 
-  py::class_<Hydrostatics>(m, "Hydrostatics",
-                           "Hydrostatics at one draft. Volume, areas and SAC are for the full ship when the "
-                           "surface was a half hull (half_hull=True); lengths in m, areas m^2, volume m^3, "
-                           "displacement t.")
-      .def_readonly("draft", &Hydrostatics::draft)
-      .def_readonly("volume", &Hydrostatics::volume)
-      .def_readonly("displacement", &Hydrostatics::displacement)
-      .def_readonly("lcb", &Hydrostatics::lcb)
-      .def_readonly("vcb", &Hydrostatics::vcb)
-      .def_readonly("waterplane_area", &Hydrostatics::waterplane_area)
-      .def_readonly("lcf", &Hydrostatics::lcf)
-      .def_readonly("wetted_surface", &Hydrostatics::wetted_surface)
-      .def_readonly("x_min", &Hydrostatics::x_min)
-      .def_readonly("x_max", &Hydrostatics::x_max)
-      .def_readonly("length", &Hydrostatics::length)
-      .def_readonly("breadth", &Hydrostatics::breadth)
-      .def_readonly("midship_x", &Hydrostatics::midship_x)
-      .def_readonly("midship_area", &Hydrostatics::midship_area)
-      .def_readonly("cb", &Hydrostatics::cb)
-      .def_readonly("cp", &Hydrostatics::cp)
-      .def_readonly("cm", &Hydrostatics::cm)
-      .def_readonly("cwp", &Hydrostatics::cwp)
-      .def_readonly("trim", &Hydrostatics::trim, "trim by the stern (m)")
-      .def_readonly("inertia_t", &Hydrostatics::inertia_t, "I_T, waterplane 2nd moment about the centre line (m^4)")
-      .def_readonly("inertia_l", &Hydrostatics::inertia_l, "I_L, waterplane 2nd moment about the axis through F (m^4)")
-      .def_readonly("bmt", &Hydrostatics::bmt, "I_T / V (m)")
-      .def_readonly("bml", &Hydrostatics::bml, "I_L / V (m)")
-      .def_readonly("kmt", &Hydrostatics::kmt, "VCB + BMt (m above base)")
-      .def_readonly("kml", &Hydrostatics::kml, "VCB + BMl (m above base)")
-      .def_readonly("tpc", &Hydrostatics::tpc, "tonnes per cm immersion (t/cm)")
-      .def_readonly("mct1cm", &Hydrostatics::mct1cm, "moment to change trim 1 cm, GML taken as BML (t m/cm)")
-      .def_readonly("z_max", &Hydrostatics::z_max, "highest point of the surface (m)")
-      .def_property_readonly("sac_x", [](const Hydrostatics& h) { return to_array(h.sac_x); })
-      .def_property_readonly("sac_area", [](const Hydrostatics& h) { return to_array(h.sac_area); })
-      .def("as_dict", [](const Hydrostatics& h) {
-        py::dict d;
-        d["draft"] = h.draft; d["volume"] = h.volume; d["displacement"] = h.displacement; d["lcb"] = h.lcb;
-        d["vcb"] = h.vcb; d["waterplane_area"] = h.waterplane_area; d["lcf"] = h.lcf;
-        d["wetted_surface"] = h.wetted_surface; d["x_min"] = h.x_min; d["x_max"] = h.x_max;
-        d["length"] = h.length; d["breadth"] = h.breadth; d["midship_x"] = h.midship_x;
-        d["midship_area"] = h.midship_area; d["cb"] = h.cb; d["cp"] = h.cp; d["cm"] = h.cm; d["cwp"] = h.cwp;
-        d["trim"] = h.trim; d["inertia_t"] = h.inertia_t; d["inertia_l"] = h.inertia_l; d["bmt"] = h.bmt;
-        d["bml"] = h.bml; d["kmt"] = h.kmt; d["kml"] = h.kml; d["tpc"] = h.tpc; d["mct1cm"] = h.mct1cm;
-        d["z_max"] = h.z_max;
-        return d;
-      }, "Scalar results as a dict.");
-
+  bind_hydrostatics_result(m);
   bind_hydrostatics_options(m);
   m.def(
       "_hydrostatics",

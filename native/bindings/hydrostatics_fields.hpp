@@ -1,22 +1,26 @@
-// The fields that the hydrostatics results of meshes and of surface patches share, bound once.
+// Read-only result fields bound from a table (table(f) calls f(name, member pointer, doc) once
+// per field), and the figures every hydrostatics result shares (fairlines/buoyancy.hpp).
 #pragma once
 
 #include <pybind11/pybind11.h>
+
+#include "fairlines/buoyancy.hpp"
 
 namespace fairlines::hydrostatics_fields {
 
 namespace py = pybind11;
 
-/// def_readonly of draft, volume, lcb, vcb, waterplane_area, lcf and wetted_surface (m, m^2, m^3).
+/// def_readonly of every field `table(f)` visits.
+template <typename Result, typename Table>
+py::class_<Result>& bind_readonly(py::class_<Result>& cls, Table&& table) {
+  table([&](const char* name, auto member, const char* doc) { cls.def_readonly(name, member, doc); });
+  return cls;
+}
+
+/// def_readonly of the BuoyancyFigures fields of a result derived from it.
 template <typename Result>
 py::class_<Result>& bind(py::class_<Result>& cls) {
-  return cls.def_readonly("draft", &Result::draft)
-      .def_readonly("volume", &Result::volume)
-      .def_readonly("lcb", &Result::lcb, "x of the centre of buoyancy (m)")
-      .def_readonly("vcb", &Result::vcb, "z of the centre of buoyancy, KB (m)")
-      .def_readonly("waterplane_area", &Result::waterplane_area)
-      .def_readonly("lcf", &Result::lcf, "x of the waterplane centroid (m)")
-      .def_readonly("wetted_surface", &Result::wetted_surface);
+  return bind_readonly(cls, [](auto&& f) { BuoyancyFigures::fields(f); });
 }
 
 }  // namespace fairlines::hydrostatics_fields

@@ -107,9 +107,10 @@ def measure_kracht(mesh, *, x_fp: float, lpp: float, beam: float, draft_fp: floa
     outward-oriented half-hull mesh (y >= 0), on its part below the waterline z = draft_fp (a
     raked stem reaches forward of the FP above it, and is not bulb): protrusion of the foremost
     point, breadth of the section x = x_fp, nose height, section area at the FP, centre-plane
-    area and volume forward of the FP, each made dimensionless by the ship's figures.
+    area and volume forward of the FP, each made dimensionless by the ship's figures. The ship
+    is a :class:`fl.BulbShip` as for :class:`BulbousBow` (x_fp < 0 puts the FP at lpp).
     Raises InvalidInput for a bad mesh or a non-finite / non-positive ship dimension."""
-    ship = _native.KrachtShip()
+    ship = _native.BulbShip()
     for name, value in dict(x_fp=x_fp, lpp=lpp, beam=beam, draft_fp=draft_fp, midship_area=midship_area,
                             displacement_volume=displacement_volume).items():
         setattr(ship, name, float(value))

@@ -9,11 +9,19 @@
 namespace fairlines {
 
 struct BlendOptions {
-  int samples = 61;       ///< sections skinned along the boundaries (>= 4)
-  double tension = 1.0;   ///< cross-boundary tangent length / (|B - A| / 3), > 0
-  int check_samples = 200;  ///< boundary points at which continuity is measured (>= 2)
-  bool centre_plane_ends = true;  ///< when both boundaries start (end) on y = 0, keep that end
-                                  ///< section in the centre plane so a half hull closes
+  int samples = 61;
+  double tension = 1.0;
+  int check_samples = 200;
+  bool centre_plane_ends = true;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("samples", &BlendOptions::samples, "sections skinned along the boundaries (>= 4)");
+    f("tension", &BlendOptions::tension, "cross-boundary tangent length / (|B - A| / 3), > 0");
+    f("check_samples", &BlendOptions::check_samples, "boundary points at which continuity is measured (>= 2)");
+    f("centre_plane_ends", &BlendOptions::centre_plane_ends, "when both boundaries start (end) on y = 0, keep that end section in the centre plane so a half hull closes");
+  }
 };
 
 /// Measured continuity of one blend boundary.

@@ -12,12 +12,21 @@
 namespace fairlines {
 
 struct BlendPlacementOptions {
-  double clearance_u = 0.05;     ///< hull u between the seam and the boundary (parameter units, > 0)
-  double clearance_v = 0.01;     ///< hull v between the seam and the boundary (parameter units, > 0)
-  double bulb_clearance = 0.01;  ///< bulb u between the seam's foremost point and the boundary (>= 0)
-  double tension = 0.6;  ///< cross-boundary tangent length / (|B - A| / 3), > 0: 0.6 keeps a long
-                         ///< blend under a bulb below a raised forefoot above the base line
-  int points = 65;       ///< points on the hull boundary's arc (>= 3)
+  double clearance_u = 0.05;
+  double clearance_v = 0.01;
+  double bulb_clearance = 0.01;
+  double tension = 0.6;  // 0.6 keeps a long blend under a bulb below a raised forefoot above the base line
+  int points = 65;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("clearance_u", &BlendPlacementOptions::clearance_u, "hull u between the seam and the blend's boundary (parameter units, >= 0)");
+    f("clearance_v", &BlendPlacementOptions::clearance_v, "hull v between the seam and the blend's boundary (parameter units, >= 0)");
+    f("bulb_clearance", &BlendPlacementOptions::bulb_clearance, "bulb u between the seam's foremost point and the blend's boundary (>= 0)");
+    f("tension", &BlendPlacementOptions::tension, "cross-boundary tangent length / (|B - A| / 3), > 0");
+    f("points", &BlendPlacementOptions::points, "points on the hull boundary's arc (>= 3)");
+  }
 };
 
 /// The blend's boundaries around a seam on an oriented bare hull (orient_bare_hull: u aft cut ->

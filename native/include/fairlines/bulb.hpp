@@ -3,40 +3,30 @@
 
 #include <Eigen/Core>
 
+#include "fairlines/kracht.hpp"
 #include "fairlines/surface.hpp"
 
 namespace fairlines {
 
-/// The six Kracht coefficients (dimensionless).
-struct KrachtCoefficients {
-  double c_lpr = 0.025;   ///< protrusion beyond FP / Lpp
-  double c_bb = 0.18;     ///< bulb breadth at FP / B
-  double c_zb = 0.45;     ///< height of the bulb's foremost point / T_FP
-  double c_abt = 0.10;    ///< bulb section area at FP (both sides) / midship section area
-  double c_abl = 0.10;    ///< lateral (profile) area forward of FP / midship section area
-  double c_vpr = 0.0022;  ///< bulb volume forward of FP (both sides) / displacement volume
-};
-
-/// Ship quantities the coefficients are relative to (metres, m^2, m^3).
-struct ShipParticulars {
-  double lpp = 0.0;                  ///< length between perpendiculars, > 0
-  double beam = 0.0;                 ///< moulded breadth B, > 0
-  double draft_fp = 0.0;             ///< draught at FP, > 0
-  double midship_area = 0.0;         ///< midship section area A_MS (both sides), > 0
-  double displacement_volume = 0.0;  ///< moulded displacement volume (both sides), > 0
-  double x_fp = -1.0;                ///< x of FP from AP; < 0 means x_fp = lpp
-};
-
 /// Shape controls and resolution of the bulb surface.
 struct BulbOptions {
-  double aft_length = 0.0;  ///< length of the constant-section body aft of FP that runs into
-                            ///< the hull (m); 0: 2 * (protrusion + breadth)
-  double nose_height_shift = 0.0;  ///< z of the section centres minus the nose height at FP
-                                   ///< (m): > 0 lifts the bulb body behind a lower nose
-  int sections = 81;        ///< sampled sections along the bulb (>= 8)
-  int section_points = 41;  ///< sampled points per half section (>= 8)
-  int control_u = 24;       ///< control points along (>= 4)
-  int control_v = 12;       ///< control points around the half section (>= 4)
+  double aft_length = 0.0;
+  double nose_height_shift = 0.0;
+  int sections = 81;
+  int section_points = 41;
+  int control_u = 24;
+  int control_v = 12;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("aft_length", &BulbOptions::aft_length, "length of the constant-section body aft of FP that runs into the hull (m); 0: 2 (protrusion + breadth)");
+    f("nose_height_shift", &BulbOptions::nose_height_shift, "z of the section centres minus the nose height at FP (m): > 0 lifts the bulb body behind a lower nose");
+    f("sections", &BulbOptions::sections, "sampled sections along the bulb (>= 8)");
+    f("section_points", &BulbOptions::section_points, "sampled points per half section (>= 8)");
+    f("control_u", &BulbOptions::control_u, "control points along (>= 4)");
+    f("control_v", &BulbOptions::control_v, "control points around the half section (>= 4)");
+  }
 };
 
 /// The dimensions and derived shape of a bulb.

@@ -14,15 +14,29 @@
 namespace fairlines {
 
 struct ComposeOptions {
-  int hull_u = 48;          ///< hull tessellation cells along u (>= 4)
-  int hull_v = 20;          ///< hull tessellation cells along v (>= 4)
-  int bulb_u = 24;          ///< bulb cells from the seam to the nose (>= 2)
-  int bulb_v = 32;          ///< bulb cells around the half section; also seam segments (>= 4)
-  double tolerance = 1e-7;  ///< surface-surface intersection tolerance (metres, <= 1e-6)
-  double margin = 0.3;      ///< clearance kept between the seam and whole hull cells (in cells)
-  double plane_tolerance = 1e-6;  ///< relative tolerance of the centre plane / deck / aft checks
-  int blend_rows = 8;       ///< blend cells from the hull boundary to the bulb boundary (>= 1)
-  int blend_check_samples = 200;  ///< boundary points at which the blend's continuity is measured (>= 2)
+  int hull_u = 48;
+  int hull_v = 20;
+  int bulb_u = 24;
+  int bulb_v = 32;
+  double tolerance = 1e-7;
+  double margin = 0.3;
+  double plane_tolerance = 1e-6;
+  int blend_rows = 8;
+  int blend_check_samples = 200;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("hull_u", &ComposeOptions::hull_u, "hull tessellation cells along u (>= 4)");
+    f("hull_v", &ComposeOptions::hull_v, "hull tessellation cells along v (>= 4)");
+    f("bulb_u", &ComposeOptions::bulb_u, "bulb cells from the seam to the nose (>= 2)");
+    f("bulb_v", &ComposeOptions::bulb_v, "bulb cells around the half section; also seam segments (>= 4)");
+    f("tolerance", &ComposeOptions::tolerance, "surface-surface intersection tolerance (m, <= 1e-6)");
+    f("margin", &ComposeOptions::margin, "clearance kept between the seam and whole hull cells (in cells)");
+    f("plane_tolerance", &ComposeOptions::plane_tolerance, "relative tolerance of the centre plane / deck / aft checks");
+    f("blend_rows", &ComposeOptions::blend_rows, "blend cells from the hull boundary to the bulb boundary (>= 1)");
+    f("blend_check_samples", &ComposeOptions::blend_check_samples, "boundary points at which the blend's continuity is measured (>= 2)");
+  }
 };
 
 /// The blending subdomain of a composition: its boundary on the hull (a (k, 2) (u, v)
@@ -32,6 +46,14 @@ struct BlendSpec {
   Eigen::MatrixXd hull_uv;
   double bulb_u = 0.5;
   double tension = 1.0;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("hull_uv", &BlendSpec::hull_uv, "(k, 2) (u, v) polyline on the oriented hull from one centre-plane edge point to another");
+    f("bulb_u", &BlendSpec::bulb_u, "the bulb section u = bulb_u where the blend meets the bulb");
+    f("tension", &BlendSpec::tension, "cross-boundary tangent length / (|B - A| / 3), > 0");
+  }
 };
 
 /// A subdomain surface restricted by trimming loops in its own (u, v) parameter space.

@@ -13,10 +13,19 @@ namespace fairlines {
 
 /// Options shared by curve and surface fits.
 struct FitOptions {
-  int degree = 3;                                   ///< p >= 1
-  int n_control = 0;                                ///< 0: interpolate (one control point per datum)
+  int degree = 3;
+  int n_control = 0;
   Parameterization parameterization = Parameterization::ChordLength;
   KnotMethod knot_method = KnotMethod::Average;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("degree", &FitOptions::degree, "B-spline degree, 1 .. fairlines.limits.MAX_DEGREE");
+    f("n_control", &FitOptions::n_control, "control points; 0 interpolates (one per datum)");
+    f("parameterization", &FitOptions::parameterization, "data parameters: 'chord', 'centripetal' or 'uniform'");
+    f("knots", &FitOptions::knot_method, "interior knots: 'average' or 'hartley_judd'");
+  }
 };
 
 /// A fitted curve and how far it is from the data.

@@ -41,10 +41,19 @@ const std::vector<std::string>& form_parameter_names();
 
 /// Weights of the fairness objective. All >= 0, at least one of e1, e2, e3 > 0.
 struct FairnessWeights {
-  double e1 = 0.0;      ///< weight of E1 = int |C'|^2 dt
-  double e2 = 1.0;      ///< weight of E2 = int |C''|^2 dt
-  double e3 = 0.0;      ///< weight of E3 = int |C'''|^2 dt
-  double length = 0.0;  ///< weight of the arc length S
+  double e1 = 0.0;
+  double e2 = 1.0;
+  double e3 = 0.0;
+  double length = 0.0;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("e1", &FairnessWeights::e1, "weight of E1 = int |C'|^2 dt");
+    f("e2", &FairnessWeights::e2, "weight of E2 = int |C''|^2 dt");
+    f("e3", &FairnessWeights::e3, "weight of E3 = int |C'''|^2 dt");
+    f("length", &FairnessWeights::length, "weight of the arc length");
+  }
 };
 
 /// An offset point the curve must pass through (weight = +inf) or approach
@@ -59,31 +68,48 @@ struct FormPoint {
 /// (a sufficient condition for the curve): monotone control coordinates make the
 /// curve monotone and free of self-intersections, non-negative control y makes y >= 0.
 struct FormBounds {
-  int monotone_axis = 0;       ///< 0: x monotone, 1: y monotone, -1: none. Direction
-                               ///< from the end coordinates if given, else increasing.
-  bool y_nonnegative = true;   ///< all control y >= 0
+  int monotone_axis = 0;
+  bool y_nonnegative = true;
   /// Where an end tangent direction is given (alphaB/alphaE, tangent_start/end): the
   /// end derivative along it is at least this fraction of |end - start| (the speed of
   /// the straight chord). Keeps the end curvature well defined: without it E2 favours
   /// vanishing end derivatives, where a prescribed end curvature degenerates.
   double min_end_speed = 0.2;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("monotone_axis", &FormBounds::monotone_axis, "0: x monotone, 1: y monotone, -1: none; the direction from the end coordinates if given, else increasing");
+    f("y_nonnegative", &FormBounds::y_nonnegative, "all control y >= 0");
+    f("min_end_speed", &FormBounds::min_end_speed, "where an end tangent is given, the end derivative along it is at least this fraction of the chord");
+  }
 };
 
 /// Solver options.
 struct FormSolverOptions {
-  double tolerance = 1e-12;   ///< |c_i| bound on the scaled constraints at the end
-  int max_iterations = 400;   ///< total Newton iterations over all stages
-  bool continuation = true;   ///< false: aim at the requested values directly
-  int multistart = 0;         ///< extra runs from randomised start curves (fairest kept)
-  unsigned seed = 1;          ///< random seed of the multistart
+  double tolerance = 1e-12;
+  int max_iterations = 400;
+  bool continuation = true;
+  int multistart = 0;
+  unsigned seed = 1;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("tolerance", &FormSolverOptions::tolerance, "bound on the scaled constraint residuals, 0 < tol < 1e-3");
+    f("max_iterations", &FormSolverOptions::max_iterations, "Newton iterations per start, 1 .. fairlines.limits.MAX_FORM_CURVE_ITERATIONS");
+    f("continuation", &FormSolverOptions::continuation, "False: aim at the requested values directly");
+    f("multistart", &FormSolverOptions::multistart, "extra randomised starts (fairest kept), 0 .. fairlines.limits.MAX_FORM_CURVE_MULTISTART");
+    f("seed", &FormSolverOptions::seed, "random seed of the multistart");
+  }
 };
 
 /// A complete request.
 struct FormCurveRequest {
-  int dim = 2;          ///< 2 (plane curve) or 3 (space curve)
-  int n_control = 8;    ///< number of control points, >= degree + 1
-  int degree = 3;       ///< B-spline degree p >= 2 (curvatures need p >= 2)
-  std::map<std::string, double> params;  ///< subset of form_parameter_names()
+  int dim = 2;
+  int n_control = 8;
+  int degree = 3;
+  std::map<std::string, double> params;
   /// Space-curve tangent directions (dim == 3): when non-empty (length 3, non-zero),
   /// the start / end tangent is parallel to and points along this vector.
   Eigen::VectorXd tangent_start, tangent_end;
@@ -94,6 +120,19 @@ struct FormCurveRequest {
   /// Optional start control points (n_control x dim). Must satisfy the bounds
   /// strictly; it is projected onto the linear form parameters first.
   Eigen::MatrixXd initial_control_points;
+
+  /// The fields set by name (the points, tangents and start curve are passed on their own):
+  /// f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("dim", &FormCurveRequest::dim, "2 (plane curve) or 3 (space curve)");
+    f("n_control", &FormCurveRequest::n_control, "control points, degree + 1 .. fairlines.limits.MAX_FORM_CURVE_CONTROL_POINTS");
+    f("degree", &FormCurveRequest::degree, "B-spline degree, 2 .. 15");
+    f("params", &FormCurveRequest::params, "form parameters by name (fairlines.FORM_PARAMETERS)");
+    f("fairness", &FormCurveRequest::fairness, "FairnessWeights");
+    f("bounds", &FormCurveRequest::bounds, "FormBounds");
+    f("options", &FormCurveRequest::options, "FormSolverOptions");
+  }
 };
 
 /// Fairness measures of a curve (parametric, t in [0, 1]).

@@ -24,10 +24,20 @@ enum class Spacing {
 
 struct Distribution {
   Spacing kind = Spacing::Uniform;
-  int points = 21;         ///< number of points (>= 2); Geometric: 0 = the fewest within max_ratio
-  double first = 0.0;      ///< first spacing (m); Sinh / Tanh: 0 when the last end is clustered
-  double last = 0.0;       ///< last spacing (m); used by TanhTwoSided, Sinh and Tanh
-  double max_ratio = 1.2;  ///< Geometric: largest allowed ratio of neighbouring spacings (> 1)
+  int points = 21;
+  double first = 0.0;
+  double last = 0.0;
+  double max_ratio = 1.2;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("kind", &Distribution::kind, "Spacing: uniform, sinh, tanh, tanh_two_sided, geometric");
+    f("points", &Distribution::points, "number of points (>= 2); geometric: 0 = the fewest within max_ratio");
+    f("first", &Distribution::first, "first spacing (m); sinh / tanh: 0 when the last end is clustered");
+    f("last", &Distribution::last, "last spacing (m): tanh_two_sided, sinh, tanh");
+    f("max_ratio", &Distribution::max_ratio, "geometric: largest ratio of neighbouring spacings (> 1)");
+  }
 };
 
 /// Positions (metres, from 0 to `length`, increasing) of the points of `d` along a line of

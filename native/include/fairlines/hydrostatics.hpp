@@ -35,48 +35,83 @@
 
 #include <Eigen/Core>
 
+#include "fairlines/buoyancy.hpp"
 #include "fairlines/surface.hpp"
 
 namespace fairlines {
 
 struct HydrostaticsOptions {
-  bool half_hull = true;  ///< the surface is the y >= 0 half: double volume, areas and SAC
-  double length = 0;      ///< length for the coefficients (m); 0: submerged length x_max - x_min
-  double breadth = 0;     ///< breadth for the coefficients (m); 0: 2 x max submerged half-breadth
+  bool half_hull = true;
+  double length = 0;
+  double breadth = 0;
   /// x of the midship section for Am and Cm (m); NaN: the middle of [x_min, x_max].
   double midship_x = std::numeric_limits<double>::quiet_NaN();
-  int gauss = 8;          ///< Gauss-Legendre points per knot span in each direction (2..32)
-  int sac_stations = 41;  ///< equally spaced stations of the returned SAC (>= 2), ends included
-  double density = 1.025; ///< water density (t/m^3) for the displacement mass
+  int gauss = 8;
+  int sac_stations = 41;
+  double density = 1.025;
   /// Trim by the stern (m): draft at the AP (x = 0) minus draft at the FP (x = trim_length);
   /// `draft` is then the draft at x = trim_length / 2. Negative: trim by the bow.
   double trim = 0;
-  double trim_length = 0; ///< AP to FP (m) over which `trim` is measured; > 0 when trim != 0
+  double trim_length = 0;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("half_hull", &HydrostaticsOptions::half_hull, "the surface is the y >= 0 half: volume, areas and SAC are doubled");
+    f("length", &HydrostaticsOptions::length, "length for the coefficients (m); 0: submerged length x_max - x_min");
+    f("breadth", &HydrostaticsOptions::breadth, "breadth for the coefficients (m); 0: 2 x max submerged half-breadth");
+    f("midship_x", &HydrostaticsOptions::midship_x, "x of the midship section for Am and Cm (m); None: the middle of [x_min, x_max]");
+    f("gauss", &HydrostaticsOptions::gauss, "Gauss-Legendre points per knot span in each direction (2..32)");
+    f("sac_stations", &HydrostaticsOptions::sac_stations, "equally spaced stations of the returned SAC (>= 2), ends included");
+    f("density", &HydrostaticsOptions::density, "water density (t/m^3) for the displacement mass");
+    f("trim", &HydrostaticsOptions::trim, "trim by the stern (m) over trim_length; draft is then the draft at trim_length / 2");
+    f("trim_length", &HydrostaticsOptions::trim_length, "AP to FP (m) over which trim is measured; > 0 when trim != 0");
+  }
 };
 
-struct Hydrostatics {
-  double draft = 0;            ///< m above the baseline z = 0
-  double volume = 0;           ///< m^3 (full ship when half_hull)
-  double displacement = 0;     ///< t = density x volume
-  double lcb = 0;              ///< x of the centre of buoyancy (m from AP)
-  double vcb = 0;              ///< z of the centre of buoyancy (KB, m above base)
-  double waterplane_area = 0;  ///< Awp (m^2)
-  double lcf = 0;              ///< x of the waterplane centroid (m)
-  double wetted_surface = 0;   ///< m^2, hull surface below the draft (centre plane not counted)
-  double x_min = 0, x_max = 0; ///< submerged extent of the surface (m)
-  double length = 0, breadth = 0;  ///< used for the coefficients (m)
-  double midship_x = 0, midship_area = 0;  ///< Am (m^2) at midship_x
-  double cb = 0, cp = 0, cm = 0, cwp = 0;  ///< V/(L B T), V/(Am L), Am/(B T), Awp/(L B)
+struct Hydrostatics : BuoyancyFigures {
+  double displacement = 0;
+  double x_min = 0, x_max = 0;
+  double length = 0, breadth = 0;
+  double midship_x = 0, midship_area = 0;
+  double cb = 0, cp = 0, cm = 0, cwp = 0;
   Eigen::VectorXd sac_x, sac_area;  ///< sectional area curve: stations (m) and areas (m^2)
                                     ///< (below the local waterline when trimmed)
-  double trim = 0;             ///< trim by the stern (m) as asked
-  double inertia_t = 0;        ///< I_T: waterplane 2nd moment about the centre line (m^4, full ship when half_hull)
-  double inertia_l = 0;        ///< I_L: waterplane 2nd moment about the transverse axis through F (m^4)
-  double bmt = 0, bml = 0;     ///< I_T / V, I_L / V (m)
-  double kmt = 0, kml = 0;     ///< VCB + BMt, VCB + BMl (m above base)
-  double tpc = 0;              ///< tonnes per cm immersion: density Awp / 100 (t/cm)
-  double mct1cm = 0;           ///< moment to change trim 1 cm: displacement BML / (100 length) (t m/cm)
-  double z_max = 0;            ///< highest point of the surface (m above base)
+  double trim = 0;
+  double inertia_t = 0;
+  double inertia_l = 0;
+  double bmt = 0, bml = 0;
+  double kmt = 0, kml = 0;
+  double tpc = 0;
+  double mct1cm = 0;
+  double z_max = 0;
+
+  /// Each scalar field, those of BuoyancyFigures first: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    BuoyancyFigures::fields(f);
+    f("displacement", &Hydrostatics::displacement, "t = density x volume");
+    f("x_min", &Hydrostatics::x_min, "aft end of the submerged surface (m)");
+    f("x_max", &Hydrostatics::x_max, "fore end of the submerged surface (m)");
+    f("length", &Hydrostatics::length, "length used for the coefficients (m)");
+    f("breadth", &Hydrostatics::breadth, "breadth used for the coefficients (m)");
+    f("midship_x", &Hydrostatics::midship_x, "x of the midship section (m)");
+    f("midship_area", &Hydrostatics::midship_area, "Am, midship section area below the draft (m^2)");
+    f("cb", &Hydrostatics::cb, "block coefficient V / (L B T)");
+    f("cp", &Hydrostatics::cp, "prismatic coefficient V / (Am L)");
+    f("cm", &Hydrostatics::cm, "midship section coefficient Am / (B T)");
+    f("cwp", &Hydrostatics::cwp, "waterplane coefficient Awp / (L B)");
+    f("trim", &Hydrostatics::trim, "trim by the stern (m)");
+    f("inertia_t", &Hydrostatics::inertia_t, "I_T, waterplane 2nd moment about the centre line (m^4)");
+    f("inertia_l", &Hydrostatics::inertia_l, "I_L, waterplane 2nd moment about the axis through F (m^4)");
+    f("bmt", &Hydrostatics::bmt, "I_T / V (m)");
+    f("bml", &Hydrostatics::bml, "I_L / V (m)");
+    f("kmt", &Hydrostatics::kmt, "VCB + BMt (m above base)");
+    f("kml", &Hydrostatics::kml, "VCB + BMl (m above base)");
+    f("tpc", &Hydrostatics::tpc, "tonnes per cm immersion, density Awp / 100 (t/cm)");
+    f("mct1cm", &Hydrostatics::mct1cm, "moment to change trim 1 cm, displacement BML / (100 L): GML taken as BML (t m/cm)");
+    f("z_max", &Hydrostatics::z_max, "highest point of the surface (m)");
+  }
 };
 
 /// Hydrostatics of `surface` floating at `draft` (m, > 0), upright or trimmed (options.trim).
@@ -93,14 +128,7 @@ Hydrostatics hydrostatics(const NurbsSurface& surface, double draft, const Hydro
 /// required to reach the waterplane. Volume, areas: full ship when half_hull. `gauss`:
 /// Gauss-Legendre points per knot span (2..32). Throws InvalidInput for a non-positive or
 /// non-finite draft, a non-finite end_x, a bad gauss or no patches.
-struct PatchHydrostatics {
-  double draft = 0;            ///< m above the baseline
-  double volume = 0;           ///< m^3 (full ship when half_hull)
-  double lcb = 0, vcb = 0;     ///< centre of buoyancy x, z (m); 0 when the volume is 0
-  double waterplane_area = 0;  ///< Awp (m^2)
-  double lcf = 0;              ///< x of the waterplane centroid (m); 0 when Awp is 0
-  double wetted_surface = 0;   ///< m^2 of the patches below the draft
-};
+struct PatchHydrostatics : BuoyancyFigures {};
 PatchHydrostatics hydrostatics_of_patches(const std::vector<NurbsSurface>& patches, double draft, double end_x,
                                           bool half_hull = true, int gauss = 8);
 

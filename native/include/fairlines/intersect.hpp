@@ -25,11 +25,21 @@ struct IntersectionCurve {
 };
 
 struct IntersectOptions {
-  int subdivisions = 12;     ///< extra breakpoints per direction before the Bezier split (>= 1)
-  double tolerance = 1e-7;   ///< Newton target |S_a - S_b| (metres), > 0, <= 1e-6
-  double step = 0.0;         ///< marching step (metres); 0: 1/150 of the smaller box diagonal
-  double max_turn_deg = 4.0; ///< tangent turn per step above which the step is halved
-  int max_points = 100000;   ///< cap on points per branch (> 10)
+  int subdivisions = 12;
+  double tolerance = 1e-7;
+  double step = 0.0;
+  double max_turn_deg = 4.0;
+  int max_points = 100000;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("subdivisions", &IntersectOptions::subdivisions, "extra breakpoints per direction before the Bezier split (>= 1)");
+    f("tolerance", &IntersectOptions::tolerance, "Newton target |S_a - S_b| (m), > 0, <= 1e-6");
+    f("step", &IntersectOptions::step, "marching step (m); 0: 1/150 of the smaller box diagonal");
+    f("max_turn_deg", &IntersectOptions::max_turn_deg, "tangent turn per step above which the step is halved (deg)");
+    f("max_points", &IntersectOptions::max_points, "cap on points per branch (> 10)");
+  }
 };
 
 /// Every intersection branch of two clamped NURBS surfaces (weights > 0).

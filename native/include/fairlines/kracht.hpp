@@ -12,29 +12,59 @@
 // n dS is the outward area vector; centre-plane faces are those with every vertex at y = 0.
 #pragma once
 
-#include <limits>
-
 #include "fairlines/mesh.hpp"
 
 namespace fairlines {
 
-/// The ship the coefficients are made dimensionless by (metres, m^2, m^3).
-struct KrachtShip {
-  double x_fp = std::numeric_limits<double>::quiet_NaN();      ///< x of the forward perpendicular (m)
-  double lpp = std::numeric_limits<double>::quiet_NaN();       ///< length between perpendiculars (m), > 0
-  double beam = std::numeric_limits<double>::quiet_NaN();      ///< moulded breadth B (m), > 0
-  double draft_fp = std::numeric_limits<double>::quiet_NaN();  ///< draft at the FP, T_FP (m), > 0
-  double midship_area = std::numeric_limits<double>::quiet_NaN();         ///< A_M (m^2), > 0
-  double displacement_volume = std::numeric_limits<double>::quiet_NaN();  ///< V (m^3), > 0
+/// The six Kracht (1978) coefficients (dimensionless): designed (the defaults are the bulb
+/// designer's) or measured on a mesh (see the key above).
+struct KrachtCoefficients {
+  double c_lpr = 0.025;
+  double c_bb = 0.18;
+  double c_zb = 0.45;
+  double c_abt = 0.10;
+  double c_abl = 0.10;
+  double c_vpr = 0.0022;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("c_lpr", &KrachtCoefficients::c_lpr, "protrusion beyond FP / Lpp");
+    f("c_bb", &KrachtCoefficients::c_bb, "bulb breadth at FP / B");
+    f("c_zb", &KrachtCoefficients::c_zb, "height of the bulb's foremost point / T_FP");
+    f("c_abt", &KrachtCoefficients::c_abt, "bulb section area at FP (both sides) / midship section area");
+    f("c_abl", &KrachtCoefficients::c_abl, "lateral (profile) area forward of FP / midship section area");
+    f("c_vpr", &KrachtCoefficients::c_vpr, "bulb volume forward of FP (both sides) / displacement volume");
+  }
 };
 
-struct Kracht {
-  double c_lpr = 0, c_bb = 0, c_zb = 0, c_abt = 0, c_abl = 0, c_vpr = 0;  ///< see the file's key
+/// The ship quantities the coefficients are relative to (metres, m^2, m^3).
+struct ShipParticulars {
+  double lpp = 0.0;
+  double beam = 0.0;
+  double draft_fp = 0.0;
+  double midship_area = 0.0;
+  double displacement_volume = 0.0;
+  double x_fp = -1.0;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("lpp", &ShipParticulars::lpp, "length between perpendiculars (m), > 0");
+    f("beam", &ShipParticulars::beam, "moulded breadth B (m), > 0");
+    f("draft_fp", &ShipParticulars::draft_fp, "draught at FP (m), > 0");
+    f("midship_area", &ShipParticulars::midship_area, "midship section area A_MS, both sides (m^2), > 0");
+    f("displacement_volume", &ShipParticulars::displacement_volume, "moulded displacement volume, both sides (m^3), > 0");
+    f("x_fp", &ShipParticulars::x_fp, "x of FP from AP (m); < 0 means x_fp = lpp");
+  }
 };
 
-/// Kracht coefficients of `mesh` (a closed half hull, outward faces) for `ship`. A mesh with
-/// nothing forward of x_fp below draft_fp gives C_LPR = -inf. Throws InvalidInput for a bad
-/// mesh or a non-finite / non-positive ship dimension (x_fp only finite).
-Kracht measure_kracht(const TriMesh& mesh, const KrachtShip& ship);
+/// x of the forward perpendicular: ship.x_fp, or lpp when x_fp < 0.
+inline double fp_x(const ShipParticulars& ship) { return ship.x_fp < 0.0 ? ship.lpp : ship.x_fp; }
+
+/// Kracht coefficients of `mesh` (a closed half hull, outward faces) for `ship` (its FP at
+/// fp_x(ship)). A mesh with nothing forward of the FP below draft_fp gives C_LPR = -inf. Throws
+/// InvalidInput for a bad mesh or a non-finite / non-positive ship dimension (x_fp only finite).
+KrachtCoefficients measure_kracht(const TriMesh& mesh, const ShipParticulars& ship);
 
 }  // namespace fairlines

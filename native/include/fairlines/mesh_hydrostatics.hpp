@@ -12,27 +12,28 @@
 
 #include <limits>
 
+#include "fairlines/buoyancy.hpp"
 #include "fairlines/mesh.hpp"
 
 namespace fairlines {
 
 struct MeshHydrostaticsOptions {
-  bool half_hull = true;  ///< the mesh is the y >= 0 half: volume and areas doubled, centroids kept
+  bool half_hull = true;
   /// Flip the whole mesh when it is oriented inwards: a side-like mesh (|n_y| dominating
   /// |n_x|) must have int y n_y dS > 0, an end-like mesh (a transom face) int (x - midship_x) n_x dS > 0.
   bool orient = false;
-  /// x of the section measured as midship_area (m); NaN: the middle of the mesh's x extent.
   double midship_x = std::numeric_limits<double>::quiet_NaN();
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("half_hull", &MeshHydrostaticsOptions::half_hull, "the mesh is the y >= 0 half: volume and areas doubled, centroids kept");
+    f("orient", &MeshHydrostaticsOptions::orient, "flip an inward mesh: a side-like mesh must have int y n_y dS > 0, an end-like one int (x - midship_x) n_x dS > 0");
+    f("midship_x", &MeshHydrostaticsOptions::midship_x, "x of the section measured as midship_area (m); NaN: the middle of the mesh's x extent");
+  }
 };
 
-struct MeshHydrostatics {
-  double draft = 0;            ///< m above the baseline z = 0
-  double volume = 0;           ///< m^3 (full ship when half_hull)
-  double lcb = 0;              ///< x of the centre of buoyancy (m)
-  double vcb = 0;              ///< z of the centre of buoyancy (KB, m above base)
-  double waterplane_area = 0;  ///< Awp (m^2)
-  double lcf = 0;              ///< x of the waterplane centroid (m); 0 when Awp is 0
-  double wetted_surface = 0;   ///< m^2 of mesh below the draft
+struct MeshHydrostatics : BuoyancyFigures {
   double midship_x = 0;        ///< x of the measured section (m)
   double midship_area = 0;     ///< section area below the draft at midship_x (m^2)
   bool flipped = false;        ///< the mesh was reoriented (options.orient)

@@ -20,12 +20,23 @@ namespace fairlines {
 struct ComposedHull;
 
 struct MeshOptions {
-  double size = 1.0;               ///< maximum element edge length (m), > 0
-  double chordal_tolerance = 0.0;  ///< max distance of an element from the surface (m); 0: size / 100
-  double min_size = 0.0;           ///< no element edge is made shorter for curvature (m); 0: size / 20
-  bool all_quad = false;           ///< quads only: a mesh at twice the size (for 0.8 x the tolerance) split into quads
-  int smoothing_passes = 6;        ///< sweeps of quality-guarded smoothing (>= 0)
-  double min_quad_quality = 0.3;   ///< triangle pairs whose quad's scaled Jacobian is lower stay triangles
+  double size = 1.0;
+  double chordal_tolerance = 0.0;
+  double min_size = 0.0;
+  bool all_quad = false;
+  int smoothing_passes = 6;
+  double min_quad_quality = 0.3;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("size", &MeshOptions::size, "maximum element edge length (m), > 0");
+    f("chordal_tolerance", &MeshOptions::chordal_tolerance, "max distance of an element from the surface (m); 0: size / 100");
+    f("min_size", &MeshOptions::min_size, "no edge is made shorter for curvature (m); 0: size / 20");
+    f("all_quad", &MeshOptions::all_quad, "quads only: a mesh at twice the size (for 0.8 x the tolerance) split into quads");
+    f("smoothing_passes", &MeshOptions::smoothing_passes, "sweeps of quality-guarded smoothing");
+    f("min_quad_quality", &MeshOptions::min_quad_quality, "triangle pairs whose quad's scaled Jacobian is lower stay triangles");
+  }
 };
 
 /// Mixed quadrilateral / triangle mesh (metres).

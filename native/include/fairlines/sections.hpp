@@ -51,21 +51,20 @@ inline constexpr double kMaxShapeKnob = 2.0;
 
 /// One section's numbers (metres; angles in degrees).
 struct SectionSpec {
-  double x = 0;       ///< station (m from the AP); the section lies in the plane x = const
-  double y_deck = 0;  ///< deck-at-side half-breadth, 0 <= y_deck <= y_max
-  double z_deck = 0;  ///< deck-at-side height (m above base)
-  double z_keel = 0;  ///< keel point height on the centre plane (<= z_deck)
-  double y_max = 0;   ///< half-breadth bound B/2 (> 0)
-  double draft = kNaN;      ///< waterline height T (NaN: no waterline condition)
-  double y_dwl = kNaN;      ///< waterline half-breadth at T (NaN or <= 0: not immersed)
-  double half_area = kNaN;  ///< area below T between the section and the centre plane, one side (m^2); NaN: free
-  /// Shape knob used when half_area is NaN (0 fullest .. kMaxShapeKnob a straight V).
+  double x = 0;
+  double y_deck = 0;
+  double z_deck = 0;
+  double z_keel = 0;
+  double y_max = 0;
+  double draft = kNaN;
+  double y_dwl = kNaN;
+  double half_area = kNaN;
   double shape = 1.0;
   /// Where the top corner Y lies above the waterline point Q, on the waterline tangent, as a
   /// fraction of the distance |D - Q|: small values round the top near the waterline, large
   /// ones near the deck (more flare at the deck).
   double top_corner = 0.5;
-  double deadrise = 0.0;   ///< rise of the bottom at the bilge corner, deg from the horizontal (>= 0)
+  double deadrise = 0.0;
   /// Where the bilge corner heads as the section fines (lambda 1 .. 2): the point at this
   /// fraction of the chord from Q (0) to K (1). 0.5 a symmetric V; < 0.5 the side leans in
   /// first (deadrise first), > 0.5 the bottom rises first.
@@ -83,7 +82,28 @@ struct SectionSpec {
   /// places X from deadrise and character.
   double corner_y = kNaN;
   double corner_z = kNaN;
-  int n_control = 20;  ///< control points of every section of a hull (kMinSectionControls .. kMaxSectionControls)
+  int n_control = 20;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("x", &SectionSpec::x, "station (m from the AP); the section lies in the plane x = const");
+    f("y_deck", &SectionSpec::y_deck, "deck-at-side half-breadth (m), 0 <= y_deck <= y_max");
+    f("z_deck", &SectionSpec::z_deck, "deck-at-side height (m above base)");
+    f("z_keel", &SectionSpec::z_keel, "keel point height on the centre plane (m, <= z_deck)");
+    f("y_max", &SectionSpec::y_max, "half-breadth bound B/2 (m, > 0)");
+    f("draft", &SectionSpec::draft, "waterline height T (m; NaN: no waterline condition)");
+    f("y_dwl", &SectionSpec::y_dwl, "waterline half-breadth at T (m; NaN or <= 0: not immersed)");
+    f("half_area", &SectionSpec::half_area, "area below T between the section and the centre plane, one side (m^2; NaN: free)");
+    f("shape", &SectionSpec::shape, "shape knob when half_area is NaN (0 fullest .. 2 straight V)");
+    f("top_corner", &SectionSpec::top_corner, "height of the top corner, fraction of the freeboard");
+    f("deadrise", &SectionSpec::deadrise, "bottom rise at the bilge corner (deg from the horizontal, >= 0)");
+    f("character", &SectionSpec::character, "where the bilge corner heads as the section fines (fraction of the chord Q-K)");
+    f("lower_angle", &SectionSpec::lower_angle, "above-water sections: arrival angle at the keel point (deg from vertical; NaN: 0)");
+    f("corner_y", &SectionSpec::corner_y, "bilge corner half-breadth, fraction of y_dwl (NaN: from the template)");
+    f("corner_z", &SectionSpec::corner_z, "bilge corner height above the keel, fraction of T - z_keel (NaN: from the template)");
+    f("n_control", &SectionSpec::n_control, "control points of every section of a hull");
+  }
 };
 
 /// A designed section and what was needed to build it.

@@ -35,10 +35,10 @@ enum class SkinParams {
 };
 
 struct SkinOptions {
-  int n_control = 0;      ///< control points per section in u; 0: max(12, 2 x largest section count)
-  int degree_u = 3;       ///< degree across the sections (>= 1)
-  int degree_v = 3;       ///< degree of the longitudinal curves (>= 2)
-  int samples = 0;        ///< equally spaced points per section; 0: 4 x n_control. >= n_control
+  int n_control = 0;
+  int degree_u = 3;
+  int degree_v = 3;
+  int samples = 0;
   /// Spacing metric of the section points: ds (1 + curvature_weight L |k|), L the section's
   /// length. 0 is plain arc length (Kim & Hwangbo 2008, Fig. 2b); > 0 puts more points -- and, through
   /// the common uniform knots, more control points -- where sections bend (tight bilges).
@@ -51,9 +51,9 @@ struct SkinOptions {
   /// along the hull are reproduced exactly and the ends keep their curvature.
   double e2 = 1.0;
   double e3 = 0.0;
-  double smoothing = 1e-3;  ///< Approximate mode only: weight of h^4 E2 (h = 1/(q-1)), >= 0
-  SkinEnd start = SkinEnd::Free;  ///< at the first section
-  SkinEnd end = SkinEnd::Free;    ///< at the last section
+  double smoothing = 1e-3;
+  SkinEnd start = SkinEnd::Free;
+  SkinEnd end = SkinEnd::Free;
   SkinParams params = SkinParams::Auto;
   /// Interior section indices (1..q-2) where the longitudinal curves are only C1 (knot of
   /// multiplicity degree_v - 1): the joint between fore and aft bodies. Elsewhere C^(degree_v-1).
@@ -77,6 +77,27 @@ struct SkinOptions {
   /// combination of the end rows' curves, so the segment stays straight between the sections
   /// while each end row holds its own runs. InvalidInput when the fractions differ.
   std::vector<std::pair<int, int>> straight_groups;
+
+  /// Each field with its name and meaning: f(name, member pointer, doc).
+  template <typename F>
+  static void fields(F&& f) {
+    f("n_control", &SkinOptions::n_control, "control points per section in u; 0: max(12, 2 x largest section count)");
+    f("degree_u", &SkinOptions::degree_u, "degree across the sections (>= 1)");
+    f("degree_v", &SkinOptions::degree_v, "degree of the longitudinal curves (>= 2)");
+    f("samples", &SkinOptions::samples, "equally spaced points per section; 0: 4 x n_control, else >= n_control");
+    f("curvature_weight", &SkinOptions::curvature_weight, "w >= 0: section points equally spaced in ds (1 + w L |k|), L the section length; 0 plain arc length");
+    f("mode", &SkinOptions::mode, "'interpolate' (through every row point, least E2) or 'approximate' (least squares + smoothing h^4 E2)");
+    f("e2", &SkinOptions::e2, "weight of E2 = int |C''(v)|^2 dv in the longitudinal fairness");
+    f("e3", &SkinOptions::e3, "weight of h^2 E3 = h^2 int |C'''(v)|^2 dv, h = 1/(q-1)");
+    f("smoothing", &SkinOptions::smoothing, "approximate mode: weight of h^4 E2 (>= 0)");
+    f("start", &SkinOptions::start, "'free' (natural) or 'parallel' (dy/dv = dz/dv = 0) at the first section");
+    f("end", &SkinOptions::end, "'free' (natural) or 'parallel' (dy/dv = dz/dv = 0) at the last section");
+    f("params", &SkinOptions::params, "section parameters v: 'station' (proportional to x), 'chord', or 'auto' (station when planar at monotone x)");
+    f("c1_sections", &SkinOptions::c1_sections, "interior section indices where the longitudinal curves are only C1");
+    f("flats", &SkinOptions::flats, "planes (axis 0 / 1 / 2 for x / y / z, value m) the sections' fits keep exactly where they lie in them");
+    f("hold_runs", &SkinOptions::hold_runs, "hold a row coordinate constant over three or more sections where the rows keep it");
+    f("straight_groups", &SkinOptions::straight_groups, "row ranges (first, last) kept straight between their end rows' longitudinal curves");
+  }
 };
 
 /// Least number of consecutive sections over which a row coordinate must keep its value to be

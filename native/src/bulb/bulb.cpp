@@ -75,7 +75,7 @@ void require_coefficients(const KrachtCoefficients& k, const ShipParticulars& sh
 /// the lateral area (the section exponent is left to the caller).
 BulbShape dimensions(const KrachtCoefficients& k, const ShipParticulars& ship) {
   BulbShape s{};
-  s.x_fp = ship.x_fp < 0.0 ? ship.lpp : ship.x_fp;
+  s.x_fp = fp_x(ship);
   s.length = k.c_lpr * ship.lpp;
   s.breadth = k.c_bb * ship.beam;
   s.nose_height = k.c_zb * ship.draft_fp;

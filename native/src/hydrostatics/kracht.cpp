@@ -24,13 +24,10 @@ struct Forward {
   Vec3 nose{-std::numeric_limits<double>::infinity(), 0.0, 0.0};
 };
 
-void check_ship(const KrachtShip& s) {
+void check_ship(const ShipParticulars& s) {
   if (!std::isfinite(s.x_fp)) fail("x_fp is ", s.x_fp, "; expected a finite x of the FP (m)");
-  const std::pair<const char*, double> positive[] = {{"lpp", s.lpp}, {"beam", s.beam}, {"draft_fp", s.draft_fp},
-                                                     {"midship_area", s.midship_area},
-                                                     {"displacement_volume", s.displacement_volume}};
-  for (const auto& [name, value] : positive)
-    if (!(value > 0) || !std::isfinite(value)) fail(name, " is ", value, "; expected a finite value > 0");
+  detail::require_positive({{s.lpp, "lpp"}, {s.beam, "beam"}, {s.draft_fp, "draft_fp"},
+                            {s.midship_area, "midship_area"}, {s.displacement_volume, "displacement_volume"}});
 }
 
 /// Largest y where the edges of the submerged triangle `t` cross the plane x = x_fp.
@@ -55,28 +52,29 @@ void add_forward_piece(const Tri& t, double x_fp, bool centre_plane, Forward& f)
 
 }  // namespace
 
-Kracht measure_kracht(const TriMesh& mesh, const KrachtShip& ship) {
+KrachtCoefficients measure_kracht(const TriMesh& mesh, const ShipParticulars& ship) {
   triangles::check_mesh(mesh);
   check_ship(ship);
+  const double x_fp = fp_x(ship);
   Forward f;
   std::vector<Tri> below, forward;
   for (Eigen::Index i = 0; i < mesh.faces.rows(); ++i) {
     const Tri t = triangles::triangle(mesh, i);
     const double x_max = std::max({t[0].x(), t[1].x(), t[2].x()});
     const double z_min = std::min({t[0].z(), t[1].z(), t[2].z()});
-    if (!(x_max > ship.x_fp && z_min < ship.draft_fp)) continue;
+    if (!(x_max > x_fp && z_min < ship.draft_fp)) continue;
     const bool centre_plane = t[0].y() == 0.0 && t[1].y() == 0.0 && t[2].y() == 0.0;
     below.clear();
     triangles::clip(t, 2, ship.draft_fp, Keep::Below, below);
     for (const Tri& low : below) {
-      add_section_breadth(low, ship.x_fp, f);
+      add_section_breadth(low, x_fp, f);
       forward.clear();
-      triangles::clip(low, 0, ship.x_fp, Keep::Above, forward);
-      for (const Tri& piece : forward) add_forward_piece(piece, ship.x_fp, centre_plane, f);
+      triangles::clip(low, 0, x_fp, Keep::Above, forward);
+      for (const Tri& piece : forward) add_forward_piece(piece, x_fp, centre_plane, f);
     }
   }
-  Kracht k;
-  k.c_lpr = (f.nose.x() - ship.x_fp) / ship.lpp;
+  KrachtCoefficients k;
+  k.c_lpr = (f.nose.x() - x_fp) / ship.lpp;
   k.c_bb = 2.0 * f.y_max / ship.beam;
   k.c_zb = f.nose.z() / ship.draft_fp;
   k.c_abt = 2.0 * f.ax / ship.midship_area;
