@@ -308,15 +308,19 @@ void Solver::set_starts(const Eigen::VectorXd& z) {
   }
 }
 
-Eigen::VectorXd Solver::start_curve(std::mt19937* rng) const {
+namespace {
+
+// End points of the straight start curve: the requested ones, else those of the first / last
+// point to pass, else a unit chord along x; a curve given only its area gets height Area / chord.
+void start_end_points(const Problem& pb, Eigen::VectorXd& S, Eigen::VectorXd& E) {
   const auto& req = pb.req;
   const auto& P = req.params;
-  const int n = pb.n, dim = pb.dim;
+  const int dim = pb.dim, npts = pb.npts;
   auto get = [&](const char* k, double dflt) { return P.count(k) ? P.at(k) : dflt; };
   const char* bnames[3] = {"xB", "yB", "zB"};
   const char* enames[3] = {"xE", "yE", "zE"};
-  Eigen::VectorXd S(dim), E(dim);
-  const int npts = pb.npts;
+  S.resize(dim);
+  E.resize(dim);
   for (int c = 0; c < dim; ++c) {
     double s0 = 0, e0 = c == 0 ? 1.0 : 0.0;
     if (npts > 0) {
@@ -331,15 +335,18 @@ Eigen::VectorXd Solver::start_curve(std::mt19937* rng) const {
     const double Lx = E[0] - S[0];
     if (std::abs(Lx) > 1e-12) S[1] = E[1] = P.at("Area") / Lx;
   }
-  const double Ls = pb.Ls;
-  const bool ynn = req.bounds.y_nonnegative && dim >= 2;
-  const int ax = req.bounds.monotone_axis;
-  Eigen::VectorXd xi(n);
-  for (int i = 0; i < n; ++i) xi[i] = pb.tab.knots.segment(i + 1, pb.p).mean();
+}
+
+// Control polygon on the chord S..E at the abscissae xi; with rng (a multistart) the interior
+// points are scattered, monotone along the bounded axis; held above the floor when y >= 0.
+Eigen::MatrixXd start_polygon(const Problem& pb, const Eigen::VectorXd& S, const Eigen::VectorXd& E,
+                              const Eigen::VectorXd& xi, std::mt19937* rng) {
+  const auto& P = pb.req.params;
+  const int n = pb.n, dim = pb.dim, ax = pb.req.bounds.monotone_axis;
   Eigen::MatrixXd Pm(n, dim);
   for (int i = 0; i < n; ++i) Pm.row(i) = (S + xi[i] * (E - S)).transpose();
   if (rng) {
-    std::normal_distribution<double> nd(0.0, 0.25 * Ls);
+    std::normal_distribution<double> nd(0.0, 0.25 * pb.Ls);
     std::uniform_real_distribution<double> ud(0.0, 1.0);
     std::vector<double> u(n - 2);
     for (auto& v : u) v = ud(*rng);
@@ -350,13 +357,23 @@ Eigen::VectorXd Solver::start_curve(std::mt19937* rng) const {
         else Pm(i, c) += nd(*rng);
       }
   }
-  if (ynn) {
-    const double floor = 0.05 * Ls;
+  if (pb.req.bounds.y_nonnegative && dim >= 2) {
+    const double floor = 0.05 * pb.Ls;
     for (int i = 1; i + 1 < n; ++i) Pm(i, 1) = std::max(Pm(i, 1), std::max(floor, 0.5 * std::min(S[1], E[1])));
     if (!P.count("yB")) Pm(0, 1) = std::max(Pm(0, 1), floor);
     if (!P.count("yE")) Pm(n - 1, 1) = std::max(Pm(n - 1, 1), floor);
   }
-  // end tangents
+  return Pm;
+}
+
+// The second (next-to-last) control point moved along a requested end angle or 3-D tangent,
+// short enough to keep the monotone axis and y >= 0.
+void aim_end_tangents(const Problem& pb, const Eigen::VectorXd& S, const Eigen::VectorXd& E,
+                      const Eigen::VectorXd& xi, Eigen::MatrixXd& Pm) {
+  const auto& req = pb.req;
+  const auto& P = req.params;
+  const int n = pb.n, dim = pb.dim, ax = req.bounds.monotone_axis;
+  const bool ynn = req.bounds.y_nonnegative && dim >= 2;
   const char* an[2] = {"alphaB", "alphaE"};
   const Eigen::VectorXd* tg[2] = {&req.tangent_start, &req.tangent_end};
   for (int e = 0; e < 2; ++e) {
@@ -373,38 +390,54 @@ Eigen::VectorXd Solver::start_curve(std::mt19937* rng) const {
     }
     const int i0 = e == 0 ? 0 : n - 1, i1 = e == 0 ? 1 : n - 2;
     const double sgn = e == 0 ? 1.0 : -1.0;
-    double ell = std::abs(xi[1] - xi[0]) * std::max((E - S).norm(), 0.2 * Ls);
+    double ell = std::abs(xi[1] - xi[0]) * std::max((E - S).norm(), 0.2 * pb.Ls);
     if (ax >= 0 && std::abs(dir[ax]) > 1e-12)
       ell = std::min(ell, 0.5 * std::abs(xi[2] - xi[0]) * std::abs(E[ax] - S[ax]) / std::abs(dir[ax]));
     if (ynn && sgn * dir[1] < 0 && Pm(i0, 1) > 0) ell = std::min(ell, 0.5 * Pm(i0, 1) / std::abs(dir[1]));
     Pm.row(i1) = Pm.row(i0) + sgn * ell * dir.transpose();
   }
+}
+
+// Each point's curve parameter: the nearest of kStartSamples samples of the start curve,
+// kept increasing and inside (0.02, 0.98).
+void start_point_parameters(Problem& pb, Eigen::VectorXd& z) {
+  constexpr int kStartSamples = 400;
+  const int npts = pb.npts;
+  Eigen::MatrixXd C, ders;
+  std::vector<Eigen::VectorXd> samples(kStartSamples + 1);
+  for (int k = 0; k <= kStartSamples; ++k) {
+    int f = 0;
+    pb.point_derivs(z, double(k) / kStartSamples, C, ders, f);
+    samples[k] = C.row(0).transpose();
+  }
+  double last = 0.0;
+  for (int j = 0; j < npts; ++j) {
+    int best = 0;
+    double bd = kInf;
+    for (int k = 0; k <= kStartSamples; ++k) {
+      const double dd = (samples[k] - pb.req.points[j].position).squaredNorm();
+      if (dd < bd) bd = dd, best = k;
+    }
+    double t = std::clamp(double(best) / kStartSamples, 0.02, 0.98);
+    if (t <= last) t = std::min(0.98, last + 0.5 / (npts + 1));
+    last = t;
+    z[pb.tvar(j)] = t;
+  }
+}
+
+}  // namespace
+
+Eigen::VectorXd Solver::start_curve(std::mt19937* rng) const {
+  const int n = pb.n, dim = pb.dim;
+  Eigen::VectorXd S, E;
+  start_end_points(pb, S, E);
+  Eigen::VectorXd xi(n);
+  for (int i = 0; i < n; ++i) xi[i] = pb.tab.knots.segment(i + 1, pb.p).mean();
+  Eigen::MatrixXd Pm = start_polygon(pb, S, E, xi, rng);
+  aim_end_tangents(pb, S, E, xi, Pm);
   Eigen::VectorXd z(pb.nv);
   for (int c = 0; c < dim; ++c) z.segment(c * n, n) = Pm.col(c);
-  // point parameters: nearest sample of the start curve
-  if (npts > 0) {
-    const int ns = 400;
-    Eigen::MatrixXd C, ders;
-    std::vector<Eigen::VectorXd> samples(ns + 1);
-    for (int k = 0; k <= ns; ++k) {
-      int f = 0;
-      pb.point_derivs(z, double(k) / ns, C, ders, f);
-      samples[k] = C.row(0).transpose();
-    }
-    double last = 0.0;
-    for (int j = 0; j < npts; ++j) {
-      int best = 0;
-      double bd = kInf;
-      for (int k = 0; k <= ns; ++k) {
-        const double dd = (samples[k] - req.points[j].position).squaredNorm();
-        if (dd < bd) bd = dd, best = k;
-      }
-      double t = std::clamp(double(best) / ns, 0.02, 0.98);
-      if (t <= last) t = std::min(0.98, last + 0.5 / (npts + 1));
-      last = t;
-      z[pb.tvar(j)] = t;
-    }
-  }
+  if (pb.npts > 0) start_point_parameters(pb, z);
   return z;
 }
 
