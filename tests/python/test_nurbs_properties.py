@@ -5,7 +5,7 @@ polynomial) curve or surface drawn from a seed, so hypothesis shrinks to small, 
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import fairlines as fl
@@ -87,6 +87,8 @@ def test_evaluate_and_evaluate_grid_agree(seed, pu, pv, extra, rational):
 
 @PROPERTIES
 @given(seeds, degrees, extras, st.booleans())
+@example(seed=985442, degree=1, extra=7, rational=True)  # a step over a knot led to another span
+@example(seed=3509311516, degree=1, extra=5, rational=True)  # Newton clamped on its span's end
 def test_curve_closest_point_is_no_farther_than_a_dense_sample(seed, degree, extra, rational):
     c, rng = random_curve(seed, degree, extra, rational)
     p = rng.normal(size=3) * 2

@@ -20,6 +20,18 @@ using detail::fail;
 
 namespace {
 
+/// Least of f on [a, b] by golden-section search (f unimodal there), in `steps` steps.
+template <typename F>
+double golden_minimum(F f, double a, double b, int steps) {
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double x1 = b - g * (b - a), x2 = a + g * (b - a), f1 = f(x1), f2 = f(x2);
+  for (int it = 0; it < steps && b - a > 0.0; ++it) {
+    if (f1 <= f2) b = x2, x2 = x1, f2 = f1, x1 = b - g * (b - a), f1 = f(x1);
+    else a = x1, x1 = x2, f1 = f2, x2 = a + g * (b - a), f2 = f(x2);
+  }
+  return f1 <= f2 ? x1 : x2;
+}
+
 double binomial(int n, int k) {
   double r = 1.0;
   for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
@@ -155,43 +167,49 @@ Eigen::VectorXd NurbsCurve::torsion(const Eigen::VectorXd& t) const {
   return tau;
 }
 
+// Newton steps from a start sample; the distance is polished within the start's knot span.
+constexpr int kClosestNewtonSteps = 50;
+// Golden-section steps on the bracket of the nearest sample in each span.
+constexpr int kClosestGoldenSteps = 80;
+
 std::pair<double, Eigen::VectorXd> NurbsCurve::closest_point(const Eigen::VectorXd& p) const {
   if (p.size() != dim()) fail("point has ", p.size(), " coordinates; expected ", dim());
   detail::require_finite(p, "point");
-  const auto [a, b] = domain();
-  // Global start: samples in every non-empty knot span.
+  // Every non-empty knot span is searched from its nearest sample, and the search stays in the
+  // span: across a knot the curve may turn (a C0 corner of a degree-1 or repeated-knot curve),
+  // and a rational curve's samples may bunch so that another span's samples all lie nearer.
   const int per_span = 4 * (degree_ + 1);
-  std::vector<double> ts;
-  for (int i = degree_; i < n_control(); ++i) {
-    if (knots_[i + 1] <= knots_[i]) continue;
-    for (int s = 0; s < per_span; ++s) ts.push_back(knots_[i] + (knots_[i + 1] - knots_[i]) * s / per_span);
-  }
-  ts.push_back(b);
-  const Eigen::VectorXd tv = Eigen::Map<Eigen::VectorXd>(ts.data(), static_cast<Eigen::Index>(ts.size()));
-  const Eigen::MatrixXd pts = evaluate(tv);
-  std::vector<std::pair<double, double>> cand;  // (distance^2, t)
-  for (Eigen::Index i = 0; i < pts.rows(); ++i) cand.emplace_back((pts.row(i).transpose() - p).squaredNorm(), tv[i]);
-  std::partial_sort(cand.begin(), cand.begin() + std::min<size_t>(3, cand.size()), cand.end());
-  double best_t = cand[0].second, best_d = cand[0].first;
   const double scale = std::max(1.0, (points_.colwise().maxCoeff() - points_.colwise().minCoeff()).norm());
-  for (size_t c = 0; c < std::min<size_t>(3, cand.size()); ++c) {
-    double t = cand[c].second;
-    for (int it = 0; it < 50; ++it) {
+  auto dist2 = [&](double t) { return (evaluate(t) - p).squaredNorm(); };
+  double best_t = domain().first, best_d = dist2(best_t);
+  for (int i = degree_; i < n_control(); ++i) {
+    const double lo = knots_[i], hi = knots_[i + 1];
+    if (hi <= lo) continue;
+    const Eigen::VectorXd tv = Eigen::VectorXd::LinSpaced(per_span + 1, lo, hi);
+    const Eigen::MatrixXd pts = evaluate(tv);
+    const Eigen::VectorXd pts_d2 = (pts.rowwise() - p.transpose()).rowwise().squaredNorm();
+    Eigen::Index k = 0;
+    pts_d2.minCoeff(&k);
+    double t = tv[k];
+    for (int it = 0; it < kClosestNewtonSteps; ++it) {
       const Eigen::MatrixXd D = derivatives(t, 2);
       const Eigen::VectorXd r = D.row(0).transpose() - p;
       const double f = D.row(1).dot(r);
       const double df = D.row(2).dot(r) + D.row(1).squaredNorm();
-      if (!(df > 0.0)) break;  // not a local minimum direction; keep the sample
-      const double tn = std::clamp(t - f / df, a, b);
+      if (!(df > 0.0)) break;  // negative curvature of the distance: Newton cannot be trusted
+      const double tn = std::clamp(t - f / df, lo, hi);
       const double step = std::abs(tn - t) * D.row(1).norm();
       t = tn;
       // Converged when the step moves the point by less than this relative tolerance.
       if (step < 1e-15 * scale) break;
     }
-    const double dist = (evaluate(t) - p).squaredNorm();
-    if (dist < best_d) {
-      best_d = dist;
-      best_t = t;
+    // Newton may stall, oscillate or stop on the span's end where it was clamped: the samples'
+    // bracket around the start is also searched, and the nearer of the two answers kept.
+    const double tg = golden_minimum(dist2, tv[std::max<Eigen::Index>(k - 1, 0)],
+                                     tv[std::min<Eigen::Index>(k + 1, per_span)], kClosestGoldenSteps);
+    for (const double tc : {t, tg}) {
+      const double d = dist2(tc);
+      if (d < best_d) best_d = d, best_t = tc;
     }
   }
   return {best_t, evaluate(best_t)};
