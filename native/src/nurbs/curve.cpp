@@ -167,10 +167,12 @@ Eigen::VectorXd NurbsCurve::torsion(const Eigen::VectorXd& t) const {
   return tau;
 }
 
-// Newton steps from a start sample; the distance is polished within the start's knot span.
+// Newton steps from each start; the search stays within the start's knot span.
 constexpr int kClosestNewtonSteps = 50;
 // Golden-section steps on the bracket of the nearest sample in each span.
 constexpr int kClosestGoldenSteps = 80;
+// Relative distance^2 difference below which two answers are the same point up to round-off.
+constexpr double kClosestTieRelative = 1e-12;
 
 std::pair<double, Eigen::VectorXd> NurbsCurve::closest_point(const Eigen::VectorXd& p) const {
   if (p.size() != dim()) fail("point has ", p.size(), " coordinates; expected ", dim());
@@ -190,27 +192,31 @@ std::pair<double, Eigen::VectorXd> NurbsCurve::closest_point(const Eigen::Vector
     const Eigen::VectorXd pts_d2 = (pts.rowwise() - p.transpose()).rowwise().squaredNorm();
     Eigen::Index k = 0;
     pts_d2.minCoeff(&k);
-    double t = tv[k];
-    for (int it = 0; it < kClosestNewtonSteps; ++it) {
-      const Eigen::MatrixXd D = derivatives(t, 2);
-      const Eigen::VectorXd r = D.row(0).transpose() - p;
-      const double f = D.row(1).dot(r);
-      const double df = D.row(2).dot(r) + D.row(1).squaredNorm();
-      if (!(df > 0.0)) break;  // negative curvature of the distance: Newton cannot be trusted
-      const double tn = std::clamp(t - f / df, lo, hi);
-      const double step = std::abs(tn - t) * D.row(1).norm();
-      t = tn;
-      // Converged when the step moves the point by less than this relative tolerance.
-      if (step < 1e-15 * scale) break;
-    }
-    // Newton may stall, oscillate or stop on the span's end where it was clamped: the samples'
-    // bracket around the start is also searched, and the nearer of the two answers kept.
+    // Newton from the nearest sample may stall, oscillate or stop on the span's end where it was
+    // clamped: Newton also polishes the golden-section minimum of the samples' bracket around
+    // it, and the nearer of the two answers is kept.
     const double tg = golden_minimum(dist2, tv[std::max<Eigen::Index>(k - 1, 0)],
                                      tv[std::min<Eigen::Index>(k + 1, per_span)], kClosestGoldenSteps);
-    for (const double tc : {t, tg}) {
-      const double d = dist2(tc);
-      if (d < best_d) best_d = d, best_t = tc;
+    for (double t : {tv[k], tg}) {
+      for (int it = 0; it < kClosestNewtonSteps; ++it) {
+        const Eigen::MatrixXd D = derivatives(t, 2);
+        const Eigen::VectorXd r = D.row(0).transpose() - p;
+        const double f = D.row(1).dot(r);
+        const double df = D.row(2).dot(r) + D.row(1).squaredNorm();
+        if (!(df > 0.0)) break;  // negative curvature of the distance: keep the start
+        const double tn = std::clamp(t - f / df, lo, hi);
+        const double step = std::abs(tn - t) * D.row(1).norm();
+        t = tn;
+        // Converged when the step moves the point by less than this relative tolerance.
+        if (step < 1e-15 * scale) break;
+      }
+      const double d = dist2(t);
+      if (d < best_d) best_d = d, best_t = t;
     }
+    // Where Newton wandered off from both starts, the bracket's own minimum (to within the
+    // golden search's resolution) is kept; a mere round-off difference does not replace Newton's.
+    const double dg = dist2(tg);
+    if (dg < best_d * (1.0 - kClosestTieRelative)) best_d = dg, best_t = tg;
   }
   return {best_t, evaluate(best_t)};
 }
