@@ -41,10 +41,11 @@ def hull_description(fp: dict, data: HullData, *, n_stations=25) -> dict:
     st, x, x1 = _forebody_stations(fp, data)
     x0 = L / 2
     top = float(np.median([s["deck"][1] for s in st[: max(2, len(st) // 4)]]))
-    curves = _measured_curves(fp, st, B, T)
+    fos_low = np.array([s["fos_z"][0] if s["fos_z"] else np.nan for s in st])  # flat side's lower end
+    curves = _measured_curves(fp, st, fos_low, B, T)
     out = {name: _curve_spec(x, f if scale is None else np.maximum(f, 0.0), scale, x0, x1, L)
            for name, (f, scale) in curves.items()}
-    out["fos"] = _flat_of_side_spec(x, st, T, top, x0, L)
+    out["fos"] = _flat_of_side_spec(x, fos_low, T, top, x0, L)
     fob_end = fp["FOB"]["x_fwd"] if fp["FOB"]["x_fwd"] else x0 + 2e-3 * L
     fob = np.minimum([s["fob_half_width"] for s in st], B / 2)
     out["fob"] = _curve_spec(x, fob, B / 2, x0, fob_end, L) | {"x_end": float(fob_end), "yE": 0.0}
@@ -82,11 +83,10 @@ def _forebody_stations(fp, data):
     return st, x[: len(st)], x1
 
 
-def _measured_curves(fp, st, B, T) -> dict:
+def _measured_curves(fp, st, fos_low, B, T) -> dict:
     """name: (value at each station, scale of its parallel tolerance or None for an angle).
     Where the flat side reaches below the DWL, the DWL and deck lie on it (within FLAT_TOL):
     they say so exactly, as the section design requires."""
-    fos_low = np.array([s["fos_z"][0] if s["fos_z"] else np.nan for s in st])
     on_fos = ~np.isnan(fos_low) & (fos_low < T)
     return {
         "sac": (np.array([s["area"] for s in st]), max(fp["SAC"]["area"])),
@@ -113,11 +113,10 @@ def _curve_spec(x, f, scale, x0, x_end, L) -> dict:
             "points": [[float(x[i]), float(f[i])] for i in k], "n_control": len(k) + 9}
 
 
-def _flat_of_side_spec(x, st, T, top, x0, L) -> dict:
+def _flat_of_side_spec(x, fos_low, T, top, x0, L) -> dict:
     """The flat side as a basic curve: its lower end at every station from midships on where the
     side is flat, rising to the deck where the flat side ends (fairlines.sections continues a
     curve that ends on the deck smoothly; one that ended lower would stop abruptly)."""
-    fos_low = np.array([s["fos_z"][0] if s["fos_z"] else np.nan for s in st])
     ok = np.flatnonzero(~np.isnan(fos_low))
     ok = ok[: int(np.argmax(np.diff(np.append(ok, -9)) != 1)) + 1] if len(ok) else ok
     if len(ok) < 2 or ok[-1] + 1 >= len(x):
