@@ -68,6 +68,10 @@ constexpr double kAreaTol = 1e-13;
 constexpr int kKnobIterations = 100;
 /// An area outside the family's range by less than this fraction of the box still counts as met.
 constexpr double kAreaMetTol = 1e-9;
+/// Width (fraction of the immersed box) of the smooth floor at the family's least area: an asked
+/// area below the least is raised to it, and one within a few widths above it a little (at most
+/// ln 2 widths, at the least itself), so the knob leaves its end smoothly along the hull.
+constexpr double kAreaFloorSmoothing = 0.002;
 /// Gauss points per knot span of the area integral (exact for the cubic-times-quadratic integrand).
 constexpr int kAreaGauss = 4;
 /// The correction that puts the spline through Q: weight of a straight stretch of the spline
@@ -504,12 +508,19 @@ struct KnobSolve {
 KnobSolve solve_knob(const Section& S, const Eigen::RowVectorXd& arow, double ac, double target, double hi) {
   auto area = [&](double lam) { return arow.dot(sample(S, immersed_template(S, lam))) + ac; };
   KnobSolve out;
-  double a = 0.0, b = hi, fa = area(a) - target, fb = area(b) - target;
-  out.hi_area = std::max(fa, fb) + target, out.lo_area = std::min(fa, fb) + target;
+  const double area_a = area(0.0), area_b = area(hi);
+  out.hi_area = std::max(area_a, area_b), out.lo_area = std::min(area_a, area_b);
+  const bool in_range = target >= out.lo_area - kAreaMetTol * S.b * S.d && target <= out.hi_area + kAreaMetTol * S.b * S.d;
+  // The least area is approached smoothly (a hard floor would kink the knob along the hull).
+  const double soft = kAreaFloorSmoothing * S.b * S.d;
+  const double u = (target - out.lo_area) / soft;
+  target = out.lo_area + soft * (u > 30.0 ? u : std::log1p(std::exp(u)));
+  double a = 0.0, b = hi, fa = area_a - target, fb = area_b - target;
   if (fa * fb >= 0) {  // target outside the range (or at an end): the nearer end
     const bool at_a = std::abs(fa) <= std::abs(fb);
-    return out.lambda = at_a ? 0.0 : hi, out.met = std::abs(at_a ? fa : fb) <= kAreaMetTol * S.b * S.d, out;
+    return out.lambda = at_a ? 0.0 : hi, out.met = in_range, out;
   }
+  out.met = in_range;
   int side = 0;  // Illinois regula falsi
   for (int it = 0; it < kKnobIterations; ++it) {
     const double c = (a * fb - b * fa) / (fb - fa), fc = area(c) - target;
