@@ -282,8 +282,6 @@ def test_frames_from_the_midbody_to_the_stem_are_convex():
         assert _sign_changes(s, 0, x) == 0, x
 
 
-@pytest.mark.xfail(strict=True, reason="the frame at x = 50 m turns back by 0.5 deg above the waterline, where "
-                                       "the deck's flat ends")
 def test_no_s_shaped_frames():
     s = fl.Hull.from_json(EXAMPLE.read_text()).bare_hull_surface()
     for x in np.linspace(10.0, 230.0, 23):

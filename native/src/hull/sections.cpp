@@ -83,6 +83,11 @@ constexpr double kCorrectionSmoothing = 1.0;
 /// ... and the correction stays near Q: its weight grows as the fourth power of the distance
 /// from Q beyond this many knot spans.
 constexpr double kCorrectionReach = 3.0;
+/// Above Q the correction is nearly free in size but stiff in bend: it tilts the topside as a
+/// line from the fixed deck point (a linear change of the ordinates keeps every bend), where a
+/// correction held near Q would dent the topside just above the waterline.
+constexpr double kTopsideFreedom = 1.0;
+constexpr double kTopsideStiffness = 1e3;
 /// A flared section's side leans this much more than the line from Q to the deck point, so
 /// its top still turns inward (convex) ...
 constexpr double kFlareMargin = 1.05;
@@ -460,8 +465,9 @@ double knob_limit(const Section& S) {
 }
 
 /// Correction delta of the ordinates, least (weighted, smooth), with the ends fixed, the
-/// spline through `eta_q` at t_q and the area row unchanged. Straight stretches of the spline
-/// weigh kFlatGuard times more, so flats stay in their plane.
+/// spline through `eta_q` at t_q and the area row unchanged. Below Q straight stretches of the
+/// spline weigh kFlatGuard times more, so flats stay in their plane; above Q the correction is a
+/// near-linear tilt (kTopsideFreedom, kTopsideStiffness).
 Eigen::VectorXd correction(const Section& S, const Eigen::VectorXd& eta, double eta_q, const Eigen::RowVectorXd& arow) {
   const int n = S.l.n;
   Eigen::MatrixXd Mw = Eigen::MatrixXd::Zero(n, n);
@@ -470,11 +476,13 @@ Eigen::VectorXd correction(const Section& S, const Eigen::VectorXd& eta, double 
     double curv = 0.0;
     if (k > 0 && k < n - 1) curv = (eta[k - 1] - 2.0 * eta[k] + eta[k + 1]) / (kStraightScale * S.f.L);
     const double far = (S.l.g[k] - S.t_q) / (kCorrectionReach * span);
-    Mw(k, k) = (1.0 + kFlatGuard / (1.0 + curv * curv)) * (1.0 + far * far * far * far);
+    const bool topside = k > 0 && S.l.g[k] < S.t_q;
+    Mw(k, k) = topside ? kTopsideFreedom : (1.0 + kFlatGuard / (1.0 + curv * curv)) * (1.0 + far * far * far * far);
   }
   for (int k = 1; k + 1 < n; ++k) {
     const Eigen::Vector3d c(1.0, -2.0, 1.0);
-    Mw.block(k - 1, k - 1, 3, 3) += kCorrectionSmoothing * c * c.transpose();
+    const bool topside = S.l.g[k + 1] <= S.t_q;
+    Mw.block(k - 1, k - 1, 3, 3) += (topside ? kTopsideStiffness : kCorrectionSmoothing) * c * c.transpose();
   }
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(4, n);
   C(0, 0) = 1.0;
