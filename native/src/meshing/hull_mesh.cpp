@@ -1,11 +1,14 @@
 // mesh_surface and mesh_hull: the faces and shared edges of a surface or a composed hull,
-// then mesh_brep (see brep.hpp).
+// then mesh_brep (see brep.hpp). mesh_hull in steps: require_draft_inside -> add_faces ->
+// trim_curve, trim_ends -> hull_boundary -> trimmed_bow (blend_face, bulb_face) -> close_lids
+// -> Brep::cut_below (with a draft) -> mesh_brep -> mirrored (a full hull).
 //
 // Notation (the hull in the orient_bare_hull convention): H the hull on [u0, u1] x [v0, v1],
 // keel v = v0, stem u = u1, deck v = v1, aft end u = u0; A = H(u0, v0) the aft keel point,
 // C = H(u1, v1) the stem top, Dk = H(u0, v1) the aft deck point, E the aft end's corner on
 // deck and centre plane; P0, P1 the ends of the trim curve (seam or blend boundary) on H,
-// P0 the lower one along keel then stem; N the bulb's nose pole.
+// P0 the lower one along keel then stem; Bs the bulb surface, L the blend surface; F the
+// B-rep's faces, te the trim edge, cl the centre line.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
