@@ -61,6 +61,16 @@ py::dict curve_dict(const IntersectionCurve& c) {
                   "max_gap"_a = c.max_gap);
 }
 
+py::dict continuity_dict(const BoundaryContinuity& c) {
+  return py::dict("max_angle_deg"_a = c.max_angle_deg, "max_gap"_a = c.max_gap);
+}
+
+py::array_t<int> int_array(const Eigen::VectorXi& v) {
+  py::array_t<int> out(v.size());
+  std::copy(v.data(), v.data() + v.size(), out.mutable_data());
+  return out;
+}
+
 void bind_compose_options(py::module_& m) {
   using option_docs::bind_options;
   bind_options<ComposeOptions>(m, "ComposeOptions", "Options of compose (fairlines.compose sets them by keyword).");
@@ -82,10 +92,8 @@ void bind_compose_options(py::module_& m) {
                                       "Options of seam_blend_placement (fairlines.seam_blend_placement sets them by keyword).");
 }
 
-}  // namespace
-
-void bind_compose(py::module_& m) {
-  bind_compose_options(m);
+/// Surface-surface intersection and the Kracht bulb.
+void bind_intersect_and_bulb(py::module_& m) {
   m.def(
       "_intersect_surfaces",
       [](const NurbsSurface& a, const NurbsSurface& b, const IntersectOptions& options) {
@@ -116,20 +124,15 @@ void bind_compose(py::module_& m) {
                         "section_fullness"_a = s.section_fullness, "nose_shape"_a = s.nose_shape,
                         "section_area"_a = s.section_area, "lateral_area"_a = s.lateral_area, "volume"_a = s.volume);
       });
+}
 
+/// The composed hull's read-only view: its mesh, trims, seams and surfaces.
+void bind_composed_hull(py::module_& m) {
   py::class_<ComposedHull>(m, "_ComposedHull")
       .def_property_readonly("vertices", [](const ComposedHull& c) { return to_array(c.mesh.vertices); })
       .def_property_readonly("faces", [](const ComposedHull& c) { return faces_array(c.mesh.faces); })
-      .def_property_readonly("face_part", [](const ComposedHull& c) {
-        py::array_t<int> out(c.face_part.size());
-        std::copy(c.face_part.data(), c.face_part.data() + c.face_part.size(), out.mutable_data());
-        return out;
-      })
-      .def_property_readonly("seam_vertices", [](const ComposedHull& c) {
-        py::array_t<int> out(c.seam_vertices.size());
-        std::copy(c.seam_vertices.data(), c.seam_vertices.data() + c.seam_vertices.size(), out.mutable_data());
-        return out;
-      })
+      .def_property_readonly("face_part", [](const ComposedHull& c) { return int_array(c.face_part); })
+      .def_property_readonly("seam_vertices", [](const ComposedHull& c) { return int_array(c.seam_vertices); })
       .def_property_readonly("trimmed_surfaces", [](const ComposedHull& c) {
         py::list out;
         for (const auto& t : c.trimmed_surfaces) {
@@ -152,16 +155,16 @@ void bind_compose(py::module_& m) {
         return py::cast(c.blend[0]);
       })
       .def_property_readonly("blend_continuity", [](const ComposedHull& c) {
-        auto d = [](const BoundaryContinuity& x) {
-          return py::dict("max_angle_deg"_a = x.max_angle_deg, "max_gap"_a = x.max_gap);
-        };
-        return py::make_tuple(d(c.blend_at_hull), d(c.blend_at_bulb));
+        return py::make_tuple(continuity_dict(c.blend_at_hull), continuity_dict(c.blend_at_bulb));
       })
       .def("full_mesh", [](const ComposedHull& c) {
         const TriMesh f = mirror_full_hull(c);
         return py::make_tuple(to_array(f.vertices), faces_array(f.faces));
       });
+}
 
+/// compose_hull and the blend around its seam (placement, boundaries, surface, continuity).
+void bind_compose_and_blend(py::module_& m) {
   m.def(
       "_compose_hull",
       [](const NurbsSurface& hull, const NurbsSurface* bulb, const ComposeOptions& options, const BlendSpec* blend) {
@@ -169,7 +172,6 @@ void bind_compose(py::module_& m) {
         return compose_hull(hull, bulb, options, blend);
       },
       "hull"_a, "bulb"_a = nullptr, "options"_a = ComposeOptions{}, "blend"_a = nullptr);
-
   m.def(
       "_seam_blend_placement",
       [](const NurbsSurface& hull, const NurbsSurface& bulb, const ComposeOptions& compose_options,
@@ -197,24 +199,23 @@ void bind_compose(py::module_& m) {
       [](const NurbsSurface& a, py::handle ba, const NurbsSurface& b, py::handle bb, const BlendOptions& options) {
         const BlendSurface r = blend_surface(a, py_convert::matrix(ba, "boundary_a", 2), b,
                                              py_convert::matrix(bb, "boundary_b", 2), options);
-        auto cont = [](const BoundaryContinuity& c) {
-          return py::dict("max_angle_deg"_a = c.max_angle_deg, "max_gap"_a = c.max_gap);
-        };
-        return py::make_tuple(r.surface, cont(r.at_a), cont(r.at_b));
+        return py::make_tuple(r.surface, continuity_dict(r.at_a), continuity_dict(r.at_b));
       },
       "a"_a, "boundary_a"_a, "b"_a, "boundary_b"_a, "options"_a = BlendOptions{});
   m.def(
       "boundary_continuity",
       [](const NurbsSurface& blend, bool at_v1, const NurbsSurface& s, int samples) {
-        const BoundaryContinuity c = measure_boundary_continuity(blend, at_v1, s, samples);
-        return py::dict("max_angle_deg"_a = c.max_angle_deg, "max_gap"_a = c.max_gap);
+        return continuity_dict(measure_boundary_continuity(blend, at_v1, s, samples));
       },
       "blend"_a, "at_v1"_a, "surface"_a, "samples"_a = 400,
       "Max normal angle (deg) and gap (m) between a blend's v = 0 (or v = 1) edge and a surface, "
       "by closest-point projection at `samples` points.");
-
   m.def("orient_bare_hull", &orient_bare_hull, "hull"_a, "plane_tolerance"_a = 1e-6,
         "The hull surface re-oriented to u aft->stem, v keel->deck (see compose.hpp).");
+}
+
+/// Triangle-mesh export, volume and polygon triangulation.
+void bind_mesh_io(py::module_& m) {
   m.def(
       "write_obj", [](py::handle v, py::handle f, const std::string& path) { write_obj(mesh_from(v, f), path); },
       "vertices"_a, "faces"_a, "path"_a, "Writes a triangle mesh ((n, 3) vertices, (m, 3) faces) as Wavefront OBJ.");
@@ -235,6 +236,16 @@ void bind_compose(py::module_& m) {
         return faces_array(f);
       },
       "points"_a, "Ear-clipping triangulation of a simple polygon (n, 2): (n - 2, 3) indices.");
+}
+
+}  // namespace
+
+void bind_compose(py::module_& m) {
+  bind_compose_options(m);
+  bind_intersect_and_bulb(m);
+  bind_composed_hull(m);
+  bind_compose_and_blend(m);
+  bind_mesh_io(m);
 }
 
 }  // namespace fairlines

@@ -1,4 +1,11 @@
 // Bulbous bow from Kracht coefficients, see fairlines/bulb.hpp.
+//
+// Notation (Kracht 1978): L_PR, B_B, Z_B the bulb's protrusion, breadth and nose height, H its
+// section height; A_BT, A_BL, V_PR its section area at FP, lateral area and volume; m the
+// superellipse exponent of the nose outline, n of the sections (kappa(n) their fullness);
+// f a section's scale (1 aft of FP, 0 at the nose), theta the angle round a section from the
+// bottom; ns, np the sections and points per section sampled; pu, pv their skinning
+// parameters, Ku, Kv the knots, p the degree.
 #include "fairlines/bulb.hpp"
 
 #include <algorithm>
@@ -96,16 +103,7 @@ BulbShape dimensions(const KrachtCoefficients& k, const ShipParticulars& ship) {
   return s;
 }
 
-}  // namespace
-
-SectionFullness bulb_section_fullness(const KrachtCoefficients& k, const ShipParticulars& ship) {
-  require_coefficients(k, ship);
-  const BulbShape s = dimensions(k, ship);
-  return {s.section_area / (s.breadth * s.height), kappa(kSectionExponentMin), kappa(kExponentMax)};
-}
-
-BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& ship, const BulbOptions& o) {
-  require_coefficients(k, ship);
+void require_bulb_options(const BulbOptions& o) {
   detail::require_finite(o.nose_height_shift, "nose_height_shift");
   if (o.aft_length < 0.0 || !std::isfinite(o.aft_length))
     detail::fail("aft_length is ", o.aft_length, "; expected >= 0 metres (0: twice protrusion + breadth)");
@@ -115,59 +113,75 @@ BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& 
     detail::fail("control_u is ", o.control_u, "; expected 4 <= control_u <= sections (", o.sections, ")");
   if (o.control_v < 4 || o.control_v > o.section_points)
     detail::fail("control_v is ", o.control_v, "; expected 4 <= control_v <= section_points (", o.section_points, ")");
+}
 
-  BulbShape s = dimensions(k, ship);
-  // A_BT = B_B H kappa(n): the section fullness.
+/// The section exponent n from A_BT = B_B H kappa(n) into s.section_fullness; throws
+/// InfeasibleFormParameters when no superellipse section has the requested fullness.
+void solve_section_fullness(BulbShape& s) {
   const double kap = s.section_area / (s.breadth * s.height);
-  if (!bisect(kappa, kSectionExponentMin, kExponentMax, kap, s.section_fullness)) {
-    std::ostringstream os;
-    os << "c_abt, c_bb and c_abl conflict: A_BT / (B_B H) = " << kap << " (H = " << s.height
-       << " m from c_abl) but a bulb section needs it in [" << kappa(kSectionExponentMin) << ", " << kappa(kExponentMax)
-       << "]";
-    throw InfeasibleFormParameters(os.str());
-  }
-  const double zc = s.nose_height + o.nose_height_shift;
-  if (zc - 0.5 * s.height < 0.0) {
-    std::ostringstream os;
-    os << "c_zb and c_abl conflict: the bulb (height " << s.height << " m about z = " << zc
-       << " m) reaches below the baseline";
-    throw InfeasibleFormParameters(os.str());
-  }
-  const double aft = o.aft_length > 0.0 ? o.aft_length : 2.0 * (s.length + s.breadth);
-  const double m = s.nose_shape, n = s.section_fullness;
+  if (bisect(kappa, kSectionExponentMin, kExponentMax, kap, s.section_fullness)) return;
+  std::ostringstream os;
+  os << "c_abt, c_bb and c_abl conflict: A_BT / (B_B H) = " << kap << " (H = " << s.height
+     << " m from c_abl) but a bulb section needs it in [" << kappa(kSectionExponentMin) << ", " << kappa(kExponentMax)
+     << "]";
+  throw InfeasibleFormParameters(os.str());
+}
 
-  // Sample: sections along (aft part uniform in x, nose part uniform in the angle phi with
-  // xi = sin^(2/m) phi, f = cos^(2/m) phi), points around uniform in theta.
-  const int ns = o.sections, np = o.section_points;
-  const int n_aft = std::max(3, ns / 4);
-  std::vector<double> xs(ns), fs(ns), zcs(ns);
+/// Throws InfeasibleFormParameters when the bulb's body section reaches below the baseline.
+void require_above_baseline(const BulbShape& s, const BulbOptions& o) {
+  const double zc = s.nose_height + o.nose_height_shift;
+  if (zc - 0.5 * s.height >= 0.0) return;
+  std::ostringstream os;
+  os << "c_zb and c_abl conflict: the bulb (height " << s.height << " m about z = " << zc
+     << " m) reaches below the baseline";
+  throw InfeasibleFormParameters(os.str());
+}
+
+/// The sections' x, scale f and centre height zc, aft to nose.
+struct Stations {
+  std::vector<double> x, f, zc;
+};
+
+/// Sections along x: the aft part uniform in x, the nose part uniform in the angle phi with
+/// xi = sin^(2/m) phi, f = cos^(2/m) phi; the section centre moves from the body's height
+/// (nose height + shift) to the nose height at the tip.
+Stations stations(const BulbShape& s, const BulbOptions& o) {
+  const double aft = o.aft_length > 0.0 ? o.aft_length : 2.0 * (s.length + s.breadth);
+  const double m = s.nose_shape;
+  const int ns = o.sections, n_aft = std::max(3, ns / 4);
+  Stations st{std::vector<double>(ns), std::vector<double>(ns), std::vector<double>(ns)};
   for (int i = 0; i < ns; ++i) {
     if (i < n_aft) {
-      xs[i] = s.x_fp - aft * (1.0 - static_cast<double>(i) / n_aft);
-      fs[i] = 1.0;
+      st.x[i] = s.x_fp - aft * (1.0 - static_cast<double>(i) / n_aft);
+      st.f[i] = 1.0;
     } else {
       const double phi = 0.5 * M_PI * (i - n_aft) / (ns - 1 - n_aft);
       const double c = std::cos(phi), sn = std::sin(phi);
-      xs[i] = s.x_fp + s.length * std::pow(sn, 2.0 / m);
-      fs[i] = i == ns - 1 ? 0.0 : std::pow(c, 2.0 / m);
+      st.x[i] = s.x_fp + s.length * std::pow(sn, 2.0 / m);
+      st.f[i] = i == ns - 1 ? 0.0 : std::pow(c, 2.0 / m);
     }
-    // the section centre moves from zc (body) to the nose height at the tip
-    zcs[i] = s.nose_height + o.nose_height_shift * fs[i];
+    st.zc[i] = s.nose_height + o.nose_height_shift * st.f[i];
   }
-  Eigen::MatrixXd grid(static_cast<Eigen::Index>(ns) * np, 3);
-  Eigen::VectorXd pv(np);
-  for (int j = 0; j < np; ++j) pv[j] = static_cast<double>(j) / (np - 1);
-  // Every section is a scaled copy of the one at FP, so one arc-length spacing of the angle
-  // theta serves them all (the superellipse's own angle crowds the centre-line ends).
-  auto sec_point = [&](double th) {
-    const double c = std::cos(th), sn = std::sin(th);
-    return Eigen::Vector2d(0.5 * s.breadth * std::pow(std::max(0.0, c), 2.0 / n),
-                           0.5 * s.height * (sn < 0 ? -1.0 : 1.0) * std::pow(std::abs(sn), 2.0 / n));
-  };
+  return st;
+}
+
+/// (y, z - zc) of the section at FP at the angle th in [-pi/2, pi/2] (bottom to top).
+Eigen::Vector2d section_point(const BulbShape& s, double th) {
+  const double n = s.section_fullness, c = std::cos(th), sn = std::sin(th);
+  return Eigen::Vector2d(0.5 * s.breadth * std::pow(std::max(0.0, c), 2.0 / n),
+                         0.5 * s.height * (sn < 0 ? -1.0 : 1.0) * std::pow(std::abs(sn), 2.0 / n));
+}
+
+/// The angles theta at the arc-length fractions pv of the section: every section is a scaled
+/// copy of the one at FP, so one spacing serves them all (the superellipse's own angle crowds
+/// the centre-line ends).
+std::vector<double> arc_length_angles(const BulbShape& s, const Eigen::VectorXd& pv) {
   constexpr int kDense = 4000;
   std::vector<double> arc(kDense + 1, 0.0);
   for (int q = 1; q <= kDense; ++q)
-    arc[q] = arc[q - 1] + (sec_point(-0.5 * M_PI + M_PI * q / kDense) - sec_point(-0.5 * M_PI + M_PI * (q - 1) / kDense)).norm();
+    arc[q] = arc[q - 1] + (section_point(s, -0.5 * M_PI + M_PI * q / kDense) -
+                           section_point(s, -0.5 * M_PI + M_PI * (q - 1) / kDense)).norm();
+  const int np = static_cast<int>(pv.size());
   std::vector<double> theta(np);
   for (int j = 0, q = 0; j < np; ++j) {
     const double target = arc[kDense] * pv[j];
@@ -177,15 +191,27 @@ BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& 
   }
   theta[0] = -0.5 * M_PI;
   theta[np - 1] = 0.5 * M_PI;
+  return theta;
+}
+
+/// The analytic points, (ns np) by 3, section i's point j in row i np + j (centre-line ends on y = 0).
+Eigen::MatrixXd sample_grid(const BulbShape& s, const Stations& st, const std::vector<double>& theta) {
+  const int ns = static_cast<int>(st.x.size()), np = static_cast<int>(theta.size());
+  const double n = s.section_fullness;
+  Eigen::MatrixXd grid(static_cast<Eigen::Index>(ns) * np, 3);
   for (int i = 0; i < ns; ++i)
     for (int j = 0; j < np; ++j) {
       const double th = theta[j];
       const double c = std::cos(th), sn = std::sin(th);
-      const double y = 0.5 * s.breadth * fs[i] * std::pow(std::max(0.0, c), 2.0 / n);
-      const double z = zcs[i] + 0.5 * s.height * fs[i] * (sn < 0 ? -1.0 : 1.0) * std::pow(std::abs(sn), 2.0 / n);
-      grid.row(i * np + j) << xs[i], (j == 0 || j == np - 1) ? 0.0 : y, z;
+      const double y = 0.5 * s.breadth * st.f[i] * std::pow(std::max(0.0, c), 2.0 / n);
+      const double z = st.zc[i] + 0.5 * s.height * st.f[i] * (sn < 0 ? -1.0 : 1.0) * std::pow(std::abs(sn), 2.0 / n);
+      grid.row(i * np + j) << st.x[i], (j == 0 || j == np - 1) ? 0.0 : y, z;
     }
-  // u parameters: chord length along the top profile line and the bottom line, averaged
+  return grid;
+}
+
+/// u parameters: chord length along the top profile line and the bottom line, averaged, in [0, 1].
+Eigen::VectorXd chord_parameters(const Eigen::MatrixXd& grid, int ns, int np) {
   Eigen::VectorXd pu(ns);
   pu[0] = 0.0;
   for (int i = 1; i < ns; ++i) {
@@ -194,12 +220,16 @@ BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& 
     pu[i] = pu[i - 1] + 0.5 * (dt + db);
   }
   pu /= pu[ns - 1];
-  const int p = 3;
+  return pu;
+}
+
+/// The bicubic skin of the grid: sections first (common knots), then the control columns
+/// along u; every section (and then every control column) shares one collocation matrix, so
+/// each direction is one least-squares solve with all coordinates as right-hand sides.
+NurbsSurface skin(const Eigen::MatrixXd& grid, const Eigen::VectorXd& pu, const Eigen::VectorXd& pv, const BulbOptions& o) {
+  const int ns = static_cast<int>(pu.size()), np = static_cast<int>(pv.size()), p = 3;
   const Eigen::VectorXd Ku = averaged_knots(pu, p, o.control_u);
   const Eigen::VectorXd Kv = averaged_knots(pv, p, o.control_v);
-  // sections first (common knots), then the control columns along u; every section (and
-  // then every control column) shares one collocation matrix, so each direction is one
-  // least-squares solve with all coordinates as right-hand sides
   Eigen::MatrixXd sections(np, 3 * ns);
   for (int i = 0; i < ns; ++i)
     for (int j = 0; j < np; ++j) sections.block<1, 3>(j, 3 * i) = grid.row(i * np + j);
@@ -211,7 +241,29 @@ BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& 
   Eigen::MatrixXd ctrl(static_cast<Eigen::Index>(o.control_u) * o.control_v, 3);
   for (int i = 0; i < o.control_u; ++i)
     for (int j = 0; j < o.control_v; ++j) ctrl.row(i * o.control_v + j) = col_ctrl.block<1, 3>(i, 3 * j);
-  NurbsSurface surf(p, p, Ku, Kv, o.control_u, o.control_v, ctrl);
+  return NurbsSurface(p, p, Ku, Kv, o.control_u, o.control_v, ctrl);
+}
+
+}  // namespace
+
+SectionFullness bulb_section_fullness(const KrachtCoefficients& k, const ShipParticulars& ship) {
+  require_coefficients(k, ship);
+  const BulbShape s = dimensions(k, ship);
+  return {s.section_area / (s.breadth * s.height), kappa(kSectionExponentMin), kappa(kExponentMax)};
+}
+
+BulbousBow make_bulbous_bow(const KrachtCoefficients& k, const ShipParticulars& ship, const BulbOptions& o) {
+  require_coefficients(k, ship);
+  require_bulb_options(o);
+  BulbShape s = dimensions(k, ship);
+  solve_section_fullness(s);
+  require_above_baseline(s, o);
+  const int ns = o.sections, np = o.section_points;
+  Eigen::VectorXd pv(np);
+  for (int j = 0; j < np; ++j) pv[j] = static_cast<double>(j) / (np - 1);
+  const Eigen::MatrixXd grid = sample_grid(s, stations(s, o), arc_length_angles(s, pv));
+  const Eigen::VectorXd pu = chord_parameters(grid, ns, np);
+  NurbsSurface surf = skin(grid, pu, pv, o);
   const double dev = (surf.evaluate_grid(pu, pv) - grid).rowwise().norm().maxCoeff();
   return {std::move(surf), s, dev};
 }

@@ -1,11 +1,13 @@
 // Shared edges, the waterline cut and the assembly of face meshes, see brep.hpp.
 //
 // Notation: e an edge, f a face, s an edge's samples; I the integral of ds / h along an edge
-// (h the target size), so an edge gets ceil(I) segments of equal I; g(u, v) = z(u, v) - T
-// on a face, whose zero set is the waterline.
+// (h the target size), so an edge gets ceil(I) segments of equal I; T the draft of a cut,
+// g(u, v) = z(u, v) - T on a face, whose zero set is the waterline; a piece is the part of an
+// edge below T, ex the vertex where a face's loop leaves the cut (a waterline starts there).
 #include "meshing/brep.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <queue>
@@ -29,6 +31,7 @@ constexpr double kTraceStep = 0.25;     ///< waterline trace step / size
 constexpr double kTraceStall = 1e-3;    ///< a trace step shorter than this fraction of its stride has stalled
 constexpr double kTraceDrift = 0.5;     ///< corrector move / predictor step above which the step is halved
 constexpr int kTraceHalvings = 30;     ///< at most this many halvings of one trace step
+constexpr int kTraceMaxSteps = 100000; ///< a waterline trace longer than this many steps has lost its way
 constexpr int kBisections = 60;         ///< bisection steps for an edge's crossing of the cut
 constexpr double kVertexMatch = 1e-9;   ///< vertices closer than this x model size are one
 constexpr double kSubstep = 0.25;       ///< integration step of an edge's size / the size
@@ -122,45 +125,52 @@ double domain_fraction(const FaceGeometry& g, const Vec2& a, const Vec2& b) {
   return f;
 }
 
+/// Unit tangent of the level curve of z through q (uv, either sense); throws Error `what` where
+/// z's gradient vanishes (a horizontal point).
+Vec2 level_tangent(const FaceGeometry& g, const Vec2& q, const char* what) {
+  Vec3 p, su, sv;
+  g.first(q, p, su, sv);
+  Vec2 t(-sv.z(), su.z());
+  if (t.norm() <= 0) throw Error(what);
+  return t.normalized();
+}
+
+/// |dS| per unit uv step along t at q.
+double speed(const FaceGeometry& g, const Vec2& q, const Vec2& t) {
+  Vec3 p, su, sv;
+  g.first(q, p, su, sv);
+  return (su * t.x() + sv * t.y()).norm();
+}
+
+/// Predictor from q along t by d (uv), corrector onto z = T; where the corrector lands far
+/// from the prediction (a tight turn of the level curve) d is halved (and left so).
+Vec2 level_step(const FaceGeometry& g, const Vec2& q, const Vec2& t, double& d, double T) {
+  Vec2 next = q;
+  for (int h = 0; h < kTraceHalvings; ++h, d *= 0.5) {
+    const Vec2 pred = g.clamp(q + d * t);
+    next = onto_level(g, pred, T);
+    if ((next - pred).norm() <= kTraceDrift * (pred - q).norm()) break;
+  }
+  return next;
+}
+
 /// Level-set march of z = T on face f from uv `from` into the face until it leaves `poly`.
 std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const std::vector<Vec2>& poly, double T,
                                   double step3d) {
-  auto grad = [&](const Vec2& q, double& z) {
-    Vec3 p, su, sv;
-    g.first(q, p, su, sv);
-    z = p.z();
-    return Vec2(su.z(), sv.z());
-  };
-  auto speed = [&](const Vec2& q, const Vec2& t) {
-    Vec3 p, su, sv;
-    g.first(q, p, su, sv);
-    return (su * t.x() + sv * t.y()).norm();
-  };
-  auto correct = [&](Vec2 q) { return onto_level(g, q, T); };
   std::vector<Vec2> out{from};
-  double z0;
-  Vec2 gr = grad(from, z0);
-  Vec2 t(-gr.y(), gr.x());
-  if (t.norm() <= 0) throw Error("mesh: the waterline is tangent to a face edge (horizontal surface at the draft)");
-  t.normalize();
+  Vec2 t = level_tangent(g, from, "mesh: the waterline is tangent to a face edge (horizontal surface at the draft)");
   {  // into the face
-    const double d = step3d / std::max(1e-300, speed(from, t));
+    const double d = step3d / std::max(1e-300, speed(g, from, t));
     const bool fwd_in = point_in_polygon(from + 0.5 * d * t, poly);
     const bool back_in = point_in_polygon(from - 0.5 * d * t, poly);
     if (!fwd_in && back_in) t = -t;
   }
-  for (int n = 0; n < 100000; ++n) {
+  for (int n = 0; n < kTraceMaxSteps; ++n) {
     const Vec2 q = out.back();
-    double z;
-    gr = grad(q, z);
-    Vec2 tn(-gr.y(), gr.x());
-    if (tn.norm() <= 0) throw Error("mesh: the waterline trace met a horizontal point of a face");
-    tn.normalize();
+    Vec2 tn = level_tangent(g, q, "mesh: the waterline trace met a horizontal point of a face");
     if (tn.dot(t) < 0) tn = -tn;
     t = tn;
-    // predictor along the level curve's tangent, corrector onto z = T; where the corrector
-    // lands far from the prediction (a tight turn of the level curve) the step is halved
-    double d = step3d / std::max(1e-300, speed(q, t));
+    double d = step3d / std::max(1e-300, speed(g, q, t));
     // the level curve leaves the parameter domain within this step (where the loop runs along
     // the domain's edge, as a transom's): end on the edge, where the clamped corrector would
     // slide along it instead
@@ -169,12 +179,7 @@ std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const
       out.push_back(q + domain_fraction(g, q, raw) * (raw - q));
       return out;
     }
-    Vec2 next = q;
-    for (int h = 0; h < kTraceHalvings; ++h, d *= 0.5) {
-      const Vec2 pred = g.clamp(q + d * t);
-      next = correct(pred);
-      if ((next - pred).norm() <= kTraceDrift * (pred - q).norm()) break;
-    }
+    const Vec2 next = level_step(g, q, t, d, T);
     out.push_back(next);
     // out of the face, or pinned against its parameter domain's edge (the clamp holds it
     // there): the waterline has reached the face's boundary
@@ -186,194 +191,250 @@ std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const
   throw Error(msg.str());
 }
 
-}  // namespace
+/// Where edge e crosses z = T between its samples k and k + 1 (bisection on the exact edge).
+EdgeSample crossing(const Brep& b, const Edge& e, int k, double T) {
+  double lo = 0, hi = 1;
+  const bool start_below = e.s[k].xyz.z() <= T;
+  for (int it = 0; it < kBisections; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    ((edge_point(b, e, k, mid).xyz.z() <= T) == start_below ? lo : hi) = mid;
+  }
+  EdgeSample c = edge_point(b, e, k, 0.5 * (lo + hi));
+  c.xyz.z() = T;
+  return c;
+}
 
-void Brep::cut_below(double T, double size, const std::string& lid_name, bool keep_lid) {
-  // 1. split edges at z = T, keep the pieces below
-  std::vector<std::vector<int>> pieces(edges.size());  // kept pieces of each old edge, first to last
-  const size_t n_old = edges.size();
-  for (size_t ei = 0; ei < n_old; ++ei) {
-    Edge e = edges[ei];
-    std::vector<EdgeSample> run;
-    auto below = [&](const EdgeSample& x) { return x.xyz.z() <= T; };
-    auto flush = [&] {
-      if (run.size() >= 2) {
-        const int id = add_edge(e.face[0], e.face[1], run, e.degenerate);
-        edges[id].refine = e.refine;
-        pieces[ei].push_back(id);
-      }
-      run.clear();
-    };
-    for (size_t k = 0; k < e.s.size(); ++k) {
-      if (k > 0 && below(e.s[k - 1]) != below(e.s[k])) {
-        double lo = 0, hi = 1;
-        const bool start_below = below(e.s[k - 1]);
-        for (int it = 0; it < kBisections; ++it) {
-          const double mid = 0.5 * (lo + hi);
-          ((edge_point(*this, e, static_cast<int>(k) - 1, mid).xyz.z() <= T) == start_below ? lo : hi) = mid;
-        }
-        EdgeSample c = edge_point(*this, e, static_cast<int>(k) - 1, 0.5 * (lo + hi));
-        c.xyz.z() = T;
-        run.push_back(c);
-        if (start_below) flush();
-      }
-      if (below(e.s[k])) run.push_back(e.s[k]);
+/// Splits edge ei at z = T: adds its pieces below as new edges, first to last; returns them.
+std::vector<int> split_below(Brep& b, size_t ei, double T) {
+  const Edge e = b.edges[ei];  // a copy: add_edge grows b.edges
+  std::vector<int> kept;
+  std::vector<EdgeSample> run;
+  auto below = [&](const EdgeSample& x) { return x.xyz.z() <= T; };
+  auto flush = [&] {
+    if (run.size() >= 2) {
+      const int id = b.add_edge(e.face[0], e.face[1], run, e.degenerate);
+      b.edges[id].refine = e.refine;
+      kept.push_back(id);
     }
-    flush();
+    run.clear();
+  };
+  for (size_t k = 0; k < e.s.size(); ++k) {
+    if (k > 0 && below(e.s[k - 1]) != below(e.s[k])) {
+      run.push_back(crossing(b, e, static_cast<int>(k) - 1, T));
+      if (below(e.s[k - 1])) flush();
+    }
+    if (below(e.s[k])) run.push_back(e.s[k]);
   }
-  // 2. every face: kept pieces in loop order, the gaps closed by traced waterlines
-  const int lid = static_cast<int>(faces.size());
-  Face lid_face;
-  lid_face.g.origin = Vec3(0, 0, T);
-  lid_face.g.ax = Vec3::UnitX();
-  lid_face.g.ay = Vec3::UnitY();
-  lid_face.name = lid_name;
-  lid_face.keep = keep_lid;
-  faces.push_back(lid_face);
+  flush();
+  return kept;
+}
+
+/// Appends the waterplane face z = T (its loops come last); returns its index.
+int add_waterplane(Brep& b, double T, const std::string& name, bool keep) {
+  Face lid;
+  lid.g.origin = Vec3(0, 0, T);
+  lid.g.ax = Vec3::UnitX();
+  lid.g.ay = Vec3::UnitY();
+  lid.name = name;
+  lid.keep = keep;
+  b.faces.push_back(lid);
+  return static_cast<int>(b.faces.size()) - 1;
+}
+
+/// The pieces below the cut of face f's loop, in loop order, and where they start and end.
+struct FacePieces {
+  const Brep& b;
+  int f;
+  std::vector<std::pair<int, bool>> kept;  ///< (piece, forward)
+  std::vector<Vec2> poly;                  ///< the whole loop before the cut, in the face's (u, v)
+  bool cut = false;                        ///< some edge of the loop was split or dropped
+  std::map<int, size_t> start_index;       ///< start vertex -> piece
+
+  int start_of(size_t i) const { return kept[i].second ? b.edges[kept[i].first].v0 : b.edges[kept[i].first].v1; }
+  int end_of(size_t i) const { return kept[i].second ? b.edges[kept[i].first].v1 : b.edges[kept[i].first].v0; }
+  Vec2 uv_at(size_t i, bool at_end) const {
+    const Edge& e = b.edges[kept[i].first];
+    const bool last = at_end == kept[i].second;
+    return (last ? e.s.back() : e.s.front()).uv[side_of(e, f)];
+  }
+  /// Whether piece j starts where another piece ends (not an entry of a waterline).
+  bool continued(size_t j) const {
+    for (size_t m = 0; m < kept.size(); ++m)
+      if (end_of(m) == start_of(j)) return true;
+    return false;
+  }
+};
+
+FacePieces face_pieces(const Brep& b, int fi, const std::vector<std::vector<int>>& pieces) {
+  FacePieces p{b, fi, {}, {}, false, {}};
+  for (const auto& [e, fwd] : b.faces[fi].loop) {
+    const int sd = side_of(b.edges[e], fi);
+    std::vector<EdgeSample> s = b.edges[e].s;
+    if (!fwd) std::reverse(s.begin(), s.end());
+    for (const auto& x : s) p.poly.push_back(x.uv[sd]);
+    std::vector<int> q = pieces[e];
+    if (q.size() != 1 || b.edges[q[0]].s.size() != b.edges[e].s.size()) p.cut = true;
+    if (!fwd) std::reverse(q.begin(), q.end());
+    for (int id : q) p.kept.push_back({id, fwd});
+  }
+  for (size_t i = 0; i < p.kept.size(); ++i) p.start_index[p.start_of(i)] = i;
+  return p;
+}
+
+constexpr double kTraceSnap = 0.3;  ///< a trace's last point nearer its entry than this x the step is dropped
+
+/// The waterline edge of face f (to the lid) along the traced uv points `tr`, from the
+/// vertex `ex` to the start of piece `entry`; nodes between its samples stay on z = T.
+int waterline_edge(Brep& b, const Face& f, int fi, const FacePieces& p, const std::vector<Vec2>& tr, int ex,
+                   size_t entry, int lid, double T, double size) {
+  std::vector<EdgeSample> s;
+  for (size_t k = 0; k + 1 < tr.size(); ++k) {
+    EdgeSample x;
+    x.uv[0] = tr[k];
+    x.uv[1] = Vec2::Zero();  // on the lid: add_edge locates it
+    x.xyz = f.g.point(tr[k]);
+    x.xyz.z() = T;
+    s.push_back(x);
+  }
+  EdgeSample last;
+  last.uv[0] = p.uv_at(entry, false);
+  last.uv[1] = Vec2::Zero();
+  last.xyz = b.vertices[p.start_of(entry)];
+  if (s.size() >= 2 && (f.g.point(s.back().uv[0]) - last.xyz).norm() < kTraceSnap * kTraceStep * size) s.pop_back();
+  s.push_back(last);
+  s.front().xyz = b.vertices[ex];
+  const int id = b.add_edge(fi, lid, s);
+  b.edges[id].refine = [g = f.g, T](EdgeSample& x) {
+    x.uv[0] = onto_level(g, x.uv[0], T);
+    x.xyz = g.point(x.uv[0]);
+    x.xyz.z() = T;
+  };
+  return id;
+}
+
+/// exit vertex -> (traced waterline edge, the piece it leads to)
+using Bridges = std::map<int, std::pair<int, size_t>>;
+
+/// Traces the waterline from every piece's end that no piece continues to the nearest
+/// piece start that no piece reaches; adds the traced edges to `traced`.
+Bridges bridge_gaps(Brep& b, const Face& f, const FacePieces& p, int lid, double T, double size,
+                    std::vector<int>& traced) {
+  Bridges bridge;
+  for (size_t i = 0; i < p.kept.size(); ++i) {
+    const int ex = p.end_of(i);
+    if (p.start_index.count(ex)) continue;
+    std::vector<Vec2> tr;
+    try {
+      tr = trace_waterline(f.g, p.uv_at(i, true), p.poly, T, kTraceStep * size);
+    } catch (const Error& err) {
+      throw Error(std::string(err.what()) + " on face '" + f.name + "'");
+    }
+    size_t best = p.kept.size();
+    double bd = 1e300;
+    for (size_t j = 0; j < p.kept.size(); ++j) {
+      if (p.continued(j)) continue;
+      const double d = (p.uv_at(j, false) - tr.back()).norm();
+      if (d < bd) {
+        bd = d;
+        best = j;
+      }
+    }
+    if (best == p.kept.size()) throw Error("mesh: a waterline on face '" + f.name + "' ends nowhere");
+    const int id = waterline_edge(b, f, p.f, p, tr, ex, best, lid, T, size);
+    traced.push_back(id);
+    bridge[ex] = {id, best};
+  }
+  return bridge;
+}
+
+/// The faces a cut makes, the old face each comes from, and the waterline edges traced.
+struct CutFaces {
+  std::vector<Face> faces;
+  std::vector<int> origin;
   std::vector<int> traced;
-  const size_t n_faces = faces.size() - 1;
-  std::vector<Face> out_faces;
-  std::vector<int> origin;  // old index of each new face
-  for (size_t fi = 0; fi < n_faces; ++fi) {
-    const Face f = faces[fi];
-    std::vector<std::pair<int, bool>> kept;
-    std::vector<Vec2> poly;
-    bool cut = false;
-    for (const auto& [e, fwd] : f.loop) {
-      const int sd = side_of(edges[e], static_cast<int>(fi));
-      std::vector<EdgeSample> s = edges[e].s;
-      if (!fwd) std::reverse(s.begin(), s.end());
-      for (const auto& x : s) poly.push_back(x.uv[sd]);
-      std::vector<int> p = pieces[e];
-      if (p.size() != 1 || edges[p[0]].s.size() != edges[e].s.size()) cut = true;
-      if (!fwd) std::reverse(p.begin(), p.end());
-      for (int id : p) kept.push_back({id, fwd});
-    }
-    if (kept.empty()) continue;  // all above
-    if (!cut) {
-      Face g = f;
-      g.loop = kept;
-      out_faces.push_back(g);
-      origin.push_back(static_cast<int>(fi));
-      continue;
-    }
-    auto start_of = [&](const std::pair<int, bool>& k) { return k.second ? edges[k.first].v0 : edges[k.first].v1; };
-    auto end_of = [&](const std::pair<int, bool>& k) { return k.second ? edges[k.first].v1 : edges[k.first].v0; };
-    auto uv_at = [&](const std::pair<int, bool>& k, bool at_end) {
-      const Edge& e = edges[k.first];
-      const bool last = at_end == k.second;
-      return (last ? e.s.back() : e.s.front()).uv[side_of(e, static_cast<int>(fi))];
-    };
-    // entries: piece starts not continuing a previous piece
-    std::map<int, size_t> start_index;
-    for (size_t i = 0; i < kept.size(); ++i) start_index[start_of(kept[i])] = i;
-    std::map<int, std::pair<int, size_t>> bridge;  // exit vertex -> (traced edge, next piece)
-    for (size_t i = 0; i < kept.size(); ++i) {
-      const int ex = end_of(kept[i]);
-      if (start_index.count(ex)) continue;
-      std::vector<Vec2> tr;
-      try {
-        tr = trace_waterline(f.g, uv_at(kept[i], true), poly, T, kTraceStep * size);
-      } catch (const Error& err) {
-        throw Error(std::string(err.what()) + " on face '" + f.name + "'");
+};
+
+/// Closed loops of face f after the cut: pieces joined by the bridges, each a new face.
+void follow_loops(const Face& f, const FacePieces& p, const Bridges& bridge, CutFaces& out) {
+  std::vector<char> used(p.kept.size(), 0);
+  for (size_t s0 = 0; s0 < p.kept.size(); ++s0) {
+    if (used[s0]) continue;
+    Face g = f;
+    g.loop.clear();
+    size_t i = s0;
+    for (size_t guard = 0; guard <= 2 * p.kept.size() && !used[i]; ++guard) {
+      used[i] = 1;
+      g.loop.push_back(p.kept[i]);
+      const int ex = p.end_of(i);
+      auto br = bridge.find(ex);
+      if (br != bridge.end()) {
+        g.loop.push_back({br->second.first, true});
+        i = br->second.second;
+      } else {
+        // the next piece in the face's own order first: a pole edge starts and ends at one
+        // vertex, where the piece after it starts too, and must stay between them
+        const size_t next = (i + 1) % p.kept.size();
+        auto st = p.start_index.find(ex);
+        if (!used[next] && p.start_of(next) == ex) i = next;
+        else if (st == p.start_index.end()) throw Error("mesh: the cut loop of face '" + f.name + "' does not close");
+        else i = st->second;
       }
-      // the entry the trace reached: the nearest piece start with no predecessor
-      size_t best = kept.size();
-      double bd = 1e300;
-      for (size_t j = 0; j < kept.size(); ++j) {
-        bool continued = false;
-        for (size_t m = 0; m < kept.size(); ++m)
-          if (end_of(kept[m]) == start_of(kept[j])) continued = true;
-        if (continued) continue;
-        const double d = (uv_at(kept[j], false) - tr.back()).norm();
-        if (d < bd) {
-          bd = d;
-          best = j;
-        }
-      }
-      if (best == kept.size()) throw Error("mesh: a waterline on face '" + f.name + "' ends nowhere");
-      std::vector<EdgeSample> s;
-      for (size_t k = 0; k + 1 < tr.size(); ++k) {
-        EdgeSample x;
-        x.uv[0] = tr[k];
-        x.xyz = f.g.point(tr[k]);
-        x.xyz.z() = T;
-        s.push_back(x);
-      }
-      EdgeSample last;
-      last.uv[0] = uv_at(kept[best], false);
-      last.xyz = vertices[start_of(kept[best])];
-      if (s.size() >= 2 && (f.g.point(s.back().uv[0]) - last.xyz).norm() < 0.3 * kTraceStep * size) s.pop_back();
-      s.push_back(last);
-      s.front().xyz = vertices[ex];
-      const int id = add_edge(static_cast<int>(fi), lid, s);
-      edges[id].refine = [g = f.g, T](EdgeSample& x) {  // nodes between samples: on the waterline too
-        x.uv[0] = onto_level(g, x.uv[0], T);
-        x.xyz = g.point(x.uv[0]);
-        x.xyz.z() = T;
-      };
-      traced.push_back(id);
-      bridge[ex] = {id, best};
     }
-    // loops: follow pieces and bridges
-    std::vector<char> used(kept.size(), 0);
-    for (size_t s0 = 0; s0 < kept.size(); ++s0) {
-      if (used[s0]) continue;
-      Face g = f;
-      g.loop.clear();
-      size_t i = s0;
-      for (size_t guard = 0; guard <= 2 * kept.size() && !used[i]; ++guard) {
-        used[i] = 1;
-        g.loop.push_back(kept[i]);
-        const int ex = end_of(kept[i]);
-        auto br = bridge.find(ex);
-        if (br != bridge.end()) {
-          g.loop.push_back({br->second.first, true});
-          i = br->second.second;
-        } else {
-          // the next piece in the face's own order first: a pole edge starts and ends at one
-          // vertex, where the piece after it starts too, and must stay between them
-          const size_t next = (i + 1) % kept.size();
-          auto st = start_index.find(ex);
-          if (!used[next] && start_of(kept[next]) == ex) i = next;
-          else if (st == start_index.end()) throw Error("mesh: the cut loop of face '" + f.name + "' does not close");
-          else i = st->second;
-        }
-      }
-      out_faces.push_back(g);
-      origin.push_back(static_cast<int>(fi));
-    }
+    out.faces.push_back(g);
+    out.origin.push_back(p.f);
   }
-  // edges name their faces by index: point them at the new faces (a face cut into several
-  // loops keeps each edge on the loop that uses it)
-  std::vector<Face> all = out_faces;
-  std::vector<std::array<int, 2>> sides(edges.size(), {-1, -1});
-  for (int f = 0; f < static_cast<int>(all.size()); ++f)
-    for (const auto& [e, fwd] : all[f].loop)
+}
+
+/// Face fi cut at z = T: nothing if all above, itself if uncut, else its loops closed by
+/// traced waterlines.
+void cut_face(Brep& b, int fi, const std::vector<std::vector<int>>& pieces, int lid, double T, double size,
+              CutFaces& out) {
+  const Face f = b.faces[fi];
+  const FacePieces p = face_pieces(b, fi, pieces);
+  if (p.kept.empty()) return;
+  if (!p.cut) {
+    Face g = f;
+    g.loop = p.kept;
+    out.faces.push_back(g);
+    out.origin.push_back(fi);
+    return;
+  }
+  const Bridges bridge = bridge_gaps(b, f, p, lid, T, size, out.traced);
+  follow_loops(f, p, bridge, out);
+}
+
+/// Edges name their faces by index: points them at the new faces (a face cut into several
+/// loops keeps each edge on the loop that uses it); edges to the lid are left without one.
+void renumber_edge_faces(Brep& b, const CutFaces& c, int lid) {
+  std::vector<std::array<int, 2>> sides(b.edges.size(), {-1, -1});
+  for (int f = 0; f < static_cast<int>(c.faces.size()); ++f)
+    for (const auto& [e, fwd] : c.faces[f].loop)
       for (int k = 0; k < 2; ++k)
-        if (edges[e].face[k] == origin[f]) sides[e][k] = f;
-  for (size_t e = 0; e < edges.size(); ++e) {
-    const bool to_lid = edges[e].face[1] == lid;
-    edges[e].face[0] = sides[e][0];
-    edges[e].face[1] = to_lid ? -1 : sides[e][1];
+        if (b.edges[e].face[k] == c.origin[f]) sides[e][k] = f;
+  for (size_t e = 0; e < b.edges.size(); ++e) {
+    const bool to_lid = b.edges[e].face[1] == lid;
+    b.edges[e].face[0] = sides[e][0];
+    b.edges[e].face[1] = to_lid ? -1 : sides[e][1];
   }
-  // the lid: chain the traced edges into loops
+}
+
+/// The waterplane's faces: the traced edges chained into loops, appended to c.faces.
+void add_waterplane_loops(Brep& b, CutFaces& c, int lid) {
   std::multimap<int, int> at_vertex;
-  for (int id : traced) {
-    at_vertex.insert({edges[id].v0, id});
-    at_vertex.insert({edges[id].v1, id});
+  for (int id : c.traced) {
+    at_vertex.insert({b.edges[id].v0, id});
+    at_vertex.insert({b.edges[id].v1, id});
   }
-  std::vector<char> done(edges.size(), 0);
-  std::vector<Face> lids;
-  for (int id : traced) {
+  std::vector<char> done(b.edges.size(), 0);
+  for (int id : c.traced) {
     if (done[id]) continue;
-    Face l = faces[lid];
-    int e = id, v = edges[id].v0;
+    Face l = b.faces[lid];
+    int e = id, v = b.edges[id].v0;
     while (!done[e]) {
       done[e] = 1;
-      const bool fwd = edges[e].v0 == v;
+      const bool fwd = b.edges[e].v0 == v;
       l.loop.push_back({e, fwd});
-      v = fwd ? edges[e].v1 : edges[e].v0;
+      v = fwd ? b.edges[e].v1 : b.edges[e].v0;
       int next = -1;
       auto range = at_vertex.equal_range(v);
       for (auto it = range.first; it != range.second; ++it)
@@ -381,14 +442,23 @@ void Brep::cut_below(double T, double size, const std::string& lid_name, bool ke
       if (next < 0) break;
       e = next;
     }
-    lids.push_back(l);
+    const int fidx = static_cast<int>(c.faces.size());
+    for (const auto& [e2, fwd] : l.loop) b.edges[e2].face[1] = fidx;
+    c.faces.push_back(l);
   }
-  for (size_t k = 0; k < lids.size(); ++k) {
-    const int fidx = static_cast<int>(all.size());
-    for (const auto& [e, fwd] : lids[k].loop) edges[e].face[1] = fidx;
-    all.push_back(lids[k]);
-  }
-  faces = std::move(all);
+}
+
+}  // namespace
+
+void Brep::cut_below(double T, double size, const std::string& lid_name, bool keep_lid) {
+  std::vector<std::vector<int>> pieces(edges.size());  // kept pieces of each old edge, first to last
+  for (size_t ei = 0; ei < pieces.size(); ++ei) pieces[ei] = split_below(*this, ei, T);
+  const int lid = add_waterplane(*this, T, lid_name, keep_lid);
+  CutFaces c;
+  for (int fi = 0; fi < lid; ++fi) cut_face(*this, fi, pieces, lid, T, size, c);
+  renumber_edge_faces(*this, c, lid);
+  add_waterplane_loops(*this, c, lid);
+  faces = std::move(c.faces);
 }
 
 // ---- meshing -----------------------------------------------------------------------------
@@ -587,6 +657,107 @@ void orient(std::vector<std::array<int, 4>>& el, const std::vector<Vec3>& x) {
   }
 }
 
+/// Edges on the loop of a kept face (the only ones discretised).
+std::vector<char> needed_edges(const Brep& b) {
+  std::vector<char> needed(b.edges.size(), 0);
+  for (const Face& f : b.faces)
+    if (f.keep)
+      for (const auto& [e, fwd] : f.loop) needed[e] = 1;
+  return needed;
+}
+
+/// A face's boundary as nodes of its discretised edges, in loop order, and the (edge,
+/// segment) of the segment from each node to the next.
+struct FaceLoop {
+  std::vector<LoopNode> nodes;
+  std::vector<std::pair<int, int>> seg_of;
+};
+
+FaceLoop face_loop(const Brep& b, const Mesher& M, int fi) {
+  const Face& f = b.faces[fi];
+  FaceLoop out;
+  for (const auto& [e, fwd] : f.loop) {
+    if (!f.g.surface && b.edges[e].degenerate) continue;  // a pole is one point of a plane: its copies fold the loop
+    const Discrete& d = M.disc[e];
+    const int sd = side_of(b.edges[e], fi);
+    const int n = static_cast<int>(d.ids.size());
+    for (int k = 0; k + 1 < n; ++k) {
+      const int i = fwd ? k : n - 1 - k;
+      LoopNode ln;
+      ln.id = d.ids[i];
+      ln.uv = f.g.surface ? d.pts[i].uv[sd] : f.g.locate(d.pts[i].xyz, Vec2::Zero());
+      ln.xyz = i == 0 || i == n - 1 ? M.nodes[d.ids[i]] : d.pts[i].xyz;
+      out.nodes.push_back(ln);
+      out.seg_of.push_back({e, fwd ? k : n - 2 - k});
+    }
+  }
+  return out;
+}
+
+/// Global node ids of a patch's nodes: its boundary's own, new ones for its interior.
+std::vector<int> global_ids(Mesher& M, const PatchMesh& pm) {
+  std::vector<int> gid(pm.xyz.size());
+  for (size_t i = 0; i < pm.xyz.size(); ++i) {
+    if (pm.global[i] >= 0) {
+      gid[i] = pm.global[i];
+    } else {
+      gid[i] = static_cast<int>(M.nodes.size());
+      M.nodes.push_back(pm.xyz[i]);
+    }
+  }
+  return gid;
+}
+
+/// Index of the part `name` in parts, appended if new.
+int part_index(std::vector<std::string>& parts, const std::string& name) {
+  const int i = static_cast<int>(std::find(parts.begin(), parts.end(), name) - parts.begin());
+  if (i == static_cast<int>(parts.size())) parts.push_back(name);
+  return i;
+}
+
+/// A patch's elements in global ids (a corner repeated, as at a pole, collapses; fewer than
+/// three distinct corners drop the element), appended to el with their part.
+void append_elements(const PatchMesh& pm, const std::vector<int>& gid, int pidx, std::vector<std::array<int, 4>>& el,
+                     std::vector<int>& part) {
+  for (const auto& e : pm.elements) {
+    std::array<int, 4> g{-1, -1, -1, -1};
+    int k = 0;
+    const int corners = e[3] < 0 ? 3 : 4;
+    for (int c = 0; c < corners; ++c) {
+      const int id = gid[e[c]];
+      if (k > 0 && g[k - 1] == id) continue;
+      g[k++] = id;
+    }
+    if (k > 1 && g[k - 1] == g[0]) --k;
+    if (k < 3) continue;
+    if (k == 3) g[3] = -1;
+    el.push_back(g);
+    part.push_back(pidx);
+  }
+}
+
+/// The elements and their parts into `out`, keeping only the nodes they use.
+void compact(std::vector<std::array<int, 4>>& el, const std::vector<int>& part, const std::vector<Vec3>& nodes,
+             SurfaceMesh& out) {
+  std::vector<int> used(nodes.size(), -1);
+  int n = 0;
+  for (auto& e : el)
+    for (int& v : e)
+      if (v >= 0) {
+        if (used[v] < 0) used[v] = n++;
+        v = used[v];
+      }
+  out.vertices.resize(n, 3);
+  for (size_t i = 0; i < nodes.size(); ++i)
+    if (used[i] >= 0) out.vertices.row(used[i]) = nodes[i].transpose();
+  out.faces.resize(static_cast<Eigen::Index>(el.size()), 4);
+  out.face_part.resize(static_cast<Eigen::Index>(el.size()));
+  for (size_t f = 0; f < el.size(); ++f) {
+    for (int k = 0; k < 4; ++k) out.faces(static_cast<Eigen::Index>(f), k) = el[f][k];
+    out.face_part[static_cast<Eigen::Index>(f)] = part[f];
+  }
+}
+
 }  // namespace
 
 SurfaceMesh mesh_brep(Brep& b, const MeshOptions& options, const std::function<void(int, int, const std::string&)>& progress,
@@ -595,13 +766,10 @@ SurfaceMesh mesh_brep(Brep& b, const MeshOptions& options, const std::function<v
   // quarters sag about a quarter as much, but smoothing and the 2:1 steps of the sizes add some
   MeshOptions o = options;
   if (o.all_quad) o.chordal_tolerance *= kAllQuadTolerance;
-  Mesher M{b, o, o.all_quad ? 2.0 : 1.0, b.vertices, {}, {}, {}};
+  Mesher M{b, o, o.all_quad ? 2.0 : 1.0, b.vertices, {}, {}, {}, {}};
   M.disc.resize(b.edges.size());
   M.cum_I.resize(b.edges.size());
-  std::vector<char> needed(b.edges.size(), 0);
-  for (const Face& f : b.faces)
-    if (f.keep)
-      for (const auto& [e, fwd] : f.loop) needed[e] = 1;
+  const std::vector<char> needed = needed_edges(b);
   M.vertex_sizes(needed);
   for (size_t e = 0; e < b.edges.size(); ++e)
     if (needed[e]) M.discretise(static_cast<int>(e));
@@ -613,77 +781,19 @@ SurfaceMesh mesh_brep(Brep& b, const MeshOptions& options, const std::function<v
   for (size_t fi = 0; fi < b.faces.size(); ++fi) {
     const Face& f = b.faces[fi];
     if (!f.keep) continue;
-    std::vector<LoopNode> loop;
-    std::vector<std::pair<int, int>> seg_of;  // loop node i -> (edge, segment) of edge (i, i+1)
-    for (const auto& [e, fwd] : f.loop) {
-      if (!f.g.surface && b.edges[e].degenerate) continue;  // a pole is one point of a plane: its copies fold the loop
-      const Discrete& d = M.disc[e];
-      const int sd = side_of(b.edges[e], static_cast<int>(fi));
-      const int n = static_cast<int>(d.ids.size());
-      for (int k = 0; k + 1 < n; ++k) {
-        const int i = fwd ? k : n - 1 - k;
-        LoopNode ln;
-        ln.id = d.ids[i];
-        ln.uv = f.g.surface ? d.pts[i].uv[sd] : f.g.locate(d.pts[i].xyz, Vec2::Zero());
-        ln.xyz = i == 0 || i == n - 1 ? M.nodes[d.ids[i]] : d.pts[i].xyz;
-        loop.push_back(ln);
-        seg_of.push_back({e, fwd ? k : n - 2 - k});
-      }
-    }
-    if (loop.empty()) continue;
+    const FaceLoop loop = face_loop(b, M, static_cast<int>(fi));
+    if (loop.nodes.empty()) continue;
     auto mid = [&](int i) {
-      LoopNode m = M.midpoint(seg_of[i].first, seg_of[i].second, static_cast<int>(fi));
+      LoopNode m = M.midpoint(loop.seg_of[i].first, loop.seg_of[i].second, static_cast<int>(fi));
       if (!f.g.surface) m.uv = f.g.locate(m.xyz, Vec2::Zero());
       return m;
     };
-    const PatchMesh pm = mesh_patch(f.g, loop, o, mid);
-    std::vector<int> gid(pm.xyz.size());
-    for (size_t i = 0; i < pm.xyz.size(); ++i) {
-      if (pm.global[i] >= 0) {
-        gid[i] = pm.global[i];
-      } else {
-        gid[i] = static_cast<int>(M.nodes.size());
-        M.nodes.push_back(pm.xyz[i]);
-      }
-    }
-    int pidx = static_cast<int>(std::find(out.parts.begin(), out.parts.end(), f.name) - out.parts.begin());
-    if (pidx == static_cast<int>(out.parts.size())) out.parts.push_back(f.name);
-    for (const auto& e : pm.elements) {
-      std::array<int, 4> g{-1, -1, -1, -1};
-      int k = 0;
-      const int corners = e[3] < 0 ? 3 : 4;
-      for (int c = 0; c < corners; ++c) {
-        const int id = gid[e[c]];
-        if (k > 0 && g[k - 1] == id) continue;
-        g[k++] = id;
-      }
-      if (k > 1 && g[k - 1] == g[0]) --k;
-      if (k < 3) continue;
-      if (k == 3) g[3] = -1;
-      el.push_back(g);
-      part.push_back(pidx);
-    }
+    const PatchMesh pm = mesh_patch(f.g, loop.nodes, o, mid);
+    append_elements(pm, global_ids(M, pm), part_index(out.parts, f.name), el, part);
     if (progress) progress(++done, total, f.name);
   }
   if (outward) orient(el, M.nodes);
-  // compact: only nodes used by elements
-  std::vector<int> used(M.nodes.size(), -1);
-  int n = 0;
-  for (auto& e : el)
-    for (int& v : e)
-      if (v >= 0) {
-        if (used[v] < 0) used[v] = n++;
-        v = used[v];
-      }
-  out.vertices.resize(n, 3);
-  for (size_t i = 0; i < M.nodes.size(); ++i)
-    if (used[i] >= 0) out.vertices.row(used[i]) = M.nodes[i].transpose();
-  out.faces.resize(static_cast<Eigen::Index>(el.size()), 4);
-  out.face_part.resize(static_cast<Eigen::Index>(el.size()));
-  for (size_t f = 0; f < el.size(); ++f) {
-    for (int k = 0; k < 4; ++k) out.faces(static_cast<Eigen::Index>(f), k) = el[f][k];
-    out.face_part[static_cast<Eigen::Index>(f)] = part[f];
-  }
+  compact(el, part, M.nodes, out);
   return out;
 }
 
