@@ -84,6 +84,8 @@ PROFILE_SPANS = (30, 60, 120)  # knot spans of the profile, tried in turn
 _GAUSS8 = np.polynomial.legendre.leggauss(8)  # the natural fullness's quadrature
 BULB_FULLNESS_MARGIN = 0.1  # the designer's bulb sections keep this fraction of their fullness range from its ends
 BULB_AFT_LENGTH = 2.6       # the bulb runs on into the hull this many times L_PR + B_B (the bulb's own default is 2) ...
+MIN_ENTRANCE_ANGLE = 7.0    # deg: a waterline ending finer meets the stem in a cusp, its stem sections a knife
+                            # millimetres thick (no stem bar is) that a bulb's top grazes
 BULB_AFT_RETRIES = (3.0, 3.5, 4.0)  # ... or these when it leaves a fine forefoot again (meets the hull in two curves)
 
 
@@ -240,14 +242,29 @@ def natural_fullness(p: Particulars, c: dict, dwl, profile, xa: float, xf: float
 
 
 def _solve_dwl(p: Particulars, dwl: dict, xa: float, xf: float):
+    """The design waterline solved from `dwl` (which keeps what it was solved with): without a
+    given LCF when the default one does not suit it, and with the entrance half angle raised to
+    MIN_ENTRANCE_ANGLE where the fairest waterline would end finer."""
     half = p.breadth / 2
+
+    def solve(spec: dict):
+        return solve_curve("dwl", BasicCurveSpec.from_dict("dwl", spec, "basic_curves.dwl"), xa, xf, lower=0.0, upper=half)
+
     try:
-        return solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=half)
+        curve = solve(dwl)
     except _native.InfeasibleFormParameters:
         if p.lcf is not None or "lcf" not in dwl:
             raise
         del dwl["lcf"]  # the default LCF does not suit this waterline: let it fall where it is fairest
-        return solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=half)
+        curve = solve(dwl)
+    if "entrance_angle" in dwl or math.degrees(math.atan(abs(curve.derivative(xf, 1)))) >= MIN_ENTRANCE_ANGLE:
+        return curve
+    try:
+        sharper = solve({**dwl, "entrance_angle": MIN_ENTRANCE_ANGLE})
+    except _native.InfeasibleFormParameters:
+        return curve
+    dwl["entrance_angle"] = MIN_ENTRANCE_ANGLE
+    return sharper
 
 
 def _waterline(p: Particulars, dwl: dict, xa: float, xf: float, peak: float, immersed_transom: bool):

@@ -198,8 +198,6 @@ def test_a_designed_bulb_fits_short_beamy_and_long_slender_ships(p):
     assert c.blend is not None
 
 
-@pytest.mark.xfail(strict=True, reason="1 of 40 (L/B 5.2, B/T 3.1, Cb 0.81) is refused: its bulb meets the hull in "
-                                       "two curves at any aft length")
 def test_latin_hypercube_with_bulbs_all_compose():
     """Every designed ship of the space with a bulb composes: bare hull, bulb and blend."""
     fails = []
@@ -209,6 +207,20 @@ def test_latin_hypercube_with_bulbs_all_compose():
         except fl.InvalidInput as e:
             fails.append((p, str(e)[:80]))
     assert fails == []
+
+
+def test_the_stem_is_not_a_knife():
+    """A full ship with its LCB aft (Cb 0.79, LCB -3.1 % Lpp): its fairest waterline would run
+    into the stem tangentially (0.8 deg), leaving the stem 2-5 cm thick a metre aft of its edge
+    (a bulb's top then grazes it). Measured on the surface's own waterlines from half draught
+    to the DWL: a metre aft of the stem each is at least as wide as a 5 deg half angle."""
+    p = dict(lpp=150.0, breadth=27.6288, draft=9.4897, depth=15.1834, cb=0.7892, lcb=70.4057)
+    s = fl.design_hull(**p).bare_hull_surface()
+    for z in np.linspace(0.5, 1.0, 6) * p["draft"]:
+        cut = np.asarray(fl.plane_cut(s, 2, float(z), 2001).points)
+        cut = cut[np.argsort(cut[:, 0])]
+        stem = cut[-1, 0]
+        assert np.interp(stem - 1.0, cut[:, 0], cut[:, 1]) >= math.tan(math.radians(5.0)), z
 
 
 def test_a_bulb_that_would_leave_a_fine_forefoot_again_runs_further_aft():
