@@ -79,7 +79,19 @@ void bind_spline_design(py::module_& m) {
 }
 
 void bind_sections(py::module_& m) {
-  option_docs::bind_options<SectionSpec>(m, "SectionSpec", "One hull section's numbers (metres, degrees); see fairlines/sections.hpp.");
+  py::class_<SectionSpec> spec(m, "SectionSpec", "One hull section's numbers (metres, degrees); see fairlines/sections.hpp.");
+  spec.def(py::init<>());
+  // A given shape is an (m, 2) array of (y, z) points; None or an empty array clears it.
+  const auto points = option_docs::for_type<Eigen::MatrixXd>([](auto& cls, const char* name, auto member, const char* doc) {
+    cls.def_property(
+        name, [member](const SectionSpec& s) { return to_array(s.*member); },
+        [member, name](SectionSpec& s, py::handle v) {
+          const bool empty = v.is_none() || (py::len(v) == 0);
+          s.*member = empty ? Eigen::MatrixXd() : matrix(v, name, 2);
+        },
+        doc);
+  });
+  option_docs::bind_fields(spec, points);
   py::class_<SectionDesign>(m, "SectionDesign", "A designed section and what was needed to build it.")
       .def_readonly("curve", &SectionDesign::curve)
       .def_readonly("shape", &SectionDesign::shape, "shape knob used")

@@ -10,7 +10,8 @@ Format (JSON; ``docs/hull_description.schema.json`` is its JSON Schema)::
                                                   # "aft_post" / "fore_post": true, that end is a
                                                   # vertical post of zero width (default false)
       "stations": {"count": 61} | {"x": [...]},    # default {"count": 61}, clustered at the ends
-      "sections": {"n_control": 20},
+      "sections": {"n_control": 20,                # control points of every section
+                   "given": [{"x": 12.0, "points": [[y, z], ...]}, ...]},   # optional shapes
       "basic_curves": {"profile": ..., "dwl": ..., "deck": ..., "sac": ...,
                        "top_corner": ..., "deadrise": ..., "character": ...},
       "skinning": {"e2": 1.0, "e3": 0.0},
@@ -25,7 +26,9 @@ name            f(x)                                                            
 profile         centre-line contour: keel, counter or stern, forefoot and stem   ends
                 height (m); below T it bounds the immersed body
 dwl             design-waterline half-breadth (m)                               where profile < T
-deck            deck-at-side half-breadth (m) at the depth D                    ends
+deck            deck-at-side half-breadth (m) at the deck edge                  ends
+sheer           (optional) deck-at-side height (m above base); default the      ends
+                depth D everywhere (no sheer); it stays above T
 sac             sectional area below T, both sides (m^2), designed through the  as dwl
                 section fullness SAC / (2 y_dwl (T - z_keel))
 top_corner      (optional) where the sections' top turns, as a fraction of the  ends
@@ -44,6 +47,15 @@ corner_height   (optional, with corner_breadth) the bilge corner's height above 
                 holds a parabolic (Wigley) section, a corner inside the chord from
                 the waterline point to the keel a hollow one
 ==============  ==============================================================  ================
+
+**Given sections** (``sections.given``, optional): auxiliary sections where the template family
+cannot hold the ship's shape (a skeg, a stern bulb, hollow or S-shaped sections, a dome): each
+``{"x": x, "points": [[y, z], ...]}``, half-breadths and heights (m) from the deck edge down to
+the keel on the centre plane, at increasing x inside the ends. A station between two given
+sections blends their shapes; outside the first and last, the template family holds. Each
+shape is mapped onto its station's deck, waterline and keel points (heights stretched between
+them, half-breadths scaled to the waterline's and the deck's), so it follows edits of the
+basic curves, and its half-breadths are shifted smoothly until it holds the SAC's area.
 
 A basic curve is ``{"value": v}`` (constant) or a spline with any of: ``x_start``, ``x_end``
 (inside its range above), ``flat_from`` / ``flat_to`` / ``value`` (a part where f = value exactly,
@@ -70,6 +82,8 @@ import os
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 from . import _native
 from .validation import bad, integer, keyed_object, number, text_value
 
@@ -84,7 +98,7 @@ __all__ = [
 ]
 
 REQUIRED_CURVES = ("profile", "dwl", "deck", "sac")
-OPTIONAL_CURVES = ("top_corner", "deadrise", "character", "corner_breadth", "corner_height")
+OPTIONAL_CURVES = ("top_corner", "deadrise", "character", "corner_breadth", "corner_height", "sheer")
 #: Curves that are given together or not at all (the bilge corner given directly).
 PAIRED_CURVES = (("corner_breadth", "corner_height"),)
 #: ``ends`` keys that make an end a vertical post of zero width.
@@ -106,6 +120,9 @@ FULLNESS_KEY = "fullness_fit"
 MAX_STATIONS = 1000
 MAX_SPANS = 200
 SECTION_CONTROLS = (8, 64)
+# Least number of points of a given section, and the most given sections and points per section.
+GIVEN_POINTS = (3, 2000)
+MAX_GIVEN_SECTIONS = 1000
 # Plausible ship sizes: a length outside this range is a unit mistake far more often than a ship.
 LENGTH_RANGE = (1.0, 600.0)
 
@@ -129,16 +146,23 @@ def _pairs(path: str, value: Any) -> list[tuple[float, float]]:
 
 @dataclass
 class PrincipalDimensions:
-    """Lpp, B (moulded breadth), T (design draught), D (depth to the deck), metres."""
+    """Lpp, B (moulded breadth), T (design draught), D (depth to the deck), metres; B_max, the
+    largest breadth where the sides flare beyond B above the waterline (default B)."""
 
     lpp: float
     breadth: float
     draft: float
     depth: float
+    max_breadth: float | None = None
+
+    @property
+    def half_breadth_limit(self) -> float:
+        """The sections' half-breadth bound (m): B_max / 2, or B / 2."""
+        return (self.max_breadth or self.breadth) / 2
 
     @classmethod
     def from_dict(cls, d: Any, path: str = "principal") -> PrincipalDimensions:
-        d = keyed_object(path, d, ("Lpp", "B", "T", "D"))
+        d = keyed_object(path, d, ("Lpp", "B", "T", "D", "B_max"))
         vals = {}
         for key in ("Lpp", "B", "T", "D"):
             if key not in d:
@@ -153,10 +177,19 @@ class PrincipalDimensions:
                 raise _native.InvalidInput(f"{path}.{key} is {vals[key]}; expected less than Lpp = {vals['Lpp']} m (same unit: metres)")
         if not vals["T"] < vals["D"]:
             raise _native.InvalidInput(f"{path}.T is {vals['T']}; expected a draught below the depth D = {vals['D']} m")
-        return cls(vals["Lpp"], vals["B"], vals["T"], vals["D"])
+        b_max = None
+        if d.get("B_max") is not None:
+            b_max = number(f"{path}.B_max", d["B_max"], positive=True)
+            if not vals["B"] <= b_max < vals["Lpp"]:
+                raise _native.InvalidInput(f"{path}.B_max is {b_max}; expected the largest breadth, from B = {vals['B']} m "
+                                           f"to less than Lpp = {vals['Lpp']} m")
+        return cls(vals["Lpp"], vals["B"], vals["T"], vals["D"], b_max)
 
     def to_dict(self) -> dict:
-        return {"Lpp": self.lpp, "B": self.breadth, "T": self.draft, "D": self.depth}
+        d = {"Lpp": self.lpp, "B": self.breadth, "T": self.draft, "D": self.depth}
+        if self.max_breadth is not None:
+            d["B_max"] = self.max_breadth
+        return d
 
 
 @dataclass
@@ -338,6 +371,7 @@ class HullDescription:
     bulb: BulbSpec | None = None
     design: dict | None = None  # the particulars a designer built it from (kept, not used)
     posts: tuple = ()  # ends ("aft", "fore") that are vertical posts of zero width
+    given_sections: list = field(default_factory=list)  # [(x, (m, 2) array of (y, z))], increasing x
 
     @classmethod
     def from_dict(cls, d: Any) -> HullDescription:
@@ -355,8 +389,9 @@ class HullDescription:
         desc = cls(name=text_value("name", d.get("name", "hull")), principal=principal, x_aft=x_aft, x_fore=x_fore,
                    curves={}, notes=text_value("notes", d.get("notes", "")), posts=posts)
         desc._parse_stations(d.get("stations", {"count": 61}))
-        sec = keyed_object("sections", d.get("sections", {}), ("n_control",))
+        sec = keyed_object("sections", d.get("sections", {}), ("n_control", "given"))
         desc.section_n_control = integer("sections.n_control", sec.get("n_control", 20), *SECTION_CONTROLS)
+        desc._parse_given(sec.get("given", []))
         bc = keyed_object("basic_curves", d.get("basic_curves"), BASIC_CURVES)
         for name in REQUIRED_CURVES:
             if name not in bc:
@@ -403,6 +438,23 @@ class HullDescription:
         else:
             self.station_count, self.station_x = integer("stations.count", st.get("count", 61), 5, MAX_STATIONS), None
 
+    def _parse_given(self, given: Any) -> None:
+        """sections.given: shapes at increasing x inside the ends, points deck edge -> keel."""
+        if not isinstance(given, (list, tuple)) or len(given) > MAX_GIVEN_SECTIONS:
+            raise bad("sections.given", given, f"a list of at most {MAX_GIVEN_SECTIONS} sections {{x, points}}")
+        tol = 1e-9 * self.principal.lpp
+        out = []
+        for i, g in enumerate(given):
+            path = f"sections.given[{i}]"
+            g = keyed_object(path, g, ("x", "points"))
+            x = number(f"{path}.x", g.get("x"))
+            if x < self.x_aft - tol or x > self.x_fore + tol:
+                raise _native.InvalidInput(f"{path}.x is {x}; expected a station on the hull ({self.x_aft} to {self.x_fore} m)")
+            if out and not x > out[-1][0]:
+                raise _native.InvalidInput(f"{path}.x is {x}; expected increasing x (previous {out[-1][0]})")
+            out.append((x, _given_points(f"{path}.points", g.get("points"))))
+        self.given_sections = out
+
     def to_dict(self) -> dict:
         d = {
             "name": self.name,
@@ -414,11 +466,35 @@ class HullDescription:
             "basic_curves": {k: v.to_dict() for k, v in self.curves.items()},
             "skinning": {"e2": self.skin_e2, "e3": self.skin_e3},
         }
+        if self.given_sections:
+            d["sections"]["given"] = [{"x": float(x), "points": p.tolist()} for x, p in self.given_sections]
         if self.bulb is not None:
             d["bulb"] = self.bulb.to_dict()
         if self.design is not None:
             d["design"] = copy.deepcopy(self.design)
         return d
+
+
+def _given_points(path: str, points: Any):
+    """A given section's points as an (m, 2) float array: finite pairs (y >= 0, z), the first
+    (the deck edge) above the last (the keel point). Raises InvalidInput naming the value."""
+    lo, hi = GIVEN_POINTS
+    if not isinstance(points, (list, tuple)) or not lo <= len(points) <= hi:
+        raise bad(path, points if not isinstance(points, (list, tuple)) else f"a list of {len(points)}",
+                  f"{lo} to {hi} points [y, z] (m) from the deck edge down to the keel")
+    rows = []
+    for j, p in enumerate(points):
+        if not isinstance(p, (list, tuple)) or len(p) != 2:
+            raise bad(f"{path}[{j}]", p, "a point [y, z] (m)")
+        y, z = number(f"{path}[{j}][0]", p[0]), number(f"{path}[{j}][1]", p[1])
+        if y < 0:
+            raise bad(f"{path}[{j}][0]", y, "a half-breadth >= 0 (m)")
+        rows.append((y, z))
+    a = np.array(rows, dtype=float)
+    if not a[0, 1] > a[-1, 1]:
+        raise _native.InvalidInput(f"{path} runs from z = {a[0, 1]} to z = {a[-1, 1]} m; expected the deck edge first "
+                                   "and the keel point, lower, last")
+    return a
 
 
 def load_description(path_or_text_or_dict: Any) -> dict:

@@ -57,6 +57,9 @@ CORNER_CURVES = {"corner_breadth": ("corner_y", 0.02, 1.0), "corner_height": ("c
 POST_TOL = 1e-6
 # Points along the waterline's range where the deck line must clear the waterline.
 DECK_CHECKS = 81
+# The sheer (deck-at-side height) stays above T by this fraction of T, and below this multiple of D.
+SHEER_CLEARANCE = 0.01
+SHEER_LIMIT = 2.0
 # Least slope (dz/dx) of the profile used for the arrival angle of above-water sections.
 MIN_STEM_SLOPE = 0.05
 MAX_LOWER_ANGLE = 75.0      # deg: a flat counter under a full waterline end arrives no flatter (sections allow < 80)
@@ -177,11 +180,12 @@ class Hull:
             curves = dict(_shape_cache.get(shape_key, self._shape_curves))
             self._curves = curves  # the bands below read them
             try:
-                band_key = (shape_key, self.stations().tobytes(), d.section_n_control)
+                given_key = tuple((x, p.tobytes()) for x, p in d.given_sections)
+                band_key = (shape_key, self.stations().tobytes(), d.section_n_control, given_key)
                 bands = _band_cache.get(band_key, self._fullness_bands)
                 free = tuple(d.x_aft if end == "aft" else d.x_fore for end in d.posts)
                 limits = FULLNESS_BOUNDS
-                if "corner_breadth" in d.curves:
+                if "corner_breadth" in d.curves or d.given_sections:
                     free, limits = self.immersed_range(), CORNER_FULLNESS_BOUNDS
                 curves["sac"], curves["fullness"] = solve_sac(d.curves["sac"], curves["dwl"], curves["profile"], pr.draft,
                                                               fullness=limits, bands=bands, free_ends=free)
@@ -197,13 +201,18 @@ class Hull:
         c = d.curves
         x0, x1 = d.x_aft, d.x_fore
         half_b = pr.breadth / 2
-        out = {"profile": solve_curve("profile", c["profile"], x0, x1, lower=-pr.draft, upper=pr.depth, maximum=False)}
+        out = {}
+        if "sheer" in c:  # the deck edge's height, above the waterline
+            out["sheer"] = solve_curve("sheer", c["sheer"], x0, x1, lower=pr.draft * (1 + SHEER_CLEARANCE), upper=SHEER_LIMIT * pr.depth,
+                                       maximum=False)
+        top = float(np.max(out["sheer"](np.linspace(x0, x1, DECK_CHECKS)))) if "sheer" in out else pr.depth
+        out["profile"] = solve_curve("profile", c["profile"], x0, x1, lower=-pr.draft, upper=top, maximum=False)
         xa, xf = immersed_range(out["profile"], pr.draft)
         out["dwl"] = solve_curve("dwl", c["dwl"], xa, xf, lower=0.0, upper=half_b)
         # The deck stays outside the waterline (no tumblehome), so sections flare or stay wall-sided.
         xs = np.linspace(xa, xf, DECK_CHECKS)
         clear = [(float(x), float(y), "deck >= design waterline") for x, y in zip(xs, out["dwl"](xs))]
-        out["deck"] = solve_curve("deck", c["deck"], x0, x1, lower=0.0, upper=half_b, at_least=clear)
+        out["deck"] = solve_curve("deck", c["deck"], x0, x1, lower=0.0, upper=pr.half_breadth_limit, at_least=clear)
         for name, (default, lo, hi) in SHAPE_CURVES.items():
             out[name] = solve_curve(name, c.get(name, BasicCurveSpec(value=default)), x0, x1, lower=lo, upper=hi, maximum=False)
         for name, (_, lo, hi) in CORNER_CURVES.items():
@@ -298,6 +307,26 @@ class Hull:
             out[np.abs(xs - x_end) <= 1e-9 * self.description.principal.lpp] = 0.0
         return out
 
+    def _given_shapes(self, xs: np.ndarray) -> list:
+        """(given, given_fore, mix) of each x from the description's given sections: the shape at
+        a given station, the two about a station between them blended linearly in x, None
+        outside the first and last."""
+        g = self.description.given_sections
+        out = [None] * len(xs)
+        if not g:
+            return out
+        gx = np.array([x for x, _ in g])
+        tol = 1e-9 * self.description.principal.lpp
+        for i, x in enumerate(xs):
+            if x < gx[0] - tol or x > gx[-1] + tol:
+                continue
+            j = int(np.clip(np.searchsorted(gx, x, side="right") - 1, 0, len(gx) - 1))
+            if abs(x - gx[j]) <= tol or j == len(gx) - 1:
+                out[i] = (g[j][1], None, 0.0)
+            else:
+                out[i] = (g[j][1], g[j + 1][1], float((x - gx[j]) / (gx[j + 1] - gx[j])))
+        return out
+
     def section_specs(self, x: Any = None, with_area: bool = True) -> list:
         """fl.SectionSpec of each station (or of the given x, m), read off the basic curves
         (without the SAC's area when `with_area` is false)."""
@@ -308,21 +337,25 @@ class Hull:
         tol = 1e-9 * pr.lpp
         if np.any(xs < d.x_aft - tol) or np.any(xs > d.x_fore + tol):
             raise _native.InvalidInput(f"x is {xs.tolist()}; expected stations on the hull ({d.x_aft} to {d.x_fore} m)")
-        half_b = pr.breadth / 2
-        deck, prof = np.clip(bc["deck"](xs), 0.0, half_b), bc["profile"](xs)
+        half_b, limit = pr.breadth / 2, pr.half_breadth_limit
+        deck, prof = np.clip(bc["deck"](xs), 0.0, limit), bc["profile"](xs)
+        z_deck = bc["sheer"](xs) if "sheer" in bc else np.full(len(xs), pr.depth)
         dwl = bc["dwl"](xs, outside=math.nan)
         sac = bc["sac"](xs, outside=math.nan) if with_area else None
         # a spline fitted to a bound may overshoot it by round-off (a deadrise of -4e-13 deg)
         shape = {name: np.clip(bc[name](xs), lo, hi) for name, (_, lo, hi) in SHAPE_CURVES.items()}
         corner = {field: np.clip(bc[name](xs), lo, hi) for name, (field, lo, hi) in CORNER_CURVES.items() if name in bc}
         lower = self._lower_angles(xs)
+        given = self._given_shapes(xs)
         specs = []
         for i, xi in enumerate(xs):
             s = _native.SectionSpec()
-            s.x, s.y_max, s.n_control = float(xi), half_b, d.section_n_control
+            if given[i] is not None:
+                s.given, s.given_fore, s.given_mix = given[i]
+            s.x, s.y_max, s.n_control = float(xi), limit, d.section_n_control
             s.y_deck = float(deck[i])
-            s.z_deck = pr.depth
-            s.z_keel = float(min(prof[i], pr.depth))
+            s.z_deck = float(z_deck[i])
+            s.z_keel = float(min(prof[i], z_deck[i]))
             s.top_corner, s.deadrise, s.character = (float(shape[k][i]) for k in SHAPE_CURVES)
             for field, values in corner.items():
                 setattr(s, field, float(values[i]))

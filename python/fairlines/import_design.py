@@ -38,12 +38,21 @@ from .offsets import HullData
 __all__ = ["import_design", "measure_hull_data", "measure_kracht", "MeasuredHull", "point_deviation", "data_points",
            "fidelity"]
 
-#: Stations cut from a point grid (cosine-clustered toward both ends).
+#: Stations cut from a point grid (cosine-clustered toward both ends), and where the measured
+#: shapes are given (they follow a dome's or a transom's quick changes along the hull).
 GRID_STATIONS = 81
+GIVEN_STATIONS = 161
+#: ... where the basic curves then have a knot span per station, at most this many.
+CLOSE_SPANS = 160
 #: Heights at which each station's half-breadth y(z) is sampled.
 Z_SAMPLES = 241
-#: Fit weight of the measured points on the basic curves (relative to fairness).
+#: Fit weight of the measured points on the section shape curves (relative to fairness).
 FIT_WEIGHT = 1.0e3
+#: ... and on the basic curves, made dimensionless: weight w of the misfit squared against the
+#: bending energy int f''^2 dx is FIT_STIFFNESS h^2 / Lpp^3, h the curve's scale (T for the
+#: profile and sheer, B for the waterline and deck, B T for the SAC): the same pull at model
+#: and at full scale (1e3 for the KCS at 230 m).
+FIT_STIFFNESS = 1.0e10
 #: Knot spans of the measured basic curves.
 CURVE_SPANS = {"profile": 40, "dwl": 30, "deck": 24, "sac": 30}
 #: Candidate values tried per station for each section shape curve: the bilge corner (its
@@ -89,6 +98,24 @@ BULB_STATIONS = 41
 LCB_BISECTIONS = 12
 #: Volume and LCB corrections on the built surface (as the designer does).
 MATCH_TOL = 1e-5
+#: A station whose shape the fitted section family misses by more than this fraction of B
+#: (RMS of the half-breadths) makes the importer give every measured station's shape.
+GIVEN_MISFIT = 0.0025
+#: Control points of each section when shapes are given (a skeg, a stern bulb need more
+#: than the family's 20).
+GIVEN_CONTROLS = 32
+#: A deck edge that leaves D by more than this fraction of D somewhere is a sheer (a basic curve).
+SHEER_TOL = 0.005
+#: A change of the centre-line contour's slope dz/dx by more than this between stations is a
+#: knot of the profile (it must turn quickly there).
+PROFILE_TURN = 0.5
+#: Sides flaring beyond B by more than this fraction of B make the description's B_max.
+FLARE_TOL = 1e-3
+#: Given sections: least heights a station needs, points laid along a flat bottom to the
+#: centre plane, and what counts as no breadth or no height (fractions of B and D).
+GIVEN_MIN_POINTS = 4
+GIVEN_BOTTOM_POINTS = 12
+GIVEN_FLAT_TOL = 1e-4
 
 
 @dataclasses.dataclass
@@ -110,6 +137,7 @@ class MeasuredHull:
     lcb: float
     bulb_points: np.ndarray | None = None
     notes: list = dataclasses.field(default_factory=list)
+    z_top: np.ndarray | None = None  # highest point of each station (the deck edge: the sheer)
 
     def half_breadth(self, k: int, z0: float) -> float:
         """Half-breadth of station k at height z0 (NaN outside the section)."""
@@ -196,38 +224,40 @@ def _half_breadths(pieces: list, z: np.ndarray, smooth: bool = False) -> np.ndar
     return out
 
 
-def _stations(data: HullData, lines: list) -> np.ndarray:
+def _stations(data: HullData, lines: list, count: int = GRID_STATIONS) -> np.ndarray:
     if data.sections:
         return np.array(sorted(s.x for s in data.sections))
     xs = np.concatenate([ln[..., 0].ravel() for ln in lines])
     lo, hi = float(xs.min()), float(xs.max())
-    s = np.linspace(0.0, 1.0, GRID_STATIONS)
+    s = np.linspace(0.0, 1.0, count)
     x = lo + (hi - lo) * 0.5 * (1 - np.cos(np.pi * s))
     span = hi - lo
     return np.clip(x, lo + 1e-6 * span, hi - 1e-6 * span)
 
 
-def measure_hull_data(data: HullData, depth: float | None = None) -> MeasuredHull:
+def measure_hull_data(data: HullData, depth: float | None = None, dome: bool = False,
+                      stations: int = GRID_STATIONS) -> MeasuredHull:
     """Stations, half-breadths, lowest points, areas, volume and LCB of the data (module
-    docstring). Raises InvalidInput for data with fewer than 3 stations with hull below T."""
+    docstring); hull below the keel line (a sonar dome) is measured with `dome`, else left out;
+    point grids are cut at `stations` stations.
+    Raises InvalidInput for data with fewer than 3 stations with hull below T."""
     hull_grids = [g for g in data.grids if g.role != "bulb"]
     lines = [_longitudinal_lines(g.points) for g in hull_grids]
-    xs = _stations(data, lines)
+    xs = _stations(data, lines, stations)
     allp = np.concatenate([data.all_points()] if data.sections else [g.points.reshape(-1, 3) for g in hull_grids])
     D = float(depth if depth is not None else _depth_at_midship(allp, data))
     zlo = float(allp[:, 2].min())
-    z = np.linspace(zlo, D, Z_SAMPLES)
+    z = np.linspace(zlo, max(D, float(allp[:, 2].max())), Z_SAMPLES)
     T = data.draft
     if not np.any(np.isclose(z, T)):
         z = np.sort(np.append(z, T))
     keel = _keel_height(allp, data)
     notes = []
-    if allp[:, 2].max() > D * (1 + KEEL_TOL):
-        notes.append(f"data above the depth D = {D:.4g} m (a sheer, to z = {allp[:, 2].max():.4g} m) left out: "
-                     "the description has one deck height")
-    if zlo < keel - KEEL_TOL * T:
+    if zlo < keel - KEEL_TOL * T and not dome:
         notes.append(f"hull below the keel line (a sonar dome, to z = {zlo:.4g} m) left out: the description has no dome")
         z = z[z >= keel]
+    elif zlo < keel - KEEL_TOL * T:
+        notes.append(f"hull below the keel line (a sonar dome, to z = {zlo:.4g} m) held by the given sections")
     y = np.full((len(xs), len(z)), np.nan)
     z_low = np.full(len(xs), np.nan)
     by_x = {s.x: s for s in data.sections}
@@ -238,7 +268,7 @@ def measure_hull_data(data: HullData, depth: float | None = None) -> MeasuredHul
             continue
         y[k] = _half_breadths(pieces, z, smooth=bool(data.sections))
         z_low[k] = max(min(p[:, 1].min() for p in pieces), z[0])
-    on = np.isfinite(z_low) & (z_low < D)  # stations with hull below the deck
+    on = np.isfinite(z_low) & (z_low < D) & np.isfinite(y).any(axis=1)  # stations with hull below the deck
     xs, y, z_low = xs[on], y[on], z_low[on]
     below = z <= T
     yb = np.nan_to_num(y[:, below])
@@ -249,8 +279,9 @@ def measure_hull_data(data: HullData, depth: float | None = None) -> MeasuredHul
     vol = _pchip_integral(xs, area)
     lcb = _pchip_integral(xs, area * xs) / vol
     bulb = [g.points.reshape(-1, 3) for g in data.grids if g.role == "bulb"]
+    z_top = np.array([z[np.flatnonzero(np.isfinite(row))[-1]] for row in y])
     return MeasuredHull(data.lpp, data.beam, T, D, float(xs[0]), float(xs[-1]), xs, z, y, z_low, area, vol, lcb,
-                        np.concatenate(bulb) if bulb else None, notes)
+                        np.concatenate(bulb) if bulb else None, notes, z_top)
 
 
 def _depth_at_midship(points: np.ndarray, data: HullData) -> float:
@@ -284,39 +315,67 @@ def _flat_run(x: np.ndarray, f: np.ndarray, value: float, tol: float, min_length
     return best if best is not None and best[1] - best[0] >= min_length else None
 
 
+def _fit_weight(m: MeasuredHull, scale: float) -> float:
+    """Fit weight of a basic curve of this scale (m, or m^2 for the SAC): see FIT_STIFFNESS."""
+    return FIT_STIFFNESS * scale**2 / m.lpp**3
+
+
 def _pairs(x, f, lo=-math.inf, hi=math.inf) -> list:
     return [[float(a), float(b)] for a, b in zip(x, f) if np.isfinite(b) and lo <= a <= hi]
 
 
-def _profile_spec(m: MeasuredHull) -> dict:
-    """Centre-line contour through the stations' lowest points; the keel flat where it is."""
-    zk = float(np.nanmin(m.z_low))
-    spec = {"fit": _pairs(m.x, m.z_low), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["profile"],
+def _profile_spec(m: MeasuredHull, close: bool = False) -> dict:
+    """Centre-line contour through the stations' lowest points; the keel flat where it is.
+    `close`: passing close to them (FIT_STIFFNESS), with knots where they turn quickly."""
+    mid = (m.x > 0.2 * m.lpp) & (m.x < 0.8 * m.lpp)  # the keel line (a dome or bulb may reach lower)
+    zk = float(np.nanmin(m.z_low[mid] if mid.any() else m.z_low))
+    spec = {"fit": _pairs(m.x, m.z_low), "fit_weight": _fit_weight(m, m.draft) if close else FIT_WEIGHT,
+            "spans": CURVE_SPANS["profile"],
             "yB": float(m.z_low[0]), "yE": float(m.z_low[-1])}
     # An end above the water and narrow at the deck (a stem head, a cruiser stern) closes there:
     # the profile meets D.
-    top = np.nan_to_num(m.y[:, -1])
+    top = _deck_breadths(m)
     for key, k in (("yB", 0), ("yE", -1)):
         if top[k] < END_FRACTION * m.beam / 2 and m.z_low[k] > m.draft:
-            spec[key] = m.depth
+            spec[key] = float(m.z_top[k])
     flat = _flat_run(m.x, m.z_low, zk, 1e-3 * m.draft, 0.1 * m.lpp)
     if flat is not None:
-        spec.update(flat_from=flat[0], flat_to=flat[1], value=zk, monotone=True)
+        dips = np.nanmin(m.z_low) < zk - 1e-3 * m.draft  # a dome below the keel line: not monotone
+        spec.update(flat_from=flat[0], flat_to=flat[1], value=zk, monotone=not dips)
         spec["fit"] = [p for p in spec["fit"] if not flat[0] <= p[0] <= flat[1]]
+    if close and (breaks := _profile_breaks(m, flat)):
+        spec["breaks"] = breaks
     return spec
+
+
+def _profile_breaks(m: MeasuredHull, flat) -> list:
+    """Stations where the measured centre-line contour turns by more than PROFILE_TURN (a change
+    of slope dz/dx: a sternpost, a transom's lower edge, a stem's foot), as knots of the profile."""
+    ok = np.isfinite(m.z_low)
+    x, z = m.x[ok], m.z_low[ok]
+    slope = np.diff(z) / np.diff(x)
+    turn = np.abs(np.diff(slope))
+    out = [float(x[i + 1]) for i in np.flatnonzero(turn > PROFILE_TURN)]
+    if flat is not None:
+        out = [b for b in out if not flat[0] <= b <= flat[1]]
+    return out
 
 
 def _at(m: MeasuredHull, z0: float) -> np.ndarray:
     return np.array([m.half_breadth(k, z0) for k in range(len(m.x))])
 
 
-def _dwl_spec(m: MeasuredHull, xa: float, xf: float) -> dict:
+def _dwl_spec(m: MeasuredHull, xa: float, xf: float, close: bool = False) -> dict:
+    """The design waterline's half-breadths inside [xa, xf]; `close`: passing close to them,
+    and a raked immersed transom (the waterline ending wide inside the hull's ends) kept."""
     half = m.beam / 2
     y = np.minimum(_at(m, m.draft), half)
     inside = (m.x > xa) & (m.x < xf)
-    spec = {"fit": _pairs(m.x[inside], y[inside]), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["dwl"], "yE": 0.0}
-    immersed_transom = xa <= m.x_aft + 1e-9 * m.lpp and np.isfinite(y[0]) and y[0] > END_FRACTION * half
-    spec["yB"] = float(y[0]) if immersed_transom else 0.0
+    spec = {"fit": _pairs(m.x[inside], y[inside]), "fit_weight": _fit_weight(m, m.beam) if close else FIT_WEIGHT,
+            "spans": CURVE_SPANS["dwl"], "yE": 0.0}
+    k = 0 if xa <= m.x_aft + 1e-9 * m.lpp else (int(np.argmax(inside)) if close and inside.any() else None)
+    immersed_transom = k is not None and np.isfinite(y[k]) and y[k] > END_FRACTION * half
+    spec["yB"] = float(y[k]) if immersed_transom else 0.0
     flat = _flat_run(m.x, y, half, 2e-3 * half, 0.05 * m.lpp)
     if flat is not None:
         spec.update(flat_from=flat[0], flat_to=flat[1], value=half)
@@ -324,14 +383,35 @@ def _dwl_spec(m: MeasuredHull, xa: float, xf: float) -> dict:
     return spec
 
 
-def _deck_spec(m: MeasuredHull) -> dict:
-    half = m.beam / 2
-    y = np.minimum(_at(m, m.depth - 1e-9 * m.depth), half)
-    y[~np.isfinite(y)] = 0.0  # no hull at the deck height: the stem or stern is below it
+def _deck_breadths(m: MeasuredHull) -> np.ndarray:
+    """Half-breadth of each station at its deck edge (its highest point)."""
+    return np.array([row[np.flatnonzero(np.isfinite(row))[-1]] for row in m.y])
+
+
+def _sheer_spec(m: MeasuredHull, close: bool = False) -> dict | None:
+    """The deck edge's height where it leaves D by more than SHEER_TOL of D (None: no sheer)."""
+    if np.max(np.abs(m.z_top - m.depth)) <= SHEER_TOL * m.depth:
+        return None
+    return {"fit": _pairs(m.x, m.z_top), "fit_weight": _fit_weight(m, m.draft) if close else FIT_WEIGHT, "spans": CURVE_SPANS["deck"],
+            "yB": float(m.z_top[0]), "yE": float(m.z_top[-1])}
+
+
+def _max_breadth(m: MeasuredHull) -> dict:
+    """{"B_max": ...} where the data's sides flare beyond B/2 by more than FLARE_TOL of B."""
+    widest = 2 * float(np.nanmax(m.y))
+    return {"B_max": widest} if widest > m.beam * (1 + FLARE_TOL) else {}
+
+
+def _deck_spec(m: MeasuredHull, close: bool = False) -> dict:
+    half = _max_breadth(m).get("B_max", m.beam) / 2
+    y = np.minimum(_deck_breadths(m), half)
+    if _sheer_spec(m) is None:  # one deck height: a station ending below it (a stem, a stern) has no deck breadth
+        y[m.z_top < m.depth * (1 - SHEER_TOL)] = 0.0
     # the aft end keeps its measured breadth (a transom); the stem head closes on the centre
     # plane where a bulb is to be composed with it, else it keeps its measured flare
     y_fore = 0.0 if m.bulb_points is not None else float(y[-1])
-    spec = {"fit": _pairs(m.x, y), "fit_weight": FIT_WEIGHT, "spans": CURVE_SPANS["deck"], "yB": float(y[0]), "yE": y_fore}
+    spec = {"fit": _pairs(m.x, y), "fit_weight": _fit_weight(m, m.beam) if close else FIT_WEIGHT, "spans": CURVE_SPANS["deck"],
+            "yB": float(y[0]), "yE": y_fore}
     flat = _flat_run(m.x, y, half, 2e-3 * half, 0.05 * m.lpp)
     if flat is not None:
         spec.update(flat_from=flat[0], flat_to=flat[1], value=half)
@@ -339,8 +419,12 @@ def _deck_spec(m: MeasuredHull) -> dict:
     return spec
 
 
-def _sac_spec(m: MeasuredHull, dwl, profile, xa: float, xf: float) -> dict:
-    """Volume and LCB of the data; the measured section fullness away from the ends."""
+def _sac_spec(m: MeasuredHull, dwl, profile, xa: float, xf: float, close: bool = False) -> dict:
+    """Volume and LCB of the data; the measured section fullness away from the ends, or with
+    `close` the measured areas themselves (FIT_STIFFNESS)."""
+    if close:
+        return {"volume": m.volume, "lcb": m.lcb, "spans": CURVE_SPANS["sac"], "fit_weight": _fit_weight(m, m.beam * m.draft),
+                "fit": [[float(x), float(a)] for x, a in zip(m.x, m.area) if a > 0]}
     box = 2 * dwl(m.x, outside=0.0) * np.maximum(m.draft - profile(m.x), 0.0)
     ok = (m.x > xa + 0.03 * (xf - xa)) & (m.x < xf - 0.03 * (xf - xa)) & (box > 0)
     s = np.where(ok, m.area / np.where(box > 0, box, 1.0), np.nan)
@@ -358,25 +442,84 @@ def _posts(m: MeasuredHull) -> dict:
     return out
 
 
-def _base_description(m: MeasuredHull, name: str) -> dict:
+def _base_description(m: MeasuredHull, name: str, given: bool = False) -> dict:
+    """The description of the measured basic curves; with `given`, every measured station's
+    shape given (sections.given), the stations on the measured ones, the basic curves passing
+    close to the measurements (FIT_STIFFNESS; knots where the profile turns quickly) and the
+    SAC near the measured areas (so the given shapes need only small shifts to hold it)
+    instead of near the measured fullness."""
     from .basic_curves import immersed_range, solve_curve
     from .description import BasicCurveSpec
 
-    prof = _profile_spec(m)
+    prof = _profile_spec(m, given)
     profile = solve_curve("profile", BasicCurveSpec.from_dict("profile", prof, "basic_curves.profile"), m.x_aft, m.x_fore,
-                          lower=-m.draft, upper=m.depth, maximum=False)
+                          lower=-m.draft, upper=float(np.max(m.z_top)), maximum=False)
     xa, xf = immersed_range(profile, m.draft)
-    dwl = _dwl_spec(m, xa, xf)
+    dwl = _dwl_spec(m, xa, xf, given)
     dwl_curve = solve_curve("dwl", BasicCurveSpec.from_dict("dwl", dwl, "basic_curves.dwl"), xa, xf, lower=0.0, upper=m.beam / 2)
-    return {
+    desc = {
         "name": name,
         "notes": "; ".join([f"imported: volume {m.volume:.6g} m^3, LCB {m.lcb:.6g} m from the AP measured from the data"] + m.notes),
-        "principal": {"Lpp": m.lpp, "B": m.beam, "T": m.draft, "D": m.depth},
+        "principal": {"Lpp": m.lpp, "B": m.beam, "T": m.draft, "D": m.depth, **_max_breadth(m)},
         "ends": {"aft": m.x_aft, "fore": m.x_fore, **_posts(m)},
         "stations": {"count": 61},
         "sections": {"n_control": 20},
-        "basic_curves": {"profile": prof, "dwl": dwl, "deck": _deck_spec(m), "sac": _sac_spec(m, dwl_curve, profile, xa, xf)},
+        "basic_curves": {"profile": prof, "dwl": dwl, "deck": _deck_spec(m, given),
+                         "sac": _sac_spec(m, dwl_curve, profile, xa, xf, given),
+                         **({"sheer": sheer} if (sheer := _sheer_spec(m, given)) is not None else {})},
     }
+    if given:  # a knot span per station: the curves follow what the stations measure
+        spans = min(len(m.x), CLOSE_SPANS)
+        for spec in desc["basic_curves"].values():
+            spec["spans"] = spans
+        shapes = given_sections(m)
+        desc["sections"] = {"n_control": GIVEN_CONTROLS, "given": shapes}
+        desc["stations"] = {"x": [float(x) for x in m.x]}
+        desc["notes"] += f"; the measured shapes of {len(shapes)} stations given (sections.given)"
+    return desc
+
+
+# ---- given sections: the measured shapes themselves ------------------------------------------
+
+def measured_shape(m: MeasuredHull, k: int) -> np.ndarray | None:
+    """Station k's measured half-breadths as a given section's points (y, z): from the top of
+    the data (at most D) down to its lowest point, then along the bottom to the centre plane.
+    None where the station holds fewer than GIVEN_MIN_POINTS heights."""
+    y = m.y[k]
+    ok = np.isfinite(y) & (m.z >= m.z_low[k] - 1e-12 * m.depth)
+    if ok.sum() < GIVEN_MIN_POINTS:
+        return None
+    pts = np.column_stack([y[ok], m.z[ok]])[::-1]  # deck edge first
+    bottom = pts[-1]
+    if bottom[0] > GIVEN_FLAT_TOL * m.beam:  # a flat bottom: out to the centre plane
+        ys = np.linspace(bottom[0], 0.0, GIVEN_BOTTOM_POINTS)[1:]
+        pts = np.vstack([pts, np.column_stack([ys, np.full(len(ys), bottom[1])])])
+    else:
+        pts[-1, 0] = 0.0
+    return pts
+
+
+def given_sections(m: MeasuredHull) -> list:
+    """Every measured station's shape as a given section ({"x", "points"}), but the ends'
+    stations whose section is a point or a post."""
+    out = []
+    for k, x in enumerate(m.x):
+        pts = measured_shape(m, k)
+        if pts is None or np.ptp(pts[:, 1]) <= GIVEN_FLAT_TOL * m.depth or pts[:, 0].max() <= POST_FRACTION * m.beam / 2:
+            continue
+        out.append({"x": float(x), "points": pts.tolist()})
+    return out
+
+
+def station_misfit(hull, m: MeasuredHull) -> np.ndarray:
+    """RMS (m) of the measured minus the built hull's designed half-breadths at each measured
+    station inside the waterline's range (NaN elsewhere)."""
+    xa, xf = hull.immersed_range()
+    out = np.full(len(m.x), np.nan)
+    inside = [k for k in range(len(m.x)) if xa < m.x[k] < xf]
+    for k, spec in zip(inside, hull.section_specs([float(m.x[k]) for k in inside])):
+        out[k] = _section_misfit(spec, m.z, m.y[k], need_area=False)
+    return out
 
 
 # ---- section shape curves, fitted per station -------------------------------------------
@@ -619,7 +762,7 @@ def _with_fitted_shapes(base: dict, built: tuple, m: MeasuredHull, say, fit) -> 
     return hull, desc
 
 
-def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes: bool = True,
+def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes: bool = True, given: bool = True,
                   name: str | None = None, progress=None) -> dict:
     """A whole-ship hull description (a dict for ``fl.Hull.from_dict``) measured from
     `hull_data` (fairlines.offsets.HullData; module docstring says what is measured).
@@ -628,6 +771,8 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
     fit_shapes  fit the bilge corner (corner_breadth, corner_height) and top_corner curves per
                 station (slower); where the measured bulb cannot be composed with their bow,
                 the template family's deadrise, character and top_corner instead.
+    given       where the fitted family still misses a station's shape by more than
+                GIVEN_MISFIT of B, give every measured station's shape (sections.given).
     progress    callable(str) told of each step, or None.
 
     Raises InvalidInput for data that is not HullData, a depth not above T, data the
@@ -648,6 +793,18 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
         say("the fitted bilge corners leave a bow the measured bulb cannot meet in one seam: fitting the template's shapes")
         out = _designed(base, m, hull_data, fit_template_shapes, say)
         out["notes"] += "; template section shapes fitted: the bulb could not be composed with the fitted corners' bow"
+    if given:
+        from .hull import Hull
+
+        worst = float(np.nanmax(station_misfit(Hull.from_json(out), m), initial=0.0))
+        if worst > GIVEN_MISFIT * m.beam:
+            say(f"the section family misses a station by {100 * worst / m.beam:.2f} % B (RMS): giving the measured shapes")
+            md = measure_hull_data(hull_data, depth, dome=True, stations=GIVEN_STATIONS)
+            shaped = _designed(_base_description(md, name or hull_data.name, given=True), md, hull_data, None, say)
+            if "bulb" not in shaped or _composes(shaped):
+                return shaped
+            say("the measured bulb cannot meet the given shapes' bow in one seam: the fitted family's sections kept")
+            out["notes"] += "; measured shapes not given: the bulb could not be composed with them"
     return out
 
 
@@ -731,13 +888,11 @@ def point_deviation(surfaces, points: np.ndarray) -> np.ndarray:
 
 def data_points(data: HullData, depth: float | None = None) -> np.ndarray:
     """The data's hull points a bare hull is judged against (n, 3): every section point, the
-    'hull' grids' points (not the bulb's or the transom face's), up to the depth, at or above
-    the keel line (a sonar dome below it is not in the description)."""
+    'hull' and sonar dome grids' points (not the bulb's or the transom face's), up to the depth."""
     pts = data.all_points() if data.sections else np.concatenate([g.points.reshape(-1, 3) for g in data.grids
                                                                   if g.role in ("hull", "bow (sonar dome)")])
-    keel = _keel_height(pts, data)
     top = pts[:, 2].max() if depth is None else depth
-    return pts[(pts[:, 2] >= keel - KEEL_TOL * data.draft) & (pts[:, 2] <= top)]
+    return pts[pts[:, 2] <= top]
 
 
 def fidelity(hull, data: HullData, *, max_points: int = 3000) -> dict:

@@ -68,6 +68,12 @@ REFUSED_AT_LOAD = {
     "station count and positions": put(("stations", "x"), [0.0, 50.0, 100.0, 200.0]),
     "spans and n_control": put((BC, "sac", "n_control"), 27),
     "skinning weights both 0": put(("skinning",), {"e2": 0.0, "e3": 0.0}),
+    # given sections
+    "given section point not a pair": put(("sections", "given"), [{"x": 100.0, "points": [[1.0, 19.0], [2.0], [0.0, 0.0]]}]),
+    "given section negative half-breadth": put(("sections", "given"), [{"x": 100.0, "points": [[1.0, 19.0], [-2.0, 5.0], [0.0, 0.0]]}]),
+    "given section of two points": put(("sections", "given"), [{"x": 100.0, "points": [[1.0, 19.0], [0.0, 0.0]]}]),
+    "given section without x": put(("sections", "given"), [{"points": [[1.0, 19.0], [2.0, 5.0], [0.0, 0.0]]}]),
+    "unknown given section key": put(("sections", "given"), [{"x": 100.0, "y": [1.0], "points": [[1.0, 19.0], [2.0, 5.0], [0.0, 0.0]]}]),
 }
 
 #: Malformed descriptions the loader reads but the build refuses (InvalidInput or its subclass
@@ -96,6 +102,9 @@ ACCEPTED = {
     "station positions": put(("stations",), {"x": [-6.0, 0.0, 60.0, 120.0, 180.0, 244.8, 247.0]}),
     "e3 fairness only": put(("skinning",), {"e2": 0.0, "e3": 1.0}),
     "constant deadrise curve": put((BC, "deadrise"), {"value": 5.0}),
+    "a given section": put(("sections", "given"), [{"x": 100.0, "points": [[16.1, 19.0], [16.1, 2.0], [14.0, 0.0], [0.0, 0.0]]}]),
+    "a sheer": put((BC, "sheer"), {"yB": 20.0, "yE": 21.0, "value": 19.0, "flat_from": 60.0, "flat_to": 180.0}),
+    "a largest breadth": put(("principal", "B_max"), 33.0),
     "bulb with defaults only": put(("bulb",), {}),
     "dwl entrance angle alias": both(drop((BC, "dwl", "yE")), put((BC, "dwl", "entrance_angle"), 15.0)),
 }

@@ -83,6 +83,16 @@ struct SectionSpec {
   double corner_y = kNaN;
   double corner_z = kNaN;
   int n_control = 20;
+  /// A given shape (an auxiliary section, e.g. measured offsets) instead of the template: #m by 2
+  /// points (y, z) in metres from the deck edge down to the keel on the centre plane. It is
+  /// mapped onto this station's deck, waterline and keel points (heights stretched piecewise
+  /// between them, half-breadths scaled to the waterline's and the deck's), fitted, and then
+  /// corrected by half-breadth shifts through Q and to half_area. Empty: the template family.
+  Eigen::MatrixXd given;
+  /// A second given shape blended with `given` as (1 - given_mix) given + given_mix given_fore
+  /// (a station between two given ones); empty: `given` alone.
+  Eigen::MatrixXd given_fore;
+  double given_mix = 0.0;
 
   /// Each field with its name and meaning: f(name, member pointer, doc).
   template <typename F>
@@ -103,6 +113,9 @@ struct SectionSpec {
     f("corner_y", &SectionSpec::corner_y, "bilge corner half-breadth, fraction of y_dwl (NaN: from the template)");
     f("corner_z", &SectionSpec::corner_z, "bilge corner height above the keel, fraction of T - z_keel (NaN: from the template)");
     f("n_control", &SectionSpec::n_control, "control points of every section of a hull");
+    f("given", &SectionSpec::given, "given shape: (m, 2) points (y, z), m, deck edge to keel (empty: the template family)");
+    f("given_fore", &SectionSpec::given_fore, "second given shape blended with `given` (empty: none)");
+    f("given_mix", &SectionSpec::given_mix, "weight of given_fore in the blend, 0 to 1");
   }
 };
 

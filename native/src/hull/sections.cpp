@@ -112,6 +112,21 @@ constexpr std::size_t kSectionThreads = 4;
 constexpr std::size_t kSectionsPerThread = 16;
 /// Samples per template piece of the check that the template is a graph over its chord.
 constexpr int kGraphChecks = 8;
+/// Given shapes (SectionSpec::given): at least this many points; a half-breadth below this
+/// fraction of B/2 is a point on the centre plane (no scale is read from it).
+constexpr int kMinGivenPoints = 3;
+constexpr double kGivenTiny = 1e-6;
+/// Bending penalty of the given shape's fit (second differences of the control points, per
+/// knot span) against its least squares over the points (chord-length parameters, weighted by
+/// their spacing): small, it only carries the spline across stretches with few points.
+constexpr double kGivenSmoothing = 1e-6;
+/// The half-breadth shifts that put a given shape through Q and to its area: their size weighs
+/// 1, their bend (second differences) this much (a smooth change over the section).
+constexpr double kGivenShiftSmoothing = 10.0;
+/// ... and they may leave the half-breadth bound [0, y_max] by this fraction of y_max.
+constexpr double kGivenBoundTol = 1e-12;
+/// Samples per knot span in the search of the spline's first crossing of z = T.
+constexpr int kCrossingSamples = 8;
 
 double smoothstep(double r) {
   r = std::clamp(r, 0.0, 1.0);
@@ -230,6 +245,18 @@ struct Section {
   double t_q = 0;              // parameter of Q (its abscissa over L)
 };
 
+/// A given shape: (m, 2) finite points (y >= 0, z) running from the deck edge down to the keel.
+void validate_given(const Eigen::MatrixXd& P, const char* field, const std::string& at) {
+  if (P.size() == 0) return;
+  if (P.cols() != 2 || P.rows() < kMinGivenPoints)
+    fail(at, ": ", field, " has shape (", P.rows(), ", ", P.cols(), "); expected (m, 2) points (y, z) with m >= ", kMinGivenPoints);
+  if (!P.allFinite()) fail(at, ": ", field, " holds a value that is not finite; expected (y, z) in metres");
+  if ((P.col(0).array() < 0).any()) fail(at, ": ", field, " has a half-breadth ", P.col(0).minCoeff(), " m; expected y >= 0");
+  if (!(P(0, 1) > P(P.rows() - 1, 1)))
+    fail(at, ": ", field, " runs from z = ", P(0, 1), " m to z = ", P(P.rows() - 1, 1),
+         " m; expected the deck edge first and the keel point, lower, last");
+}
+
 void validate(const SectionSpec& s, const std::string& at) {
   auto finite = [&](double v, const char* field) {
     if (!std::isfinite(v)) fail(at, ": ", field, " is ", v, "; expected a finite number");
@@ -259,6 +286,10 @@ void validate(const SectionSpec& s, const std::string& at) {
     fail(at, ": corner_z is ", s.corner_z, "; expected a fraction of the immersed depth in [0, 1)");
   if (!std::isnan(s.lower_angle) && !(s.lower_angle > -80 && s.lower_angle < 80))
     fail(at, ": lower_angle is ", s.lower_angle, " deg; expected -80 < angle < 80");
+  validate_given(s.given, "given", at);
+  validate_given(s.given_fore, "given_fore", at);
+  if (s.given_fore.rows() > 0 && s.given.rows() == 0) fail(at, ": given_fore is set without given; expected given first");
+  if (!(s.given_mix >= 0 && s.given_mix <= 1)) fail(at, ": given_mix is ", s.given_mix, "; expected a weight from 0 to 1");
 }
 
 Section setup(const SectionSpec& s) {
@@ -547,13 +578,194 @@ KnobSolve solve_knob(const Section& S, const Eigen::RowVectorXd& arow, double ac
   return out;
 }
 
+// ---- given shapes (auxiliary sections) -------------------------------------------------
+
+/// Half-breadth where the polyline, from the deck down, first falls below z0 (none if never).
+std::optional<double> crossing_y(const Eigen::MatrixXd& P, double z0) {
+  for (Eigen::Index i = 0; i + 1 < P.rows(); ++i) {
+    const double za = P(i, 1), zb = P(i + 1, 1);
+    if (za >= z0 && zb < z0) return P(i, 0) + (za - z0) / (za - zb) * (P(i + 1, 0) - P(i, 0));
+  }
+  return std::nullopt;
+}
+
+/// The given shape's points in this station's frame: its first point onto D, last onto K and,
+/// for an immersed station, its crossing of T onto Q; heights stretched linearly between these,
+/// half-breadths scaled by the waterline's ratio below T and blended to the deck's above it.
+std::vector<V2> map_given(const Section& S, const Eigen::MatrixXd& P) {
+  const Eigen::Index m = P.rows();
+  const V2 Dg(P(0, 0), P(0, 1));
+  const double zk = P(m - 1, 1), T = S.s.draft, tiny = kGivenTiny * S.s.y_max;
+  const V2 &D = S.f.D, &K = S.K;
+  const double s_deck = Dg.x() > tiny ? D.x() / Dg.x() : 1.0;
+  const std::optional<double> yq = S.immersed ? crossing_y(P, T) : std::nullopt;
+  std::vector<V2> out(m);
+  if (yq && Dg.y() > T && zk < T) {
+    const double s_wl = *yq > tiny ? S.b / *yq : s_deck, s_top = Dg.x() > tiny ? s_deck : s_wl;
+    for (Eigen::Index i = 0; i < m; ++i) {
+      const double z = P(i, 1);
+      if (z >= T) {
+        const double phi = (z - T) / (Dg.y() - T);
+        out[i] = V2(P(i, 0) * (s_wl + phi * (s_top - s_wl)), T + (z - T) * (D.y() - T) / (Dg.y() - T));
+      } else {
+        out[i] = V2(P(i, 0) * s_wl, K.y() + (z - zk) * (T - K.y()) / (T - zk));
+      }
+    }
+  } else {
+    for (Eigen::Index i = 0; i < m; ++i) out[i] = V2(P(i, 0) * s_deck, K.y() + (P(i, 1) - zk) * (D.y() - K.y()) / (Dg.y() - zk));
+  }
+  out.front() = D, out.back() = K;
+  return out;
+}
+
+/// Second differences of n values ((n - 2) by n).
+Eigen::MatrixXd second_differences(int n) {
+  Eigen::MatrixXd D2 = Eigen::MatrixXd::Zero(n - 2, n);
+  for (int k = 0; k + 2 < n; ++k) D2(k, k) = 1.0, D2(k, k + 1) = -2.0, D2(k, k + 2) = 1.0;
+  return D2;
+}
+
+/// Control points (n by 2, (y, z)) on the section layout nearest the points: least squares at
+/// chord-length parameters weighted by the points' spacing, plus kGivenSmoothing of bending;
+/// the end control points held on the first and last point (D and K).
+Eigen::MatrixX2d fit_given(const Section& S, const std::vector<V2>& pts) {
+  const int n = S.l.n;
+  const std::size_t m = pts.size();
+  std::vector<double> t(m, 0.0);
+  for (std::size_t i = 1; i < m; ++i) t[i] = t[i - 1] + (pts[i] - pts[i - 1]).norm();
+  Eigen::MatrixX2d P = Eigen::MatrixX2d::Zero(n, 2);
+  P.row(0) = pts.front().transpose(), P.row(n - 1) = pts.back().transpose();
+  if (!(t.back() > 0)) return P;
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(n, 2);
+  for (std::size_t i = 0; i < m; ++i) {
+    const double w = 0.5 * ((i > 0 ? t[i] - t[i - 1] : 0.0) + (i + 1 < m ? t[i + 1] - t[i] : 0.0)) / t.back();
+    const Eigen::RowVectorXd row = basis_row(S.l.U, kDegree, t[i] / t.back());
+    A.noalias() += w * row.transpose() * row;
+    rhs.noalias() += w * row.transpose() * pts[i].transpose();
+  }
+  const Eigen::MatrixXd D2 = second_differences(n);
+  A.noalias() += kGivenSmoothing / (n - kDegree) * D2.transpose() * D2;
+  const int k = n - 2;  // interior control points; the ends are known
+  const Eigen::MatrixX2d b = rhs.middleRows(1, k) - A.block(1, 0, k, 1) * P.row(0) - A.block(1, n - 1, k, 1) * P.row(n - 1);
+  P.middleRows(1, k) = A.block(1, 1, k, k).ldlt().solve(b);
+  return P;
+}
+
+/// The given shape (blended with given_fore) fitted in this station's frame.
+Eigen::MatrixX2d given_control_points(const Section& S) {
+  Eigen::MatrixX2d P = fit_given(S, map_given(S, S.s.given));
+  if (S.s.given_fore.rows() > 0 && S.s.given_mix > 0)
+    P = (1.0 - S.s.given_mix) * P + S.s.given_mix * fit_given(S, map_given(S, S.s.given_fore));
+  return P;
+}
+
+/// Parameter where the spline (control points P) first falls through z = T from the deck down;
+/// 1 when it never does.
+double waterline_parameter(const Section& S, const Eigen::MatrixX2d& P) {
+  const double T = S.s.draft;
+  auto z = [&](double t) { return basis_row(S.l.U, kDegree, t).dot(P.col(1)) - T; };
+  const int samples = kCrossingSamples * (S.l.n - kDegree);
+  double a = 0.0, fa = z(a);
+  for (int i = 1; i <= samples; ++i) {
+    double b = static_cast<double>(i) / samples, fb = z(b);
+    if (fa >= 0 && fb < 0) {
+      for (int it = 0; it < 100 && b - a > 1e-15; ++it) {  // bisection: the crossing to round-off
+        const double c = 0.5 * (a + b), fc = z(c);
+        (fc >= 0 ? a : b) = c;
+      }
+      return 0.5 * (a + b);
+    }
+    a = b, fa = fb;
+  }
+  return 1.0;
+}
+
+/// Area below T between the spline and the centre plane (one side) as row . y + 0 for the
+/// control half-breadths y, heights held: integral over [t_q, 1] of y(t) (-z'(t)) dt.
+Eigen::RowVectorXd given_area_row(const Section& S, const Eigen::MatrixX2d& P, double t_q) {
+  const auto& gr = detail::gauss_rule(kAreaGauss);
+  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(S.l.n);
+  std::vector<double> br{t_q};
+  for (Eigen::Index i = kDegree + 1; i < S.l.U.size() - kDegree - 1; ++i)
+    if (S.l.U[i] > br.back()) br.push_back(S.l.U[i]);
+  if (br.back() < 1.0) br.push_back(1.0);
+  for (std::size_t k = 0; k + 1 < br.size(); ++k) {
+    const double h = 0.5 * (br[k + 1] - br[k]), mid = 0.5 * (br[k + 1] + br[k]);
+    for (std::size_t q = 0; q < gr.x.size(); ++q) {
+      const double t = mid + h * gr.x[q];
+      const double dz = basis_row(S.l.U, kDegree, t, 1).dot(P.col(1));
+      row.noalias() -= gr.w[q] * h * dz * basis_row(S.l.U, kDegree, t);
+    }
+  }
+  return row;
+}
+
+/// Half-breadth shifts of the control points, least in size and bend (the topside's a tilt, as
+/// in correction()), with the ends held, that put the spline through Q and to `target` (NaN:
+/// area free), each condition asked with the immersion weight w. Control points the shifts
+/// would take outside 0 <= y <= y_max (or further outside than the fitted shape puts them: a
+/// spline touching B/2 has control points a little beyond it) are held there and the rest
+/// solved again (an active set), so the spline stays in its bound and still meets the area.
+Eigen::VectorXd given_shifts(const Section& S, const Eigen::MatrixX2d& P, double t_q, double target) {
+  const int n = S.l.n;
+  const Eigen::RowVectorXd arow = given_area_row(S, P, t_q), qrow = point_row(S, t_q);
+  const bool area = !std::isnan(target);
+  Eigen::MatrixXd Mw = Eigen::MatrixXd::Identity(n, n);
+  const Eigen::MatrixXd D2 = second_differences(n);
+  for (int k = 0; k + 2 < n; ++k) {
+    const bool topside = S.l.g[k + 2] <= t_q;
+    Mw += (topside ? kTopsideStiffness : kGivenShiftSmoothing) * D2.row(k).transpose() * D2.row(k);
+  }
+  const Eigen::LDLT<Eigen::MatrixXd> M(Mw);
+  std::vector<std::pair<int, double>> held{{0, 0.0}, {n - 1, 0.0}};  // (control point, its shift)
+  Eigen::VectorXd delta;
+  for (int pass = 0; pass < n; ++pass) {
+    const int h = static_cast<int>(held.size());
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(h + (area ? 2 : 1), n);
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(C.rows());
+    for (int i = 0; i < h; ++i) C(i, held[i].first) = 1.0, r[i] = held[i].second;
+    C.row(h) = qrow, r[h] = S.w * (S.b - qrow.dot(P.col(0)));
+    if (area) C.row(h + 1) = arow, r[h + 1] = S.w * (target - arow.dot(P.col(0)));
+    const Eigen::MatrixXd Y = M.solve(C.transpose());
+    delta = Y * (C * Y).ldlt().solve(r);
+    bool inside = true;
+    for (int k = 1; k + 1 < n; ++k) {  // the fitted shape's own overshoot of the bound stays
+      const double y = P(k, 0) + delta[k], tol = kGivenBoundTol * S.s.y_max;
+      const double lo = std::min(0.0, P(k, 0)), hi = std::max(S.s.y_max, P(k, 0));
+      if (y < lo - tol || y > hi + tol) {
+        held.emplace_back(k, std::clamp(y, lo, hi) - P(k, 0));
+        inside = false;
+      }
+    }
+    if (inside || static_cast<int>(held.size()) + (area ? 2 : 1) >= n) break;
+  }
+  return delta;
+}
+
+/// A section of the given shape: fitted, then shifted through Q and to the asked area.
+SectionDesign design_given(const Section& S) {
+  SectionDesign out{NurbsCurve(kDegree, S.l.U, Eigen::MatrixXd::Zero(S.l.n, 3))};
+  Eigen::MatrixX2d P = given_control_points(S);
+  out.immersion = S.w;
+  if (S.immersed) {
+    const double t_q = waterline_parameter(S, P);
+    P.col(0) += given_shifts(S, P, t_q, S.s.half_area);
+    out.fullness = given_area_row(S, P, t_q).dot(P.col(0)) / (S.b * S.d);
+  }
+  Eigen::MatrixXd Q3(S.l.n, 3);
+  for (int k = 0; k < S.l.n; ++k) Q3.row(k) << S.s.x, P(k, 0), P(k, 1);
+  out.curve = NurbsCurve(kDegree, S.l.U, Q3);
+  return out;
+}
+
 }  // namespace
 
 Eigen::VectorXd section_knot_vector(int n_control) { return layout(n_control).U; }
 
 std::pair<double, double> section_fullness_range(const SectionSpec& spec) {
   const Section S = setup(spec);
-  if (!S.immersed || S.f.L <= kPointSection * spec.y_max) return {kNaN, kNaN};
+  if (!S.immersed || S.f.L <= kPointSection * spec.y_max || spec.given.rows() > 0) return {kNaN, kNaN};
   const auto [arow, ac] = area_row(S);
   const double hi = knob_limit(S);
   const double box = S.b * S.d;
@@ -571,6 +783,7 @@ SectionDesign design_section(const SectionSpec& spec) {
     out.curve = assemble(S, eta);
     return out;
   }
+  if (spec.given.rows() > 0) return design_given(S);
   if (!S.immersed) {
     out.curve = assemble(S, sample(S, above_template(S)));
     return out;

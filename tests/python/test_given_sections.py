@@ -1,0 +1,171 @@
+"""Given (auxiliary) sections, a sheer and a largest breadth in the hull description: a given
+shape is held at its station, follows edits of the basic curves, holds the SAC's area, and bad
+shapes are refused naming the value. Truths: exact section shapes and their areas."""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+
+import numpy as np
+import pytest
+
+import fairlines as fl
+
+B2, T, D = 5.0, 6.25, 9.0
+# A given shape of 32 control points follows a smooth exact shape to this fraction of B/2.
+SHAPE_TOL = 2e-3
+
+
+def _parabola_points(b=B2, n=60, power=2):
+    """Wigley section y = b (1 - (zeta / T)^power) below T, wall-sided above: deck edge to keel."""
+    top = [(b, z) for z in np.linspace(D, T, 8)[:-1]]
+    zeta = np.linspace(0.0, T, n)
+    below = [(b * (1 - (q / T) ** power), T - q) for q in zeta]
+    return np.array(top + below)
+
+
+def _spec(points, half_area=math.nan, y_dwl=B2, z_keel=0.0):
+    s = fl.SectionSpec()
+    s.x, s.y_max, s.y_deck, s.z_deck, s.z_keel, s.draft, s.y_dwl = 50.0, B2, B2, D, z_keel, T, y_dwl
+    s.n_control, s.half_area, s.given = 32, half_area, points
+    return s
+
+
+def _curve_points(curve, n=2000):
+    kn = np.asarray(curve.knots)
+    return np.asarray(curve.evaluate(np.linspace(kn[0], kn[-1], n)))
+
+
+def _half_breadth_at(p, z):
+    order = np.argsort(p[:, 2])
+    return np.interp(z, p[order, 2], p[order, 1])
+
+
+def _area_below(p, draft):
+    """Area between the section and the centre plane below `draft` (shoelace of the samples,
+    from the section's own crossing of the waterline)."""
+    i = int(np.flatnonzero(p[:, 2] <= draft)[0])
+    r = (p[i - 1, 2] - draft) / (p[i - 1, 2] - p[i, 2])
+    crossing = p[i - 1, 1:] + r * (p[i, 1:] - p[i - 1, 1:])
+    q = np.vstack([[0.0, draft], crossing, p[i:, 1:], [0.0, p[-1, 2]]])
+    y, z = q[:, 0], q[:, 1]
+    return 0.5 * abs(np.dot(y, np.roll(z, -1)) - np.dot(z, np.roll(y, -1)))
+
+
+def test_a_given_wigley_section_is_held_at_its_station():
+    p = _curve_points(fl.design_section(_spec(_parabola_points())).curve)
+    z = np.linspace(0.2, T, 40)
+    exact = B2 * (1 - ((T - z) / T) ** 2)
+    assert np.abs(_half_breadth_at(p, z) - exact).max() <= SHAPE_TOL * B2
+
+
+def test_a_given_section_holds_the_asked_area():
+    exact = 2 / 3 * B2 * T  # the parabola's area
+    for factor in (0.9, 1.0, 1.1):
+        d = fl.design_section(_spec(_parabola_points(), half_area=factor * exact))
+        assert _area_below(_curve_points(d.curve, 20000), T) == pytest.approx(factor * exact, rel=1e-4)
+        assert d.fullness == pytest.approx(factor * 2 / 3, rel=1e-9)
+
+
+def test_a_given_section_follows_a_narrower_waterline_and_a_higher_keel():
+    """Mapped onto the station's own waterline point and keel: half-breadths below T scale by
+    the waterline's ratio, heights stretch between the keel and T."""
+    s = _spec(_parabola_points(), y_dwl=0.6 * B2, z_keel=1.0)
+    p = _curve_points(fl.design_section(s).curve)
+    z = np.linspace(1.2, T, 40)
+    exact = 0.6 * B2 * (1 - ((T - z) / (T - 1.0)) ** 2)
+    assert np.abs(_half_breadth_at(p, z) - exact).max() <= SHAPE_TOL * B2
+
+
+def test_a_station_between_two_given_sections_blends_them():
+    """Mix 0 and 1 are the two shapes; between, the section lies between them (fairness
+    skinning's blend of control points, exact for equal shapes)."""
+    z = np.linspace(0.3, T - 0.3, 30)
+
+    def at(mix, fore_power=3):
+        s = _spec(_parabola_points())
+        s.given_fore, s.given_mix = _parabola_points(power=fore_power), mix
+        return _half_breadth_at(_curve_points(fl.design_section(s).curve), z)
+
+    alone = {p: _half_breadth_at(_curve_points(fl.design_section(_spec(_parabola_points(power=p))).curve), z) for p in (2, 3)}
+    assert np.array_equal(at(0.0), alone[2])
+    assert np.abs(at(1.0) - alone[3]).max() <= 1e-12 * B2
+    assert np.abs(at(0.5, fore_power=2) - alone[2]).max() <= 1e-12 * B2
+    mid = at(0.5)
+    assert np.all(mid >= alone[2] - 1e-9) and np.all(mid <= alone[3] + 1e-9)
+    assert np.abs(mid - 0.5 * (alone[2] + alone[3])).max() <= 0.05 * B2
+
+
+@pytest.mark.parametrize("points, message", [
+    ([[1.0, 0.0], [2.0, 5.0], [0.0, 9.0]], "expected the deck edge first"),
+    ([[1.0, 9.0], [-2.0, 5.0], [0.0, 0.0]], "expected y >= 0"),
+    ([[1.0, 9.0], [math.nan, 5.0], [0.0, 0.0]], "not finite"),
+    ([[1.0, 9.0], [0.0, 0.0]], "m >= 3")])
+def test_a_bad_given_shape_is_refused_naming_it(points, message):
+    with pytest.raises(fl.InvalidInput, match=message):
+        fl.design_section(_spec(np.array(points)))
+
+
+def _wigley_hull(**extra) -> dict:
+    """A Wigley-like whole hull typed in with every station's section given."""
+    L = 100.0
+    xs = np.linspace(0.0, L, 21)
+    d = {"name": "given wigley", "principal": {"Lpp": L, "B": 2 * B2, "T": T, "D": D},
+         "ends": {"aft_post": True, "fore_post": True},
+         "stations": {"x": xs.tolist()},
+         "sections": {"n_control": 24, "given": [{"x": float(x), "points": _parabola_points().tolist()} for x in xs[1:-1]]},
+         "basic_curves": {"profile": {"value": 0.0},
+                          "dwl": {"yB": 0.0, "yE": 0.0, "points": [[L / 2, B2]], "spans": 16},
+                          "deck": {"yB": 0.0, "yE": 0.0, "points": [[L / 2, B2]], "spans": 16},
+                          "sac": {"volume": 4 / 9 * L * 2 * B2 * T, "spans": 16}}}
+    d.update(extra)
+    return d
+
+
+def test_a_hull_of_given_sections_round_trips_through_json():
+    h = fl.Hull.from_json(_wigley_hull())
+    again = fl.Hull.from_json(h.to_json())
+    a, b = (np.asarray(x.bare_hull_surface().control_points) for x in (h, again))
+    assert np.array_equal(a, b)
+    assert json.loads(h.to_json())["sections"]["given"][0]["points"][0] == [B2, D]
+
+
+def test_a_hull_of_given_sections_holds_the_sac_volume():
+    h = fl.Hull.from_json(_wigley_hull())
+    assert h.hydrostatics().volume == pytest.approx(4 / 9 * 100.0 * 2 * B2 * T, rel=2e-3)
+
+
+def test_a_sheer_lifts_the_deck_edge():
+    d = _wigley_hull()
+    d["basic_curves"]["sheer"] = {"yB": D + 1.0, "yE": D + 2.0, "points": [[50.0, D]], "spans": 12}
+    h = fl.Hull.from_json(d)
+    sheer = h.basic_curves["sheer"]
+    for x in (10.0, 50.0, 90.0):
+        top = _curve_points(h.sections_at(x)[0])[0]
+        assert top[2] == pytest.approx(float(sheer(x)[0]), abs=1e-9)
+    assert float(sheer(100.0)[0]) == pytest.approx(D + 2.0)
+
+
+def test_a_largest_breadth_lets_the_deck_flare_beyond_b():
+    d = _wigley_hull()
+    d["principal"]["B_max"] = 2 * B2 + 1.0
+    d["basic_curves"]["deck"] = {"yB": 0.0, "yE": 0.0, "points": [[50.0, B2 + 0.5]], "spans": 16}
+    d["sections"]["given"] = [{"x": g["x"], "points": [[B2 + 0.5, D]] + g["points"][1:]} for g in d["sections"]["given"]]
+    s = fl.Hull.from_json(d).bare_hull_surface()
+    y = np.asarray(s.evaluate_grid(np.linspace(0, 1, 41), np.linspace(0, 1, 101)))[..., 1]
+    assert y.max() == pytest.approx(B2 + 0.5, abs=1e-3 * B2)  # the deck edge at midships, beyond B/2
+
+
+@pytest.mark.parametrize("edit, message", [
+    (("principal", "B_max", 9.0), "B_max is 9.0; expected the largest breadth"),
+    (("sections", "given", [{"x": 10.0, "points": [[1.0, 0.0], [2.0, 5.0], [0.0, 9.0]]}]), "expected the deck edge first"),
+    (("sections", "given", [{"x": 60.0, "points": [[1.0, 9.0], [2.0, 5.0], [0.0, 0.0]]},
+                            {"x": 50.0, "points": [[1.0, 9.0], [2.0, 5.0], [0.0, 0.0]]}]), "expected increasing x"),
+    (("sections", "given", [{"x": 150.0, "points": [[1.0, 9.0], [2.0, 5.0], [0.0, 0.0]]}]), "expected a station on the hull")])
+def test_the_loader_refuses_what_the_schema_cannot_state(edit, message):
+    d = _wigley_hull()
+    d[edit[0]][edit[1]] = edit[2]
+    with pytest.raises(fl.InvalidInput, match=message):
+        fl.Hull.from_json(d)
