@@ -123,5 +123,47 @@ TEST(Sections, BadNumbersNameTheField) {
   EXPECT_THROW(design_section(s), InvalidInput);
 }
 
+// A given shape: the midship section of a Wigley hull, y = b (1 - (zeta / T)^2) below T and
+// wall-sided above, from the deck edge to the keel.
+Eigen::MatrixXd wigley_points(double b, double T, double D) {
+  const int above = 8, below = 61;
+  Eigen::MatrixXd p(above + below, 2);
+  for (int i = 0; i < above; ++i) p.row(i) << b, D - (D - T) * i / above;
+  for (int i = 0; i < below; ++i) {
+    const double zeta = T * i / (below - 1);
+    p.row(above + i) << b * (1 - (zeta / T) * (zeta / T)), T - zeta;
+  }
+  return p;
+}
+
+TEST(Sections, GivenShapeIsHeldAndMeetsTheArea) {
+  SectionSpec s = midship();
+  s.n_control = 32;
+  s.given = wigley_points(s.y_dwl, s.draft, s.z_deck);
+  for (const double factor : {1.0, 0.9, 1.1}) {
+    s.half_area = factor * 2.0 / 3.0 * s.y_dwl * s.draft;  // the parabola's area, and 10 % either side
+    const Eigen::MatrixXd yz = samples(design_section(s));
+    EXPECT_NEAR(area_below(yz, s.draft), s.half_area, 2e-4 * s.half_area) << factor;
+    EXPECT_LE(yz.col(0).maxCoeff(), s.y_max * (1 + 1e-9)) << factor;
+    if (factor != 1.0) continue;
+    for (int i = 0; i < yz.rows(); i += 50) {  // the shape itself: within 0.2 % of B/2
+      const double zeta = s.draft - yz(i, 1);
+      if (zeta < 0.2 || zeta > s.draft - 0.2) continue;
+      EXPECT_NEAR(yz(i, 0), s.y_dwl * (1 - (zeta / s.draft) * (zeta / s.draft)), 2e-3 * s.y_max) << yz(i, 1);
+    }
+  }
+}
+
+TEST(Sections, GivenShapeRunningUpwardIsRefused) {
+  SectionSpec s = midship();
+  s.given = wigley_points(s.y_dwl, s.draft, s.z_deck).colwise().reverse();
+  try {
+    design_section(s);
+    FAIL() << "a shape from the keel up accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("expected the deck edge first"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace fairlines

@@ -24,7 +24,7 @@ SHORT = {
     ("lcb", "kcs"): "+0.44 % Lpp: the bare hull holds the LCB measured without the bulb, and the bulb moves it forward",
     ("rms", "dtmb5415"): "RMS 0.60 % B: the dome's aft end and the stem's foot (x 5.0-5.7 m) on a 161-station profile",
     ("max", "dtmb5415"): "max 4.9 % B where the dome meets the stem (x 5.58 m)",
-    ("wetted", "dtmb5415"): "+1.57 % (the profile overshoots at the dome's ends)",
+    ("wetted", "dtmb5415"): "+1.53 % (the profile overshoots at the dome's ends)",
 }
 
 

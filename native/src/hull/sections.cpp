@@ -123,7 +123,10 @@ constexpr double kGivenSmoothing = 1e-6;
 /// The half-breadth shifts that put a given shape through Q and to its area: their size weighs
 /// 1, their bend (second differences) this much (a smooth change over the section).
 constexpr double kGivenShiftSmoothing = 10.0;
-/// ... and they may leave the half-breadth bound [0, y_max] by this fraction of y_max.
+/// ... less mobile within this fraction of y_max of a bound, down to this mobility on it.
+constexpr double kGivenBoundBand = 0.02;
+constexpr double kGivenMobility = 0.05;
+/// Shifts past the bound [0, y_max] by more than this fraction of y_max are held on it.
 constexpr double kGivenBoundTol = 1e-12;
 /// Samples per knot span in the search of the spline's first crossing of z = T.
 constexpr int kCrossingSamples = 8;
@@ -627,7 +630,8 @@ Eigen::MatrixXd second_differences(int n) {
 
 /// Control points (n by 2, (y, z)) on the section layout nearest the points: least squares at
 /// chord-length parameters weighted by the points' spacing, plus kGivenSmoothing of bending;
-/// the end control points held on the first and last point (D and K).
+/// the end control points held on the first and last point (D and K), half-breadths clamped to
+/// [0, y_max] (a corner's ringing, a few mm, would otherwise leave B/2: the spline stays inside).
 Eigen::MatrixX2d fit_given(const Section& S, const std::vector<V2>& pts) {
   const int n = S.l.n;
   const std::size_t m = pts.size();
@@ -649,6 +653,7 @@ Eigen::MatrixX2d fit_given(const Section& S, const std::vector<V2>& pts) {
   const int k = n - 2;  // interior control points; the ends are known
   const Eigen::MatrixX2d b = rhs.middleRows(1, k) - A.block(1, 0, k, 1) * P.row(0) - A.block(1, n - 1, k, 1) * P.row(n - 1);
   P.middleRows(1, k) = A.block(1, 1, k, k).ldlt().solve(b);
+  P.col(0) = P.col(0).cwiseMax(0.0).cwiseMin(S.s.y_max);  // the fit's ringing at a corner stays inside B/2
   return P;
 }
 
@@ -702,43 +707,50 @@ Eigen::RowVectorXd given_area_row(const Section& S, const Eigen::MatrixX2d& P, d
 }
 
 /// Half-breadth shifts of the control points, least in size and bend (the topside's a tilt, as
-/// in correction()), with the ends held, that put the spline through Q and to `target` (NaN:
-/// area free), each condition asked with the immersion weight w. Control points the shifts
-/// would take outside 0 <= y <= y_max (or further outside than the fitted shape puts them: a
-/// spline touching B/2 has control points a little beyond it) are held there and the rest
-/// solved again (an active set), so the spline stays in its bound and still meets the area.
+/// in correction()), with the ends held, that put the spline through Q (unless Q lies on the
+/// bound B/2) and to `target` (NaN: area free), each condition asked with the immersion weight w. A control point within
+/// kGivenBoundBand of y_max of the bound 0 or y_max is less mobile (its shift costs more, its
+/// mobility falling linearly to kGivenMobility on the bound): a flat side at B/2 stays there.
 Eigen::VectorXd given_shifts(const Section& S, const Eigen::MatrixX2d& P, double t_q, double target) {
   const int n = S.l.n;
   const Eigen::RowVectorXd arow = given_area_row(S, P, t_q), qrow = point_row(S, t_q);
   const bool area = !std::isnan(target);
-  Eigen::MatrixXd Mw = Eigen::MatrixXd::Identity(n, n);
+  Eigen::MatrixXd Mw = Eigen::MatrixXd::Zero(n, n);
+  for (int k = 0; k < n; ++k) {
+    const double room = std::min(P(k, 0), S.s.y_max - P(k, 0)) / (kGivenBoundBand * S.s.y_max);
+    const double mobility = std::clamp(room, kGivenMobility, 1.0);
+    Mw(k, k) = 1.0 / (mobility * mobility);
+  }
   const Eigen::MatrixXd D2 = second_differences(n);
   for (int k = 0; k + 2 < n; ++k) {
     const bool topside = S.l.g[k + 2] <= t_q;
     Mw += (topside ? kTopsideStiffness : kGivenShiftSmoothing) * D2.row(k).transpose() * D2.row(k);
   }
   const Eigen::LDLT<Eigen::MatrixXd> M(Mw);
+  // A waterline point on the bound B/2 is met by the mapped shape itself (to its fit): asked
+  // exactly, the spline would need four control points on B/2, a flat stretch below Q.
+  const bool through_q = S.b < (1 - kGivenBoundBand) * S.s.y_max;
   std::vector<std::pair<int, double>> held{{0, 0.0}, {n - 1, 0.0}};  // (control point, its shift)
   Eigen::VectorXd delta;
-  for (int pass = 0; pass < n; ++pass) {
+  for (int pass = 0; pass < n; ++pass) {  // an active set: shifts past a bound are held on it
     const int h = static_cast<int>(held.size());
-    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(h + (area ? 2 : 1), n);
-    Eigen::VectorXd r = Eigen::VectorXd::Zero(C.rows());
+    const int rows = h + (through_q ? 1 : 0) + (area ? 1 : 0);
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(rows, n);
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(rows);
     for (int i = 0; i < h; ++i) C(i, held[i].first) = 1.0, r[i] = held[i].second;
-    C.row(h) = qrow, r[h] = S.w * (S.b - qrow.dot(P.col(0)));
-    if (area) C.row(h + 1) = arow, r[h + 1] = S.w * (target - arow.dot(P.col(0)));
+    if (through_q) C.row(h) = qrow, r[h] = S.w * (S.b - qrow.dot(P.col(0)));
+    if (area) C.row(rows - 1) = arow, r[rows - 1] = S.w * (target - arow.dot(P.col(0)));
     const Eigen::MatrixXd Y = M.solve(C.transpose());
     delta = Y * (C * Y).ldlt().solve(r);
     bool inside = true;
-    for (int k = 1; k + 1 < n; ++k) {  // the fitted shape's own overshoot of the bound stays
-      const double y = P(k, 0) + delta[k], tol = kGivenBoundTol * S.s.y_max;
-      const double lo = std::min(0.0, P(k, 0)), hi = std::max(S.s.y_max, P(k, 0));
-      if (y < lo - tol || y > hi + tol) {
-        held.emplace_back(k, std::clamp(y, lo, hi) - P(k, 0));
+    for (int k = 1; k + 1 < n; ++k) {
+      const double y = P(k, 0) + delta[k];
+      if (y < -kGivenBoundTol * S.s.y_max || y > (1 + kGivenBoundTol) * S.s.y_max) {
+        held.emplace_back(k, std::clamp(y, 0.0, S.s.y_max) - P(k, 0));
         inside = false;
       }
     }
-    if (inside || static_cast<int>(held.size()) + (area ? 2 : 1) >= n) break;
+    if (inside || rows + 1 >= n) break;
   }
   return delta;
 }
@@ -754,7 +766,7 @@ SectionDesign design_given(const Section& S) {
     out.fullness = given_area_row(S, P, t_q).dot(P.col(0)) / (S.b * S.d);
   }
   Eigen::MatrixXd Q3(S.l.n, 3);
-  for (int k = 0; k < S.l.n; ++k) Q3.row(k) << S.s.x, P(k, 0), P(k, 1);
+  for (int k = 0; k < S.l.n; ++k) Q3.row(k) << S.s.x, std::clamp(P(k, 0), 0.0, S.s.y_max), P(k, 1);
   out.curve = NurbsCurve(kDegree, S.l.U, Q3);
   return out;
 }
