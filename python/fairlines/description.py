@@ -15,7 +15,8 @@ Format (JSON; ``docs/hull_description.schema.json`` is its JSON Schema)::
       "basic_curves": {"profile": ..., "dwl": ..., "deck": ..., "sac": ...,
                        "top_corner": ..., "deadrise": ..., "character": ...},
       "skinning": {"e2": 1.0, "e3": 0.0},
-      "bulb": {...}                               # optional bulbous bow (Kracht coefficients)
+      "bulb": {...},                              # optional bulbous bow (Kracht coefficients)
+      "skeg": {"x_aft": 13.0, "x_fore": 42.0, "half_thickness": 0.8}   # optional skeg under the run
     }
 
 Basic curves (each a fairest spline function of x, fairlines.spline_design):
@@ -120,6 +121,8 @@ FULLNESS_KEY = "fullness_fit"
 MAX_STATIONS = 1000
 MAX_SPANS = 200
 SECTION_CONTROLS = (8, 64)
+# A skeg tapers into the keel over this fraction of its length aft of its forward end.
+SKEG_FORE_TAPER = 0.3
 # Least number of points of a given section, and the most given sections and points per section.
 GIVEN_POINTS = (3, 2000)
 MAX_GIVEN_SECTIONS = 1000
@@ -350,7 +353,59 @@ class BulbSpec:
         return d
 
 
-TOP_KEYS = ("name", "notes", "principal", "ends", "stations", "sections", "basic_curves", "skinning", "bulb", "design")
+TOP_KEYS = ("name", "notes", "principal", "ends", "stations", "sections", "basic_curves", "skinning", "bulb", "skeg", "design")
+
+
+@dataclass
+class SkegSpec:
+    """A skeg under the run (metres): from the sternpost x_aft forward to x_fore, its bottom at
+    `bottom` above base, its sides half_thickness off the centre plane, joined to the hull body
+    by a hollow fillet of about `fillet`; over `end_length` forward of the sternpost its bottom
+    rises to the body (a raked aft edge)."""
+
+    x_aft: float
+    x_fore: float
+    half_thickness: float
+    fillet: float
+    bottom: float = 0.0
+    end_length: float = 0.0
+
+    KEYS = ("x_aft", "x_fore", "half_thickness", "fillet", "bottom", "end_length")
+
+    @classmethod
+    def from_dict(cls, d: Any, path: str, x_aft: float, x_fore: float) -> SkegSpec:
+        d = keyed_object(path, d, cls.KEYS)
+        for key in ("x_aft", "x_fore", "half_thickness"):
+            if key not in d:
+                raise _native.InvalidInput(f"{path}.{key} is missing; expected a length in metres")
+        v = {k: number(f"{path}.{k}", d[k]) for k in cls.KEYS if k in d}
+        v.setdefault("fillet", 2.0 * v["half_thickness"])
+        if not x_aft <= v["x_aft"] < v["x_fore"] <= x_fore:
+            raise _native.InvalidInput(f"{path}.x_aft / x_fore are {v['x_aft']} / {v['x_fore']} m; expected x_aft < x_fore "
+                                       f"on the hull ({x_aft} to {x_fore} m)")
+        for key, lo in (("half_thickness", "> 0"), ("fillet", ">= 0"), ("end_length", ">= 0")):
+            if key in v and not (v[key] > 0 if lo == "> 0" else v[key] >= 0):
+                raise _native.InvalidInput(f"{path}.{key} is {v[key]} m; expected {lo}")
+        if v.get("end_length", 0.0) > v["x_fore"] - v["x_aft"]:
+            raise _native.InvalidInput(f"{path}.end_length is {v['end_length']} m; expected at most the skeg's length "
+                                       f"{v['x_fore'] - v['x_aft']} m")
+        return cls(**v)
+
+    def to_dict(self) -> dict:
+        return {k: getattr(self, k) for k in self.KEYS}
+
+    def at(self, x: np.ndarray, body: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The skeg's bottom (NaN outside it) and how far it is developed (0 .. 1) at x: over
+        end_length forward of the sternpost the bottom rises smoothly to the body's bottom `body`
+        and the skeg tapers (a fine aft edge ahead of the propeller); over SKEG_FORE_TAPER of its
+        length aft of x_fore it tapers into the keel."""
+        out = np.full(x.shape, np.nan)
+        inside = (x >= self.x_aft) & (x <= self.x_fore)
+        r = np.ones(x.shape) if self.end_length <= 0 else np.clip((x - self.x_aft) / self.end_length, 0.0, 1.0)
+        rise = r * r * (3.0 - 2.0 * r)  # 0 at the sternpost, 1 end_length forward of it
+        out[inside] = (body + rise * (self.bottom - body))[inside]
+        q = np.clip((self.x_fore - x) / (SKEG_FORE_TAPER * (self.x_fore - self.x_aft)), 0.0, 1.0)
+        return out, rise * q * q * (3.0 - 2.0 * q)
 
 
 @dataclass
@@ -372,6 +427,7 @@ class HullDescription:
     design: dict | None = None  # the particulars a designer built it from (kept, not used)
     posts: tuple = ()  # ends ("aft", "fore") that are vertical posts of zero width
     given_sections: list = field(default_factory=list)  # [(x, (m, 2) array of (y, z))], increasing x
+    skeg: SkegSpec | None = None
 
     @classmethod
     def from_dict(cls, d: Any) -> HullDescription:
@@ -409,6 +465,8 @@ class HullDescription:
             raise _native.InvalidInput(f"skinning.e2 / e3 are {desc.skin_e2} / {desc.skin_e3}; expected weights >= 0, not both 0")
         if d.get("bulb") is not None:
             desc.bulb = BulbSpec.from_dict(d["bulb"], "bulb")
+        if d.get("skeg") is not None:
+            desc.skeg = SkegSpec.from_dict(d["skeg"], "skeg", x_aft, x_fore)
         if d.get("design") is not None:
             if not isinstance(d["design"], dict):
                 raise bad("design", d["design"], "an object (the particulars the hull was designed from)")
@@ -470,6 +528,8 @@ class HullDescription:
             d["sections"]["given"] = [{"x": float(x), "points": p.tolist()} for x, p in self.given_sections]
         if self.bulb is not None:
             d["bulb"] = self.bulb.to_dict()
+        if self.skeg is not None:
+            d["skeg"] = self.skeg.to_dict()
         if self.design is not None:
             d["design"] = copy.deepcopy(self.design)
         return d

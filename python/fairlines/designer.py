@@ -87,6 +87,21 @@ BULB_AFT_LENGTH = 2.6       # the bulb runs on into the hull this many times L_P
 MIN_ENTRANCE_ANGLE = 7.0    # deg: a waterline ending finer meets the stem in a cusp, its stem sections a knife
                             # millimetres thick (no stem bar is) that a bulb's top grazes
 BULB_AFT_RETRIES = (3.0, 3.5, 4.0)  # ... or these when it leaves a fine forefoot again (meets the hull in two curves)
+# A single screw in an aperture aft of a skeg. Propeller diameter by default a fraction of T;
+# its plane a fraction of Lpp forward of the AP (room for the rudder aft of it); clearances as
+# fractions of the diameter, as class societies recommend for single screws: blade tip to the
+# hull above, to the baseline below, and the disc to the skeg's aft edge.
+PROPELLER_DIAMETER = 0.7
+PROPELLER_PLANE = 0.035
+TIP_CLEARANCE = 0.25
+HEEL_CLEARANCE = 0.04
+SKEG_CLEARANCE = 0.15
+PROPELLER_HALF_WIDTH = 0.1  # half the blades' axial extent, fraction of the diameter
+SKEG_HALF_THICKNESS = 0.1   # the skeg's half thickness, fraction of the propeller diameter (it houses the shaft)
+SKEG_END = 0.8              # its bottom rises to the hull over this many propeller diameters forward of its aft edge
+SKEG_FILLET = 1.0           # the hollow fillet to the hull body, fraction of the propeller diameter
+SKEG_SECTION_CONTROLS = 32  # control points per section of a ship with a skeg (its side and fillet are short)
+APERTURE_COUNTER_ANGLE = 4.0  # deg: the counter's rise at the transom where it must clear a propeller
 
 
 @dataclass
@@ -108,6 +123,8 @@ class Particulars:
     transom_immersion: float | None = None  # transom lower edge below the waterline (m); < 0 dry
     transom_breadth: float | None = None  # waterline half-breadth at an immersed transom (m)
     bulb: bool | dict = False
+    skeg: bool = False  # a single screw: a skeg under the run and a propeller aperture aft of it
+    propeller_diameter: float | None = None  # with skeg (m); default PROPELLER_DIAMETER T
     stem_rake: float = STEM_RAKE
     name: str = "designed hull"
     notes: list[str] = field(default_factory=list)
@@ -140,11 +157,18 @@ class Particulars:
                   "parallel_length": (0.0, 0.8 * self.lpp, "a parallel body from 0 to 0.8 Lpp (m)"),
                   "parallel_centre": (0.1 * self.lpp, 0.9 * self.lpp, "a parallel body centred 0.1 to 0.9 Lpp from the AP (m)"),
                   "transom_immersion": (-self.depth, self.draft, "an immersion between -D and T (m; < 0 dry)"),
-                  "transom_breadth": (0.0, 0.5 * self.breadth, "a waterline half-breadth at the transom from 0 to B/2 (m)")}
+                  "transom_breadth": (0.0, 0.5 * self.breadth, "a waterline half-breadth at the transom from 0 to B/2 (m)"),
+                  "propeller_diameter": (0.2 * self.draft, 0.95 * self.draft / (1 + HEEL_CLEARANCE),
+                                         "a propeller diameter from 0.2 T to what fits under T with its clearances (m)")}
         for key, (lo, hi, what) in limits.items():
             v = getattr(self, key)
             if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi):
                 raise _native.InvalidInput(f"{key} is {v!r}; expected {what}")
+        if not isinstance(self.skeg, bool):
+            raise _native.InvalidInput(f"skeg is {self.skeg!r}; expected true or false (a single screw aft of a skeg)")
+        if self.propeller_diameter is not None and not self.skeg:
+            raise _native.InvalidInput(f"propeller_diameter is {self.propeller_diameter}; expected it only with skeg=True "
+                                       "(the designer places a single screw in an aperture aft of the skeg)")
 
 
 def _coefficients(p: Particulars) -> dict:
@@ -188,6 +212,56 @@ def _profile(p: Particulars, c: dict, x_aft: float, x_fore: float) -> dict:
     stem = 1.0 / math.tan(math.radians(p.stem_rake))
     return {"flat_from": keel_aft, "flat_to": keel_fore, "value": 0.0, "yB": z_t, "slopeB": slope_aft,
             "yE": D, "slopeE": stem, "points": [[L, T]], "slopes": [[L, stem]], "monotone": True, "spans": 30}
+
+
+def propeller(p: Particulars) -> dict | None:
+    """The single screw of a ship with a skeg (metres): diameter, plane x, shaft height, the
+    least height of the hull above the disc and the skeg's aft edge; None without a skeg."""
+    if not p.skeg:
+        return None
+    dp = p.propeller_diameter if p.propeller_diameter is not None else PROPELLER_DIAMETER * p.draft
+    x = max(PROPELLER_PLANE * p.lpp, dp)
+    shaft = (HEEL_CLEARANCE + 0.5) * dp
+    return {"diameter": dp, "x": x, "shaft_height": shaft, "hull_above": shaft + (0.5 + TIP_CLEARANCE) * dp,
+            "skeg_aft": x + SKEG_CLEARANCE * dp}
+
+
+def _aperture(p: Particulars, prof: dict, profile, x_aft: float, x_fore: float):
+    """With a skeg: the profile (the hull body's bottom) passing over the propeller disc with
+    its tip clearance (a profile point where it would pass lower), and the skeg (its aft edge
+    SKEG_CLEARANCE D forward of the disc, its forward end where the keel's flat starts).
+    Returns (profile, skeg section or None)."""
+    pr = propeller(p)
+    if pr is None:
+        return profile, None
+    fore = pr["x"] + PROPELLER_HALF_WIDTH * pr["diameter"]  # the profile falls forward: the blades' forward edge
+    if float(profile(fore)[0]) < pr["hull_above"]:  # a flatter counter over the propeller, then a steeper run
+        lifted = {**prof, "points": sorted(prof["points"] + [[fore, pr["hull_above"]]])}
+        tries = [{**lifted, "slopeB": -math.tan(math.radians(APERTURE_COUNTER_ANGLE))}] if p.stern == "transom" else []
+        for trial in tries + [lifted]:
+            for spans in PROFILE_SPANS:
+                try:
+                    profile = solve_curve("profile", BasicCurveSpec.from_dict("profile", {**trial, "spans": spans},
+                                                                              "basic_curves.profile"),
+                                          x_aft, x_fore, lower=-p.draft, upper=p.depth, maximum=False)
+                    prof.clear()
+                    prof.update(trial, spans=spans)
+                    break
+                except _native.InfeasibleFormParameters:
+                    continue
+            else:
+                continue
+            break
+        else:
+            raise _native.InfeasibleFormParameters(
+                f"basic_curves.profile: no fair centre profile passes {pr['hull_above']:.4g} m above base over the "
+                f"propeller (diameter {pr['diameter']:.3g} m at x = {pr['x']:.4g} m) and meets the keel's flat at "
+                f"{prof['flat_from']:.4g} m: give a smaller propeller_diameter or a longer run (a lower cb)")
+    dp = pr["diameter"]
+    end = min(SKEG_END * dp, 0.5 * (prof["flat_from"] - pr["skeg_aft"]))
+    skeg = {"x_aft": pr["skeg_aft"], "x_fore": prof["flat_from"], "half_thickness": SKEG_HALF_THICKNESS * dp,
+            "fillet": SKEG_FILLET * dp, "end_length": end}
+    return profile, skeg
 
 
 def _midship_place(p: Particulars) -> float:
@@ -313,6 +387,7 @@ def design_description(p: Particulars) -> dict:
         except _native.InfeasibleFormParameters:
             if spans == PROFILE_SPANS[-1]:
                 raise
+    profile, skeg = _aperture(p, prof, profile, x_aft, x_fore)
     xa, xf = immersed_range(profile, T)
     dwl = {"yE": 0.0, "monotone": True, "spans": 24, "waterplane_area": c["cwp"] * L * B, "lcf": c["lcf"]}
     if par[1] > par[0]:
@@ -353,6 +428,12 @@ def design_description(p: Particulars) -> dict:
         "basic_curves": {"profile": prof, "dwl": dwl, "deck": deck, "sac": sac},
         "design": {k: v for k, v in asdict(p).items() if k != "notes"},
     }
+    if skeg is not None:
+        desc["skeg"] = skeg
+        desc["sections"]["n_control"] = SKEG_SECTION_CONTROLS
+        pr = propeller(p)
+        desc["notes"] += (f"; single screw: propeller diameter {pr['diameter']:.3g} m at x = {pr['x']:.4g} m, shaft "
+                          f"{pr['shaft_height']:.3g} m above base, hull at least {pr['hull_above']:.4g} m above base over it")
     if p.bulb:
         # bulb: True, Kracht coefficients, or a whole "bulb" section ({"kracht": ..., "shape": ...})
         given = dict(p.bulb) if isinstance(p.bulb, dict) else {}

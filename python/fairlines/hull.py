@@ -60,6 +60,11 @@ DECK_CHECKS = 81
 # The sheer (deck-at-side height) stays above T by this fraction of T, and below this multiple of D.
 SHEER_CLEARANCE = 0.01
 SHEER_LIMIT = 2.0
+# A skeg with a square aft edge (no end_length): the station before it lies this fraction of
+# Lpp aft of it (the sternpost is the surface's turn between the two).
+STERNPOST_GAP = 0.002
+# ... with a raked aft end: stations this many to its rake.
+SKEG_END_STATIONS = 6
 # Least slope (dz/dx) of the profile used for the arrival angle of above-water sections.
 MIN_STEM_SLOPE = 0.05
 MAX_LOWER_ANGLE = 75.0      # deg: a flat counter under a full waterline end arrives no flatter (sections allow < 80)
@@ -259,8 +264,10 @@ class Hull:
         return dwl.x_start, dwl.x_end
 
     def junctions(self) -> list[float]:
-        """x where a basic curve has a flat part's end or the waterline ends."""
+        """x where a basic curve has a flat part's end, the waterline ends or a skeg ends."""
         out = set(self.immersed_range())
+        if (sk := self.description.skeg) is not None:
+            out.update((sk.x_aft, sk.x_aft + sk.end_length, sk.x_fore))
         for spec in self.description.curves.values():
             for x in (spec.flat_from, spec.flat_to):
                 if x is not None:
@@ -276,6 +283,14 @@ class Hull:
                 self._stations = np.asarray(d.station_x, dtype=float)
             else:
                 self._stations = station_positions(d.x_aft, d.x_fore, d.station_count, self.junctions())
+                sk = d.skeg
+                if sk is not None and sk.end_length <= 0 and sk.x_aft - d.x_aft > 2 * STERNPOST_GAP * d.principal.lpp:
+                    # a station just aft of a square sternpost: the skeg ends within this gap
+                    self._stations = np.union1d(self._stations, [sk.x_aft - STERNPOST_GAP * d.principal.lpp])
+                elif sk is not None:  # the skeg's raked aft end: its sections change quickly
+                    extra = np.linspace(sk.x_aft, sk.x_aft + sk.end_length, SKEG_END_STATIONS + 1)
+                    far = [x for x in extra if np.min(np.abs(self._stations - x)) > 0.25 * sk.end_length / SKEG_END_STATIONS]
+                    self._stations = np.union1d(self._stations, far)
         return self._stations.copy()
 
     # ---- sections ---------------------------------------------------------------------
@@ -347,11 +362,15 @@ class Hull:
         corner = {field: np.clip(bc[name](xs), lo, hi) for name, (field, lo, hi) in CORNER_CURVES.items() if name in bc}
         lower = self._lower_angles(xs)
         given = self._given_shapes(xs)
+        skeg, share = d.skeg.at(xs, np.minimum(prof, z_deck)) if d.skeg is not None else (np.full(len(xs), np.nan), None)
         specs = []
         for i, xi in enumerate(xs):
             s = _native.SectionSpec()
             if given[i] is not None:
                 s.given, s.given_fore, s.given_mix = given[i]
+            if np.isfinite(skeg[i]) and share[i] > 0:
+                s.skeg_bottom, s.skeg_share = float(skeg[i]), float(share[i])
+                s.skeg_half_thickness, s.skeg_fillet = d.skeg.half_thickness, d.skeg.fillet
             s.x, s.y_max, s.n_control = float(xi), limit, d.section_n_control
             s.y_deck = float(deck[i])
             s.z_deck = float(z_deck[i])

@@ -305,10 +305,12 @@ def _hydrostatics(hull, patches, p, dwl_cuts=()) -> dict | None:
     """Hydrostatics at the design draft for the title block, with where they come from."""
     try:
         if len(patches) == 1 and patches[0][1] is None:
+            from .fairness import surface_extent
             h = _quadrature(patches[0][0], p)
-            full = h["x_min"] <= 1e-6 * p["lpp"] and h["x_max"] >= p["lpp"] * (1 - 1e-6)
-            h["source"] = "NURBS quadrature" + ("" if full else
-                                                f", modelled part x {h['x_min']:.1f}-{h['x_max']:.1f} m only")
+            # the surface, not its wetted part (a dry counter or transom is modelled too)
+            lo, hi = (float(e[0]) for e in surface_extent(patches[0][0]))
+            full = lo <= 1e-6 * p["lpp"] and hi >= p["lpp"] * (1 - 1e-6)
+            h["source"] = "NURBS quadrature" + ("" if full else f", modelled part x {lo:.1f}-{hi:.1f} m only")
             return h
         if hasattr(hull, "mesh"):
             return _composed_hydrostatics(hull, patches[0][0], p, dwl_cuts)

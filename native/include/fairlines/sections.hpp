@@ -93,6 +93,16 @@ struct SectionSpec {
   /// (a station between two given ones); empty: `given` alone.
   Eigen::MatrixXd given_fore;
   double given_mix = 0.0;
+  /// A skeg below the hull body: where skeg_bottom (m above base) lies below z_keel (the body's
+  /// bottom on the centre plane), the section runs down the skeg's side at y = skeg_half_thickness
+  /// to skeg_bottom and across it to the centre plane, joined to the body's section by a hollow
+  /// fillet of about skeg_fillet (m). NaN: no skeg.
+  double skeg_bottom = kNaN;
+  double skeg_half_thickness = 0.5;
+  double skeg_fillet = 1.0;
+  /// How far the skeg is developed here, 0 .. 1 (it tapers to its ends): its thickness and
+  /// fillet scale with it, and so does its share of the section's parameter.
+  double skeg_share = 1.0;
 
   /// Each field with its name and meaning: f(name, member pointer, doc).
   template <typename F>
@@ -116,6 +126,10 @@ struct SectionSpec {
     f("given", &SectionSpec::given, "given shape: (m, 2) points (y, z), m, deck edge to keel (empty: the template family)");
     f("given_fore", &SectionSpec::given_fore, "second given shape blended with `given` (empty: none)");
     f("given_mix", &SectionSpec::given_mix, "weight of given_fore in the blend, 0 to 1");
+    f("skeg_bottom", &SectionSpec::skeg_bottom, "height of the skeg's bottom (m above base; NaN: no skeg)");
+    f("skeg_half_thickness", &SectionSpec::skeg_half_thickness, "half the skeg's thickness (m, > 0)");
+    f("skeg_fillet", &SectionSpec::skeg_fillet, "size of the hollow fillet between the hull body and the skeg (m, >= 0)");
+    f("skeg_share", &SectionSpec::skeg_share, "how far the skeg is developed here (0 .. 1): scales its thickness and fillet");
   }
 };
 

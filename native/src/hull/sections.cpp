@@ -22,6 +22,7 @@
 #include <exception>
 #include <optional>
 #include <thread>
+#include <tuple>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -128,6 +129,17 @@ constexpr double kGivenBoundBand = 0.02;
 constexpr double kGivenMobility = 0.05;
 /// Shifts past the bound [0, y_max] by more than this fraction of y_max are held on it.
 constexpr double kGivenBoundTol = 1e-12;
+/// Skegs: samples of the body's section the skeg shape is made from, points along the fillet,
+/// the skeg's side and its bottom, and the least room (fraction of the skeg's depth) the
+/// fillet leaves the side above the bottom.
+constexpr int kSkegBodySamples = 401;
+constexpr int kSkegFilletPoints = 24;
+constexpr int kSkegSidePoints = 12;
+constexpr double kSkegBottomRoom = 0.2;
+/// The fillet is at most this fraction of the skeg's depth below the body.
+constexpr double kSkegFilletDepth = 0.8;
+/// The thinnest a tapering skeg gets, fraction of its half thickness.
+constexpr double kSkegThinnest = 0.02;
 /// Samples per knot span in the search of the spline's first crossing of z = T.
 constexpr int kCrossingSamples = 8;
 
@@ -293,6 +305,10 @@ void validate(const SectionSpec& s, const std::string& at) {
   validate_given(s.given_fore, "given_fore", at);
   if (s.given_fore.rows() > 0 && s.given.rows() == 0) fail(at, ": given_fore is set without given; expected given first");
   if (!(s.given_mix >= 0 && s.given_mix <= 1)) fail(at, ": given_mix is ", s.given_mix, "; expected a weight from 0 to 1");
+  if (std::isinf(s.skeg_bottom)) fail(at, ": skeg_bottom is ", s.skeg_bottom, "; expected a height in metres or NaN (no skeg)");
+  if (!(s.skeg_half_thickness > 0 && std::isfinite(s.skeg_half_thickness)))
+    fail(at, ": skeg_half_thickness is ", s.skeg_half_thickness, " m; expected > 0");
+  if (!(s.skeg_fillet >= 0 && std::isfinite(s.skeg_fillet))) fail(at, ": skeg_fillet is ", s.skeg_fillet, " m; expected >= 0");
 }
 
 Section setup(const SectionSpec& s) {
@@ -635,16 +651,18 @@ Eigen::MatrixXd second_differences(int n) {
 Eigen::MatrixX2d fit_given(const Section& S, const std::vector<V2>& pts) {
   const int n = S.l.n;
   const std::size_t m = pts.size();
-  std::vector<double> t(m, 0.0);
-  for (std::size_t i = 1; i < m; ++i) t[i] = t[i - 1] + (pts[i] - pts[i - 1]).norm();
+  std::vector<double> arc(m, 0.0);
+  for (std::size_t i = 1; i < m; ++i) arc[i] = arc[i - 1] + (pts[i] - pts[i - 1]).norm();
   Eigen::MatrixX2d P = Eigen::MatrixX2d::Zero(n, 2);
   P.row(0) = pts.front().transpose(), P.row(n - 1) = pts.back().transpose();
-  if (!(t.back() > 0)) return P;
+  if (!(arc.back() > 0) || !(S.f.L > 0)) return P;
+  std::vector<double> t(m);  // chord-length parameters (measured shapes may turn back along their chord)
+  for (std::size_t i = 0; i < m; ++i) t[i] = arc[i] / arc.back();
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
   Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(n, 2);
   for (std::size_t i = 0; i < m; ++i) {
-    const double w = 0.5 * ((i > 0 ? t[i] - t[i - 1] : 0.0) + (i + 1 < m ? t[i + 1] - t[i] : 0.0)) / t.back();
-    const Eigen::RowVectorXd row = basis_row(S.l.U, kDegree, t[i] / t.back());
+    const double w = 0.5 * ((i > 0 ? arc[i] - arc[i - 1] : 0.0) + (i + 1 < m ? arc[i + 1] - arc[i] : 0.0)) / arc.back();
+    const Eigen::RowVectorXd row = basis_row(S.l.U, kDegree, t[i]);
     A.noalias() += w * row.transpose() * row;
     rhs.noalias() += w * row.transpose() * pts[i].transpose();
   }
@@ -711,7 +729,7 @@ Eigen::RowVectorXd given_area_row(const Section& S, const Eigen::MatrixX2d& P, d
 /// bound B/2) and to `target` (NaN: area free), each condition asked with the immersion weight w. A control point within
 /// kGivenBoundBand of y_max of the bound 0 or y_max is less mobile (its shift costs more, its
 /// mobility falling linearly to kGivenMobility on the bound): a flat side at B/2 stays there.
-Eigen::VectorXd given_shifts(const Section& S, const Eigen::MatrixX2d& P, double t_q, double target) {
+Eigen::VectorXd given_shifts(const Section& S, const Eigen::MatrixX2d& P, double t_q, double target, double hold_below) {
   const int n = S.l.n;
   const Eigen::RowVectorXd arow = given_area_row(S, P, t_q), qrow = point_row(S, t_q);
   const bool area = !std::isnan(target);
@@ -731,6 +749,8 @@ Eigen::VectorXd given_shifts(const Section& S, const Eigen::MatrixX2d& P, double
   // exactly, the spline would need four control points on B/2, a flat stretch below Q.
   const bool through_q = S.b < (1 - kGivenBoundBand) * S.s.y_max;
   std::vector<std::pair<int, double>> held{{0, 0.0}, {n - 1, 0.0}};  // (control point, its shift)
+  for (int k = 1; k + 1 < n; ++k)
+    if (P(k, 1) < hold_below) held.emplace_back(k, 0.0);  // a skeg keeps its thickness
   Eigen::VectorXd delta;
   for (int pass = 0; pass < n; ++pass) {  // an active set: shifts past a bound are held on it
     const int h = static_cast<int>(held.size());
@@ -755,20 +775,138 @@ Eigen::VectorXd given_shifts(const Section& S, const Eigen::MatrixX2d& P, double
   return delta;
 }
 
-/// A section of the given shape: fitted, then shifted through Q and to the asked area.
-SectionDesign design_given(const Section& S) {
+/// The section of control points P (y, z) shifted through Q and to the asked area (control
+/// points below `hold_below`, a skeg's, held).
+SectionDesign finish_given(const Section& S, Eigen::MatrixX2d P, double hold_below) {
   SectionDesign out{NurbsCurve(kDegree, S.l.U, Eigen::MatrixXd::Zero(S.l.n, 3))};
-  Eigen::MatrixX2d P = given_control_points(S);
   out.immersion = S.w;
   if (S.immersed) {
     const double t_q = waterline_parameter(S, P);
-    P.col(0) += given_shifts(S, P, t_q, S.s.half_area);
+    P.col(0) += given_shifts(S, P, t_q, S.s.half_area, hold_below);
     out.fullness = given_area_row(S, P, t_q).dot(P.col(0)) / (S.b * S.d);
   }
   Eigen::MatrixXd Q3(S.l.n, 3);
   for (int k = 0; k < S.l.n; ++k) Q3.row(k) << S.s.x, std::clamp(P(k, 0), 0.0, S.s.y_max), P(k, 1);
   out.curve = NurbsCurve(kDegree, S.l.U, Q3);
   return out;
+}
+
+SectionDesign design_given(const Section& S) {
+  return finish_given(S, given_control_points(S), -std::numeric_limits<double>::infinity());
+}
+
+// ---- skegs --------------------------------------------------------------------------------
+
+/// Where the descending curve (samples deck -> keel) last comes in to half-breadth y0 from
+/// outside: the index of the sample at or before it (or -1 when the curve never is that wide).
+int last_wider(const Eigen::MatrixXd& yz, double y0) {
+  for (Eigen::Index i = yz.rows() - 1; i > 0; --i)
+    if (yz(i - 1, 0) >= y0 && yz(i, 0) < y0) return static_cast<int>(i - 1);
+  return -1;
+}
+
+/// The given shape of a section with a skeg (see SectionSpec::skeg_bottom): the body's section
+/// (samples, deck to keel) down to where it comes in to y = t + f, a hollow quadratic fillet
+/// from there (along the body's tangent) to the skeg side (heading straight down), the side to
+/// the bottom, the bottom to the centre plane; with the height of the side's top (below it the
+/// shape is the skeg's, held when the section is shifted to its area). Empty when the body is
+/// never that wide.
+/// The skeg's tail of a section with a skeg (see SectionSpec::skeg_bottom), from the body's
+/// section sampled at parameters ts (yz, deck to keel): from J, where the body last comes in to
+/// y = t + f, a hollow quadratic fillet along the body's tangent to the skeg side (heading
+/// straight down), the side to the bottom, the bottom to the centre plane.
+struct SkegTail {
+  std::vector<V2> pts;     ///< J first, the keel point last
+  double t_J = 1.0;        ///< the body's parameter at J
+  double side_top = 0.0;   ///< height of the top of the skeg's straight side
+};
+
+SkegTail skeg_tail(const SectionSpec& s, const Eigen::VectorXd& ts, const Eigen::MatrixXd& yz) {
+  // where it ends the skeg thins and its fillet shrinks (and the fillet is at most
+  // kSkegFilletDepth of its depth): the section tends to the body's
+  const double share = std::clamp(s.skeg_share, 0.0, 1.0), zb = s.skeg_bottom;
+  const double t = std::max(share * s.skeg_half_thickness, kSkegThinnest * s.skeg_half_thickness);
+  const double f = std::min(share * s.skeg_fillet, kSkegFilletDepth * (s.z_keel - zb));
+  const int j = last_wider(yz, t + f);
+  SkegTail out;
+  if (j < 0) return out;
+  const double r = (yz(j, 0) - (t + f)) / (yz(j, 0) - yz(j + 1, 0));
+  const V2 J = yz.row(j).transpose() + r * (yz.row(j + 1) - yz.row(j)).transpose();
+  out.t_J = ts[j] + r * (ts[j + 1] - ts[j]);
+  const V2 tan = (yz.row(j + 1) - yz.row(j)).transpose().normalized();  // heading in and (usually) down
+  // The fillet's corner C: where the body's tangent at J meets the skeg side y = t, kept no
+  // higher than J and leaving the side kSkegBottomRoom of the depth; E: f further down the side.
+  const double floor_z = zb + kSkegBottomRoom * (J.y() - zb);
+  const double zc = tan.x() < -kGivenTiny ? J.y() + (t - J.x()) / tan.x() * tan.y() : J.y();
+  const V2 C(t, std::clamp(zc, floor_z, J.y()));
+  const V2 E(t, std::max(C.y() - f, floor_z));
+  out.pts.push_back(J);
+  for (int k = 1; k <= kSkegFilletPoints; ++k) {  // quadratic Bezier J -> C -> E
+    const double u = static_cast<double>(k) / kSkegFilletPoints;
+    out.pts.push_back((1 - u) * (1 - u) * J + 2 * u * (1 - u) * C + u * u * E);
+  }
+  for (int k = 1; k <= kSkegSidePoints; ++k) out.pts.emplace_back(t, E.y() + (zb - E.y()) * k / kSkegSidePoints);
+  for (int k = 1; k <= kSkegSidePoints; ++k) out.pts.emplace_back(t * (1.0 - static_cast<double>(k) / kSkegSidePoints), zb);
+  out.side_top = E.y();
+  return out;
+}
+
+/// Control points (y, z) of a section with a skeg, fitted (least squares with a little bending,
+/// deck and keel points held) to the body's curve down to J and the skeg's tail after it. The
+/// body keeps its own parameters, scaled onto [0, t'] with t' = min(t_J, the body's share of the
+/// arc length): the tail gets at least its arc length's share of the control points, and as
+/// the skeg vanishes (J -> the keel) the section tends to the body's, parameters and all.
+Eigen::MatrixX2d skeg_control_points(const Layout& l, const Eigen::VectorXd& ts, const Eigen::MatrixXd& yz,
+                                     const SkegTail& tail) {
+  const int n = l.n;
+  std::vector<double> arc(tail.pts.size(), 0.0);
+  for (std::size_t i = 1; i < tail.pts.size(); ++i) arc[i] = arc[i - 1] + (tail.pts[i] - tail.pts[i - 1]).norm();
+  double body_arc = 0.0;
+  Eigen::Index last = 0;
+  for (Eigen::Index i = 1; i < ts.size() && ts[i] < tail.t_J; ++i) body_arc += (yz.row(i) - yz.row(i - 1)).norm(), last = i;
+  const double t_head = std::min(tail.t_J, body_arc / std::max(body_arc + arc.back(), 1e-300));
+  std::vector<std::pair<double, V2>> data;  // (parameter, point), weighted by arc spacing
+  for (Eigen::Index i = 0; i <= last; ++i) data.emplace_back(ts[i] * t_head / tail.t_J, yz.row(i).transpose());
+  for (std::size_t i = 0; i < tail.pts.size(); ++i)
+    data.emplace_back(t_head + (1.0 - t_head) * (arc.back() > 0 ? arc[i] / arc.back() : 1.0), tail.pts[i]);
+  std::vector<V2> pts;
+  for (const auto& d : data) pts.push_back(d.second);
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(n, 2);
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    const double w = 0.5 * ((i > 0 ? (pts[i] - pts[i - 1]).norm() : 0.0) + (i + 1 < pts.size() ? (pts[i + 1] - pts[i]).norm() : 0.0));
+    const Eigen::RowVectorXd row = basis_row(l.U, kDegree, std::clamp(data[i].first, 0.0, 1.0));
+    A.noalias() += w * row.transpose() * row;
+    rhs.noalias() += w * row.transpose() * data[i].second.transpose();
+  }
+  const Eigen::MatrixXd D2 = second_differences(n);
+  A.noalias() += kGivenSmoothing * (body_arc + arc.back()) / (n - kDegree) * D2.transpose() * D2;
+  Eigen::MatrixX2d P = Eigen::MatrixX2d::Zero(n, 2);
+  P.row(0) = pts.front().transpose(), P.row(n - 1) = pts.back().transpose();
+  const int k = n - 2;
+  const Eigen::MatrixX2d b = rhs.middleRows(1, k) - A.block(1, 0, k, 1) * P.row(0) - A.block(1, n - 1, k, 1) * P.row(n - 1);
+  P.middleRows(1, k) = A.block(1, 1, k, k).ldlt().solve(b);
+  P.col(0) = P.col(0).cwiseMax(0.0);
+  P.col(1) = P.col(1).cwiseMax(pts.back().y());
+  return P;
+}
+
+/// A section with a skeg: the body's section (holding the asked area), its tail replaced by the
+/// skeg and its fillet, which add their own area (the hull's volume is matched on the surface).
+SectionDesign design_with_skeg(const SectionSpec& spec) {
+  SectionSpec body = spec;
+  body.skeg_bottom = kNaN;
+  const SectionDesign b = design_section(body);
+  const Eigen::VectorXd ts = Eigen::VectorXd::LinSpaced(kSkegBodySamples, 0.0, 1.0);
+  const Eigen::MatrixXd yz = b.curve.evaluate(ts).rightCols(2);
+  const SkegTail tail = skeg_tail(spec, ts, yz);
+  if (tail.pts.empty()) return b;
+  SectionSpec with = body;
+  with.z_keel = spec.skeg_bottom;
+  with.half_area = kNaN;  // the body holds the asked area; the skeg adds its own (an appendage)
+  const Section S = setup(with);
+  const Eigen::MatrixX2d P = skeg_control_points(S.l, ts, yz, tail);
+  return finish_given(S, P, tail.side_top);
 }
 
 }  // namespace
@@ -787,6 +925,7 @@ std::pair<double, double> section_fullness_range(const SectionSpec& spec) {
 }
 
 SectionDesign design_section(const SectionSpec& spec) {
+  if (!std::isnan(spec.skeg_bottom) && spec.skeg_bottom < spec.z_keel) return design_with_skeg(spec);
   const Section S = setup(spec);
   const int n = S.l.n;
   SectionDesign out{NurbsCurve(kDegree, S.l.U, Eigen::MatrixXd::Zero(n, 3))};

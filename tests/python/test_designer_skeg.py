@@ -1,0 +1,112 @@
+"""A single screw: the designer's skeg under the run and the propeller aperture aft of it.
+
+Truths: the particulars asked for (volume, LCB, Cwp measured on the surface), the propeller's
+diameter and the clearances the designer promises (disc geometry, independent of the hull),
+and frames cut from the surface (fl.plane_cut)."""
+
+import numpy as np
+import pytest
+
+import fairlines as fl
+from conftest import edge_census
+from fairlines.designer import (HEEL_CLEARANCE, PROPELLER_DIAMETER, PROPELLER_HALF_WIDTH, SKEG_HALF_THICKNESS,
+                                TIP_CLEARANCE, propeller)
+from fairlines.description import SKEG_FORE_TAPER
+from fairlines.fairness import judge_cut
+
+MATCH_TOL = 1e-5
+BASELINE_TOL = 1e-3  # of T: the skinned skeg bottom on the baseline
+SHIPS = {
+    "tanker": dict(lpp=180.0, breadth=32.0, draft=11.5, depth=17.0, cb=0.82, lcb=95.4, skeg=True),
+    "container": dict(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.65, lcb=118.73, bulb=True, skeg=True),
+    "coaster": dict(lpp=100.0, breadth=16.0, draft=6.0, depth=9.0, cb=0.75, lcb=51.0, stern="cruiser", skeg=True,
+                    propeller_diameter=3.8),
+}
+
+
+@pytest.fixture(scope="module", params=list(SHIPS))
+def ship(request):
+    p = SHIPS[request.param]
+    return p, fl.design_hull(**p)
+
+
+def _frame(hull, x):
+    return np.asarray(fl.plane_cut(hull.bare_hull_surface(), 0, float(x), 801).points)
+
+
+def test_skeg_ship_meets_its_particulars(ship):
+    p, hull = ship
+    h = hull.hydrostatics()
+    assert h.volume == pytest.approx(p["cb"] * p["lpp"] * p["breadth"] * p["draft"], rel=MATCH_TOL)
+    assert abs(h.lcb - p["lcb"]) <= MATCH_TOL * p["lpp"]
+
+
+def test_the_propeller_disc_clears_the_hull(ship):
+    """Every point of the frames through the blades (the propeller's plane and its blades'
+    axial extent either side) lies at least the tip clearance outside the disc (a circle of
+    the given diameter about the shaft)."""
+    p, hull = ship
+    dp = p.get("propeller_diameter", PROPELLER_DIAMETER * p["draft"])
+    x_p, shaft = propeller(fl.Particulars(**p))["x"], (HEEL_CLEARANCE + 0.5) * dp
+    assert shaft - dp / 2 == pytest.approx(HEEL_CLEARANCE * dp)  # the disc stays above the baseline
+    for x in x_p + np.array([-1.0, 0.0, 1.0]) * PROPELLER_HALF_WIDTH * dp:
+        f = _frame(hull, x)
+        gap = np.hypot(f[:, 1], f[:, 2] - shaft).min() - dp / 2
+        assert gap >= 0.98 * TIP_CLEARANCE * dp, (x, gap)
+
+
+def test_the_skeg_runs_on_the_baseline_at_its_thickness(ship):
+    """Where the skeg is whole (between its raked aft end and its taper into the keel), each
+    frame reaches the baseline on it, and its sides stand the designer's half-thickness off the
+    centre plane (at 10-20 % of its depth: clear of the bottom's rounded corner and the fillet)."""
+    p, hull = ship
+    sk = hull.description.skeg
+    dp = p.get("propeller_diameter", PROPELLER_DIAMETER * p["draft"])
+    body = hull.basic_curves["profile"]
+    a, b = sk.x_aft + sk.end_length, sk.x_fore - SKEG_FORE_TAPER * (sk.x_fore - sk.x_aft)
+    deepest = float(body(a)[0])
+    for x in np.linspace(a, b, 5):
+        f = _frame(hull, x)
+        assert f[:, 2].min() == pytest.approx(0.0, abs=BASELINE_TOL * p["draft"]), x
+        depth = float(body(x)[0])
+        if depth < 0.5 * deepest:  # shallow: the rounded bottom corner reaches up the side
+            continue
+        side = f[(f[:, 2] > 0.1 * depth) & (f[:, 2] < 0.2 * depth) & (f[:, 1] < 2 * SKEG_HALF_THICKNESS * dp)]
+        assert len(side) and np.all(np.abs(side[:, 1] - SKEG_HALF_THICKNESS * dp) <= 0.1 * SKEG_HALF_THICKNESS * dp), x
+
+
+def _turns_above(hull, x, draft):
+    cut = judge_cut(fl.plane_cut(hull.bare_hull_surface(), 0, float(x), 601))
+    return sum(i["at"][2] > draft for i in cut["inflections"])
+
+
+def test_the_skeg_adds_no_hollow_above_the_waterline(ship):
+    """The skeg's hollow is below the water: a frame over it turns hollow above T no more often
+    than the same ship's frame without a skeg."""
+    p, hull = ship
+    plain = fl.design_hull(**{**p, "skeg": False, "propeller_diameter": None})
+    sk = hull.description.skeg
+    for x in np.linspace(sk.x_aft, sk.x_fore, 8):
+        assert _turns_above(hull, x, p["draft"]) <= _turns_above(plain, x, p["draft"]), x
+
+
+def test_skeg_ship_composes_watertight(ship):
+    p, hull = ship
+    c = hull.composed_hull() if p.get("bulb") else fl.compose([hull.bare_hull_surface()], hull_u=96, hull_v=40)
+    assert edge_census(c.full_mesh().faces) == (0, 0, 0)
+
+
+@pytest.mark.parametrize("bad, message", [
+    (dict(propeller_diameter=7.0), "expected it only with skeg=True"),
+    (dict(skeg=True, propeller_diameter=20.0), "propeller_diameter is 20.0; expected a propeller diameter"),
+    (dict(skeg="yes"), "skeg is 'yes'; expected true or false")])
+def test_bad_propeller_particulars_name_the_value(bad, message):
+    with pytest.raises(fl.InvalidInput, match=message):
+        fl.design_hull(**{**SHIPS["tanker"], "skeg": False, **bad})
+
+
+def test_a_skeg_in_the_description_is_refused_off_the_hull():
+    d = fl.design_hull(**SHIPS["tanker"]).to_dict()
+    d["skeg"]["x_fore"] = 500.0
+    with pytest.raises(fl.InvalidInput, match="skeg.x_aft / x_fore"):
+        fl.Hull.from_json(d)
