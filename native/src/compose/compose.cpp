@@ -39,6 +39,7 @@
 #include <Eigen/Geometry>
 
 #include "fairlines/errors.hpp"
+#include "common/used_nodes.hpp"
 #include "nurbs/checks.hpp"
 
 namespace fairlines {
@@ -915,20 +916,9 @@ TriMesh mirror_full_hull(const ComposedHull& c) {
     faces.push_back({mirror[m.faces(f, 0)], mirror[m.faces(f, 2)], mirror[m.faces(f, 1)]});
   }
   // drop vertices only the centre-plane faces used (the aft-deck corner of the caps stays)
-  std::vector<int> used(verts.size(), -1);
   TriMesh out;
-  int cnt = 0;
-  for (auto& f : faces)
-    for (int& v : f) {
-      if (used[v] < 0) used[v] = cnt++;
-      v = used[v];
-    }
-  out.vertices.resize(cnt, 3);
-  for (size_t i = 0; i < verts.size(); ++i)
-    if (used[i] >= 0) out.vertices.row(used[i]) = verts[i].transpose();
-  out.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (size_t f = 0; f < faces.size(); ++f)
-    for (int k = 0; k < 3; ++k) out.faces(static_cast<Eigen::Index>(f), k) = faces[f][k];
+  out.vertices = detail::keep_used_nodes(faces, verts);
+  out.faces = detail::element_rows(faces);
   return out;
 }
 
