@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .lines_plan import GAP_MM, MARGIN_MM, SHEET_MM, STATIONS_PER_LPP, SCALES, Polyline, Text
+from .lines_sheet import GAP_MM, MARGIN_MM, SHEET_MM, STATIONS_PER_LPP, SCALES, Polyline, Text
 
 __all__ = ["layout"]
 
