@@ -160,7 +160,7 @@ def hull_grids(hull, u=41, v=21) -> dict:
     from .compose import ComposedHull
     if not isinstance(hull, ComposedHull):
         raise InvalidInput(f"hull is {type(hull).__name__}; expected a ComposedHull")
-    surfaces = {"hull": hull._c.hull}
+    surfaces = {"hull": hull.native.hull}
     if len(hull.trimmed_surfaces) > 1 and hull.trimmed_surfaces[1][0] is not hull.blend:
         surfaces["bulb"] = hull.trimmed_surfaces[1][0]
     if hull.blend is not None:

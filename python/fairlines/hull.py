@@ -96,7 +96,7 @@ def _clear_build_caches() -> None:
     """Forget every cached build step (tests compare cold and warm builds)."""
     _shape_cache.clear()
     _band_cache.clear()
-    _basic_curves._curve_cache.clear()
+    _basic_curves.clear_curve_cache()
 
 
 def station_positions(x_aft: float, x_fore: float, count: int, junctions: list[float] = ()) -> np.ndarray:
