@@ -80,7 +80,8 @@ class CurvesOfForm:
     def plot_sac(self, path, basic_curve: Callable[[np.ndarray], np.ndarray] | None = None,
                  name: str = "") -> None:
         """The sectional area curve at the design draft, with the designed SAC (``basic_curve``:
-        x -> area, m^2) and their difference when it is given."""
+        x -> area, m^2) and their difference when it is given. Raises InvalidInput when the
+        curves were computed without a design draft."""
         if self.sac is None:
             raise InvalidInput("no design draft was given; expected curves_of_form(..., design_draft=T)")
         fig = _figure((11.7, 6.0))

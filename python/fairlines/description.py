@@ -138,6 +138,8 @@ class PrincipalDimensions:
 
     @classmethod
     def from_dict(cls, d: Any, path: str = "principal") -> PrincipalDimensions:
+        """The principal dimensions of ``d`` (keys Lpp, B, T, D). Raises InvalidInput naming a
+        missing or unknown key or a length out of range."""
         d = keyed_object(path, d, ("Lpp", "B", "T", "D"))
         vals = {}
         for key in ("Lpp", "B", "T", "D"):
@@ -185,6 +187,8 @@ class BasicCurveSpec:
 
     @classmethod
     def from_dict(cls, name: str, d: Any, path: str) -> BasicCurveSpec:
+        """The spec of basic curve ``name`` from ``d``. Raises InvalidInput naming a missing,
+        unknown or malformed key."""
         extra = (FULLNESS_KEY,) if name == "sac" else ()
         d = keyed_object(path, d, CURVE_KEYS + tuple(FORM_ALIASES.get(name, {})) + extra)
         spec = cls()
@@ -293,6 +297,8 @@ class BulbSpec:
 
     @classmethod
     def from_dict(cls, d: Any, path: str = "bulb") -> BulbSpec:
+        """The bulb section of a description. Raises InvalidInput naming an unknown key or a
+        value out of range."""
         d = keyed_object(path, d, ("kracht", "shape", "displacement_volume"))
         spec = cls()
         for key, val in keyed_object(f"{path}.kracht", d.get("kracht", {}), KRACHT).items():
@@ -341,6 +347,8 @@ class HullDescription:
 
     @classmethod
     def from_dict(cls, d: Any) -> HullDescription:
+        """A hull description from its JSON object (docs/hull_description.schema.json). Raises
+        InvalidInput naming the first missing, unknown or out-of-range key."""
         d = keyed_object("description", d, TOP_KEYS)
         principal = PrincipalDimensions.from_dict(d.get("principal"), "principal")
         ends = keyed_object("ends", d.get("ends", {}), ("aft", "fore", *POST_KEYS.values()))
