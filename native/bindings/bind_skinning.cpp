@@ -148,7 +148,8 @@ void bind_skinning(py::module_& m) {
       "surface"_a, "draft"_a, "options"_a = HydrostaticsOptions{},
       "Hydrostatics of a hull surface at `draft` (m above base) by Gauss-Legendre quadrature on the surface\n"
       "(fairlines.hydrostatics takes the options by keyword).");
-  m.def("section_area", &section_area, "surface"_a, "x"_a, "draft"_a, "half_hull"_a = true, "gauss"_a = 8,
+  m.def("section_area", &section_area, "surface"_a, "x"_a, "draft"_a, "half_hull"_a = HydrostaticsOptions{}.half_hull,
+        "gauss"_a = HydrostaticsOptions{}.gauss,
         "(area below the draft of the section x = const (m^2; full section when half_hull), centroid height (m)).");
 }
 

@@ -29,7 +29,7 @@ from typing import Sequence
 
 import numpy as np
 
-from ._native import InvalidInput, NurbsSurface
+from ._native import HydrostaticsOptions, InvalidInput, NurbsSurface
 from .hydrostatics_surface import hydrostatics
 from .lines_layout import layout
 from .lines_sheet import SHEET_MM, STATIONS_PER_LPP, Polyline, Text
@@ -241,7 +241,7 @@ def _extent(patches):
     return pts.min(axis=0), pts.max(axis=0)
 
 
-def waterplane_from_sections(cuts, density: float = 1.025) -> dict:
+def waterplane_from_sections(cuts, density: float = HydrostaticsOptions().density) -> dict:
     """Full-ship waterplane area, LCF, I_T and I_L (about F) from the half waterline's branches
     (k, 3) by Green's theorem: the region between them, the centre line y = 0 and transverse
     lines x = const (which add nothing to the line integrals of y, x y, y^3 / 3, x^2 y along
