@@ -93,15 +93,6 @@ py::dict result_dict(const FormCurveResult& res) {
   return out;
 }
 
-void bind_option_structs(py::module_& m) {
-  using option_docs::bind_options;
-  bind_options<FairnessWeights>(m, "FairnessWeights", "Weights of the fairness objective (all >= 0, one of e1, e2, e3 > 0).");
-  bind_options<FormBounds>(m, "FormBounds", "Conditions on the control polygon that keep a section a section.");
-  bind_options<FormSolverOptions>(m, "FormSolverOptions", "Options of the form-parameter solver.");
-  bind_options<FormCurveRequest>(m, "FormCurveRequest",
-                                 "A form-parameter curve request without its offset points, tangents and start curve.");
-}
-
 /// The solver (private: fairlines.design_curve checks and fills the request).
 void bind_solver(py::module_& m) {
   m.def(
@@ -168,6 +159,16 @@ void bind_problem_derivatives(py::module_& m) {
       },
       "params"_a, "n_control"_a, "degree"_a, "dim"_a, "fairness"_a, "points"_a, "z"_a, "lambda"_a = py::none(),
       "Testing hook: constraints, Jacobian, sum lambda_i Hess c_i, objective, gradient and Hessian at z.");
+}
+
+/// The request's option structs, bound once with their fields' defaults.
+void bind_option_structs(py::module_& m) {
+  using option_docs::bind_options;
+  bind_options<FairnessWeights>(m, "FairnessWeights", "Weights of the fairness objective (all >= 0, one of e1, e2, e3 > 0).");
+  bind_options<FormBounds>(m, "FormBounds", "Conditions on the control polygon that keep a section a section.");
+  bind_options<FormSolverOptions>(m, "FormSolverOptions", "Options of the form-parameter solver.");
+  bind_options<FormCurveRequest>(m, "FormCurveRequest",
+                                 "A form-parameter curve request without its offset points, tangents and start curve.");
 }
 
 }  // namespace
