@@ -18,7 +18,8 @@ using namespace py_convert;
 
 namespace {
 
-void bind_spline_design(py::module_& m) {
+/// The conditions a spline function request is made of.
+void bind_spline_conditions(py::module_& m) {
   py::class_<SplineCondition>(m, "SplineCondition", "f^(derivative)(x) = value (a form parameter of a basic curve).")
       .def(py::init([](double x, int derivative, double value, std::string name, std::vector<double> combination) {
              return SplineCondition{x, derivative, value, std::move(name), std::move(combination)};
@@ -57,6 +58,11 @@ void bind_spline_design(py::module_& m) {
   py::class_<SplineFitPoint>(m, "SplineFitPoint", "Pass near (x, y) with weight w (least squares).")
       .def(py::init<double, double, double>(), "x"_a, "y"_a, "weight"_a = SplineFitPoint{}.weight)
       .def_readwrite("x", &SplineFitPoint::x).def_readwrite("y", &SplineFitPoint::y).def_readwrite("weight", &SplineFitPoint::weight);
+}
+
+/// The request, its solver and its knots.
+void bind_spline_design(py::module_& m) {
+  bind_spline_conditions(m);
   py::class_<SplineDesignRequest>(m, "SplineDesignRequest", "A fairest spline function y = f(x) and its form parameters.")
       .def(py::init<>())
       .def_readwrite("name", &SplineDesignRequest::name).def_readwrite("degree", &SplineDesignRequest::degree)
