@@ -549,13 +549,12 @@ double Problem::objective(const Eigen::VectorXd& z, Eigen::VectorXd* g, Eigen::M
   double f = 0;
   if (g) g->setZero(nv);
   if (H) H->setZero(nv, nv);
-  add_fairness(z, f, g, H);
-  if (req.fairness.length > 0) add_length(z, f, g, H);
-  add_point_penalties(z, f, g, H);
-  return f;
+  f = add_fairness(z, f, g, H);
+  if (req.fairness.length > 0) f = add_length(z, f, g, H);
+  return add_point_penalties(z, f, g, H);
 }
 
-void Problem::add_fairness(const Eigen::VectorXd& z, double& f, Eigen::VectorXd* g, Eigen::MatrixXd* H) const {
+double Problem::add_fairness(const Eigen::VectorXd& z, double f, Eigen::VectorXd* g, Eigen::MatrixXd* H) const {
   // X^T Kf X per coordinate: its Hessian 2 Kf is constant (knots never change). Plain loops:
   // this runs in every merit evaluation of the line search, where an Eigen temporary for Kf X
   // would be a heap allocation each time.
@@ -570,9 +569,10 @@ void Problem::add_fairness(const Eigen::VectorXd& z, double& f, Eigen::VectorXd*
     }
     if (H) H->block(c * n, c * n, n, n) = 2 * Kf;
   }
+  return f;
 }
 
-void Problem::add_length(const Eigen::VectorXd& z, double& f, Eigen::VectorXd* g, Eigen::MatrixXd* H) const {
+double Problem::add_length(const Eigen::VectorXd& z, double f, Eigen::VectorXd* g, Eigen::MatrixXd* H) const {
   // length weight * int |C'| dt by the Gauss rule of the tables
   const double sw = req.fairness.length;
   Eigen::VectorXd v(dim);
@@ -592,9 +592,10 @@ void Problem::add_length(const Eigen::VectorXd& z, double& f, Eigen::VectorXd* g
         for (int b = 0; b < dim; ++b) H->block(a * n + fi, b * n + fi, p + 1, p + 1) += w * Hv(a, b) * NN;
     }
   }
+  return f;
 }
 
-void Problem::add_point_penalties(const Eigen::VectorXd& z, double& f, Eigen::VectorXd* g, Eigen::MatrixXd* H) const {
+double Problem::add_point_penalties(const Eigen::VectorXd& z, double f, Eigen::VectorXd* g, Eigen::MatrixXd* H) const {
   // weight * |C(t_j) - P_j|^2 of every approximated point, t_j a variable
   Eigen::MatrixXd C, ders;
   for (int j = 0; j < npts; ++j) {
@@ -622,6 +623,7 @@ void Problem::add_point_penalties(const Eigen::VectorXd& z, double& f, Eigen::Ve
       }
     }
   }
+  return f;
 }
 
 FairnessMeasures Problem::measures(const Eigen::VectorXd& z) const {

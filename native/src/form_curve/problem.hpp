@@ -104,11 +104,12 @@ struct Problem {
   void point_constraint(int i, const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::MatrixXd* J,
                         const Eigen::VectorXd* lambda, Eigen::MatrixXd* HL) const;
   /// Objective, gradient and Hessian (g, H optional): the fairness energy, the length term and
-  /// the penalties of the approximated points, each added to f, g and H by one step below.
+  /// the penalties of the approximated points, each added by one step below to g, H and to the
+  /// sum f it returns (f passed by value: a local sum the compiler keeps in a register).
   double objective(const Eigen::VectorXd& z, Eigen::VectorXd* g, Eigen::MatrixXd* H) const;
-  void add_fairness(const Eigen::VectorXd& z, double& f, Eigen::VectorXd* g, Eigen::MatrixXd* H) const;
-  void add_length(const Eigen::VectorXd& z, double& f, Eigen::VectorXd* g, Eigen::MatrixXd* H) const;
-  void add_point_penalties(const Eigen::VectorXd& z, double& f, Eigen::VectorXd* g, Eigen::MatrixXd* H) const;
+  double add_fairness(const Eigen::VectorXd& z, double f, Eigen::VectorXd* g, Eigen::MatrixXd* H) const;
+  double add_length(const Eigen::VectorXd& z, double f, Eigen::VectorXd* g, Eigen::MatrixXd* H) const;
+  double add_point_penalties(const Eigen::VectorXd& z, double f, Eigen::VectorXd* g, Eigen::MatrixXd* H) const;
   /// Fairness measures of control points z.
   FairnessMeasures measures(const Eigen::VectorXd& z) const;
   /// Curve value and derivatives up to 2 at parameter t: (3 x dim), plus the local
