@@ -20,7 +20,7 @@ import sys  # noqa: E402
 
 import bpy  # noqa: E402
 
-from . import api, engine, evaluator, sockets, tree  # noqa: E402,F401  (api: fairlines_blender.api)
+from . import api, engine, evaluator, queue, sockets, tree  # noqa: E402,F401  (api: fairlines_blender.api)
 from .nodes import NODE_CLASSES  # noqa: E402
 
 
@@ -73,7 +73,7 @@ def unregister():
     except ValueError:
         pass
     evaluator.drop_timer()
-    evaluator._pending.clear()
+    queue.pending.clear()
     evaluator.clear()
     while _registered:
         bpy.utils.unregister_class(_registered.pop())

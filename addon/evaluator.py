@@ -288,9 +288,10 @@ def evaluate(tree, deadline=None):
     return ran
 
 
-def _run_node(tree, node, links):
-    ckey = (tree.name, node.name)
-    entry = _cache.get(ckey)
+def _gather_inputs(tree, node, links):
+    """The node's input values (from the upstream cache or its own sockets), the parts of its
+    cache key, the name of an upstream node that blocks it (failed or not run) and the message
+    of an incompatible link (None when there is none)."""
     inputs, key_parts, blocked, bad = {}, [], None, None
     for sock in node.inputs:
         if not sock.enabled:
@@ -313,6 +314,32 @@ def _run_node(tree, node, links):
             value = sock.value() if hasattr(sock, "value") else None
             inputs[sock.name] = value
             key_parts.append((sock.name, value))
+    return inputs, key_parts, blocked, bad
+
+
+def _compute(node, inputs, entry):
+    """(outputs, ok, message, ms) of node.compute: engine errors and anything else become the
+    node's message, never raised. A node that was slow last time says it is working."""
+    t0 = time.perf_counter()
+    slow = entry is not None and entry.ms > progress.SLOW_MS
+    if slow:
+        progress.status("Fairlines: %s (about %.1f s) ..." % (node.name, entry.ms * 1e-3))
+    try:
+        outputs = node.compute(inputs) or {}
+        ok, message = True, ""
+    except Exception as exc:
+        outputs, ok, message = {}, False, _message(exc)
+    if slow:
+        progress.status(None)
+    return outputs, ok, message, (time.perf_counter() - t0) * 1e3
+
+
+def _run_node(tree, node, links):
+    """Runs the node unless its cache entry holds the same inputs; True when it ran (or was
+    shown blocked or wrongly linked)."""
+    ckey = (tree.name, node.name)
+    entry = _cache.get(ckey)
+    inputs, key_parts, blocked, bad = _gather_inputs(tree, node, links)
     try:
         sig = node.signature()
     except Exception as exc:
@@ -328,18 +355,7 @@ def _run_node(tree, node, links):
             _show(node, "BLOCKED", "Waiting for '%s'" % blocked, -1.0)
         _cache[ckey] = Entry(key, {}, version, -1.0, False)
         return True
-    t0 = time.perf_counter()
-    slow = entry is not None and entry.ms > progress.SLOW_MS  # it was slow last time: say it is working
-    if slow:
-        progress.status("Fairlines: %s (about %.1f s) ..." % (node.name, entry.ms * 1e-3))
-    try:
-        outputs = node.compute(inputs) or {}
-        ok, message = True, ""
-    except Exception as exc:  # engine errors and anything else: shown on the node, never raised
-        outputs, ok, message = {}, False, _message(exc)
-    if slow:
-        progress.status(None)
-    ms = (time.perf_counter() - t0) * 1e3
+    outputs, ok, message, ms = _compute(node, inputs, entry)
     info = outputs.pop("__info__", "") if ok else None
     later = outputs.pop("__later__", None) if ok else None
     # With a deferred job the node keeps showing its previous info until the job completes it

@@ -98,38 +98,35 @@ def _near_centre_plane(nodes, links):
     return near.outputs[0]
 
 
-def ensure_group():
+def _empty_group():
+    """The group, created or emptied (nodes and interface) for a rebuild."""
     group = bpy.data.node_groups.get(ids.GN_GROUP)
-    if group is not None and group.bl_idname == "GeometryNodeTree" \
-            and group.get("fairlines_version") == GROUP_VERSION:
-        return group
     if group is None or group.bl_idname != "GeometryNodeTree":
-        group = bpy.data.node_groups.new(ids.GN_GROUP, "GeometryNodeTree")
+        return bpy.data.node_groups.new(ids.GN_GROUP, "GeometryNodeTree")
+    group.nodes.clear()
+    if hasattr(group, "interface"):
+        group.interface.clear()
     else:
-        group.nodes.clear()
-        if hasattr(group, "interface"):
-            group.interface.clear()
-        else:
-            group.inputs.clear()
-            group.outputs.clear()
-    for socket_type, name in INPUTS:
-        _new_socket(group, "INPUT", socket_type, name)
-    _new_socket(group, "OUTPUT", "NodeSocketGeometry", "Geometry")
-    nodes, links = group.nodes, group.links
-    gin = nodes.new("NodeGroupInput")
-    gout = nodes.new("NodeGroupOutput")
-    # Weld first: tessellated seams and poles repeat vertices, and the exact Boolean needs
-    # closed (manifold) meshes to tell inside from outside. Mesh coordinates are single
-    # precision: at x ~ 250 m one step is 1.5e-5 m, so the tolerance is 0.1 mm. Closed meshes
-    # (the composition's) pass as the engine made them.
+        group.inputs.clear()
+        group.outputs.clear()
+    return group
+
+
+def _weld_open_edges(nodes, links, geometry):
+    """Weld first: tessellated seams and poles repeat vertices, and the exact Boolean needs
+    closed (manifold) meshes to tell inside from outside. Mesh coordinates are single
+    precision: at x ~ 250 m one step is 1.5e-5 m, so the tolerance is 0.1 mm. Closed meshes
+    (the composition's) pass as the engine made them."""
     weld0 = nodes.new("GeometryNodeMergeByDistance")
     _sock(weld0.inputs, "Distance").default_value = WELD
-    links.new(gin.outputs["Geometry"], weld0.inputs[0])
+    links.new(geometry, weld0.inputs[0])
     links.new(_on_open_edges(nodes, links), _sock(weld0.inputs, "Selection"))
-    geo = weld0.outputs[0]
+    return weld0.outputs[0]
 
-    # Mirror: the engine models the starboard half (y >= 0); the full hull is it plus its
-    # mirror image with flipped faces (so normals still point outward), welded at y = 0.
+
+def _mirrored(nodes, links, geo):
+    """The engine models the starboard half (y >= 0); the full hull is it plus its mirror image
+    with flipped faces (so normals still point outward), welded at y = 0."""
     xf = nodes.new("GeometryNodeTransform")
     _sock(xf.inputs, "Scale").default_value = (1.0, -1.0, 1.0)
     links.new(geo, xf.inputs[0])
@@ -142,29 +139,51 @@ def ensure_group():
     _sock(weld.inputs, "Distance").default_value = WELD
     links.new(join.outputs[0], weld.inputs[0])
     links.new(_near_centre_plane(nodes, links), _sock(weld.inputs, "Selection"))
-    stage = _switch(nodes, links, gin.outputs["Mirror"], geo, weld.outputs[0])
+    return weld.outputs[0]
 
-    # Union with the other subdomains gathered in a collection.
+
+def _united(nodes, links, stage, collection):
+    """Union with the other subdomains gathered in a collection."""
     coll = nodes.new("GeometryNodeCollectionInfo")
     coll.transform_space = "RELATIVE"
-    links.new(gin.outputs["Union"], _sock(coll.inputs, "Collection"))
+    links.new(collection, _sock(coll.inputs, "Collection"))
     real = nodes.new("GeometryNodeRealizeInstances")
     links.new(coll.outputs[0], real.inputs[0])
     union = _boolean(nodes, "UNION")
     links.new(stage, union.inputs[1])  # Mesh 2, the multi-input (ids differ: "Mesh_2" / "Mesh 2")
     links.new(real.outputs[0], union.inputs[1])
-    stage = _switch(nodes, links, gin.outputs["Use Union"], stage, _sock(union.outputs, "Mesh"))
+    return _sock(union.outputs, "Mesh")
 
-    # Difference with a user object (bow thruster tunnel, cut-outs).
+
+def _cut(nodes, links, stage, cutter):
+    """Difference with a user object (bow thruster tunnel, cut-outs)."""
     info = nodes.new("GeometryNodeObjectInfo")
     info.transform_space = "RELATIVE"
-    links.new(gin.outputs["Cutter"], _sock(info.inputs, "Object"))
+    links.new(cutter, _sock(info.inputs, "Object"))
     diff = _boolean(nodes, "DIFFERENCE")
     links.new(stage, diff.inputs[0])
     links.new(_sock(info.outputs, "Geometry"), diff.inputs[1])
-    stage = _switch(nodes, links, gin.outputs["Use Cutter"], stage, _sock(diff.outputs, "Mesh"))
-    links.new(stage, gout.inputs[0])
+    return _sock(diff.outputs, "Mesh")
 
+
+def ensure_group():
+    """The Fairlines Geometry Nodes group, built (again) unless it is there at GROUP_VERSION."""
+    group = bpy.data.node_groups.get(ids.GN_GROUP)
+    if group is not None and group.bl_idname == "GeometryNodeTree" \
+            and group.get("fairlines_version") == GROUP_VERSION:
+        return group
+    group = _empty_group()
+    for socket_type, name in INPUTS:
+        _new_socket(group, "INPUT", socket_type, name)
+    _new_socket(group, "OUTPUT", "NodeSocketGeometry", "Geometry")
+    nodes, links = group.nodes, group.links
+    gin = nodes.new("NodeGroupInput")
+    gout = nodes.new("NodeGroupOutput")
+    geo = _weld_open_edges(nodes, links, gin.outputs["Geometry"])
+    stage = _switch(nodes, links, gin.outputs["Mirror"], geo, _mirrored(nodes, links, geo))
+    stage = _switch(nodes, links, gin.outputs["Use Union"], stage, _united(nodes, links, stage, gin.outputs["Union"]))
+    stage = _switch(nodes, links, gin.outputs["Use Cutter"], stage, _cut(nodes, links, stage, gin.outputs["Cutter"]))
+    links.new(stage, gout.inputs[0])
     for k, node in enumerate(nodes):
         node.location = (k * 180.0, 0.0)
     group["fairlines_version"] = GROUP_VERSION

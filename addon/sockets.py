@@ -135,7 +135,7 @@ class FLSocketCurvature(_ValueSocket, bpy.types.NodeSocket):
     bl_label = "Curvature"
     unit_suffix = "1/m"
     default_value: bpy.props.FloatProperty(name="Value", default=0.0, min=-1e6, max=1e6, precision=5,
-                                           description="Curvature (1/m)", update=props._changed)
+                                           description="Curvature (1/m)", update=props.changed)
 
 
 class FLSocketBlend(_DataSocket, bpy.types.NodeSocket):

@@ -24,8 +24,7 @@ HERE = pathlib.Path(__file__).resolve().parent
 #: Ship types of the gallery (name, particulars); the first is examples/container_ship.json.
 SHIPS = [
     ("Panamax container ship", dict(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.65, lcb=118.73, bulb=True)),
-    ("Product tanker, single screw (skeg)", dict(lpp=180.0, breadth=32.0, draft=11.5, depth=17.0, cb=0.82, lcb=95.4,
-                                                 skeg=True)),
+    ("Product tanker", dict(lpp=180.0, breadth=32.0, draft=11.5, depth=17.0, cb=0.82, lcb=95.4, skeg=True)),
     ("Fast ferry (fine)", dict(lpp=140.0, breadth=17.0, draft=5.5, depth=10.0, cb=0.50, lcb=67.2)),
     ("Coaster, cruiser stern", dict(lpp=100.0, breadth=16.0, draft=6.0, depth=9.0, cb=0.75, lcb=51.0,
                                     stern="cruiser")),
@@ -88,7 +87,8 @@ def main():
         (out / f"{stem}.json").write_text(hull.to_json())
         draw_lines(fig.add_subplot(grid[2 * k, 0]), fig.add_subplot(grid[2 * k + 1, 0]),
                    fig.add_subplot(grid[2 * k:2 * k + 2, 1]), hull,
-                   f"{name}: Lpp {p.lpp} m, B {p.breadth} m, T {p.draft} m, Cb {p.cb}, LCB {p.lcb} m")
+                   f"{name}: Lpp {p.lpp} m, B {p.breadth} m, T {p.draft} m, Cb {p.cb}, LCB {p.lcb} m"
+                   + (", single screw aft of a skeg" if p.skeg else ""))
     fig.tight_layout()
     docs = pathlib.Path(args.docs)
     docs.mkdir(parents=True, exist_ok=True)

@@ -44,7 +44,7 @@ class FLNodeMeshOutput(_ObjectOutput, FairlinesNode, bpy.types.Node):
     cutter: props.pointer("Cutter", bpy.types.Object)
     smooth: props.boolean("Smooth", True, "Smooth shading, sharp where faces meet at more than Sharp Angle")
     sharp_angle: bpy.props.FloatProperty(name="Sharp Angle", default=0.5235988, min=0.0, max=3.1415927,
-                                         subtype="ANGLE", update=props._changed,
+                                         subtype="ANGLE", update=props.changed,
                                          description="Edges whose faces meet at more than this shade as corners")
     material: props.enum("Material", _MATERIALS, "keep")
 

@@ -207,10 +207,10 @@ void bind_compose_and_blend(py::module_& m) {
       [](const NurbsSurface& blend, bool at_v1, const NurbsSurface& s, int samples) {
         return continuity_dict(measure_boundary_continuity(blend, at_v1, s, samples));
       },
-      "blend"_a, "at_v1"_a, "surface"_a, "samples"_a = 400,
+      "blend"_a, "at_v1"_a, "surface"_a, "samples"_a = kContinuitySamples,
       "Max normal angle (deg) and gap (m) between a blend's v = 0 (or v = 1) edge and a surface, "
       "by closest-point projection at `samples` points.");
-  m.def("orient_bare_hull", &orient_bare_hull, "hull"_a, "plane_tolerance"_a = 1e-6,
+  m.def("orient_bare_hull", &orient_bare_hull, "hull"_a, "plane_tolerance"_a = ComposeOptions{}.plane_tolerance,
         "The hull surface re-oriented to u aft->stem, v keel->deck (see compose.hpp).");
 }
 

@@ -18,7 +18,8 @@ using namespace py_convert;
 
 namespace {
 
-void bind_spline_design(py::module_& m) {
+/// The conditions a spline function request is made of.
+void bind_spline_conditions(py::module_& m) {
   py::class_<SplineCondition>(m, "SplineCondition", "f^(derivative)(x) = value (a form parameter of a basic curve).")
       .def(py::init([](double x, int derivative, double value, std::string name, std::vector<double> combination) {
              return SplineCondition{x, derivative, value, std::move(name), std::move(combination)};
@@ -33,7 +34,8 @@ void bind_spline_design(py::module_& m) {
       .def(py::init([](double from, double to, double value, int power, std::vector<NurbsCurve> factors, double centroid, std::string name) {
              return SplineIntegral{from, to, power, std::move(factors), value, centroid, std::move(name)};
            }),
-           "from_"_a, "to"_a, "value"_a = 0.0, "power"_a = 0, "factors"_a = std::vector<NurbsCurve>{}, "centroid"_a = kNaN, "name"_a = "integral")
+           "from_"_a, "to"_a, "value"_a = SplineIntegral{}.value, "power"_a = SplineIntegral{}.power,
+           "factors"_a = std::vector<NurbsCurve>{}, "centroid"_a = SplineIntegral{}.centroid, "name"_a = "integral")
       .def_readwrite("from_", &SplineIntegral::from).def_readwrite("to", &SplineIntegral::to)
       .def_readwrite("power", &SplineIntegral::power).def_readwrite("factors", &SplineIntegral::factors)
       .def_readwrite("value", &SplineIntegral::value).def_readwrite("centroid", &SplineIntegral::centroid)
@@ -43,18 +45,24 @@ void bind_spline_design(py::module_& m) {
       .def_readwrite("from_", &SplineFlat::from).def_readwrite("to", &SplineFlat::to)
       .def_readwrite("value", &SplineFlat::value).def_readwrite("name", &SplineFlat::name);
   py::class_<SplineBound>(m, "SplineBound", "lower <= f <= upper on [from_, to] (NaN: no bound).")
-      .def(py::init<double, double, double, double, std::string>(), "from_"_a, "to"_a, "lower"_a = kNaN, "upper"_a = kNaN, "name"_a = "bound")
+      .def(py::init<double, double, double, double, std::string>(), "from_"_a, "to"_a, "lower"_a = SplineBound{}.lower,
+           "upper"_a = SplineBound{}.upper, "name"_a = "bound")
       .def_readwrite("from_", &SplineBound::from).def_readwrite("to", &SplineBound::to)
       .def_readwrite("lower", &SplineBound::lower).def_readwrite("upper", &SplineBound::upper).def_readwrite("name", &SplineBound::name);
   py::class_<SplineShape>(m, "SplineShape", "sign * f^(derivative) >= 0 on [from_, to] (derivative 1 or 2, sign +1 / -1).")
       .def(py::init<double, double, int, int, std::string, double>(), "from_"_a, "to"_a, "derivative"_a, "sign"_a, "name"_a = "shape",
-           "margin"_a = 0.0)
+           "margin"_a = SplineShape{}.margin)
       .def_readwrite("margin", &SplineShape::margin)
       .def_readwrite("from_", &SplineShape::from).def_readwrite("to", &SplineShape::to)
       .def_readwrite("derivative", &SplineShape::derivative).def_readwrite("sign", &SplineShape::sign).def_readwrite("name", &SplineShape::name);
   py::class_<SplineFitPoint>(m, "SplineFitPoint", "Pass near (x, y) with weight w (least squares).")
-      .def(py::init<double, double, double>(), "x"_a, "y"_a, "weight"_a = 1.0)
+      .def(py::init<double, double, double>(), "x"_a, "y"_a, "weight"_a = SplineFitPoint{}.weight)
       .def_readwrite("x", &SplineFitPoint::x).def_readwrite("y", &SplineFitPoint::y).def_readwrite("weight", &SplineFitPoint::weight);
+}
+
+/// The request, its solver and its knots.
+void bind_spline_design(py::module_& m) {
+  bind_spline_conditions(m);
   py::class_<SplineDesignRequest>(m, "SplineDesignRequest", "A fairest spline function y = f(x) and its form parameters.")
       .def(py::init<>())
       .def_readwrite("name", &SplineDesignRequest::name).def_readwrite("degree", &SplineDesignRequest::degree)
@@ -74,7 +82,8 @@ void bind_spline_design(py::module_& m) {
   m.def("spline_function_knots", [](double x0, double x1, const std::vector<double>& breaks, int spans, int degree, int min_piece_spans) {
           return to_array(spline_function_knots(x0, x1, breaks, spans, degree, min_piece_spans));
         },
-        "x0"_a, "x1"_a, "breaks"_a = std::vector<double>{}, "spans"_a = 8, "degree"_a = 3, "min_piece_spans"_a = 4,
+        "x0"_a, "x1"_a, "breaks"_a = std::vector<double>{}, "spans"_a = kKnotSpans, "degree"_a = kKnotDegree,
+        "min_piece_spans"_a = kMinPieceSpans,
         "Clamped knots on [x0, x1] keeping `breaks` as knots, about `spans` spans spread by length.");
 }
 

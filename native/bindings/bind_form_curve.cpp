@@ -93,19 +93,8 @@ py::dict result_dict(const FormCurveResult& res) {
   return out;
 }
 
-void bind_option_structs(py::module_& m) {
-  using option_docs::bind_options;
-  bind_options<FairnessWeights>(m, "FairnessWeights", "Weights of the fairness objective (all >= 0, one of e1, e2, e3 > 0).");
-  bind_options<FormBounds>(m, "FormBounds", "Conditions on the control polygon that keep a section a section.");
-  bind_options<FormSolverOptions>(m, "FormSolverOptions", "Options of the form-parameter solver.");
-  bind_options<FormCurveRequest>(m, "FormCurveRequest",
-                                 "A form-parameter curve request without its offset points, tangents and start curve.");
-}
-
-}  // namespace
-
-void bind_form_curve(py::module_& m) {
-  bind_option_structs(m);
+/// The solver (private: fairlines.design_curve checks and fills the request).
+void bind_solver(py::module_& m) {
   m.def(
       "_design_form_curve",
       [](FormCurveRequest req, const py::list& points, const py::handle& tangent_start, const py::handle& tangent_end,
@@ -121,7 +110,10 @@ void bind_form_curve(py::module_& m) {
       },
       "request"_a, py::kw_only(), "points"_a = py::list(), "tangent_start"_a = py::none(), "tangent_end"_a = py::none(),
       "initial_control_points"_a = py::none(), "Form-parameter curve solver (private; use fairlines.design_curve).");
+}
 
+/// The form parameters and fairness measures of given control points, and the parameter names.
+void bind_measures(py::module_& m) {
   m.def(
       "form_parameters_of",
       [](py::handle degree, const py::handle& cps) {
@@ -143,7 +135,10 @@ void bind_form_curve(py::module_& m) {
   m.def(
       "form_parameter_names", [] { return form_parameter_names(); },
       "Names accepted as form parameters.");
+}
 
+/// The tests compare the problem's analytic derivatives with finite differences through this.
+void bind_problem_derivatives(py::module_& m) {
   m.def(
       "_form_curve_derivatives",
       [](const py::dict& params, py::handle n_control, py::handle degree, py::handle dim, const py::dict& fairness,
@@ -164,6 +159,25 @@ void bind_form_curve(py::module_& m) {
       },
       "params"_a, "n_control"_a, "degree"_a, "dim"_a, "fairness"_a, "points"_a, "z"_a, "lambda"_a = py::none(),
       "Testing hook: constraints, Jacobian, sum lambda_i Hess c_i, objective, gradient and Hessian at z.");
+}
+
+/// The request's option structs, bound once with their fields' defaults.
+void bind_option_structs(py::module_& m) {
+  using option_docs::bind_options;
+  bind_options<FairnessWeights>(m, "FairnessWeights", "Weights of the fairness objective (all >= 0, one of e1, e2, e3 > 0).");
+  bind_options<FormBounds>(m, "FormBounds", "Conditions on the control polygon that keep a section a section.");
+  bind_options<FormSolverOptions>(m, "FormSolverOptions", "Options of the form-parameter solver.");
+  bind_options<FormCurveRequest>(m, "FormCurveRequest",
+                                 "A form-parameter curve request without its offset points, tangents and start curve.");
+}
+
+}  // namespace
+
+void bind_form_curve(py::module_& m) {
+  bind_option_structs(m);
+  bind_solver(m);
+  bind_measures(m);
+  bind_problem_derivatives(m);
 }
 
 }  // namespace fairlines

@@ -17,9 +17,8 @@ using py_convert::to_array;
 
 py::tuple grid_tuple(const StructuredGrid& g) { return py::make_tuple(g.ni, g.nj, to_array(g.points), to_array(g.params)); }
 
-}  // namespace
-
-void bind_grids(py::module_& m) {
+/// Point distributions along a line, and arc-length parameters on a curve.
+void bind_distributions(py::module_& m) {
   py::enum_<Spacing>(m, "Spacing", "How points are spaced along a grid line.")
       .value("uniform", Spacing::Uniform)
       .value("sinh", Spacing::Sinh)
@@ -35,6 +34,10 @@ void bind_grids(py::module_& m) {
       "parameters_at_arc_length",
       [](const NurbsCurve& c, py::handle s) { return to_array(parameters_at_arc_length(c, py_convert::vector(s, "s"))); },
       "curve"_a, "s"_a, "Curve parameters at increasing arc lengths s (m from the start).");
+}
+
+/// Structured grids on a surface, clustering of its parameter lines, and grid quality.
+void bind_surface_grids(py::module_& m) {
   m.def(
       "_surface_grid",
       [](const NurbsSurface& s, const Distribution& du, const Distribution& dv) {
@@ -80,6 +83,13 @@ void bind_grids(py::module_& m) {
                         "max_aspect_ratio"_a = q.max_aspect_ratio, "degenerate_cells"_a = q.degenerate_cells);
       },
       "points"_a, "ni"_a, "nj"_a);
+}
+
+}  // namespace
+
+void bind_grids(py::module_& m) {
+  bind_distributions(m);
+  bind_surface_grids(m);
 }
 
 }  // namespace fairlines

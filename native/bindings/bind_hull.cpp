@@ -39,7 +39,7 @@ void bind_hull(py::module_& m) {
           }
           return plane_cut(s, a, value, samples);
         },
-        "surface"_a, "axis"_a, "value"_a, "samples"_a = 401,
+        "surface"_a, "axis"_a, "value"_a, "samples"_a = kPlaneCutSamples,
         "Cut a surface by the plane x, y or z = value (axis 'frame' | 'buttock' | 'waterline'); curvature\n"
         "from the surface's derivatives. Frames march along u, waterlines and buttocks along v.");
 }

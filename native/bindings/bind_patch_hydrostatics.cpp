@@ -21,7 +21,7 @@ void bind_patch_hydrostatics(py::module_& m) {
           py::gil_scoped_release release;
           return hydrostatics_of_patches(patches, draft, end_x, half_hull, gauss);
         },
-        "patches"_a, "draft"_a, "end_x"_a, "half_hull"_a = true, "gauss"_a = 8,
+        "patches"_a, "draft"_a, "end_x"_a, "half_hull"_a = HydrostaticsOptions{}.half_hull, "gauss"_a = HydrostaticsOptions{}.gauss,
         "Hydrostatics of half-hull NURBS patches that bound the body together, upright at `draft` (m), by\n"
         "Gauss-Legendre quadrature on each patch clipped at the waterplane; each patch is turned outward\n"
         "first (side-like: int y n_y > 0, end-like: int (x - end_x) n_x > 0). Raises InvalidInput for a bad\n"

@@ -131,7 +131,7 @@ void bind_skinning(py::module_& m) {
         "curves"_a, "options"_a = SkinOptions{});
 
   m.def("equal_arc_length_points", [](const NurbsCurve& c, py::handle mobj, double w) { return to_array(equal_arc_length_points(c, as_int(mobj, "m"), w)); },
-        "curve"_a, "m"_a, "curvature_weight"_a = 0.0,
+        "curve"_a, "m"_a, "curvature_weight"_a = SkinOptions{}.curvature_weight,
         "m points at equal arc-length spacing along the curve, ends included: (m, dim). curvature_weight w > 0:\n"
         "equal spacing in ds (1 + w L |k|) instead (L the curve length).");
   m.def("arc_length", &arc_length, "curve"_a, "Arc length of the curve (m).");
@@ -148,7 +148,8 @@ void bind_skinning(py::module_& m) {
       "surface"_a, "draft"_a, "options"_a = HydrostaticsOptions{},
       "Hydrostatics of a hull surface at `draft` (m above base) by Gauss-Legendre quadrature on the surface\n"
       "(fairlines.hydrostatics takes the options by keyword).");
-  m.def("section_area", &section_area, "surface"_a, "x"_a, "draft"_a, "half_hull"_a = true, "gauss"_a = 8,
+  m.def("section_area", &section_area, "surface"_a, "x"_a, "draft"_a, "half_hull"_a = HydrostaticsOptions{}.half_hull,
+        "gauss"_a = HydrostaticsOptions{}.gauss,
         "(area below the draft of the section x = const (m^2; full section when half_hull), centroid height (m)).");
 }
 

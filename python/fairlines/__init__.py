@@ -102,7 +102,7 @@ from .sweep import sweep  # noqa: F401,E402
 # Real hull data back as whole-ship designs (offsets tables, KCS, DTMB 5415 grids).
 from .import_design import import_design, measure_hull_data  # noqa: F401,E402
 
-# Hydrostatics of triangle meshes, one engine function (restructure).
+# Hydrostatics of triangle meshes (the engine's divergence-theorem sums over the clipped triangles).
 from .hydrostatics_mesh import (  # noqa: F401,E402
     MeshHydrostatics,
     MeshHydrostaticsOptions,

@@ -212,6 +212,11 @@ CURVE_CACHE_SIZE = 32
 _curve_cache: OrderedDict = OrderedDict()
 
 
+def clear_curve_cache() -> None:
+    """Forget every cached basic curve (tests compare cold and warm builds)."""
+    _curve_cache.clear()
+
+
 def solve_curve(name: str, spec: BasicCurveSpec, x0: float, x1: float, *, lower: float | None = None,
                 upper: float | None = None, maximum: bool = True, defaults: dict | None = None,
                 at_least: list | None = None) -> BasicCurve:

@@ -135,10 +135,7 @@ def _mesh(args) -> int:
     return 0
 
 
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(prog="fairlines", description="Fair parametric hull design.")
-    sub = ap.add_subparsers(dest="command", required=True)
-    sub.add_parser("version", help="print the version")
+def _add_fit_parser(sub) -> None:
     f = sub.add_parser("fit", help="fit a B-spline curve to points (CSV, one point per row)")
     f.add_argument("points")
     f.add_argument("--degree", type=int, default=3)
@@ -146,6 +143,10 @@ def main(argv=None) -> int:
     f.add_argument("--parameterization", default="chord", choices=["chord", "centripetal", "uniform"])
     f.add_argument("--knots", default="average", choices=["average", "hartley_judd"])
     f.add_argument("-o", "--output", help="write the curve as JSON")
+
+
+def _add_import_parsers(sub) -> None:
+    """``import`` (hull data -> description) and ``build`` (analysis -> faired surfaces)."""
     im = sub.add_parser("import", help="read offsets / section points / a point grid; write the whole-ship description")
     im.add_argument("table", help="offsets CSV, x,y,z section CSV, Tecplot point grid in metres (x from the AP, "
                                   "y >= 0, z up; .dat), or a DTMB 5415 / KCS grid folder")
@@ -163,10 +164,9 @@ def main(argv=None) -> int:
                                      "hydrostatics")
     b.add_argument("hull", help="analysis JSON written by 'fairlines import --analysis'")
     b.add_argument("-o", "--output", required=True, help="output folder")
-    from . import cli_design, cli_fairness, cli_output
-    cli_output.add_parsers(sub)
-    cli_design.add_parser(sub)
-    cli_fairness.add_parser(sub)
+
+
+def _add_mesh_parser(sub) -> None:
     me = sub.add_parser("mesh", help="quad-dominant mesh of a hull description's composed hull (CFD / BEM files)")
     me.add_argument("hull", help="hull description JSON (bare hull, and bulb if it has a 'bulb' section)")
     me.add_argument("--size", type=float, required=True, help="maximum element edge length, m")
@@ -179,28 +179,52 @@ def main(argv=None) -> int:
     me.add_argument("--format", default=None, help="gdf (WAMIT), mar (Nemoh) or a meshio format name; default from "
                                                    "the output suffix (.msh .vtu .stl .obj .med ...)")
     me.add_argument("-o", "--output", required=True, help="mesh file to write")
-    from . import sweep_cli
+
+
+def _parser() -> argparse.ArgumentParser:
+    """The command line: one sub-command per task (the design, fairness, output and sweep
+    commands add their own parsers from their modules)."""
+    from . import cli_design, cli_fairness, cli_output, sweep_cli
+    ap = argparse.ArgumentParser(prog="fairlines", description="Fair parametric hull design.")
+    sub = ap.add_subparsers(dest="command", required=True)
+    sub.add_parser("version", help="print the version")
+    _add_fit_parser(sub)
+    _add_import_parsers(sub)
+    cli_output.add_parsers(sub)
+    cli_design.add_parser(sub)
+    cli_fairness.add_parser(sub)
+    _add_mesh_parser(sub)
     sweep_cli.add_parser(sub)
-    args = ap.parse_args(argv)
+    return ap
+
+
+def _run(args) -> int:
+    """Runs the parsed command; its exit status."""
+    from . import cli_design, cli_fairness, cli_output, sweep_cli
+    if args.command == "version":
+        print(__version__)
+        return 0
+    if args.command == "import":
+        return _import(args)
+    if args.command == "build":
+        return _build(args)
+    if args.command == cli_design.COMMAND:
+        return cli_design.run(args)
+    if args.command == cli_fairness.COMMAND:
+        return cli_fairness.run(args)
+    if args.command in cli_output.COMMANDS:
+        return cli_output.run(args)
+    if args.command == "mesh":
+        return _mesh(args)
+    if args.command == "sweep":
+        return sweep_cli.run(args)
+    return _fit(args)
+
+
+def main(argv=None) -> int:
+    args = _parser().parse_args(argv)
     try:
-        if args.command == "version":
-            print(__version__)
-            return 0
-        if args.command == "import":
-            return _import(args)
-        if args.command == "build":
-            return _build(args)
-        if args.command == cli_design.COMMAND:
-            return cli_design.run(args)
-        if args.command == cli_fairness.COMMAND:
-            return cli_fairness.run(args)
-        if args.command in cli_output.COMMANDS:
-            return cli_output.run(args)
-        if args.command == "mesh":
-            return _mesh(args)
-        if args.command == "sweep":
-            return sweep_cli.run(args)
-        return _fit(args)
+        return _run(args)
     except ValueError as exc:  # bad input: a one-line message, no traceback
         print(f"fairlines {args.command}: {exc}", file=sys.stderr)
         return 2

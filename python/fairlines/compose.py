@@ -97,6 +97,11 @@ class ComposedHull:
         """Half-hull volume (m^3)."""
         return self.mesh.volume
 
+    @property
+    def native(self) -> "_native._ComposedHull":
+        """The engine's composed hull (the mesher meshes it; ``native.hull`` is the oriented bare hull)."""
+        return self._c
+
     def full_mesh(self) -> Mesh:
         """The full hull: mirrored in y = 0 and welded along the centre plane."""
         v, f = self._c.full_mesh()

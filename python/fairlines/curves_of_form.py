@@ -14,7 +14,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from ._native import InvalidInput, NurbsSurface
+from ._native import HydrostaticsOptions, InvalidInput, NurbsSurface
 from .hydrostatics_surface import hydrostatics
 
 __all__ = ["CurvesOfForm", "COLUMNS", "curves_of_form", "highest_draft"]
@@ -80,7 +80,8 @@ class CurvesOfForm:
     def plot_sac(self, path, basic_curve: Callable[[np.ndarray], np.ndarray] | None = None,
                  name: str = "") -> None:
         """The sectional area curve at the design draft, with the designed SAC (``basic_curve``:
-        x -> area, m^2) and their difference when it is given."""
+        x -> area, m^2) and their difference when it is given. Raises InvalidInput when the
+        curves were computed without a design draft."""
         if self.sac is None:
             raise InvalidInput("no design draft was given; expected curves_of_form(..., design_draft=T)")
         fig = _figure((11.7, 6.0))
@@ -112,7 +113,8 @@ def _figure(size):
 
 def curves_of_form(surface: NurbsSurface, drafts: Sequence[float], *, lpp: float, beam: float,
                    depth: float | None = None, trims: Sequence[float] = (0.0,), design_draft: float | None = None,
-                   density: float = 1.025, half_hull: bool = True, gauss: int = 8,
+                   density: float = HydrostaticsOptions().density,
+                   half_hull: bool = HydrostaticsOptions().half_hull, gauss: int = HydrostaticsOptions().gauss,
                    sac_stations: int = 81) -> CurvesOfForm:
     """Hydrostatics of ``surface`` at every draft (m above base) and trim (m by the stern).
 
@@ -121,6 +123,8 @@ def curves_of_form(surface: NurbsSurface, drafts: Sequence[float], *, lpp: float
                  (upright: a draft above D; trimmed: above D at the end the trim sinks), as
                  is one above the surface's highest point (by fl.hydrostatics).
     design_draft T (m): its upright hydrostatics and SAC are kept for the SAC plot.
+    sac_stations stations of that SAC (81, twice the engine's default, for a smooth plot).
+    density, half_hull, gauss   as fl.hydrostatics (defaults: fl.HydrostaticsOptions).
     Raises InvalidInput for a draft <= 0, a waterplane above the deck or the surface's top, or
     bad options.
     """

@@ -165,6 +165,8 @@ class PrincipalDimensions:
 
     @classmethod
     def from_dict(cls, d: Any, path: str = "principal") -> PrincipalDimensions:
+        """The principal dimensions of ``d`` (keys Lpp, B, T, D, optional B_max). Raises
+        InvalidInput naming a missing or unknown key or a length out of range."""
         d = keyed_object(path, d, ("Lpp", "B", "T", "D", "B_max"))
         vals = {}
         for key in ("Lpp", "B", "T", "D"):
@@ -221,6 +223,8 @@ class BasicCurveSpec:
 
     @classmethod
     def from_dict(cls, name: str, d: Any, path: str) -> BasicCurveSpec:
+        """The spec of basic curve ``name`` from ``d``. Raises InvalidInput naming a missing,
+        unknown or malformed key."""
         extra = (FULLNESS_KEY,) if name == "sac" else ()
         d = keyed_object(path, d, CURVE_KEYS + tuple(FORM_ALIASES.get(name, {})) + extra)
         spec = cls()
@@ -329,6 +333,8 @@ class BulbSpec:
 
     @classmethod
     def from_dict(cls, d: Any, path: str = "bulb") -> BulbSpec:
+        """The bulb section of a description. Raises InvalidInput naming an unknown key or a
+        value out of range."""
         d = keyed_object(path, d, ("kracht", "shape", "displacement_volume"))
         spec = cls()
         for key, val in keyed_object(f"{path}.kracht", d.get("kracht", {}), KRACHT).items():
@@ -374,6 +380,8 @@ class SkegSpec:
 
     @classmethod
     def from_dict(cls, d: Any, path: str, x_aft: float, x_fore: float) -> SkegSpec:
+        """The skeg of ``d`` on a hull from x_aft to x_fore (m). Raises InvalidInput naming a
+        missing or unknown key, or a value out of range."""
         d = keyed_object(path, d, cls.KEYS)
         for key in ("x_aft", "x_fore", "half_thickness"):
             if key not in d:
@@ -431,6 +439,8 @@ class HullDescription:
 
     @classmethod
     def from_dict(cls, d: Any) -> HullDescription:
+        """A hull description from its JSON object (docs/hull_description.schema.json). Raises
+        InvalidInput naming the first missing, unknown or out-of-range key."""
         d = keyed_object("description", d, TOP_KEYS)
         principal = PrincipalDimensions.from_dict(d.get("principal"), "principal")
         ends = keyed_object("ends", d.get("ends", {}), ("aft", "fore", *POST_KEYS.values()))

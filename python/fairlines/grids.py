@@ -31,7 +31,7 @@ __all__ = ["StructuredGrid", "distribution", "distribute", "surface_grid", "para
 _KINDS = {k: getattr(_native.Spacing, k) for k in ("uniform", "sinh", "tanh", "tanh_two_sided", "geometric")}
 
 
-def distribution(kind: str = "uniform", points: int = 21, **options) -> "_native.Distribution":
+def distribution(kind: str = "uniform", points: int = _native.Distribution().points, **options) -> "_native.Distribution":
     """A :class:`fairlines._native.Distribution`.
 
     kind      "uniform", "sinh", "tanh" (one-sided: give ``first`` to cluster at the start or
@@ -61,7 +61,8 @@ def _dist(d) -> "_native.Distribution":
     raise InvalidInput(f"distribution is {type(d).__name__}; expected fl.grids.distribution(...), a dict or a point count")
 
 
-def distribute(length: float, kind: str = "uniform", points: int = 21, **options) -> np.ndarray:
+def distribute(length: float, kind: str = "uniform", points: int = _native.Distribution().points,
+               **options) -> np.ndarray:
     """Positions (m, from 0 to ``length``) of a distribution's points on a line of ``length`` m
     (arguments as :func:`distribution`). End spacings are met to round-off.
     Raises InvalidInput for bad options, fl.InfeasibleFormParameters when the spacings cannot be
@@ -160,7 +161,7 @@ def hull_grids(hull, u=41, v=21) -> dict:
     from .compose import ComposedHull
     if not isinstance(hull, ComposedHull):
         raise InvalidInput(f"hull is {type(hull).__name__}; expected a ComposedHull")
-    surfaces = {"hull": hull._c.hull}
+    surfaces = {"hull": hull.native.hull}
     if len(hull.trimmed_surfaces) > 1 and hull.trimmed_surfaces[1][0] is not hull.blend:
         surfaces["bulb"] = hull.trimmed_surfaces[1][0]
     if hull.blend is not None:

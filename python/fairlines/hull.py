@@ -104,7 +104,7 @@ def _clear_build_caches() -> None:
     """Forget every cached build step (tests compare cold and warm builds)."""
     _shape_cache.clear()
     _band_cache.clear()
-    _basic_curves._curve_cache.clear()
+    _basic_curves.clear_curve_cache()
 
 
 def station_positions(x_aft: float, x_fore: float, count: int, junctions: list[float] = ()) -> np.ndarray:
@@ -175,7 +175,8 @@ class Hull:
     # ---- basic curves ---------------------------------------------------------------
     @property
     def basic_curves(self) -> dict[str, BasicCurve]:
-        """Solved basic curves: profile, dwl, deck, sac, fullness and the shape curves."""
+        """Solved basic curves: profile, dwl, deck, sac, fullness and the shape curves.
+        Raises InfeasibleFormParameters (an InvalidInput) when a curve's conditions cannot be met."""
         if self._curves is None:
             d = self.description
             pr = d.principal
@@ -344,7 +345,8 @@ class Hull:
 
     def section_specs(self, x: Any = None, with_area: bool = True) -> list:
         """fl.SectionSpec of each station (or of the given x, m), read off the basic curves
-        (without the SAC's area when `with_area` is false)."""
+        (without the SAC's area when `with_area` is false). Raises InvalidInput for an x off the
+        hull."""
         d = self.description
         pr = d.principal
         bc = self.basic_curves if with_area else self._curves
@@ -434,7 +436,9 @@ class Hull:
     def ship_particulars(self) -> dict[str, float]:
         """What a bulbous bow is sized from (fairlines.BulbousBow): Lpp, B, T at the FP, the FP
         at x = Lpp, A_MS (both sides) at Lpp / 2 and the ship's displacement volume (the bulb
-        section's ``displacement_volume``, or the hull's own when it is the whole ship)."""
+        section's ``displacement_volume``, or the hull's own when it is the whole ship).
+        Raises InvalidInput when the hull is not the whole ship and the bulb section gives no
+        displacement_volume."""
         d = self.description
         pr = d.principal
         key = (id(self.skin()), repr(d.bulb.to_dict() if d.bulb else None))

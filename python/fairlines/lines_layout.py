@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .lines_plan import GAP_MM, MARGIN_MM, SHEET_MM, STATIONS_PER_LPP, SCALES, Polyline, Text
+from .lines_sheet import GAP_MM, MARGIN_MM, SHEET_MM, STATIONS_PER_LPP, SCALES, Polyline, Text
 
 __all__ = ["layout"]
 
@@ -200,11 +200,25 @@ def _line(prims, pts, layer, name=""):
 
 
 def _grid(plan, prims, f: _Frame, yc, body: _Body, m):
-    p = plan.particulars
+    """The grid of the three views (stations, waterlines, buttocks, centre lines, diagonal
+    traces) with their labels, and the views' titles; ``yc`` the half-breadth plan's centre
+    line, ``m`` drawing metres per mm of paper."""
     lab = 0.5 * LABEL_MM * m
-    x0, x1 = f.x0, f.x1
-    spacing = p["lpp"] / STATIONS_PER_LPP
-    # Stations: across profile and plan, numbered above the profile and below the plan.
+    _station_grid(plan, prims, f, yc, lab)
+    _waterline_grid(plan, prims, f, body, lab, m)
+    _buttock_grid(plan, prims, f, yc, body, lab)
+    _centre_lines(prims, f, yc, body, lab)
+    _diagonal_traces(plan, prims, f, body, lab)
+    (_, yb_top), = body.at([0.0], [f.z_top])
+    prims.append(Text(0.5 * (f.x0 + f.x1), f.z_top + 1.8 * lab, "PROFILE", size=2.5))
+    prims.append(Text(0.5 * (f.x0 + f.x1), yc + f.y_max + 0.6 * lab, "HALF-BREADTH PLAN", size=2.5))
+    title = "BODY PLAN" if body.f == 1.0 else f"BODY PLAN  1:{plan.body_scale:g}"
+    prims.append(Text(body.xb, yb_top + 2.0 * lab, title, size=2.5))
+
+
+def _station_grid(plan, prims, f: _Frame, yc, lab):
+    """Stations across profile and plan, numbered above the profile and below the plan; AP, FP."""
+    spacing = plan.particulars["lpp"] / STATIONS_PER_LPP
     for label, x, _ in plan.stations:
         n = x / spacing
         layer = "PERPENDICULARS" if abs(n) < 1e-9 or abs(n - STATIONS_PER_LPP) < 1e-9 else "GRID"
@@ -215,9 +229,13 @@ def _grid(plan, prims, f: _Frame, yc, body: _Body, m):
         prims.append(Text(x, yc - f.d_max - lab, label, size=size))
     for n, tag in ((0, "AP"), (STATIONS_PER_LPP, "FP")):
         x = n * spacing
-        if x0 - 1e-9 <= x <= x1 + 1e-9:
+        if f.x0 - 1e-9 <= x <= f.x1 + 1e-9:
             prims.append(Text(x, f.z_lo - 0.35 * lab, tag, size=2.2, va="top"))
-    # Waterlines: straight in profile and body plan.
+
+
+def _waterline_grid(plan, prims, f: _Frame, body: _Body, lab, m):
+    """Waterlines and the base line: straight in profile and body plan."""
+    x0, x1 = f.x0, f.x1
     right = body.at([f.y_max], [0.0])[0, 0] + 0.3 * lab
     for label, z, _ in plan.waterlines:
         layer = "DWL" if label == "DWL" else "GRID"
@@ -229,28 +247,38 @@ def _grid(plan, prims, f: _Frame, yc, body: _Body, m):
             prims.append(Text(right, zb, "DWL", size=1.8, ha="left", layer="DWL"))
         else:
             prims.append(Text(x0 - 0.3 * lab, z, f"WL {label}", size=1.8, ha="right"))
-            if abs(z - p["draft"]) * body.f > 2.0 * m:
+            if abs(z - plan.particulars["draft"]) * body.f > 2.0 * m:
                 prims.append(Text(right, zb, label, size=1.8, ha="left"))
     _line(prims, [[x0, 0], [x1, 0]], "BASELINE")
     _line(prims, body.at([-f.y_max, f.y_max], [0.0, 0.0]), "BASELINE")
     prims.append(Text(x0 - 0.3 * lab, 0.0, "BL", size=1.8, ha="right"))
-    # Buttocks: straight in plan and body plan.
-    (_, yb_lo), (_, yb_top) = body.at([0.0, 0.0], [f.z_lo, f.z_top])
+
+
+def _buttock_grid(plan, prims, f: _Frame, yc, body: _Body, lab):
+    """Buttocks: straight in plan and body plan."""
+    (_, yb_lo), = body.at([0.0], [f.z_lo])
     for label, y, _ in plan.buttocks:
-        _line(prims, [[x0, yc + y], [x1, yc + y]], "GRID")
-        prims.append(Text(x0 - 0.3 * lab, yc + y, f"B {label}", size=1.8, ha="right"))
+        _line(prims, [[f.x0, yc + y], [f.x1, yc + y]], "GRID")
+        prims.append(Text(f.x0 - 0.3 * lab, yc + y, f"B {label}", size=1.8, ha="right"))
         for s in (-1, 1):
             _line(prims, body.at([s * y, s * y], [f.z_lo, f.z_top]), "GRID")
             prims.append(Text(body.at([s * y], [0.0])[0, 0], yb_lo - 0.35 * lab, f"B{label}", size=1.5, va="top"))
-    # Centre lines.
-    _line(prims, [[x0, yc], [x1, yc]], "CENTRELINE")
-    prims.append(Text(x0 - 0.3 * lab, yc, "CL", size=1.8, ha="right"))
+
+
+def _centre_lines(prims, f: _Frame, yc, body: _Body, lab):
+    """The half-breadth plan's and the body plan's centre lines, and the body plan's AFT / FORE."""
+    (_, yb_lo), (_, yb_top) = body.at([0.0, 0.0], [f.z_lo, f.z_top])
+    _line(prims, [[f.x0, yc], [f.x1, yc]], "CENTRELINE")
+    prims.append(Text(f.x0 - 0.3 * lab, yc, "CL", size=1.8, ha="right"))
     _line(prims, body.at([0.0, 0.0], [f.z_lo, f.z_top]), "CENTRELINE")
     prims.append(Text(body.xb, yb_top + 1.15 * lab, "CL", size=2.0))
     prims.append(Text(body.xb, yb_lo - 0.35 * lab, "CL", size=1.5, va="top"))
     for s, side in ((-1, "AFT"), (1, "FORE")):
         prims.append(Text(body.at([0.5 * s * f.y_max], [0.0])[0, 0], yb_lo - 1.3 * lab, side, size=1.8, va="top"))
-    # Diagonal traces in the body plan.
+
+
+def _diagonal_traces(plan, prims, f: _Frame, body: _Body, lab):
+    """The diagonals' traces in the body plan, labelled at their outer ends."""
     for label, (zc, ang), _ in plan.diagonals:
         t = np.tan(np.radians(ang))
         y_end = min(f.y_max, (zc - f.z_lo) / t if t > 0 else f.y_max)
@@ -259,10 +287,6 @@ def _grid(plan, prims, f: _Frame, yc, body: _Body, m):
         end = body.at([y_end], [zc - y_end * t])[0]
         prims.append(Text(end[0] + 0.2 * lab, end[1] + 0.3 * lab, label, size=1.8, ha="left", va="bottom",
                           layer="DIAGONALS"))
-    prims.append(Text(0.5 * (x0 + x1), f.z_top + 1.8 * lab, "PROFILE", size=2.5))
-    prims.append(Text(0.5 * (x0 + x1), yc + f.y_max + 0.6 * lab, "HALF-BREADTH PLAN", size=2.5))
-    title = "BODY PLAN" if body.f == 1.0 else f"BODY PLAN  1:{plan.body_scale:g}"
-    prims.append(Text(body.xb, yb_top + 2.0 * lab, title, size=2.5))
 
 
 def _spread_x(waterlines, x0, x1):

@@ -29,8 +29,10 @@ from typing import Sequence
 
 import numpy as np
 
-from ._native import InvalidInput, NurbsSurface
+from ._native import HydrostaticsOptions, InvalidInput, NurbsSurface
 from .hydrostatics_surface import hydrostatics
+from .lines_layout import layout
+from .lines_sheet import SHEET_MM, STATIONS_PER_LPP, Polyline, Text
 from .plane_sections import boundary_curves, chain_segments, even_odd_inside, plane_sections
 
 __all__ = ["LinesPlan", "Polyline", "Text", "lines_plan", "closeup", "default_stations", "nice_step", "KNUCKLE_ANGLE_DEG"]
@@ -46,44 +48,6 @@ CENTRE_PLANE_TOLERANCE = 1e-7
 END_NUDGE = 1e-9
 #: Face labels of a composed hull's cap faces (centre plane, deck, aft cut).
 _CAP_PARTS = (2, 3, 4)
-#: Stations per Lpp.
-STATIONS_PER_LPP = 20
-#: Drawing scales 1:N tried, smallest first (N = {1, 1.25, 1.5, 2, 2.5, 3, 4, 5, 6, 7.5} x 10^k).
-SCALES = [m * 10 ** k for k in range(0, 5) for m in (1, 1.25, 1.5, 2, 2.5, 3, 4, 5, 6, 7.5)]
-#: A3 landscape sheet and its margin (mm).
-SHEET_MM = (420.0, 297.0)
-MARGIN_MM = 10.0
-#: Space between views and around labels (mm on paper).
-GAP_MM = 14.0
-
-
-@dataclass
-class Polyline:
-    """A drawn line: ``points`` (k, 2) drawing metres; ``spline`` when it samples a smooth
-    curve (written to DXF as a SPLINE through the points); ``name`` what it is (e.g. "WL 11")."""
-
-    points: np.ndarray
-    layer: str
-    spline: bool = False
-    name: str = ""
-
-
-@dataclass
-class Text:
-    """A label at (x, y) drawing metres; ``size`` paper height (mm); ``alternatives``: other
-    places ((x, y, ha, va) tuples) the layout may move it to when it would overlap a label."""
-
-    x: float
-    y: float
-    text: str
-    layer: str = "TEXT"
-    size: float = 2.5
-    ha: str = "center"
-    va: str = "center"
-    rotation: float = 0.0
-    alternatives: tuple = ()
-
-
 @dataclass
 class LinesPlan:
     """The lines of a hull and their drawing.
@@ -277,7 +241,7 @@ def _extent(patches):
     return pts.min(axis=0), pts.max(axis=0)
 
 
-def waterplane_from_sections(cuts, density: float = 1.025) -> dict:
+def waterplane_from_sections(cuts, density: float = HydrostaticsOptions().density) -> dict:
     """Full-ship waterplane area, LCF, I_T and I_L (about F) from the half waterline's branches
     (k, 3) by Green's theorem: the region between them, the centre line y = 0 and transverse
     lines x = const (which add nothing to the line integrals of y, x y, y^3 / 3, x^2 y along
@@ -422,7 +386,6 @@ def lines_plan(hull, *, lpp: float, beam: float, draft: float, depth: float, nam
     plan = LinesPlan(st, wl, bl, dg, _knuckles(patches), _split_on_centre_plane(outline, p["lpp"]), p,
                      hydrostatics if hydrostatics is not None else _hydrostatics(hull, patches, p, wl[wls.index(p["draft"])][2]),
                      title=title)
-    from .lines_layout import layout
     layout(plan, (x0, x1), lo, hi)
     return plan
 

@@ -1,7 +1,8 @@
 """Mesh and grid files a solver reads.
 
 * unstructured meshes through meshio (``.msh`` gmsh, ``.vtu`` VTK, ``.stl``, ``.obj``, ``.med``,
-  and every other format meshio writes): :func:`write_mesh`, :func:`read_mesh`;
+  and every other format meshio writes): :func:`write_mesh`, :func:`read_mesh` (defined beside
+  :class:`~fairlines.meshing.SurfaceMesh`, whose ``write`` they serve);
 * panel files of the wetted part for BEM codes: WAMIT ``.gdf`` (:func:`write_gdf`) and Nemoh
   ``.mar`` (:func:`write_mar`), both with z measured up from the free surface and the y = 0
   symmetry of a half hull declared in the header;
@@ -17,81 +18,9 @@ import pathlib
 import numpy as np
 
 from ._native import InvalidInput
-from .meshing import SurfaceMesh
+from .meshing import SurfaceMesh, read_mesh, write_mesh
 
 __all__ = ["write_mesh", "read_mesh", "write_gdf", "write_mar", "write_plot3d", "read_plot3d"]
-
-#: Formats that hold triangles only: quads are split along their shorter diagonal.
-_TRIANGLE_ONLY = {"stl"}
-#: Suffixes whose meshio format is ambiguous or worth naming (".msh": gmsh 2.2, which needs no entity tags).
-_SUFFIX_FORMAT = {".msh": "gmsh22", ".vtu": "vtu", ".vtk": "vtk", ".stl": "stl", ".obj": "obj", ".med": "med",
-                  ".ply": "ply", ".off": "off", ".xdmf": "xdmf", ".inp": "abaqus", ".mesh": "medit"}
-
-
-def _cells(mesh: SurfaceMesh, triangles_only: bool):
-    if triangles_only:
-        return [("triangle", mesh.triangulated())], None
-    tri, quad = mesh.faces[:, 3] < 0, mesh.faces[:, 3] >= 0
-    cells, part = [], []
-    if tri.any():
-        cells.append(("triangle", mesh.faces[tri, :3]))
-        part.append(mesh.face_part[tri])
-    if quad.any():
-        cells.append(("quad", mesh.faces[quad]))
-        part.append(mesh.face_part[quad])
-    return cells, part
-
-
-def write_mesh(mesh: SurfaceMesh, path, file_format: str | None = None, **kw) -> None:
-    """Writes a mesh with meshio; the format follows the suffix unless ``file_format`` names
-    one (a meshio format name such as ``"gmsh"``, ``"vtu"``, ``"stl"``, ``"obj"``, ``"med"``).
-    Formats that hold triangles only get each quad as two triangles. Element parts go out as
-    the cell data ``part`` (and gmsh physical groups) where the format keeps cell data.
-    Raises InvalidInput for an unknown format."""
-    import meshio
-    path = pathlib.Path(path)
-    fmt = file_format or _SUFFIX_FORMAT.get(path.suffix.lower())
-    if fmt is None:
-        raise InvalidInput(f"cannot tell the mesh format of {path}; give file_format (a meshio format name)")
-    cells, part = _cells(mesh, fmt in _TRIANGLE_ONLY)
-    cell_data = {}
-    if part is not None and fmt not in ("obj", "off", "ply"):
-        if fmt.startswith("gmsh"):  # parts as physical groups (numbered from 1)
-            cell_data = {"gmsh:physical": [p.astype(np.int32) + 1 for p in part],
-                         "gmsh:geometrical": [p.astype(np.int32) + 1 for p in part]}
-        else:
-            cell_data = {"part": [p.astype(np.int32) for p in part]}
-    m = meshio.Mesh(np.asarray(mesh.vertices, float), cells, cell_data=cell_data)
-    if fmt.startswith("gmsh"):
-        m.field_data = {name: np.array([i + 1, 2]) for i, name in enumerate(mesh.parts)}
-    try:
-        meshio.write(path, m, file_format=fmt, **kw)
-    except (KeyError, ValueError, meshio.WriteError) as exc:
-        raise InvalidInput(f"cannot write {path} as {fmt!r}: {exc}") from None
-
-
-def read_mesh(path) -> SurfaceMesh:
-    """Reads a surface mesh of triangles and quads with meshio (the ``part`` cell data, when
-    present, becomes ``face_part``).
-    Raises InvalidInput for a file meshio cannot read or one with no triangles or quadrilaterals."""
-    import meshio
-    m = meshio.read(path)
-    faces, part = [], []
-    for k, block in enumerate(m.cells):
-        if block.type not in ("triangle", "quad"):
-            continue
-        d = np.asarray(block.data)
-        f = np.full((len(d), 4), -1, dtype=int)
-        f[:, : d.shape[1]] = d
-        faces.append(f)
-        p = m.cell_data.get("part")
-        g = m.cell_data.get("gmsh:physical")
-        part.append(np.asarray(p[k], int) if p is not None else
-                    np.asarray(g[k], int) - 1 if g is not None else np.zeros(len(d), int))
-    if not faces:
-        raise InvalidInput(f"{path} holds no triangles or quadrilaterals")
-    return SurfaceMesh(np.asarray(m.points, float)[:, :3], np.concatenate(faces), np.concatenate(part))
-
 
 def _panels(mesh: SurfaceMesh, draft: float | None):
     t = mesh.draft if draft is None else draft

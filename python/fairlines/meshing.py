@@ -10,6 +10,7 @@ forward from AP, y >= 0 the starboard half, z up; normals point out of the body.
 
 from __future__ import annotations
 
+import pathlib
 from dataclasses import dataclass, field
 from typing import Callable, Optional
 
@@ -19,7 +20,7 @@ from . import _native
 from ._native import InvalidInput, NurbsSurface
 from ._options import fill_options
 
-__all__ = ["SurfaceMesh", "mesh_options", "mesh_surface", "mesh_hull", "mesh_quality"]
+__all__ = ["SurfaceMesh", "mesh_options", "mesh_surface", "mesh_hull", "mesh_quality", "write_mesh", "read_mesh"]
 
 
 def mesh_options(**options) -> "_native.MeshOptions":
@@ -57,7 +58,8 @@ class SurfaceMesh:
         return self.faces[self.faces[:, 3] < 0, :3]
 
     def part(self, *names: str) -> "SurfaceMesh":
-        """The elements of the named parts only (nodes kept as they are)."""
+        """The elements of the named parts only (nodes kept as they are). Raises InvalidInput
+        for a part the mesh does not have."""
         bad = [n for n in names if n not in self.parts]
         if bad:
             raise InvalidInput(f"parts {bad} are not in this mesh; it has {list(self.parts)}")
@@ -92,8 +94,7 @@ class SurfaceMesh:
         return displaced_volume_of_mesh(self.vertices, self.triangulated(), t, half_hull=self.symmetric)
 
     def write(self, path, file_format: str | None = None, **kw) -> None:
-        """Writes the mesh (see :func:`fairlines.mesh_io.write_mesh`)."""
-        from .mesh_io import write_mesh
+        """Writes the mesh (see :func:`write_mesh`). Raises InvalidInput for an unknown format."""
         write_mesh(self, path, file_format, **kw)
 
 
@@ -139,7 +140,7 @@ def mesh_hull(hull, *, size: float, draft: float | None = None, lids: bool = Tru
     if not isinstance(hull, ComposedHull):
         raise InvalidInput(f"hull is {type(hull).__name__}; expected a ComposedHull or a bare-hull NurbsSurface")
     t = float("nan") if draft is None else float(draft)
-    res = _native._mesh_hull(hull._c, mesh_options(size=size, **options), t, bool(lids), bool(full), progress)
+    res = _native._mesh_hull(hull.native, mesh_options(size=size, **options), t, bool(lids), bool(full), progress)
     return _wrap(res, None if draft is None else float(draft), not full)
 
 
@@ -152,3 +153,77 @@ def mesh_quality(mesh: SurfaceMesh) -> dict:
     n = q["quads"] + q["triangles"]
     q["quad_fraction"] = q["quads"] / n if n else 0.0
     return q
+
+
+# Files through meshio, beside the mesh class they read and write (fairlines.mesh_io re-exports them).
+
+#: Formats that hold triangles only: quads are split along their shorter diagonal.
+_TRIANGLE_ONLY = {"stl"}
+#: Suffixes whose meshio format is ambiguous or worth naming (".msh": gmsh 2.2, which needs no entity tags).
+_SUFFIX_FORMAT = {".msh": "gmsh22", ".vtu": "vtu", ".vtk": "vtk", ".stl": "stl", ".obj": "obj", ".med": "med",
+                  ".ply": "ply", ".off": "off", ".xdmf": "xdmf", ".inp": "abaqus", ".mesh": "medit"}
+
+
+def _cells(mesh: SurfaceMesh, triangles_only: bool):
+    if triangles_only:
+        return [("triangle", mesh.triangulated())], None
+    tri, quad = mesh.faces[:, 3] < 0, mesh.faces[:, 3] >= 0
+    cells, part = [], []
+    if tri.any():
+        cells.append(("triangle", mesh.faces[tri, :3]))
+        part.append(mesh.face_part[tri])
+    if quad.any():
+        cells.append(("quad", mesh.faces[quad]))
+        part.append(mesh.face_part[quad])
+    return cells, part
+
+
+def write_mesh(mesh: SurfaceMesh, path, file_format: str | None = None, **kw) -> None:
+    """Writes a mesh with meshio; the format follows the suffix unless ``file_format`` names
+    one (a meshio format name such as ``"gmsh"``, ``"vtu"``, ``"stl"``, ``"obj"``, ``"med"``).
+    Formats that hold triangles only get each quad as two triangles. Element parts go out as
+    the cell data ``part`` (and gmsh physical groups) where the format keeps cell data.
+    Raises InvalidInput for an unknown format."""
+    import meshio
+    path = pathlib.Path(path)
+    fmt = file_format or _SUFFIX_FORMAT.get(path.suffix.lower())
+    if fmt is None:
+        raise InvalidInput(f"cannot tell the mesh format of {path}; give file_format (a meshio format name)")
+    cells, part = _cells(mesh, fmt in _TRIANGLE_ONLY)
+    cell_data = {}
+    if part is not None and fmt not in ("obj", "off", "ply"):
+        if fmt.startswith("gmsh"):  # parts as physical groups (numbered from 1)
+            cell_data = {"gmsh:physical": [p.astype(np.int32) + 1 for p in part],
+                         "gmsh:geometrical": [p.astype(np.int32) + 1 for p in part]}
+        else:
+            cell_data = {"part": [p.astype(np.int32) for p in part]}
+    m = meshio.Mesh(np.asarray(mesh.vertices, float), cells, cell_data=cell_data)
+    if fmt.startswith("gmsh"):
+        m.field_data = {name: np.array([i + 1, 2]) for i, name in enumerate(mesh.parts)}
+    try:
+        meshio.write(path, m, file_format=fmt, **kw)
+    except (KeyError, ValueError, meshio.WriteError) as exc:
+        raise InvalidInput(f"cannot write {path} as {fmt!r}: {exc}") from None
+
+
+def read_mesh(path) -> SurfaceMesh:
+    """Reads a surface mesh of triangles and quads with meshio (the ``part`` cell data, when
+    present, becomes ``face_part``).
+    Raises InvalidInput for a file meshio cannot read or one with no triangles or quadrilaterals."""
+    import meshio
+    m = meshio.read(path)
+    faces, part = [], []
+    for k, block in enumerate(m.cells):
+        if block.type not in ("triangle", "quad"):
+            continue
+        d = np.asarray(block.data)
+        f = np.full((len(d), 4), -1, dtype=int)
+        f[:, : d.shape[1]] = d
+        faces.append(f)
+        p = m.cell_data.get("part")
+        g = m.cell_data.get("gmsh:physical")
+        part.append(np.asarray(p[k], int) if p is not None else
+                    np.asarray(g[k], int) - 1 if g is not None else np.zeros(len(d), int))
+    if not faces:
+        raise InvalidInput(f"{path} holds no triangles or quadrilaterals")
+    return SurfaceMesh(np.asarray(m.points, float)[:, :3], np.concatenate(faces), np.concatenate(part))

@@ -66,6 +66,7 @@ class Parameter:
     levels: int | None = None
 
     def check(self, where: str) -> None:
+        """Raises InvalidInput naming the field (at ``where``) of a malformed range or value list."""
         if self.values is not None:
             if not isinstance(self.values, list) or not self.values:
                 raise InvalidInput(f"{where}.values is {self.values!r}; expected a non-empty list")

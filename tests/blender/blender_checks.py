@@ -136,7 +136,7 @@ def t_register():
     check(prefs is not None and type(prefs).__name__ == "FairlinesPreferences", "no add-on preferences")
     if args.mode == "legacy":
         # Re-installing over the running add-on reloads it; the loaded engine library must
-        # not be rewritten under Blender's feet (it used to crash here).
+        # not be rewritten under Blender's feet (Blender crashes when it is).
         eng.fl.sphere((0.0, 0.0, 0.0), 1.0)
         install()
         check(sub("engine").available(), "engine lost after re-install")

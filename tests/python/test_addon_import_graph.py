@@ -90,3 +90,23 @@ def test_a_late_import_cycle_is_found(tmp_path):
     graph = import_graph(str(pkg))
     assert graph["a"] == {"sub.b"} and graph["sub.b"] == {"a"}
     assert find_cycle(graph) == ["a", "sub.b", "a"]
+
+
+def test_addon_modules_import_no_private_name_of_a_sibling():
+    """Neither `from .x import _y` nor `x._y` on a sibling module `x`: what modules share is public."""
+    found = []
+    for name, path in sorted(_modules(ADDON).items()):
+        with open(path, encoding="utf-8") as f:
+            tree = ast.parse(f.read(), path)
+        siblings = set()
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and node.level > 0:
+                for alias in node.names:
+                    siblings.add(alias.asname or alias.name)
+                    if alias.name.startswith("_") and not alias.name.startswith("__"):
+                        found.append("%s imports %s" % (name, alias.name))
+        for node in ast.walk(tree):
+            if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in siblings
+                    and node.attr.startswith("_") and not node.attr.startswith("__")):
+                found.append("%s:%d uses %s.%s" % (name, node.lineno, node.value.id, node.attr))
+    assert found == []

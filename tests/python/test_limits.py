@@ -52,7 +52,7 @@ def test_sizes_and_orders_beyond_the_limit_are_refused(call, fragments):
 
 @pytest.mark.parametrize("times", [10**12, 2**31 - 1, -(2**40)])
 def test_integers_beyond_the_int_range_are_invalid_input(times):
-    # 2**31 - 1 on a knot of multiplicity 2 used to overflow the multiplicity check.
+    # 2**31 - 1 on a knot of multiplicity 2 would overflow a 32-bit multiplicity sum.
     c = circle()
     with pytest.raises(fl.InvalidInput, match=f"times|{times} time"):
         c.insert_knot(0.25, times)

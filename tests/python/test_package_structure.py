@@ -84,3 +84,55 @@ def test_every_public_function_that_raises_names_what_in_its_docstring():
                 if raises and "raise" not in (ast.get_docstring(node) or "").lower():
                     silent.append(f"{module}.{node.name}")
     assert silent == []
+
+
+def _private_attribute_uses(package_dir: pathlib.Path, shared: set) -> list[str]:
+    """`module._name` where `module` is bound by a relative import (a sibling module of the
+    package) and not one of the `shared` private modules."""
+    found = []
+    for path in sorted(package_dir.rglob("*.py")):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        siblings = {a.asname or a.name: a.name for node in ast.walk(tree)
+                    if isinstance(node, ast.ImportFrom) and node.level > 0 for a in node.names}
+        for node in ast.walk(tree):
+            if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in siblings
+                    and siblings[node.value.id] not in shared
+                    and node.attr.startswith("_") and not node.attr.startswith("__")):
+                found.append(f"{path.relative_to(package_dir)}:{node.lineno} uses {node.value.id}.{node.attr}")
+    return found
+
+
+def test_no_module_uses_a_private_name_of_a_sibling_module():
+    assert _private_attribute_uses(PACKAGE, SHARED_PRIVATE) == []
+
+
+def test_imports_anywhere_form_no_cycle():
+    """The imports inside functions count too: a late import hides a cycle, it does not remove
+    it. The package's __init__ (which imports every module to re-export it) and the compiled
+    _native (no source) are left out."""
+    from test_addon_import_graph import find_cycle, import_graph
+
+    graph = {m: edges - {""} for m, edges in import_graph(str(PACKAGE)).items() if m != ""}
+    cycle = find_cycle(graph)
+    assert cycle is None, " -> ".join(cycle)
+
+
+def _public_methods(tree: ast.Module):
+    """(class name, method) of every public method of the module's public classes."""
+    for cls in tree.body:
+        if isinstance(cls, ast.ClassDef) and not cls.name.startswith("_"):
+            for node in cls.body:
+                if isinstance(node, ast.FunctionDef) and not node.name.startswith("_"):
+                    yield cls.name, node
+
+
+def _says_what_it_raises(node: ast.FunctionDef) -> bool:
+    raises = any(isinstance(n, ast.Raise) for n in ast.walk(node))
+    return not raises or "raise" in (ast.get_docstring(node) or "").lower()
+
+
+def test_every_public_method_that_raises_names_what_in_its_docstring():
+    """A public method of a public class with a raise statement documents it ("Raises ...")."""
+    silent = [f"{module}.{cls}.{node.name}" for module, (tree, _) in _modules().items()
+              for cls, node in _public_methods(tree) if not _says_what_it_raises(node)]
+    assert silent == []

@@ -48,9 +48,12 @@ struct BlendSurface {
 BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundary_a, const NurbsSurface& b,
                            const Eigen::MatrixXd& boundary_b, const BlendOptions& options = {});
 
+/// Points at which measure_boundary_continuity projects unless told otherwise.
+inline constexpr int kContinuitySamples = 400;
+
 /// Continuity of a blend along its v = 0 (at_v1 false) or v = 1 edge against surface s,
 /// measured independently by closest-point projection at `samples` points.
 BoundaryContinuity measure_boundary_continuity(const NurbsSurface& blend, bool at_v1, const NurbsSurface& s,
-                                               int samples = 400);
+                                               int samples = kContinuitySamples);
 
 }  // namespace fairlines

@@ -97,14 +97,15 @@ struct AftEnd {
 /// Classifies the aft edge of a hull in the orient_bare_hull convention. `z_deck`: the deck
 /// height. Throws InvalidInput when the edge is neither on y = 0 nor in one plane whose normal
 /// has an x component of at least 0.2 (a rake under about 78 degrees).
-AftEnd aft_end(const NurbsSurface& oriented_hull, double z_deck, double plane_tolerance = 1e-6);
+AftEnd aft_end(const NurbsSurface& oriented_hull, double z_deck,
+               double plane_tolerance = ComposeOptions{}.plane_tolerance);
 
 /// Brings a bare hull surface to the convention used here by swapping / reversing its
 /// directions: u = u_min on the aft end (in one plane, upright or raked, or on the centre
 /// plane: see aft_end), v = v_min on the centre plane (keel, y = 0), v = v_max on the deck
 /// (z constant), u = u_max on the centre plane (stem).
 /// Throws InvalidInput naming the edge that fits no plane.
-NurbsSurface orient_bare_hull(const NurbsSurface& hull, double plane_tolerance = 1e-6);
+NurbsSurface orient_bare_hull(const NurbsSurface& hull, double plane_tolerance = ComposeOptions{}.plane_tolerance);
 
 /// Union of the bare hull (any orientation accepted by orient_bare_hull) and, if `bulb` is
 /// non-null, a bulb surface laid out as make_bulbous_bow makes it (u aft -> nose pole, v

@@ -83,6 +83,7 @@ struct PlaneCut {
 /// (x monotone in v); waterlines and buttocks march along v and solve for u (z or y monotone
 /// along u, as on sections running deck to keel). Lines that miss the plane are skipped; a
 /// cut with fewer than 3 points is returned empty. `samples` >= 10 marching lines.
-PlaneCut plane_cut(const NurbsSurface& surface, int axis, double value, int samples = 401);
+inline constexpr int kPlaneCutSamples = 401;  ///< plane_cut's samples unless told otherwise
+PlaneCut plane_cut(const NurbsSurface& surface, int axis, double value, int samples = kPlaneCutSamples);
 
 }  // namespace fairlines

@@ -130,13 +130,15 @@ Hydrostatics hydrostatics(const NurbsSurface& surface, double draft, const Hydro
 /// non-finite draft, a non-finite end_x, a bad gauss or no patches.
 struct PatchHydrostatics : BuoyancyFigures {};
 PatchHydrostatics hydrostatics_of_patches(const std::vector<NurbsSurface>& patches, double draft, double end_x,
-                                          bool half_hull = true, int gauss = 8);
+                                          bool half_hull = HydrostaticsOptions{}.half_hull,
+                                          int gauss = HydrostaticsOptions{}.gauss);
 
 /// Area (m^2) below `draft` of the section of the surface by the plane x = `x` (half the
 /// section when half_hull is false, the full section when true) and its centroid height
 /// (m). The longitudinal parameter direction is the one along which x varies most; x must be
 /// monotone along it. Returns {0, 0} when the plane misses the submerged surface.
 std::pair<double, double> section_area(const NurbsSurface& surface, double x, double draft,
-                                       bool half_hull = true, int gauss = 8);
+                                       bool half_hull = HydrostaticsOptions{}.half_hull,
+                                       int gauss = HydrostaticsOptions{}.gauss);
 
 }  // namespace fairlines

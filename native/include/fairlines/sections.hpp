@@ -52,8 +52,7 @@ inline constexpr double kMaxShapeKnob = 2.0;
 /// One section's numbers (metres; angles in degrees).
 struct SectionSpec {
   double x = 0;
-  double y_deck = 0;
-  double z_deck = 0;
+  double y_deck = 0, z_deck = 0;
   double z_keel = 0;
   double y_max = 0;
   double draft = kNaN;
@@ -80,8 +79,7 @@ struct SectionSpec {
   /// half_area) sets only the arc's weight: X at (1, 0.5) with the weight of a parabola holds a
   /// parabolic (Wigley) section, X inside the chord Q-K a hollow one. NaN: the template family
   /// places X from deadrise and character.
-  double corner_y = kNaN;
-  double corner_z = kNaN;
+  double corner_y = kNaN, corner_z = kNaN;
   int n_control = 20;
   /// A given shape (an auxiliary section, e.g. measured offsets) instead of the template: #m by 2
   /// points (y, z) in metres from the deck edge down to the keel on the centre plane. It is

@@ -139,7 +139,8 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
 /// inverted by cubic Hermite interpolation of t(s) and one Newton step (spacing equal to
 /// about 1e-3 relative on sections; the points are on the curve to round-off whatever the
 /// spacing).
-Eigen::MatrixXd equal_arc_length_points(const NurbsCurve& curve, int m, double curvature_weight = 0.0);
+Eigen::MatrixXd equal_arc_length_points(const NurbsCurve& curve, int m,
+                                        double curvature_weight = SkinOptions{}.curvature_weight);
 
 /// Arc length of a curve (metres), same quadrature as above.
 double arc_length(const NurbsCurve& curve);

@@ -108,7 +108,8 @@ NurbsCurve design_spline_function(const SplineDesignRequest& request);
 /// spread over the pieces between breakpoints in proportion to their length, at least
 /// `min_piece_spans` each (4 by default: a cubic piece next to a flat part has its first three
 /// coefficients fixed for G2 and needs room for its own conditions). Clamped, degree `degree`.
-Eigen::VectorXd spline_function_knots(double x0, double x1, const std::vector<double>& breaks, int spans, int degree = 3,
-                                      int min_piece_spans = 4);
+inline constexpr int kKnotSpans = 8, kKnotDegree = 3, kMinPieceSpans = 4;  ///< its defaults
+Eigen::VectorXd spline_function_knots(double x0, double x1, const std::vector<double>& breaks, int spans = kKnotSpans,
+                                      int degree = kKnotDegree, int min_piece_spans = kMinPieceSpans);
 
 }  // namespace fairlines

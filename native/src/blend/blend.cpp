@@ -193,20 +193,16 @@ BoundaryContinuity measure_boundary_continuity(const NurbsSurface& blend, bool a
   return c;
 }
 
-BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundary_a, const NurbsSurface& b,
-                           const Eigen::MatrixXd& boundary_b, const BlendOptions& o) {
-  if (o.samples < 4) detail::fail("samples is ", o.samples, "; expected >= 4");
-  detail::require_positive(o.tension, "tension");
-  const int n = o.samples;
-  const Eigen::MatrixXd ua = resample(a, boundary_a, n, "boundary_a");
-  const Eigen::MatrixXd ub = resample(b, boundary_b, n, "boundary_b");
-  std::vector<Frame> fa(n), fb(n);
-  for (int j = 0; j < n; ++j) {
-    fa[j] = frame(a, ua(j, 0), ua(j, 1));
-    fb[j] = frame(b, ub(j, 0), ub(j, 1));
-  }
-  // rows of section control points: P0 (on a), P1, P2, P3 (on b)
-  Eigen::MatrixXd rows[4];
+namespace {
+
+/// The four rows of section control points of the Hermite sections: P0 on a, P1, P2, P3 on b.
+using SectionRows = std::array<Eigen::MatrixXd, 4>;
+
+/// P1 and P2 leave P0 and P3 across the boundaries in the surfaces' tangent planes, toward the
+/// other surface, at a third of the gap times the tension.
+SectionRows hermite_rows(const std::vector<Frame>& fa, const std::vector<Frame>& fb, double tension) {
+  const int n = static_cast<int>(fa.size());
+  SectionRows rows;
   for (auto& r : rows) r.resize(n, 3);
   for (int j = 0; j < n; ++j) {
     const int jp = std::min(j + 1, n - 1), jm = std::max(j - 1, 0);
@@ -221,63 +217,86 @@ BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundar
     db.normalize();
     if (da.dot(gap) < 0) da = -da;   // toward b
     if (db.dot(-gap) < 0) db = -db;  // toward a
-    const double h = o.tension * len / 3.0;
+    const double h = tension * len / 3.0;
     rows[0].row(j) = fa[j].p.transpose();
     rows[1].row(j) = (fa[j].p + h * da).transpose();
     rows[2].row(j) = (fb[j].p + h * db).transpose();
     rows[3].row(j) = fb[j].p.transpose();
   }
-  bool plane_start = false, plane_end = false;  // an end section lies in the centre plane
-  EndTangents end_tangent;
-  for (auto& row : end_tangent) row.fill(Eigen::Vector3d::Zero());
-  if (o.centre_plane_ends) {
-    // An end section on the centre plane y = 0 must stay in it (the mirrored hull is then
-    // smooth across it), and for C1 its cross-boundary tangent must lie in the surface's
-    // tangent plane too: the one direction in both is n x e_y (the stem or keel line on the
-    // hull, the top or bottom centre line on the bulb). Zeroing y of n x t instead would
-    // leave the tangent plane wherever the boundary tangent t is not horizontal.
-    const double tol = 1e-9 * std::max(1.0, (fb[0].p - fa[0].p).norm());
-    const Eigen::Vector3d ey(0.0, 1.0, 0.0);
-    for (int j : {0, n - 1})
-      if (std::abs(fa[j].p.y()) <= tol && std::abs(fb[j].p.y()) <= tol) {
-        const int e = j == 0 ? 0 : 1;
-        (e == 0 ? plane_start : plane_end) = true;
-        end_tangent[0][e] = end_tangent[1][e] = across_plane(fa[j].n);
-        end_tangent[2][e] = end_tangent[3][e] = across_plane(fb[j].n);
-        const Eigen::Vector3d gap = fb[j].p - fa[j].p;
-        const double h = o.tension * gap.norm() / 3.0;
-        Eigen::Vector3d da = fa[j].n.cross(ey), db = fb[j].n.cross(ey);
-        if (da.norm() > 1e-9 && db.norm() > 1e-9) {
-          da.normalize();
-          db.normalize();
-          if (da.dot(gap) < 0) da = -da;
-          if (db.dot(-gap) < 0) db = -db;
-          rows[1].row(j) = (fa[j].p + h * da).transpose();
-          rows[2].row(j) = (fb[j].p + h * db).transpose();
-        }
-        rows[1](j, 1) = 0.0;
-        rows[2](j, 1) = 0.0;
-        rows[0](j, 1) = 0.0;
-        rows[3](j, 1) = 0.0;
-      }
+  return rows;
+}
+
+/// The end sections that lie in the centre plane y = 0 and the tangents their rows must arrive with.
+struct PlaneEnds {
+  bool start = false, end = false;
+  EndTangents tangent;
+  PlaneEnds() {
+    for (auto& row : tangent) row.fill(Eigen::Vector3d::Zero());
   }
-  // common parameters (averaged chord lengths of the rows) and knots; interpolate each row
+};
+
+/// An end section on the centre plane y = 0 must stay in it (the mirrored hull is then smooth
+/// across it), and for C1 its cross-boundary tangent must lie in the surface's tangent plane
+/// too: the one direction in both is n x e_y (the stem or keel line on the hull, the top or
+/// bottom centre line on the bulb). Zeroing y of n x t instead would leave the tangent plane
+/// wherever the boundary tangent t is not horizontal. Moves those ends' rows into the plane.
+PlaneEnds hold_centre_plane_ends(const std::vector<Frame>& fa, const std::vector<Frame>& fb, double tension,
+                                 SectionRows& rows) {
+  const int n = static_cast<int>(fa.size());
+  PlaneEnds ends;
+  const double tol = 1e-9 * std::max(1.0, (fb[0].p - fa[0].p).norm());
+  const Eigen::Vector3d ey(0.0, 1.0, 0.0);
+  for (int j : {0, n - 1})
+    if (std::abs(fa[j].p.y()) <= tol && std::abs(fb[j].p.y()) <= tol) {
+      const int e = j == 0 ? 0 : 1;
+      (e == 0 ? ends.start : ends.end) = true;
+      ends.tangent[0][e] = ends.tangent[1][e] = across_plane(fa[j].n);
+      ends.tangent[2][e] = ends.tangent[3][e] = across_plane(fb[j].n);
+      const Eigen::Vector3d gap = fb[j].p - fa[j].p;
+      const double h = tension * gap.norm() / 3.0;
+      Eigen::Vector3d da = fa[j].n.cross(ey), db = fb[j].n.cross(ey);
+      if (da.norm() > 1e-9 && db.norm() > 1e-9) {
+        da.normalize();
+        db.normalize();
+        if (da.dot(gap) < 0) da = -da;
+        if (db.dot(-gap) < 0) db = -db;
+        rows[1].row(j) = (fa[j].p + h * da).transpose();
+        rows[2].row(j) = (fb[j].p + h * db).transpose();
+      }
+      rows[1](j, 1) = 0.0;
+      rows[2](j, 1) = 0.0;
+      rows[0](j, 1) = 0.0;
+      rows[3](j, 1) = 0.0;
+    }
+  return ends;
+}
+
+/// The sections' common parameters along the boundaries: the rows' chord lengths, averaged
+/// (summed), normalised to [0, 1].
+Eigen::VectorXd row_parameters(const SectionRows& rows) {
+  const Eigen::Index n = rows[0].rows();
   Eigen::VectorXd par = Eigen::VectorXd::Zero(n);
-  for (int j = 1; j < n; ++j) {
+  for (Eigen::Index j = 1; j < n; ++j) {
     double d = 0.0;
     for (const auto& r : rows) d += (r.row(j) - r.row(j - 1)).norm();
     par[j] = par[j - 1] + d;
   }
   par /= par[n - 1];
+  return par;
+}
+
+/// The cubic (along s) by cubic (across, the Hermite sections) surface interpolating the rows.
+NurbsSurface skin_rows(const SectionRows& rows, const Eigen::VectorXd& par, const PlaneEnds& ends) {
+  const Eigen::Index n = rows[0].rows();
   const int p = 3;
   Eigen::MatrixXd all(n, 12);  // the four rows share one interpolation matrix: one solve
   for (int r = 0; r < 4; ++r) all.middleCols(3 * r, 3) = rows[r];
   Eigen::VectorXd K;
   Eigen::MatrixXd c;
-  if (plane_start || plane_end) {
-    c = rows_with_end_tangents(all, par, p, end_tangent, plane_start, plane_end, K);
+  if (ends.start || ends.end) {
+    c = rows_with_end_tangents(all, par, p, ends.tangent, ends.start, ends.end, K);
   } else {
-    K = averaged_knots(par, p, n);
+    K = averaged_knots(par, p, static_cast<int>(n));
     c = fit_curve_with(all, par, K, p).curve.control_points();
   }
   const int nc = static_cast<int>(c.rows());
@@ -286,7 +305,28 @@ BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundar
     for (int i = 0; i < nc; ++i) ctrl.row(i * 4 + r) = c.block<1, 3>(i, 3 * r);
   Eigen::VectorXd kt(8);
   kt << 0, 0, 0, 0, 1, 1, 1, 1;
-  NurbsSurface s(p, 3, K, kt, nc, 4, ctrl);
+  return NurbsSurface(p, 3, K, kt, nc, 4, ctrl);
+}
+
+}  // namespace
+
+BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundary_a, const NurbsSurface& b,
+                           const Eigen::MatrixXd& boundary_b, const BlendOptions& o) {
+  if (o.samples < 4) detail::fail("samples is ", o.samples, "; expected >= 4");
+  detail::require_positive(o.tension, "tension");
+  const int n = o.samples;
+  const Eigen::MatrixXd ua = resample(a, boundary_a, n, "boundary_a");
+  const Eigen::MatrixXd ub = resample(b, boundary_b, n, "boundary_b");
+  std::vector<Frame> fa(n), fb(n);
+  for (int j = 0; j < n; ++j) {
+    fa[j] = frame(a, ua(j, 0), ua(j, 1));
+    fb[j] = frame(b, ub(j, 0), ub(j, 1));
+  }
+  SectionRows rows = hermite_rows(fa, fb, o.tension);
+  PlaneEnds ends;
+  if (o.centre_plane_ends) ends = hold_centre_plane_ends(fa, fb, o.tension, rows);
+  const Eigen::VectorXd par = row_parameters(rows);
+  const NurbsSurface s = skin_rows(rows, par, ends);
   BlendSurface out{s, {}, {}, ua, ub, par};
   out.at_a = measure_boundary_continuity(s, false, a, o.check_samples);
   out.at_b = measure_boundary_continuity(s, true, b, o.check_samples);

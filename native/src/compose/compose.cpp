@@ -39,6 +39,7 @@
 #include <Eigen/Geometry>
 
 #include "fairlines/errors.hpp"
+#include "common/used_nodes.hpp"
 #include "nurbs/checks.hpp"
 
 namespace fairlines {
@@ -261,21 +262,19 @@ void close_half_hull(MeshBuilder& mb, const AftEnd& aft, double z_deck, double t
   }
 }
 
-/// The seam of the union of the oriented bare hull H and bulb B: the one intersection branch
-/// that runs around the bulb from its bottom to its top centre line, re-sampled by Newton at the
-/// bulb's mesh columns v_j (j = 0 .. bulb_v) so that hull and bulb meshes can share those
-/// points. seam_x[j] = (u_h, v_h, u_b, v_b); curve holds the same points with their positions. Used by
-/// compose_hull and by hull_bulb_seam (the blend boundaries need the seam, not the mesh).
-void trace_seam(const NurbsSurface& H, const NurbsSurface& B, const ComposeOptions& o,
-                std::vector<Eigen::Vector4d>& seam_x, IntersectionCurve& curve) {
+/// Whether a point lies on the bulb's aft end u = bu0 (which must be inside the hull).
+bool reaches_aft_end(const std::vector<IntersectionPoint>& pts, const NurbsSurface& B) {
   const auto [bu0, bu1] = B.domain_u();
+  for (const auto& q : pts)
+    if (q.uv_b.x() <= bu0 + 1e-6 * (bu1 - bu0)) return true;
+  return false;
+}
+
+/// The one intersection branch that runs around the bulb from its bottom to its top centre
+/// line, its points in increasing bulb v. Throws InvalidInput saying why the bulb cannot meet
+/// the hull in such a seam.
+std::vector<IntersectionPoint> seam_around_bulb(const std::vector<IntersectionCurve>& curves, const NurbsSurface& B) {
   const auto [bv0, bv1] = B.domain_v();
-  const int NV = o.bulb_v;
-  seam_x.assign(NV + 1, Eigen::Vector4d::Zero());
-  curve = IntersectionCurve{};
-  IntersectOptions io;
-  io.tolerance = o.tolerance;
-  const std::vector<IntersectionCurve> curves = intersect_surfaces(H, B, io);
   if (curves.empty())
     throw InvalidInput("bulb cannot meet the hull: the bulb surface does not intersect the bare hull "
                        "(move it aft / into the hull, or lengthen its aft body)");
@@ -290,24 +289,35 @@ void trace_seam(const NurbsSurface& H, const NurbsSurface& B, const ComposeOptio
     std::ostringstream os;
     os << "bulb cannot meet the hull: the surfaces intersect in " << curves.size()
        << " curve(s) but the union needs one seam running around the bulb from its bottom to its top centre line";
-    for (const auto& c : curves)
-      for (const auto& q : c.points)
-        if (q.uv_b.x() <= bu0 + 1e-6 * (bu1 - bu0)) {
-          os << "; the bulb's aft end is not inside the hull (lengthen aft_length)";
-          goto done;
-        }
-  done:
+    if (std::any_of(curves.begin(), curves.end(), [&](const IntersectionCurve& c) { return reaches_aft_end(c.points, B); }))
+      os << "; the bulb's aft end is not inside the hull (lengthen aft_length)";
     throw InvalidInput(os.str());
   }
-  for (const auto& q : seam->points)
-    if (q.uv_b.x() <= bu0 + 1e-6 * (bu1 - bu0))
-      throw InvalidInput("bulb cannot meet the hull: the seam reaches the bulb's aft end, which is not inside the "
-                         "hull (lengthen aft_length or move the bulb aft)");
+  if (reaches_aft_end(seam->points, B))
+    throw InvalidInput("bulb cannot meet the hull: the seam reaches the bulb's aft end, which is not inside the "
+                       "hull (lengthen aft_length or move the bulb aft)");
   std::vector<IntersectionPoint> pts = seam->points;
   if (pts.front().uv_b.y() > pts.back().uv_b.y()) std::reverse(pts.begin(), pts.end());
   for (size_t k = 1; k < pts.size(); ++k)
     if (pts[k].uv_b.y() < pts[k - 1].uv_b.y() - vt)
       throw InvalidInput("bulb cannot meet the hull in a simple seam: the intersection turns back around the bulb");
+  return pts;
+}
+
+/// The seam of the union of the oriented bare hull H and bulb B: the one intersection branch
+/// that runs around the bulb from its bottom to its top centre line, re-sampled by Newton at the
+/// bulb's mesh columns v_j (j = 0 .. bulb_v) so that hull and bulb meshes can share those
+/// points. seam_x[j] = (u_h, v_h, u_b, v_b); curve holds the same points with their positions. Used by
+/// compose_hull and by hull_bulb_seam (the blend boundaries need the seam, not the mesh).
+void trace_seam(const NurbsSurface& H, const NurbsSurface& B, const ComposeOptions& o,
+                std::vector<Eigen::Vector4d>& seam_x, IntersectionCurve& curve) {
+  const auto [bv0, bv1] = B.domain_v();
+  const int NV = o.bulb_v;
+  seam_x.assign(NV + 1, Eigen::Vector4d::Zero());
+  curve = IntersectionCurve{};
+  IntersectOptions io;
+  io.tolerance = o.tolerance;
+  const std::vector<IntersectionPoint> pts = seam_around_bulb(intersect_surfaces(H, B, io), B);
   // re-sample at the bulb columns
   for (int j = 0; j <= NV; ++j) {
     const double vj = j == NV ? bv1 : bv0 + (bv1 - bv0) * j / NV;
@@ -915,20 +925,9 @@ TriMesh mirror_full_hull(const ComposedHull& c) {
     faces.push_back({mirror[m.faces(f, 0)], mirror[m.faces(f, 2)], mirror[m.faces(f, 1)]});
   }
   // drop vertices only the centre-plane faces used (the aft-deck corner of the caps stays)
-  std::vector<int> used(verts.size(), -1);
   TriMesh out;
-  int cnt = 0;
-  for (auto& f : faces)
-    for (int& v : f) {
-      if (used[v] < 0) used[v] = cnt++;
-      v = used[v];
-    }
-  out.vertices.resize(cnt, 3);
-  for (size_t i = 0; i < verts.size(); ++i)
-    if (used[i] >= 0) out.vertices.row(used[i]) = verts[i].transpose();
-  out.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (size_t f = 0; f < faces.size(); ++f)
-    for (int k = 0; k < 3; ++k) out.faces(static_cast<Eigen::Index>(f), k) = faces[f][k];
+  out.vertices = detail::keep_used_nodes(faces, verts);
+  out.faces = detail::element_rows(faces);
   return out;
 }
 

@@ -252,107 +252,138 @@ IntersectionPoint make_point(const NurbsSurface& a, const NurbsSurface& b, const
   return {0.5 * (pa + pb), {x[0], x[1]}, {x[2], x[3]}};
 }
 
-/// Marches from x in direction sign * (n_a x n_b); appends points (excluding the start).
-/// Returns true if the branch closed on `start_point`.
-bool march(const NurbsSurface& a, const NurbsSurface& b, const Domain& da, const Domain& db, Eigen::Vector4d x,
-           double sign, double h0, const IntersectOptions& o, std::vector<IntersectionPoint>& out, double& gap,
-           const Eigen::Vector3d& start_point) {
-  double h = h0;
-  const double h_min = h0 * 1e-4;
-  const double turn_max = o.max_turn_deg * M_PI / 180.0;
-  Eigen::Vector3d t_prev = Eigen::Vector3d::Zero();
-  int steps = 0;
-  while (static_cast<int>(out.size()) < o.max_points) {
-    const Deriv A = deriv(a, x[0], x[1]), B = deriv(b, x[2], x[3]);
-    Eigen::Vector3d t = A.su.cross(A.sv).normalized().cross(B.su.cross(B.sv).normalized());
-    if (t.norm() < 1e-9) {
+/// The two surfaces of an intersection with their domains and the options.
+struct SurfacePair {
+  const NurbsSurface& a;
+  const NurbsSurface& b;
+  const Domain& da;
+  const Domain& db;
+  const IntersectOptions& o;
+};
+
+/// The unit direction n_a x n_b of the intersection at A (on a), B (on b). Throws
+/// ConvergenceError where the normals are parallel: the surfaces touch instead of crossing.
+Eigen::Vector3d crossing_direction(const Deriv& A, const Deriv& B) {
+  const Eigen::Vector3d t = A.su.cross(A.sv).normalized().cross(B.su.cross(B.sv).normalized());
+  if (t.norm() < 1e-9) {
+    std::ostringstream os;
+    os << "intersect_surfaces: tangential contact at (" << A.s.transpose()
+       << "); the surfaces touch instead of crossing";
+    throw ConvergenceError(os.str());
+  }
+  return t.normalized();
+}
+
+enum class Corrected { Converged, LeftDomain, Failed };
+
+/// Newton from the predicted xn on S_a = S_b and (S_a - A.s) . t = h: the point at distance h
+/// along t from the last one.
+Corrected correct(const SurfacePair& sp, const Deriv& A, const Eigen::Vector3d& t, double h, Eigen::Vector4d& xn) {
+  for (int it = 0; it < 30; ++it) {
+    double bv;
+    if (exiting(sp.da, sp.db, xn, bv) >= 0) return Corrected::LeftDomain;
+    const Deriv An = deriv(sp.a, xn[0], xn[1]), Bn = deriv(sp.b, xn[2], xn[3]);
+    Eigen::Vector4d F;
+    F.head<3>() = An.s - Bn.s;
+    F[3] = (An.s - A.s).dot(t) - h;
+    if (F.head<3>().norm() < sp.o.tolerance && std::abs(F[3]) < 1e-3 * h) return Corrected::Converged;
+    Eigen::Matrix4d J;
+    J.block<3, 1>(0, 0) = An.su;
+    J.block<3, 1>(0, 1) = An.sv;
+    J.block<3, 1>(0, 2) = -Bn.su;
+    J.block<3, 1>(0, 3) = -Bn.sv;
+    J(3, 0) = An.su.dot(t);
+    J(3, 1) = An.sv.dot(t);
+    J(3, 2) = 0.0;
+    J(3, 3) = 0.0;
+    const Eigen::Vector4d d = J.partialPivLu().solve(-F);
+    if (!d.allFinite()) return Corrected::Failed;
+    xn += d;
+  }
+  return Corrected::Failed;
+}
+
+/// Whether the intersection's direction at xn turns from t by more than max_turn_deg.
+bool turns_too_far(const SurfacePair& sp, const Eigen::Vector4d& xn, const Eigen::Vector3d& t) {
+  const double turn_max = sp.o.max_turn_deg * M_PI / 180.0;
+  const Deriv An = deriv(sp.a, xn[0], xn[1]), Bn = deriv(sp.b, xn[2], xn[3]);
+  const Eigen::Vector3d tn = An.su.cross(An.sv).normalized().cross(Bn.su.cross(Bn.sv).normalized());
+  const double turn = tn.norm() > 1e-12 ? std::acos(std::min(1.0, std::abs(tn.normalized().dot(t)))) : M_PI;
+  return turn > turn_max;
+}
+
+enum class Step { Accepted, EndedOnBoundary };
+
+/// One step from x (A, B: the surfaces there) along t: predictor (parameter steps moving each
+/// surface by h t), corrector, refused when the direction turns too far, h halved until a step
+/// is accepted (xn). A corrector that leaves a domain ends the branch on that boundary (appended
+/// to out) when the boundary point lies within 2 h of A.
+Step take_step(const SurfacePair& sp, const Deriv& A, const Deriv& B, const Eigen::Vector4d& x,
+               const Eigen::Vector3d& t, double h_min, double& h, Eigen::Vector4d& xn,
+               std::vector<IntersectionPoint>& out, double& gap) {
+  for (;; h *= 0.5) {
+    if (h < h_min) {
       std::ostringstream os;
-      os << "intersect_surfaces: tangential contact at (" << A.s.transpose()
-         << "); the surfaces touch instead of crossing";
+      os << "intersect_surfaces: marching step collapsed near (" << A.s.transpose() << ")";
       throw ConvergenceError(os.str());
     }
-    t = sign * t.normalized();
-    if (steps > 0 && t.dot(t_prev) < 0.0) t = -t;  // keep heading
-    bool accepted = false;
-    Eigen::Vector4d xn;
-    while (!accepted) {
-      if (h < h_min) {
-        std::ostringstream os;
-        os << "intersect_surfaces: marching step collapsed near (" << A.s.transpose() << ")";
-        throw ConvergenceError(os.str());
+    Eigen::Matrix<double, 3, 2> Ja, Jb;
+    Ja << A.su, A.sv;
+    Jb << B.su, B.sv;
+    const Eigen::Vector2d ga = Ja.colPivHouseholderQr().solve(h * t);
+    const Eigen::Vector2d gb = Jb.colPivHouseholderQr().solve(h * t);
+    xn << x[0] + ga[0], x[1] + ga[1], x[2] + gb[0], x[3] + gb[1];
+    const Corrected c = correct(sp, A, t, h, xn);
+    if (c == Corrected::Converged && !turns_too_far(sp, xn, t)) return Step::Accepted;
+    if (c == Corrected::LeftDomain) {
+      // land on that boundary from the current point
+      double bval = 0.0;
+      const int ex = exiting(sp.da, sp.db, xn, bval);
+      Eigen::Vector4d xb = x;
+      if (solve_on_boundary(sp.a, sp.b, sp.da, sp.db, xb, ex, bval, sp.o.tolerance) &&
+          (sp.a.evaluate(xb[0], xb[1]) - A.s).norm() < 2.0 * h) {
+        out.push_back(make_point(sp.a, sp.b, xb, gap));
+        return Step::EndedOnBoundary;
       }
-      // predictor: parameter steps that move each surface by h t
-      Eigen::Matrix<double, 3, 2> Ja, Jb;
-      Ja << A.su, A.sv;
-      Jb << B.su, B.sv;
-      const Eigen::Vector2d ga = Ja.colPivHouseholderQr().solve(h * t);
-      const Eigen::Vector2d gb = Jb.colPivHouseholderQr().solve(h * t);
-      xn << x[0] + ga[0], x[1] + ga[1], x[2] + gb[0], x[3] + gb[1];
-      // corrector: S_a = S_b on the plane (P - P0) . t = h
-      bool ok = false;
-      bool left = false;
-      for (int it = 0; it < 30; ++it) {
-        double bv;
-        if (exiting(da, db, xn, bv) >= 0) {
-          left = true;
-          break;
-        }
-        const Deriv An = deriv(a, xn[0], xn[1]), Bn = deriv(b, xn[2], xn[3]);
-        Eigen::Vector4d F;
-        F.head<3>() = An.s - Bn.s;
-        F[3] = (An.s - A.s).dot(t) - h;
-        if (F.head<3>().norm() < o.tolerance && std::abs(F[3]) < 1e-3 * h) {
-          ok = true;
-          break;
-        }
-        Eigen::Matrix4d J;
-        J.block<3, 1>(0, 0) = An.su;
-        J.block<3, 1>(0, 1) = An.sv;
-        J.block<3, 1>(0, 2) = -Bn.su;
-        J.block<3, 1>(0, 3) = -Bn.sv;
-        J(3, 0) = An.su.dot(t);
-        J(3, 1) = An.sv.dot(t);
-        J(3, 2) = 0.0;
-        J(3, 3) = 0.0;
-        const Eigen::Vector4d d = J.partialPivLu().solve(-F);
-        if (!d.allFinite()) break;
-        xn += d;
-      }
-      if (ok) {
-        const Deriv An = deriv(a, xn[0], xn[1]), Bn = deriv(b, xn[2], xn[3]);
-        Eigen::Vector3d tn = An.su.cross(An.sv).normalized().cross(Bn.su.cross(Bn.sv).normalized());
-        const double turn = tn.norm() > 1e-12 ? std::acos(std::min(1.0, std::abs(tn.normalized().dot(t)))) : M_PI;
-        if (turn > turn_max) ok = false;
-      }
-      if (left) {
-        // the step leaves a parameter domain: land on that boundary from the current point
-        double bval = 0.0;
-        const int ex = exiting(da, db, xn, bval);
-        Eigen::Vector4d xb = x;
-        if (solve_on_boundary(a, b, da, db, xb, ex, bval, o.tolerance) &&
-            (a.evaluate(xb[0], xb[1]) - A.s).norm() < 2.0 * h) {
-          out.push_back(make_point(a, b, xb, gap));
-          return false;
-        }
-        ok = false;
-      }
-      if (ok) accepted = true;
-      else h *= 0.5;
     }
+  }
+}
+
+/// The branch's last point on the boundary parameter ex = bval that the accepted step to xn
+/// crossed: solved from xn, else from the last inside point x.
+Eigen::Vector4d land_on_boundary(const SurfacePair& sp, const Eigen::Vector4d& x, const Eigen::Vector4d& xn, int ex,
+                                 double bval) {
+  Eigen::Vector4d xb = xn;
+  if (!solve_on_boundary(sp.a, sp.b, sp.da, sp.db, xb, ex, bval, sp.o.tolerance)) {
+    xb = x;
+    if (!solve_on_boundary(sp.a, sp.b, sp.da, sp.db, xb, ex, bval, sp.o.tolerance))
+      throw ConvergenceError("intersect_surfaces: could not land a branch on a domain boundary");
+  }
+  return xb;
+}
+
+/// Marches from x in direction sign * (n_a x n_b); appends points (excluding the start).
+/// Returns true if the branch closed on `start_point`.
+bool march(const SurfacePair& sp, Eigen::Vector4d x, double sign, double h0, std::vector<IntersectionPoint>& out,
+           double& gap, const Eigen::Vector3d& start_point) {
+  double h = h0;
+  const double h_min = h0 * 1e-4;
+  Eigen::Vector3d t_prev = Eigen::Vector3d::Zero();
+  int steps = 0;
+  while (static_cast<int>(out.size()) < sp.o.max_points) {
+    const Deriv A = deriv(sp.a, x[0], x[1]), B = deriv(sp.b, x[2], x[3]);
+    Eigen::Vector3d t = sign * crossing_direction(A, B);
+    if (steps > 0 && t.dot(t_prev) < 0.0) t = -t;  // keep heading
+    Eigen::Vector4d xn;
+    if (take_step(sp, A, B, x, t, h_min, h, xn, out, gap) == Step::EndedOnBoundary) return false;
     double bval = 0.0;
-    const int ex = exiting(da, db, xn, bval);
+    const int ex = exiting(sp.da, sp.db, xn, bval);
     if (ex >= 0) {
-      Eigen::Vector4d xb = xn;
-      if (!solve_on_boundary(a, b, da, db, xb, ex, bval, o.tolerance)) {
-        xb = x;  // boundary solve from the last inside point
-        if (!solve_on_boundary(a, b, da, db, xb, ex, bval, o.tolerance))
-          throw ConvergenceError("intersect_surfaces: could not land a branch on a domain boundary");
-      }
-      out.push_back(make_point(a, b, xb, gap));
+      out.push_back(make_point(sp.a, sp.b, land_on_boundary(sp, x, xn, ex, bval), gap));
       return false;
     }
     x = xn;
-    out.push_back(make_point(a, b, x, gap));
+    out.push_back(make_point(sp.a, sp.b, x, gap));
     t_prev = t;
     ++steps;
     if (steps > 3 && (out.back().point - start_point).norm() < 0.75 * h) return true;
@@ -400,6 +431,7 @@ std::vector<IntersectionCurve> intersect_surfaces(const NurbsSurface& a, const N
   const double h0 = o.step > 0.0 ? o.step : std::min(diag(ba), diag(bb)) / 150.0;
   const double slack = 1e-9 * std::max(diag(ba), diag(bb));
   const Domain da(a), db(b);
+  const SurfacePair pair{a, b, da, db, o};
   // seeds: Newton from the centres of every overlapping patch pair
   std::vector<Eigen::Vector4d> seeds;
   const Box all_b = enclosing_box(bb);
@@ -430,8 +462,8 @@ std::vector<IntersectionCurve> intersect_surfaces(const NurbsSurface& a, const N
     double gap = 0.0;
     std::vector<IntersectionPoint> fwd, bwd;
     const IntersectionPoint p0 = make_point(a, b, s, gap);
-    const bool closed = march(a, b, da, db, s, 1.0, h0, o, fwd, gap, p0.point);
-    if (!closed) march(a, b, da, db, s, -1.0, h0, o, bwd, gap, p0.point);
+    const bool closed = march(pair, s, 1.0, h0, fwd, gap, p0.point);
+    if (!closed) march(pair, s, -1.0, h0, bwd, gap, p0.point);
     c.points.assign(bwd.rbegin(), bwd.rend());
     c.points.push_back(p0);
     c.points.insert(c.points.end(), fwd.begin(), fwd.end());

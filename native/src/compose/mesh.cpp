@@ -209,42 +209,66 @@ double mesh_area(const TriMesh& mesh) {
   return sum_over_faces(mesh, area);
 }
 
-long orient_consistently(TriMesh& mesh) {
-  const Eigen::Index m = mesh.faces.rows();
-  // The faces on each undirected edge, in face order: (edge, face, side) sorted, then each
-  // face side's run of equal edges (one sort instead of a hash map of vectors).
+namespace {
+
+/// The faces on each undirected edge of a triangle mesh: (edge, face, side) sorted, then each
+/// face side's run of equal edges (one sort instead of a hash map of vectors). Sides are found
+/// by their edge, so the table stays valid while faces are flipped.
+class EdgeFaces {
+ public:
+  explicit EdgeFaces(const TriMesh& mesh) : sides_(static_cast<size_t>(mesh.faces.rows()) * 3) {
+    for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
+      for (int k = 0; k < 3; ++k)
+        sides_[f * 3 + k] = {edge_key(mesh.faces(f, k), mesh.faces(f, (k + 1) % 3)), static_cast<int>(f), k};
+    std::sort(sides_.begin(), sides_.end(), [](const Side& x, const Side& y) {
+      return x.edge != y.edge ? x.edge < y.edge : x.face != y.face ? x.face < y.face : x.side < y.side;
+    });
+    run_of_.resize(sides_.size());
+    for (size_t i = 0; i < sides_.size();) {
+      size_t j = i;
+      while (j < sides_.size() && sides_[j].edge == sides_[i].edge) ++j;
+      for (size_t r = i; r < j; ++r)
+        run_of_[static_cast<size_t>(sides_[r].face) * 3 + sides_[r].side] = {static_cast<int>(i), static_cast<int>(j - i)};
+      i = j;
+    }
+    side_edge_.resize(sides_.size());
+    for (const Side& x : sides_) side_edge_[static_cast<size_t>(x.face) * 3 + x.side] = x.edge;
+  }
+
+  /// The other face on the edge (a, b) of face f when exactly two faces share it, else -1.
+  int across(int f, int a, int b) const {
+    const std::uint64_t e = edge_key(a, b);
+    int k = 0;
+    while (k < 2 && side_edge_[static_cast<size_t>(f) * 3 + k] != e) ++k;
+    const auto [first, count] = run_of_[static_cast<size_t>(f) * 3 + k];
+    if (count != 2) return -1;
+    return sides_[first].face == f ? sides_[first + 1].face : sides_[first].face;
+  }
+
+ private:
   struct Side {
     std::uint64_t edge;
     int face, side;
   };
-  std::vector<Side> sides(static_cast<size_t>(m) * 3);
-  for (Eigen::Index f = 0; f < m; ++f)
-    for (int k = 0; k < 3; ++k)
-      sides[f * 3 + k] = {edge_key(mesh.faces(f, k), mesh.faces(f, (k + 1) % 3)), static_cast<int>(f), k};
-  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
-    return x.edge != y.edge ? x.edge < y.edge : x.face != y.face ? x.face < y.face : x.side < y.side;
-  });
-  std::vector<std::pair<int, int>> run_of(sides.size());  // (first, count) in sides of each face side's edge
-  for (size_t i = 0; i < sides.size();) {
-    size_t j = i;
-    while (j < sides.size() && sides[j].edge == sides[i].edge) ++j;
-    for (size_t r = i; r < j; ++r)
-      run_of[static_cast<size_t>(sides[r].face) * 3 + sides[r].side] = {static_cast<int>(i), static_cast<int>(j - i)};
-    i = j;
-  }
-  // A flipped face lists its edges in another order: find the side by its edge.
-  std::vector<std::uint64_t> side_edge(sides.size());
-  for (const Side& x : sides) side_edge[static_cast<size_t>(x.face) * 3 + x.side] = x.edge;
-  auto edge_run = [&](int f, std::uint64_t e) {
-    int k = 0;
-    while (k < 2 && side_edge[static_cast<size_t>(f) * 3 + k] != e) ++k;
-    return run_of[static_cast<size_t>(f) * 3 + k];
-  };
-  auto directed = [&](int f, int a, int b) {  // does face f traverse a -> b ?
-    for (int k = 0; k < 3; ++k)
-      if (mesh.faces(f, k) == a && mesh.faces(f, (k + 1) % 3) == b) return true;
-    return false;
-  };
+  std::vector<Side> sides_;
+  std::vector<std::pair<int, int>> run_of_;  // (first, count) in sides_ of each face side's edge
+  std::vector<std::uint64_t> side_edge_;     // the edge of each face side as first listed
+};
+
+/// Does face f traverse a -> b?
+bool traverses(const TriMesh& mesh, int f, int a, int b) {
+  for (int k = 0; k < 3; ++k)
+    if (mesh.faces(f, k) == a && mesh.faces(f, (k + 1) % 3) == b) return true;
+  return false;
+}
+
+}  // namespace
+
+long orient_consistently(TriMesh& mesh) {
+  const Eigen::Index m = mesh.faces.rows();
+  const EdgeFaces edges(mesh);
+  // breadth first over each connected component: a neighbour traversing a shared edge the
+  // same way is flipped
   std::vector<char> seen(m, 0);
   long flips = 0;
   for (Eigen::Index start = 0; start < m; ++start) {
@@ -257,12 +281,10 @@ long orient_consistently(TriMesh& mesh) {
       q.pop();
       for (int k = 0; k < 3; ++k) {
         const int a = mesh.faces(f, k), b = mesh.faces(f, (k + 1) % 3);
-        const auto [first, count] = edge_run(f, edge_key(a, b));
-        if (count != 2) continue;
-        const int g = sides[first].face == f ? sides[first + 1].face : sides[first].face;
-        if (seen[g]) continue;
+        const int g = edges.across(f, a, b);
+        if (g < 0 || seen[g]) continue;
         seen[g] = 1;
-        if (directed(g, a, b)) {  // same direction: flip g
+        if (traverses(mesh, g, a, b)) {
           std::swap(mesh.faces(g, 1), mesh.faces(g, 2));
           ++flips;
         }

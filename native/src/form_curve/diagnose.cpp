@@ -98,6 +98,103 @@ void check_counts(const FormCurveRequest& req) {
                        std::string("xB, yB, xE, yE, alphaB, alphaE, CAB, CAE, Area, xC, yC or points"));
 }
 
+void check_shape(const FormCurveRequest& req) {
+  if (req.dim != 2 && req.dim != 3)
+    throw InvalidInput("dim=" + std::to_string(req.dim) + " is not supported; expected 2 or 3");
+  if (req.degree < 2 || req.degree > 15)
+    throw InvalidInput("degree=" + std::to_string(req.degree) + " is out of range; expected 2 <= degree <= 15");
+  if (req.n_control < req.degree + 1)
+    throw InvalidInput("n_control=" + std::to_string(req.n_control) + " is too small for degree " +
+                       std::to_string(req.degree) + "; expected n_control >= " + std::to_string(req.degree + 1));
+}
+
+/// Checks every named form parameter; the scalar conditions they make (one each).
+int parameter_conditions(const FormCurveRequest& req) {
+  const auto& names = form_parameter_names();
+  int m = 0;
+  for (const auto& [k, val] : req.params) {
+    if (std::find(names.begin(), names.end(), k) == names.end()) unknown_parameter(k);
+    if ((k == "zB" || k == "zE") && req.dim != 3)
+      throw InvalidInput("form parameter '" + k + "' needs dim=3 (got dim=" + std::to_string(req.dim) + ")");
+    check_magnitude(k, val);
+    ++m;
+  }
+  return m;
+}
+
+/// Checks the 3-D end tangents; the scalar conditions they make (two each).
+int tangent_conditions(const FormCurveRequest& req) {
+  int m = 0;
+  for (const auto* t : {&req.tangent_start, &req.tangent_end}) {
+    if (t->size() == 0) continue;
+    const char* nm = t == &req.tangent_start ? "tangent_start" : "tangent_end";
+    if (req.dim != 3) throw InvalidInput(std::string(nm) + " needs dim=3; use alphaB / alphaE for plane curves");
+    if (t->size() != 3 || !t->allFinite() || t->norm() == 0)
+      throw InvalidInput(std::string(nm) + " must be a finite non-zero 3-vector");
+    m += 2;
+  }
+  return m;
+}
+
+/// Checks the points; the scalar conditions the interpolated ones make (each adds dim
+/// equations and one unknown parameter).
+int point_conditions(const FormCurveRequest& req) {
+  int m = 0;
+  for (size_t j = 0; j < req.points.size(); ++j) {
+    const auto& pt = req.points[j];
+    const std::string nm = "points[" + std::to_string(j) + "]";
+    if (pt.position.size() != req.dim)
+      throw InvalidInput(nm + " has " + std::to_string(pt.position.size()) + " coordinates; expected " +
+                         std::to_string(req.dim));
+    if (!pt.position.allFinite()) throw InvalidInput(nm + " has a non-finite coordinate");
+    if (pt.position.cwiseAbs().maxCoeff() > limits::kMaxFormCurveLength)
+      throw InvalidInput(nm + " has a coordinate beyond the supported magnitude " + fmt(limits::kMaxFormCurveLength) +
+                         "; lengths are metres (or one consistent unit): check the units");
+    if (std::isnan(pt.weight) || pt.weight <= 0)
+      throw InvalidInput(nm + " weight=" + fmt(pt.weight) + " is invalid; expected > 0 (inf = interpolate)");
+    if (std::isinf(pt.weight)) m += req.dim - 1;
+  }
+  return m;
+}
+
+void check_fairness_weights(const FairnessWeights& fw) {
+  for (const auto& [nm, val] : {std::pair<const char*, double>{"e1", fw.e1}, {"e2", fw.e2}, {"e3", fw.e3},
+                                {"length", fw.length}})
+    if (!std::isfinite(val) || val < 0)
+      throw InvalidInput(std::string("fairness weight ") + nm + "=" + fmt(val) + " is invalid; expected finite >= 0");
+  if (fw.e1 + fw.e2 + fw.e3 <= 0)
+    throw InvalidInput("fairness weights e1, e2, e3 are all zero; at least one must be > 0");
+}
+
+void check_bounds_and_tolerance(const FormCurveRequest& req) {
+  if (req.bounds.monotone_axis < -1 || req.bounds.monotone_axis > 1)
+    throw InvalidInput("bounds monotone axis=" + std::to_string(req.bounds.monotone_axis) +
+                       "; expected -1 (none), 0 (x) or 1 (y)");
+  if (!std::isfinite(req.bounds.min_end_speed) || req.bounds.min_end_speed < 0 || req.bounds.min_end_speed > 1)
+    throw InvalidInput("bounds min_end_speed=" + fmt(req.bounds.min_end_speed) + "; expected 0 <= value <= 1");
+  if (!(req.options.tolerance > 0) || !(req.options.tolerance < 1e-3))
+    throw InvalidInput("tolerance=" + fmt(req.options.tolerance) + "; expected 0 < tolerance < 1e-3");
+  if ((req.params.count("CAB") || req.params.count("CAE")) && req.degree < 2)
+    throw InvalidInput("end curvatures need degree >= 2");
+}
+
+/// m scalar conditions must leave the control points freedom for fairing; and a start curve
+/// given must fit the request.
+void check_freedom(const FormCurveRequest& req, int m) {
+  const int dof = req.dim * req.n_control;
+  if (m >= dof + (m > 0 ? 0 : 1)) {
+    std::ostringstream os;
+    os << "n_control=" << req.n_control << " is too small: " << m << " scalar conditions on " << dof
+       << " control-point coordinates leave no freedom for fairing; expected n_control >= "
+       << (m / req.dim + 1);
+    throw InvalidInput(os.str());
+  }
+  if (req.initial_control_points.size() > 0 &&
+      (req.initial_control_points.rows() != req.n_control || req.initial_control_points.cols() != req.dim ||
+       !req.initial_control_points.allFinite()))
+    throw InvalidInput("initial_control_points must be a finite (n_control x dim) array");
+}
+
 }  // namespace
 
 namespace {
@@ -215,73 +312,15 @@ void check_form_parameters_feasible(const FormCurveRequest& req) {
 namespace form_curve_impl {
 
 void validate_request(const FormCurveRequest& req) {
-  if (req.dim != 2 && req.dim != 3)
-    throw InvalidInput("dim=" + std::to_string(req.dim) + " is not supported; expected 2 or 3");
-  if (req.degree < 2 || req.degree > 15)
-    throw InvalidInput("degree=" + std::to_string(req.degree) + " is out of range; expected 2 <= degree <= 15");
-  if (req.n_control < req.degree + 1)
-    throw InvalidInput("n_control=" + std::to_string(req.n_control) + " is too small for degree " +
-                       std::to_string(req.degree) + "; expected n_control >= " + std::to_string(req.degree + 1));
+  check_shape(req);
   check_counts(req);
-  const auto& names = form_parameter_names();
-  int m = 0;
-  for (const auto& [k, val] : req.params) {
-    if (std::find(names.begin(), names.end(), k) == names.end()) unknown_parameter(k);
-    if ((k == "zB" || k == "zE") && req.dim != 3)
-      throw InvalidInput("form parameter '" + k + "' needs dim=3 (got dim=" + std::to_string(req.dim) + ")");
-    check_magnitude(k, val);
-    ++m;
-  }
-  for (const auto* t : {&req.tangent_start, &req.tangent_end}) {
-    if (t->size() == 0) continue;
-    const char* nm = t == &req.tangent_start ? "tangent_start" : "tangent_end";
-    if (req.dim != 3) throw InvalidInput(std::string(nm) + " needs dim=3; use alphaB / alphaE for plane curves");
-    if (t->size() != 3 || !t->allFinite() || t->norm() == 0)
-      throw InvalidInput(std::string(nm) + " must be a finite non-zero 3-vector");
-    m += 2;
-  }
-  for (size_t j = 0; j < req.points.size(); ++j) {
-    const auto& pt = req.points[j];
-    const std::string nm = "points[" + std::to_string(j) + "]";
-    if (pt.position.size() != req.dim)
-      throw InvalidInput(nm + " has " + std::to_string(pt.position.size()) + " coordinates; expected " +
-                         std::to_string(req.dim));
-    if (!pt.position.allFinite()) throw InvalidInput(nm + " has a non-finite coordinate");
-    if (pt.position.cwiseAbs().maxCoeff() > limits::kMaxFormCurveLength)
-      throw InvalidInput(nm + " has a coordinate beyond the supported magnitude " + fmt(limits::kMaxFormCurveLength) +
-                         "; lengths are metres (or one consistent unit): check the units");
-    if (std::isnan(pt.weight) || pt.weight <= 0)
-      throw InvalidInput(nm + " weight=" + fmt(pt.weight) + " is invalid; expected > 0 (inf = interpolate)");
-    if (std::isinf(pt.weight)) m += req.dim - 1;  // each point adds dim equations and one unknown t
-  }
-  const auto& fw = req.fairness;
-  for (const auto& [nm, val] : {std::pair<const char*, double>{"e1", fw.e1}, {"e2", fw.e2}, {"e3", fw.e3},
-                                {"length", fw.length}})
-    if (!std::isfinite(val) || val < 0)
-      throw InvalidInput(std::string("fairness weight ") + nm + "=" + fmt(val) + " is invalid; expected finite >= 0");
-  if (fw.e1 + fw.e2 + fw.e3 <= 0)
-    throw InvalidInput("fairness weights e1, e2, e3 are all zero; at least one must be > 0");
-  if (req.bounds.monotone_axis < -1 || req.bounds.monotone_axis > 1)
-    throw InvalidInput("bounds monotone axis=" + std::to_string(req.bounds.monotone_axis) +
-                       "; expected -1 (none), 0 (x) or 1 (y)");
-  if (!std::isfinite(req.bounds.min_end_speed) || req.bounds.min_end_speed < 0 || req.bounds.min_end_speed > 1)
-    throw InvalidInput("bounds min_end_speed=" + fmt(req.bounds.min_end_speed) + "; expected 0 <= value <= 1");
-  if (!(req.options.tolerance > 0) || !(req.options.tolerance < 1e-3))
-    throw InvalidInput("tolerance=" + fmt(req.options.tolerance) + "; expected 0 < tolerance < 1e-3");
-  if ((req.params.count("CAB") || req.params.count("CAE")) && req.degree < 2)
-    throw InvalidInput("end curvatures need degree >= 2");
-  const int dof = req.dim * req.n_control;
-  if (m >= dof + (m > 0 ? 0 : 1)) {
-    std::ostringstream os;
-    os << "n_control=" << req.n_control << " is too small: " << m << " scalar conditions on " << dof
-       << " control-point coordinates leave no freedom for fairing; expected n_control >= "
-       << (m / req.dim + 1);
-    throw InvalidInput(os.str());
-  }
-  if (req.initial_control_points.size() > 0 &&
-      (req.initial_control_points.rows() != req.n_control || req.initial_control_points.cols() != req.dim ||
-       !req.initial_control_points.allFinite()))
-    throw InvalidInput("initial_control_points must be a finite (n_control x dim) array");
+  // scalar conditions on the curve, to be left freedom for fairing
+  int m = parameter_conditions(req);
+  m += tangent_conditions(req);
+  m += point_conditions(req);
+  check_fairness_weights(req.fairness);
+  check_bounds_and_tolerance(req);
+  check_freedom(req, m);
 }
 
 std::string failure_report(Solver& solver, const RunOutcome& best) {

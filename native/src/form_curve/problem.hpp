@@ -48,6 +48,14 @@ struct Constraint {
   int point = -1, coord = 0;  // Point constraints
 };
 
+/// Linear inequalities G z - h > 0 as they are gathered: rows of G, entries of h, and names.
+struct InequalityRows {
+  std::vector<Eigen::VectorXd> rows;
+  std::vector<double> rhs;
+  std::vector<std::string>& names;
+  void add(Eigen::VectorXd row, double hh, std::string name);
+};
+
 struct Problem {
   const FormCurveRequest& req;
   SplineTables tab;
@@ -64,6 +72,20 @@ struct Problem {
 
   int var(int coord, int i) const { return coord * n + i; }
   int tvar(int j) const { return nctrl + j; }
+  bool has(const std::string& name) const { return req.params.count(name) > 0; }
+  double param(const std::string& name) const { return req.params.at(name); }
+  /// The requested 3-D tangent at end e (0 start, 1 end); empty when none.
+  const Eigen::VectorXd& end_tangent(int e) const;
+
+  // Steps of the constructor: the length scale Ls, the equality constraints (linear end
+  // conditions, then end curvatures, area and centroid, then interpolated points), and the
+  // inequality rows (monotone control polygon, y >= 0, end tangent sense, point parameters).
+  double length_scale() const;
+  void add_end_conditions();
+  void add_curvature_and_integral_conditions();
+  void add_point_conditions();
+  void add_monotone_rows(InequalityRows& ineq) const;
+  void add_end_sense_rows(InequalityRows& ineq) const;
 
   /// Constraints, Jacobian and sum lambda_i Hess c_i (HL only if lambda non-empty).
   void constraints(const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::MatrixXd* J,
@@ -81,8 +103,13 @@ struct Problem {
   /// Point constraint i (a coordinate at a free parameter): value, Jacobian row, Hessian term.
   void point_constraint(int i, const Eigen::VectorXd& z, Eigen::VectorXd& c, Eigen::MatrixXd* J,
                         const Eigen::VectorXd* lambda, Eigen::MatrixXd* HL) const;
-  /// Objective, gradient and Hessian (g, H optional).
+  /// Objective, gradient and Hessian (g, H optional): the fairness energy, the length term and
+  /// the penalties of the approximated points, each added by one step below to g, H and to the
+  /// sum f it returns (f passed by value: a local sum the compiler keeps in a register).
   double objective(const Eigen::VectorXd& z, Eigen::VectorXd* g, Eigen::MatrixXd* H) const;
+  double add_fairness(const Eigen::VectorXd& z, double f, Eigen::VectorXd* g, Eigen::MatrixXd* H) const;
+  double add_length(const Eigen::VectorXd& z, double f, Eigen::VectorXd* g, Eigen::MatrixXd* H) const;
+  double add_point_penalties(const Eigen::VectorXd& z, double f, Eigen::VectorXd* g, Eigen::MatrixXd* H) const;
   /// Fairness measures of control points z.
   FairnessMeasures measures(const Eigen::VectorXd& z) const;
   /// Curve value and derivatives up to 2 at parameter t: (3 x dim), plus the local

@@ -474,24 +474,67 @@ bool Solver::interior(const Eigen::VectorXd& z) const {
   return (G * z - h).minCoeff() > 0;
 }
 
+double Solver::restoration_merit(const Eigen::VectorXd& z, const Eigen::VectorXd& sinv, double mu,
+                                 Eigen::VectorXd& c) const {
+  const Eigen::VectorXd s = G * z - h;
+  if (s.size() > 0 && !(s.minCoeff() > 0)) return kInf;
+  pb.constraints(z, c, nullptr, nullptr, nullptr);
+  double v = 0.5 * c.cwiseProduct(sinv).squaredNorm();
+  for (int r = 0; r < s.size(); ++r) v -= mu * std::log(s[r]);
+  return std::isfinite(v) ? v : kInf;
+}
+
+void Solver::restoration_model(const Eigen::MatrixXd& Js, const Eigen::VectorXd& sc, const Eigen::VectorXd& s,
+                               double mu, Eigen::MatrixXd& A, Eigen::VectorXd& g) const {
+  A = Js.transpose() * Js;
+  g = Js.transpose() * sc;
+  if (s.size() > 0) {
+    const Eigen::VectorXd inv = s.cwiseInverse();
+    A.noalias() += mu * (G.transpose() * inv.cwiseAbs2().asDiagonal() * G);
+    g.noalias() -= mu * (G.transpose() * inv);
+  }
+}
+
+Eigen::VectorXd Solver::restoration_step(const Eigen::MatrixXd& A, const Eigen::VectorXd& g, const Eigen::VectorXd& s,
+                                         double lm, double diag) const {
+  const int nv = pb.nv;
+  Eigen::MatrixXd Ab = A + lm * diag * Eigen::MatrixXd::Identity(nv, nv);
+  Eigen::VectorXd d = Ab.llt().solve(-g);
+  // rows of inequalities the step would nearly cross are held fixed (heavy weight)
+  for (int pass = 0; pass < 3 && s.size() > 0; ++pass) {
+    const Eigen::VectorXd Gd = G * d;
+    bool added = false;
+    for (int r = 0; r < s.size(); ++r)
+      if (Gd[r] < -0.5 * s[r]) {
+        const double wgt = 1e4 * diag / std::max(1e-300, G.row(r).squaredNorm());
+        Ab.noalias() += wgt * G.row(r).transpose() * G.row(r);
+        added = true;
+      }
+    if (!added) break;
+    d = Ab.llt().solve(-g);
+  }
+  return d;
+}
+
+double Solver::fraction_to_boundary(const Eigen::VectorXd& d, const Eigen::VectorXd& s) const {
+  double amax = 1;
+  if (s.size() > 0) {
+    const Eigen::VectorXd Gd = G * d;
+    for (int r = 0; r < s.size(); ++r)
+      if (Gd[r] < 0) amax = std::min(amax, -0.99 * s[r] / Gd[r]);
+  }
+  return amax;
+}
+
 bool Solver::restore(Eigen::VectorXd& z, int maxit) {
   // Levenberg-Marquardt on 1/2 |S c(z)|^2 (S = 1/scale) with a small log barrier on the
   // linear inequalities: finds a point meeting the requested values without tracking
   // the optimum along a path.
-  const int nv = pb.nv;
   Eigen::VectorXd c, ct, sinv(m);
   Eigen::MatrixXd J;
   for (int i = 0; i < m; ++i) sinv[i] = 1.0 / pb.cons[i].scale;
   double lm = 1e-6, prev_res = kInf;
   int stall = 0;
-  auto phi_of = [&](const Eigen::VectorXd& zz, Eigen::VectorXd& cc, double mu) {
-    const Eigen::VectorXd s = G * zz - h;
-    if (s.size() > 0 && !(s.minCoeff() > 0)) return kInf;
-    pb.constraints(zz, cc, nullptr, nullptr, nullptr);
-    double v = 0.5 * cc.cwiseProduct(sinv).squaredNorm();
-    for (int r = 0; r < s.size(); ++r) v -= mu * std::log(s[r]);
-    return std::isfinite(v) ? v : kInf;
-  };
   for (int it = 0; it < maxit; ++it) {
     if (total_iterations >= max_total) return false;
     pb.constraints(z, c, &J, nullptr, nullptr);
@@ -506,41 +549,16 @@ bool Solver::restore(Eigen::VectorXd& z, int maxit) {
     const Eigen::MatrixXd Js = sinv.asDiagonal() * J;
     const double mu = 1e-3 * std::min(1.0, sc.squaredNorm());
     const Eigen::VectorXd s = G * z - h;
-    Eigen::MatrixXd A = Js.transpose() * Js;
-    Eigen::VectorXd g = Js.transpose() * sc;
-    if (s.size() > 0) {
-      const Eigen::VectorXd inv = s.cwiseInverse();
-      A.noalias() += mu * (G.transpose() * inv.cwiseAbs2().asDiagonal() * G);
-      g.noalias() -= mu * (G.transpose() * inv);
-    }
-    const double phi0 = phi_of(z, ct, mu);
+    Eigen::MatrixXd A;
+    Eigen::VectorXd g;
+    restoration_model(Js, sc, s, mu, A, g);
+    const double phi0 = restoration_merit(z, sinv, mu, ct);
     const double diag = std::max(1e-12, A.diagonal().maxCoeff());
     bool accepted = false;
     for (int k = 0; k < 12 && !accepted; ++k) {
-      // rows of inequalities the step would nearly cross are held fixed (heavy weight)
-      Eigen::MatrixXd Ab = A + lm * diag * Eigen::MatrixXd::Identity(nv, nv);
-      Eigen::VectorXd d = Ab.llt().solve(-g);
-      for (int pass = 0; pass < 3 && s.size() > 0; ++pass) {
-        const Eigen::VectorXd Gd = G * d;
-        bool added = false;
-        for (int r = 0; r < s.size(); ++r)
-          if (Gd[r] < -0.5 * s[r]) {
-            const double wgt = 1e4 * diag / std::max(1e-300, G.row(r).squaredNorm());
-            Ab.noalias() += wgt * G.row(r).transpose() * G.row(r);
-            added = true;
-          }
-        if (!added) break;
-        d = Ab.llt().solve(-g);
-      }
-      double amax = 1;
-      if (s.size() > 0) {
-        const Eigen::VectorXd Gd = G * d;
-        for (int r = 0; r < s.size(); ++r)
-          if (Gd[r] < 0) amax = std::min(amax, -0.99 * s[r] / Gd[r]);
-      }
-      const Eigen::VectorXd zt = z + amax * d;
-      const double phi = phi_of(zt, ct, mu);
-      if (phi < phi0) {
+      const Eigen::VectorXd d = restoration_step(A, g, s, lm, diag);
+      const Eigen::VectorXd zt = z + fraction_to_boundary(d, s) * d;
+      if (restoration_merit(zt, sinv, mu, ct) < phi0) {
         z = zt;
         accepted = true;
         lm = std::max(1e-12, lm / 5);
@@ -553,33 +571,21 @@ bool Solver::restore(Eigen::VectorXd& z, int maxit) {
   return false;
 }
 
-RunOutcome Solver::run(const Eigen::VectorXd& z0, bool continuation) {
-  total_iterations = 0;
-  RunOutcome out;
-  out.z = z0;
-  out.lam = Eigen::VectorXd::Zero(m);
-  vdual.resize(0);
-  set_starts(z0);
-  for (const auto& k : pb.cons) out.starts.push_back(k.start);
-  const double f0 = pb.objective(z0, nullptr, nullptr);
-  const double fscale = std::max(f0, 1e-6 * pb.Ls * pb.Ls);
-  const double mu0 = 1e-4 * fscale, mu_min = 1e-12 * fscale;
-  double tau = 0, dtau = 1;
-  {
-    // global phase 1: reach the requested values directly (LM restoration), then
-    // Lagrange-Newton from that feasible point; continuation is the fallback.
-    set_targets(1.0);
-    Eigen::VectorXd z = z0, lam = Eigen::VectorXd::Zero(m);
-    if (restore(z, 60) && newton(z, lam, mu0, 1e-10, 1e-5, 30)) {
-      out.z = z;
-      out.lam = lam;
-      tau = 1;
-      out.steps = 1;
-    } else {
-      vdual.resize(0);
-    }
+bool Solver::direct_solve(RunOutcome& out, double mu0) {
+  set_targets(1.0);
+  Eigen::VectorXd z = out.z, lam = Eigen::VectorXd::Zero(m);
+  if (restore(z, 60) && newton(z, lam, mu0, 1e-10, 1e-5, 30)) {
+    out.z = z;
+    out.lam = lam;
+    out.steps = 1;
+    return true;
   }
-  dtau = 0.5;
+  vdual.resize(0);
+  return false;
+}
+
+double Solver::continue_to_targets(RunOutcome& out, double mu0, bool continuation) {
+  double tau = 0, dtau = 0.5;
   while (tau < 1) {
     const double tn = std::min(1.0, tau + dtau);
     set_targets(tn);
@@ -597,11 +603,10 @@ RunOutcome Solver::run(const Eigen::VectorXd& z0, bool continuation) {
       if (dtau < 1e-6) break;
     }
   }
-  out.tau = tau;
-  if (tau < 1) {
-    set_targets(tau);
-    return out;
-  }
+  return tau;
+}
+
+void Solver::polish(RunOutcome& out, double mu0, double mu_min) {
   // drive the barrier weight down
   for (double mu = mu0 * 0.01; mu > mu_min; mu *= 0.01) {
     Eigen::VectorXd z = out.z, lam = out.lam;
@@ -622,6 +627,28 @@ RunOutcome Solver::run(const Eigen::VectorXd& z0, bool continuation) {
   out.feasible = out.violation <= std::max(pb.req.options.tolerance, 1e-11) && interior(out.z);
   out.converged = out.feasible && (ok || final_stationarity <= 1e-6);
   out.objective = pb.objective(out.z, nullptr, nullptr);
+}
+
+RunOutcome Solver::run(const Eigen::VectorXd& z0, bool continuation) {
+  total_iterations = 0;
+  RunOutcome out;
+  out.z = z0;
+  out.lam = Eigen::VectorXd::Zero(m);
+  vdual.resize(0);
+  set_starts(z0);
+  for (const auto& k : pb.cons) out.starts.push_back(k.start);
+  const double f0 = pb.objective(z0, nullptr, nullptr);
+  const double fscale = std::max(f0, 1e-6 * pb.Ls * pb.Ls);
+  const double mu0 = 1e-4 * fscale, mu_min = 1e-12 * fscale;
+  // Reach the requested values directly (LM restoration, then Lagrange-Newton from that
+  // feasible point); continuation in the targets is the fallback.
+  const double tau = direct_solve(out, mu0) ? 1.0 : continue_to_targets(out, mu0, continuation);
+  out.tau = tau;
+  if (tau < 1) {
+    set_targets(tau);
+    return out;
+  }
+  polish(out, mu0, mu_min);
   return out;
 }
 

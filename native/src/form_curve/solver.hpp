@@ -84,6 +84,21 @@ class Solver {
   /// The merit from already computed objective f, constraints c and slacks s = G z - h > 0.
   double merit_of(double f, const Eigen::VectorXd& c, const Eigen::VectorXd& s, double mu, double nu) const;
   bool restore(Eigen::VectorXd& z, int maxit);
+  // Steps of restore(): the merit 1/2 |S c|^2 - mu sum log(G z - h) (inf outside), its
+  // Gauss-Newton model (A, g) from the scaled Jacobian Js, the damped step with the rows of
+  // nearly crossed inequalities held, and the step fraction that keeps G z - h > 0.
+  double restoration_merit(const Eigen::VectorXd& z, const Eigen::VectorXd& sinv, double mu, Eigen::VectorXd& c) const;
+  void restoration_model(const Eigen::MatrixXd& Js, const Eigen::VectorXd& sc, const Eigen::VectorXd& s, double mu,
+                         Eigen::MatrixXd& A, Eigen::VectorXd& g) const;
+  Eigen::VectorXd restoration_step(const Eigen::MatrixXd& A, const Eigen::VectorXd& g, const Eigen::VectorXd& s,
+                                   double lm, double diag) const;
+  double fraction_to_boundary(const Eigen::VectorXd& d, const Eigen::VectorXd& s) const;
+  // Steps of run(): the requested values at once (restoration, then Newton); else continuation
+  // from the start values (returns the fraction tau of the way reached); then the barrier
+  // weight driven down, a final Newton solve and the outcome's measures.
+  bool direct_solve(RunOutcome& out, double mu0);
+  double continue_to_targets(RunOutcome& out, double mu0, bool continuation);
+  void polish(RunOutcome& out, double mu0, double mu_min);
 };
 
 /// Input validation (InvalidInput) and closed-form necessary conditions

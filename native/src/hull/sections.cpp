@@ -48,17 +48,14 @@ constexpr int kDegree = 3;
 /// with (0.105, 0.611) the quintic fillet of two equal perpendicular legs follows a circular arc
 /// to 3e-4 of its radius, and it leaves both legs with zero curvature (three control points in
 /// line), so a straight part and a fillet join with continuous curvature.
-constexpr double kFilletNear = 0.105;
-constexpr double kFilletFar = 0.611;
+constexpr double kFilletNear = 0.105, kFilletFar = 0.611;
 /// Below the waterline the section is one conic arc Q -> X -> K. Its middle weight falls
 /// geometrically from kFullWeight (lambda 0: the arc hugs the box corner, fullness about 0.997)
 /// to kFineWeight (lambda kMaxShapeKnob), while the corner X leans from the box corner C toward
 /// the heading M as (lambda / kMaxShapeKnob)^kLeanPower: the bilge rounds first and leans later.
 /// Both motions move every point of the arc inward, so the half-breadth at any height falls
 /// strictly as lambda grows (no plateau, no shoulder-hollow-shoulder along a waterline).
-constexpr double kFullWeight = 60.0;
-constexpr double kFineWeight = 0.7;
-constexpr double kLeanPower = 3.0;
+constexpr double kFullWeight = 60.0, kFineWeight = 0.7, kLeanPower = 3.0;
 /// With the bilge corner given (corner_y, corner_z) the weight alone falls over the knob's
 /// range, from kFullWeight to this (a near chord: hollow corners need weights below 1).
 constexpr double kCornerFineWeight = 0.2;
@@ -78,17 +75,14 @@ constexpr int kAreaGauss = 4;
 /// The correction that puts the spline through Q: weight of a straight stretch of the spline
 /// against a curved one (flats keep their plane), the curvature scale (fraction of the chord)
 /// below which a stretch counts as straight, and the weight of the correction's smoothness.
-constexpr double kFlatGuard = 1e4;
-constexpr double kStraightScale = 1e-5;
-constexpr double kCorrectionSmoothing = 1.0;
+constexpr double kFlatGuard = 1e4, kStraightScale = 1e-5, kCorrectionSmoothing = 1.0;
 /// ... and the correction stays near Q: its weight grows as the fourth power of the distance
 /// from Q beyond this many knot spans.
 constexpr double kCorrectionReach = 3.0;
 /// Above Q the correction is nearly free in size but stiff in bend: it tilts the topside as a
 /// line from the fixed deck point (a linear change of the ordinates keeps every bend), where a
 /// correction held near Q would dent the topside just above the waterline.
-constexpr double kTopsideFreedom = 1.0;
-constexpr double kTopsideStiffness = 1e3;
+constexpr double kTopsideFreedom = 1.0, kTopsideStiffness = 1e3;
 /// A flared section's side leans this much more than the line from Q to the deck point, so
 /// its top still turns inward (convex) ...
 constexpr double kFlareMargin = 1.05;
@@ -109,8 +103,7 @@ constexpr double kEndMissTol = 1e-12;
 /// Sections shorter than this fraction of B/2 are a point (the stem head).
 constexpr double kPointSection = 1e-9;
 /// design_sections: at most this many threads, each with at least kSectionsPerThread sections.
-constexpr std::size_t kSectionThreads = 4;
-constexpr std::size_t kSectionsPerThread = 16;
+constexpr std::size_t kSectionThreads = 4, kSectionsPerThread = 16;
 /// Samples per template piece of the check that the template is a graph over its chord.
 constexpr int kGraphChecks = 8;
 /// Given shapes (SectionSpec::given): at least this many points; a half-breadth below this

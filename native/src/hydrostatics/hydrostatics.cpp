@@ -201,63 +201,80 @@ NurbsSurface vertical_u(const NurbsSurface& surface) {
   return vertical_direction(surface) == 1 ? transposed(surface) : surface;
 }
 
-}  // namespace
-
-std::pair<double, double> section_area(const NurbsSurface& s, double x0, double draft, bool half_hull,
-                                       int gauss) {
-  detail::require_finite(x0, "x");
-  detail::require_positive(draft, "draft");
-  if (gauss < 2 || gauss > 32) fail("gauss is ", gauss, "; expected 2..32 points per knot span");
-  const int lon = longitudinal_direction(s);
-  // Parameters: a = across (integration), b = longitudinal (solved for x = x0).
-  const auto dom_a = lon == 1 ? s.domain_u() : s.domain_v();
-  const auto dom_b = lon == 1 ? s.domain_v() : s.domain_u();
-  const std::vector<double> br_a = breakpoints(lon == 1 ? s.knots_u() : s.knots_v(), lon == 1 ? s.degree_u() : s.degree_v());
-  const std::vector<double> br_b = breakpoints(lon == 1 ? s.knots_v() : s.knots_u(), lon == 1 ? s.degree_v() : s.degree_u());
-  auto point = [&](double a, double b) { return lon == 1 ? s.evaluate(a, b) : s.evaluate(b, a); };
-  // S, S_a (across) and S_b (longitudinal) at (a, b) through the allocation-free kernel.
+/// The surface's parameters in the plane x = x0: a runs across the hull (the direction of
+/// integration), b along it. On each line of a, crossing(a) is the b where x(a, b) = x0: Newton
+/// from the last crossing found (consecutive a are close), else a bracketing scan.
+class PlaneCrossing {
+ public:
+  /// S, S_a (across) and S_b (longitudinal) at (a, b).
   struct D1 {
     Eigen::Vector3d S, Sa, Sb;
   };
-  auto first_derivs = [&](double a, double b) {
-    double uv[2] = {lon == 1 ? a : b, lon == 1 ? b : a}, r[9];
-    s.evaluate_first_derivatives_into(&uv[0], &uv[1], 1, r);
+
+  PlaneCrossing(const NurbsSurface& s, double x0)
+      : s_(s), x0_(x0), lon_(longitudinal_direction(s)),
+        across_(breakpoints(lon_ == 1 ? s.knots_u() : s.knots_v(), lon_ == 1 ? s.degree_u() : s.degree_v())),
+        along_(breakpoints(lon_ == 1 ? s.knots_v() : s.knots_u(), lon_ == 1 ? s.degree_v() : s.degree_u())) {}
+
+  /// The knot breakpoints of a.
+  const std::vector<double>& across_breaks() const { return across_; }
+
+  Eigen::Vector3d point(double a, double b) const { return lon_ == 1 ? s_.evaluate(a, b) : s_.evaluate(b, a); }
+
+  /// Through the allocation-free kernel.
+  D1 first_derivs(double a, double b) const {
+    double uv[2] = {lon_ == 1 ? a : b, lon_ == 1 ? b : a}, r[9];
+    s_.evaluate_first_derivatives_into(&uv[0], &uv[1], 1, r);
     const Eigen::Vector3d S(r[0], r[1], r[2]), Su(r[3], r[4], r[5]), Sv(r[6], r[7], r[8]);
-    return lon == 1 ? D1{S, Su, Sv} : D1{S, Sv, Su};
-  };
-  // b where x(a, b) = x0, or NaN when the plane misses this line. Newton from the previous
-  // solution first (consecutive a are close), the bracketing scan when that fails.
-  double b_warm = std::numeric_limits<double>::quiet_NaN();
-  auto newton_b = [&](double a) {
-    if (std::isnan(b_warm)) return std::numeric_limits<double>::quiet_NaN();
-    double b = b_warm;
-    const double lo = br_b.front(), hi = br_b.back();
+    return lon_ == 1 ? D1{S, Su, Sv} : D1{S, Sv, Su};
+  }
+
+  /// b where x(a, b) = x0, or NaN when the plane misses this line.
+  double crossing(double a) {
+    double b = newton(a);
+    if (std::isnan(b)) b = scan(a);
+    if (!std::isnan(b)) b_warm_ = b;
+    return b;
+  }
+
+ private:
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const NurbsSurface& s_;
+  double x0_;
+  int lon_;
+  std::vector<double> across_, along_;
+  double b_warm_ = kNaN;
+
+  double newton(double a) const {
+    if (std::isnan(b_warm_)) return kNaN;
+    double b = b_warm_;
+    const double lo = along_.front(), hi = along_.back();
     for (int it = 0; it < 30; ++it) {
       const D1 D = first_derivs(a, b);
-      const double f = D.S[0] - x0, df = D.Sb[0];
-      if (std::abs(f) <= 1e-12 * (1 + std::abs(x0))) return b;
+      const double f = D.S[0] - x0_, df = D.Sb[0];
+      if (std::abs(f) <= 1e-12 * (1 + std::abs(x0_))) return b;
       if (df == 0) break;
       b -= f / df;
       if (!(b >= lo && b <= hi)) break;
     }
-    return std::numeric_limits<double>::quiet_NaN();
-  };
-  auto solve_b = [&](double a) {
-    const double bn = newton_b(a);
-    if (!std::isnan(bn)) return bn;
+    return kNaN;
+  }
+
+  /// A sign change of x - x0 over four samples per knot span of b, bisected.
+  double scan(double a) const {
     std::vector<double> bs;
-    for (std::size_t i = 0; i + 1 < br_b.size(); ++i)
-      for (int k = 0; k < 4; ++k) bs.push_back(br_b[i] + (br_b[i + 1] - br_b[i]) * k / 4);
-    bs.push_back(br_b.back());
-    double prev = point(a, bs[0])[0] - x0;
+    for (std::size_t i = 0; i + 1 < along_.size(); ++i)
+      for (int k = 0; k < 4; ++k) bs.push_back(along_[i] + (along_[i + 1] - along_[i]) * k / 4);
+    bs.push_back(along_.back());
+    double prev = point(a, bs[0])[0] - x0_;
     if (prev == 0) return bs[0];
     for (std::size_t i = 1; i < bs.size(); ++i) {
-      const double cur = point(a, bs[i])[0] - x0;
+      const double cur = point(a, bs[i])[0] - x0_;
       if (cur == 0) return bs[i];
       if ((prev < 0) != (cur < 0)) {
         double lo = bs[i - 1], hi = bs[i], flo = prev;
         for (int it = 0; it < kBisection && hi - lo > 1e-15; ++it) {
-          const double mid = 0.5 * (lo + hi), fm = point(a, mid)[0] - x0;
+          const double mid = 0.5 * (lo + hi), fm = point(a, mid)[0] - x0_;
           if ((fm < 0) == (flo < 0)) lo = mid, flo = fm;
           else hi = mid;
         }
@@ -266,32 +283,26 @@ std::pair<double, double> section_area(const NurbsSurface& s, double x0, double 
       prev = cur;
     }
     // Tolerate x0 at the very end of the surface (round-off).
-    const double tol = 1e-9 * (1 + std::abs(x0));
-    if (std::abs(point(a, bs.front())[0] - x0) < tol) return bs.front();
-    if (std::abs(point(a, bs.back())[0] - x0) < tol) return bs.back();
-    return std::numeric_limits<double>::quiet_NaN();
-  };
-  (void)dom_a;
-  (void)dom_b;
-  auto zfun = [&](double a) {
-    const double b = solve_b(a);
-    if (std::isnan(b)) return 1.0;  // no cut here: outside
-    b_warm = b;
-    return point(a, b)[2] - draft;
-  };
-  const auto pieces = inside_pieces(br_a, zfun, [&](const std::vector<double>& ts, std::vector<double>& fs) {
-    for (std::size_t i = 0; i < ts.size(); ++i) fs[i] = zfun(ts[i]);
-  });
+    const double tol = 1e-9 * (1 + std::abs(x0_));
+    if (std::abs(point(a, bs.front())[0] - x0_) < tol) return bs.front();
+    if (std::abs(point(a, bs.back())[0] - x0_) < tol) return bs.back();
+    return kNaN;
+  }
+};
+
+/// int y dz and int y z dz along the section over the submerged pieces of a (Gauss rule of
+/// `gauss` points on each), dz = z_a + z_b db/da with db/da = -x_a / x_b (x stays x0).
+std::pair<double, double> section_integrals(PlaneCrossing& cut, const std::vector<std::pair<double, double>>& pieces,
+                                            int gauss) {
   const auto& g = detail::gauss_rule(gauss);
   double area = 0, mz = 0;
   for (const auto& [pa, pb] : pieces) {
     const double h = 0.5 * (pb - pa), m = 0.5 * (pa + pb);
     for (int k = 0; k < gauss; ++k) {
       const double a = m + h * g.x[k];
-      const double b = solve_b(a);
+      const double b = cut.crossing(a);
       if (std::isnan(b)) continue;
-      b_warm = b;
-      const D1 D = first_derivs(a, b);
+      const PlaneCrossing::D1 D = cut.first_derivs(a, b);
       const Eigen::Vector3d& Sa = D.Sa;
       const Eigen::Vector3d& Sb = D.Sb;
       if (Sb[0] == 0) continue;
@@ -302,6 +313,26 @@ std::pair<double, double> section_area(const NurbsSurface& s, double x0, double 
       mz += g.w[k] * h * y * z * dz;
     }
   }
+  return {area, mz};
+}
+
+}  // namespace
+
+std::pair<double, double> section_area(const NurbsSurface& s, double x0, double draft, bool half_hull,
+                                       int gauss) {
+  detail::require_finite(x0, "x");
+  detail::require_positive(draft, "draft");
+  if (gauss < 2 || gauss > 32) fail("gauss is ", gauss, "; expected 2..32 points per knot span");
+  PlaneCrossing cut(s, x0);
+  auto zfun = [&](double a) {
+    const double b = cut.crossing(a);
+    if (std::isnan(b)) return 1.0;  // no cut here: outside
+    return cut.point(a, b)[2] - draft;
+  };
+  const auto pieces = inside_pieces(cut.across_breaks(), zfun, [&](const std::vector<double>& ts, std::vector<double>& fs) {
+    for (std::size_t i = 0; i < ts.size(); ++i) fs[i] = zfun(ts[i]);
+  });
+  const auto [area, mz] = section_integrals(cut, pieces, gauss);
   if (area == 0) return {0.0, 0.0};
   const double zc = mz / area;
   return {(half_hull ? 2.0 : 1.0) * std::abs(area), zc};

@@ -17,6 +17,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 
+#include "common/used_nodes.hpp"
 #include "fairlines/errors.hpp"
 
 namespace fairlines::meshing {
@@ -739,23 +740,9 @@ void append_elements(const PatchMesh& pm, const std::vector<int>& gid, int pidx,
 /// The elements and their parts into `out`, keeping only the nodes they use.
 void compact(std::vector<std::array<int, 4>>& el, const std::vector<int>& part, const std::vector<Vec3>& nodes,
              SurfaceMesh& out) {
-  std::vector<int> used(nodes.size(), -1);
-  int n = 0;
-  for (auto& e : el)
-    for (int& v : e)
-      if (v >= 0) {
-        if (used[v] < 0) used[v] = n++;
-        v = used[v];
-      }
-  out.vertices.resize(n, 3);
-  for (size_t i = 0; i < nodes.size(); ++i)
-    if (used[i] >= 0) out.vertices.row(used[i]) = nodes[i].transpose();
-  out.faces.resize(static_cast<Eigen::Index>(el.size()), 4);
-  out.face_part.resize(static_cast<Eigen::Index>(el.size()));
-  for (size_t f = 0; f < el.size(); ++f) {
-    for (int k = 0; k < 4; ++k) out.faces(static_cast<Eigen::Index>(f), k) = el[f][k];
-    out.face_part[static_cast<Eigen::Index>(f)] = part[f];
-  }
+  out.vertices = detail::keep_used_nodes(el, nodes);
+  out.faces = detail::element_rows(el);
+  out.face_part = Eigen::Map<const Eigen::VectorXi>(part.data(), static_cast<Eigen::Index>(el.size()));
 }
 
 }  // namespace

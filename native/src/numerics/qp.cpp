@@ -316,6 +316,79 @@ void check_sizes(const QuadraticProgram& qp) {
 /// the others (column-pivoted QR of E').
 constexpr double kRankTol = 1e-12;
 
+namespace {
+
+/// The equalities E x = e, rows normalised (En, en) and factored by column-pivoted QR of En':
+/// rank r, Q, and the least-norm solution xp. x = xp + Z w, Z = Q.rightCols(n - r), meets them
+/// for every w.
+struct EqualitySpace {
+  Eigen::MatrixXd En;
+  Eigen::VectorXd en;
+  Eigen::Index r = 0;
+  Eigen::MatrixXd Q;
+  Eigen::VectorXd xp;
+};
+
+EqualitySpace equality_space(const QuadraticProgram& qp) {
+  const Eigen::Index me = qp.E.rows();
+  EqualitySpace eq;
+  Eigen::VectorXd s = qp.E.rowwise().norm();
+  for (Eigen::Index i = 0; i < me; ++i) s[i] = s[i] > 0 ? 1.0 / s[i] : 0.0;
+  eq.En = s.asDiagonal() * qp.E;
+  eq.en = s.asDiagonal() * qp.e;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(eq.En.transpose());
+  qr.setThreshold(kRankTol);
+  eq.r = qr.rank();
+  eq.Q = qr.householderQ();
+  const Eigen::MatrixXd R = qr.matrixR().topLeftCorner(eq.r, eq.r).template triangularView<Eigen::Upper>();
+  const Eigen::VectorXd ep = qr.colsPermutation().transpose() * eq.en;
+  const Eigen::VectorXd zr = R.transpose().template triangularView<Eigen::Lower>().solve(ep.head(eq.r));
+  eq.xp = eq.Q.leftCols(eq.r) * zr;
+  return eq;
+}
+
+/// Infeasible: the equalities contradict themselves (extra < 0) or inequality row `extra` (its
+/// index among all rows, equalities first). x = xp, zero multipliers.
+QpSolution conflict_with_equalities(const QuadraticProgram& qp, const Eigen::VectorXd& xp, int extra) {
+  QpSolution out;
+  out.status = QpStatus::Infeasible;
+  out.x = xp;
+  out.y_eq = Eigen::VectorXd::Zero(qp.E.rows());
+  out.y_in = Eigen::VectorXd::Zero(qp.A.rows());
+  if (extra >= 0) out.conflict.push_back(extra);
+  for (Eigen::Index j = 0; j < qp.E.rows(); ++j) out.conflict.push_back(static_cast<int>(j));
+  std::sort(out.conflict.begin(), out.conflict.end());
+  return out;
+}
+
+/// The equalities fix x = xp: the inequalities are met or not (those not met are the conflict).
+QpSolution at_fixed_point(const QuadraticProgram& qp, const Eigen::VectorXd& xp, double scale, const QpOptions& options) {
+  QpSolution out;
+  out.status = QpStatus::Optimal;
+  out.x = xp;
+  out.y_in = Eigen::VectorXd::Zero(qp.A.rows());
+  for (Eigen::Index i = 0; i < qp.A.rows(); ++i)
+    if (qp.A.row(i).dot(xp) - qp.b[i] > options.feasibility_tol * scale * std::max(1.0, qp.A.row(i).norm())) {
+      out.status = QpStatus::Infeasible;
+      out.conflict.push_back(static_cast<int>(i));
+    }
+  return out;
+}
+
+/// A row of the reduced inequalities that the equalities already fix (its reduced part
+/// vanishes) is met, and made a zero row, or contradicts them: returns the first such row, or -1.
+int drop_fixed_rows(const QuadraticProgram& qp, QuadraticProgram& red, double scale, const QpOptions& options) {
+  for (Eigen::Index i = 0; i < red.A.rows(); ++i)
+    if (red.A.row(i).norm() <= kRankTol * qp.A.row(i).norm()) {
+      red.A.row(i).setZero();
+      if (red.b[i] < -options.feasibility_tol * scale * qp.A.row(i).norm()) return static_cast<int>(i);
+      red.b[i] = std::max(red.b[i], 0.0);
+    }
+  return -1;
+}
+
+}  // namespace
+
 QpSolution solve_qp(const QuadraticProgram& qp, const std::vector<int>& warm_active, const QpOptions& options) {
   check_sizes(qp);
   if (!(options.feasibility_tol > 0) || !(options.regularisation >= 0))
@@ -327,62 +400,23 @@ QpSolution solve_qp(const QuadraticProgram& qp, const std::vector<int>& warm_act
     return solver.solve_refined(warm_active);
   }
   // Null space of the (row-normalised) equalities.
-  Eigen::VectorXd s = qp.E.rowwise().norm();
-  for (Eigen::Index i = 0; i < me; ++i) s[i] = s[i] > 0 ? 1.0 / s[i] : 0.0;
-  const Eigen::MatrixXd En = s.asDiagonal() * qp.E;
-  const Eigen::VectorXd en = s.asDiagonal() * qp.e;
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(En.transpose());
-  qr.setThreshold(kRankTol);
-  const Eigen::Index r = qr.rank();
-  const Eigen::MatrixXd Q = qr.householderQ();
-  const Eigen::MatrixXd R = qr.matrixR().topLeftCorner(r, r).template triangularView<Eigen::Upper>();
-  const Eigen::VectorXd ep = qr.colsPermutation().transpose() * en;
-  const Eigen::VectorXd zr = R.transpose().template triangularView<Eigen::Lower>().solve(ep.head(r));
-  const Eigen::VectorXd xp = Q.leftCols(r) * zr;
-  QpSolution out;
-  const double scale = std::max({1.0, en.cwiseAbs().maxCoeff(), xp.cwiseAbs().maxCoeff()});
-  const Eigen::VectorXd eres = En * xp - en;
+  const EqualitySpace eq = equality_space(qp);
+  const double scale = std::max({1.0, eq.en.cwiseAbs().maxCoeff(), eq.xp.cwiseAbs().maxCoeff()});
+  const Eigen::VectorXd eres = eq.En * eq.xp - eq.en;
   for (Eigen::Index i = 0; i < me; ++i)
-    if (std::abs(eres[i]) > options.feasibility_tol * scale) {
-      out.status = QpStatus::Infeasible;
-      out.x = xp;
-      out.y_eq = Eigen::VectorXd::Zero(me);
-      out.y_in = Eigen::VectorXd::Zero(qp.A.rows());
-      for (Eigen::Index j = 0; j < me; ++j) out.conflict.push_back(static_cast<int>(j));
-      return out;
-    }
-  if (r == n) {  // the equalities fix x: the inequalities are met or not
-    out.status = QpStatus::Optimal;
-    out.x = xp;
-    out.y_in = Eigen::VectorXd::Zero(qp.A.rows());
-    for (Eigen::Index i = 0; i < qp.A.rows(); ++i)
-      if (qp.A.row(i).dot(xp) - qp.b[i] > options.feasibility_tol * scale * std::max(1.0, qp.A.row(i).norm())) {
-        out.status = QpStatus::Infeasible;
-        out.conflict.push_back(static_cast<int>(i));
-      }
+    if (std::abs(eres[i]) > options.feasibility_tol * scale) return conflict_with_equalities(qp, eq.xp, -1);
+  QpSolution out;
+  if (eq.r == n) {
+    out = at_fixed_point(qp, eq.xp, scale, options);
   } else {
-    const Eigen::MatrixXd Z = Q.rightCols(n - r);
-    QuadraticProgram red{Z.transpose() * qp.H * Z, Z.transpose() * (qp.H * xp + qp.g), Eigen::MatrixXd(0, n - r), Eigen::VectorXd(0),
-                         qp.A * Z, qp.b - qp.A * xp};
-    // A row the equalities already fix (its reduced part vanishes) is met or contradicts them.
-    for (Eigen::Index i = 0; i < red.A.rows(); ++i)
-      if (red.A.row(i).norm() <= kRankTol * qp.A.row(i).norm()) {
-        red.A.row(i).setZero();
-        if (red.b[i] < -options.feasibility_tol * scale * qp.A.row(i).norm()) {
-          out.status = QpStatus::Infeasible;
-          out.x = xp;
-          out.y_eq = Eigen::VectorXd::Zero(me);
-          out.y_in = Eigen::VectorXd::Zero(qp.A.rows());
-          out.conflict.push_back(static_cast<int>(me + i));
-          for (Eigen::Index j = 0; j < me; ++j) out.conflict.push_back(static_cast<int>(j));
-          std::sort(out.conflict.begin(), out.conflict.end());
-          return out;
-        }
-        red.b[i] = std::max(red.b[i], 0.0);
-      }
+    const Eigen::MatrixXd Z = eq.Q.rightCols(n - eq.r);
+    QuadraticProgram red{Z.transpose() * qp.H * Z, Z.transpose() * (qp.H * eq.xp + qp.g), Eigen::MatrixXd(0, n - eq.r),
+                         Eigen::VectorXd(0), qp.A * Z, qp.b - qp.A * eq.xp};
+    const int contradicted = drop_fixed_rows(qp, red, scale, options);
+    if (contradicted >= 0) return conflict_with_equalities(qp, eq.xp, static_cast<int>(me) + contradicted);
     ActiveSetSolver solver(red, options);
     out = solver.solve_refined(warm_active);
-    out.x = (xp + Z * out.x).eval();
+    out.x = (eq.xp + Z * out.x).eval();
   }
   // Equality multipliers from stationarity, E' y_eq = -(H x + g + A' y_in), by least squares.
   const Eigen::VectorXd resid = -(qp.H * out.x + qp.g + qp.A.transpose() * out.y_in);

@@ -56,6 +56,42 @@ def section_parameters(pieces, draft, beam):
     }
 
 
+def _stations(surfaces, samples, xs, draft, beam, roles) -> list:
+    """section_parameters of the stations at ``xs`` (those the surfaces cut), each with its x."""
+    stations = []
+    for x0 in xs:
+        sp = section_parameters(section_at(surfaces, x0, roles=roles, samples=samples), draft, beam)
+        if sp is not None:
+            sp["x"] = float(x0)
+            stations.append(sp)
+    return stations
+
+
+def _bow(surfaces, samples, pts, data: HullData, am, roles) -> dict:
+    """The bow feature: a sonar dome (reaching below the baseline forward), a bulb (protruding
+    beyond the FP below the waterline; Kracht's ratios measured on the section at the FP) or none."""
+    L, B, T = data.lpp, data.beam, data.draft
+    sub = pts[pts[:, 2] <= T]
+    below_base = pts[(pts[:, 2] < -DOME_MIN_DEPTH * T) & (pts[:, 0] > 0.5 * L)]
+    protrusion = float(sub[:, 0].max() - L) if len(sub) else 0.0
+    bow = {"kind": "none"}
+    if len(below_base):
+        bow = {"kind": "sonar dome", "depth_below_baseline": float(-below_base[:, 2].min()),
+               "x_aft_end": float(below_base[:, 0].min()), "x_fwd_end": float(below_base[:, 0].max())}
+    elif protrusion > 0.005 * L:
+        at_fp = section_at(surfaces, L, roles=roles, samples=samples)
+        abt = 2 * sum(polyline_area(p, T) for p in at_fp)
+        bulb_pts = sub[sub[:, 0] >= L]
+        tip = bulb_pts[np.argmax(bulb_pts[:, 0])]
+        bb = 2 * max((p[p[:, 1] <= 0.8 * T, 0].max() if np.any(p[:, 1] <= 0.8 * T) else 0.0) for p in at_fp) \
+            if at_fp else 0.0
+        bow = {"kind": "bulb", "c_lpr": protrusion / L, "c_bb": bb / B, "c_zb": float(tip[2]) / T,
+               "c_abt": abt / am, "length_beyond_fp": protrusion}
+    if "bulb" in (roles or []) and bow["kind"] != "bulb":
+        bow["kind"] = "bulb"
+    return bow
+
+
 def form_parameters(surfaces, data: HullData, n_stations=41, roles=None) -> dict:
     """Basic curves and per-section parameters read off the rebuilt surfaces.
 
@@ -69,16 +105,10 @@ def form_parameters(surfaces, data: HullData, n_stations=41, roles=None) -> dict
     xs = np.linspace(x_aft, x_fwd, n_stations)
     xs[0] += 1e-6 * L
     xs[-1] -= 1e-6 * L
-    stations = []
-    for x0 in xs:
-        sp = section_parameters(section_at(surfaces, x0, roles=roles, samples=samples), T, B)
-        if sp is not None:
-            sp["x"] = float(x0)
-            stations.append(sp)
+    stations = _stations(surfaces, samples, xs, T, B, roles)
     x = np.array([s["x"] for s in stations])
     sac = np.array([s["area"] for s in stations])
     dwl = np.array([s["half_breadth_dwl"] for s in stations])
-    am = float(sac.max())
     fos_x = x[[s["fos_z"] is not None and s["fos_z"][0] <= T for s in stations]]
     fob_x = x[[s["fob_half_width"] >= FOB_MIN_HALF_WIDTH * B and s["keel_z"] <= FLAT_TOL * T for s in stations]]
     wet = dwl > 0
@@ -86,25 +116,6 @@ def form_parameters(surfaces, data: HullData, n_stations=41, roles=None) -> dict
     # End angles of the DWL: half-angle of entrance (forward end) and of run (aft end), degrees.
     entrance = float(np.degrees(np.arctan2(ye[-2] - ye[-1], xe[-1] - xe[-2]))) if len(xe) > 2 else 0.0
     run = float(np.degrees(np.arctan2(ye[1] - ye[0], xe[1] - xe[0]))) if len(xe) > 2 else 0.0
-    sub = pts[pts[:, 2] <= T]
-    bow = {"kind": "none"}
-    below_base = pts[(pts[:, 2] < -DOME_MIN_DEPTH * T) & (pts[:, 0] > 0.5 * L)]
-    protrusion = float(sub[:, 0].max() - L) if len(sub) else 0.0
-    if len(below_base):
-        bow = {"kind": "sonar dome", "depth_below_baseline": float(-below_base[:, 2].min()),
-               "x_aft_end": float(below_base[:, 0].min()), "x_fwd_end": float(below_base[:, 0].max())}
-    elif protrusion > 0.005 * L:
-        at_fp = section_at(surfaces, L, roles=roles, samples=samples)
-        abt = 2 * sum(polyline_area(p, T) for p in at_fp)
-        bulb_pts = sub[sub[:, 0] >= L]
-        tip = bulb_pts[np.argmax(bulb_pts[:, 0])]
-        bb = 2 * max((p[p[:, 1] <= 0.8 * T, 0].max() if np.any(p[:, 1] <= 0.8 * T) else 0.0) for p in at_fp) \
-            if at_fp else 0.0
-        bow = {"kind": "bulb", "c_lpr": protrusion / L, "c_bb": bb / B, "c_zb": float(tip[2]) / T,
-               "c_abt": abt / am, "length_beyond_fp": protrusion}
-    roles = roles or []
-    if "bulb" in roles and bow["kind"] != "bulb":
-        bow["kind"] = "bulb"
     return {
         "SAC": {"x": x.tolist(), "area": sac.tolist(),
                 "entrance_slope": float((sac[-2] - sac[-1]) / (x[-1] - x[-2])),
@@ -118,6 +129,6 @@ def form_parameters(surfaces, data: HullData, n_stations=41, roles=None) -> dict
                 "x_fwd": float(fos_x.max()) if fos_x.size else None},
         "FOB": {"x_aft": float(fob_x.min()) if fob_x.size else None,
                 "x_fwd": float(fob_x.max()) if fob_x.size else None},
-        "bow": bow,
+        "bow": _bow(surfaces, samples, pts, data, float(sac.max()), roles),
         "sections": stations,
     }
