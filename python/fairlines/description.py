@@ -16,7 +16,8 @@ Format (JSON; ``docs/hull_description.schema.json`` is its JSON Schema)::
                        "top_corner": ..., "deadrise": ..., "character": ...},
       "skinning": {"e2": 1.0, "e3": 0.0},
       "bulb": {...},                              # optional bulbous bow (Kracht coefficients)
-      "skeg": {"x_aft": 13.0, "x_fore": 42.0, "half_thickness": 0.8}   # optional skeg under the run
+      "skeg": {"x_aft": 13.0, "x_fore": 42.0, "half_thickness": 0.8},  # optional skeg under the run
+      "dome": {"x_aft": 104.0, "x_fore": 120.0, "depth": 2.0, "half_breadth": 1.4}  # optional sonar dome
     }
 
 Basic curves (each a fairest spline function of x, fairlines.spline_design):
@@ -123,6 +124,10 @@ MAX_SPANS = 200
 SECTION_CONTROLS = (8, 64)
 # A skeg tapers into the keel over this fraction of its length aft of its forward end.
 SKEG_FORE_TAPER = 0.3
+# A sonar dome is widest and deepest at this fraction of its length from its aft end, and its
+# neck (where it meets the hull body) is this fraction of its half-breadth.
+DOME_WIDEST = 0.65
+DOME_NECK = 0.55
 # Least number of points of a given section, and the most given sections and points per section.
 GIVEN_POINTS = (3, 2000)
 MAX_GIVEN_SECTIONS = 1000
@@ -359,7 +364,8 @@ class BulbSpec:
         return d
 
 
-TOP_KEYS = ("name", "notes", "principal", "ends", "stations", "sections", "basic_curves", "skinning", "bulb", "skeg", "design")
+TOP_KEYS = ("name", "notes", "principal", "ends", "stations", "sections", "basic_curves", "skinning", "bulb", "skeg", "dome",
+            "design")
 
 
 @dataclass
@@ -417,6 +423,54 @@ class SkegSpec:
 
 
 @dataclass
+class DomeSpec:
+    """A sonar dome under the keel (metres): from x_aft to x_fore, hanging `depth` below the
+    hull body's bottom where it is deepest, `half_breadth` wide there; in plan and profile a
+    teardrop (a rounded nose, a tail tapering aft), joined to the body by a neck of DOME_NECK of
+    its half-breadth."""
+
+    x_aft: float
+    x_fore: float
+    depth: float
+    half_breadth: float
+
+    KEYS = ("x_aft", "x_fore", "depth", "half_breadth")
+
+    @classmethod
+    def from_dict(cls, d: Any, path: str, x_aft: float, x_fore: float) -> DomeSpec:
+        """The dome of ``d`` on a hull from x_aft to x_fore (m). Raises InvalidInput naming a
+        missing or unknown key, or a value out of range."""
+        d = keyed_object(path, d, cls.KEYS)
+        for key in cls.KEYS:
+            if key not in d:
+                raise _native.InvalidInput(f"{path}.{key} is missing; expected a length in metres")
+        v = {k: number(f"{path}.{k}", d[k]) for k in cls.KEYS}
+        if not x_aft <= v["x_aft"] < v["x_fore"] <= x_fore:
+            raise _native.InvalidInput(f"{path}.x_aft / x_fore are {v['x_aft']} / {v['x_fore']} m; expected x_aft < x_fore "
+                                       f"on the hull ({x_aft} to {x_fore} m)")
+        for key in ("depth", "half_breadth"):
+            if not v[key] > 0:
+                raise _native.InvalidInput(f"{path}.{key} is {v[key]} m; expected > 0")
+        return cls(**v)
+
+    def to_dict(self) -> dict:
+        return {k: getattr(self, k) for k in self.KEYS}
+
+    def at(self, x: np.ndarray, body: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The dome's bottom (NaN outside it) and half-breadth at x under the body's bottom
+        `body`: the teardrop's size r rises from its tail (aft) to 1 at DOME_WIDEST of its
+        length and falls to 0 at its nose as a parabola (the sections shrink steadily to the
+        nose, where a quarter ellipse would end them abruptly between two stations)."""
+        xi = (x - self.x_aft) / (self.x_fore - self.x_aft)
+        inside = (xi > 0) & (xi < 1)
+        tail = np.clip(xi / DOME_WIDEST, 0.0, 1.0)
+        nose = np.clip((xi - DOME_WIDEST) / (1 - DOME_WIDEST), 0.0, 1.0)
+        r = np.where(xi < DOME_WIDEST, np.sqrt(tail * tail * (3 - 2 * tail)), np.maximum(1 - nose * nose, 0.0))
+        bottom = np.where(inside & (r > 0), body - self.depth * r, np.nan)
+        return bottom, self.half_breadth * r
+
+
+@dataclass
 class HullDescription:
     """A hull: principal dimensions, its x range, stations, section options, basic curves."""
 
@@ -436,6 +490,7 @@ class HullDescription:
     posts: tuple = ()  # ends ("aft", "fore") that are vertical posts of zero width
     given_sections: list = field(default_factory=list)  # [(x, (m, 2) array of (y, z))], increasing x
     skeg: SkegSpec | None = None
+    dome: DomeSpec | None = None
 
     @classmethod
     def from_dict(cls, d: Any) -> HullDescription:
@@ -477,6 +532,8 @@ class HullDescription:
             desc.bulb = BulbSpec.from_dict(d["bulb"], "bulb")
         if d.get("skeg") is not None:
             desc.skeg = SkegSpec.from_dict(d["skeg"], "skeg", x_aft, x_fore)
+        if d.get("dome") is not None:
+            desc.dome = DomeSpec.from_dict(d["dome"], "dome", x_aft, x_fore)
         if d.get("design") is not None:
             if not isinstance(d["design"], dict):
                 raise bad("design", d["design"], "an object (the particulars the hull was designed from)")
@@ -540,6 +597,8 @@ class HullDescription:
             d["bulb"] = self.bulb.to_dict()
         if self.skeg is not None:
             d["skeg"] = self.skeg.to_dict()
+        if self.dome is not None:
+            d["dome"] = self.dome.to_dict()
         if self.design is not None:
             d["design"] = copy.deepcopy(self.design)
         return d

@@ -101,7 +101,13 @@ SKEG_HALF_THICKNESS = 0.1   # the skeg's half thickness, fraction of the propell
 SKEG_END = 0.8              # its bottom rises to the hull over this many propeller diameters forward of its aft edge
 SKEG_FILLET = 1.0           # the hollow fillet to the hull body, fraction of the propeller diameter
 SKEG_SECTION_CONTROLS = 32  # control points per section of a ship with a skeg (its side and fillet are short)
-APERTURE_COUNTER_ANGLE = 4.0  # deg: the counter's rise at the transom where it must clear a propeller
+APERTURE_COUNTER_ANGLE = 4.0
+# A sonar dome under the keel's forward end (a frigate's, DTMB 5415's proportions): its length
+# (fraction of Lpp), depth below the keel (of T) and half-breadth (of B); its nose where the
+# keel's flat ends forward.
+DOME_LENGTH = 0.11
+DOME_DEPTH = 0.4
+DOME_HALF_BREADTH = 0.12  # deg: the counter's rise at the transom where it must clear a propeller
 
 
 @dataclass
@@ -124,6 +130,7 @@ class Particulars:
     transom_breadth: float | None = None  # waterline half-breadth at an immersed transom (m)
     bulb: bool | dict = False
     skeg: bool = False  # a single screw: a skeg under the run and a propeller aperture aft of it
+    sonar_dome: bool = False  # a sonar dome under the keel's forward end
     propeller_diameter: float | None = None  # with skeg (m); default PROPELLER_DIAMETER T
     stem_rake: float = STEM_RAKE
     name: str = "designed hull"
@@ -164,6 +171,8 @@ class Particulars:
             v = getattr(self, key)
             if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi):
                 raise _native.InvalidInput(f"{key} is {v!r}; expected {what}")
+        if not isinstance(self.sonar_dome, bool):
+            raise _native.InvalidInput(f"sonar_dome is {self.sonar_dome!r}; expected true or false")
         if not isinstance(self.skeg, bool):
             raise _native.InvalidInput(f"skeg is {self.skeg!r}; expected true or false (a single screw aft of a skeg)")
         if self.propeller_diameter is not None and not self.skeg:
@@ -428,6 +437,10 @@ def design_description(p: Particulars) -> dict:
         "basic_curves": {"profile": prof, "dwl": dwl, "deck": deck, "sac": sac},
         "design": {k: v for k, v in asdict(p).items() if k != "notes"},
     }
+    if p.sonar_dome:
+        fore = prof["flat_to"]
+        desc["dome"] = {"x_aft": fore - DOME_LENGTH * L, "x_fore": fore, "depth": DOME_DEPTH * T,
+                        "half_breadth": DOME_HALF_BREADTH * B}
     if skeg is not None:
         desc["skeg"] = skeg
         desc["sections"]["n_control"] = SKEG_SECTION_CONTROLS

@@ -27,7 +27,7 @@ import numpy as np
 from . import _native
 from . import basic_curves as _basic_curves
 from .basic_curves import CORNER_FULLNESS_BOUNDS, FULLNESS_BOUNDS, BasicCurve, immersed_range, solve_curve, solve_sac
-from .description import FORM_ALIASES, FORM_KEYS, BasicCurveSpec, HullDescription, load_description
+from .description import DOME_NECK, FORM_ALIASES, FORM_KEYS, BasicCurveSpec, HullDescription, load_description
 from .hydrostatics_surface import hydrostatics
 from .skinning import fair_skin
 
@@ -63,8 +63,10 @@ SHEER_LIMIT = 2.0
 # A skeg with a square aft edge (no end_length): the station before it lies this fraction of
 # Lpp aft of it (the sternpost is the surface's turn between the two).
 STERNPOST_GAP = 0.002
-# ... with a raked aft end: stations this many to its rake.
+# ... with a raked aft end: stations this many to its rake; a sonar dome: stations this many
+# along it (closer toward its nose).
 SKEG_END_STATIONS = 6
+DOME_STATIONS = 16
 # Least slope (dz/dx) of the profile used for the arrival angle of above-water sections.
 MIN_STEM_SLOPE = 0.05
 MAX_LOWER_ANGLE = 75.0      # deg: a flat counter under a full waterline end arrives no flatter (sections allow < 80)
@@ -105,6 +107,13 @@ def _clear_build_caches() -> None:
     _shape_cache.clear()
     _band_cache.clear()
     _basic_curves.clear_curve_cache()
+
+
+def _with_stations(stations: np.ndarray, extra: np.ndarray) -> np.ndarray:
+    """The stations with those of `extra` that do not lie within a quarter of their own spacing
+    of one already there."""
+    gap = 0.25 * float(np.min(np.diff(extra))) if len(extra) > 1 else 0.0
+    return np.union1d(stations, [x for x in extra if np.min(np.abs(stations - x)) > gap])
 
 
 def station_positions(x_aft: float, x_fore: float, count: int, junctions: list[float] = ()) -> np.ndarray:
@@ -269,6 +278,8 @@ class Hull:
         out = set(self.immersed_range())
         if (sk := self.description.skeg) is not None:
             out.update((sk.x_aft, sk.x_aft + sk.end_length, sk.x_fore))
+        if (dm := self.description.dome) is not None:
+            out.update((dm.x_aft, dm.x_fore))
         for spec in self.description.curves.values():
             for x in (spec.flat_from, spec.flat_to):
                 if x is not None:
@@ -289,9 +300,11 @@ class Hull:
                     # a station just aft of a square sternpost: the skeg ends within this gap
                     self._stations = np.union1d(self._stations, [sk.x_aft - STERNPOST_GAP * d.principal.lpp])
                 elif sk is not None:  # the skeg's raked aft end: its sections change quickly
-                    extra = np.linspace(sk.x_aft, sk.x_aft + sk.end_length, SKEG_END_STATIONS + 1)
-                    far = [x for x in extra if np.min(np.abs(self._stations - x)) > 0.25 * sk.end_length / SKEG_END_STATIONS]
-                    self._stations = np.union1d(self._stations, far)
+                    self._stations = _with_stations(self._stations, np.linspace(sk.x_aft, sk.x_aft + sk.end_length,
+                                                                                SKEG_END_STATIONS + 1))
+                if (dm := d.dome) is not None:  # the dome's sections change quickly, most at its nose
+                    u = np.sin(0.5 * np.pi * np.linspace(0.0, 1.0, DOME_STATIONS + 1))
+                    self._stations = _with_stations(self._stations, dm.x_aft + (dm.x_fore - dm.x_aft) * u)
         return self._stations.copy()
 
     # ---- sections ---------------------------------------------------------------------
@@ -365,6 +378,7 @@ class Hull:
         lower = self._lower_angles(xs)
         given = self._given_shapes(xs)
         skeg, share = d.skeg.at(xs, np.minimum(prof, z_deck)) if d.skeg is not None else (np.full(len(xs), np.nan), None)
+        dome, dome_b = d.dome.at(xs, np.minimum(prof, z_deck)) if d.dome is not None else (np.full(len(xs), np.nan), None)
         specs = []
         for i, xi in enumerate(xs):
             s = _native.SectionSpec()
@@ -373,6 +387,9 @@ class Hull:
             if np.isfinite(skeg[i]) and share[i] > 0:
                 s.skeg_bottom, s.skeg_share = float(skeg[i]), float(share[i])
                 s.skeg_half_thickness, s.skeg_fillet = d.skeg.half_thickness, d.skeg.fillet
+            if np.isfinite(dome[i]) and dome_b[i] > 0:
+                s.dome_bottom, s.dome_half_breadth = float(dome[i]), float(dome_b[i])
+                s.dome_neck = float(DOME_NECK * dome_b[i])
             s.x, s.y_max, s.n_control = float(xi), limit, d.section_n_control
             s.y_deck = float(deck[i])
             s.z_deck = float(z_deck[i])

@@ -165,5 +165,29 @@ TEST(Sections, GivenShapeRunningUpwardIsRefused) {
   }
 }
 
+TEST(Sections, SkegAndDomeHangBelowTheBody) {
+  // A run section with its body's bottom 5 m above base: a skeg to the baseline keeps the
+  // body above and stands at its half-thickness near the bottom; a dome hangs to its bottom
+  // and is as wide as asked.
+  SectionSpec s = midship();
+  s.z_keel = 5.0, s.y_dwl = 10.0, s.half_area = kNaN, s.shape = 1.5, s.n_control = 32;
+  SectionSpec skeg = s;
+  skeg.skeg_bottom = 0.0, skeg.skeg_half_thickness = 0.8, skeg.skeg_fillet = 3.0;
+  const Eigen::MatrixXd a = samples(design_section(skeg));
+  EXPECT_NEAR(a.col(1).minCoeff(), 0.0, 1e-9);
+  for (int i = 0; i < a.rows(); ++i)
+    if (a(i, 1) > 0.3 && a(i, 1) < 0.6) EXPECT_NEAR(a(i, 0), 0.8, 0.08) << a(i, 1);
+  SectionSpec dome = s;
+  dome.dome_bottom = 1.0, dome.dome_half_breadth = 1.5, dome.dome_neck = 0.8;
+  const Eigen::MatrixXd b = samples(design_section(dome));
+  EXPECT_NEAR(b.col(1).minCoeff(), 1.0, 1e-9);
+  double widest = 0;
+  for (int i = 0; i < b.rows(); ++i)
+    if (b(i, 1) < 4.5) widest = std::max(widest, b(i, 0));
+  EXPECT_NEAR(widest, 1.5, 0.05);
+  dome.dome_neck = 2.0;
+  EXPECT_THROW(design_section(dome), InvalidInput);
+}
+
 }  // namespace
 }  // namespace fairlines

@@ -75,6 +75,8 @@ REFUSED_AT_LOAD = {
     "given section without x": put(("sections", "given"), [{"points": [[1.0, 19.0], [2.0, 5.0], [0.0, 0.0]]}]),
     "skeg without its thickness": put(("skeg",), {"x_aft": 9.7, "x_fore": 41.7}),
     "skeg of negative thickness": put(("skeg",), {"x_aft": 9.7, "x_fore": 41.7, "half_thickness": -0.5}),
+    "dome without its depth": put(("dome",), {"x_aft": 190.0, "x_fore": 215.0, "half_breadth": 3.0}),
+    "dome of no breadth": put(("dome",), {"x_aft": 190.0, "x_fore": 215.0, "depth": 4.0, "half_breadth": 0.0}),
     "unknown skeg key": put(("skeg",), {"x_aft": 9.7, "x_fore": 41.7, "half_thickness": 0.5, "depth": 3.0}),
     "unknown given section key": put(("sections", "given"), [{"x": 100.0, "y": [1.0], "points": [[1.0, 19.0], [2.0, 5.0], [0.0, 0.0]]}]),
 }
@@ -108,6 +110,7 @@ ACCEPTED = {
     "a skeg": put(("skeg",), {"x_aft": 9.7, "x_fore": 41.7, "half_thickness": 0.77, "fillet": 7.7, "end_length": 6.2}),
     "a square sternpost": put(("skeg",), {"x_aft": 9.7, "x_fore": 41.7, "half_thickness": 0.77}),
     "no skeg (null)": put(("skeg",), None),
+    "a sonar dome": put(("dome",), {"x_aft": 190.0, "x_fore": 215.0, "depth": 4.0, "half_breadth": 3.0}),
     "a given section": put(("sections", "given"), [{"x": 100.0, "points": [[16.1, 19.0], [16.1, 2.0], [14.0, 0.0], [0.0, 0.0]]}]),
     "a sheer": put((BC, "sheer"), {"yB": 20.0, "yE": 21.0, "value": 19.0, "flat_from": 60.0, "flat_to": 180.0}),
     "a largest breadth": put(("principal", "B_max"), 33.0),

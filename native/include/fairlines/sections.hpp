@@ -101,6 +101,13 @@ struct SectionSpec {
   /// How far the skeg is developed here, 0 .. 1 (it tapers to its ends): its thickness and
   /// fillet scale with it, and so does its share of the section's parameter.
   double skeg_share = 1.0;
+  /// A sonar dome below the hull body: where dome_bottom (m above base) lies below z_keel, the
+  /// section comes in to a neck of half-width dome_neck (m) and bulges below it into the half
+  /// of an ellipse of half-breadth dome_half_breadth (m) from z_keel down to dome_bottom, joined
+  /// to the body by a hollow fillet. NaN: no dome.
+  double dome_bottom = kNaN;
+  double dome_half_breadth = 1.0;
+  double dome_neck = 0.5;
 
   /// Each field with its name and meaning: f(name, member pointer, doc).
   template <typename F>
@@ -128,6 +135,9 @@ struct SectionSpec {
     f("skeg_half_thickness", &SectionSpec::skeg_half_thickness, "half the skeg's thickness (m, > 0)");
     f("skeg_fillet", &SectionSpec::skeg_fillet, "size of the hollow fillet between the hull body and the skeg (m, >= 0)");
     f("skeg_share", &SectionSpec::skeg_share, "how far the skeg is developed here (0 .. 1): scales its thickness and fillet");
+    f("dome_bottom", &SectionSpec::dome_bottom, "height of a sonar dome's bottom (m above base; NaN: no dome)");
+    f("dome_half_breadth", &SectionSpec::dome_half_breadth, "the dome's half-breadth (m, > 0)");
+    f("dome_neck", &SectionSpec::dome_neck, "half-width of the neck where the dome meets the hull body (m, 0 < neck < half-breadth)");
   }
 };
 

@@ -129,6 +129,8 @@ constexpr int kSkegBodySamples = 401;
 constexpr int kSkegFilletPoints = 24;
 constexpr int kSkegSidePoints = 12;
 constexpr double kSkegBottomRoom = 0.2;
+/// Points along a dome's half ellipse.
+constexpr int kDomePoints = 40;
 /// The fillet is at most this fraction of the skeg's depth below the body.
 constexpr double kSkegFilletDepth = 0.8;
 /// The thinnest a tapering skeg gets, fraction of its half thickness.
@@ -302,6 +304,11 @@ void validate(const SectionSpec& s, const std::string& at) {
   if (!(s.skeg_half_thickness > 0 && std::isfinite(s.skeg_half_thickness)))
     fail(at, ": skeg_half_thickness is ", s.skeg_half_thickness, " m; expected > 0");
   if (!(s.skeg_fillet >= 0 && std::isfinite(s.skeg_fillet))) fail(at, ": skeg_fillet is ", s.skeg_fillet, " m; expected >= 0");
+  if (std::isinf(s.dome_bottom)) fail(at, ": dome_bottom is ", s.dome_bottom, "; expected a height in metres or NaN (no dome)");
+  if (!(s.dome_half_breadth > 0 && std::isfinite(s.dome_half_breadth)))
+    fail(at, ": dome_half_breadth is ", s.dome_half_breadth, " m; expected > 0");
+  if (!(s.dome_neck > 0 && s.dome_neck < s.dome_half_breadth))
+    fail(at, ": dome_neck is ", s.dome_neck, " m; expected 0 < neck < dome_half_breadth = ", s.dome_half_breadth, " m");
 }
 
 Section setup(const SectionSpec& s) {
@@ -804,29 +811,39 @@ int last_wider(const Eigen::MatrixXd& yz, double y0) {
 /// the bottom, the bottom to the centre plane; with the height of the side's top (below it the
 /// shape is the skeg's, held when the section is shifted to its area). Empty when the body is
 /// never that wide.
+/// What replaces the tail of a body's section below J (a skeg, a dome).
+struct AppendageTail {
+  std::vector<V2> pts;     ///< J first, the keel point last
+  double t_J = 1.0;        ///< the body's parameter at J
+  double side_top = 0.0;   ///< control points below this height are held when Q is met
+};
+
+/// J, where the body's section (samples yz at parameters ts) last comes in to y = y0, with its
+/// parameter and the body's unit tangent there (heading in); false when it never is that wide.
+bool neck_point(const Eigen::VectorXd& ts, const Eigen::MatrixXd& yz, double y0, V2& J, double& t_J, V2& tan) {
+  const int j = last_wider(yz, y0);
+  if (j < 0) return false;
+  const double r = (yz(j, 0) - y0) / (yz(j, 0) - yz(j + 1, 0));
+  J = yz.row(j).transpose() + r * (yz.row(j + 1) - yz.row(j)).transpose();
+  t_J = ts[j] + r * (ts[j + 1] - ts[j]);
+  tan = (yz.row(j + 1) - yz.row(j)).transpose().normalized();
+  return true;
+}
+
 /// The skeg's tail of a section with a skeg (see SectionSpec::skeg_bottom), from the body's
 /// section sampled at parameters ts (yz, deck to keel): from J, where the body last comes in to
 /// y = t + f, a hollow quadratic fillet along the body's tangent to the skeg side (heading
 /// straight down), the side to the bottom, the bottom to the centre plane.
-struct SkegTail {
-  std::vector<V2> pts;     ///< J first, the keel point last
-  double t_J = 1.0;        ///< the body's parameter at J
-  double side_top = 0.0;   ///< height of the top of the skeg's straight side
-};
 
-SkegTail skeg_tail(const SectionSpec& s, const Eigen::VectorXd& ts, const Eigen::MatrixXd& yz) {
+AppendageTail skeg_tail(const SectionSpec& s, const Eigen::VectorXd& ts, const Eigen::MatrixXd& yz) {
   // where it ends the skeg thins and its fillet shrinks (and the fillet is at most
   // kSkegFilletDepth of its depth): the section tends to the body's
   const double share = std::clamp(s.skeg_share, 0.0, 1.0), zb = s.skeg_bottom;
   const double t = std::max(share * s.skeg_half_thickness, kSkegThinnest * s.skeg_half_thickness);
   const double f = std::min(share * s.skeg_fillet, kSkegFilletDepth * (s.z_keel - zb));
-  const int j = last_wider(yz, t + f);
-  SkegTail out;
-  if (j < 0) return out;
-  const double r = (yz(j, 0) - (t + f)) / (yz(j, 0) - yz(j + 1, 0));
-  const V2 J = yz.row(j).transpose() + r * (yz.row(j + 1) - yz.row(j)).transpose();
-  out.t_J = ts[j] + r * (ts[j + 1] - ts[j]);
-  const V2 tan = (yz.row(j + 1) - yz.row(j)).transpose().normalized();  // heading in and (usually) down
+  AppendageTail out;
+  V2 J, tan;
+  if (!neck_point(ts, yz, t + f, J, out.t_J, tan)) return out;
   // The fillet's corner C: where the body's tangent at J meets the skeg side y = t, kept no
   // higher than J and leaving the side kSkegBottomRoom of the depth; E: f further down the side.
   const double floor_z = zb + kSkegBottomRoom * (J.y() - zb);
@@ -844,13 +861,13 @@ SkegTail skeg_tail(const SectionSpec& s, const Eigen::VectorXd& ts, const Eigen:
   return out;
 }
 
-/// Control points (y, z) of a section with a skeg, fitted (least squares with a little bending,
+/// Control points (y, z) of a section with an appendage, fitted (least squares with a little bending,
 /// deck and keel points held) to the body's curve down to J and the skeg's tail after it. The
 /// body keeps its own parameters, scaled onto [0, t'] with t' = min(t_J, the body's share of the
 /// arc length): the tail gets at least its arc length's share of the control points, and as
 /// the skeg vanishes (J -> the keel) the section tends to the body's, parameters and all.
-Eigen::MatrixX2d skeg_control_points(const Layout& l, const Eigen::VectorXd& ts, const Eigen::MatrixXd& yz,
-                                     const SkegTail& tail) {
+Eigen::MatrixX2d appendage_control_points(const Layout& l, const Eigen::VectorXd& ts, const Eigen::MatrixXd& yz,
+                                     const AppendageTail& tail) {
   const int n = l.n;
   std::vector<double> arc(tail.pts.size(), 0.0);
   for (std::size_t i = 1; i < tail.pts.size(); ++i) arc[i] = arc[i - 1] + (tail.pts[i] - tail.pts[i - 1]).norm();
@@ -884,21 +901,53 @@ Eigen::MatrixX2d skeg_control_points(const Layout& l, const Eigen::VectorXd& ts,
   return P;
 }
 
-/// A section with a skeg: the body's section (holding the asked area), its tail replaced by the
-/// skeg and its fillet, which add their own area (the hull's volume is matched on the surface).
-SectionDesign design_with_skeg(const SectionSpec& spec) {
+/// The dome's tail of a section with a sonar dome (see SectionSpec::dome_bottom): from J, where
+/// the body last comes in to the neck's half-width, a hollow quadratic fillet to the point P of
+/// the dome's half ellipse (from the body's keel point down to the dome's bottom) at the neck's
+/// half-width, then the ellipse down to its bottom on the centre plane.
+AppendageTail dome_tail(const SectionSpec& s, const Eigen::VectorXd& ts, const Eigen::MatrixXd& yz) {
+  AppendageTail out;
+  V2 J, tan;
+  if (!neck_point(ts, yz, s.dome_neck, J, out.t_J, tan)) return out;
+  const double b = s.dome_half_breadth, h = 0.5 * (s.z_keel - s.dome_bottom), zc = s.dome_bottom + h;
+  auto at = [&](double phi) { return V2(b * std::sin(phi), zc + h * std::cos(phi)); };
+  const double phi1 = std::asin(std::clamp(s.dome_neck / b, 0.0, 1.0));
+  const V2 P = at(phi1), dir(b * std::cos(phi1), -h * std::sin(phi1));  // the ellipse, heading down and out
+  // The fillet's corner: where the body's tangent at J meets the ellipse's at P (their middle
+  // when the two lines do not meet ahead of both points).
+  const double den = tan.x() * dir.y() - tan.y() * dir.x();
+  const V2 d = P - J;
+  const double a = std::abs(den) > kGivenTiny ? (d.x() * dir.y() - d.y() * dir.x()) / den : -1.0;
+  const double c = std::abs(den) > kGivenTiny ? (d.x() * tan.y() - d.y() * tan.x()) / den : -1.0;
+  const V2 C = a > 0 && c > 0 ? V2(J + a * tan) : V2(0.5 * (J + P));
+  out.pts.push_back(J);
+  for (int k = 1; k <= kSkegFilletPoints; ++k) {
+    const double u = static_cast<double>(k) / kSkegFilletPoints;
+    out.pts.push_back((1 - u) * (1 - u) * J + 2 * u * (1 - u) * C + u * u * P);
+  }
+  for (int k = 1; k <= kDomePoints; ++k) out.pts.push_back(at(phi1 + (std::numbers::pi - phi1) * k / kDomePoints));
+  out.pts.back().x() = 0.0;
+  out.side_top = P.y();
+  return out;
+}
+
+/// A section with an appendage under its body (a skeg, a dome): the body's section (holding the
+/// asked area), its tail below J replaced by the appendage's, which adds its own area (the
+/// hull's volume is matched on the surface).
+SectionDesign design_with_appendage(const SectionSpec& spec) {
   SectionSpec body = spec;
-  body.skeg_bottom = kNaN;
+  body.skeg_bottom = body.dome_bottom = kNaN;
   const SectionDesign b = design_section(body);
   const Eigen::VectorXd ts = Eigen::VectorXd::LinSpaced(kSkegBodySamples, 0.0, 1.0);
   const Eigen::MatrixXd yz = b.curve.evaluate(ts).rightCols(2);
-  const SkegTail tail = skeg_tail(spec, ts, yz);
+  const bool skeg = !std::isnan(spec.skeg_bottom);
+  const AppendageTail tail = skeg ? skeg_tail(spec, ts, yz) : dome_tail(spec, ts, yz);
   if (tail.pts.empty()) return b;
   SectionSpec with = body;
-  with.z_keel = spec.skeg_bottom;
-  with.half_area = kNaN;  // the body holds the asked area; the skeg adds its own (an appendage)
+  with.z_keel = skeg ? spec.skeg_bottom : spec.dome_bottom;
+  with.half_area = kNaN;
   const Section S = setup(with);
-  const Eigen::MatrixX2d P = skeg_control_points(S.l, ts, yz, tail);
+  const Eigen::MatrixX2d P = appendage_control_points(S.l, ts, yz, tail);
   return finish_given(S, P, tail.side_top);
 }
 
@@ -918,7 +967,9 @@ std::pair<double, double> section_fullness_range(const SectionSpec& spec) {
 }
 
 SectionDesign design_section(const SectionSpec& spec) {
-  if (!std::isnan(spec.skeg_bottom) && spec.skeg_bottom < spec.z_keel) return design_with_skeg(spec);
+  if ((!std::isnan(spec.skeg_bottom) && spec.skeg_bottom < spec.z_keel) ||
+      (!std::isnan(spec.dome_bottom) && spec.dome_bottom < spec.z_keel))
+    return design_with_appendage(spec);
   const Section S = setup(spec);
   const int n = S.l.n;
   SectionDesign out{NurbsCurve(kDegree, S.l.U, Eigen::MatrixXd::Zero(n, 3))};

@@ -1,17 +1,18 @@
-"""A single screw: the designer's skeg under the run and the propeller aperture aft of it.
+"""Appendages of the hull body: a single screw's skeg under the run with the propeller aperture
+aft of it, and a sonar dome under the keel.
 
 Truths: the particulars asked for (volume, LCB, Cwp measured on the surface), the propeller's
 diameter and the clearances the designer promises (disc geometry, independent of the hull),
-and frames cut from the surface (fl.plane_cut)."""
+the dome's size from the particulars, and frames cut from the surface (fl.plane_cut)."""
 
 import numpy as np
 import pytest
 
 import fairlines as fl
 from conftest import edge_census
-from fairlines.designer import (HEEL_CLEARANCE, PROPELLER_DIAMETER, PROPELLER_HALF_WIDTH, SKEG_HALF_THICKNESS,
-                                TIP_CLEARANCE, propeller)
-from fairlines.description import SKEG_FORE_TAPER
+from fairlines.designer import (DOME_DEPTH, DOME_HALF_BREADTH, DOME_LENGTH, HEEL_CLEARANCE, PROPELLER_DIAMETER,
+                                PROPELLER_HALF_WIDTH, SKEG_HALF_THICKNESS, TIP_CLEARANCE, propeller)
+from fairlines.description import DOME_WIDEST, SKEG_FORE_TAPER
 from fairlines.fairness import judge_cut
 
 MATCH_TOL = 1e-5
@@ -109,4 +110,52 @@ def test_a_skeg_in_the_description_is_refused_off_the_hull():
     d = fl.design_hull(**SHIPS["tanker"]).to_dict()
     d["skeg"]["x_fore"] = 500.0
     with pytest.raises(fl.InvalidInput, match="skeg.x_aft / x_fore"):
+        fl.Hull.from_json(d)
+
+
+FRIGATE = dict(lpp=140.0, breadth=17.0, draft=5.5, depth=10.0, cb=0.50, lcb=67.2, sonar_dome=True)
+
+
+@pytest.fixture(scope="module")
+def frigate():
+    return fl.design_hull(**FRIGATE)
+
+
+def test_dome_ship_meets_its_particulars(frigate):
+    h = frigate.hydrostatics()
+    p = FRIGATE
+    assert h.volume == pytest.approx(p["cb"] * p["lpp"] * p["breadth"] * p["draft"], rel=MATCH_TOL)
+    assert abs(h.lcb - p["lcb"]) <= MATCH_TOL * p["lpp"]
+
+
+def test_the_dome_hangs_its_depth_below_the_keel_at_its_breadth(frigate):
+    """At its widest station the frame reaches DOME_DEPTH T below the baseline, is DOME_HALF_BREADTH
+    B wide there, and comes in to a neck above it (narrower at the baseline than the dome)."""
+    p, dm = FRIGATE, frigate.description.dome
+    assert dm.x_fore - dm.x_aft == pytest.approx(DOME_LENGTH * p["lpp"])
+    f = _frame(frigate, dm.x_aft + DOME_WIDEST * (dm.x_fore - dm.x_aft))
+    assert f[:, 2].min() == pytest.approx(-DOME_DEPTH * p["draft"], abs=1e-3 * p["draft"])
+    below = f[f[:, 2] < -0.05 * p["draft"]]
+    assert below[:, 1].max() == pytest.approx(DOME_HALF_BREADTH * p["breadth"], rel=0.03)
+    neck = f[np.abs(f[:, 2]) < 0.01 * p["draft"]]
+    assert neck[:, 1].min() < 0.8 * below[:, 1].max()
+
+
+def test_nothing_hangs_below_the_keel_outside_the_dome(frigate):
+    dm = frigate.description.dome
+    for x in (dm.x_aft - 3.0, dm.x_fore + 3.0, 0.5 * FRIGATE["lpp"]):
+        assert _frame(frigate, x)[:, 2].min() >= -1e-3 * FRIGATE["draft"], x
+
+
+def test_dome_ship_composes_watertight(frigate):
+    c = fl.compose([frigate.bare_hull_surface()], hull_u=96, hull_v=60)
+    assert edge_census(c.full_mesh().faces) == (0, 0, 0)
+
+
+def test_a_bad_dome_is_refused_naming_the_value(frigate):
+    with pytest.raises(fl.InvalidInput, match="sonar_dome is 'yes'"):
+        fl.design_hull(**{**FRIGATE, "sonar_dome": "yes"})
+    d = frigate.to_dict()
+    d["dome"]["depth"] = -1.0
+    with pytest.raises(fl.InvalidInput, match="dome.depth is -1.0 m; expected > 0"):
         fl.Hull.from_json(d)
