@@ -42,6 +42,9 @@ constexpr int kImprovePasses = 4;          ///< sweeps of that node optimisation
 constexpr double kImproveStep = 0.25;      ///< its first trial step / the node's mean edge length
 constexpr double kImproveMinStep = 0.04;   ///< and its last
 constexpr double kImproveShortest = 0.3;   ///< no trial shortens a node's edges below this x their mean
+constexpr double kCornerLimit = 45.0;      ///< the goal: quad corners within kCornerLimit of 0 and 180 deg are out
+constexpr double kCornerTrade = 0.5;       ///< improve_corners may lower a node's worst element to this
+                                           ///< (corners within 30-150 deg) for corners nearer 90 deg
 
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
@@ -629,6 +632,14 @@ void edge_lengths(const Work& w, const std::vector<int>& around, int i, double& 
   mean /= std::max(edges, 1);
 }
 
+/// |cos| of quad e's corner c (1 for a corner with a zero-length side): 0 for a right angle.
+double corner_cos(const Work& w, const std::array<int, 4>& e, int c) {
+  const Vec3& x = w.xyz[e[c]];
+  const Vec3 a = w.xyz[e[(c + 1) % 4]] - x, b = w.xyz[e[(c + 3) % 4]] - x;
+  const double l = a.norm() * b.norm();
+  return l > 0 ? std::abs(a.dot(b)) / l : 1.0;
+}
+
 /// The second objective of optimise_node: the squared excess of |cos| over sin kCornerSlack
 /// summed over the quad corners of the elements `around`, so a node whose worst element cannot
 /// rise still moves quad corners back toward 45-135 deg.
@@ -638,10 +649,7 @@ double corner_excess(const Work& w, const std::vector<int>& around) {
   for (int e : around) {
     if (w.el[e][3] < 0) continue;
     for (int c = 0; c < 4; ++c) {
-      const Vec3& x = w.xyz[w.el[e][c]];
-      const Vec3 a = w.xyz[w.el[e][(c + 1) % 4]] - x, b = w.xyz[w.el[e][(c + 3) % 4]] - x;
-      const double l = a.norm() * b.norm();
-      const double over = l > 0 ? std::max(0.0, std::abs(a.dot(b)) / l - slack) : 1.0;
+      const double over = std::max(0.0, corner_cos(w, w.el[e], c) - slack);
       sum += over * over;
     }
   }
@@ -655,8 +663,11 @@ double largest_sag(const Work& w, const std::vector<int>& around) {
   return d;
 }
 
-/// Compass search for node i (see improve_worst); true when it moved.
-bool optimise_node(Work& w, const std::vector<int>& around, int i) {
+/// Compass search for node i (see improve_worst); true when it moved. A trial is better when
+/// it raises the worst of the node's elements, or keeps it and lowers corner_excess; with
+/// `trade_above` (see improve_corners) the worst counts only up to that level, so above it a
+/// trial that lowers corner_excess wins even if it lowers the worst (never below the level).
+bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_above = 1e300) {
   auto worst = [&]() {
     double q = 1e9;
     for (int e : around) q = std::min(q, w.strict_quality(w.el[e], false));
@@ -693,8 +704,10 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i) {
       edge_lengths(w, around, i, mean_now, shortest_now);
       if (shortest_now < floor) continue;
       const double now = worst(), excess = corner_excess(w, around);
-      if (!(now > best + 1e-12 || (now >= best && excess < best_excess - 1e-9)) || largest_sag(w, around) > sag_limit)
-        continue;
+      const double capped = std::min(now, trade_above), best_capped = std::min(best, trade_above);
+      const bool better = capped > best_capped + 1e-12 ||
+                          (capped >= best_capped && (excess < best_excess - 1e-9 || (excess <= best_excess && now > best + 1e-12)));
+      if (!better || largest_sag(w, around) > sag_limit) continue;
       best = now, best_excess = excess, to = q;
     }
     place(to);
@@ -721,6 +734,34 @@ void improve_worst(Work& w) {
     int moved = 0;
     for (int i = w.fixed; i < n; ++i)
       if (poor[i] && !around[i].empty() && optimise_node(w, around[i], i)) ++moved;
+    if (!moved) break;
+  }
+}
+
+/// The corner pass, after the weak pairs are merged (their quads' corners at the 2:1 steps lie
+/// near 135-160 deg, and the search for the worst element stops once nothing about a node can
+/// rise): each free node of a quad with a corner outside kCornerLimit..180 - kCornerLimit deg
+/// moves by optimise_node with trade_above = kCornerTrade, so above that level its quads'
+/// corners move toward 90 deg even where a neighbour's score drops a little; no element about
+/// the node drops below the lower of kCornerTrade and the worst there before. Without the
+/// trade, a valence-3 node at a step (two fine quads and a merged one) cannot spread its
+/// corners to about 120 deg each: the fine quads' corners there get worse as it moves.
+void improve_corners(Work& w) {
+  const int n = static_cast<int>(w.xyz.size());
+  const std::vector<std::vector<int>> around = elements_at_nodes(w);
+  const double out = std::cos(kCornerLimit * kPi / 180.0);
+  for (int pass = 0; pass < kImprovePasses; ++pass) {
+    std::vector<char> poor(n, 0);
+    for (const auto& e : w.el) {
+      if (e[3] < 0) continue;
+      bool bad = false;
+      for (int c = 0; c < 4; ++c) bad = bad || corner_cos(w, e, c) > out;
+      if (bad)
+        for (int k = 0; k < 4; ++k) poor[e[k]] = 1;
+    }
+    int moved = 0;
+    for (int i = w.fixed; i < n; ++i)
+      if (poor[i] && !around[i].empty() && optimise_node(w, around[i], i, kCornerTrade)) ++moved;
     if (!moved) break;
   }
 }
@@ -1257,6 +1298,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   smooth(w, o.smoothing_passes);
   if (o.smoothing_passes > 0) improve_worst(w);
   merge_weak_pairs(w, weak);
+  if (o.smoothing_passes > 0) improve_corners(w);
   split_folded_quads(w);
   global.resize(w.xyz.size(), -1);
   return {std::move(w.xyz), std::move(w.uv), std::move(w.el), std::move(global)};
