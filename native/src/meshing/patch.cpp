@@ -576,15 +576,39 @@ std::vector<std::vector<int>> elements_at_nodes(const Work& w) {
   return around;
 }
 
+/// Nodes whose last visit by a pass moved nothing and about which nothing has moved since. A
+/// visit (smooth, optimise_node) is a function of the positions of the nodes of the elements
+/// about the node alone, so visiting such a node again would move nothing: the passes skip it.
+class Settled {
+ public:
+  Settled(const Work& w, const std::vector<std::vector<int>>& around) : w_(w), around_(around), flag_(w.xyz.size(), 0) {}
+  bool operator[](int i) const { return flag_[i] != 0; }
+  /// After a visit of node i: settled if it did not move, else its neighbours are no longer.
+  void visited(int i, bool moved) {
+    if (!moved) {
+      flag_[i] = 1;
+      return;
+    }
+    for (int e : around_[i])
+      for (int k = 0; k < (w_.el[e][3] < 0 ? 3 : 4); ++k) flag_[w_.el[e][k]] = 0;
+  }
+
+ private:
+  const Work& w_;
+  const std::vector<std::vector<int>>& around_;
+  std::vector<char> flag_;
+};
+
 /// Moves each free node toward the mean of its elements' centroids, back onto the face,
 /// when the worst of its elements does not get worse.
 void smooth(Work& w, int passes) {
   const int n = static_cast<int>(w.xyz.size());
   const std::vector<std::vector<int>> around = elements_at_nodes(w);
+  Settled settled(w, around);
   for (int pass = 0; pass < passes; ++pass) {
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
-      if (around[i].empty()) continue;
+      if (around[i].empty() || settled[i]) continue;
       double worst = 1e9;
       Vec3 target = Vec3::Zero();
       for (int e : around[i]) {
@@ -598,19 +622,23 @@ void smooth(Work& w, int passes) {
       const Vec2 old_uv = w.uv[i];
       const Vec3 old_p = w.xyz[i], old_n = w.normal[i];
       const Vec2 new_uv = w.g.locate(target, old_uv);
-      if ((new_uv - old_uv).norm() == 0.0) continue;
+      if ((new_uv - old_uv).norm() == 0.0) {
+        settled.visited(i, false);
+        continue;
+      }
       w.uv[i] = new_uv;
       w.xyz[i] = w.g.point(new_uv);
       w.normal[i] = w.surface_normal(new_uv);
       double now = 1e9;
       for (int e : around[i]) now = std::min(now, w.quality(w.el[e]));
-      if (now + 1e-12 < worst) {
+      const bool keep = !(now + 1e-12 < worst);
+      if (!keep) {
         w.uv[i] = old_uv;
         w.xyz[i] = old_p;
         w.normal[i] = old_n;
-      } else {
-        ++moved;
       }
+      moved += keep;
+      settled.visited(i, keep);
     }
     if (!moved) break;
   }
@@ -726,14 +754,19 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_
 void improve_worst(Work& w) {
   const int n = static_cast<int>(w.xyz.size());
   const std::vector<std::vector<int>> around = elements_at_nodes(w);
+  Settled settled(w, around);
   for (int pass = 0; pass < kImprovePasses; ++pass) {
     std::vector<char> poor(n, 0);
     for (const auto& e : w.el)
       if (w.strict_quality(e, false) < kImproveBelow)
         for (int k = 0; k < (e[3] < 0 ? 3 : 4); ++k) poor[e[k]] = 1;
     int moved = 0;
-    for (int i = w.fixed; i < n; ++i)
-      if (poor[i] && !around[i].empty() && optimise_node(w, around[i], i)) ++moved;
+    for (int i = w.fixed; i < n; ++i) {
+      if (!poor[i] || around[i].empty() || settled[i]) continue;
+      const bool m = optimise_node(w, around[i], i);
+      moved += m;
+      settled.visited(i, m);
+    }
     if (!moved) break;
   }
 }
@@ -750,6 +783,7 @@ void improve_corners(Work& w) {
   const int n = static_cast<int>(w.xyz.size());
   const std::vector<std::vector<int>> around = elements_at_nodes(w);
   const double out = std::cos(kCornerLimit * kPi / 180.0);
+  Settled settled(w, around);
   for (int pass = 0; pass < kImprovePasses; ++pass) {
     std::vector<char> poor(n, 0);
     for (const auto& e : w.el) {
@@ -760,8 +794,12 @@ void improve_corners(Work& w) {
         for (int k = 0; k < 4; ++k) poor[e[k]] = 1;
     }
     int moved = 0;
-    for (int i = w.fixed; i < n; ++i)
-      if (poor[i] && !around[i].empty() && optimise_node(w, around[i], i, kCornerTrade)) ++moved;
+    for (int i = w.fixed; i < n; ++i) {
+      if (!poor[i] || around[i].empty() || settled[i]) continue;
+      const bool m = optimise_node(w, around[i], i, kCornerTrade);
+      moved += m;
+      settled.visited(i, m);
+    }
     if (!moved) break;
   }
 }
