@@ -388,16 +388,24 @@ struct Work {
         q = std::min(q, -1.0);
     return q;
   }
-  /// The worse of quality() (spatial_quality() without `in_parameters`) and the scaled
-  /// Jacobian about the element's own normal (the census's measure: a quad's diagonal cross
-  /// product), so neither sees it folded.
-  double strict_quality(const std::array<int, 4>& e, bool in_parameters = true) const {
-    const double q = in_parameters ? quality(e) : spatial_quality(e);
-    if (e[3] < 0) return q;
+  /// The worse of spatial_quality() and, for a quad, the scaled Jacobian about its own normal
+  /// (its diagonal cross product, the census's measure), so neither sees it folded.
+  double strict_quality(const std::array<int, 4>& e) const {
+    if (e[3] < 0) return spatial_quality(e);
     Vec3 p[4];
     for (int i = 0; i < 4; ++i) p[i] = xyz[e[i]];
     const Vec3 n = (p[2] - p[0]).cross(p[3] - p[1]);
-    return n.norm() > 0 ? std::min(q, element_quality(p, 4, n.normalized())) : std::min(q, 0.0);
+    const double len = n.norm();
+    if (!(len > 0)) return std::min(spatial_quality(e), 0.0);
+    const Vec3 ns = element_normal(e), nd = n / len;
+    double q = 1e9;  // both normals' corner terms from one cross product per corner
+    for (int i = 0; i < 4; ++i) {
+      const Vec3 e1 = p[(i + 1) % 4] - p[i], e2 = p[(i + 3) % 4] - p[i];
+      const double l = e1.norm() * e2.norm();
+      const Vec3 c = e1.cross(e2);
+      q = std::min(q, l > 0 ? std::min(c.dot(ns) / l, c.dot(nd) / l) : 0.0);
+    }
+    return q;
   }
   /// Normal distance of an element's centroid from the surface point at its mean (u, v).
   double chordal(const std::array<int, 4>& e) const {
@@ -698,7 +706,7 @@ double largest_sag(const Work& w, const std::vector<int>& around) {
 bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_above = 1e300) {
   auto worst = [&]() {
     double q = 1e9;
-    for (int e : around) q = std::min(q, w.strict_quality(w.el[e], false));
+    for (int e : around) q = std::min(q, w.strict_quality(w.el[e]));
     return q;
   };
   auto place = [&](const Vec2& q) {
@@ -731,10 +739,12 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_
       place(q);
       edge_lengths(w, around, i, mean_now, shortest_now);
       if (shortest_now < floor) continue;
-      const double now = worst(), excess = corner_excess(w, around);
+      const double now = worst();
       const double capped = std::min(now, trade_above), best_capped = std::min(best, trade_above);
+      if (capped < best_capped) continue;  // worse whatever the corners
+      const double excess = corner_excess(w, around);
       const bool better = capped > best_capped + 1e-12 ||
-                          (capped >= best_capped && (excess < best_excess - 1e-9 || (excess <= best_excess && now > best + 1e-12)));
+                          excess < best_excess - 1e-9 || (excess <= best_excess && now > best + 1e-12);
       if (!better || largest_sag(w, around) > sag_limit) continue;
       best = now, best_excess = excess, to = q;
     }
@@ -758,7 +768,7 @@ void improve_worst(Work& w) {
   for (int pass = 0; pass < kImprovePasses; ++pass) {
     std::vector<char> poor(n, 0);
     for (const auto& e : w.el)
-      if (w.strict_quality(e, false) < kImproveBelow)
+      if (w.strict_quality(e) < kImproveBelow)
         for (int k = 0; k < (e[3] < 0 ? 3 : 4); ++k) poor[e[k]] = 1;
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
@@ -871,7 +881,7 @@ std::vector<std::array<int, 3>> merged_triangles(const Work& w, const std::vecto
 void split_folded_quads(Work& w) {
   std::vector<std::array<int, 4>> out;
   for (const auto& e : w.el) {
-    if (e[3] < 0 || w.strict_quality(e, false) > 0) {
+    if (e[3] < 0 || w.strict_quality(e) > 0) {
       out.push_back(e);
       continue;
     }
@@ -921,7 +931,7 @@ void merge_weak_pairs(Work& w, const std::vector<WeakPair>& pairs) {
     auto worst = [&] {
       double q = 1e9;
       for (int e : touched)
-        if (w.el[e][0] != -2) q = std::min(q, w.strict_quality(w.el[e], false));
+        if (w.el[e][0] != -2) q = std::min(q, w.strict_quality(w.el[e]));
       return q;
     };
     const double before = worst();
@@ -937,7 +947,7 @@ void merge_weak_pairs(Work& w, const std::vector<WeakPair>& pairs) {
       return corner_quality(w, p.quad, std::get<0>(a)) < corner_quality(w, p.quad, std::get<0>(b));
     });
     auto good = [&] {
-      return w.strict_quality(p.quad, false) >= w.o.min_quad_quality && worst() >= std::min(before, w.o.min_quad_quality);
+      return w.strict_quality(p.quad) >= w.o.min_quad_quality && worst() >= std::min(before, w.o.min_quad_quality);
     };
     bool merged = false;
     for (int sweep = 0; sweep < 2 && !merged; ++sweep)
