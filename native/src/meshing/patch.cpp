@@ -42,6 +42,8 @@ constexpr int kImprovePasses = 4;          ///< sweeps of that node optimisation
 constexpr double kImproveStep = 0.25;      ///< its first trial step / the node's mean edge length
 constexpr double kImproveMinStep = 0.04;   ///< and its last
 constexpr double kImproveShortest = 0.3;   ///< no trial shortens a node's edges below this x their mean
+constexpr double kTrialMiss = 0.1;         ///< a node-search trial this x its step from its tangent-plane
+                                           ///< target is projected onto the face by Newton
 constexpr double kCornerLimit = 45.0;      ///< the goal: quad corners within kCornerLimit of 0 and 180 deg are out
 constexpr double kCornerTrade = 0.5;       ///< improve_corners may lower a node's worst element to this
                                            ///< (corners within 30-150 deg) for corners nearer 90 deg
@@ -357,6 +359,10 @@ struct Work {
   Vec3 surface_normal(const Vec2& q) const {
     Vec3 p, su, sv;
     g.first(q, p, su, sv);
+    return unit_normal(su, sv);
+  }
+  /// S_u x S_v normalised, zero where the surface is singular.
+  static Vec3 unit_normal(const Vec3& su, const Vec3& sv) {
     const Vec3 n = su.cross(sv);
     const double len = n.norm();
     return len > 1e-300 ? Vec3(n / len) : Vec3::Zero();
@@ -709,10 +715,14 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_
     for (int e : around) q = std::min(q, w.strict_quality(w.el[e]));
     return q;
   };
-  auto place = [&](const Vec2& q) {
-    w.uv[i] = q;
-    w.xyz[i] = w.g.point(q);
-    w.normal[i] = w.surface_normal(q);
+  struct Place {  // a position of node i with the partials there
+    Vec2 uv;
+    Vec3 p, su, sv;
+  };
+  auto put = [&](const Place& x) {
+    w.uv[i] = x.uv;
+    w.xyz[i] = x.p;
+    w.normal[i] = Work::unit_normal(x.su, x.sv);
   };
   constexpr int kMaxSteps = 40;  // trial rounds
   double len, shortest, mean_now, shortest_now;
@@ -722,21 +732,34 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_
   // no move takes an element further from the surface than the tolerance (or than it was)
   const double sag_limit = std::max(largest_sag(w, around), w.o.chordal_tolerance);
   double best = worst(), best_excess = corner_excess(w, around), step = kImproveStep * len;
+  Place at{w.uv[i], w.xyz[i]};
+  w.g.first(at.uv, at.p, at.su, at.sv);
+  at.p = w.xyz[i];
+  const Vec3 start_normal = w.normal[i];
   bool moved = false;
   for (int round = 0; round < kMaxSteps && step >= kImproveMinStep * len; ++round) {
-    Vec3 p, su, sv;
-    w.g.first(w.uv[i], p, su, sv);
-    const Vec3 nn = su.cross(sv);
-    if (nn.norm() <= 0 || su.norm() <= 0) break;
-    const Vec3 t1 = su.normalized(), t2 = nn.normalized().cross(t1);
-    const Vec2 from = w.uv[i];
-    const Vec3 x0 = w.xyz[i];
-    Vec2 to = from;
+    const Vec3 nn = at.su.cross(at.sv);
+    if (nn.norm() <= 0 || at.su.norm() <= 0) break;
+    const Vec3 t1 = at.su.normalized(), t2 = nn.normalized().cross(t1);
+    // parameter steps along t1 and t2: the first Gauss-Newton step of FaceGeometry::locate,
+    // so every trial lies on the face and costs one evaluation
+    Eigen::Matrix2d A;
+    A << at.su.dot(at.su), at.su.dot(at.sv), at.su.dot(at.sv), at.sv.dot(at.sv);
+    const auto lu = A.ldlt();
+    const Vec2 d1 = lu.solve(Vec2(at.su.dot(t1), at.sv.dot(t1))), d2 = lu.solve(Vec2(at.su.dot(t2), at.sv.dot(t2)));
+    if (!d1.allFinite() || !d2.allFinite()) break;
+    Place to = at;
     for (int k = 0; k < 8; ++k) {
       const double a = k * kPi / 4;
-      const Vec2 q = w.g.locate(x0 + step * (std::cos(a) * t1 + std::sin(a) * t2), from);
-      if ((q - from).norm() == 0.0) continue;
-      place(q);
+      const Vec3 target = at.p + step * (std::cos(a) * t1 + std::sin(a) * t2);
+      Place x{w.g.clamp(at.uv + step * (std::cos(a) * d1 + std::sin(a) * d2))};
+      w.g.first(x.uv, x.p, x.su, x.sv);
+      if ((x.p - target).norm() > kTrialMiss * step) {  // the linear step is off: project
+        x.uv = w.g.locate(target, at.uv);
+        w.g.first(x.uv, x.p, x.su, x.sv);
+      }
+      if ((x.uv - at.uv).norm() == 0.0) continue;
+      put(x);
       edge_lengths(w, around, i, mean_now, shortest_now);
       if (shortest_now < floor) continue;
       const double now = worst();
@@ -746,11 +769,16 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_
       const bool better = capped > best_capped + 1e-12 ||
                           excess < best_excess - 1e-9 || (excess <= best_excess && now > best + 1e-12);
       if (!better || largest_sag(w, around) > sag_limit) continue;
-      best = now, best_excess = excess, to = q;
+      best = now, best_excess = excess, to = x;
     }
-    place(to);
-    if ((to - from).norm() > 0) moved = true;
-    else step *= 0.5;
+    if ((to.uv - at.uv).norm() > 0) {
+      moved = true;
+      at = to;
+    } else {
+      step *= 0.5;
+    }
+    put(at);
+    if (!moved) w.normal[i] = start_normal;  // bit for bit where it was
   }
   return moved;
 }
