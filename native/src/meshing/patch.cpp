@@ -747,9 +747,15 @@ double largest_sag(const Work& w, const std::vector<int>& around) {
 /// `trade_above` (see improve_corners) the worst counts only up to that level, so above it a
 /// trial that lowers corner_excess wins even if it lowers the worst (never below the level).
 bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_above = 1e300) {
-  auto worst = [&]() {
+  // the elements worst first: a trial is mostly rejected by the one that was worst, and the
+  // count stops at the first element below `limit` (the trial is rejected whatever the rest)
+  std::vector<std::pair<double, int>> order;
+  for (int e : around) order.push_back({w.strict_quality(w.el[e]), e});
+  std::sort(order.begin(), order.end());
+  auto worst = [&](double limit) {
     double q = 1e9;
-    for (int e : around) q = std::min(q, w.strict_quality(w.el[e]));
+    for (const auto& [q0, e] : order)
+      if ((q = std::min(q, w.strict_quality(w.el[e]))) < limit) break;
     return q;
   };
   constexpr int kMaxSteps = 40;  // trial rounds
@@ -759,7 +765,7 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_
   const double floor = std::min(kImproveShortest * len, shortest);
   // no move takes an element further from the surface than the tolerance (or than it was)
   const double sag_limit = std::max(largest_sag(w, around), w.o.chordal_tolerance);
-  double best = worst(), best_excess = corner_excess(w, around), step = kImproveStep * len;
+  double best = order.empty() ? 1e9 : order.front().first, best_excess = corner_excess(w, around), step = kImproveStep * len;
   Place at = w.place_at(w.uv[i]);
   at.p = w.xyz[i];  // as stored (a loop node's may differ by round-off)
   const Vec3 start_normal = w.normal[i];
@@ -774,11 +780,11 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_
       const Place x = w.toward(at, at.p + step * (std::cos(a) * t1 + std::sin(a) * t2));
       if ((x.uv - at.uv).norm() == 0.0) continue;
       w.put(i, x);
+      const double best_capped = std::min(best, trade_above), now = worst(best_capped);
+      const double capped = std::min(now, trade_above);
+      if (capped < best_capped) continue;  // worse whatever the corners
       edge_lengths(w, around, i, mean_now, shortest_now);
       if (shortest_now < floor) continue;
-      const double now = worst();
-      const double capped = std::min(now, trade_above), best_capped = std::min(best, trade_above);
-      if (capped < best_capped) continue;  // worse whatever the corners
       const double excess = corner_excess(w, around);
       const bool better = capped > best_capped + 1e-12 ||
                           excess < best_excess - 1e-9 || (excess <= best_excess && now > best + 1e-12);
