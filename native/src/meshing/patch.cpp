@@ -667,13 +667,12 @@ void smooth(Work& w, int passes) {
         target += c / k;
       }
       target /= static_cast<double>(around[i].size());
-      Place old = w.place_at(w.uv[i]);
-      old.p = w.xyz[i];
-      const Vec3 old_n = w.normal[i];
+      const Vec2 old_uv = w.uv[i];
+      const Vec3 old_p = w.xyz[i], old_n = w.normal[i];
       // Newton to the foot point: a linear step here (Work::toward) saved 5 % but left a folded
       // quad in the all-quad wetted mesh at 3 m, at the blend's clamped stem end
-      const Place x = w.place_at(w.g.locate(target, old.uv));
-      if ((x.uv - old.uv).norm() == 0.0) {
+      const Place x = w.place_at(w.g.locate(target, old_uv));
+      if ((x.uv - old_uv).norm() == 0.0) {
         settled.visited(i, false);
         continue;
       }
@@ -685,8 +684,7 @@ void smooth(Work& w, int passes) {
       if (keep) {
         for (size_t k = 0; k < around[i].size(); ++k) q[around[i][k]] = now_q[k];
       } else {
-        w.put(i, old);
-        w.normal[i] = old_n;
+        w.uv[i] = old_uv, w.xyz[i] = old_p, w.normal[i] = old_n;
       }
       moved += keep;
       settled.visited(i, keep);
