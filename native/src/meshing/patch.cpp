@@ -1009,6 +1009,44 @@ void merge_weak_pairs(Work& w, const std::vector<WeakPair>& pairs) {
   w.el.erase(std::remove(w.el.begin(), w.el.end(), kDead), w.el.end());
 }
 
+/// min(h, hb_i + kGrading |p - x_i|) over the loop nodes x_i (hb_i > 0: the node's longer
+/// side), the size graded from the boundary. The nodes are bucketed in cubes of `reach`: with
+/// h <= kGrading x reach (the largest size), a node farther than that cannot lower h, so only
+/// the 27 cubes about p are searched (the same minimum as over all nodes).
+class GradedSize {
+ public:
+  GradedSize(const std::vector<Vec3>& x, const std::vector<double>& hb, double reach)
+      : x_(x), hb_(hb), reach_(reach) {
+    for (size_t i = 0; i < hb.size(); ++i)
+      if (hb[i] > 0) cells_[key(cell(x[i]))].push_back(static_cast<int>(i));
+  }
+  double operator()(const Vec3& p, double h) const {
+    const std::array<long long, 3> c = cell(p);
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
+          if (it == cells_.end()) continue;
+          for (int i : it->second) h = std::min(h, hb_[i] + kGrading * (p - x_[i]).norm());
+        }
+    return h;
+  }
+
+ private:
+  std::array<long long, 3> cell(const Vec3& p) const {
+    return {static_cast<long long>(std::floor(p.x() / reach_)), static_cast<long long>(std::floor(p.y() / reach_)),
+            static_cast<long long>(std::floor(p.z() / reach_))};
+  }
+  // a hash of the cell: two cells that share one share the bucket, which only adds nodes
+  static long long key(const std::array<long long, 3>& c) {
+    return (c[0] * 73856093LL) ^ (c[1] * 19349663LL) ^ (c[2] * 83492791LL);
+  }
+  const std::vector<Vec3>& x_;
+  const std::vector<double>& hb_;
+  double reach_;
+  std::unordered_map<long long, std::vector<int>> cells_;
+};
+
 /// Each quad into four and each triangle into three quads (edge midpoints and centre).
 /// `canon`: canonical local id of each node (pole copies merged).
 void split_all_quad(Work& w, const std::vector<int>& canon, int loop_size, const LoopMidpoint& midpoint,
@@ -1241,11 +1279,9 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   std::vector<double> hb(nb);
   for (int i = 0; i < nb; ++i)
     hb[i] = std::max((w.xyz[(i + 1) % nb] - w.xyz[i]).norm(), (w.xyz[(i + nb - 1) % nb] - w.xyz[i]).norm());
+  const GradedSize graded(w.xyz, hb, size_scale * o.size / kGrading);
   auto size_at = [&](const Vec2& q, const Vec3& p) {
-    double h = size_scale * target_size(g, q, o);
-    for (int i = 0; i < nb; ++i)
-      if (hb[i] > 0) h = std::min(h, hb[i] + kGrading * (p - w.xyz[i]).norm());
-    return std::max(h, size_scale * o.min_size);
+    return std::max(graded(p, size_scale * target_size(g, q, o)), size_scale * o.min_size);
   };
   const Subdivision sub(g, o, ru, rv, size_scale, size_at);
   // boundary segments bucketed in scaled (u, v) for the clearance test
