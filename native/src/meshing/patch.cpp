@@ -438,11 +438,11 @@ struct Work {
   /// lands more than kTrialMiss x the distance from the target (the clamped or ruled ends of a
   /// blend) Newton to convergence.
   Place toward(const Place& from, const Vec3& target) const {
-    Eigen::Matrix2d A;
-    A << from.su.dot(from.su), from.su.dot(from.sv), from.su.dot(from.sv), from.sv.dot(from.sv);
+    const double E = from.su.dot(from.su), F = from.su.dot(from.sv), G = from.sv.dot(from.sv), det = E * G - F * F;
     const Vec3 r = target - from.p;
-    const Vec2 d = A.ldlt().solve(Vec2(from.su.dot(r), from.sv.dot(r)));
-    if (d.allFinite()) {
+    const double a = from.su.dot(r), b = from.sv.dot(r);
+    const Vec2 d((G * a - F * b) / det, (E * b - F * a) / det);  // the 2 x 2 normal equations
+    if (det > 0 && d.allFinite()) {
       const Place x = place_at(g.clamp(from.uv + d));
       if ((x.p - target).norm() <= kTrialMiss * r.norm()) return x;
     }
@@ -757,6 +757,11 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_
     return q;
   };
   constexpr int kMaxSteps = 40;  // trial rounds
+  static const std::array<std::array<double, 2>, 8> kCompass = [] {  // (cos, sin) of k x 45 deg
+    std::array<std::array<double, 2>, 8> c;
+    for (int k = 0; k < 8; ++k) c[k] = {std::cos(k * kPi / 4), std::sin(k * kPi / 4)};
+    return c;
+  }();
   double len, shortest, mean_now, shortest_now;
   edge_lengths(w, around, i, len, shortest);
   // the scaled Jacobian does not see size: a search for it alone can collapse an edge
@@ -774,8 +779,7 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_
     const Vec3 t1 = at.su.normalized(), t2 = nn.normalized().cross(t1);
     Place to = at;
     for (int k = 0; k < 8; ++k) {
-      const double a = k * kPi / 4;
-      const Place x = w.toward(at, at.p + step * (std::cos(a) * t1 + std::sin(a) * t2));
+      const Place x = w.toward(at, at.p + step * (kCompass[k][0] * t1 + kCompass[k][1] * t2));
       if ((x.uv - at.uv).norm() == 0.0) continue;
       w.put(i, x);
       const double best_capped = std::min(best, trade_above), now = worst(best_capped);
