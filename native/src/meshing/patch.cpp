@@ -472,8 +472,8 @@ struct Work {
 class BlossomSearch {
  public:
   BlossomSearch(const std::vector<std::vector<int>>& adj, std::vector<int>& mate)
-      : adj_(adj), mate_(mate), parent_(adj.size(), -1), base_(adj.size()), in_tree_(adj.size(), 0),
-        mark_(adj.size(), 0), seen_(adj.size(), 0) {
+      : adj_(adj), mate_(mate), parent_(adj.size(), -1), base_(adj.size()), order_(adj.size(), 0),
+        in_tree_(adj.size(), 0), mark_(adj.size(), 0), seen_(adj.size(), 0), members_(adj.size()) {
     for (size_t i = 0; i < adj.size(); ++i) base_[i] = static_cast<int>(i);
   }
 
@@ -488,7 +488,11 @@ class BlossomSearch {
 
  private:
   void touch(int v) {
-    if (!in_tree_[v] && parent_[v] < 0 && base_[v] == v) touched_.push_back(v);
+    if (!in_tree_[v] && parent_[v] < 0 && base_[v] == v) {
+      order_[v] = static_cast<int>(touched_.size());
+      touched_.push_back(v);
+      members_[v].assign(1, v);
+    }
   }
   int lca(int a, int b) {  // the base of the blossom an edge a-b between two even vertices closes
     ++stamp_;
@@ -507,6 +511,8 @@ class BlossomSearch {
   void mark_path(int v, int b, int child) {
     while (base_[v] != b) {
       mark_[base_[v]] = mark_[base_[mate_[v]]] = stamp_;
+      marked_.push_back(base_[v]);
+      marked_.push_back(base_[mate_[v]]);
       parent_[v] = child;
       child = mate_[v];
       v = parent_[mate_[v]];
@@ -523,14 +529,10 @@ class BlossomSearch {
         if (to == root || (mate_[to] >= 0 && parent_[mate_[to]] >= 0)) {  // an odd cycle: contract it
           const int b = lca(v, to);
           ++stamp_;
+          marked_.clear();
           mark_path(v, b, to);
           mark_path(to, b, v);
-          for (size_t k = 0; k < touched_.size(); ++k) {
-            const int i = touched_[k];
-            if (mark_[base_[i]] != stamp_) continue;
-            base_[i] = b;
-            if (!in_tree_[i]) in_tree_[i] = 1, queue.push_back(i);
-          }
+          contract(b, queue);
         } else if (parent_[to] < 0) {
           touch(to);
           parent_[to] = v;
@@ -546,6 +548,27 @@ class BlossomSearch {
     }
     return false;
   }
+  /// Every vertex whose base mark_path marked now has base b; those not yet in the tree join
+  /// the queue, in the order they were touched (the order of a scan of all touched vertices,
+  /// which cost O(touched) per blossom; the bases' member lists cost O(blossom)).
+  void contract(int b, std::vector<int>& queue) {
+    inside_.clear();
+    bool b_marked = false;
+    for (int m : marked_) {
+      if (mark_[m] != stamp_) continue;  // listed twice
+      mark_[m] = 0;
+      b_marked = b_marked || m == b;
+      inside_.insert(inside_.end(), members_[m].begin(), members_[m].end());
+      if (m != b) members_[m].clear();
+    }
+    std::sort(inside_.begin(), inside_.end(), [&](int x, int y) { return order_[x] < order_[y]; });
+    for (int i : inside_) {
+      base_[i] = b;
+      if (!in_tree_[i]) in_tree_[i] = 1, queue.push_back(i);
+    }
+    if (b_marked) return;  // its members were listed with the rest
+    members_[b].insert(members_[b].end(), inside_.begin(), inside_.end());
+  }
   void flip(int v) {  // the path root .. v alternates: swap its matched and unmatched edges
     while (v >= 0) {
       const int pv = parent_[v], next = mate_[pv];
@@ -557,9 +580,10 @@ class BlossomSearch {
 
   const std::vector<std::vector<int>>& adj_;
   std::vector<int>& mate_;
-  std::vector<int> parent_, base_, touched_;
+  std::vector<int> parent_, base_, order_, touched_;  // order_: index in touched_
   std::vector<char> in_tree_;
-  std::vector<int> mark_, seen_;
+  std::vector<int> mark_, seen_, marked_, inside_;
+  std::vector<std::vector<int>> members_;  // the touched vertices with this base
   int stamp_ = 0;
 };
 
