@@ -86,7 +86,9 @@ struct Cell {
 
 class Subdivision {
  public:
-  using SizeAt = std::function<double(const Vec2&, const Vec3&)>;
+  /// The target size at (u, v) and its point; any value below `below` where the size is
+  /// below it (the split test needs no more, and a bound is cheaper than the curvature).
+  using SizeAt = std::function<double(const Vec2&, const Vec3&, double below)>;
   Subdivision(const FaceGeometry& g, const MeshOptions& o, std::vector<double> ru, std::vector<double> rv,
               double size_scale, SizeAt size_at)
       : g_(g), o_(o), ru_(std::move(ru)), rv_(std::move(rv)), scale_(size_scale), size_at_(std::move(size_at)) {
@@ -151,15 +153,15 @@ class Subdivision {
       Lu = std::max(Lu, (P[1][k] - P[0][k]).norm() + (P[2][k] - P[1][k]).norm());
       Lv = std::max(Lv, (P[k][1] - P[k][0]).norm() + (P[k][2] - P[k][1]).norm());
     }
-    const double h = size_at_({us[1], vs[1]}, P[1][1]);
     // chordal deviation: the normal distance of the middle from the corners' bilinear middle
     // (a parametrisation whose speed jumps moves the middle along the surface, not off it)
     Vec3 n = (P[2][1] - P[0][1]).cross(P[1][2] - P[1][0]);
     const double nn = n.norm();
     const Vec3 off = P[1][1] - 0.25 * (P[0][0] + P[2][0] + P[0][2] + P[2][2]);
     const double dev = nn > 0 ? std::abs(off.dot(n / nn)) : off.norm();
-    const bool too_big = std::max(Lu, Lv) > h;
     const bool too_curved = dev > o_.chordal_tolerance && std::max(Lu, Lv) > scale_ * o_.min_size;
+    // the size (its curvature term is the costly part) only where the deviation does not decide
+    const bool too_big = !too_curved && std::max(Lu, Lv) > size_at_({us[1], vs[1]}, P[1][1], std::max(Lu, Lv));
     if (!too_big && !too_curved) return -1;
     if (Lu >= Lv) return can_u ? 0 : 1;
     return can_v ? 1 : 0;
@@ -1311,7 +1313,10 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   for (int i = 0; i < nb; ++i)
     hb[i] = std::max((w.xyz[(i + 1) % nb] - w.xyz[i]).norm(), (w.xyz[(i + nb - 1) % nb] - w.xyz[i]).norm());
   const GradedSize graded(w.xyz, hb, size_scale * o.size / kGrading);
-  auto size_at = [&](const Vec2& q, const Vec3& p) {
+  auto size_at = [&](const Vec2& q, const Vec3& p, double below) {
+    // the size without the curvature bounds it: where that is below `below`, so is the size
+    const double bound = std::max(graded(p, size_scale * o.size), size_scale * o.min_size);
+    if (bound < below) return bound;
     return std::max(graded(p, size_scale * target_size(g, q, o)), size_scale * o.min_size);
   };
   const Subdivision sub(g, o, ru, rv, size_scale, size_at);
@@ -1351,7 +1356,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
     if (!point_in_polygon(q, poly)) continue;
     Vec3 p, su, sv;
     g.first(q, p, su, sv);
-    const double h = size_at(q, p);
+    const double h = size_at(q, p, 0.0);
     const double clear = kClearance * h;
     // search radius in scaled coordinates: the slowest direction bounds the reach
     const double slow = std::max(1e-300, std::min(su.norm() / speed_u(q), sv.norm() / speed_v(q)));
