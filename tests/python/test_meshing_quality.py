@@ -85,8 +85,20 @@ def test_all_quad_split_keeps_the_chordal_tolerance():
     assert len(centroids) > 1000 and max(dev) <= tol
 
 
+def corner_share(mesh):
+    """Share of the mesh's quad corners within CORNER_LIMITS, by numpy."""
+    angles = quad_corner_angles(mesh.vertices, mesh.faces)
+    return np.mean((angles >= CORNER_LIMITS[0]) & (angles <= CORNER_LIMITS[1]))
+
+
 def test_all_quad_corners_lie_within_45_135_degrees(all_quad_ship):
-    assert all_quad_ship.quality()["corners_in_45_135"] >= CORNER_SHARE
+    assert corner_share(all_quad_ship) >= CORNER_SHARE
+
+
+def test_all_quad_open_wetted_corners_lie_within_45_135_degrees(ship):
+    """The lowest share of the all-quad cases before the corner pass ran on the split (97.8 %)."""
+    m = fl.mesh_hull(ship, size=SHIP_SIZE, draft=EXAMPLE_DRAFT, lids=False, all_quad=True)
+    assert corner_share(m) >= CORNER_SHARE
 
 
 @pytest.mark.parametrize("all_quad", [False, True])
@@ -130,9 +142,8 @@ def test_default_mesh_corners_lie_within_45_135_degrees(default_meshes, size):
     """The merged pairs across the 2:1 steps of the subdivision (a straight corner at the step's
     middle node) open their corners toward 90 deg; angles by numpy."""
     m = default_meshes[size]
-    angles = quad_corner_angles(m.vertices, m.faces)
-    assert len(angles) > 4 * 8000
-    assert np.mean((angles >= CORNER_LIMITS[0]) & (angles <= CORNER_LIMITS[1])) >= CORNER_SHARE
+    assert np.sum(m.faces[:, 3] >= 0) > 8000
+    assert corner_share(m) >= CORNER_SHARE
 
 
 def test_composed_ship_quad_dominant_mesh_has_no_inverted_element(ship):

@@ -1457,7 +1457,10 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
       r.el.push_back(e);
     }
     smooth(r, o.smoothing_passes);
-    if (o.smoothing_passes > 0) improve_worst(r);
+    if (o.smoothing_passes > 0) {
+      improve_worst(r);
+      improve_corners(r);  // the split's corners lie near 60, 90 and 120 deg, some beyond 45-135
+    }
     split_folded_quads(r);  // the last resort: none on the composed ship at 3 and 1.5 m
     return {std::move(r.xyz), std::move(r.uv), std::move(r.el), std::move(g2)};
   }
