@@ -3,7 +3,9 @@ against gmsh (PyPI, one thread) on the same NURBS surfaces and element size in t
 
 Printed per case, both sides measured by the same census (fl.mesh_quality): quad fraction,
 inverted elements, min / mean scaled Jacobian, corners within 45-135 deg, max chordal deviation
-(element centroids to the surface), median time and our time / gmsh's. Then the whole composed
+(element centroids to the surface), median wall and CPU time (process time: on a shared machine
+the CPU time of one single-threaded mesher is the steadier figure) and our time / gmsh's, the runs
+of both interleaved so that they share the load. Then the whole composed
 ship (bare hull + bulb + blend, transom; no gmsh peer: it would need our B-rep) whole and cut at
 the draft, and the structured-grid generation times. Goals: quad fraction >= 98 %, 0 inverted,
 min / mean scaled Jacobian >= gmsh's, >= 99 % corners in 45-135 deg, time <= gmsh / 3."""
@@ -25,7 +27,8 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
 def gmsh_mesh(surface, size):
-    """gmsh's Blossom-recombined quad mesh of the same B-spline surface: (vertices, faces), seconds."""
+    """gmsh's Blossom-recombined quad mesh of the same B-spline surface: (vertices, faces), (wall, CPU)
+    seconds of its mesh generation."""
     import gmsh
     gmsh.initialize(["-nt", "1"])
     try:
@@ -51,9 +54,9 @@ def gmsh_mesh(surface, size):
         # default Frontal-Delaunay: "Frontal-Delaunay for quads" (8) ignores MeshSizeMax once recombined
         gmsh.option.setNumber("Mesh.RecombinationAlgorithm", 1)  # Blossom
         gmsh.option.setNumber("Mesh.RecombineAll", 1)
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         gmsh.model.mesh.generate(2)
-        dt = time.perf_counter() - t0
+        dt = (time.perf_counter() - t0, time.process_time() - c0)
         tags, xyz, _ = gmsh.model.mesh.getNodes()
         index = {int(t): k for k, t in enumerate(tags)}
         V = np.asarray(xyz).reshape(-1, 3)
@@ -73,32 +76,46 @@ def chordal(surface, V, F, samples=400):
     return max(np.linalg.norm(surface.closest_point(p)[2] - p) for p in c)
 
 
-def census(name, surface, V, F, dt, extra=""):
+def timed(fn):
+    """(wall, CPU) seconds of one call of fn()."""
+    t0, c0 = time.perf_counter(), time.process_time()
+    fn()
+    return time.perf_counter() - t0, time.process_time() - c0
+
+
+def medians(samples):
+    """(median wall, median CPU) of (wall, CPU) samples."""
+    return tuple(float(np.median([x[k] for x in samples])) for k in (0, 1))
+
+
+def census(name, surface, V, F, t, extra=""):
     q = fl.mesh_quality(fl.SurfaceMesh(V, F, np.zeros(len(F), int), ("s",)))
     print(f"  {name:<10s} elements {len(F):6d}  quads {q['quad_fraction']:7.2%}  inverted {q['inverted']}  "
           f"SJ min {q['min_scaled_jacobian']:.3f} mean {q['mean_scaled_jacobian']:.3f}  "
           f"45-135 {q['corners_in_45_135']:7.2%}  chordal {chordal(surface, V, F) * 1e3:6.1f} mm  "
-          f"time {dt * 1e3:8.1f} ms {extra}")
+          f"time {t[0] * 1e3:7.1f} ms (CPU {t[1] * 1e3:7.1f}) {extra}")
     return q
 
 
-# main at 211788a (before the blossom matching, the merged 2:1 pairs and the corner-aware node
-# optimisation), the conic-bilge container ship, measured on this machine by the same census
-# (README of that commit): (elements, quad fraction, inverted, SJ min, SJ mean, corners in 45-135)
+# main at a43fade (before the corner pass and the mesher's speed-ups of branch mesh3), the
+# conic-bilge container ship, measured on this machine by this bench (load 1.4-1.9):
+# (elements, quad fraction, inverted, SJ min, SJ mean, corners in 45-135), wall ms
 BEFORE = {
-    ("whole, closed", 3.0, False): (8966, 0.895, 0, 0.221, 0.89, 0.968),
-    ("whole, closed", 1.5, False): (19520, 0.927, 0, 0.224, 0.92, 0.969),
-    ("wetted, closed", 3.0, False): (7593, 0.879, 0, 0.221, 0.88, 0.954),
-    ("wetted, closed", 1.5, False): (16113, 0.911, 0, 0.224, 0.91, 0.977),
-    ("wetted, open (BEM)", 3.0, False): (6516, 0.876, 0, 0.221, 0.87, 0.948),
-    ("wetted, open (BEM)", 1.5, False): (12985, 0.899, 0, 0.224, 0.91, 0.972),
-    ("whole, closed", 3.0, True): (17354, 1.0, 0, 0.175, 0.90, 0.971),
-    ("whole, closed", 1.5, True): (35508, 1.0, 0, 0.141, 0.92, 0.983),
-    ("wetted, closed", 3.0, True): (12762, 1.0, 0, 0.009, 0.92, 0.974),
-    ("wetted, closed", 1.5, True): (29768, 1.0, 0, 0.141, 0.92, 0.975),
-    ("wetted, open (BEM)", 3.0, True): (11346, 1.0, 0, 0.009, 0.92, 0.973),
-    ("wetted, open (BEM)", 1.5, True): (26035, 1.0, 0, 0.141, 0.92, 0.972),
+    ("whole, closed", 3.0, False): ((8570, 0.9827, 0, 0.234, 0.864, 0.9845), 392),
+    ("whole, closed", 1.5, False): ((18910, 0.9895, 0, 0.309, 0.890, 0.9888), 771),
+    ("wetted, closed", 3.0, False): ((7218, 0.9767, 0, 0.213, 0.848, 0.9806), 384),
+    ("wetted, closed", 1.5, False): ((15489, 0.9870, 0, 0.271, 0.879, 0.9866), 598),
+    ("wetted, open (BEM)", 3.0, False): ((6159, 0.9846, 0, 0.213, 0.843, 0.9786), 355),
+    ("wetted, open (BEM)", 1.5, False): ((12392, 0.9897, 0, 0.301, 0.876, 0.9843), 548),
+    ("whole, closed", 3.0, True): ((17368, 1.0, 0, 0.147, 0.898, 0.9905), 435),
+    ("whole, closed", 1.5, True): ((35474, 1.0, 0, 0.154, 0.912, 0.9863), 789),
+    ("wetted, closed", 3.0, True): ((12748, 1.0, 0, 0.008, 0.911, 0.9790), 323),
+    ("wetted, closed", 1.5, True): ((29782, 1.0, 0, 0.154, 0.909, 0.9750), 702),
+    ("wetted, open (BEM)", 3.0, True): ((11343, 1.0, 0, 0.008, 0.910, 0.9775), 311),
+    ("wetted, open (BEM)", 1.5, True): ((26051, 1.0, 0, 0.154, 0.911, 0.9716), 646),
 }
+# the surfaces' default meshes at a43fade, same run: (SJ min, corners in 45-135, ours ms, gmsh ms)
+BEFORE_SURFACE = {"bilge": (0.573, 0.9986, 49.6, 24.1), "bare hull": (0.373, 0.9909, 256.4, 93.9)}
 CUT_DRAFTS = (2.0, 8.0, 11.0, 14.0, 17.0)  # m, keel to deck (above 11.55 m failed on 211788a)
 
 
@@ -107,33 +124,41 @@ def figures(n, quads, inverted, sj_min, sj_mean, corners, open_edges=None):
             f"45-135 {corners:7.2%}" + ("" if open_edges is None else f", open {open_edges}"))
 
 
-def surface_case(name, surface, size, tol):
+def surface_case(name, surface, size, tol, before, repeat=7):
     print(f"\n{name}: element size {size} m, chordal tolerance {tol * 1e3:.0f} mm")
-    for all_quad in (False, True):
-        m = fl.mesh_surface(surface, size=size, chordal_tolerance=tol, all_quad=all_quad)
-        t = median_time(lambda: fl.mesh_surface(surface, size=size, chordal_tolerance=tol, all_quad=all_quad),
-                        repeat=3, min_time=0.0)
-        census("ours" + ("/allq" if all_quad else ""), surface, m.vertices, m.faces, t)
-        if not all_quad:
-            ours = t
+    print(f"  before (main at a43fade): ours SJ min {before[0]:.3f}, 45-135 {before[1]:.2%}, {before[2]:.1f} ms "
+          f"vs gmsh {before[3]:.1f} ms ({before[2] / before[3]:.2f})")
     try:
-        runs = [gmsh_mesh(surface, size) for _ in range(3)]
+        import gmsh  # noqa: F401
     except ImportError:
+        gmsh = None
         print("  gmsh not installed: no peer")
-        return
-    V, F, _ = runs[0]
-    tg = float(np.median([r[2] for r in runs]))
-    census("gmsh", surface, V, F, tg, f"(ours / gmsh = {ours / tg:.2f})")
+    ours, theirs = [], []
+    for all_quad in (True, False):  # the default last: its runs interleave with gmsh's
+        def run():
+            return fl.mesh_surface(surface, size=size, chordal_tolerance=tol, all_quad=all_quad)
+        m, samples = run(), []
+        for _ in range(repeat):
+            samples.append(timed(run))
+            if not all_quad and gmsh is not None:
+                theirs.append(gmsh_mesh(surface, size))
+        census("ours" + ("/allq" if all_quad else ""), surface, m.vertices, m.faces, medians(samples))
+        ours = medians(samples)
+    if theirs:
+        V, F, _ = theirs[0]
+        tg = medians([r[2] for r in theirs])
+        census("gmsh", surface, V, F, tg,
+               f"(ours / gmsh = {ours[0] / tg[0]:.2f} wall, {ours[1] / tg[1]:.2f} CPU)")
 
 
 def main():
     hull = example_hull()
     bare = hull.bare_hull_surface()
-    surface_case("bilge-like bicubic patch (20 m)", bilge_patch(), 0.5, 0.005)
-    surface_case("whole-ship bare hull surface (Lpp 244.8 m)", bare, 3.0, 0.03)
+    surface_case("bilge-like bicubic patch (20 m)", bilge_patch(), 0.5, 0.005, BEFORE_SURFACE["bilge"])
+    surface_case("whole-ship bare hull surface (Lpp 244.8 m)", bare, 3.0, 0.03, BEFORE_SURFACE["bare hull"])
 
     print(f"\nwhole composed ship (bare hull + bulb + blend, transom stern), half hull, wetted at T = {EXAMPLE_DRAFT} m;"
-          "\n'before' is main at 211788a measured on this machine, 'now' this run (no gmsh peer: it would need our B-rep):")
+          "\n'before' is main at a43fade measured on this machine, 'now' this run (no gmsh peer: it would need our B-rep):")
     c = hull.composed_hull()
     for all_quad in (False, True):
         print(f" {'all-quad (all_quad=True)' if all_quad else 'quad-dominant (default)'}:")
@@ -141,13 +166,14 @@ def main():
                           ("wetted, open (BEM)", dict(draft=EXAMPLE_DRAFT, lids=False))):
             for size in (3.0, 1.5):
                 m = fl.mesh_hull(c, size=size, all_quad=all_quad, **kw)
-                t = median_time(lambda: fl.mesh_hull(c, size=size, all_quad=all_quad, **kw), repeat=3, min_time=0.0)
+                t = medians([timed(lambda: fl.mesh_hull(c, size=size, all_quad=all_quad, **kw)) for _ in range(3)])
                 q = m.quality()
                 now = (len(m.faces), q["quad_fraction"], q["inverted"], q["min_scaled_jacobian"],
                        q["mean_scaled_jacobian"], q["corners_in_45_135"], q["open_edges"])
                 case = f"{label}, {size} m"
-                print(f"  {case:<26s} before {figures(*BEFORE[(label, size, all_quad)])}")
-                print(f"  {'':<26s} now    {figures(*now)}, {t * 1e3:.0f} ms")
+                before, before_ms = BEFORE[(label, size, all_quad)]
+                print(f"  {case:<26s} before {figures(*before)}, {before_ms} ms")
+                print(f"  {'':<26s} now    {figures(*now)}, {t[0] * 1e3:.0f} ms (CPU {t[1] * 1e3:.0f} ms)")
 
     print("\nclosed wetted half hull at drafts from the keel to the deck, 3 m: open edges, volume vs NURBS "
           "quadrature of the bare hull plus the bulb and blend's share")

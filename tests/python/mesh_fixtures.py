@@ -126,6 +126,15 @@ def knupp_scaled_jacobians(vertices, faces):
     return out
 
 
+def quad_corner_angles(vertices, faces):
+    """Every quadrilateral corner's angle (deg) between its two sides, by numpy alone."""
+    v, f = np.asarray(vertices), np.asarray(faces)
+    p = v[f[f[:, 3] >= 0]]  # (quads, 4, 3)
+    e1, e2 = np.roll(p, -1, axis=1) - p, np.roll(p, 1, axis=1) - p
+    cos = np.sum(e1 * e2, axis=2) / (np.linalg.norm(e1, axis=2) * np.linalg.norm(e2, axis=2))
+    return np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))).ravel()
+
+
 def composed_wetted_hydrostatics(composed, draft):
     """(volume m^3 both sides, lcb m) of the example's composed ship at `draft`: NURBS quadrature
     of the bare hull (fl.hydrostatics) plus what the bulb and blend add below the draft (volume and

@@ -11,12 +11,13 @@ import pytest
 import fairlines as fl
 from mesh_fixtures import (EXAMPLE_DRAFT, bilge_patch, closed_volume, composed_example_hull,
                            composed_wetted_hydrostatics, edge_census, example_hull_surface,
-                           knupp_scaled_jacobians)
+                           knupp_scaled_jacobians, quad_corner_angles)
 
 SHIP_SIZE = 3.0          # m, element size on the whole ship (about 1.2 % of Lpp)
 SHIP_TOL = 0.03          # m, chordal tolerance of the bench's whole-ship cases
 MIN_SJ = 0.2             # scaled Jacobian below which an element is a sliver
-CORNER_SHARE = 0.99      # share of quad corners within 45-135 deg (the goal)
+CORNER_SHARE = 0.99      # share of quad corners within CORNER_LIMITS (the goal)
+CORNER_LIMITS = (45.0, 135.0)  # deg, a quad corner's good range
 QUAD_SHARE = 0.98        # share of quadrilaterals in the default (quad-dominant) mesh (the goal)
 WEDGE_RADIUS = 8.0       # m, the stem-top wedge: hull elements this close to the stem top
 CLAMP_VOLUME_TOL = 1e-4  # volume the y >= 0 clamp may remove, relative to the half hull's
@@ -84,8 +85,20 @@ def test_all_quad_split_keeps_the_chordal_tolerance():
     assert len(centroids) > 1000 and max(dev) <= tol
 
 
+def corner_share(mesh):
+    """Share of the mesh's quad corners within CORNER_LIMITS, by numpy."""
+    angles = quad_corner_angles(mesh.vertices, mesh.faces)
+    return np.mean((angles >= CORNER_LIMITS[0]) & (angles <= CORNER_LIMITS[1]))
+
+
 def test_all_quad_corners_lie_within_45_135_degrees(all_quad_ship):
-    assert all_quad_ship.quality()["corners_in_45_135"] >= CORNER_SHARE
+    assert corner_share(all_quad_ship) >= CORNER_SHARE
+
+
+def test_all_quad_open_wetted_corners_lie_within_45_135_degrees(ship):
+    """The lowest share of the all-quad cases before the corner pass ran on the split (97.8 %)."""
+    m = fl.mesh_hull(ship, size=SHIP_SIZE, draft=EXAMPLE_DRAFT, lids=False, all_quad=True)
+    assert corner_share(m) >= CORNER_SHARE
 
 
 @pytest.mark.parametrize("all_quad", [False, True])
@@ -124,10 +137,13 @@ def test_default_mesh_of_the_composed_ship_has_no_sliver(default_meshes, size):
     assert knupp_scaled_jacobians(m.vertices, m.faces).min() >= MIN_SJ
 
 
-@pytest.mark.xfail(strict=True, reason="98.6 % of the default mesh's corners lie within 45-135 deg at 3 m (goal 99 %): "
-                                       "the 2:1 steps between the fine bilge and the coarse bottom")
-def test_default_mesh_corners_lie_within_45_135_degrees(default_meshes):
-    assert default_meshes[SHIP_SIZE].quality()["corners_in_45_135"] >= CORNER_SHARE
+@pytest.mark.parametrize("size", [SHIP_SIZE, SHIP_SIZE / 2])
+def test_default_mesh_corners_lie_within_45_135_degrees(default_meshes, size):
+    """The merged pairs across the 2:1 steps of the subdivision (a straight corner at the step's
+    middle node) open their corners toward 90 deg; angles by numpy."""
+    m = default_meshes[size]
+    assert np.sum(m.faces[:, 3] >= 0) > 8000
+    assert corner_share(m) >= CORNER_SHARE
 
 
 def test_composed_ship_quad_dominant_mesh_has_no_inverted_element(ship):

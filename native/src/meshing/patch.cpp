@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <unordered_map>
 
 #include <Eigen/Dense>
@@ -42,19 +43,27 @@ constexpr int kImprovePasses = 4;          ///< sweeps of that node optimisation
 constexpr double kImproveStep = 0.25;      ///< its first trial step / the node's mean edge length
 constexpr double kImproveMinStep = 0.04;   ///< and its last
 constexpr double kImproveShortest = 0.3;   ///< no trial shortens a node's edges below this x their mean
+constexpr double kTrialMiss = 0.03;        ///< a linear step onto the face may land this x its length from
+                                           ///< its target (else Newton, Work::toward); at 0.1 the least
+                                           ///< scaled Jacobian fell at 2 m (0.339 -> 0.328, the bulb's nose)
+constexpr double kCornerLimit = 45.0;      ///< the goal: quad corners within kCornerLimit of 0 and 180 deg are out
+constexpr double kCornerTrade = 0.5;       ///< improve_corners may lower a node's worst element to this
+                                           ///< (corners within 30-150 deg) for corners nearer 90 deg
 
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 
-double angle_at(const Vec3& a, const Vec3& b, const Vec3& c) {  // angle at a in triangle abc
-  const Vec3 e1 = b - a, e2 = c - a;
-  const double n1 = e1.norm(), n2 = e2.norm();
-  if (n1 <= 0 || n2 <= 0) return 0.0;
-  return std::acos(std::clamp(e1.dot(e2) / (n1 * n2), -1.0, 1.0));
-}
-
+/// The smallest angle of triangle abc (0 if a side has no length): the arc cosine of its
+/// corners' largest cosine, one acos instead of three (acos decreases, so the value is the same).
 double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  return std::min({angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)});
+  double most = -1.0;
+  for (const auto& [x, y, z] : {std::tie(a, b, c), std::tie(b, c, a), std::tie(c, a, b)}) {
+    const Vec3 e1 = y - x, e2 = z - x;
+    const double n1 = e1.norm(), n2 = e2.norm();
+    if (n1 <= 0 || n2 <= 0) return 0.0;
+    most = std::max(most, std::clamp(e1.dot(e2) / (n1 * n2), -1.0, 1.0));
+  }
+  return std::acos(most);
 }
 
 double cross2(const Vec2& a, const Vec2& b, const Vec2& c) {
@@ -78,7 +87,9 @@ struct Cell {
 
 class Subdivision {
  public:
-  using SizeAt = std::function<double(const Vec2&, const Vec3&)>;
+  /// The target size at (u, v) and its point; any value below `below` where the size is
+  /// below it (the split test needs no more, and a bound is cheaper than the curvature).
+  using SizeAt = std::function<double(const Vec2&, const Vec3&, double below)>;
   Subdivision(const FaceGeometry& g, const MeshOptions& o, std::vector<double> ru, std::vector<double> rv,
               double size_scale, SizeAt size_at)
       : g_(g), o_(o), ru_(std::move(ru)), rv_(std::move(rv)), scale_(size_scale), size_at_(std::move(size_at)) {
@@ -143,15 +154,15 @@ class Subdivision {
       Lu = std::max(Lu, (P[1][k] - P[0][k]).norm() + (P[2][k] - P[1][k]).norm());
       Lv = std::max(Lv, (P[k][1] - P[k][0]).norm() + (P[k][2] - P[k][1]).norm());
     }
-    const double h = size_at_({us[1], vs[1]}, P[1][1]);
     // chordal deviation: the normal distance of the middle from the corners' bilinear middle
     // (a parametrisation whose speed jumps moves the middle along the surface, not off it)
     Vec3 n = (P[2][1] - P[0][1]).cross(P[1][2] - P[1][0]);
     const double nn = n.norm();
     const Vec3 off = P[1][1] - 0.25 * (P[0][0] + P[2][0] + P[0][2] + P[2][2]);
     const double dev = nn > 0 ? std::abs(off.dot(n / nn)) : off.norm();
-    const bool too_big = std::max(Lu, Lv) > h;
     const bool too_curved = dev > o_.chordal_tolerance && std::max(Lu, Lv) > scale_ * o_.min_size;
+    // the size (its curvature term is the costly part) only where the deviation does not decide
+    const bool too_big = !too_curved && std::max(Lu, Lv) > size_at_({us[1], vs[1]}, P[1][1], std::max(Lu, Lv));
     if (!too_big && !too_curved) return -1;
     if (Lu >= Lv) return can_u ? 0 : 1;
     return can_v ? 1 : 0;
@@ -342,6 +353,12 @@ class IsoWidth {
 
 // ---- elements ---------------------------------------------------------------------------
 
+/// A position on the face with the partials there.
+struct Place {
+  Vec2 uv;
+  Vec3 p, su, sv;
+};
+
 struct Work {
   const FaceGeometry& g;
   const MeshOptions& o;
@@ -354,6 +371,10 @@ struct Work {
   Vec3 surface_normal(const Vec2& q) const {
     Vec3 p, su, sv;
     g.first(q, p, su, sv);
+    return unit_normal(su, sv);
+  }
+  /// S_u x S_v normalised, zero where the surface is singular.
+  static Vec3 unit_normal(const Vec3& su, const Vec3& sv) {
     const Vec3 n = su.cross(sv);
     const double len = n.norm();
     return len > 1e-300 ? Vec3(n / len) : Vec3::Zero();
@@ -385,16 +406,24 @@ struct Work {
         q = std::min(q, -1.0);
     return q;
   }
-  /// The worse of quality() (spatial_quality() without `in_parameters`) and the scaled
-  /// Jacobian about the element's own normal (the census's measure: a quad's diagonal cross
-  /// product), so neither sees it folded.
-  double strict_quality(const std::array<int, 4>& e, bool in_parameters = true) const {
-    const double q = in_parameters ? quality(e) : spatial_quality(e);
-    if (e[3] < 0) return q;
+  /// The worse of spatial_quality() and, for a quad, the scaled Jacobian about its own normal
+  /// (its diagonal cross product, the census's measure), so neither sees it folded.
+  double strict_quality(const std::array<int, 4>& e) const {
+    if (e[3] < 0) return spatial_quality(e);
     Vec3 p[4];
     for (int i = 0; i < 4; ++i) p[i] = xyz[e[i]];
     const Vec3 n = (p[2] - p[0]).cross(p[3] - p[1]);
-    return n.norm() > 0 ? std::min(q, element_quality(p, 4, n.normalized())) : std::min(q, 0.0);
+    const double len = n.norm();
+    if (!(len > 0)) return std::min(spatial_quality(e), 0.0);
+    const Vec3 ns = element_normal(e), nd = n / len;
+    double q = 1e9;  // both normals' corner terms from one cross product per corner
+    for (int i = 0; i < 4; ++i) {
+      const Vec3 e1 = p[(i + 1) % 4] - p[i], e2 = p[(i + 3) % 4] - p[i];
+      const double l = e1.norm() * e2.norm();
+      const Vec3 c = e1.cross(e2);
+      q = std::min(q, l > 0 ? std::min(c.dot(ns) / l, c.dot(nd) / l) : 0.0);
+    }
+    return q;
   }
   /// Normal distance of an element's centroid from the surface point at its mean (u, v).
   double chordal(const std::array<int, 4>& e) const {
@@ -404,6 +433,32 @@ struct Work {
     Vec2 m = Vec2::Zero();
     for (int i = 0; i < k; ++i) c += xyz[e[i]], m += uv[e[i]];
     return std::abs((c / k - g.point(m / k)).dot(element_normal(e)));
+  }
+  Place place_at(const Vec2& q) const {
+    Place x{q, Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+    g.first(q, x.p, x.su, x.sv);
+    return x;
+  }
+  /// The face's point near `target` (a point on the tangent plane at `from`): the first
+  /// Gauss-Newton step of FaceGeometry::locate from `from`, one evaluation; only where that
+  /// lands more than kTrialMiss x the distance from the target (the clamped or ruled ends of a
+  /// blend, near a pole) Newton to convergence.
+  Place toward(const Place& from, const Vec3& target) const {
+    const double E = from.su.dot(from.su), F = from.su.dot(from.sv), G = from.sv.dot(from.sv), det = E * G - F * F;
+    const Vec3 r = target - from.p;
+    const double a = from.su.dot(r), b = from.sv.dot(r);
+    const Vec2 d((G * a - F * b) / det, (E * b - F * a) / det);  // the 2 x 2 normal equations
+    if (det > 0 && d.allFinite()) {
+      const Place x = place_at(g.clamp(from.uv + d));
+      if ((x.p - target).norm() <= kTrialMiss * r.norm()) return x;
+    }
+    return place_at(g.locate(target, from.uv));
+  }
+  /// Node i to x.
+  void put(int i, const Place& x) {
+    uv[i] = x.uv;
+    xyz[i] = x.p;
+    normal[i] = unit_normal(x.su, x.sv);
   }
   int add(const Vec2& q) {
     uv.push_back(q);
@@ -420,8 +475,8 @@ struct Work {
 class BlossomSearch {
  public:
   BlossomSearch(const std::vector<std::vector<int>>& adj, std::vector<int>& mate)
-      : adj_(adj), mate_(mate), parent_(adj.size(), -1), base_(adj.size()), in_tree_(adj.size(), 0),
-        mark_(adj.size(), 0), seen_(adj.size(), 0) {
+      : adj_(adj), mate_(mate), parent_(adj.size(), -1), base_(adj.size()), order_(adj.size(), 0),
+        in_tree_(adj.size(), 0), mark_(adj.size(), 0), seen_(adj.size(), 0), members_(adj.size()) {
     for (size_t i = 0; i < adj.size(); ++i) base_[i] = static_cast<int>(i);
   }
 
@@ -436,7 +491,11 @@ class BlossomSearch {
 
  private:
   void touch(int v) {
-    if (!in_tree_[v] && parent_[v] < 0 && base_[v] == v) touched_.push_back(v);
+    if (!in_tree_[v] && parent_[v] < 0 && base_[v] == v) {
+      order_[v] = static_cast<int>(touched_.size());
+      touched_.push_back(v);
+      members_[v].assign(1, v);
+    }
   }
   int lca(int a, int b) {  // the base of the blossom an edge a-b between two even vertices closes
     ++stamp_;
@@ -455,6 +514,8 @@ class BlossomSearch {
   void mark_path(int v, int b, int child) {
     while (base_[v] != b) {
       mark_[base_[v]] = mark_[base_[mate_[v]]] = stamp_;
+      marked_.push_back(base_[v]);
+      marked_.push_back(base_[mate_[v]]);
       parent_[v] = child;
       child = mate_[v];
       v = parent_[mate_[v]];
@@ -471,14 +532,10 @@ class BlossomSearch {
         if (to == root || (mate_[to] >= 0 && parent_[mate_[to]] >= 0)) {  // an odd cycle: contract it
           const int b = lca(v, to);
           ++stamp_;
+          marked_.clear();
           mark_path(v, b, to);
           mark_path(to, b, v);
-          for (size_t k = 0; k < touched_.size(); ++k) {
-            const int i = touched_[k];
-            if (mark_[base_[i]] != stamp_) continue;
-            base_[i] = b;
-            if (!in_tree_[i]) in_tree_[i] = 1, queue.push_back(i);
-          }
+          contract(b, queue);
         } else if (parent_[to] < 0) {
           touch(to);
           parent_[to] = v;
@@ -494,6 +551,27 @@ class BlossomSearch {
     }
     return false;
   }
+  /// Every vertex whose base mark_path marked now has base b; those not yet in the tree join
+  /// the queue, in the order they were touched (the order of a scan of all touched vertices,
+  /// which cost O(touched) per blossom; the bases' member lists cost O(blossom)).
+  void contract(int b, std::vector<int>& queue) {
+    inside_.clear();
+    bool b_marked = false;
+    for (int m : marked_) {
+      if (mark_[m] != stamp_) continue;  // listed twice
+      mark_[m] = 0;
+      b_marked = b_marked || m == b;
+      inside_.insert(inside_.end(), members_[m].begin(), members_[m].end());
+      if (m != b) members_[m].clear();
+    }
+    std::sort(inside_.begin(), inside_.end(), [&](int x, int y) { return order_[x] < order_[y]; });
+    for (int i : inside_) {
+      base_[i] = b;
+      if (!in_tree_[i]) in_tree_[i] = 1, queue.push_back(i);
+    }
+    if (b_marked) return;  // its members were listed with the rest
+    members_[b].insert(members_[b].end(), inside_.begin(), inside_.end());
+  }
   void flip(int v) {  // the path root .. v alternates: swap its matched and unmatched edges
     while (v >= 0) {
       const int pv = parent_[v], next = mate_[pv];
@@ -505,9 +583,10 @@ class BlossomSearch {
 
   const std::vector<std::vector<int>>& adj_;
   std::vector<int>& mate_;
-  std::vector<int> parent_, base_, touched_;
+  std::vector<int> parent_, base_, order_, touched_;  // order_: index in touched_
   std::vector<char> in_tree_;
-  std::vector<int> mark_, seen_;
+  std::vector<int> mark_, seen_, marked_, inside_;
+  std::vector<std::vector<int>> members_;  // the touched vertices with this base
   int stamp_ = 0;
 };
 
@@ -573,19 +652,45 @@ std::vector<std::vector<int>> elements_at_nodes(const Work& w) {
   return around;
 }
 
+/// Nodes whose last visit by a pass moved nothing and about which nothing has moved since. A
+/// visit (smooth, optimise_node) is a function of the positions of the nodes of the elements
+/// about the node alone, so visiting such a node again would move nothing: the passes skip it.
+class Settled {
+ public:
+  Settled(const Work& w, const std::vector<std::vector<int>>& around) : w_(w), around_(around), flag_(w.xyz.size(), 0) {}
+  bool operator[](int i) const { return flag_[i] != 0; }
+  /// After a visit of node i: settled if it did not move, else its neighbours are no longer.
+  void visited(int i, bool moved) {
+    if (!moved) {
+      flag_[i] = 1;
+      return;
+    }
+    for (int e : around_[i])
+      for (int k = 0; k < (w_.el[e][3] < 0 ? 3 : 4); ++k) flag_[w_.el[e][k]] = 0;
+  }
+
+ private:
+  const Work& w_;
+  const std::vector<std::vector<int>>& around_;
+  std::vector<char> flag_;
+};
+
 /// Moves each free node toward the mean of its elements' centroids, back onto the face,
 /// when the worst of its elements does not get worse.
 void smooth(Work& w, int passes) {
   const int n = static_cast<int>(w.xyz.size());
   const std::vector<std::vector<int>> around = elements_at_nodes(w);
+  Settled settled(w, around);
+  std::vector<double> q(w.el.size()), now_q;  // each element's quality(), kept current
+  for (size_t e = 0; e < w.el.size(); ++e) q[e] = w.quality(w.el[e]);
   for (int pass = 0; pass < passes; ++pass) {
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
-      if (around[i].empty()) continue;
+      if (around[i].empty() || settled[i]) continue;
       double worst = 1e9;
       Vec3 target = Vec3::Zero();
       for (int e : around[i]) {
-        worst = std::min(worst, w.quality(w.el[e]));
+        worst = std::min(worst, q[e]);
         const int k = w.el[e][3] < 0 ? 3 : 4;
         Vec3 c = Vec3::Zero();
         for (int j = 0; j < k; ++j) c += w.xyz[w.el[e][j]];
@@ -594,20 +699,25 @@ void smooth(Work& w, int passes) {
       target /= static_cast<double>(around[i].size());
       const Vec2 old_uv = w.uv[i];
       const Vec3 old_p = w.xyz[i], old_n = w.normal[i];
-      const Vec2 new_uv = w.g.locate(target, old_uv);
-      if ((new_uv - old_uv).norm() == 0.0) continue;
-      w.uv[i] = new_uv;
-      w.xyz[i] = w.g.point(new_uv);
-      w.normal[i] = w.surface_normal(new_uv);
-      double now = 1e9;
-      for (int e : around[i]) now = std::min(now, w.quality(w.el[e]));
-      if (now + 1e-12 < worst) {
-        w.uv[i] = old_uv;
-        w.xyz[i] = old_p;
-        w.normal[i] = old_n;
-      } else {
-        ++moved;
+      // Newton to the foot point: a linear step here (Work::toward) saved 5 % but left a folded
+      // quad in the all-quad wetted mesh at 3 m, at the blend's clamped stem end
+      const Place x = w.place_at(w.g.locate(target, old_uv));
+      if ((x.uv - old_uv).norm() == 0.0) {
+        settled.visited(i, false);
+        continue;
       }
+      w.put(i, x);
+      double now = 1e9;
+      now_q.clear();
+      for (int e : around[i]) now_q.push_back(w.quality(w.el[e])), now = std::min(now, now_q.back());
+      const bool keep = !(now + 1e-12 < worst);
+      if (keep) {
+        for (size_t k = 0; k < around[i].size(); ++k) q[around[i][k]] = now_q[k];
+      } else {
+        w.uv[i] = old_uv, w.xyz[i] = old_p, w.normal[i] = old_n;
+      }
+      moved += keep;
+      settled.visited(i, keep);
     }
     if (!moved) break;
   }
@@ -629,6 +739,14 @@ void edge_lengths(const Work& w, const std::vector<int>& around, int i, double& 
   mean /= std::max(edges, 1);
 }
 
+/// |cos| of quad e's corner c (1 for a corner with a zero-length side): 0 for a right angle.
+double corner_cos(const Work& w, const std::array<int, 4>& e, int c) {
+  const Vec3& x = w.xyz[e[c]];
+  const Vec3 a = w.xyz[e[(c + 1) % 4]] - x, b = w.xyz[e[(c + 3) % 4]] - x;
+  const double l = a.norm() * b.norm();
+  return l > 0 ? std::abs(a.dot(b)) / l : 1.0;
+}
+
 /// The second objective of optimise_node: the squared excess of |cos| over sin kCornerSlack
 /// summed over the quad corners of the elements `around`, so a node whose worst element cannot
 /// rise still moves quad corners back toward 45-135 deg.
@@ -638,10 +756,7 @@ double corner_excess(const Work& w, const std::vector<int>& around) {
   for (int e : around) {
     if (w.el[e][3] < 0) continue;
     for (int c = 0; c < 4; ++c) {
-      const Vec3& x = w.xyz[w.el[e][c]];
-      const Vec3 a = w.xyz[w.el[e][(c + 1) % 4]] - x, b = w.xyz[w.el[e][(c + 3) % 4]] - x;
-      const double l = a.norm() * b.norm();
-      const double over = l > 0 ? std::max(0.0, std::abs(a.dot(b)) / l - slack) : 1.0;
+      const double over = std::max(0.0, corner_cos(w, w.el[e], c) - slack);
       sum += over * over;
     }
   }
@@ -655,51 +770,67 @@ double largest_sag(const Work& w, const std::vector<int>& around) {
   return d;
 }
 
-/// Compass search for node i (see improve_worst); true when it moved.
-bool optimise_node(Work& w, const std::vector<int>& around, int i) {
-  auto worst = [&]() {
+/// Compass search for node i (see improve_worst); true when it moved. A trial is better when
+/// it raises the worst of the node's elements, or keeps it and lowers corner_excess; with
+/// `trade_above` (see improve_corners) the worst counts only up to that level, so above it a
+/// trial that lowers corner_excess wins even if it lowers the worst (never below the level).
+bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_above = 1e300) {
+  // the elements worst first: a trial is mostly rejected by the one that was worst, and the
+  // count stops at the first element below `limit` (the trial is rejected whatever the rest)
+  std::vector<std::pair<double, int>> order;
+  for (int e : around) order.push_back({w.strict_quality(w.el[e]), e});
+  std::sort(order.begin(), order.end());
+  auto worst = [&](double limit) {
     double q = 1e9;
-    for (int e : around) q = std::min(q, w.strict_quality(w.el[e], false));
+    for (const auto& [q0, e] : order)
+      if ((q = std::min(q, w.strict_quality(w.el[e]))) < limit) break;
     return q;
   };
-  auto place = [&](const Vec2& q) {
-    w.uv[i] = q;
-    w.xyz[i] = w.g.point(q);
-    w.normal[i] = w.surface_normal(q);
-  };
   constexpr int kMaxSteps = 40;  // trial rounds
+  static const std::array<std::array<double, 2>, 8> kCompass = [] {  // (cos, sin) of k x 45 deg
+    std::array<std::array<double, 2>, 8> c;
+    for (int k = 0; k < 8; ++k) c[k] = {std::cos(k * kPi / 4), std::sin(k * kPi / 4)};
+    return c;
+  }();
   double len, shortest, mean_now, shortest_now;
   edge_lengths(w, around, i, len, shortest);
   // the scaled Jacobian does not see size: a search for it alone can collapse an edge
   const double floor = std::min(kImproveShortest * len, shortest);
   // no move takes an element further from the surface than the tolerance (or than it was)
   const double sag_limit = std::max(largest_sag(w, around), w.o.chordal_tolerance);
-  double best = worst(), best_excess = corner_excess(w, around), step = kImproveStep * len;
+  double best = order.empty() ? 1e9 : order.front().first, best_excess = corner_excess(w, around), step = kImproveStep * len;
+  Place at = w.place_at(w.uv[i]);
+  at.p = w.xyz[i];  // as stored (a loop node's may differ by round-off)
+  const Vec3 start_normal = w.normal[i];
   bool moved = false;
   for (int round = 0; round < kMaxSteps && step >= kImproveMinStep * len; ++round) {
-    Vec3 p, su, sv;
-    w.g.first(w.uv[i], p, su, sv);
-    const Vec3 nn = su.cross(sv);
-    if (nn.norm() <= 0 || su.norm() <= 0) break;
-    const Vec3 t1 = su.normalized(), t2 = nn.normalized().cross(t1);
-    const Vec2 from = w.uv[i];
-    const Vec3 x0 = w.xyz[i];
-    Vec2 to = from;
+    const Vec3 nn = at.su.cross(at.sv);
+    if (nn.norm() <= 0 || at.su.norm() <= 0) break;
+    const Vec3 t1 = at.su.normalized(), t2 = nn.normalized().cross(t1);
+    Place to = at;
     for (int k = 0; k < 8; ++k) {
-      const double a = k * kPi / 4;
-      const Vec2 q = w.g.locate(x0 + step * (std::cos(a) * t1 + std::sin(a) * t2), from);
-      if ((q - from).norm() == 0.0) continue;
-      place(q);
+      const Place x = w.toward(at, at.p + step * (kCompass[k][0] * t1 + kCompass[k][1] * t2));
+      if ((x.uv - at.uv).norm() == 0.0) continue;
+      w.put(i, x);
+      const double best_capped = std::min(best, trade_above), now = worst(best_capped);
+      const double capped = std::min(now, trade_above);
+      if (capped < best_capped) continue;  // worse whatever the corners
       edge_lengths(w, around, i, mean_now, shortest_now);
       if (shortest_now < floor) continue;
-      const double now = worst(), excess = corner_excess(w, around);
-      if (!(now > best + 1e-12 || (now >= best && excess < best_excess - 1e-9)) || largest_sag(w, around) > sag_limit)
-        continue;
-      best = now, best_excess = excess, to = q;
+      const double excess = corner_excess(w, around);
+      const bool better = capped > best_capped + 1e-12 ||
+                          excess < best_excess - 1e-9 || (excess <= best_excess && now > best + 1e-12);
+      if (!better || largest_sag(w, around) > sag_limit) continue;
+      best = now, best_excess = excess, to = x;
     }
-    place(to);
-    if ((to - from).norm() > 0) moved = true;
-    else step *= 0.5;
+    if ((to.uv - at.uv).norm() > 0) {
+      moved = true;
+      at = to;
+    } else {
+      step *= 0.5;
+    }
+    w.put(i, at);
+    if (!moved) w.normal[i] = start_normal;  // bit for bit where it was
   }
   return moved;
 }
@@ -713,14 +844,52 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i) {
 void improve_worst(Work& w) {
   const int n = static_cast<int>(w.xyz.size());
   const std::vector<std::vector<int>> around = elements_at_nodes(w);
+  Settled settled(w, around);
   for (int pass = 0; pass < kImprovePasses; ++pass) {
     std::vector<char> poor(n, 0);
     for (const auto& e : w.el)
-      if (w.strict_quality(e, false) < kImproveBelow)
+      if (w.strict_quality(e) < kImproveBelow)
         for (int k = 0; k < (e[3] < 0 ? 3 : 4); ++k) poor[e[k]] = 1;
     int moved = 0;
-    for (int i = w.fixed; i < n; ++i)
-      if (poor[i] && !around[i].empty() && optimise_node(w, around[i], i)) ++moved;
+    for (int i = w.fixed; i < n; ++i) {
+      if (!poor[i] || around[i].empty() || settled[i]) continue;
+      const bool m = optimise_node(w, around[i], i);
+      moved += m;
+      settled.visited(i, m);
+    }
+    if (!moved) break;
+  }
+}
+
+/// The corner pass, after the weak pairs are merged (their quads' corners at the 2:1 steps lie
+/// near 135-160 deg, and the search for the worst element stops once nothing about a node can
+/// rise): each free node of a quad with a corner outside kCornerLimit..180 - kCornerLimit deg
+/// moves by optimise_node with trade_above = kCornerTrade, so above that level its quads'
+/// corners move toward 90 deg even where a neighbour's score drops a little; no element about
+/// the node drops below the lower of kCornerTrade and the worst there before. Without the
+/// trade, a valence-3 node at a step (two fine quads and a merged one) cannot spread its
+/// corners to about 120 deg each: the fine quads' corners there get worse as it moves.
+void improve_corners(Work& w) {
+  const int n = static_cast<int>(w.xyz.size());
+  const std::vector<std::vector<int>> around = elements_at_nodes(w);
+  const double out = std::cos(kCornerLimit * kPi / 180.0);
+  Settled settled(w, around);
+  for (int pass = 0; pass < kImprovePasses; ++pass) {
+    std::vector<char> poor(n, 0);
+    for (const auto& e : w.el) {
+      if (e[3] < 0) continue;
+      bool bad = false;
+      for (int c = 0; c < 4; ++c) bad = bad || corner_cos(w, e, c) > out;
+      if (bad)
+        for (int k = 0; k < 4; ++k) poor[e[k]] = 1;
+    }
+    int moved = 0;
+    for (int i = w.fixed; i < n; ++i) {
+      if (!poor[i] || around[i].empty() || settled[i]) continue;
+      const bool m = optimise_node(w, around[i], i, kCornerTrade);
+      moved += m;
+      settled.visited(i, m);
+    }
     if (!moved) break;
   }
 }
@@ -792,7 +961,7 @@ std::vector<std::array<int, 3>> merged_triangles(const Work& w, const std::vecto
 void split_folded_quads(Work& w) {
   std::vector<std::array<int, 4>> out;
   for (const auto& e : w.el) {
-    if (e[3] < 0 || w.strict_quality(e, false) > 0) {
+    if (e[3] < 0 || w.strict_quality(e) > 0) {
       out.push_back(e);
       continue;
     }
@@ -842,7 +1011,7 @@ void merge_weak_pairs(Work& w, const std::vector<WeakPair>& pairs) {
     auto worst = [&] {
       double q = 1e9;
       for (int e : touched)
-        if (w.el[e][0] != -2) q = std::min(q, w.strict_quality(w.el[e], false));
+        if (w.el[e][0] != -2) q = std::min(q, w.strict_quality(w.el[e]));
       return q;
     };
     const double before = worst();
@@ -858,7 +1027,7 @@ void merge_weak_pairs(Work& w, const std::vector<WeakPair>& pairs) {
       return corner_quality(w, p.quad, std::get<0>(a)) < corner_quality(w, p.quad, std::get<0>(b));
     });
     auto good = [&] {
-      return w.strict_quality(p.quad, false) >= w.o.min_quad_quality && worst() >= std::min(before, w.o.min_quad_quality);
+      return w.strict_quality(p.quad) >= w.o.min_quad_quality && worst() >= std::min(before, w.o.min_quad_quality);
     };
     bool merged = false;
     for (int sweep = 0; sweep < 2 && !merged; ++sweep)
@@ -873,6 +1042,44 @@ void merge_weak_pairs(Work& w, const std::vector<WeakPair>& pairs) {
   }
   w.el.erase(std::remove(w.el.begin(), w.el.end(), kDead), w.el.end());
 }
+
+/// min(h, hb_i + kGrading |p - x_i|) over the loop nodes x_i (hb_i > 0: the node's longer
+/// side), the size graded from the boundary. The nodes are bucketed in cubes of `reach`: with
+/// h <= kGrading x reach (the largest size), a node farther than that cannot lower h, so only
+/// the 27 cubes about p are searched (the same minimum as over all nodes).
+class GradedSize {
+ public:
+  GradedSize(const std::vector<Vec3>& x, const std::vector<double>& hb, double reach)
+      : x_(x), hb_(hb), reach_(reach) {
+    for (size_t i = 0; i < hb.size(); ++i)
+      if (hb[i] > 0) cells_[key(cell(x[i]))].push_back(static_cast<int>(i));
+  }
+  double operator()(const Vec3& p, double h) const {
+    const std::array<long long, 3> c = cell(p);
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
+          if (it == cells_.end()) continue;
+          for (int i : it->second) h = std::min(h, hb_[i] + kGrading * (p - x_[i]).norm());
+        }
+    return h;
+  }
+
+ private:
+  std::array<long long, 3> cell(const Vec3& p) const {
+    return {static_cast<long long>(std::floor(p.x() / reach_)), static_cast<long long>(std::floor(p.y() / reach_)),
+            static_cast<long long>(std::floor(p.z() / reach_))};
+  }
+  // a hash of the cell: two cells that share one share the bucket, which only adds nodes
+  static long long key(const std::array<long long, 3>& c) {
+    return (c[0] * 73856093LL) ^ (c[1] * 19349663LL) ^ (c[2] * 83492791LL);
+  }
+  const std::vector<Vec3>& x_;
+  const std::vector<double>& hb_;
+  double reach_;
+  std::unordered_map<long long, std::vector<int>> cells_;
+};
 
 /// Each quad into four and each triangle into three quads (edge midpoints and centre).
 /// `canon`: canonical local id of each node (pole copies merged).
@@ -1106,11 +1313,12 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   std::vector<double> hb(nb);
   for (int i = 0; i < nb; ++i)
     hb[i] = std::max((w.xyz[(i + 1) % nb] - w.xyz[i]).norm(), (w.xyz[(i + nb - 1) % nb] - w.xyz[i]).norm());
-  auto size_at = [&](const Vec2& q, const Vec3& p) {
-    double h = size_scale * target_size(g, q, o);
-    for (int i = 0; i < nb; ++i)
-      if (hb[i] > 0) h = std::min(h, hb[i] + kGrading * (p - w.xyz[i]).norm());
-    return std::max(h, size_scale * o.min_size);
+  const GradedSize graded(w.xyz, hb, size_scale * o.size / kGrading);
+  auto size_at = [&](const Vec2& q, const Vec3& p, double below) {
+    // the size without the curvature bounds it: where that is below `below`, so is the size
+    const double bound = std::max(graded(p, size_scale * o.size), size_scale * o.min_size);
+    if (bound < below) return bound;
+    return std::max(graded(p, size_scale * target_size(g, q, o)), size_scale * o.min_size);
   };
   const Subdivision sub(g, o, ru, rv, size_scale, size_at);
   // boundary segments bucketed in scaled (u, v) for the clearance test
@@ -1149,7 +1357,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
     if (!point_in_polygon(q, poly)) continue;
     Vec3 p, su, sv;
     g.first(q, p, su, sv);
-    const double h = size_at(q, p);
+    const double h = size_at(q, p, 0.0);
     const double clear = kClearance * h;
     // search radius in scaled coordinates: the slowest direction bounds the reach
     const double slow = std::max(1e-300, std::min(su.norm() / speed_u(q), sv.norm() / speed_v(q)));
@@ -1250,13 +1458,17 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
       r.el.push_back(e);
     }
     smooth(r, o.smoothing_passes);
-    if (o.smoothing_passes > 0) improve_worst(r);
+    if (o.smoothing_passes > 0) {
+      improve_worst(r);
+      improve_corners(r);  // the split's corners lie near 60, 90 and 120 deg, some beyond 45-135
+    }
     split_folded_quads(r);  // the last resort: none on the composed ship at 3 and 1.5 m
     return {std::move(r.xyz), std::move(r.uv), std::move(r.el), std::move(g2)};
   }
   smooth(w, o.smoothing_passes);
   if (o.smoothing_passes > 0) improve_worst(w);
   merge_weak_pairs(w, weak);
+  if (o.smoothing_passes > 0) improve_corners(w);
   split_folded_quads(w);
   global.resize(w.xyz.size(), -1);
   return {std::move(w.xyz), std::move(w.uv), std::move(w.el), std::move(global)};

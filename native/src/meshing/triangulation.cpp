@@ -218,12 +218,16 @@ bool Triangulation::insert(int idx) {
 
 long Triangulation::flip_while(const std::function<bool(int, int, int, int)>& better, int max_passes) {
   long flips = 0;
+  // pass in which each triangle last changed: an edge whose two triangles are older than the
+  // last pass was checked since they changed, on the same four points, so it is skipped
+  std::vector<int> changed(v_.size(), -1);
   for (int pass = 0; pass < max_passes; ++pass) {
     long here = 0;
     for (int t = 0; t < static_cast<int>(v_.size()); ++t)
       for (int k = 0; k < 3; ++k) {
         const int u = n_[t][k];
         if (u < 0 || u < t) continue;
+        if (pass > 0 && changed[t] < pass - 1 && changed[u] < pass - 1) continue;
         const int a = v_[t][k], b = v_[t][(k + 1) % 3], c = v_[t][(k + 2) % 3];
         if (constrained(a, b)) continue;
         const int j = edge_index(u, b, a);
@@ -231,6 +235,7 @@ long Triangulation::flip_while(const std::function<bool(int, int, int, int)>& be
         if (orient(c, a, d) <= 0 || orient(d, b, c) <= 0) continue;
         if (!better(a, b, c, d)) continue;
         flip(t, k);
+        changed[t] = changed[u] = pass;
         ++here;
       }
     flips += here;
