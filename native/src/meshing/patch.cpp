@@ -91,24 +91,26 @@ class Subdivision {
   /// below it (the split test needs no more, and a bound is cheaper than the curvature).
   using SizeAt = std::function<double(const Vec2&, const Vec3&, double below)>;
   Subdivision(const FaceGeometry& g, const MeshOptions& o, std::vector<double> ru, std::vector<double> rv,
-              double size_scale, SizeAt size_at)
-      : g_(g), o_(o), ru_(std::move(ru)), rv_(std::move(rv)), scale_(size_scale), size_at_(std::move(size_at)) {
+              double size_scale, const SizeAt& size_at)
+      : g_(g), o_(o), ru_(std::move(ru)), rv_(std::move(rv)), scale_(size_scale), size_at_(size_at) {
     const long long one = 1LL << kDepth;
     for (size_t i = 0; i + 1 < ru_.size(); ++i)
       for (size_t j = 0; j + 1 < rv_.size(); ++j)
         cells_.push_back({static_cast<long long>(i) * one, static_cast<long long>(i + 1) * one,
                           static_cast<long long>(j) * one, static_cast<long long>(j + 1) * one});
     roots_ = static_cast<int>(cells_.size());
-    std::vector<int> work(roots_);
-    for (int c = 0; c < roots_; ++c) work[c] = c;
+    std::vector<std::pair<int, Samples>> work;
+    for (int c = roots_ - 1; c >= 0; --c) work.push_back({c, samples(cells_[c])});
     while (!work.empty()) {
-      const int c = work.back();
+      const auto [c, P] = work.back();
       work.pop_back();
-      const int d = wanted_split(c);
+      const int d = wanted_split(cells_[c], P);
       if (d < 0) continue;
       split(c, d == 0);
-      work.push_back(cells_[c].child);
-      work.push_back(cells_[c].child + 1);
+      // each child shares two of its three sample lines with the parent (its ends), so only
+      // its middle line is evaluated: 3 points instead of 9
+      work.push_back({cells_[c].child + 1, child_samples(cells_[cells_[c].child + 1], P, d == 0, true)});
+      work.push_back({cells_[c].child, child_samples(cells_[cells_[c].child], P, d == 0, false)});
     }
     balance();
   }
@@ -132,23 +134,50 @@ class Subdivision {
   }
 
  private:
+  /// The face at a cell's corners, side middles and middle: P[a][b] at (us[a], vs[b]) with
+  /// us = {u(U0), middle, u(U1)} (likewise vs).
+  using Samples = std::array<std::array<Vec3, 3>, 3>;
+
   static double coord(const std::vector<double>& r, long long X) {
     const long long one = 1LL << kDepth;
     const long long i = std::min<long long>(X >> kDepth, static_cast<long long>(r.size()) - 2);
     const double f = static_cast<double>(X - i * one) / static_cast<double>(one);
     return f >= 1.0 ? r[i + 1] : r[i] + (r[i + 1] - r[i]) * f;
   }
+  std::array<double, 3> us(const Cell& c) const { return {u(c.U0), 0.5 * (u(c.U0) + u(c.U1)), u(c.U1)}; }
+  std::array<double, 3> vs(const Cell& c) const { return {v(c.V0), 0.5 * (v(c.V0) + v(c.V1)), v(c.V1)}; }
+
+  Samples samples(const Cell& c) const {
+    const auto U = us(c), V = vs(c);
+    Samples P;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) P[a][b] = g_.point({U[a], V[b]});
+    return P;
+  }
+  /// A child's samples: its end lines are the parent's lines 0 and 1 (first child) or 1 and
+  /// 2 (second), split in u (lines of constant u) or in v.
+  Samples child_samples(const Cell& c, const Samples& parent, bool in_u, bool second) const {
+    const auto U = us(c), V = vs(c);
+    const int lo = second ? 1 : 0;
+    Samples P;
+    for (int k = 0; k < 3; ++k) {
+      if (in_u) {
+        P[0][k] = parent[lo][k];
+        P[2][k] = parent[lo + 1][k];
+        P[1][k] = g_.point({U[1], V[k]});
+      } else {
+        P[k][0] = parent[k][lo];
+        P[k][2] = parent[k][lo + 1];
+        P[k][1] = g_.point({U[k], V[1]});
+      }
+    }
+    return P;
+  }
 
   /// -1: keep; 0: split in u; 1: split in v.
-  int wanted_split(int ci) const {
-    const Cell& c = cells_[ci];
+  int wanted_split(const Cell& c, const Samples& P) const {
     const bool can_u = c.U1 - c.U0 > 1, can_v = c.V1 - c.V0 > 1;
     if (!can_u && !can_v) return -1;
-    const double us[3] = {u(c.U0), 0.5 * (u(c.U0) + u(c.U1)), u(c.U1)};
-    const double vs[3] = {v(c.V0), 0.5 * (v(c.V0) + v(c.V1)), v(c.V1)};
-    Vec3 P[3][3];
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) P[a][b] = g_.point({us[a], vs[b]});
     double Lu = 0, Lv = 0;
     for (int k = 0; k < 3; ++k) {
       Lu = std::max(Lu, (P[1][k] - P[0][k]).norm() + (P[2][k] - P[1][k]).norm());
@@ -162,7 +191,8 @@ class Subdivision {
     const double dev = nn > 0 ? std::abs(off.dot(n / nn)) : off.norm();
     const bool too_curved = dev > o_.chordal_tolerance && std::max(Lu, Lv) > scale_ * o_.min_size;
     // the size (its curvature term is the costly part) only where the deviation does not decide
-    const bool too_big = !too_curved && std::max(Lu, Lv) > size_at_({us[1], vs[1]}, P[1][1], std::max(Lu, Lv));
+    const bool too_big =
+        !too_curved && std::max(Lu, Lv) > size_at_({us(c)[1], vs(c)[1]}, P[1][1], std::max(Lu, Lv));
     if (!too_big && !too_curved) return -1;
     if (Lu >= Lv) return can_u ? 0 : 1;
     return can_v ? 1 : 0;
@@ -233,7 +263,7 @@ class Subdivision {
   const MeshOptions& o_;
   std::vector<double> ru_, rv_;
   double scale_;
-  SizeAt size_at_;
+  const SizeAt& size_at_;
   std::vector<Cell> cells_;
   int roots_ = 0;
 };
@@ -590,6 +620,28 @@ class BlossomSearch {
   int stamp_ = 0;
 };
 
+/// The triangles at each node, in triangle order (compressed rows: at[start[i] .. start[i + 1])).
+struct TrianglesAtNodes {
+  std::vector<int> start, at;
+  TrianglesAtNodes(const std::vector<std::array<int, 3>>& tri, size_t nodes) : start(nodes + 1, 0), at(3 * tri.size()) {
+    for (const auto& t : tri)
+      for (int v : t) ++start[v + 1];
+    for (size_t i = 0; i < nodes; ++i) start[i + 1] += start[i];
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int t = 0; t < static_cast<int>(tri.size()); ++t)
+      for (int v : tri[t]) at[fill[v]++] = t;
+  }
+  /// The last triangle (in triangle order) holding the directed edge a -> b, and the index of
+  /// a in it; (-1, -1) if none.
+  std::pair<int, int> holding(const std::vector<std::array<int, 3>>& tri, int a, int b) const {
+    std::pair<int, int> found{-1, -1};
+    for (int i = start[a]; i < start[a + 1]; ++i)
+      for (int k = 0; k < 3; ++k)
+        if (tri[at[i]][k] == a && tri[at[i]][(k + 1) % 3] == b) found = {at[i], k};
+    return found;
+  }
+};
+
 /// Greedy matching by quad quality, then augmenting paths (BlossomSearch) so that as few
 /// triangles as possible stay unpaired: first among the pairs whose quad scores at least
 /// min_quad_quality, then also among those that are only not folded in space (kRelaxedPair:
@@ -598,22 +650,18 @@ class BlossomSearch {
 std::vector<int> match_triangles(const Work& w, const std::vector<std::array<int, 3>>& tri,
                                  std::vector<std::array<int, 3>>& nbr) {
   const int n = static_cast<int>(tri.size());
-  std::unordered_map<long long, std::pair<int, int>> half;
-  const long long N = static_cast<long long>(w.xyz.size());
-  for (int t = 0; t < n; ++t)
-    for (int k = 0; k < 3; ++k) half[tri[t][k] * N + tri[t][(k + 1) % 3]] = {t, k};
+  const TrianglesAtNodes around(tri, w.xyz.size());
   nbr.assign(n, {-1, -1, -1});
   std::vector<std::tuple<double, int, int>> cand;
   std::vector<std::pair<int, int>> weak;
   for (int t = 0; t < n; ++t)
     for (int k = 0; k < 3; ++k) {
       const int a = tri[t][k], b = tri[t][(k + 1) % 3], c = tri[t][(k + 2) % 3];
-      auto it = half.find(b * N + a);
-      if (it == half.end()) continue;
-      const int u = it->second.first;
+      const auto [u, j] = around.holding(tri, b, a);
+      if (u < 0) continue;
       nbr[t][k] = u;
       if (t > u) continue;
-      const int d = tri[u][(it->second.second + 2) % 3];
+      const int d = tri[u][(j + 2) % 3];
       // a pair across a cell side spans two cells: its quad may sag more than its triangles (the
       // all-quad split halves every element, so its quads sag a quarter as much)
       if (!w.o.all_quad && w.chordal({a, d, b, c}) > w.o.chordal_tolerance) continue;
@@ -920,19 +968,26 @@ std::vector<std::array<int, 3>> merged_triangles(const Work& w, const std::vecto
     const std::array<int, 3> r{canon[t[0]], canon[t[1]], canon[t[2]]};
     if (r[0] != r[1] && r[1] != r[2] && r[2] != r[0]) tri.push_back(r);
   }
-  const long long N = static_cast<long long>(w.xyz.size());
-  std::unordered_map<long long, int> half;  // directed edge -> triangle
-  for (int t = 0; t < static_cast<int>(tri.size()); ++t)
-    for (int k = 0; k < 3; ++k) half[tri[t][k] * N + tri[t][(k + 1) % 3]] = t;
-  for (int t = 0; t < static_cast<int>(tri.size()); ++t) {
+  // the longest side (corner k to k + 1) of triangle t, and whether t is flat
+  auto flat = [&](int t, int& k) {
     const Vec3 &a = w.xyz[tri[t][0]], &b = w.xyz[tri[t][1]], &c = w.xyz[tri[t][2]];
     double longest = 0.0;
-    int k = 0;  // edge k: from corner k to corner k + 1
+    k = 0;
     for (int j = 0; j < 3; ++j) {
       const double l = (w.xyz[tri[t][(j + 1) % 3]] - w.xyz[tri[t][j]]).squaredNorm();
       if (l > longest) longest = l, k = j;
     }
-    if ((b - a).cross(c - a).norm() > kFlat * longest) continue;
+    return (b - a).cross(c - a).norm() <= kFlat * longest;
+  };
+  int first = 0, k = 0;
+  while (first < static_cast<int>(tri.size()) && !flat(first, k)) ++first;
+  if (first == static_cast<int>(tri.size())) return tri;  // none (no pole): nothing to flip
+  const long long N = static_cast<long long>(w.xyz.size());
+  std::unordered_map<long long, int> half;  // directed edge -> triangle
+  for (int t = 0; t < static_cast<int>(tri.size()); ++t)
+    for (int j = 0; j < 3; ++j) half[tri[t][j] * N + tri[t][(j + 1) % 3]] = t;
+  for (int t = first; t < static_cast<int>(tri.size()); ++t) {
+    if (!flat(t, k)) continue;
     const int p = tri[t][k], q = tri[t][(k + 1) % 3], m = tri[t][(k + 2) % 3];
     auto it = half.find(q * N + p);
     if (it == half.end()) continue;
@@ -1042,6 +1097,43 @@ void merge_weak_pairs(Work& w, const std::vector<WeakPair>& pairs) {
   }
   w.el.erase(std::remove(w.el.begin(), w.el.end(), kDead), w.el.end());
 }
+
+/// point_in_polygon against the sides that span q's v only: the polygon's v range is cut into
+/// slabs and each side listed in the slabs its v range touches, so a query tests a few sides
+/// instead of all (the crossing test and so the answer are point_in_polygon's).
+class PolygonSlabs {
+ public:
+  explicit PolygonSlabs(const std::vector<Vec2>& poly) : poly_(poly) {
+    const int n = static_cast<int>(poly.size());
+    lo_ = hi_ = poly[0].y();
+    for (const Vec2& q : poly) lo_ = std::min(lo_, q.y()), hi_ = std::max(hi_, q.y());
+    count_ = std::max(1, n / 2);
+    width_ = (hi_ - lo_) / count_;
+    slab_.resize(count_);
+    for (int i = 0, j = n - 1; i < n; j = i++)
+      for (int k = slab(std::min(poly[i].y(), poly[j].y())); k <= slab(std::max(poly[i].y(), poly[j].y())); ++k)
+        slab_[k].push_back({i, j});
+  }
+  bool inside(const Vec2& q) const {
+    if (!(q.y() >= lo_ && q.y() <= hi_)) return false;  // no side spans it: an even count
+    bool in = false;
+    for (const auto& [i, j] : slab_[slab(q.y())]) {
+      const Vec2 &a = poly_[i], &c = poly_[j];
+      if ((a.y() > q.y()) != (c.y() > q.y()) && q.x() < (c.x() - a.x()) * (q.y() - a.y()) / (c.y() - a.y()) + a.x())
+        in = !in;
+    }
+    return in;
+  }
+
+ private:
+  int slab(double y) const {
+    return width_ > 0 ? std::clamp(static_cast<int>(std::floor((y - lo_) / width_)), 0, count_ - 1) : 0;
+  }
+  const std::vector<Vec2>& poly_;
+  double lo_, hi_, width_;
+  int count_;
+  std::vector<std::vector<std::pair<int, int>>> slab_;
+};
 
 /// min(h, hb_i + kGrading |p - x_i|) over the loop nodes x_i (hb_i > 0: the node's longer
 /// side), the size graded from the boundary. The nodes are bucketed in cubes of `reach`: with
@@ -1316,9 +1408,11 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   const GradedSize graded(w.xyz, hb, size_scale * o.size / kGrading);
   auto size_at = [&](const Vec2& q, const Vec3& p, double below) {
     // the size without the curvature bounds it: where that is below `below`, so is the size
-    const double bound = std::max(graded(p, size_scale * o.size), size_scale * o.min_size);
+    // (graded(p, h) = min(h, its value at the largest size) for h up to the largest size)
+    const double at_largest = graded(p, size_scale * o.size);
+    const double bound = std::max(at_largest, size_scale * o.min_size);
     if (bound < below) return bound;
-    return std::max(graded(p, size_scale * target_size(g, q, o)), size_scale * o.min_size);
+    return std::max(std::min(size_scale * target_size(g, q, o), at_largest), size_scale * o.min_size);
   };
   const Subdivision sub(g, o, ru, rv, size_scale, size_at);
   // boundary segments bucketed in scaled (u, v) for the clearance test
@@ -1352,9 +1446,10 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   };
   double longest_side = 0.0;
   for (int i = 0; i < nb; ++i) longest_side = std::max(longest_side, (w.xyz[(i + 1) % nb] - w.xyz[i]).norm());
+  const PolygonSlabs inside(poly);
   for (const auto& [U, V] : sub.corners()) {
     const Vec2 q(sub.u(U), sub.v(V));
-    if (!point_in_polygon(q, poly)) continue;
+    if (!inside.inside(q)) continue;
     Vec3 p, su, sv;
     g.first(q, p, su, sv);
     const double h = size_at(q, p, 0.0);

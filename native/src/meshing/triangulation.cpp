@@ -13,11 +13,6 @@ namespace fairlines::meshing {
 
 namespace {
 
-unsigned long long key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<unsigned long long>(static_cast<unsigned>(a)) << 32) | static_cast<unsigned>(b);
-}
-
 /// Relative size below which an orientation counts as zero (points on a line).
 constexpr double kCollinear = 1e-12;
 
@@ -25,6 +20,7 @@ constexpr double kCollinear = 1e-12;
 
 Triangulation::Triangulation(std::vector<Eigen::Vector2d> points, const std::vector<int>& loop) : p_(std::move(points)) {
   const int m = static_cast<int>(loop.size());
+  loop_size_ = m;
   if (m < 3) throw InvalidInput("triangulation: a boundary loop needs at least 3 points");
   Eigen::Vector2d lo = p_[loop[0]], hi = lo;
   for (int i : loop) {
@@ -49,14 +45,18 @@ Triangulation::Triangulation(std::vector<Eigen::Vector2d> points, const std::vec
     auto it = half.find({e.second, e.first});
     if (it != half.end()) n_[tk.first][tk.second] = it->second.first;
   }
-  for (int i = 0; i < m; ++i) fixed_.insert(key(loop[i], loop[(i + 1) % m]));
+  loop_at_.assign(p_.size(), -1);
+  for (int i = 0; i < m; ++i) loop_at_[loop[i]] = i;
   std::vector<std::pair<int, int>> stack;
   for (int t = 0; t < static_cast<int>(v_.size()); ++t)
     for (int k = 0; k < 3; ++k) stack.push_back({t, k});
   legalize(std::move(stack));
 }
 
-bool Triangulation::constrained(int a, int b) const { return fixed_.count(key(a, b)) > 0; }
+bool Triangulation::constrained(int a, int b) const {
+  const int i = loop_at_[a], j = loop_at_[b], m = loop_size_;
+  return i >= 0 && j >= 0 && ((i + 1) % m == j || (j + 1) % m == i);
+}
 
 double Triangulation::orient(int a, int b, int c) const { return orient(a, b, p_[c]); }
 

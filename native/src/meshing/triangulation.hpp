@@ -8,7 +8,6 @@
 
 #include <array>
 #include <functional>
-#include <unordered_set>
 #include <vector>
 
 #include <Eigen/Core>
@@ -52,7 +51,8 @@ class Triangulation {
 
   std::vector<Eigen::Vector2d> p_;
   std::vector<std::array<int, 3>> v_, n_;
-  std::unordered_set<unsigned long long> fixed_;
+  std::vector<int> loop_at_;  ///< position of each point in the boundary loop, -1 if not on it
+  int loop_size_ = 0;
   mutable int hint_ = 0;
   double scale_ = 1.0;
 };
