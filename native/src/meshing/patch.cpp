@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <tuple>
 #include <unordered_map>
 
@@ -25,10 +26,13 @@ namespace {
 constexpr int kDepth = 16;                 ///< subdivision levels available per root cell
 constexpr double kClearance = 0.55;        ///< interior nodes keep this x h from the boundary
 constexpr double kCurvatureSafety = 0.8;   ///< size from curvature times this (element diagonals)
+constexpr double kCurvatureStep = 1e-4;    ///< curvature_sum's difference step / the parameter range
 constexpr double kDefaultTolerance = 0.01; ///< chordal tolerance / size when not given
 constexpr double kDefaultMinSize = 0.05;   ///< minimum size / size when not given
 constexpr int kSwapPasses = 8;             ///< sweeps of 3-D edge swaps
 constexpr int kAugmentVisits = 4000;       ///< triangles one augmenting-path search may reach
+constexpr double kLeafQuality = 0.8;       ///< leaves scoring less are not taken whole (the blend's sheared ones)
+constexpr int kRerouteDepth = 12;          ///< leaf pairs this many sides from an unpaired triangle may be re-paired
 constexpr double kRelaxedPair = -0.5;      ///< pairs whose quad scores at least this (in space) may be matched at last
 constexpr double kGrading = 0.6;           ///< size may grow by this x the distance from the boundary
 constexpr double kFlat = 1e-2;             ///< a triangle with |2 area| below this x its longest side^2 is flat
@@ -36,8 +40,9 @@ constexpr double kPoleZone = 2.0;          ///< interior nodes within this x h o
 constexpr double kPoleSpacing = 0.4;       ///< to this x h apart
 constexpr double kFanSpread = 4.0;         ///< iso-line length ratio from which a face is a fan
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kImproveBelow = 0.75;     ///< nodes of elements scoring below this are optimised one by one
-                                           ///< (a quad corner outside 45-135 deg scores below sin 45 deg)
+constexpr double kImproveBelow = 0.6;      ///< nodes of elements scoring below this are optimised one by one
+                                           ///< (0.75 took most of the time on the bare hull, where leaf
+                                           ///< quads score 0.6-0.75; corners are improve_corners's)
 constexpr double kCornerSlack = 40.0;      ///< quad corners further than this from 90 deg (deg) are penalised
 constexpr int kImprovePasses = 4;          ///< sweeps of that node optimisation
 constexpr double kImproveStep = 0.25;      ///< its first trial step / the node's mean edge length
@@ -85,11 +90,12 @@ struct Cell {
   bool split_u = false;
 };
 
+/// `SizeAt`: size_at(q, p, below) is the target size at (u, v) = q and its point p; any value
+/// below `below` where the size is below it (the split test needs no more, and a bound is
+/// cheaper than the curvature).
+template <typename SizeAt>
 class Subdivision {
  public:
-  /// The target size at (u, v) and its point; any value below `below` where the size is
-  /// below it (the split test needs no more, and a bound is cheaper than the curvature).
-  using SizeAt = std::function<double(const Vec2&, const Vec3&, double below)>;
   Subdivision(const FaceGeometry& g, const MeshOptions& o, std::vector<double> ru, std::vector<double> rv,
               double size_scale, const SizeAt& size_at)
       : g_(g), o_(o), ru_(std::move(ru)), rv_(std::move(rv)), scale_(size_scale), size_at_(size_at) {
@@ -121,15 +127,19 @@ class Subdivision {
   /// Corners of every leaf, each once: (U, V) pairs.
   std::vector<std::pair<long long, long long>> corners() const {
     std::vector<std::pair<long long, long long>> out;
-    std::unordered_map<long long, char> seen;
-    const long long stride = (static_cast<long long>(rv_.size()) << kDepth) + 1;
-    for (const Cell& c : cells_) {
-      if (c.child >= 0) continue;
-      for (long long U : {c.U0, c.U1})
-        for (long long V : {c.V0, c.V1})
-          if (seen.emplace(U * stride + V, 1).second) out.push_back({U, V});
-    }
+    for (const Cell& c : cells_)
+      if (c.child < 0)
+        for (long long U : {c.U0, c.U1})
+          for (long long V : {c.V0, c.V1}) out.push_back({U, V});
     std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  /// The leaves: (U0, U1, V0, V1) of each.
+  std::vector<std::array<long long, 4>> leaves() const {
+    std::vector<std::array<long long, 4>> out;
+    for (const Cell& c : cells_)
+      if (c.child < 0) out.push_back({c.U0, c.U1, c.V0, c.V1});
     return out;
   }
 
@@ -642,61 +652,177 @@ struct TrianglesAtNodes {
   }
 };
 
+/// The subdivision's corners, sorted, and the node each became (-1: none, outside the face or
+/// too close to its boundary).
+struct CornerNodes {
+  std::vector<std::pair<long long, long long>> corner;
+  std::vector<int> node;
+  int at(long long U, long long V) const {
+    const auto it = std::lower_bound(corner.begin(), corner.end(), std::make_pair(U, V));
+    return it != corner.end() && *it == std::make_pair(U, V) ? node[it - corner.begin()] : -1;
+  }
+};
+
+/// The leaves of the subdivision whose four corners are nodes and whose quad the matching
+/// would take (it scores min_quad_quality, and sags within the tolerance): node ids
+/// counter-clockwise from (U0, V0). Where the triangulation holds such a leaf as two
+/// triangles, the pair is matched in advance and kept from the swaps (a structured interior:
+/// the leaves are the cells the subdivision made for the size, and the matching took nearly
+/// all of them anyway).
+std::vector<std::array<int, 4>> leaf_quads(const Work& w, const std::vector<std::array<long long, 4>>& leaves,
+                                           const CornerNodes& nodes) {
+  std::vector<std::array<int, 4>> out;
+  for (const auto& [U0, U1, V0, V1] : leaves) {
+    const std::array<int, 4> q{nodes.at(U0, V0), nodes.at(U1, V0), nodes.at(U1, V1), nodes.at(U0, V1)};
+    if (q[0] < 0 || q[1] < 0 || q[2] < 0 || q[3] < 0) continue;
+    // a node in the middle of a side (a finer neighbour's corner; 2:1 balance puts none
+    // elsewhere) makes the leaf a pentagon
+    const long long Um = (U0 + U1) / 2, Vm = (V0 + V1) / 2;
+    if (nodes.at(Um, V0) >= 0 || nodes.at(U1, Vm) >= 0 || nodes.at(Um, V1) >= 0 || nodes.at(U0, Vm) >= 0) continue;
+    if (!w.o.all_quad && w.chordal(q) > w.o.chordal_tolerance) continue;
+    if (w.strict_quality(q) >= kLeafQuality && w.quality(q) >= kLeafQuality) out.push_back(q);
+  }
+  return out;
+}
+
+/// For each quad of `quads` (a, b, c, d counter-clockwise) the pair of triangles of `tri` that
+/// make it up, split along either diagonal: (a, b, c) + (a, c, d) or (a, b, d) + (b, c, d);
+/// (-1, -1) where `tri` does not hold it.
+std::vector<std::pair<int, int>> held_pairs(const std::vector<std::array<int, 3>>& tri, const TrianglesAtNodes& around,
+                                            const std::vector<std::array<int, 4>>& quads) {
+  std::vector<std::pair<int, int>> out;
+  auto third = [&](int t, int k) { return tri[t][(k + 2) % 3]; };
+  for (const auto& [a, b, c, d] : quads) {
+    out.push_back({-1, -1});
+    const auto [t1, k1] = around.holding(tri, a, b);
+    if (t1 < 0) continue;
+    const int x = third(t1, k1);
+    const auto [t2, k2] = x == c ? around.holding(tri, c, d) : x == d ? around.holding(tri, b, c) : std::make_pair(-1, -1);
+    if (t2 >= 0 && third(t2, k2) == (x == c ? a : d)) out.back() = {t1, t2};
+  }
+  return out;
+}
+
+/// Pairs of neighbouring triangles the matching may take: strong ones (their quad scores at
+/// least min_quad_quality) with that score, and weak ones (only not folded in space).
+struct PairCandidates {
+  std::vector<std::tuple<double, int, int>> strong;
+  std::vector<std::pair<int, int>> weak;
+
+  /// Triangle t and its neighbour across its side k (nbr), t < that neighbour.
+  void consider(const Work& w, const std::vector<std::array<int, 3>>& tri, const std::vector<std::array<int, 3>>& nbr,
+                int t, int k) {
+    const int u = nbr[t][k], a = tri[t][k], b = tri[t][(k + 1) % 3], c = tri[t][(k + 2) % 3];
+    int d = -1;
+    for (int j = 0; j < 3; ++j)
+      if (tri[u][j] != a && tri[u][j] != b) d = tri[u][j];
+    // a pair across a cell side spans two cells: its quad may sag more than its triangles (the
+    // all-quad split halves every element, so its quads sag a quarter as much)
+    if (!w.o.all_quad && w.chordal({a, d, b, c}) > w.o.chordal_tolerance) return;
+    const double q = w.quality({a, d, b, c});
+    if (q >= w.o.min_quad_quality) strong.push_back({q, t, u});
+    else if (!w.o.all_quad && w.spatial_quality({a, d, b, c}) >= kRelaxedPair) weak.push_back({t, u});
+  }
+};
+
+/// Augmenting paths from every free triangle (BlossomSearch) over the edges of `adj`, after
+/// adding the strong candidates, then again after adding the weak ones.
+void augment_all(std::vector<std::vector<int>>& adj, std::vector<int>& mate, const PairCandidates& c) {
+  BlossomSearch search(adj, mate);
+  auto sweep = [&] {
+    for (int f = 0; f < static_cast<int>(mate.size()); ++f)
+      if (mate[f] < 0 && !adj[f].empty()) search.augment(f, kAugmentVisits);
+  };
+  for (const auto& [q, t, u] : c.strong) adj[t].push_back(u), adj[u].push_back(t);
+  sweep();
+  for (const auto& [t, u] : c.weak) adj[t].push_back(u), adj[u].push_back(t);
+  sweep();
+}
+
+/// Triangles within `depth` steps across sides of a triangle that `free` marks.
+std::vector<char> near_free(const std::vector<std::array<int, 3>>& nbr, const std::vector<int>& mate, int depth) {
+  std::vector<char> in(nbr.size(), 0);
+  std::vector<int> front;
+  for (int t = 0; t < static_cast<int>(nbr.size()); ++t)
+    if (mate[t] < 0) in[t] = 1, front.push_back(t);
+  for (int step = 0; step < depth && !front.empty(); ++step) {
+    std::vector<int> next;
+    for (int t : front)
+      for (int u : nbr[t])
+        if (u >= 0 && !in[u]) in[u] = 1, next.push_back(u);
+    front.swap(next);
+  }
+  return in;
+}
+
 /// Greedy matching by quad quality, then augmenting paths (BlossomSearch) so that as few
 /// triangles as possible stay unpaired: first among the pairs whose quad scores at least
 /// min_quad_quality, then also among those that are only not folded in space (kRelaxedPair:
 /// the quads across a 2:1 step of the subdivision, with a straight corner at its middle node,
-/// which merge_weak_pairs bends where it can).
+/// which merge_weak_pairs bends where it can). The pairs that make up a leaf quad
+/// (leaf_quads) are matched first and left out of the candidates; where triangles are left
+/// unpaired, the pairs of leaf triangles within kRerouteDepth of them become candidates too,
+/// so a path may run through leaf quads (re-pairing their triangles) as it could before.
+/// `leaf`: per triangle, whether it ends up in its leaf quad.
 std::vector<int> match_triangles(const Work& w, const std::vector<std::array<int, 3>>& tri,
-                                 std::vector<std::array<int, 3>>& nbr) {
+                                 const std::vector<std::array<int, 4>>& leaves, std::vector<std::array<int, 3>>& nbr,
+                                 std::vector<char>& leaf) {
   const int n = static_cast<int>(tri.size());
   const TrianglesAtNodes around(tri, w.xyz.size());
+  std::vector<int> mate(n, -1), leaf_mate(n, -1);
+  for (const auto& [t, u] : held_pairs(tri, around, leaves))
+    if (t >= 0) mate[t] = leaf_mate[t] = u, mate[u] = leaf_mate[u] = t;
   nbr.assign(n, {-1, -1, -1});
-  std::vector<std::tuple<double, int, int>> cand;
-  std::vector<std::pair<int, int>> weak;
+  for (int t = 0; t < n; ++t)
+    for (int k = 0; k < 3; ++k) nbr[t][k] = around.holding(tri, tri[t][(k + 1) % 3], tri[t][k]).first;
+  PairCandidates free_pairs;
+  for (int t = 0; t < n; ++t)
+    for (int k = 0; k < 3; ++k)
+      if (nbr[t][k] > t && leaf_mate[t] < 0 && leaf_mate[nbr[t][k]] < 0) free_pairs.consider(w, tri, nbr, t, k);
+  std::sort(free_pairs.strong.begin(), free_pairs.strong.end(),
+            [](const auto& x, const auto& y) { return std::get<0>(x) > std::get<0>(y); });
+  std::vector<std::vector<int>> adj(n);
+  for (const auto& [q, t, u] : free_pairs.strong)
+    if (mate[t] < 0 && mate[u] < 0) mate[t] = u, mate[u] = t;
+  augment_all(adj, mate, free_pairs);
+  const std::vector<char> near = near_free(nbr, mate, w.o.all_quad ? 0 : kRerouteDepth);
+  PairCandidates leaf_pairs;
   for (int t = 0; t < n; ++t)
     for (int k = 0; k < 3; ++k) {
-      const int a = tri[t][k], b = tri[t][(k + 1) % 3], c = tri[t][(k + 2) % 3];
-      const auto [u, j] = around.holding(tri, b, a);
-      if (u < 0) continue;
-      nbr[t][k] = u;
-      if (t > u) continue;
-      const int d = tri[u][(j + 2) % 3];
-      // a pair across a cell side spans two cells: its quad may sag more than its triangles (the
-      // all-quad split halves every element, so its quads sag a quarter as much)
-      if (!w.o.all_quad && w.chordal({a, d, b, c}) > w.o.chordal_tolerance) continue;
-      const double q = w.quality({a, d, b, c});
-      if (q >= w.o.min_quad_quality) cand.push_back({q, t, u});
-      else if (!w.o.all_quad && w.spatial_quality({a, d, b, c}) >= kRelaxedPair) weak.push_back({t, u});
+      const int u = nbr[t][k];
+      if (u > t && near[t] && near[u] && (leaf_mate[t] >= 0 || leaf_mate[u] >= 0) && !w.o.all_quad)
+        leaf_pairs.consider(w, tri, nbr, t, k);
     }
-  std::sort(cand.begin(), cand.end(), [](const auto& x, const auto& y) { return std::get<0>(x) > std::get<0>(y); });
-  std::vector<int> mate(n, -1);
-  std::vector<std::vector<int>> adj(n);
-  for (const auto& [qq, t, u] : cand) {
-    adj[t].push_back(u);
-    adj[u].push_back(t);
-    if (mate[t] < 0 && mate[u] < 0) {
-      mate[t] = u;
-      mate[u] = t;
-    }
-  }
-  BlossomSearch search(adj, mate);
-  for (int f = 0; f < n; ++f)
-    if (mate[f] < 0 && !adj[f].empty()) search.augment(f, kAugmentVisits);
-  for (const auto& [t, u] : weak) {
-    adj[t].push_back(u);
-    adj[u].push_back(t);
-  }
-  for (int f = 0; f < n; ++f)
-    if (mate[f] < 0 && !adj[f].empty()) search.augment(f, kAugmentVisits);
+  if (!leaf_pairs.strong.empty() || !leaf_pairs.weak.empty()) augment_all(adj, mate, leaf_pairs);
+  leaf.assign(n, 0);
+  for (int t = 0; t < n; ++t) leaf[t] = leaf_mate[t] >= 0 && mate[t] == leaf_mate[t];
   return mate;
 }
 
-/// The elements at each node.
+/// The elements at each node, in element order (compressed rows: one allocation, not one per
+/// node).
+class ElementsAtNodes {
+ public:
+  explicit ElementsAtNodes(const Work& w) : start_(w.xyz.size() + 1, 0) {
+    for (const auto& e : w.el)
+      for (int k = 0; k < (e[3] < 0 ? 3 : 4); ++k) ++start_[e[k] + 1];
+    for (size_t i = 0; i + 1 < start_.size(); ++i) start_[i + 1] += start_[i];
+    at_.resize(start_.back());
+    std::vector<int> fill(start_.begin(), start_.end() - 1);
+    for (int e = 0; e < static_cast<int>(w.el.size()); ++e)
+      for (int k = 0; k < (w.el[e][3] < 0 ? 3 : 4); ++k) at_[fill[w.el[e][k]]++] = e;
+  }
+  std::span<const int> operator[](int i) const { return {at_.data() + start_[i], at_.data() + start_[i + 1]}; }
+
+ private:
+  std::vector<int> start_, at_;
+};
+
+/// The elements at each node as lists (merge_weak_pairs adds to them).
 std::vector<std::vector<int>> elements_at_nodes(const Work& w) {
+  const ElementsAtNodes at(w);
   std::vector<std::vector<int>> around(w.xyz.size());
-  for (int e = 0; e < static_cast<int>(w.el.size()); ++e)
-    for (int k = 0; k < (w.el[e][3] < 0 ? 3 : 4); ++k) around[w.el[e][k]].push_back(e);
+  for (int i = 0; i < static_cast<int>(w.xyz.size()); ++i) around[i].assign(at[i].begin(), at[i].end());
   return around;
 }
 
@@ -705,7 +831,7 @@ std::vector<std::vector<int>> elements_at_nodes(const Work& w) {
 /// about the node alone, so visiting such a node again would move nothing: the passes skip it.
 class Settled {
  public:
-  Settled(const Work& w, const std::vector<std::vector<int>>& around) : w_(w), around_(around), flag_(w.xyz.size(), 0) {}
+  Settled(const Work& w, const ElementsAtNodes& around) : w_(w), around_(around), flag_(w.xyz.size(), 0) {}
   bool operator[](int i) const { return flag_[i] != 0; }
   /// After a visit of node i: settled if it did not move, else its neighbours are no longer.
   void visited(int i, bool moved) {
@@ -719,22 +845,23 @@ class Settled {
 
  private:
   const Work& w_;
-  const std::vector<std::vector<int>>& around_;
+  const ElementsAtNodes& around_;
   std::vector<char> flag_;
 };
 
 /// Moves each free node toward the mean of its elements' centroids, back onto the face,
-/// when the worst of its elements does not get worse.
-void smooth(Work& w, int passes) {
+/// when the worst of its elements does not get worse; `structured` nodes stay (see
+/// structured_nodes).
+void smooth(Work& w, int passes, const std::vector<char>& structured) {
   const int n = static_cast<int>(w.xyz.size());
-  const std::vector<std::vector<int>> around = elements_at_nodes(w);
+  const ElementsAtNodes around(w);
   Settled settled(w, around);
   std::vector<double> q(w.el.size()), now_q;  // each element's quality(), kept current
   for (size_t e = 0; e < w.el.size(); ++e) q[e] = w.quality(w.el[e]);
   for (int pass = 0; pass < passes; ++pass) {
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
-      if (around[i].empty() || settled[i]) continue;
+      if (around[i].empty() || settled[i] || structured[i]) continue;
       double worst = 1e9;
       Vec3 target = Vec3::Zero();
       for (int e : around[i]) {
@@ -772,7 +899,7 @@ void smooth(Work& w, int passes) {
 }
 
 /// The mean and shortest length of the edges at node i (`around`: the elements at each node).
-void edge_lengths(const Work& w, const std::vector<int>& around, int i, double& mean, double& shortest) {
+void edge_lengths(const Work& w, std::span<const int> around, int i, double& mean, double& shortest) {
   mean = 0.0, shortest = 1e300;
   int edges = 0;
   for (int e : around) {
@@ -798,8 +925,8 @@ double corner_cos(const Work& w, const std::array<int, 4>& e, int c) {
 /// The second objective of optimise_node: the squared excess of |cos| over sin kCornerSlack
 /// summed over the quad corners of the elements `around`, so a node whose worst element cannot
 /// rise still moves quad corners back toward 45-135 deg.
-double corner_excess(const Work& w, const std::vector<int>& around) {
-  const double slack = std::sin(kCornerSlack * kPi / 180.0);
+double corner_excess(const Work& w, std::span<const int> around) {
+  static const double slack = std::sin(kCornerSlack * kPi / 180.0);
   double sum = 0.0;
   for (int e : around) {
     if (w.el[e][3] < 0) continue;
@@ -812,7 +939,7 @@ double corner_excess(const Work& w, const std::vector<int>& around) {
 }
 
 /// The largest chordal deviation (m) of the elements `around`.
-double largest_sag(const Work& w, const std::vector<int>& around) {
+double largest_sag(const Work& w, std::span<const int> around) {
   double d = 0.0;
   for (int e : around) d = std::max(d, w.chordal(w.el[e]));
   return d;
@@ -822,7 +949,7 @@ double largest_sag(const Work& w, const std::vector<int>& around) {
 /// it raises the worst of the node's elements, or keeps it and lowers corner_excess; with
 /// `trade_above` (see improve_corners) the worst counts only up to that level, so above it a
 /// trial that lowers corner_excess wins even if it lowers the worst (never below the level).
-bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_above = 1e300) {
+bool optimise_node(Work& w, std::span<const int> around, int i, double trade_above = 1e300) {
   // the elements worst first: a trial is mostly rejected by the one that was worst, and the
   // count stops at the first element below `limit` (the trial is rejected whatever the rest)
   std::vector<std::pair<double, int>> order;
@@ -855,7 +982,15 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_
     const Vec3 nn = at.su.cross(at.sv);
     if (nn.norm() <= 0 || at.su.norm() <= 0) break;
     const Vec3 t1 = at.su.normalized(), t2 = nn.normalized().cross(t1);
-    Place to = at;
+    // the trials that beat the best so far, in turn (each beats the one before); the sag (a
+    // surface evaluation per element) is checked afterwards, from the last back, so mostly once
+    struct Better {
+      Place x;
+      double now, excess;
+    };
+    std::array<Better, 8> better;
+    int nb = 0;
+    const double round_best = best, round_excess = best_excess;
     for (int k = 0; k < 8; ++k) {
       const Place x = w.toward(at, at.p + step * (kCompass[k][0] * t1 + kCompass[k][1] * t2));
       if ((x.uv - at.uv).norm() == 0.0) continue;
@@ -866,10 +1001,18 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_
       edge_lengths(w, around, i, mean_now, shortest_now);
       if (shortest_now < floor) continue;
       const double excess = corner_excess(w, around);
-      const bool better = capped > best_capped + 1e-12 ||
-                          excess < best_excess - 1e-9 || (excess <= best_excess && now > best + 1e-12);
-      if (!better || largest_sag(w, around) > sag_limit) continue;
-      best = now, best_excess = excess, to = x;
+      if (capped > best_capped + 1e-12 || excess < best_excess - 1e-9 || (excess <= best_excess && now > best + 1e-12)) {
+        best = now, best_excess = excess;
+        better[nb++] = {x, now, excess};
+      }
+    }
+    Place to = at;
+    best = round_best, best_excess = round_excess;
+    for (int b = nb - 1; b >= 0; --b) {
+      w.put(i, better[b].x);
+      if (largest_sag(w, around) > sag_limit) continue;
+      to = better[b].x, best = better[b].now, best_excess = better[b].excess;
+      break;
     }
     if ((to.uv - at.uv).norm() > 0) {
       moved = true;
@@ -891,7 +1034,7 @@ bool optimise_node(Work& w, const std::vector<int>& around, int i, double trade_
 /// worst; it untangles the folded elements the Laplacian step cannot.
 void improve_worst(Work& w) {
   const int n = static_cast<int>(w.xyz.size());
-  const std::vector<std::vector<int>> around = elements_at_nodes(w);
+  const ElementsAtNodes around(w);
   Settled settled(w, around);
   for (int pass = 0; pass < kImprovePasses; ++pass) {
     std::vector<char> poor(n, 0);
@@ -919,7 +1062,7 @@ void improve_worst(Work& w) {
 /// corners to about 120 deg each: the fine quads' corners there get worse as it moves.
 void improve_corners(Work& w) {
   const int n = static_cast<int>(w.xyz.size());
-  const std::vector<std::vector<int>> around = elements_at_nodes(w);
+  const ElementsAtNodes around(w);
   const double out = std::cos(kCornerLimit * kPi / 180.0);
   Settled settled(w, around);
   for (int pass = 0; pass < kImprovePasses; ++pass) {
@@ -1287,9 +1430,21 @@ double FaceGeometry::curvature_sum(const Vec2& q) const {
   if (!surface) return 0.0;
   // in a ruled strip: the curvature of the surface where the strip joins it
   const RuledStrip* r = ruled(q.x());
-  const double u = r ? r->inner : q.x();
-  const Eigen::MatrixXd d = surface->derivatives(u, q.y(), 2);
-  const Vec3 sv = d.row(1), svv = d.row(2), su = d.row(3), suv = d.row(4), suu = d.row(6);
+  const double u = r ? r->inner : q.x(), v = q.y();
+  // second partials by central differences of the first at four points about (u, v), one
+  // call for all five and no allocation (NurbsSurface::derivatives allocates and cost about
+  // 7 000 instructions, most of the subdivision's time); the stencil stays in the domain
+  const auto [u0, u1] = surface->domain_u();
+  const auto [v0, v1] = surface->domain_v();
+  const double ua = std::max(u0, u - kCurvatureStep * (u1 - u0)), ub = std::min(u1, u + kCurvatureStep * (u1 - u0));
+  const double va = std::max(v0, v - kCurvatureStep * (v1 - v0)), vb = std::min(v1, v + kCurvatureStep * (v1 - v0));
+  const double us[5] = {u, ua, ub, u, u}, vs[5] = {v, v, v, va, vb};
+  double d[45];  // row k: S, S_u, S_v at (us[k], vs[k])
+  surface->evaluate_first_derivatives_into(us, vs, 5, d);
+  auto at = [&](int k, int part) { return Vec3(d[9 * k + 3 * part], d[9 * k + 3 * part + 1], d[9 * k + 3 * part + 2]); };
+  const Vec3 su = at(0, 1), sv = at(0, 2);
+  const Vec3 suu = (at(2, 1) - at(1, 1)) / (ub - ua), svv = (at(4, 2) - at(3, 2)) / (vb - va);
+  const Vec3 suv = 0.5 * ((at(2, 2) - at(1, 2)) / (ub - ua) + (at(4, 1) - at(3, 1)) / (vb - va));
   Vec3 n = su.cross(sv);
   const double len = n.norm();
   const double E = su.dot(su), F = su.dot(sv), G = sv.dot(sv);
@@ -1363,78 +1518,118 @@ double element_quality(const Vec3* p, int k, const Vec3& n) {
   return q;
 }
 
-PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, const MeshOptions& o,
-                     const LoopMidpoint& midpoint) {
-  const int nb = static_cast<int>(loop.size());
-  if (nb < 3) throw Error("mesh: a face boundary has fewer than 3 nodes");
-  Work w{g, o, {}, {}, {}, nb, {}};
-  for (const LoopNode& n : loop) {
-    w.uv.push_back(n.uv);
-    w.xyz.push_back(n.xyz);
-    w.normal.push_back(w.surface_normal(n.uv));
+namespace {
+
+/// The planar coordinates the triangulation works in: each parameter mapped by the mean arc
+/// length along three iso-lines (monotone, so orientation is kept), which evens out
+/// parametrisations whose speed jumps (a hull's flat-of-side zone between triple knots); on a
+/// face whose iso-lines shrink toward a pole (a fan), the cross coordinate of the direction
+/// whose iso-lines vary most in length is scaled by their length (one direction only, so the
+/// map stays one-to-one).
+class PlanarMap {
+ public:
+  PlanarMap(const FaceGeometry& g, const Vec2& lo, const Vec2& hi)
+      : amap_u_(g, lo.x(), hi.x(), lo.y(), hi.y(), true), amap_v_(g, lo.y(), hi.y(), lo.x(), hi.x(), false),
+        width_v_(g, lo.x(), hi.x(), lo.y(), hi.y(), true),    // iso-u lines: lengths along v
+        width_u_(g, lo.y(), hi.y(), lo.x(), hi.x(), false) {  // iso-v lines: lengths along u
+    scale_v_ = width_v_.spread() >= width_u_.spread();
+    fan_ = std::max(width_v_.spread(), width_u_.spread()) > kFanSpread;
   }
-  std::vector<Vec2> poly(nb);
-  Vec2 lo = loop[0].uv, hi = lo;
-  for (int i = 0; i < nb; ++i) {
-    poly[i] = loop[i].uv;
-    lo = lo.cwiseMin(poly[i]);
-    hi = hi.cwiseMax(poly[i]);
+  Vec2 operator()(const Vec2& q) const {
+    if (!fan_) return {amap_u_(q.x()), amap_v_(q.y())};
+    return scale_v_ ? Vec2(amap_u_(q.x()), amap_v_(q.y()) * width_v_(q.x()))
+                    : Vec2(amap_u_(q.x()) * width_u_(q.y()), amap_v_(q.y()));
   }
-  // the planar triangulation works in arc-length coordinates: each parameter mapped by the
-  // mean arc length along three iso-lines (monotone, so orientation is kept), which evens out
-  // parametrisations whose speed jumps (a hull's flat-of-side zone between triple knots)
-  const ArcMap amap_u(g, lo.x(), hi.x(), lo.y(), hi.y(), true), amap_v(g, lo.y(), hi.y(), lo.x(), hi.x(), false);
-  // the cross coordinate of the direction whose iso-lines vary most in length is scaled by
-  // their length (one direction only, so the map stays one-to-one)
-  const IsoWidth width_v(g, lo.x(), hi.x(), lo.y(), hi.y(), true);   // iso-u lines: lengths along v
-  const IsoWidth width_u(g, lo.y(), hi.y(), lo.x(), hi.x(), false);  // iso-v lines: lengths along u
-  const bool scale_v = width_v.spread() >= width_u.spread();
-  const bool fan = std::max(width_v.spread(), width_u.spread()) > kFanSpread;
-  auto scaled = [&](const Vec2& q) {
-    if (!fan) return Vec2(amap_u(q.x()), amap_v(q.y()));
-    return scale_v ? Vec2(amap_u(q.x()), amap_v(q.y()) * width_v(q.x()))
-                   : Vec2(amap_u(q.x()) * width_u(q.y()), amap_v(q.y()));
-  };
-  auto speed_u = [&](const Vec2& q) { return amap_u.speed(q.x()) * (fan && !scale_v ? width_u(q.y()) : 1.0); };
-  auto speed_v = [&](const Vec2& q) { return amap_v.speed(q.y()) * (fan && scale_v ? width_v(q.x()) : 1.0); };
-  const double size_scale = o.all_quad ? 2.0 : 1.0;
-  // interior nodes: corners of the balanced subdivision, inside and clear of the boundary
-  const auto ru = root_lines(g, lo.x(), hi.x(), lo.y(), hi.y(), true, size_scale * o.size);
-  const auto rv = root_lines(g, lo.y(), hi.y(), lo.x(), hi.x(), false, size_scale * o.size);
-  // size: the curvature's, graded from the boundary's own spacing
-  std::vector<double> hb(nb);
-  for (int i = 0; i < nb; ++i)
-    hb[i] = std::max((w.xyz[(i + 1) % nb] - w.xyz[i]).norm(), (w.xyz[(i + nb - 1) % nb] - w.xyz[i]).norm());
-  const GradedSize graded(w.xyz, hb, size_scale * o.size / kGrading);
-  auto size_at = [&](const Vec2& q, const Vec3& p, double below) {
-    // the size without the curvature bounds it: where that is below `below`, so is the size
-    // (graded(p, h) = min(h, its value at the largest size) for h up to the largest size)
-    const double at_largest = graded(p, size_scale * o.size);
-    const double bound = std::max(at_largest, size_scale * o.min_size);
+  /// d(planar) / d(u) and d(planar) / d(v) along the axes.
+  double speed_u(const Vec2& q) const { return amap_u_.speed(q.x()) * (fan_ && !scale_v_ ? width_u_(q.y()) : 1.0); }
+  double speed_v(const Vec2& q) const { return amap_v_.speed(q.y()) * (fan_ && scale_v_ ? width_v_(q.x()) : 1.0); }
+
+ private:
+  ArcMap amap_u_, amap_v_;
+  IsoWidth width_v_, width_u_;
+  bool scale_v_ = true, fan_ = false;
+};
+
+/// The target size at a point of the face: the curvature's (target_size), graded from the
+/// boundary's own spacing, times `scale` (2 for the all-quad split's coarse pass).
+class PatchSize {
+ public:
+  PatchSize(const Work& w, int nb, double scale)
+      : w_(w), scale_(scale), hb_(longer_sides(w, nb)), graded_(w.xyz, hb_, scale * w.o.size / kGrading) {}
+  /// The size at (q, p); any value below `below` where the size is below it: the size without
+  /// the curvature bounds it, and where that is below `below` the curvature is not needed
+  /// (graded(p, h) = min(h, its value at the largest size) for h up to the largest size).
+  double operator()(const Vec2& q, const Vec3& p, double below) const {
+    const double at_largest = graded_(p, scale_ * w_.o.size);
+    const double bound = std::max(at_largest, scale_ * w_.o.min_size);
     if (bound < below) return bound;
-    return std::max(std::min(size_scale * target_size(g, q, o), at_largest), size_scale * o.min_size);
-  };
-  const Subdivision sub(g, o, ru, rv, size_scale, size_at);
-  // boundary segments bucketed in scaled (u, v) for the clearance test
-  const double bucket = size_scale * o.size;
-  std::unordered_map<long long, std::vector<int>> buckets;
-  auto bkey = [&](long long i, long long j) { return i * 1000003LL + j; };
-  for (int i = 0; i < nb; ++i) {
-    const Vec2 a = scaled(poly[i]), b = scaled(poly[(i + 1) % nb]);
-    const long long i0 = static_cast<long long>(std::floor(std::min(a.x(), b.x()) / bucket));
-    const long long i1 = static_cast<long long>(std::floor(std::max(a.x(), b.x()) / bucket));
-    const long long j0 = static_cast<long long>(std::floor(std::min(a.y(), b.y()) / bucket));
-    const long long j1 = static_cast<long long>(std::floor(std::max(a.y(), b.y()) / bucket));
-    for (long long x = i0; x <= i1; ++x)
-      for (long long y = j0; y <= j1; ++y) buckets[bkey(x, y)].push_back(i);
+    return std::max(std::min(scale_ * target_size(w_.g, q, w_.o), at_largest), scale_ * w_.o.min_size);
   }
-  std::vector<Vec2> pts2;
-  for (const Vec2& q : poly) pts2.push_back(scaled(q));
-  // near a pole the subdivision's lines converge and their corners crowd: there an interior
-  // node keeps kPoleSpacing x h from the nodes already taken (not in the all-quad coarse pass:
-  // on the bulb's nose its split quads then fold, 9 inverted at 1.5 m instead of 3)
+
+ private:
+  /// The longer of the two loop sides at each of the nb loop nodes.
+  static std::vector<double> longer_sides(const Work& w, int nb) {
+    std::vector<double> hb(nb);
+    for (int i = 0; i < nb; ++i)
+      hb[i] = std::max((w.xyz[(i + 1) % nb] - w.xyz[i]).norm(), (w.xyz[(i + nb - 1) % nb] - w.xyz[i]).norm());
+    return hb;
+  }
+  const Work& w_;
+  double scale_;
+  std::vector<double> hb_;
+  GradedSize graded_;
+};
+
+/// The boundary sides of a face bucketed in planar coordinates, for the clearance test of
+/// place_nodes: is p (at q) within `clear` of a side, or within kClearance x the side's own
+/// length (a node close to a long side, a boundary coarser than the curvature inside wants,
+/// would be joined to its ends by slivers)?
+class SideBuckets {
+ public:
+  SideBuckets(const Work& w, const std::vector<Vec2>& planar, int nb, double bucket) : w_(w), nb_(nb), bucket_(bucket) {
+    longest_ = 0.0;
+    for (int i = 0; i < nb; ++i) {
+      const Vec2 &a = planar[i], &b = planar[(i + 1) % nb];
+      for (long long x = cell(std::min(a.x(), b.x())); x <= cell(std::max(a.x(), b.x())); ++x)
+        for (long long y = cell(std::min(a.y(), b.y())); y <= cell(std::max(a.y(), b.y())); ++y) buckets_[key(x, y)].push_back(i);
+      longest_ = std::max(longest_, (w.xyz[(i + 1) % nb] - w.xyz[i]).norm());
+    }
+  }
+  /// `slow`: the least metres per planar unit at q (the search radius in planar units).
+  bool near(const Vec3& p, const Vec2& s, double clear, double slow) const {
+    const double reach = std::min(kClearance * std::max(clear / kClearance, longest_) / slow, 50.0 * bucket_);
+    for (long long x = cell(s.x() - reach); x <= cell(s.x() + reach); ++x)
+      for (long long y = cell(s.y() - reach); y <= cell(s.y() + reach); ++y) {
+        auto it = buckets_.find(key(x, y));
+        if (it == buckets_.end()) continue;
+        for (int i : it->second) {
+          const Vec3 &a = w_.xyz[i], &b = w_.xyz[(i + 1) % nb_];
+          if (segment_distance(p, a, b) < std::max(clear, kClearance * (b - a).norm())) return true;
+        }
+      }
+    return false;
+  }
+
+ private:
+  long long cell(double t) const { return static_cast<long long>(std::floor(t / bucket_)); }
+  static long long key(long long i, long long j) { return i * 1000003LL + j; }
+  const Work& w_;
+  int nb_;
+  double bucket_, longest_;
+  std::unordered_map<long long, std::vector<int>> buckets_;
+};
+
+/// Interior nodes: the corners of the balanced subdivision inside the loop and clear of its
+/// sides (kClearance x the size); near a pole, where the subdivision's lines converge and
+/// their corners crowd, also kPoleSpacing x the size from the nodes already taken (not in the
+/// all-quad coarse pass: on the bulb's nose its split quads then fold, 9 inverted at 1.5 m
+/// instead of 3). Appends them to w and their planar points to `planar`.
+CornerNodes place_nodes(Work& w, const Subdivision<PatchSize>& sub, const std::vector<LoopNode>& loop, const std::vector<Vec2>& poly,
+                        const PlanarMap& map, const PatchSize& size, double bucket, std::vector<Vec2>& planar) {
+  const int nb = static_cast<int>(loop.size());
+  const SideBuckets sides(w, planar, nb, bucket);
   std::vector<Vec3> poles;
-  for (int i = 0; i < nb && !o.all_quad; ++i)
+  for (int i = 0; i < nb && !w.o.all_quad; ++i)
     if (loop[i].id == loop[(i + 1) % nb].id) poles.push_back(w.xyz[i]);
   auto crowded_at_pole = [&](const Vec3& p, double h) {
     bool close = false;
@@ -1444,123 +1639,184 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
       if ((w.xyz[i] - p).norm() < kPoleSpacing * h) return true;
     return false;
   };
-  double longest_side = 0.0;
-  for (int i = 0; i < nb; ++i) longest_side = std::max(longest_side, (w.xyz[(i + 1) % nb] - w.xyz[i]).norm());
   const PolygonSlabs inside(poly);
-  for (const auto& [U, V] : sub.corners()) {
-    const Vec2 q(sub.u(U), sub.v(V));
+  CornerNodes out;
+  out.corner = sub.corners();
+  out.node.assign(out.corner.size(), -1);
+  for (size_t c = 0; c < out.corner.size(); ++c) {
+    const Vec2 q(sub.u(out.corner[c].first), sub.v(out.corner[c].second));
     if (!inside.inside(q)) continue;
     Vec3 p, su, sv;
-    g.first(q, p, su, sv);
-    const double h = size_at(q, p, 0.0);
-    const double clear = kClearance * h;
-    // search radius in scaled coordinates: the slowest direction bounds the reach
-    const double slow = std::max(1e-300, std::min(su.norm() / speed_u(q), sv.norm() / speed_v(q)));
-    const double reach = std::min(kClearance * std::max(h, longest_side) / slow, 50.0 * bucket);
-    const Vec2 s = scaled(q);
-    const long long i0 = static_cast<long long>(std::floor((s.x() - reach) / bucket));
-    const long long i1 = static_cast<long long>(std::floor((s.x() + reach) / bucket));
-    const long long j0 = static_cast<long long>(std::floor((s.y() - reach) / bucket));
-    const long long j1 = static_cast<long long>(std::floor((s.y() + reach) / bucket));
-    bool near = false;
-    for (long long x = i0; x <= i1 && !near; ++x)
-      for (long long y = j0; y <= j1 && !near; ++y) {
-        auto it = buckets.find(bkey(x, y));
-        if (it == buckets.end()) continue;
-        for (int i : it->second)
-          // clear of the side by the local size or the side's own length, whichever is
-          // more: a node close to a long side (a boundary coarser than the curvature inside
-          // wants) would be joined to its ends by slivers
-          if (segment_distance(p, w.xyz[i], w.xyz[(i + 1) % nb]) <
-              std::max(clear, kClearance * (w.xyz[(i + 1) % nb] - w.xyz[i]).norm())) {
-            near = true;
-            break;
-          }
-      }
-    if (near || crowded_at_pole(p, h)) continue;
+    w.g.first(q, p, su, sv);
+    const double slow = std::max(1e-300, std::min(su.norm() / map.speed_u(q), sv.norm() / map.speed_v(q)));
+    const Vec2 s = map(q);
+    // both tests reject more the larger the size: a node clear by the size's bound without
+    // the curvature (most of them, away from the boundary) is clear by the size
+    auto rejected = [&](double h) { return sides.near(p, s, kClearance * h, slow) || crowded_at_pole(p, h); };
+    if (rejected(size(q, p, std::numeric_limits<double>::infinity())) && rejected(size(q, p, 0.0))) continue;
+    out.node[c] = static_cast<int>(w.xyz.size());
     w.uv.push_back(q);
     w.xyz.push_back(p);
-    const Vec3 n = su.cross(sv);
-    w.normal.push_back(n.norm() > 1e-300 ? Vec3(n.normalized()) : Vec3::Zero());
-    pts2.push_back(s);
+    w.normal.push_back(Work::unit_normal(su, sv));
+    planar.push_back(s);
   }
-  // constrained Delaunay in scaled (u, v), then 3-D swaps (max-min angle)
+  return out;
+}
+
+/// Constrained Delaunay triangulation of the nodes in planar coordinates, then edge swaps by
+/// the 3-D max-min angle except in the leaf quads it holds (their pairs are matched as they
+/// are), then the pole copies merged (merged_triangles).
+std::vector<std::array<int, 3>> triangulate(const Work& w, const std::vector<Vec2>& planar, const std::vector<LoopNode>& loop,
+                                            const std::vector<std::array<int, 4>>& leaves) {
+  const int nb = static_cast<int>(loop.size());
   std::vector<int> order(nb);
   for (int i = 0; i < nb; ++i) order[i] = i;
-  Triangulation tr(pts2, order);
-  for (int i = nb; i < static_cast<int>(pts2.size()); ++i) tr.insert(i);
+  Triangulation tr(planar, order);
+  for (int i = nb; i < static_cast<int>(planar.size()); ++i) tr.insert(i);
+  // a leaf the Delaunay triangulation cut across (in fan coordinates a leaf is a trapezoid) is
+  // made two triangles by flipping the edges across its sides
+  const auto before = held_pairs(tr.triangles(), TrianglesAtNodes(tr.triangles(), planar.size()), leaves);
+  for (size_t l = 0; l < leaves.size(); ++l)
+    if (before[l].first < 0)
+      for (int k = 0; k < 4; ++k) tr.enforce(leaves[l][k], leaves[l][(k + 1) % 4]);
+  std::vector<char> keep(tr.triangles().size(), 0);
+  for (const auto& [t, u] : held_pairs(tr.triangles(), TrianglesAtNodes(tr.triangles(), planar.size()), leaves))
+    if (t >= 0) keep[t] = keep[u] = 1;
   tr.flip_while(
       [&](int a, int b, int c, int d) {
         const double now = std::min(min_angle(w.xyz[a], w.xyz[b], w.xyz[c]), min_angle(w.xyz[b], w.xyz[a], w.xyz[d]));
         const double then = std::min(min_angle(w.xyz[a], w.xyz[d], w.xyz[c]), min_angle(w.xyz[d], w.xyz[b], w.xyz[c]));
         return then > now + 1e-9;
       },
-      kSwapPasses);
-  const std::vector<std::array<int, 3>> tri = merged_triangles(w, tr.triangles(), pole_canon(loop, w.xyz.size()));
-  std::vector<std::array<int, 3>> nbr;
-  const std::vector<int> mate = match_triangles(w, tri, nbr);
-  std::vector<WeakPair> weak;
+      kSwapPasses, keep);
+  return merged_triangles(w, tr.triangles(), pole_canon(loop, w.xyz.size()));
+}
+
+/// The matched triangles as elements of w: quads, unpaired triangles, and the weak pairs
+/// (their quad below min_quad_quality) as two triangles each, listed in `weak`. Returns, per
+/// element, whether it is a leaf quad.
+std::vector<char> assemble(Work& w, const std::vector<std::array<int, 3>>& tri, const std::vector<int>& mate,
+                           const std::vector<char>& leaf, const std::vector<std::array<int, 3>>& nbr,
+                           std::vector<WeakPair>& weak) {
+  std::vector<char> is_leaf;
+  auto push = [&](const std::array<int, 4>& e, bool l) { w.el.push_back(e), is_leaf.push_back(l); };
   for (int t = 0; t < static_cast<int>(tri.size()); ++t) {
     if (mate[t] < 0) {
-      w.el.push_back({tri[t][0], tri[t][1], tri[t][2], -1});
+      push({tri[t][0], tri[t][1], tri[t][2], -1}, false);
       continue;
     }
     if (mate[t] < t) continue;
-    for (int k = 0; k < 3; ++k)
-      if (nbr[t][k] == mate[t]) {
-        const int a = tri[t][k], b = tri[t][(k + 1) % 3], c = tri[t][(k + 2) % 3];
-        const int u = mate[t];
-        int d = -1;
-        for (int j = 0; j < 3; ++j)
-          if (tri[u][j] != a && tri[u][j] != b) d = tri[u][j];
-        const std::array<int, 4> quad{a, d, b, c};
-        if (o.all_quad || w.quality(quad) >= o.min_quad_quality) {
-          w.el.push_back(quad);
-          continue;
-        }
-        const int first = static_cast<int>(w.el.size());
-        w.el.push_back({tri[t][0], tri[t][1], tri[t][2], -1});
-        w.el.push_back({tri[u][0], tri[u][1], tri[u][2], -1});
-        weak.push_back({first, first + 1, quad});
+    const int u = mate[t];
+    for (int k = 0; k < 3; ++k) {
+      if (nbr[t][k] != u) continue;
+      const int a = tri[t][k], b = tri[t][(k + 1) % 3], c = tri[t][(k + 2) % 3];
+      int d = -1;
+      for (int j = 0; j < 3; ++j)
+        if (tri[u][j] != a && tri[u][j] != b) d = tri[u][j];
+      const std::array<int, 4> quad{a, d, b, c};
+      if (w.o.all_quad || leaf[t] || w.quality(quad) >= w.o.min_quad_quality) {
+        push(quad, leaf[t]);
+        continue;
       }
+      const int first = static_cast<int>(w.el.size());
+      push({tri[t][0], tri[t][1], tri[t][2], -1}, false);
+      push({tri[u][0], tri[u][1], tri[u][2], -1}, false);
+      weak.push_back({first, first + 1, quad});
+    }
   }
+  return is_leaf;
+}
+
+/// Nodes every element of which is a leaf quad (the structured interior): smoothing leaves
+/// them where the subdivision put them (on the face, in cells the size asked for); the
+/// searches still move them where an element about them scores low.
+std::vector<char> structured_nodes(const Work& w, const std::vector<char>& is_leaf) {
+  std::vector<char> out(w.xyz.size(), 1);
+  for (int i = 0; i < w.fixed; ++i) out[i] = 0;
+  for (size_t e = 0; e < w.el.size(); ++e)
+    if (!is_leaf[e])
+      for (int k = 0; k < (w.el[e][3] < 0 ? 3 : 4); ++k) out[w.el[e][k]] = 0;
+  std::vector<char> used(w.xyz.size(), 0);
+  for (const auto& e : w.el)
+    for (int k = 0; k < (e[3] < 0 ? 3 : 4); ++k) used[e[k]] = 1;
+  for (size_t i = 0; i < out.size(); ++i) out[i] = out[i] && used[i];
+  return out;
+}
+
+/// The all-quad mesh: the coarse mesh in w (smoothed) split into quads (split_all_quad), its
+/// loop midpoints moved before the free nodes, smoothed and searched.
+PatchMesh all_quad_patch(Work& w, const std::vector<int>& canon, int nb, const LoopMidpoint& midpoint,
+                         std::vector<int> global, const std::vector<char>& is_leaf) {
+  std::vector<char> leaf_child;  // per fine element: whether its coarse parent was a leaf quad
+  for (size_t e = 0; e < w.el.size(); ++e) leaf_child.insert(leaf_child.end(), w.el[e][3] < 0 ? 3 : 4, is_leaf[e]);
+  split_all_quad(w, canon, nb, midpoint, global);
+  // split-off boundary midpoints stay where the edge put them: renumbered before the free nodes
+  const int n = static_cast<int>(w.xyz.size());
+  std::vector<int> perm, rest;
+  for (int i = 0; i < n; ++i) (i < nb || global[i] >= 0 ? perm : rest).push_back(i);
+  const int fixed = static_cast<int>(perm.size());
+  perm.insert(perm.end(), rest.begin(), rest.end());
+  std::vector<int> inv(n);
+  for (int i = 0; i < n; ++i) inv[perm[i]] = i;
+  Work r{w.g, w.o, {}, {}, {}, fixed, {}};
+  std::vector<int> g2(n);
+  for (int i = 0; i < n; ++i) {
+    r.xyz.push_back(w.xyz[perm[i]]);
+    r.uv.push_back(w.uv[perm[i]]);
+    r.normal.push_back(w.normal[perm[i]]);
+    g2[i] = global[perm[i]];
+  }
+  for (auto e : w.el) {
+    for (int k = 0; k < 4; ++k)
+      if (e[k] >= 0) e[k] = inv[e[k]];
+    r.el.push_back(e);
+  }
+  smooth(r, r.o.smoothing_passes, structured_nodes(r, leaf_child));
+  if (r.o.smoothing_passes > 0) {
+    improve_worst(r);
+    improve_corners(r);  // the split's corners lie near 60, 90 and 120 deg, some beyond 45-135
+  }
+  split_folded_quads(r);  // the last resort: none on the composed ship at 3 and 1.5 m
+  return {std::move(r.xyz), std::move(r.uv), std::move(r.el), std::move(g2)};
+}
+
+}  // namespace
+
+PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, const MeshOptions& o,
+                     const LoopMidpoint& midpoint) {
+  const int nb = static_cast<int>(loop.size());
+  if (nb < 3) throw Error("mesh: a face boundary has fewer than 3 nodes");
+  Work w{g, o, {}, {}, {}, nb, {}};
+  std::vector<Vec2> poly(nb);
+  Vec2 lo = loop[0].uv, hi = lo;
+  for (int i = 0; i < nb; ++i) {
+    w.uv.push_back(loop[i].uv);
+    w.xyz.push_back(loop[i].xyz);
+    w.normal.push_back(w.surface_normal(loop[i].uv));
+    poly[i] = loop[i].uv;
+    lo = lo.cwiseMin(poly[i]);
+    hi = hi.cwiseMax(poly[i]);
+  }
+  const PlanarMap map(g, lo, hi);
+  const double scale = o.all_quad ? 2.0 : 1.0;
+  const PatchSize size(w, nb, scale);
+  const Subdivision<PatchSize> sub(g, o, root_lines(g, lo.x(), hi.x(), lo.y(), hi.y(), true, scale * o.size),
+                                   root_lines(g, lo.y(), hi.y(), lo.x(), hi.x(), false, scale * o.size), scale, size);
+  std::vector<Vec2> planar;
+  for (const Vec2& q : poly) planar.push_back(map(q));
+  const CornerNodes nodes = place_nodes(w, sub, loop, poly, map, size, scale * o.size, planar);
+  const std::vector<std::array<int, 4>> leaves = leaf_quads(w, sub.leaves(), nodes);
+  const std::vector<std::array<int, 3>> tri = triangulate(w, planar, loop, leaves);
+  std::vector<std::array<int, 3>> nbr;
+  std::vector<char> leaf;
+  const std::vector<int> mate = match_triangles(w, tri, leaves, nbr, leaf);
+  std::vector<WeakPair> weak;
+  const std::vector<char> is_leaf = assemble(w, tri, mate, leaf, nbr, weak);
   std::vector<int> global(w.xyz.size(), -1);
   for (int i = 0; i < nb; ++i) global[i] = loop[i].id;
-  const std::vector<int> canon = pole_canon(loop, w.xyz.size());  // the triangles were merged on it
-  if (o.all_quad) {
-    smooth(w, o.smoothing_passes);
-    split_all_quad(w, canon, nb, midpoint, global);
-    // split-off boundary midpoints stay where the edge put them
-    std::vector<int> perm;  // move loop-midpoint nodes before the free ones: renumber
-    const int n = static_cast<int>(w.xyz.size());
-    std::vector<int> fixed_first, rest;
-    for (int i = 0; i < n; ++i) (i < nb || global[i] >= 0 ? fixed_first : rest).push_back(i);
-    perm = fixed_first;
-    perm.insert(perm.end(), rest.begin(), rest.end());
-    std::vector<int> inv(n);
-    for (int i = 0; i < n; ++i) inv[perm[i]] = i;
-    Work r{g, o, {}, {}, {}, static_cast<int>(fixed_first.size()), {}};
-    std::vector<int> g2(n);
-    for (int i = 0; i < n; ++i) {
-      r.xyz.push_back(w.xyz[perm[i]]);
-      r.uv.push_back(w.uv[perm[i]]);
-      r.normal.push_back(w.normal[perm[i]]);
-      g2[i] = global[perm[i]];
-    }
-    for (auto e : w.el) {
-      for (int k = 0; k < 4; ++k)
-        if (e[k] >= 0) e[k] = inv[e[k]];
-      r.el.push_back(e);
-    }
-    smooth(r, o.smoothing_passes);
-    if (o.smoothing_passes > 0) {
-      improve_worst(r);
-      improve_corners(r);  // the split's corners lie near 60, 90 and 120 deg, some beyond 45-135
-    }
-    split_folded_quads(r);  // the last resort: none on the composed ship at 3 and 1.5 m
-    return {std::move(r.xyz), std::move(r.uv), std::move(r.el), std::move(g2)};
-  }
-  smooth(w, o.smoothing_passes);
+  smooth(w, o.smoothing_passes, structured_nodes(w, is_leaf));
+  if (o.all_quad)  // the triangles were merged on the pole copies' canonical ids
+    return all_quad_patch(w, pole_canon(loop, w.xyz.size()), nb, midpoint, std::move(global), is_leaf);
   if (o.smoothing_passes > 0) improve_worst(w);
   merge_weak_pairs(w, weak);
   if (o.smoothing_passes > 0) improve_corners(w);

@@ -15,6 +15,8 @@ namespace {
 
 /// Relative size below which an orientation counts as zero (points on a line).
 constexpr double kCollinear = 1e-12;
+/// Rounds of flips Triangulation::enforce tries (each flips every convex crossing edge).
+constexpr int kEnforceRounds = 8;
 
 }  // namespace
 
@@ -38,6 +40,8 @@ Triangulation::Triangulation(std::vector<Eigen::Vector2d> points, const std::vec
     v_.push_back(tri);
   }
   n_.assign(v_.size(), {-1, -1, -1});
+  at_.assign(p_.size(), -1);
+  for (int t = 0; t < static_cast<int>(v_.size()); ++t) own(t);
   std::map<std::pair<int, int>, std::pair<int, int>> half;
   for (int t = 0; t < static_cast<int>(v_.size()); ++t)
     for (int k = 0; k < 3; ++k) half[{v_[t][k], v_[t][(k + 1) % 3]}] = {t, k};
@@ -47,10 +51,10 @@ Triangulation::Triangulation(std::vector<Eigen::Vector2d> points, const std::vec
   }
   loop_at_.assign(p_.size(), -1);
   for (int i = 0; i < m; ++i) loop_at_[loop[i]] = i;
-  std::vector<std::pair<int, int>> stack;
+  stack_.clear();
   for (int t = 0; t < static_cast<int>(v_.size()); ++t)
-    for (int k = 0; k < 3; ++k) stack.push_back({t, k});
-  legalize(std::move(stack));
+    for (int k = 0; k < 3; ++k) stack_.push_back({t, k});
+  legalize_stack();
 }
 
 bool Triangulation::constrained(int a, int b) const {
@@ -80,8 +84,13 @@ int Triangulation::edge_index(int t, int a, int b) const {
   return -1;
 }
 
+void Triangulation::own(int t) {
+  for (int v : v_[t]) at_[v] = t;
+}
+
 int Triangulation::append_triangle(const std::array<int, 3>& corners) {
   v_.push_back(corners);
+  for (int v : corners) at_[v] = static_cast<int>(v_.size()) - 1;
   n_.push_back({-1, -1, -1});
   return static_cast<int>(v_.size()) - 1;
 }
@@ -127,6 +136,8 @@ bool Triangulation::flip(int t, int k) {
   const int n_ad = n_[u][(j + 1) % 3], n_db = n_[u][(j + 2) % 3];
   v_[t] = {a, d, c};  // edges: (a,d) (d,c) (c,a)
   v_[u] = {d, b, c};  // edges: (d,b) (b,c) (c,d)
+  own(t);
+  own(u);
   auto relink = [&](int outer, int x, int y, int tri, int kk) {  // outer triangle holds edge (y, x)
     n_[tri][kk] = outer;
     if (outer >= 0) {
@@ -143,7 +154,13 @@ bool Triangulation::flip(int t, int k) {
   return true;
 }
 
-void Triangulation::legalize(std::vector<std::pair<int, int>> stack) {
+void Triangulation::legalize(std::initializer_list<std::pair<int, int>> edges) {
+  stack_.assign(edges.begin(), edges.end());  // a member: no allocation per insertion
+  legalize_stack();
+}
+
+void Triangulation::legalize_stack() {
+  std::vector<std::pair<int, int>>& stack = stack_;
   while (!stack.empty()) {
     const auto [t, k] = stack.back();
     stack.pop_back();
@@ -169,6 +186,7 @@ void Triangulation::split_triangle(int t, int idx) {
   const int a = v_[t][0], b = v_[t][1], c = v_[t][2];
   const int n_ab = n_[t][0], n_bc = n_[t][1], n_ca = n_[t][2];
   v_[t] = {a, b, idx};
+  own(t);
   const int t1 = append_triangle({b, c, idx}), t2 = append_triangle({c, a, idx});
   n_[t] = {n_ab, t1, t2};
   n_[t1] = {n_bc, t2, t};
@@ -188,6 +206,8 @@ void Triangulation::split_edge(int t, int k, int idx) {
   // t: (a, idx, c)  t2: (idx, b, c)  u: (b, idx, d)  u2: (idx, a, d)
   v_[t] = {a, idx, c};
   v_[u] = {b, idx, d};
+  own(t);
+  own(u);
   const int t2 = append_triangle({idx, b, c}), u2 = append_triangle({idx, a, d});
   n_[t] = {u2, t2, n_ca};
   n_[t2] = {u, n_bc, t};
@@ -216,7 +236,75 @@ bool Triangulation::insert(int idx) {
   return true;
 }
 
-long Triangulation::flip_while(const std::function<bool(int, int, int, int)>& better, int max_passes) {
+template <typename F>
+int Triangulation::about(int a, F&& found) const {
+  // counter-clockwise from at_[a] (across the side ending at a), then, if that meets the
+  // boundary, clockwise from it (across the side starting at a)
+  for (int dir = 0; dir < 2; ++dir)
+    for (int t = at_[a], guard = 0; t >= 0 && guard <= static_cast<int>(v_.size()); ++guard) {
+      const int i = v_[t][0] == a ? 0 : v_[t][1] == a ? 1 : 2;
+      if (found(t, i)) return t;
+      t = n_[t][dir == 0 ? (i + 2) % 3 : i];
+      if (t == at_[a]) return -1;  // all the way round
+    }
+  return -1;
+}
+
+bool Triangulation::crossing_edges(int a, int b, std::vector<std::pair<int, int>>& out) const {
+  out.clear();
+  const double eps = kCollinear * scale_ * scale_;
+  bool there = false;
+  int k = -1;  // the triangle at a whose wedge holds the direction to b, and its side ab leaves by
+  int t = about(a, [&](int tt, int i) {
+    const int x = v_[tt][(i + 1) % 3], y = v_[tt][(i + 2) % 3];
+    if (x == b || y == b) return there = true;
+    if (orient(a, x, b) > eps && orient(a, b, y) > eps) return k = (i + 1) % 3, true;
+    return false;
+  });
+  if (there) return true;
+  if (t < 0) return false;  // outside the polygon at a, or along an edge through a vertex
+  for (int guard = 0; guard < static_cast<int>(v_.size()); ++guard) {
+    const int x = v_[t][k], y = v_[t][(k + 1) % 3];
+    out.push_back({x, y});
+    const int u = n_[t][k];
+    if (u < 0) return false;
+    const int j = edge_index(u, y, x);
+    const int z = v_[u][(j + 2) % 3];
+    if (z == b) return true;
+    const double side = orient(a, b, z);
+    if (std::abs(side) <= eps) return false;  // through a vertex: not a plain crossing
+    // x lies right of ab and y left (so far); u is y, x, z counter-clockwise: ab leaves it
+    // across x -> z where z lies left, else across z -> y
+    t = u;
+    k = side > 0 ? (j + 1) % 3 : (j + 2) % 3;
+  }
+  return false;
+}
+
+bool Triangulation::enforce(int a, int b) {
+  std::vector<std::pair<int, int>> cross;
+  for (int round = 0; round < kEnforceRounds; ++round) {
+    if (!crossing_edges(a, b, cross)) return false;
+    if (cross.empty()) return true;
+    bool flipped = false;
+    for (const auto& [x, y] : cross) {  // flip each crossing edge whose quadrilateral is convex
+      if (constrained(x, y)) return false;
+      int k = -1;
+      const int t = about(x, [&](int tt, int) { return (k = edge_index(tt, x, y)) >= 0; });
+      if (t < 0 || n_[t][k] < 0) continue;  // changed by a flip this round: tried again next round
+      const int u = n_[t][k];
+      const int c = v_[t][(k + 2) % 3], d = v_[u][(edge_index(u, y, x) + 2) % 3];
+      if (orient(c, x, d) <= 0 || orient(d, y, c) <= 0) continue;
+      flip(t, k);
+      flipped = true;
+    }
+    if (!flipped) return false;
+  }
+  return false;
+}
+
+long Triangulation::flip_while(const std::function<bool(int, int, int, int)>& better, int max_passes,
+                               const std::vector<char>& keep) {
   long flips = 0;
   // pass in which each triangle last changed: an edge whose two triangles are older than the
   // last pass was checked since they changed, on the same four points, so it is skipped
@@ -227,6 +315,7 @@ long Triangulation::flip_while(const std::function<bool(int, int, int, int)>& be
       for (int k = 0; k < 3; ++k) {
         const int u = n_[t][k];
         if (u < 0 || u < t) continue;
+        if (!keep.empty() && (keep[t] || keep[u])) continue;  // a flip rewrites both (t and u)
         if (pass > 0 && changed[t] < pass - 1 && changed[u] < pass - 1) continue;
         const int a = v_[t][k], b = v_[t][(k + 1) % 3], c = v_[t][(k + 2) % 3];
         if (constrained(a, b)) continue;

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <functional>
+#include <initializer_list>
 #include <vector>
 
 #include <Eigen/Core>
@@ -25,10 +26,18 @@ class Triangulation {
   /// on a constrained edge.
   bool insert(int index);
 
-  /// Flips every edge for which better(t, k) says the flipped pair is better, until none
-  /// does or `max_passes` sweeps are done; only flips whose quadrilateral is strictly convex
-  /// in the plane. Returns the number of flips.
-  long flip_while(const std::function<bool(int a, int b, int c, int d)>& better, int max_passes);
+  /// Flips every edge ab (triangles abc and bad) for which better(a, b, c, d) says the flipped
+  /// pair is better, until none does or `max_passes` sweeps are done; only flips whose
+  /// quadrilateral is strictly convex in the plane, and none of a triangle t with keep[t]
+  /// (keep empty: none kept). Returns the number of flips.
+  long flip_while(const std::function<bool(int a, int b, int c, int d)>& better, int max_passes,
+                  const std::vector<char>& keep = {});
+
+  /// Makes the segment a-b an edge by flipping the edges that cross it (Sloan 1993), for a
+  /// segment inside the polygon crossed by no constrained edge. False (nothing more flipped)
+  /// where it cannot: a vertex on the segment, a crossing edge that is constrained, or no
+  /// convex crossing quadrilateral left. The triangulation is no longer Delaunay about it.
+  bool enforce(int a, int b);
 
   const std::vector<std::array<int, 3>>& triangles() const { return v_; }
   const std::vector<Eigen::Vector2d>& points() const { return p_; }
@@ -44,13 +53,27 @@ class Triangulation {
   /// Triangle `outer` (-1: none), which holds the directed edge (a, b), now has t across it.
   void point_across(int outer, int a, int b, int t);
   int edge_index(int t, int a, int b) const;
+  /// The edges (x, y) the segment a-b crosses, from a on; empty if a-b is an edge. False where
+  /// the walk fails (the segment leaves the polygon or runs through a vertex).
+  bool crossing_edges(int a, int b, std::vector<std::pair<int, int>>& out) const;
+  /// Points at_ of t's corners to t.
+  void own(int t);
+  /// The first triangle t about point a (a at its corner i) for which found(t, i) holds, -1 if
+  /// none: counter-clockwise from at_[a], then clockwise where that meets the boundary.
+  template <typename F>
+  int about(int a, F&& found) const;
   bool flip(int t, int k);
-  void legalize(std::vector<std::pair<int, int>> stack);
+  /// Lawson flips from the given (triangle, side) edges on until every edge they reach is
+  /// locally Delaunay.
+  void legalize(std::initializer_list<std::pair<int, int>> edges);
+  void legalize_stack();  ///< the same from the edges in stack_
   void split_triangle(int t, int idx);
   void split_edge(int t, int k, int idx);
 
   std::vector<Eigen::Vector2d> p_;
   std::vector<std::array<int, 3>> v_, n_;
+  std::vector<int> at_;  ///< a triangle at each point (-1: none yet)
+  std::vector<std::pair<int, int>> stack_;  ///< legalize's work list
   std::vector<int> loop_at_;  ///< position of each point in the boundary loop, -1 if not on it
   int loop_size_ = 0;
   mutable int hint_ = 0;
