@@ -44,6 +44,9 @@ constexpr double kImproveBelow = 0.6;      ///< nodes of elements scoring below 
                                            ///< (0.75 took most of the time on the bare hull, where leaf
                                            ///< quads score 0.6-0.75; corners are improve_corners's)
 constexpr double kCornerSlack = 40.0;      ///< quad corners further than this from 90 deg (deg) are penalised
+constexpr double kSmoothSettle = 0.02;     ///< a smoothing move shorter than this x the node's reach is not made
+constexpr double kPolishBand = 0.02;       ///< polish searches the elements this close to the worst
+constexpr double kPolishMinStep = 0.003;   ///< down to this step / the node's mean edge length
 constexpr int kImprovePasses = 4;          ///< sweeps of that node optimisation
 constexpr double kImproveStep = 0.25;      ///< its first trial step / the node's mean edge length
 constexpr double kImproveMinStep = 0.04;   ///< and its last
@@ -862,7 +865,7 @@ void smooth(Work& w, int passes, const std::vector<char>& structured) {
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
       if (around[i].empty() || settled[i] || structured[i]) continue;
-      double worst = 1e9;
+      double worst = 1e9, reach = 0.0;
       Vec3 target = Vec3::Zero();
       for (int e : around[i]) {
         worst = std::min(worst, q[e]);
@@ -870,13 +873,23 @@ void smooth(Work& w, int passes, const std::vector<char>& structured) {
         Vec3 c = Vec3::Zero();
         for (int j = 0; j < k; ++j) c += w.xyz[w.el[e][j]];
         target += c / k;
+        reach += (c / k - w.xyz[i]).norm();
       }
       target /= static_cast<double>(around[i].size());
+      // a move this short changes no element's score noticeably, yet it would unsettle every
+      // neighbour: the node counts as settled
+      if ((target - w.xyz[i]).norm() < kSmoothSettle * reach / static_cast<double>(around[i].size())) {
+        settled.visited(i, false);
+        continue;
+      }
       const Vec2 old_uv = w.uv[i];
       const Vec3 old_p = w.xyz[i], old_n = w.normal[i];
-      // Newton to the foot point: a linear step here (Work::toward) saved 5 % but left a folded
-      // quad in the all-quad wetted mesh at 3 m, at the blend's clamped stem end
-      const Place x = w.place_at(w.g.locate(target, old_uv));
+      // onto the face by the linear step from the node toward the target's foot on its tangent
+      // plane (Work::toward: Newton only where that misses, at a clamped or ruled end): two
+      // evaluations where Newton to the foot point took five or six
+      const Place here = w.place_at(old_uv);
+      const Vec3 n = Work::unit_normal(here.su, here.sv);
+      const Place x = w.toward(here, target - (target - here.p).dot(n) * n);
       if ((x.uv - old_uv).norm() == 0.0) {
         settled.visited(i, false);
         continue;
@@ -949,7 +962,8 @@ double largest_sag(const Work& w, std::span<const int> around) {
 /// it raises the worst of the node's elements, or keeps it and lowers corner_excess; with
 /// `trade_above` (see improve_corners) the worst counts only up to that level, so above it a
 /// trial that lowers corner_excess wins even if it lowers the worst (never below the level).
-bool optimise_node(Work& w, std::span<const int> around, int i, double trade_above = 1e300) {
+bool optimise_node(Work& w, std::span<const int> around, int i, double trade_above = 1e300,
+                   double first_step = kImproveStep, double min_step = kImproveMinStep) {
   // the elements worst first: a trial is mostly rejected by the one that was worst, and the
   // count stops at the first element below `limit` (the trial is rejected whatever the rest)
   std::vector<std::pair<double, int>> order;
@@ -973,12 +987,12 @@ bool optimise_node(Work& w, std::span<const int> around, int i, double trade_abo
   const double floor = std::min(kImproveShortest * len, shortest);
   // no move takes an element further from the surface than the tolerance (or than it was)
   const double sag_limit = std::max(largest_sag(w, around), w.o.chordal_tolerance);
-  double best = order.empty() ? 1e9 : order.front().first, best_excess = corner_excess(w, around), step = kImproveStep * len;
+  double best = order.empty() ? 1e9 : order.front().first, best_excess = corner_excess(w, around), step = first_step * len;
   Place at = w.place_at(w.uv[i]);
   at.p = w.xyz[i];  // as stored (a loop node's may differ by round-off)
   const Vec3 start_normal = w.normal[i];
   bool moved = false;
-  for (int round = 0; round < kMaxSteps && step >= kImproveMinStep * len; ++round) {
+  for (int round = 0; round < kMaxSteps && step >= min_step * len; ++round) {
     const Vec3 nn = at.su.cross(at.sv);
     if (nn.norm() <= 0 || at.su.norm() <= 0) break;
     const Vec3 t1 = at.su.normalized(), t2 = nn.normalized().cross(t1);
@@ -1032,24 +1046,35 @@ bool optimise_node(Work& w, std::span<const int> around, int i, double trade_abo
 /// scores highest. A move is kept only when it raises that worst (and keeps the node's edges
 /// above kImproveShortest x their mean), so no element gets worse than its neighbourhood's
 /// worst; it untangles the folded elements the Laplacian step cannot.
-void improve_worst(Work& w) {
+void improve_worst(Work& w, double below = kImproveBelow, double first_step = kImproveStep,
+                   double min_step = kImproveMinStep) {
   const int n = static_cast<int>(w.xyz.size());
   const ElementsAtNodes around(w);
   Settled settled(w, around);
   for (int pass = 0; pass < kImprovePasses; ++pass) {
     std::vector<char> poor(n, 0);
     for (const auto& e : w.el)
-      if (w.strict_quality(e) < kImproveBelow)
+      if (w.strict_quality(e) < below)
         for (int k = 0; k < (e[3] < 0 ? 3 : 4); ++k) poor[e[k]] = 1;
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
       if (!poor[i] || around[i].empty() || settled[i]) continue;
-      const bool m = optimise_node(w, around[i], i);
+      const bool m = optimise_node(w, around[i], i, 1e300, first_step, min_step);
       moved += m;
       settled.visited(i, m);
     }
     if (!moved) break;
   }
+}
+
+/// The last pass: the nodes of the worst elements (within kPolishBand of the worst) searched
+/// again, from twice the searches' last step down to a finer one, kPolishMinStep: that last
+/// step leaves a node up to 0.04 of an edge from where its worst element peaks, and the worst
+/// search does not look at elements above kImproveBelow.
+void polish(Work& w) {
+  double worst = 1e9;
+  for (const auto& e : w.el) worst = std::min(worst, w.strict_quality(e));
+  improve_worst(w, worst + kPolishBand, 2 * kImproveMinStep, kPolishMinStep);
 }
 
 /// The corner pass, after the weak pairs are merged (their quads' corners at the 2:1 steps lie
@@ -1776,6 +1801,7 @@ PatchMesh all_quad_patch(Work& w, const std::vector<int>& canon, int nb, const L
     improve_worst(r);
     improve_corners(r);  // the split's corners lie near 60, 90 and 120 deg, some beyond 45-135
   }
+  if (r.o.smoothing_passes > 0) polish(r);
   split_folded_quads(r);  // the last resort: none on the composed ship at 3 and 1.5 m
   return {std::move(r.xyz), std::move(r.uv), std::move(r.el), std::move(g2)};
 }
@@ -1820,6 +1846,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   if (o.smoothing_passes > 0) improve_worst(w);
   merge_weak_pairs(w, weak);
   if (o.smoothing_passes > 0) improve_corners(w);
+  if (o.smoothing_passes > 0) polish(w);
   split_folded_quads(w);
   global.resize(w.xyz.size(), -1);
   return {std::move(w.xyz), std::move(w.uv), std::move(w.el), std::move(global)};
