@@ -936,19 +936,41 @@ double corner_cos(const Work& w, const std::array<int, 4>& e, int c) {
 }
 
 /// The second objective of optimise_node: the squared excess of |cos| over sin kCornerSlack
-/// summed over the quad corners of the elements `around`, so a node whose worst element cannot
-/// rise still moves quad corners back toward 45-135 deg.
-double corner_excess(const Work& w, std::span<const int> around) {
-  static const double slack = std::sin(kCornerSlack * kPi / 180.0);
+/// summed over the quad corners at node i that move with it (at i and at its two neighbours
+/// in each quad; the opposite corner keeps its sides), so a node whose worst element cannot
+/// rise still moves quad corners back toward 45-135 deg. A corner within the slack costs no
+/// square root (its squared cosine is compared).
+double corner_excess(const Work& w, std::span<const int> around, int i) {
+  static const double slack = std::sin(kCornerSlack * kPi / 180.0), slack2 = slack * slack;
   double sum = 0.0;
   for (int e : around) {
-    if (w.el[e][3] < 0) continue;
-    for (int c = 0; c < 4; ++c) {
-      const double over = std::max(0.0, corner_cos(w, w.el[e], c) - slack);
+    const std::array<int, 4>& q = w.el[e];
+    if (q[3] < 0) continue;
+    int c = 0;
+    while (c < 3 && q[c] != i) ++c;
+    for (int k : {c, (c + 1) % 4, (c + 3) % 4}) {
+      const Vec3& x = w.xyz[q[k]];
+      const Vec3 a = w.xyz[q[(k + 1) % 4]] - x, b = w.xyz[q[(k + 3) % 4]] - x;
+      const double d = a.dot(b), l2 = a.squaredNorm() * b.squaredNorm();
+      if (l2 > 0 && d * d <= slack2 * l2) continue;
+      const double over = (l2 > 0 ? std::abs(d) / std::sqrt(l2) : 1.0) - slack;
       sum += over * over;
     }
   }
   return sum;
+}
+
+/// The shortest edge (m) at node i of the elements `around`.
+double shortest_edge(const Work& w, std::span<const int> around, int i) {
+  double shortest2 = 1e300;
+  for (int e : around) {
+    const int k = w.el[e][3] < 0 ? 3 : 4;
+    for (int c = 0; c < k; ++c)
+      if (w.el[e][c] == i)
+        for (int j : {w.el[e][(c + 1) % k], w.el[e][(c + k - 1) % k]})
+          shortest2 = std::min(shortest2, (w.xyz[j] - w.xyz[i]).squaredNorm());
+  }
+  return std::sqrt(shortest2);
 }
 
 /// The largest chordal deviation (m) of the elements `around`.
@@ -981,13 +1003,13 @@ bool optimise_node(Work& w, std::span<const int> around, int i, double trade_abo
     for (int k = 0; k < 8; ++k) c[k] = {std::cos(k * kPi / 4), std::sin(k * kPi / 4)};
     return c;
   }();
-  double len, shortest, mean_now, shortest_now;
+  double len, shortest;
   edge_lengths(w, around, i, len, shortest);
   // the scaled Jacobian does not see size: a search for it alone can collapse an edge
   const double floor = std::min(kImproveShortest * len, shortest);
   // no move takes an element further from the surface than the tolerance (or than it was)
   const double sag_limit = std::max(largest_sag(w, around), w.o.chordal_tolerance);
-  double best = order.empty() ? 1e9 : order.front().first, best_excess = corner_excess(w, around), step = first_step * len;
+  double best = order.empty() ? 1e9 : order.front().first, best_excess = corner_excess(w, around, i), step = first_step * len;
   Place at = w.place_at(w.uv[i]);
   at.p = w.xyz[i];  // as stored (a loop node's may differ by round-off)
   const Vec3 start_normal = w.normal[i];
@@ -1009,12 +1031,15 @@ bool optimise_node(Work& w, std::span<const int> around, int i, double trade_abo
       const Place x = w.toward(at, at.p + step * (kCompass[k][0] * t1 + kCompass[k][1] * t2));
       if ((x.uv - at.uv).norm() == 0.0) continue;
       w.put(i, x);
+      // at or above trade_above the worst cannot make a trial better, only the corners can:
+      // they are counted first, the cheaper test
+      double excess = best >= trade_above ? corner_excess(w, around, i) : -1.0;
+      if (excess > best_excess) continue;
       const double best_capped = std::min(best, trade_above), now = worst(best_capped);
       const double capped = std::min(now, trade_above);
       if (capped < best_capped) continue;  // worse whatever the corners
-      edge_lengths(w, around, i, mean_now, shortest_now);
-      if (shortest_now < floor) continue;
-      const double excess = corner_excess(w, around);
+      if (shortest_edge(w, around, i) < floor) continue;
+      if (excess < 0) excess = corner_excess(w, around, i);
       if (capped > best_capped + 1e-12 || excess < best_excess - 1e-9 || (excess <= best_excess && now > best + 1e-12)) {
         best = now, best_excess = excess;
         better[nb++] = {x, now, excess};
