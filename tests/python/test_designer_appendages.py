@@ -159,3 +159,14 @@ def test_a_bad_dome_is_refused_naming_the_value(frigate):
     d["dome"]["depth"] = -1.0
     with pytest.raises(fl.InvalidInput, match="dome.depth is -1.0 m; expected > 0"):
         fl.Hull.from_json(d)
+
+
+def test_command_line_design_with_skeg_and_dome(tmp_path):
+    from fairlines.cli import main
+
+    out = tmp_path / "ship.json"
+    assert main(["design", "--lpp", "140", "--breadth", "17", "--draft", "5.5", "--depth", "10", "--cb", "0.5",
+                 "--lcb", "67.2", "--skeg", "--propeller-diameter", "3.5", "--sonar-dome", "-o", str(out)]) == 0
+    d = fl.Hull.from_json(out.read_text()).description
+    assert d.skeg is not None and d.dome is not None
+    assert d.skeg.half_thickness == pytest.approx(SKEG_HALF_THICKNESS * 3.5)
