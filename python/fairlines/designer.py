@@ -97,6 +97,8 @@ TIP_CLEARANCE = 0.25
 HEEL_CLEARANCE = 0.04
 SKEG_CLEARANCE = 0.15
 PROPELLER_HALF_WIDTH = 0.1  # half the blades' axial extent, fraction of the diameter
+PROPELLER_ROOM = 0.97       # the hull over the blades stays below this fraction of the transom's lower edge
+PROPELLER_RETRIES = (0.6, 0.5)  # smaller default propellers (fractions of T) when the run cannot hold the first
 SKEG_HALF_THICKNESS = 0.1   # the skeg's half thickness, fraction of the propeller diameter (it houses the shaft)
 SKEG_END = 0.8              # its bottom rises to the hull over this many propeller diameters forward of its aft edge
 SKEG_FILLET = 1.0           # the hollow fillet to the hull body, fraction of the propeller diameter
@@ -223,12 +225,20 @@ def _profile(p: Particulars, c: dict, x_aft: float, x_fore: float) -> dict:
             "yE": D, "slopeE": stem, "points": [[L, T]], "slopes": [[L, stem]], "monotone": True, "spans": 30}
 
 
+def default_propeller_diameter(p: Particulars) -> float:
+    """PROPELLER_DIAMETER T, or less where the counter must stay below a low (immersed)
+    transom's edge: the hull over the blades (HEEL_CLEARANCE + 1 + TIP_CLEARANCE diameters
+    above base) at most PROPELLER_ROOM of the transom's height."""
+    room = PROPELLER_ROOM * _coefficients(p)["transom_z"] / (HEEL_CLEARANCE + 1.0 + TIP_CLEARANCE)
+    return min(PROPELLER_DIAMETER * p.draft, room)
+
+
 def propeller(p: Particulars) -> dict | None:
     """The single screw of a ship with a skeg (metres): diameter, plane x, shaft height, the
     least height of the hull above the disc and the skeg's aft edge; None without a skeg."""
     if not p.skeg:
         return None
-    dp = p.propeller_diameter if p.propeller_diameter is not None else PROPELLER_DIAMETER * p.draft
+    dp = p.propeller_diameter if p.propeller_diameter is not None else default_propeller_diameter(p)
     x = max(PROPELLER_PLANE * p.lpp, dp)
     shaft = (HEEL_CLEARANCE + 0.5) * dp
     return {"diameter": dp, "x": x, "shaft_height": shaft, "hull_above": shaft + (0.5 + TIP_CLEARANCE) * dp,
@@ -538,14 +548,18 @@ def _fallbacks(p: Particulars):
     """The particulars, then (for basic curves that cannot be met) what the designer may still
     choose -- never a value the user gave: the LCF at and forward of the LCB, the parallel body
     moved toward the LCB, a parallel body longer by PARALLEL_STEP Lpp at a time; then the same
-    with an immersed transom narrowed to DWL_TRANSOM_RETRY B/2, and with a waterplane fuller
-    by CWP_RETRY."""
+    with an immersed transom narrowed to DWL_TRANSOM_RETRY B/2, with a waterplane fuller by
+    CWP_RETRY, and (with a skeg) with the smaller propellers of PROPELLER_RETRIES."""
     yield from _choices(p)
     if p.transom_breadth is None:
         yield from _choices(replace(p, transom_breadth=DWL_TRANSOM_RETRY * p.breadth / 2))
     if p.cwp is None:
         cwp = _coefficients(p)["cwp"]
         yield from _choices(replace(p, cwp=min(cwp + CWP_RETRY, CWP_MAX)))
+    if p.skeg and p.propeller_diameter is None:  # a smaller screw lifts the counter less
+        for f in PROPELLER_RETRIES:
+            if f * p.draft < default_propeller_diameter(p):
+                yield from _choices(replace(p, propeller_diameter=f * p.draft))
 
 
 def _choices(p: Particulars):
@@ -668,6 +682,9 @@ def _explained(exc: Exception, p: Particulars, edge: str = "") -> Exception:
     said = (f"cb {p.cb:.4g}, lcb {p.lcb:.6g} m ({lcb_pct:+.2f} % Lpp from midships), cm {c['cm']:.4g}, "
             f"cwp {c['cwp']:.4g}, lcf {c['lcf']:.6g} m, parallel body {c['parallel'][1] - c['parallel'][0]:.4g} m")
     remedy = _REMEDIES.get(curve, "change the particulars")
+    if curve == "profile" and "over the propeller" in str(exc):
+        remedy = ("the run is too short to lift the hull over the propeller: give a smaller propeller_diameter, "
+                  "move lcb forward or lower cb (a longer run)")
     lp = (c["parallel"][1] - c["parallel"][0]) / p.lpp
     if curve == "sac" and lp > 0 and (c["cp"] - lp) / (1 - lp) < FINE_ENDS_CP:
         remedy = (f"the ends outside this parallel body would need a prismatic coefficient of "
