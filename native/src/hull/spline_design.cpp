@@ -67,26 +67,33 @@ double eval_factors(const std::vector<NurbsCurve>& f, double x) {
   return w;
 }
 
-/// Row of int_{from}^{to} x^power N(x) w(x) dx, by Gauss-Legendre on every piece between the
-/// breakpoints of f and the factors, exact for the polynomial integrand.
-Eigen::RowVectorXd integral_row(const Eigen::VectorXd& U, int p, const SplineIntegral& in, int power) {
-  std::set<double> br{in.from, in.to};
-  auto add_breaks = [&](const Eigen::VectorXd& K) {
-    for (Eigen::Index i = 0; i < K.size(); ++i)
-      if (K[i] > in.from && K[i] < in.to) br.insert(K[i]);
-  };
-  add_breaks(U);
-  int deg = p + power;
-  for (const NurbsCurve& c : in.factors) add_breaks(c.knots()), deg += c.degree();
-  const auto& g = detail::gauss_rule(deg / 2 + 1);
-  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(U.size() - p - 1);
+/// Visits the Gauss-Legendre nodes x and weights w of int_{from}^{to} for an integrand that is a
+/// polynomial of degree <= `degree` between the values of `knot_vectors`: the knots inside
+/// (from, to) split the range into pieces, each with degree / 2 + 1 points (exact to degree
+/// 2 (degree / 2 + 1) - 1 >= degree), pieces from `from` upward.
+template <class Visit>
+void piecewise_gauss(double from, double to, const std::vector<const Eigen::VectorXd*>& knot_vectors, int degree,
+                     Visit&& visit) {
+  std::set<double> br{from, to};
+  for (const Eigen::VectorXd* K : knot_vectors)
+    for (Eigen::Index i = 0; i < K->size(); ++i)
+      if ((*K)[i] > from && (*K)[i] < to) br.insert((*K)[i]);
+  const auto& g = detail::gauss_rule(degree / 2 + 1);
   for (auto it = br.begin(); std::next(it) != br.end(); ++it) {
     const double a = *it, b = *std::next(it), h = 0.5 * (b - a), m = 0.5 * (a + b);
-    for (std::size_t q = 0; q < g.x.size(); ++q) {
-      const double x = m + h * g.x[q];
-      row += g.w[q] * h * std::pow(x, power) * eval_factors(in.factors, x) * basis_row(U, p, x);
-    }
+    for (std::size_t q = 0; q < g.x.size(); ++q) visit(m + h * g.x[q], g.w[q] * h);
   }
+}
+
+/// Row of int_{from}^{to} x^power N(x) w(x) dx, exact for the polynomial integrand.
+Eigen::RowVectorXd integral_row(const Eigen::VectorXd& U, int p, const SplineIntegral& in, int power) {
+  std::vector<const Eigen::VectorXd*> knots{&U};
+  int deg = p + power;
+  for (const NurbsCurve& c : in.factors) knots.push_back(&c.knots()), deg += c.degree();
+  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(U.size() - p - 1);
+  piecewise_gauss(in.from, in.to, knots, deg, [&](double x, double w) {
+    row += w * std::pow(x, power) * eval_factors(in.factors, x) * basis_row(U, p, x);
+  });
   return row;
 }
 
@@ -122,8 +129,12 @@ void check_request(const SplineDesignRequest& r) {
   for (const auto& c : r.integrals) {
     range(c.from, c.to, c.name);
     if (c.power < 0 || c.power > 1) fail(nm, ": ", c.name, " power is ", c.power, "; expected 0 or 1");
-    for (const NurbsCurve& f : c.factors)
+    int degree = p + 1;  // the centroid's first moment
+    for (const NurbsCurve& f : c.factors) {
       if (f.dim() != 1) fail(nm, ": ", c.name, " has a weight factor of dimension ", f.dim(), "; expected a function (dimension 1)");
+      degree += f.degree();
+    }
+    if (degree > kMaxProductDegree) fail(nm, ": ", c.name, "'s integrand has degree ", degree, "; expected at most ", kMaxProductDegree);
   }
   for (const auto& c : r.flats) range(c.from, c.to, c.name), detail::require_finite(c.value, nm + ": " + c.name);
   for (const auto& c : r.bounds) range(c.from, c.to, c.name);
@@ -219,6 +230,29 @@ NurbsCurve design_spline_function(const SplineDesignRequest& r) {
     throw InfeasibleFormParameters(r.name + ": the conditions " + list + " contradict each other");
   }
   return NurbsCurve(p, U, s.x);
+}
+
+double spline_product_integral(const std::vector<NurbsCurve>& factors, double from, double to, int power) {
+  const char* nm = "spline_product_integral";
+  if (!std::isfinite(from) || !std::isfinite(to) || !(from <= to)) fail(nm, ": range ", from, " to ", to, "; expected finite from <= to");
+  if (power < 0 || power > kMaxProductDegree) fail(nm, ": power is ", power, "; expected 0 to ", kMaxProductDegree);
+  std::vector<const Eigen::VectorXd*> knots;
+  int degree = power;
+  for (std::size_t i = 0; i < factors.size(); ++i) {
+    const NurbsCurve& f = factors[i];
+    if (f.dim() != 1) fail(nm, ": factor ", i, " has dimension ", f.dim(), "; expected a function (dimension 1)");
+    // A rational factor makes the integrand no polynomial: the Gauss rule would not be exact.
+    if (f.is_rational()) fail(nm, ": factor ", i, " is rational; expected a non-rational spline function");
+    const auto [x0, x1] = f.domain();
+    const double tol = kDomainTolerance * std::max(1.0, std::abs(x0) + std::abs(x1));
+    if (from < x0 - tol || to > x1 + tol) fail(nm, ": range ", from, " to ", to, " leaves factor ", i, "'s domain ", x0, " to ", x1);
+    knots.push_back(&f.knots());
+    degree += f.degree();
+  }
+  if (degree > kMaxProductDegree) fail(nm, ": the integrand has degree ", degree, "; expected at most ", kMaxProductDegree);
+  double sum = 0.0;
+  piecewise_gauss(from, to, knots, degree, [&](double x, double w) { sum += w * std::pow(x, power) * eval_factors(factors, x); });
+  return sum;
 }
 
 Eigen::VectorXd spline_function_knots(double x0, double x1, const std::vector<double>& breaks, int spans, int degree,
