@@ -36,8 +36,6 @@ REFERENCE_FAIRNESS = 1e-6
 #: the waterline breadth (fraction of its largest) below which an end counts as such.
 WEDGE_FULLNESS = 0.5
 WEDGE_BREADTH = 1e-9
-# Gauss points per knot span for exact integrals of f and x f (cubic: 3 are exact for degree 5).
-_GAUSS = np.polynomial.legendre.leggauss(4)
 
 
 @dataclass
@@ -70,17 +68,12 @@ class BasicCurve:
         return float(np.asarray(self.curve.derivatives(float(np.clip(x, self.x_start, self.x_end)), order))[order, 0])
 
     def integral(self, power: int = 0, lo: float | None = None, hi: float | None = None) -> float:
-        """int x^power f dx over [lo, hi] (default the whole range), exact (Gauss per knot span)."""
+        """int x^power f dx over [lo, hi] (default the whole range), exact (the engine's
+        fairlines.spline_product_integral). Raises InvalidInput for lo > hi or a range beyond
+        the curve's."""
         lo = self.x_start if lo is None else lo
         hi = self.x_end if hi is None else hi
-        if self.curve is None:
-            return float(self.value * (hi ** (power + 1) - lo ** (power + 1)) / (power + 1))
-        k = np.asarray(self.curve.knots)
-        br = np.unique(np.concatenate([[lo, hi], k[(k > lo) & (k < hi)]]))
-        a, b = br[:-1, None], br[1:, None]
-        x = 0.5 * (a + b) + 0.5 * (b - a) * _GAUSS[0][None, :]
-        w = 0.5 * (b - a) * _GAUSS[1][None, :]
-        return float(np.sum(w * x**power * self(x.ravel()).reshape(x.shape)))
+        return _native.spline_product_integral([self.factor()], lo, hi, power)
 
     def form_parameters(self) -> dict[str, float]:
         """Area (int f dx over the range) and its centroid xC, exact."""
@@ -428,12 +421,14 @@ def _sac_ranges(r, plan, params, factors) -> str:
     mom = _native.SplineIntegral(plan.xs, plan.xe, 1.0, power=1, factors=factors, name="moment")
     out = []
     try:
+        def moment(s, power: int) -> float:  # int x^power s w dx over the SAC's range, w the box's factors
+            return _native.spline_product_integral([s, *factors], plan.xs, plan.xe, power)
+
         ext = []
         for sign in (1.0, -1.0):
             vol.value = sign
             r.linear = [vol]
-            f = BasicCurve("s", plan.xs, plan.xe, _native.design_spline_function(r))
-            ext.append(2 * _weighted_integral(f, factors, 0))
+            ext.append(2 * moment(_native.design_spline_function(r), 0))
         out.append(f"the sections this DWL and profile allow hold {ext[0]:.6g} to {ext[1]:.6g} m^3")
         if "Area" in params and ext[0] <= params["Area"] <= ext[1]:
             r.integrals = [_native.SplineIntegral(plan.xs, plan.xe, params["Area"] / 2.0, factors=factors, name="volume")]
@@ -441,25 +436,12 @@ def _sac_ranges(r, plan, params, factors) -> str:
             for sign in (1.0, -1.0):
                 mom.value = sign
                 r.linear = [mom]
-                f = BasicCurve("s", plan.xs, plan.xe, _native.design_spline_function(r))
-                lcb.append(_weighted_integral(f, factors, 1) / _weighted_integral(f, factors, 0))
+                s = _native.design_spline_function(r)
+                lcb.append(moment(s, 1) / moment(s, 0))
             out.append(f"at {params['Area']:.6g} m^3 their LCB can lie from {lcb[0]:.6g} to {lcb[1]:.6g} m")
     except _native.InfeasibleFormParameters:
         out.append("no SAC meets its end conditions and flat part with these sections")
     return "; ".join(out)
-
-
-def _weighted_integral(f: BasicCurve, factors, power: int) -> float:
-    k = np.concatenate([np.asarray(f.curve.knots)] + [np.asarray(c.knots) for c in factors])
-    br = np.unique(np.concatenate([[f.x_start, f.x_end], k[(k > f.x_start) & (k < f.x_end)]]))
-    g = np.polynomial.legendre.leggauss(8)
-    a, b = br[:-1, None], br[1:, None]
-    x = (0.5 * (a + b) + 0.5 * (b - a) * g[0][None, :]).ravel()
-    w = (0.5 * (b - a) * g[1][None, :]).ravel()
-    val = f(x)
-    for c in factors:
-        val = val * np.asarray(c.evaluate(x))[:, 0]
-    return float(np.sum(w * x**power * val))
 
 
 def solve_sac(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft: float,
@@ -509,16 +491,13 @@ class _ProductCurve(BasicCurve):
         return float((self(x + h)[0] - 2 * self(x)[0] + self(x - h)[0]) / h**2)
 
     def integral(self, power: int = 0, lo: float | None = None, hi: float | None = None) -> float:
+        """int x^power A dx over [lo, hi] (default the whole range), exact: twice the engine's
+        integral of the product s y_dwl (T - z_keel). Raises InvalidInput for lo > hi or a
+        range beyond the SAC's."""
         lo = self.x_start if lo is None else lo
         hi = self.x_end if hi is None else hi
-        knots = [np.asarray(c.curve.knots) for c in (self.fullness, self.dwl, self.profile) if c.curve is not None]
-        k = np.concatenate(knots) if knots else np.array([])
-        br = np.unique(np.concatenate([[lo, hi], k[(k > lo) & (k < hi)]]))
-        g = np.polynomial.legendre.leggauss(8)  # degree 3 + 3 + 3 + power: exact
-        a, b = br[:-1, None], br[1:, None]
-        x = 0.5 * (a + b) + 0.5 * (b - a) * g[0][None, :]
-        w = 0.5 * (b - a) * g[1][None, :]
-        return float(np.sum(w * x**power * self(x.ravel()).reshape(x.shape)))
+        factors = [self.fullness.factor(), self.dwl.factor(), self.profile.factor(offset=self.draft, scale=-1.0)]
+        return 2.0 * _native.spline_product_integral(factors, lo, hi, power)
 
     def factor(self, offset: float = 0.0, scale: float = 1.0):
         raise _native.InvalidInput("the SAC is a product of splines; use its fullness, DWL and profile as factors")
