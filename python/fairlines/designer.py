@@ -103,13 +103,13 @@ SKEG_HALF_THICKNESS = 0.1   # the skeg's half thickness, fraction of the propell
 SKEG_END = 0.8              # its bottom rises to the hull over this many propeller diameters forward of its aft edge
 SKEG_FILLET = 1.0           # the hollow fillet to the hull body, fraction of the propeller diameter
 SKEG_SECTION_CONTROLS = 32  # control points per section of a ship with a skeg (its side and fillet are short)
-APERTURE_COUNTER_ANGLE = 4.0
+APERTURE_COUNTER_ANGLE = 4.0   # deg: the counter's rise at the transom where it must clear a propeller
 # A sonar dome under the keel's forward end (a frigate's, DTMB 5415's proportions): its length
 # (fraction of Lpp), depth below the keel (of T) and half-breadth (of B); its nose where the
 # keel's flat ends forward.
 DOME_LENGTH = 0.11
 DOME_DEPTH = 0.4
-DOME_HALF_BREADTH = 0.12  # deg: the counter's rise at the transom where it must clear a propeller
+DOME_HALF_BREADTH = 0.12
 
 
 @dataclass
