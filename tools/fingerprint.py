@@ -8,10 +8,11 @@ compare the two outputs (every line must match).
 
     python tools/fingerprint.py form errors          # only some sections (see SECTIONS)
 
-Inputs: examples/container_ship.json, four designed ships, 1 500 seeded random form-curve
-requests and 28 refused ones, infeasible particulars, two bulbs the hull refuses, the lines
-plan, the Series 60 and KCS imports (../shared/data) and the command line's help texts. Each
-line hashes arrays byte for byte and messages character for character.
+Inputs: examples/container_ship.json, six designed ships (a skeg and a sonar dome among them),
+1 500 seeded random form-curve requests and 28 refused ones, infeasible particulars, two bulbs
+the hull refuses, the lines plan, the Series 60 and KCS imports (../shared/data) and the
+command line's help texts. Each line hashes arrays byte for byte and messages character for
+character.
 """
 
 import contextlib
@@ -133,12 +134,14 @@ def ship():
 
 
 #: Particulars of the designed ships: the container ship with its bulb, a cruiser stern, a full
-#: tanker, a small ship with a bulb.
+#: tanker, a small ship with a bulb, a single screw behind a skeg, a frigate with a sonar dome.
 PARTICULARS = [
     dict(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.65, lcb=118.73, bulb=True),
     dict(lpp=120, breadth=20, draft=5, depth=9, cb=0.6, lcb=58.8, stern="cruiser"),
     dict(lpp=170, breadth=28, draft=9.5, depth=14, cb=0.8, lcb=88.0),
     dict(lpp=80, breadth=13, draft=4.5, depth=7, cb=0.55, lcb=39.0, bulb=True),
+    dict(lpp=200, breadth=32, draft=12, depth=18, cb=0.72, lcb=102.0, skeg=True),
+    dict(lpp=142, breadth=19, draft=6.2, depth=11, cb=0.5, lcb=70.0, sonar_dome=True),
 ]
 
 

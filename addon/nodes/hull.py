@@ -43,15 +43,17 @@ _STERNS = [("transom", "Transom", "Flat transom aft of the AP"),
 # Optional particulars: socket, Particulars field, socket type, default shown when switched on.
 _OPTIONAL = (("Cm", "cm", ids.SOCKET_FLOAT, 0.98), ("Cwp", "cwp", ids.SOCKET_FLOAT, 0.82),
              ("LCF", "lcf", ids.SOCKET_LENGTH, 115.06), ("Parallel Length", "parallel_length", ids.SOCKET_LENGTH, 17.0),
-             ("Transom Immersion", "transom_immersion", ids.SOCKET_LENGTH, -0.55))
+             ("Transom Immersion", "transom_immersion", ids.SOCKET_LENGTH, -0.55),
+             ("Propeller Diameter", "propeller_diameter", ids.SOCKET_LENGTH, 7.7))
 
 
 @register
 class FLNodeParticulars(FairlinesNode, bpy.types.Node):
     """A whole ship designed from its principal particulars (fl.design_hull): Lpp, B, T, D, Cb
-    and LCB (from the AP), optionally Cm, Cwp, LCF, the parallel middle body and the transom
-    immersion; the stern type, the stem rake and a bulbous bow. The hull meets Cb, LCB and Cwp
-    on its own surface; out of the designer's range the node is red with the range named"""
+    and LCB (from the AP), optionally Cm, Cwp, LCF, the parallel middle body, the transom
+    immersion and (with a skeg) the propeller diameter; the stern type, the stem rake, a bulbous
+    bow, a single screw's skeg and propeller aperture, a sonar dome. The hull meets Cb, LCB and
+    Cwp on its own surface; out of the designer's range the node is red with the range named"""
     bl_idname = ids.NODE_PARTICULARS
     bl_label = "Particulars"
     category = "Hull"
@@ -67,9 +69,11 @@ class FLNodeParticulars(FairlinesNode, bpy.types.Node):
                   (ids.SOCKET_ANGLE, "Stem Rake", {"default": math.radians(20.0)})]
     outputs_spec = [(ids.SOCKET_HULL, "Hull"), (ids.SOCKET_LENGTH, "Lpp"), (ids.SOCKET_LENGTH, "B"),
                     (ids.SOCKET_LENGTH, "T"), (ids.SOCKET_LENGTH, "D")]
-    params = ("stern", "bulb", "ship_name")
+    params = ("stern", "bulb", "skeg", "sonar_dome", "ship_name")
     stern: props.enum("Stern", _STERNS, "transom")
     bulb: props.boolean("Bulbous Bow", True, "Give the description a bulbous bow (Kracht's default coefficients)")
+    skeg: props.boolean("Skeg", False, "A single screw: a skeg under the run and a propeller aperture aft of it")
+    sonar_dome: props.boolean("Sonar Dome", False, "A sonar dome under the keel's forward end")
     ship_name: props.text("Name", "designed hull")
 
     def compute(self, inputs):
@@ -79,8 +83,8 @@ class FLNodeParticulars(FairlinesNode, bpy.types.Node):
         for name, key, _, _ in _OPTIONAL:
             if inputs[name] is not None:
                 kw[key] = float(inputs[name])
-        p = fl.Particulars(stern=self.stern, bulb=bool(self.bulb), stem_rake=math.degrees(inputs["Stem Rake"]),
-                           name=self.ship_name, **kw)
+        p = fl.Particulars(stern=self.stern, bulb=bool(self.bulb), skeg=bool(self.skeg), sonar_dome=bool(self.sonar_dome),
+                           stem_rake=math.degrees(inputs["Stem Rake"]), name=self.ship_name, **kw)
         hull = fl.design_hull(p)
         d = hull.description
         notes = d.notes.split("designed from particulars: ")[-1].replace(", parallel", "\nparallel")

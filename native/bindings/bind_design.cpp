@@ -85,6 +85,11 @@ void bind_spline_design(py::module_& m) {
         "x0"_a, "x1"_a, "breaks"_a = std::vector<double>{}, "spans"_a = kKnotSpans, "degree"_a = kKnotDegree,
         "min_piece_spans"_a = kMinPieceSpans,
         "Clamped knots on [x0, x1] keeping `breaks` as knots, about `spans` spans spread by length.");
+  m.def("spline_product_integral", &spline_product_integral, "factors"_a, "from_"_a, "to"_a, "power"_a,
+        py::call_guard<py::gil_scoped_release>(),
+        "int_{from_}^{to} x^power f_1(x) ... f_m(x) dx of 1-D spline functions of x (NurbsCurves whose parameter is x),\n"
+        "exact: Gauss-Legendre per piece between the factors' knots, as the SplineIntegral conditions.\n"
+        "Raises InvalidInput (from_ > to, a range beyond a factor's domain, a rational or vector factor).");
 }
 
 void bind_sections(py::module_& m) {

@@ -53,6 +53,7 @@ from ._native import (  # noqa: F401  (re-exported API)
     design_spline_function,
     section_fullness_range,
     spline_function_knots,
+    spline_product_integral,
     sphere,
     unclamped_uniform_knots,
     validate_knots,

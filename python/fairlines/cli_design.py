@@ -18,10 +18,13 @@ def add_parser(sub) -> None:
                       ("parallel-centre", "middle of the parallel body, m from the AP"),
                       ("transom-immersion", "transom's lower edge below the waterline, m (< 0: dry)"),
                       ("transom-breadth", "waterline half-breadth at an immersed transom, m"),
-                      ("stem-rake", "stem rake above the waterline, deg from the vertical")):
+                      ("stem-rake", "stem rake above the waterline, deg from the vertical"),
+                      ("propeller-diameter", "with --skeg: the single screw's diameter, m (default 0.7 T)")):
         d.add_argument(f"--{key}", type=float, default=None, help=what)
     d.add_argument("--stern", choices=["transom", "cruiser"], default="transom")
     d.add_argument("--bulb", action="store_true", help="a bulbous bow (default Kracht coefficients)")
+    d.add_argument("--skeg", action="store_true", help="a single screw: a skeg under the run and a propeller aperture")
+    d.add_argument("--sonar-dome", action="store_true", help="a sonar dome under the keel's forward end")
     d.add_argument("--name", default="designed hull")
     d.add_argument("-o", "--output", required=True, help="hull description JSON to write")
 
@@ -30,7 +33,8 @@ def run(args) -> int:
     from .designer import design_hull
 
     keys = ("lpp", "breadth", "draft", "depth", "cb", "lcb", "cm", "cwp", "lcf", "parallel_length", "parallel_centre",
-            "transom_immersion", "transom_breadth", "stem_rake", "stern", "bulb", "name")
+            "transom_immersion", "transom_breadth", "stem_rake", "propeller_diameter", "stern", "bulb", "skeg", "sonar_dome",
+            "name")
     given = {k: getattr(args, k) for k in keys if getattr(args, k) is not None}
     t0 = time.perf_counter()
     print("  .. designing the hull and matching volume, LCB and Cwp on its surface", file=sys.stderr, flush=True)

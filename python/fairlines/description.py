@@ -459,13 +459,13 @@ class DomeSpec:
     def at(self, x: np.ndarray, body: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The dome's bottom (NaN outside it) and half-breadth at x under the body's bottom
         `body`: the teardrop's size r rises from its tail (aft) to 1 at DOME_WIDEST of its
-        length and falls to 0 at its nose as a parabola (the sections shrink steadily to the
-        nose, where a quarter ellipse would end them abruptly between two stations)."""
+        length (a smoothstep) and falls to 0 at its nose as (1 - s^2)^2, both ends meeting the
+        keel tangentially (a blunt end would change the sections abruptly between stations)."""
         xi = (x - self.x_aft) / (self.x_fore - self.x_aft)
         inside = (xi > 0) & (xi < 1)
         tail = np.clip(xi / DOME_WIDEST, 0.0, 1.0)
         nose = np.clip((xi - DOME_WIDEST) / (1 - DOME_WIDEST), 0.0, 1.0)
-        r = np.where(xi < DOME_WIDEST, np.sqrt(tail * tail * (3 - 2 * tail)), np.maximum(1 - nose * nose, 0.0))
+        r = np.where(xi < DOME_WIDEST, tail * tail * (3 - 2 * tail), np.maximum(1 - nose * nose, 0.0) ** 2)
         bottom = np.where(inside & (r > 0), body - self.depth * r, np.nan)
         return bottom, self.half_breadth * r
 

@@ -97,17 +97,19 @@ TIP_CLEARANCE = 0.25
 HEEL_CLEARANCE = 0.04
 SKEG_CLEARANCE = 0.15
 PROPELLER_HALF_WIDTH = 0.1  # half the blades' axial extent, fraction of the diameter
+PROPELLER_ROOM = 0.97       # the hull over the blades stays below this fraction of the transom's lower edge
+PROPELLER_RETRIES = (0.6, 0.5)  # smaller default propellers (fractions of T) when the run cannot hold the first
 SKEG_HALF_THICKNESS = 0.1   # the skeg's half thickness, fraction of the propeller diameter (it houses the shaft)
 SKEG_END = 0.8              # its bottom rises to the hull over this many propeller diameters forward of its aft edge
 SKEG_FILLET = 1.0           # the hollow fillet to the hull body, fraction of the propeller diameter
 SKEG_SECTION_CONTROLS = 32  # control points per section of a ship with a skeg (its side and fillet are short)
-APERTURE_COUNTER_ANGLE = 4.0
+APERTURE_COUNTER_ANGLE = 4.0   # deg: the counter's rise at the transom where it must clear a propeller
 # A sonar dome under the keel's forward end (a frigate's, DTMB 5415's proportions): its length
 # (fraction of Lpp), depth below the keel (of T) and half-breadth (of B); its nose where the
 # keel's flat ends forward.
 DOME_LENGTH = 0.11
 DOME_DEPTH = 0.4
-DOME_HALF_BREADTH = 0.12  # deg: the counter's rise at the transom where it must clear a propeller
+DOME_HALF_BREADTH = 0.12
 
 
 @dataclass
@@ -223,12 +225,20 @@ def _profile(p: Particulars, c: dict, x_aft: float, x_fore: float) -> dict:
             "yE": D, "slopeE": stem, "points": [[L, T]], "slopes": [[L, stem]], "monotone": True, "spans": 30}
 
 
+def default_propeller_diameter(p: Particulars) -> float:
+    """PROPELLER_DIAMETER T, or less where the counter must stay below a low (immersed)
+    transom's edge: the hull over the blades (HEEL_CLEARANCE + 1 + TIP_CLEARANCE diameters
+    above base) at most PROPELLER_ROOM of the transom's height."""
+    room = PROPELLER_ROOM * _coefficients(p)["transom_z"] / (HEEL_CLEARANCE + 1.0 + TIP_CLEARANCE)
+    return min(PROPELLER_DIAMETER * p.draft, room)
+
+
 def propeller(p: Particulars) -> dict | None:
     """The single screw of a ship with a skeg (metres): diameter, plane x, shaft height, the
     least height of the hull above the disc and the skeg's aft edge; None without a skeg."""
     if not p.skeg:
         return None
-    dp = p.propeller_diameter if p.propeller_diameter is not None else PROPELLER_DIAMETER * p.draft
+    dp = p.propeller_diameter if p.propeller_diameter is not None else default_propeller_diameter(p)
     x = max(PROPELLER_PLANE * p.lpp, dp)
     shaft = (HEEL_CLEARANCE + 0.5) * dp
     return {"diameter": dp, "x": x, "shaft_height": shaft, "hull_above": shaft + (0.5 + TIP_CLEARANCE) * dp,
@@ -383,28 +393,63 @@ def design_description(p: Particulars) -> dict:
     p.check()
     c = _coefficients(p)
     L, B, T, D = p.lpp, p.breadth, p.draft, p.depth
-    half = B / 2
     x_aft, x_fore = _ends(p)
     prof = _profile(p, c, x_aft, x_fore)
-    par = c["parallel"]
-    for spans in PROFILE_SPANS:  # a short stem over a low freeboard needs finer spans
-        prof["spans"] = spans
-        try:
-            profile = solve_curve("profile", BasicCurveSpec.from_dict("profile", prof, "basic_curves.profile"), x_aft,
-                                  x_fore, lower=-T, upper=D, maximum=False)
-            break
-        except _native.InfeasibleFormParameters:
-            if spans == PROFILE_SPANS[-1]:
-                raise
-    profile, skeg = _aperture(p, prof, profile, x_aft, x_fore)
+    profile, skeg = _aperture(p, prof, _solved_profile(p, prof, x_aft, x_fore), x_aft, x_fore)
     xa, xf = immersed_range(profile, T)
-    dwl = {"yE": 0.0, "monotone": True, "spans": 24, "waterplane_area": c["cwp"] * L * B, "lcf": c["lcf"]}
+    dwl, dwl_curve = _dwl_spec(p, c, xa, xf, immersed_transom=xa <= x_aft + 1e-9 * L)
+    par = c["parallel"]
+    desc = {
+        "name": p.name,
+        "notes": "; ".join(p.notes + [f"designed from particulars: Cm {_cm_note(p, c)}, Cp {c['cp']:.4f}, Cwp {c['cwp']:.4f}, "
+                                      f"LCF {c['lcf']:.3f} m, parallel body {par[0]:.2f} .. {par[1]:.2f} m"]),
+        "principal": {"Lpp": L, "B": B, "T": T, "D": D},
+        "ends": {"aft": x_aft, "fore": x_fore},
+        "stations": {"count": 61},
+        "sections": {"n_control": 20},
+        "basic_curves": {"profile": prof, "dwl": dwl, "deck": _deck_spec(p, par, dwl_curve, x_aft, xa, xf),
+                         "sac": _sac_spec(p, c, dwl_curve, profile, xa, xf)},
+        "design": {k: v for k, v in asdict(p).items() if k != "notes"},
+    }
+    _add_appendages(desc, p, prof, skeg)
+    if p.bulb:
+        desc["bulb"] = _bulb_section(p, c)
+    return desc
+
+
+def _solved_profile(p: Particulars, prof: dict, x_aft: float, x_fore: float):
+    """The centre profile of `prof`, with finer spans where a short stem over a low freeboard
+    needs them (`prof` keeps the spans it was solved with)."""
+    def solve(spans: int):
+        prof["spans"] = spans
+        return solve_curve("profile", BasicCurveSpec.from_dict("profile", prof, "basic_curves.profile"), x_aft,
+                           x_fore, lower=-p.draft, upper=p.depth, maximum=False)
+
+    for spans in PROFILE_SPANS[:-1]:
+        try:
+            return solve(spans)
+        except _native.InfeasibleFormParameters:
+            continue
+    return solve(PROFILE_SPANS[-1])
+
+
+def _dwl_spec(p: Particulars, c: dict, xa: float, xf: float, immersed_transom: bool) -> tuple[dict, object]:
+    """The design waterline's spec and curve: Cwp and the LCF, flat at B/2 over the parallel
+    body (or reaching B/2 at midships without one)."""
+    half, par = p.breadth / 2, c["parallel"]
+    dwl = {"yE": 0.0, "monotone": True, "spans": 24, "waterplane_area": c["cwp"] * p.lpp * p.breadth, "lcf": c["lcf"]}
     if par[1] > par[0]:
         dwl.update(flat_from=par[0], flat_to=par[1], value=half)
     else:  # no parallel body: the waterline still reaches B/2, at midships
         dwl.update(upper=half, points=[[_midship_place(p), half]], slopes=[[_midship_place(p), 0.0]])
     peak = par[0] if par[1] > par[0] else _midship_place(p)
-    dwl_curve = _waterline(p, dwl, xa, xf, peak, immersed_transom=xa <= x_aft + 1e-9 * L)
+    return dwl, _waterline(p, dwl, xa, xf, peak, immersed_transom=immersed_transom)
+
+
+def _sac_spec(p: Particulars, c: dict, dwl_curve, profile, xa: float, xf: float) -> dict:
+    """The SAC: the volume and LCB, near the natural fullness, flat over the parallel body."""
+    L, B, T = p.lpp, p.breadth, p.draft
+    par = c["parallel"]
     xs, target = natural_fullness(p, c, dwl_curve, profile, xa, xf)
     near_end = FIT_END * (xf - xa)
     sac = {"volume": p.cb * L * B * T, "lcb": p.lcb, "spans": 24, "monotone": True,
@@ -414,6 +459,13 @@ def design_description(p: Particulars) -> dict:
         sac.update(flat_from=par[0], flat_to=par[1], value=c["cm"] * B * T)
     elif p.cm is not None:  # ... and the SAC holds a given midship area there
         sac["fit"] = [[_midship_place(p), c["cm"] * B * T]]
+    return sac
+
+
+def _deck_spec(p: Particulars, par: tuple, dwl_curve, x_aft: float, xa: float, xf: float) -> dict:
+    """The deck line: flat at B/2 from a quarter Lpp aft of the parallel body to 0.2 Lpp forward
+    of it, longer where a full stern or bow keeps the waterline near B/2."""
+    L, half = p.lpp, p.breadth / 2
     deck_from = max(x_aft + 0.05 * L, par[0] - 0.25 * L)
     xs_aft = np.linspace(xa, deck_from, DECK_FLAT_CHECKS)
     full = xs_aft[dwl_curve(xs_aft) >= DECK_CLEAR * half]  # so does a full stern aft
@@ -424,19 +476,13 @@ def design_description(p: Particulars) -> dict:
     full = xs_fore[dwl_curve(xs_fore) >= DECK_CLEAR * half]  # a full bow keeps the deck's flat further forward
     if len(full):
         deck_to = min(max(deck_to, float(full[-1])), DECK_TO_MAX * L)
-    deck = {"flat_from": deck_from, "flat_to": deck_to, "value": half, "yB": DECK_TRANSOM * half if p.stern == "transom" else 0.0,
+    return {"flat_from": deck_from, "flat_to": deck_to, "value": half, "yB": DECK_TRANSOM * half if p.stern == "transom" else 0.0,
             "yE": 0.0, "monotone": True, "spans": 24}
-    desc = {
-        "name": p.name,
-        "notes": "; ".join(p.notes + [f"designed from particulars: Cm {_cm_note(p, c)}, Cp {c['cp']:.4f}, Cwp {c['cwp']:.4f}, "
-                                      f"LCF {c['lcf']:.3f} m, parallel body {par[0]:.2f} .. {par[1]:.2f} m"]),
-        "principal": {"Lpp": L, "B": B, "T": T, "D": D},
-        "ends": {"aft": x_aft, "fore": x_fore},
-        "stations": {"count": 61},
-        "sections": {"n_control": 20},
-        "basic_curves": {"profile": prof, "dwl": dwl, "deck": deck, "sac": sac},
-        "design": {k: v for k, v in asdict(p).items() if k != "notes"},
-    }
+
+
+def _add_appendages(desc: dict, p: Particulars, prof: dict, skeg: dict | None) -> None:
+    """The sonar dome under the keel's forward end and the skeg (with its propeller in the notes)."""
+    L, B, T = p.lpp, p.breadth, p.draft
     if p.sonar_dome:
         fore = prof["flat_to"]
         desc["dome"] = {"x_aft": fore - DOME_LENGTH * L, "x_fore": fore, "depth": DOME_DEPTH * T,
@@ -447,18 +493,20 @@ def design_description(p: Particulars) -> dict:
         pr = propeller(p)
         desc["notes"] += (f"; single screw: propeller diameter {pr['diameter']:.3g} m at x = {pr['x']:.4g} m, shaft "
                           f"{pr['shaft_height']:.3g} m above base, hull at least {pr['hull_above']:.4g} m above base over it")
-    if p.bulb:
-        # bulb: True, Kracht coefficients, or a whole "bulb" section ({"kracht": ..., "shape": ...})
-        given = dict(p.bulb) if isinstance(p.bulb, dict) else {}
-        section = given if {"kracht", "shape"} & set(given) else {"kracht": given}
-        kracht = {**_kracht_defaults(), **section.get("kracht", {})}
-        if "c_abl" not in section.get("kracht", {}):
-            kracht["c_abl"] = _fitting_lateral_area(p, c, kracht)
-        shape = dict(section.get("shape", {}))
-        # the bulb's constant aft part reaches back to where the forefoot is wide enough to take it
-        shape.setdefault("aft_length", BULB_AFT_LENGTH * (kracht["c_lpr"] * L + kracht["c_bb"] * B))
-        desc["bulb"] = {**section, "kracht": kracht, "shape": shape}
-    return desc
+
+
+def _bulb_section(p: Particulars, c: dict) -> dict:
+    """The bulb section of p.bulb: True, Kracht coefficients, or a whole "bulb" section
+    ({"kracht": ..., "shape": ...}); defaults the engine's, c_abl fitted to the ship."""
+    given = dict(p.bulb) if isinstance(p.bulb, dict) else {}
+    section = given if {"kracht", "shape"} & set(given) else {"kracht": given}
+    kracht = {**_kracht_defaults(), **section.get("kracht", {})}
+    if "c_abl" not in section.get("kracht", {}):
+        kracht["c_abl"] = _fitting_lateral_area(p, c, kracht)
+    shape = dict(section.get("shape", {}))
+    # the bulb's constant aft part reaches back to where the forefoot is wide enough to take it
+    shape.setdefault("aft_length", BULB_AFT_LENGTH * (kracht["c_lpr"] * p.lpp + kracht["c_bb"] * p.breadth))
+    return {**section, "kracht": kracht, "shape": shape}
 
 
 def _fitting_lateral_area(p: Particulars, c: dict, kracht: dict) -> float:
@@ -500,14 +548,18 @@ def _fallbacks(p: Particulars):
     """The particulars, then (for basic curves that cannot be met) what the designer may still
     choose -- never a value the user gave: the LCF at and forward of the LCB, the parallel body
     moved toward the LCB, a parallel body longer by PARALLEL_STEP Lpp at a time; then the same
-    with an immersed transom narrowed to DWL_TRANSOM_RETRY B/2, and with a waterplane fuller
-    by CWP_RETRY."""
+    with an immersed transom narrowed to DWL_TRANSOM_RETRY B/2, with a waterplane fuller by
+    CWP_RETRY, and (with a skeg) with the smaller propellers of PROPELLER_RETRIES."""
     yield from _choices(p)
     if p.transom_breadth is None:
         yield from _choices(replace(p, transom_breadth=DWL_TRANSOM_RETRY * p.breadth / 2))
     if p.cwp is None:
         cwp = _coefficients(p)["cwp"]
         yield from _choices(replace(p, cwp=min(cwp + CWP_RETRY, CWP_MAX)))
+    if p.skeg and p.propeller_diameter is None:  # a smaller screw lifts the counter less
+        for f in PROPELLER_RETRIES:
+            if f * p.draft < default_propeller_diameter(p):
+                yield from _choices(replace(p, propeller_diameter=f * p.draft))
 
 
 def _choices(p: Particulars):
@@ -630,6 +682,9 @@ def _explained(exc: Exception, p: Particulars, edge: str = "") -> Exception:
     said = (f"cb {p.cb:.4g}, lcb {p.lcb:.6g} m ({lcb_pct:+.2f} % Lpp from midships), cm {c['cm']:.4g}, "
             f"cwp {c['cwp']:.4g}, lcf {c['lcf']:.6g} m, parallel body {c['parallel'][1] - c['parallel'][0]:.4g} m")
     remedy = _REMEDIES.get(curve, "change the particulars")
+    if curve == "profile" and "over the propeller" in str(exc):
+        remedy = ("the run is too short to lift the hull over the propeller: give a smaller propeller_diameter, "
+                  "move lcb forward or lower cb (a longer run)")
     lp = (c["parallel"][1] - c["parallel"][0]) / p.lpp
     if curve == "sac" and lp > 0 and (c["cp"] - lp) / (1 - lp) < FINE_ENDS_CP:
         remedy = (f"the ends outside this parallel body would need a prismatic coefficient of "

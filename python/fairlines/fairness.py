@@ -19,13 +19,16 @@ import numpy as np
 
 from . import _native
 
-__all__ = ["MIN_TURN_DEG", "cut_lobes", "judge_cut", "fairness_report"]
+__all__ = ["MIN_TURN_DEG", "cut_lobes", "judge_cut", "diagonal_cut", "fairness_report"]
 
 #: Turning angle (degrees) below which a curvature lobe is a ripple, not a feature: 0.1 deg is
 #: a 1.7 mm sag over a metre, far under what a lines plan or a reflection line shows.
 MIN_TURN_DEG = 0.1
 # Curvature below this fraction of a cut's largest counts as zero (straight stretches).
 ZERO_CURVATURE = 1e-6
+#: The report's diagonals, as a lines plan draws them: (height on the centre line as a fraction
+#: of the largest breadth, angle below the horizontal going outboard, deg).
+DIAGONALS = ((0.25, 45.0), (0.375, 45.0), (0.5, 45.0))
 
 
 def _arc(points: np.ndarray) -> np.ndarray:
@@ -99,13 +102,45 @@ def surface_extent(surface) -> tuple[np.ndarray, np.ndarray]:
     return g.min(axis=0), g.max(axis=0)
 
 
+class DiagonalCut:
+    """A diagonal of a lines plan cut from a surface: the plane through the line z = z_c - y
+    tan(angle) of the body plan, along the hull. ``points`` (n, 3) in the hull's frame,
+    ``curvature`` (1/m, signed in the plane), ``bending_energy`` (int k^2 ds, 1/m), ``value``
+    (z_c, m), ``angle`` (deg)."""
+
+    def __init__(self, surface, z_centre: float, angle_deg: float, samples: int = 601):
+        a = math.radians(angle_deg)
+        c, s = math.cos(a), math.sin(a)
+        # A rotation about x takes the diagonal's plane to z' = z_c cos(a): the engine's plane
+        # cut of the rotated surface (rotation is exact on the control points) gives the curve
+        # and its analytic curvature, which a rotation leaves unchanged.
+        rot = np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+        cp = np.asarray(surface.control_points) @ rot.T
+        turned = _native.NurbsSurface(surface.degree_u, surface.degree_v, np.asarray(surface.knots_u),
+                                      np.asarray(surface.knots_v), cp, np.asarray(surface.weights))
+        cut = _native.plane_cut(turned, 2, float(z_centre * c), samples)
+        pts = np.asarray(cut.points, dtype=float)
+        self.points = pts @ rot if len(pts) else pts.reshape(0, 3)
+        self.curvature = np.asarray(cut.curvature)
+        self.bending_energy = float(cut.bending_energy)
+        self.value, self.angle = float(z_centre), float(angle_deg)
+
+
+def diagonal_cut(surface, z_centre: float, angle_deg: float = 45.0, samples: int = 601) -> DiagonalCut:
+    """The diagonal through (y = 0, z = z_centre) of the body plan, falling outboard at
+    `angle_deg` below the horizontal, cut from `surface` (see DiagonalCut)."""
+    return DiagonalCut(surface, z_centre, angle_deg, samples)
+
+
 def fairness_report(surface, draft: float, n_waterlines: int = 8, n_buttocks: int = 6, n_frames: int = 20,
                     samples: int = 601, min_turn_deg: float = MIN_TURN_DEG, z_max: float | None = None) -> dict:
-    """Waterlines, buttocks and frames cut from `surface` and judged on their own (judge_cut).
+    """Waterlines, buttocks, frames and diagonals cut from `surface` and judged on their own
+    (judge_cut).
 
     Waterlines at equal spacing strictly between the lowest point and `z_max` (default the top
     of the surface), buttocks at fractions of the largest half-breadth, frames at equal x strictly
-    inside the surface. Returns {"waterline": [...], "buttock": [...], "frame": [...], "summary"}.
+    inside the surface, the diagonals of DIAGONALS (a lines plan's). Returns {"waterline": [...],
+    "buttock": [...], "frame": [...], "diagonal": [...], "summary"}.
     """
     lo, hi = surface_extent(surface)
     z_top = hi[2] if z_max is None else min(z_max, hi[2])
@@ -121,5 +156,13 @@ def fairness_report(surface, draft: float, n_waterlines: int = 8, n_buttocks: in
             cut = _native.plane_cut(surface, axis, float(v), samples)
             if len(cut.points) >= 3:
                 report[kind].append(judge_cut(cut, min_turn_deg))
-    report["summary"] = {kind: sum(c["sign_changes"] for c in report[kind]) for kind in ("waterline", "buttock", "frame")}
+    report["diagonal"] = []
+    for frac, angle in DIAGONALS:
+        cut = diagonal_cut(surface, frac * 2.0 * hi[1], angle, samples)
+        if len(cut.points) >= 3:
+            judged = judge_cut(cut, min_turn_deg)
+            judged["angle_deg"] = angle
+            report["diagonal"].append(judged)
+    report["summary"] = {kind: sum(c["sign_changes"] for c in report[kind])
+                         for kind in ("waterline", "buttock", "frame", "diagonal")}
     return report

@@ -719,6 +719,15 @@ def t_api_headless():
     api.set(tree, ship, "Cb", 0.70)
     check(bpy.ops.fairlines.evaluate_tree(tree=tree.name) == {"FINISHED"}, "evaluate_tree operator headless")
     check(ship.fl_state == "OK" and bare.fl_state == "OK", "operator did not evaluate: %s" % ship.fl_message)
+    # A single screw and a sonar dome switched on: the node's hull is the designer's with them.
+    ship.skeg, ship.sonar_dome = True, True
+    api.evaluate(tree)
+    ref = fl.design_hull(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.70, lcb=124.0, bulb=True, skeg=True,
+                         sonar_dome=True)
+    ok, bad = hydro_equal(api.hydrostatics(tree, "Bare"), ref.hydrostatics())
+    d = api.result(tree, "Ship", "Hull").description
+    check(ok and d.skeg is not None and d.dome is not None, "skeg and dome: %s" % bad)
+    ship.skeg, ship.sonar_dome = False, False
     # The description JSON through the Hull Description node is the same hull as the designer's.
     desc = api.add(tree, "Hull Description", "Description", text=blender_graph.description_text())
     bare2 = api.add(tree, "Bare Hull", "Bare 2")

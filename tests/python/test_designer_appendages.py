@@ -159,3 +159,46 @@ def test_a_bad_dome_is_refused_naming_the_value(frigate):
     d["dome"]["depth"] = -1.0
     with pytest.raises(fl.InvalidInput, match="dome.depth is -1.0 m; expected > 0"):
         fl.Hull.from_json(d)
+
+
+def test_command_line_design_with_skeg_and_dome(tmp_path):
+    from fairlines.cli import main
+
+    out = tmp_path / "ship.json"
+    assert main(["design", "--lpp", "140", "--breadth", "17", "--draft", "5.5", "--depth", "10", "--cb", "0.5",
+                 "--lcb", "67.2", "--skeg", "--propeller-diameter", "3.5", "--sonar-dome", "-o", str(out)]) == 0
+    d = fl.Hull.from_json(out.read_text()).description
+    assert d.skeg is not None and d.dome is not None
+    assert d.skeg.half_thickness == pytest.approx(SKEG_HALF_THICKNESS * 3.5)
+
+
+def test_a_propeller_the_run_cannot_clear_is_refused_naming_what_to_change():
+    """A full ship (Cb 0.86) with its LCB far aft: its keel's flat starts where the screw would
+    turn. Refused naming the propeller, what to change and an LCB that builds."""
+    with pytest.raises(fl.InfeasibleFormParameters, match=r"over the propeller: give a smaller propeller_diameter.*lcb [\d.]+ m builds"):
+        fl.design_hull(lpp=150.0, breadth=22.37, draft=5.0, depth=8.0, cb=0.86, lcb=69.54, skeg=True)
+
+
+def test_skeg_ships_build_over_the_design_space():
+    """A seeded Latin-hypercube sample of 20 particulars over Cb 0.50-0.87, LCB -4..+4 % Lpp,
+    L/B 4-9, B/T 2-4.5, each with a skeg (every other with a sonar dome): all but the full
+    ships whose run is too short for a propeller build and meet volume and LCB (1e-4)."""
+    from scipy.stats import qmc
+
+    space = dict(cb=(0.50, 0.87), lcb_pct=(-4.0, 4.0), l_over_b=(4.0, 9.0), b_over_t=(2.0, 4.5))
+    refused = []
+    for i, r in enumerate(qmc.LatinHypercube(d=4, seed=11).random(20)):
+        cb, lcb, lb, bt = (lo + x * (hi - lo) for x, (lo, hi) in zip(r, space.values()))
+        lpp = 150.0
+        b = lpp / lb
+        t = b / bt
+        p = dict(lpp=lpp, breadth=b, draft=t, depth=1.6 * t, cb=cb, lcb=lpp / 2 + lcb / 100 * lpp, skeg=True,
+                 sonar_dome=i % 2 == 0)
+        try:
+            h = fl.design_hull(**p).hydrostatics()
+        except fl.InfeasibleFormParameters as e:
+            refused.append((cb, str(e)))
+            continue
+        assert h.volume == pytest.approx(cb * lpp * b * t, rel=1e-4)
+        assert abs(h.lcb - p["lcb"]) <= 1e-4 * lpp
+    assert all(cb > 0.8 and "over the propeller" in msg for cb, msg in refused), refused

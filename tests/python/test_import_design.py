@@ -124,3 +124,47 @@ def test_imported_wigley_sections_have_the_parabolas_bilge_corner():
     # y = b (1 - (zeta / T)^2): the tangents at the waterline and the keel meet at (b, T / 2)
     assert np.allclose([v for _, v in curves["corner_breadth"]["fit"]], 1.0, atol=0.02)
     assert np.allclose([v for _, v in curves["corner_height"]["fit"]], 0.5, atol=0.02)
+
+
+class _Part:
+    """The part of a plane cut inside [x_lo, x_hi] (what judge_cut reads)."""
+
+    def __init__(self, cut, lo, hi):
+        p = np.asarray(cut.points)
+        keep = (p[:, 0] >= lo) & (p[:, 0] <= hi)
+        self.points, self.curvature = p[keep], np.asarray(cut.curvature)[keep]
+        self.value, self.bending_energy = cut.value, 0.0
+
+
+def _sign_changes(surface, axis, value, lo, hi):
+    from fairlines.fairness import judge_cut
+
+    part = _Part(fl.plane_cut(surface, axis, float(value), 801), lo, hi)
+    return judge_cut(part)["sign_changes"] if len(part.points) >= 3 else 0
+
+
+#: Measured shortfalls of the fairness comparison below (rebuilt vs a refit of the data's grid).
+REFIT_SHORT = {
+    ("dtmb5415", "main"): "the given sections' fits differ a little from station to station (161 stations, 3.6 cm apart on the "
+                "model): 23-52 sign changes on the main grid's waterlines against 0-2 for its refit",
+    ("kcs", "forebody"): "the forebody's waterlines: 5-10 sign changes against 1-5 for its refit (the fitted family's sections)",
+    ("kcs", "afterbody"): "the fitted family's sections: 4 sign changes on the 11.25 m waterline against none for the refit",
+}
+
+
+@pytest.mark.parametrize("ship, grid", [
+    pytest.param(s, g, marks=pytest.mark.xfail(strict=True, reason=REFIT_SHORT[s, g]) if (s, g) in REFIT_SHORT else ())
+    for s, g in (("dtmb5415", "main"), ("kcs", "forebody"), ("kcs", "afterbody"))])
+def test_rebuilt_hull_is_as_fair_as_a_refit_of_its_data(ship, grid):
+    """Over a data grid's extent, each waterline and buttock of the rebuilt hull has no more
+    curvature sign changes (lobes over 0.1 deg) than the same cut of the bicubic interpolant
+    of the grid's own points (fl.fit_surface), two allowed for the rebuilt hull's ends."""
+    data = read(ship)
+    g = next(gr for gr in data.grids if gr.name.startswith(grid)).points
+    refit = fl.fit_surface(g, degree_u=3, degree_v=3).surface
+    hull = fl.Hull.from_json(json.dumps(imported(ship))).bare_hull_surface()
+    lo, hi = g[..., 0].min(), g[..., 0].max()
+    cuts = [(2, z) for z in np.linspace(max(g[..., 2].min(), 0.0), g[..., 2].max(), 9)[1:-1]]
+    cuts += [(1, y) for y in np.linspace(0.0, g[..., 1].max(), 7)[1:-1]]
+    for axis, v in cuts:
+        assert _sign_changes(hull, axis, v, lo, hi) <= _sign_changes(refit, axis, v, lo, hi) + 2, (axis, v)

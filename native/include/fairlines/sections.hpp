@@ -94,20 +94,14 @@ struct SectionSpec {
   /// A skeg below the hull body: where skeg_bottom (m above base) lies below z_keel (the body's
   /// bottom on the centre plane), the section runs down the skeg's side at y = skeg_half_thickness
   /// to skeg_bottom and across it to the centre plane, joined to the body's section by a hollow
-  /// fillet of about skeg_fillet (m). NaN: no skeg.
-  double skeg_bottom = kNaN;
-  double skeg_half_thickness = 0.5;
-  double skeg_fillet = 1.0;
-  /// How far the skeg is developed here, 0 .. 1 (it tapers to its ends): its thickness and
-  /// fillet scale with it, and so does its share of the section's parameter.
-  double skeg_share = 1.0;
+  /// fillet of about skeg_fillet (m). NaN: no skeg. skeg_share: how far the skeg is developed
+  /// here, 0 .. 1 (it tapers to its ends): its thickness and fillet scale with it.
+  double skeg_bottom = kNaN, skeg_half_thickness = 0.5, skeg_fillet = 1.0, skeg_share = 1.0;
   /// A sonar dome below the hull body: where dome_bottom (m above base) lies below z_keel, the
   /// section comes in to a neck of half-width dome_neck (m) and bulges below it into the half
   /// of an ellipse of half-breadth dome_half_breadth (m) from z_keel down to dome_bottom, joined
   /// to the body by a hollow fillet. NaN: no dome.
-  double dome_bottom = kNaN;
-  double dome_half_breadth = 1.0;
-  double dome_neck = 0.5;
+  double dome_bottom = kNaN, dome_half_breadth = 1.0, dome_neck = 0.5;
 
   /// Each field with its name and meaning: f(name, member pointer, doc).
   template <typename F>

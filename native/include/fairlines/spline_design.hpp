@@ -103,6 +103,21 @@ struct SplineDesignRequest {
 /// contradict each other; the message lists the named conditions found in conflict.
 NurbsCurve design_spline_function(const SplineDesignRequest& request);
 
+/// int_{from}^{to} x^power f_1(x) f_2(x) ... f_m(x) dx for spline functions f_i of x (non-rational
+/// NurbsCurves of dimension 1 whose parameter is x; no factors: the product is 1), exact: the
+/// integrand is a polynomial between the knots of the factors, so Gauss-Legendre on every such
+/// piece with enough points for the product's degree integrates it to round-off (the rule the
+/// SplineIntegral conditions use). from <= to, both inside every factor's domain (to
+/// kDomainTolerance of its size); power >= 0, the product's degree at most kMaxProductDegree.
+/// Throws InvalidInput otherwise.
+double spline_product_integral(const std::vector<NurbsCurve>& factors, double from, double to, int power);
+
+/// Relative slack of spline_product_integral's range beyond a factor's domain (times
+/// max(1, |x0| + |x1|)): the ends of a basic curve found by root finding lie within it.
+inline constexpr double kDomainTolerance = 1e-9;
+/// Largest degree of an integrand the cached Gauss rules (up to 32 points) integrate exactly.
+inline constexpr int kMaxProductDegree = 63;
+
 /// Knots for a spline function on [x0, x1] with interior breakpoints `breaks` (e.g. the ends of
 /// a flat part, kept as knots so the flat is exact) and about `spans` equal spans in total,
 /// spread over the pieces between breakpoints in proportion to their length, at least

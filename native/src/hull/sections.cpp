@@ -129,6 +129,8 @@ constexpr int kSkegBodySamples = 401;
 constexpr int kSkegFilletPoints = 24;
 constexpr int kSkegSidePoints = 12;
 constexpr double kSkegBottomRoom = 0.2;
+/// An appendage's tail shares the parameter with the body's lowest this many knot spans.
+constexpr int kAppendageSpans = 6;
 /// Points along a dome's half ellipse.
 constexpr int kDomePoints = 40;
 /// The fillet is at most this fraction of the skeg's depth below the body.
@@ -861,43 +863,62 @@ AppendageTail skeg_tail(const SectionSpec& s, const Eigen::VectorXd& ts, const E
   return out;
 }
 
-/// Control points (y, z) of a section with an appendage, fitted (least squares with a little bending,
-/// deck and keel points held) to the body's curve down to J and the skeg's tail after it. The
-/// body keeps its own parameters, scaled onto [0, t'] with t' = min(t_J, the body's share of the
-/// arc length): the tail gets at least its arc length's share of the control points, and as
-/// the skeg vanishes (J -> the keel) the section tends to the body's, parameters and all.
-Eigen::MatrixX2d appendage_control_points(const Layout& l, const Eigen::VectorXd& ts, const Eigen::MatrixXd& yz,
-                                     const AppendageTail& tail) {
+/// Control points (y, z) of a section with an appendage: the body's own control points where
+/// their support ends above t_s, kAppendageSpans knot spans above J, so its rows run on from the
+/// neighbouring sections without one; the rest fitted (least squares with a little bending, the
+/// keel point held) to the body's curve from the first free span down to J and to the
+/// appendage's tail, the body below t_s and the tail sharing [t_s, 1] by arc length. As the
+/// appendage vanishes (J -> the keel) the section tends to the body's.
+Eigen::MatrixX2d appendage_control_points(const Layout& l, const Eigen::MatrixX2d& body, const Eigen::VectorXd& ts,
+                                          const Eigen::MatrixXd& yz, const AppendageTail& tail) {
   const int n = l.n;
+  // The last kAppendageSpans spans above J and the tail share [t_s, 1] by arc length: the tail
+  // gets room from the body's lowest part, the body above t_s keeps its parameters.
+  const double t_s = std::max(0.0, tail.t_J - static_cast<double>(kAppendageSpans) / (n - kDegree));
+  int i0 = 1;
+  while (i0 < n - 1 && l.U[i0 + kDegree + 1] <= t_s) ++i0;
+  std::vector<std::pair<double, V2>> data;  // (parameter, point), weighted by arc spacing
+  double low_arc = 0.0;  // the body's arc from t_s to J
+  Eigen::Index first_low = -1;
+  for (Eigen::Index i = 0; i < ts.size() && ts[i] < tail.t_J; ++i) {
+    if (ts[i] >= l.U[i0] && ts[i] < t_s) data.emplace_back(ts[i], yz.row(i).transpose());
+    if (ts[i] >= t_s) {
+      if (first_low >= 0) low_arc += (yz.row(i) - yz.row(i - 1)).norm();
+      else first_low = i;
+    }
+  }
   std::vector<double> arc(tail.pts.size(), 0.0);
   for (std::size_t i = 1; i < tail.pts.size(); ++i) arc[i] = arc[i - 1] + (tail.pts[i] - tail.pts[i - 1]).norm();
-  double body_arc = 0.0;
-  Eigen::Index last = 0;
-  for (Eigen::Index i = 1; i < ts.size() && ts[i] < tail.t_J; ++i) body_arc += (yz.row(i) - yz.row(i - 1)).norm(), last = i;
-  const double t_head = std::min(tail.t_J, body_arc / std::max(body_arc + arc.back(), 1e-300));
-  std::vector<std::pair<double, V2>> data;  // (parameter, point), weighted by arc spacing
-  for (Eigen::Index i = 0; i <= last; ++i) data.emplace_back(ts[i] * t_head / tail.t_J, yz.row(i).transpose());
+  const double t_J = t_s + (1.0 - t_s) * low_arc / std::max(low_arc + arc.back(), 1e-300);
+  double run = 0.0;
+  for (Eigen::Index i = first_low; i >= 0 && i < ts.size() && ts[i] < tail.t_J; ++i) {
+    if (i > first_low) run += (yz.row(i) - yz.row(i - 1)).norm();
+    data.emplace_back(t_s + (t_J - t_s) * (low_arc > 0 ? run / low_arc : 0.0), yz.row(i).transpose());
+  }
   for (std::size_t i = 0; i < tail.pts.size(); ++i)
-    data.emplace_back(t_head + (1.0 - t_head) * (arc.back() > 0 ? arc[i] / arc.back() : 1.0), tail.pts[i]);
-  std::vector<V2> pts;
-  for (const auto& d : data) pts.push_back(d.second);
+    data.emplace_back(t_J + (1.0 - t_J) * (arc.back() > 0 ? arc[i] / arc.back() : 1.0), tail.pts[i]);
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
   Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(n, 2);
+  double total = 0.0;
   for (std::size_t i = 0; i < data.size(); ++i) {
-    const double w = 0.5 * ((i > 0 ? (pts[i] - pts[i - 1]).norm() : 0.0) + (i + 1 < pts.size() ? (pts[i + 1] - pts[i]).norm() : 0.0));
+    const double w = 0.5 * ((i > 0 ? (data[i].second - data[i - 1].second).norm() : 0.0) +
+                            (i + 1 < data.size() ? (data[i + 1].second - data[i].second).norm() : 0.0));
     const Eigen::RowVectorXd row = basis_row(l.U, kDegree, std::clamp(data[i].first, 0.0, 1.0));
     A.noalias() += w * row.transpose() * row;
     rhs.noalias() += w * row.transpose() * data[i].second.transpose();
+    total += w;
   }
   const Eigen::MatrixXd D2 = second_differences(n);
-  A.noalias() += kGivenSmoothing * (body_arc + arc.back()) / (n - kDegree) * D2.transpose() * D2;
-  Eigen::MatrixX2d P = Eigen::MatrixX2d::Zero(n, 2);
-  P.row(0) = pts.front().transpose(), P.row(n - 1) = pts.back().transpose();
-  const int k = n - 2;
-  const Eigen::MatrixX2d b = rhs.middleRows(1, k) - A.block(1, 0, k, 1) * P.row(0) - A.block(1, n - 1, k, 1) * P.row(n - 1);
-  P.middleRows(1, k) = A.block(1, 1, k, k).ldlt().solve(b);
+  A.noalias() += kGivenSmoothing * total / (n - kDegree) * D2.transpose() * D2;
+  Eigen::MatrixX2d P = body;
+  P.row(n - 1) = tail.pts.back().transpose();
+  const int k = n - 1 - i0;  // free: i0 .. n - 2
+  Eigen::MatrixX2d b = rhs.middleRows(i0, k);
+  for (int c = 0; c < n; ++c)
+    if (c < i0 || c == n - 1) b.noalias() -= A.block(i0, c, k, 1) * P.row(c);
+  P.middleRows(i0, k) = A.block(i0, i0, k, k).ldlt().solve(b);
   P.col(0) = P.col(0).cwiseMax(0.0);
-  P.col(1) = P.col(1).cwiseMax(pts.back().y());
+  P.col(1) = P.col(1).cwiseMax(tail.pts.back().y());
   return P;
 }
 
@@ -947,7 +968,7 @@ SectionDesign design_with_appendage(const SectionSpec& spec) {
   with.z_keel = skeg ? spec.skeg_bottom : spec.dome_bottom;
   with.half_area = kNaN;
   const Section S = setup(with);
-  const Eigen::MatrixX2d P = appendage_control_points(S.l, ts, yz, tail);
+  const Eigen::MatrixX2d P = appendage_control_points(S.l, b.curve.control_points().rightCols(2), ts, yz, tail);
   return finish_given(S, P, tail.side_top);
 }
 

@@ -1,4 +1,8 @@
 // Fairest spline functions meeting form parameters: see fairlines/spline_design.hpp.
+//
+// Notation: U the clamped knot vector (x in metres), p the degree, n the control points (the
+// unknown coefficients); N a row of basis functions at one x, D the map from f's coefficients
+// to those of f^(k); the QP minimises x' H x / 2 + g' x subject to E x = e and A x <= b.
 #include "fairlines/spline_design.hpp"
 
 #include <algorithm>
@@ -67,26 +71,33 @@ double eval_factors(const std::vector<NurbsCurve>& f, double x) {
   return w;
 }
 
-/// Row of int_{from}^{to} x^power N(x) w(x) dx, by Gauss-Legendre on every piece between the
-/// breakpoints of f and the factors, exact for the polynomial integrand.
-Eigen::RowVectorXd integral_row(const Eigen::VectorXd& U, int p, const SplineIntegral& in, int power) {
-  std::set<double> br{in.from, in.to};
-  auto add_breaks = [&](const Eigen::VectorXd& K) {
-    for (Eigen::Index i = 0; i < K.size(); ++i)
-      if (K[i] > in.from && K[i] < in.to) br.insert(K[i]);
-  };
-  add_breaks(U);
-  int deg = p + power;
-  for (const NurbsCurve& c : in.factors) add_breaks(c.knots()), deg += c.degree();
-  const auto& g = detail::gauss_rule(deg / 2 + 1);
-  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(U.size() - p - 1);
+/// Visits the Gauss-Legendre nodes x and weights w of int_{from}^{to} for an integrand that is a
+/// polynomial of degree <= `degree` between the values of `knot_vectors`: the knots inside
+/// (from, to) split the range into pieces, each with degree / 2 + 1 points (exact to degree
+/// 2 (degree / 2 + 1) - 1 >= degree), pieces from `from` upward.
+template <class Visit>
+void piecewise_gauss(double from, double to, const std::vector<const Eigen::VectorXd*>& knot_vectors, int degree,
+                     Visit&& visit) {
+  std::set<double> br{from, to};
+  for (const Eigen::VectorXd* K : knot_vectors)
+    for (Eigen::Index i = 0; i < K->size(); ++i)
+      if ((*K)[i] > from && (*K)[i] < to) br.insert((*K)[i]);
+  const auto& g = detail::gauss_rule(degree / 2 + 1);
   for (auto it = br.begin(); std::next(it) != br.end(); ++it) {
     const double a = *it, b = *std::next(it), h = 0.5 * (b - a), m = 0.5 * (a + b);
-    for (std::size_t q = 0; q < g.x.size(); ++q) {
-      const double x = m + h * g.x[q];
-      row += g.w[q] * h * std::pow(x, power) * eval_factors(in.factors, x) * basis_row(U, p, x);
-    }
+    for (std::size_t q = 0; q < g.x.size(); ++q) visit(m + h * g.x[q], g.w[q] * h);
   }
+}
+
+/// Row of int_{from}^{to} x^power N(x) w(x) dx, exact for the polynomial integrand.
+Eigen::RowVectorXd integral_row(const Eigen::VectorXd& U, int p, const SplineIntegral& in, int power) {
+  std::vector<const Eigen::VectorXd*> knots{&U};
+  int deg = p + power;
+  for (const NurbsCurve& c : in.factors) knots.push_back(&c.knots()), deg += c.degree();
+  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(U.size() - p - 1);
+  piecewise_gauss(in.from, in.to, knots, deg, [&](double x, double w) {
+    row += w * std::pow(x, power) * eval_factors(in.factors, x) * basis_row(U, p, x);
+  });
   return row;
 }
 
@@ -122,8 +133,12 @@ void check_request(const SplineDesignRequest& r) {
   for (const auto& c : r.integrals) {
     range(c.from, c.to, c.name);
     if (c.power < 0 || c.power > 1) fail(nm, ": ", c.name, " power is ", c.power, "; expected 0 or 1");
-    for (const NurbsCurve& f : c.factors)
+    int degree = p + 1;  // the centroid's first moment
+    for (const NurbsCurve& f : c.factors) {
       if (f.dim() != 1) fail(nm, ": ", c.name, " has a weight factor of dimension ", f.dim(), "; expected a function (dimension 1)");
+      degree += f.degree();
+    }
+    if (degree > kMaxProductDegree) fail(nm, ": ", c.name, "'s integrand has degree ", degree, "; expected at most ", kMaxProductDegree);
   }
   for (const auto& c : r.flats) range(c.from, c.to, c.name), detail::require_finite(c.value, nm + ": " + c.name);
   for (const auto& c : r.bounds) range(c.from, c.to, c.name);
@@ -140,85 +155,137 @@ void check_request(const SplineDesignRequest& r) {
   }
 }
 
-}  // namespace
+/// The clamped knots of the request's spline function and what they span.
+struct SplineSpace {
+  const Eigen::VectorXd& U;
+  int p, n;       ///< degree, control points
+  double x0, x1;  ///< its range (metres)
+  explicit SplineSpace(const SplineDesignRequest& r)
+      : U(r.knots), p(r.degree), n(static_cast<int>(r.knots.size()) - r.degree - 1), x0(U[0]), x1(U[n + p]) {}
+  Eigen::RowVectorXd unit(int i) const {
+    Eigen::RowVectorXd e = Eigen::RowVectorXd::Zero(n);
+    e[i] = 1.0;
+    return e;
+  }
+};
 
-NurbsCurve design_spline_function(const SplineDesignRequest& r) {
-  check_request(r);
-  const int p = r.degree;
-  const Eigen::VectorXd& U = r.knots;
-  const int n = static_cast<int>(U.size()) - p - 1;
-  const double x0 = U[0], x1 = U[n + p], h = (x1 - x0) / std::max(1, n - p);
-
+/// H and g of the objective: e2 int (f - reference)''^2 + e3 h^2 int (f - reference)'''^2, the
+/// fit points' squared distances and the linear terms, h the mean knot span.
+QuadraticProgram objective(const SplineDesignRequest& r, const SplineSpace& s) {
+  const double h = (s.x1 - s.x0) / std::max(1, s.n - s.p);
   QuadraticProgram qp;
-  qp.H = 2.0 * r.e2 * detail::derivative_gram(U, p, 2);
-  if (r.e3 > 0) qp.H += 2.0 * r.e3 * h * h * detail::derivative_gram(U, p, 3);
-  qp.g = Eigen::VectorXd::Zero(n);
-  if (r.reference.size() > 0) {
-    if (r.reference.size() != n) fail(r.name, ": reference has ", r.reference.size(), " coefficients; expected ", n, " (one per control point)");
+  qp.H = 2.0 * r.e2 * detail::derivative_gram(s.U, s.p, 2);
+  if (r.e3 > 0) qp.H += 2.0 * r.e3 * h * h * detail::derivative_gram(s.U, s.p, 3);
+  qp.g = Eigen::VectorXd::Zero(s.n);
+  if (r.reference.size() > 0) {  // the fairness terms only: H holds nothing else yet
+    if (r.reference.size() != s.n) fail(r.name, ": reference has ", r.reference.size(), " coefficients; expected ", s.n, " (one per control point)");
     detail::require_finite(r.reference, r.name + ": reference");
     qp.g -= qp.H * r.reference;
   }
   for (const auto& f : r.fit) {
-    const Eigen::RowVectorXd N = basis_row(U, p, std::clamp(f.x, x0, x1));
+    const Eigen::RowVectorXd N = basis_row(s.U, s.p, std::clamp(f.x, s.x0, s.x1));
     qp.H += 2.0 * f.weight * N.transpose() * N;
     qp.g -= 2.0 * f.weight * f.y * N.transpose();
   }
+  for (const auto& c : r.linear) qp.g += c.value * integral_row(s.U, s.p, c, c.power).transpose();
+  return qp;
+}
 
-  for (const auto& c : r.linear) qp.g += c.value * integral_row(U, p, c, c.power).transpose();
-
-  RowSet eq, in;
+/// Equality rows: values and derivative combinations at points, integrals and centroids, and
+/// the coefficients of the flat parts.
+RowSet equality_rows(const SplineDesignRequest& r, const SplineSpace& s) {
+  RowSet eq;
   for (const auto& c : r.conditions) {
-    const double x = std::clamp(c.x, x0, x1);
+    const double x = std::clamp(c.x, s.x0, s.x1);
     if (c.combination.empty()) {
-      eq.add(basis_row(U, p, x, c.derivative), c.value, c.name);
+      eq.add(basis_row(s.U, s.p, x, c.derivative), c.value, c.name);
       continue;
     }
-    Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
-    for (std::size_t k = 0; k < c.combination.size(); ++k) row += c.combination[k] * basis_row(U, p, x, static_cast<int>(k));
+    Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(s.n);
+    for (std::size_t k = 0; k < c.combination.size(); ++k) row += c.combination[k] * basis_row(s.U, s.p, x, static_cast<int>(k));
     eq.add(row, c.value, c.name);
   }
   for (const auto& c : r.integrals) {
-    if (std::isnan(c.centroid)) eq.add(integral_row(U, p, c, c.power), c.value, c.name);
-    else eq.add(integral_row(U, p, c, 1) - c.centroid * integral_row(U, p, c, 0), 0.0, c.name);
+    if (std::isnan(c.centroid)) eq.add(integral_row(s.U, s.p, c, c.power), c.value, c.name);
+    else eq.add(integral_row(s.U, s.p, c, 1) - c.centroid * integral_row(s.U, s.p, c, 0), 0.0, c.name);
   }
   for (const auto& c : r.flats)
-    for (int i : touching(U, n, 0, p + 1, c.from, c.to)) {
-      Eigen::RowVectorXd e = Eigen::RowVectorXd::Zero(n);
-      e[i] = 1.0;
-      eq.add(e, c.value, c.name);
-    }
+    for (int i : touching(s.U, s.n, 0, s.p + 1, c.from, c.to)) eq.add(s.unit(i), c.value, c.name);
+  return eq;
+}
+
+/// Inequality rows A x <= b: bounds on a value or on the coefficients over a range, and the
+/// signs of the coefficients of f' or f''.
+RowSet inequality_rows(const SplineDesignRequest& r, const SplineSpace& s) {
+  RowSet in;
   for (const auto& c : r.bounds) {
     if (c.from == c.to) {  // a bound on the value at one point
-      const Eigen::RowVectorXd N = basis_row(U, p, std::clamp(c.from, x0, x1));
+      const Eigen::RowVectorXd N = basis_row(s.U, s.p, std::clamp(c.from, s.x0, s.x1));
       if (!std::isnan(c.upper)) in.add(N, c.upper, c.name);
       if (!std::isnan(c.lower)) in.add(-N, -c.lower, c.name);
       continue;
     }
-    for (int i : touching(U, n, 0, p + 1, c.from, c.to)) {
-      Eigen::RowVectorXd e = Eigen::RowVectorXd::Zero(n);
-      e[i] = 1.0;
+    for (int i : touching(s.U, s.n, 0, s.p + 1, c.from, c.to)) {
+      const Eigen::RowVectorXd e = s.unit(i);
       if (!std::isnan(c.upper)) in.add(e, c.upper, c.name);
       if (!std::isnan(c.lower)) in.add(-e, -c.lower, c.name);
     }
   }
   for (const auto& c : r.shapes) {
-    const Eigen::MatrixXd D = derivative_coefficients(U, p, c.derivative);
-    for (int i : touching(U, n - c.derivative, c.derivative, p + 1 - c.derivative, c.from, c.to))
+    const Eigen::MatrixXd D = derivative_coefficients(s.U, s.p, c.derivative);
+    for (int i : touching(s.U, s.n - c.derivative, c.derivative, s.p + 1 - c.derivative, c.from, c.to))
       in.add(-c.sign * D.row(i), -c.margin, c.name);
   }
-  qp.E = eq.matrix(n);
+  return in;
+}
+
+/// InfeasibleFormParameters naming the conditions of the rows the QP found in conflict.
+[[noreturn]] void throw_conflict(const std::string& name, const QpSolution& s, const RowSet& eq, const RowSet& in) {
+  const auto n_eq = static_cast<int>(eq.rows.size());
+  std::set<std::string> names;
+  for (int k : s.conflict) names.insert(k < n_eq ? eq.names[k] : in.names[k - n_eq]);
+  std::string list;
+  for (const auto& nm : names) list += (list.empty() ? "" : ", ") + nm;
+  throw InfeasibleFormParameters(name + ": the conditions " + list + " contradict each other");
+}
+
+}  // namespace
+
+NurbsCurve design_spline_function(const SplineDesignRequest& r) {
+  check_request(r);
+  const SplineSpace space(r);
+  QuadraticProgram qp = objective(r, space);
+  const RowSet eq = equality_rows(r, space), in = inequality_rows(r, space);
+  qp.E = eq.matrix(space.n);
   qp.e = eq.vector();
-  qp.A = in.matrix(n);
+  qp.A = in.matrix(space.n);
   qp.b = in.vector();
   const QpSolution s = solve_qp(qp);
-  if (s.status != QpStatus::Optimal) {
-    std::set<std::string> names;
-    for (int k : s.conflict) names.insert(k < qp.E.rows() ? eq.names[k] : in.names[k - qp.E.rows()]);
-    std::string list;
-    for (const auto& nm : names) list += (list.empty() ? "" : ", ") + nm;
-    throw InfeasibleFormParameters(r.name + ": the conditions " + list + " contradict each other");
+  if (s.status != QpStatus::Optimal) throw_conflict(r.name, s, eq, in);
+  return NurbsCurve(space.p, space.U, s.x);
+}
+
+double spline_product_integral(const std::vector<NurbsCurve>& factors, double from, double to, int power) {
+  const char* nm = "spline_product_integral";
+  if (!std::isfinite(from) || !std::isfinite(to) || !(from <= to)) fail(nm, ": range ", from, " to ", to, "; expected finite from <= to");
+  if (power < 0 || power > kMaxProductDegree) fail(nm, ": power is ", power, "; expected 0 to ", kMaxProductDegree);
+  std::vector<const Eigen::VectorXd*> knots;
+  int degree = power;
+  for (std::size_t i = 0; i < factors.size(); ++i) {
+    const NurbsCurve& f = factors[i];
+    if (f.dim() != 1) fail(nm, ": factor ", i, " has dimension ", f.dim(), "; expected a function (dimension 1)");
+    // A rational factor makes the integrand no polynomial: the Gauss rule would not be exact.
+    if (f.is_rational()) fail(nm, ": factor ", i, " is rational; expected a non-rational spline function");
+    const auto [x0, x1] = f.domain();
+    const double tol = kDomainTolerance * std::max(1.0, std::abs(x0) + std::abs(x1));
+    if (from < x0 - tol || to > x1 + tol) fail(nm, ": range ", from, " to ", to, " leaves factor ", i, "'s domain ", x0, " to ", x1);
+    knots.push_back(&f.knots());
+    degree += f.degree();
   }
-  return NurbsCurve(p, U, s.x);
+  if (degree > kMaxProductDegree) fail(nm, ": the integrand has degree ", degree, "; expected at most ", kMaxProductDegree);
+  double sum = 0.0;
+  piecewise_gauss(from, to, knots, degree, [&](double x, double w) { sum += w * std::pow(x, power) * eval_factors(factors, x); });
+  return sum;
 }
 
 Eigen::VectorXd spline_function_knots(double x0, double x1, const std::vector<double>& breaks, int spans, int degree,
