@@ -22,7 +22,7 @@ import numpy as np
 from . import _native
 from .description import FORM_ALIASES, BasicCurveSpec
 
-__all__ = ["BasicCurve", "solve_curve", "solve_sac", "immersed_range", "FULLNESS_BOUNDS"]
+__all__ = ["BasicCurve", "solve_curve", "solve_sac", "solve_sac_area", "immersed_range", "FULLNESS_BOUNDS"]
 
 #: Section fullness A / (2 y_dwl (T - z_keel)) a designed SAC keeps within (a convex section
 #: through the DWL point with a flat keel has at least half its box; at most the box).
@@ -32,6 +32,13 @@ CORNER_FULLNESS_BOUNDS = (0.1, 0.995)
 #: Weight of the fairness (int s''^2 dx, times the range cubed) against the fit when the SAC's
 #: reference fullness is fitted to its fullness_fit points (and its flat part).
 REFERENCE_FAIRNESS = 1e-6
+#: ... and of the reference area of a SAC of given sections (fitted to their measured areas):
+#: far smaller, so it follows a quick change of area (a bulb's neck ending within a metre) that
+#: the fullness, a ratio, does not have.
+AREA_REFERENCE_FAIRNESS = 1e-10
+#: Knot spans of the factor that scales those areas onto the volume and LCB (linear unless a
+#: flat part holds it).
+AREA_FACTOR_SPANS = 4
 #: Fullness of a section where the waterline ends on the centre plane (a straight wedge), and
 #: the waterline breadth (fraction of its largest) below which an end counts as such.
 WEDGE_FULLNESS = 0.5
@@ -378,11 +385,12 @@ def _wedge_ends(dwl: BasicCurve, plan: _Plan, wedge_flat: bool, free_ends: tuple
     return out
 
 
-def _volume_and_lcb(plan: _Plan, params: dict, factors: list) -> list:
-    """The SAC's volume (half of it: one side) and LCB as weighted integrals of the fullness."""
+def _volume_and_lcb(plan: _Plan, params: dict, factors: list, share: float = 0.5) -> list:
+    """The SAC's volume and LCB as weighted integrals of the designed curve: `share` of the
+    volume (the fullness times the factors holds one side's: 1/2; the area itself all of it)."""
     integrals = []  # (pybind11 list fields are copies: build, then assign)
     if "Area" in params:
-        integrals.append(_native.SplineIntegral(plan.xs, plan.xe, params["Area"] / 2.0, factors=factors, name="volume"))
+        integrals.append(_native.SplineIntegral(plan.xs, plan.xe, share * params["Area"], factors=factors, name="volume"))
     if "xC" in params:
         if "Area" not in params:
             raise _native.InvalidInput(f"{_SAC_PATH}.lcb is given without the volume; expected both")
@@ -522,6 +530,128 @@ def solve_sac(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft:
             f"cannot be met by fair sections: {_sac_ranges(r2, plan2, params2, factors2)} ({e})") from None
     full = BasicCurve("fullness", plan.xs, plan.xe, s, None)
     return _ProductCurve("sac", plan.xs, plan.xe, full, dwl, profile, draft), full
+
+
+def solve_sac_area(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft: float) -> BasicCurve:
+    """The SAC (m^2, both sides) designed directly as area on the DWL's range, for hulls whose
+    sections are given (``sections.given``): a given section holds the area it was measured
+    with, which the fullness SAC / (2 y_dwl (T - z_keel)) cannot bound where the waterline is
+    narrow and the section wide below it (a bulb's neck under a fine stem). A >= 0.
+
+    With ``fit`` points (the measured areas) the SAC is their reference curve A_ref (the
+    fairest through them, a knot at each, holding the end values, points and flat part) times
+    1 + g, g the fairest factor (linear unless a flat part holds it) meeting the volume and
+    LCB: the areas change in proportion, so a section with little area (at a waterline's end)
+    changes little, and the correction lands at the stations, where the sections are built.
+    Without fit points A itself is designed, 0 at a range end where the body leaves the water or
+    the waterline closes (unless yB / yE are given). Raises InvalidInput for a fullness_fit,
+    lower / upper or an LCB without the volume, InfeasibleFormParameters when the conditions
+    contradict each other."""
+    plan = _plan(spec, dwl.x_start, dwl.x_end, _SAC_PATH)
+    params = _form_params("sac", spec, _SAC_PATH)
+    pts = [(x, a) for x, a in spec.fit if plan.xs <= x <= plan.xe]
+    r = _area_request(spec, plan, params, [x for x, _ in pts])
+    try:
+        if not pts:
+            r.conditions = list(r.conditions) + _dry_area_ends(plan, params, dwl, profile, draft)
+            r.integrals = _volume_and_lcb(plan, params, [], share=1.0)
+            return BasicCurve("sac", plan.xs, plan.xe, _native.design_spline_function(r), None)
+        r.e2 = AREA_REFERENCE_FAIRNESS * (plan.xe - plan.xs) ** 3 / len(pts)
+        r.fit = [_native.SplineFitPoint(x, a, 1.0) for x, a in pts]
+        ref = BasicCurve("sac", plan.xs, plan.xe, _native.design_spline_function(r), None)
+        if "Area" not in params:
+            return ref
+        return _ScaledArea(ref, _area_factor(ref, plan, params))
+    except _native.InfeasibleFormParameters as e:
+        raise _native.InfeasibleFormParameters(
+            f"{_SAC_PATH}: volume {params.get('Area', float('nan')):.6g} m^3 / lcb {params.get('xC', float('nan')):.6g} m "
+            f"cannot be met by a SAC of given sections ({e})") from None
+
+
+def _area_request(spec: BasicCurveSpec, plan: _Plan, params: dict, stations: list):
+    """The area SAC's request without its fit or integrals: end conditions, points, flat part,
+    A >= 0 and the monotone rise to the flat part; a knot at each of `stations`."""
+    if spec.fullness_fit:
+        raise _native.InvalidInput(f"{_SAC_PATH}.fullness_fit is given, but a SAC of given sections is designed as area; "
+                                   "expected fit ([[x, area], ...]) instead")
+    if spec.lower is not None or spec.upper is not None:
+        raise _native.InvalidInput(f"{_SAC_PATH}.lower / upper are not used; the SAC of given sections is bounded below by 0")
+    if "xC" in params and "Area" not in params:
+        raise _native.InvalidInput(f"{_SAC_PATH}.lcb is given without the volume; expected both")
+    r = _request("sac", plan, spec, _SAC_PATH, stations)
+
+    def direct(x, combo, value, what):
+        return [_native.SplineCondition(x, 0, value, what, combo)]
+
+    r.conditions = _conditions(params, plan, _SAC_PATH, direct) + [_native.SplineCondition(x, 0, a, "points")
+                                                                     for x, a in spec.points]
+    if plan.flat is not None:
+        r.flats = [_native.SplineFlat(plan.flat[0], plan.flat[1], plan.value, "flat part (midship section area)")]
+    r.bounds = [_native.SplineBound(plan.xs, plan.xe, 0.0, math.nan, "0 <= sac")]
+    r.shapes = _monotone(plan, params, True) if spec.monotone else []
+    return r
+
+
+def _dry_area_ends(plan: _Plan, params: dict, dwl: BasicCurve, profile: BasicCurve, draft: float) -> list:
+    """A = 0 at a range end where the body leaves the water or the waterline closes (the
+    sections hold no area there), unless yB / yE or the flat part says otherwise."""
+    tol = 1e-9 * (plan.xe - plan.xs)
+    ends = []
+    for x, key in ((plan.xs, "yB"), (plan.xe, "yE")):
+        flat = plan.flat is not None and plan.flat[0] - tol <= x <= plan.flat[1] + tol
+        if key not in params and not flat and (float(profile(x)[0]) >= draft - tol or float(dwl(x)[0]) <= tol):
+            ends.append(_native.SplineCondition(x, 0, 0.0, f"{key} (no immersed section)"))
+    return ends
+
+
+def _area_factor(ref: BasicCurve, plan: _Plan, params: dict):
+    """g: the fairest spline (AREA_FACTOR_SPANS) with int A_ref g = V - V_ref and, with the LCB,
+    int x A_ref g = V xC - M_ref; 0 on the flat part; g >= -1."""
+    r = _native.SplineDesignRequest()
+    r.name = f"{_SAC_PATH} (volume and LCB factor)"
+    breaks = [x for x in (plan.flat or ()) if plan.xs < x < plan.xe]
+    r.knots = _native.spline_function_knots(plan.xs, plan.xe, breaks, AREA_FACTOR_SPANS, 3, 1)
+    factor = [ref.factor()]
+    volume = params["Area"]
+    integrals = [_native.SplineIntegral(plan.xs, plan.xe, volume - ref.integral(0), factors=factor, name="volume")]
+    if "xC" in params:
+        integrals.append(_native.SplineIntegral(plan.xs, plan.xe, volume * params["xC"] - ref.integral(1), power=1,
+                                                factors=factor, name="lcb"))
+    r.integrals = integrals
+    if plan.flat is not None:
+        r.flats = [_native.SplineFlat(plan.flat[0], plan.flat[1], 0.0, "flat part (kept as given)")]
+    r.bounds = [_native.SplineBound(plan.xs, plan.xe, -1.0, math.nan, "0 <= sac")]
+    return _native.design_spline_function(r)
+
+
+class _ScaledArea(BasicCurve):
+    """A(x) = A_ref(x) (1 + g(x)): a SAC of given sections, its reference areas scaled."""
+
+    def __init__(self, ref: BasicCurve, g):
+        super().__init__("sac", ref.x_start, ref.x_end, None, None)
+        self.reference, self.g = ref, BasicCurve("g", ref.x_start, ref.x_end, g, None)
+
+    def __call__(self, x: Any, outside: float = math.nan) -> np.ndarray:
+        a = self.reference(x, outside=math.nan)
+        out = a * (1.0 + self.g(x, outside=0.0))
+        return np.where(np.isnan(a), outside, out)
+
+    def derivative(self, x: float, order: int = 1) -> float:
+        ga, g1, a, a1 = self.g(x)[0], self.g.derivative(x, 1), self.reference(x)[0], self.reference.derivative(x, 1)
+        if order == 1:
+            return float(a1 * (1 + ga) + a * g1)
+        return float(self.reference.derivative(x, 2) * (1 + ga) + 2 * a1 * g1 + a * self.g.derivative(x, 2))
+
+    def integral(self, power: int = 0, lo: float | None = None, hi: float | None = None) -> float:
+        """int x^power A dx over [lo, hi] (default the whole range), exact: the engine's
+        integral of the product A_ref (1 + g). Raises InvalidInput for lo > hi or a range
+        beyond the SAC's."""
+        lo = self.x_start if lo is None else lo
+        hi = self.x_end if hi is None else hi
+        return _native.spline_product_integral([self.reference.factor(), self.g.factor(offset=1.0)], lo, hi, power)
+
+    def factor(self, offset: float = 0.0, scale: float = 1.0):
+        raise _native.InvalidInput("the SAC of given sections is a product of splines; use its reference and g as factors")
 
 
 class _ProductCurve(BasicCurve):

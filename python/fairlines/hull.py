@@ -26,7 +26,8 @@ import numpy as np
 
 from . import _native
 from . import basic_curves as _basic_curves
-from .basic_curves import CORNER_FULLNESS_BOUNDS, FULLNESS_BOUNDS, BasicCurve, immersed_range, solve_curve, solve_sac
+from .basic_curves import (CORNER_FULLNESS_BOUNDS, FULLNESS_BOUNDS, BasicCurve, immersed_range, solve_curve, solve_sac,
+                           solve_sac_area)
 from .description import DOME_NECK, FORM_ALIASES, FORM_KEYS, BasicCurveSpec, HullDescription, load_description
 from .hydrostatics_surface import hydrostatics
 from .skinning import fair_skin
@@ -184,7 +185,8 @@ class Hull:
     # ---- basic curves ---------------------------------------------------------------
     @property
     def basic_curves(self) -> dict[str, BasicCurve]:
-        """Solved basic curves: profile, dwl, deck, sac, fullness and the shape curves.
+        """Solved basic curves: profile, dwl, deck, sac, fullness (None where the SAC of given sections is
+        designed as area) and the shape curves.
         Raises InfeasibleFormParameters (an InvalidInput) when a curve's conditions cannot be met."""
         if self._curves is None:
             d = self.description
@@ -195,15 +197,18 @@ class Hull:
             curves = dict(_shape_cache.get(shape_key, self._shape_curves))
             self._curves = curves  # the bands below read them
             try:
-                given_key = tuple((x, p.tobytes()) for x, p in d.given_sections)
-                band_key = (shape_key, self.stations().tobytes(), d.section_n_control, given_key)
-                bands = _band_cache.get(band_key, self._fullness_bands)
-                free = tuple(d.x_aft if end == "aft" else d.x_fore for end in d.posts)
-                limits = FULLNESS_BOUNDS
-                if "corner_breadth" in d.curves or d.given_sections:
-                    free, limits = self.immersed_range(), CORNER_FULLNESS_BOUNDS
-                curves["sac"], curves["fullness"] = solve_sac(d.curves["sac"], curves["dwl"], curves["profile"], pr.draft,
-                                                              fullness=limits, bands=bands, free_ends=free)
+                if d.given_sections:  # given sections hold their own areas: the SAC is designed as area
+                    curves["sac"] = solve_sac_area(d.curves["sac"], curves["dwl"], curves["profile"], pr.draft)
+                    curves["fullness"] = None
+                else:
+                    band_key = (shape_key, self.stations().tobytes(), d.section_n_control)
+                    bands = _band_cache.get(band_key, self._fullness_bands)
+                    free = tuple(d.x_aft if end == "aft" else d.x_fore for end in d.posts)
+                    limits = FULLNESS_BOUNDS
+                    if "corner_breadth" in d.curves:
+                        free, limits = self.immersed_range(), CORNER_FULLNESS_BOUNDS
+                    curves["sac"], curves["fullness"] = solve_sac(d.curves["sac"], curves["dwl"], curves["profile"], pr.draft,
+                                                                  fullness=limits, bands=bands, free_ends=free)
             except BaseException:
                 self._curves = None
                 raise

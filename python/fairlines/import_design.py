@@ -111,8 +111,9 @@ SHEER_TOL = 0.005
 PROFILE_TURN = 0.5
 #: Sides flaring beyond B by more than this fraction of B make the description's B_max.
 FLARE_TOL = 1e-3
-#: Given sections: least heights a station needs, points laid along a flat bottom to the
-#: centre plane, and what counts as no breadth or no height (fractions of B and D).
+#: Given sections: least heights a station needs, least points laid along a flat bottom to the
+#: centre plane (more where it is wide: as densely as the heights), and what counts as no
+#: breadth or no height (fractions of B and D).
 GIVEN_MIN_POINTS = 4
 GIVEN_BOTTOM_POINTS = 12
 GIVEN_FLAT_TOL = 1e-4
@@ -491,8 +492,9 @@ def measured_shape(m: MeasuredHull, k: int) -> np.ndarray | None:
         return None
     pts = np.column_stack([y[ok], m.z[ok]])[::-1]  # deck edge first
     bottom = pts[-1]
-    if bottom[0] > GIVEN_FLAT_TOL * m.beam:  # a flat bottom: out to the centre plane
-        ys = np.linspace(bottom[0], 0.0, GIVEN_BOTTOM_POINTS)[1:]
+    if bottom[0] > GIVEN_FLAT_TOL * m.beam:  # a flat bottom: out to the centre plane, as densely as up the side
+        count = max(GIVEN_BOTTOM_POINTS, int(math.ceil(bottom[0] / (m.z[1] - m.z[0]))) + 1)  # (sparser, the fit rings there)
+        ys = np.linspace(bottom[0], 0.0, count)[1:]
         pts = np.vstack([pts, np.column_stack([ys, np.full(len(ys), bottom[1])])])
     else:
         pts[-1, 0] = 0.0

@@ -1,6 +1,7 @@
 // Sections of the hull designer: each checked against exact geometry (the end points, the
 // waterline point, the area below T by Green's theorem on a dense sample, the sign of the
 // curvature along the curve) rather than against the template it was built from.
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Core>
@@ -152,6 +153,51 @@ TEST(Sections, GivenShapeIsHeldAndMeetsTheArea) {
       EXPECT_NEAR(yz(i, 0), s.y_dwl * (1 - (zeta / s.draft) * (zeta / s.draft)), 2e-3 * s.y_max) << yz(i, 1);
     }
   }
+}
+
+// The largest half-breadth of a sampled section below height z0.
+double widest_below(const Eigen::MatrixXd& yz, double z0) {
+  double w = 0.0;
+  for (int i = 0; i < yz.rows(); ++i)
+    if (yz(i, 1) < z0) w = std::max(w, yz(i, 0));
+  return w;
+}
+
+TEST(Sections, GivenShapeFollowsItsWaterlineByRatioWhenWidestThere) {
+  // a shape widest at the waterline (the Wigley parabola) on a waterline 10 % narrower than its
+  // own scales by that ratio: at half draught 0.9 of its 3/4 b
+  SectionSpec s = midship();
+  s.n_control = 32;
+  s.given = wigley_points(s.y_dwl, s.draft, s.z_deck);
+  s.y_dwl = 0.9 * s.y_max;
+  s.half_area = std::nan("");
+  const Eigen::MatrixXd yz = samples(design_section(s));
+  for (int i = 0; i + 1 < yz.rows(); ++i)
+    if ((yz(i, 1) - 0.5 * s.draft) * (yz(i + 1, 1) - 0.5 * s.draft) <= 0)
+      EXPECT_NEAR(yz(i, 0), 0.9 * 0.75 * s.y_max, 3e-3 * s.y_max);
+}
+
+TEST(Sections, GivenBulbNeckIsNotBlownUpByItsNarrowWaterline) {
+  // a bulb's neck (half-breadth 2.4 m about z = 5 m) under a fine waterline (0.30 m at T = 11 m):
+  // a waterline 2 cm wider changes the neck by about those 2 cm, not by its ratio (+6.7 %, 16 cm)
+  SectionSpec s = midship();
+  s.n_control = 32;
+  s.z_keel = 1.1;
+  s.y_deck = 1.0;
+  const int m = 241;
+  Eigen::MatrixXd p(m, 2);
+  for (int i = 0; i < m; ++i) {
+    const double z = s.z_deck - (s.z_deck - s.z_keel) * i / (m - 1);
+    const double top = z >= 11.0 ? 0.3 + 0.7 * (z - 11.0) / (s.z_deck - 11.0) : 0.1 + 0.2 * std::max(0.0, z - 9.0) / 2.0;
+    const double neck = 2.4 * std::sqrt(std::max(0.0, 1.0 - std::pow((z - 5.0) / 3.9, 2)));
+    p.row(i) << (z >= 9.0 ? top : std::max(neck, z > 8.0 ? 0.1 : 0.0)), z;
+  }
+  p(m - 1, 0) = 0.0;
+  s.given = p;
+  s.y_dwl = 0.32;
+  s.half_area = std::nan("");
+  const Eigen::MatrixXd yz = samples(design_section(s));
+  EXPECT_NEAR(widest_below(yz, 9.0), 2.4 + 0.02, 0.03);
 }
 
 TEST(Sections, GivenShapeRunningUpwardIsRefused) {

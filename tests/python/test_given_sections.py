@@ -169,3 +169,43 @@ def test_the_loader_refuses_what_the_schema_cannot_state(edit, message):
     d[edit[0]][edit[1]] = edit[2]
     with pytest.raises(fl.InvalidInput, match=message):
         fl.Hull.from_json(d)
+
+
+def _wigley_with_measured_areas(volume_factor=1.0) -> dict:
+    """The given Wigley hull with the SAC fitted to its sections' exact areas (a parabola in x:
+    2 * 2/3 * b(x) * T with b the waterline's parabola) and its volume scaled by volume_factor."""
+    d = _wigley_hull()
+    L = d["principal"]["Lpp"]
+    xs = np.linspace(0.0, L, 41)
+    area = 2 * (2 / 3) * B2 * (1 - (2 * xs / L - 1) ** 2) * T
+    d["basic_curves"]["sac"] = {"volume": volume_factor * 4 / 9 * L * 2 * B2 * T, "lcb": L / 2, "spans": 16,
+                                "fit": [[float(x), float(a)] for x, a in zip(xs, area)]}
+    return d
+
+
+def test_the_sac_of_given_sections_is_designed_as_area_through_their_measured_areas():
+    h = fl.Hull.from_json(_wigley_with_measured_areas())
+    sac = h.basic_curves["sac"]
+    L = h.description.principal.lpp
+    xs = np.linspace(5.0, 95.0, 19)
+    exact = 2 * (2 / 3) * B2 * (1 - (2 * xs / L - 1) ** 2) * T
+    assert np.abs(sac(xs) - exact).max() <= 1e-3 * exact.max()
+    assert h.basic_curves["fullness"] is None  # no fullness: a given section holds its own shape
+
+
+def test_a_volume_change_scales_the_given_sections_areas_in_proportion():
+    """+2 % volume at the same LCB: every area +2 % (the factor's fairest form: a constant), the
+    sections at the waterline's ends, with next to no area, next to unchanged."""
+    base = fl.Hull.from_json(_wigley_with_measured_areas())
+    more = fl.Hull.from_json(_wigley_with_measured_areas(1.02))
+    xs = np.linspace(2.0, 98.0, 25)
+    ratio = more.basic_curves["sac"](xs) / base.basic_curves["sac"](xs)
+    assert np.allclose(ratio, 1.02, atol=1e-6)
+    assert more.hydrostatics().volume == pytest.approx(1.02 * base.hydrostatics().volume, rel=2e-3)
+
+
+def test_a_fullness_fit_with_given_sections_is_refused_naming_it():
+    d = _wigley_hull()
+    d["basic_curves"]["sac"]["fullness_fit"] = [[50.0, 0.6]]
+    with pytest.raises(fl.InvalidInput, match="fullness_fit is given, but a SAC of given sections is designed as area"):
+        fl.Hull.from_json(d).basic_curves

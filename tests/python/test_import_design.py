@@ -22,9 +22,8 @@ SHORT = {
                     "and the family holds neither the skeg nor the hollow aft sections",
     ("max", "kcs"): "max 17.5 % B at the skeg",
     ("lcb", "kcs"): "+0.44 % Lpp: the bare hull holds the LCB measured without the bulb, and the bulb moves it forward",
-    ("rms", "dtmb5415"): "RMS 0.60 % B: the dome's aft end and the stem's foot (x 5.0-5.7 m) on a 161-station profile",
-    ("max", "dtmb5415"): "max 4.9 % B where the dome meets the stem (x 5.58 m)",
-    ("wetted", "dtmb5415"): "+1.53 % (the profile overshoots at the dome's ends)",
+    ("max", "dtmb5415"): "max 4.3 % B where the dome meets the stem (x 5.68 m)",
+    ("wetted", "dtmb5415"): "+1.77 % (+1.1 % over the data's own surface, at the dome's and stem's forward end)",
 }
 
 
@@ -146,7 +145,7 @@ def _sign_changes(surface, axis, value, lo, hi):
 #: Measured shortfalls of the fairness comparison below (rebuilt vs a refit of the data's grid).
 REFIT_SHORT = {
     ("dtmb5415", "main"): "the given sections' fits differ a little from station to station (161 stations, 3.6 cm apart on the "
-                "model): 23-52 sign changes on the main grid's waterlines against 0-2 for its refit",
+                "model): 5-52 sign changes on the main grid's waterlines (37-52 on its buttocks) against 0-3 for its refit",
     ("kcs", "forebody"): "the forebody's waterlines: 5-10 sign changes against 1-5 for its refit (the fitted family's sections)",
     ("kcs", "afterbody"): "the fitted family's sections: 4 sign changes on the 11.25 m waterline against none for the refit",
 }

@@ -612,7 +612,8 @@ std::optional<double> crossing_y(const Eigen::MatrixXd& P, double z0) {
 
 /// The given shape's points in this station's frame: its first point onto D, last onto K and,
 /// for an immersed station, its crossing of T onto Q; heights stretched linearly between these,
-/// half-breadths scaled by the waterline's ratio below T and blended to the deck's above it.
+/// half-breadths scaled below T by the waterline's change (its ratio for a shape widest at the
+/// waterline) and blended to the deck's ratio above it.
 std::vector<V2> map_given(const Section& S, const Eigen::MatrixXd& P) {
   const Eigen::Index m = P.rows();
   const V2 Dg(P(0, 0), P(0, 1));
@@ -622,7 +623,14 @@ std::vector<V2> map_given(const Section& S, const Eigen::MatrixXd& P) {
   const std::optional<double> yq = S.immersed ? crossing_y(P, T) : std::nullopt;
   std::vector<V2> out(m);
   if (yq && Dg.y() > T && zk < T) {
-    const double s_wl = *yq > tiny ? S.b / *yq : s_deck, s_top = Dg.x() > tiny ? s_deck : s_wl;
+    // Below T the half-breadths change by the waterline's difference as a share of the shape's
+    // widest below T: a shape widest at the waterline scales by the ratio S.b / yq, one far wider
+    // below (a bulb's neck under a fine waterline) is not blown up by a millimetre's change of a
+    // narrow waterline.
+    double widest = *yq;
+    for (Eigen::Index i = 0; i < m; ++i)
+      if (P(i, 1) < T) widest = std::max(widest, P(i, 0));
+    const double s_wl = *yq > tiny ? 1.0 + (S.b - *yq) / widest : s_deck, s_top = Dg.x() > tiny ? s_deck : s_wl;
     for (Eigen::Index i = 0; i < m; ++i) {
       const double z = P(i, 1);
       if (z >= T) {
