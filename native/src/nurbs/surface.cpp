@@ -576,33 +576,62 @@ std::vector<Eigen::Index> sampled_minima(const Eigen::VectorXd& d2, Eigen::Index
   return out;
 }
 
-// Newton on the stationarity of |S - p|^2 from (u, v), clamped to a box free of creases.
+// Projected Newton on |S - p|^2: iterations at most (a saddle or an edge approach takes a few
+// more than the usual handful; the search stops earlier when no step brings the point nearer).
+constexpr int kClosestNewtonSteps = 100;
+// Halvings of a step that does not bring the point nearer before the search stops there.
+constexpr int kClosestBacktracks = 40;
+// Smallest Hessian eigenvalue magnitude used, relative to the largest: across a saddle or a
+// flat direction the step stays finite and scaled to that direction (backtracking shortens it).
+constexpr double kClosestEigenFloor = 1e-3;
+// Converged when a step moves the point by less than this, relative to the net's size.
+constexpr double kClosestStepTolerance = 1e-15;
+
+// Newton on the stationarity of |S - p|^2 from (u, v), kept in a box free of creases. Where
+// the Hessian is indefinite its eigenvalues are taken by magnitude, so the step still descends
+// at Newton's scale in each direction (a gradient step scaled by the largest curvature
+// crawled along a saddle's flat direction and ran out of iterations). A parameter on an edge
+// of the box whose gradient points out of it is held there, and the other one is solved alone.
 std::pair<double, double> newton_closest(const NurbsSurface& s, const Eigen::Vector3d& p, double u, double v,
                                          const std::pair<double, double>& bu, const std::pair<double, double>& bv,
                                          double scale) {
-  for (int it = 0; it < 60; ++it) {
+  for (int it = 0; it < kClosestNewtonSteps; ++it) {
     const Eigen::MatrixXd D = s.derivatives(u, v, 2);
     const Eigen::Vector3d S = D.row(0).transpose(), Su = D.row(3).transpose(), Sv = D.row(1).transpose();
     const Eigen::Vector3d Suu = D.row(6).transpose(), Suv = D.row(4).transpose(), Svv = D.row(2).transpose();
     const Eigen::Vector3d r = S - p;
-    Eigen::Matrix2d J;
-    J << Su.dot(Su) + r.dot(Suu), Su.dot(Sv) + r.dot(Suv), Su.dot(Sv) + r.dot(Suv), Sv.dot(Sv) + r.dot(Svv);
+    Eigen::Matrix2d H;
+    H << Su.dot(Su) + r.dot(Suu), Su.dot(Sv) + r.dot(Suv), Su.dot(Sv) + r.dot(Suv), Sv.dot(Sv) + r.dot(Svv);
     const Eigen::Vector2d g(Su.dot(r), Sv.dot(r));
-    Eigen::Vector2d delta = J.ldlt().solve(-g);
-    if (!delta.allFinite() || J.determinant() <= 0.0) delta = -g / std::max(J.diagonal().maxCoeff(), 1e-300);
+    const bool hold_u = (u <= bu.first && g[0] > 0.0) || (u >= bu.second && g[0] < 0.0);
+    const bool hold_v = (v <= bv.first && g[1] > 0.0) || (v >= bv.second && g[1] < 0.0);
+    if (hold_u && hold_v) break;  // a corner of the box, the gradient pointing out on both sides
+    Eigen::Vector2d delta = Eigen::Vector2d::Zero();
+    if (hold_u || hold_v) {
+      const int k = hold_u ? 1 : 0;
+      delta[k] = -g[k] / std::max(std::abs(H(k, k)), std::max(kClosestEigenFloor * H.cwiseAbs().maxCoeff(), 1e-300));
+    } else {
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
+      eig.computeDirect(H);
+      const Eigen::Vector2d lam = eig.eigenvalues().cwiseAbs();
+      const Eigen::Vector2d mag = lam.cwiseMax(std::max(kClosestEigenFloor * lam.maxCoeff(), 1e-300));
+      delta = -eig.eigenvectors() * (eig.eigenvectors().transpose() * g).cwiseQuotient(mag);
+    }
+    if (!delta.allFinite()) break;
     // Backtracking: a step that does not bring the point nearer is halved (a strongly curved
-    // surface sends the full Newton step far past the minimum).
+    // surface sends the full Newton step far past the minimum); none that does: a minimum.
     double un = u, vn = v;
-    for (int half = 0; half < 30; ++half, delta *= 0.5) {
+    bool nearer = false;
+    for (int half = 0; half < kClosestBacktracks && !nearer; ++half, delta *= 0.5) {
       un = std::clamp(u + delta[0], bu.first, bu.second);
       vn = std::clamp(v + delta[1], bv.first, bv.second);
-      if ((s.evaluate(un, vn) - p).squaredNorm() <= r.squaredNorm()) break;
+      nearer = (s.evaluate(un, vn) - p).squaredNorm() < r.squaredNorm();
     }
+    if (!nearer) break;
     const double step = (Su * (un - u) + Sv * (vn - v)).norm();
     u = un;
     v = vn;
-    // Converged when a step moves the point by less than this relative tolerance.
-    if (step < 1e-15 * scale) break;
+    if (step < kClosestStepTolerance * scale) break;
   }
   return {u, v};
 }
