@@ -233,16 +233,26 @@ def default_propeller_diameter(p: Particulars) -> float:
     return min(PROPELLER_DIAMETER * p.draft, room)
 
 
-def propeller(p: Particulars) -> dict | None:
-    """The single screw of a ship with a skeg (metres): diameter, plane x, shaft height, the
-    least height of the hull above the disc and the skeg's aft edge; None without a skeg."""
+@dataclass(frozen=True)
+class Propeller:
+    """The single screw of a ship with a skeg, in metres (x from the AP, heights above base)."""
+
+    diameter: float      # of the disc
+    x: float             # the propeller plane
+    shaft_height: float  # the shaft's axis
+    hull_above: float    # the least height of the hull over the disc (tip clearance kept)
+    skeg_aft: float      # the skeg's aft edge
+
+
+def propeller(p: Particulars) -> Propeller | None:
+    """The single screw of a ship with a skeg (:class:`Propeller`); None without a skeg."""
     if not p.skeg:
         return None
     dp = p.propeller_diameter if p.propeller_diameter is not None else default_propeller_diameter(p)
     x = max(PROPELLER_PLANE * p.lpp, dp)
     shaft = (HEEL_CLEARANCE + 0.5) * dp
-    return {"diameter": dp, "x": x, "shaft_height": shaft, "hull_above": shaft + (0.5 + TIP_CLEARANCE) * dp,
-            "skeg_aft": x + SKEG_CLEARANCE * dp}
+    return Propeller(diameter=dp, x=x, shaft_height=shaft, hull_above=shaft + (0.5 + TIP_CLEARANCE) * dp,
+                     skeg_aft=x + SKEG_CLEARANCE * dp)
 
 
 def _aperture(p: Particulars, prof: dict, profile, x_aft: float, x_fore: float):
@@ -253,9 +263,9 @@ def _aperture(p: Particulars, prof: dict, profile, x_aft: float, x_fore: float):
     pr = propeller(p)
     if pr is None:
         return profile, None
-    fore = pr["x"] + PROPELLER_HALF_WIDTH * pr["diameter"]  # the profile falls forward: the blades' forward edge
-    if float(profile(fore)[0]) < pr["hull_above"]:  # a flatter counter over the propeller, then a steeper run
-        lifted = {**prof, "points": sorted(prof["points"] + [[fore, pr["hull_above"]]])}
+    fore = pr.x + PROPELLER_HALF_WIDTH * pr.diameter  # the profile falls forward: the blades' forward edge
+    if float(profile(fore)[0]) < pr.hull_above:  # a flatter counter over the propeller, then a steeper run
+        lifted = {**prof, "points": sorted(prof["points"] + [[fore, pr.hull_above]])}
         tries = [{**lifted, "slopeB": -math.tan(math.radians(APERTURE_COUNTER_ANGLE))}] if p.stern == "transom" else []
         for trial in tries + [lifted]:
             for spans in PROFILE_SPANS:
@@ -273,12 +283,12 @@ def _aperture(p: Particulars, prof: dict, profile, x_aft: float, x_fore: float):
             break
         else:
             raise _native.InfeasibleFormParameters(
-                f"basic_curves.profile: no fair centre profile passes {pr['hull_above']:.4g} m above base over the "
-                f"propeller (diameter {pr['diameter']:.3g} m at x = {pr['x']:.4g} m) and meets the keel's flat at "
+                f"basic_curves.profile: no fair centre profile passes {pr.hull_above:.4g} m above base over the "
+                f"propeller (diameter {pr.diameter:.3g} m at x = {pr.x:.4g} m) and meets the keel's flat at "
                 f"{prof['flat_from']:.4g} m: give a smaller propeller_diameter or a longer run (a lower cb)")
-    dp = pr["diameter"]
-    end = min(SKEG_END * dp, 0.5 * (prof["flat_from"] - pr["skeg_aft"]))
-    skeg = {"x_aft": pr["skeg_aft"], "x_fore": prof["flat_from"], "half_thickness": SKEG_HALF_THICKNESS * dp,
+    dp = pr.diameter
+    end = min(SKEG_END * dp, 0.5 * (prof["flat_from"] - pr.skeg_aft))
+    skeg = {"x_aft": pr.skeg_aft, "x_fore": prof["flat_from"], "half_thickness": SKEG_HALF_THICKNESS * dp,
             "fillet": SKEG_FILLET * dp, "end_length": end}
     return profile, skeg
 
@@ -491,8 +501,8 @@ def _add_appendages(desc: dict, p: Particulars, prof: dict, skeg: dict | None) -
         desc["skeg"] = skeg
         desc["sections"]["n_control"] = SKEG_SECTION_CONTROLS
         pr = propeller(p)
-        desc["notes"] += (f"; single screw: propeller diameter {pr['diameter']:.3g} m at x = {pr['x']:.4g} m, shaft "
-                          f"{pr['shaft_height']:.3g} m above base, hull at least {pr['hull_above']:.4g} m above base over it")
+        desc["notes"] += (f"; single screw: propeller diameter {pr.diameter:.3g} m at x = {pr.x:.4g} m, shaft "
+                          f"{pr.shaft_height:.3g} m above base, hull at least {pr.hull_above:.4g} m above base over it")
 
 
 def _bulb_section(p: Particulars, c: dict) -> dict:

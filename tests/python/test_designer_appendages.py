@@ -5,13 +5,15 @@ Truths: the particulars asked for (volume, LCB, Cwp measured on the surface), th
 diameter and the clearances the designer promises (disc geometry, independent of the hull),
 the dome's size from the particulars, and frames cut from the surface (fl.plane_cut)."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
 import fairlines as fl
 from conftest import edge_census
 from fairlines.designer import (DOME_DEPTH, DOME_HALF_BREADTH, DOME_LENGTH, HEEL_CLEARANCE, PROPELLER_DIAMETER,
-                                PROPELLER_HALF_WIDTH, SKEG_HALF_THICKNESS, TIP_CLEARANCE, propeller)
+                                PROPELLER_HALF_WIDTH, SKEG_HALF_THICKNESS, TIP_CLEARANCE, Propeller, propeller)
 from fairlines.description import DOME_WIDEST, SKEG_FORE_TAPER
 from fairlines.fairness import judge_cut
 
@@ -48,12 +50,22 @@ def test_the_propeller_disc_clears_the_hull(ship):
     the given diameter about the shaft)."""
     p, hull = ship
     dp = p.get("propeller_diameter", PROPELLER_DIAMETER * p["draft"])
-    x_p, shaft = propeller(fl.Particulars(**p))["x"], (HEEL_CLEARANCE + 0.5) * dp
+    x_p, shaft = propeller(fl.Particulars(**p)).x, (HEEL_CLEARANCE + 0.5) * dp
     assert shaft - dp / 2 == pytest.approx(HEEL_CLEARANCE * dp)  # the disc stays above the baseline
     for x in x_p + np.array([-1.0, 0.0, 1.0]) * PROPELLER_HALF_WIDTH * dp:
         f = _frame(hull, x)
         gap = np.hypot(f[:, 1], f[:, 2] - shaft).min() - dp / 2
         assert gap >= 0.98 * TIP_CLEARANCE * dp, (x, gap)
+
+
+def test_the_propeller_is_a_frozen_record_and_none_without_a_skeg():
+    coaster = SHIPS["coaster"]
+    pr = propeller(fl.Particulars(**coaster))
+    assert isinstance(pr, Propeller) and pr.diameter == coaster["propeller_diameter"]
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        pr.diameter = 1.0
+    plain = {k: v for k, v in coaster.items() if k not in ("skeg", "propeller_diameter")}
+    assert propeller(fl.Particulars(**plain)) is None
 
 
 def test_the_skeg_runs_on_the_baseline_at_its_thickness(ship):

@@ -520,16 +520,35 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> NurbsSurface::curvature(const Eigen:
 
 namespace {
 
-// Parameters sampled for the closest-point search: a few per non-empty knot span.
-Eigen::VectorXd closest_point_samples(const Eigen::VectorXd& U, int deg, int n) {
-  std::vector<double> s;
-  const int per = std::max(2, std::min(2 * (deg + 1), 256 / std::max(1, n - deg)));
-  for (int i = deg; i < n; ++i) {
+// One knot-span patch of the closest-point search: its parameter rectangle and the squared
+// distance from the point to the bounding box of the control points that shape it (the patch
+// lies in their convex hull, weights being positive), a lower bound for the whole patch.
+struct SpanPatch {
+  double bound2, u0, u1, v0, v1;
+};
+
+// Every non-empty span patch of s with its bound for p, nearest bound first.
+std::vector<SpanPatch> span_patches(const NurbsSurface& s, const Eigen::Vector3d& p) {
+  const Eigen::VectorXd &U = s.knots_u(), &V = s.knots_v();
+  const Eigen::MatrixXd& P = s.control_points();
+  const int pu = s.degree_u(), pv = s.degree_v(), nv = s.nv();
+  std::vector<SpanPatch> out;
+  for (int i = pu; i < s.nu(); ++i) {
     if (U[i + 1] <= U[i]) continue;
-    for (int k = 0; k < per; ++k) s.push_back(U[i] + (U[i + 1] - U[i]) * k / per);
+    for (int j = pv; j < nv; ++j) {
+      if (V[j + 1] <= V[j]) continue;
+      Eigen::Vector3d lo = P.row((i - pu) * nv + j - pv).transpose(), hi = lo;
+      for (int a = i - pu; a <= i; ++a)
+        for (int b = j - pv; b <= j; ++b) {
+          lo = lo.cwiseMin(P.row(a * nv + b).transpose());
+          hi = hi.cwiseMax(P.row(a * nv + b).transpose());
+        }
+      const double bound2 = (lo - p).cwiseMax(p - hi).cwiseMax(0.0).squaredNorm();
+      out.push_back({bound2, U[i], U[i + 1], V[j], V[j + 1]});
+    }
   }
-  s.push_back(U[n]);
-  return Eigen::Map<Eigen::VectorXd>(s.data(), static_cast<Eigen::Index>(s.size()));
+  std::sort(out.begin(), out.end(), [](const SpanPatch& a, const SpanPatch& b) { return a.bound2 < b.bound2; });
+  return out;
 }
 
 // The domain ends and the interior knots of multiplicity >= degree (creases: the surface is
@@ -546,17 +565,29 @@ std::vector<double> crease_values(const Eigen::VectorXd& K, int deg, int n) {
   return out;
 }
 
-// The crease intervals [c_k, c_k+1] holding t: two when t sits on an interior crease.
+// The crease intervals [c_k, c_k+1] holding t: two when t sits on an interior crease. An
+// interior crease ends its box one double below the knot: evaluated on the knot itself the
+// derivatives are the next span's (Newton stopped on the crease, 1.1e-5 m farther than the
+// minimum beside it).
 std::vector<std::pair<double, double>> crease_boxes(const std::vector<double>& c, double t) {
   std::vector<std::pair<double, double>> out;
   for (size_t k = 0; k + 1 < c.size(); ++k)
-    if (t >= c[k] && t <= c[k + 1]) out.emplace_back(c[k], c[k + 1]);
+    if (t >= c[k] && t <= c[k + 1])
+      out.emplace_back(c[k], k + 2 < c.size() ? std::nextafter(c[k + 1], c[k]) : c[k + 1]);
   return out;
 }
 
+// Two sampled squared distances within this of each other, relative to the net's size times
+// the distance, are the same to round-off: on a collapsed row (a pole) every sample is the one
+// point, and which of them counted as a minimum and which were started from was round-off's choice.
+constexpr double kSampleTie = 1e-12;
+
 // Indices (into the row-major sample grid) of local minima of the sampled squared distance,
-// nearest first, at most `count`.
-std::vector<Eigen::Index> sampled_minima(const Eigen::VectorXd& d2, Eigen::Index nus, Eigen::Index nvs, size_t count) {
+// nearest first: the `count` nearest values, each with every minimum tied to it by round-off
+// (a pole's samples: which of them leads to the basin only Newton from each tells).
+std::vector<Eigen::Index> sampled_minima(const Eigen::VectorXd& d2, Eigen::Index nus, Eigen::Index nvs, size_t count,
+                                         double scale) {
+  const auto tie = [&](double x) { return kSampleTie * scale * std::sqrt(x); };
   std::vector<std::pair<double, Eigen::Index>> cand;
   for (Eigen::Index a = 0; a < nus; ++a)
     for (Eigen::Index b = 0; b < nvs; ++b) {
@@ -565,84 +596,189 @@ std::vector<Eigen::Index> sampled_minima(const Eigen::VectorXd& d2, Eigen::Index
       for (Eigen::Index da = -1; da <= 1 && minimum; ++da)
         for (Eigen::Index db = -1; db <= 1 && minimum; ++db) {
           const Eigen::Index aa = a + da, bb = b + db;
-          if ((da || db) && aa >= 0 && aa < nus && bb >= 0 && bb < nvs && d2[aa * nvs + bb] < here) minimum = false;
+          if ((da || db) && aa >= 0 && aa < nus && bb >= 0 && bb < nvs && d2[aa * nvs + bb] < here - tie(here))
+            minimum = false;
         }
       if (minimum) cand.emplace_back(here, a * nvs + b);
     }
-  const size_t n = std::min(count, cand.size());
-  std::partial_sort(cand.begin(), cand.begin() + n, cand.end());
+  std::sort(cand.begin(), cand.end());
   std::vector<Eigen::Index> out;
-  for (size_t k = 0; k < n; ++k) out.push_back(cand[k].second);
+  for (size_t i = 0, runs = 0; i < cand.size() && runs < count; ++runs) {
+    const double first = cand[i].first;
+    for (; i < cand.size() && cand[i].first - first <= tie(first); ++i) out.push_back(cand[i].second);
+  }
   return out;
 }
 
-// Newton on the stationarity of |S - p|^2 from (u, v), clamped to a box free of creases.
+// Projected Newton on |S - p|^2: iterations at most (a saddle or an edge approach takes a few
+// more than the usual handful; the search stops earlier when no step brings the point nearer).
+constexpr int kClosestNewtonSteps = 100;
+// Halvings of a step that does not bring the point nearer before the search stops there.
+constexpr int kClosestBacktracks = 40;
+// Smallest Hessian eigenvalue magnitude used for a negative (or round-off) one, relative to the
+// largest: across a saddle or a flat direction the step stays finite and scaled to that
+// direction (backtracking shortens it).
+constexpr double kClosestEigenFloor = 1e-3;
+// A positive eigenvalue above this fraction of the largest is curvature, and its Newton step is
+// taken in full: near a pole (a collapsed row) the distance's valley along the row is 1e-6 of
+// the other direction's curvature, and the floor above cut its step 400 times (100 steps crawled
+// to 4.8e-4 m from a point 1.8e-7 m off the surface). Below it, round-off decides its sign.
+constexpr double kClosestEigenRoundoff = 1e-12;
+// Converged when a step moves the point by less than this, relative to the net's size.
+constexpr double kClosestStepTolerance = 1e-15;
+// A full step moving the point by less than this, relative to the net's size, is taken without
+// the nearer test: the distance it gains (that move squared) is below the distance's round-off,
+// and the test stopped Newton 1e-8 short of a sphere's foot, a step before converging.
+constexpr double kClosestFinalStep = 1e-7;
+// Doublings at most of a step's floored part while it brings the point nearer (2^30: from the
+// floor's scale to any length a box allows).
+constexpr int kClosestExpansions = 30;
+
+// The curvature a Newton step along one direction divides by (`largest`: the Hessian's scale).
+double step_curvature(double lambda, double largest) {
+  if (lambda > kClosestEigenRoundoff * largest) return lambda;
+  return std::max(std::abs(lambda), std::max(kClosestEigenFloor * largest, 1e-300));
+}
+
+// Newton on the stationarity of |S - p|^2 from (u, v), kept in a box free of creases. Where
+// the Hessian is indefinite its eigenvalues are taken by magnitude, so the step still descends
+// at Newton's scale in each direction (a gradient step scaled by the largest curvature
+// crawled along a saddle's flat direction and ran out of iterations). A parameter on an edge
+// of the box whose gradient points out of it is held there, and the other one is solved alone.
 std::pair<double, double> newton_closest(const NurbsSurface& s, const Eigen::Vector3d& p, double u, double v,
                                          const std::pair<double, double>& bu, const std::pair<double, double>& bv,
                                          double scale) {
-  for (int it = 0; it < 60; ++it) {
+  for (int it = 0; it < kClosestNewtonSteps; ++it) {
     const Eigen::MatrixXd D = s.derivatives(u, v, 2);
     const Eigen::Vector3d S = D.row(0).transpose(), Su = D.row(3).transpose(), Sv = D.row(1).transpose();
     const Eigen::Vector3d Suu = D.row(6).transpose(), Suv = D.row(4).transpose(), Svv = D.row(2).transpose();
     const Eigen::Vector3d r = S - p;
-    Eigen::Matrix2d J;
-    J << Su.dot(Su) + r.dot(Suu), Su.dot(Sv) + r.dot(Suv), Su.dot(Sv) + r.dot(Suv), Sv.dot(Sv) + r.dot(Svv);
+    Eigen::Matrix2d H;
+    H << Su.dot(Su) + r.dot(Suu), Su.dot(Sv) + r.dot(Suv), Su.dot(Sv) + r.dot(Suv), Sv.dot(Sv) + r.dot(Svv);
     const Eigen::Vector2d g(Su.dot(r), Sv.dot(r));
-    Eigen::Vector2d delta = J.ldlt().solve(-g);
-    if (!delta.allFinite() || J.determinant() <= 0.0) delta = -g / std::max(J.diagonal().maxCoeff(), 1e-300);
+    const bool hold_u = (u <= bu.first && g[0] > 0.0) || (u >= bu.second && g[0] < 0.0);
+    const bool hold_v = (v <= bv.first && g[1] > 0.0) || (v >= bv.second && g[1] < 0.0);
+    if (hold_u && hold_v) break;  // a corner of the box, the gradient pointing out on both sides
+    // The step, and its part along directions whose curvature was floored (no Newton length).
+    Eigen::Vector2d delta = Eigen::Vector2d::Zero(), floored = Eigen::Vector2d::Zero();
+    if (hold_u || hold_v) {
+      const int k = hold_u ? 1 : 0;
+      // Scaled by its own curvature, not the held direction's (a steep held side floored it
+      // at several times its Newton step and the search crawled along the edge).
+      const double own = std::max(std::abs(H(k, k)), (k ? Sv : Su).squaredNorm());
+      const double c = step_curvature(H(k, k), own);
+      delta[k] = -g[k] / c;
+      if (c != H(k, k)) floored = delta;
+    } else {
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
+      eig.computeDirect(H);
+      const Eigen::Vector2d lam = eig.eigenvalues();
+      const double largest = lam.cwiseAbs().maxCoeff();
+      for (int i = 0; i < 2; ++i) {
+        const double c = step_curvature(lam[i], largest);
+        const Eigen::Vector2d part = -eig.eigenvectors().col(i) * (eig.eigenvectors().col(i).dot(g) / c);
+        delta += part;
+        if (c != lam[i]) floored += part;
+      }
+    }
+    if (!delta.allFinite()) break;
     // Backtracking: a step that does not bring the point nearer is halved (a strongly curved
-    // surface sends the full Newton step far past the minimum).
-    double un = u, vn = v;
-    for (int half = 0; half < 30; ++half, delta *= 0.5) {
+    // surface sends the full Newton step far past the minimum); none that does: a minimum.
+    // A step within round-off of the minimum is taken as it is (kClosestFinalStep).
+    double un = u, vn = v, dn = r.squaredNorm();
+    bool nearer = false;
+    int half = 0;
+    for (; half < kClosestBacktracks && !nearer; ++half, delta *= 0.5) {
       un = std::clamp(u + delta[0], bu.first, bu.second);
       vn = std::clamp(v + delta[1], bv.first, bv.second);
-      if ((s.evaluate(un, vn) - p).squaredNorm() <= r.squaredNorm()) break;
+      dn = (s.evaluate(un, vn) - p).squaredNorm();
+      nearer = dn < r.squaredNorm() || (half == 0 && (Su * (un - u) + Sv * (vn - v)).norm() < kClosestFinalStep * scale);
+    }
+    if (!nearer) break;
+    // A full step with a floored part that brought the point nearer: that part is doubled while
+    // it still does (along a saddle's gently curving side the floored step crawled, 100 steps
+    // of 2.4e-4 in v next to a pole).
+    if (half == 1 && floored.squaredNorm() > 0.0) {
+      Eigen::Vector2d grown = delta * 2.0;  // the full step (the loop halved it once more)
+      for (int k = 0; k < kClosestExpansions; ++k) {
+        grown += floored * std::ldexp(1.0, k);
+        const double ut = std::clamp(u + grown[0], bu.first, bu.second), vt = std::clamp(v + grown[1], bv.first, bv.second);
+        const double dt = (s.evaluate(ut, vt) - p).squaredNorm();
+        if (!(dt < dn)) break;
+        un = ut, vn = vt, dn = dt;
+      }
     }
     const double step = (Su * (un - u) + Sv * (vn - v)).norm();
     u = un;
     v = vn;
-    // Converged when a step moves the point by less than this relative tolerance.
-    if (step < 1e-15 * scale) break;
+    if (step < kClosestStepTolerance * scale) break;
   }
   return {u, v};
 }
 
 }  // namespace
 
+// Sample intervals per direction of a span patch at least (and twice the degree + 1): fewer
+// let a narrow valley of the distance between two samples go unseen.
+constexpr int kPatchIntervals = 12;
+// Newton starts per span patch: its sampled local minima, nearest first (those tied to one by
+// round-off not counted).
+constexpr size_t kPatchStarts = 3;
+// Fraction of its box by which a Newton start is moved off the box's edges.
+constexpr double kStartInset = 1e-6;
+// A patch that could bring the point nearer by less than this, relative to the net's size, is
+// not searched: round-off. A point on the surface lies in the boxes of several patches, all
+// with a bound of 0; once the best is 0 to round-off, the others are not searched.
+constexpr double kBoundSlack = 1e-12;
+
 std::tuple<double, double, Eigen::Vector3d> NurbsSurface::closest_point(const Eigen::Vector3d& p) const {
   detail::require_finite(p, "point");
-  const Eigen::VectorXd us = closest_point_samples(ku_, pu_, nu_), vs = closest_point_samples(kv_, pv_, nv_);
-  const Eigen::VectorXd d2 = (evaluate_grid(us, vs).rowwise() - p.transpose()).rowwise().squaredNorm();
   const double scale = std::max(1.0, (points_.colwise().maxCoeff() - points_.colwise().minCoeff()).norm());
   const std::vector<double> cu = crease_values(ku_, pu_, nu_), cv = crease_values(kv_, pv_, nv_);
-  Eigen::Index best = 0;
-  d2.minCoeff(&best);
-  double best_u = us[best / vs.size()], best_v = vs[best % vs.size()], best_d = d2[best];
+  double best_u = ku_[pu_], best_v = kv_[pv_], best_d = (evaluate(best_u, best_v) - p).squaredNorm();
   auto keep = [&](double u, double v) {
     const double d = (evaluate(u, v) - p).squaredNorm();
     if (d < best_d) best_d = d, best_u = u, best_v = v;
   };
-  // Newton from the nearest sampled local minima (one per basin), inside the crease-free box
-  // of each; a start on a crease is tried on both sides of it.
-  constexpr size_t kStarts = 6;
-  // Fraction of its box by which a Newton start is moved off the box's edges.
-  constexpr double kStartInset = 1e-6;
-  for (const Eigen::Index k : sampled_minima(d2, us.size(), vs.size(), kStarts)) {
-    const double u0 = us[k / vs.size()], v0 = vs[k % vs.size()];
-    for (const auto& bu : crease_boxes(cu, u0))
-      for (const auto& bv : crease_boxes(cv, v0)) {
-        // Started just inside its box, so the derivatives are those of the box's side.
-        const auto inside = [](double t, const std::pair<double, double>& b) {
-          const double margin = kStartInset * (b.second - b.first);
-          return std::clamp(t, b.first + margin, b.second - margin);
-        };
-        const auto [u, v] = newton_closest(*this, p, inside(u0, bu), inside(v0, bv), bu, bv, scale);
-        keep(u, v);
-      }
+  // Span patches nearest bound first; a patch whose bound is no nearer than the best point so
+  // far cannot hold a nearer one, nor can any after it (P&T 6.1's start search, pruned by the
+  // convex hull property so a hull's far patches cost nothing).
+  const std::vector<SpanPatch> patches = span_patches(*this, p);
+  const auto searched = [&](const SpanPatch& q) {
+    return std::sqrt(q.bound2) < std::sqrt(best_d) - kBoundSlack * scale;
+  };
+  const int ku = std::max(kPatchIntervals, 2 * (pu_ + 1)), kv = std::max(kPatchIntervals, 2 * (pv_ + 1));
+  for (const SpanPatch& patch : patches) {
+    if (!searched(patch)) break;
+    const Eigen::VectorXd us = Eigen::VectorXd::LinSpaced(ku + 1, patch.u0, patch.u1);
+    const Eigen::VectorXd vs = Eigen::VectorXd::LinSpaced(kv + 1, patch.v0, patch.v1);
+    const Eigen::VectorXd d2 = (evaluate_grid(us, vs).rowwise() - p.transpose()).rowwise().squaredNorm();
+    // Newton from the patch's sampled local minima (one per basin), inside the crease-free box
+    // of each; a start on a crease is tried on both sides of it.
+    for (const Eigen::Index k : sampled_minima(d2, us.size(), vs.size(), kPatchStarts, scale)) {
+      const double u0 = us[k / vs.size()], v0 = vs[k % vs.size()];
+      if (d2[k] < best_d) best_d = d2[k], best_u = u0, best_v = v0;
+      for (const auto& bu : crease_boxes(cu, u0))
+        for (const auto& bv : crease_boxes(cv, v0)) {
+          // Started just inside its box, so the derivatives are those of the box's side.
+          const auto inside = [](double t, const std::pair<double, double>& b) {
+            const double margin = kStartInset * (b.second - b.first);
+            return std::clamp(t, b.first + margin, b.second - margin);
+          };
+          const auto [u, v] = newton_closest(*this, p, inside(u0, bu), inside(v0, bv), bu, bv, scale);
+          keep(u, v);
+        }
+    }
   }
-  // Boundary and crease lines: a minimum on them is a 1-D problem along an iso-curve.
+  // Boundary and crease lines: a minimum on them is a 1-D problem along an iso-curve, solved
+  // where a patch along the line could still hold a nearer point.
+  const auto live = std::partition_point(patches.begin(), patches.end(), searched);
   for (const Direction dir : {Direction::U, Direction::V})
     for (const double t : dir == Direction::U ? cu : cv) {
+      const bool open = std::any_of(patches.begin(), live, [&](const SpanPatch& q) {
+        return dir == Direction::U ? (q.u0 == t || q.u1 == t) : (q.v0 == t || q.v1 == t);
+      });
+      if (!open) continue;
       const auto [s, q] = iso_curve(dir, t).closest_point(p);
       if (dir == Direction::U) keep(t, s);
       else keep(s, t);
