@@ -39,20 +39,15 @@ Eigen::VectorXd scaled_jacobians(const SurfaceMesh& m) {
   return q;
 }
 
-MeshQuality mesh_quality(const SurfaceMesh& m) {
-  MeshQuality r;
-  const Eigen::VectorXd sj = scaled_jacobians(m);
-  const Eigen::Index nf = m.faces.rows();
-  if (nf == 0) return r;
-  r.min_scaled_jacobian = sj.minCoeff();
-  r.mean_scaled_jacobian = sj.mean();
+namespace {
+
+// Element counts, corner angles (deg) and edge lengths (m) into r; sj: each face's scaled Jacobian.
+void measure_elements(const SurfaceMesh& m, const Eigen::VectorXd& sj, MeshQuality& r) {
   long quad_corners = 0, good = 0;
   r.min_angle_deg = 360;
   r.max_angle_deg = 0;
   r.min_edge = 1e300;
-  std::unordered_map<long long, std::pair<int, int>> edges;  // count, direction sum
-  const long long N = m.vertices.rows() + 1;
-  for (Eigen::Index f = 0; f < nf; ++f) {
+  for (Eigen::Index f = 0; f < m.faces.rows(); ++f) {
     const int k = corners(m, f);
     (k == 4 ? r.quads : r.triangles)++;
     if (sj[f] <= 0) ++r.inverted;
@@ -69,19 +64,34 @@ MeshQuality mesh_quality(const SurfaceMesh& m) {
       const double len = (b - a).norm();
       r.min_edge = std::min(r.min_edge, len);
       r.max_edge = std::max(r.max_edge, len);
+    }
+  }
+  r.corners_in_45_135 = quad_corners ? static_cast<double>(good) / quad_corners : 1.0;
+}
+
+// Open, non-manifold and misoriented edges into r: each undirected edge's uses and the sum of
+// its directions (a consistently oriented interior edge is used once each way).
+void count_edges(const SurfaceMesh& m, MeshQuality& r) {
+  std::unordered_map<long long, std::pair<int, int>> edges;  // count, direction sum
+  const long long N = m.vertices.rows() + 1;
+  for (Eigen::Index f = 0; f < m.faces.rows(); ++f) {
+    const int k = corners(m, f);
+    for (int c = 0; c < k; ++c) {
       const int i = m.faces(f, c), j = m.faces(f, (c + 1) % k);
       auto& e = edges[std::min(i, j) * N + std::max(i, j)];
       e.first++;
       e.second += i < j ? 1 : -1;
     }
   }
-  r.corners_in_45_135 = quad_corners ? static_cast<double>(good) / quad_corners : 1.0;
   for (const auto& [key, e] : edges) {
     if (e.first == 1) ++r.open_edges;
     else if (e.first > 2) ++r.non_manifold_edges;
     else if (e.second != 0) ++r.misoriented_edges;
   }
-  // duplicates: bucket nodes by a grid of cell kDuplicate x size
+}
+
+// Nodes within kDuplicate x the mesh's size of another, found in a grid of cells that size.
+long duplicate_nodes(const SurfaceMesh& m) {
   const double size = (m.vertices.colwise().maxCoeff() - m.vertices.colwise().minCoeff()).norm();
   const double cell = std::max(kDuplicate * size, 1e-300);
   std::map<std::array<long long, 3>, std::vector<Eigen::Index>> grid;
@@ -90,22 +100,35 @@ MeshQuality mesh_quality(const SurfaceMesh& m) {
     for (int c = 0; c < 3; ++c) key[c] = static_cast<long long>(std::floor(m.vertices(i, c) / cell));
     grid[key].push_back(i);
   }
+  long count = 0;
   for (const auto& [key, ids] : grid) {
-    std::array<long long, 3> k2 = key;
     bool dup = ids.size() > 1;
     for (int dx = -1; dx <= 1 && !dup; ++dx)
       for (int dy = -1; dy <= 1 && !dup; ++dy)
         for (int dz = -1; dz <= 1 && !dup; ++dz) {
           if (!dx && !dy && !dz) continue;
-          k2 = {key[0] + dx, key[1] + dy, key[2] + dz};
-          auto it = grid.find(k2);
+          auto it = grid.find({key[0] + dx, key[1] + dy, key[2] + dz});
           if (it == grid.end()) continue;
           for (Eigen::Index a : ids)
             for (Eigen::Index b : it->second)
               if ((m.vertices.row(a) - m.vertices.row(b)).norm() <= cell) dup = true;
         }
-    if (dup) r.duplicate_nodes += static_cast<long>(ids.size());
+    if (dup) count += static_cast<long>(ids.size());
   }
+  return count;
+}
+
+}  // namespace
+
+MeshQuality mesh_quality(const SurfaceMesh& m) {
+  MeshQuality r;
+  const Eigen::VectorXd sj = scaled_jacobians(m);
+  if (m.faces.rows() == 0) return r;
+  r.min_scaled_jacobian = sj.minCoeff();
+  r.mean_scaled_jacobian = sj.mean();
+  measure_elements(m, sj, r);
+  count_edges(m, r);
+  r.duplicate_nodes = duplicate_nodes(m);
   return r;
 }
 

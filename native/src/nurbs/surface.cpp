@@ -640,14 +640,57 @@ double step_curvature(double lambda, double largest) {
   return std::max(std::abs(lambda), std::max(kClosestEigenFloor * largest, 1e-300));
 }
 
-// Newton on the stationarity of |S - p|^2 from (u, v), kept in a box free of creases. Where
-// the Hessian is indefinite its eigenvalues are taken by magnitude, so the step still descends
-// at Newton's scale in each direction (a gradient step scaled by the largest curvature
-// crawled along a saddle's flat direction and ran out of iterations). A parameter on an edge
-// of the box whose gradient points out of it is held there, and the other one is solved alone.
+// A box of parameters free of creases: [first, second] in u or in v.
+using Box = std::pair<double, double>;
+
+// One Newton step of the search: the step in (u, v) and its part along directions whose
+// curvature was floored (they have no Newton length: expand_floored may lengthen it).
+struct ClosestStep {
+  Eigen::Vector2d delta = Eigen::Vector2d::Zero(), floored = Eigen::Vector2d::Zero();
+};
+
+// The step from the Hessian H and gradient g of |S - p|^2. Where H is indefinite its
+// eigenvalues are taken by magnitude, so the step still descends at Newton's scale in each
+// direction (a gradient step scaled by the largest curvature crawled along a saddle's flat
+// direction). With one parameter held (`held`: 0 for u, 1 for v) the other is solved alone,
+// scaled by its own curvature, not the held direction's (a steep held side floored it at several
+// times its Newton step and the search crawled along the edge); `tangent` is S_u or S_v there.
+ClosestStep newton_step(const Eigen::Matrix2d& H, const Eigen::Vector2d& g, int held, const Eigen::Vector3d& tangent) {
+  ClosestStep out;
+  if (held >= 0) {
+    const int k = 1 - held;
+    const double c = step_curvature(H(k, k), std::max(std::abs(H(k, k)), tangent.squaredNorm()));
+    out.delta[k] = -g[k] / c;
+    if (c != H(k, k)) out.floored = out.delta;
+    return out;
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
+  eig.computeDirect(H);
+  const Eigen::Vector2d lam = eig.eigenvalues();
+  const double largest = lam.cwiseAbs().maxCoeff();
+  for (int i = 0; i < 2; ++i) {
+    const double c = step_curvature(lam[i], largest);
+    const Eigen::Vector2d part = -eig.eigenvectors().col(i) * (eig.eigenvectors().col(i).dot(g) / c);
+    out.delta += part;
+    if (c != lam[i]) out.floored += part;
+  }
+  return out;
+}
+
+// Where a search trial lands: parameters clamped to the box and the squared distance there.
+struct ClosestTrial {
+  double u, v, d2;
+};
+
+ClosestTrial trial_at(const NurbsSurface& s, const Eigen::Vector3d& p, double u, double v, const Box& bu, const Box& bv) {
+  const double ut = std::clamp(u, bu.first, bu.second), vt = std::clamp(v, bv.first, bv.second);
+  return {ut, vt, (s.evaluate(ut, vt) - p).squaredNorm()};
+}
+
+// Newton on the stationarity of |S - p|^2 from (u, v), kept in a box free of creases. A
+// parameter on an edge of the box whose gradient points out of it is held there.
 std::pair<double, double> newton_closest(const NurbsSurface& s, const Eigen::Vector3d& p, double u, double v,
-                                         const std::pair<double, double>& bu, const std::pair<double, double>& bv,
-                                         double scale) {
+                                         const Box& bu, const Box& bv, double scale) {
   for (int it = 0; it < kClosestNewtonSteps; ++it) {
     const Eigen::MatrixXd D = s.derivatives(u, v, 2);
     const Eigen::Vector3d S = D.row(0).transpose(), Su = D.row(3).transpose(), Sv = D.row(1).transpose();
@@ -659,59 +702,35 @@ std::pair<double, double> newton_closest(const NurbsSurface& s, const Eigen::Vec
     const bool hold_u = (u <= bu.first && g[0] > 0.0) || (u >= bu.second && g[0] < 0.0);
     const bool hold_v = (v <= bv.first && g[1] > 0.0) || (v >= bv.second && g[1] < 0.0);
     if (hold_u && hold_v) break;  // a corner of the box, the gradient pointing out on both sides
-    // The step, and its part along directions whose curvature was floored (no Newton length).
-    Eigen::Vector2d delta = Eigen::Vector2d::Zero(), floored = Eigen::Vector2d::Zero();
-    if (hold_u || hold_v) {
-      const int k = hold_u ? 1 : 0;
-      // Scaled by its own curvature, not the held direction's (a steep held side floored it
-      // at several times its Newton step and the search crawled along the edge).
-      const double own = std::max(std::abs(H(k, k)), (k ? Sv : Su).squaredNorm());
-      const double c = step_curvature(H(k, k), own);
-      delta[k] = -g[k] / c;
-      if (c != H(k, k)) floored = delta;
-    } else {
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
-      eig.computeDirect(H);
-      const Eigen::Vector2d lam = eig.eigenvalues();
-      const double largest = lam.cwiseAbs().maxCoeff();
-      for (int i = 0; i < 2; ++i) {
-        const double c = step_curvature(lam[i], largest);
-        const Eigen::Vector2d part = -eig.eigenvectors().col(i) * (eig.eigenvectors().col(i).dot(g) / c);
-        delta += part;
-        if (c != lam[i]) floored += part;
-      }
-    }
-    if (!delta.allFinite()) break;
+    ClosestStep step = newton_step(H, g, hold_u ? 0 : hold_v ? 1 : -1, hold_u ? Sv : Su);
+    if (!step.delta.allFinite()) break;
     // Backtracking: a step that does not bring the point nearer is halved (a strongly curved
     // surface sends the full Newton step far past the minimum); none that does: a minimum.
     // A step within round-off of the minimum is taken as it is (kClosestFinalStep).
-    double un = u, vn = v, dn = r.squaredNorm();
+    ClosestTrial at{u, v, r.squaredNorm()};
     bool nearer = false;
     int half = 0;
-    for (; half < kClosestBacktracks && !nearer; ++half, delta *= 0.5) {
-      un = std::clamp(u + delta[0], bu.first, bu.second);
-      vn = std::clamp(v + delta[1], bv.first, bv.second);
-      dn = (s.evaluate(un, vn) - p).squaredNorm();
-      nearer = dn < r.squaredNorm() || (half == 0 && (Su * (un - u) + Sv * (vn - v)).norm() < kClosestFinalStep * scale);
+    for (; half < kClosestBacktracks && !nearer; ++half, step.delta *= 0.5) {
+      at = trial_at(s, p, u + step.delta[0], v + step.delta[1], bu, bv);
+      nearer = at.d2 < r.squaredNorm() || (half == 0 && (Su * (at.u - u) + Sv * (at.v - v)).norm() < kClosestFinalStep * scale);
     }
     if (!nearer) break;
     // A full step with a floored part that brought the point nearer: that part is doubled while
     // it still does (along a saddle's gently curving side the floored step crawled, 100 steps
     // of 2.4e-4 in v next to a pole).
-    if (half == 1 && floored.squaredNorm() > 0.0) {
-      Eigen::Vector2d grown = delta * 2.0;  // the full step (the loop halved it once more)
+    if (half == 1 && step.floored.squaredNorm() > 0.0) {
+      Eigen::Vector2d grown = step.delta * 2.0;  // the full step (the loop halved it once more)
       for (int k = 0; k < kClosestExpansions; ++k) {
-        grown += floored * std::ldexp(1.0, k);
-        const double ut = std::clamp(u + grown[0], bu.first, bu.second), vt = std::clamp(v + grown[1], bv.first, bv.second);
-        const double dt = (s.evaluate(ut, vt) - p).squaredNorm();
-        if (!(dt < dn)) break;
-        un = ut, vn = vt, dn = dt;
+        grown += step.floored * std::ldexp(1.0, k);
+        const ClosestTrial t = trial_at(s, p, u + grown[0], v + grown[1], bu, bv);
+        if (!(t.d2 < at.d2)) break;
+        at = t;
       }
     }
-    const double step = (Su * (un - u) + Sv * (vn - v)).norm();
-    u = un;
-    v = vn;
-    if (step < kClosestStepTolerance * scale) break;
+    const double moved = (Su * (at.u - u) + Sv * (at.v - v)).norm();
+    u = at.u;
+    v = at.v;
+    if (moved < kClosestStepTolerance * scale) break;
   }
   return {u, v};
 }
