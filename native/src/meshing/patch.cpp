@@ -240,36 +240,75 @@ class Subdivision {
   }
 
   /// 2:1 balance: no leaf is more than twice as long as a side neighbour in either direction.
+  /// A leaf found balanced stays so until a cell it samples splits, and such a cell touches
+  /// it across a side, so a pass re-checks only the leaves unsettled by a split next to them
+  /// (the same splits in the same order as re-checking every leaf: most passes split few).
   void balance() {
+    std::vector<char> settled(cells_.size(), 0);
     for (bool changed = true; changed;) {
       changed = false;
       const int n = static_cast<int>(cells_.size());
       for (int ci = 0; ci < n; ++ci) {
-        if (cells_[ci].child >= 0) continue;
-        const Cell c = cells_[ci];
-        const long long du = c.U1 - c.U0, dv = c.V1 - c.V0;
-        int want = -1;
-        auto check = [&](long long U, long long V) {
-          const int nb = find(U, V);
-          if (nb < 0 || want >= 0) return;
-          const Cell& x = cells_[nb];
-          if (2 * (x.U1 - x.U0) < du && du > 1) want = 0;
-          else if (2 * (x.V1 - x.V0) < dv && dv > 1) want = 1;
-        };
-        for (int k = 0; k < 4; ++k) {
-          const long long V = c.V0 + std::max<long long>(dv * (2 * k + 1) / 8, 0);
-          const long long U = c.U0 + std::max<long long>(du * (2 * k + 1) / 8, 0);
-          check(c.U0 - 1, V);
-          check(c.U1, V);
-          check(U, c.V0 - 1);
-          check(U, c.V1);
+        if (cells_[ci].child >= 0 || settled[ci]) continue;
+        const int want = balance_split(cells_[ci]);
+        if (want < 0) {
+          settled[ci] = 1;
+          continue;
         }
-        if (want >= 0) {
-          split(ci, want == 0);
-          changed = true;
-        }
+        split(ci, want == 0);
+        settled.resize(cells_.size(), 0);
+        unsettle_neighbours(cells_[ci], settled);
+        changed = true;
       }
     }
+  }
+
+  /// -1: leaf c is balanced; 0 / 1: it is to be split in u / v for a shorter side neighbour.
+  int balance_split(const Cell& c) const {
+    const long long du = c.U1 - c.U0, dv = c.V1 - c.V0;
+    int want = -1;
+    auto check = [&](long long U, long long V) {
+      if (want >= 0) return;
+      const int nb = find(U, V);
+      if (nb < 0) return;
+      const Cell& x = cells_[nb];
+      if (2 * (x.U1 - x.U0) < du && du > 1) want = 0;
+      else if (2 * (x.V1 - x.V0) < dv && dv > 1) want = 1;
+    };
+    for (int k = 0; k < 4; ++k) {
+      const long long V = c.V0 + std::max<long long>(dv * (2 * k + 1) / 8, 0);
+      const long long U = c.U0 + std::max<long long>(du * (2 * k + 1) / 8, 0);
+      check(c.U0 - 1, V);
+      check(c.U1, V);
+      check(U, c.V0 - 1);
+      check(U, c.V1);
+    }
+    return want;
+  }
+
+  /// The leaves across each side of cell s (which just split) are checked again.
+  void unsettle_neighbours(const Cell& s, std::vector<char>& settled) const {
+    for (long long V = s.V0; V < s.V1;) {  // across the sides of constant u
+      for (long long U : {s.U0 - 1, s.U1})
+        if (const int nb = find(U, V); nb >= 0) settled[nb] = 0;
+      V = next_along(V, s.V1, {s.U0 - 1, s.U1}, false);
+    }
+    for (long long U = s.U0; U < s.U1;) {  // across the sides of constant v
+      for (long long V : {s.V0 - 1, s.V1})
+        if (const int nb = find(U, V); nb >= 0) settled[nb] = 0;
+      U = next_along(U, s.U1, {s.V0 - 1, s.V1}, true);
+    }
+  }
+
+  /// The next position along a side (in v, or in u if `in_u`) from X where a leaf across
+  /// either line `across` may begin: the nearer end of the two leaves there, at most `end`.
+  long long next_along(long long X, long long end, std::array<long long, 2> across, bool in_u) const {
+    long long next = end;
+    for (long long Y : across) {
+      const int nb = in_u ? find(X, Y) : find(Y, X);
+      if (nb >= 0) next = std::min(next, in_u ? cells_[nb].U1 : cells_[nb].V1);
+    }
+    return std::max(next, X + 1);
   }
 
   const FaceGeometry& g_;
@@ -861,6 +900,9 @@ void smooth(Work& w, int passes, const std::vector<char>& structured) {
   Settled settled(w, around);
   std::vector<double> q(w.el.size()), now_q;  // each element's quality(), kept current
   for (size_t e = 0; e < w.el.size(); ++e) q[e] = w.quality(w.el[e]);
+  // each node's place_at(uv) once: only a kept move changes it, and toward's result is it
+  std::vector<Place> place(n);
+  std::vector<char> placed(n, 0);
   for (int pass = 0; pass < passes; ++pass) {
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
@@ -887,7 +929,8 @@ void smooth(Work& w, int passes, const std::vector<char>& structured) {
       // onto the face by the linear step from the node toward the target's foot on its tangent
       // plane (Work::toward: Newton only where that misses, at a clamped or ruled end): two
       // evaluations where Newton to the foot point took five or six
-      const Place here = w.place_at(old_uv);
+      if (!placed[i]) place[i] = w.place_at(old_uv), placed[i] = 1;
+      const Place& here = place[i];
       const Vec3 n = Work::unit_normal(here.su, here.sv);
       const Place x = w.toward(here, target - (target - here.p).dot(n) * n);
       if ((x.uv - old_uv).norm() == 0.0) {
@@ -897,10 +940,14 @@ void smooth(Work& w, int passes, const std::vector<char>& structured) {
       w.put(i, x);
       double now = 1e9;
       now_q.clear();
-      for (int e : around[i]) now_q.push_back(w.quality(w.el[e])), now = std::min(now, now_q.back());
+      for (int e : around[i]) {  // one element below the worst rejects the move: no more needed
+        now_q.push_back(w.quality(w.el[e])), now = std::min(now, now_q.back());
+        if (now + 1e-12 < worst) break;
+      }
       const bool keep = !(now + 1e-12 < worst);
       if (keep) {
         for (size_t k = 0; k < around[i].size(); ++k) q[around[i][k]] = now_q[k];
+        place[i] = x;  // toward's Place is place_at(x.uv), bit for bit
       } else {
         w.uv[i] = old_uv, w.xyz[i] = old_p, w.normal[i] = old_n;
       }
@@ -939,8 +986,9 @@ double corner_cos(const Work& w, const std::array<int, 4>& e, int c) {
 /// summed over the quad corners at node i that move with it (at i and at its two neighbours
 /// in each quad; the opposite corner keeps its sides), so a node whose worst element cannot
 /// rise still moves quad corners back toward 45-135 deg. A corner within the slack costs no
-/// square root (its squared cosine is compared).
-double corner_excess(const Work& w, std::span<const int> around, int i) {
+/// square root (its squared cosine is compared). Any value above `above` once the sum passes
+/// it (the terms are not negative: the rest cannot bring it back).
+double corner_excess(const Work& w, std::span<const int> around, int i, double above = 1e300) {
   static const double slack = std::sin(kCornerSlack * kPi / 180.0), slack2 = slack * slack;
   double sum = 0.0;
   for (int e : around) {
@@ -956,6 +1004,7 @@ double corner_excess(const Work& w, std::span<const int> around, int i) {
       const double over = (l2 > 0 ? std::abs(d) / std::sqrt(l2) : 1.0) - slack;
       sum += over * over;
     }
+    if (sum > above) return sum;
   }
   return sum;
 }
@@ -1033,7 +1082,7 @@ bool optimise_node(Work& w, std::span<const int> around, int i, double trade_abo
       w.put(i, x);
       // at or above trade_above the worst cannot make a trial better, only the corners can:
       // they are counted first, the cheaper test
-      double excess = best >= trade_above ? corner_excess(w, around, i) : -1.0;
+      double excess = best >= trade_above ? corner_excess(w, around, i, best_excess) : -1.0;
       if (excess > best_excess) continue;
       const double best_capped = std::min(best, trade_above), now = worst(best_capped);
       const double capped = std::min(now, trade_above);
