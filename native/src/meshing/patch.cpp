@@ -1390,13 +1390,8 @@ class GradedSize {
   }
   double operator()(const Vec3& p, double h) const {
     const std::array<long long, 3> c = cell(p);
-    for (long long dx = -1; dx <= 1; ++dx)
-      for (long long dy = -1; dy <= 1; ++dy)
-        for (long long dz = -1; dz <= 1; ++dz) {
-          const auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
-          if (it == cells_.end()) continue;
-          for (int i : it->second) h = std::min(h, hb_[i] + kGrading * (p - x_[i]).norm());
-        }
+    if (!near_valid_ || c != near_cell_) gather(c);
+    for (int i : near_) h = std::min(h, hb_[i] + kGrading * (p - x_[i]).norm());
     return h;
   }
 
@@ -1409,10 +1404,26 @@ class GradedSize {
   static long long key(const std::array<long long, 3>& c) {
     return (c[0] * 73856093LL) ^ (c[1] * 19349663LL) ^ (c[2] * 83492791LL);
   }
+  /// The nodes of the 27 buckets about cell c, in order. The callers' queries come in
+  /// neighbourhoods (the subdivision's cells, the nodes as placed), so most queries reuse
+  /// the last cell's list instead of looking up 27 buckets.
+  void gather(const std::array<long long, 3>& c) const {
+    near_.clear();
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
+          if (it != cells_.end()) near_.insert(near_.end(), it->second.begin(), it->second.end());
+        }
+    near_cell_ = c, near_valid_ = true;
+  }
   const std::vector<Vec3>& x_;
   const std::vector<double>& hb_;
   double reach_;
   std::unordered_map<long long, std::vector<int>> cells_;
+  mutable std::vector<int> near_;  ///< gather's list, for near_cell_
+  mutable std::array<long long, 3> near_cell_{};
+  mutable bool near_valid_ = false;
 };
 
 /// Each quad into four and each triangle into three quads (edge midpoints and centre).
