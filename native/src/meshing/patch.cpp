@@ -1120,20 +1120,32 @@ bool optimise_node(Work& w, std::span<const int> around, int i, double trade_abo
 /// scores highest. A move is kept only when it raises that worst (and keeps the node's edges
 /// above kImproveShortest x their mean), so no element gets worse than its neighbourhood's
 /// worst; it untangles the folded elements the Laplacian step cannot.
+std::vector<double> strict_qualities(const Work& w) {
+  std::vector<double> q(w.el.size());
+  for (size_t e = 0; e < w.el.size(); ++e) q[e] = w.strict_quality(w.el[e]);
+  return q;
+}
+
+/// `q`: each element's strict_quality if the caller has them (else computed here), kept
+/// current: only a moved node's elements change (a search that does not move its node leaves
+/// it bit for bit where it was).
 void improve_worst(Work& w, double below = kImproveBelow, double first_step = kImproveStep,
-                   double min_step = kImproveMinStep) {
+                   double min_step = kImproveMinStep, std::vector<double> q = {}) {
   const int n = static_cast<int>(w.xyz.size());
   const ElementsAtNodes around(w);
   Settled settled(w, around);
+  if (q.size() != w.el.size()) q = strict_qualities(w);
   for (int pass = 0; pass < kImprovePasses; ++pass) {
     std::vector<char> poor(n, 0);
-    for (const auto& e : w.el)
-      if (w.strict_quality(e) < below)
-        for (int k = 0; k < (e[3] < 0 ? 3 : 4); ++k) poor[e[k]] = 1;
+    for (size_t e = 0; e < w.el.size(); ++e)
+      if (q[e] < below)
+        for (int k = 0; k < (w.el[e][3] < 0 ? 3 : 4); ++k) poor[w.el[e][k]] = 1;
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
       if (!poor[i] || around[i].empty() || settled[i]) continue;
       const bool m = optimise_node(w, around[i], i, 1e300, first_step, min_step);
+      if (m)
+        for (int e : around[i]) q[e] = w.strict_quality(w.el[e]);
       moved += m;
       settled.visited(i, m);
     }
@@ -1146,9 +1158,10 @@ void improve_worst(Work& w, double below = kImproveBelow, double first_step = kI
 /// step leaves a node up to 0.04 of an edge from where its worst element peaks, and the worst
 /// search does not look at elements above kImproveBelow.
 void polish(Work& w) {
+  std::vector<double> q = strict_qualities(w);
   double worst = 1e9;
-  for (const auto& e : w.el) worst = std::min(worst, w.strict_quality(e));
-  improve_worst(w, worst + kPolishBand, 2 * kImproveMinStep, kPolishMinStep);
+  for (double x : q) worst = std::min(worst, x);
+  improve_worst(w, worst + kPolishBand, 2 * kImproveMinStep, kPolishMinStep, std::move(q));
 }
 
 /// The corner pass, after the weak pairs are merged (their quads' corners at the 2:1 steps lie
