@@ -465,10 +465,11 @@ struct Work {
     const int k = e[3] < 0 ? 3 : 4;
     Vec3 n = Vec3::Zero();
     for (int i = 0; i < k; ++i) n += normal[e[i]];
-    if (n.norm() < 1e-12) {  // singular corners (a pole): the element's own normal
-      n = k == 4 ? Vec3((xyz[e[2]] - xyz[e[0]]).cross(xyz[e[3]] - xyz[e[1]]))
-                 : Vec3((xyz[e[1]] - xyz[e[0]]).cross(xyz[e[2]] - xyz[e[0]]));
-    }
+    const double len = n.norm();
+    if (len >= 1e-12) return n / len;  // normalized(), its norm taken once
+    // singular corners (a pole): the element's own normal
+    n = k == 4 ? Vec3((xyz[e[2]] - xyz[e[0]]).cross(xyz[e[3]] - xyz[e[1]]))
+               : Vec3((xyz[e[1]] - xyz[e[0]]).cross(xyz[e[2]] - xyz[e[0]]));
     return n.normalized();
   }
   /// Scaled Jacobian about the surface normals at the element's nodes (3-D only).
@@ -479,14 +480,19 @@ struct Work {
     return element_quality(p, k, element_normal(e));
   }
   double quality(const std::array<int, 4>& e) const {
-    const int k = e[3] < 0 ? 3 : 4;
-    double q = spatial_quality(e);
+    const double q = spatial_quality(e);
     // folded in the parameter plane: as bad as inverted
-    for (int i = 0; i < k; ++i)
-      if (cross2(uv[e[i]], uv[e[(i + 1) % k]], uv[e[(i + k - 1) % k]]) <= 0 &&
-          (xyz[e[i]] - xyz[e[(i + 1) % k]]).norm() > 0 && (xyz[e[i]] - xyz[e[(i + k - 1) % k]]).norm() > 0)
-        q = std::min(q, -1.0);
-    return q;
+    return (e[3] < 0 ? folded<3>(e) : folded<4>(e)) ? std::min(q, -1.0) : q;
+  }
+  /// A corner of the K-corner element e turns the wrong way in the parameter plane (its sides
+  /// of some length: a pole's collapsed side does not count).
+  template <int K>
+  bool folded(const std::array<int, 4>& e) const {
+    for (int i = 0; i < K; ++i)
+      if (cross2(uv[e[i]], uv[e[(i + 1) % K]], uv[e[(i + K - 1) % K]]) <= 0 &&
+          (xyz[e[i]] - xyz[e[(i + 1) % K]]).norm() > 0 && (xyz[e[i]] - xyz[e[(i + K - 1) % K]]).norm() > 0)
+        return true;
+    return false;
   }
   /// The worse of spatial_quality() and, for a quad, the scaled Jacobian about its own normal
   /// (its diagonal cross product, the census's measure), so neither sees it folded.
@@ -1629,16 +1635,27 @@ double target_size(const FaceGeometry& g, const Vec2& uv, const MeshOptions& o) 
   return std::max(h, o.min_size);
 }
 
-double element_quality(const Vec3* p, int k, const Vec3& n) {
+namespace {
+
+/// The least corner term of element_quality over K corners (K a constant: the corner indices
+/// unrolled, no integer division per corner).
+template <int K>
+double least_corner(const Vec3* p, const Vec3& n) {
   double q = 1e9;
-  for (int i = 0; i < k; ++i) {
-    const Vec3 e1 = p[(i + 1) % k] - p[i], e2 = p[(i + k - 1) % k] - p[i];
+  for (int i = 0; i < K; ++i) {
+    const Vec3 e1 = p[(i + 1) % K] - p[i], e2 = p[(i + K - 1) % K] - p[i];
     const double l = e1.norm() * e2.norm();
     const double s = l > 0 ? e1.cross(e2).dot(n) / l : 0.0;
     q = std::min(q, s);
   }
-  if (k == 3) q = std::min(1.0, q * 2.0 / std::sqrt(3.0));
   return q;
+}
+
+}  // namespace
+
+double element_quality(const Vec3* p, int k, const Vec3& n) {
+  if (k == 4) return least_corner<4>(p, n);
+  return std::min(1.0, least_corner<3>(p, n) * 2.0 / std::sqrt(3.0));
 }
 
 namespace {
