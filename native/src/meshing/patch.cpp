@@ -240,36 +240,75 @@ class Subdivision {
   }
 
   /// 2:1 balance: no leaf is more than twice as long as a side neighbour in either direction.
+  /// A leaf found balanced stays so until a cell it samples splits, and such a cell touches
+  /// it across a side, so a pass re-checks only the leaves unsettled by a split next to them
+  /// (the same splits in the same order as re-checking every leaf: most passes split few).
   void balance() {
+    std::vector<char> settled(cells_.size(), 0);
     for (bool changed = true; changed;) {
       changed = false;
       const int n = static_cast<int>(cells_.size());
       for (int ci = 0; ci < n; ++ci) {
-        if (cells_[ci].child >= 0) continue;
-        const Cell c = cells_[ci];
-        const long long du = c.U1 - c.U0, dv = c.V1 - c.V0;
-        int want = -1;
-        auto check = [&](long long U, long long V) {
-          const int nb = find(U, V);
-          if (nb < 0 || want >= 0) return;
-          const Cell& x = cells_[nb];
-          if (2 * (x.U1 - x.U0) < du && du > 1) want = 0;
-          else if (2 * (x.V1 - x.V0) < dv && dv > 1) want = 1;
-        };
-        for (int k = 0; k < 4; ++k) {
-          const long long V = c.V0 + std::max<long long>(dv * (2 * k + 1) / 8, 0);
-          const long long U = c.U0 + std::max<long long>(du * (2 * k + 1) / 8, 0);
-          check(c.U0 - 1, V);
-          check(c.U1, V);
-          check(U, c.V0 - 1);
-          check(U, c.V1);
+        if (cells_[ci].child >= 0 || settled[ci]) continue;
+        const int want = balance_split(cells_[ci]);
+        if (want < 0) {
+          settled[ci] = 1;
+          continue;
         }
-        if (want >= 0) {
-          split(ci, want == 0);
-          changed = true;
-        }
+        split(ci, want == 0);
+        settled.resize(cells_.size(), 0);
+        unsettle_neighbours(cells_[ci], settled);
+        changed = true;
       }
     }
+  }
+
+  /// -1: leaf c is balanced; 0 / 1: it is to be split in u / v for a shorter side neighbour.
+  int balance_split(const Cell& c) const {
+    const long long du = c.U1 - c.U0, dv = c.V1 - c.V0;
+    int want = -1;
+    auto check = [&](long long U, long long V) {
+      if (want >= 0) return;
+      const int nb = find(U, V);
+      if (nb < 0) return;
+      const Cell& x = cells_[nb];
+      if (2 * (x.U1 - x.U0) < du && du > 1) want = 0;
+      else if (2 * (x.V1 - x.V0) < dv && dv > 1) want = 1;
+    };
+    for (int k = 0; k < 4; ++k) {
+      const long long V = c.V0 + std::max<long long>(dv * (2 * k + 1) / 8, 0);
+      const long long U = c.U0 + std::max<long long>(du * (2 * k + 1) / 8, 0);
+      check(c.U0 - 1, V);
+      check(c.U1, V);
+      check(U, c.V0 - 1);
+      check(U, c.V1);
+    }
+    return want;
+  }
+
+  /// The leaves across each side of cell s (which just split) are checked again.
+  void unsettle_neighbours(const Cell& s, std::vector<char>& settled) const {
+    for (long long V = s.V0; V < s.V1;) {  // across the sides of constant u
+      for (long long U : {s.U0 - 1, s.U1})
+        if (const int nb = find(U, V); nb >= 0) settled[nb] = 0;
+      V = next_along(V, s.V1, {s.U0 - 1, s.U1}, false);
+    }
+    for (long long U = s.U0; U < s.U1;) {  // across the sides of constant v
+      for (long long V : {s.V0 - 1, s.V1})
+        if (const int nb = find(U, V); nb >= 0) settled[nb] = 0;
+      U = next_along(U, s.U1, {s.V0 - 1, s.V1}, true);
+    }
+  }
+
+  /// The next position along a side (in v, or in u if `in_u`) from X where a leaf across
+  /// either line `across` may begin: the nearer end of the two leaves there, at most `end`.
+  long long next_along(long long X, long long end, std::array<long long, 2> across, bool in_u) const {
+    long long next = end;
+    for (long long Y : across) {
+      const int nb = in_u ? find(X, Y) : find(Y, X);
+      if (nb >= 0) next = std::min(next, in_u ? cells_[nb].U1 : cells_[nb].V1);
+    }
+    return std::max(next, X + 1);
   }
 
   const FaceGeometry& g_;
@@ -426,10 +465,11 @@ struct Work {
     const int k = e[3] < 0 ? 3 : 4;
     Vec3 n = Vec3::Zero();
     for (int i = 0; i < k; ++i) n += normal[e[i]];
-    if (n.norm() < 1e-12) {  // singular corners (a pole): the element's own normal
-      n = k == 4 ? Vec3((xyz[e[2]] - xyz[e[0]]).cross(xyz[e[3]] - xyz[e[1]]))
-                 : Vec3((xyz[e[1]] - xyz[e[0]]).cross(xyz[e[2]] - xyz[e[0]]));
-    }
+    const double len = n.norm();
+    if (len >= 1e-12) return n / len;  // normalized(), its norm taken once
+    // singular corners (a pole): the element's own normal
+    n = k == 4 ? Vec3((xyz[e[2]] - xyz[e[0]]).cross(xyz[e[3]] - xyz[e[1]]))
+               : Vec3((xyz[e[1]] - xyz[e[0]]).cross(xyz[e[2]] - xyz[e[0]]));
     return n.normalized();
   }
   /// Scaled Jacobian about the surface normals at the element's nodes (3-D only).
@@ -440,14 +480,19 @@ struct Work {
     return element_quality(p, k, element_normal(e));
   }
   double quality(const std::array<int, 4>& e) const {
-    const int k = e[3] < 0 ? 3 : 4;
-    double q = spatial_quality(e);
+    const double q = spatial_quality(e);
     // folded in the parameter plane: as bad as inverted
-    for (int i = 0; i < k; ++i)
-      if (cross2(uv[e[i]], uv[e[(i + 1) % k]], uv[e[(i + k - 1) % k]]) <= 0 &&
-          (xyz[e[i]] - xyz[e[(i + 1) % k]]).norm() > 0 && (xyz[e[i]] - xyz[e[(i + k - 1) % k]]).norm() > 0)
-        q = std::min(q, -1.0);
-    return q;
+    return (e[3] < 0 ? folded<3>(e) : folded<4>(e)) ? std::min(q, -1.0) : q;
+  }
+  /// A corner of the K-corner element e turns the wrong way in the parameter plane (its sides
+  /// of some length: a pole's collapsed side does not count).
+  template <int K>
+  bool folded(const std::array<int, 4>& e) const {
+    for (int i = 0; i < K; ++i)
+      if (cross2(uv[e[i]], uv[e[(i + 1) % K]], uv[e[(i + K - 1) % K]]) <= 0 &&
+          (xyz[e[i]] - xyz[e[(i + 1) % K]]).norm() > 0 && (xyz[e[i]] - xyz[e[(i + K - 1) % K]]).norm() > 0)
+        return true;
+    return false;
   }
   /// The worse of spatial_quality() and, for a quad, the scaled Jacobian about its own normal
   /// (its diagonal cross product, the census's measure), so neither sees it folded.
@@ -861,6 +906,9 @@ void smooth(Work& w, int passes, const std::vector<char>& structured) {
   Settled settled(w, around);
   std::vector<double> q(w.el.size()), now_q;  // each element's quality(), kept current
   for (size_t e = 0; e < w.el.size(); ++e) q[e] = w.quality(w.el[e]);
+  // each node's place_at(uv) once: only a kept move changes it, and toward's result is it
+  std::vector<Place> place(n);
+  std::vector<char> placed(n, 0);
   for (int pass = 0; pass < passes; ++pass) {
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
@@ -887,7 +935,8 @@ void smooth(Work& w, int passes, const std::vector<char>& structured) {
       // onto the face by the linear step from the node toward the target's foot on its tangent
       // plane (Work::toward: Newton only where that misses, at a clamped or ruled end): two
       // evaluations where Newton to the foot point took five or six
-      const Place here = w.place_at(old_uv);
+      if (!placed[i]) place[i] = w.place_at(old_uv), placed[i] = 1;
+      const Place& here = place[i];
       const Vec3 n = Work::unit_normal(here.su, here.sv);
       const Place x = w.toward(here, target - (target - here.p).dot(n) * n);
       if ((x.uv - old_uv).norm() == 0.0) {
@@ -897,10 +946,14 @@ void smooth(Work& w, int passes, const std::vector<char>& structured) {
       w.put(i, x);
       double now = 1e9;
       now_q.clear();
-      for (int e : around[i]) now_q.push_back(w.quality(w.el[e])), now = std::min(now, now_q.back());
+      for (int e : around[i]) {  // one element below the worst rejects the move: no more needed
+        now_q.push_back(w.quality(w.el[e])), now = std::min(now, now_q.back());
+        if (now + 1e-12 < worst) break;
+      }
       const bool keep = !(now + 1e-12 < worst);
       if (keep) {
         for (size_t k = 0; k < around[i].size(); ++k) q[around[i][k]] = now_q[k];
+        place[i] = x;  // toward's Place is place_at(x.uv), bit for bit
       } else {
         w.uv[i] = old_uv, w.xyz[i] = old_p, w.normal[i] = old_n;
       }
@@ -939,8 +992,9 @@ double corner_cos(const Work& w, const std::array<int, 4>& e, int c) {
 /// summed over the quad corners at node i that move with it (at i and at its two neighbours
 /// in each quad; the opposite corner keeps its sides), so a node whose worst element cannot
 /// rise still moves quad corners back toward 45-135 deg. A corner within the slack costs no
-/// square root (its squared cosine is compared).
-double corner_excess(const Work& w, std::span<const int> around, int i) {
+/// square root (its squared cosine is compared). Any value above `above` once the sum passes
+/// it (the terms are not negative: the rest cannot bring it back).
+double corner_excess(const Work& w, std::span<const int> around, int i, double above = 1e300) {
   static const double slack = std::sin(kCornerSlack * kPi / 180.0), slack2 = slack * slack;
   double sum = 0.0;
   for (int e : around) {
@@ -956,6 +1010,7 @@ double corner_excess(const Work& w, std::span<const int> around, int i) {
       const double over = (l2 > 0 ? std::abs(d) / std::sqrt(l2) : 1.0) - slack;
       sum += over * over;
     }
+    if (sum > above) return sum;
   }
   return sum;
 }
@@ -1033,7 +1088,7 @@ bool optimise_node(Work& w, std::span<const int> around, int i, double trade_abo
       w.put(i, x);
       // at or above trade_above the worst cannot make a trial better, only the corners can:
       // they are counted first, the cheaper test
-      double excess = best >= trade_above ? corner_excess(w, around, i) : -1.0;
+      double excess = best >= trade_above ? corner_excess(w, around, i, best_excess) : -1.0;
       if (excess > best_excess) continue;
       const double best_capped = std::min(best, trade_above), now = worst(best_capped);
       const double capped = std::min(now, trade_above);
@@ -1071,20 +1126,32 @@ bool optimise_node(Work& w, std::span<const int> around, int i, double trade_abo
 /// scores highest. A move is kept only when it raises that worst (and keeps the node's edges
 /// above kImproveShortest x their mean), so no element gets worse than its neighbourhood's
 /// worst; it untangles the folded elements the Laplacian step cannot.
+std::vector<double> strict_qualities(const Work& w) {
+  std::vector<double> q(w.el.size());
+  for (size_t e = 0; e < w.el.size(); ++e) q[e] = w.strict_quality(w.el[e]);
+  return q;
+}
+
+/// `q`: each element's strict_quality if the caller has them (else computed here), kept
+/// current: only a moved node's elements change (a search that does not move its node leaves
+/// it bit for bit where it was).
 void improve_worst(Work& w, double below = kImproveBelow, double first_step = kImproveStep,
-                   double min_step = kImproveMinStep) {
+                   double min_step = kImproveMinStep, std::vector<double> q = {}) {
   const int n = static_cast<int>(w.xyz.size());
   const ElementsAtNodes around(w);
   Settled settled(w, around);
+  if (q.size() != w.el.size()) q = strict_qualities(w);
   for (int pass = 0; pass < kImprovePasses; ++pass) {
     std::vector<char> poor(n, 0);
-    for (const auto& e : w.el)
-      if (w.strict_quality(e) < below)
-        for (int k = 0; k < (e[3] < 0 ? 3 : 4); ++k) poor[e[k]] = 1;
+    for (size_t e = 0; e < w.el.size(); ++e)
+      if (q[e] < below)
+        for (int k = 0; k < (w.el[e][3] < 0 ? 3 : 4); ++k) poor[w.el[e][k]] = 1;
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
       if (!poor[i] || around[i].empty() || settled[i]) continue;
       const bool m = optimise_node(w, around[i], i, 1e300, first_step, min_step);
+      if (m)
+        for (int e : around[i]) q[e] = w.strict_quality(w.el[e]);
       moved += m;
       settled.visited(i, m);
     }
@@ -1097,9 +1164,10 @@ void improve_worst(Work& w, double below = kImproveBelow, double first_step = kI
 /// step leaves a node up to 0.04 of an edge from where its worst element peaks, and the worst
 /// search does not look at elements above kImproveBelow.
 void polish(Work& w) {
+  std::vector<double> q = strict_qualities(w);
   double worst = 1e9;
-  for (const auto& e : w.el) worst = std::min(worst, w.strict_quality(e));
-  improve_worst(w, worst + kPolishBand, 2 * kImproveMinStep, kPolishMinStep);
+  for (double x : q) worst = std::min(worst, x);
+  improve_worst(w, worst + kPolishBand, 2 * kImproveMinStep, kPolishMinStep, std::move(q));
 }
 
 /// The corner pass, after the weak pairs are merged (their quads' corners at the 2:1 steps lie
@@ -1341,13 +1409,8 @@ class GradedSize {
   }
   double operator()(const Vec3& p, double h) const {
     const std::array<long long, 3> c = cell(p);
-    for (long long dx = -1; dx <= 1; ++dx)
-      for (long long dy = -1; dy <= 1; ++dy)
-        for (long long dz = -1; dz <= 1; ++dz) {
-          const auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
-          if (it == cells_.end()) continue;
-          for (int i : it->second) h = std::min(h, hb_[i] + kGrading * (p - x_[i]).norm());
-        }
+    if (!near_valid_ || c != near_cell_) gather(c);
+    for (int i : near_) h = std::min(h, hb_[i] + kGrading * (p - x_[i]).norm());
     return h;
   }
 
@@ -1360,10 +1423,26 @@ class GradedSize {
   static long long key(const std::array<long long, 3>& c) {
     return (c[0] * 73856093LL) ^ (c[1] * 19349663LL) ^ (c[2] * 83492791LL);
   }
+  /// The nodes of the 27 buckets about cell c, in order. The callers' queries come in
+  /// neighbourhoods (the subdivision's cells, the nodes as placed), so most queries reuse
+  /// the last cell's list instead of looking up 27 buckets.
+  void gather(const std::array<long long, 3>& c) const {
+    near_.clear();
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
+          if (it != cells_.end()) near_.insert(near_.end(), it->second.begin(), it->second.end());
+        }
+    near_cell_ = c, near_valid_ = true;
+  }
   const std::vector<Vec3>& x_;
   const std::vector<double>& hb_;
   double reach_;
   std::unordered_map<long long, std::vector<int>> cells_;
+  mutable std::vector<int> near_;  ///< gather's list, for near_cell_
+  mutable std::array<long long, 3> near_cell_{};
+  mutable bool near_valid_ = false;
 };
 
 /// Each quad into four and each triangle into three quads (edge midpoints and centre).
@@ -1556,16 +1635,27 @@ double target_size(const FaceGeometry& g, const Vec2& uv, const MeshOptions& o) 
   return std::max(h, o.min_size);
 }
 
-double element_quality(const Vec3* p, int k, const Vec3& n) {
+namespace {
+
+/// The least corner term of element_quality over K corners (K a constant: the corner indices
+/// unrolled, no integer division per corner).
+template <int K>
+double least_corner(const Vec3* p, const Vec3& n) {
   double q = 1e9;
-  for (int i = 0; i < k; ++i) {
-    const Vec3 e1 = p[(i + 1) % k] - p[i], e2 = p[(i + k - 1) % k] - p[i];
+  for (int i = 0; i < K; ++i) {
+    const Vec3 e1 = p[(i + 1) % K] - p[i], e2 = p[(i + K - 1) % K] - p[i];
     const double l = e1.norm() * e2.norm();
     const double s = l > 0 ? e1.cross(e2).dot(n) / l : 0.0;
     q = std::min(q, s);
   }
-  if (k == 3) q = std::min(1.0, q * 2.0 / std::sqrt(3.0));
   return q;
+}
+
+}  // namespace
+
+double element_quality(const Vec3* p, int k, const Vec3& n) {
+  if (k == 4) return least_corner<4>(p, n);
+  return std::min(1.0, least_corner<3>(p, n) * 2.0 / std::sqrt(3.0));
 }
 
 namespace {

@@ -18,6 +18,10 @@ constexpr double kCollinear = 1e-12;
 /// Rounds of flips Triangulation::enforce tries (each flips every convex crossing edge).
 constexpr int kEnforceRounds = 8;
 
+// a triangle's next and previous corner (k in 0..2): the hot loops' % 3 was a multiply each
+constexpr int next3(int k) { return k == 2 ? 0 : k + 1; }
+constexpr int prev3(int k) { return k == 0 ? 2 : k - 1; }
+
 }  // namespace
 
 Triangulation::Triangulation(std::vector<Eigen::Vector2d> points, const std::vector<int>& loop) : p_(std::move(points)) {
@@ -30,6 +34,7 @@ Triangulation::Triangulation(std::vector<Eigen::Vector2d> points, const std::vec
     hi = hi.cwiseMax(p_[i]);
   }
   scale_ = std::max((hi - lo).norm(), 1e-300);
+  circle_eps_ = kCollinear * scale_ * scale_ * scale_ * scale_;
   Eigen::MatrixXd poly(m, 2);
   for (int i = 0; i < m; ++i) poly.row(i) = p_[loop[i]].transpose();
   double area2 = 0.0;
@@ -75,12 +80,12 @@ bool Triangulation::in_circle(int a, int b, int c, int d) const {
   const double det = (A.squaredNorm()) * (B.x() * C.y() - C.x() * B.y()) -
                      (B.squaredNorm()) * (A.x() * C.y() - C.x() * A.y()) +
                      (C.squaredNorm()) * (A.x() * B.y() - B.x() * A.y());
-  return det > kCollinear * scale_ * scale_ * scale_ * scale_;
+  return det > circle_eps_;
 }
 
 int Triangulation::edge_index(int t, int a, int b) const {
   for (int k = 0; k < 3; ++k)
-    if (v_[t][k] == a && v_[t][(k + 1) % 3] == b) return k;
+    if (v_[t][k] == a && v_[t][next3(k)] == b) return k;
   return -1;
 }
 
@@ -106,7 +111,7 @@ int Triangulation::locate(const Eigen::Vector2d& q) const {
     int next = -2;  // -2: q is inside t
     for (int r = 0; r < 3; ++r) {
       const int kk = (r + static_cast<int>(steps)) % 3;  // rotate the first edge tested: no walking in circles
-      if (orient(v_[t][kk], v_[t][(kk + 1) % 3], q) < -eps) {
+      if (orient(v_[t][kk], v_[t][next3(kk)], q) < -eps) {
         next = n_[t][kk];
         break;
       }
@@ -118,7 +123,7 @@ int Triangulation::locate(const Eigen::Vector2d& q) const {
   for (int u = 0; u < static_cast<int>(v_.size()); ++u) {  // walk blocked by the boundary
     bool inside = true;
     for (int k = 0; k < 3; ++k)
-      if (orient(v_[u][k], v_[u][(k + 1) % 3], q) < -eps) inside = false;
+      if (orient(v_[u][k], v_[u][next3(k)], q) < -eps) inside = false;
     if (inside) return hint_ = u;
   }
   return -1;
@@ -127,13 +132,13 @@ int Triangulation::locate(const Eigen::Vector2d& q) const {
 bool Triangulation::flip(int t, int k) {
   const int u = n_[t][k];
   if (u < 0) return false;
-  const int a = v_[t][k], b = v_[t][(k + 1) % 3], c = v_[t][(k + 2) % 3];
+  const int a = v_[t][k], b = v_[t][next3(k)], c = v_[t][prev3(k)];
   const int j = edge_index(u, b, a);
   if (j < 0) return false;
-  const int d = v_[u][(j + 2) % 3];
+  const int d = v_[u][prev3(j)];
   // outer neighbours: t has (b,c) and (c,a); u has (a,d) and (d,b)
-  const int n_bc = n_[t][(k + 1) % 3], n_ca = n_[t][(k + 2) % 3];
-  const int n_ad = n_[u][(j + 1) % 3], n_db = n_[u][(j + 2) % 3];
+  const int n_bc = n_[t][next3(k)], n_ca = n_[t][prev3(k)];
+  const int n_ad = n_[u][next3(j)], n_db = n_[u][prev3(j)];
   v_[t] = {a, d, c};  // edges: (a,d) (d,c) (c,a)
   v_[u] = {d, b, c};  // edges: (d,b) (b,c) (c,d)
   own(t);
@@ -166,11 +171,11 @@ void Triangulation::legalize_stack() {
     stack.pop_back();
     const int u = n_[t][k];
     if (u < 0) continue;
-    const int a = v_[t][k], b = v_[t][(k + 1) % 3], c = v_[t][(k + 2) % 3];
+    const int a = v_[t][k], b = v_[t][next3(k)], c = v_[t][prev3(k)];
     if (constrained(a, b)) continue;
     const int j = edge_index(u, b, a);
     if (j < 0) continue;
-    const int d = v_[u][(j + 2) % 3];
+    const int d = v_[u][prev3(j)];
     if (!in_circle(a, b, c, d)) continue;
     if (orient(c, a, d) <= 0 || orient(d, b, c) <= 0) continue;  // not convex: keep
     flip(t, k);

@@ -78,6 +78,7 @@ class Triangulation {
   int loop_size_ = 0;
   mutable int hint_ = 0;
   double scale_ = 1.0;
+  double circle_eps_ = 0.0;  ///< in_circle's threshold, kCollinear x scale^4 (once, not per test)
 };
 
 }  // namespace fairlines::meshing
