@@ -897,6 +897,22 @@ class Settled {
   std::vector<char> flag_;
 };
 
+/// The mean of the centroids of the elements `around` node i; `worst`: the lowest of their
+/// qualities q, `reach`: the sum of the centroids' distances from the node (m).
+Vec3 smoothing_target(const Work& w, std::span<const int> around, int i, const std::vector<double>& q, double& worst,
+                      double& reach) {
+  Vec3 target = Vec3::Zero();
+  for (int e : around) {
+    worst = std::min(worst, q[e]);
+    const int k = w.el[e][3] < 0 ? 3 : 4;
+    Vec3 c = Vec3::Zero();
+    for (int j = 0; j < k; ++j) c += w.xyz[w.el[e][j]];
+    target += c / k;
+    reach += (c / k - w.xyz[i]).norm();
+  }
+  return target / static_cast<double>(around.size());
+}
+
 /// Moves each free node toward the mean of its elements' centroids, back onto the face,
 /// when the worst of its elements does not get worse; `structured` nodes stay (see
 /// structured_nodes).
@@ -914,16 +930,7 @@ void smooth(Work& w, int passes, const std::vector<char>& structured) {
     for (int i = w.fixed; i < n; ++i) {
       if (around[i].empty() || settled[i] || structured[i]) continue;
       double worst = 1e9, reach = 0.0;
-      Vec3 target = Vec3::Zero();
-      for (int e : around[i]) {
-        worst = std::min(worst, q[e]);
-        const int k = w.el[e][3] < 0 ? 3 : 4;
-        Vec3 c = Vec3::Zero();
-        for (int j = 0; j < k; ++j) c += w.xyz[w.el[e][j]];
-        target += c / k;
-        reach += (c / k - w.xyz[i]).norm();
-      }
-      target /= static_cast<double>(around[i].size());
+      const Vec3 target = smoothing_target(w, around[i], i, q, worst, reach);
       // a move this short changes no element's score noticeably, yet it would unsettle every
       // neighbour: the node counts as settled
       if ((target - w.xyz[i]).norm() < kSmoothSettle * reach / static_cast<double>(around[i].size())) {
@@ -1035,55 +1042,55 @@ double largest_sag(const Work& w, std::span<const int> around) {
   return d;
 }
 
-/// Compass search for node i (see improve_worst); true when it moved. A trial is better when
-/// it raises the worst of the node's elements, or keeps it and lowers corner_excess; with
-/// `trade_above` (see improve_corners) the worst counts only up to that level, so above it a
-/// trial that lowers corner_excess wins even if it lowers the worst (never below the level).
-bool optimise_node(Work& w, std::span<const int> around, int i, double trade_above = 1e300,
-                   double first_step = kImproveStep, double min_step = kImproveMinStep) {
-  // the elements worst first: a trial is mostly rejected by the one that was worst, and the
-  // count stops at the first element below `limit` (the trial is rejected whatever the rest)
-  std::vector<std::pair<double, int>> order;
-  for (int e : around) order.push_back({w.strict_quality(w.el[e]), e});
-  std::sort(order.begin(), order.end());
-  auto worst = [&](double limit) {
+/// (cos, sin) of the compass directions k x 45 deg.
+const std::array<std::array<double, 2>, 8>& compass() {
+  static const std::array<std::array<double, 2>, 8> c = [] {
+    std::array<std::array<double, 2>, 8> out;
+    for (int k = 0; k < 8; ++k) out[k] = {std::cos(k * kPi / 4), std::sin(k * kPi / 4)};
+    return out;
+  }();
+  return c;
+}
+
+/// optimise_node's search at node i: its elements worst first, its limits, and the two
+/// objectives' best values so far (the worst element's strict quality, corner_excess).
+struct NodeSearch {
+  /// A trial that beat the best so far, with its objectives.
+  struct Better {
+    Place x;
+    double now, excess;
+  };
+
+  Work& w;
+  std::span<const int> around;
+  int i;
+  double trade_above;
+  double floor = 0.0, sag_limit = 0.0, best = 1e9, best_excess = 0.0;
+  std::vector<std::pair<double, int>> order;  // (strict quality, element), worst first
+
+  NodeSearch(Work& work, std::span<const int> elements, int node, double trade) : w(work), around(elements), i(node), trade_above(trade) {
+    // the elements worst first: a trial is mostly rejected by the one that was worst
+    for (int e : around) order.push_back({w.strict_quality(w.el[e]), e});
+    std::sort(order.begin(), order.end());
+    if (!order.empty()) best = order.front().first;
+    best_excess = corner_excess(w, around, i);
+  }
+
+  /// The worst element's strict quality; the count stops at the first element below `limit`
+  /// (the trial is rejected whatever the rest).
+  double worst(double limit) const {
     double q = 1e9;
     for (const auto& [q0, e] : order)
       if ((q = std::min(q, w.strict_quality(w.el[e]))) < limit) break;
     return q;
-  };
-  constexpr int kMaxSteps = 40;  // trial rounds
-  static const std::array<std::array<double, 2>, 8> kCompass = [] {  // (cos, sin) of k x 45 deg
-    std::array<std::array<double, 2>, 8> c;
-    for (int k = 0; k < 8; ++k) c[k] = {std::cos(k * kPi / 4), std::sin(k * kPi / 4)};
-    return c;
-  }();
-  double len, shortest;
-  edge_lengths(w, around, i, len, shortest);
-  // the scaled Jacobian does not see size: a search for it alone can collapse an edge
-  const double floor = std::min(kImproveShortest * len, shortest);
-  // no move takes an element further from the surface than the tolerance (or than it was)
-  const double sag_limit = std::max(largest_sag(w, around), w.o.chordal_tolerance);
-  double best = order.empty() ? 1e9 : order.front().first, best_excess = corner_excess(w, around, i), step = first_step * len;
-  Place at = w.place_at(w.uv[i]);
-  at.p = w.xyz[i];  // as stored (a loop node's may differ by round-off)
-  const Vec3 start_normal = w.normal[i];
-  bool moved = false;
-  for (int round = 0; round < kMaxSteps && step >= min_step * len; ++round) {
-    const Vec3 nn = at.su.cross(at.sv);
-    if (nn.norm() <= 0 || at.su.norm() <= 0) break;
-    const Vec3 t1 = at.su.normalized(), t2 = nn.normalized().cross(t1);
-    // the trials that beat the best so far, in turn (each beats the one before); the sag (a
-    // surface evaluation per element) is checked afterwards, from the last back, so mostly once
-    struct Better {
-      Place x;
-      double now, excess;
-    };
-    std::array<Better, 8> better;
+  }
+
+  /// The compass trials about `at` at `step` (m) in the tangent frame (t1, t2) that beat the
+  /// best so far, in turn (each beats the one before); best and best_excess follow them.
+  int trials(const Place& at, double step, const Vec3& t1, const Vec3& t2, std::array<Better, 8>& better) {
     int nb = 0;
-    const double round_best = best, round_excess = best_excess;
-    for (int k = 0; k < 8; ++k) {
-      const Place x = w.toward(at, at.p + step * (kCompass[k][0] * t1 + kCompass[k][1] * t2));
+    for (const auto& [c, s] : compass()) {
+      const Place x = w.toward(at, at.p + step * (c * t1 + s * t2));
       if ((x.uv - at.uv).norm() == 0.0) continue;
       w.put(i, x);
       // at or above trade_above the worst cannot make a trial better, only the corners can:
@@ -1100,12 +1107,44 @@ bool optimise_node(Work& w, std::span<const int> around, int i, double trade_abo
         better[nb++] = {x, now, excess};
       }
     }
+    return nb;
+  }
+};
+
+/// Compass search for node i (see improve_worst); true when it moved. A trial is better when
+/// it raises the worst of the node's elements, or keeps it and lowers corner_excess; with
+/// `trade_above` (see improve_corners) the worst counts only up to that level, so above it a
+/// trial that lowers corner_excess wins even if it lowers the worst (never below the level).
+bool optimise_node(Work& w, std::span<const int> around, int i, double trade_above = 1e300,
+                   double first_step = kImproveStep, double min_step = kImproveMinStep) {
+  constexpr int kMaxSteps = 40;  // trial rounds
+  NodeSearch search(w, around, i, trade_above);
+  double len, shortest;
+  edge_lengths(w, around, i, len, shortest);
+  // the scaled Jacobian does not see size: a search for it alone can collapse an edge
+  search.floor = std::min(kImproveShortest * len, shortest);
+  // no move takes an element further from the surface than the tolerance (or than it was)
+  search.sag_limit = std::max(largest_sag(w, around), w.o.chordal_tolerance);
+  double step = first_step * len;
+  Place at = w.place_at(w.uv[i]);
+  at.p = w.xyz[i];  // as stored (a loop node's may differ by round-off)
+  const Vec3 start_normal = w.normal[i];
+  bool moved = false;
+  for (int round = 0; round < kMaxSteps && step >= min_step * len; ++round) {
+    const Vec3 nn = at.su.cross(at.sv);
+    if (nn.norm() <= 0 || at.su.norm() <= 0) break;
+    const Vec3 t1 = at.su.normalized(), t2 = nn.normalized().cross(t1);
+    // the sag (a surface evaluation per element) is checked after the trials, from the last
+    // better one back, so mostly once
+    std::array<NodeSearch::Better, 8> better;
+    const double round_best = search.best, round_excess = search.best_excess;
+    const int nb = search.trials(at, step, t1, t2, better);
     Place to = at;
-    best = round_best, best_excess = round_excess;
+    search.best = round_best, search.best_excess = round_excess;
     for (int b = nb - 1; b >= 0; --b) {
       w.put(i, better[b].x);
-      if (largest_sag(w, around) > sag_limit) continue;
-      to = better[b].x, best = better[b].now, best_excess = better[b].excess;
+      if (largest_sag(w, around) > search.sag_limit) continue;
+      to = better[b].x, search.best = better[b].now, search.best_excess = better[b].excess;
       break;
     }
     if ((to.uv - at.uv).norm() > 0) {
