@@ -20,7 +20,8 @@ shape curves (the bilge corner ``corner_breadth`` / ``corner_height`` and ``top_
 fitted per station: each is the value whose designed section (``fl.design_section`` with the
 station's measured area) lies closest, in the least-squares sense, to the measured half-breadths. A bulb grid (role 'bulb') is left out of
 the bare hull and measured into the ``bulb`` section's Kracht coefficients (cuts of its grid
-from the FP to the nose). Hull below the keel line (a sonar dome) and above the deck at
+from the FP to the nose); where the measured shapes are given (sections.given) it is measured
+as hull instead and the given sections hold it (the notes name its Kracht coefficients). Hull below the keel line (a sonar dome) and above the deck at
 midships (a sheer) is left out and noted: the description has neither.
 """
 
@@ -237,12 +238,13 @@ def _stations(data: HullData, lines: list, count: int = GRID_STATIONS) -> np.nda
 
 
 def measure_hull_data(data: HullData, depth: float | None = None, dome: bool = False,
-                      stations: int = GRID_STATIONS) -> MeasuredHull:
+                      stations: int = GRID_STATIONS, bulb: bool = False) -> MeasuredHull:
     """Stations, half-breadths, lowest points, areas, volume and LCB of the data (module
     docstring); hull below the keel line (a sonar dome) is measured with `dome`, else left out;
-    point grids are cut at `stations` stations.
+    point grids are cut at `stations` stations; with `bulb` a bulb grid is measured as hull
+    (its stations reach the centre plane's web up to D: :func:`_bulb_webs`), else set apart.
     Raises InvalidInput for data with fewer than 3 stations with hull below T."""
-    hull_grids = [g for g in data.grids if g.role != "bulb"]
+    hull_grids = [g for g in data.grids if bulb or g.role != "bulb"]
     lines = [_longitudinal_lines(g.points) for g in hull_grids]
     xs = _stations(data, lines, stations)
     allp = np.concatenate([data.all_points()] if data.sections else [g.points.reshape(-1, 3) for g in hull_grids])
@@ -279,10 +281,30 @@ def measure_hull_data(data: HullData, depth: float | None = None, dome: bool = F
         raise _native.InvalidInput(f"{data.name}: {int(wet.sum())} station(s) with hull below T = {T} m; expected at least 3")
     vol = _pchip_integral(xs, area)
     lcb = _pchip_integral(xs, area * xs) / vol
-    bulb = [g.points.reshape(-1, 3) for g in data.grids if g.role == "bulb"]
+    apart = [g.points.reshape(-1, 3) for g in data.grids if g.role == "bulb" and not bulb]
     z_top = np.array([z[np.flatnonzero(np.isfinite(row))[-1]] for row in y])
+    if bulb:
+        z_top = _bulb_webs(xs, z, y, z_top, D, T)
     return MeasuredHull(data.lpp, data.beam, T, D, float(xs[0]), float(xs[-1]), xs, z, y, z_low, area, vol, lcb,
-                        np.concatenate(bulb) if bulb else None, notes, z_top)
+                        np.concatenate(apart) if apart else None, notes, z_top)
+
+
+def _bulb_webs(x: np.ndarray, z: np.ndarray, y: np.ndarray, z_top: np.ndarray, D: float, T: float) -> np.ndarray:
+    """Webs of zero half-breadth on the centre plane (`y` edited), which the hull's sections
+    (each one curve from the keel to the deck) need to hold a bulb: across a station's open
+    heights between hull below and above (a raked stem head over the bulb), and from the top
+    of a station forward of the stem head that ends below T up to D. Returns the stations' tops."""
+    reach = np.flatnonzero(z_top >= D * (1 - SHEER_TOL))
+    head = reach[-1] if len(reach) else len(x)
+    for k in range(len(x)):
+        rows = np.flatnonzero(np.isfinite(y[k]))
+        if len(rows):  # an open height inside the section would otherwise be bridged by a chord
+            gap = np.arange(rows[0], rows[-1] + 1)
+            y[k, gap] = np.nan_to_num(y[k, gap])
+        if k > head and z_top[k] < T:
+            y[k, (z > z_top[k]) & (z <= D)] = 0.0
+            z_top[k] = D
+    return z_top
 
 
 def _depth_at_midship(points: np.ndarray, data: HullData) -> float:
@@ -774,7 +796,8 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
                 station (slower); where the measured bulb cannot be composed with their bow,
                 the template family's deadrise, character and top_corner instead.
     given       where the fitted family still misses a station's shape by more than
-                GIVEN_MISFIT of B, give every measured station's shape (sections.given).
+                GIVEN_MISFIT of B, give every measured station's shape (sections.given); a
+                bulb grid is then held by them (measured as hull), not composed.
     progress    callable(str) told of each step, or None.
 
     Raises InvalidInput for data that is not HullData, a depth not above T, data the
@@ -801,7 +824,7 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
         worst = float(np.nanmax(station_misfit(Hull.from_json(out), m), initial=0.0))
         if worst > GIVEN_MISFIT * m.beam:
             say(f"the section family misses a station by {100 * worst / m.beam:.2f} % B (RMS): giving the measured shapes")
-            md = measure_hull_data(hull_data, depth, dome=True, stations=GIVEN_STATIONS)
+            md = measure_hull_data(hull_data, depth, dome=True, stations=GIVEN_STATIONS, bulb=True)
             shaped = _designed(_base_description(md, name or hull_data.name, given=True), md, hull_data, None, say)
             if "bulb" not in shaped or _composes(shaped):
                 return shaped
@@ -823,7 +846,8 @@ def _composes(desc: dict) -> bool:
 
 def _designed(base: dict, m: MeasuredHull, hull_data: HullData, fit, say) -> dict:
     """The description of `base` built, its section shapes fitted by `fit` (None: the defaults),
-    its volume and LCB corrected on the surface, and its bulb measured."""
+    its volume and LCB corrected on the surface, and its bulb measured (composed unless `m`
+    measured it as hull)."""
     from .designer import match_targets
     from .hull import Hull
 
@@ -841,7 +865,11 @@ def _designed(base: dict, m: MeasuredHull, hull_data: HullData, fit, say) -> dic
     out = hull.to_dict()
     out["notes"] = desc["notes"]
     kracht = measure_kracht(hull_data, hull)
-    if kracht is not None:
+    if kracht is not None and m.bulb_points is None:  # the sections hold the bulb: recognised, not composed
+        out["notes"] += "; the bulb held by the sections (Kracht coefficients " + \
+            ", ".join(f"{k} {v:.4g}" for k, v in kracht.items()) + ")"
+        say("bulb held by the sections")
+    elif kracht is not None:
         out["bulb"] = {"kracht": kracht}
         say("bulb: Kracht coefficients " + ", ".join(f"{k} {v:.4g}" for k, v in kracht.items()))
         out = _without_bulb_overlap(out, hull, kracht, say)
@@ -901,10 +929,14 @@ def fidelity(hull, data: HullData, *, max_points: int = 3000) -> dict:
     """How close the built `hull` (a fl.Hull) lies to the data: RMS and largest distance of the
     data's points (:func:`data_points`, at most `max_points`, evenly taken) to the hull as
     fractions of B, and its volume, LCB (m from the AP) and wetted surface (both sides) at T.
-    A hull with a bulb is judged composed (bare hull, bulb and blend; the bulb grid's points
-    join the data's)."""
+    The bulb grid's points join the data's; a hull with a bulb is judged composed (bare hull,
+    bulb and blend)."""
     pr = hull.description.principal
     pts = data_points(data, pr.depth)
+    bulb = [g.points.reshape(-1, 3) for g in data.grids if g.role == "bulb"]
+    if bulb:  # the bulb is judged too, whether composed or held by the bare hull
+        bulb = np.concatenate(bulb)
+        pts = np.concatenate([pts, bulb[bulb[:, 2] <= pr.depth]])
     if hull.description.bulb is None:
         surfaces = [hull.bare_hull_surface()]
         h = hull.hydrostatics()
@@ -912,8 +944,6 @@ def fidelity(hull, data: HullData, *, max_points: int = 3000) -> dict:
     else:
         composed = hull.composed_hull()
         surfaces = [s for s, _loops in composed.trimmed_surfaces]
-        bulb = np.concatenate([g.points.reshape(-1, 3) for g in data.grids if g.role == "bulb"])
-        pts = np.concatenate([pts, bulb[bulb[:, 2] <= pr.depth]])
         volume, lcb, wetted = _mesh_figures(composed, pr.draft)
     pts = pts[:: max(1, len(pts) // max_points)]
     dev = point_deviation(surfaces, pts)

@@ -79,6 +79,20 @@ def test_a_given_section_follows_a_narrower_waterline_and_a_higher_keel():
     assert np.abs(_half_breadth_at(p, z) - exact).max() <= SHAPE_TOL * B2
 
 
+def test_a_bulb_under_a_narrow_stem_head_keeps_its_breadth():
+    """A bow station with no waterline: a stem head 0.2 m wide over a web on the centre plane and
+    a bulb of radius 2 m. A deck 10 % narrower than the head changes the bulb by the head's
+    difference as a share of its widest (1 %), not by the deck's ratio (it was 0.9)."""
+    t = np.linspace(0.0, np.pi, 60)
+    head = [(0.2 * (1 - q), D - q * (D - 7.0)) for q in np.linspace(0.0, 1.0, 10)]
+    web = [(0.0, z) for z in np.linspace(7.0, 5.0, 10)[1:]]
+    bulb = [(2.0 * np.sin(a), 3.0 + 2.0 * np.cos(a)) for a in t[1:]]
+    s = _spec(np.array(head + web + bulb), y_dwl=0.0, z_keel=1.0)
+    s.y_deck = 0.18
+    p = _curve_points(fl.design_section(s).curve)
+    assert p[p[:, 2] < 5.0, 1].max() == pytest.approx(2.0 * (1 - 0.02 / 2.0), abs=0.02)
+
+
 def test_a_station_between_two_given_sections_blends_them():
     """Mix 0 and 1 are the two shapes; between, the section lies between them (fairness
     skinning's blend of control points, exact for equal shapes)."""

@@ -18,11 +18,9 @@ RMS_GOAL, MAX_GOAL, VOLUME_GOAL, LCB_GOAL, WETTED_GOAL = 0.005, 0.02, 0.005, 0.0
 
 # Measured shortfalls (the section family cannot hold these ships yet; docs/import.md says why).
 SHORT = {
-    ("rms", "kcs"): "RMS 4.7 % B: the measured shapes cannot be given (the measured bulb meets their bow in 2 curves), "
-                    "and the family holds neither the skeg nor the hollow aft sections",
-    ("max", "kcs"): "max 17.5 % B at the skeg",
-    ("lcb", "kcs"): "+0.44 % Lpp: the bare hull holds the LCB measured without the bulb, and the bulb moves it forward",
-    ("max", "dtmb5415"): "max 4.3 % B where the dome meets the stem (x 5.68 m)",
+    ("wetted", "kcs"): "+2.02 %: the data's own surface at T measures 9 549 m^2 (+1.3 %); the rest is the closed "
+                       "propeller boss end (x 4-6 m, +35 m^2) and the web on the centre plane above the bulb",
+    ("max", "dtmb5415"): "max 3.3 % B where the dome meets the stem (x 5.72 m)",
     ("wetted", "dtmb5415"): "+1.77 % (+1.1 % over the data's own surface, at the dome's and stem's forward end)",
 }
 
@@ -47,6 +45,13 @@ def test_imported_description_rebuilds_from_json(ship):
     hull = fl.Hull.from_json(json.dumps(desc))
     assert hull.bare_hull_surface() is not None
     assert desc["principal"]["Lpp"] == pytest.approx(truth(ship)["lpp"])
+
+
+def test_kcs_bulb_is_held_by_the_given_sections_and_named_in_the_notes():
+    desc = imported("kcs")
+    assert "bulb" not in desc and desc["sections"].get("given")  # no composed bulb: the sections hold it
+    assert "the bulb held by the sections (Kracht coefficients c_lpr 0.03" in desc["notes"]
+    assert desc["ends"]["fore"] == pytest.approx(237.0, abs=0.01)  # the bulb's nose, 7 m forward of the FP
 
 
 @pytest.mark.parametrize("ship", [_goal("rms", s) for s in SHIPS])
@@ -146,8 +151,10 @@ def _sign_changes(surface, axis, value, lo, hi):
 REFIT_SHORT = {
     ("dtmb5415", "main"): "the given sections' fits differ a little from station to station (161 stations, 3.6 cm apart on the "
                 "model): 5-52 sign changes on the main grid's waterlines (37-52 on its buttocks) against 0-3 for its refit",
-    ("kcs", "forebody"): "the forebody's waterlines: 5-10 sign changes against 1-5 for its refit (the fitted family's sections)",
-    ("kcs", "afterbody"): "the fitted family's sections: 4 sign changes on the 11.25 m waterline against none for the refit",
+    ("kcs", "forebody"): "the given sections where the data's bulb block joins the forebody (x 224-232 m): 6-12 sign "
+                         "changes on the forebody's waterlines against 1-5 for its refit",
+    ("kcs", "afterbody"): "the given sections round the propeller boss and the skeg (x 5-14 m): 16 sign changes on the "
+                          "3.75 m waterline against 9, 7-15 on the buttocks against 1-13 for the refit",
 }
 
 

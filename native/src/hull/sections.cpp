@@ -641,7 +641,12 @@ std::vector<V2> map_given(const Section& S, const Eigen::MatrixXd& P) {
       }
     }
   } else {
-    for (Eigen::Index i = 0; i < m; ++i) out[i] = V2(P(i, 0) * s_deck, K.y() + (P(i, 1) - zk) * (D.y() - K.y()) / (Dg.y() - zk));
+    // The deck's difference as a share of the shape's widest: a shape widest at the deck scales
+    // by the deck's ratio, a bulb under a stem head (or a web) is not shrunk by the head's few cm.
+    double widest = Dg.x();
+    for (Eigen::Index i = 0; i < m; ++i) widest = std::max(widest, P(i, 0));
+    const double s = widest > tiny ? 1.0 + (D.x() - Dg.x()) / widest : 1.0;
+    for (Eigen::Index i = 0; i < m; ++i) out[i] = V2(P(i, 0) * s, K.y() + (P(i, 1) - zk) * (D.y() - K.y()) / (Dg.y() - zk));
   }
   out.front() = D, out.back() = K;
   return out;
