@@ -7,7 +7,8 @@
 
 namespace fairlines {
 
-/// Base of every exception the engine throws on purpose.
+/// Base of every exception the engine throws on purpose; never thrown itself (each failure is
+/// one of the kinds below, so a caller knows whether to change a value or retry).
 struct Error : std::runtime_error {
   using std::runtime_error::runtime_error;
 };

@@ -180,23 +180,23 @@ std::vector<int> boundary_loop(const MeshBuilder& mb) {
     for (int k = 0; k < 3; ++k) {
       int a = f[k], b = f[(k + 1) % 3];
       if (count[{std::min(a, b), std::max(a, b)}] == 1) {
-        if (next.count(b)) throw Error("compose: the open hull boundary branches (non-manifold boundary vertex)");
+        if (next.count(b)) throw InvalidInput("compose: the open hull boundary branches (non-manifold boundary vertex)");
         next[b] = a;  // reversed: the cap runs against the surface boundary
       }
     }
-  if (next.empty()) throw Error("compose: the hull surface has no open boundary to close");
+  if (next.empty()) throw InvalidInput("compose: the hull surface has no open boundary to close");
   std::vector<int> loop;
   const int start = next.begin()->first;
   int v = start;
   do {
     loop.push_back(v);
     auto it = next.find(v);
-    if (it == next.end()) throw Error("compose: the open hull boundary is not a closed loop");
+    if (it == next.end()) throw InvalidInput("compose: the open hull boundary is not a closed loop");
     v = it->second;
-    if (loop.size() > next.size()) throw Error("compose: the open hull boundary is not a single loop");
+    if (loop.size() > next.size()) throw InvalidInput("compose: the open hull boundary is not a single loop");
   } while (v != start);
   if (loop.size() != next.size())
-    throw Error("compose: the open hull boundary has several loops; expected one (centre plane, deck, aft cut)");
+    throw InvalidInput("compose: the open hull boundary has several loops; expected one (centre plane, deck, aft cut)");
   return loop;
 }
 
@@ -210,7 +210,7 @@ int boundary_plane(const std::vector<Eigen::Vector3d>& P, int a, int b, const Af
   std::ostringstream os;
   os << "compose: a boundary edge from (" << P[a].transpose() << ") to (" << P[b].transpose()
      << ") lies on none of the centre plane, deck or aft cut";
-  throw Error(os.str());
+  throw InvalidInput(os.str());
 }
 
 /// Triangulates one planar run of boundary vertices (closed by the deck corner of a transom
@@ -242,7 +242,7 @@ void close_half_hull(MeshBuilder& mb, const AftEnd& aft, double z_deck, double t
   int s0 = -1;
   for (int i = 0; i < n && s0 < 0; ++i)
     if (cls[i] != cls[(i + n - 1) % n]) s0 = i;
-  if (s0 < 0) throw Error("compose: the open boundary lies in one plane only");
+  if (s0 < 0) throw InvalidInput("compose: the open boundary lies in one plane only");
   const int corner = aft.on_centre_plane ? -1 : mb.add(aft.deck_corner);
   int runs = 0, seen_mask = 0;
   for (int i = 0; i < n;) {
@@ -258,7 +258,7 @@ void close_half_hull(MeshBuilder& mb, const AftEnd& aft, double z_deck, double t
     std::ostringstream os;
     os << "compose: the open boundary splits into " << runs << " planar runs; expected " << want
        << (aft.on_centre_plane ? " (centre plane, deck)" : " (centre plane, deck, aft cut) in that cyclic order");
-    throw Error(os.str());
+    throw InvalidInput(os.str());
   }
 }
 
@@ -737,14 +737,14 @@ std::vector<int> trace_staircase(const std::vector<char>& removed, const HullGri
       start = a;
       ++n_starts;
     }
-  if (n_starts != 1) throw Error("compose: the trimmed hull band is not one simple strip; refine hull_u / hull_v");
+  if (n_starts != 1) throw InvalidInput("compose: the trimmed hull band is not one simple strip; refine hull_u / hull_v");
   std::vector<int> stair{start};
   while (nxt.count(stair.back())) {
     stair.push_back(nxt[stair.back()]);
-    if (stair.size() > nxt.size() + 1) throw Error("compose: staircase of the hull band loops");
+    if (stair.size() > nxt.size() + 1) throw InvalidInput("compose: staircase of the hull band loops");
   }
   if (stair.size() != nxt.size() + 1)
-    throw Error("compose: the removed hull region has more than one boundary; refine hull_u / hull_v");
+    throw InvalidInput("compose: the removed hull region has more than one boundary; refine hull_u / hull_v");
   return stair;
 }
 
@@ -753,7 +753,7 @@ std::vector<int> trace_staircase(const std::vector<char>& removed, const HullGri
 void add_band(MeshBuilder& mb, HullGrid& g, const std::vector<int>& stair, const MeshSeam& seam) {
   double ps = 0, pe = 0;
   if (!g.perimeter(stair.front(), ps) || !g.perimeter(stair.back(), pe) || !(pe <= seam.pa && seam.pb <= ps))
-    throw Error("compose: the hull band does not end on the centre-plane edges around the seam; refine the grid");
+    throw InvalidInput("compose: the hull band does not end on the centre-plane edges around the seam; refine the grid");
   std::vector<int> poly_id;
   std::vector<Eigen::Vector2d> poly2;
   auto push_node = [&](int node) {
@@ -868,7 +868,7 @@ void finish_mesh(const MeshBuilder& mb, ComposedHull& out) {
     std::ostringstream os;
     os << "compose: the composed mesh is not closed (" << er.open << " open, " << er.non_manifold
        << " non-manifold, " << er.inconsistent << " inconsistent edges)";
-    throw Error(os.str());
+    throw InvalidInput(os.str());
   }
 }
 

@@ -301,7 +301,7 @@ long orient_consistently(TriMesh& mesh) {
 
 void write_obj(const TriMesh& mesh, const std::string& path) {
   std::ofstream os(path);
-  if (!os) throw Error("cannot open '" + path + "' for writing");
+  if (!os) throw InvalidInput("cannot open '" + path + "' for writing; expected a path in a writable folder");
   os.precision(10);
   os << "# Fairlines composed hull: " << mesh.vertices.rows() << " vertices, " << mesh.faces.rows()
      << " faces (metres)\n";
@@ -309,12 +309,12 @@ void write_obj(const TriMesh& mesh, const std::string& path) {
     os << "v " << mesh.vertices(i, 0) << ' ' << mesh.vertices(i, 1) << ' ' << mesh.vertices(i, 2) << '\n';
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
     os << "f " << mesh.faces(f, 0) + 1 << ' ' << mesh.faces(f, 1) + 1 << ' ' << mesh.faces(f, 2) + 1 << '\n';
-  if (!os) throw Error("failed writing '" + path + "'");
+  if (!os) throw InvalidInput("failed writing '" + path + "'; expected a disk with room for it");
 }
 
 void write_stl(const TriMesh& mesh, const std::string& path, bool binary) {
   std::ofstream os(path, binary ? std::ios::binary : std::ios::out);
-  if (!os) throw Error("cannot open '" + path + "' for writing");
+  if (!os) throw InvalidInput("cannot open '" + path + "' for writing; expected a path in a writable folder");
   auto facet = [&](Eigen::Index f, Eigen::Vector3d& n, Eigen::Vector3d (&v)[3]) {
     for (int k = 0; k < 3; ++k) v[k] = mesh.vertices.row(mesh.faces(f, k)).transpose();
     n = (v[1] - v[0]).cross(v[2] - v[0]);
@@ -351,7 +351,7 @@ void write_stl(const TriMesh& mesh, const std::string& path, bool binary) {
     }
     os << "endsolid fairlines\n";
   }
-  if (!os) throw Error("failed writing '" + path + "'");
+  if (!os) throw InvalidInput("failed writing '" + path + "'; expected a disk with room for it");
 }
 
 }  // namespace fairlines

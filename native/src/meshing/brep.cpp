@@ -126,13 +126,13 @@ double domain_fraction(const FaceGeometry& g, const Vec2& a, const Vec2& b) {
   return f;
 }
 
-/// Unit tangent of the level curve of z through q (uv, either sense); throws Error `what` where
-/// z's gradient vanishes (a horizontal point).
+/// Unit tangent of the level curve of z through q (uv, either sense); throws InvalidInput `what`
+/// where z's gradient vanishes (a draft at a horizontal point).
 Vec2 level_tangent(const FaceGeometry& g, const Vec2& q, const char* what) {
   Vec3 p, su, sv;
   g.first(q, p, su, sv);
   Vec2 t(-sv.z(), su.z());
-  if (t.norm() <= 0) throw Error(what);
+  if (t.norm() <= 0) throw InvalidInput(what);
   return t.normalized();
 }
 
@@ -189,7 +189,7 @@ std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const
   std::ostringstream msg;
   msg << "mesh: the waterline trace did not leave the face (from uv " << from.transpose() << ", at uv "
       << out.back().transpose() << ")";
-  throw Error(msg.str());
+  throw ConvergenceError(msg.str());
 }
 
 /// Where edge e crosses z = T between its samples k and k + 1 (bisection on the exact edge).
@@ -327,8 +327,10 @@ Bridges bridge_gaps(Brep& b, const Face& f, const FacePieces& p, int lid, double
     std::vector<Vec2> tr;
     try {
       tr = trace_waterline(f.g, p.uv_at(i, true), p.poly, T, kTraceStep * size);
-    } catch (const Error& err) {
-      throw Error(std::string(err.what()) + " on face '" + f.name + "'");
+    } catch (const InvalidInput& err) {  // the face named, the kind kept
+      throw InvalidInput(std::string(err.what()) + " on face '" + f.name + "'");
+    } catch (const ConvergenceError& err) {
+      throw ConvergenceError(std::string(err.what()) + " on face '" + f.name + "'");
     }
     size_t best = p.kept.size();
     double bd = 1e300;
@@ -340,7 +342,7 @@ Bridges bridge_gaps(Brep& b, const Face& f, const FacePieces& p, int lid, double
         best = j;
       }
     }
-    if (best == p.kept.size()) throw Error("mesh: a waterline on face '" + f.name + "' ends nowhere");
+    if (best == p.kept.size()) throw InvalidInput("mesh: a waterline on face '" + f.name + "' ends nowhere; expected a draft a little higher or lower");
     const int id = waterline_edge(b, f, p.f, p, tr, ex, best, lid, T, size);
     traced.push_back(id);
     bridge[ex] = {id, best};
@@ -377,7 +379,7 @@ void follow_loops(const Face& f, const FacePieces& p, const Bridges& bridge, Cut
         const size_t next = (i + 1) % p.kept.size();
         auto st = p.start_index.find(ex);
         if (!used[next] && p.start_of(next) == ex) i = next;
-        else if (st == p.start_index.end()) throw Error("mesh: the cut loop of face '" + f.name + "' does not close");
+        else if (st == p.start_index.end()) throw InvalidInput("mesh: the cut loop of face '" + f.name + "' does not close; expected a draft a little higher or lower");
         else i = st->second;
       }
     }

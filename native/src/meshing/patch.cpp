@@ -1965,7 +1965,7 @@ PatchMesh all_quad_patch(Work& w, const std::vector<int>& canon, int nb, const L
 PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, const MeshOptions& o,
                      const LoopMidpoint& midpoint) {
   const int nb = static_cast<int>(loop.size());
-  if (nb < 3) throw Error("mesh: a face boundary has fewer than 3 nodes");
+  if (nb < 3) throw InvalidInput("mesh: a face boundary has fewer than 3 nodes; expected a smaller element size");
   Work w{g, o, {}, {}, {}, nb, {}};
   std::vector<Vec2> poly(nb);
   Vec2 lo = loop[0].uv, hi = lo;
