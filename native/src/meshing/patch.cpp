@@ -504,12 +504,17 @@ struct Work {
     const double len = n.norm();
     if (!(len > 0)) return std::min(spatial_quality(e), 0.0);
     const Vec3 ns = element_normal(e), nd = n / len;
+    // side i runs from corner i to i + 1; corner i's second side is side i - 1 reversed, of
+    // the same norm bit for bit (its components negated), so each side's norm is taken once
+    double side[4];
+    for (int i = 0; i < 4; ++i) side[i] = (p[(i + 1) % 4] - p[i]).norm();
     double q = 1e9;  // both normals' corner terms from one cross product per corner
     for (int i = 0; i < 4; ++i) {
       const Vec3 e1 = p[(i + 1) % 4] - p[i], e2 = p[(i + 3) % 4] - p[i];
-      const double l = e1.norm() * e2.norm();
+      const double l = side[i] * side[(i + 3) % 4];
       const Vec3 c = e1.cross(e2);
-      q = std::min(q, l > 0 ? std::min(c.dot(ns) / l, c.dot(nd) / l) : 0.0);
+      // one division: dividing by l > 0 keeps the order, so min(a, b) / l = min(a / l, b / l)
+      q = std::min(q, l > 0 ? std::min(c.dot(ns), c.dot(nd)) / l : 0.0);
     }
     return q;
   }
@@ -1009,10 +1014,14 @@ double corner_excess(const Work& w, std::span<const int> around, int i, double a
     if (q[3] < 0) continue;
     int c = 0;
     while (c < 3 && q[c] != i) ++c;
+    // the quad's sides once: corner k's sides are side k and side k - 1 reversed, whose
+    // negated components change the dot product's sign only, and no squared norm
+    Vec3 side[4];
+    double len2[4];
+    for (int k = 0; k < 4; ++k) side[k] = w.xyz[q[(k + 1) % 4]] - w.xyz[q[k]], len2[k] = side[k].squaredNorm();
     for (int k : {c, (c + 1) % 4, (c + 3) % 4}) {
-      const Vec3& x = w.xyz[q[k]];
-      const Vec3 a = w.xyz[q[(k + 1) % 4]] - x, b = w.xyz[q[(k + 3) % 4]] - x;
-      const double d = a.dot(b), l2 = a.squaredNorm() * b.squaredNorm();
+      const int before = (k + 3) % 4;
+      const double d = side[k].dot(side[before]), l2 = len2[k] * len2[before];
       if (l2 > 0 && d * d <= slack2 * l2) continue;
       const double over = (l2 > 0 ? std::abs(d) / std::sqrt(l2) : 1.0) - slack;
       sum += over * over;
@@ -1680,10 +1689,12 @@ namespace {
 /// unrolled, no integer division per corner).
 template <int K>
 double least_corner(const Vec3* p, const Vec3& n) {
+  double side[K];  // each side's norm once (a corner's second side is the side before, reversed)
+  for (int i = 0; i < K; ++i) side[i] = (p[(i + 1) % K] - p[i]).norm();
   double q = 1e9;
   for (int i = 0; i < K; ++i) {
     const Vec3 e1 = p[(i + 1) % K] - p[i], e2 = p[(i + K - 1) % K] - p[i];
-    const double l = e1.norm() * e2.norm();
+    const double l = side[i] * side[(i + K - 1) % K];
     const double s = l > 0 ? e1.cross(e2).dot(n) / l : 0.0;
     q = std::min(q, s);
   }
