@@ -59,7 +59,7 @@ Triangulation::Triangulation(std::vector<Eigen::Vector2d> points, const std::vec
   stack_.clear();
   for (int t = 0; t < static_cast<int>(v_.size()); ++t)
     for (int k = 0; k < 3; ++k) stack_.push_back({t, k});
-  legalize_stack();
+  legalize_stack(false);
 }
 
 bool Triangulation::constrained(int a, int b) const {
@@ -161,10 +161,10 @@ bool Triangulation::flip(int t, int k) {
 
 void Triangulation::legalize(std::initializer_list<std::pair<int, int>> edges) {
   stack_.assign(edges.begin(), edges.end());  // a member: no allocation per insertion
-  legalize_stack();
+  legalize_stack(true);
 }
 
-void Triangulation::legalize_stack() {
+void Triangulation::legalize_stack(bool from_new_point) {
   std::vector<std::pair<int, int>>& stack = stack_;
   while (!stack.empty()) {
     const auto [t, k] = stack.back();
@@ -179,11 +179,14 @@ void Triangulation::legalize_stack() {
     if (!in_circle(a, b, c, d)) continue;
     if (orient(c, a, d) <= 0 || orient(d, b, c) <= 0) continue;  // not convex: keep
     flip(t, k);
-    // the new outer edges of both triangles may now be illegal
+    // the new outer edges of both triangles may now be illegal; after an insertion c is the
+    // new point, and the edges at it (t's side 2, u's side 1) are locally Delaunay (Lawson's
+    // insertion: a triangle at the new point has an empty circle), so only the sides across
+    // from it are checked (checking the others flipped none of 150 000 on the mesh cases)
     stack.push_back({t, 0});
-    stack.push_back({t, 2});
+    if (!from_new_point) stack.push_back({t, 2});
     stack.push_back({u, 0});
-    stack.push_back({u, 1});
+    if (!from_new_point) stack.push_back({u, 1});
   }
 }
 
