@@ -918,6 +918,26 @@ Vec3 smoothing_target(const Work& w, std::span<const int> around, int i, const s
   return target / static_cast<double>(around.size());
 }
 
+/// Whether a smoothing move (node already moved) leaves every element `around` it at or above
+/// `worst`, the lowest of their qualities q before; then `now_q` holds their new qualities.
+/// The element that was worst is scored first: it rejects most moves that are rejected, and
+/// one element below the worst rejects the move, so no more are needed.
+bool smoothing_keeps(const Work& w, std::span<const int> around, const std::vector<double>& q, double worst,
+                     std::vector<double>& now_q) {
+  size_t first = 0;
+  for (size_t k = 1; k < around.size(); ++k)
+    if (q[around[k]] < q[around[first]]) first = k;
+  now_q.assign(around.size(), 0.0);
+  now_q[first] = w.quality(w.el[around[first]]);
+  if (now_q[first] + 1e-12 < worst) return false;
+  for (size_t k = 0; k < around.size(); ++k) {
+    if (k == first) continue;
+    now_q[k] = w.quality(w.el[around[k]]);
+    if (now_q[k] + 1e-12 < worst) return false;
+  }
+  return true;
+}
+
 /// Moves each free node toward the mean of its elements' centroids, back onto the face,
 /// when the worst of its elements does not get worse; `structured` nodes stay (see
 /// structured_nodes).
@@ -956,13 +976,7 @@ void smooth(Work& w, int passes, const std::vector<char>& structured) {
         continue;
       }
       w.put(i, x);
-      double now = 1e9;
-      now_q.clear();
-      for (int e : around[i]) {  // one element below the worst rejects the move: no more needed
-        now_q.push_back(w.quality(w.el[e])), now = std::min(now, now_q.back());
-        if (now + 1e-12 < worst) break;
-      }
-      const bool keep = !(now + 1e-12 < worst);
+      const bool keep = smoothing_keeps(w, around[i], q, worst, now_q);
       if (keep) {
         for (size_t k = 0; k < around[i].size(); ++k) q[around[i][k]] = now_q[k];
         place[i] = x;  // toward's Place is place_at(x.uv), bit for bit
