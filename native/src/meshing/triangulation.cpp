@@ -63,8 +63,11 @@ Triangulation::Triangulation(std::vector<Eigen::Vector2d> points, const std::vec
 }
 
 bool Triangulation::constrained(int a, int b) const {
-  const int i = loop_at_[a], j = loop_at_[b], m = loop_size_;
-  return i >= 0 && j >= 0 && ((i + 1) % m == j || (j + 1) % m == i);
+  const int i = loop_at_[a], j = loop_at_[b], last = loop_size_ - 1;
+  if (i < 0 || j < 0) return false;
+  // neighbours along the loop, its last and first too (no integer division: a hot test of the
+  // flips)
+  return i - j == 1 || j - i == 1 || (i == last && j == 0) || (j == last && i == 0);
 }
 
 double Triangulation::orient(int a, int b, int c) const { return orient(a, b, p_[c]); }
