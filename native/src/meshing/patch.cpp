@@ -971,7 +971,7 @@ void smooth(Work& w, int passes, const std::vector<char>& structured) {
       const Place& here = place[i];
       const Vec3 n = Work::unit_normal(here.su, here.sv);
       const Place x = w.toward(here, target - (target - here.p).dot(n) * n);
-      if ((x.uv - old_uv).norm() == 0.0) {
+      if ((x.uv - old_uv).squaredNorm() == 0.0) {
         settled.visited(i, false);
         continue;
       }
@@ -1114,12 +1114,15 @@ struct NodeSearch {
     int nb = 0;
     for (const auto& [c, s] : compass()) {
       const Place x = w.toward(at, at.p + step * (c * t1 + s * t2));
-      if ((x.uv - at.uv).norm() == 0.0) continue;
-      w.put(i, x);
+      if ((x.uv - at.uv).squaredNorm() == 0.0) continue;
+      // the node's normal (a square root and three divisions) only once a trial gets past the
+      // corners: their excess needs the point alone
+      w.uv[i] = x.uv, w.xyz[i] = x.p;
       // at or above trade_above the worst cannot make a trial better, only the corners can:
       // they are counted first, the cheaper test
       double excess = best >= trade_above ? corner_excess(w, around, i, best_excess) : -1.0;
       if (excess > best_excess) continue;
+      w.normal[i] = Work::unit_normal(x.su, x.sv);
       const double best_capped = std::min(best, trade_above), now = worst(best_capped);
       const double capped = std::min(now, trade_above);
       if (capped < best_capped) continue;  // worse whatever the corners
@@ -1170,7 +1173,7 @@ bool optimise_node(Work& w, std::span<const int> around, int i, double trade_abo
       to = better[b].x, search.best = better[b].now, search.best_excess = better[b].excess;
       break;
     }
-    if ((to.uv - at.uv).norm() > 0) {
+    if ((to.uv - at.uv).squaredNorm() > 0) {
       moved = true;
       at = to;
     } else {
