@@ -504,12 +504,17 @@ struct Work {
     const double len = n.norm();
     if (!(len > 0)) return std::min(spatial_quality(e), 0.0);
     const Vec3 ns = element_normal(e), nd = n / len;
+    // side i runs from corner i to i + 1; corner i's second side is side i - 1 reversed, of
+    // the same norm bit for bit (its components negated), so each side's norm is taken once
+    double side[4];
+    for (int i = 0; i < 4; ++i) side[i] = (p[(i + 1) % 4] - p[i]).norm();
     double q = 1e9;  // both normals' corner terms from one cross product per corner
     for (int i = 0; i < 4; ++i) {
       const Vec3 e1 = p[(i + 1) % 4] - p[i], e2 = p[(i + 3) % 4] - p[i];
-      const double l = e1.norm() * e2.norm();
+      const double l = side[i] * side[(i + 3) % 4];
       const Vec3 c = e1.cross(e2);
-      q = std::min(q, l > 0 ? std::min(c.dot(ns) / l, c.dot(nd) / l) : 0.0);
+      // one division: dividing by l > 0 keeps the order, so min(a, b) / l = min(a / l, b / l)
+      q = std::min(q, l > 0 ? std::min(c.dot(ns), c.dot(nd)) / l : 0.0);
     }
     return q;
   }
@@ -913,6 +918,26 @@ Vec3 smoothing_target(const Work& w, std::span<const int> around, int i, const s
   return target / static_cast<double>(around.size());
 }
 
+/// Whether a smoothing move (node already moved) leaves every element `around` it at or above
+/// `worst`, the lowest of their qualities q before; then `now_q` holds their new qualities.
+/// The element that was worst is scored first: it rejects most moves that are rejected, and
+/// one element below the worst rejects the move, so no more are needed.
+bool smoothing_keeps(const Work& w, std::span<const int> around, const std::vector<double>& q, double worst,
+                     std::vector<double>& now_q) {
+  size_t first = 0;
+  for (size_t k = 1; k < around.size(); ++k)
+    if (q[around[k]] < q[around[first]]) first = k;
+  now_q.assign(around.size(), 0.0);
+  now_q[first] = w.quality(w.el[around[first]]);
+  if (now_q[first] + 1e-12 < worst) return false;
+  for (size_t k = 0; k < around.size(); ++k) {
+    if (k == first) continue;
+    now_q[k] = w.quality(w.el[around[k]]);
+    if (now_q[k] + 1e-12 < worst) return false;
+  }
+  return true;
+}
+
 /// Moves each free node toward the mean of its elements' centroids, back onto the face,
 /// when the worst of its elements does not get worse; `structured` nodes stay (see
 /// structured_nodes).
@@ -946,18 +971,12 @@ void smooth(Work& w, int passes, const std::vector<char>& structured) {
       const Place& here = place[i];
       const Vec3 n = Work::unit_normal(here.su, here.sv);
       const Place x = w.toward(here, target - (target - here.p).dot(n) * n);
-      if ((x.uv - old_uv).norm() == 0.0) {
+      if ((x.uv - old_uv).squaredNorm() == 0.0) {
         settled.visited(i, false);
         continue;
       }
       w.put(i, x);
-      double now = 1e9;
-      now_q.clear();
-      for (int e : around[i]) {  // one element below the worst rejects the move: no more needed
-        now_q.push_back(w.quality(w.el[e])), now = std::min(now, now_q.back());
-        if (now + 1e-12 < worst) break;
-      }
-      const bool keep = !(now + 1e-12 < worst);
+      const bool keep = smoothing_keeps(w, around[i], q, worst, now_q);
       if (keep) {
         for (size_t k = 0; k < around[i].size(); ++k) q[around[i][k]] = now_q[k];
         place[i] = x;  // toward's Place is place_at(x.uv), bit for bit
@@ -1009,10 +1028,14 @@ double corner_excess(const Work& w, std::span<const int> around, int i, double a
     if (q[3] < 0) continue;
     int c = 0;
     while (c < 3 && q[c] != i) ++c;
+    // the quad's sides once: corner k's sides are side k and side k - 1 reversed, whose
+    // negated components change the dot product's sign only, and no squared norm
+    Vec3 side[4];
+    double len2[4];
+    for (int k = 0; k < 4; ++k) side[k] = w.xyz[q[(k + 1) % 4]] - w.xyz[q[k]], len2[k] = side[k].squaredNorm();
     for (int k : {c, (c + 1) % 4, (c + 3) % 4}) {
-      const Vec3& x = w.xyz[q[k]];
-      const Vec3 a = w.xyz[q[(k + 1) % 4]] - x, b = w.xyz[q[(k + 3) % 4]] - x;
-      const double d = a.dot(b), l2 = a.squaredNorm() * b.squaredNorm();
+      const int before = (k + 3) % 4;
+      const double d = side[k].dot(side[before]), l2 = len2[k] * len2[before];
       if (l2 > 0 && d * d <= slack2 * l2) continue;
       const double over = (l2 > 0 ? std::abs(d) / std::sqrt(l2) : 1.0) - slack;
       sum += over * over;
@@ -1091,12 +1114,15 @@ struct NodeSearch {
     int nb = 0;
     for (const auto& [c, s] : compass()) {
       const Place x = w.toward(at, at.p + step * (c * t1 + s * t2));
-      if ((x.uv - at.uv).norm() == 0.0) continue;
-      w.put(i, x);
+      if ((x.uv - at.uv).squaredNorm() == 0.0) continue;
+      // the node's normal (a square root and three divisions) only once a trial gets past the
+      // corners: their excess needs the point alone
+      w.uv[i] = x.uv, w.xyz[i] = x.p;
       // at or above trade_above the worst cannot make a trial better, only the corners can:
       // they are counted first, the cheaper test
       double excess = best >= trade_above ? corner_excess(w, around, i, best_excess) : -1.0;
       if (excess > best_excess) continue;
+      w.normal[i] = Work::unit_normal(x.su, x.sv);
       const double best_capped = std::min(best, trade_above), now = worst(best_capped);
       const double capped = std::min(now, trade_above);
       if (capped < best_capped) continue;  // worse whatever the corners
@@ -1147,7 +1173,7 @@ bool optimise_node(Work& w, std::span<const int> around, int i, double trade_abo
       to = better[b].x, search.best = better[b].now, search.best_excess = better[b].excess;
       break;
     }
-    if ((to.uv - at.uv).norm() > 0) {
+    if ((to.uv - at.uv).squaredNorm() > 0) {
       moved = true;
       at = to;
     } else {
@@ -1680,10 +1706,12 @@ namespace {
 /// unrolled, no integer division per corner).
 template <int K>
 double least_corner(const Vec3* p, const Vec3& n) {
+  double side[K];  // each side's norm once (a corner's second side is the side before, reversed)
+  for (int i = 0; i < K; ++i) side[i] = (p[(i + 1) % K] - p[i]).norm();
   double q = 1e9;
   for (int i = 0; i < K; ++i) {
     const Vec3 e1 = p[(i + 1) % K] - p[i], e2 = p[(i + K - 1) % K] - p[i];
-    const double l = e1.norm() * e2.norm();
+    const double l = side[i] * side[(i + K - 1) % K];
     const double s = l > 0 ? e1.cross(e2).dot(n) / l : 0.0;
     q = std::min(q, s);
   }

@@ -66,7 +66,9 @@ class Triangulation {
   /// Lawson flips from the given (triangle, side) edges on until every edge they reach is
   /// locally Delaunay.
   void legalize(std::initializer_list<std::pair<int, int>> edges);
-  void legalize_stack();  ///< the same from the edges in stack_
+  /// The same from the edges in stack_; `from_new_point`: each is the side of its triangle
+  /// across from a point just inserted (corner prev3(k)), as are the edges a flip leaves to check.
+  void legalize_stack(bool from_new_point);
   void split_triangle(int t, int idx);
   void split_edge(int t, int k, int idx);
 
