@@ -637,10 +637,14 @@ class _ScaledArea(BasicCurve):
         return np.where(np.isnan(a), outside, out)
 
     def derivative(self, x: float, order: int = 1) -> float:
-        ga, g1, a, a1 = self.g(x)[0], self.g.derivative(x, 1), self.reference(x)[0], self.reference.derivative(x, 1)
-        if order == 1:
-            return float(a1 * (1 + ga) + a * g1)
-        return float(self.reference.derivative(x, 2) * (1 + ga) + 2 * a1 * g1 + a * self.g.derivative(x, 2))
+        """d^order A / dx^order at x by Leibniz's rule on A_ref (1 + g)."""
+        def factor(k):
+            return 1.0 + self.g(x)[0] if k == 0 else self.g.derivative(x, k)
+
+        def ref(k):
+            return self.reference(x)[0] if k == 0 else self.reference.derivative(x, k)
+
+        return float(sum(math.comb(order, k) * ref(order - k) * factor(k) for k in range(order + 1)))
 
     def integral(self, power: int = 0, lo: float | None = None, hi: float | None = None) -> float:
         """int x^power A dx over [lo, hi] (default the whole range), exact: the engine's
