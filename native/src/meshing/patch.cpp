@@ -990,19 +990,28 @@ void smooth(Work& w, int passes, const std::vector<char>& structured) {
   }
 }
 
+/// Calls f(j) for the far node j of each edge at node i of the elements `around` (an edge two
+/// elements share, twice).
+template <class F>
+void for_each_edge_at(const Work& w, std::span<const int> around, int i, F&& f) {
+  for (int e : around) {
+    const int k = w.el[e][3] < 0 ? 3 : 4;
+    for (int c = 0; c < k; ++c)
+      if (w.el[e][c] == i) {
+        f(w.el[e][(c + 1) % k]);
+        f(w.el[e][(c + k - 1) % k]);
+      }
+  }
+}
+
 /// The mean and shortest length of the edges at node i (`around`: the elements at each node).
 void edge_lengths(const Work& w, std::span<const int> around, int i, double& mean, double& shortest) {
   mean = 0.0, shortest = 1e300;
   int edges = 0;
-  for (int e : around) {
-    const int k = w.el[e][3] < 0 ? 3 : 4;
-    for (int c = 0; c < k; ++c)
-      if (w.el[e][c] == i)
-        for (int j : {w.el[e][(c + 1) % k], w.el[e][(c + k - 1) % k]}) {
-          const double l = (w.xyz[j] - w.xyz[i]).norm();
-          mean += l, shortest = std::min(shortest, l), ++edges;
-        }
-  }
+  for_each_edge_at(w, around, i, [&](int j) {
+    const double l = (w.xyz[j] - w.xyz[i]).norm();
+    mean += l, shortest = std::min(shortest, l), ++edges;
+  });
   mean /= std::max(edges, 1);
 }
 
@@ -1045,16 +1054,10 @@ double corner_excess(const Work& w, std::span<const int> around, int i, double a
   return sum;
 }
 
-/// The shortest edge (m) at node i of the elements `around`.
+/// The shortest edge (m) at node i of the elements `around` (no square root per edge: hot).
 double shortest_edge(const Work& w, std::span<const int> around, int i) {
   double shortest2 = 1e300;
-  for (int e : around) {
-    const int k = w.el[e][3] < 0 ? 3 : 4;
-    for (int c = 0; c < k; ++c)
-      if (w.el[e][c] == i)
-        for (int j : {w.el[e][(c + 1) % k], w.el[e][(c + k - 1) % k]})
-          shortest2 = std::min(shortest2, (w.xyz[j] - w.xyz[i]).squaredNorm());
-  }
+  for_each_edge_at(w, around, i, [&](int j) { shortest2 = std::min(shortest2, (w.xyz[j] - w.xyz[i]).squaredNorm()); });
   return std::sqrt(shortest2);
 }
 
