@@ -346,16 +346,18 @@ void bind_surface_queries(py::class_<NurbsSurface>& cls) {
           }, "point"_a, "Closest point on the surface: (u, v, point).")
       .def("closest_points", [](const NurbsSurface& s, py::handle points, py::handle u0, py::handle v0) {
             const Eigen::MatrixXd P = matrix(points, "points", 3);
-            const Eigen::VectorXd a = vector(u0, "u0"), b = vector(v0, "v0");
+            const bool local = !u0.is_none() || !v0.is_none();
+            const Eigen::VectorXd a = local ? vector(u0, "u0") : Eigen::VectorXd(), b = local ? vector(v0, "v0") : Eigen::VectorXd();
             std::tuple<Eigen::VectorXd, Eigen::VectorXd, Eigen::MatrixXd> r;
             {
               py::gil_scoped_release release;
-              r = s.closest_points(P, a, b);
+              r = local ? s.closest_points(P, a, b) : s.closest_points(P);
             }
             return py::make_tuple(to_array(std::get<0>(r)), to_array(std::get<1>(r)), to_array(std::get<2>(r)));
-          }, "points"_a, "u0"_a, "v0"_a,
-          "Foot points of points (m, 3) near parameters (u0, v0) (m,): local Newton from each start, never\n"
-          "moving away from the point. Returns (u (m,), v (m,), feet (m, 3)). Raises InvalidInput for bad shapes.")
+          }, "points"_a, "u0"_a = py::none(), "v0"_a = py::none(),
+          "Closest points of points (m, 3). Without u0, v0: closest_point's global search for each (the\n"
+          "surface's span-patch boxes built once). With u0, v0 (m,): local Newton from each start, never\n"
+          "moving away from the point. Returns (u (m,), v (m,), points (m, 3)). Raises InvalidInput for bad shapes.")
       .def("iso_curve", [](const NurbsSurface& s, const std::string& dir, double t) { return s.iso_curve(parse_direction(dir), t); },
            "direction"_a, "t"_a, "'u': the curve u = t (running in v); 'v': the curve v = t.");
 }

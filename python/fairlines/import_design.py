@@ -907,12 +907,10 @@ def _without_bulb_overlap(desc: dict, hull, kracht: dict, say) -> dict:
 
 def point_deviation(surfaces, points: np.ndarray) -> np.ndarray:
     """Distance (m) from each point (n, 3) to the nearest of the surfaces (closest_point)."""
-    pts = np.asarray(points, float)
+    pts = np.asarray(points, float).reshape(-1, 3)
     best = np.full(len(pts), np.inf)
     for s in surfaces:
-        for i, p in enumerate(pts):
-            _u, _v, q = s.closest_point(p)
-            best[i] = min(best[i], float(np.linalg.norm(np.asarray(q) - p)))
+        best = np.minimum(best, np.linalg.norm(s.closest_points(pts)[2] - pts, axis=1))
     return best
 
 

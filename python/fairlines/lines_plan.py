@@ -184,9 +184,9 @@ def _outline(patches) -> list[np.ndarray]:
             keep = np.abs(b[:, 1]) <= CENTRE_PLANE_TOLERANCE * scale
             for j, (other, _) in enumerate(patches):
                 if j != i and not keep.all():
-                    d = np.array([np.linalg.norm(other.closest_point(q)[2] - q) if not k else np.inf
-                                  for q, k in zip(b, keep)])
-                    keep |= d > SEAM_TOLERANCE * scale
+                    far = np.full(len(b), np.inf)
+                    far[~keep] = np.linalg.norm(other.closest_points(b[~keep])[2] - b[~keep], axis=1)
+                    keep |= far > SEAM_TOLERANCE * scale
             if len(patches) == 1:
                 keep[:] = True
             for run in _runs(keep):

@@ -179,6 +179,25 @@ TEST(Surface, ClosestPointInsideAndAtBoundaries) {
   EXPECT_LT((q - Eigen::Vector3d(1.0, 0.4, 0.0)).norm(), 1e-12);
 }
 
+TEST(Surface, BatchClosestPointsAreTheSphereFootsAndEachPointsSearch) {
+  const NurbsSurface s = sphere(Eigen::Vector3d(0.5, -1.0, 2.0), 2.0);
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g;
+  Eigen::MatrixXd pts(40, 3), dirs(40, 3);
+  for (Eigen::Index k = 0; k < pts.rows(); ++k) {
+    dirs.row(k) = Eigen::RowVector3d(g(rng), g(rng), g(rng)).normalized();
+    pts.row(k) = Eigen::RowVector3d(0.5, -1.0, 2.0) + (0.3 + 0.2 * k) * dirs.row(k);  // inside and outside
+  }
+  const auto [u, v, q] = s.closest_points(pts);
+  for (Eigen::Index k = 0; k < pts.rows(); ++k) {
+    EXPECT_LT((q.row(k) - (Eigen::RowVector3d(0.5, -1.0, 2.0) + 2.0 * dirs.row(k))).norm(), 1e-8) << k;
+    const auto [uk, vk, qk] = s.closest_point(pts.row(k).transpose());
+    EXPECT_EQ(u[k], uk) << k;  // the batch shares only what depends on the surface
+    EXPECT_EQ(v[k], vk) << k;
+  }
+  EXPECT_THROW(s.closest_points(Eigen::MatrixXd::Zero(3, 2)), InvalidInput);
+}
+
 TEST(Surface, BadInputThrowsInvalidInput) {
   Eigen::MatrixXd P = Eigen::MatrixXd::Zero(4, 3);
   Eigen::VectorXd K(4);

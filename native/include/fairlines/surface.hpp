@@ -68,6 +68,10 @@ class NurbsSurface {
   /// Closest point to p: sampled start, 2-D Newton clamped to the domain, boundary
   /// curves checked. Returns (u, v, point).
   std::tuple<double, double, Eigen::Vector3d> closest_point(const Eigen::Vector3d& p) const;
+  /// Closest points of many points (m x 3, metres): closest_point's global search for each,
+  /// the span patches' control-point boxes built once for the batch. Returns (u (m), v (m),
+  /// points m x 3).
+  std::tuple<Eigen::VectorXd, Eigen::VectorXd, Eigen::MatrixXd> closest_points(const Eigen::MatrixXd& points) const;
   /// Foot points of many points near known parameters: for each row k of `points` (m x 3,
   /// metres) the 2-D Newton of closest_point started at (u0[k], v0[k]) (clamped to the
   /// domain), which never moves the foot point further from the point. A local search: the

@@ -520,19 +520,25 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> NurbsSurface::curvature(const Eigen:
 
 namespace {
 
-// One knot-span patch of the closest-point search: its parameter rectangle and the squared
-// distance from the point to the bounding box of the control points that shape it (the patch
-// lies in their convex hull, weights being positive), a lower bound for the whole patch.
+// One knot-span patch of the closest-point search: its parameter rectangle and the bounding box
+// of the control points that shape it (the patch lies in their convex hull, weights being
+// positive). Built once per surface for a batch of points.
+struct PatchBox {
+  Eigen::Vector3d lo, hi;
+  double u0, u1, v0, v1;
+};
+
+// A patch with the squared distance from the point to its box: a lower bound for the patch.
 struct SpanPatch {
   double bound2, u0, u1, v0, v1;
 };
 
-// Every non-empty span patch of s with its bound for p, nearest bound first.
-std::vector<SpanPatch> span_patches(const NurbsSurface& s, const Eigen::Vector3d& p) {
+// Every non-empty span patch of s, u-span major.
+std::vector<PatchBox> patch_boxes(const NurbsSurface& s) {
   const Eigen::VectorXd &U = s.knots_u(), &V = s.knots_v();
   const Eigen::MatrixXd& P = s.control_points();
   const int pu = s.degree_u(), pv = s.degree_v(), nv = s.nv();
-  std::vector<SpanPatch> out;
+  std::vector<PatchBox> out;
   for (int i = pu; i < s.nu(); ++i) {
     if (U[i + 1] <= U[i]) continue;
     for (int j = pv; j < nv; ++j) {
@@ -543,10 +549,18 @@ std::vector<SpanPatch> span_patches(const NurbsSurface& s, const Eigen::Vector3d
           lo = lo.cwiseMin(P.row(a * nv + b).transpose());
           hi = hi.cwiseMax(P.row(a * nv + b).transpose());
         }
-      const double bound2 = (lo - p).cwiseMax(p - hi).cwiseMax(0.0).squaredNorm();
-      out.push_back({bound2, U[i], U[i + 1], V[j], V[j + 1]});
+      out.push_back({lo, hi, U[i], U[i + 1], V[j], V[j + 1]});
     }
   }
+  return out;
+}
+
+// The patches with their bounds for p, nearest bound first.
+std::vector<SpanPatch> span_patches(const std::vector<PatchBox>& boxes, const Eigen::Vector3d& p) {
+  std::vector<SpanPatch> out;
+  out.reserve(boxes.size());
+  for (const PatchBox& b : boxes)
+    out.push_back({(b.lo - p).cwiseMax(p - b.hi).cwiseMax(0.0).squaredNorm(), b.u0, b.u1, b.v0, b.v1});
   std::sort(out.begin(), out.end(), [](const SpanPatch& a, const SpanPatch& b) { return a.bound2 < b.bound2; });
   return out;
 }
@@ -735,8 +749,6 @@ std::pair<double, double> newton_closest(const NurbsSurface& s, const Eigen::Vec
   return {u, v};
 }
 
-}  // namespace
-
 // Sample intervals per direction of a span patch at least (and twice the degree + 1): fewer
 // let a narrow valley of the distance between two samples go unseen.
 constexpr int kPatchIntervals = 12;
@@ -750,59 +762,111 @@ constexpr double kStartInset = 1e-6;
 // with a bound of 0; once the best is 0 to round-off, the others are not searched.
 constexpr double kBoundSlack = 1e-12;
 
-std::tuple<double, double, Eigen::Vector3d> NurbsSurface::closest_point(const Eigen::Vector3d& p) const {
-  detail::require_finite(p, "point");
-  const double scale = std::max(1.0, (points_.colwise().maxCoeff() - points_.colwise().minCoeff()).norm());
-  const std::vector<double> cu = crease_values(ku_, pu_, nu_), cv = crease_values(kv_, pv_, nv_);
-  double best_u = ku_[pu_], best_v = kv_[pv_], best_d = (evaluate(best_u, best_v) - p).squaredNorm();
-  auto keep = [&](double u, double v) {
-    const double d = (evaluate(u, v) - p).squaredNorm();
-    if (d < best_d) best_d = d, best_u = u, best_v = v;
-  };
+// The global closest-point search of one surface: what depends on the surface alone (span-patch
+// boxes, creases, scale) is built once and serves every point of a batch.
+class ClosestSearch {
+ public:
+  explicit ClosestSearch(const NurbsSurface& s)
+      : s_(s),
+        boxes_(patch_boxes(s)),
+        cu_(crease_values(s.knots_u(), s.degree_u(), s.nu())),
+        cv_(crease_values(s.knots_v(), s.degree_v(), s.nv())),
+        scale_(std::max(1.0, (s.control_points().colwise().maxCoeff() - s.control_points().colwise().minCoeff()).norm())) {}
+
+  // (u, v) of the point of the surface nearest p.
+  std::pair<double, double> find(const Eigen::Vector3d& p) const;
+
+ private:
+  void search_patch(const SpanPatch& patch, const Eigen::Vector3d& p) const;
+  void search_lines(const std::vector<SpanPatch>& patches, std::vector<SpanPatch>::const_iterator live,
+                    const Eigen::Vector3d& p) const;
+  void keep(double u, double v, const Eigen::Vector3d& p) const {
+    const double d = (s_.evaluate(u, v) - p).squaredNorm();
+    if (d < best_d_) best_d_ = d, best_u_ = u, best_v_ = v;
+  }
+  bool searched(const SpanPatch& q) const { return std::sqrt(q.bound2) < std::sqrt(best_d_) - kBoundSlack * scale_; }
+
+  const NurbsSurface& s_;
+  const std::vector<PatchBox> boxes_;
+  const std::vector<double> cu_, cv_;
+  const double scale_;
+  mutable double best_u_ = 0.0, best_v_ = 0.0, best_d_ = 0.0;
+};
+
+std::pair<double, double> ClosestSearch::find(const Eigen::Vector3d& p) const {
+  best_u_ = s_.knots_u()[s_.degree_u()];
+  best_v_ = s_.knots_v()[s_.degree_v()];
+  best_d_ = (s_.evaluate(best_u_, best_v_) - p).squaredNorm();
   // Span patches nearest bound first; a patch whose bound is no nearer than the best point so
   // far cannot hold a nearer one, nor can any after it (P&T 6.1's start search, pruned by the
   // convex hull property so a hull's far patches cost nothing).
-  const std::vector<SpanPatch> patches = span_patches(*this, p);
-  const auto searched = [&](const SpanPatch& q) {
-    return std::sqrt(q.bound2) < std::sqrt(best_d) - kBoundSlack * scale;
-  };
-  const int ku = std::max(kPatchIntervals, 2 * (pu_ + 1)), kv = std::max(kPatchIntervals, 2 * (pv_ + 1));
+  const std::vector<SpanPatch> patches = span_patches(boxes_, p);
   for (const SpanPatch& patch : patches) {
     if (!searched(patch)) break;
-    const Eigen::VectorXd us = Eigen::VectorXd::LinSpaced(ku + 1, patch.u0, patch.u1);
-    const Eigen::VectorXd vs = Eigen::VectorXd::LinSpaced(kv + 1, patch.v0, patch.v1);
-    const Eigen::VectorXd d2 = (evaluate_grid(us, vs).rowwise() - p.transpose()).rowwise().squaredNorm();
-    // Newton from the patch's sampled local minima (one per basin), inside the crease-free box
-    // of each; a start on a crease is tried on both sides of it.
-    for (const Eigen::Index k : sampled_minima(d2, us.size(), vs.size(), kPatchStarts, scale)) {
-      const double u0 = us[k / vs.size()], v0 = vs[k % vs.size()];
-      if (d2[k] < best_d) best_d = d2[k], best_u = u0, best_v = v0;
-      for (const auto& bu : crease_boxes(cu, u0))
-        for (const auto& bv : crease_boxes(cv, v0)) {
-          // Started just inside its box, so the derivatives are those of the box's side.
-          const auto inside = [](double t, const std::pair<double, double>& b) {
-            const double margin = kStartInset * (b.second - b.first);
-            return std::clamp(t, b.first + margin, b.second - margin);
-          };
-          const auto [u, v] = newton_closest(*this, p, inside(u0, bu), inside(v0, bv), bu, bv, scale);
-          keep(u, v);
-        }
-    }
+    search_patch(patch, p);
   }
-  // Boundary and crease lines: a minimum on them is a 1-D problem along an iso-curve, solved
-  // where a patch along the line could still hold a nearer point.
-  const auto live = std::partition_point(patches.begin(), patches.end(), searched);
+  search_lines(patches, std::partition_point(patches.begin(), patches.end(), [&](const SpanPatch& q) { return searched(q); }), p);
+  return {best_u_, best_v_};
+}
+
+// Newton from the patch's sampled local minima (one per basin), inside the crease-free box of
+// each; a start on a crease is tried on both sides of it.
+void ClosestSearch::search_patch(const SpanPatch& patch, const Eigen::Vector3d& p) const {
+  const int ku = std::max(kPatchIntervals, 2 * (s_.degree_u() + 1)), kv = std::max(kPatchIntervals, 2 * (s_.degree_v() + 1));
+  const Eigen::VectorXd us = Eigen::VectorXd::LinSpaced(ku + 1, patch.u0, patch.u1);
+  const Eigen::VectorXd vs = Eigen::VectorXd::LinSpaced(kv + 1, patch.v0, patch.v1);
+  const Eigen::VectorXd d2 = (s_.evaluate_grid(us, vs).rowwise() - p.transpose()).rowwise().squaredNorm();
+  for (const Eigen::Index k : sampled_minima(d2, us.size(), vs.size(), kPatchStarts, scale_)) {
+    const double u0 = us[k / vs.size()], v0 = vs[k % vs.size()];
+    if (d2[k] < best_d_) best_d_ = d2[k], best_u_ = u0, best_v_ = v0;
+    for (const auto& bu : crease_boxes(cu_, u0))
+      for (const auto& bv : crease_boxes(cv_, v0)) {
+        // Started just inside its box, so the derivatives are those of the box's side.
+        const auto inside = [](double t, const std::pair<double, double>& b) {
+          const double margin = kStartInset * (b.second - b.first);
+          return std::clamp(t, b.first + margin, b.second - margin);
+        };
+        const auto [u, v] = newton_closest(s_, p, inside(u0, bu), inside(v0, bv), bu, bv, scale_);
+        keep(u, v, p);
+      }
+  }
+}
+
+// Boundary and crease lines: a minimum on them is a 1-D problem along an iso-curve, solved
+// where a patch along the line (one before `live`) could still hold a nearer point.
+void ClosestSearch::search_lines(const std::vector<SpanPatch>& patches, std::vector<SpanPatch>::const_iterator live,
+                                 const Eigen::Vector3d& p) const {
   for (const Direction dir : {Direction::U, Direction::V})
-    for (const double t : dir == Direction::U ? cu : cv) {
+    for (const double t : dir == Direction::U ? cu_ : cv_) {
       const bool open = std::any_of(patches.begin(), live, [&](const SpanPatch& q) {
         return dir == Direction::U ? (q.u0 == t || q.u1 == t) : (q.v0 == t || q.v1 == t);
       });
       if (!open) continue;
-      const auto [s, q] = iso_curve(dir, t).closest_point(p);
-      if (dir == Direction::U) keep(t, s);
-      else keep(s, t);
+      const auto [w, q] = s_.iso_curve(dir, t).closest_point(p);
+      if (dir == Direction::U) keep(t, w, p);
+      else keep(w, t, p);
     }
-  return {best_u, best_v, evaluate(best_u, best_v)};
+}
+
+}  // namespace
+
+std::tuple<double, double, Eigen::Vector3d> NurbsSurface::closest_point(const Eigen::Vector3d& p) const {
+  detail::require_finite(p, "point");
+  const auto [u, v] = ClosestSearch(*this).find(p);
+  return {u, v, evaluate(u, v)};
+}
+
+std::tuple<Eigen::VectorXd, Eigen::VectorXd, Eigen::MatrixXd> NurbsSurface::closest_points(const Eigen::MatrixXd& points) const {
+  if (points.cols() != 3) fail("points have ", points.cols(), " columns; expected (m, 3)");
+  detail::require_finite(points, "points");
+  const ClosestSearch search(*this);
+  Eigen::VectorXd u(points.rows()), v(points.rows());
+  Eigen::MatrixXd feet(points.rows(), 3);
+  for (Eigen::Index k = 0; k < points.rows(); ++k) {
+    std::tie(u[k], v[k]) = search.find(points.row(k).transpose());
+    feet.row(k) = evaluate(u[k], v[k]).transpose();
+  }
+  return {u, v, feet};
 }
 
 std::tuple<Eigen::VectorXd, Eigen::VectorXd, Eigen::MatrixXd> NurbsSurface::closest_points(

@@ -144,10 +144,8 @@ def deviation_report(data: HullData, surfaces, names, fits=None) -> dict:
     off = 0
     if data.sections:
         pts = data.all_points()[: sum(len(s.points) for s in data.sections)]
-        for p in pts:
-            _, _, q = surfaces[0].closest_point(p)
-            d_all.append(float(np.linalg.norm(q - p)))
-            where.append((names[0], p))
+        d_all += np.linalg.norm(surfaces[0].closest_points(pts)[2] - pts, axis=1).tolist()
+        where += [(names[0], p) for p in pts]
         off = 1
     for k, g in enumerate(data.grids):
         s, pts = surfaces[k + off], g.points.reshape(-1, 3)
@@ -160,10 +158,7 @@ def deviation_report(data: HullData, surfaces, names, fits=None) -> dict:
                 q = project_points(s, pts[far], uu.ravel()[far], vv.ravel()[far])
                 d[far] = np.minimum(d[far], np.linalg.norm(q - pts[far], axis=1))
         else:
-            d = np.empty(len(pts))
-            for i in range(len(pts)):
-                _, _, q = s.closest_point(pts[i])
-                d[i] = float(np.linalg.norm(q - pts[i]))
+            d = np.linalg.norm(s.closest_points(pts)[2] - pts, axis=1)
         d_all += d.tolist()
         where += [(names[k + off], p) for p in pts]
     d = np.array(d_all)
