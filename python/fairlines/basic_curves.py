@@ -12,6 +12,9 @@ does.
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
+import functools
 import math
 from collections import OrderedDict
 from dataclasses import dataclass
@@ -22,7 +25,7 @@ import numpy as np
 from . import _native
 from .description import FORM_ALIASES, BasicCurveSpec
 
-__all__ = ["BasicCurve", "solve_curve", "solve_sac", "solve_sac_area", "immersed_range", "FULLNESS_BOUNDS"]
+__all__ = ["BasicCurve", "solve_curve", "solve_sac", "solve_sac_area", "immersed_range", "terse_errors", "FULLNESS_BOUNDS"]
 
 #: Section fullness A / (2 y_dwl (T - z_keel)) a designed SAC keeps within (a convex section
 #: through the DWL point with a flat keel has at least half its box; at most the box).
@@ -43,6 +46,47 @@ AREA_FACTOR_SPANS = 4
 #: the waterline breadth (fraction of its largest) below which an end counts as such.
 WEDGE_FULLNESS = 0.5
 WEDGE_BREADTH = 1e-9
+#: Bisections of each range an infeasible curve's message names (to 2^-16 of the search span).
+RANGE_STEPS = 16
+
+_explain = contextvars.ContextVar("fairlines_explain_infeasible", default=True)
+
+
+@contextlib.contextmanager
+def terse_errors():
+    """Within it, an infeasible basic curve's message names no feasible ranges: finding them
+    takes some hundred solves, and callers that retry and explain at their own level (the
+    designer, the importer) throw most of these errors away."""
+    token = _explain.set(False)
+    try:
+        yield
+    finally:
+        _explain.reset(token)
+
+
+def tersely(fn):
+    """`fn` run within terse_errors()."""
+    @functools.wraps(fn)
+    def run(*args, **kwargs):
+        with terse_errors():
+            return fn(*args, **kwargs)
+    return run
+
+
+def _interval(feasible, anchor: float, lo: float, hi: float) -> tuple[float, float]:
+    """The feasible interval around `anchor` (feasible) within [lo, hi]: the feasible set of a
+    curve's linear conditions is convex, so each side is one bisection."""
+    ends = []
+    for outside in (lo, hi):
+        inside = anchor
+        if feasible(outside):
+            inside = outside
+        else:
+            for _ in range(RANGE_STEPS):
+                mid = 0.5 * (inside + outside)
+                inside, outside = (mid, outside) if feasible(mid) else (inside, mid)
+        ends.append(inside)
+    return ends[0], ends[1]
 
 
 @dataclass
@@ -271,7 +315,45 @@ def _solve_curve(name, spec, x0, x1, lower, upper, maximum, defaults, at_least) 
     r.shapes = _monotone(plan, params, maximum) if spec.monotone else []
     r.shapes += _curvature_signs(spec, plan)
     r.fit = [_native.SplineFitPoint(x, y, spec.fit_weight) for x, y in spec.fit]
-    return BasicCurve(name, plan.xs, plan.xe, _native.design_spline_function(r), None)
+    try:
+        return BasicCurve(name, plan.xs, plan.xe, _native.design_spline_function(r), None)
+    except _native.InfeasibleFormParameters as e:
+        if "Area" not in params or lo is None or hi is None or not _explain.get():
+            raise
+        said = _area_ranges(name, spec, r, plan, params, (lo, hi))
+        raise _native.InfeasibleFormParameters(f"{e}{'; ' + said if said else ''}") from None
+
+
+def _area_ranges(name: str, spec: BasicCurveSpec, r, plan: _Plan, params: dict, bounds: tuple) -> str:
+    """For an infeasible curve with an area (a waterline's): the areas a curve within its other
+    conditions can have, and those with its centroid as asked, in the spec's own terms."""
+    alias = next((a for a in spec.aliases if FORM_ALIASES.get(name, {}).get(a, ("",))[0] == "Area"), None)
+    scale, key = (1.0 / FORM_ALIASES[name][alias][1], alias) if alias else (1.0, "Area")
+    kept = [i for i in r.integrals if i.name not in ("Area", "xC")]
+
+    def solve(area=None, centroid=None):
+        r.integrals = kept + ([] if area is None else [_native.SplineIntegral(plan.xs, plan.xe, area, name="Area")]) + \
+                      ([] if centroid is None else [_native.SplineIntegral(plan.xs, plan.xe, centroid=centroid, name="xC")])
+        try:
+            return _native.design_spline_function(r)
+        except _native.InfeasibleFormParameters:
+            return None
+
+    def area_of(c) -> float:
+        return _native.spline_product_integral([c], plan.xs, plan.xe, 0)
+
+    free = solve()
+    if free is None:
+        return ""
+    span = (plan.xs, plan.xe)
+    lo, hi = (b * (span[1] - span[0]) for b in bounds)
+    a, b = _interval(lambda v: solve(area=v) is not None, area_of(free), lo, hi)
+    out = [f"a {name} within its other conditions has {key} {scale * a:.6g} to {scale * b:.6g} m^2"]
+    at = solve(centroid=params["xC"]) if "xC" in params else None
+    if at is not None:
+        a, b = _interval(lambda v: solve(area=v, centroid=params["xC"]) is not None, area_of(at), lo, hi)
+        out.append(f"with its centroid at {params['xC']:.6g} m, {scale * a:.6g} to {scale * b:.6g} m^2")
+    return "; ".join(out) + f": give basic_curves.{name}.{key} within this"
 
 
 CROSSING_TOL = 1e-13       # where the profile crosses T: to this fraction of its length
@@ -474,34 +556,56 @@ def _sac_request(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, dra
     return r, plan, params, factors
 
 
-def _sac_ranges(r, plan, params, factors) -> str:
-    """What the SAC's sections can hold: the volume range, and the LCB range at the asked
-    volume, by linear objectives on the same request (for the error message)."""
-    r.e2, r.e3 = 1e-9, 0.0
-    vol = _native.SplineIntegral(plan.xs, plan.xe, 1.0, factors=factors, name="volume")
-    mom = _native.SplineIntegral(plan.xs, plan.xe, 1.0, power=1, factors=factors, name="moment")
-    out = []
-    try:
-        def moment(s, power: int) -> float:  # int x^power s w dx over the SAC's range, w the box's factors
-            return _native.spline_product_integral([s, *factors], plan.xs, plan.xe, power)
+class _SacProbe:
+    """Solves of the SAC's fullness request with a given volume and / or LCB (or neither)."""
 
-        ext = []
-        for sign in (1.0, -1.0):
-            vol.value = sign
-            r.linear = [vol]
-            ext.append(2 * moment(_native.design_spline_function(r), 0))
-        out.append(f"the sections this DWL and profile allow hold {ext[0]:.6g} to {ext[1]:.6g} m^3")
-        if "Area" in params and ext[0] <= params["Area"] <= ext[1]:
-            r.integrals = [_native.SplineIntegral(plan.xs, plan.xe, params["Area"] / 2.0, factors=factors, name="volume")]
-            lcb = []
-            for sign in (1.0, -1.0):
-                mom.value = sign
-                r.linear = [mom]
-                s = _native.design_spline_function(r)
-                lcb.append(moment(s, 1) / moment(s, 0))
-            out.append(f"at {params['Area']:.6g} m^3 their LCB can lie from {lcb[0]:.6g} to {lcb[1]:.6g} m")
-    except _native.InfeasibleFormParameters:
-        out.append("no SAC meets its end conditions and flat part with these sections")
+    def __init__(self, r, plan: _Plan, factors: list):
+        self.r, self.plan, self.factors = r, plan, factors
+
+    def solve(self, volume: float | None = None, lcb: float | None = None):
+        """The fullness spline, or None when no SAC meets the request."""
+        p = self.plan
+        self.r.integrals = ([] if volume is None else [_native.SplineIntegral(p.xs, p.xe, volume / 2.0, factors=self.factors)]) + \
+                           ([] if lcb is None else [_native.SplineIntegral(p.xs, p.xe, centroid=lcb, factors=self.factors)])
+        try:
+            return _native.design_spline_function(self.r)
+        except _native.InfeasibleFormParameters:
+            return None
+
+    def moment(self, s, power: int) -> float:  # int x^power s w dx, w the box's factors (one side)
+        return _native.spline_product_integral([s, *self.factors], self.plan.xs, self.plan.xe, power)
+
+    def volume(self, s) -> float:
+        return 2.0 * self.moment(s, 0)
+
+    def lcb(self, s) -> float:
+        return self.moment(s, 1) / self.moment(s, 0)
+
+
+def _sac_ranges(r, plan: _Plan, params: dict, factors: list) -> str:
+    """What the SAC's sections can hold (for the error message): the volume range, that range
+    with the asked LCB (or the LCB range when no volume has it), and the LCB range at the asked
+    volume. Each by bisection between a SAC that is built and the range's end."""
+    probe = _SacProbe(r, plan, factors)
+    free = probe.solve()
+    if free is None:
+        return "no SAC meets its end conditions, flat part and section fullness with this DWL and profile"
+    box = 2.0 * _native.spline_product_integral(list(factors), plan.xs, plan.xe, 0)
+    vlo, vhi = _interval(lambda v: probe.solve(volume=v) is not None, probe.volume(free), 0.0, box)
+    out = [f"the sections this DWL and profile allow hold {vlo:.6g} to {vhi:.6g} m^3"]
+    if "xC" in params:
+        at = probe.solve(lcb=params["xC"])
+        if at is None:
+            llo, lhi = _interval(lambda x: probe.solve(lcb=x) is not None, probe.lcb(free), plan.xs, plan.xe)
+            out.append(f"their LCB can lie from {llo:.6g} to {lhi:.6g} m")
+        else:
+            a, b = _interval(lambda v: probe.solve(volume=v, lcb=params["xC"]) is not None, probe.volume(at), 0.0, box)
+            out.append(f"with the LCB at {params['xC']:.6g} m, {a:.6g} to {b:.6g} m^3")
+    vol = params.get("Area")
+    s = probe.solve(volume=vol) if vol is not None and vlo <= vol <= vhi else None
+    if s is not None and "xC" in params:
+        a, b = _interval(lambda x: probe.solve(volume=vol, lcb=x) is not None, probe.lcb(s), plan.xs, plan.xe)
+        out.append(f"at {vol:.6g} m^3 their LCB can lie from {a:.6g} to {b:.6g} m")
     return "; ".join(out)
 
 
@@ -523,11 +627,14 @@ def solve_sac(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft:
             r, plan, params, factors = _sac_request(spec, dwl, profile, draft, fullness, bands, True, wedge_flat=False,
                                                       free_ends=free_ends)
             s = _native.design_spline_function(r)
-    except _native.InfeasibleFormParameters as e:
-        r2, plan2, params2, factors2 = _sac_request(spec, dwl, profile, draft, fullness, bands, False, free_ends=free_ends)
-        raise _native.InfeasibleFormParameters(
-            f"basic_curves.sac: volume {params.get('Area', float('nan')):.6g} m^3 / lcb {params.get('xC', float('nan')):.6g} m "
-            f"cannot be met by fair sections: {_sac_ranges(r2, plan2, params2, factors2)} ({e})") from None
+    except _native.InfeasibleFormParameters:
+        said = (f"{_SAC_PATH}: volume {params.get('Area', float('nan')):.6g} m^3 with lcb {params.get('xC', float('nan')):.6g} m "
+                "cannot be met by fair sections")
+        if _explain.get():
+            r2, plan2, params2, factors2 = _sac_request(spec, dwl, profile, draft, fullness, bands, False, free_ends=free_ends)
+            said += (f": {_sac_ranges(r2, plan2, params2, factors2)}; give {_SAC_PATH}.volume and .lcb within these, "
+                     "or change the DWL or the profile that bound the sections")
+        raise _native.InfeasibleFormParameters(said) from None
     full = BasicCurve("fullness", plan.xs, plan.xe, s, None)
     return _ProductCurve("sac", plan.xs, plan.xe, full, dwl, profile, draft), full
 

@@ -36,7 +36,7 @@ import numpy as np
 
 from . import _native
 from ._options import fill_options
-from .basic_curves import immersed_range, solve_curve
+from .basic_curves import immersed_range, solve_curve, tersely
 from .bulb import KRACHT_NAMES
 from .description import BasicCurveSpec, HullDescription
 from .hull import Hull
@@ -589,6 +589,7 @@ def _choices(p: Particulars):
                     yield replace(p, **change)
 
 
+@tersely  # it retries what fails and names the particulars to change itself
 def design_hull(particulars: Particulars | None = None, **kwargs) -> Hull:
     """A Hull designed from particulars (a Particulars, or its fields as keywords), built and
     matched: its surface holds Cb Lpp B T, the LCB and Cwp Lpp B (see the module docstring).

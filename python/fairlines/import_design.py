@@ -34,6 +34,7 @@ import math
 import numpy as np
 
 from . import _native
+from .basic_curves import tersely
 from .offsets import HullData
 
 __all__ = ["import_design", "measure_hull_data", "measure_kracht", "MeasuredHull", "point_deviation", "data_points",
@@ -786,6 +787,7 @@ def _with_fitted_shapes(base: dict, built: tuple, m: MeasuredHull, say, fit) -> 
     return hull, desc
 
 
+@tersely  # it retries SACs the sections cannot hold and explains its own failures
 def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes: bool = True, given: bool = True,
                   name: str | None = None, progress=None) -> dict:
     """A whole-ship hull description (a dict for ``fl.Hull.from_dict``) measured from

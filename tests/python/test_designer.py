@@ -267,6 +267,46 @@ def test_an_impossible_request_names_the_particulars_to_change():
         fl.design_hull(lpp=150, breadth=25, draft=9, depth=14, cb=0.87, lcb=81, cwp=0.88, parallel_length=0.0)
 
 
+def _edited(ship: str, curve: str, key: str, factor: float):
+    d = json.loads(fl.design_hull(**SHIPS[ship]).to_json())
+    d["basic_curves"][curve][key] *= factor
+    return d
+
+
+def _hydrostatics_of(d):
+    return fl.Hull.from_json(json.dumps(d)).hydrostatics()
+
+
+def test_an_edited_volume_too_large_names_the_volumes_that_build_and_they_do():
+    """The tanker's SAC volume raised 10 % in its description (Cb 0.82 -> 0.90 with its flat part
+    and waterline kept): refused, naming the volumes its sections hold at its LCB; the top of
+    that range builds, a little above it does not."""
+    d = _edited("tanker", "sac", "volume", 1.10)
+    with pytest.raises(fl.InfeasibleFormParameters, match=r"basic_curves\.sac: volume .* cannot be met") as info:
+        _hydrostatics_of(d)
+    msg = str(info.value)
+    assert "contradict" not in msg  # no list of solver conditions
+    lo, hi = map(float, re.search(r"with the LCB at [\d.]+ m, ([\d.]+) to ([\d.]+) m\^3", msg).groups())
+    assert lo < hi < d["basic_curves"]["sac"]["volume"]
+    d["basic_curves"]["sac"]["volume"] = hi * (1 - 1e-3)
+    assert _hydrostatics_of(d).volume == pytest.approx(hi * (1 - 1e-3), rel=2e-3)
+    d["basic_curves"]["sac"]["volume"] = hi * (1 + 1e-3)
+    with pytest.raises(fl.InfeasibleFormParameters):
+        _hydrostatics_of(d)
+
+
+def test_an_edited_waterplane_too_large_names_the_areas_that_build_and_they_do():
+    """The tanker's waterplane area raised 10 % (Cwp 0.92 -> 1.01, more than its rectangle):
+    refused, naming the areas a waterline with its LCF can have; the top of them builds."""
+    d = _edited("tanker", "dwl", "waterplane_area", 1.10)
+    with pytest.raises(fl.InfeasibleFormParameters, match=r"basic_curves\.dwl.*give basic_curves\.dwl\.waterplane_area") as info:
+        _hydrostatics_of(d)
+    lo, hi = map(float, re.search(r"with its centroid at [\d.]+ m, ([\d.]+) to ([\d.]+) m\^2", str(info.value)).groups())
+    assert hi < 180.0 * 32.0  # inside the rectangle Lpp B
+    d["basic_curves"]["dwl"]["waterplane_area"] = hi * (1 - 1e-3)
+    assert fl.Hull.from_json(json.dumps(d)).basic_curves["dwl"].integral() == pytest.approx(0.5 * hi * (1 - 1e-3), rel=1e-6)
+
+
 @pytest.mark.parametrize("bad, field", [(dict(cb=1.2), "cb"), (dict(lpp=244800.0), "millimetres"),
                                         (dict(draft=25.0), "draft"), (dict(stern="pram"), "stern"),
                                         (dict(lcb=0.0), "lcb_pct"), (dict(breadth=float("nan")), "breadth"),
