@@ -20,8 +20,6 @@ RMS_GOAL, MAX_GOAL, VOLUME_GOAL, LCB_GOAL, WETTED_GOAL = 0.005, 0.02, 0.005, 0.0
 SHORT = {
     ("wetted", "kcs"): "+2.02 %: the data's own surface at T measures 9 549 m^2 (+1.3 %); the rest is the closed "
                        "propeller boss end (x 4-6 m, +35 m^2) and the web on the centre plane above the bulb",
-    ("wetted", "dtmb5415"): "+1.04 %: the data's own surface at T measures 4.845 m^2 (+0.50 %); the rest is the web "
-                            "on the centre plane between the dome's nose and the stem above it (x 5.68-5.72 m, 0.017 m^2)",
 }
 
 
