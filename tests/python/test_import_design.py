@@ -55,8 +55,10 @@ def test_kcs_bulb_is_held_by_the_given_sections_and_named_in_the_notes():
 
 
 @pytest.mark.xfail(strict=True, reason="a web of zero half-breadth on the centre plane runs from the bulb's top to the "
-                                       "deck out to the bulb's nose (x 237 m, the data's stem 230-232 m): a section "
-                                       "cannot end at the bulb's top yet, so the profile shows a vertical bow")
+                                       "deck out to the bulb's nose (x 237 m, the data's stem 230.0-232.0 m at these "
+                                       "heights): each x = const section between the bulb's neck (229.5 m) and the stem "
+                                       "head (232.6 m) meets hull twice and joins the two on the centre plane, so even "
+                                       "sections ending at the bulb's top forward of the stem head leave it at 232.6 m")
 def test_rebuilt_kcs_stem_above_the_bulb_is_the_datas():
     """Above the bulb the hull ends where the data's raked stem does (within 0.5 m), at the DWL,
     2 m above it and 1 m below the deck."""
