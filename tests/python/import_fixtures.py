@@ -34,6 +34,37 @@ def wigley_wetted_surface(lpp: float, beam: float, draft: float, n: int = 400) -
     return float(2 * np.einsum("i,j,ij->", wx, wz, np.sqrt(1 + yx**2 + yz**2)))
 
 
+def _area_below(tri: np.ndarray, level: float) -> np.ndarray:
+    """Area of the part of each triangle (n, 3, 3) at or below z = level (exact: the triangle
+    clipped by the plane, then fanned)."""
+    out = np.zeros(len(tri))
+    for k, t in enumerate(tri):
+        poly = []
+        for i in range(3):
+            p, q = t[i], t[(i + 1) % 3]
+            if p[2] <= level:
+                poly.append(p)
+            if (p[2] - level) * (q[2] - level) < 0:
+                poly.append(p + (level - p[2]) / (q[2] - p[2]) * (q - p))
+        out[k] = sum(0.5 * np.linalg.norm(np.cross(poly[i] - poly[0], poly[i + 1] - poly[0])) for i in range(1, len(poly) - 1))
+    return out
+
+
+def data_wetted_surface(data) -> float:
+    """The data's own wetted surface at T (both sides): every grid's quads split into two
+    triangles (along the shorter diagonal) and clipped at z = T. Flat facets cut the hull's
+    curvature by chords, so this is a little (about 0.1 % on 80 x 61 grids) below the surface's."""
+    total = 0.0
+    for g in data.grids:
+        P = g.points
+        a, b, c, d = P[:-1, :-1], P[1:, :-1], P[1:, 1:], P[:-1, 1:]
+        short = (np.linalg.norm(a - c, axis=-1) <= np.linalg.norm(b - d, axis=-1))[..., None, None]
+        t1 = np.where(short, np.stack([a, b, c], -2), np.stack([a, b, d], -2)).reshape(-1, 3, 3)
+        t2 = np.where(short, np.stack([a, c, d], -2), np.stack([b, c, d], -2)).reshape(-1, 3, 3)
+        total += _area_below(np.concatenate([t1, t2]), data.draft).sum()
+    return 2.0 * float(total)
+
+
 def truth(ship: str) -> dict:
     """Independent truth: volume (m^3), LCB (m from the AP), wetted surface (m^2, None when
     no published figure), Lpp, B."""
