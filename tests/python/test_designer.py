@@ -129,7 +129,9 @@ def test_example_is_the_designed_container_ship():
 
 
 @pytest.mark.parametrize("change", [dict(cb=0.65 * 1.06), dict(cb=0.65 * 0.94), dict(lcb=118.73 + 2.448),
-                                    dict(lcb=118.73 - 2.448), dict(cwp=0.86), dict(bulb=False)])
+                                    dict(lcb=118.73 - 2.448), dict(cwp=0.86), dict(bulb=False),
+                                    dict(cb=0.65 * 1.10), dict(cb=0.65 * 0.90), dict(cwp=0.8162 * 1.10),
+                                    dict(cwp=0.8162 * 0.90)])
 def test_changed_particulars_of_the_container_ship_build(change):
     p = {**SHIPS["container"], **change}
     h = fl.design_hull(**p).hydrostatics()
@@ -275,6 +277,27 @@ def _edited(ship: str, curve: str, key: str, factor: float):
 
 def _hydrostatics_of(d):
     return fl.Hull.from_json(json.dumps(d)).hydrostatics()
+
+
+@pytest.mark.parametrize("ship", ["container", "fine_ferry"])
+@pytest.mark.parametrize("curve, key, factor", [("sac", "volume", 0.9), ("sac", "volume", 1.1),
+                                                ("dwl", "waterplane_area", 0.9), ("dwl", "waterplane_area", 1.1)])
+def test_a_ten_percent_edit_of_a_designed_description_builds(ship, curve, key, factor):
+    """Volume or waterplane area changed 10 % in the description of a built design (the other
+    curves as they were): the hull builds and its surface follows the change."""
+    base = _hydrostatics_of(json.loads(fl.design_hull(**SHIPS[ship]).to_json()))
+    h = _hydrostatics_of(_edited(ship, curve, key, factor))
+    got = h.volume / base.volume if curve == "sac" else h.cwp / base.cwp
+    assert got == pytest.approx(factor, rel=2e-3)
+
+
+@pytest.mark.parametrize("ship", ["container", "tanker"])
+@pytest.mark.parametrize("shift", [-0.01, 0.01])
+def test_a_one_percent_lcb_edit_of_a_designed_description_builds(ship, shift):
+    d = json.loads(fl.design_hull(**SHIPS[ship]).to_json())
+    base = _hydrostatics_of(d).lcb
+    d["basic_curves"]["sac"]["lcb"] += shift * SHIPS[ship]["lpp"]
+    assert _hydrostatics_of(d).lcb - base == pytest.approx(shift * SHIPS[ship]["lpp"], abs=2e-3 * SHIPS[ship]["lpp"])
 
 
 def test_an_edited_volume_too_large_names_the_volumes_that_build_and_they_do():
