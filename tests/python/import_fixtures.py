@@ -35,19 +35,17 @@ def wigley_wetted_surface(lpp: float, beam: float, draft: float, n: int = 400) -
 
 
 def _area_below(tri: np.ndarray, level: float) -> np.ndarray:
-    """Area of the part of each triangle (n, 3, 3) at or below z = level (exact: the triangle
-    clipped by the plane, then fanned)."""
-    out = np.zeros(len(tri))
-    for k, t in enumerate(tri):
-        poly = []
-        for i in range(3):
-            p, q = t[i], t[(i + 1) % 3]
-            if p[2] <= level:
-                poly.append(p)
-            if (p[2] - level) * (q[2] - level) < 0:
-                poly.append(p + (level - p[2]) / (q[2] - p[2]) * (q - p))
-        out[k] = sum(0.5 * np.linalg.norm(np.cross(poly[i] - poly[0], poly[i + 1] - poly[0])) for i in range(1, len(poly) - 1))
-    return out
+    """Area of the part of each triangle (n, 3, 3) at or below z = level, exactly: with its
+    heights sorted a <= b <= c the plane cuts off a triangle similar along both edges from the
+    lowest (or the highest) vertex, so the share below is (L - a)^2 / ((b - a)(c - a)) while
+    L <= b, and 1 - (c - L)^2 / ((c - a)(c - b)) above b."""
+    area = 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+    a, b, c = np.sort(tri[:, :, 2], axis=1).T
+    with np.errstate(divide="ignore", invalid="ignore"):
+        low = (level - a) ** 2 / ((b - a) * (c - a))
+        high = 1.0 - (c - level) ** 2 / ((c - a) * (c - b))
+    share = np.where(level <= a, 0.0, np.where(level >= c, 1.0, np.where(level <= b, low, high)))
+    return area * share
 
 
 def data_wetted_surface(data) -> float:
