@@ -59,8 +59,10 @@ constexpr double kFullWeight = 60.0, kFineWeight = 0.7, kLeanPower = 3.0;
 /// With the bilge corner given (corner_y, corner_z) the weight alone falls over the knob's
 /// range, from kFullWeight to this (a near chord: hollow corners need weights below 1).
 constexpr double kCornerFineWeight = 0.2;
-/// Sharpness of the smooth minimum of the chord's lean and the top's room (see heading()).
-constexpr double kHeadingSharpness = 4.0;
+/// Width of the smooth minimum of the chord's lean and the top's room (see heading()), in the
+/// logarithm of their sines: they are blended where their ratio lies within e^kHeadingBlend, so
+/// the heading changes over a span of stations, not a few metres; the plain minimum holds beyond.
+constexpr double kHeadingBlend = 0.8;
 /// Knob solve: area tolerance relative to the immersed box, and iteration limit.
 constexpr double kAreaTol = 1e-13;
 constexpr int kKnobIterations = 100;
@@ -358,15 +360,25 @@ double flare_lean(const Section& S) {
   return rise > 0 ? std::max(0.0, kFlareMargin * (D.x() - S.b) / rise) : 0.0;
 }
 
+/// min(a, c) of a, c >= 0 rounded where their ratio lies within e^k: a cubic blend of their
+/// logarithms (C2, below both, the plain minimum beyond; positive where both are).
+double smooth_min(double a, double c, double k) {
+  if (std::min(a, c) <= 0) return std::min(a, c);
+  const double h = std::max(k - std::abs(std::log(a / c)), 0.0) / k;
+  return std::min(a, c) * std::exp(-h * h * h * k / 6.0);
+}
+
 V2 heading(const Section& S) {
   const SectionSpec& s = S.s;
   // (The flare does not steer the heading: a wide deck over a narrow, shallow waterline would
   // send it across the centre plane and fold the section. The corner C leans for it instead.)
+  // The minimum is taken of the sines: the room's sine changes along the ship as the waterline's
+  // half-breadth does, where its tangent blows up as the room reaches the whole top (sine 1).
   const double chord = S.b / S.d;
+  const double sin_chord = chord / std::sqrt(1.0 + chord * chord);
   const double sin_room = (s.y_max - S.b) / std::max(s.top_corner * (S.f.D - S.Q).norm(), 1e-12);
-  const double room = sin_room >= 1.0 ? std::numeric_limits<double>::infinity() : sin_room / std::sqrt(1.0 - sin_room * sin_room);
-  const double r = room / chord;
-  const double lean = std::isinf(r) ? chord : chord * r / std::pow(1.0 + std::pow(r, kHeadingSharpness), 1.0 / kHeadingSharpness);
+  const double sin_lean = smooth_min(sin_chord, std::max(sin_room, 0.0), kHeadingBlend);
+  const double lean = sin_lean / std::sqrt(1.0 - sin_lean * sin_lean);
   return S.Q + s.character * S.d * V2(-lean, -1.0);
 }
 
