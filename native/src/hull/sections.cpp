@@ -85,6 +85,8 @@ constexpr double kCorrectionReach = 3.0;
 /// line from the fixed deck point (a linear change of the ordinates keeps every bend), where a
 /// correction held near Q would dent the topside just above the waterline.
 constexpr double kTopsideFreedom = 1.0, kTopsideStiffness = 1e3;
+/// ... and the topside's weights take over from those below Q over this many knot spans about Q.
+constexpr double kTopsideBlend = 1.0;
 /// A flared section's side leans this much more than the line from Q to the deck point, so
 /// its top still turns inward (convex) ...
 constexpr double kFlareMargin = 1.05;
@@ -536,17 +538,21 @@ Eigen::VectorXd correction(const Section& S, const Eigen::VectorXd& eta, double 
   const int n = S.l.n;
   Eigen::MatrixXd Mw = Eigen::MatrixXd::Zero(n, n);
   const double span = 1.0 / (n - kDegree);
+  // How much of a topside control point (0 below Q, 1 above) a Greville abscissa g is: a
+  // smoothstep over kTopsideBlend knot spans about Q, so the weights change smoothly as Q moves
+  // along the section from station to station (a switch at g = t_q jumped the correction).
+  auto topside = [&](double g) { return smoothstep((S.t_q - g) / (kTopsideBlend * span) + 0.5); };
+  auto mix = [](double a, double b, double tau) { return std::exp(tau * std::log(a) + (1.0 - tau) * std::log(b)); };
   for (int k = 0; k < n; ++k) {
     double curv = 0.0;
     if (k > 0 && k < n - 1) curv = (eta[k - 1] - 2.0 * eta[k] + eta[k + 1]) / (kStraightScale * S.f.L);
     const double far = (S.l.g[k] - S.t_q) / (kCorrectionReach * span);
-    const bool topside = k > 0 && S.l.g[k] < S.t_q;
-    Mw(k, k) = topside ? kTopsideFreedom : (1.0 + kFlatGuard / (1.0 + curv * curv)) * (1.0 + far * far * far * far);
+    const double below = (1.0 + kFlatGuard / (1.0 + curv * curv)) * (1.0 + far * far * far * far);
+    Mw(k, k) = k > 0 ? mix(kTopsideFreedom, below, topside(S.l.g[k])) : below;
   }
   for (int k = 1; k + 1 < n; ++k) {
     const Eigen::Vector3d c(1.0, -2.0, 1.0);
-    const bool topside = S.l.g[k + 1] <= S.t_q;
-    Mw.block(k - 1, k - 1, 3, 3) += (topside ? kTopsideStiffness : kCorrectionSmoothing) * c * c.transpose();
+    Mw.block(k - 1, k - 1, 3, 3) += mix(kTopsideStiffness, kCorrectionSmoothing, topside(S.l.g[k + 1])) * c * c.transpose();
   }
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(4, n);
   C(0, 0) = 1.0;
