@@ -92,6 +92,9 @@ constexpr double kTopsideBlend = 1.0;
 constexpr double kFlareMargin = 1.05;
 /// ... but its bilge corner keeps at least this fraction of the waterline half-breadth.
 constexpr double kMinCornerBreadth = 0.75;
+/// ... reached smoothly: the two corners are blended where their ratio lies within e^kCornerBlend
+/// (narrow enough that the blended corner stays inside the waterline point: 0.75 e^0.25 < 1).
+constexpr double kCornerBlend = 0.25;
 /// A section whose immersion weight is below this is dry: its waterline point and area carry
 /// no weight, and a waterline point a rounding error off the centre plane must not be checked.
 constexpr double kMinImmersion = 1e-9;
@@ -370,6 +373,14 @@ double smooth_min(double a, double c, double k) {
   return std::min(a, c) * std::exp(-h * h * h * k / 6.0);
 }
 
+/// max(a, c) for c > 0, rounded where a / c lies within e^k: the mirror of smooth_min (C2,
+/// above both by at most the factor e^(k/6), the plain maximum beyond).
+double smooth_max(double a, double c, double k) {
+  if (a <= 0) return c;
+  const double h = std::max(k - std::abs(std::log(a / c)), 0.0) / k;
+  return std::max(a, c) * std::exp(h * h * h * k / 6.0);
+}
+
 V2 heading(const Section& S) {
   const SectionSpec& s = S.s;
   // (The flare does not steer the heading: a wide deck over a narrow, shallow waterline would
@@ -389,7 +400,9 @@ std::vector<Piece> immersed_template(const Section& S, double lambda) {
   const SectionSpec& s = S.s;
   const V2 &D = S.f.D, &K = S.K, &Q = S.Q;
   const double rise = std::min(S.b * std::tan(s.deadrise * std::numbers::pi / 180.0), 0.5 * S.d);
-  const V2 C(std::max(S.b - flare_lean(S) * (S.d - rise), kMinCornerBreadth * S.b), K.y() + rise);
+  // The flare's corner and the least corner breadth meet in a smooth maximum: a plain one
+  // kinked the corner (and the rows of control points) along the hull where they cross.
+  const V2 C(smooth_max(S.b - flare_lean(S) * (S.d - rise), kMinCornerBreadth * S.b, kCornerBlend), K.y() + rise);
   const V2 M = heading(S);
   const double t = std::clamp(lambda / kMaxShapeKnob, 0.0, 1.0);
   const bool given = !std::isnan(s.corner_y);
