@@ -101,6 +101,10 @@ constexpr double kMinImmersion = 1e-9;
 /// How far below the keel point a dry section's virtual waterline point may lie, as a fraction of
 /// the reach that keeps its top corner above K (see above_template).
 constexpr double kVirtualReach = 0.5;
+/// ... approached as raw / (1 + (raw / cap)^p)^(1/p) with this p: near the waterline's end Q_v
+/// moves at the immersed sections' rate (raw cap / (raw + cap), p = 1, slowed it by a third at a
+/// dry transom 0.05 T above the water, and the waterlines over it turned hollow).
+constexpr double kVirtualSharpness = 4.0;
 /// A dry section's template ends this smoothly at K: the miss at K is taken out of the
 /// ordinates as g^kEndFixPower (g the Greville abscissa).
 constexpr double kEndFixPower = 6.0;
@@ -430,7 +434,7 @@ std::vector<Piece> above_template(const Section& S) {
   if (!std::isnan(s.lower_angle) && !std::isnan(s.draft) && S.K.y() > s.draft) {
     const double cap = kVirtualReach * s.top_corner / (1.0 + s.top_corner) * lk;
     const double raw = (S.K.y() - s.draft) / up.y();
-    e = cap > 0 ? raw * cap / (raw + cap) : 0.0;
+    e = cap > 0 ? raw / std::pow(1.0 + std::pow(raw / cap, kVirtualSharpness), 1.0 / kVirtualSharpness) : 0.0;
   }
   const V2 Qv = S.K - e * up;
   const V2 Y = Qv + s.top_corner * (S.f.D - Qv).norm() * up;
