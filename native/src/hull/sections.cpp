@@ -59,8 +59,10 @@ constexpr double kFullWeight = 60.0, kFineWeight = 0.7, kLeanPower = 3.0;
 /// With the bilge corner given (corner_y, corner_z) the weight alone falls over the knob's
 /// range, from kFullWeight to this (a near chord: hollow corners need weights below 1).
 constexpr double kCornerFineWeight = 0.2;
-/// Sharpness of the smooth minimum of the chord's lean and the top's room (see heading()).
-constexpr double kHeadingSharpness = 4.0;
+/// Width of the smooth minimum of the chord's lean and the top's room (see heading()), in the
+/// logarithm of their sines: they are blended where their ratio lies within e^kHeadingBlend, so
+/// the heading changes over a span of stations, not a few metres; the plain minimum holds beyond.
+constexpr double kHeadingBlend = 0.8;
 /// Knob solve: area tolerance relative to the immersed box, and iteration limit.
 constexpr double kAreaTol = 1e-13;
 constexpr int kKnobIterations = 100;
@@ -83,17 +85,26 @@ constexpr double kCorrectionReach = 3.0;
 /// line from the fixed deck point (a linear change of the ordinates keeps every bend), where a
 /// correction held near Q would dent the topside just above the waterline.
 constexpr double kTopsideFreedom = 1.0, kTopsideStiffness = 1e3;
+/// ... and the topside's weights take over from those below Q over this many knot spans about Q.
+constexpr double kTopsideBlend = 1.0;
 /// A flared section's side leans this much more than the line from Q to the deck point, so
 /// its top still turns inward (convex) ...
 constexpr double kFlareMargin = 1.05;
 /// ... but its bilge corner keeps at least this fraction of the waterline half-breadth.
 constexpr double kMinCornerBreadth = 0.75;
+/// ... reached smoothly: the two corners are blended where their ratio lies within e^kCornerBlend
+/// (narrow enough that the blended corner stays inside the waterline point: 0.75 e^0.25 < 1).
+constexpr double kCornerBlend = 0.25;
 /// A section whose immersion weight is below this is dry: its waterline point and area carry
 /// no weight, and a waterline point a rounding error off the centre plane must not be checked.
 constexpr double kMinImmersion = 1e-9;
 /// How far below the keel point a dry section's virtual waterline point may lie, as a fraction of
 /// the reach that keeps its top corner above K (see above_template).
 constexpr double kVirtualReach = 0.5;
+/// ... approached as raw / (1 + (raw / cap)^p)^(1/p) with this p: near the waterline's end Q_v
+/// moves at the immersed sections' rate (raw cap / (raw + cap), p = 1, slowed it by a third at a
+/// dry transom 0.05 T above the water, and the waterlines over it turned hollow).
+constexpr double kVirtualSharpness = 4.0;
 /// A dry section's template ends this smoothly at K: the miss at K is taken out of the
 /// ordinates as g^kEndFixPower (g the Greville abscissa).
 constexpr double kEndFixPower = 6.0;
@@ -358,15 +369,33 @@ double flare_lean(const Section& S) {
   return rise > 0 ? std::max(0.0, kFlareMargin * (D.x() - S.b) / rise) : 0.0;
 }
 
+/// min(a, c) of a, c >= 0 rounded where their ratio lies within e^k: a cubic blend of their
+/// logarithms (C2, below both, the plain minimum beyond; positive where both are).
+double smooth_min(double a, double c, double k) {
+  if (std::min(a, c) <= 0) return std::min(a, c);
+  const double h = std::max(k - std::abs(std::log(a / c)), 0.0) / k;
+  return std::min(a, c) * std::exp(-h * h * h * k / 6.0);
+}
+
+/// max(a, c) for c > 0, rounded where a / c lies within e^k: the mirror of smooth_min (C2,
+/// above both by at most the factor e^(k/6), the plain maximum beyond).
+double smooth_max(double a, double c, double k) {
+  if (a <= 0) return c;
+  const double h = std::max(k - std::abs(std::log(a / c)), 0.0) / k;
+  return std::max(a, c) * std::exp(h * h * h * k / 6.0);
+}
+
 V2 heading(const Section& S) {
   const SectionSpec& s = S.s;
   // (The flare does not steer the heading: a wide deck over a narrow, shallow waterline would
   // send it across the centre plane and fold the section. The corner C leans for it instead.)
+  // The minimum is taken of the sines: the room's sine changes along the ship as the waterline's
+  // half-breadth does, where its tangent blows up as the room reaches the whole top (sine 1).
   const double chord = S.b / S.d;
+  const double sin_chord = chord / std::sqrt(1.0 + chord * chord);
   const double sin_room = (s.y_max - S.b) / std::max(s.top_corner * (S.f.D - S.Q).norm(), 1e-12);
-  const double room = sin_room >= 1.0 ? std::numeric_limits<double>::infinity() : sin_room / std::sqrt(1.0 - sin_room * sin_room);
-  const double r = room / chord;
-  const double lean = std::isinf(r) ? chord : chord * r / std::pow(1.0 + std::pow(r, kHeadingSharpness), 1.0 / kHeadingSharpness);
+  const double sin_lean = smooth_min(sin_chord, std::max(sin_room, 0.0), kHeadingBlend);
+  const double lean = sin_lean / std::sqrt(1.0 - sin_lean * sin_lean);
   return S.Q + s.character * S.d * V2(-lean, -1.0);
 }
 
@@ -375,7 +404,9 @@ std::vector<Piece> immersed_template(const Section& S, double lambda) {
   const SectionSpec& s = S.s;
   const V2 &D = S.f.D, &K = S.K, &Q = S.Q;
   const double rise = std::min(S.b * std::tan(s.deadrise * std::numbers::pi / 180.0), 0.5 * S.d);
-  const V2 C(std::max(S.b - flare_lean(S) * (S.d - rise), kMinCornerBreadth * S.b), K.y() + rise);
+  // The flare's corner and the least corner breadth meet in a smooth maximum: a plain one
+  // kinked the corner (and the rows of control points) along the hull where they cross.
+  const V2 C(smooth_max(S.b - flare_lean(S) * (S.d - rise), kMinCornerBreadth * S.b, kCornerBlend), K.y() + rise);
   const V2 M = heading(S);
   const double t = std::clamp(lambda / kMaxShapeKnob, 0.0, 1.0);
   const bool given = !std::isnan(s.corner_y);
@@ -403,7 +434,7 @@ std::vector<Piece> above_template(const Section& S) {
   if (!std::isnan(s.lower_angle) && !std::isnan(s.draft) && S.K.y() > s.draft) {
     const double cap = kVirtualReach * s.top_corner / (1.0 + s.top_corner) * lk;
     const double raw = (S.K.y() - s.draft) / up.y();
-    e = cap > 0 ? raw * cap / (raw + cap) : 0.0;
+    e = cap > 0 ? raw / std::pow(1.0 + std::pow(raw / cap, kVirtualSharpness), 1.0 / kVirtualSharpness) : 0.0;
   }
   const V2 Qv = S.K - e * up;
   const V2 Y = Qv + s.top_corner * (S.f.D - Qv).norm() * up;
@@ -524,17 +555,21 @@ Eigen::VectorXd correction(const Section& S, const Eigen::VectorXd& eta, double 
   const int n = S.l.n;
   Eigen::MatrixXd Mw = Eigen::MatrixXd::Zero(n, n);
   const double span = 1.0 / (n - kDegree);
+  // How much of a topside control point (0 below Q, 1 above) a Greville abscissa g is: a
+  // smoothstep over kTopsideBlend knot spans about Q, so the weights change smoothly as Q moves
+  // along the section from station to station (a switch at g = t_q jumped the correction).
+  auto topside = [&](double g) { return smoothstep((S.t_q - g) / (kTopsideBlend * span) + 0.5); };
+  auto mix = [](double a, double b, double tau) { return std::exp(tau * std::log(a) + (1.0 - tau) * std::log(b)); };
   for (int k = 0; k < n; ++k) {
     double curv = 0.0;
     if (k > 0 && k < n - 1) curv = (eta[k - 1] - 2.0 * eta[k] + eta[k + 1]) / (kStraightScale * S.f.L);
     const double far = (S.l.g[k] - S.t_q) / (kCorrectionReach * span);
-    const bool topside = k > 0 && S.l.g[k] < S.t_q;
-    Mw(k, k) = topside ? kTopsideFreedom : (1.0 + kFlatGuard / (1.0 + curv * curv)) * (1.0 + far * far * far * far);
+    const double below = (1.0 + kFlatGuard / (1.0 + curv * curv)) * (1.0 + far * far * far * far);
+    Mw(k, k) = k > 0 ? mix(kTopsideFreedom, below, topside(S.l.g[k])) : below;
   }
   for (int k = 1; k + 1 < n; ++k) {
     const Eigen::Vector3d c(1.0, -2.0, 1.0);
-    const bool topside = S.l.g[k + 1] <= S.t_q;
-    Mw.block(k - 1, k - 1, 3, 3) += (topside ? kTopsideStiffness : kCorrectionSmoothing) * c * c.transpose();
+    Mw.block(k - 1, k - 1, 3, 3) += mix(kTopsideStiffness, kCorrectionSmoothing, topside(S.l.g[k + 1])) * c * c.transpose();
   }
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(4, n);
   C(0, 0) = 1.0;
