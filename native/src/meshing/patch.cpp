@@ -1870,6 +1870,18 @@ CornerNodes place_nodes(Work& w, const Subdivision<PatchSize>& sub, const std::v
   return out;
 }
 
+/// Whether the flip of edge ab (triangles abc and bad) into adc and dbc leaves both turning
+/// counter-clockwise about the surface normal at their nodes: the swap is judged valid in space,
+/// as it is judged better. The planar coordinates only model the face's metric (per direction,
+/// not its shear): on a face whose iso-lines cross far from square (the blend: |cos| 0.62 at the
+/// median) a quad convex on the surface is often reflex in them, and a planar convexity test kept
+/// the Delaunay triangulation's 3-D slivers (a fan of four from one keel-end boundary node).
+bool convex_in_space(const Work& w, int a, int b, int c, int d) {
+  const Vec3 n = w.normal[a] + w.normal[b] + w.normal[c] + w.normal[d];
+  const Vec3 &pa = w.xyz[a], &pb = w.xyz[b], &pc = w.xyz[c], &pd = w.xyz[d];
+  return (pd - pa).cross(pc - pa).dot(n) > 0 && (pb - pd).cross(pc - pd).dot(n) > 0;
+}
+
 /// Constrained Delaunay triangulation of the nodes in planar coordinates, then edge swaps by
 /// the 3-D max-min angle except in the leaf quads it holds (their pairs are matched as they
 /// are), then the pole copies merged (merged_triangles).
@@ -1895,7 +1907,7 @@ std::vector<std::array<int, 3>> triangulate(const Work& w, const std::vector<Vec
         const double then = std::min(min_angle(w.xyz[a], w.xyz[d], w.xyz[c]), min_angle(w.xyz[d], w.xyz[b], w.xyz[c]));
         return then > now + 1e-9;
       },
-      kSwapPasses, keep);
+      kSwapPasses, keep, [&](int a, int b, int c, int d) { return convex_in_space(w, a, b, c, d); });
   return merged_triangles(w, tr.triangles(), pole_canon(loop, w.xyz.size()));
 }
 
