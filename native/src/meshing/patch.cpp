@@ -54,6 +54,8 @@ constexpr double kImproveShortest = 0.3;   ///< no trial shortens a node's edges
 constexpr double kTrialMiss = 0.03;        ///< a linear step onto the face may land this x its length from
                                            ///< its target (else Newton, Work::toward); at 0.1 the least
                                            ///< scaled Jacobian fell at 2 m (0.339 -> 0.328, the bulb's nose)
+constexpr double kSplitSkew = 0.1;         ///< an all-quad split node this x its edge off the middle along
+                                           ///< the surface is put at the middle (split_point)
 constexpr double kCornerLimit = 45.0;      ///< the goal: quad corners within kCornerLimit of 0 and 180 deg are out
 constexpr double kCornerTrade = 0.5;       ///< improve_corners may lower a node's worst element to this
                                            ///< (corners within 30-150 deg) for corners nearer 90 deg
@@ -1510,7 +1512,23 @@ class GradedSize {
   mutable bool near_valid_ = false;
 };
 
-/// Each quad into four and each triangle into three quads (edge midpoints and centre).
+/// Where the all-quad split puts a new node: the face's point at `uv`, the parameters' mean of
+/// the nodes it lies between, while that lies within kSplitSkew x `length` of their spatial
+/// mean `target` along the surface (the normal offset is the sag); else the face's point
+/// nearest `target` (Newton from `uv`). Where the parameter's speed changes across an element
+/// the parameters' mean is not its middle: an edge across a blend's ruled end strip, 0.1 m wide
+/// in space and 0.06 of u next to a NURBS 15 m per unit of u, got its midpoint at a tenth of
+/// its length, and the split quads there were inverted (scaled Jacobian down to -0.59, four
+/// left folded, cut into triangles, in the all-quad cut at 8 m).
+Vec2 split_point(const Work& w, const Vec2& uv, const Vec3& target, double length) {
+  const Place x = w.place_at(uv);
+  const Vec3 n = Work::unit_normal(x.su, x.sv), off = x.p - target;
+  if ((off - off.dot(n) * n).norm() <= kSplitSkew * length) return uv;
+  return w.g.locate(target, uv);
+}
+
+/// Each quad into four and each triangle into three quads (edge midpoints and centre), at
+/// split_point.
 /// `canon`: canonical local id of each node (pole copies merged).
 void split_all_quad(Work& w, const std::vector<int>& canon, int loop_size, const LoopMidpoint& midpoint,
                     std::vector<int>& global) {
@@ -1537,7 +1555,7 @@ void split_all_quad(Work& w, const std::vector<int>& canon, int loop_size, const
       global.resize(w.xyz.size(), -1);
       global[id] = m.id;
     } else {
-      id = w.add(0.5 * (w.uv[a] + w.uv[b]));
+      id = w.add(split_point(w, 0.5 * (w.uv[a] + w.uv[b]), 0.5 * (w.xyz[a] + w.xyz[b]), (w.xyz[b] - w.xyz[a]).norm()));
     }
     mid[key] = id;
     return id;
@@ -1547,8 +1565,11 @@ void split_all_quad(Work& w, const std::vector<int>& canon, int loop_size, const
   for (const auto& e : el) {
     const int k = e[3] < 0 ? 3 : 4;
     Vec2 c = Vec2::Zero();
-    for (int i = 0; i < k; ++i) c += w.uv[e[i]];
-    const int centre = w.add(c / k);
+    Vec3 x = Vec3::Zero();
+    double longest = 0.0;
+    for (int i = 0; i < k; ++i)
+      c += w.uv[e[i]], x += w.xyz[e[i]], longest = std::max(longest, (w.xyz[e[(i + 1) % k]] - w.xyz[e[i]]).norm());
+    const int centre = w.add(split_point(w, c / k, x / k, longest));
     int m[4];
     for (int i = 0; i < k; ++i) m[i] = edge_mid(e[i], e[(i + 1) % k]);
     for (int i = 0; i < k; ++i) out.push_back({e[i], m[i], centre, m[(i + k - 1) % k]});
