@@ -54,6 +54,8 @@ constexpr double kImproveShortest = 0.3;   ///< no trial shortens a node's edges
 constexpr double kTrialMiss = 0.03;        ///< a linear step onto the face may land this x its length from
                                            ///< its target (else Newton, Work::toward); at 0.1 the least
                                            ///< scaled Jacobian fell at 2 m (0.339 -> 0.328, the bulb's nose)
+constexpr double kSplitSkew = 0.1;         ///< an all-quad split node this x its edge off the middle along
+                                           ///< the surface is put at the middle (split_point)
 constexpr double kCornerLimit = 45.0;      ///< the goal: quad corners within kCornerLimit of 0 and 180 deg are out
 constexpr double kCornerTrade = 0.5;       ///< improve_corners may lower a node's worst element to this
                                            ///< (corners within 30-150 deg) for corners nearer 90 deg
@@ -1513,7 +1515,23 @@ class GradedSize {
   mutable bool near_valid_ = false;
 };
 
-/// Each quad into four and each triangle into three quads (edge midpoints and centre).
+/// Where the all-quad split puts a new node: the face's point at `uv`, the parameters' mean of
+/// the nodes it lies between, while that lies within kSplitSkew x `length` of their spatial
+/// mean `target` along the surface (the normal offset is the sag); else the face's point
+/// nearest `target` (Newton from `uv`). Where the parameter's speed changes across an element
+/// the parameters' mean is not its middle: an edge across a blend's ruled end strip, 0.1 m wide
+/// in space and 0.06 of u next to a NURBS 15 m per unit of u, got its midpoint at a tenth of
+/// its length, and the split quads there were inverted (scaled Jacobian down to -0.59, four
+/// left folded, cut into triangles, in the all-quad cut at 8 m).
+Vec2 split_point(const Work& w, const Vec2& uv, const Vec3& target, double length) {
+  const Place x = w.place_at(uv);
+  const Vec3 n = Work::unit_normal(x.su, x.sv), off = x.p - target;
+  if ((off - off.dot(n) * n).norm() <= kSplitSkew * length) return uv;
+  return w.g.locate(target, uv);
+}
+
+/// Each quad into four and each triangle into three quads (edge midpoints and centre), at
+/// split_point.
 /// `canon`: canonical local id of each node (pole copies merged).
 void split_all_quad(Work& w, const std::vector<int>& canon, int loop_size, const LoopMidpoint& midpoint,
                     std::vector<int>& global) {
@@ -1540,7 +1558,7 @@ void split_all_quad(Work& w, const std::vector<int>& canon, int loop_size, const
       global.resize(w.xyz.size(), -1);
       global[id] = m.id;
     } else {
-      id = w.add(0.5 * (w.uv[a] + w.uv[b]));
+      id = w.add(split_point(w, 0.5 * (w.uv[a] + w.uv[b]), 0.5 * (w.xyz[a] + w.xyz[b]), (w.xyz[b] - w.xyz[a]).norm()));
     }
     mid[key] = id;
     return id;
@@ -1550,8 +1568,11 @@ void split_all_quad(Work& w, const std::vector<int>& canon, int loop_size, const
   for (const auto& e : el) {
     const int k = e[3] < 0 ? 3 : 4;
     Vec2 c = Vec2::Zero();
-    for (int i = 0; i < k; ++i) c += w.uv[e[i]];
-    const int centre = w.add(c / k);
+    Vec3 x = Vec3::Zero();
+    double longest = 0.0;
+    for (int i = 0; i < k; ++i)
+      c += w.uv[e[i]], x += w.xyz[e[i]], longest = std::max(longest, (w.xyz[e[(i + 1) % k]] - w.xyz[e[i]]).norm());
+    const int centre = w.add(split_point(w, c / k, x / k, longest));
     int m[4];
     for (int i = 0; i < k; ++i) m[i] = edge_mid(e[i], e[(i + 1) % k]);
     for (int i = 0; i < k; ++i) out.push_back({e[i], m[i], centre, m[(i + k - 1) % k]});
@@ -1873,6 +1894,18 @@ CornerNodes place_nodes(Work& w, const Subdivision<PatchSize>& sub, const std::v
   return out;
 }
 
+/// Whether the flip of edge ab (triangles abc and bad) into adc and dbc leaves both turning
+/// counter-clockwise about the surface normal at their nodes: the swap is judged valid in space,
+/// as it is judged better. The planar coordinates only model the face's metric (per direction,
+/// not its shear): on a face whose iso-lines cross far from square (the blend: |cos| 0.62 at the
+/// median) a quad convex on the surface is often reflex in them, and a planar convexity test kept
+/// the Delaunay triangulation's 3-D slivers (a fan of four from one keel-end boundary node).
+bool convex_in_space(const Work& w, int a, int b, int c, int d) {
+  const Vec3 n = w.normal[a] + w.normal[b] + w.normal[c] + w.normal[d];
+  const Vec3 &pa = w.xyz[a], &pb = w.xyz[b], &pc = w.xyz[c], &pd = w.xyz[d];
+  return (pd - pa).cross(pc - pa).dot(n) > 0 && (pb - pd).cross(pc - pd).dot(n) > 0;
+}
+
 /// Constrained Delaunay triangulation of the nodes in planar coordinates, then edge swaps by
 /// the 3-D max-min angle except in the leaf quads it holds (their pairs are matched as they
 /// are), then the pole copies merged (merged_triangles).
@@ -1898,7 +1931,7 @@ std::vector<std::array<int, 3>> triangulate(const Work& w, const std::vector<Vec
         const double then = std::min(min_angle(w.xyz[a], w.xyz[d], w.xyz[c]), min_angle(w.xyz[d], w.xyz[b], w.xyz[c]));
         return then > now + 1e-9;
       },
-      kSwapPasses, keep);
+      kSwapPasses, keep, [&](int a, int b, int c, int d) { return convex_in_space(w, a, b, c, d); });
   return merged_triangles(w, tr.triangles(), pole_canon(loop, w.xyz.size()));
 }
 

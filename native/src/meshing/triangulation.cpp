@@ -315,7 +315,7 @@ bool Triangulation::enforce(int a, int b) {
 }
 
 long Triangulation::flip_while(const std::function<bool(int, int, int, int)>& better, int max_passes,
-                               const std::vector<char>& keep) {
+                               const std::vector<char>& keep, const std::function<bool(int, int, int, int)>& convex) {
   long flips = 0;
   // pass in which each triangle last changed: an edge whose two triangles are older than the
   // last pass was checked since they changed, on the same four points, so it is skipped
@@ -332,7 +332,7 @@ long Triangulation::flip_while(const std::function<bool(int, int, int, int)>& be
         if (constrained(a, b)) continue;
         const int j = edge_index(u, b, a);
         const int d = v_[u][(j + 2) % 3];
-        if (orient(c, a, d) <= 0 || orient(d, b, c) <= 0) continue;
+        if (convex ? !convex(a, b, c, d) : orient(c, a, d) <= 0 || orient(d, b, c) <= 0) continue;
         if (!better(a, b, c, d)) continue;
         flip(t, k);
         changed[t] = changed[u] = pass;

@@ -28,10 +28,13 @@ class Triangulation {
 
   /// Flips every edge ab (triangles abc and bad) for which better(a, b, c, d) says the flipped
   /// pair is better, until none does or `max_passes` sweeps are done; only flips whose
-  /// quadrilateral is strictly convex in the plane, and none of a triangle t with keep[t]
-  /// (keep empty: none kept). Returns the number of flips.
+  /// quadrilateral is strictly convex (in the plane, or by `convex(a, b, c, d)` if given: the
+  /// flipped triangles adc and dbc turn counter-clockwise), and none of a triangle t with
+  /// keep[t] (keep empty: none kept). Returns the number of flips. With `convex` the planar
+  /// points may no longer be a triangulation of the plane: insert nothing after it.
   long flip_while(const std::function<bool(int a, int b, int c, int d)>& better, int max_passes,
-                  const std::vector<char>& keep = {});
+                  const std::vector<char>& keep = {},
+                  const std::function<bool(int a, int b, int c, int d)>& convex = {});
 
   /// Makes the segment a-b an edge by flipping the edges that cross it (Sloan 1993), for a
   /// segment inside the polygon crossed by no constrained edge. False (nothing more flipped)
