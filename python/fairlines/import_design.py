@@ -583,9 +583,9 @@ def measured_shape(m: MeasuredHull, k: int) -> np.ndarray | None:
 
 def _carried(far: np.ndarray, near: np.ndarray, z_end: float) -> np.ndarray:
     """The point (y, z_end) on the line of two samples (y, z) carried beyond `near` to the
-    station's own end height (its keel or deck edge, between the height samples), the
-    half-breadth clamped to the two samples' range from 0: a shape then ends on its end height
-    itself, not on whichever sample lies next to it."""
+    station's own lowest height (between the height samples), the half-breadth clamped to the
+    two samples' range from 0: a shape then ends on its lowest point itself, not on whichever
+    sample lies next above it (which jumps as the keel rises past the samples)."""
     y_end = near[0] + (near[0] - far[0]) * (z_end - near[1]) / (near[1] - far[1])
     return np.array([float(np.clip(y_end, 0.0, max(far[0], near[0]))), float(z_end)])
 
