@@ -111,19 +111,22 @@ SHEER_TOL = 0.005
 #: A change of the centre-line contour's slope dz/dx by more than this between stations is a
 #: knot of the profile (it must turn quickly there).
 PROFILE_TURN = 0.5
+#: A waterline or deck line holds a flat of side where its half-breadths lie this close to B/2
+#: (fractions of B/2): clipped to B/2 for the family's curves, as measured for close curves.
+SIDE_FLAT_TOL, CLOSE_FLAT_TOL = 2e-3, 1e-4
 #: Sides flaring beyond B by more than this fraction of B make the description's B_max.
 FLARE_TOL = 1e-3
-#: Given sections: least heights a station needs, least points laid along a flat bottom to the
-#: centre plane (more where it is wide: as densely as the heights), and what counts as no
-#: breadth or no height (fractions of B and D).
+#: Given sections: least heights a station needs, and what counts as no breadth or no height
+#: (fractions of B and D).
 GIVEN_MIN_POINTS = 4
-GIVEN_BOTTOM_POINTS = 12
 GIVEN_FLAT_TOL = 1e-4
 #: Where the data's centre-plane contour has a nose inside the ends (a dome's forward end), the
 #: next station lies this fraction of Lpp forward of it (on the stem above). DTMB 5415 measured
 #: alike from 0.15 to 0.25 % (wetted surface +0.89 to +0.95 %); at 0.03 % the skin overshoots
 #: across the step (the nose lost: max 2.25 % B), from 0.3 % the stem's foot is cut (max 1.82 %).
 NOSE_GAP = 2e-3
+#: Points of each given section, evenly along it (deck edge, side, bottom to the centre plane).
+GIVEN_SHAPE_POINTS = 301
 
 
 @dataclasses.dataclass
@@ -433,18 +436,30 @@ def _dwl_spec(m: MeasuredHull, xa: float, xf: float, close: bool = False) -> dic
     """The design waterline's half-breadths inside [xa, xf]; `close`: passing close to them,
     and a raked immersed transom (the waterline ending wide inside the hull's ends) kept."""
     half = m.beam / 2
-    y = np.minimum(_at(m, m.draft), half)
+    raw = _at(m, m.draft)
+    y = raw if close else np.minimum(raw, half)
     inside = (m.x > xa) & (m.x < xf)
     spec = {"fit": _pairs(m.x[inside], y[inside]), "fit_weight": _fit_weight(m, m.beam) if close else FIT_WEIGHT,
             "spans": CURVE_SPANS["dwl"], "yE": 0.0}
     k = 0 if xa <= m.x_aft + 1e-9 * m.lpp else (int(np.argmax(inside)) if close and inside.any() else None)
     immersed_transom = k is not None and np.isfinite(y[k]) and y[k] > END_FRACTION * half
-    spec["yB"] = float(y[k]) if immersed_transom else 0.0
-    flat = _flat_run(m.x, y, half, 2e-3 * half, 0.05 * m.lpp)
+    spec["yB"] = float(min(y[k], half)) if immersed_transom else 0.0
+    flat = _side_flat(m, raw, half, close)
     if flat is not None:
         spec.update(flat_from=flat[0], flat_to=flat[1], value=half)
         spec["fit"] = [p for p in spec["fit"] if not flat[0] <= p[0] <= flat[1]]
     return spec
+
+
+def _side_flat(m: MeasuredHull, raw: np.ndarray, half: float, close: bool):
+    """The flat of side of a waterline or deck line of measured half-breadths `raw` (its
+    longest run at `half`, at least 0.05 Lpp long): within SIDE_FLAT_TOL of half of the values
+    clipped to half, or with `close` within CLOSE_FLAT_TOL of the values themselves (a line that
+    only crests at B/2, or a little beyond it, has none: a flat forced on it would end in a
+    quick turn, and a close fit rings there)."""
+    if close:
+        return _flat_run(m.x, raw, half, CLOSE_FLAT_TOL * half, 0.05 * m.lpp)
+    return _flat_run(m.x, np.minimum(raw, half), half, SIDE_FLAT_TOL * half, 0.05 * m.lpp)
 
 
 def _deck_breadths(m: MeasuredHull) -> np.ndarray:
@@ -468,15 +483,16 @@ def _max_breadth(m: MeasuredHull) -> dict:
 
 def _deck_spec(m: MeasuredHull, close: bool = False) -> dict:
     half = _max_breadth(m).get("B_max", m.beam) / 2
-    y = np.minimum(_deck_breadths(m), half)
+    raw = _deck_breadths(m)
+    y = raw.copy() if close else np.minimum(raw, half)
     if _sheer_spec(m) is None:  # one deck height: a station ending below it (a stem, a stern) has no deck breadth
         y[m.z_top < m.depth * (1 - SHEER_TOL)] = 0.0
     # the aft end keeps its measured breadth (a transom); the stem head closes on the centre
     # plane where a bulb is to be composed with it, else it keeps its measured flare
     y_fore = 0.0 if m.bulb_points is not None else float(y[-1])
     spec = {"fit": _pairs(m.x, y), "fit_weight": _fit_weight(m, m.beam) if close else FIT_WEIGHT, "spans": CURVE_SPANS["deck"],
-            "yB": float(y[0]), "yE": y_fore}
-    flat = _flat_run(m.x, y, half, 2e-3 * half, 0.05 * m.lpp)
+            "yB": float(min(y[0], half)), "yE": y_fore}
+    flat = _side_flat(m, raw, half, close)
     if flat is not None:
         spec.update(flat_from=flat[0], flat_to=flat[1], value=half)
         spec["fit"] = [p for p in spec["fit"] if not flat[0] <= p[0] <= flat[1]]
@@ -547,21 +563,42 @@ def _base_description(m: MeasuredHull, name: str, given: bool = False) -> dict:
 
 def measured_shape(m: MeasuredHull, k: int) -> np.ndarray | None:
     """Station k's measured half-breadths as a given section's points (y, z): from the top of
-    the data (at most D) down to its lowest point, then along the bottom to the centre plane.
-    None where the station holds fewer than GIVEN_MIN_POINTS heights."""
+    the data (at most D) down to its lowest point, then along the bottom to the centre plane,
+    resampled to GIVEN_SHAPE_POINTS evenly along the shape's length. None where the station
+    holds fewer than GIVEN_MIN_POINTS heights."""
     y = m.y[k]
     ok = np.isfinite(y) & (m.z >= m.z_low[k] - 1e-12 * m.depth)
     if ok.sum() < GIVEN_MIN_POINTS:
         return None
     pts = np.column_stack([y[ok], m.z[ok]])[::-1]  # deck edge first
+    if pts[-1, 1] > m.z_low[k]:
+        pts = np.vstack([pts, _carried(pts[-2], pts[-1], m.z_low[k])])
     bottom = pts[-1]
-    if bottom[0] > GIVEN_FLAT_TOL * m.beam:  # a flat bottom: out to the centre plane, as densely as up the side
-        count = max(GIVEN_BOTTOM_POINTS, int(math.ceil(bottom[0] / (m.z[1] - m.z[0]))) + 1)  # (sparser, the fit rings there)
-        ys = np.linspace(bottom[0], 0.0, count)[1:]
-        pts = np.vstack([pts, np.column_stack([ys, np.full(len(ys), bottom[1])])])
+    if bottom[0] > GIVEN_FLAT_TOL * m.beam:  # a flat bottom: out to the centre plane
+        pts = np.vstack([pts, [0.0, bottom[1]]])
     else:
         pts[-1, 0] = 0.0
-    return pts
+    return _even_along(pts, GIVEN_SHAPE_POINTS)
+
+
+def _carried(far: np.ndarray, near: np.ndarray, z_end: float) -> np.ndarray:
+    """The point (y, z_end) on the line of two samples (y, z) carried beyond `near` to the
+    station's own lowest height (between the height samples), the half-breadth clamped to the
+    two samples' range from 0: a shape then ends on its lowest point itself, not on whichever
+    sample lies next above it (which jumps as the keel rises past the samples)."""
+    y_end = near[0] + (near[0] - far[0]) * (z_end - near[1]) / (near[1] - far[1])
+    return np.array([float(np.clip(y_end, 0.0, max(far[0], near[0]))), float(z_end)])
+
+
+def _even_along(pts: np.ndarray, count: int) -> np.ndarray:
+    """`count` points evenly along the polyline `pts` (its ends kept): a fixed count at fixed
+    fractions of its length, so a shape changing a little from station to station moves its
+    points a little (a height sample coming into the section would shift every fit parameter)."""
+    arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
+    keep = np.concatenate([[True], np.diff(arc) > 0])
+    arc, pts = arc[keep], pts[keep]
+    s = np.linspace(0.0, arc[-1], count)
+    return np.column_stack([np.interp(s, arc, pts[:, 0]), np.interp(s, arc, pts[:, 1])])
 
 
 def given_sections(m: MeasuredHull) -> list:
