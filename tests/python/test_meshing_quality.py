@@ -23,6 +23,7 @@ WEDGE_RADIUS = 8.0       # m, the stem-top wedge: hull elements this close to th
 CLAMP_VOLUME_TOL = 1e-4  # volume the y >= 0 clamp may remove, relative to the half hull's
 MESH_VOLUME_TOL = 2e-3   # closed mesh vs NURBS quadrature at this element size
 CAPYTAINE_TOL = 3e-3     # capytaine's panel hydrostatics converge as O(h^2)
+FINE_SHIP_SIZES = (1.0, 0.9)  # m: 1 m reported with flat triangles at the stem top (mesh7), 0.9 m had them on this hull
 
 
 @pytest.fixture(scope="module")
@@ -134,6 +135,15 @@ def test_default_mesh_of_the_composed_ship_is_nearly_all_quadrilaterals(default_
 @pytest.mark.parametrize("size", [SHIP_SIZE, SHIP_SIZE / 2])
 def test_default_mesh_of_the_composed_ship_has_no_sliver(default_meshes, size):
     m = default_meshes[size]
+    assert knupp_scaled_jacobians(m.vertices, m.faces).min() >= MIN_SJ
+
+
+@pytest.mark.parametrize("size", FINE_SHIP_SIZES)
+def test_fine_default_mesh_has_no_flat_triangle_at_the_stem_top(ship, size):
+    """At 0.9 m four stem nodes in a straight row at the stem-top pole made two flat triangles
+    (scaled Jacobian 0.0000), one against the other, which the pole merge's single flip pass
+    could not reach (the inner one can flip only after the outer one)."""
+    m = fl.mesh_hull(ship, size=size)
     assert knupp_scaled_jacobians(m.vertices, m.faces).min() >= MIN_SJ
 
 

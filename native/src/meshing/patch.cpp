@@ -36,6 +36,7 @@ constexpr int kRerouteDepth = 12;          ///< leaf pairs this many sides from 
 constexpr double kRelaxedPair = -0.5;      ///< pairs whose quad scores at least this (in space) may be matched at last
 constexpr double kGrading = 0.6;           ///< size may grow by this x the distance from the boundary
 constexpr double kFlat = 1e-2;             ///< a triangle with |2 area| below this x its longest side^2 is flat
+constexpr int kFlatPasses = 8;             ///< flat triangles' flip passes at most (a row of them needs one each)
 constexpr double kPoleZone = 2.0;          ///< interior nodes within this x h of a pole are thinned
 constexpr double kPoleSpacing = 0.4;       ///< to this x h apart
 constexpr double kFanSpread = 4.0;         ///< iso-line length ratio from which a face is a fan
@@ -1289,56 +1290,80 @@ std::vector<int> pole_canon(const std::vector<LoopNode>& loop, size_t nodes) {
   return canon;
 }
 
-/// Triangles on the canonical nodes: those collapsed by a pole dropped, and a flat one left
-/// beside the pole (three nodes of one straight boundary run, joined across the pole's copies
-/// in the planar triangulation) flipped with its neighbour across its longest side.
-std::vector<std::array<int, 3>> merged_triangles(const Work& w, const std::vector<std::array<int, 3>>& in,
+/// The longest side (corner k to k + 1) of triangle t, and whether t is flat (kFlat).
+bool flat_triangle(const std::vector<Vec3>& xyz, const std::array<int, 3>& t, int& k) {
+  double longest = 0.0;
+  k = 0;
+  for (int j = 0; j < 3; ++j) {
+    const double l = (xyz[t[(j + 1) % 3]] - xyz[t[j]]).squaredNorm();
+    if (l > longest) longest = l, k = j;
+  }
+  return (xyz[t[1]] - xyz[t[0]]).cross(xyz[t[2]] - xyz[t[0]]).norm() <= kFlat * longest;
+}
+
+/// Directed edge a -> b of triangles indexed by their N nodes -> the triangle holding it.
+struct HalfEdges {
+  long long n;
+  std::unordered_map<long long, int> at;
+  void set(const std::array<int, 3>& t, int i) {
+    for (int j = 0; j < 3; ++j) at[t[j] * n + t[(j + 1) % 3]] = i;
+  }
+};
+
+/// Flips the longest side p -> q of flat triangle t = (p, q, m) with the triangle u = (q, p, x)
+/// across it, (p, q, m) + (q, p, x) -> (p, x, m) + (x, q, m) (the orientation kept, as in
+/// Triangulation's flips), where that raises the pair's least angle and both new triangles
+/// turn the way u does (valid in space). Returns whether it flipped.
+bool flip_flat(const std::vector<Vec3>& xyz, std::vector<std::array<int, 3>>& tri, HalfEdges& half, int t) {
+  int k = 0;
+  if (!flat_triangle(xyz, tri[t], k)) return false;
+  const int p = tri[t][k], q = tri[t][(k + 1) % 3], m = tri[t][(k + 2) % 3];
+  const auto it = half.at.find(q * half.n + p);
+  if (it == half.at.end()) return false;  // no triangle across: the face's boundary
+  const int u = it->second;
+  int x = -1;
+  for (int j = 0; j < 3; ++j)
+    if (tri[u][j] != p && tri[u][j] != q) x = tri[u][j];
+  const Vec3 &P = xyz[p], &Q = xyz[q], &M = xyz[m], &X = xyz[x];
+  const double before = std::min(min_angle(P, Q, M), min_angle(Q, P, X));
+  const double after = std::min(min_angle(P, X, M), min_angle(X, Q, M));
+  const Vec3 n = (P - Q).cross(X - Q);  // u's turn
+  if (!(after > before) || (X - P).cross(M - P).dot(n) <= 0 || (Q - X).cross(M - X).dot(n) <= 0) return false;
+  half.at.erase(p * half.n + q);  // the flipped side is no triangle's any more
+  half.at.erase(q * half.n + p);
+  tri[t] = {p, x, m};
+  tri[u] = {x, q, m};
+  half.set(tri[t], t);
+  half.set(tri[u], u);
+  return true;
+}
+
+}  // namespace
+
+std::vector<std::array<int, 3>> merged_triangles(const std::vector<Vec3>& xyz, const std::vector<std::array<int, 3>>& in,
                                                  const std::vector<int>& canon) {
   std::vector<std::array<int, 3>> tri;
   for (const auto& t : in) {
     const std::array<int, 3> r{canon[t[0]], canon[t[1]], canon[t[2]]};
     if (r[0] != r[1] && r[1] != r[2] && r[2] != r[0]) tri.push_back(r);
   }
-  // the longest side (corner k to k + 1) of triangle t, and whether t is flat
-  auto flat = [&](int t, int& k) {
-    const Vec3 &a = w.xyz[tri[t][0]], &b = w.xyz[tri[t][1]], &c = w.xyz[tri[t][2]];
-    double longest = 0.0;
-    k = 0;
-    for (int j = 0; j < 3; ++j) {
-      const double l = (w.xyz[tri[t][(j + 1) % 3]] - w.xyz[tri[t][j]]).squaredNorm();
-      if (l > longest) longest = l, k = j;
-    }
-    return (b - a).cross(c - a).norm() <= kFlat * longest;
-  };
-  int first = 0, k = 0;
-  while (first < static_cast<int>(tri.size()) && !flat(first, k)) ++first;
-  if (first == static_cast<int>(tri.size())) return tri;  // none (no pole): nothing to flip
-  const long long N = static_cast<long long>(w.xyz.size());
-  std::unordered_map<long long, int> half;  // directed edge -> triangle
-  for (int t = 0; t < static_cast<int>(tri.size()); ++t)
-    for (int j = 0; j < 3; ++j) half[tri[t][j] * N + tri[t][(j + 1) % 3]] = t;
-  for (int t = first; t < static_cast<int>(tri.size()); ++t) {
-    if (!flat(t, k)) continue;
-    const int p = tri[t][k], q = tri[t][(k + 1) % 3], m = tri[t][(k + 2) % 3];
-    auto it = half.find(q * N + p);
-    if (it == half.end()) continue;
-    const int u = it->second;
-    int x = -1;
-    for (int j = 0; j < 3; ++j)
-      if (tri[u][j] != p && tri[u][j] != q) x = tri[u][j];
-    const double before = std::min(min_angle(w.xyz[p], w.xyz[q], w.xyz[m]), min_angle(w.xyz[q], w.xyz[p], w.xyz[x]));
-    const double after = std::min(min_angle(w.xyz[p], w.xyz[m], w.xyz[x]), min_angle(w.xyz[m], w.xyz[q], w.xyz[x]));
-    const Vec3 n0 = (w.xyz[q] - w.xyz[p]).cross(w.xyz[x] - w.xyz[p]);  // the neighbour's side
-    const bool same_side = (w.xyz[m] - w.xyz[p]).cross(w.xyz[x] - w.xyz[p]).dot(n0) > 0 &&
-                           (w.xyz[q] - w.xyz[m]).cross(w.xyz[x] - w.xyz[m]).dot(n0) > 0;
-    if (!(after > before) || !same_side) continue;
-    tri[t] = {p, m, x};  // (p, q, m) + (q, p, x) -> (p, m, x) + (m, q, x)
-    tri[u] = {m, q, x};
-    for (int v : {t, u})
-      for (int j = 0; j < 3; ++j) half[tri[v][j] * N + tri[v][(j + 1) % 3]] = v;
+  int k = 0;
+  bool any = false;
+  for (const auto& t : tri) any = any || flat_triangle(xyz, t, k);
+  if (!any) return tri;  // none (no pole): nothing to flip
+  HalfEdges half{static_cast<long long>(xyz.size()), {}};
+  for (int t = 0; t < static_cast<int>(tri.size()); ++t) half.set(tri[t], t);
+  // a flat triangle's neighbour may be flat too (a row of straight stem nodes at the pole):
+  // flipping the outer one makes the inner one's neighbour a proper triangle, so repeat
+  for (int pass = 0; pass < kFlatPasses; ++pass) {
+    bool flipped = false;
+    for (int t = 0; t < static_cast<int>(tri.size()); ++t) flipped = flip_flat(xyz, tri, half, t) || flipped;
+    if (!flipped) break;
   }
   return tri;
 }
+
+namespace {
 
 /// A quad left folded (strict_quality in space <= 0: about the surface's normals or its own
 /// diagonal one, the census's measure) is cut into two triangles along the diagonal that gives
@@ -1932,7 +1957,7 @@ std::vector<std::array<int, 3>> triangulate(const Work& w, const std::vector<Vec
         return then > now + 1e-9;
       },
       kSwapPasses, keep, [&](int a, int b, int c, int d) { return convex_in_space(w, a, b, c, d); });
-  return merged_triangles(w, tr.triangles(), pole_canon(loop, w.xyz.size()));
+  return merged_triangles(w.xyz, tr.triangles(), pole_canon(loop, w.xyz.size()));
 }
 
 /// The matched triangles as elements of w: quads, unpaired triangles, and the weak pairs

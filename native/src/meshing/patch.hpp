@@ -77,6 +77,15 @@ MeshOptions resolved(const MeshOptions& o);
 /// Scaled Jacobian of a quad (d = -1: triangle) with reference normal n.
 double element_quality(const Eigen::Vector3d* p, int corners, const Eigen::Vector3d& n);
 
+/// Triangles (counter-clockwise about the surface normals) on canonical node ids `canon` (a
+/// pole's copies merged into one node): those the merge collapses dropped, and each flat one
+/// (|2 area| <= 1e-2 x its longest side^2: three nodes of a straight stem joined across the
+/// pole's copies in the planar triangulation) flipped with its neighbour across its longest side
+/// where that raises the pair's least angle, keeping every triangle's orientation.
+std::vector<std::array<int, 3>> merged_triangles(const std::vector<Eigen::Vector3d>& xyz,
+                                                 const std::vector<std::array<int, 3>>& triangles,
+                                                 const std::vector<int>& canon);
+
 /// Even-odd test of q against the closed polygon `poly` (its last point joins its first).
 bool point_in_polygon(const Eigen::Vector2d& q, const std::vector<Eigen::Vector2d>& poly);
 
