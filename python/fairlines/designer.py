@@ -64,10 +64,12 @@ PARALLEL_SPAN = (0.2, 0.8)  # the default parallel body lies within these fracti
 PARALLEL_SPAN_GIVEN = (0.15, 0.9)  # ... one placed by its centre within these
 PARALLEL_SHIFT_RETRY = 3.0  # a SAC the ends cannot hold: the parallel body's centre moves this many times the LCB's offset
 PARALLEL_SHIFT = 1.5        # the parallel body's centre moves this many times the LCB's offset
-DECK_CLEAR = 0.97           # the deck stays flat at least to where the waterline narrows to this fraction of B/2 ...
-DECK_TO_MAX = 0.92          # ... but ends its flat part aft of this fraction of Lpp
-DECK_FROM_MIN = 0.02        # ... and starts it at least this fraction of Lpp forward of the stern
+DECK_CLEAR = 0.97           # the deck stays flat aft at least to where the waterline narrows to this fraction of B/2 ...
+DECK_FROM_MIN = 0.02        # ... but starts it at least this fraction of Lpp forward of the stern
 DECK_FLAT_CHECKS = 101      # points of that check
+DECK_FLARE_END = 0.12       # forward, the deck's flare over the waterline (fraction of B/2) where the waterline ends ...
+DECK_FOLLOW_TO = 0.7        # ... followed to where the waterline narrows to this fraction of B/2 (the stem head is free)
+DECK_FLARE_POINTS = 40      # fit points of the forward deck over the waterline's forward run
 DECK_TRANSOM = 0.92         # deck half-breadth at the transom, fraction of B/2
 DWL_TRANSOM = 0.7           # waterline half-breadth at an immersed transom, fraction of B/2 ...
 TRANSOM_WIDTHS = (DWL_TRANSOM, 0.6, 0.5, 0.4, 0.3)  # ... narrowed through these until the run widens to the peak
@@ -473,21 +475,32 @@ def _sac_spec(p: Particulars, c: dict, dwl_curve, profile, xa: float, xf: float)
 
 
 def _deck_spec(p: Particulars, par: tuple, dwl_curve, x_aft: float, xa: float, xf: float) -> dict:
-    """The deck line: flat at B/2 from a quarter Lpp aft of the parallel body to 0.2 Lpp forward
-    of it, longer where a full stern or bow keeps the waterline near B/2."""
+    """The deck line: flat at B/2 from a quarter Lpp aft of the parallel body (further aft where a
+    full stern keeps the waterline near B/2) to the waterline's widest, and forward of it drawn
+    over the waterline (see _forward_deck)."""
     L, half = p.lpp, p.breadth / 2
     deck_from = max(x_aft + 0.05 * L, par[0] - 0.25 * L)
     xs_aft = np.linspace(xa, deck_from, DECK_FLAT_CHECKS)
     full = xs_aft[dwl_curve(xs_aft) >= DECK_CLEAR * half]  # so does a full stern aft
     if len(full):
         deck_from = max(min(deck_from, float(full[0])), x_aft + DECK_FROM_MIN * L)
-    deck_to = min(max(par[1], 0.5 * L) + 0.2 * L, 0.85 * L)
-    xs_fore = np.linspace(deck_to, xf, DECK_FLAT_CHECKS)
-    full = xs_fore[dwl_curve(xs_fore) >= DECK_CLEAR * half]  # a full bow keeps the deck's flat further forward
-    if len(full):
-        deck_to = min(max(deck_to, float(full[-1])), DECK_TO_MAX * L)
+    deck_to = par[1] if par[1] > par[0] else _midship_place(p)
     return {"flat_from": deck_from, "flat_to": deck_to, "value": half, "yB": DECK_TRANSOM * half if p.stern == "transom" else 0.0,
-            "yE": 0.0, "monotone": True, "spans": 24}
+            "yE": 0.0, "monotone": True, "spans": 24, "fit": _forward_deck(half, dwl_curve, deck_to, xf)}
+
+
+def _forward_deck(half: float, dwl_curve, x0: float, xf: float) -> list[list[float]]:
+    """Fit points of the deck forward of the waterline's widest x0: the deck follows the share
+    (1 - DECK_FLARE_END) r(x) of the waterline's narrowing, r the smoothstep from x0 to the
+    waterline's end xf. So the flare (deck minus waterline half-breadth) grows as smoothly as the
+    waterline narrows; a deck flat to a fixed place and then narrowing on its own let the flare
+    grow fast just forward of the flat's end and level off soon after, and the bilge corner
+    leaning in with it turned the outer buttocks back where they cross the DWL."""
+    xs = np.linspace(x0, xf, DECK_FLARE_POINTS)[1:-1]
+    y_dwl = dwl_curve(xs)
+    xs, y_dwl = xs[y_dwl >= DECK_FOLLOW_TO * half], y_dwl[y_dwl >= DECK_FOLLOW_TO * half]
+    share = (1.0 - DECK_FLARE_END) * _smoothstep((xs - x0) / (xf - x0))
+    return [[float(x), float(half - f * (half - y))] for x, f, y in zip(xs, share, y_dwl)]
 
 
 def _add_appendages(desc: dict, p: Particulars, prof: dict, skeg: dict | None) -> None:
