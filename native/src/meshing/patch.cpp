@@ -1543,16 +1543,20 @@ class GradedSize {
 /// Where the all-quad split puts a new node: the face's point at `uv`, the parameters' mean of
 /// the nodes it lies between, while that lies within kSplitSkew x `length` of their spatial
 /// mean `target` along the surface (the normal offset is the sag); else the face's point
-/// nearest `target` (Newton from `uv`). Where the parameter's speed changes across an element
-/// the parameters' mean is not its middle: an edge across a blend's ruled end strip, 0.1 m wide
-/// in space and 0.06 of u next to a NURBS 15 m per unit of u, got its midpoint at a tenth of
-/// its length, and the split quads there were inverted (scaled Jacobian down to -0.59, four
-/// left folded, cut into triangles, in the all-quad cut at 8 m).
+/// nearest `target` (Newton from `uv`) if it is nearer than that. Where the parameter's speed
+/// changes across an element the parameters' mean is not its middle: an edge across a blend's
+/// ruled end strip, 0.1 m wide in space and 0.06 of u next to a NURBS 15 m per unit of u, got
+/// its midpoint at a tenth of its length, and the split quads there were inverted (scaled
+/// Jacobian down to -0.59, four left folded, cut into triangles, in the all-quad cut at 8 m).
 Vec2 split_point(const Work& w, const Vec2& uv, const Vec3& target, double length) {
   const Place x = w.place_at(uv);
   const Vec3 n = Work::unit_normal(x.su, x.sv), off = x.p - target;
   if ((off - off.dot(n) * n).norm() <= kSplitSkew * length) return uv;
-  return w.g.locate(target, uv);
+  // Newton across the strip's speed jump can run off along the other parameter: a centre
+  // node 1.6 m from its target, 1.3 edges off, two quads folded, in the all-quad cut at 8 m
+  // (fair4's hull). A point further from the target than the mean's is not taken.
+  const Vec2 nearest = w.g.locate(target, uv);
+  return (w.g.point(nearest) - target).norm() < off.norm() ? nearest : uv;
 }
 
 /// Each quad into four and each triangle into three quads (edge midpoints and centre), at
