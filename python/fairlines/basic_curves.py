@@ -73,6 +73,15 @@ def tersely(fn):
     return run
 
 
+def _solved(r, integrals: list):
+    """The request's spline with these integral conditions, or None when none meets it."""
+    r.integrals = integrals
+    try:
+        return _native.design_spline_function(r)
+    except _native.InfeasibleFormParameters:
+        return None
+
+
 def _interval(feasible, anchor: float, lo: float, hi: float) -> tuple[float, float]:
     """The feasible interval around `anchor` (feasible) within [lo, hi]: the feasible set of a
     curve's linear conditions is convex, so each side is one bisection."""
@@ -329,15 +338,10 @@ def _area_ranges(name: str, spec: BasicCurveSpec, r, plan: _Plan, params: dict, 
     conditions can have, and those with its centroid as asked, in the spec's own terms."""
     alias = next((a for a in spec.aliases if FORM_ALIASES.get(name, {}).get(a, ("",))[0] == "Area"), None)
     scale, key = (1.0 / FORM_ALIASES[name][alias][1], alias) if alias else (1.0, "Area")
-    kept = [i for i in r.integrals if i.name not in ("Area", "xC")]
 
-    def solve(area=None, centroid=None):
-        r.integrals = kept + ([] if area is None else [_native.SplineIntegral(plan.xs, plan.xe, area, name="Area")]) + \
-                      ([] if centroid is None else [_native.SplineIntegral(plan.xs, plan.xe, centroid=centroid, name="xC")])
-        try:
-            return _native.design_spline_function(r)
-        except _native.InfeasibleFormParameters:
-            return None
+    def solve(area=None, centroid=None):  # the curve's only integrals are its area and centroid
+        return _solved(r, ([] if area is None else [_native.SplineIntegral(plan.xs, plan.xe, area, name="Area")]) +
+                       ([] if centroid is None else [_native.SplineIntegral(plan.xs, plan.xe, centroid=centroid, name="xC")]))
 
     def area_of(c) -> float:
         return _native.spline_product_integral([c], plan.xs, plan.xe, 0)
@@ -345,8 +349,7 @@ def _area_ranges(name: str, spec: BasicCurveSpec, r, plan: _Plan, params: dict, 
     free = solve()
     if free is None:
         return ""
-    span = (plan.xs, plan.xe)
-    lo, hi = (b * (span[1] - span[0]) for b in bounds)
+    lo, hi = (b * (plan.xe - plan.xs) for b in bounds)
     a, b = _interval(lambda v: solve(area=v) is not None, area_of(free), lo, hi)
     out = [f"a {name} within its other conditions has {key} {scale * a:.6g} to {scale * b:.6g} m^2"]
     at = solve(centroid=params["xC"]) if "xC" in params else None
@@ -565,12 +568,8 @@ class _SacProbe:
     def solve(self, volume: float | None = None, lcb: float | None = None):
         """The fullness spline, or None when no SAC meets the request."""
         p = self.plan
-        self.r.integrals = ([] if volume is None else [_native.SplineIntegral(p.xs, p.xe, volume / 2.0, factors=self.factors)]) + \
-                           ([] if lcb is None else [_native.SplineIntegral(p.xs, p.xe, centroid=lcb, factors=self.factors)])
-        try:
-            return _native.design_spline_function(self.r)
-        except _native.InfeasibleFormParameters:
-            return None
+        return _solved(self.r, ([] if volume is None else [_native.SplineIntegral(p.xs, p.xe, volume / 2.0, factors=self.factors)]) +
+                       ([] if lcb is None else [_native.SplineIntegral(p.xs, p.xe, centroid=lcb, factors=self.factors)]))
 
     def moment(self, s, power: int) -> float:  # int x^power s w dx, w the box's factors (one side)
         return _native.spline_product_integral([s, *self.factors], self.plan.xs, self.plan.xe, power)

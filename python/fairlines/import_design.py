@@ -36,6 +36,7 @@ import numpy as np
 from . import _native
 from .basic_curves import tersely
 from .offsets import HullData
+from .preprocess.rebuild import distances
 
 __all__ = ["import_design", "measure_hull_data", "measure_kracht", "MeasuredHull", "point_deviation", "data_points",
            "fidelity"]
@@ -444,6 +445,11 @@ def _dwl_spec(m: MeasuredHull, xa: float, xf: float, close: bool = False) -> dic
     k = 0 if xa <= m.x_aft + 1e-9 * m.lpp else (int(np.argmax(inside)) if close and inside.any() else None)
     immersed_transom = k is not None and np.isfinite(y[k]) and y[k] > END_FRACTION * half
     spec["yB"] = float(min(y[k], half)) if immersed_transom else 0.0
+    return _with_side_flat(spec, m, raw, half, close)
+
+
+def _with_side_flat(spec: dict, m: MeasuredHull, raw: np.ndarray, half: float, close: bool) -> dict:
+    """The line's spec with its flat of side (_side_flat), if any, and no fit points on it."""
     flat = _side_flat(m, raw, half, close)
     if flat is not None:
         spec.update(flat_from=flat[0], flat_to=flat[1], value=half)
@@ -492,11 +498,7 @@ def _deck_spec(m: MeasuredHull, close: bool = False) -> dict:
     y_fore = 0.0 if m.bulb_points is not None else float(y[-1])
     spec = {"fit": _pairs(m.x, y), "fit_weight": _fit_weight(m, m.beam) if close else FIT_WEIGHT, "spans": CURVE_SPANS["deck"],
             "yB": float(min(y[0], half)), "yE": y_fore}
-    flat = _side_flat(m, raw, half, close)
-    if flat is not None:
-        spec.update(flat_from=flat[0], flat_to=flat[1], value=half)
-        spec["fit"] = [p for p in spec["fit"] if not flat[0] <= p[0] <= flat[1]]
-    return spec
+    return _with_side_flat(spec, m, raw, half, close)
 
 
 def _sac_spec(m: MeasuredHull, dwl, profile, xa: float, xf: float, close: bool = False) -> dict:
@@ -986,10 +988,9 @@ def _without_bulb_overlap(desc: dict, hull, kracht: dict, say) -> dict:
 
 def point_deviation(surfaces, points: np.ndarray) -> np.ndarray:
     """Distance (m) from each point (n, 3) to the nearest of the surfaces (closest_point)."""
-    pts = np.asarray(points, float).reshape(-1, 3)
-    best = np.full(len(pts), np.inf)
+    best = np.full(len(np.asarray(points).reshape(-1, 3)), np.inf)
     for s in surfaces:
-        best = np.minimum(best, np.linalg.norm(s.closest_points(pts)[2] - pts, axis=1))
+        best = np.minimum(best, distances(s, points))
     return best
 
 

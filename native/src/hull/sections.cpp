@@ -369,20 +369,25 @@ double flare_lean(const Section& S) {
   return rise > 0 ? std::max(0.0, kFlareMargin * (D.x() - S.b) / rise) : 0.0;
 }
 
+/// How far smooth_min lowers min(a, c) and smooth_max raises max(a, c) (a, c > 0), as an
+/// exponent: a cubic in how deep within e^k their ratio lies, 0 beyond (C2 in log a).
+double blend_exponent(double a, double c, double k) {
+  const double h = std::max(k - std::abs(std::log(a / c)), 0.0) / k;
+  return h * h * h * k / 6.0;
+}
+
 /// min(a, c) of a, c >= 0 rounded where their ratio lies within e^k: a cubic blend of their
 /// logarithms (C2, below both, the plain minimum beyond; positive where both are).
 double smooth_min(double a, double c, double k) {
   if (std::min(a, c) <= 0) return std::min(a, c);
-  const double h = std::max(k - std::abs(std::log(a / c)), 0.0) / k;
-  return std::min(a, c) * std::exp(-h * h * h * k / 6.0);
+  return std::min(a, c) * std::exp(-blend_exponent(a, c, k));
 }
 
 /// max(a, c) for c > 0, rounded where a / c lies within e^k: the mirror of smooth_min (C2,
 /// above both by at most the factor e^(k/6), the plain maximum beyond).
 double smooth_max(double a, double c, double k) {
   if (a <= 0) return c;
-  const double h = std::max(k - std::abs(std::log(a / c)), 0.0) / k;
-  return std::max(a, c) * std::exp(h * h * h * k / 6.0);
+  return std::max(a, c) * std::exp(blend_exponent(a, c, k));
 }
 
 V2 heading(const Section& S) {

@@ -144,7 +144,7 @@ def deviation_report(data: HullData, surfaces, names, fits=None) -> dict:
     off = 0
     if data.sections:
         pts = data.all_points()[: sum(len(s.points) for s in data.sections)]
-        d_all += np.linalg.norm(surfaces[0].closest_points(pts)[2] - pts, axis=1).tolist()
+        d_all += distances(surfaces[0], pts).tolist()
         where += [(names[0], p) for p in pts]
         off = 1
     for k, g in enumerate(data.grids):
@@ -158,7 +158,7 @@ def deviation_report(data: HullData, surfaces, names, fits=None) -> dict:
                 q = project_points(s, pts[far], uu.ravel()[far], vv.ravel()[far])
                 d[far] = np.minimum(d[far], np.linalg.norm(q - pts[far], axis=1))
         else:
-            d = np.linalg.norm(s.closest_points(pts)[2] - pts, axis=1)
+            d = distances(s, pts)
         d_all += d.tolist()
         where += [(names[k + off], p) for p in pts]
     d = np.array(d_all)
@@ -167,6 +167,14 @@ def deviation_report(data: HullData, surfaces, names, fits=None) -> dict:
             "max_at": {"block": where[i][0], "x": float(where[i][1][0]), "y": float(where[i][1][1]),
                        "z": float(where[i][1][2])},
             "rms_pct_B": 100 * float(np.sqrt(np.mean(d ** 2))) / data.beam}
+
+
+def distances(surface, pts) -> np.ndarray:
+    """Distance (m) from each of ``pts`` (m, 3) to the surface: the engine's global closest-point
+    search for the batch (``NurbsSurface.closest_points``). Raises InvalidInput for bad shapes
+    or non-finite values."""
+    pts = np.asarray(pts, float).reshape(-1, 3)
+    return np.linalg.norm(surface.closest_points(pts)[2] - pts, axis=1)
 
 
 def project_points(surface, pts, u0, v0):
