@@ -150,6 +150,15 @@ def test_wetted_mesh_volume_at_any_draft_matches_nurbs_quadrature(blended, cut_m
     assert 2 * closed_volume(m.vertices, m.faces) == pytest.approx(volume, rel=MESH_VOLUME_TOL)
 
 
+@pytest.mark.parametrize("draft", (14.0, 17.0))
+def test_cut_near_a_trim_curve_end_and_at_the_stem_top_leaves_no_sliver(blended, draft):
+    """At 14 m the waterline passes 9 cm above the stem's vertex where the bulb's trim curve
+    ends (a 9 cm stem edge: it used to be fanned to a 3 m side, scaled Jacobian 0.036); at 17 m
+    the waterline's trace from the stem used to leap 18 m along the stem's nearly degenerate
+    end, and its nodes bunched there in a fan (0.016)."""
+    assert fl.mesh_hull(blended, size=3.0, draft=draft).quality()["min_scaled_jacobian"] >= 0.2
+
+
 def test_cruiser_stern_ship_meshes_watertight_with_its_volume():
     s = cruiser_stern_ship().bare_hull_surface()  # no bulb: composed alone
     for draft in (None, 5.0):

@@ -31,6 +31,7 @@ constexpr int kPoleSegments = 4;        ///< copies of a pole node along its par
 constexpr double kTraceStep = 0.25;     ///< waterline trace step / size
 constexpr double kTraceStall = 1e-3;    ///< a trace step shorter than this fraction of its stride has stalled
 constexpr double kTraceDrift = 0.5;     ///< corrector move / predictor step above which the step is halved
+constexpr double kTraceChord = 2.0;     ///< a trace step's chord is at most this x its stride
 constexpr int kTraceHalvings = 30;     ///< at most this many halvings of one trace step
 constexpr int kTraceMaxSteps = 100000; ///< a waterline trace longer than this many steps has lost its way
 constexpr int kBisections = 60;         ///< bisection steps for an edge's crossing of the cut
@@ -180,7 +181,13 @@ std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const
       out.push_back(q + domain_fraction(g, q, raw) * (raw - q));
       return out;
     }
-    const Vec2 next = level_step(g, q, t, d, T);
+    Vec2 next = level_step(g, q, t, d, T);
+    // where the surface is nearly degenerate (a stem's end) a step of step3d at q's speed
+    // can land far along the level curve: halve it until its chord is near step3d
+    for (int h = 0; h < kTraceHalvings && (g.point(next) - g.point(q)).norm() > kTraceChord * step3d; ++h) {
+      d *= 0.5;
+      next = level_step(g, q, t, d, T);
+    }
     out.push_back(next);
     // out of the face, or pinned against its parameter domain's edge (the clamp holds it
     // there): the waterline has reached the face's boundary
@@ -505,6 +512,10 @@ struct Mesher {
       const Edge& e = b.edges[ei];
       if (!needed[ei] || e.degenerate) continue;
       const std::vector<double> s = arc(e);
+      // an edge shorter than the size (a draft just above a trim curve's end on the stem) sizes
+      // its ends: the elements round it grade up from it instead of fanning round it
+      vertex_h[e.v0] = std::min(vertex_h[e.v0], s.back());
+      vertex_h[e.v1] = std::min(vertex_h[e.v1], s.back());
       for (size_t k = 0; k < e.s.size(); ++k) {
         const double h = h_at(e, e.s[k]);
         vertex_h[e.v0] = std::min(vertex_h[e.v0], h + kEdgeGrading * s[k]);
