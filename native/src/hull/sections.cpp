@@ -64,6 +64,11 @@ constexpr double kCornerFineWeight = 0.2;
 /// bilge's leg |X - Q| is at least the fillet's end reach |p3 - Q|, fading as r^p / (1 + r^p) of
 /// their ratio r below: a short bilge's tight curvature would bend metres of topside.
 constexpr double kCurvatureMatchPower = 4.0;
+/// ... and the move keeps the fillet's control polygon convex: it takes at most this share of
+/// the turn at that control point (a topside with little turn, a wall side, gets little of the
+/// bilge's curvature: a straight wall over a round bilge would otherwise dent), approached as
+/// h / (1 + (h / cap)^p)^(1/p) with this p so the move changes smoothly along the hull.
+constexpr double kCurvatureMatchShare = 0.5, kCurvatureMatchSharpness = 4.0;
 /// Width of the smooth minimum of the chord's lean and the top's room (see heading()), in the
 /// logarithm of their sines: they are blended where their ratio lies within e^kHeadingBlend, so
 /// the heading changes over a span of stations, not a few metres; the plain minimum holds beyond.
@@ -421,8 +426,15 @@ void match_bilge_curvature(Piece& top, const Piece& bilge) {
   if (!(leg > 0 && reach > 0 && end > 0 && bilge.w > 0)) return;
   const double k_q = conic_end / (bilge.w * bilge.w) * cross(X - Q, K - X) / (leg * leg * leg);
   const double r = std::pow(leg / reach, kCurvatureMatchPower);
-  const V2 u = (top.p[5] - top.p[4]) / end;
-  top.p[3] += r / (1.0 + r) * k_q / quintic_end * end * end * V2(-u.y(), u.x());
+  const V2 u = (top.p[5] - top.p[4]) / end, n(-u.y(), u.x());
+  const double h = r / (1.0 + r) * k_q / quintic_end * end * end;
+  // The turn of the polygon at p3, cross(p3 - p2, p4 - p3), is linear in the move: turn + h slope.
+  const V2 a = top.p[3] - top.p[2], b = top.p[4] - top.p[3];
+  const double turn = cross(a, b), slope = cross(n, a + b);
+  const double cap = h * slope * turn < 0 ? kCurvatureMatchShare * std::abs(turn / slope) : std::abs(h);
+  if (!(cap > 0)) return;
+  const double q = std::pow(std::abs(h) / cap, kCurvatureMatchSharpness);
+  top.p[3] += h / std::pow(1.0 + q, 1.0 / kCurvatureMatchSharpness) * n;
 }
 
 /// The template's pieces for shape knob lambda (immersed sections), from the deck to the keel.
