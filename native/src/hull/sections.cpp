@@ -59,6 +59,16 @@ constexpr double kFullWeight = 60.0, kFineWeight = 0.7, kLeanPower = 3.0;
 /// With the bilge corner given (corner_y, corner_z) the weight alone falls over the knob's
 /// range, from kFullWeight to this (a near chord: hollow corners need weights below 1).
 constexpr double kCornerFineWeight = 0.2;
+/// The topside fillet ends with the bilge arc's curvature at Q (a fillet ending straight left a
+/// curvature jump at the waterline that buttocks crossing it showed as lobes), in full where the
+/// bilge's leg |X - Q| is at least the fillet's end reach |p3 - Q|, fading as r^p / (1 + r^p) of
+/// their ratio r below: a short bilge's tight curvature would bend metres of topside.
+constexpr double kCurvatureMatchPower = 4.0;
+/// ... and the move keeps the fillet's control polygon convex: it takes at most this share of
+/// the turn at that control point (a topside with little turn, a wall side, gets little of the
+/// bilge's curvature: a straight wall over a round bilge would otherwise dent), approached as
+/// h / (1 + (h / cap)^p)^(1/p) with this p so the move changes smoothly along the hull.
+constexpr double kCurvatureMatchShare = 0.5, kCurvatureMatchSharpness = 4.0;
 /// Width of the smooth minimum of the chord's lean and the top's room (see heading()), in the
 /// logarithm of their sines: they are blended where their ratio lies within e^kHeadingBlend, so
 /// the heading changes over a span of stations, not a few metres; the plain minimum holds beyond.
@@ -404,6 +414,29 @@ V2 heading(const Section& S) {
   return S.Q + s.character * S.d * V2(-lean, -1.0);
 }
 
+/// The topside fillet `top` (deck to Q) given the bilge arc's curvature at Q: its third control
+/// point from Q moves off the leg. Signed end curvatures: the conic's (1/2) (1/w^2) (X - Q) x
+/// (K - X) / |X - Q|^3, the quintic's (4/5) (p4 - p3) x (p5 - p4) / |p5 - p4|^3, which a move
+/// of p3 by h along (-u_z, u_y) (u the unit leg p4 -> p5) makes (4/5) h / |p5 - p4|^2.
+void match_bilge_curvature(Piece& top, const Piece& bilge) {
+  constexpr double conic_end = 0.5, quintic_end = 0.8;  // (n - 1) / n of a degree-n Bezier's end
+  auto cross = [](const V2& a, const V2& b) { return a.x() * b.y() - a.y() * b.x(); };
+  const V2 &Q = bilge.p[0], &X = bilge.p[1], &K = bilge.p[2];
+  const double leg = (X - Q).norm(), reach = (top.p[3] - top.p[5]).norm(), end = (top.p[5] - top.p[4]).norm();
+  if (!(leg > 0 && reach > 0 && end > 0 && bilge.w > 0)) return;
+  const double k_q = conic_end / (bilge.w * bilge.w) * cross(X - Q, K - X) / (leg * leg * leg);
+  const double r = std::pow(leg / reach, kCurvatureMatchPower);
+  const V2 u = (top.p[5] - top.p[4]) / end, n(-u.y(), u.x());
+  const double h = r / (1.0 + r) * k_q / quintic_end * end * end;
+  // The turn of the polygon at p3, cross(p3 - p2, p4 - p3), is linear in the move: turn + h slope.
+  const V2 a = top.p[3] - top.p[2], b = top.p[4] - top.p[3];
+  const double turn = cross(a, b), slope = cross(n, a + b);
+  const double cap = h * slope * turn < 0 ? kCurvatureMatchShare * std::abs(turn / slope) : std::abs(h);
+  if (!(cap > 0)) return;
+  const double q = std::pow(std::abs(h) / cap, kCurvatureMatchSharpness);
+  top.p[3] += h / std::pow(1.0 + q, 1.0 / kCurvatureMatchSharpness) * n;
+}
+
 /// The template's pieces for shape knob lambda (immersed sections), from the deck to the keel.
 std::vector<Piece> immersed_template(const Section& S, double lambda) {
   const SectionSpec& s = S.s;
@@ -420,7 +453,10 @@ std::vector<Piece> immersed_template(const Section& S, double lambda) {
   const double l1 = (X - Q).norm();
   const V2 tw = l1 > 0 ? V2((X - Q) / l1) : V2((K - Q).normalized());
   const V2 Y = Q - s.top_corner * (D - Q).norm() * tw;
-  return {fillet(D, Y, Q), conic(Q, X, K, w)};
+  Piece top = fillet(D, Y, Q);
+  const Piece bilge = conic(Q, X, K, w);
+  match_bilge_curvature(top, bilge);
+  return {top, bilge};
 }
 
 /// Above the water: one rounded corner from the deck point to the keel point, arriving at
