@@ -123,6 +123,21 @@ FAIRLINES_INLINE v4d basis_power4(const double* block, double s) {
     for (int j = 0; j <= P; ++j) N[j] = N[j] * s + block[4 * k + j];
   return v4d{N[0], N[1], N[2], N[3]};
 }
+
+/// basis_power4 and the first derivatives dN (d/ds of the same polynomials, one Horner
+/// pass: the value's recurrence and its derivative's run side by side).
+template <int P>
+FAIRLINES_INLINE void basis_power4_d1(const double* block, double s, v4d& N4, v4d& dN4) {
+  double N[4] = {0, 0, 0, 0}, dN[4] = {0, 0, 0, 0};
+  for (int j = 0; j <= P; ++j) N[j] = block[4 * P + j];
+  for (int k = P - 1; k >= 0; --k)
+    for (int j = 0; j <= P; ++j) {
+      dN[j] = dN[j] * s + N[j];
+      N[j] = N[j] * s + block[4 * k + j];
+    }
+  N4 = v4d{N[0], N[1], N[2], N[3]};
+  dN4 = v4d{dN[0], dN[1], dN[2], dN[3]};
+}
 #pragma GCC diagnostic pop
 
 /// The deg + 1 non-zero basis functions N at t in `span`, using the reciprocal table, and,

@@ -6,6 +6,7 @@
 #include <initializer_list>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include <Eigen/Core>
@@ -31,7 +32,7 @@ inline std::string format_number(double v, int digits) {
 }
 
 template <typename Derived>
-inline void require_finite(const Eigen::DenseBase<Derived>& a, const std::string& what) {
+inline void require_finite(const Eigen::DenseBase<Derived>& a, std::string_view what) {
   for (Eigen::Index i = 0; i < a.rows(); ++i)
     for (Eigen::Index j = 0; j < a.cols(); ++j)
       if (!std::isfinite(a(i, j))) {
@@ -41,7 +42,9 @@ inline void require_finite(const Eigen::DenseBase<Derived>& a, const std::string
       }
 }
 
-inline void require_finite(double x, const std::string& what) {
+// The name as a view: the checks sit in hot evaluations (NurbsSurface::evaluate), where a
+// std::string built from a literal per call cost more than the check.
+inline void require_finite(double x, std::string_view what) {
   if (!std::isfinite(x)) fail(what, " is ", x, "; expected a finite number");
 }
 

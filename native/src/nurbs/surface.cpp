@@ -206,12 +206,53 @@ FAIRLINES_INLINE void d1_kernel(const Layout& L, int p, int q, const double* u, 
   }
 }
 
+// Points and first partials for degrees P, Q <= 3 from the power tables (as
+// scatter_power_kernel; the point is its contraction, so it equals evaluate()'s): the
+// meshers' hot evaluation, about half the instructions of the Cox-de Boor kernel above.
+template <int P, int Q, bool Rational>
+FAIRLINES_INLINE void d1_power_kernel(const Layout& L, const double* u, const double* v, long m, double* out) {
+  const double ua = L.ua, ub = L.ub, va = L.va, vb = L.vb;
+  const double au = L.span_u->a, scale_u = L.span_u->scale, av = L.span_v->a, scale_v = L.span_v->scale;
+  const unsigned bu = L.span_u->buckets, bv = L.span_v->buckets;
+  const int *table_u = L.span_u->table.data(), *table_v = L.span_v->table.data();
+  const double *ku = L.span_u->knots.data(), *kv = L.span_v->knots.data();
+  const double *pow_u = L.pow_u, *pow_v = L.pow_v, *pw = L.pw;
+  const long stride = static_cast<long>(L.nv) * 4;
+  const auto ps = std::make_integer_sequence<int, P + 1>();
+  const auto qs = std::make_integer_sequence<int, Q + 1>();
+  for (long k = 0; k < m; ++k) {
+    const double uk = clamp_to(u[k], ua, ub), vk = clamp_to(v[k], va, vb);
+    const long su = SpanLocator::find(uk, au, scale_u, bu, table_u, ku);
+    const long sv = SpanLocator::find(vk, av, scale_v, bv, table_v, kv);
+    v4d Nu, dNu, Nv, dNv;
+    detail::basis_power4_d1<P>(pow_u + su * 16, uk - ku[su], Nu, dNu);
+    detail::basis_power4_d1<Q>(pow_v + sv * 16, vk - kv[sv], Nv, dNv);
+    const double* row = pw + (su - P) * stride + (sv - Q) * 4;
+    const v4d A = combine_rows(row, stride, Nu, Nv, ps, qs);
+    const v4d Au = combine_rows(row, stride, dNu, Nv, ps, qs), Av = combine_rows(row, stride, Nu, dNv, ps, qs);
+    double* o = out + 9 * k;
+    const double iw = Rational ? 1.0 / A[3] : 1.0;
+    for (int c = 0; c < 3; ++c) {  // the quotient rule on the homogeneous sums (w = A[3])
+      const double S = Rational ? A[c] * iw : A[c];
+      o[c] = S;
+      o[3 + c] = Rational ? (Au[c] - Au[3] * S) * iw : Au[c];
+      o[6 + c] = Rational ? (Av[c] - Av[3] * S) * iw : Av[c];
+    }
+  }
+}
+
+template <int P, int Q>
+FAIRLINES_INLINE void d1_power(const Layout& L, const double* u, const double* v, long m, double* out) {
+  if (L.rational) d1_power_kernel<P, Q, true>(L, u, v, m, out);
+  else d1_power_kernel<P, Q, false>(L, u, v, m, out);
+}
+
 FAIRLINES_MULTIVERSION
 void d1_dispatch(const Layout& L, int p, int q, const double* u, const double* v, long m, double* out) {
-  if (p == 3 && q == 3) return d1_kernel<3, 3>(L, p, q, u, v, m, out);
-  if (p == 2 && q == 2) return d1_kernel<2, 2>(L, p, q, u, v, m, out);
-  if (p == 2 && q == 3) return d1_kernel<2, 3>(L, p, q, u, v, m, out);
-  if (p == 3 && q == 2) return d1_kernel<3, 2>(L, p, q, u, v, m, out);
+  if (p == 3 && q == 3) return d1_power<3, 3>(L, u, v, m, out);
+  if (p == 2 && q == 2) return d1_power<2, 2>(L, u, v, m, out);
+  if (p == 2 && q == 3) return d1_power<2, 3>(L, u, v, m, out);
+  if (p == 3 && q == 2) return d1_power<3, 2>(L, u, v, m, out);
   d1_kernel<0, 0>(L, p, q, u, v, m, out);
 }
 
