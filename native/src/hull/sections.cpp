@@ -429,9 +429,13 @@ void match_bilge_curvature(Piece& top, const Piece& bilge) {
   const V2 u = (top.p[5] - top.p[4]) / end, n(-u.y(), u.x());
   const double h = r / (1.0 + r) * k_q / quintic_end * end * end;
   // The turn of the polygon at p3, cross(p3 - p2, p4 - p3), is linear in the move: turn + h slope.
+  // Whether the move takes turn away is read against the section's bend (the bilge's sign), not
+  // the sign of the turn itself: on a wall side the turn is round-off, and its sign would switch
+  // the move between none and all of it.
   const V2 a = top.p[3] - top.p[2], b = top.p[4] - top.p[3];
-  const double turn = cross(a, b), slope = cross(n, a + b);
-  const double cap = h * slope * turn < 0 ? kCurvatureMatchShare * std::abs(turn / slope) : std::abs(h);
+  const double turn = cross(a, b), slope = cross(n, a + b), bend = k_q > 0 ? 1.0 : -1.0;
+  const double cap = bend * h * slope < 0 ? kCurvatureMatchShare * std::max(bend * turn, 0.0) / std::abs(slope)
+                                          : std::abs(h);
   if (!(cap > 0)) return;
   const double q = std::pow(std::abs(h) / cap, kCurvatureMatchSharpness);
   top.p[3] += h / std::pow(1.0 + q, 1.0 / kCurvatureMatchSharpness) * n;
