@@ -104,26 +104,42 @@ FAIRLINES_INLINE v4d combine_rows(const double* row, long stride, v4d Nu, v4d Nv
   return (... + (lane<A>(Nu) * combine(row + A * stride, Nv, qs)));
 }
 
+/// The power-table kernels' view of a layout, copied into locals (the output stores could
+/// alias the layout's doubles and force reloads), and the spans of a clamped (u, v).
+struct PowerSpans {
+  double ua, ub, va, vb, au, scale_u, av, scale_v;
+  unsigned bu, bv;
+  const int *table_u, *table_v;
+  const double *ku, *kv, *pow_u, *pow_v, *pw;
+  long stride;
+  explicit PowerSpans(const Layout& L)
+      : ua(L.ua), ub(L.ub), va(L.va), vb(L.vb), au(L.span_u->a), scale_u(L.span_u->scale), av(L.span_v->a),
+        scale_v(L.span_v->scale), bu(L.span_u->buckets), bv(L.span_v->buckets), table_u(L.span_u->table.data()),
+        table_v(L.span_v->table.data()), ku(L.span_u->knots.data()), kv(L.span_v->knots.data()), pow_u(L.pow_u),
+        pow_v(L.pow_v), pw(L.pw), stride(static_cast<long>(L.nv) * 4) {}
+  /// The spans su, sv of (u, v) clamped to the domain and the offsets du, dv into them.
+  FAIRLINES_INLINE void find(double u, double v, long& su, long& sv, double& du, double& dv) const {
+    const double uk = clamp_to(u, ua, ub), vk = clamp_to(v, va, vb);
+    su = SpanLocator::find(uk, au, scale_u, bu, table_u, ku);
+    sv = SpanLocator::find(vk, av, scale_v, bv, table_v, kv);
+    du = uk - ku[su];
+    dv = vk - kv[sv];
+  }
+};
+
 // Scattered points for degrees P, Q <= 3: both bases by one SIMD Horner each, then the
 // (P + 1) x (Q + 1) homogeneous block contracted row by row in v, then in u.
 template <int P, int Q, bool Rational>
 FAIRLINES_INLINE void scatter_power_kernel(const Layout& L, const double* u, const double* v, long m, double* out) {
-  // Local copies: the output stores could alias the layout's doubles and force reloads.
-  const double ua = L.ua, ub = L.ub, va = L.va, vb = L.vb;
-  const double au = L.span_u->a, scale_u = L.span_u->scale, av = L.span_v->a, scale_v = L.span_v->scale;
-  const unsigned bu = L.span_u->buckets, bv = L.span_v->buckets;
-  const int *table_u = L.span_u->table.data(), *table_v = L.span_v->table.data();
-  const double *ku = L.span_u->knots.data(), *kv = L.span_v->knots.data();
-  const double *pow_u = L.pow_u, *pow_v = L.pow_v, *pw = L.pw;
-  const long stride = static_cast<long>(L.nv) * 4;
+  const PowerSpans T(L);
   for (long k = 0; k < m; ++k) {
-    const double uk = clamp_to(u[k], ua, ub), vk = clamp_to(v[k], va, vb);
-    const long su = SpanLocator::find(uk, au, scale_u, bu, table_u, ku);
-    const long sv = SpanLocator::find(vk, av, scale_v, bv, table_v, kv);
-    const v4d Nu = detail::basis_power4<P>(pow_u + su * 16, uk - ku[su]);
-    const v4d Nv = detail::basis_power4<Q>(pow_v + sv * 16, vk - kv[sv]);
-    const double* row = pw + (su - P) * stride + (sv - Q) * 4;
-    v4d acc = combine_rows(row, stride, Nu, Nv, std::make_integer_sequence<int, P + 1>(),
+    long su, sv;
+    double du, dv;
+    T.find(u[k], v[k], su, sv, du, dv);
+    const v4d Nu = detail::basis_power4<P>(T.pow_u + su * 16, du);
+    const v4d Nv = detail::basis_power4<Q>(T.pow_v + sv * 16, dv);
+    const double* row = T.pw + (su - P) * T.stride + (sv - Q) * 4;
+    v4d acc = combine_rows(row, T.stride, Nu, Nv, std::make_integer_sequence<int, P + 1>(),
                            std::make_integer_sequence<int, Q + 1>());
     if constexpr (Rational) acc *= 1.0 / acc[3];
     out[3 * k] = acc[0];
@@ -211,25 +227,19 @@ FAIRLINES_INLINE void d1_kernel(const Layout& L, int p, int q, const double* u, 
 // meshers' hot evaluation, about half the instructions of the Cox-de Boor kernel above.
 template <int P, int Q, bool Rational>
 FAIRLINES_INLINE void d1_power_kernel(const Layout& L, const double* u, const double* v, long m, double* out) {
-  const double ua = L.ua, ub = L.ub, va = L.va, vb = L.vb;
-  const double au = L.span_u->a, scale_u = L.span_u->scale, av = L.span_v->a, scale_v = L.span_v->scale;
-  const unsigned bu = L.span_u->buckets, bv = L.span_v->buckets;
-  const int *table_u = L.span_u->table.data(), *table_v = L.span_v->table.data();
-  const double *ku = L.span_u->knots.data(), *kv = L.span_v->knots.data();
-  const double *pow_u = L.pow_u, *pow_v = L.pow_v, *pw = L.pw;
-  const long stride = static_cast<long>(L.nv) * 4;
+  const PowerSpans T(L);
   const auto ps = std::make_integer_sequence<int, P + 1>();
   const auto qs = std::make_integer_sequence<int, Q + 1>();
   for (long k = 0; k < m; ++k) {
-    const double uk = clamp_to(u[k], ua, ub), vk = clamp_to(v[k], va, vb);
-    const long su = SpanLocator::find(uk, au, scale_u, bu, table_u, ku);
-    const long sv = SpanLocator::find(vk, av, scale_v, bv, table_v, kv);
+    long su, sv;
+    double du, dv;
+    T.find(u[k], v[k], su, sv, du, dv);
     v4d Nu, dNu, Nv, dNv;
-    detail::basis_power4_d1<P>(pow_u + su * 16, uk - ku[su], Nu, dNu);
-    detail::basis_power4_d1<Q>(pow_v + sv * 16, vk - kv[sv], Nv, dNv);
-    const double* row = pw + (su - P) * stride + (sv - Q) * 4;
-    const v4d A = combine_rows(row, stride, Nu, Nv, ps, qs);
-    const v4d Au = combine_rows(row, stride, dNu, Nv, ps, qs), Av = combine_rows(row, stride, Nu, dNv, ps, qs);
+    detail::basis_power4_d1<P>(T.pow_u + su * 16, du, Nu, dNu);
+    detail::basis_power4_d1<Q>(T.pow_v + sv * 16, dv, Nv, dNv);
+    const double* row = T.pw + (su - P) * T.stride + (sv - Q) * 4;
+    const v4d A = combine_rows(row, T.stride, Nu, Nv, ps, qs);
+    const v4d Au = combine_rows(row, T.stride, dNu, Nv, ps, qs), Av = combine_rows(row, T.stride, Nu, dNv, ps, qs);
     double* o = out + 9 * k;
     const double iw = Rational ? 1.0 / A[3] : 1.0;
     for (int c = 0; c < 3; ++c) {  // the quotient rule on the homogeneous sums (w = A[3])
