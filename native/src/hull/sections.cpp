@@ -161,6 +161,9 @@ constexpr double kSkegThinnest = 0.02;
 /// Samples per knot span in the search of the spline's first crossing of z = T.
 constexpr int kCrossingSamples = 8;
 
+/// The z component of a x b (the plane cross product).
+double cross(const V2& a, const V2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
 double smoothstep(double r) {
   r = std::clamp(r, 0.0, 1.0);
   return r * r * r * (10.0 - 15.0 * r + 6.0 * r * r);
@@ -420,7 +423,6 @@ V2 heading(const Section& S) {
 /// of p3 by h along (-u_z, u_y) (u the unit leg p4 -> p5) makes (4/5) h / |p5 - p4|^2.
 void match_bilge_curvature(Piece& top, const Piece& bilge) {
   constexpr double conic_end = 0.5, quintic_end = 0.8;  // (n - 1) / n of a degree-n Bezier's end
-  auto cross = [](const V2& a, const V2& b) { return a.x() * b.y() - a.y() * b.x(); };
   const V2 &Q = bilge.p[0], &X = bilge.p[1], &K = bilge.p[2];
   const double leg = (X - Q).norm(), reach = (top.p[3] - top.p[5]).norm(), end = (top.p[5] - top.p[4]).norm();
   if (!(leg > 0 && reach > 0 && end > 0 && bilge.w > 0)) return;
@@ -542,7 +544,6 @@ Eigen::VectorXd sample(const Section& S, const std::vector<Piece>& pieces) {
 std::pair<Eigen::RowVectorXd, double> area_row(const Section& S) {
   const Frame& f = S.f;
   const int n = S.l.n;
-  auto cross = [](const V2& a, const V2& b) { return a.x() * b.y() - a.y() * b.x(); };
   const double DxD = cross(f.D, f.dir), DxN = cross(f.D, f.nrm), dxn = cross(f.dir, f.nrm);
   const auto& gr = detail::gauss_rule(kAreaGauss);
   Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);

@@ -184,7 +184,8 @@ std::vector<Vec2> trace_waterline(const FaceGeometry& g, const Vec2& from, const
     Vec2 next = level_step(g, q, t, d, T);
     // where the surface is nearly degenerate (a stem's end) a step of step3d at q's speed
     // can land far along the level curve: halve it until its chord is near step3d
-    for (int h = 0; h < kTraceHalvings && (g.point(next) - g.point(q)).norm() > kTraceChord * step3d; ++h) {
+    const Vec3 at = g.point(q);
+    for (int h = 0; h < kTraceHalvings && (g.point(next) - at).norm() > kTraceChord * step3d; ++h) {
       d *= 0.5;
       next = level_step(g, q, t, d, T);
     }
