@@ -221,3 +221,11 @@ def test_all_quad_open_wetted_panels_give_capytaine_the_nurbs_volume(bare, tmp_p
     assert cm.nb_faces == 2 * len(m.faces)
     assert cm.volume == pytest.approx(ref.volume, rel=CAPYTAINE_TOL)
     assert cm.waterplane_area == pytest.approx(ref.waterplane_area, rel=CAPYTAINE_TOL)
+
+
+def test_bem_panels_of_the_wetted_ship_have_no_sliver_where_a_waterline_runs_close_to_a_trim_curve(ship):
+    """Where the waterline runs a few centimetres from a trim curve (or two trim curves run
+    close), the strip between them is meshed by elements as wide as the gap, not by slivers
+    fanned across it from nodes a size apart (least scaled Jacobian 0.211 before)."""
+    m = fl.mesh_hull(ship, size=SHIP_SIZE, draft=EXAMPLE_DRAFT, lids=False)
+    assert knupp_scaled_jacobians(m.vertices, m.faces).min() >= 0.3

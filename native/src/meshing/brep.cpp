@@ -40,6 +40,9 @@ constexpr double kSubstep = 0.25;       ///< integration step of an edge's size 
 constexpr double kMinSubstep = 1e-3;    ///< sub-steps are at least this fraction of the sample spacing
 constexpr double kAllQuadTolerance = 0.8;  ///< chordal tolerance factor of the all-quad split's coarse pass
 constexpr double kEdgeGrading = 0.6;    ///< an edge's size grows by at most this x the distance from its ends' sizes
+constexpr double kFacing = 0.2;         ///< |cos| of the gap to both edges' tangents at most this: they face each other (within 11.5 deg)
+constexpr double kGapElements = 1.0;    ///< a gap between facing edges caps their size at its width / this
+constexpr double kGapFloor = 0.1;       ///< ... but not below this x the size (a cusp's tip is one sliver however fine)
 
 EdgeSample lerp(const EdgeSample& a, const EdgeSample& b, double t) {
   EdgeSample r;
@@ -496,12 +499,94 @@ struct Mesher {
   };
   std::vector<std::vector<Station>> cum_I;
   std::vector<double> vertex_h;                   // size at each end vertex, over all its edges
+  std::vector<std::vector<double>> gap_h;         // proximity cap at each sample of every edge (m)
 
   /// Arc length (m) from the first sample at every sample of edge e.
   std::vector<double> arc(const Edge& e) const {
     std::vector<double> s(e.s.size(), 0.0);
     for (size_t k = 1; k < e.s.size(); ++k) s[k] = s[k - 1] + (e.s[k].xyz - e.s[k - 1].xyz).norm();
     return s;
+  }
+
+  /// Where two edges of one face run close and face each other (a waterline a few centimetres
+  /// above a trim curve), the gap caps the size along both, graded along each edge, so the strip
+  /// between them is meshed by elements as wide as it is rather than by slivers. Segments are
+  /// bucketed in cubes of the size: only gaps below it matter.
+  void proximity_caps(const std::vector<char>& needed) {
+    gap_h.assign(b.edges.size(), {});
+    const double cell = o.size;
+    auto key = [&](const Vec3& p) {
+      const auto c = [&](double t) { return static_cast<long long>(std::floor(t / cell)) & 0x1fffff; };
+      return (c(p.x()) << 42) | (c(p.y()) << 21) | c(p.z());
+    };
+    std::unordered_map<long long, std::vector<std::pair<int, int>>> buckets;  // (edge, segment)
+    for (size_t ei = 0; ei < b.edges.size(); ++ei) {
+      if (!needed[ei] || b.edges[ei].degenerate) continue;
+      gap_h[ei].assign(b.edges[ei].s.size(), 1e300);
+      const auto& x = b.edges[ei].s;
+      for (size_t k = 0; k + 1 < x.size(); ++k)
+        for (const Vec3& p : {x[k].xyz, x[k + 1].xyz}) {
+          auto& v = buckets[key(p)];
+          if (v.empty() || v.back() != std::pair<int, int>(static_cast<int>(ei), static_cast<int>(k)))
+            v.emplace_back(static_cast<int>(ei), static_cast<int>(k));
+        }
+    }
+    for (size_t ei = 0; ei < b.edges.size(); ++ei)
+      if (!gap_h[ei].empty()) edge_gaps(static_cast<int>(ei), buckets, key);
+  }
+
+  template <class Buckets, class Key>
+  void edge_gaps(int ei, const Buckets& buckets, const Key& key) {
+    const Edge& e = b.edges[ei];
+    // a curved face only: a lid's waterline meets the centre plane's edge in a cusp at the stem,
+    // where refining only makes its tip sliver smaller
+    auto shares_face = [&](const Edge& f) {
+      for (int a : e.face)
+        if (a >= 0 && (a == f.face[0] || a == f.face[1]) && b.faces[a].g.surface) return true;
+      return false;
+    };
+    std::vector<double>& h = gap_h[ei];
+    const size_t n = e.s.size();
+    for (size_t k = 0; k < n; ++k) {
+      const Vec3& p = e.s[k].xyz;
+      const Vec3 t = (e.s[std::min(k + 1, n - 1)].xyz - e.s[k > 0 ? k - 1 : 0].xyz).normalized();
+      double gap = o.size * kGapElements;
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dz = -1; dz <= 1; ++dz) {
+            auto it = buckets.find(key(p + o.size * Vec3(dx, dy, dz)));
+            if (it == buckets.end()) continue;
+            for (const auto& [fj, j] : it->second) {
+              const Edge& f = b.edges[fj];
+              if (fj == ei || !shares_face(f)) continue;
+              const Vec3 &a = f.s[j].xyz, &c = f.s[j + 1].xyz, ac = c - a;
+              if (ac.squaredNorm() == 0.0) continue;
+              const double w = std::clamp((p - a).dot(ac) / ac.squaredNorm(), 0.0, 1.0);
+              const Vec3 d = a + w * ac - p;
+              const double dist = d.norm();
+              // a shared vertex (dist 0) or a corner (the gap along an edge) is no strip
+              if (dist <= 0.0 || dist >= gap) continue;
+              if (std::abs(d.dot(t)) > kFacing * dist || std::abs(d.dot(ac.normalized())) > kFacing * dist) continue;
+              gap = dist;
+            }
+          }
+      h[k] = std::max({gap / kGapElements, kGapFloor * o.size, o.min_size});
+    }
+    // graded along the edge, both ways
+    for (size_t k = 1; k < n; ++k)
+      h[k] = std::min(h[k], h[k - 1] + kEdgeGrading * (e.s[k].xyz - e.s[k - 1].xyz).norm());
+    for (size_t k = n - 1; k-- > 0;)
+      h[k] = std::min(h[k], h[k + 1] + kEdgeGrading * (e.s[k + 1].xyz - e.s[k].xyz).norm());
+  }
+
+  /// The proximity cap at arc length `at` of edge ei (samples' arc lengths s), times the scale.
+  double gap_at(int ei, const std::vector<double>& s, double at) const {
+    const std::vector<double>& h = gap_h[ei];
+    const size_t k = std::upper_bound(s.begin(), s.end(), at) - s.begin();
+    if (k == 0) return scale * h.front();
+    if (k >= s.size()) return scale * h.back();
+    const double w = (at - s[k - 1]) / std::max(s[k] - s[k - 1], 1e-300);
+    return scale * ((1.0 - w) * h[k - 1] + w * h[k]);
   }
 
   /// The smallest size each vertex sees along any of its edges, graded by the distance, so an
@@ -518,7 +603,7 @@ struct Mesher {
       vertex_h[e.v0] = std::min(vertex_h[e.v0], s.back());
       vertex_h[e.v1] = std::min(vertex_h[e.v1], s.back());
       for (size_t k = 0; k < e.s.size(); ++k) {
-        const double h = h_at(e, e.s[k]);
+        const double h = std::min(h_at(e, e.s[k]), scale * gap_h[ei][k]);
         vertex_h[e.v0] = std::min(vertex_h[e.v0], h + kEdgeGrading * s[k]);
         vertex_h[e.v1] = std::min(vertex_h[e.v1], h + kEdgeGrading * (s.back() - s[k]));
       }
@@ -559,7 +644,8 @@ struct Mesher {
     auto& c = cum_I[ei];
     const std::vector<double> s = arc(e);
     auto graded = [&](const EdgeSample& x, double at) {
-      return std::min({h_at(e, x), vertex_h[e.v0] + kEdgeGrading * at, vertex_h[e.v1] + kEdgeGrading * (s.back() - at)});
+      return std::min({h_at(e, x), gap_at(ei, s, at), vertex_h[e.v0] + kEdgeGrading * at,
+                       vertex_h[e.v1] + kEdgeGrading * (s.back() - at)});
     };
     double prev_h = graded(e.s[0], 0.0), I = 0.0;
     c.push_back({0, 0.0, 0.0});
@@ -767,10 +853,11 @@ SurfaceMesh mesh_brep(Brep& b, const MeshOptions& options, const std::function<v
   // quarters sag about a quarter as much, but smoothing and the 2:1 steps of the sizes add some
   MeshOptions o = options;
   if (o.all_quad) o.chordal_tolerance *= kAllQuadTolerance;
-  Mesher M{b, o, o.all_quad ? 2.0 : 1.0, b.vertices, {}, {}, {}, {}};
+  Mesher M{b, o, o.all_quad ? 2.0 : 1.0, b.vertices, {}, {}, {}, {}, {}};
   M.disc.resize(b.edges.size());
   M.cum_I.resize(b.edges.size());
   const std::vector<char> needed = needed_edges(b);
+  M.proximity_caps(needed);
   M.vertex_sizes(needed);
   for (size_t e = 0; e < b.edges.size(); ++e)
     if (needed[e]) M.discretise(static_cast<int>(e));
