@@ -97,6 +97,12 @@ constexpr double kCorrectionReach = 3.0;
 constexpr double kTopsideFreedom = 1.0, kTopsideStiffness = 1e3;
 /// ... and the topside's weights take over from those below Q over this many knot spans about Q.
 constexpr double kTopsideBlend = 1.0;
+/// Within the end band the spline goes through Q in the share w^kThroughQPower of the immersion
+/// weight w. Where Q nears K (t_q -> 1) passing through Q and holding K fight over the last
+/// control points, and a share w let the correction rotate the whole section: 3 mm at z = 15 m
+/// within 0.3 m of the container ship's dry waterline end (its waterline slope there dipped from
+/// 0.29 to 0.26). A cube vanishes fast enough for the correction to stay small there.
+constexpr double kThroughQPower = 3.0;
 /// A flared section's side leans this much more than the line from Q to the deck point, so
 /// its top still turns inward (convex) ...
 constexpr double kFlareMargin = 1.05;
@@ -403,6 +409,13 @@ double smooth_max(double a, double c, double k) {
   return std::max(a, c) * std::exp(blend_exponent(a, c, k));
 }
 
+/// The sine of the lean a section's side takes below its waterline point (b its half-breadth,
+/// reach |D - Q|): the chord's, or less where the top corner has no room inside B/2 (see heading()).
+double heading_sine(double sin_chord, double b, double reach, const SectionSpec& s) {
+  const double sin_room = (s.y_max - b) / std::max(s.top_corner * reach, 1e-12);
+  return smooth_min(sin_chord, std::max(sin_room, 0.0), kHeadingBlend);
+}
+
 V2 heading(const Section& S) {
   const SectionSpec& s = S.s;
   // (The flare does not steer the heading: a wide deck over a narrow, shallow waterline would
@@ -411,8 +424,7 @@ V2 heading(const Section& S) {
   // half-breadth does, where its tangent blows up as the room reaches the whole top (sine 1).
   const double chord = S.b / S.d;
   const double sin_chord = chord / std::sqrt(1.0 + chord * chord);
-  const double sin_room = (s.y_max - S.b) / std::max(s.top_corner * (S.f.D - S.Q).norm(), 1e-12);
-  const double sin_lean = smooth_min(sin_chord, std::max(sin_room, 0.0), kHeadingBlend);
+  const double sin_lean = heading_sine(sin_chord, S.b, (S.f.D - S.Q).norm(), s);
   const double lean = sin_lean / std::sqrt(1.0 - sin_lean * sin_lean);
   return S.Q + s.character * S.d * V2(-lean, -1.0);
 }
@@ -474,16 +486,31 @@ std::vector<Piece> immersed_template(const Section& S, double lambda) {
 /// kVirtualReach of what keeps the corner above K.
 std::vector<Piece> above_template(const Section& S) {
   const SectionSpec& s = S.s;
-  const double a = (std::isnan(s.lower_angle) ? 0.0 : s.lower_angle) * std::numbers::pi / 180.0;
-  const V2 up(std::sin(a), std::cos(a));
+  double a = (std::isnan(s.lower_angle) ? 0.0 : s.lower_angle) * std::numbers::pi / 180.0;
   const double lk = (S.f.D - S.K).norm();
-  double e = 0.0;
-  if (!std::isnan(s.lower_angle) && !std::isnan(s.draft) && S.K.y() > s.draft) {
+  const bool virtual_q = !std::isnan(s.lower_angle) && !std::isnan(s.draft) && S.K.y() > s.draft;
+  auto virtual_point = [&](double angle) {  // Q_v on the leg from K at `angle`, its distance saturating
+    const V2 up(std::sin(angle), std::cos(angle));
     const double cap = kVirtualReach * s.top_corner / (1.0 + s.top_corner) * lk;
     const double raw = (S.K.y() - s.draft) / up.y();
-    e = cap > 0 ? raw / std::pow(1.0 + std::pow(raw / cap, kVirtualSharpness), 1.0 / kVirtualSharpness) : 0.0;
+    const double e = cap > 0 ? raw / std::pow(1.0 + std::pow(raw / cap, kVirtualSharpness), 1.0 / kVirtualSharpness) : 0.0;
+    return V2(S.K - e * up);
+  };
+  // The leg leans as the immersed sections' side does (the chord's lean, less where the top has
+  // no room, heading_sine at Q_v): with the chord's lean alone the dry and the immersed sections
+  // met with a step where the waterline ends (1 mm at the container ship's 15 m waterline).
+  if (!std::isnan(s.lower_angle) && !std::isnan(s.draft)) {  // also at the end itself (Q_v = K)
+    const V2 Q0 = virtual_q ? virtual_point(a) : S.K;
+    a = std::asin(heading_sine(std::sin(a), Q0.x(), (S.f.D - Q0).norm(), s));
+  } else if (std::isnan(s.lower_angle) && S.b > 0 && S.d > 0) {
+    // An immersed section too close to the waterline's end to count (setup: w < kMinImmersion,
+    // within a millimetre of it) is the end's limit, the top corner over the chord's lean; with
+    // no lower angle given it was a vertical leg (the 15 m half-breadth 1.86 m instead of 7.90 m).
+    const double chord = S.b / S.d;
+    a = std::asin(heading_sine(chord / std::sqrt(1.0 + chord * chord), S.b, (S.f.D - S.Q).norm(), s));
   }
-  const V2 Qv = S.K - e * up;
+  const V2 up(std::sin(a), std::cos(a));
+  const V2 Qv = virtual_q ? virtual_point(a) : S.K;
   const V2 Y = Qv + s.top_corner * (S.f.D - Qv).norm() * up;
   return {fillet(S.f.D, Y, Qv)};
 }
@@ -1111,7 +1138,10 @@ SectionDesign design_section(const SectionSpec& spec) {
   out.immersion = S.w;
   out.shape = S.w * lambda + (1.0 - S.w) * kMaxShapeKnob;
   Eigen::VectorXd eta = sample(S, immersed_template(S, out.shape));
-  const double eta_q = S.w * S.f.eta(S.Q) + (1.0 - S.w) * point_row(S, S.t_q).dot(eta);
+  // The spline is put through Q in the share w^kThroughQPower (see the constant: with w itself the
+  // correction, ill-conditioned as Q nears K, outgrew the fading waterline point).
+  const double through_q = std::pow(S.w, kThroughQPower);
+  const double eta_q = through_q * S.f.eta(S.Q) + (1.0 - through_q) * point_row(S, S.t_q).dot(eta);
   eta += correction(S, eta, eta_q, arow);
   out.fullness = (arow.dot(eta) + ac) / box;
   out.curve = assemble(S, eta);
