@@ -1420,6 +1420,32 @@ bool joined(const Work& w, const std::vector<int>& at, int a, int b) {
   return false;
 }
 
+/// A trial edit about some nodes: the live elements about them (to judge the worst there) and
+/// the free nodes' positions (to put back if the edit is undone).
+struct LocalEdit {
+  std::vector<int> touched;
+  std::vector<std::tuple<int, Vec2, Vec3, Vec3>> saved;  // (node, uv, xyz, normal)
+  template <class Nodes, class Live>
+  LocalEdit(const Work& w, const Nodes& nodes, const Live& live) {
+    for (int x : nodes)
+      for (int e : live(x)) touched.push_back(e);
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    for (int x : nodes)
+      if (x >= w.fixed) saved.push_back({x, w.uv[x], w.xyz[x], w.normal[x]});
+  }
+  /// The worst strict quality of the touched elements still alive.
+  double worst(const Work& w) const {
+    double q = 1e9;
+    for (int e : touched)
+      if (w.el[e][0] != -2) q = std::min(q, w.strict_quality(w.el[e]));
+    return q;
+  }
+  void restore(Work& w) const {
+    for (const auto& [x, uv, xyz, nn] : saved) w.uv[x] = uv, w.xyz[x] = xyz, w.normal[x] = nn;
+  }
+};
+
 /// Free nodes with exactly three elements, all quads, scoring below kHexBelow are removed
 /// where two quads do better: the three quads about such a node c are a hexagon, split here
 /// along the diagonal (a spoke to the far corner across) whose quads score best; the hexagon's
@@ -1466,37 +1492,24 @@ bool remove_valence3_nodes(Work& w) {
       if (q > 0 && q > best_q) best = d, best_q = q;
     }
     if (best < 0 || best_q < before3 - kHexReach) continue;
-    std::vector<int> touched;
-    for (int x : hex)
-      for (int e : live(x)) touched.push_back(e);
-    std::sort(touched.begin(), touched.end());
-    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-    auto worst = [&] {
-      double q = 1e9;
-      for (int e : touched)
-        if (w.el[e][0] != -2) q = std::min(q, w.strict_quality(w.el[e]));
-      return q;
-    };
-    const double before = worst();
-    std::vector<std::tuple<int, Vec2, Vec3, Vec3>> saved;
-    for (int x : hex)
-      if (x >= w.fixed) saved.push_back({x, w.uv[x], w.xyz[x], w.normal[x]});
+    const LocalEdit edit(w, hex, live);
+    const double before = edit.worst(w);
     const std::array<std::array<int, 4>, 3> old{w.el[at[0]], w.el[at[1]], w.el[at[2]]};
     w.el[at[0]] = split[best][0], w.el[at[1]] = split[best][1], w.el[at[2]] = kDead;
     for (int x : split[best][0]) add(x, at[0]);
     for (int x : split[best][1]) add(x, at[1]);
     auto good = [&] {
       return std::min(w.strict_quality(w.el[at[0]]), w.strict_quality(w.el[at[1]])) >= before3 + kHexGain &&
-             worst() >= before;
+             edit.worst(w) >= before;
     };
-    for (const auto& sv : saved) optimise_node(w, live(std::get<0>(sv)), std::get<0>(sv));
+    for (const auto& sv : edit.saved) optimise_node(w, live(std::get<0>(sv)), std::get<0>(sv));
     if (good()) {
       removed = true;
       continue;
     }
     // undone: the three quads and the positions back
     for (int k = 0; k < 3; ++k) w.el[at[k]] = old[k];
-    for (const auto& [x, uv, xyz, nn] : saved) w.uv[x] = uv, w.xyz[x] = xyz, w.normal[x] = nn;
+    edit.restore(w);
   }
   w.el.erase(std::remove(w.el.begin(), w.el.end(), kDead), w.el.end());
   return removed;
@@ -1660,21 +1673,9 @@ void merge_weak_pairs(Work& w, const std::vector<WeakPair>& pairs) {
     return r;
   };
   for (const WeakPair& p : pairs) {
-    std::vector<int> touched;
-    for (int node : p.quad)
-      for (int e : live(node)) touched.push_back(e);
-    std::sort(touched.begin(), touched.end());
-    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-    auto worst = [&] {
-      double q = 1e9;
-      for (int e : touched)
-        if (w.el[e][0] != -2) q = std::min(q, w.strict_quality(w.el[e]));
-      return q;
-    };
-    const double before = worst();
-    std::vector<std::tuple<int, Vec2, Vec3, Vec3>> saved;
-    for (int node : p.quad)
-      if (node >= w.fixed) saved.push_back({node, w.uv[node], w.xyz[node], w.normal[node]});
+    LocalEdit edit(w, p.quad, live);
+    const double before = edit.worst(w);
+    auto& saved = edit.saved;
     const std::array<int, 4> e1 = w.el[p.t1], e2 = w.el[p.t2];
     w.el[p.t1] = p.quad;
     w.el[p.t2] = kDead;
@@ -1684,7 +1685,7 @@ void merge_weak_pairs(Work& w, const std::vector<WeakPair>& pairs) {
       return corner_quality(w, p.quad, std::get<0>(a)) < corner_quality(w, p.quad, std::get<0>(b));
     });
     auto good = [&] {
-      return w.strict_quality(p.quad) >= w.o.min_quad_quality && worst() >= std::min(before, w.o.min_quad_quality);
+      return w.strict_quality(p.quad) >= w.o.min_quad_quality && edit.worst(w) >= std::min(before, w.o.min_quad_quality);
     };
     bool merged = false;
     for (int sweep = 0; sweep < 2 && !merged; ++sweep)
@@ -1695,7 +1696,7 @@ void merge_weak_pairs(Work& w, const std::vector<WeakPair>& pairs) {
     if (merged) continue;
     w.el[p.t1] = e1;
     w.el[p.t2] = e2;
-    for (const auto& [node, uv, xyz, n] : saved) w.uv[node] = uv, w.xyz[node] = xyz, w.normal[node] = n;
+    edit.restore(w);
   }
   w.el.erase(std::remove(w.el.begin(), w.el.end(), kDead), w.el.end());
 }
