@@ -1209,6 +1209,15 @@ std::vector<double> strict_qualities(const Work& w) {
   return q;
 }
 
+/// Flags the nodes of every element whose score (q, per element) is below `below`.
+std::vector<char> nodes_scoring_below(const Work& w, const std::vector<double>& q, double below) {
+  std::vector<char> poor(w.xyz.size(), 0);
+  for (size_t e = 0; e < w.el.size(); ++e)
+    if (q[e] < below)
+      for (int k = 0; k < (w.el[e][3] < 0 ? 3 : 4); ++k) poor[w.el[e][k]] = 1;
+  return poor;
+}
+
 /// `q`: each element's strict_quality if the caller has them (else computed here), kept
 /// current: only a moved node's elements change (a search that does not move its node leaves
 /// it bit for bit where it was).
@@ -1219,10 +1228,7 @@ void improve_worst(Work& w, double below = kImproveBelow, double first_step = kI
   Settled settled(w, around);
   if (q.size() != w.el.size()) q = strict_qualities(w);
   for (int pass = 0; pass < kImprovePasses; ++pass) {
-    std::vector<char> poor(n, 0);
-    for (size_t e = 0; e < w.el.size(); ++e)
-      if (q[e] < below)
-        for (int k = 0; k < (w.el[e][3] < 0 ? 3 : 4); ++k) poor[w.el[e][k]] = 1;
+    const std::vector<char> poor = nodes_scoring_below(w, q, below);
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
       if (!poor[i] || around[i].empty() || settled[i]) continue;
@@ -1365,10 +1371,7 @@ void improve_mean(Work& w) {
   Settled settled(w, around);
   std::vector<double> q = strict_qualities(w);
   for (int pass = 0; pass < kMeanPasses; ++pass) {
-    std::vector<char> poor(n, 0);
-    for (size_t e = 0; e < w.el.size(); ++e)
-      if (q[e] < kMeanBelow)
-        for (int k = 0; k < (w.el[e][3] < 0 ? 3 : 4); ++k) poor[w.el[e][k]] = 1;
+    const std::vector<char> poor = nodes_scoring_below(w, q, kMeanBelow);
     int moved = 0;
     for (int i = w.fixed; i < n; ++i) {
       if (!poor[i] || around[i].empty() || settled[i]) continue;
