@@ -66,6 +66,8 @@ constexpr double kHexBelow = 0.75;         ///< remove_valence3_nodes looks at v
 constexpr double kHexReach = 0.1;          ///< splits scoring more than this below them before the search are not tried
 constexpr double kHexGain = 0.02;          ///< and makes two quads of three where that raises their worst this much
 constexpr int kMeanTries = 2;              ///< moves toward the ideal position tried per visit: all the way, half
+constexpr double kMeanScoreSlack = 1e-12;  ///< a mean move may lower its elements' worst score by round-off
+constexpr double kMeanMinGain = 1e-9;      ///< and must lower the sum of their deficits by more than this
 
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
@@ -1347,9 +1349,9 @@ bool move_for_mean(Work& w, std::span<const int> around, int i, const Place& her
     for (size_t k = 0; k < around.size() && ok; ++k) {
       now[k] = w.strict_quality(w.el[around[k]]);
       sum += 1.0 - now[k];
-      ok = now[k] + 1e-12 >= worst;
+      ok = now[k] + kMeanScoreSlack >= worst;
     }
-    if (ok && sum < deficit - 1e-9 && shortest_edge(w, around, i) >= floor && sags_within(w, around, i, old_uv, old_p, old_n)) {
+    if (ok && sum < deficit - kMeanMinGain && shortest_edge(w, around, i) >= floor && sags_within(w, around, i, old_uv, old_p, old_n)) {
       for (size_t k = 0; k < around.size(); ++k) q[around[k]] = now[k];
       return true;
     }
