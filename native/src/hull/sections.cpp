@@ -416,15 +416,19 @@ double heading_sine(double sin_chord, double b, double reach, const SectionSpec&
   return smooth_min(sin_chord, std::max(sin_room, 0.0), kHeadingBlend);
 }
 
+/// heading_sine of an immersed section's own chord (its half-breadth b over its depth d at Q).
+double chord_heading_sine(const Section& S) {
+  const double chord = S.b / S.d;
+  return heading_sine(chord / std::sqrt(1.0 + chord * chord), S.b, (S.f.D - S.Q).norm(), S.s);
+}
+
 V2 heading(const Section& S) {
   const SectionSpec& s = S.s;
   // (The flare does not steer the heading: a wide deck over a narrow, shallow waterline would
   // send it across the centre plane and fold the section. The corner C leans for it instead.)
   // The minimum is taken of the sines: the room's sine changes along the ship as the waterline's
   // half-breadth does, where its tangent blows up as the room reaches the whole top (sine 1).
-  const double chord = S.b / S.d;
-  const double sin_chord = chord / std::sqrt(1.0 + chord * chord);
-  const double sin_lean = heading_sine(sin_chord, S.b, (S.f.D - S.Q).norm(), s);
+  const double sin_lean = chord_heading_sine(S);
   const double lean = sin_lean / std::sqrt(1.0 - sin_lean * sin_lean);
   return S.Q + s.character * S.d * V2(-lean, -1.0);
 }
@@ -506,8 +510,7 @@ std::vector<Piece> above_template(const Section& S) {
     // An immersed section too close to the waterline's end to count (setup: w < kMinImmersion,
     // within a millimetre of it) is the end's limit, the top corner over the chord's lean; with
     // no lower angle given it was a vertical leg (the 15 m half-breadth 1.86 m instead of 7.90 m).
-    const double chord = S.b / S.d;
-    a = std::asin(heading_sine(chord / std::sqrt(1.0 + chord * chord), S.b, (S.f.D - S.Q).norm(), s));
+    a = std::asin(chord_heading_sine(S));
   }
   const V2 up(std::sin(a), std::cos(a));
   const V2 Qv = virtual_q ? virtual_point(a) : S.K;
