@@ -57,7 +57,11 @@ the keel on the centre plane, at increasing x inside the ends. A station between
 sections blends their shapes; outside the first and last, the template family holds. Each
 shape is mapped onto its station's deck, waterline and keel points (heights stretched between
 them, half-breadths scaled to the waterline's and the deck's), so it follows edits of the
-basic curves, and its half-breadths are shifted smoothly until it holds the SAC's area.
+basic curves, and its half-breadths are shifted smoothly until it holds the SAC's area. A
+measured shape may add ``"offsets": {"deck": [dy, dz], "waterline": dy, "keel": dz}`` (m, default 0):
+its deck edge, waterline point and keel point lie that far from the basic curves at its x, and it is mapped onto the
+curves moved by them (blended linearly in x between given sections), so the shape keeps its
+measured points where a fair curve passes a few mm off them and still follows the curves' edits.
 
 A basic curve is ``{"value": v}`` (constant) or a spline with any of: ``x_start``, ``x_end``
 (inside its range above), ``flat_from`` / ``flat_to`` / ``value`` (a part where f = value exactly,
@@ -489,6 +493,7 @@ class HullDescription:
     design: dict | None = None  # the particulars a designer built it from (kept, not used)
     posts: tuple = ()  # ends ("aft", "fore") that are vertical posts of zero width
     given_sections: list = field(default_factory=list)  # [(x, (m, 2) array of (y, z))], increasing x
+    given_offsets: list = field(default_factory=list)  # per given section (deck dy, deck dz, waterline dy, keel dz), m
     skeg: SkegSpec | None = None
     dome: DomeSpec | None = None
 
@@ -568,17 +573,18 @@ class HullDescription:
         if not isinstance(given, (list, tuple)) or len(given) > MAX_GIVEN_SECTIONS:
             raise bad("sections.given", given, f"a list of at most {MAX_GIVEN_SECTIONS} sections {{x, points}}")
         tol = 1e-9 * self.principal.lpp
-        out = []
+        out, offsets = [], []
         for i, g in enumerate(given):
             path = f"sections.given[{i}]"
-            g = keyed_object(path, g, ("x", "points"))
+            g = keyed_object(path, g, ("x", "points", "offsets"))
             x = number(f"{path}.x", g.get("x"))
             if x < self.x_aft - tol or x > self.x_fore + tol:
                 raise _native.InvalidInput(f"{path}.x is {x}; expected a station on the hull ({self.x_aft} to {self.x_fore} m)")
             if out and not x > out[-1][0]:
                 raise _native.InvalidInput(f"{path}.x is {x}; expected increasing x (previous {out[-1][0]})")
             out.append((x, _given_points(f"{path}.points", g.get("points"))))
-        self.given_sections = out
+            offsets.append(_given_offsets(f"{path}.offsets", g.get("offsets", {})))
+        self.given_sections, self.given_offsets = out, offsets
 
     def to_dict(self) -> dict:
         d = {
@@ -593,6 +599,9 @@ class HullDescription:
         }
         if self.given_sections:
             d["sections"]["given"] = [{"x": float(x), "points": p.tolist()} for x, p in self.given_sections]
+            for g, off in zip(d["sections"]["given"], self.given_offsets):
+                if any(off):
+                    g["offsets"] = {"deck": [off[0], off[1]], "waterline": off[2], "keel": off[3]}
         if self.bulb is not None:
             d["bulb"] = self.bulb.to_dict()
         if self.skeg is not None:
@@ -624,6 +633,18 @@ def _given_points(path: str, points: Any):
         raise _native.InvalidInput(f"{path} runs from z = {a[0, 1]} to z = {a[-1, 1]} m; expected the deck edge first "
                                    "and the keel point, lower, last")
     return a
+
+
+def _given_offsets(path: str, offsets: Any) -> tuple[float, float, float, float]:
+    """A given section's offsets {"deck": [dy, dz], "waterline": dy, "keel": dz} (m, each default
+    0) as (deck dy, deck dz, waterline dy, keel dz). Raises InvalidInput naming the value."""
+    offsets = keyed_object(path, offsets, ("deck", "waterline", "keel"))
+    deck = offsets.get("deck", [0.0, 0.0])
+    if not isinstance(deck, (list, tuple)) or len(deck) != 2:
+        raise bad(f"{path}.deck", deck, "a pair [dy, dz] (m): the deck edge's offset from the basic curves")
+    dy, dz = (number(f"{path}.deck[{j}]", v) for j, v in enumerate(deck))
+    return (dy, dz, number(f"{path}.waterline", offsets.get("waterline", 0.0)),
+            number(f"{path}.keel", offsets.get("keel", 0.0)))
 
 
 def load_description(path_or_text_or_dict: Any) -> dict:

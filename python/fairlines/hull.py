@@ -361,6 +361,22 @@ class Hull:
                 out[i] = (g[j][1], g[j + 1][1], float((x - gx[j]) / (gx[j + 1] - gx[j])))
         return out
 
+    def _given_offsets(self, xs: np.ndarray) -> np.ndarray:
+        """(deck dy, deck dz, waterline dy, keel dz) of each x (m), len(xs) by 4: the given
+        sections' offsets from the basic curves, linear in x between them, zero outside the first
+        and last."""
+        d = self.description
+        out = np.zeros((len(xs), 4))
+        if not d.given_sections or not any(map(any, d.given_offsets)):
+            return out
+        gx = np.array([x for x, _ in d.given_sections])
+        off = np.asarray(d.given_offsets, dtype=float)
+        tol = 1e-9 * d.principal.lpp
+        inside = (xs >= gx[0] - tol) & (xs <= gx[-1] + tol)
+        for k in range(4):
+            out[inside, k] = np.interp(xs[inside], gx, off[:, k])
+        return out
+
     def section_specs(self, x: Any = None, with_area: bool = True) -> list:
         """fl.SectionSpec of each station (or of the given x, m), read off the basic curves
         (without the SAC's area when `with_area` is false). Raises InvalidInput for an x off the
@@ -382,6 +398,10 @@ class Hull:
         corner = {field: np.clip(bc[name](xs), lo, hi) for name, (field, lo, hi) in CORNER_CURVES.items() if name in bc}
         lower = self._lower_angles(xs)
         given = self._given_shapes(xs)
+        offsets = self._given_offsets(xs)
+        deck, z_deck = np.clip(deck + offsets[:, 0], 0.0, limit), z_deck + offsets[:, 1]
+        dwl = np.where(dwl > 0, dwl + offsets[:, 2], dwl)
+        prof = prof + offsets[:, 3]
         skeg, share = d.skeg.at(xs, np.minimum(prof, z_deck)) if d.skeg is not None else (np.full(len(xs), np.nan), None)
         dome, dome_b = d.dome.at(xs, np.minimum(prof, z_deck)) if d.dome is not None else (np.full(len(xs), np.nan), None)
         specs = []

@@ -223,3 +223,46 @@ def test_a_fullness_fit_with_given_sections_is_refused_naming_it():
     d["basic_curves"]["sac"]["fullness_fit"] = [[50.0, 0.6]]
     with pytest.raises(fl.InvalidInput, match="fullness_fit is given, but a SAC of given sections is designed as area"):
         fl.Hull.from_json(d).basic_curves
+
+
+def _with_offsets(offsets: dict, at: float = 50.0) -> dict:
+    d = _wigley_hull()
+    next(g for g in d["sections"]["given"] if g["x"] == at)["offsets"] = offsets
+    return d
+
+
+def test_given_offsets_put_the_deck_edge_waterline_and_keel_points_off_the_curves():
+    """Offsets move the points a given shape is mapped onto: at their station by their whole
+    value (the curves give (B/2, D), B/2 at T and z 0 there), at the next given station (5 m
+    away, no offsets) not at all, and half way between by half."""
+    off = {"deck": [-0.3, -0.5], "waterline": -0.2, "keel": 0.4}
+    h, plain = fl.Hull.from_json(_with_offsets(off)), fl.Hull.from_json(_wigley_hull())
+    p = _curve_points(h.sections_at(50.0)[0])
+    assert p[0, 1:] == pytest.approx([B2 - 0.3, D - 0.5], abs=1e-9)
+    assert p[-1, 1:] == pytest.approx([0.0, 0.4], abs=1e-9)
+    assert _half_breadth_at(p, T) == pytest.approx(B2 - 0.2, abs=1e-6)
+
+    def deck_edge(hull, x):
+        return _curve_points(hull.sections_at(x)[0])[0, 1:]
+
+    assert np.array_equal(deck_edge(h, 55.0), deck_edge(plain, 55.0))
+    assert deck_edge(h, 52.5) == pytest.approx(deck_edge(plain, 52.5) + [-0.15, -0.25], abs=1e-9)
+
+
+def test_given_offsets_round_trip_through_json():
+    h = fl.Hull.from_json(_with_offsets({"waterline": -0.2}))
+    again = json.loads(h.to_json())
+    assert next(g for g in again["sections"]["given"] if g["x"] == 50.0)["offsets"] == {
+        "deck": [0.0, 0.0], "waterline": -0.2, "keel": 0.0}
+    a, b = (np.asarray(x.bare_hull_surface().control_points) for x in (h, fl.Hull.from_json(again)))
+    assert np.array_equal(a, b)
+
+
+@pytest.mark.parametrize("offsets, message", [
+    ({"deck": [0.1]}, r"sections\.given\[9\]\.offsets\.deck is .*; expected a pair \[dy, dz\]"),
+    ({"waterline": "0.1"}, r"sections\.given\[9\]\.offsets\.waterline"),
+    ({"keal": 0.1}, "did you mean 'keel'"),
+    ({"keel": math.inf}, r"sections\.given\[9\]\.offsets\.keel")])
+def test_bad_given_offsets_are_refused_naming_them(offsets, message):
+    with pytest.raises(fl.InvalidInput, match=message):
+        fl.Hull.from_json(_with_offsets(offsets))
