@@ -70,6 +70,13 @@ SKEG_END_STATIONS = 6
 DOME_STATIONS = 16
 # Least slope (dz/dx) of the profile used for the arrival angle of above-water sections.
 MIN_STEM_SLOPE = 0.05
+# Beyond a dry transom's waterline end a section's lower angle leans less by this (deg) times
+# (distance from the end / T)^2: ahead of the end the side leans less as the knob leaves the V,
+# from zero with zero slope, and the dry sections mirror that to second order. Without it the
+# waterlines above T over the transom turned hollow, then convex (container 13 / 15 / 17 m: 3 / 5 /
+# 6 sign changes; 1 / 3 / 4 with it and kVeeExcessFade). At a stem it raised the fine ferry's
+# waterline sign changes (26 -> 28), so it applies at a dry transom only.
+DRY_TRANSOM_LEAN_BEND = 10.0
 MAX_LOWER_ANGLE = 75.0      # deg: a flat counter under a full waterline end arrives no flatter (sections allow < 80)
 # Recent hulls whose solved shape curves and fullness bands are kept (see _BuildCache).
 BUILD_CACHE_SIZE = 8
@@ -317,7 +324,8 @@ class Hull:
         """Arrival angle (deg) at the keel point of sections above the water beyond the
         waterline's ends: the angle of the line from the keel point to the virtual waterline
         point (b_v, T), b_v the waterline's cubic continued past its end (negative there), so a
-        dry section continues the immersed ones' chord K -> Q, whose lean is b / (T - z_keel)."""
+        dry section continues the immersed ones' chord K -> Q, whose lean is b / (T - z_keel);
+        beyond a dry transom less by DRY_TRANSOM_LEAN_BEND (h / T)^2, h the distance from the end."""
         bc = self._curves
         dwl, prof = bc["dwl"], bc["profile"]
         draft = self.description.principal.draft
@@ -326,6 +334,7 @@ class Hull:
             if dwl(x_end)[0] > 1e-9 * self.description.principal.breadth:
                 continue  # an immersed transom: no sections beyond the waterline's end
             taylor = [dwl.derivative(x_end, k) / math.factorial(k) for k in (1, 2, 3)]
+            bend = DRY_TRANSOM_LEAN_BEND if side == "aft" else 0.0
             mask = xs >= x_end if side == "fore" else xs <= x_end
             for k in np.flatnonzero(mask):
                 h = float(xs[k]) - x_end
@@ -335,7 +344,7 @@ class Hull:
                     lean = b_v / d_v
                 else:  # at the end itself: the limit of the lean, the end slopes' ratio
                     lean = abs(taylor[0]) / max(abs(prof.derivative(float(xs[k]), 1)), MIN_STEM_SLOPE)
-                out[k] = min(math.degrees(math.atan(lean)), MAX_LOWER_ANGLE)
+                out[k] = min(math.degrees(math.atan(lean)) - bend * (h / draft) ** 2, MAX_LOWER_ANGLE)
         for end in self.description.posts:  # a vertical post: the end section is the line deck -> keel
             x_end = self.description.x_aft if end == "aft" else self.description.x_fore
             out[np.abs(xs - x_end) <= 1e-9 * self.description.principal.lpp] = 0.0

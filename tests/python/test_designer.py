@@ -363,9 +363,9 @@ def test_no_s_shaped_frames():
         assert _sign_changes(s, 0, x) == 0, x
 
 
-@pytest.mark.xfail(strict=True, reason="waterlines above the DWL turn by 1-2 deg over the dry transom's first metres "
-                                       "(x -4 .. 3 m; z 13-17 m: 3-6 sign changes): the topside swings with the bilge's "
-                                       "knob as it leaves 2 there; the 1 and 3 m waterlines end in a rounded lobe where "
+@pytest.mark.xfail(strict=True, reason="waterlines above the DWL have a hollow of 0.35-0.43 deg at x 5 m between the "
+                                       "transom's convex run and the shoulder (x 25 m; z 15 and 17 m: 3 and 4 sign changes, "
+                                       "17 m also at the stem head, x 246.4-246.9 m); the 1 and 3 m waterlines end in a rounded lobe where "
                                        "the keel lands on its flat (x 33 m) and have a hollow and a shoulder aft (x 41, "
                                        "63-81 m) besides their entrance (4 each)")
 def test_waterlines_have_no_wobble():

@@ -82,6 +82,11 @@ constexpr double kAreaMetTol = 1e-9;
 /// area below the least is raised to it, and one within a few widths above it a little (at most
 /// ln 2 widths, at the least itself), so the knob leaves its end smoothly along the hull.
 constexpr double kAreaFloorSmoothing = 0.002;
+/// The asked area's excess over the template's V (half the box) is laid on the sampled family's
+/// least area in the share exp(-excess / kVeeExcessFade) (excess over the box): the sampled V holds
+/// more than half the box near a waterline's end (0.503-0.53 within 4 m of the container ship's
+/// dry one), so the knob stayed at the floor there and then left it with a kink (see solve_knob).
+constexpr double kVeeExcessFade = 0.01;
 /// Gauss points per knot span of the area integral (exact for the cubic-times-quadratic integrand).
 constexpr int kAreaGauss = 4;
 /// The correction that puts the spline through Q: weight of a straight stretch of the spline
@@ -682,8 +687,17 @@ KnobSolve solve_knob(const Section& S, const Eigen::RowVectorXd& arow, double ac
   const double area_a = area(0.0), area_b = area(hi);
   out.hi_area = std::max(area_a, area_b), out.lo_area = std::min(area_a, area_b);
   const bool in_range = target >= out.lo_area - kAreaMetTol * S.b * S.d && target <= out.hi_area + kAreaMetTol * S.b * S.d;
+  // Near the V the knob follows the asked fullness's excess over 1/2, not over the sampled V's
+  // least area: the SAC's excess grows from zero at the waterline's end with zero slope, and the
+  // knob with it (it sat on the floor and then left it at once: a convex lobe of 2.04 deg in the
+  // container ship's 15 m waterline at x = -1 m). The sampled V may hold less than half the box
+  // too (0.491 at the tanker's stern), and the rule is the same. Far above the V the area is the
+  // asked one. A given corner has no V (its family may hold a hollow section): no rule there.
+  const double box = S.b * S.d, excess = std::max(target - 0.5 * box, 0.0) / box;
+  const double surplus = std::isnan(S.s.corner_y) ? out.lo_area - 0.5 * box : 0.0;
+  target += surplus * std::exp(-excess / kVeeExcessFade);
   // The least area is approached smoothly (a hard floor would kink the knob along the hull).
-  const double soft = kAreaFloorSmoothing * S.b * S.d;
+  const double soft = kAreaFloorSmoothing * box;
   const double u = (target - out.lo_area) / soft;
   target = out.lo_area + soft * (u > 30.0 ? u : std::log1p(std::exp(u)));
   double a = 0.0, b = hi, fa = area_a - target, fb = area_b - target;
