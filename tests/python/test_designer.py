@@ -375,11 +375,9 @@ def test_waterlines_have_no_wobble():
         assert _sign_changes(s, 2, z) <= 2, z
 
 
-@pytest.mark.xfail(strict=True, reason="the outer buttocks turn back where they cross the DWL at the forward shoulder: "
-                                       "1.33 deg (y 12 m, x 193-198 m) and 2.0 deg (y 14 m, x 185-190 m), just below the waterline "
-                                       "point, where the bilge's heading there leans in fast (0.20 to 0.41 over x 184-195 m) "
-                                       "as the top's room opens (a flare margin of 1.0 or 1.2 leaves them); "
-                                       "y 14 m also by 1 deg where it leaves the bilge (x 53-66 m)")
+@pytest.mark.xfail(strict=True, reason="the outermost buttock (y 14 m) turns back by 1.0 deg where it leaves the bilge aft "
+                                       "(x 53-66 m, z 5.3 m); its forward-shoulder lobe and y 12 m's went with the top's room "
+                                       "measured to halfway between the deck and B/2 (kRoomBeyondDeck)")
 def test_buttocks_have_no_steps():
     s = fl.Hull.from_json(EXAMPLE.read_text()).bare_hull_surface()
     for y in np.linspace(2.0, 14.0, 7):

@@ -73,6 +73,11 @@ constexpr double kCurvatureMatchShare = 0.5, kCurvatureMatchSharpness = 4.0;
 /// logarithm of their sines: they are blended where their ratio lies within e^kHeadingBlend, so
 /// the heading changes over a span of stations, not a few metres; the plain minimum holds beyond.
 constexpr double kHeadingBlend = 0.8;
+/// The top's room is measured out to this share of the way from the deck's half-breadth to B/2:
+/// where the deck narrows (a forward shoulder) the heading leans in as the deck does, not as fast
+/// as the room to B/2 opens. On the container ship its sine rose 0.19 -> 0.67 over x 176-195 m
+/// (now 0.16 -> 0.54) and its buttocks y = 12 and 14 m took lobes of 1.3 and 2.0 deg there.
+constexpr double kRoomBeyondDeck = 0.5;
 /// Knob solve: area tolerance relative to the immersed box, and iteration limit.
 constexpr double kAreaTol = 1e-13;
 constexpr int kKnobIterations = 100;
@@ -381,7 +386,8 @@ Section setup(const SectionSpec& s) {
 /// Where the bilge corner heads as the section fines: `character` of the depth below Q, on the
 /// line from Q that leans in by the chord's lean b / d -- or less where the top has no room:
 /// the top corner Y (at top_corner |D - Q| above Q along the waterline tangent) must stay
-/// inside B/2, so sin(lean) <= (B/2 - b) / (top_corner |D - Q|). With little room the bottom
+/// inside the edge e halfway from the deck's half-breadth to B/2 (kRoomBeyondDeck), so
+/// sin(lean) <= (e - b) / (top_corner |D - Q|). With little room the bottom
 /// rises (deadrise) under a wall-sided waterline instead of the side leaning in, and the
 /// section can still fine down.
 /// Least lean of the side below Q (run over depth) that keeps a flared section convex: the
@@ -415,9 +421,11 @@ double smooth_max(double a, double c, double k) {
 }
 
 /// The sine of the lean a section's side takes below its waterline point (b its half-breadth,
-/// reach |D - Q|): the chord's, or less where the top corner has no room inside B/2 (see heading()).
+/// reach |D - Q|): the chord's, or less where the top corner has no room (see heading()): the
+/// room reaches halfway (kRoomBeyondDeck) from the deck's half-breadth to B/2.
 double heading_sine(double sin_chord, double b, double reach, const SectionSpec& s) {
-  const double sin_room = (s.y_max - b) / std::max(s.top_corner * reach, 1e-12);
+  const double edge = s.y_deck + kRoomBeyondDeck * (s.y_max - s.y_deck);
+  const double sin_room = (edge - b) / std::max(s.top_corner * reach, 1e-12);
   return smooth_min(sin_chord, std::max(sin_room, 0.0), kHeadingBlend);
 }
 
