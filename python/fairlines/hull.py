@@ -344,7 +344,8 @@ class Hull:
                     lean = b_v / d_v
                 else:  # at the end itself: the limit of the lean, the end slopes' ratio
                     lean = abs(taylor[0]) / max(abs(prof.derivative(float(xs[k]), 1)), MIN_STEM_SLOPE)
-                out[k] = min(math.degrees(math.atan(lean)) - bend * (h / draft) ** 2, MAX_LOWER_ANGLE)
+                # (never past vertical: the bend grows as h^2 and an overhang of several T would)
+                out[k] = min(max(math.degrees(math.atan(lean)) - bend * (h / draft) ** 2, 0.0), MAX_LOWER_ANGLE)
         for end in self.description.posts:  # a vertical post: the end section is the line deck -> keel
             x_end = self.description.x_aft if end == "aft" else self.description.x_fore
             out[np.abs(xs - x_end) <= 1e-9 * self.description.principal.lpp] = 0.0
