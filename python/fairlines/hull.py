@@ -371,6 +371,17 @@ class Hull:
                 out[i] = (g[j][1], g[j + 1][1], float((x - gx[j]) / (gx[j + 1] - gx[j])))
         return out
 
+    def curve_points(self, xs: np.ndarray, curves: dict | None = None) -> tuple:
+        """What the basic curves give a section at each x (m), before the given sections'
+        offsets: the deck edge's half-breadth (within [0, B_max / 2]) and height (the sheer, or D),
+        the waterline's half-breadth (NaN off its range) and the keel's height, each len(xs).
+        `curves`: the solved basic curves (default) or any dict holding these curves."""
+        bc = self.basic_curves if curves is None else curves
+        pr = self.description.principal
+        deck = np.clip(bc["deck"](xs), 0.0, pr.half_breadth_limit)
+        z_deck = bc["sheer"](xs) if "sheer" in bc else np.full(len(xs), pr.depth)
+        return deck, z_deck, bc["dwl"](xs, outside=math.nan), bc["profile"](xs)
+
     def _given_offsets(self, xs: np.ndarray) -> np.ndarray:
         """(deck dy, deck dz, waterline dy, keel dz) of each x (m), len(xs) by 4: the given
         sections' offsets from the basic curves, linear in x between them, zero outside the first
@@ -399,9 +410,7 @@ class Hull:
         if np.any(xs < d.x_aft - tol) or np.any(xs > d.x_fore + tol):
             raise _native.InvalidInput(f"x is {xs.tolist()}; expected stations on the hull ({d.x_aft} to {d.x_fore} m)")
         half_b, limit = pr.breadth / 2, pr.half_breadth_limit
-        deck, prof = np.clip(bc["deck"](xs), 0.0, limit), bc["profile"](xs)
-        z_deck = bc["sheer"](xs) if "sheer" in bc else np.full(len(xs), pr.depth)
-        dwl = bc["dwl"](xs, outside=math.nan)
+        deck, z_deck, dwl, prof = self.curve_points(xs, bc)
         sac = bc["sac"](xs, outside=math.nan) if with_area else None
         # a spline fitted to a bound may overshoot it by round-off (a deadrise of -4e-13 deg)
         shape = {name: np.clip(bc[name](xs), lo, hi) for name, (_, lo, hi) in SHAPE_CURVES.items()}
