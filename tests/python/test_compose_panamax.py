@@ -164,8 +164,6 @@ def test_union_on_the_real_hull_is_closed_manifold_oriented(union):
     assert max(c["max_gap"] for c in union.intersection_curves) < 1e-6
 
 
-@pytest.mark.xfail(strict=True, reason="the blend turns the normal by 1.5 deg from the bulb's (> 0.5 deg) near the top "
-                   "of its bulb boundary, between the skinned sections; its centre-plane ends are tangent")
 def test_blended_real_hull_is_watertight_and_c1(blended, bulb):
     assert blended.blend is not None, blended.blend_note
     m = blended.mesh
@@ -223,8 +221,6 @@ def test_volume_identity_two_ways_on_the_real_hull(hull, union, blended, bulb):
         assert added_q > 0.5 * bulb.shape["volume"]  # at least the half bulb forward of FP
 
 
-@pytest.mark.xfail(strict=True, reason="the blend turns the normal by 1.0-1.9 deg near the top of its bulb boundary, "
-                   "between the skinned sections")
 @pytest.mark.parametrize("c_lpr", np.linspace(*C_LPR_SWEEP, 3))
 @pytest.mark.parametrize("c_bb", np.linspace(*C_BB_SWEEP, 3))
 def test_sweep_of_bulb_length_and_breadth_composes_on_the_real_hull(hull, ship, c_lpr, c_bb):

@@ -198,29 +198,85 @@ namespace {
 /// The four rows of section control points of the Hermite sections: P0 on a, P1, P2, P3 on b.
 using SectionRows = std::array<Eigen::MatrixXd, 4>;
 
+/// Orients the unit directions d (one per sample) alike along the boundary: toward the other
+/// surface where `toward` (d . gap / |gap|, before orienting) says so most clearly, then by
+/// continuity from there. Per sample by the gap alone, d flips where the gap runs nearly across
+/// it (a blend from the bulb's top up to a hull boundary straight above: d along x, gap along
+/// z), and the rows between cross over into a fold.
+void orient_by_continuity(std::vector<Eigen::Vector3d>& d, const std::vector<double>& toward) {
+  const int n = static_cast<int>(d.size());
+  int k = 0;
+  for (int j = 1; j < n; ++j)
+    if (std::abs(toward[j]) > std::abs(toward[k])) k = j;
+  if (toward[k] < 0.0) d[k] = -d[k];
+  for (int j = k + 1; j < n; ++j)
+    if (d[j].dot(d[j - 1]) < 0.0) d[j] = -d[j];
+  for (int j = k - 1; j >= 0; --j)
+    if (d[j].dot(d[j + 1]) < 0.0) d[j] = -d[j];
+}
+
+/// Where a tangent row point would come nearer the centre plane than this share of its
+/// boundary point's height, keep_off_plane starts turning it (see there).
+constexpr double kRowAbovePlane = 0.15;
+
+/// d (unit, in the tangent plane of normal n at p, on the way to the other surface) turned
+/// within that plane toward n x e_y (its direction with no y part, on d's side) so that the
+/// tangent row point p + h d stays above the centre plane: near the centre-plane ends the
+/// tangent planes of a stem or a bulb's top run across the plane within h, and a section
+/// whose tangent rows go below y = 0 dips under it (the half hull crosses its mirror image).
+/// The height y = p.y + h d.y it would have is mapped by a C1 function that is y itself above
+/// a = kRowAbovePlane p.y and a exp((y - a) / a) below (positive, so the rows turn smoothly,
+/// with no kink where the turning starts). Any direction in the tangent plane keeps the
+/// blend tangent to the surface.
+Eigen::Vector3d keep_off_plane(const Eigen::Vector3d& p, const Eigen::Vector3d& n, const Eigen::Vector3d& d, double h) {
+  const double a = kRowAbovePlane * p.y(), y = p.y() + h * d.y();
+  if (!(a > 0.0) || y >= a) return d;
+  const double want = a * std::exp((y - a) / a);
+  Eigen::Vector3d e = n.cross(Eigen::Vector3d::UnitY());
+  if (e.norm() < 1e-9) return d;  // the tangent plane is the centre plane's: d.y is 0 already
+  e.normalize();
+  if (e.dot(d) < 0.0) e = -e;
+  double lo = 0.0, hi = 1.0;  // the weight of e that lifts the row point to `want`, by bisection
+  for (int it = 0; it < 50; ++it) {
+    const double w = 0.5 * (lo + hi);
+    const Eigen::Vector3d t = ((1.0 - w) * d + w * e).normalized();
+    (p.y() + h * t.y() >= want ? hi : lo) = w;
+  }
+  return ((1.0 - hi) * d + hi * e).normalized();
+}
+
 /// P1 and P2 leave P0 and P3 across the boundaries in the surfaces' tangent planes, toward the
-/// other surface, at a third of the gap times the tension.
+/// other surface (orient_by_continuity) and off the centre plane (keep_off_plane), at a third
+/// of the gap times the tension.
 SectionRows hermite_rows(const std::vector<Frame>& fa, const std::vector<Frame>& fb, double tension) {
   const int n = static_cast<int>(fa.size());
-  SectionRows rows;
-  for (auto& r : rows) r.resize(n, 3);
+  std::vector<Eigen::Vector3d> da(n), db(n);
+  std::vector<double> ta_gap(n), tb_gap(n), len(n);
   for (int j = 0; j < n; ++j) {
     const int jp = std::min(j + 1, n - 1), jm = std::max(j - 1, 0);
     const Eigen::Vector3d ta = (fa[jp].p - fa[jm].p).normalized(), tb = (fb[jp].p - fb[jm].p).normalized();
     const Eigen::Vector3d gap = fb[j].p - fa[j].p;
-    const double len = gap.norm();
-    if (!(len > 0.0))
+    len[j] = gap.norm();
+    if (!(len[j] > 0.0))
       detail::fail("boundaries touch at sample ", j, "; expected separate curves on the two surfaces");
-    Eigen::Vector3d da = fa[j].n.cross(ta), db = fb[j].n.cross(tb);
-    if (da.norm() < 1e-12 || db.norm() < 1e-12) detail::fail("boundary tangent is parallel to the surface normal at sample ", j);
-    da.normalize();
-    db.normalize();
-    if (da.dot(gap) < 0) da = -da;   // toward b
-    if (db.dot(-gap) < 0) db = -db;  // toward a
-    const double h = tension * len / 3.0;
+    da[j] = fa[j].n.cross(ta);
+    db[j] = fb[j].n.cross(tb);
+    if (da[j].norm() < 1e-12 || db[j].norm() < 1e-12)
+      detail::fail("boundary tangent is parallel to the surface normal at sample ", j);
+    da[j].normalize();
+    db[j].normalize();
+    ta_gap[j] = da[j].dot(gap) / len[j];
+    tb_gap[j] = -db[j].dot(gap) / len[j];
+  }
+  orient_by_continuity(da, ta_gap);
+  orient_by_continuity(db, tb_gap);
+  SectionRows rows;
+  for (auto& r : rows) r.resize(n, 3);
+  for (int j = 0; j < n; ++j) {
+    const double h = tension * len[j] / 3.0;
     rows[0].row(j) = fa[j].p.transpose();
-    rows[1].row(j) = (fa[j].p + h * da).transpose();
-    rows[2].row(j) = (fb[j].p + h * db).transpose();
+    rows[1].row(j) = (fa[j].p + h * keep_off_plane(fa[j].p, fa[j].n, da[j], h)).transpose();
+    rows[2].row(j) = (fb[j].p + h * keep_off_plane(fb[j].p, fb[j].n, db[j], h)).transpose();
     rows[3].row(j) = fb[j].p.transpose();
   }
   return rows;
@@ -258,8 +314,9 @@ PlaneEnds hold_centre_plane_ends(const std::vector<Frame>& fa, const std::vector
       if (da.norm() > 1e-9 && db.norm() > 1e-9) {
         da.normalize();
         db.normalize();
-        if (da.dot(gap) < 0) da = -da;
-        if (db.dot(-gap) < 0) db = -db;
+        // the side hermite_rows oriented this end's directions to
+        if (da.dot((rows[1].row(j) - rows[0].row(j)).transpose()) < 0) da = -da;
+        if (db.dot((rows[2].row(j) - rows[3].row(j)).transpose()) < 0) db = -db;
         rows[1].row(j) = (fa[j].p + h * da).transpose();
         rows[2].row(j) = (fb[j].p + h * db).transpose();
       }
@@ -278,7 +335,7 @@ Eigen::VectorXd row_parameters(const SectionRows& rows) {
   Eigen::VectorXd par = Eigen::VectorXd::Zero(n);
   for (Eigen::Index j = 1; j < n; ++j) {
     double d = 0.0;
-    for (const auto& r : rows) d += (r.row(j) - r.row(j - 1)).norm();
+    for (const auto* r : {&rows[0], &rows[3]}) d += (r->row(j) - r->row(j - 1)).norm();
     par[j] = par[j - 1] + d;
   }
   par /= par[n - 1];
