@@ -390,15 +390,12 @@ def test_tanker_waterlines_over_its_transom_have_no_wobble():
         assert _sign_changes(s, 2, z) <= 2, z
 
 
-@pytest.mark.xfail(strict=True, reason="the correction's flat guard reads an inflection of the control polygon as "
-                                       "straight for the moment it passes a control point: second differences along x of "
-                                       "6.2 mm, 450 times their median, every knot span along the tanker's run (x 4-7 m); "
-                                       "the fix (branch ring: 8.3 times) moves the composed container's 3 m mesh under "
-                                       "its 98 % quad goal by 4 quads")
 def test_sections_change_smoothly_along_the_run():
     """The designed sections at any x (sections_at) change smoothly along the tanker's run: every
     2 cm over x -2..15 m, no control point's second difference along x exceeds 20 times its
-    median there (a flicker of the construction, not a change of shape)."""
+    median there (a flicker of the construction, not a change of shape). The correction's flat
+    guard read an inflection of the control polygon as straight for the moment it passed a
+    control point: 6.2 mm, 450 times the median, every knot span at x 4-7 m."""
     hull = fl.design_hull(**SHIPS["tanker"])
     xs = np.arange(-2.0, 15.0, 0.02)
     P = np.array([np.asarray(c.control_points)[:, 1:] for c in hull.sections_at(xs)])

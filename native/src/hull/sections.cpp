@@ -650,10 +650,16 @@ Eigen::VectorXd correction(const Section& S, const Eigen::VectorXd& eta, double 
   auto topside = [&](double g) { return smoothstep((S.t_q - g) / (kTopsideBlend * span) + 0.5); };
   auto mix = [](double a, double b, double tau) { return std::exp(tau * std::log(a) + (1.0 - tau) * std::log(b)); };
   for (int k = 0; k < n; ++k) {
-    double curv = 0.0;
-    if (k > 0 && k < n - 1) curv = (eta[k - 1] - 2.0 * eta[k] + eta[k + 1]) / (kStraightScale * S.f.L);
+    double curv2 = 0.0;
+    if (k > 0 && k < n - 1) {
+      // An inflection of the polygon is straight only at one point: its neighbours bend either
+      // way, and their product counts as curvature (else the guard flicked on as the inflection
+      // passed each control point: 1 cm bumps every knot span along the tanker's run).
+      auto dd = [&](int i) { return i > 0 && i < n - 1 ? (eta[i - 1] - 2.0 * eta[i] + eta[i + 1]) / (kStraightScale * S.f.L) : 0.0; };
+      curv2 = dd(k) * dd(k) + std::max(0.0, -dd(k - 1) * dd(k + 1));
+    }
     const double far = (S.l.g[k] - S.t_q) / (kCorrectionReach * span);
-    const double below = (1.0 + kFlatGuard / (1.0 + curv * curv)) * (1.0 + far * far * far * far);
+    const double below = (1.0 + kFlatGuard / (1.0 + curv2)) * (1.0 + far * far * far * far);
     Mw(k, k) = k > 0 ? mix(kTopsideFreedom, below, topside(S.l.g[k])) : below;
   }
   for (int k = 1; k + 1 < n; ++k) {
