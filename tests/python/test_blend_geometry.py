@@ -14,15 +14,19 @@ CENTRE_PLANE_TOL = 1e-9
 SEAM_SAMPLES = 121
 
 
-def _max_angle_across(edge_v: float, neighbour) -> float:
+def _cos_across(edge_v: float, neighbour) -> np.ndarray:
+    """Signed cosines between the blend's normal and the neighbour's (at closest points) along
+    the blend's edge v = edge_v, at SEAM_SAMPLES points."""
     blend = container_ship_composed().blend
-    worst = 0.0
+    cos = []
     for s in np.linspace(0.0, 1.0, SEAM_SAMPLES):
-        p = np.asarray(blend.evaluate(s, edge_v))
-        u, v, _ = neighbour.closest_point(p)
-        cos = abs(float(fd_normal(blend, s, edge_v) @ fd_normal(neighbour, u, v)))
-        worst = max(worst, float(np.degrees(np.arccos(min(1.0, cos)))))
-    return worst
+        u, v, _ = neighbour.closest_point(np.asarray(blend.evaluate(s, edge_v)))
+        cos.append(float(fd_normal(blend, s, edge_v) @ fd_normal(neighbour, u, v)))
+    return np.array(cos)
+
+
+def _max_angle_across(edge_v: float, neighbour) -> float:
+    return float(np.degrees(np.arccos(min(1.0, np.abs(_cos_across(edge_v, neighbour)).min()))))
 
 
 def test_blend_is_tangent_to_the_hull_along_its_hull_boundary():
@@ -54,13 +58,8 @@ def test_blend_does_not_fold_back_over_its_neighbour(edge_v):
     a section whose tangent handle points the wrong way (toward the part of the bulb that is
     kept) folds the blend back over the bulb, which a check of |cos| alone reads as tangent.
     The handles flipped near the bulb's top, where the hull lies straight above (s 0.94)."""
-    c = container_ship_composed()
-    blend, neighbour = c.blend, c.trimmed_surfaces[0 if edge_v == 0.0 else 1][0]
-    cos = []
-    for s in np.linspace(0.0, 1.0, SEAM_SAMPLES):
-        u, v, _ = neighbour.closest_point(np.asarray(blend.evaluate(s, edge_v)))
-        cos.append(float(fd_normal(blend, s, edge_v) @ fd_normal(neighbour, u, v)))
-    cos = np.array(cos)
+    neighbour = container_ship_composed().trimmed_surfaces[0 if edge_v == 0.0 else 1][0]
+    cos = _cos_across(edge_v, neighbour)
     assert np.all(cos > 0) or np.all(cos < 0)
     assert np.abs(cos).min() >= np.cos(np.radians(C1_ANGLE_DEG))
 

@@ -251,7 +251,7 @@ Eigen::Vector3d keep_off_plane(const Eigen::Vector3d& p, const Eigen::Vector3d& 
 SectionRows hermite_rows(const std::vector<Frame>& fa, const std::vector<Frame>& fb, double tension) {
   const int n = static_cast<int>(fa.size());
   std::vector<Eigen::Vector3d> da(n), db(n);
-  std::vector<double> ta_gap(n), tb_gap(n), len(n);
+  std::vector<double> toward_b(n), toward_a(n), len(n);
   for (int j = 0; j < n; ++j) {
     const int jp = std::min(j + 1, n - 1), jm = std::max(j - 1, 0);
     const Eigen::Vector3d ta = (fa[jp].p - fa[jm].p).normalized(), tb = (fb[jp].p - fb[jm].p).normalized();
@@ -265,11 +265,11 @@ SectionRows hermite_rows(const std::vector<Frame>& fa, const std::vector<Frame>&
       detail::fail("boundary tangent is parallel to the surface normal at sample ", j);
     da[j].normalize();
     db[j].normalize();
-    ta_gap[j] = da[j].dot(gap) / len[j];
-    tb_gap[j] = -db[j].dot(gap) / len[j];
+    toward_b[j] = da[j].dot(gap) / len[j];
+    toward_a[j] = -db[j].dot(gap) / len[j];
   }
-  orient_by_continuity(da, ta_gap);
-  orient_by_continuity(db, tb_gap);
+  orient_by_continuity(da, toward_b);
+  orient_by_continuity(db, toward_a);
   SectionRows rows;
   for (auto& r : rows) r.resize(n, 3);
   for (int j = 0; j < n; ++j) {
@@ -328,15 +328,14 @@ PlaneEnds hold_centre_plane_ends(const std::vector<Frame>& fa, const std::vector
   return ends;
 }
 
-/// The sections' common parameters along the boundaries: the rows' chord lengths, averaged
-/// (summed), normalised to [0, 1].
+/// The sections' common parameters along the boundaries: the boundary rows' (P0, P3) chord
+/// lengths summed, normalised to [0, 1]. The handle rows are left out: at a sharp stem the end
+/// section's handle turns to the stem line, and counting that turn stretched the last interval.
 Eigen::VectorXd row_parameters(const SectionRows& rows) {
   const Eigen::Index n = rows[0].rows();
   Eigen::VectorXd par = Eigen::VectorXd::Zero(n);
   for (Eigen::Index j = 1; j < n; ++j) {
-    double d = 0.0;
-    for (const auto* r : {&rows[0], &rows[3]}) d += (r->row(j) - r->row(j - 1)).norm();
-    par[j] = par[j - 1] + d;
+    par[j] = par[j - 1] + ((rows[0].row(j) - rows[0].row(j - 1)).norm() + (rows[3].row(j) - rows[3].row(j - 1)).norm());
   }
   par /= par[n - 1];
   return par;

@@ -649,15 +649,12 @@ Eigen::VectorXd correction(const Section& S, const Eigen::VectorXd& eta, double 
   // along the section from station to station (a switch at g = t_q jumped the correction).
   auto topside = [&](double g) { return smoothstep((S.t_q - g) / (kTopsideBlend * span) + 0.5); };
   auto mix = [](double a, double b, double tau) { return std::exp(tau * std::log(a) + (1.0 - tau) * std::log(b)); };
+  Eigen::VectorXd dd = Eigen::VectorXd::Zero(n);  // the polygon's scaled second differences
+  for (int k = 1; k + 1 < n; ++k) dd[k] = (eta[k - 1] - 2.0 * eta[k] + eta[k + 1]) / (kStraightScale * S.f.L);
   for (int k = 0; k < n; ++k) {
-    double curv2 = 0.0;
-    if (k > 0 && k < n - 1) {
-      // An inflection of the polygon is straight only at one point: its neighbours bend either
-      // way, and their product counts as curvature (else the guard flicked on as the inflection
-      // passed each control point: 1 cm bumps every knot span along the tanker's run).
-      auto dd = [&](int i) { return i > 0 && i < n - 1 ? (eta[i - 1] - 2.0 * eta[i] + eta[i + 1]) / (kStraightScale * S.f.L) : 0.0; };
-      curv2 = dd(k) * dd(k) + std::max(0.0, -dd(k - 1) * dd(k + 1));
-    }
+    // An inflection is straight at one point only: its neighbours' opposite bends count as
+    // curvature, so the guard does not flick on as the inflection passes a control point.
+    const double curv2 = k > 0 && k < n - 1 ? dd[k] * dd[k] + std::max(0.0, -dd[k - 1] * dd[k + 1]) : 0.0;
     const double far = (S.l.g[k] - S.t_q) / (kCorrectionReach * span);
     const double below = (1.0 + kFlatGuard / (1.0 + curv2)) * (1.0 + far * far * far * far);
     Mw(k, k) = k > 0 ? mix(kTopsideFreedom, below, topside(S.l.g[k])) : below;
