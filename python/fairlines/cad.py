@@ -198,7 +198,9 @@ def _loop_pieces(s, loop, known):
                np.linalg.norm(first - ends[1]) + np.linalg.norm(last - ends[0])) > 2 * SEW_TOLERANCE:
             seg[i] = None
     n = len(a)
-    breaks = _corners(a) | {i for i in range(n) if seg[i] != seg[i - 1]}
+    # a corner inside a shared run is the edge's own: the run takes that whole edge once
+    inside_shared = {i for i in range(n) if seg[i] is not None and seg[i] == seg[i - 1]}
+    breaks = (_corners(a) - inside_shared) | {i for i in range(n) if seg[i] != seg[i - 1]}
     start = min(breaks) if breaks else 0
     pieces, run = [], [start]
     for step in range(1, n + 1):

@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 import fairlines as fl
-from cad_fixtures import EXAMPLE_PARTICULARS as P, cruiser_stern_hull, example_composed_hull, example_hull_surface
+from cad_fixtures import (EXAMPLE_PARTICULARS as P, cruiser_stern_hull, example_composed_hull, example_hull,
+                          example_hull_surface)
 
 pytest.importorskip("OCP")
 from fairlines import cad  # noqa: E402
@@ -113,6 +114,24 @@ def test_composed_hull_solid_step_closed_valid_volume(tmp_path):
     expected = 2 * (fl.hydrostatics(s, P["depth"]).volume / 2 + c.volume - fl.compose([s]).volume)
     path = tmp_path / "c.step"
     cad.export_cad(c, path, what="solid", full=True, schema="AP242")
+    v = cad.verify(cad.read_cad(path))
+    assert v["valid"] and v["closed"] and v["faces"] == 10
+    assert v["volume"] == pytest.approx(expected, rel=VOLUME_TOLERANCE)
+
+
+@pytest.mark.parametrize("c_bb", [0.15, 0.21])
+def test_composed_solid_of_a_swept_bulb_closes(tmp_path, c_bb):
+    """Bulbs of the C_BB range whose blend boundary turns sharply in (u, v) near its top: the
+    hull's trimming loop runs along the blend's edge there and must take that edge once,
+    not once per run between corners of the polygon."""
+    h = example_hull()
+    k = h.description.bulb.kracht
+    b = h.bulbous_bow(c_bb=c_bb, c_abt=k["c_abt"] * c_bb / k["c_bb"], c_vpr=k["c_vpr"] * c_bb / k["c_bb"])
+    c = h.composed_hull(bulb=b)
+    s = h.bare_hull_surface()
+    expected = 2 * (fl.hydrostatics(s, P["depth"]).volume / 2 + c.volume - fl.compose([s]).volume)
+    path = tmp_path / "c.step"
+    cad.export_cad(c, path, what="solid", full=True)
     v = cad.verify(cad.read_cad(path))
     assert v["valid"] and v["closed"] and v["faces"] == 10
     assert v["volume"] == pytest.approx(expected, rel=VOLUME_TOLERANCE)
