@@ -74,6 +74,22 @@ def test_seam_from_keel_to_keel_is_held_by_an_arc_over_it():
     _check_holds_the_seam(boundary, seam["uv_a"][1:-1], np.empty((0, 2)))
 
 
+def test_arc_over_the_keel_leaves_a_raked_edge_square_to_it():
+    """On a patch whose v lines meet its v = 0 edge at 79 deg (a raked stem's sections
+    meet it at 20-30 deg), the arc's fore end leaves that edge at 90 deg in metres: angles of
+    its last chord on the patch, by numpy."""
+    pts = np.array([[[0, 0, 0], [0.2, 0, 1]], [[1, 0, 0], [1.2, 0, 1]]], float)
+    k = [0.0, 0.0, 1.0, 1.0]
+    raked = fl.NurbsSurface(1, 1, k, k, pts)
+    s = np.linspace(0, np.pi, 40)
+    seam = _seam(0.7 - 0.1 * np.cos(s), 0.2 * np.sin(s) ** 0.8)
+    boundary, _ = _boundaries_around_seam(raked, seam, points=201)
+    end = np.asarray(raked.evaluate(boundary[-2:, 0], boundary[-2:, 1]))
+    chord = end[0] - end[1]
+    assert np.degrees(np.arccos(chord[0] / np.linalg.norm(chord))) == pytest.approx(90.0, abs=1.0)
+    _check_holds_the_seam(boundary, seam["uv_a"][1:-1], np.empty((0, 2)))
+
+
 def test_a_boundary_that_would_reach_the_deck_is_no_blend_fits():
     s = np.linspace(0, np.pi, 40)
     seam = _seam(1.0 - 0.2 * np.sin(s), 0.5 - 0.15 * np.cos(s))

@@ -7,6 +7,8 @@
 //              R (along v) about (u1, tc) -- the stem edge -- or about (uc, vz) over the keel
 //   scale      the least factor by which the ellipse through the seam's extreme points must
 //              grow to hold every seam point; the clearances are added after scaling
+//   kappa      shear of the fore quarter over the keel, so that it leaves the centre edge
+//              square to it in metres (square_to_centre_edge)
 #include "fairlines/blend_placement.hpp"
 
 #include <algorithm>
@@ -22,6 +24,10 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kEdgeTolerance = 1e-6;  ///< a seam end within this fraction of the domain is on an edge
 constexpr double kKeelZoneReach = 0.1;   ///< a keel zone ends within this fraction of the v range
+/// Of the stem above the seam's fore end (in u), the fraction the boundary may take: the blend's
+/// top end then meets the stem 3-4 m above the bulb on the example (half the stem gave a
+/// 5 m strip; 0.4 put a 0.15 element into its 3 m mesh).
+constexpr double kForeRoom = 0.35;
 
 [[noreturn]] void no_blend_fits(const std::string& why) {
   throw NoBlendFits("no blend fits between hull and bulb: " + why);
@@ -95,6 +101,26 @@ Eigen::MatrixXd around_forefoot(const NurbsSurface& H, const Eigen::MatrixXd& uv
   return with_keel_ends(arc, v0, vz > v0, false);
 }
 
+/// Shear kappa of the fore quarter (u = uc - a cos phi + kappa R (1 - sin phi)) that makes it
+/// leave the centre edge at (u_end, v0) square to the edge in metres, S_u . S_v / |S_u|^2
+/// there: a raked stem's sections meet it at 20-30 deg, and an arc along them made the
+/// blend's top end a strip a few decimetres wide up the stem. Held to half of each fore seam
+/// point's clearance (the shear draws the arc's middle aft) and to half of u_end - uc.
+double square_to_centre_edge(const NurbsSurface& H, const Eigen::MatrixXd& uv, double uc, double u_end, double vz,
+                             double R) {
+  const Eigen::MatrixXd d = H.derivatives(u_end, H.knots_v()(0), 1);  // rows: S, S_v, S_u
+  const double su2 = d.row(2).squaredNorm();
+  double kappa = su2 > 0.0 ? std::max(0.0, d.row(1).dot(d.row(2)) / su2) : 0.0;
+  kappa = std::min(kappa, 0.5 * (u_end - uc) / R);
+  for (Eigen::Index j = 0; j < uv.rows(); ++j) {
+    if (uv(j, 0) <= uc) continue;
+    const double s = std::min(std::max(uv(j, 1) - vz, 0.0) / R, 1.0), c = std::sqrt(1.0 - s * s);
+    const double gap = uc + (u_end - uc) * c - uv(j, 0), pull = R * (s + c - 1.0);
+    if (pull > 0.0) kappa = std::min(kappa, std::max(0.0, 0.5 * gap / pull));
+  }
+  return kappa;
+}
+
 /// Two quarter ellipses meeting over the seam's highest point, from the keel-and-stem edge of a
 /// whole-ship hull aft of the seam to the same edge between the seam and the stem head.
 Eigen::MatrixXd over_centre_edge(const NurbsSurface& H, const Eigen::MatrixXd& uv, const BlendPlacementOptions& o) {
@@ -113,15 +139,18 @@ Eigen::MatrixXd over_centre_edge(const NurbsSurface& H, const Eigen::MatrixXd& u
     scale = std::max(scale, std::hypot((uv(j, 0) - uc) / side, std::max(uv(j, 1) - vz, 0.0) / b0));
   }
   const double R = scale * b0 + o.clearance_v;
-  const double fore_room = 0.5 * (u1 - u_max);  // keep half the stem above the seam free
   a_aft = scale * a_aft + o.clearance_u;
-  a_fore = std::min(scale * a_fore + o.clearance_u, u_max + fore_room - uc);
+  const double u_end = std::min(uc + scale * a_fore + o.clearance_u, u_max + kForeRoom * (u1 - u_max));
+  const double kappa = square_to_centre_edge(H, uv, uc, u_end, vz, R);
+  a_fore = u_end - uc - kappa * R;
   if (vz + R >= v1) no_blend_fits("a blend boundary clear of the seam would reach the deck");
   if (uc - a_aft <= u0) no_blend_fits("a blend boundary clear of the seam would reach the aft end");
   const std::vector<double> phi = angles(kPi, o.points);
   Eigen::MatrixXd arc(o.points, 2);
   for (int i = 0; i < o.points; ++i)
-    arc.row(i) << uc - (phi[i] <= 0.5 * kPi ? a_aft : a_fore) * std::cos(phi[i]), vz + R * std::sin(phi[i]);
+    arc.row(i) << (phi[i] <= 0.5 * kPi ? uc - a_aft * std::cos(phi[i])
+                                       : uc - a_fore * std::cos(phi[i]) + kappa * R * (1.0 - std::sin(phi[i]))),
+        vz + R * std::sin(phi[i]);
   return with_keel_ends(arc, v0, vz > v0, vz > v0);
 }
 
