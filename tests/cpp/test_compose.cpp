@@ -1,4 +1,6 @@
 // Surface-surface intersection, bulb from Kracht coefficients and the composed hull.
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -187,4 +189,57 @@ TEST(Compose, HullBulbAndBlendComposeWatertightWithC1Boundaries) {
   EXPECT_GT(mesh_volume(c.mesh), 0.0);
   const auto fchk = fairlines::test::check_edges(mirror_full_hull(c));
   EXPECT_EQ(fchk.open + fchk.non_manifold + fchk.misoriented, 0);
+}
+
+namespace {
+
+double signed_area2(const Eigen::MatrixXd& P, const std::array<int, 3>& t) {
+  const Eigen::Vector2d a = P.row(t[0]), b = P.row(t[1]), c = P.row(t[2]);
+  return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+}
+
+/// A band like compose's: a flat arc of 24 points under a zigzag of 12 (a staircase's corners)
+/// from x = 21 back to -1; ear clipping fans slivers from the zigzag to the arc.
+Eigen::MatrixXd band_polygon() {
+  Eigen::MatrixXd P(24 + 12, 2);
+  for (int i = 0; i < 24; ++i) {
+    const double t = M_PI * i / 23.0;
+    P.row(i) << 10.0 - 10.0 * std::cos(t), 0.8 * std::sin(t);
+  }
+  for (int s = 0; s < 12; ++s) P.row(24 + s) << 21.0 - 2.0 * s, 1.6 + 0.3 * (s % 2);
+  return P;
+}
+
+}  // namespace
+
+TEST(Mesh, DelaunayFlipsLeaveNoEdgeWithItsOppositeVertexInsideTheCircle) {
+  const Eigen::MatrixXd P = band_polygon();
+  std::vector<std::array<int, 3>> tris = triangulate_polygon(P);
+  double area_before = 0.0;
+  for (const auto& t : tris) area_before += signed_area2(P, t);
+  delaunay_flips(P, tris);
+  ASSERT_EQ(static_cast<long>(tris.size()), P.rows() - 2);
+  double area_after = 0.0;
+  for (const auto& t : tris) {
+    EXPECT_GT(signed_area2(P, t) * area_before, 0.0);  // every triangle keeps the polygon's orientation
+    area_after += signed_area2(P, t);
+  }
+  EXPECT_NEAR(area_after, area_before, 1e-9 * std::abs(area_before));
+  // locally Delaunay: across each shared edge, the other triangle's far vertex lies outside the
+  // circumcircle (circumcentre and radius computed here)
+  for (size_t i = 0; i < tris.size(); ++i)
+    for (size_t j = 0; j < tris.size(); ++j) {
+      int shared = 0, far = -1;
+      for (int v : tris[j]) {
+        if (std::find(tris[i].begin(), tris[i].end(), v) != tris[i].end()) ++shared;
+        else far = v;
+      }
+      if (i == j || shared != 2) continue;
+      const Eigen::Vector2d a = P.row(tris[i][0]), b = P.row(tris[i][1]), c = P.row(tris[i][2]);
+      const double d = 2.0 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+      const Eigen::Vector2d ab = b - a, ac = c - a;
+      const Eigen::Vector2d o = a + Eigen::Vector2d(ac.y() * ab.squaredNorm() - ab.y() * ac.squaredNorm(),
+                                                    ab.x() * ac.squaredNorm() - ac.x() * ab.squaredNorm()) / d;
+      EXPECT_GE((Eigen::Vector2d(P.row(far)) - o).norm(), (a - o).norm() * (1.0 - 1e-9)) << i << " " << j;
+    }
 }

@@ -39,6 +39,15 @@ EdgeReport edge_report(const TriMesh& mesh);
 std::vector<std::array<int, 3>> triangulate_polygon(const Eigen::MatrixXd& points,
                                                     const std::vector<char>& avoid = {});
 
+/// Lawson edge flips of a polygon's triangulation toward its constrained Delaunay one (the
+/// polygon's own edges stay): removes the slivers ear clipping leaves, which fold in 3D where
+/// the plane is a map of a curved surface.
+/// points  (n, 2) the polygon's vertices, as given to triangulate_polygon
+/// tris    its triangles (indices into points), changed in place; orientation kept
+/// avoid   as for triangulate_polygon: no flip makes a triangle of three flagged vertices
+void delaunay_flips(const Eigen::MatrixXd& points, std::vector<std::array<int, 3>>& tris,
+                    const std::vector<char>& avoid = {});
+
 /// Signed enclosed volume by the divergence theorem (m^3; positive for outward orientation
 /// of a closed mesh).
 double mesh_volume(const TriMesh& mesh);

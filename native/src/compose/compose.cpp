@@ -779,7 +779,9 @@ void add_band(MeshBuilder& mb, HullGrid& g, const std::vector<int>& stair, const
   for (size_t q = 0; q < poly2.size(); ++q) P2.row(static_cast<Eigen::Index>(q)) = poly2[q].transpose();
   std::vector<char> flat(poly_id.size());
   for (size_t q = 0; q < poly_id.size(); ++q) flat[q] = mb.verts[poly_id[q]].y() == 0.0;
-  for (const auto& t : triangulate_polygon(P2, flat)) mb.tri(poly_id[t[0]], poly_id[t[1]], poly_id[t[2]], FacePart::Hull);
+  std::vector<std::array<int, 3>> tris = triangulate_polygon(P2, flat);
+  delaunay_flips(P2, tris, flat);
+  for (const auto& t : tris) mb.tri(poly_id[t[0]], poly_id[t[1]], poly_id[t[2]], FacePart::Hull);
 }
 
 /// Trimming loops in parameter space: the hull outside the seam, the bulb ahead of it.

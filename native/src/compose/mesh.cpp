@@ -29,6 +29,9 @@ double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::V
   return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
 }
 
+/// Relative round-off allowance of the flip tests (in-circle determinant, convexity).
+constexpr double kFlipTolerance = 1e-12;
+
 }  // namespace
 
 EdgeReport edge_report(const TriMesh& mesh) {
@@ -176,6 +179,66 @@ std::vector<std::array<int, 3>> triangulate_polygon(const Eigen::MatrixXd& point
   std::vector<Eigen::Vector2d> p(n);
   for (int i = 0; i < n; ++i) p[i] = points.row(i).transpose();
   return EarClipper(std::move(p), avoid).run();
+}
+
+namespace {
+
+/// Is d inside the circumcircle of the triangle (a, b, c) of orientation `sign`?
+bool in_circumcircle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                     const Eigen::Vector2d& d, double sign) {
+  const Eigen::Vector2d p = a - d, q = b - d, r = c - d;
+  const double det = p.squaredNorm() * (q.x() * r.y() - q.y() * r.x()) - q.squaredNorm() * (p.x() * r.y() - p.y() * r.x()) +
+                     r.squaredNorm() * (p.x() * q.y() - p.y() * q.x());
+  const double scale = p.squaredNorm() * q.squaredNorm() * r.squaredNorm();
+  return sign * det > kFlipTolerance * std::sqrt(scale);
+}
+
+}  // namespace
+
+void delaunay_flips(const Eigen::MatrixXd& points, std::vector<std::array<int, 3>>& tris, const std::vector<char>& avoid) {
+  const int n = static_cast<int>(points.rows());
+  auto pt = [&](int i) { return Eigen::Vector2d(points(i, 0), points(i, 1)); };
+  auto area2 = [&](int a, int b, int c) { return cross2(pt(a), pt(b), pt(c)); };
+  auto all_avoided = [&](int a, int b, int c) { return !avoid.empty() && avoid[a] && avoid[b] && avoid[c]; };
+  std::unordered_map<std::uint64_t, std::vector<int>> on_edge;
+  for (int t = 0; t < static_cast<int>(tris.size()); ++t)
+    for (int k = 0; k < 3; ++k) on_edge[edge_key(tris[t][k], tris[t][(k + 1) % 3])].push_back(t);
+  auto drop = [&](std::uint64_t e, int t) {
+    auto& v = on_edge[e];
+    v.erase(std::remove(v.begin(), v.end(), t), v.end());
+  };
+  std::vector<std::uint64_t> stack;
+  for (const auto& [e, ts] : on_edge)
+    if (ts.size() == 2) stack.push_back(e);
+  const long budget = 8L * n * n + 64;  // Lawson's flips end; this only bounds round-off cycling
+  for (long step = 0; !stack.empty() && step < budget; ++step) {
+    const std::uint64_t e = stack.back();
+    stack.pop_back();
+    const auto& ts = on_edge[e];
+    if (ts.size() != 2) continue;
+    const int t1 = ts[0], t2 = ts[1];
+    int k1 = 0;  // t1 = (a, b, c) with a -> b the shared edge
+    while (edge_key(tris[t1][k1], tris[t1][(k1 + 1) % 3]) != e) ++k1;
+    const int a = tris[t1][k1], b = tris[t1][(k1 + 1) % 3], c = tris[t1][(k1 + 2) % 3];
+    int d = -1;
+    for (int v : tris[t2])
+      if (v != a && v != b) d = v;
+    const double s1 = area2(a, b, c), s2 = area2(b, a, d);
+    if (d < 0 || s1 == 0.0 || s1 * s2 <= 0.0) continue;
+    const double sign = s1 > 0 ? 1.0 : -1.0;
+    if (!in_circumcircle(pt(a), pt(b), pt(c), pt(d), sign)) continue;
+    // the quad a d b c must be strictly convex: both new triangles keep the orientation
+    const double n1 = sign * area2(a, d, c), n2 = sign * area2(d, b, c);
+    const double tol = kFlipTolerance * (std::abs(s1) + std::abs(s2));
+    if (n1 <= tol || n2 <= tol || all_avoided(a, d, c) || all_avoided(d, b, c)) continue;
+    for (int k = 0; k < 3; ++k) drop(edge_key(tris[t1][k], tris[t1][(k + 1) % 3]), t1);
+    for (int k = 0; k < 3; ++k) drop(edge_key(tris[t2][k], tris[t2][(k + 1) % 3]), t2);
+    tris[t1] = {a, d, c};
+    tris[t2] = {d, b, c};
+    for (int t : {t1, t2})
+      for (int k = 0; k < 3; ++k) on_edge[edge_key(tris[t][k], tris[t][(k + 1) % 3])].push_back(t);
+    for (const auto [p, q] : {std::pair{a, d}, std::pair{d, b}, std::pair{b, c}, std::pair{c, a}}) stack.push_back(edge_key(p, q));
+  }
 }
 
 namespace {
