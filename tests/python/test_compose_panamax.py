@@ -208,6 +208,19 @@ def test_hull_band_around_the_blend_follows_the_surface(hull, bulb, cells):
         assert cos >= np.cos(np.radians(30.0)), (cells, cen[f].round(2), np.degrees(np.arccos(min(cos, 1.0))))
 
 
+@pytest.mark.parametrize("cells", [None, (160, 48)])
+def test_composed_mesh_has_no_face_of_zero_area(hull, bulb, cells):
+    """The hull's u edge collapses to the stem top: its nodes are one vertex, so the cells there
+    give one triangle each (a triangle and a zero-area one before, 2 K of them with the centre
+    plane's cap); the caps' collinear runs (the deck's parallel edge) are flipped out."""
+    c = hull.composed_hull(bulb=bulb, **(dict(hull_u=cells[0], hull_v=cells[1]) if cells else {}))
+    for m in (c.mesh, c.full_mesh()):
+        V, F = np.asarray(m.vertices), np.asarray(m.faces)
+        area = 0.5 * np.linalg.norm(np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]), axis=1)
+        assert area.min() > 1e-6, V[F[np.argmin(area)]]
+        assert edge_census(F) == (0, 0, 0)
+
+
 @pytest.mark.parametrize("which", ["union", "blended"])
 def test_kracht_measured_back_on_the_real_hull_within_two_percent(which, union, blended, bulb, ship):
     c = union if which == "union" else blended

@@ -139,6 +139,11 @@ double seg_dist(const Eigen::Vector2d& q, const Eigen::Vector2d& a, const Eigen:
   return (a + t * ab - q).norm();
 }
 
+/// A u edge of the hull grid whose nodes lie within this fraction of the hull's size of each
+/// other is a pole (the stem top): its nodes share one mesh vertex, and the cells at it give
+/// one triangle each instead of a triangle and a face of zero area.
+constexpr double kPoleTolerance = 1e-9;
+
 /// Where a vertex that fell across the centre plane is held (m): off the plane by far less
 /// than any tolerance of the mesh, so it is not taken for a centre-plane vertex.
 constexpr double kOffCentrePlane = 1e-9;
@@ -152,8 +157,21 @@ struct MeshBuilder {
     return static_cast<int>(verts.size()) - 1;
   }
   void tri(int a, int b, int c, FacePart fp) {
+    if (a == b || b == c || c == a) return;  // a cell or ear at a pole: no face
     faces.push_back({a, b, c});
     part.push_back(static_cast<int>(fp));
+  }
+  /// The quad a b c d as two triangles, split along the diagonal that folds it least (where
+  /// the blend wraps a sharp stem its quads twist, and the other diagonal saws the shading).
+  void quad(int a, int b, int c, int d, FacePart fp) {
+    auto n = [&](int p, int q, int r) { return (verts[q] - verts[p]).cross(verts[r] - verts[p]).normalized(); };
+    if (n(a, b, c).dot(n(a, c, d)) >= n(a, b, d).dot(n(b, c, d))) {
+      tri(a, b, c, fp);
+      tri(a, c, d, fp);
+    } else {
+      tri(a, b, d, fp);
+      tri(b, c, d, fp);
+    }
   }
   TriMesh mesh() const {
     TriMesh m;
@@ -225,7 +243,9 @@ void cap_run(MeshBuilder& mb, std::vector<int> run, int plane, int corner) {
     else poly.row(static_cast<Eigen::Index>(k)) << q.y(), q.z();
   }
   const FacePart part = plane == 0 ? FacePart::CentrePlane : plane == 1 ? FacePart::Deck : FacePart::AftCut;
-  for (const auto& t : triangulate_polygon(poly)) mb.tri(run[t[0]], run[t[1]], run[t[2]], part);
+  std::vector<std::array<int, 3>> tris = triangulate_polygon(poly);
+  delaunay_flips(poly, tris);
+  for (const auto& t : tris) mb.tri(run[t[0]], run[t[1]], run[t[2]], part);
 }
 
 /// Caps the planar boundary runs of an open half-hull surface (oriented consistently): the
@@ -470,6 +490,7 @@ struct HullGrid {
   AftEnd aft;
   double z_deck;
   std::vector<int> gid;  ///< mesh vertex of each node, -1 until used
+  std::vector<int> pole_u;  ///< i of each u edge (0, I) that collapses to a point: one vertex
   double Ls = 0.0, Lt = 0.0;  ///< lengths (m) of the scaled parameter space along u and v
 
   HullGrid(const NurbsSurface& hull, int cells_u, int cells_v, const AftEnd& aft_end, double deck)
@@ -484,18 +505,26 @@ struct HullGrid {
     tv[K] = v1;
     pts = H.evaluate_grid(su, tv);
     gid.assign((I + 1) * (K + 1), -1);
+    const double tol = kPoleTolerance * size_of(H);
+    for (int i : {0, I}) {  // a u edge collapsed to one point (the stem top) is one vertex
+      bool pole = true;
+      for (int k = 1; k <= K && pole; ++k) pole = (pts.row(key(i, k)) - pts.row(key(i, 0))).norm() <= tol;
+      if (pole) pole_u.push_back(i);
+    }
     // the stem-to-aft length at half depth and the keel-to-deck girth at half length
     Ls = (pts.row(key(I, K / 2)) - pts.row(key(0, K / 2))).norm();
     for (int k = 0; k < K; ++k) Lt += (pts.row(key(I / 2, k + 1)) - pts.row(key(I / 2, k))).norm();
   }
   int key(int i, int k) const { return i * (K + 1) + k; }
   int vertex(MeshBuilder& mb, int i, int k) {
+    const bool pole = std::find(pole_u.begin(), pole_u.end(), i) != pole_u.end();
+    if (pole) k = 0;
     int& g = gid[key(i, k)];
     if (g < 0) {
       Eigen::Vector3d p = pts.row(key(i, k)).transpose();
       if (i == 0) p -= (aft.normal.dot(p) - aft.offset) * aft.normal;  // onto the transom plane
       if (k == 0 || i == I || (i == 0 && aft.on_centre_plane)) p.y() = 0.0;
-      if (k == K) p.z() = z_deck;
+      if (k == K || (pole && std::abs(p.z() - z_deck) <= kPoleTolerance * size_of(H))) p.z() = z_deck;
       g = mb.add(p);
     }
     return g;
@@ -594,10 +623,7 @@ void add_seam_and_blend(MeshBuilder& mb, const NurbsSurface& B, MeshSeam& seam, 
     for (int k = 1; k < NT; ++k) col[k] = mb.add(seam.blend_pts[static_cast<size_t>(j) * (NT - 1) + k - 1]);
     col[NT] = seam.bulb_id[j];
     if (j > 0)
-      for (int k = 0; k < NT; ++k) {
-        mb.tri(prev[k], col[k], col[k + 1], FacePart::Blend);
-        mb.tri(prev[k], col[k + 1], prev[k + 1], FacePart::Blend);
-      }
+      for (int k = 0; k < NT; ++k) mb.quad(prev[k], col[k], col[k + 1], prev[k + 1], FacePart::Blend);
     prev = col;
   }
 }
@@ -775,6 +801,11 @@ void add_band(MeshBuilder& mb, HullGrid& g, const std::vector<int>& stair, const
   }
   for (const auto& [p, node] : edge_nodes)
     if (p > seam.pb + kPerimeterEps && p < ps - kPerimeterEps) push_node(node);
+  for (size_t q = poly_id.size(); q-- > 0;)  // a pole's nodes are one vertex: keep it once
+    if (poly_id.size() > 3 && poly_id[q] == poly_id[(q + 1) % poly_id.size()]) {
+      poly_id.erase(poly_id.begin() + static_cast<long>(q));
+      poly2.erase(poly2.begin() + static_cast<long>(q));
+    }
   Eigen::MatrixXd P2(static_cast<Eigen::Index>(poly2.size()), 2);
   for (size_t q = 0; q < poly2.size(); ++q) P2.row(static_cast<Eigen::Index>(q)) = poly2[q].transpose();
   std::vector<char> flat(poly_id.size());

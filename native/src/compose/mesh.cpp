@@ -200,6 +200,9 @@ void delaunay_flips(const Eigen::MatrixXd& points, std::vector<std::array<int, 3
   auto pt = [&](int i) { return Eigen::Vector2d(points(i, 0), points(i, 1)); };
   auto area2 = [&](int a, int b, int c) { return cross2(pt(a), pt(b), pt(c)); };
   auto all_avoided = [&](int a, int b, int c) { return !avoid.empty() && avoid[a] && avoid[b] && avoid[c]; };
+  double total = 0.0;  // the polygon's orientation: the sign of its area
+  for (const auto& t : tris) total += area2(t[0], t[1], t[2]);
+  const double sign = total >= 0.0 ? 1.0 : -1.0;
   std::unordered_map<std::uint64_t, std::vector<int>> on_edge;
   for (int t = 0; t < static_cast<int>(tris.size()); ++t)
     for (int k = 0; k < 3; ++k) on_edge[edge_key(tris[t][k], tris[t][(k + 1) % 3])].push_back(t);
@@ -223,13 +226,15 @@ void delaunay_flips(const Eigen::MatrixXd& points, std::vector<std::array<int, 3
     int d = -1;
     for (int v : tris[t2])
       if (v != a && v != b) d = v;
-    const double s1 = area2(a, b, c), s2 = area2(b, a, d);
-    if (d < 0 || s1 == 0.0 || s1 * s2 <= 0.0) continue;
-    const double sign = s1 > 0 ? 1.0 : -1.0;
-    if (!in_circumcircle(pt(a), pt(b), pt(c), pt(d), sign)) continue;
+    if (d < 0) continue;
+    const double s1 = sign * area2(a, b, c), s2 = sign * area2(b, a, d);
+    // a flat triangle (collinear boundary points) is flipped away whenever the other diagonal
+    // gives two proper ones; two proper ones only when d is inside a b c's circumcircle
+    const bool flat = s1 <= 0.0 || s2 <= 0.0;
+    if (!flat && !in_circumcircle(pt(a), pt(b), pt(c), pt(d), sign)) continue;
     // the quad a d b c must be strictly convex: both new triangles keep the orientation
     const double n1 = sign * area2(a, d, c), n2 = sign * area2(d, b, c);
-    const double tol = kFlipTolerance * (std::abs(s1) + std::abs(s2));
+    const double tol = kFlipTolerance * (std::abs(n1) + std::abs(n2));
     if (n1 <= tol || n2 <= tol || all_avoided(a, d, c) || all_avoided(d, b, c)) continue;
     for (int k = 0; k < 3; ++k) drop(edge_key(tris[t1][k], tris[t1][(k + 1) % 3]), t1);
     for (int k = 0; k < 3; ++k) drop(edge_key(tris[t2][k], tris[t2][(k + 1) % 3]), t2);
