@@ -45,8 +45,11 @@ std::vector<std::array<int, 3>> triangulate_polygon(const Eigen::MatrixXd& point
 /// points  (n, 2) the polygon's vertices, as given to triangulate_polygon
 /// tris    its triangles (indices into points), changed in place; orientation kept
 /// avoid   as for triangulate_polygon: no flip makes a triangle of three flagged vertices
+/// positions  optional (n, 3) places in space of the points (metres) when the polygon is a
+///         map of a curved surface: an edge is then flipped when its opposite angles in space
+///         sum to more than pi (Delaunay on the surface); the flips stay valid in the plane
 void delaunay_flips(const Eigen::MatrixXd& points, std::vector<std::array<int, 3>>& tris,
-                    const std::vector<char>& avoid = {});
+                    const std::vector<char>& avoid = {}, const Eigen::MatrixXd& positions = Eigen::MatrixXd());
 
 /// Signed enclosed volume by the divergence theorem (m^3; positive for outward orientation
 /// of a closed mesh).

@@ -811,7 +811,9 @@ void add_band(MeshBuilder& mb, HullGrid& g, const std::vector<int>& stair, const
   std::vector<char> flat(poly_id.size());
   for (size_t q = 0; q < poly_id.size(); ++q) flat[q] = mb.verts[poly_id[q]].y() == 0.0;
   std::vector<std::array<int, 3>> tris = triangulate_polygon(P2, flat);
-  delaunay_flips(P2, tris, flat);
+  Eigen::MatrixXd X(static_cast<Eigen::Index>(poly_id.size()), 3);
+  for (size_t q = 0; q < poly_id.size(); ++q) X.row(static_cast<Eigen::Index>(q)) = mb.verts[poly_id[q]].transpose();
+  delaunay_flips(P2, tris, flat, X);
   for (const auto& t : tris) mb.tri(poly_id[t[0]], poly_id[t[1]], poly_id[t[2]], FacePart::Hull);
 }
 

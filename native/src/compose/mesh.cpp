@@ -193,9 +193,20 @@ bool in_circumcircle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const E
   return sign * det > kFlipTolerance * std::sqrt(scale);
 }
 
+/// Do the angles at c and d opposite the edge a-b of the triangles (a, b, c), (b, a, d) sum to
+/// more than pi in space (the edge is not Delaunay on the surface the triangles sample)?
+bool opposite_angles_exceed_pi(const Eigen::MatrixXd& X, int a, int b, int c, int d) {
+  auto angle = [&](int at, int p, int q) {
+    const Eigen::Vector3d u = X.row(p) - X.row(at), v = X.row(q) - X.row(at);
+    return std::atan2(u.cross(v).norm(), u.dot(v));
+  };
+  return angle(c, a, b) + angle(d, a, b) > M_PI * (1.0 + kFlipTolerance);
+}
+
 }  // namespace
 
-void delaunay_flips(const Eigen::MatrixXd& points, std::vector<std::array<int, 3>>& tris, const std::vector<char>& avoid) {
+void delaunay_flips(const Eigen::MatrixXd& points, std::vector<std::array<int, 3>>& tris, const std::vector<char>& avoid,
+                    const Eigen::MatrixXd& positions) {
   const int n = static_cast<int>(points.rows());
   auto pt = [&](int i) { return Eigen::Vector2d(points(i, 0), points(i, 1)); };
   auto area2 = [&](int a, int b, int c) { return cross2(pt(a), pt(b), pt(c)); };
@@ -231,7 +242,9 @@ void delaunay_flips(const Eigen::MatrixXd& points, std::vector<std::array<int, 3
     // a flat triangle (collinear boundary points) is flipped away whenever the other diagonal
     // gives two proper ones; two proper ones only when d is inside a b c's circumcircle
     const bool flat = s1 <= 0.0 || s2 <= 0.0;
-    if (!flat && !in_circumcircle(pt(a), pt(b), pt(c), pt(d), sign)) continue;
+    if (!flat && !(positions.rows() ? opposite_angles_exceed_pi(positions, a, b, c, d)
+                                    : in_circumcircle(pt(a), pt(b), pt(c), pt(d), sign)))
+      continue;
     // the quad a d b c must be strictly convex: both new triangles keep the orientation
     const double n1 = sign * area2(a, d, c), n2 = sign * area2(d, b, c);
     const double tol = kFlipTolerance * (std::abs(n1) + std::abs(n2));
