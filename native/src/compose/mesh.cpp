@@ -255,7 +255,7 @@ void delaunay_flips(const Eigen::MatrixXd& points, std::vector<std::array<int, 3
     tris[t2] = {d, b, c};
     for (int t : {t1, t2})
       for (int k = 0; k < 3; ++k) on_edge[edge_key(tris[t][k], tris[t][(k + 1) % 3])].push_back(t);
-    for (const auto [p, q] : {std::pair{a, d}, std::pair{d, b}, std::pair{b, c}, std::pair{c, a}}) stack.push_back(edge_key(p, q));
+    for (const auto& [p, q] : {std::pair{a, d}, std::pair{d, b}, std::pair{b, c}, std::pair{c, a}}) stack.push_back(edge_key(p, q));
   }
 }
 
