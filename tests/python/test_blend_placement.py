@@ -90,6 +90,16 @@ def test_arc_over_the_keel_leaves_a_raked_edge_square_to_it():
     _check_holds_the_seam(boundary, seam["uv_a"][1:-1], np.empty((0, 2)))
 
 
+def test_a_seam_running_up_the_stem_past_the_arcs_reach_is_no_blend_fits():
+    """A blunt seam that stays high until just aft of its fore end would cross the arc, whose
+    fore end is held to a share of the stem: refused, not a boundary through the seam."""
+    u = np.concatenate([np.linspace(0.6, 0.65, 20), np.linspace(0.65, 0.88, 20), np.linspace(0.885, 0.9, 20)])
+    v = np.concatenate([0.2 * np.sin(np.linspace(0, np.pi / 2, 20)), np.linspace(0.2, 0.17, 20),
+                        np.linspace(0.16, 0.0, 20)])
+    with pytest.raises(fl.NoBlendFits, match="the seam runs too far up the stem"):
+        _boundaries_around_seam(_unit_square_surface(), _seam(u, v))
+
+
 def test_a_boundary_that_would_reach_the_deck_is_no_blend_fits():
     s = np.linspace(0, np.pi, 40)
     seam = _seam(1.0 - 0.2 * np.sin(s), 0.5 - 0.15 * np.cos(s))

@@ -48,6 +48,8 @@ std::vector<std::array<int, 3>> triangulate_polygon(const Eigen::MatrixXd& point
 /// positions  optional (n, 3) places in space of the points (metres) when the polygon is a
 ///         map of a curved surface: an edge is then flipped when its opposite angles in space
 ///         sum to more than pi (Delaunay on the surface); the flips stay valid in the plane
+/// Throws InvalidInput for points not (n, 2), avoid not n flags, positions not (n, 3) or
+/// empty, or a triangle index outside 0 .. n - 1.
 void delaunay_flips(const Eigen::MatrixXd& points, std::vector<std::array<int, 3>>& tris,
                     const std::vector<char>& avoid = {}, const Eigen::MatrixXd& positions = Eigen::MatrixXd());
 

@@ -121,6 +121,20 @@ double square_to_centre_edge(const NurbsSurface& H, const Eigen::MatrixXd& uv, d
   return kappa;
 }
 
+/// Throws NoBlendFits unless every seam point lies between the arc over the keel and the centre
+/// edge: the arc's fore end is held to kForeRoom of the stem, and a seam that runs on up the
+/// stem past it would cross the boundary.
+void require_inside(const Eigen::MatrixXd& uv, double uc, double a_aft, double a_fore, double kappa, double vz,
+                    double R) {
+  for (Eigen::Index j = 0; j < uv.rows(); ++j) {
+    const double s = std::max(uv(j, 1) - vz, 0.0) / R;
+    const double c = s < 1.0 ? std::sqrt(1.0 - s * s) : 0.0;
+    const double lo = uc - a_aft * c, hi = uc + a_fore * c + kappa * R * (1.0 - std::min(s, 1.0));
+    if (!(s < 1.0 && lo < uv(j, 0) && uv(j, 0) < hi))
+      no_blend_fits("the seam runs too far up the stem for a boundary around it; a lower or shorter bulb fits");
+  }
+}
+
 /// Two quarter ellipses meeting over the seam's highest point, from the keel-and-stem edge of a
 /// whole-ship hull aft of the seam to the same edge between the seam and the stem head.
 Eigen::MatrixXd over_centre_edge(const NurbsSurface& H, const Eigen::MatrixXd& uv, const BlendPlacementOptions& o) {
@@ -143,6 +157,7 @@ Eigen::MatrixXd over_centre_edge(const NurbsSurface& H, const Eigen::MatrixXd& u
   const double u_end = std::min(uc + scale * a_fore + o.clearance_u, u_max + kForeRoom * (u1 - u_max));
   const double kappa = square_to_centre_edge(H, uv, uc, u_end, vz, R);
   a_fore = u_end - uc - kappa * R;
+  require_inside(uv, uc, a_aft, a_fore, kappa, vz, R);
   if (vz + R >= v1) no_blend_fits("a blend boundary clear of the seam would reach the deck");
   if (uc - a_aft <= u0) no_blend_fits("a blend boundary clear of the seam would reach the aft end");
   const std::vector<double> phi = angles(kPi, o.points);

@@ -524,7 +524,7 @@ struct HullGrid {
       Eigen::Vector3d p = pts.row(key(i, k)).transpose();
       if (i == 0) p -= (aft.normal.dot(p) - aft.offset) * aft.normal;  // onto the transom plane
       if (k == 0 || i == I || (i == 0 && aft.on_centre_plane)) p.y() = 0.0;
-      if (k == K || (pole && std::abs(p.z() - z_deck) <= kPoleTolerance * size_of(H))) p.z() = z_deck;
+      if (k == K || pole) p.z() = z_deck;  // a pole holds its deck node (i, K)
       g = mb.add(p);
     }
     return g;

@@ -189,8 +189,10 @@ bool in_circumcircle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const E
   const Eigen::Vector2d p = a - d, q = b - d, r = c - d;
   const double det = p.squaredNorm() * (q.x() * r.y() - q.y() * r.x()) - q.squaredNorm() * (p.x() * r.y() - p.y() * r.x()) +
                      r.squaredNorm() * (p.x() * q.y() - p.y() * q.x());
-  const double scale = p.squaredNorm() * q.squaredNorm() * r.squaredNorm();
-  return sign * det > kFlipTolerance * std::sqrt(scale);
+  // det is of length^4: the allowance scales with |p| |q| |r| max(|p|, |q|, |r|)
+  const double scale = std::sqrt(p.squaredNorm() * q.squaredNorm() * r.squaredNorm()) *
+                       std::sqrt(std::max({p.squaredNorm(), q.squaredNorm(), r.squaredNorm()}));
+  return sign * det > kFlipTolerance * scale;
 }
 
 /// Do the angles at c and d opposite the edge a-b of the triangles (a, b, c), (b, a, d) sum to
@@ -208,6 +210,14 @@ bool opposite_angles_exceed_pi(const Eigen::MatrixXd& X, int a, int b, int c, in
 void delaunay_flips(const Eigen::MatrixXd& points, std::vector<std::array<int, 3>>& tris, const std::vector<char>& avoid,
                     const Eigen::MatrixXd& positions) {
   const int n = static_cast<int>(points.rows());
+  if (points.cols() != 2) detail::fail("polygon has ", points.cols(), " columns; expected 2");
+  if (!avoid.empty() && static_cast<int>(avoid.size()) != n)
+    detail::fail("avoid has ", avoid.size(), " flags; expected one per polygon point (", n, ")");
+  if (positions.rows() != 0 && (positions.rows() != n || positions.cols() != 3))
+    detail::fail("positions has shape (", positions.rows(), ", ", positions.cols(), "); expected (", n, ", 3) or empty");
+  for (const auto& t : tris)
+    for (int v : t)
+      if (v < 0 || v >= n) detail::fail("a triangle has vertex ", v, "; expected 0 to ", n - 1);
   auto pt = [&](int i) { return Eigen::Vector2d(points(i, 0), points(i, 1)); };
   auto area2 = [&](int a, int b, int c) { return cross2(pt(a), pt(b), pt(c)); };
   auto all_avoided = [&](int a, int b, int c) { return !avoid.empty() && avoid[a] && avoid[b] && avoid[c]; };
