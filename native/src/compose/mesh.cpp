@@ -205,10 +205,8 @@ bool opposite_angles_exceed_pi(const Eigen::MatrixXd& X, int a, int b, int c, in
   return angle(c, a, b) + angle(d, a, b) > M_PI * (1.0 + kFlipTolerance);
 }
 
-}  // namespace
-
-void delaunay_flips(const Eigen::MatrixXd& points, std::vector<std::array<int, 3>>& tris, const std::vector<char>& avoid,
-                    const Eigen::MatrixXd& positions) {
+void check_flip_inputs(const Eigen::MatrixXd& points, const std::vector<std::array<int, 3>>& tris,
+                       const std::vector<char>& avoid, const Eigen::MatrixXd& positions) {
   const int n = static_cast<int>(points.rows());
   if (points.cols() != 2) detail::fail("polygon has ", points.cols(), " columns; expected 2");
   if (!avoid.empty() && static_cast<int>(avoid.size()) != n)
@@ -218,19 +216,42 @@ void delaunay_flips(const Eigen::MatrixXd& points, std::vector<std::array<int, 3
   for (const auto& t : tris)
     for (int v : t)
       if (v < 0 || v >= n) detail::fail("a triangle has vertex ", v, "; expected 0 to ", n - 1);
+}
+
+}  // namespace
+
+void delaunay_flips(const Eigen::MatrixXd& points, std::vector<std::array<int, 3>>& tris, const std::vector<char>& avoid,
+                    const Eigen::MatrixXd& positions) {
+  check_flip_inputs(points, tris, avoid, positions);
+  const int n = static_cast<int>(points.rows());
   auto pt = [&](int i) { return Eigen::Vector2d(points(i, 0), points(i, 1)); };
   auto area2 = [&](int a, int b, int c) { return cross2(pt(a), pt(b), pt(c)); };
   auto all_avoided = [&](int a, int b, int c) { return !avoid.empty() && avoid[a] && avoid[b] && avoid[c]; };
   double total = 0.0;  // the polygon's orientation: the sign of its area
   for (const auto& t : tris) total += area2(t[0], t[1], t[2]);
   const double sign = total >= 0.0 ? 1.0 : -1.0;
-  std::unordered_map<std::uint64_t, std::vector<int>> on_edge;
-  for (int t = 0; t < static_cast<int>(tris.size()); ++t)
-    for (int k = 0; k < 3; ++k) on_edge[edge_key(tris[t][k], tris[t][(k + 1) % 3])].push_back(t);
-  auto drop = [&](std::uint64_t e, int t) {
-    auto& v = on_edge[e];
-    v.erase(std::remove(v.begin(), v.end(), t), v.end());
+  // Flip the diagonal a-b of the quad a d b c to c-d? A flat triangle (collinear boundary
+  // points) goes whenever the other diagonal gives two proper ones; two proper ones only when
+  // the edge is not Delaunay. The quad must be strictly convex (both new triangles keep the
+  // orientation), and no new triangle may have three avoided vertices.
+  auto flips = [&](int a, int b, int c, int d) {
+    const bool flat = sign * area2(a, b, c) <= 0.0 || sign * area2(b, a, d) <= 0.0;
+    if (!flat && !(positions.rows() ? opposite_angles_exceed_pi(positions, a, b, c, d)
+                                    : in_circumcircle(pt(a), pt(b), pt(c), pt(d), sign)))
+      return false;
+    const double n1 = sign * area2(a, d, c), n2 = sign * area2(d, b, c);
+    const double tol = kFlipTolerance * (std::abs(n1) + std::abs(n2));
+    return n1 > tol && n2 > tol && !all_avoided(a, d, c) && !all_avoided(d, b, c);
   };
+  std::unordered_map<std::uint64_t, std::vector<int>> on_edge;
+  auto link = [&](int t, bool add) {
+    for (int k = 0; k < 3; ++k) {
+      auto& v = on_edge[edge_key(tris[t][k], tris[t][(k + 1) % 3])];
+      if (add) v.push_back(t);
+      else v.erase(std::remove(v.begin(), v.end(), t), v.end());
+    }
+  };
+  for (int t = 0; t < static_cast<int>(tris.size()); ++t) link(t, true);
   std::vector<std::uint64_t> stack;
   for (const auto& [e, ts] : on_edge)
     if (ts.size() == 2) stack.push_back(e);
@@ -247,24 +268,13 @@ void delaunay_flips(const Eigen::MatrixXd& points, std::vector<std::array<int, 3
     int d = -1;
     for (int v : tris[t2])
       if (v != a && v != b) d = v;
-    if (d < 0) continue;
-    const double s1 = sign * area2(a, b, c), s2 = sign * area2(b, a, d);
-    // a flat triangle (collinear boundary points) is flipped away whenever the other diagonal
-    // gives two proper ones; two proper ones only when d is inside a b c's circumcircle
-    const bool flat = s1 <= 0.0 || s2 <= 0.0;
-    if (!flat && !(positions.rows() ? opposite_angles_exceed_pi(positions, a, b, c, d)
-                                    : in_circumcircle(pt(a), pt(b), pt(c), pt(d), sign)))
-      continue;
-    // the quad a d b c must be strictly convex: both new triangles keep the orientation
-    const double n1 = sign * area2(a, d, c), n2 = sign * area2(d, b, c);
-    const double tol = kFlipTolerance * (std::abs(n1) + std::abs(n2));
-    if (n1 <= tol || n2 <= tol || all_avoided(a, d, c) || all_avoided(d, b, c)) continue;
-    for (int k = 0; k < 3; ++k) drop(edge_key(tris[t1][k], tris[t1][(k + 1) % 3]), t1);
-    for (int k = 0; k < 3; ++k) drop(edge_key(tris[t2][k], tris[t2][(k + 1) % 3]), t2);
+    if (d < 0 || !flips(a, b, c, d)) continue;
+    link(t1, false);
+    link(t2, false);
     tris[t1] = {a, d, c};
     tris[t2] = {d, b, c};
-    for (int t : {t1, t2})
-      for (int k = 0; k < 3; ++k) on_edge[edge_key(tris[t][k], tris[t][(k + 1) % 3])].push_back(t);
+    link(t1, true);
+    link(t2, true);
     for (const auto& [p, q] : {std::pair{a, d}, std::pair{d, b}, std::pair{b, c}, std::pair{c, a}}) stack.push_back(edge_key(p, q));
   }
 }
