@@ -202,10 +202,10 @@ def test_hull_band_around_the_blend_follows_the_surface(hull, bulb, cells):
     area = 0.5 * np.linalg.norm(n, axis=1)
     cen = V[F].mean(axis=1)
     band = (c.face_part == 0) & (cen[:, 0] > 200.0) & (area > 1e-9)  # the hull near the bulb
-    for f in np.flatnonzero(band):
-        su, sv, _ = H.closest_point(cen[f])
-        cos = abs(float(n[f] @ H.normal(su, sv))) / (2 * area[f])
-        assert cos >= np.cos(np.radians(30.0)), (cells, cen[f].round(2), np.degrees(np.arccos(min(cos, 1.0))))
+    su, sv, _ = H.closest_points(cen[band])
+    cos = np.abs(np.einsum("ij,ij->i", n[band], np.asarray(H.normal(su, sv)))) / (2 * area[band])
+    worst = np.argmin(cos)
+    assert cos[worst] >= np.cos(np.radians(30.0)), (cells, cen[band][worst].round(2), np.degrees(np.arccos(min(cos[worst], 1.0))))
 
 
 @pytest.mark.parametrize("cells", [None, (160, 48)])

@@ -101,6 +101,12 @@ Eigen::MatrixXd around_forefoot(const NurbsSurface& H, const Eigen::MatrixXd& uv
   return with_keel_ends(arc, v0, vz > v0, false);
 }
 
+/// u of the fore quarter over the keel at s = sin phi = (v - vz) / R, c = -cos phi: the
+/// ellipse's uc + a c plus the shear kappa R (1 - s).
+double fore_quarter_u(double uc, double a, double kappa, double R, double c, double s) {
+  return uc + a * c + kappa * R * (1.0 - s);
+}
+
 /// Shear kappa of the fore quarter (u = uc - a cos phi + kappa R (1 - sin phi)) that makes it
 /// leave the centre edge at (u_end, v0) square to the edge in metres, S_u . S_v / |S_u|^2
 /// there: a raked stem's sections meet it at 20-30 deg, and an arc along them made the
@@ -115,7 +121,7 @@ double square_to_centre_edge(const NurbsSurface& H, const Eigen::MatrixXd& uv, d
   for (Eigen::Index j = 0; j < uv.rows(); ++j) {
     if (uv(j, 0) <= uc) continue;
     const double s = std::min(std::max(uv(j, 1) - vz, 0.0) / R, 1.0), c = std::sqrt(1.0 - s * s);
-    const double gap = uc + (u_end - uc) * c - uv(j, 0), pull = R * (s + c - 1.0);
+    const double gap = fore_quarter_u(uc, u_end - uc, 0.0, R, c, s) - uv(j, 0), pull = R * (s + c - 1.0);
     if (pull > 0.0) kappa = std::min(kappa, std::max(0.0, 0.5 * gap / pull));
   }
   return kappa;
@@ -129,8 +135,7 @@ void require_inside(const Eigen::MatrixXd& uv, double uc, double a_aft, double a
   for (Eigen::Index j = 0; j < uv.rows(); ++j) {
     const double s = std::max(uv(j, 1) - vz, 0.0) / R;
     const double c = s < 1.0 ? std::sqrt(1.0 - s * s) : 0.0;
-    const double lo = uc - a_aft * c, hi = uc + a_fore * c + kappa * R * (1.0 - std::min(s, 1.0));
-    if (!(s < 1.0 && lo < uv(j, 0) && uv(j, 0) < hi))
+    if (!(s < 1.0 && uc - a_aft * c < uv(j, 0) && uv(j, 0) < fore_quarter_u(uc, a_fore, kappa, R, c, s)))
       no_blend_fits("the seam runs too far up the stem for a boundary around it; a lower or shorter bulb fits");
   }
 }
@@ -163,8 +168,7 @@ Eigen::MatrixXd over_centre_edge(const NurbsSurface& H, const Eigen::MatrixXd& u
   const std::vector<double> phi = angles(kPi, o.points);
   Eigen::MatrixXd arc(o.points, 2);
   for (int i = 0; i < o.points; ++i)
-    arc.row(i) << (phi[i] <= 0.5 * kPi ? uc - a_aft * std::cos(phi[i])
-                                       : uc - a_fore * std::cos(phi[i]) + kappa * R * (1.0 - std::sin(phi[i]))),
+    arc.row(i) << (phi[i] <= 0.5 * kPi ? uc - a_aft * std::cos(phi[i]) : fore_quarter_u(uc, a_fore, kappa, R, -std::cos(phi[i]), std::sin(phi[i]))),
         vz + R * std::sin(phi[i]);
   return with_keel_ends(arc, v0, vz > v0, vz > v0);
 }
