@@ -348,46 +348,72 @@ def _sign_changes(surface, axis, value):
     return judge_cut(fl.plane_cut(surface, axis, float(value), 601))["sign_changes"]
 
 
-def test_frames_from_the_midbody_to_the_stem_are_convex():
-    """Frames of the container ship from the end of the run to the stem: no curvature sign
-    change -- a flared bow section included (its side leans out enough to reach the deck
-    without turning hollow)."""
-    s = fl.Hull.from_json(EXAMPLE.read_text()).bare_hull_surface()
+@pytest.fixture(scope="module")
+def example_surface():
+    return fl.Hull.from_json(EXAMPLE.read_text()).bare_hull_surface()
+
+
+@pytest.fixture(scope="module")
+def tanker_surface():
+    return fl.design_hull(**SHIPS["tanker"]).bare_hull_surface()
+
+
+def _cuts(values, short: dict):
+    """One test case per cut; the cuts the designer does not yet draw fair are strict xfails
+    with what was measured on them."""
+    return [pytest.param(v, marks=pytest.mark.xfail(strict=True, reason=short[v])) if v in short else v
+            for v in map(float, values)]
+
+
+def test_frames_from_the_midbody_to_the_stem_are_convex(example_surface):
     for x in np.linspace(70.0, 240.0, 18):
-        assert _sign_changes(s, 0, x) == 0, x
+        assert _sign_changes(example_surface, 0, x) == 0, x
 
 
-def test_no_s_shaped_frames():
-    s = fl.Hull.from_json(EXAMPLE.read_text()).bare_hull_surface()
+def test_no_s_shaped_frames(example_surface):
     for x in np.linspace(10.0, 230.0, 23):
-        assert _sign_changes(s, 0, x) == 0, x
+        assert _sign_changes(example_surface, 0, x) == 0, x
 
 
-@pytest.mark.xfail(strict=True, reason="waterlines above the DWL have a hollow of 0.35-0.43 deg at x 5 m between the "
-                                       "transom's convex run and the shoulder (x 25 m; z 15 and 17 m: 3 and 4 sign changes, "
-                                       "17 m also at the stem head, x 246.4-246.9 m); the 1 and 3 m waterlines end in a rounded lobe where "
-                                       "the keel lands on its flat (x 33 m) and have a hollow and a shoulder aft (x 41, "
-                                       "63-81 m) besides their entrance (4 each)")
-def test_waterlines_have_no_wobble():
-    """At most one inflection aft (hollow run) and one forward (hollow entrance) per waterline."""
-    s = fl.Hull.from_json(EXAMPLE.read_text()).bare_hull_surface()
-    for z in np.linspace(1.0, 17.0, 9):
-        assert _sign_changes(s, 2, z) <= 2, z
+# The section's knob meets its area on the sampled spline. Near the ends the waterline's
+# immersed part spans two or three knot spans of the section, and the sampled spline's area
+# misses the template's by a share that swings as Q passes a knot (period 1.8 m of x at the
+# container's stern); the knob follows the swing and moves the whole section, the topside
+# too. Measured with the knob on the template's exact area instead: the x 5 m hollow falls
+# from 0.36 to 0.11 deg at z 15 m (0.43 to 0.29 at z 17 m), but the spline's area then misses
+# the asked one by up to 1 % of the box at the ends (docs/sections.md).
+_KNOB_SWING = ("the section knob's swing as Q passes a knot (see above), a hollow of {deg} deg at x 4.9 m between the "
+               "transom's convex end and the run")
+WOBBLY_WATERLINES = {
+    1.0: "a rounded end where the keel lands on its flat (x 33 m, 20.9 deg), a hollow run (x 74 m), the body, a "
+         "hollow entrance (x 170 m) and the bulb's nose (x 237 m): 4 sign changes, each a shape feature of 4.6-45 deg "
+         "(the test's one hollow each way does not allow for the rounded ends)",
+    3.0: "a rounded end where the keel lands on its flat (x 33 m, 22.3 deg), a hollow of 4.5 deg at x 54 m, the body, "
+         "a hollow entrance and the bulb's nose: 4 sign changes",
+    15.0: _KNOB_SWING.format(deg="0.36") + ": 3 sign changes",
+    17.0: _KNOB_SWING.format(deg="0.43") + ", and a convex lobe of 0.19 deg at the stem's tip (x 246.9 m): 4 sign changes",
+}
 
 
-@pytest.mark.xfail(strict=True, reason="the tanker's waterlines just above T ring over its dry transom: 13 sign "
-                                       "changes of 0.2-1.1 deg at x -4..7 m at z 11.9 m, 6 at 12.5 m, 3 at 13 m. Cause "
-                                       "(measured): its sections there are hollow above T (+0.09 1/m) and convex below "
-                                       "(-0.03 1/m); the spline samples that template at fixed knots, so where it meets the "
-                                       "waterline point Q it misses by 3.1-7.4 mm, periodic with Q's place between two knots "
-                                       "(one knot span = 1.4 m of x), and the correction through Q tilts the topside by as much. "
-                                       "More control points do not help (20/40/60: 32/47/79 sign changes of the family's "
-                                       "11.9 m half-breadth)")
-def test_tanker_waterlines_over_its_transom_have_no_wobble():
-    """At most one inflection aft and one forward per waterline just above the tanker's DWL."""
-    s = fl.design_hull(**SHIPS["tanker"]).bare_hull_surface()
-    for z in (11.9, 12.5, 13.0):
-        assert _sign_changes(s, 2, z) <= 2, z
+@pytest.mark.parametrize("z", _cuts(np.linspace(1.0, 17.0, 9), WOBBLY_WATERLINES))
+def test_waterline_has_no_wobble(example_surface, z):
+    """At most one inflection aft (hollow run) and one forward (hollow entrance)."""
+    assert _sign_changes(example_surface, 2, z) <= 2
+
+
+TANKER_TRANSOM = ("the tanker's waterlines just above T ring over its dry transom ({n} sign changes of 0.1-1.1 deg at "
+                  "x -4..7 m). Cause (measured): its sections there are hollow above T (+0.09 1/m) and convex below "
+                  "(-0.03 1/m); the spline samples that template at fixed knots, so where it meets the waterline point Q "
+                  "it misses by 3.1-7.4 mm, periodic with Q's place between two knots (one knot span = 1.4 m of x), the "
+                  "correction through Q tilts the topside by as much and the knob follows the sampled area's swing. "
+                  "More control points do not help (20/40/60: 32/47/79 sign changes of the family's 11.9 m half-breadth)")
+RINGING_TRANSOM = {11.9: TANKER_TRANSOM.format(n=13), 12.5: TANKER_TRANSOM.format(n=6), 13.0: TANKER_TRANSOM.format(n=3)}
+
+
+@pytest.mark.parametrize("z", _cuts((11.9, 12.5, 13.0), RINGING_TRANSOM))
+def test_tanker_waterline_over_its_transom_has_no_wobble(tanker_surface, z):
+    """At most one inflection aft and one forward in a waterline just above the tanker's DWL."""
+    assert _sign_changes(tanker_surface, 2, z) <= 2
 
 
 def test_sections_change_smoothly_along_the_run():
@@ -403,16 +429,18 @@ def test_sections_change_smoothly_along_the_run():
     assert np.all(d2 <= 20.0 * np.median(d2, axis=0))
 
 
-@pytest.mark.xfail(strict=True, reason="the outermost buttock (y 14 m) turns back by 1.0 deg where it leaves the bilge aft "
-                                       "(x 53-66 m, z 5.3 m). Cause (measured): from x 57 m only the sections' area changes, "
-                                       "the family's z at y 14 m is concave in the area there (d2z/dA2 = -1.0e-3 1/m^3 at x 62 m) and "
-                                       "the fullness along x is straight (its inflection at x 61 m, just forward of where the "
-                                       "waterline reaches B/2 at 57 m), so the buttock bends convex; the designer's fullness "
-                                       "inflection moved aft (smoothstep(r^1.5)) removes it but costs the ferry 5 sign changes")
-def test_buttocks_have_no_steps():
-    s = fl.Hull.from_json(EXAMPLE.read_text()).bare_hull_surface()
-    for y in np.linspace(2.0, 14.0, 7):
-        assert _sign_changes(s, 1, y) <= 2, y
+STEPPED_BUTTOCKS = {
+    14.0: "the outermost buttock (y 14 m) turns back by 1.0 deg where it leaves the bilge aft (x 53-66 m, z 5.3 m). "
+          "Cause (measured): from x 57 m only the sections' area changes, the family's z at y 14 m is concave in the "
+          "area there (d2z/dA2 = -1.0e-3 1/m^3 at x 62 m) and the fullness along x is straight (its inflection at x "
+          "61 m, just forward of where the waterline reaches B/2 at 57 m), so the buttock bends convex; the designer's "
+          "fullness inflection moved aft (smoothstep(r^1.5)) removes it but costs the ferry 5 sign changes",
+}
+
+
+@pytest.mark.parametrize("y", _cuts(np.linspace(2.0, 14.0, 7), STEPPED_BUTTOCKS))
+def test_buttock_has_no_steps(example_surface, y):
+    assert _sign_changes(example_surface, 1, y) <= 2
 
 
 def test_designed_hull_is_editable():
