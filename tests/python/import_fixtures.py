@@ -52,15 +52,45 @@ def data_wetted_surface(data) -> float:
     """The data's own wetted surface at T (both sides): every grid's quads split into two
     triangles (along the shorter diagonal) and clipped at z = T. Flat facets cut the hull's
     curvature by chords, so this is a little (about 0.1 % on 80 x 61 grids) below the surface's."""
-    total = 0.0
-    for g in data.grids:
-        P = g.points
-        a, b, c, d = P[:-1, :-1], P[1:, :-1], P[1:, 1:], P[:-1, 1:]
-        short = (np.linalg.norm(a - c, axis=-1) <= np.linalg.norm(b - d, axis=-1))[..., None, None]
-        t1 = np.where(short, np.stack([a, b, c], -2), np.stack([a, b, d], -2)).reshape(-1, 3, 3)
-        t2 = np.where(short, np.stack([a, c, d], -2), np.stack([b, c, d], -2)).reshape(-1, 3, 3)
-        total += _area_below(np.concatenate([t1, t2]), data.draft).sum()
-    return 2.0 * float(total)
+    return 2.0 * float(sum(_area_below(_triangles(g.points), data.draft).sum() for g in data.grids))
+
+
+def _triangles(P: np.ndarray) -> np.ndarray:
+    """A grid's quads (m, n, 3) split into two triangles along the shorter diagonal, (k, 3, 3),
+    each keeping the quad's orientation."""
+    a, b, c, d = P[:-1, :-1], P[1:, :-1], P[1:, 1:], P[:-1, 1:]
+    short = (np.linalg.norm(a - c, axis=-1) <= np.linalg.norm(b - d, axis=-1))[..., None, None]
+    t1 = np.where(short, np.stack([a, b, c], -2), np.stack([a, b, d], -2)).reshape(-1, 3, 3)
+    t2 = np.where(short, np.stack([a, c, d], -2), np.stack([b, c, d], -2)).reshape(-1, 3, 3)
+    return np.concatenate([t1, t2])
+
+
+def _y_flux_below(tri: np.ndarray, level: float) -> np.ndarray:
+    """int y n_y dA over the part of each triangle (n, 3, 3) at or below z = level, n the
+    (unit) normal of the triangle's own orientation: y's mean over that part times its area
+    vector's y. With the heights sorted a <= b <= c the part is the triangle cut off at the
+    lowest vertex (sides s = (L - a)/(b - a), t = (L - a)/(c - a) of its edges) while L <= b, and
+    the whole less the one cut off at the highest above."""
+    area_y = 0.5 * np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])[:, 1]
+    order = np.argsort(tri[:, :, 2], axis=1)
+    A, B, C = (np.take_along_axis(tri, order[:, k, None, None], axis=1)[:, 0] for k in range(3))
+    a, b, c = A[:, 2], B[:, 2], C[:, 2]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s, t = (level - a) / (b - a), (level - a) / (c - a)
+        low = s * t * (A[:, 1] + (A[:, 1] + s * (B[:, 1] - A[:, 1])) + (A[:, 1] + t * (C[:, 1] - A[:, 1]))) / 3
+        u, v = (c - level) / (c - a), (c - level) / (c - b)
+        top = u * v * (C[:, 1] + (C[:, 1] + u * (A[:, 1] - C[:, 1])) + (C[:, 1] + v * (B[:, 1] - C[:, 1]))) / 3
+    whole = tri[:, :, 1].mean(axis=1)
+    mean_times_share = np.where(level <= a, 0.0, np.where(level >= c, whole, np.where(level <= b, low, whole - top)))
+    return area_y * mean_times_share
+
+
+def data_volume(data) -> float:
+    """The data's own displaced volume at T (both sides): the flux of (0, y, 0) through every
+    grid's triangles (as data_wetted_surface's) clipped at z = T. The centre plane, the
+    waterplane and a transom plane x = const carry no flux of it. Flat facets cut a convex hull
+    by chords, so this is a little below the surface's."""
+    return 2.0 * abs(sum(float(_y_flux_below(_triangles(g.points), data.draft).sum()) for g in data.grids))
 
 
 def truth(ship: str) -> dict:

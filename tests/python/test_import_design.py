@@ -12,13 +12,17 @@ import pytest
 import fairlines as fl
 from fairlines.offsets import read_offsets_csv
 
-from import_fixtures import ROOT, SHIPS, WIGLEY, data_wetted_surface, imported, read, rebuilt, truth
+from import_fixtures import ROOT, SHIPS, WIGLEY, data_volume, data_wetted_surface, imported, read, rebuilt, truth
 
 # Fidelity goals (fractions): distance to the data's points on B, volume, LCB on Lpp, wetted surface.
 RMS_GOAL, MAX_GOAL, VOLUME_GOAL, LCB_GOAL, WETTED_GOAL = 0.005, 0.02, 0.005, 0.001, 0.01
 
 # Measured shortfalls (the section family cannot hold these ships yet; docs/import.md says why).
 SHORT = {
+    ("volume", "dtmb5415"): "-0.60 %: the data's own grids at T hold 0.5504 m^3, -0.65 % from the published 0.554 m^3 "
+                            "(flat facets cut the hull by chords, about 0.1 % on these 21 x 21 grids); the rebuilt hull is "
+                            "+0.05 % over them (test_rebuilt_hull_volume_meets_the_datas_own). Its -0.49 % before had "
+                            "been a quadrature that clipped the hull's rows at the waterline, not its sections",
     ("wetted", "kcs"): "+1.97 %: the data's own grids at T measure 9 546 m^2, +1.30 % over the published figure (its "
                        "source does not say what else it leaves out); the rebuilt hull is +0.66 % over them: the closed "
                        "propeller boss end (x 4-6 m) and, on the centre plane, webs (12 m^2 at the boss end, x 4.6-11.5 m, 7 m^2 "
@@ -109,6 +113,14 @@ def test_rebuilt_hull_wetted_surface_meets_the_datas_own(ship):
     (triangulated, clipped at T). KCS's grids measure 9 546 m^2, 1.3 % over the published
     9 424 m^2, so a rebuild true to them cannot meet the published figure within 1 %."""
     assert abs(rebuilt(ship)["wetted_surface"] / data_wetted_surface(read(ship)) - 1) <= WETTED_GOAL
+
+
+@pytest.mark.parametrize("ship", ["kcs", "dtmb5415"])
+def test_rebuilt_hull_volume_meets_the_datas_own(ship):
+    """Like with like: the rebuilt hull's volume at T against the data's own grids' (the flux of
+    y through their triangles clipped at T). DTMB 5415's grids hold 0.5504 m^3, 0.65 % under the
+    published 0.554 m^3, so a rebuild true to them cannot meet it within 0.5 %."""
+    assert abs(rebuilt(ship)["volume"] / data_volume(read(ship)) - 1) <= VOLUME_GOAL
 
 
 def test_measured_volume_of_the_typed_wigley_table_is_the_exact_one():

@@ -126,6 +126,28 @@ def test_box_is_exact():
     assert full.volume == pytest.approx(h.volume / 2, rel=1e-12)
 
 
+def test_barge_with_raked_ends_is_exact_though_its_rows_climb_the_whole_depth():
+    """A degree-1 barge whose keel rises to the deck at both ends (over e at each): its keel's
+    and bilge's rows span the whole depth, as a cruiser-sterned hull's rows do, more than its
+    end sections. The waterline runs along the bilge's row over the midbody, so the waterplane
+    must clip the girth lines, not the rows (clipping the rows it lay between two Gauss lines:
+    2.2 % off here, 1.6 % on a designed cruiser-sterned hull). With d = D/2 the waterline ends at the
+    columns x = e/2 and L - e/2 (knots), so every Gauss count is exact: volume below d
+    (B/2) (d (L - 2e) + d e / 2) a side, waterplane area L - e times B, LCB at L/2."""
+    Lb, Bb, Db, e = 60.0, 12.0, 8.0, 10.0
+    d = Db / 2
+    xs, zk = [0.0, e / 2, e, Lb - e, Lb - e / 2, Lb], [Db, d, 0.0, 0.0, d, Db]
+    P = np.array([[[x, Bb / 2, Db] for x in xs],
+                  [[x, Bb / 2, z] for x, z in zip(xs, zk)],
+                  [[x, 0.0, z] for x, z in zip(xs, zk)]])
+    barge = fl.NurbsSurface(1, 1, [0, 0, 0.5, 1, 1], [0, 0, 0.1, 0.2, 0.8, 0.9, 1, 1], P)
+    for gauss in (2, 4, 8):
+        h = fl.hydrostatics(barge, d, gauss=gauss)
+        assert h.volume == pytest.approx(Bb * (d * (Lb - 2 * e) + d * e / 2), rel=1e-12), gauss
+        assert h.waterplane_area == pytest.approx((Lb - e) * Bb, rel=1e-12), gauss
+        assert h.lcb == pytest.approx(Lb / 2, rel=1e-12), gauss
+
+
 def test_sections_are_iso_curves_and_rows_are_natural_splines(wigley):
     surf = wigley.surface
     v = wigley.section_params

@@ -92,18 +92,31 @@ int longitudinal_direction(const NurbsSurface& s) {
   return dv >= du ? 1 : 0;
 }
 
-/// Direction whose control lines span the larger z range on average: 1 (v) or 0 (u). The
-/// girth of a hull section spans keel to deck; a line along the hull only the rise of the keel
-/// or sheer, however much it zigzags at a raked stem or a stern (which a sum of |dz| counts).
+/// Direction whose control lines run more steeply: 1 (v) or 0 (u), by the z range of each
+/// line over its polygon's length, summed over the lines. The girth of a hull section spans keel
+/// to deck within a few times that; a line along the hull spans at most the rise of the keel or
+/// sheer, over the whole length. The z range alone is not enough: the keel's and bilge's rows of
+/// a hull whose profile climbs to the deck at both ends (a cruiser stern, a raked stem) span the
+/// whole depth too, more than its short end sections, and clipping those rows let the waterline
+/// run between two Gauss lines along the parallel body.
 int vertical_direction(const NurbsSurface& s) {
   const Eigen::MatrixXd& P = s.control_points();
   const int nu = s.nu(), nv = s.nv();
-  // z(i, j) = P(i nv + j, 2): a u line keeps j, a v line keeps i.
-  Eigen::MatrixXd z(nu, nv);
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) z(i, j) = P(i * nv + j, 2);
-  const double along_u = (z.colwise().maxCoeff() - z.colwise().minCoeff()).mean();
-  const double along_v = (z.rowwise().maxCoeff() - z.rowwise().minCoeff()).mean();
+  auto at = [&](int i, int j) { return Eigen::Vector3d(P.row(i * nv + j).transpose()); };
+  auto steepness = [&](int lines, int points, auto&& point) {
+    double rise = 0.0, length = 0.0;
+    for (int l = 0; l < lines; ++l) {
+      double lo = point(l, 0).z(), hi = lo;
+      for (int k = 1; k < points; ++k) {
+        lo = std::min(lo, point(l, k).z()), hi = std::max(hi, point(l, k).z());
+        length += (point(l, k) - point(l, k - 1)).norm();
+      }
+      rise += hi - lo;
+    }
+    return length > 0 ? rise / length : 0.0;
+  };
+  const double along_u = steepness(nv, nu, [&](int j, int i) { return at(i, j); });
+  const double along_v = steepness(nu, nv, [&](int i, int j) { return at(i, j); });
   return along_v > along_u ? 1 : 0;
 }
 
