@@ -623,14 +623,17 @@ def design_hull(particulars: Particulars | None = None, **kwargs) -> Hull:
 def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
     """The hull, its designer-sized bulb run further aft (BULB_AFT_RETRIES) when the bulb meets
     the bare hull in more than one curve: a bulb that leaves a fine forefoot again before its
-    aft end. A bulb whose aft length the user gave is left as given."""
+    aft end. A bulb whose aft length the user gave is left as given. Raises
+    InfeasibleFormParameters naming what to give when no aft length lets it meet the hull in
+    one seam (the composition could not join them)."""
     from .blend import seam_blend_placement
 
     given = p.bulb if isinstance(p.bulb, dict) else {}
-    if hull.description.bulb is None or "aft_length" in given.get("shape", {}):
+    if hull.description.bulb is None:
         return hull
+    fixed = "aft_length" in given.get("shape", {})
     desc = None
-    for factor in (None, *BULB_AFT_RETRIES):
+    for factor in (None,) if fixed else (None, *BULB_AFT_RETRIES):
         if factor is not None:
             desc = desc or json.loads(hull.to_json())
             k = desc["bulb"]["kracht"]
@@ -644,7 +647,12 @@ def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
         except _native.InvalidInput as e:
             if "cannot meet the hull" not in str(e):
                 return hull
-    return hull
+            reason = str(e)
+    remedy = ("the sonar dome under the forefoot runs into the bulb's root: give sonar_dome=False or bulb=False"
+              if p.sonar_dome else "give bulb=False or a smaller bulb (its Kracht coefficients in bulb={'kracht': ...})")
+    if fixed:
+        remedy += " or another bulb.shape.aft_length"
+    raise _native.InfeasibleFormParameters(f"design_hull: the bulb cannot meet the hull in one seam ({reason}): {remedy}")
 
 
 def _try_design(p: Particulars) -> tuple[Hull | None, Exception | None]:

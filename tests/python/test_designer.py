@@ -234,6 +234,18 @@ def test_a_bulb_that_would_leave_a_fine_forefoot_again_runs_further_aft():
     assert edge_census(hull.composed_hull().mesh.faces) == (0, 0, 0)
 
 
+def test_a_bulb_its_sonar_dome_runs_into_is_refused_naming_the_dome_and_without_it_composes():
+    """A cruiser-sterned coaster with a bulb and a sonar dome under its forefoot: at every aft
+    length the bulb meets the hull and dome in a seam that turns back, so no composition can
+    join them. design_hull says so (it returned the hull, and composed_hull failed later with
+    no remedy); the remedy it names builds and composes watertight."""
+    p = dict(lpp=118.6, breadth=14.28, draft=5.9, depth=7.77, cb=0.59, lcb=55.44, stern="cruiser", bulb=True,
+             skeg=True, sonar_dome=True)
+    with pytest.raises(fl.InfeasibleFormParameters, match="bulb cannot meet the hull.*give sonar_dome=False"):
+        fl.design_hull(**p)
+    assert edge_census(fl.design_hull(**{**p, "sonar_dome": False}).composed_hull().mesh.faces) == (0, 0, 0)
+
+
 def test_a_fine_ship_with_a_short_parallel_body_and_lcb_at_midships_builds():
     """Cb 0.50 with 6 m of parallel body and the LCB at midships: the default immersed transom
     (0.7 B/2) leaves the ends too full for the LCB; the designer narrows it."""
