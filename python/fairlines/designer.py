@@ -56,6 +56,8 @@ PARALLEL_CP = 0.62
 CM_MAX = 0.99              # the fullest midship section the regression gives (fuller ones leave the SAC no room)
 PARALLEL_RETRIES, PARALLEL_STEP = 3, 0.05  # a SAC the ends cannot hold: parallel body + 5 % Lpp, 3 times
 EDGE_STEPS = 7              # bisections of a given particular toward one that builds (1/128 of the gap)
+TYPICAL_DEPTH = 1.6         # D / T a deeper hull's refusal tries: its sections' knot spans below the waterline are
+                            # fewer, and a full ship's (Cm 0.99) cannot hold its near-box sections there
 FINE_ENDS_CP = 0.45         # ends finer than this (prismatic outside the parallel body) ask for a shorter one
 CWP_MAX = 0.97              # the fullest default waterplane
 CWP_RETRY = 0.015           # a full ship's ends cannot hold its LCB: the default Cwp this much fuller
@@ -665,14 +667,16 @@ def _try_design(p: Particulars) -> tuple[Hull | None, Exception | None]:
 
 
 def _feasible_edge(p: Particulars) -> str:
-    """For the first of the given Cwp, LCF, LCB, parallel body whose designer's default (the
-    LCB: midships) builds with the others as given, the value nearest the given one that
-    builds, by EDGE_STEPS bisections; "" when there is none."""
-    for name in ("cwp", "lcf", "lcb", "parallel_length"):
+    """For the first of the given Cwp, LCF, LCB, parallel body and a depth over TYPICAL_DEPTH T
+    whose designer's default (the LCB: midships; the depth: TYPICAL_DEPTH T) builds with the
+    others as given, the value nearest the given one that builds, by EDGE_STEPS bisections; ""
+    when there is none."""
+    for name in ("cwp", "lcf", "lcb", "parallel_length", "depth"):
         given = getattr(p, name)
-        if given is None:
+        if given is None or (name == "depth" and given <= TYPICAL_DEPTH * p.draft):
             continue
-        good = replace(p, **{name: 0.5 * p.lpp if name == "lcb" else None})
+        default = {"lcb": 0.5 * p.lpp, "depth": TYPICAL_DEPTH * p.draft}.get(name)
+        good = replace(p, **{name: default})
         target = _value_of(good, name)
         if abs(given - target) < 1e-9 * p.lpp or _try_design(good)[0] is None:
             continue
@@ -690,8 +694,8 @@ def _feasible_edge(p: Particulars) -> str:
 
 def _value_of(p: Particulars, name: str) -> float:
     """A particular's value as the designer takes it (given, or its default)."""
-    if name == "lcb":
-        return p.lcb
+    if name in ("lcb", "depth"):
+        return getattr(p, name)
     c = _coefficients(p)
     return c["parallel"][1] - c["parallel"][0] if name == "parallel_length" else c[name]
 
@@ -699,7 +703,7 @@ def _value_of(p: Particulars, name: str) -> float:
 #: What to change when a basic curve designed from the particulars is infeasible.
 _REMEDIES = {
     "sac": "the ends cannot hold this volume with its LCB: move lcb toward midships, lower cb, or give a "
-           "longer parallel_length, a fuller cm or cwp",
+           "longer parallel_length, a fuller cm or cwp (a deep hull: a smaller depth)",
     "dwl": "no fair waterline has this area and centroid: change cwp (or lcf), or give a parallel_length",
     "deck": "no fair deck line clears this waterline: raise depth or lower cwp",
     "profile": "no fair centre profile fits these ends: change stem_rake, depth or transom_immersion",

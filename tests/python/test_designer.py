@@ -273,6 +273,18 @@ def test_a_waterplane_too_fine_for_the_volume_names_a_cwp_that_builds():
     assert fl.design_hull(**{**p, "cwp": cwp}).hydrostatics().cwp == pytest.approx(cwp, rel=MATCH_TOL)
 
 
+def test_a_deep_full_ship_is_refused_naming_a_depth_that_builds():
+    """A full coaster (Cb 0.847, Cm 0.99) 2.6 draughts deep: its sections' knot spans below the
+    waterline are too few to hold the near-box midship sections the SAC asks. The refusal
+    names a depth that builds (the message named only lcb, cb, cm and cwp), and it does."""
+    p = dict(lpp=88.15, breadth=14.02, draft=6.41, depth=16.67, cb=0.847, lcb=45.42)
+    with pytest.raises(fl.InfeasibleFormParameters, match=r"depth (\d+\.\d+) m builds \(asked 16\.67 m\)") as info:
+        fl.design_hull(**p)
+    depth = float(re.search(r"depth (\d+\.\d+) m builds", str(info.value)).group(1))
+    assert 1.6 * 6.41 < depth < 16.67
+    assert fl.design_hull(**{**p, "depth": depth}).hydrostatics().volume == pytest.approx(_asked(p), rel=MATCH_TOL)
+
+
 def test_an_impossible_request_names_the_particulars_to_change():
     """A full ship with its LCB 4 % Lpp forward, no parallel body and a waterplane barely
     fuller than its block: its ends cannot hold the volume. The message names the particulars
