@@ -609,8 +609,9 @@ def design_hull(particulars: Particulars | None = None, **kwargs) -> Hull:
     """A Hull designed from particulars (a Particulars, or its fields as keywords), built and
     matched: its surface holds Cb Lpp B T, the LCB and Cwp Lpp B (see the module docstring).
     Raises InvalidInput for particulars outside the designer's range, InfeasibleFormParameters
-    (naming the basic curve, what to change and, for a given Cwp, LCF, LCB or parallel body,
-    the nearest value that builds) when no fallback builds."""
+    (naming the basic curve, what to change and, for a given Cwp, LCF, LCB, parallel body or a
+    depth over TYPICAL_DEPTH T, the nearest value that builds) when no fallback builds, or when
+    no aft length lets its bulb meet the hull in one seam."""
     p = particulars if particulars is not None else _particulars(kwargs)
     p.check()
     first = None
