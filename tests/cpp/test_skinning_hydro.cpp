@@ -38,6 +38,33 @@ TEST(Hydrostatics, BoxIsExact) {
   EXPECT_THROW(hydrostatics(box(L, B, D), std::nan("")), InvalidInput);
 }
 
+TEST(Hydrostatics, ClipsTheGirthLinesOfABargeWhoseRowsClimbTheWholeDepth) {
+  // A degree-1 barge whose keel rises to the deck over e at both ends: its keel's and bilge's
+  // rows (v lines) span the whole depth, more than its end sections (u lines) do. The waterline
+  // runs along the bilge's row over the midbody, so only clipping the u lines is exact. At
+  // d = D/2 the waterline ends on the columns x = e/2 and L - e/2: exact at any Gauss count.
+  const double L = 60, B = 12, D = 8, e = 10, d = D / 2;
+  const double xs[6] = {0, e / 2, e, L - e, L - e / 2, L}, zk[6] = {D, d, 0, 0, d, D};
+  Eigen::MatrixXd P(18, 3);
+  for (int j = 0; j < 6; ++j) {
+    P.row(j) << xs[j], B / 2, D;
+    P.row(6 + j) << xs[j], B / 2, zk[j];
+    P.row(12 + j) << xs[j], 0, zk[j];
+  }
+  Eigen::VectorXd ku(5), kv(8);
+  ku << 0, 0, 0.5, 1, 1;
+  kv << 0, 0, 0.1, 0.2, 0.8, 0.9, 1, 1;
+  const NurbsSurface barge(1, 1, ku, kv, 3, 6, P);
+  for (int gauss : {2, 4, 8}) {
+    HydrostaticsOptions o;
+    o.gauss = gauss;
+    const Hydrostatics h = hydrostatics(barge, d, o);
+    EXPECT_NEAR(h.volume, B * (d * (L - 2 * e) + d * e / 2), 1e-12 * L * B * D) << gauss;
+    EXPECT_NEAR(h.waterplane_area, (L - e) * B, 1e-12 * L * B) << gauss;
+    EXPECT_NEAR(h.lcb, L / 2, 1e-12 * L) << gauss;
+  }
+}
+
 NurbsCurve line_section(double x, double y0, double z0, double y1, double z1) {
   Eigen::MatrixXd P(2, 3);
   P << x, y0, z0, x, y1, z1;
