@@ -68,6 +68,8 @@ STERNPOST_GAP = 0.002
 # along it (closer toward its nose).
 SKEG_END_STATIONS = 6
 DOME_STATIONS = 16
+# Stations off the hull named in the error (the rest are counted).
+OFF_HULL_SHOWN = 5
 # Least slope (dz/dx) of the profile used for the arrival angle of above-water sections.
 MIN_STEM_SLOPE = 0.05
 # Beyond a dry transom's waterline end a section's lower angle leans less by this (deg) times
@@ -407,8 +409,11 @@ class Hull:
         bc = self.basic_curves if with_area else self._curves
         xs = self.stations() if x is None else np.atleast_1d(np.asarray(x, dtype=float))
         tol = 1e-9 * pr.lpp
-        if np.any(xs < d.x_aft - tol) or np.any(xs > d.x_fore + tol):
-            raise _native.InvalidInput(f"x is {xs.tolist()}; expected stations on the hull ({d.x_aft} to {d.x_fore} m)")
+        off = xs[(xs < d.x_aft - tol) | (xs > d.x_fore + tol)]
+        if off.size:  # name the stations off the hull, not every one asked
+            shown = ", ".join(f"{v:g}" for v in off[:OFF_HULL_SHOWN]) + (", ..." if off.size > OFF_HULL_SHOWN else "")
+            raise _native.InvalidInput(f"x is {shown} m ({off.size} of {xs.size} stations off the hull); expected "
+                                       f"stations on the hull, {d.x_aft:g} to {d.x_fore:g} m")
         half_b, limit = pr.breadth / 2, pr.half_breadth_limit
         deck, z_deck, dwl, prof = self.curve_points(xs, bc)
         sac = bc["sac"](xs, outside=math.nan) if with_area else None

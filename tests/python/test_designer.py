@@ -366,6 +366,19 @@ def test_bad_particulars_name_the_value(bad, field):
         fl.design_hull(**{**SHIPS["container"], **bad})
 
 
+def test_sections_asked_off_the_hull_are_named_not_listed():
+    """Asking sections at 401 stations of which 3 lie beyond the stem names those three and the
+    hull's range (the message once listed all 401)."""
+    hull = fl.design_hull(**SHIPS["coaster_cruiser"])
+    d = hull.description
+    xs = np.append(np.linspace(d.x_aft, d.x_fore, 398), d.x_fore + np.array([1.0, 2.0, 3.0]))
+    with pytest.raises(fl.InvalidInput) as info:
+        hull.sections_at(xs)
+    msg = str(info.value)
+    assert f"x is {d.x_fore + 1:g}, {d.x_fore + 2:g}, {d.x_fore + 3:g} m (3 of 401 stations off the hull)" in msg
+    assert f"{d.x_aft:g} to {d.x_fore:g} m" in msg and len(msg) < 300
+
+
 def _sign_changes(surface, axis, value):
     from fairlines.fairness import judge_cut
 
