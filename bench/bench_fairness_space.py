@@ -4,7 +4,10 @@ each designed hull's waterlines (6, from T/4 to D - T/8), buttocks (5, 0.1-0.9 B
 (19, 5-95 % Lpp) judged on their own (fairlines.fairness: curvature sign changes over 0.1 deg
 of turn). The issue's marks: a waterline or buttock with more than two (one hollow each way),
 a frame with any (an S). A waterline that closes on the centre plane in a rounded end counts
-that round too, so its low waterlines read stricter than a naval architect's eye.
+that round too, so its low waterlines read stricter than a naval architect's eye; so the
+waterlines are also read as one would: a lobe under SMALL_LOBE_DEG of turn is a wobble, a
+second hollow in one half of the waterline a step, and where the wobbles lie (within
+FORE_TIP of Lpp of a waterline's fore end, within AFT_END of its aft end, or between).
 Prints figures; run by bench/run_all.py (FAIRLINES_FAIRNESS_SAMPLES overrides the count).
 """
 
@@ -22,6 +25,9 @@ from bench_hull import sample  # noqa: E402  the same design space and sampler
 
 SAMPLES = int(os.environ.get("FAIRLINES_FAIRNESS_SAMPLES", "100"))
 CUT_POINTS = 401
+SMALL_LOBE_DEG = 1.0  # a lobe turning less than this between two others is a wobble, not a shape
+FORE_TIP, AFT_END = 0.015, 0.05  # the ends' stretches where wobbles are placed, fractions of Lpp
+WATERLINES = 6  # T/4 .. D - T/8: the first three below T, the rest above
 
 
 def sign_changes(surface, axis: int, value: float) -> int:
@@ -29,33 +35,72 @@ def sign_changes(surface, axis: int, value: float) -> int:
     return judge_cut(cut)["sign_changes"] if len(cut.points) >= 3 else 0
 
 
-def judged(p: dict) -> tuple[list, list, list]:
+def waterline_reading(surface, z: float, lpp: float) -> tuple[int, dict, bool]:
+    """Sign changes, wobbles by where they lie ({"fore tip", "aft end", "between"}: count), and
+    whether one half of the waterline has a second hollow (lobes of SMALL_LOBE_DEG or more)."""
+    cut = fl.plane_cut(surface, 2, float(z), CUT_POINTS)
+    if len(cut.points) < 3:
+        return 0, {}, False
+    judged_cut = judge_cut(cut)
+    x = np.asarray(cut.points)[:, 0]
+    x_aft, x_fore = x.min(), x.max()
+    middle = 0.5 * (x_aft + x_fore)
+    wobbles: dict = {}
+    hollows = [0, 0]
+    for lobe in judged_cut["lobes"]:
+        at = lobe["at"][0]
+        if lobe["turn_deg"] < SMALL_LOBE_DEG:
+            where = "fore tip" if x_fore - at < FORE_TIP * lpp else "aft end" if at - x_aft < AFT_END * lpp else "between"
+            wobbles[where] = wobbles.get(where, 0) + 1
+        elif lobe["sign"] > 0:
+            hollows[int(at >= middle)] += 1
+    return judged_cut["sign_changes"], wobbles, max(hollows) > 1
+
+
+def judged(p: dict) -> tuple[list, list, list, list]:
     s = fl.design_hull(**p).bare_hull_surface()
     T, D, B, L = p["draft"], p["depth"], p["breadth"], p["lpp"]
-    return ([sign_changes(s, 2, z) for z in np.linspace(0.25 * T, D - 0.125 * T, 6)],
+    waterlines = [waterline_reading(s, z, L) for z in np.linspace(0.25 * T, D - 0.125 * T, WATERLINES)]
+    return ([w[0] for w in waterlines],
             [sign_changes(s, 1, y) for y in np.linspace(0.1, 0.9, 5) * B / 2],
-            [sign_changes(s, 0, x) for x in np.linspace(0.05, 0.95, 19) * L])
+            [sign_changes(s, 0, x) for x in np.linspace(0.05, 0.95, 19) * L],
+            [w[1:] for w in waterlines])
+
+
+def print_reading(hulls: list) -> None:
+    """The waterlines read as a naval architect would, below T and above it."""
+    print(f"  waterlines read as a lines plan (a wobble: a lobe under {SMALL_LOBE_DEG:g} deg; a step: a second "
+          "hollow in one half):")
+    for name, rows in (("below T", slice(0, WATERLINES // 2)), ("above T", slice(WATERLINES // 2, WATERLINES))):
+        read = [r for h in hulls for r in h[3][rows]]
+        clean = sum(not w and not step for w, step in read)
+        wobbly = sum(bool(w) for w, _ in read)
+        where = {k: sum(w.get(k, 0) for w, _ in read) for k in ("fore tip", "aft end", "between")}
+        print(f"    {name}: {clean} of {len(read)} clean; {wobbly} with a wobble, {sum(s for _, s in read)} with a "
+              f"step; wobbles within {100 * FORE_TIP:g} % Lpp of the fore end {where['fore tip']}, within "
+              f"{100 * AFT_END:g} % of the aft end {where['aft end']}, between {where['between']}")
 
 
 def main():
     hulls = [judged(p) for p in sample(SAMPLES)]
     n = len(hulls)
-    wavy = sum(any(v > 2 for v in wl) for wl, _, _ in hulls)
-    stepped = sum(any(v > 2 for v in bt) for _, bt, _ in hulls)
-    s_frames = sum(any(v > 0 for v in fr) for _, _, fr in hulls)
-    clean = sum(all(v <= 2 for v in wl + bt) and not any(fr) for wl, bt, fr in hulls)
+    wavy = sum(any(v > 2 for v in wl) for wl, _, _, _ in hulls)
+    stepped = sum(any(v > 2 for v in bt) for _, bt, _, _ in hulls)
+    s_frames = sum(any(v > 0 for v in fr) for _, _, fr, _ in hulls)
+    clean = sum(all(v <= 2 for v in wl + bt) and not any(fr) for wl, bt, fr, _ in hulls)
     print(f"{n} designed hulls, each cut and judged on its own (sign changes over 0.1 deg of turn):")
     print(f"  a waterline with more than 2: {wavy} hulls ({100 * wavy / n:.0f} %); per waterline, mean "
-          f"{np.mean([v for wl, _, _ in hulls for v in wl]):.2f}")
+          f"{np.mean([v for wl, _, _, _ in hulls for v in wl]):.2f}")
     print(f"  a buttock with more than 2:   {stepped} hulls ({100 * stepped / n:.0f} %); per buttock, mean "
-          f"{np.mean([v for _, bt, _ in hulls for v in bt]):.2f}")
+          f"{np.mean([v for _, bt, _, _ in hulls for v in bt]):.2f}")
     print(f"  an S-shaped frame (anywhere): {s_frames} hulls ({100 * s_frames / n:.0f} %); S frames per hull, mean "
-          f"{np.mean([sum(v > 0 for v in fr) for _, _, fr in hulls]):.2f} of 19")
+          f"{np.mean([sum(v > 0 for v in fr) for _, _, fr, _ in hulls]):.2f} of 19")
     print(f"  none of these (the issue's marks): {clean} hulls ({100 * clean / n:.0f} %)")
     wl, bt, fr = (np.array([h[k] for h in hulls]) for k in range(3))
     print("  mean sign changes by waterline, T/4 .. D - T/8:", " ".join(f"{v:.1f}" for v in wl.mean(axis=0)))
     print("  mean sign changes by buttock, 0.1 .. 0.9 B/2:   ", " ".join(f"{v:.1f}" for v in bt.mean(axis=0)))
     print("  share of hulls with an S frame, 5 .. 95 % Lpp:  ", " ".join(f"{v:.2f}" for v in (fr > 0).mean(axis=0)))
+    print_reading(hulls)
 
 
 if __name__ == "__main__":
