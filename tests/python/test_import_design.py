@@ -21,7 +21,9 @@ RMS_GOAL, MAX_GOAL, VOLUME_GOAL, LCB_GOAL, WETTED_GOAL = 0.005, 0.02, 0.005, 0.0
 SHORT = {
     ("volume", "dtmb5415"): "-0.60 %: the data's own grids at T hold 0.5504 m^3, -0.65 % from the published 0.554 m^3 "
                             "(flat facets cut the hull by chords, about 0.1 % on these 21 x 21 grids); the rebuilt hull is "
-                            "+0.05 % over them (test_rebuilt_hull_volume_meets_the_datas_own). Its -0.49 % before had "
+                            "+0.05 % over them (test_rebuilt_hull_volume_meets_the_datas_own), and -0.29 % from the "
+                            "volume of its published Cb 0.507, which the published 0.554 m^3 exceeds by 0.3 % "
+                            "(test_rebuilt_dtmb5415_volume_meets_its_published_block_coefficient). Its -0.49 % before had "
                             "been a quadrature that clipped the hull's rows at the waterline, not its sections",
     ("wetted", "kcs"): "+1.97 %: the data's own grids at T measure 9 546 m^2, +1.30 % over the published figure (its "
                        "source does not say what else it leaves out); the rebuilt hull is +0.66 % over them: the closed "
@@ -93,6 +95,16 @@ def test_rebuilt_hull_largest_distance_to_the_data(ship):
 def test_rebuilt_hull_volume_meets_the_published_one(ship):
     t = truth(ship)
     assert abs(rebuilt(ship)["volume"] / t["volume"] - 1) <= VOLUME_GOAL
+
+
+def test_rebuilt_dtmb5415_volume_meets_its_published_block_coefficient():
+    """DTMB 5415's published particulars disagree with each other by 0.3 %: Cb 0.507 at its
+    Lpp 5.719, B 0.768 and T 0.248 m is 0.5523 m^3, its published volume 0.554 m^3 (Cb 0.5086).
+    Against the first the rebuilt hull meets the volume goal (-0.29 %), against the second not
+    (-0.60 %, the strict xfail above); its own grids hold 0.5504 m^3 (Cb 0.5052)."""
+    t = truth("dtmb5415")
+    published = 0.507 * t["lpp"] * t["beam"] * 0.248
+    assert abs(rebuilt("dtmb5415")["volume"] / published - 1) <= VOLUME_GOAL
 
 
 @pytest.mark.parametrize("ship", [_goal("lcb", s) for s in SHIPS])
