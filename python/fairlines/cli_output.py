@@ -55,10 +55,25 @@ def add_parsers(sub) -> None:
     hy.add_argument("--sac-plot", help="SAC at the design draft (against the description's SAC when known)")
 
 
+def _read_json(path: str) -> dict:
+    """One HULL file's JSON object. Raises InvalidInput naming the file when it cannot be read
+    or is not a JSON object."""
+    try:
+        doc = json.loads(pathlib.Path(path).read_text(encoding="utf-8"))
+    except OSError as e:
+        raise InvalidInput(f"hull file {path!r} cannot be read: {e.strerror}; expected a hull description or "
+                           "surface JSON file") from None
+    except (json.JSONDecodeError, UnicodeDecodeError) as e:
+        raise InvalidInput(f"hull file {path!r} is not valid JSON: {e}") from None
+    if not isinstance(doc, dict):
+        raise InvalidInput(f"hull file {path!r} holds a JSON {type(doc).__name__}; expected a JSON object")
+    return doc
+
+
 def _load(args):
     """(hull, particulars, name, description Hull or None) from the HULL argument(s)."""
     from . import io
-    docs = [json.loads(pathlib.Path(p).read_text()) for p in args.hull]
+    docs = [_read_json(p) for p in args.hull]
     part, name, hull_obj = {}, "", None
     if len(docs) == 1 and "principal" in docs[0]:
         from .hull import Hull
@@ -68,6 +83,10 @@ def _load(args):
         name = docs[0].get("name", "")
         hull = (hull_obj.composed_hull() if args.compose else hull_obj.bare_hull_surface())
     else:
+        for p, d in zip(args.hull, docs):
+            if "type" not in d:
+                raise InvalidInput(f"hull file {p!r} has neither 'principal' nor 'type'; expected a hull description "
+                                   "or surface JSON file")
         surfaces = [io.from_dict(d) for d in docs]
         if not all(isinstance(s, NurbsSurface) for s in surfaces):
             raise InvalidInput(f"{args.hull} are not all surface JSON files; expected surfaces or one hull description")

@@ -26,3 +26,17 @@ def test_export_step(tmp_path, capsys):
     pytest.importorskip("OCP")
     assert main(["export", DESCRIPTION, "-o", str(tmp_path / "h.step"), "--verify"]) == 0
     assert "valid True, closed True" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("command", [["lines", "-o", "l.svg"], ["hydrostatics", "-o", "c.csv"], ["export", "-o", "h.step"]])
+@pytest.mark.parametrize("content, says", [(None, "cannot be read: No such file"), ("{not json", "is not valid JSON"),
+                                           ("[1, 2]", "holds a JSON list; expected a JSON object"),
+                                           ('{"name": 1}', "has neither 'principal' nor 'type'")])
+def test_an_unreadable_hull_file_is_named_without_a_traceback(tmp_path, capsys, command, content, says):
+    path = tmp_path / "hull.json"
+    if content is not None:
+        path.write_text(content)
+    args = [command[0], str(path), command[1], str(tmp_path / command[2])]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert f"fairlines {command[0]}: hull file {str(path)!r} {says}" in err and "Traceback" not in err
