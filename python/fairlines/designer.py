@@ -116,6 +116,10 @@ DOME_DEPTH = 0.4
 DOME_HALF_BREADTH = 0.12
 
 
+#: Particulars a design cannot start without (fl.design_hull raises InvalidInput naming those missing).
+REQUIRED_PARTICULARS = ("lpp", "breadth", "draft", "depth", "cb", "lcb")
+
+
 @dataclass
 class Particulars:
     """Principal particulars of a new ship (metres; lcb and lcf from the AP)."""
@@ -160,8 +164,9 @@ class Particulars:
                 raise _native.InvalidInput(f"{key} is {v:.4g}; expected {lo} to {hi} (the designer's range)")
         if self.stern not in ("transom", "cruiser"):
             raise _native.InvalidInput(f"stern is {self.stern!r}; expected 'transom' or 'cruiser'")
-        if not 5.0 <= self.stem_rake <= 45.0:
-            raise _native.InvalidInput(f"stem_rake is {self.stem_rake}; expected 5 to 45 deg from the vertical")
+        rake = self.stem_rake
+        if isinstance(rake, bool) or not isinstance(rake, (int, float)) or not 5.0 <= rake <= 45.0:
+            raise _native.InvalidInput(f"stem_rake is {rake!r}; expected 5 to 45 deg from the vertical")
         for key in ("cm", "cwp"):
             v = getattr(self, key)
             if v is not None and not (self.cb < v <= 1.0):
@@ -177,6 +182,9 @@ class Particulars:
             v = getattr(self, key)
             if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi):
                 raise _native.InvalidInput(f"{key} is {v!r}; expected {what}")
+        if not isinstance(self.bulb, (bool, dict)):
+            raise _native.InvalidInput(f"bulb is {self.bulb!r}; expected true, false, its Kracht coefficients "
+                                       "or a whole 'bulb' section (a dict)")
         if not isinstance(self.sonar_dome, bool):
             raise _native.InvalidInput(f"sonar_dome is {self.sonar_dome!r}; expected true or false")
         if not isinstance(self.skeg, bool):
@@ -566,6 +574,11 @@ def _particulars(kwargs: dict) -> Particulars:
             near = difflib.get_close_matches(key, known, n=1)
             hint = f"; did you mean {near[0]!r}?" if near else ""
             raise _native.InvalidInput(f"{key} is not a particular{hint} (expected one of {', '.join(known)})")
+    missing = [f for f in REQUIRED_PARTICULARS if f not in kwargs]
+    if missing:
+        raise _native.InvalidInput(f"{', '.join(missing)} {'is' if len(missing) == 1 else 'are'} missing; expected "
+                                   "lpp, breadth, draft, depth (m), cb and lcb (m from the AP): the particulars a design "
+                                   "starts from")
     return Particulars(**kwargs)
 
 

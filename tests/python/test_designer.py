@@ -360,10 +360,17 @@ def test_an_edited_waterplane_too_large_names_the_areas_that_build_and_they_do()
                                         (dict(lcf=300.0), "lcf"), (dict(parallel_length=-5.0), "parallel_length"),
                                         (dict(transom_immersion=float("nan")), "transom_immersion"),
                                         (dict(transom_breadth=20.0), "transom_breadth is 20.0; expected a waterline"),
-                                        (dict(bredth=32.0), "did you mean 'breadth'")])
+                                        (dict(bredth=32.0), "did you mean 'breadth'"), (dict(bulb="yes"), "bulb is 'yes'"),
+                                        (dict(stem_rake="20"), "stem_rake is '20'")])
 def test_bad_particulars_name_the_value(bad, field):
     with pytest.raises(fl.InvalidInput, match=field):
         fl.design_hull(**{**SHIPS["container"], **bad})
+
+
+def test_missing_particulars_are_named():
+    p = {k: v for k, v in SHIPS["container"].items() if k not in ("lcb", "depth")}
+    with pytest.raises(fl.InvalidInput, match=r"depth, lcb are missing; expected lpp, breadth, draft, depth \(m\), cb and lcb"):
+        fl.design_hull(**p)
 
 
 def test_sections_asked_off_the_hull_are_named_not_listed():
