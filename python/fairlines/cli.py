@@ -13,6 +13,7 @@
 from __future__ import annotations
 
 import argparse
+import pathlib
 import sys
 
 import numpy as np
@@ -221,12 +222,35 @@ def _run(args) -> int:
     return _fit(args)
 
 
+#: The sub-commands' options that name a file to write.
+OUTPUT_OPTIONS = ("output", "table", "plot", "sac_plot")
+
+
+def _output_folder_missing(args) -> str | None:
+    """The folder of the command's output file when it does not exist (checked before the work,
+    so a long mesh or sweep is not lost to a mistyped path)."""
+    for option in OUTPUT_OPTIONS:
+        value = getattr(args, option, None)
+        for out in value if isinstance(value, list) else [value]:  # lines writes several files
+            if isinstance(out, str) and out and not pathlib.Path(out).expanduser().parent.is_dir():
+                return str(pathlib.Path(out).expanduser().parent)
+    return None
+
+
 def main(argv=None) -> int:
     args = _parser().parse_args(argv)
+    if (folder := _output_folder_missing(args)) is not None:
+        print(f"fairlines {args.command}: the output's folder {folder!r} does not exist; expected an existing folder",
+              file=sys.stderr)
+        return 2
     try:
         return _run(args)
     except ValueError as exc:  # bad input: a one-line message, no traceback
         print(f"fairlines {args.command}: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:  # a file that cannot be read or written (a missing folder, no permission)
+        where = f"{exc.filename}: " if exc.filename else ""
+        print(f"fairlines {args.command}: {where}{exc.strerror or exc}", file=sys.stderr)
         return 2
 
 

@@ -128,11 +128,22 @@ def _lines(args) -> int:
     return 0
 
 
-def _floats(text):
-    if ":" in text:
-        a, b, s = (float(v) for v in text.split(":"))
-        return np.arange(a, b + 0.5 * s, s)
-    return np.array([float(v) for v in text.split(",")])
+#: Most values a FROM:TO:STEP range may expand to.
+MAX_RANGE_VALUES = 10000
+
+
+def _floats(text: str, option: str) -> np.ndarray:
+    """The values of a FROM:TO:STEP range or a comma list. Raises InvalidInput naming the option."""
+    try:
+        if ":" in text:
+            a, b, s = (float(v) for v in text.split(":"))
+            if not (s > 0 and b >= a and (b - a) / s < MAX_RANGE_VALUES):
+                raise ValueError
+            return np.arange(a, b + 0.5 * s, s)
+        return np.array([float(v) for v in text.split(",")])
+    except ValueError:
+        raise InvalidInput(f"{option} is {text!r}; expected FROM:TO:STEP (STEP > 0, at most {MAX_RANGE_VALUES} values) "
+                           "or a comma list of numbers (m)") from None
 
 
 def _hydrostatics(args) -> int:
@@ -142,9 +153,9 @@ def _hydrostatics(args) -> int:
         raise InvalidInput("curves of form need one surface; expected a single surface or a bare-hull description")
     _need(part, ("lpp", "beam"))
     depth = part.get("depth")
-    trims = _floats(args.trims)
+    trims = _floats(args.trims, "--trims")
     if args.drafts:
-        drafts = _floats(args.drafts)
+        drafts = _floats(args.drafts, "--drafts")
     else:
         _need(part, ("draft", "depth"))
         top = min(highest_draft(hull, depth, part["lpp"], t) for t in trims)

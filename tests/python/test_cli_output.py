@@ -40,3 +40,20 @@ def test_an_unreadable_hull_file_is_named_without_a_traceback(tmp_path, capsys, 
     assert main(args) == 2
     err = capsys.readouterr().err
     assert f"fairlines {command[0]}: hull file {str(path)!r} {says}" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("args", [["lines", DESCRIPTION, "-o", "{missing}/l.svg"],
+                                  ["hydrostatics", DESCRIPTION, "-o", "c.csv", "--plot", "{missing}/c.png"],
+                                  ["mesh", DESCRIPTION, "--size", "3", "-o", "{missing}/m.vtu"]])
+def test_an_output_into_a_missing_folder_is_refused_before_the_work(tmp_path, capsys, args):
+    missing = tmp_path / "no such folder"
+    args = [a.format(missing=missing) if "{missing}" in a else (str(tmp_path / a) if a.endswith(".csv") else a) for a in args]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert f"the output's folder {str(missing)!r} does not exist" in err and ".." not in err  # no progress: nothing ran
+
+
+@pytest.mark.parametrize("drafts", ["1:5:0", "1:5", "abc", "5:1:1"])
+def test_a_malformed_draft_range_names_the_option(tmp_path, capsys, drafts):
+    assert main(["hydrostatics", DESCRIPTION, "-o", str(tmp_path / "c.csv"), "--drafts", drafts]) == 2
+    assert f"--drafts is {drafts!r}; expected FROM:TO:STEP" in capsys.readouterr().err
