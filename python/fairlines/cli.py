@@ -106,11 +106,7 @@ def _mesh(args) -> int:
     _progress(f"reading {args.hull}")
     hull = Hull.from_json(args.hull)
     _progress("composing the hull (bare hull, bulb and blend when the description has a bulb)")
-    if hull.description.bulb is None:  # e.g. a cruiser-stern ship designed without a bulb
-        from .compose import compose
-        composed = compose([hull.bare_hull_surface()])
-    else:
-        composed = hull.composed_hull()
+    composed = hull.composed_hull()
     if composed.blend_note:
         _progress(composed.blend_note)
 

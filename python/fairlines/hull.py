@@ -539,9 +539,15 @@ class Hull:
 
     def composed_hull(self, blend: bool = True, bulb=None, **compose_options):
         """Bare hull + bulbous bow (+ a C1 blend when ``blend``) composed into one watertight half
-        hull (fairlines.ComposedHull). Raises InvalidInput when the bulb does not meet the hull."""
-        from .compose import compose_with_blend
+        hull (fairlines.ComposedHull); a ship without a bulb (none described, none given) is its
+        bare hull closed by deck, transom and centre plane. Raises InvalidInput when the bulb does
+        not meet the hull."""
+        from .compose import compose, compose_with_blend
 
+        if bulb is None and self.description.bulb is None:
+            closed = compose([self.bare_hull_surface()], **compose_options)
+            closed.blend_note = "no bulb: the bare hull closed"
+            return closed
         b = self.bulbous_bow() if bulb is None else bulb
         return compose_with_blend(self.bare_hull_surface(), b, blend=blend, **compose_options)
 

@@ -57,3 +57,14 @@ def test_an_output_into_a_missing_folder_is_refused_before_the_work(tmp_path, ca
 def test_a_malformed_draft_range_names_the_option(tmp_path, capsys, drafts):
     assert main(["hydrostatics", DESCRIPTION, "-o", str(tmp_path / "c.csv"), "--drafts", drafts]) == 2
     assert f"--drafts is {drafts!r}; expected FROM:TO:STEP" in capsys.readouterr().err
+
+
+def test_export_composes_a_ship_without_a_bulb(tmp_path, capsys):
+    """--compose on a designed ship with no bulb: its bare hull closed by deck, transom and centre
+    plane, a valid closed solid (it once asked for a bulb section)."""
+    pytest.importorskip("OCP")
+    design = tmp_path / "coaster.json"
+    assert main(["design", "--lpp", "100", "--breadth", "16", "--draft", "6", "--depth", "9", "--cb", "0.75", "--lcb", "51",
+                 "-o", str(design)]) == 0
+    assert main(["export", str(design), "--compose", "-o", str(tmp_path / "c.step"), "--verify"]) == 0
+    assert "valid True, closed True" in capsys.readouterr().out
