@@ -116,6 +116,20 @@ def t_hull_mesh(api, tree, hull, fl):
                             "volume_half": round(vol, 1), "wetted_faces": len(wet.faces)}
 
 
+def t_hull_mesh_without_bulb(api, tree, hull, fl):
+    """A ship without a bulb meshes too: its bare hull closed by deck, transom and centre plane
+    (Hull Mesh once turned red: 'bulb is missing')."""
+    plain = api.new_tree("Plain ship")
+    api.add(plain, "Particulars", name="Plain", bulb=False, **SHIP)
+    api.add(plain, "Hull Mesh", name="Plain Mesh", Size=MESH_SIZE)
+    api.link(plain, "Plain", "Hull", "Plain Mesh", "Hull")
+    api.evaluate(plain)  # raises TreeError when a node is red
+    solver = api.result(plain, "Plain Mesh", "Mesh").solver
+    ref = fl.mesh_hull(api.result(plain, "Plain", "Hull").composed_hull(), size=MESH_SIZE)
+    check(np.array_equal(solver.faces, ref.faces), "bulb-less Hull Mesh differs from fl.mesh_hull of the closed bare hull")
+    results["hull_mesh_without_bulb"] = {"faces": len(ref.faces)}
+
+
 def blender_volume(me):
     """Signed volume of a closed Blender mesh (divergence theorem over its triangulated faces)."""
     co = np.zeros(len(me.vertices) * 3)
@@ -312,7 +326,7 @@ def main():
         api = importlib.import_module(module + ".api")
         import fairlines as fl
         tree, hull = ship_tree(api)
-        for step in (t_hull_mesh, t_surface_grid, t_export_mesh, t_export_cad, t_lines_plan, t_curves_of_form,
+        for step in (t_hull_mesh, t_hull_mesh_without_bulb, t_surface_grid, t_export_mesh, t_export_cad, t_lines_plan, t_curves_of_form,
                      t_sweep):
             step(api, tree, hull, fl)
             steps.append(step.__name__)
