@@ -114,3 +114,13 @@ def test_import_generic_tecplot_grid(tmp_path, capsys):
     assert main(["build", str(hull), "-o", str(tmp_path / "o")]) == 0
     report = json.loads((tmp_path / "o" / "report.json").read_text())
     assert report["hydrostatics"]["surface"]["cb"] == pytest.approx(4 / 9, rel=0.005)
+
+
+def test_build_given_the_whole_ship_design_says_where_it_goes(tmp_path, capsys):
+    """'fairlines import' writes a whole-ship design by default; 'build' reads the --analysis file
+    and, given the design, says what builds it instead."""
+    p = tmp_path / "design.json"
+    p.write_text(json.dumps({"principal": {"Lpp": 100.0, "B": 10.0, "T": 6.0, "D": 9.0}}))
+    assert main(["build", str(p), "-o", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "(written by 'fairlines import --analysis'); this is a whole-ship design: build it with fl.Hull.from_json" in err

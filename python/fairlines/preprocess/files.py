@@ -63,10 +63,13 @@ def load_imported(doc) -> tuple:
             raise InvalidInput(f"cannot read {path}: {exc.strerror or exc}") from None
         except json.JSONDecodeError as exc:
             raise InvalidInput(f"{path}: not JSON ({exc.msg} at line {exc.lineno}); expected a hull.json "
-                             "written by 'fairlines import'") from None
+                             "written by 'fairlines import --analysis'") from None
     if doc.get("type") != HULL_JSON_TYPE:
+        designed = "principal" in doc  # the whole-ship design 'fairlines import' writes by default
         raise InvalidInput(f"hull description type is {doc.get('type')!r}; expected {HULL_JSON_TYPE!r} "
-                         "(written by 'fairlines import')")
+                           "(written by 'fairlines import --analysis')"
+                           + ("; this is a whole-ship design: build it with fl.Hull.from_json or give it to "
+                              "'fairlines lines', 'hydrostatics', 'export' or 'mesh'" if designed else ""))
     if "input" not in doc:
         raise InvalidInput("hull description has no 'input' entry; expected the data written by 'fairlines import'")
     return doc, hull_data_from_dict(doc["input"])
