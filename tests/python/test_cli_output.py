@@ -68,3 +68,11 @@ def test_export_composes_a_ship_without_a_bulb(tmp_path, capsys):
                  "-o", str(design)]) == 0
     assert main(["export", str(design), "--compose", "-o", str(tmp_path / "c.step"), "--verify"]) == 0
     assert "valid True, closed True" in capsys.readouterr().out
+
+
+def test_a_trim_that_sinks_the_deck_names_the_trim(tmp_path, capsys):
+    """Default drafts from T/10 to the deck at every trim: a trim of 100 m leaves none (the
+    message once listed 19 negative drafts the user never gave)."""
+    assert main(["hydrostatics", DESCRIPTION, "-o", str(tmp_path / "c.csv"), "--trims", "0,100"]) == 2
+    err = capsys.readouterr().err
+    assert "--trims holds 100 m, at which the deck dips below T/10" in err and "drafts are" not in err
