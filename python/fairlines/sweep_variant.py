@@ -11,7 +11,8 @@ Row columns (``None`` where a stage did not run):
   from the AP, Cb Cp Cm Cwp on Lpp and B, wetted surface and waterplane area m^2, KMt KMl m);
 * ``fair.*``    fairlines.fairness_report of the bare hull: significant curvature sign changes
   and bending energy (1/m) summed per family of cuts, and the largest |curvature| (1/m);
-* ``compose.*`` the composed hull (bare hull + bulbous bow + blend): its closed half-hull
+* ``compose.*`` the composed hull (bare hull + bulbous bow + blend; without a bulb the bare hull
+  closed by deck, transom and centre plane, no Kracht columns): its closed half-hull
   volume, displacement and LCB at the design draft with the bulb (mesh, both sides), and the
   blend's largest normal angle (deg) and gap (m) at the hull and at the bulb;
 * ``kracht.*``  the six Kracht coefficients measured back on the composed mesh, and the ones
@@ -164,8 +165,8 @@ def mesh_checks(vertices: np.ndarray, faces: np.ndarray) -> dict:
 def _compose(row: dict, hull, displacement: bool):
     from .hydrostatics_mesh import displaced_volume_of_mesh
 
-    bulb = hull.bulbous_bow()
-    composed = hull.composed_hull(bulb=bulb)
+    bulb = hull.bulbous_bow() if hull.description.bulb is not None else None
+    composed = hull.composed_hull(bulb=bulb)  # without a bulb: the bare hull closed
     row["compose.half_volume"] = float(composed.volume)
     if displacement:
         d = displaced_volume_of_mesh(composed.mesh.vertices, composed.mesh.faces, hull.description.principal.draft)
@@ -215,9 +216,10 @@ def _measure(row: dict, kind: str, doc: dict, measure: dict, outputs: dict | Non
     if measure.get("fairness", True):
         _timed(row, "fairness", lambda: _fairness(row, hull, dict(measure.get("fairness_options", {}))))
     bulb = composed = None
-    if measure.get("compose", True) and hull.description.bulb is not None:
+    if measure.get("compose", True):
         bulb, composed = _timed(row, "compose", lambda: _compose(row, hull, measure.get("displacement", True)))
-        _timed(row, "kracht", lambda: _kracht(row, bulb, composed))
+        if bulb is not None:
+            _timed(row, "kracht", lambda: _kracht(row, bulb, composed))
         _timed(row, "mesh", lambda: row.update(mesh_checks(composed.mesh.vertices, composed.mesh.faces)))
     if outputs and outputs.get("per_variant"):
         _timed(row, "outputs", lambda: _outputs(row, hull, composed, outputs, variant))

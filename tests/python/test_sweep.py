@@ -253,3 +253,19 @@ plot = "s.png"
     assert "2/2 variants, 1 failed" in r.stderr and "2 variants: 1 built, 1 failed" in r.stdout
     assert pq.read_table(tmp_path / "s.parquet").num_rows == 2
     assert (tmp_path / "s.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_a_ship_without_a_bulb_is_composed_and_checked(tmp_path):
+    """A bulb-less variant is composed too (its bare hull closed): a closed mesh whose
+    displacement at T is the hull's volume, and no Kracht columns (it was not composed at all)."""
+    d = study(tmp_path / "t.parquet", samples=1)
+    d["base"]["particulars"].update(bulb=False)
+    d["parameters"] = [{"path": "cb", "values": [0.65]}]
+    d["measure"].update(fairness=False, displacement=True)
+    d["outputs"].update(per_variant=["stl"], directory=str(tmp_path / "v"))
+    (r,) = sweep(d, scheduler="serial").to_pylist()
+    assert r["status"] == "ok", r["error"]
+    assert r["mesh.closed"] and r["mesh.boundary_edges"] == 0
+    assert r["compose.displacement"] == pytest.approx(r["hydro.volume"], rel=5e-3)
+    assert r["kracht.c_lpr"] is None
+    assert stl_volume(tmp_path / "v" / "variant-000000.stl") == pytest.approx(2 * r["compose.half_volume"], rel=1e-5)
