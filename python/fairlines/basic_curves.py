@@ -618,6 +618,7 @@ def solve_sac(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft:
     waterline ends where the fullness is free (not the wedge's 1/2). Raises
     InfeasibleFormParameters for an infeasible request, naming the volume and LCB ranges the
     sections can hold."""
+    params = None
     try:
         try:
             r, plan, params, factors = _sac_request(spec, dwl, profile, draft, fullness, bands, True, free_ends=free_ends)
@@ -627,6 +628,8 @@ def solve_sac(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft:
                                                       free_ends=free_ends)
             s = _native.design_spline_function(r)
     except _native.InfeasibleFormParameters:
+        if params is None:  # the request itself cannot be made (a flat part off the box's): its message says why
+            raise
         said = (f"{_SAC_PATH}: volume {params.get('Area', float('nan')):.6g} m^3 with lcb {params.get('xC', float('nan')):.6g} m "
                 "cannot be met by fair sections")
         if _explain.get():

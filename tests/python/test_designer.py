@@ -355,6 +355,14 @@ def test_an_edited_waterplane_too_large_names_the_areas_that_build_and_they_do()
     assert fl.Hull.from_json(json.dumps(d)).basic_curves["dwl"].integral() == pytest.approx(0.5 * hi * (1 - 1e-3), rel=1e-6)
 
 
+def test_a_sac_flat_part_past_the_waterlines_is_refused_naming_it():
+    """The SAC's flat part moved past the DWL's (found by fuzzing descriptions: it raised an
+    UnboundLocalError). A flat SAC needs a constant box there; the message says so."""
+    d = _edited("coaster_cruiser", "sac", "flat_to", 1.44)
+    with pytest.raises(fl.InfeasibleFormParameters, match=r"basic_curves\.sac: the flat part .* needs a constant box"):
+        _hydrostatics_of(d)
+
+
 @pytest.mark.parametrize("bad, field", [(dict(cb=1.2), "cb"), (dict(lpp=244800.0), "millimetres"),
                                         (dict(draft=25.0), "draft"), (dict(stern="pram"), "stern"),
                                         (dict(lcb=0.0), "lcb_pct"), (dict(breadth=float("nan")), "breadth"),
