@@ -294,6 +294,10 @@ def measure_hull_data(data: HullData, depth: float | None = None, dome: bool = F
     xs = _stations(data, lines, stations, noses)
     allp = np.concatenate([data.all_points()] if data.sections else [g.points.reshape(-1, 3) for g in hull_grids])
     D = float(depth if depth is not None else _depth_at_midship(allp, data))
+    if depth is None and not D > data.draft:
+        raise _native.InvalidInput(f"{data.name}: the data's top near midships is z = {D:.6g} m, not above T = "
+                                   f"{data.draft:.6g} m (blank cells there?); expected the deck above T: give the depth "
+                                   "(--depth)")
     zlo = float(allp[:, 2].min())
     z = np.linspace(zlo, max(D, float(allp[:, 2].max())), Z_SAMPLES)
     T = data.draft
@@ -353,9 +357,13 @@ def _bulb_webs(x: np.ndarray, z: np.ndarray, y: np.ndarray, z_top: np.ndarray, D
 
 
 def _depth_at_midship(points: np.ndarray, data: HullData) -> float:
-    """Depth D: the top of the data at midships (the deck at side; a sheer rises beyond it)."""
-    mid = np.abs(points[:, 0] - data.lpp / 2) < MIDSHIP_BAND * data.lpp
-    return float(points[mid, 2].max()) if mid.any() else float(points[:, 2].max())
+    """Depth D: the top of the data at midships (the deck at side; a sheer rises beyond it),
+    over MIDSHIP_BAND of Lpp and at least the stations next to midships, so a blank top cell at
+    the midship station does not lower the deck."""
+    d = np.abs(points[:, 0] - data.lpp / 2)
+    near = np.unique(np.round(d, 9))
+    reach = max(MIDSHIP_BAND * data.lpp, near[1] if len(near) > 1 else near[0])
+    return float(points[d <= reach, 2].max())
 
 
 def _keel_height(points: np.ndarray, data: HullData) -> float:

@@ -407,3 +407,31 @@ def test_series60_editable_description(series60):
     for name, c in bc.items():
         xs_pts = [p[0] for p in c["points"]]
         assert all(c["flat_to"] < x < c.get("x_end", x_end) for x in xs_pts), name
+
+
+def _wigley_table_without(tmp_path, blanks: dict) -> pathlib.Path:
+    """The typed Wigley table (mm) with the cells {station label: [columns]} blanked."""
+    src = (pathlib.Path(__file__).resolve().parents[1] / "data" / "wigley_offsets_mm.csv").read_text().splitlines()
+    header = next(i for i, line in enumerate(src) if not line.startswith("#"))
+    cols = src[header].split(",")
+    out = []
+    for line in src:
+        cells = line.split(",")
+        for c in blanks.get(cells[0], []):
+            cells[cols.index(c)] = ""
+        out.append(",".join(cells))
+    p = tmp_path / "wigley_blanks.csv"
+    p.write_text("\n".join(out) + "\n")
+    return p
+
+
+def test_blank_cells_above_a_stations_highest_offset_are_filled_along_the_waterlines(tmp_path):
+    """Midships (x 50 m) without its 7.5 and 9 m cells: they are read off their waterlines, the
+    cubic through two stations either side, equal to the Wigley hull's wall side B/2 = 5 m (it
+    ended the section at T, so the deck there fell to T); the end stations' blanks stay blank."""
+    data = offsets.read_offsets_csv(_wigley_table_without(tmp_path, {"50000": ["7500", "9000"], "0": ["9000"]}),
+                                    lpp=100.0, beam=10.0, draft=6.25)
+    mid = next(s for s in data.sections if s.x == 50.0)
+    assert np.allclose(mid.points[-2:], [[5.0, 7.5], [5.0, 9.0]], atol=1e-9)
+    assert any("station '50000': 2 blank cell(s) at z = 7.5, 9 m above its highest offset filled" in n for n in data.notes)
+    assert any("station '0'" in n and "left out" in n for n in data.notes)
