@@ -198,7 +198,7 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
     notes = []
     z, table = _waterlines_rising(t, table, notes)
     labels, xs, table, extra = _stations_from_ap(t, labels, xs, table, extra, notes)
-    table = _fill_top_blanks(labels, xs, table, z, notes)
+    table = _fill_end_blanks(labels, xs, table, z, notes)
     sections = _sections_of_table(t, labels, xs, table, z, notes)
     data = HullData(name or pathlib.Path(path).stem, lpp, beam, draft, sections=sections,
                     offsets={"x": xs, "z": z, "half_breadths": table, "labels": labels, "extra": extra},
@@ -333,41 +333,53 @@ def _stations_from_ap(t: _Layout, labels, xs, table, extra, notes):
     return [labels[i] for i in keep], xs[keep], table[keep], [extra[i] for i in keep]
 
 
-def _along_waterline(xs: np.ndarray, col: np.ndarray, i: int) -> float | None:
+def _along_waterline(xs: np.ndarray, col: np.ndarray, i: int, zero_ok: bool = False) -> float | None:
     """Half-breadth of a waterline (the table's column `col`, NaN where blank) at station i,
-    from the stations either side that have it: the cubic through two on each side (one on a
-    side: the chord). None when a side has none or either neighbour is off the hull (0)."""
+    from the stations either side that have it: the polynomial through up to two on each side
+    (a cubic, or a quadratic next to an end). None when a side has none or, unless `zero_ok`,
+    a neighbour other than an end station (where a hull closes) is off the hull (0)."""
     before = [k for k in range(i) if not np.isnan(col[k])][-2:]
     after = [k for k in range(i + 1, len(xs)) if not np.isnan(col[k])][:2]
-    if not before or not after or col[before[-1]] <= 0 or col[after[0]] <= 0:
+    if not before or not after:
         return None
-    ks = before + after if len(before) == 2 and len(after) == 2 else [before[-1], after[0]]
+    off = [k for k in (before[-1], after[0]) if col[k] <= 0 and k not in (0, len(xs) - 1)]
+    if off and not zero_ok:
+        return None
+    if col[before[-1]] == 0 and col[after[0]] == 0:
+        return 0.0  # the keel (or the centre plane) on both sides
+    ks = before + after
     px, py = xs[ks], col[ks]
     return float(sum(py[a] * np.prod([(xs[i] - px[b]) / (px[a] - px[b]) for b in range(len(ks)) if b != a])
                      for a in range(len(ks))))
 
 
-def _fill_top_blanks(labels, xs, table, z, notes):
-    """A station's blank cells above its highest offset, on waterlines the stations either side
-    have, filled along those waterlines (:func:`_along_waterline`; noted): a missing deck-level
-    cell would otherwise end the section low and lower its deck edge. The end stations, a
-    station whose highest offset is 0 (the hull ends on the centre plane there) and waterlines a
-    side lacks stay blank."""
+def _fill_end_blanks(labels, xs, table, z, notes):
+    """A station's blank cells above its highest offset and below its lowest, on waterlines the
+    stations either side have, filled along those waterlines (:func:`_along_waterline`; noted):
+    a missing deck-level cell would otherwise end the section low and lower its deck edge, a
+    missing keel cell start it high as a flat of bottom. The end stations, waterlines a side
+    lacks, and above a station whose highest offset is 0 (the hull ends on the centre plane
+    there) or where a neighbour is 0, stay blank."""
     table = np.array(table, dtype=float)
+    x = np.asarray(xs, float)
     for i in range(1, len(xs) - 1):
         given = np.flatnonzero(~np.isnan(table[i]))
-        if not len(given) or table[i, given[-1]] <= 0:
+        if not len(given):
             continue
         filled = []
-        for j in range(given[-1] + 1, len(z)):
-            v = _along_waterline(np.asarray(xs, float), table[:, j], i)
-            if v is None:
-                break
-            table[i, j] = max(v, 0.0)
-            filled.append(z[j])
+        for below, js in ((True, range(given[0] - 1, -1, -1)),
+                          (False, range(given[-1] + 1, len(z)) if table[i, given[-1]] > 0 else ())):
+            for j in js:
+                v = _along_waterline(x, table[:, j], i, zero_ok=below)
+                if v is None:
+                    break
+                table[i, j] = max(v, 0.0)
+                filled.append(z[j])
         if filled:
-            notes.append(f"station {labels[i]!r}: {len(filled)} blank cell(s) at z = " + ", ".join(f"{v:.4g}" for v in filled)
-                         + " m above its highest offset filled along their waterlines from the stations either side")
+            notes.append(f"station {labels[i]!r}: {len(filled)} blank cell(s) at z = "
+                         + ", ".join(f"{v:.4g}" for v in sorted(filled))
+                         + " m below its lowest or above its highest offset filled along their waterlines from the "
+                         "stations either side")
     return table
 
 

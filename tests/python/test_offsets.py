@@ -429,9 +429,22 @@ def test_blank_cells_above_a_stations_highest_offset_are_filled_along_the_waterl
     """Midships (x 50 m) without its 7.5 and 9 m cells: they are read off their waterlines, the
     cubic through two stations either side, equal to the Wigley hull's wall side B/2 = 5 m (it
     ended the section at T, so the deck there fell to T); the end stations' blanks stay blank."""
-    data = offsets.read_offsets_csv(_wigley_table_without(tmp_path, {"50000": ["7500", "9000"], "0": ["9000"]}),
+    data = offsets.read_offsets_csv(_wigley_table_without(tmp_path, {"50000": ["7500", "9000"], "0": ["9000"],
+                                                                     "5000": ["9000"]}),
                                     lpp=100.0, beam=10.0, draft=6.25)
     mid = next(s for s in data.sections if s.x == 50.0)
     assert np.allclose(mid.points[-2:], [[5.0, 7.5], [5.0, 9.0]], atol=1e-9)
-    assert any("station '50000': 2 blank cell(s) at z = 7.5, 9 m above its highest offset filled" in n for n in data.notes)
+    # next to the closed end: the quadratic through the end's 0 and two stations forward, 0.95 m
+    assert np.allclose(next(s for s in data.sections if s.x == 5.0).points[-1], [0.95, 9.0], atol=1e-9)
+    assert any("station '50000': 2 blank cell(s) at z = 7.5, 9 m below its lowest or above its highest offset filled" in n
+               for n in data.notes)
     assert any("station '0'" in n and "left out" in n for n in data.notes)
+
+
+def test_a_blank_keel_cell_is_read_off_the_keel_line_not_taken_for_a_flat_bottom(tmp_path):
+    """x 40 m without its 0 m cell: the keel line reads 0 on both sides, so the section starts on
+    the centre plane at the base as the Wigley hull's does (left out, its lowest offset 0.5 m
+    above base read as a flat of bottom there, and the profile stepped up by 0.5 m)."""
+    data = offsets.read_offsets_csv(_wigley_table_without(tmp_path, {"40000": ["0"]}), lpp=100.0, beam=10.0, draft=6.25)
+    sec = next(s for s in data.sections if s.x == 40.0)
+    assert sec.points[0].tolist() == [0.0, 0.0]
