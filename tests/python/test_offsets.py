@@ -429,7 +429,7 @@ def test_blank_cells_above_a_stations_highest_offset_are_filled_along_the_waterl
     """Midships (x 50 m) without its 7.5 and 9 m cells: they are read off their waterlines, the
     cubic through two stations either side, equal to the Wigley hull's wall side B/2 = 5 m (it
     ended the section at T, so the deck there fell to T); the end stations' blanks stay blank."""
-    data = offsets.read_offsets_csv(_wigley_table_without(tmp_path, {"50000": ["7500", "9000"], "0": ["9000"],
+    data = offsets.read_offsets_csv(_wigley_table_without(tmp_path, {"50000": ["7500", "9000"], "0": ["7500"],
                                                                      "5000": ["9000"]}),
                                     lpp=100.0, beam=10.0, draft=6.25)
     mid = next(s for s in data.sections if s.x == 50.0)
