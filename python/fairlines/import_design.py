@@ -88,6 +88,8 @@ POST_FRACTION = 1e-3
 #: A station whose waterline or immersed depth is below this fraction of B/2 or T is an end
 #: station: its shape is not fitted (it follows its neighbours).
 END_FRACTION = 0.08
+#: Least stations an import needs (a hull description's least).
+MIN_IMPORT_STATIONS = 4
 #: Depth is measured within this fraction of Lpp of midships.
 MIDSHIP_BAND = 0.05
 #: Heights within this fraction of a section's height above its keel point are not compared
@@ -296,8 +298,8 @@ def measure_hull_data(data: HullData, depth: float | None = None, dome: bool = F
     D = float(depth if depth is not None else _depth_at_midship(allp, data))
     if depth is None and not D > data.draft:
         raise _native.InvalidInput(f"{data.name}: the data's top near midships is z = {D:.6g} m, not above T = "
-                                   f"{data.draft:.6g} m (blank cells there?); expected the deck above T: give the depth "
-                                   "(--depth)")
+                                   f"{data.draft:.6g} m (blank cells, or data that stop at the waterline?); expected "
+                                   "the deck above T: give the depth (--depth)")
     zlo = float(allp[:, 2].min())
     z = np.linspace(zlo, max(D, float(allp[:, 2].max())), Z_SAMPLES)
     T = data.draft
@@ -328,6 +330,9 @@ def measure_hull_data(data: HullData, depth: float | None = None, dome: bool = F
     wet = area > 0
     if wet.sum() < 3:
         raise _native.InvalidInput(f"{data.name}: {int(wet.sum())} station(s) with hull below T = {T} m; expected at least 3")
+    if len(xs) < MIN_IMPORT_STATIONS:
+        raise _native.InvalidInput(f"{data.name}: {len(xs)} station(s) with hull below the deck; expected at least "
+                                   f"{MIN_IMPORT_STATIONS} (a description's sections)")
     vol = _pchip_integral(xs, area)
     lcb = _pchip_integral(xs, area * xs) / vol
     apart = [g.points.reshape(-1, 3) for g in data.grids if g.role == "bulb" and not bulb]

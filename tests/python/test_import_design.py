@@ -148,6 +148,13 @@ def test_import_refuses_data_without_hull_below_the_draft(tmp_path):
         fl.import_design(read_offsets_csv(p, 10.0, 2.0, 0.5))
 
 
+def test_import_refuses_fewer_stations_than_a_description_needs(tmp_path):
+    p = tmp_path / "t.csv"
+    p.write_text("x,0.0,1.0,2.0\n0,0,0.5,0.5\n5,0,1,1\n10,0,0.5,0.5\n")
+    with pytest.raises(fl.InvalidInput, match=r"3 station\(s\) with hull below the deck; expected at least 4"):
+        fl.import_design(read_offsets_csv(p, 10.0, 2.0, 0.5))
+
+
 def test_cli_import_writes_a_description_hull_from_json_builds(tmp_path, capsys):
     from fairlines.cli import main
 
