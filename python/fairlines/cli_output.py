@@ -161,9 +161,10 @@ def _hydrostatics(args) -> int:
         tops = {t: highest_draft(hull, depth, part["lpp"], t) for t in trims}
         trim, top = min(tops.items(), key=lambda kv: kv[1])
         if not top > 0.1 * part["draft"]:
-            raise InvalidInput(f"--trims holds {trim:g} m, at which the deck dips below T/10 = {0.1 * part['draft']:.3g} m "
-                               f"(the highest draft that keeps the deck dry there is {top:.3g} m); expected trims by the stern (m) that "
-                               "leave the deck above the water, or --drafts")
+            raise InvalidInput(f"--trims holds {trim:g} m, at which the deck dips below T/10 = "
+                               f"{0.1 * part['draft']:.3g} m (the highest draft that keeps the deck dry there is "
+                               f"{top:.3g} m); expected trims by the stern (m) that leave the deck above the water, "
+                               "or --drafts")
         drafts = np.linspace(0.1 * part["draft"], top, 19)
     cof = curves_of_form(hull, drafts, lpp=part["lpp"], beam=part["beam"], depth=depth, trims=trims,
                          design_draft=part.get("draft"))

@@ -359,7 +359,7 @@ def _fill_end_blanks(labels, xs, table, z, notes):
     a missing deck-level cell would otherwise end the section low and lower its deck edge, a
     missing keel cell start it high as a flat of bottom. The end stations, waterlines a side
     lacks, and above a station whose highest offset is 0 (the hull ends on the centre plane
-    there) or where a neighbour is 0, stay blank."""
+    there) or where a neighbour other than an end station is 0, stay blank."""
     table = np.array(table, dtype=float)
     x = np.asarray(xs, float)
     for i in range(1, len(xs) - 1):
