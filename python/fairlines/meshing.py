@@ -10,6 +10,7 @@ forward from AP, y >= 0 the starboard half, z up; normals point out of the body.
 
 from __future__ import annotations
 
+import math
 import pathlib
 from dataclasses import dataclass, field
 from typing import Callable, Optional
@@ -21,6 +22,31 @@ from ._native import InvalidInput, NurbsSurface
 from ._options import fill_options
 
 __all__ = ["SurfaceMesh", "mesh_options", "mesh_surface", "mesh_hull", "mesh_quality", "write_mesh", "read_mesh"]
+
+
+#: Most elements a mesh may be asked for, estimated as the surface's area over size^2 (the
+#: curvature refinement adds about as many again): about 0.5 kB and 10 us each, so 2 million
+#: is a minute and a few GB; a millimetre on a ship's hull would exhaust the memory instead.
+MAX_MESH_ELEMENTS = 2_000_000
+
+
+def _check_budget(area: float, size: float, max_elements: int) -> None:
+    """InvalidInput when area / size^2 (m^2, m) exceeds max_elements, naming the least size."""
+    if isinstance(max_elements, bool) or not isinstance(max_elements, int) or max_elements < 1:
+        raise InvalidInput(f"max_elements is {max_elements!r}; expected a whole number >= 1")
+    estimate = area / (size * size)
+    if estimate > max_elements:
+        least = math.sqrt(area / max_elements)
+        step = 10.0 ** (math.floor(math.log10(least)) - 2)  # three significant figures, rounded up: it meshes
+        raise InvalidInput(f"size is {size:g} m, about {estimate:.3g} elements over {area:.4g} m^2; expected at most "
+                           f"{max_elements} (size >= {math.ceil(least / step) * step:.3g} m), or a larger max_elements")
+
+
+def _surface_area(surface: NurbsSurface, samples: int = 65) -> float:
+    """Area of a surface (m^2) from its samples x samples grid of points (a lower bound)."""
+    P = np.asarray(surface.evaluate_grid(np.linspace(*surface.domain_u, samples), np.linspace(*surface.domain_v, samples)))
+    a, b, c, d = P[:-1, :-1], P[1:, :-1], P[1:, 1:], P[:-1, 1:]
+    return float(0.5 * (np.linalg.norm(np.cross(b - a, c - a), axis=-1) + np.linalg.norm(np.cross(c - a, d - a), axis=-1)).sum())
 
 
 def mesh_options(**options) -> "_native.MeshOptions":
@@ -103,22 +129,29 @@ def _wrap(result, draft=None, symmetric=False) -> SurfaceMesh:
     return SurfaceMesh(np.asarray(v), np.asarray(f), np.asarray(p), tuple(parts), draft, symmetric)
 
 
-def mesh_surface(surface: NurbsSurface, *, size: float, **options) -> SurfaceMesh:
+def mesh_surface(surface: NurbsSurface, *, size: float, max_elements: int = MAX_MESH_ELEMENTS,
+                 **options) -> SurfaceMesh:
     """Quad-dominant mesh of a whole NURBS surface.
 
     size       maximum element edge length (m).
+    max_elements  most elements asked for (area / size^2; MAX_MESH_ELEMENTS).
     options    chordal_tolerance (m, default size / 100), min_size (m, default size / 20),
                all_quad (bool), smoothing_passes, min_quad_quality (see :func:`mesh_options`).
     Elements are counter-clockwise about S_u x S_v. A closed (periodic) surface is meshed as
-    if its seam were two edges. Raises InvalidInput for bad options.
+    if its seam were two edges. Raises InvalidInput for bad options or a size that would make
+    more than max_elements elements.
     """
     if not isinstance(surface, NurbsSurface):
         raise InvalidInput(f"surface is {type(surface).__name__}; expected a NurbsSurface")
-    return _wrap(_native._mesh_surface(surface, mesh_options(size=size, **options)))
+    o = mesh_options(size=size, **options)
+    if isinstance(size, (int, float)) and size > 0 and math.isfinite(size):
+        _check_budget(_surface_area(surface), float(size), max_elements)
+    return _wrap(_native._mesh_surface(surface, o))
 
 
 def mesh_hull(hull, *, size: float, draft: float | None = None, lids: bool = True, full: bool = False,
-              progress: Callable[[int, int, str], None] | None = None, **options) -> SurfaceMesh:
+              progress: Callable[[int, int, str], None] | None = None, max_elements: int = MAX_MESH_ELEMENTS,
+              **options) -> SurfaceMesh:
     """Mesh of a composed hull, conforming across the bare-hull / bulb / blend seams.
 
     hull       a :class:`fairlines.ComposedHull` (``fl.compose(...)``, ``hull.composed_hull()``)
@@ -131,8 +164,10 @@ def mesh_hull(hull, *, size: float, draft: float | None = None, lids: bool = Tru
                wetted surface a BEM code wants (WAMIT, Nemoh, capytaine).
     full       mirror about y = 0 into the full hull (no centre-plane face).
     progress   called as progress(faces_done, faces_total, face_name).
-    Normals point out of the body. Raises InvalidInput for bad options or a draft outside
-    keel..deck.
+    max_elements  most elements asked for (the composed hull's area, both sides when ``full``,
+               over size^2; MAX_MESH_ELEMENTS).
+    Normals point out of the body. Raises InvalidInput for bad options, a draft outside
+    keel..deck or a size that would make more than max_elements elements.
     """
     from .compose import ComposedHull, compose
     if isinstance(hull, NurbsSurface):
@@ -140,7 +175,12 @@ def mesh_hull(hull, *, size: float, draft: float | None = None, lids: bool = Tru
     if not isinstance(hull, ComposedHull):
         raise InvalidInput(f"hull is {type(hull).__name__}; expected a ComposedHull or a bare-hull NurbsSurface")
     t = float("nan") if draft is None else float(draft)
-    res = _native._mesh_hull(hull.native, mesh_options(size=size, **options), t, bool(lids), bool(full), progress)
+    o = mesh_options(size=size, **options)
+    if isinstance(size, (int, float)) and size > 0 and math.isfinite(size):
+        v, f = np.asarray(hull.mesh.vertices, float), np.asarray(hull.mesh.faces)
+        area = 0.5 * float(np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1).sum())
+        _check_budget(area * (2.0 if full else 1.0), float(size), max_elements)
+    res = _native._mesh_hull(hull.native, o, t, bool(lids), bool(full), progress)
     return _wrap(res, None if draft is None else float(draft), not full)
 
 

@@ -4,6 +4,8 @@ Truths used: numpy edge censuses and volumes of our own, the surfaces' own close
 NURBS quadrature (fl.hydrostatics), meshio and capytaine reading the files back.
 """
 
+import re
+
 import numpy as np
 import pytest
 
@@ -253,6 +255,18 @@ def test_bad_mesh_input_is_refused(bilge, blended):
         fl.write_gdf(fl.mesh_surface(bilge, size=2.0), "/tmp/never.gdf")
 
 
+def test_a_size_too_small_for_the_hull_is_refused_naming_one_that_meshes(blended):
+    """A 1 mm size on the container ship asked billions of elements: the engine ran out of
+    memory after a minute and a half. Refused at once, naming the least size within the budget;
+    that size meshes."""
+    with pytest.raises(fl.InvalidInput, match=r"size is 0.001 m, about .* elements .*; expected at most 2000000"):
+        fl.mesh_hull(blended, size=0.001)
+    with pytest.raises(fl.InvalidInput, match=r"expected at most 3000 \(size >= ") as info:
+        fl.mesh_hull(blended, size=1.0, max_elements=3000)
+    least = float(re.search(r"size >= ([\d.]+) m", str(info.value)).group(1))
+    assert len(fl.mesh_hull(blended, size=least, max_elements=3000).faces) > 1000
+
+
 def test_cli_meshes_a_ship_without_a_bulb_into_panels(tmp_path):
     from fairlines.cli import main
     src = tmp_path / "cruiser.json"
@@ -260,3 +274,13 @@ def test_cli_meshes_a_ship_without_a_bulb_into_panels(tmp_path):
     assert main(["mesh", str(src), "--size", "2", "--draft", "5", "--open", "-o", str(tmp_path / "c.gdf")]) == 0
     rows = (tmp_path / "c.gdf").read_text().split("\n")
     assert int(rows[3].split()[0]) > 100  # panel count after ULEN/g, symmetry flags
+
+
+def test_cli_refuses_a_size_too_small_for_the_hull(tmp_path, capsys):
+    from fairlines.cli import main
+    src = tmp_path / "cruiser.json"
+    src.write_text(cruiser_stern_ship().to_json())
+    assert main(["mesh", str(src), "--size", "0.01", "-o", str(tmp_path / "c.vtu")]) == 2
+    assert "expected at most 2000000" in capsys.readouterr().err
+    assert main(["mesh", str(src), "--size", "3", "--max-elements", "10", "-o", str(tmp_path / "c.vtu")]) == 2
+    assert "expected at most 10 (size >= " in capsys.readouterr().err
