@@ -164,8 +164,8 @@ def mesh_hull(hull, *, size: float, draft: float | None = None, lids: bool = Tru
                wetted surface a BEM code wants (WAMIT, Nemoh, capytaine).
     full       mirror about y = 0 into the full hull (no centre-plane face).
     progress   called as progress(faces_done, faces_total, face_name).
-    max_elements  most elements asked for (the composed hull's area, both sides when ``full``,
-               over size^2; MAX_MESH_ELEMENTS).
+    max_elements  most elements asked for (the composed hull's area, below the draft when
+               one is given, both sides when ``full``, over size^2; MAX_MESH_ELEMENTS).
     Normals point out of the body. Raises InvalidInput for bad options, a draft outside
     keel..deck or a size that would make more than max_elements elements.
     """
@@ -178,6 +178,8 @@ def mesh_hull(hull, *, size: float, draft: float | None = None, lids: bool = Tru
     o = mesh_options(size=size, **options)
     if isinstance(size, (int, float)) and size > 0 and math.isfinite(size):
         v, f = np.asarray(hull.mesh.vertices, float), np.asarray(hull.mesh.faces)
+        if draft is not None:  # the wetted part only: the triangles whose middle lies below the draft
+            f = f[v[f].mean(axis=1)[:, 2] <= t]
         area = 0.5 * float(np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1).sum())
         _check_budget(area * (2.0 if full else 1.0), float(size), max_elements)
     res = _native._mesh_hull(hull.native, o, t, bool(lids), bool(full), progress)
