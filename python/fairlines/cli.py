@@ -20,6 +20,7 @@ import numpy as np
 
 from . import __version__, fit_curve
 from .io import save_json
+from .meshing import MAX_MESH_ELEMENTS
 
 
 def _fit(args) -> int:
@@ -112,9 +113,8 @@ def _mesh(args) -> int:
 
     def report(done, total, name):
         _progress(f"meshed face {done}/{total}: {name}")
-    budget = {} if args.max_elements is None else {"max_elements": args.max_elements}
-    m = mesh_hull(composed, size=args.size, draft=args.draft, lids=not args.open, full=args.full, progress=report, **budget,
-                  chordal_tolerance=args.tolerance, all_quad=args.all_quad)
+    m = mesh_hull(composed, size=args.size, draft=args.draft, lids=not args.open, full=args.full, progress=report,
+                  max_elements=args.max_elements, chordal_tolerance=args.tolerance, all_quad=args.all_quad)
     q = m.quality()
     out = pathlib.Path(args.output)
     fmt = args.format or out.suffix.lstrip(".").lower()
@@ -174,8 +174,8 @@ def _add_mesh_parser(sub) -> None:
                                                        "as a BEM code wants")
     me.add_argument("--full", action="store_true", help="mirror into the full hull")
     me.add_argument("--all-quad", action="store_true", help="quadrilaterals only")
-    me.add_argument("--max-elements", type=int, default=None,
-                    help="most elements asked for (area / size^2); default fairlines.meshing.MAX_MESH_ELEMENTS")
+    me.add_argument("--max-elements", type=int, default=MAX_MESH_ELEMENTS,
+                    help=f"most elements asked for (area / size^2); default {MAX_MESH_ELEMENTS}")
     me.add_argument("--format", default=None, help="gdf (WAMIT), mar (Nemoh) or a meshio format name; default from "
                                                    "the output suffix (.msh .vtu .stl .obj .med ...)")
     me.add_argument("-o", "--output", required=True, help="mesh file to write")

@@ -30,10 +30,14 @@ __all__ = ["SurfaceMesh", "mesh_options", "mesh_surface", "mesh_hull", "mesh_qua
 MAX_MESH_ELEMENTS = 2_000_000
 
 
-def _check_budget(area: float, size: float, max_elements: int) -> None:
-    """InvalidInput when area / size^2 (m^2, m) exceeds max_elements, naming the least size."""
+def _check_budget(size: float, max_elements: int, area_of: Callable[[], float]) -> None:
+    """InvalidInput when area_of() / size^2 (m^2, m) exceeds max_elements, naming the least
+    size. A size that is not a length > 0 is left to the engine's own refusal."""
     if isinstance(max_elements, bool) or not isinstance(max_elements, int) or max_elements < 1:
         raise InvalidInput(f"max_elements is {max_elements!r}; expected a whole number >= 1")
+    if not (size > 0 and math.isfinite(size)):
+        return
+    area = area_of()
     estimate = area / (size * size)
     if estimate > max_elements:
         least = math.sqrt(area / max_elements)
@@ -42,11 +46,25 @@ def _check_budget(area: float, size: float, max_elements: int) -> None:
                            f"{max_elements} (size >= {math.ceil(least / step) * step:.3g} m), or a larger max_elements")
 
 
+def _triangles_area(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> float:
+    """Summed area (m^2) of the triangles (a, b, c), each (..., 3) corner points."""
+    return 0.5 * float(np.linalg.norm(np.cross(b - a, c - a), axis=-1).sum())
+
+
 def _surface_area(surface: NurbsSurface, samples: int = 65) -> float:
     """Area of a surface (m^2) from its samples x samples grid of points (a lower bound)."""
     P = np.asarray(surface.evaluate_grid(np.linspace(*surface.domain_u, samples), np.linspace(*surface.domain_v, samples)))
     a, b, c, d = P[:-1, :-1], P[1:, :-1], P[1:, 1:], P[:-1, 1:]
-    return float(0.5 * (np.linalg.norm(np.cross(b - a, c - a), axis=-1) + np.linalg.norm(np.cross(c - a, d - a), axis=-1)).sum())
+    return _triangles_area(a, b, c) + _triangles_area(a, c, d)
+
+
+def _hull_area(hull, draft: float | None) -> float:
+    """Area (m^2) of a composed half hull's triangles, those whose middle lies below the draft
+    when one is given (the part a wetted mesh covers)."""
+    v, f = np.asarray(hull.mesh.vertices, float), np.asarray(hull.mesh.faces)
+    if draft is not None:
+        f = f[v[f].mean(axis=1)[:, 2] <= draft]
+    return _triangles_area(v[f[:, 0]], v[f[:, 1]], v[f[:, 2]])
 
 
 def mesh_options(**options) -> "_native.MeshOptions":
@@ -144,8 +162,7 @@ def mesh_surface(surface: NurbsSurface, *, size: float, max_elements: int = MAX_
     if not isinstance(surface, NurbsSurface):
         raise InvalidInput(f"surface is {type(surface).__name__}; expected a NurbsSurface")
     o = mesh_options(size=size, **options)
-    if isinstance(size, (int, float)) and size > 0 and math.isfinite(size):
-        _check_budget(_surface_area(surface), float(size), max_elements)
+    _check_budget(o.size, max_elements, lambda: _surface_area(surface))
     return _wrap(_native._mesh_surface(surface, o))
 
 
@@ -176,12 +193,7 @@ def mesh_hull(hull, *, size: float, draft: float | None = None, lids: bool = Tru
         raise InvalidInput(f"hull is {type(hull).__name__}; expected a ComposedHull or a bare-hull NurbsSurface")
     t = float("nan") if draft is None else float(draft)
     o = mesh_options(size=size, **options)
-    if isinstance(size, (int, float)) and size > 0 and math.isfinite(size):
-        v, f = np.asarray(hull.mesh.vertices, float), np.asarray(hull.mesh.faces)
-        if draft is not None:  # the wetted part only: the triangles whose middle lies below the draft
-            f = f[v[f].mean(axis=1)[:, 2] <= t]
-        area = 0.5 * float(np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1).sum())
-        _check_budget(area * (2.0 if full else 1.0), float(size), max_elements)
+    _check_budget(o.size, max_elements, lambda: (2.0 if full else 1.0) * _hull_area(hull, None if draft is None else t))
     res = _native._mesh_hull(hull.native, o, t, bool(lids), bool(full), progress)
     return _wrap(res, None if draft is None else float(draft), not full)
 

@@ -348,9 +348,7 @@ def _along_waterline(xs: np.ndarray, col: np.ndarray, i: int, zero_ok: bool = Fa
     if col[before[-1]] == 0 and col[after[0]] == 0:
         return 0.0  # the keel (or the centre plane) on both sides
     ks = before + after
-    px, py = xs[ks], col[ks]
-    return float(sum(py[a] * np.prod([(xs[i] - px[b]) / (px[a] - px[b]) for b in range(len(ks)) if b != a])
-                     for a in range(len(ks))))
+    return float(np.polynomial.Polynomial.fit(xs[ks], col[ks], len(ks) - 1)(xs[i]))
 
 
 def _fill_end_blanks(labels, xs, table, z, notes):

@@ -93,6 +93,23 @@ def data_volume(data) -> float:
     return 2.0 * abs(sum(float(_y_flux_below(_triangles(g.points), data.draft).sum()) for g in data.grids))
 
 
+def wigley_table_csv(folder: pathlib.Path, blank: dict, drop: tuple = ()) -> pathlib.Path:
+    """The typed Wigley table (tests/data/wigley_offsets_mm.csv) with the cells {station label:
+    [column headers]} blanked and the columns `drop` left out, written into `folder`."""
+    src = (ROOT / "tests" / "data" / "wigley_offsets_mm.csv").read_text().splitlines()
+    cols = next(line for line in src if not line.startswith("#")).split(",")
+    keep = [k for k, c in enumerate(cols) if c not in drop]
+    out = []
+    for line in src:
+        if not line.startswith("#"):
+            cells = line.split(",")
+            line = ",".join("" if cols[k] in blank.get(cells[0], ()) else cells[k] for k in keep)
+        out.append(line)
+    path = folder / "wigley_blanks.csv"
+    path.write_text("\n".join(out) + "\n")
+    return path
+
+
 def truth(ship: str) -> dict:
     """Independent truth: volume (m^3), LCB (m from the AP), wetted surface (m^2, None when
     no published figure), Lpp, B."""

@@ -12,7 +12,8 @@ import pytest
 import fairlines as fl
 from fairlines.offsets import read_offsets_csv
 
-from import_fixtures import ROOT, SHIPS, WIGLEY, data_volume, data_wetted_surface, imported, read, rebuilt, truth
+from import_fixtures import (ROOT, SHIPS, WIGLEY, data_volume, data_wetted_surface, imported, read, rebuilt, truth,
+                             wigley_table_csv)
 
 # Fidelity goals (fractions): distance to the data's points on B, volume, LCB on Lpp, wetted surface.
 RMS_GOAL, MAX_GOAL, VOLUME_GOAL, LCB_GOAL, WETTED_GOAL = 0.005, 0.02, 0.005, 0.001, 0.01
@@ -294,35 +295,17 @@ def _waterline_half_breadth(curve, z0: float) -> float:
     return float(p[i, 1] + (p[i, 2] - z0) / (p[i, 2] - p[i + 1, 2]) * (p[i + 1, 1] - p[i, 1]))
 
 
-def _wigley_table(tmp_path, blank: dict, drop: tuple = ()) -> "fl.offsets.HullData":
-    """The typed Wigley table with the cells {station: [columns]} blanked and columns dropped."""
-    src = (ROOT / "tests" / "data" / "wigley_offsets_mm.csv").read_text().splitlines()
-    header = next(i for i, line in enumerate(src) if not line.startswith("#"))
-    cols = src[header].split(",")
-    keep = [k for k, c in enumerate(cols) if c not in drop]
-    out = []
-    for line in src:
-        cells = line.split(",")
-        if not line.startswith("#"):
-            cells = [("" if cols[k] in blank.get(cells[0], []) else cells[k]) for k in range(len(cells))]
-            cells = [cells[k] for k in keep]
-        out.append(",".join(cells))
-    p = tmp_path / "w.csv"
-    p.write_text("\n".join(out) + "\n")
-    return read_offsets_csv(p, **WIGLEY)
-
-
 def test_a_table_whose_midship_cells_above_t_are_blank_imports_with_its_depth(tmp_path):
     """The midship station's 7.5 and 9 m cells blank: the depth is still the deck's 9 m (it fell
     to T, and the import was refused: 'draught below the depth D = 6.25 m'), and the rebuilt
     hull holds the Wigley volume 4/9 L B T."""
-    desc = fl.import_design(_wigley_table(tmp_path, {"50000": ["7500", "9000"]}))
+    desc = fl.import_design(read_offsets_csv(wigley_table_csv(tmp_path, {"50000": ["7500", "9000"]}), **WIGLEY))
     assert desc["principal"]["D"] == pytest.approx(9.0)
     L, B, T = WIGLEY.values()
     assert fl.Hull.from_json(json.dumps(desc)).hydrostatics().volume == pytest.approx(4 / 9 * L * B * T, rel=VOLUME_GOAL)
 
 
 def test_a_table_that_stops_at_the_draught_asks_for_the_depth(tmp_path):
-    data = _wigley_table(tmp_path, {}, drop=("7500", "9000"))
+    data = read_offsets_csv(wigley_table_csv(tmp_path, {}, drop=("7500", "9000")), **WIGLEY)
     with pytest.raises(fl.InvalidInput, match=r"the data's top near midships is z = 6.25 m, not above T = 6.25 m .* give the depth"):
         fl.import_design(data)

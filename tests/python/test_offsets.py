@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from fairlines import offsets, preprocess as pp
+from import_fixtures import wigley_table_csv
 
 # The reference hulls live next to the repository (../shared/data; see its README.md).
 DATA = pathlib.Path(os.environ.get(
@@ -409,27 +410,11 @@ def test_series60_editable_description(series60):
         assert all(c["flat_to"] < x < c.get("x_end", x_end) for x in xs_pts), name
 
 
-def _wigley_table_without(tmp_path, blanks: dict) -> pathlib.Path:
-    """The typed Wigley table (mm) with the cells {station label: [columns]} blanked."""
-    src = (pathlib.Path(__file__).resolve().parents[1] / "data" / "wigley_offsets_mm.csv").read_text().splitlines()
-    header = next(i for i, line in enumerate(src) if not line.startswith("#"))
-    cols = src[header].split(",")
-    out = []
-    for line in src:
-        cells = line.split(",")
-        for c in blanks.get(cells[0], []):
-            cells[cols.index(c)] = ""
-        out.append(",".join(cells))
-    p = tmp_path / "wigley_blanks.csv"
-    p.write_text("\n".join(out) + "\n")
-    return p
-
-
 def test_blank_cells_above_a_stations_highest_offset_are_filled_along_the_waterlines(tmp_path):
     """Midships (x 50 m) without its 7.5 and 9 m cells: they are read off their waterlines, the
     cubic through two stations either side, equal to the Wigley hull's wall side B/2 = 5 m (it
     ended the section at T, so the deck there fell to T); the end stations' blanks stay blank."""
-    data = offsets.read_offsets_csv(_wigley_table_without(tmp_path, {"50000": ["7500", "9000"], "0": ["7500"],
+    data = offsets.read_offsets_csv(wigley_table_csv(tmp_path, {"50000": ["7500", "9000"], "0": ["7500"],
                                                                      "5000": ["9000"]}),
                                     lpp=100.0, beam=10.0, draft=6.25)
     mid = next(s for s in data.sections if s.x == 50.0)
@@ -445,6 +430,6 @@ def test_a_blank_keel_cell_is_read_off_the_keel_line_not_taken_for_a_flat_bottom
     """x 40 m without its 0 m cell: the keel line reads 0 on both sides, so the section starts on
     the centre plane at the base as the Wigley hull's does (left out, its lowest offset 0.5 m
     above base read as a flat of bottom there, and the profile stepped up by 0.5 m)."""
-    data = offsets.read_offsets_csv(_wigley_table_without(tmp_path, {"40000": ["0"]}), lpp=100.0, beam=10.0, draft=6.25)
+    data = offsets.read_offsets_csv(wigley_table_csv(tmp_path, {"40000": ["0"]}), lpp=100.0, beam=10.0, draft=6.25)
     sec = next(s for s in data.sections if s.x == 40.0)
     assert sec.points[0].tolist() == [0.0, 0.0]
