@@ -27,6 +27,7 @@ import re
 import numpy as np
 
 from ._native import InvalidInput, limits
+from .offsets_lines import DECK_Z, line_kind, section_with_lines, station_lines
 
 # Two stations closer than this fraction of Lpp are the same station (duplicates).
 STATION_MATCH_TOL = 1e-9
@@ -198,8 +199,10 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
     notes = []
     z, table = _waterlines_rising(t, table, notes)
     labels, xs, table, extra = _stations_from_ap(t, labels, xs, table, extra, notes)
-    table = _fill_end_blanks(labels, xs, table, z, notes)
-    sections = _sections_of_table(t, labels, xs, table, z, notes)
+    deck_z = next((h for h, kind in t.lines.items() if kind[0] == DECK_Z), None)
+    tops = np.array([e[deck_z] * t.unit for e in extra]) if deck_z else None
+    table = _fill_end_blanks(labels, xs, table, z, notes, tops)
+    sections = _sections_of_table(t, labels, xs, table, z, notes, extra)
     data = HullData(name or pathlib.Path(path).stem, lpp, beam, draft, sections=sections,
                     offsets={"x": xs, "z": z, "half_breadths": table, "labels": labels, "extra": extra},
                     notes=notes, source=str(path))
@@ -216,6 +219,7 @@ class _Layout:
     unit: float  # metres per table unit of an absolute table
     wl_cols: list
     extra_cols: list
+    lines: dict  # header -> offsets_lines.line_kind of the deck, keel and buttock columns
     z: np.ndarray  # waterline heights (m), in column order
     lpp: float
     beam: float
@@ -230,9 +234,14 @@ def _table_layout(path, header, comments, lpp, beam, draft, n_stations, normalis
         if first not in ("station", "x"):
             raise InvalidInput(f"{path}: first column is {header[0]!r}; expected 'station' (normalised) or 'x' (metres)")
         normalised = first == "station"
-    wl_cols, extra_cols = [], []
+    wl_cols, extra_cols, lines = [], [], {}
     for k, h in enumerate(header[1:], 1):
-        (extra_cols if h.lower() in ("area_fraction", "area", "note") else wl_cols).append(k)
+        if (kind := line_kind(h)) is not None:
+            if normalised:
+                raise InvalidInput(f"{path}: column {h!r} in a normalised table; expected deck, keel and buttock "
+                                   "columns in an absolute table (x in m or mm)")
+            lines[h] = kind
+        (extra_cols if kind is not None or h.lower() in ("area_fraction", "area", "note") else wl_cols).append(k)
     if len(wl_cols) < 2:
         raise InvalidInput(f"{path}: {len(wl_cols)} waterline column(s); expected at least 2")
     z = np.array([_waterline_height(header[k], path, draft, normalised) for k in wl_cols])
@@ -242,7 +251,7 @@ def _table_layout(path, header, comments, lpp, beam, draft, n_stations, normalis
         k = wl_cols[int(np.flatnonzero(np.abs(z) > lpp)[0])]
         raise InvalidInput(f"{path}: column header {header[k]!r} puts a waterline {np.abs(z).max():.6g} m from the "
                            f"baseline but Lpp is {lpp} m; expected heights in metres")
-    return _Layout(path, header, normalised, unit, wl_cols, extra_cols, z, lpp, beam, n_stations)
+    return _Layout(path, header, normalised, unit, wl_cols, extra_cols, lines, z, lpp, beam, n_stations)
 
 
 def _station_rows(t: _Layout, rows):
@@ -351,13 +360,14 @@ def _along_waterline(xs: np.ndarray, col: np.ndarray, i: int, zero_ok: bool = Fa
     return float(np.polynomial.Polynomial.fit(xs[ks], col[ks], len(ks) - 1)(xs[i]))
 
 
-def _fill_end_blanks(labels, xs, table, z, notes):
+def _fill_end_blanks(labels, xs, table, z, notes, tops=None):
     """A station's blank cells above its highest offset and below its lowest, on waterlines the
     stations either side have, filled along those waterlines (:func:`_along_waterline`; noted):
     a missing deck-level cell would otherwise end the section low and lower its deck edge, a
     missing keel cell start it high as a flat of bottom. The end stations, waterlines a side
-    lacks, and above a station whose highest offset is 0 (the hull ends on the centre plane
-    there) or where a neighbour other than an end station is 0, stay blank."""
+    lacks, above a station's deck edge (`tops`, m, NaN where not given), above a station whose
+    highest offset is 0 (the hull ends on the centre plane there) or where a neighbour other
+    than an end station is 0, stay blank."""
     table = np.array(table, dtype=float)
     x = np.asarray(xs, float)
     for i in range(1, len(xs) - 1):
@@ -368,6 +378,8 @@ def _fill_end_blanks(labels, xs, table, z, notes):
         for below, js in ((True, range(given[0] - 1, -1, -1)),
                           (False, range(given[-1] + 1, len(z)) if table[i, given[-1]] > 0 else ())):
             for j in js:
+                if tops is not None and z[j] > tops[i]:
+                    break
                 v = _along_waterline(x, table[:, j], i, zero_ok=below)
                 if v is None:
                     break
@@ -381,17 +393,25 @@ def _fill_end_blanks(labels, xs, table, z, notes):
     return table
 
 
-def _sections_of_table(t: _Layout, labels, xs, table, z, notes):
-    """One (y, z) section per station; blank cells are left out of it (noted)."""
+def _sections_of_table(t: _Layout, labels, xs, table, z, notes, extra):
+    """One (y, z) section per station, with the table's deck, keel and buttock lines
+    (offsets_lines); blank cells are left out of it (noted)."""
     sections = []
-    for lab, xpos, hb in zip(labels, xs, table):
+    for lab, xpos, hb, cells in zip(labels, xs, table, extra):
         missing = np.isnan(hb)
         if missing.all():
             raise InvalidInput(f"{t.path}: station {lab!r} has no half-breadths; expected at least one number")
         if missing.any():
             notes.append(f"station {lab!r}: {int(missing.sum())} blank cell(s) at z = "
                          + ", ".join(f"{v:.4g}" for v in z[missing]) + " m left out of the section")
-        sections.append(Section(float(xpos), section_from_offsets(hb, z), lab))
+        points = section_from_offsets(hb, z)
+        if t.lines:
+            points = section_with_lines(points, station_lines(t.lines, cells, t.unit), lab, str(t.path), t.beam,
+                                        float(np.ptp(z)))
+        sections.append(Section(float(xpos), points, lab))
+    if t.lines:
+        notes.append("the table's " + ", ".join(t.lines) + " column(s) read into the sections")
+        check_sections(sections, str(t.path))
     return sections
 
 
