@@ -223,11 +223,15 @@ def _run(args) -> int:
 
 #: The sub-commands' options that name a file to write.
 OUTPUT_OPTIONS = ("output", "table", "plot", "sac_plot")
+#: Sub-commands whose output is a folder they create, parents too.
+CREATES_OUTPUT_FOLDER = ("build",)
 
 
 def _output_folder_missing(args) -> str | None:
     """The folder of the command's output file when it does not exist (checked before the work,
     so a long mesh or sweep is not lost to a mistyped path)."""
+    if args.command in CREATES_OUTPUT_FOLDER:
+        return None
     for option in OUTPUT_OPTIONS:
         value = getattr(args, option, None)
         for out in value if isinstance(value, list) else [value]:  # lines writes several files

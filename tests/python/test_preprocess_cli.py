@@ -43,7 +43,7 @@ def test_import_then_build(tmp_path, capsys):
     assert {"SAC", "DWL", "deck", "profile", "FOS", "FOB", "bow", "sections"} <= set(fp)
     assert max(fp["DWL"]["half_breadth"]) == pytest.approx(B / 2, rel=1e-3)
     assert doc["hydrostatics_input"]["cb"] == pytest.approx(4 / 9, rel=1e-9)  # Simpson, exact
-    outdir = tmp_path / "out"
+    outdir = tmp_path / "out" / "wigley"  # as the README: build makes its folder, parents too
     assert main(["build", str(hull), "-o", str(outdir)]) == 0
     text = capsys.readouterr().out
     assert "deviation of the surface from" in text and "published" in text
