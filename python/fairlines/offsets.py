@@ -27,7 +27,7 @@ import re
 import numpy as np
 
 from ._native import InvalidInput, limits
-from .offsets_lines import DECK_Z, line_kind, section_with_lines, station_lines
+from .offsets_lines import DECK_Z, KEEL_Z, line_kind, section_with_lines, station_lines
 
 # Two stations closer than this fraction of Lpp are the same station (duplicates).
 STATION_MATCH_TOL = 1e-9
@@ -199,9 +199,7 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
     notes = []
     z, table = _waterlines_rising(t, table, notes)
     labels, xs, table, extra = _stations_from_ap(t, labels, xs, table, extra, notes)
-    deck_z = next((h for h, kind in t.lines.items() if kind[0] == DECK_Z), None)
-    tops = np.array([e[deck_z] * t.unit for e in extra]) if deck_z else None
-    table = _fill_end_blanks(labels, xs, table, z, notes, tops)
+    table = _fill_end_blanks(labels, xs, table, z, notes, _keel_and_deck(t, extra))
     sections = _sections_of_table(t, labels, xs, table, z, notes, extra)
     data = HullData(name or pathlib.Path(path).stem, lpp, beam, draft, sections=sections,
                     offsets={"x": xs, "z": z, "half_breadths": table, "labels": labels, "extra": extra},
@@ -360,12 +358,19 @@ def _along_waterline(xs: np.ndarray, col: np.ndarray, i: int, zero_ok: bool = Fa
     return float(np.polynomial.Polynomial.fit(xs[ks], col[ks], len(ks) - 1)(xs[i]))
 
 
-def _fill_end_blanks(labels, xs, table, z, notes, tops=None):
+def _keel_and_deck(t: _Layout, extra) -> np.ndarray:
+    """(stations, 2) heights (m) of each station's keel_z and deck_z cells, NaN where not given."""
+    cols = [next((h for h, kind in t.lines.items() if kind[0] == name), None) for name in (KEEL_Z, DECK_Z)]
+    return np.array([[e[h] * t.unit if h else np.nan for h in cols] for e in extra]).reshape(len(extra), 2)
+
+
+def _fill_end_blanks(labels, xs, table, z, notes, keel_deck=None):
     """A station's blank cells above its highest offset and below its lowest, on waterlines the
     stations either side have, filled along those waterlines (:func:`_along_waterline`; noted):
     a missing deck-level cell would otherwise end the section low and lower its deck edge, a
     missing keel cell start it high as a flat of bottom. The end stations, waterlines a side
-    lacks, above a station's deck edge (`tops`, m, NaN where not given), above a station whose
+    lacks, below a station's keel or above its deck edge (`keel_deck`, (stations, 2) heights,
+    m, NaN where the table does not give them), above a station whose
     highest offset is 0 (the hull ends on the centre plane there) or where a neighbour other
     than an end station is 0, stay blank."""
     table = np.array(table, dtype=float)
@@ -378,7 +383,7 @@ def _fill_end_blanks(labels, xs, table, z, notes, tops=None):
         for below, js in ((True, range(given[0] - 1, -1, -1)),
                           (False, range(given[-1] + 1, len(z)) if table[i, given[-1]] > 0 else ())):
             for j in js:
-                if tops is not None and z[j] > tops[i]:
+                if keel_deck is not None and (z[j] < keel_deck[i, 0] if below else z[j] > keel_deck[i, 1]):
                     break
                 v = _along_waterline(x, table[:, j], i, zero_ok=below)
                 if v is None:

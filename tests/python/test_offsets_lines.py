@@ -107,6 +107,17 @@ def test_keel_column_gives_the_centre_line_contour(tmp_path):
     assert given[0] <= 0.02
 
 
+def test_blank_cells_below_a_given_keel_stay_blank(tmp_path):
+    """Station x 90 m (keel 0.75 m up) with its cells at z 0 and 0.5 m blank: read off their
+    waterlines from the stations aft, where the hull is lower, they would put 0.09 m of
+    half-breadth below the keel_z point and the table would be refused; they stay blank."""
+    table = _table(tmp_path / "t.csv", (0.0, 0.5, 1.0, 1.5, 2.0, 4.0, 6.25, 9.0), keel=_rising_keel)
+    for column in ("0", "0.5"):
+        _with_cell(table, 19, column, "")
+    section = next(s for s in read_offsets_csv(table, L, B, T).sections if s.x == 90.0).points
+    assert tuple(section[0]) == pytest.approx((0.0, _rising_keel(90.0)), abs=1e-4) and section[1, 1] == 1.0
+
+
 def test_deck_columns_give_the_sheer(tmp_path):
     """The waterline columns stop at D at midships and a sheer rising 1 m to the ends falls
     between them: with deck_y and deck_z the rebuilt deck edge follows it (measured: within 35 mm)."""
