@@ -448,6 +448,24 @@ WOBBLY_WATERLINES = {
 }
 
 
+@pytest.mark.parametrize("height", [0.25, 0.5, 0.75, 0.9])
+def test_upper_waterlines_run_into_the_stem_without_an_inflection(ship, height):
+    """Forward of the design waterline's fore end (over the stem's overhang) a waterline between
+    T and D ends on the stem in one lobe, straight, hollow or convex, never an S. Measured before
+    the dry sections there were read off the waterlines (fairlines.dry_bow): at 0.9 of the way
+    to D the container ship's turned hollow then convex (0.28, 0.9 deg), the tanker's three times
+    (4.8, 1.5, 4.4 deg), the ferry's twice (0.41, 1.23 deg)."""
+    from fairlines.fairness import cut_lobes
+
+    p, hull = ship
+    x_end = hull.immersed_range()[1]
+    z = p["draft"] + height * (p["depth"] - p["draft"])
+    cut = fl.plane_cut(hull.bare_hull_surface(), 2, z, 801)
+    over = np.asarray(cut.points)[:, 0] >= x_end
+    lobes = cut_lobes(np.asarray(cut.points)[over], np.asarray(cut.curvature)[over])
+    assert len(lobes) <= 1, [(round(lobe["turn_deg"], 2), lobe["sign"], round(lobe["at"][0], 2)) for lobe in lobes]
+
+
 @pytest.mark.parametrize("z", _cuts(np.linspace(1.0, 17.0, 9), WOBBLY_WATERLINES))
 def test_waterline_has_no_wobble(example_surface, z):
     """At most one inflection aft (hollow run) and one forward (hollow entrance)."""

@@ -1,0 +1,83 @@
+"""Sections above the water forward of the design waterline's fore end (a raked stem's
+overhang), read off the waterlines rather than off a section template.
+
+Notation: x_e the waterline's fore end (the stem at T), y_e(z) and s_e(z) the half-breadth and
+its slope dy/dx of the waterline at height z at x_e (from the immersed sections there), x_s(z)
+the stem contour (the profile turned round: where the waterline at z ends on the centre plane),
+h = x - x_e, Delta(z) = x_s(z) - x_e.
+
+Each waterline above T is continued from x_e to the stem by the quadratic with its value and
+slope at x_e that reaches 0 at x_s(z):
+
+    q(x, z) = y_e + s_e h + c h^2,   c = -(y_e + s_e Delta) / Delta^2,
+
+so it has no inflection past x_e: straight where its tangent at x_e meets the stem, hollow where
+it would meet the centre plane short of it, convex beyond. A section at x is q at the heights
+from its keel point (on the stem) to its deck edge, plus the deck line's difference from q at
+the deck, shared linearly in height (nothing at the keel), so the section ends on the deck line
+and the sheer. The section template's dry continuation (a fillet cut at the keel point, whose
+lean follows the profile's slope) put a hollow bump into every waterline above T just past x_e
+and, with the skin's one span from x_e to the stem head (a section of one point), a hollow-convex
+pair of lobes at the stem. Measured on the first 100 hulls of bench_hull's sample, with two
+stations added in the overhang (Hull.stations): waterlines above T clean as a lines plan 105 ->
+127 of 300, their wobbles within 1.5 % Lpp of the stem 149 -> 111 (docs/sections.md).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _native
+
+#: The waterlines' slopes at x_e are read from the sections at x_e and this fraction of Lpp aft
+#: of it: the immersed sections' ripple within a knot span is not the waterline's run.
+END_SLOPE_BASE = 0.01
+#: Heights per dry section (deck edge to keel point) handed to the section's fit.
+SECTION_HEIGHTS = 60
+#: Samples of a section and of the stem contour when read as functions of height.
+SAMPLES = 2001
+
+
+def _half_breadth_of(curve, z: np.ndarray) -> np.ndarray:
+    """Half-breadth (m) of a designed section (deck -> keel) at heights z, as a function of height."""
+    p = np.asarray(curve.evaluate(np.linspace(0.0, 1.0, SAMPLES)))[::-1]
+    keep = np.concatenate([[True], np.diff(p[:, 2]) > 0])
+    return np.interp(z, p[keep, 2], p[keep, 1])
+
+
+def end_waterlines(end_specs: list, lpp: float, draft: float) -> tuple:
+    """(z, y_e(z), s_e(z)) at the waterline's fore end from the specs of the sections at
+    x_e - END_SLOPE_BASE Lpp and at x_e (m, m, dy/dx), z from T to the lower deck edge."""
+    aft, end = (d.curve for d in _native.design_sections(end_specs))
+    top = min(float(np.asarray(c.evaluate([0.0]))[0, 2]) for c in (aft, end))
+    z = np.linspace(draft, top, SAMPLES)
+    y_end = _half_breadth_of(end, z)
+    return z, y_end, (y_end - _half_breadth_of(aft, z)) / (END_SLOPE_BASE * lpp)
+
+
+def stem_contour(profile, x_end: float, x_fore: float):
+    """x_s(z) (m): where the profile over [x_end, x_fore] reaches height z (its running maximum,
+    so a profile flat to round-off stays a function)."""
+    x = np.linspace(x_end, x_fore, SAMPLES)
+    z = np.maximum.accumulate(np.asarray(profile(x), dtype=float))
+    return lambda zq: np.interp(zq, z, x)
+
+
+def dry_section(spec, x_end: float, ends: tuple, x_stem) -> np.ndarray | None:
+    """(SECTION_HEIGHTS, 2) points (y, z), m, deck edge to keel point, of the dry section at
+    spec.x (> x_end) from the end waterlines `ends` (end_waterlines) and the stem contour
+    `x_stem` (stem_contour); None for a section of one point (the stem head)."""
+    if spec.z_deck - spec.z_keel <= 1e-9 * max(spec.z_deck, 1.0):
+        return None
+    z_e, y_e, s_e = ends
+    z = np.linspace(spec.z_deck, spec.z_keel, SECTION_HEIGHTS)
+    zc = np.clip(z, z_e[0], z_e[-1])
+    y0, s0 = np.interp(zc, z_e, y_e), np.interp(zc, z_e, s_e)
+    h = spec.x - x_end
+    span = np.maximum(x_stem(z) - x_end, h)  # the keel point's own waterline ends at spec.x
+    s0 = np.maximum(s0, -2.0 * y0 / span)  # steeper, q would cross the centre plane short of the stem
+    q = y0 + s0 * h - (y0 + s0 * span) * (h / span) ** 2
+    share = (z - spec.z_keel) / (spec.z_deck - spec.z_keel)
+    y = np.clip(q + share * (spec.y_deck - q[0]), 0.0, spec.y_max)
+    y[-1] = 0.0
+    return np.column_stack([y, z])
