@@ -5,7 +5,8 @@ each designed hull's waterlines (6, from T/4 to D - T/8), buttocks (5, 0.1-0.9 B
 of turn). The issue's marks: a waterline or buttock with more than two (one hollow each way),
 a frame with any (an S). A waterline that closes on the centre plane in a rounded end counts
 that round too, so its low waterlines read stricter than a naval architect's eye; so the
-waterlines are also read as one would: a lobe under SMALL_LOBE_DEG of turn is a wobble, a
+waterlines are also read as one would: a lobe under SMALL_LOBE_DEG of turn between two others
+is a wobble (at a waterline's end it is how the line meets the stem or the transom, one turn), a
 second hollow in one half of the waterline a step, and where the wobbles lie (within
 FORE_TIP of Lpp of a waterline's fore end, within AFT_END of its aft end, or between).
 Prints figures; run by bench/run_all.py (FAIRLINES_FAIRNESS_SAMPLES overrides the count).
@@ -27,7 +28,7 @@ SAMPLES = int(os.environ.get("FAIRLINES_FAIRNESS_SAMPLES", "100"))
 CUT_POINTS = 401
 SMALL_LOBE_DEG = 1.0  # a lobe turning less than this between two others is a wobble, not a shape
 FORE_TIP, AFT_END = 0.015, 0.05  # the ends' stretches where wobbles are placed, fractions of Lpp
-WATERLINES = 6  # T/4 .. D - T/8: the first three below T, the rest above
+WATERLINES = 6  # T/4 .. D - T/8: the first three up to 0.74 T, the rest from 0.985 T (just under T)
 
 
 def sign_changes(surface, axis: int, value: float) -> int:
@@ -47,9 +48,10 @@ def waterline_reading(surface, z: float, lpp: float) -> tuple[int, dict, bool]:
     middle = 0.5 * (x_aft + x_fore)
     wobbles: dict = {}
     hollows = [0, 0]
-    for lobe in judged_cut["lobes"]:
+    lobes = judged_cut["lobes"]
+    for k, lobe in enumerate(lobes):
         at = lobe["at"][0]
-        if lobe["turn_deg"] < SMALL_LOBE_DEG:
+        if lobe["turn_deg"] < SMALL_LOBE_DEG and 0 < k < len(lobes) - 1:
             where = "fore tip" if x_fore - at < FORE_TIP * lpp else "aft end" if at - x_aft < AFT_END * lpp else "between"
             wobbles[where] = wobbles.get(where, 0) + 1
         elif lobe["sign"] > 0:
@@ -69,9 +71,10 @@ def judged(p: dict) -> tuple[list, list, list, list]:
 
 def print_reading(hulls: list) -> None:
     """The waterlines read as a naval architect would, below T and above it."""
-    print(f"  waterlines read as a lines plan (a wobble: a lobe under {SMALL_LOBE_DEG:g} deg; a step: a second "
-          "hollow in one half):")
-    for name, rows in (("below T", slice(0, WATERLINES // 2)), ("above T", slice(WATERLINES // 2, WATERLINES))):
+    print(f"  waterlines read as a lines plan (a wobble: a lobe under {SMALL_LOBE_DEG:g} deg between two others; a "
+          "step: a second hollow in one half):")
+    for name, rows in (("T/4 .. 0.74 T", slice(0, WATERLINES // 2)),
+                       ("0.985 T .. D - T/8", slice(WATERLINES // 2, WATERLINES))):
         read = [r for h in hulls for r in h[3][rows]]
         clean = sum(not w and not step for w, step in read)
         wobbly = sum(bool(w) for w, _ in read)
