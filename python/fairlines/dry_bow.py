@@ -35,7 +35,7 @@ END_SLOPE_BASE = 0.01
 #: Heights per dry section (deck edge to keel point) handed to the section's fit.
 SECTION_HEIGHTS = 60
 #: Samples of a section and of the stem contour when read as functions of height.
-SAMPLES = 2001
+SAMPLES = 401
 
 
 def _half_breadth_of(curve, z: np.ndarray) -> np.ndarray:

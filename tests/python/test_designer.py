@@ -444,7 +444,8 @@ WOBBLY_WATERLINES = {
     3.0: "a rounded end where the keel lands on its flat (x 33 m, 22.3 deg), a hollow of 4.5 deg at x 54 m, the body, "
          "a hollow entrance and the bulb's nose: 4 sign changes",
     15.0: _KNOB_SWING.format(deg="0.36") + ": 3 sign changes",
-    17.0: _KNOB_SWING.format(deg="0.43") + ", and a convex lobe of 0.19 deg at the stem's tip (x 246.9 m): 4 sign changes",
+    17.0: _KNOB_SWING.format(deg="0.43") + ": 3 sign changes (the stem's tip, a hollow of 0.59 deg and a convex lobe of "
+          "0.19 deg before fairlines.dry_bow, is now one hollow)",
 }
 
 
