@@ -26,7 +26,7 @@ import numpy as np
 
 from . import _native
 from . import basic_curves as _basic_curves
-from . import dry_bow
+from . import dry_ends
 from .basic_curves import (CORNER_FULLNESS_BOUNDS, FULLNESS_BOUNDS, BasicCurve, immersed_range, solve_curve, solve_sac,
                            solve_sac_area)
 from .description import DOME_NECK, FORM_ALIASES, FORM_KEYS, BasicCurveSpec, HullDescription, load_description
@@ -71,8 +71,9 @@ SKEG_END_STATIONS = 6
 DOME_STATIONS = 16
 # Stations off the hull named in the error (the rest are counted).
 OFF_HULL_SHOWN = 5
-# Stations between the waterline's fore end and a stem head above the water forward of it
-# (fairlines.dry_bow), closer toward the head, where the skin's rows meet in one point: with
+# Stations between a waterline's end and the point where the hull closes beyond it at the deck
+# (a stem head; a cruiser stern; fairlines.dry_ends), closer toward it, where the skin's rows
+# meet: with
 # none the skin's one span there made its own lobes at the stem. Measured on the first 100
 # hulls of bench_hull's sample (waterlines above T clean as a lines plan): 1 or 2 at even
 # spacing 120 / 121 of 300, 2 closer toward the head 127 (3 stations, or the head closer still:
@@ -162,7 +163,7 @@ class Hull:
         self._skin = None
         self._ship = None
         self._stations: np.ndarray | None = None
-        self._dry_bow = None  # (end waterlines, stem contour) of the dry sections past the stem
+        self._dry_ends: dict = {}  # x_e -> (end waterlines, end contour) of the dry sections beyond it
         self._hydro: dict = {}  # (draft, options) -> Hydrostatics of the current surface
 
     # ---- construction ---------------------------------------------------------------
@@ -328,9 +329,9 @@ class Hull:
                 if (dm := d.dome) is not None:  # the dome's sections change quickly, most at its nose
                     u = np.sin(0.5 * np.pi * np.linspace(0.0, 1.0, DOME_STATIONS + 1))
                     self._stations = _with_stations(self._stations, dm.x_aft + (dm.x_fore - dm.x_aft) * u)
-                if (x_end := self._dry_fore_end()) is not None:  # the stem's overhang: one span is too few
-                    u = np.arange(1, OVERHANG_STATIONS + 1) / (OVERHANG_STATIONS + 1)
-                    self._stations = _with_stations(self._stations, x_end + (d.x_fore - x_end) * (1 - (1 - u) ** 2))
+                u = np.arange(1, OVERHANG_STATIONS + 1) / (OVERHANG_STATIONS + 1)
+                for x_end, x_tip in self._closed_dry_ends():  # the overhang: one span is too few
+                    self._stations = _with_stations(self._stations, x_end + (x_tip - x_end) * (1 - (1 - u) ** 2))
         return self._stations.copy()
 
     # ---- sections ---------------------------------------------------------------------
@@ -467,33 +468,42 @@ class Hull:
                     s.half_area = float(max(sac[i], 0.0) / 2)
             specs.append(s)
         if with_area:
-            self._read_dry_bow(specs, given)
+            self._read_dry_ends(specs, given)
         return specs
 
-    def _dry_fore_end(self) -> float | None:
-        """x_e (m) of a waterline that ends on a stem above the water forward of it, else None."""
+    def _closed_dry_ends(self) -> list:
+        """(x_e, x_tip) (m) of each waterline end beyond which the hull runs on above the water
+        and closes in a point at the deck: a raked stem, a cruiser stern (not a transom, nor a post)."""
         d, dwl = self.description, self._curves["dwl"]
-        x_end = dwl.x_end
-        if "fore" in d.posts or dwl(x_end)[0] > 1e-9 * d.principal.breadth or d.x_fore - x_end <= 1e-9 * d.principal.lpp:
-            return None
-        return x_end
+        pr = d.principal
+        out = []
+        for side, x_end, x_tip in (("fore", dwl.x_end, d.x_fore), ("aft", dwl.x_start, d.x_aft)):
+            if side in d.posts or dwl(x_end)[0] > 1e-9 * pr.breadth or abs(x_tip - x_end) <= 1e-9 * pr.lpp:
+                continue
+            if side == "aft" and self.curve_points(np.array([x_tip]), self._curves)[0][0] > 1e-6 * pr.breadth:
+                continue  # a transom: the waterlines above T end on it, not on the centre plane
+            out.append((x_end, x_tip))
+        return out
 
-    def _read_dry_bow(self, specs: list, given: list) -> None:
-        """The dry sections forward of the waterline's fore end without a given shape take the
-        shape read off the waterlines (fairlines.dry_bow)."""
-        x_end = self._dry_fore_end()
-        dry = [s for s, g in zip(specs, given) if g is None and x_end is not None and s.x > x_end]
-        if not dry:
-            return
-        if self._dry_bow is None:
-            d = self.description
-            base = self.section_specs([x_end - dry_bow.END_SLOPE_BASE * d.principal.lpp, x_end])
-            self._dry_bow = (dry_bow.end_waterlines(base, d.principal.lpp, d.principal.draft),
-                             dry_bow.stem_contour(self._curves["profile"], x_end, d.x_fore))
-        for s in dry:
-            shape = dry_bow.dry_section(s, x_end, *self._dry_bow)
-            if shape is not None:
-                s.given = shape
+    def _read_dry_ends(self, specs: list, given: list) -> None:
+        """The dry sections beyond a closed end (_closed_dry_ends) without a given shape or an
+        appendage take the shape read off the waterlines (fairlines.dry_ends)."""
+        d = self.description
+        for x_end, x_tip in self._closed_dry_ends():
+            beyond = (lambda x: x > x_end) if x_tip > x_end else (lambda x: x < x_end)
+            dry = [s for s, g in zip(specs, given) if g is None and beyond(s.x) and math.isnan(s.skeg_bottom)
+                   and math.isnan(s.dome_bottom)]
+            if not dry:
+                continue
+            if x_end not in self._dry_ends:
+                inner = x_end - math.copysign(dry_ends.END_SLOPE_BASE * d.principal.lpp, x_tip - x_end)
+                self._dry_ends[x_end] = (dry_ends.end_waterlines(self.section_specs([inner, x_end]), d.principal.lpp,
+                                                                 d.principal.draft),
+                                         dry_ends.end_contour(self._curves["profile"], x_end, x_tip))
+            for s in dry:
+                shape = dry_ends.dry_section(s, x_end, *self._dry_ends[x_end])
+                if shape is not None:
+                    s.given = shape
 
     @property
     def section_designs(self) -> list:

@@ -445,7 +445,7 @@ WOBBLY_WATERLINES = {
          "a hollow entrance and the bulb's nose: 4 sign changes",
     15.0: _KNOB_SWING.format(deg="0.36") + ": 3 sign changes",
     17.0: _KNOB_SWING.format(deg="0.43") + ": 3 sign changes (the stem's tip, a hollow of 0.59 deg and a convex lobe of "
-          "0.19 deg before fairlines.dry_bow, is now one hollow)",
+          "0.19 deg before fairlines.dry_ends, is now one hollow)",
 }
 
 
@@ -453,7 +453,7 @@ WOBBLY_WATERLINES = {
 def test_upper_waterlines_run_into_the_stem_without_an_inflection(ship, height):
     """Forward of the design waterline's fore end (over the stem's overhang) a waterline between
     T and D ends on the stem in one lobe, straight, hollow or convex, never an S. Measured before
-    the dry sections there were read off the waterlines (fairlines.dry_bow): at 0.9 of the way
+    the dry sections there were read off the waterlines (fairlines.dry_ends): at 0.9 of the way
     to D the container ship's turned hollow then convex (0.28, 0.9 deg), the tanker's three times
     (4.8, 1.5, 4.4 deg), the ferry's twice (0.41, 1.23 deg)."""
     from fairlines.fairness import cut_lobes
@@ -463,6 +463,24 @@ def test_upper_waterlines_run_into_the_stem_without_an_inflection(ship, height):
     z = p["draft"] + height * (p["depth"] - p["draft"])
     cut = fl.plane_cut(hull.bare_hull_surface(), 2, z, 801)
     over = np.asarray(cut.points)[:, 0] >= x_end
+    lobes = cut_lobes(np.asarray(cut.points)[over], np.asarray(cut.curvature)[over])
+    assert len(lobes) <= 1, [(round(lobe["turn_deg"], 2), lobe["sign"], round(lobe["at"][0], 2)) for lobe in lobes]
+
+
+@pytest.mark.parametrize("height", [0.25, 0.5, 0.75])
+def test_upper_waterlines_run_into_a_cruiser_stern_without_an_inflection(height):
+    """Aft of the design waterline's aft end, over the coaster's cruiser-stern counter, a
+    waterline between T and D ends on the centre plane in one lobe. Measured before the dry
+    sections there were read off the waterlines too (fairlines.dry_ends): at 0.5 and 0.75 of
+    the way to D it turned hollow, then convex (0.37 / 0.18 deg, 0.62 / 0.12 deg); at 0.9 a pair
+    of 0.11 and 0.12 deg is left, at the threshold of the count."""
+    from fairlines.fairness import cut_lobes
+
+    p = SHIPS["coaster_cruiser"]
+    hull = fl.design_hull(**p)
+    z = p["draft"] + height * (p["depth"] - p["draft"])
+    cut = fl.plane_cut(hull.bare_hull_surface(), 2, z, 801)
+    over = np.asarray(cut.points)[:, 0] <= hull.immersed_range()[0]
     lobes = cut_lobes(np.asarray(cut.points)[over], np.asarray(cut.curvature)[over])
     assert len(lobes) <= 1, [(round(lobe["turn_deg"], 2), lobe["sign"], round(lobe["at"][0], 2)) for lobe in lobes]
 

@@ -1,10 +1,11 @@
-"""Sections above the water forward of the design waterline's fore end (a raked stem's
-overhang), read off the waterlines rather than off a section template.
+"""Sections above the water beyond an end of the design waterline that closes in a point at
+the deck (a raked stem's overhang; a cruiser stern's counter), read off the waterlines rather
+than off a section template.
 
-Notation: x_e the waterline's fore end (the stem at T), y_e(z) and s_e(z) the half-breadth and
-its slope dy/dx of the waterline at height z at x_e (from the immersed sections there), x_s(z)
-the stem contour (the profile turned round: where the waterline at z ends on the centre plane),
-h = x - x_e, Delta(z) = x_s(z) - x_e.
+Notation: x_e the waterline's end (the stem, or the counter, at T), y_e(z) and s_e(z) the
+half-breadth and its slope dy/dh of the waterline at height z at x_e (from the immersed sections
+there), x_s(z) the end contour (the profile turned round: where the waterline at z ends on the
+centre plane), h = |x - x_e| the distance beyond the end, Delta(z) = |x_s(z) - x_e|.
 
 Each waterline above T is continued from x_e to the stem by the quadratic with its value and
 slope at x_e that reaches 0 at x_s(z):
@@ -20,7 +21,9 @@ lean follows the profile's slope) put a hollow bump into every waterline above T
 and, with the skin's one span from x_e to the stem head (a section of one point), a hollow-convex
 pair of lobes at the stem. Measured on the first 100 hulls of bench_hull's sample, with two
 stations added in the overhang (Hull.stations): waterlines above T clean as a lines plan 105 ->
-127 of 300, their wobbles within 1.5 % Lpp of the stem 149 -> 111 (docs/sections.md).
+127 of 300, their wobbles within 1.5 % Lpp of the stem 149 -> 111; on 60 of them with a cruiser
+stern, read off at both ends: upper waterlines clean 61 -> 91 of 180, their wobbles at the aft end
+126 -> 74 (docs/sections.md).
 """
 
 from __future__ import annotations
@@ -46,35 +49,35 @@ def _half_breadth_of(curve, z: np.ndarray) -> np.ndarray:
 
 
 def end_waterlines(end_specs: list, lpp: float, draft: float) -> tuple:
-    """(z, y_e(z), s_e(z)) at the waterline's fore end from the specs of the sections at
-    x_e - END_SLOPE_BASE Lpp and at x_e (m, m, dy/dx), z from T to the lower deck edge."""
-    aft, end = (d.curve for d in _native.design_sections(end_specs))
-    top = min(float(np.asarray(c.evaluate([0.0]))[0, 2]) for c in (aft, end))
+    """(z, y_e(z), s_e(z)) at a waterline's end from the specs of the sections END_SLOPE_BASE Lpp
+    inside x_e and at x_e (m, m, dy/dh), z from T to the lower deck edge."""
+    inner, end = (d.curve for d in _native.design_sections(end_specs))
+    top = min(float(np.asarray(c.evaluate([0.0]))[0, 2]) for c in (inner, end))
     z = np.linspace(draft, top, SAMPLES)
     y_end = _half_breadth_of(end, z)
-    return z, y_end, (y_end - _half_breadth_of(aft, z)) / (END_SLOPE_BASE * lpp)
+    return z, y_end, (y_end - _half_breadth_of(inner, z)) / (END_SLOPE_BASE * lpp)
 
 
-def stem_contour(profile, x_end: float, x_fore: float):
-    """x_s(z) (m): where the profile over [x_end, x_fore] reaches height z (its running maximum,
-    so a profile flat to round-off stays a function)."""
-    x = np.linspace(x_end, x_fore, SAMPLES)
+def end_contour(profile, x_end: float, x_tip: float):
+    """x_s(z) (m): where the profile from x_end out to the hull's end x_tip (either side) reaches
+    height z (its running maximum, so a profile flat to round-off stays a function)."""
+    x = np.linspace(x_end, x_tip, SAMPLES)
     z = np.maximum.accumulate(np.asarray(profile(x), dtype=float))
     return lambda zq: np.interp(zq, z, x)
 
 
 def dry_section(spec, x_end: float, ends: tuple, x_stem) -> np.ndarray | None:
     """(SECTION_HEIGHTS, 2) points (y, z), m, deck edge to keel point, of the dry section at
-    spec.x (> x_end) from the end waterlines `ends` (end_waterlines) and the stem contour
-    `x_stem` (stem_contour); None for a section of one point (the stem head)."""
+    spec.x (beyond x_end) from the end waterlines `ends` (end_waterlines) and the end contour
+    `x_stem` (end_contour); None for a section of one point (the stem head)."""
     if spec.z_deck - spec.z_keel <= 1e-9 * max(spec.z_deck, 1.0):
         return None
     z_e, y_e, s_e = ends
     z = np.linspace(spec.z_deck, spec.z_keel, SECTION_HEIGHTS)
     zc = np.clip(z, z_e[0], z_e[-1])
     y0, s0 = np.interp(zc, z_e, y_e), np.interp(zc, z_e, s_e)
-    h = spec.x - x_end
-    span = np.maximum(x_stem(z) - x_end, h)  # the keel point's own waterline ends at spec.x
+    h = abs(spec.x - x_end)
+    span = np.maximum(np.abs(x_stem(z) - x_end), h)  # the keel point's own waterline ends at spec.x
     s0 = np.maximum(s0, -2.0 * y0 / span)  # steeper, q would cross the centre plane short of the stem
     q = y0 + s0 * h - (y0 + s0 * span) * (h / span) ** 2
     share = (z - spec.z_keel) / (spec.z_deck - spec.z_keel)
