@@ -47,8 +47,9 @@ def sample(n, seed=7):
 def main():
     desc = json.loads(EXAMPLE.read_text())
     best, med = timed(lambda: fl.Hull.from_json(desc).bare_hull_surface())
-    print(f"description -> surface (container ship, 61 stations): best {best:.1f} ms, median {med:.1f} ms (goal <= 20 ms)")
     h = fl.Hull.from_json(desc)
+    print(f"description -> surface (container ship, {len(h.stations())} stations): best {best:.1f} ms, median {med:.1f} ms "
+          "(goal <= 20 ms)")
     vols = iter(np.linspace(0.99, 1.01, 100) * desc["basic_curves"]["sac"]["volume"])
 
     def slider():

@@ -72,12 +72,12 @@ DOME_STATIONS = 16
 # Stations off the hull named in the error (the rest are counted).
 OFF_HULL_SHOWN = 5
 # Stations between a waterline's end and the point where the hull closes beyond it at the deck
-# (a stem head; a cruiser stern; fairlines.dry_ends), closer toward it, where the skin's rows
-# meet: with
-# none the skin's one span there made its own lobes at the stem. Measured on the first 100
+# (a stem head; a cruiser stern; fairlines.dry_ends), closer toward that point, where the skin's
+# rows meet: with none the skin's one span there made lobes of its own. Measured on the first 100
 # hulls of bench_hull's sample (waterlines above T clean as a lines plan): 1 or 2 at even
-# spacing 120 / 121 of 300, 2 closer toward the head 127 (3 stations, or the head closer still:
-# no better); at 1 the example's bare-hull mesh scored a mean scaled Jacobian 0.04 % under gmsh's.
+# spacing 120 / 121 of 300, 2 closer toward the head 127 (closer still 127; 3 at even spacing no
+# better on 40 of them); at 1 the example's bare-hull mesh scored a mean scaled Jacobian 0.04 %
+# under gmsh's.
 OVERHANG_STATIONS = 2
 # Least slope (dz/dx) of the profile used for the arrival angle of above-water sections.
 MIN_STEM_SLOPE = 0.05
