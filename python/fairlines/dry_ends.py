@@ -32,12 +32,12 @@ import numpy as np
 
 from . import _native
 
-#: The waterlines' slopes at x_e are read from the sections at x_e and this fraction of Lpp aft
-#: of it: the immersed sections' ripple within a knot span is not the waterline's run.
+#: The waterlines' slopes at x_e are read from the sections at x_e and this fraction of Lpp
+#: inside it: the immersed sections' ripple within a knot span is not the waterline's run.
 END_SLOPE_BASE = 0.01
 #: Heights per dry section (deck edge to keel point) handed to the section's fit.
 SECTION_HEIGHTS = 60
-#: Samples of a section and of the stem contour when read as functions of height.
+#: Samples of a section and of the end contour when read as functions of height.
 SAMPLES = 401
 
 
@@ -66,10 +66,10 @@ def end_contour(profile, x_end: float, x_tip: float):
     return lambda zq: np.interp(zq, z, x)
 
 
-def dry_section(spec, x_end: float, ends: tuple, x_stem) -> np.ndarray | None:
+def dry_section(spec, x_end: float, ends: tuple, x_contour) -> np.ndarray | None:
     """(SECTION_HEIGHTS, 2) points (y, z), m, deck edge to keel point, of the dry section at
     spec.x (beyond x_end) from the end waterlines `ends` (end_waterlines) and the end contour
-    `x_stem` (end_contour); None for a section of one point (the stem head)."""
+    `x_contour` (end_contour); None for a section of one point (the stem head, the stern's end)."""
     if spec.z_deck - spec.z_keel <= 1e-9 * max(spec.z_deck, 1.0):
         return None
     z_e, y_e, s_e = ends
@@ -77,8 +77,8 @@ def dry_section(spec, x_end: float, ends: tuple, x_stem) -> np.ndarray | None:
     zc = np.clip(z, z_e[0], z_e[-1])
     y0, s0 = np.interp(zc, z_e, y_e), np.interp(zc, z_e, s_e)
     h = abs(spec.x - x_end)
-    span = np.maximum(np.abs(x_stem(z) - x_end), h)  # the keel point's own waterline ends at spec.x
-    s0 = np.maximum(s0, -2.0 * y0 / span)  # steeper, q would cross the centre plane short of the stem
+    span = np.maximum(np.abs(x_contour(z) - x_end), h)  # the keel point's own waterline ends at spec.x
+    s0 = np.maximum(s0, -2.0 * y0 / span)  # steeper, q would cross the centre plane short of the end
     q = y0 + s0 * h - (y0 + s0 * span) * (h / span) ** 2
     share = (z - spec.z_keel) / (spec.z_deck - spec.z_keel)
     y = np.clip(q + share * (spec.y_deck - q[0]), 0.0, spec.y_max)
