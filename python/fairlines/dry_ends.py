@@ -41,11 +41,14 @@ SECTION_HEIGHTS = 60
 SAMPLES = 401
 
 
-def _half_breadth_of(curve, z: np.ndarray) -> np.ndarray:
-    """Half-breadth (m) of a designed section (deck -> keel) at heights z, as a function of height."""
-    p = np.asarray(curve.evaluate(np.linspace(0.0, 1.0, SAMPLES)))[::-1]
-    keep = np.concatenate([[True], np.diff(p[:, 2]) > 0])
-    return np.interp(z, p[keep, 2], p[keep, 1])
+def section_half_breadth(curve, z: np.ndarray, samples: int = SAMPLES, outside: float | None = None) -> np.ndarray:
+    """Half-breadth (m) of a section curve (3-D, deck -> keel) at heights z (m), read as a
+    function of height from `samples` points over its knots; beyond its heights the nearest
+    end's, or `outside`."""
+    kn = np.asarray(curve.knots)
+    p = np.asarray(curve.evaluate(np.linspace(kn[0], kn[-1], samples)))
+    order = np.argsort(p[:, 2], kind="stable")
+    return np.interp(z, p[order, 2], p[order, 1], left=outside, right=outside)
 
 
 def end_waterlines(end_specs: list, lpp: float, draft: float) -> tuple:
@@ -54,8 +57,8 @@ def end_waterlines(end_specs: list, lpp: float, draft: float) -> tuple:
     inner, end = (d.curve for d in _native.design_sections(end_specs))
     top = min(float(np.asarray(c.evaluate([0.0]))[0, 2]) for c in (inner, end))
     z = np.linspace(draft, top, SAMPLES)
-    y_end = _half_breadth_of(end, z)
-    return z, y_end, (y_end - _half_breadth_of(inner, z)) / (END_SLOPE_BASE * lpp)
+    y_end = section_half_breadth(end, z)
+    return z, y_end, (y_end - section_half_breadth(inner, z)) / (END_SLOPE_BASE * lpp)
 
 
 def end_contour(profile, x_end: float, x_tip: float):

@@ -35,6 +35,7 @@ import numpy as np
 
 from . import _native
 from .basic_curves import tersely
+from .dry_ends import section_half_breadth
 from .offsets import HullData
 from .preprocess.rebuild import distances
 
@@ -679,11 +680,7 @@ def _designed_half_breadth(spec, z: np.ndarray, need_area: bool = True) -> np.nd
     design = _native.design_section(spec)
     if need_area and not design.area_met:
         return np.full(z.shape, np.nan)
-    curve = design.curve
-    kn = np.asarray(curve.knots)
-    pts = np.asarray(curve.evaluate(np.linspace(kn[0], kn[-1], 201)))
-    order = np.argsort(pts[:, 2], kind="stable")
-    return np.interp(z, pts[order, 2], pts[order, 1], left=np.nan, right=np.nan)
+    return section_half_breadth(design.curve, z, samples=201, outside=np.nan)
 
 
 def _section_misfit(spec, z: np.ndarray, y: np.ndarray, need_area: bool = True) -> float:

@@ -27,7 +27,7 @@ import re
 import numpy as np
 
 from ._native import InvalidInput, limits
-from .offsets_lines import DECK_Z, KEEL_Z, line_kind, section_with_lines, station_lines
+from .offsets_lines import line_kind, section_with_lines, station_lines
 
 # Two stations closer than this fraction of Lpp are the same station (duplicates).
 STATION_MATCH_TOL = 1e-9
@@ -199,8 +199,9 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
     notes = []
     z, table = _waterlines_rising(t, table, notes)
     labels, xs, table, extra = _stations_from_ap(t, labels, xs, table, extra, notes)
-    table = _fill_end_blanks(labels, xs, table, z, notes, _keel_and_deck(t, extra))
-    sections = _sections_of_table(t, labels, xs, table, z, notes, extra)
+    lines = [station_lines(t.lines, cells, t.unit) for cells in extra] if t.lines else None
+    table = _fill_end_blanks(labels, xs, table, z, notes, lines)
+    sections = _sections_of_table(t, labels, xs, table, z, notes, lines)
     data = HullData(name or pathlib.Path(path).stem, lpp, beam, draft, sections=sections,
                     offsets={"x": xs, "z": z, "half_breadths": table, "labels": labels, "extra": extra},
                     notes=notes, source=str(path))
@@ -358,21 +359,15 @@ def _along_waterline(xs: np.ndarray, col: np.ndarray, i: int, zero_ok: bool = Fa
     return float(np.polynomial.Polynomial.fit(xs[ks], col[ks], len(ks) - 1)(xs[i]))
 
 
-def _keel_and_deck(t: _Layout, extra) -> np.ndarray:
-    """(stations, 2) heights (m) of each station's keel_z and deck_z cells, NaN where not given."""
-    cols = [next((h for h, kind in t.lines.items() if kind[0] == name), None) for name in (KEEL_Z, DECK_Z)]
-    return np.array([[e[h] * t.unit if h else np.nan for h in cols] for e in extra]).reshape(len(extra), 2)
-
-
-def _fill_end_blanks(labels, xs, table, z, notes, keel_deck=None):
+def _fill_end_blanks(labels, xs, table, z, notes, lines=None):
     """A station's blank cells above its highest offset and below its lowest, on waterlines the
     stations either side have, filled along those waterlines (:func:`_along_waterline`; noted):
     a missing deck-level cell would otherwise end the section low and lower its deck edge, a
     missing keel cell start it high as a flat of bottom. The end stations, waterlines a side
-    lacks, below a station's keel or above its deck edge (`keel_deck`, (stations, 2) heights,
-    m, NaN where the table does not give them), above a station whose
-    highest offset is 0 (the hull ends on the centre plane there) or where a neighbour other
-    than an end station is 0, stay blank."""
+    lacks, below a station's keel or above its deck edge (`lines`, offsets_lines.station_lines
+    of each station, where the table gives them), above a station whose highest offset is 0
+    (the hull ends on the centre plane there) or where a neighbour other than an end station is
+    0, stay blank."""
     table = np.array(table, dtype=float)
     x = np.asarray(xs, float)
     for i in range(1, len(xs) - 1):
@@ -383,7 +378,7 @@ def _fill_end_blanks(labels, xs, table, z, notes, keel_deck=None):
         for below, js in ((True, range(given[0] - 1, -1, -1)),
                           (False, range(given[-1] + 1, len(z)) if table[i, given[-1]] > 0 else ())):
             for j in js:
-                if keel_deck is not None and (z[j] < keel_deck[i, 0] if below else z[j] > keel_deck[i, 1]):
+                if lines is not None and _beyond_lines(lines[i], z[j], below):
                     break
                 v = _along_waterline(x, table[:, j], i, zero_ok=below)
                 if v is None:
@@ -398,11 +393,18 @@ def _fill_end_blanks(labels, xs, table, z, notes, keel_deck=None):
     return table
 
 
-def _sections_of_table(t: _Layout, labels, xs, table, z, notes, extra):
-    """One (y, z) section per station, with the table's deck, keel and buttock lines
-    (offsets_lines); blank cells are left out of it (noted)."""
+def _beyond_lines(lines: dict, z: float, below: bool) -> bool:
+    """Whether height z (m) lies below the station's keel point (`below`) or above its deck edge."""
+    if below:
+        return lines["keel"] is not None and z < lines["keel"]
+    return lines["deck"] is not None and z > lines["deck"][1]
+
+
+def _sections_of_table(t: _Layout, labels, xs, table, z, notes, lines=None):
+    """One (y, z) section per station, with the table's deck, keel and buttock lines (`lines`,
+    offsets_lines.station_lines of each station); blank cells are left out of it (noted)."""
     sections = []
-    for lab, xpos, hb, cells in zip(labels, xs, table, extra):
+    for k, (lab, xpos, hb) in enumerate(zip(labels, xs, table)):
         missing = np.isnan(hb)
         if missing.all():
             raise InvalidInput(f"{t.path}: station {lab!r} has no half-breadths; expected at least one number")
@@ -410,11 +412,10 @@ def _sections_of_table(t: _Layout, labels, xs, table, z, notes, extra):
             notes.append(f"station {lab!r}: {int(missing.sum())} blank cell(s) at z = "
                          + ", ".join(f"{v:.4g}" for v in z[missing]) + " m left out of the section")
         points = section_from_offsets(hb, z)
-        if t.lines:
-            points = section_with_lines(points, station_lines(t.lines, cells, t.unit), lab, str(t.path), t.beam,
-                                        float(np.ptp(z)))
+        if lines is not None:
+            points = section_with_lines(points, lines[k], lab, str(t.path), t.beam, float(np.ptp(z)))
         sections.append(Section(float(xpos), points, lab))
-    if t.lines:
+    if lines is not None:
         notes.append("the table's " + ", ".join(t.lines) + " column(s) read into the sections")
         check_sections(sections, str(t.path))
     return sections
