@@ -14,7 +14,9 @@ Format (JSON; ``docs/hull_description.schema.json`` is its JSON Schema)::
                    "given": [{"x": 12.0, "points": [[y, z], ...]}, ...]},   # optional shapes
       "basic_curves": {"profile": ..., "dwl": ..., "deck": ..., "sac": ...,
                        "top_corner": ..., "deadrise": ..., "character": ...},
-      "skinning": {"e2": 1.0, "e3": 0.0},
+      "skinning": {"e2": 1.0, "e3": 0.0,         # fairness of the rows along the hull
+                   "station_mean": 0.375},        # each section the mean of the family's at x +- 0.375
+                                                  # of the station spacing (0: as designed)
       "bulb": {...},                              # optional bulbous bow (Kracht coefficients)
       "skeg": {"x_aft": 13.0, "x_fore": 42.0, "half_thickness": 0.8},  # optional skeg under the run
       "dome": {"x_aft": 104.0, "x_fore": 120.0, "depth": 2.0, "half_breadth": 1.4}  # optional sonar dome
@@ -91,6 +93,7 @@ from typing import Any
 import numpy as np
 
 from . import _native
+from .station_mean import STATION_MEAN
 from .validation import bad, integer, keyed_object, number, text_value
 
 __all__ = [
@@ -488,6 +491,7 @@ class HullDescription:
     section_n_control: int = 20
     skin_e2: float = 1.0
     skin_e3: float = 0.0
+    skin_station_mean: float = STATION_MEAN
     notes: str = ""
     bulb: BulbSpec | None = None
     design: dict | None = None  # the particulars a designer built it from (kept, not used)
@@ -528,11 +532,15 @@ class HullDescription:
                 given, missing = pair if pair[0] in bc else pair[::-1]
                 raise _native.InvalidInput(f"basic_curves.{missing} is missing; expected it with basic_curves.{given} "
                                            "(the bilge corner's breadth and height are given together)")
-        sk = keyed_object("skinning", d.get("skinning", {}), ("e2", "e3"))
+        sk = keyed_object("skinning", d.get("skinning", {}), ("e2", "e3", "station_mean"))
         desc.skin_e2 = number("skinning.e2", sk.get("e2", 1.0))
         desc.skin_e3 = number("skinning.e3", sk.get("e3", 0.0))
         if desc.skin_e2 < 0 or desc.skin_e3 < 0 or desc.skin_e2 + desc.skin_e3 <= 0:
             raise _native.InvalidInput(f"skinning.e2 / e3 are {desc.skin_e2} / {desc.skin_e3}; expected weights >= 0, not both 0")
+        desc.skin_station_mean = number("skinning.station_mean", sk.get("station_mean", STATION_MEAN))
+        if not 0.0 <= desc.skin_station_mean < 1.0:
+            raise _native.InvalidInput(f"skinning.station_mean is {desc.skin_station_mean}; expected a fraction of the "
+                                       "station spacing in [0, 1) (0: the sections as designed)")
         if d.get("bulb") is not None:
             desc.bulb = BulbSpec.from_dict(d["bulb"], "bulb")
         if d.get("skeg") is not None:
@@ -595,7 +603,7 @@ class HullDescription:
             "stations": {"x": list(map(float, self.station_x))} if self.station_x else {"count": self.station_count},
             "sections": {"n_control": self.section_n_control},
             "basic_curves": {k: v.to_dict() for k, v in self.curves.items()},
-            "skinning": {"e2": self.skin_e2, "e3": self.skin_e3},
+            "skinning": {"e2": self.skin_e2, "e3": self.skin_e3, "station_mean": self.skin_station_mean},
         }
         if self.given_sections:
             d["sections"]["given"] = [{"x": float(x), "points": p.tolist()} for x, p in self.given_sections]

@@ -26,7 +26,7 @@ import numpy as np
 
 from . import _native
 from . import basic_curves as _basic_curves
-from . import dry_ends
+from . import dry_ends, station_mean
 from .basic_curves import (CORNER_FULLNESS_BOUNDS, FULLNESS_BOUNDS, BasicCurve, immersed_range, solve_curve, solve_sac,
                            solve_sac_area)
 from .description import DOME_NECK, FORM_ALIASES, FORM_KEYS, BasicCurveSpec, HullDescription, load_description
@@ -48,6 +48,9 @@ BAND_MARGIN = (0.05, 0.002)
 # Stations whose immersed box is within this many end bands (fairlines.sections kEndBand) of
 # vanishing get no band: their area fades out there anyway.
 BAND_FREE = 2.0
+# The station mean's samples (fairlines.station_mean) stay this fraction of the way to a
+# neighbouring station at most (stations added over an overhang or a dome lie closer).
+MEAN_REACH = 0.45
 # Gauss points per span of the hydrostatics a bulb is sized from (volume, midship area): 1e-11
 # of the 8-point figures at half the time.
 SIZING_GAUSS = 4
@@ -135,6 +138,15 @@ def _with_stations(stations: np.ndarray, extra: np.ndarray) -> np.ndarray:
     return np.union1d(stations, [x for x in extra if np.min(np.abs(stations - x)) > gap])
 
 
+def station_spacing(x: np.ndarray, x_aft: float, x_fore: float, count: int) -> np.ndarray:
+    """The spacing (m) of station_positions' clustered stations about each x (before junctions
+    move them): (x_fore - x_aft) / (count - 1) (1 - c cos(2 pi s)), s the station parameter at x."""
+    s = np.linspace(0.0, 1.0, 4 * count)
+    xc = x_aft + (x_fore - x_aft) * (s - STATION_CLUSTERING * np.sin(2 * np.pi * s) / (2 * np.pi))
+    sx = np.interp(x, xc, s)
+    return (x_fore - x_aft) / (count - 1) * (1 - STATION_CLUSTERING * np.cos(2 * np.pi * sx))
+
+
 def station_positions(x_aft: float, x_fore: float, count: int, junctions: list[float] = ()) -> np.ndarray:
     """`count` stations on [x_aft, x_fore] clustered toward both ends, with the station nearest
     each junction (inside the range) moved onto it."""
@@ -160,6 +172,7 @@ class Hull:
     def _invalidate(self) -> None:
         self._curves: dict[str, BasicCurve] | None = None
         self._designs: list | None = None
+        self._sections: list | None = None
         self._skin = None
         self._ship = None
         self._stations: np.ndarray | None = None
@@ -514,8 +527,41 @@ class Hull:
 
     @property
     def sections(self) -> list:
-        """Section curves (3-D NurbsCurves, deck to keel, x order), all on one knot vector."""
-        return [s.curve for s in self.section_designs]
+        """Section curves the skin interpolates (3-D NurbsCurves, deck to keel, x order), all on
+        one knot vector: the designed sections, each the family's mean over a short window about
+        its station (fairlines.station_mean; skinning.station_mean) except at the hull's ends and
+        over the given sections (cached)."""
+        if self._sections is None:
+            xs = self.stations()
+            designed = [s.curve for s in self.section_designs]
+            x, owner = station_mean.window(xs, self._station_mean_offsets(xs))
+            samples = _native.design_sections(self.section_specs(x)) if len(x) else []
+            self._sections = station_mean.mean_sections(designed, [s.curve for s in samples], owner)
+        return self._sections
+
+    def _station_mean_offsets(self, xs: np.ndarray) -> np.ndarray:
+        """(len(xs),) offsets d (m) of the station mean (fairlines.station_mean): the fraction
+        skinning.station_mean of the clustered spacing at the station (of its smaller spacing with
+        listed stations), at most MEAN_REACH of the way to a neighbour; 0 where a station is kept
+        as designed: the hull's ends, the given sections, the appendages' stations, the SAC's flat
+        part and where the waterline is at B/2 (a mean there would dip below the flat or the peak)."""
+        d = self.description
+        near = np.minimum(np.diff(xs, prepend=-np.inf), np.diff(xs, append=np.inf))
+        spacing = near if d.station_x is not None else station_spacing(xs, d.x_aft, d.x_fore, d.station_count)
+        out = np.minimum(d.skin_station_mean * spacing, MEAN_REACH * near)
+        keep = np.array([g is not None for g in self._given_shapes(xs)], dtype=bool)
+        if d.skeg is not None or d.dome is not None:
+            keep |= [math.isfinite(s.skeg_bottom) or math.isfinite(s.dome_bottom)
+                     for s in self.section_specs(xs, with_area=False)]
+        tol = 1e-9 * d.principal.lpp
+        for name in ("sac", "dwl"):  # a mean would dip below a flat part or a peak
+            spec = d.curves[name]
+            if spec.flat_from is not None and spec.flat_to is not None:
+                keep |= (xs >= spec.flat_from - tol) & (xs <= spec.flat_to + tol)
+        keep |= self._curves["dwl"](xs, outside=0.0) >= d.principal.breadth / 2 - tol
+        out[keep] = 0.0
+        out[[0, -1]] = 0.0
+        return out
 
     def sections_at(self, x: Any) -> list:
         """The designed sections at any x (m), between the stations too."""

@@ -1,0 +1,72 @@
+"""Each station's section as the mean of the section family's on either side of the station.
+
+The skin interpolates the sections at its stations, so it samples the family there. Between
+the stations the family carries detail shorter than their spacing: the section spline's error
+swings as the waterline point Q passes its knots (docs/sections.md), one period per knot span
+of Q, about a station spacing near the ends. Sampled at the stations, that detail comes back as
+wobbles a few stations long in the waterlines and buttocks. The mean of the family's sections
+at x +- d, d a fraction of the smaller neighbouring spacing, takes most of it out before the
+sampling, the way a signal is filtered before it is sampled. The window is symmetric: an
+offset mean would place the family a little off its station, and near the stem, where the
+keel point climbs the stem, millimetres of x move the section by centimetres.
+
+Kept as designed (fl.Hull chooses them): the hull's ends, the stations the description's
+given sections reach (measured shapes are met as given), the appendages' stations and the ends
+of the SAC's and the waterline's flat parts, where a mean would dip below the flat (a hump in
+the SAC, a waterline short of B/2). A control-point coordinate the three sections share (a flat
+of side or bottom) keeps its exact value, so the skin still holds its runs. The other junctions
+(the flat of keel's and the deck's ends, the waterline's ends) are averaged: kept as designed,
+they cost 9 of the 210 waterlines below T clean and 6-25 of the 176 above it in
+bench_fairness_space's 100 hulls (docs/sections.md).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _native
+
+__all__ = ["STATION_MEAN", "window", "mean_sections", "deck_ramp"]
+
+STATION_MEAN = 0.375  # default offset d of the two sections, fraction of the smaller neighbouring spacing
+SHARED_TOL = 1e-9     # m: a coordinate the three sections hold within this keeps the station's value
+DECK_ROWS = 4         # the mean's share rises from 0 at the deck edge to 1 over this many control points
+
+
+def deck_ramp(n: int) -> np.ndarray:
+    """(n,) share of the mean by control point, deck edge first: a smoothstep from 0 to 1 over
+    DECK_ROWS, so the deck edge stays as designed and the section leaves it without a kink."""
+    t = np.clip(np.arange(n) / DECK_ROWS, 0.0, 1.0)
+    return t * t * (3.0 - 2.0 * t)
+
+
+def window(xs: np.ndarray, offsets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Where the family is sampled for the station mean.
+
+    xs: (q,) stations, increasing, metres; offsets: (q,) d of each station, metres, 0 for a
+    station kept as designed, else less than its distance to either neighbour. Returns
+    (x, owner): (2 m,) positions, metres, x_i - d_i then x_i + d_i for each averaged station,
+    and the station index i of each."""
+    inner = np.flatnonzero(np.asarray(offsets) > 0)
+    d = offsets[inner]
+    return np.column_stack([xs[inner] - d, xs[inner] + d]).ravel(), np.repeat(inner, 2)
+
+
+def mean_sections(curves: list, samples: list, owner: np.ndarray) -> list:
+    """The stations' sections with each averaged one replaced by the mean of its two samples.
+
+    curves: the q section curves at the stations (one knot vector); samples: the section
+    curves at window()'s positions, in its order; owner: window()'s station indices.
+    Returns q NurbsCurves on the same knots, each averaged one in its station's plane x."""
+    out = list(curves)
+    share = deck_ramp(len(np.asarray(curves[0].control_points)))[:, None]
+    for k, i in enumerate(owner[::2]):
+        own = np.asarray(curves[i].control_points)
+        pair = np.stack([np.asarray(samples[2 * k].control_points), np.asarray(samples[2 * k + 1].control_points)])
+        mean = pair.mean(axis=0)
+        shared = np.maximum(np.abs(pair[0] - own), np.abs(pair[1] - own)) <= SHARED_TOL
+        mean[shared] = own[shared]
+        mean = own + share * (mean - own)
+        mean[:, 0] = own[:, 0]
+        out[i] = _native.NurbsCurve(curves[i].degree, list(curves[i].knots), mean)
+    return out
