@@ -528,9 +528,9 @@ class Hull:
     @property
     def sections(self) -> list:
         """Section curves the skin interpolates (3-D NurbsCurves, deck to keel, x order), all on
-        one knot vector: the designed sections, each the family's mean over a short window about
-        its station (fairlines.station_mean; skinning.station_mean) except at the hull's ends and
-        over the given sections (cached)."""
+        one knot vector: the designed sections, each the mean of the family's a little either side
+        of its station (fairlines.station_mean; skinning.station_mean) where
+        _station_mean_offsets does not keep it as designed (cached)."""
         if self._sections is None:
             xs = self.stations()
             designed = [s.curve for s in self.section_designs]
@@ -558,7 +558,7 @@ class Hull:
             spec = d.curves[name]
             if spec.flat_from is not None and spec.flat_to is not None:
                 keep |= (xs >= spec.flat_from - tol) & (xs <= spec.flat_to + tol)
-        keep |= self._curves["dwl"](xs, outside=0.0) >= d.principal.breadth / 2 - tol
+        keep |= self.basic_curves["dwl"](xs, outside=0.0) >= d.principal.breadth / 2 - tol
         out[keep] = 0.0
         out[[0, -1]] = 0.0
         return out
