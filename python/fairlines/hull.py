@@ -363,11 +363,12 @@ class Hull:
                 continue  # an immersed transom: no sections beyond the waterline's end
             taylor = [dwl.derivative(x_end, k) / math.factorial(k) for k in (1, 2, 3)]
             bend = DRY_TRANSOM_LEAN_BEND if side == "aft" else 0.0
-            mask = xs >= x_end if side == "fore" else xs <= x_end
-            for k in np.flatnonzero(mask):
+            beyond = np.flatnonzero(xs >= x_end if side == "fore" else xs <= x_end)
+            keel = prof(xs[beyond]).tolist() if beyond.size else []
+            for k, z_keel in zip(beyond, keel):
                 h = float(xs[k]) - x_end
                 b_v = sum(c * h ** (j + 1) for j, c in enumerate(taylor))
-                d_v = draft - float(prof(float(xs[k]))[0])
+                d_v = draft - z_keel
                 if d_v < 0 and b_v < 0:
                     lean = b_v / d_v
                 else:  # at the end itself: the limit of the lean, the end slopes' ratio
@@ -454,31 +455,37 @@ class Hull:
         prof = prof + offsets[:, 3]
         skeg, share = d.skeg.at(xs, np.minimum(prof, z_deck)) if d.skeg is not None else (np.full(len(xs), np.nan), None)
         dome, dome_b = d.dome.at(xs, np.minimum(prof, z_deck)) if d.dome is not None else (np.full(len(xs), np.nan), None)
+        # Python floats once (per-element numpy scalars cost most of this loop)
+        xl, deck, z_deck, prof, dwl, lower = (np.asarray(a, dtype=float).tolist() for a in (xs, deck, z_deck, prof, dwl, lower))
+        sac = sac.tolist() if with_area else None
+        shapes = list(zip(*(shape[k].tolist() for k in SHAPE_CURVES)))
+        corner = {field: values.tolist() for field, values in corner.items()}
+        skeg, dome = skeg.tolist(), dome.tolist()
         specs = []
-        for i, xi in enumerate(xs):
+        for i, xi in enumerate(xl):
             s = _native.SectionSpec()
             if given[i] is not None:
                 s.given, s.given_fore, s.given_mix = given[i]
-            if np.isfinite(skeg[i]) and share[i] > 0:
-                s.skeg_bottom, s.skeg_share = float(skeg[i]), float(share[i])
+            if math.isfinite(skeg[i]) and share[i] > 0:
+                s.skeg_bottom, s.skeg_share = skeg[i], float(share[i])
                 s.skeg_half_thickness, s.skeg_fillet = d.skeg.half_thickness, d.skeg.fillet
-            if np.isfinite(dome[i]) and dome_b[i] > 0:
-                s.dome_bottom, s.dome_half_breadth = float(dome[i]), float(dome_b[i])
+            if math.isfinite(dome[i]) and dome_b[i] > 0:
+                s.dome_bottom, s.dome_half_breadth = dome[i], float(dome_b[i])
                 s.dome_neck = float(DOME_NECK * dome_b[i])
-            s.x, s.y_max, s.n_control = float(xi), limit, d.section_n_control
-            s.y_deck = float(deck[i])
-            s.z_deck = float(z_deck[i])
-            s.z_keel = float(min(prof[i], z_deck[i]))
-            s.top_corner, s.deadrise, s.character = (float(shape[k][i]) for k in SHAPE_CURVES)
+            s.x, s.y_max, s.n_control = xi, limit, d.section_n_control
+            s.y_deck = deck[i]
+            s.z_deck = z_deck[i]
+            s.z_keel = min(prof[i], z_deck[i])
+            s.top_corner, s.deadrise, s.character = shapes[i]
             for field, values in corner.items():
-                setattr(s, field, float(values[i]))
-            if np.isfinite(lower[i]):
-                s.lower_angle = float(lower[i])
+                setattr(s, field, values[i])
+            if math.isfinite(lower[i]):
+                s.lower_angle = lower[i]
                 s.draft = pr.draft  # where the dry section's virtual waterline point lies
-            if np.isfinite(dwl[i]) and dwl[i] > 0 and s.z_keel < pr.draft:
-                s.draft, s.y_dwl = pr.draft, float(min(dwl[i], half_b))
-                if with_area and np.isfinite(sac[i]):
-                    s.half_area = float(max(sac[i], 0.0) / 2)
+            if math.isfinite(dwl[i]) and dwl[i] > 0 and s.z_keel < pr.draft:
+                s.draft, s.y_dwl = pr.draft, min(dwl[i], half_b)
+                if with_area and math.isfinite(sac[i]):
+                    s.half_area = max(sac[i], 0.0) / 2
             specs.append(s)
         if with_area:
             self._read_dry_ends(specs, given)

@@ -59,14 +59,17 @@ def mean_sections(curves: list, samples: list, owner: np.ndarray) -> list:
     curves at window()'s positions, in its order; owner: window()'s station indices.
     Returns q NurbsCurves on the same knots, each averaged one in its station's plane x."""
     out = list(curves)
-    share = deck_ramp(len(np.asarray(curves[0].control_points)))[:, None]
-    for k, i in enumerate(owner[::2]):
-        own = np.asarray(curves[i].control_points)
-        pair = np.stack([np.asarray(samples[2 * k].control_points), np.asarray(samples[2 * k + 1].control_points)])
-        mean = pair.mean(axis=0)
-        shared = np.maximum(np.abs(pair[0] - own), np.abs(pair[1] - own)) <= SHARED_TOL
-        mean[shared] = own[shared]
-        mean = own + share * (mean - own)
-        mean[:, 0] = own[:, 0]
-        out[i] = _native.NurbsCurve(curves[i].degree, list(curves[i].knots), mean)
+    if not len(owner):
+        return out
+    stations = owner[::2]
+    own = np.array([curves[i].control_points for i in stations])        # (m, n, 3)
+    pairs = np.array([c.control_points for c in samples]).reshape(len(stations), 2, *own.shape[1:])
+    mean = pairs.mean(axis=1)
+    shared = np.abs(pairs - own[:, None]).max(axis=1) <= SHARED_TOL
+    mean[shared] = own[shared]
+    mean = own + deck_ramp(own.shape[1])[None, :, None] * (mean - own)
+    mean[..., 0] = own[..., 0]
+    degree, knots = curves[0].degree, list(curves[0].knots)
+    for i, m in zip(stations, mean):
+        out[i] = _native.NurbsCurve(degree, knots, m)
     return out
