@@ -9,9 +9,11 @@ Each section (``fl.design_section``) is built from its deck point, keel point, w
 and the area the SAC asks below the waterline: a guide polygon with rounded corners (flat of
 side and bottom where the bilge is tight, a V where the section is fine, flare above the
 waterline where the deck is wider) sampled on one knot vector shared by every section, so the
-sections are the surface's rows and change smoothly along the hull. ``fl.fair_skin``
-interpolates each row along the hull (v proportional to x), holding runs that stay constant
-(the parallel middle body) exactly. The surface is the half hull y >= 0, u from the deck (0) to
+sections are the surface's rows and change smoothly along the hull. Each section the skin
+interpolates is the mean of the family's a little either side of its station
+(``fairlines.station_mean``), so detail shorter than a station spacing is not sampled into
+wobbles. ``fl.fair_skin`` interpolates each row along the hull (v proportional to x), holding
+runs that stay constant (the parallel middle body) exactly. The surface is the half hull y >= 0, u from the deck (0) to
 the keel (1), v from the aft end (0) to the forward end (1).
 """
 

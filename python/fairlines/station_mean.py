@@ -5,19 +5,18 @@ the stations the family carries detail shorter than their spacing: the section s
 swings as the waterline point Q passes its knots (docs/sections.md), one period per knot span
 of Q, about a station spacing near the ends. Sampled at the stations, that detail comes back as
 wobbles a few stations long in the waterlines and buttocks. The mean of the family's sections
-at x +- d, d a fraction of the smaller neighbouring spacing, takes most of it out before the
-sampling, the way a signal is filtered before it is sampled. The window is symmetric: an
-offset mean would place the family a little off its station, and near the stem, where the
-keel point climbs the stem, millimetres of x move the section by centimetres.
+at x +- d, d a fraction of the station spacing, takes most of it out before the sampling, the
+way a signal is filtered before it is sampled. The window is symmetric: an offset mean would
+place the family a little off its station, and near the stem, where the keel point climbs the
+stem, millimetres of x move the section by centimetres.
 
-Kept as designed (fl.Hull chooses them): the hull's ends, the stations the description's
-given sections reach (measured shapes are met as given), the appendages' stations and the ends
-of the SAC's and the waterline's flat parts, where a mean would dip below the flat (a hump in
-the SAC, a waterline short of B/2). A control-point coordinate the three sections share (a flat
-of side or bottom) keeps its exact value, so the skin still holds its runs. The other junctions
-(the flat of keel's and the deck's ends, the waterline's ends) are averaged: kept as designed,
-they cost 9 of the 210 waterlines below T clean and 6-25 of the 176 above it in
-bench_fairness_space's 100 hulls (docs/sections.md).
+fl.Hull chooses d and the stations kept as designed (the hull's ends, given sections,
+appendages, the SAC's flat part, where the waterline is at B/2). Here: a control-point
+coordinate the three sections share (a flat of side or bottom) keeps its exact value, so the
+skin still holds its runs; and the deck edge keeps its own, the mean's share rising over
+DECK_ROWS control points below it (kept with no ramp, the deck made an S frame in 99 of 100
+hulls). The keel and stem contour is averaged: it moves inside the profile's bends by up to
+0.04 % Lpp (held like the deck edge, it costs what the mean gains; docs/sections.md).
 """
 
 from __future__ import annotations
@@ -28,7 +27,7 @@ from . import _native
 
 __all__ = ["STATION_MEAN", "window", "mean_sections", "deck_ramp"]
 
-STATION_MEAN = 0.375  # default offset d of the two sections, fraction of the smaller neighbouring spacing
+STATION_MEAN = 0.375  # default offset d of the two sections, fraction of the clustered station spacing
 SHARED_TOL = 1e-9     # m: a coordinate the three sections hold within this keeps the station's value
 DECK_ROWS = 4         # the mean's share rises from 0 at the deck edge to 1 over this many control points
 
