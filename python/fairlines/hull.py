@@ -140,20 +140,23 @@ def _with_stations(stations: np.ndarray, extra: np.ndarray) -> np.ndarray:
     return np.union1d(stations, [x for x in extra if np.min(np.abs(stations - x)) > gap])
 
 
+def _clustered(s: np.ndarray, x_aft: float, x_fore: float) -> np.ndarray:
+    """x (m) at station parameters s in [0, 1]: spacing 1 - c cos(2 pi s), c = STATION_CLUSTERING."""
+    return x_aft + (x_fore - x_aft) * (s - STATION_CLUSTERING * np.sin(2 * np.pi * s) / (2 * np.pi))
+
+
 def station_spacing(x: np.ndarray, x_aft: float, x_fore: float, count: int) -> np.ndarray:
     """The spacing (m) of station_positions' clustered stations about each x (before junctions
     move them): (x_fore - x_aft) / (count - 1) (1 - c cos(2 pi s)), s the station parameter at x."""
     s = np.linspace(0.0, 1.0, 4 * count)
-    xc = x_aft + (x_fore - x_aft) * (s - STATION_CLUSTERING * np.sin(2 * np.pi * s) / (2 * np.pi))
-    sx = np.interp(x, xc, s)
+    sx = np.interp(x, _clustered(s, x_aft, x_fore), s)
     return (x_fore - x_aft) / (count - 1) * (1 - STATION_CLUSTERING * np.cos(2 * np.pi * sx))
 
 
 def station_positions(x_aft: float, x_fore: float, count: int, junctions: list[float] = ()) -> np.ndarray:
     """`count` stations on [x_aft, x_fore] clustered toward both ends, with the station nearest
     each junction (inside the range) moved onto it."""
-    s = np.linspace(0.0, 1.0, count)
-    x = x_aft + (x_fore - x_aft) * (s - STATION_CLUSTERING * np.sin(2 * np.pi * s) / (2 * np.pi))
+    x = _clustered(np.linspace(0.0, 1.0, count), x_aft, x_fore)
     mean = (x_fore - x_aft) / (count - 1)
     for xj in sorted(junctions):
         if not x_aft + 1e-9 * mean < xj < x_fore - 1e-9 * mean:
@@ -174,6 +177,7 @@ class Hull:
     def _invalidate(self) -> None:
         self._curves: dict[str, BasicCurve] | None = None
         self._designs: list | None = None
+        self._specs: list | None = None  # the stations' SectionSpecs the designs were made from
         self._sections: list | None = None
         self._skin = None
         self._ship = None
@@ -531,7 +535,8 @@ class Hull:
     def section_designs(self) -> list:
         """fl.SectionDesign of every station (cached): the curve, the shape knob, the fullness."""
         if self._designs is None:
-            self._designs = list(_native.design_sections(self.section_specs()))
+            self._specs = self.section_specs()
+            self._designs = list(_native.design_sections(self._specs))
         return self._designs
 
     @property
@@ -543,25 +548,24 @@ class Hull:
         if self._sections is None:
             xs = self.stations()
             designed = [s.curve for s in self.section_designs]
-            x, owner = station_mean.window(xs, self._station_mean_offsets(xs))
+            x, averaged = station_mean.window(xs, self._station_mean_offsets(xs, self._specs))
             samples = _native.design_sections(self.section_specs(x)) if len(x) else []
-            self._sections = station_mean.mean_sections(designed, [s.curve for s in samples], owner)
+            self._sections = station_mean.mean_sections(designed, [s.curve for s in samples], averaged)
         return self._sections
 
-    def _station_mean_offsets(self, xs: np.ndarray) -> np.ndarray:
+    def _station_mean_offsets(self, xs: np.ndarray, specs: list) -> np.ndarray:
         """(len(xs),) offsets d (m) of the station mean (fairlines.station_mean): the fraction
         skinning.station_mean of the clustered spacing at the station (of its smaller spacing with
         listed stations), at most MEAN_REACH of the way to a neighbour; 0 where a station is kept
-        as designed: the hull's ends, the given sections, the appendages' stations, the SAC's flat
-        part and where the waterline is at B/2 (a mean there would dip below the flat or the peak)."""
+        as designed: the hull's ends, the given sections, the appendages' stations (read off the
+        stations' SectionSpecs `specs`), the SAC's flat part and where the waterline is at B/2 (a
+        mean there would dip below the flat or the peak)."""
         d = self.description
         near = np.minimum(np.diff(xs, prepend=-np.inf), np.diff(xs, append=np.inf))
         spacing = near if d.station_x is not None else station_spacing(xs, d.x_aft, d.x_fore, d.station_count)
         out = np.minimum(d.skin_station_mean * spacing, MEAN_REACH * near)
         keep = np.array([g is not None for g in self._given_shapes(xs)], dtype=bool)
-        if d.skeg is not None or d.dome is not None:
-            keep |= [math.isfinite(s.skeg_bottom) or math.isfinite(s.dome_bottom)
-                     for s in self.section_specs(xs, with_area=False)]
+        keep |= [math.isfinite(s.skeg_bottom) or math.isfinite(s.dome_bottom) for s in specs]
         tol = 1e-9 * d.principal.lpp
         for name in ("sac", "dwl"):  # a mean would dip below a flat part or a peak
             spec = d.curves[name]

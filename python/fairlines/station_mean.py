@@ -44,31 +44,30 @@ def window(xs: np.ndarray, offsets: np.ndarray) -> tuple[np.ndarray, np.ndarray]
 
     xs: (q,) stations, increasing, metres; offsets: (q,) d of each station, metres, 0 for a
     station kept as designed, else less than its distance to either neighbour. Returns
-    (x, owner): (2 m,) positions, metres, x_i - d_i then x_i + d_i for each averaged station,
-    and the station index i of each."""
-    inner = np.flatnonzero(np.asarray(offsets) > 0)
-    d = offsets[inner]
-    return np.column_stack([xs[inner] - d, xs[inner] + d]).ravel(), np.repeat(inner, 2)
+    (x, averaged): (2 m,) positions, metres, x_i - d_i then x_i + d_i for each averaged
+    station, and the (m,) indices i of those stations."""
+    averaged = np.flatnonzero(np.asarray(offsets) > 0)
+    d = offsets[averaged]
+    return np.column_stack([xs[averaged] - d, xs[averaged] + d]).ravel(), averaged
 
 
-def mean_sections(curves: list, samples: list, owner: np.ndarray) -> list:
+def mean_sections(curves: list, samples: list, averaged: np.ndarray) -> list:
     """The stations' sections with each averaged one replaced by the mean of its two samples.
 
     curves: the q section curves at the stations (one knot vector); samples: the section
-    curves at window()'s positions, in its order; owner: window()'s station indices.
+    curves at window()'s positions, in its order; averaged: window()'s station indices.
     Returns q NurbsCurves on the same knots, each averaged one in its station's plane x."""
     out = list(curves)
-    if not len(owner):
+    if not len(averaged):
         return out
-    stations = owner[::2]
-    own = np.array([curves[i].control_points for i in stations])        # (m, n, 3)
-    pairs = np.array([c.control_points for c in samples]).reshape(len(stations), 2, *own.shape[1:])
+    own = np.array([curves[i].control_points for i in averaged])        # (m, n, 3)
+    pairs = np.array([c.control_points for c in samples]).reshape(len(averaged), 2, *own.shape[1:])
     mean = pairs.mean(axis=1)
     shared = np.abs(pairs - own[:, None]).max(axis=1) <= SHARED_TOL
     mean[shared] = own[shared]
     mean = own + deck_ramp(own.shape[1])[None, :, None] * (mean - own)
     mean[..., 0] = own[..., 0]
     degree, knots = curves[0].degree, list(curves[0].knots)
-    for i, m in zip(stations, mean):
+    for i, m in zip(averaged, mean):
         out[i] = _native.NurbsCurve(degree, knots, m)
     return out
