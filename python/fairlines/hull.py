@@ -47,6 +47,9 @@ SNAP_FRACTION = 0.5
 # these fractions of the band's width (the family's extremes are a straight V and the tightest
 # bilge the knots allow).
 BAND_MARGIN = (0.05, 0.002)
+# Where no SAC fits the bands so shrunk (a built design's volume cut by 10 % with its DWL kept
+# asks near-V sections at the ends), these margins are tried before the request is refused.
+RELAXED_BAND_MARGIN = (0.01, 0.0005)
 # Stations whose immersed box is within this many end bands (fairlines.sections kEndBand) of
 # vanishing get no band: their area fades out there anyway.
 BAND_FREE = 2.0
@@ -64,6 +67,10 @@ CORNER_CURVES = {"corner_breadth": ("corner_y", 0.02, 1.0), "corner_height": ("c
 POST_TOL = 1e-6
 # Points along the waterline's range where the deck line must clear the waterline.
 DECK_CHECKS = 81
+# Where the waterline runs at the half-breadth limit the deck is asked to clear it less this
+# fraction of the limit: held at the limit from both sides (the waterline rounds past it by
+# 1e-15 m), the deck's design found no solution on a waterline widened by 10 %.
+DECK_CLEARANCE_TOL = 1e-9
 # The sheer (deck-at-side height) stays above T by this fraction of T, and below this multiple of D.
 SHEER_CLEARANCE = 0.01
 SHEER_LIMIT = 2.0
@@ -240,13 +247,7 @@ class Hull:
                     curves["fullness"] = None
                 else:
                     band_key = (shape_key, self.stations().tobytes(), d.section_n_control)
-                    bands = _band_cache.get(band_key, self._fullness_bands)
-                    free = tuple(d.x_aft if end == "aft" else d.x_fore for end in d.posts)
-                    limits = FULLNESS_BOUNDS
-                    if "corner_breadth" in d.curves:
-                        free, limits = self.immersed_range(), CORNER_FULLNESS_BOUNDS
-                    curves["sac"], curves["fullness"] = solve_sac(d.curves["sac"], curves["dwl"], curves["profile"], pr.draft,
-                                                                  fullness=limits, bands=bands, free_ends=free)
+                    curves["sac"], curves["fullness"] = self._solve_sac(_band_cache.get(band_key, self._fullness_ranges))
             except BaseException:
                 self._curves = None
                 raise
@@ -269,7 +270,8 @@ class Hull:
         out["dwl"] = solve_curve("dwl", c["dwl"], xa, xf, lower=0.0, upper=half_b)
         # The deck stays outside the waterline (no tumblehome), so sections flare or stay wall-sided.
         xs = np.linspace(xa, xf, DECK_CHECKS)
-        clear = [(float(x), float(y), "deck >= design waterline") for x, y in zip(xs, out["dwl"](xs))]
+        floor = pr.half_breadth_limit * (1.0 - DECK_CLEARANCE_TOL)
+        clear = [(float(x), min(float(y), floor), "deck >= design waterline") for x, y in zip(xs, np.ravel(out["dwl"](xs)))]
         out["deck"] = solve_curve("deck", c["deck"], x0, x1, lower=0.0, upper=pr.half_breadth_limit, at_least=clear)
         for name, (default, lo, hi) in SHAPE_CURVES.items():
             out[name] = solve_curve(name, c.get(name, BasicCurveSpec(value=default)), x0, x1, lower=lo, upper=hi, maximum=False)
@@ -294,9 +296,30 @@ class Hull:
                     f"ends.{end}_post is true; expected the profile below T at the {end} end (x = {x} m; the waterline "
                     f"ends at {reach:.6g} m) and the deck line and waterline at 0 there (deck {deck:.6g} m, waterline {wl:.6g} m)")
 
-    def _fullness_bands(self) -> list[tuple[float, float, float]]:
+    def _solve_sac(self, ranges: list) -> tuple[BasicCurve, BasicCurve]:
+        """The SAC and its fullness within the stations' fullness `ranges` shrunk by BAND_MARGIN
+        or, where no SAC fits those, by RELAXED_BAND_MARGIN (the refusal then names what that holds)."""
+        d, curves = self.description, self._curves
+        free = tuple(d.x_aft if end == "aft" else d.x_fore for end in d.posts)
+        limits = FULLNESS_BOUNDS
+        if "corner_breadth" in d.curves:
+            free, limits = self.immersed_range(), CORNER_FULLNESS_BOUNDS
+
+        def within(margin):
+            bands = [(x, lo + margin[0] * (hi - lo), hi - margin[1] * (hi - lo)) for x, lo, hi in ranges]
+            return solve_sac(d.curves["sac"], curves["dwl"], curves["profile"], d.principal.draft, fullness=limits, bands=bands,
+                             free_ends=free)
+
+        try:
+            with _basic_curves.terse_errors():
+                return within(BAND_MARGIN)
+        except _native.InfeasibleFormParameters:
+            pass
+        return within(RELAXED_BAND_MARGIN)
+
+    def _fullness_ranges(self) -> list[tuple[float, float, float]]:
         """(x, least, largest) fullness the section family holds at each station inside the
-        waterline's range, shrunk by BAND_MARGIN."""
+        waterline's range."""
         xa, xf = self.immersed_range()
         xs = self.stations()
         xs = xs[(xs > xa) & (xs < xf)]
@@ -307,8 +330,7 @@ class Hull:
                 continue  # where the waterline ends the area fades out: no band
             lo, hi = _native.section_fullness_range(spec)
             if np.isfinite(lo) and np.isfinite(hi) and hi > lo:
-                w = hi - lo
-                out.append((float(x), float(lo + BAND_MARGIN[0] * w), float(hi - BAND_MARGIN[1] * w)))
+                out.append((float(x), float(lo), float(hi)))
         return out
 
     def immersed_range(self) -> tuple[float, float]:

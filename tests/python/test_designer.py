@@ -322,6 +322,42 @@ def test_a_ten_percent_edit_of_a_designed_description_builds(ship, curve, key, f
     assert got == pytest.approx(factor, rel=2e-3)
 
 
+def test_a_waterline_widened_onto_the_half_breadth_keeps_its_deck():
+    """A fine 71 m ship's waterplane area raised 10 % (Cwp 0.75 -> 0.82): its waterline then runs
+    at B/2 forward of the deck's flat part, rounded past it by 1e-15 m, and the deck, which may
+    not pass B/2, was asked to clear that (refused: 'deck ... contradict each other'). It builds,
+    with the waterplane asked and the deck clear of the waterline at its DECK_CHECKS points
+    (between them a spline may dip: 1.1 mm here, under 1e-4 B as on the designed hulls)."""
+    from fairlines.hull import DECK_CHECKS
+
+    p = dict(lpp=70.8, breadth=12.15, draft=5.13, depth=8.2, cb=0.537, lcb=36.89)
+    d = json.loads(fl.design_hull(**p).to_json())
+    area = 1.1 * d["basic_curves"]["dwl"]["waterplane_area"]
+    d["basic_curves"]["dwl"]["waterplane_area"] = area
+    hull = fl.Hull.from_json(json.dumps(d))
+    assert hull.hydrostatics().waterplane_area == pytest.approx(area, rel=2e-3)
+    curves = hull.basic_curves
+    for n, tol in ((DECK_CHECKS, 1e-8), (2001, 1e-4)):
+        xs = np.linspace(*hull.immersed_range(), n)
+        assert np.min(np.ravel(curves["deck"](xs)) - np.ravel(curves["dwl"](xs))) >= -tol * p["breadth"], n
+
+
+def test_a_volume_cut_the_bands_margin_refused_builds_near_the_v():
+    """A 139 m ship of Cb 0.77 with its volume cut 10 % and its waterline, flat parts and profile
+    kept: its ends must be nearly V-shaped. Within the fullness bands shrunk by BAND_MARGIN no SAC
+    holds that (refused, naming 10 024 m^3 at its LCB the least); within RELAXED_BAND_MARGIN one does, so
+    it builds, with the asked volume and LCB and the waterplane it had."""
+    p = dict(lpp=139.38, breadth=16.33, draft=6.32, depth=10.1, cb=0.77, lcb=65.19)
+    hull = fl.design_hull(**p)
+    d = json.loads(hull.to_json())
+    volume = 0.9 * d["basic_curves"]["sac"]["volume"]
+    d["basic_curves"]["sac"]["volume"] = volume
+    h = fl.Hull.from_json(json.dumps(d)).hydrostatics()
+    assert h.volume == pytest.approx(volume, rel=2e-3)
+    assert abs(h.lcb - d["basic_curves"]["sac"]["lcb"]) <= 1e-3 * p["lpp"]
+    assert h.cwp == pytest.approx(hull.hydrostatics().cwp, rel=2e-3)
+
+
 @pytest.mark.parametrize("ship", ["container", "tanker"])
 @pytest.mark.parametrize("shift", [-0.01, 0.01])
 def test_a_one_percent_lcb_edit_of_a_designed_description_builds(ship, shift):
