@@ -19,14 +19,13 @@ import sys
 import numpy as np
 
 import fairlines as fl
-from fairlines.fairness import judge_cut
+from fairlines.fairness import SMALL_LOBE_DEG, judge_cut, read_waterline
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from bench_hull import sample  # noqa: E402  the same design space and sampler
 
 SAMPLES = int(os.environ.get("FAIRLINES_FAIRNESS_SAMPLES", "100"))
 CUT_POINTS = 401
-SMALL_LOBE_DEG = 1.0  # a lobe turning less than this between two others is a wobble, not a shape
 FORE_TIP, AFT_END = 0.015, 0.05  # the ends' stretches where wobbles are placed, fractions of Lpp
 WATERLINES = 6  # T/4 .. D - T/8: the first three up to 0.74 T, the rest from 0.985 T (just under T)
 
@@ -38,25 +37,19 @@ def sign_changes(surface, axis: int, value: float) -> int:
 
 def waterline_reading(surface, z: float, lpp: float) -> tuple[int, dict, bool]:
     """Sign changes, wobbles by where they lie ({"fore tip", "aft end", "between"}: count), and
-    whether one half of the waterline has a second hollow (lobes of SMALL_LOBE_DEG or more)."""
+    whether one half of the waterline has a second hollow (fairlines.fairness.read_waterline)."""
     cut = fl.plane_cut(surface, 2, float(z), CUT_POINTS)
     if len(cut.points) < 3:
         return 0, {}, False
-    judged_cut = judge_cut(cut)
+    read = read_waterline(cut)
     x = np.asarray(cut.points)[:, 0]
     x_aft, x_fore = x.min(), x.max()
-    middle = 0.5 * (x_aft + x_fore)
     wobbles: dict = {}
-    hollows = [0, 0]
-    lobes = judged_cut["lobes"]
-    for k, lobe in enumerate(lobes):
+    for lobe in read["wobbles"]:
         at = lobe["at"][0]
-        if lobe["turn_deg"] < SMALL_LOBE_DEG and 0 < k < len(lobes) - 1:
-            where = "fore tip" if x_fore - at < FORE_TIP * lpp else "aft end" if at - x_aft < AFT_END * lpp else "between"
-            wobbles[where] = wobbles.get(where, 0) + 1
-        elif lobe["sign"] > 0:
-            hollows[int(at >= middle)] += 1
-    return judged_cut["sign_changes"], wobbles, max(hollows) > 1
+        where = "fore tip" if x_fore - at < FORE_TIP * lpp else "aft end" if at - x_aft < AFT_END * lpp else "between"
+        wobbles[where] = wobbles.get(where, 0) + 1
+    return read["judged"]["sign_changes"], wobbles, read["step"]
 
 
 def judged(p: dict) -> tuple[list, list, list, list]:

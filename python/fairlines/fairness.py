@@ -19,11 +19,14 @@ import numpy as np
 
 from . import _native
 
-__all__ = ["MIN_TURN_DEG", "cut_lobes", "judge_cut", "diagonal_cut", "fairness_report"]
+__all__ = ["MIN_TURN_DEG", "SMALL_LOBE_DEG", "cut_lobes", "judge_cut", "read_waterline", "diagonal_cut", "fairness_report"]
 
 #: Turning angle (degrees) below which a curvature lobe is a ripple, not a feature: 0.1 deg is
 #: a 1.7 mm sag over a metre, far under what a lines plan or a reflection line shows.
 MIN_TURN_DEG = 0.1
+#: A waterline's lobe turning less than this (degrees) between two others is a wobble: its
+#: features (a run, an entrance, a rounded end on the centre plane, a bulb's nose) turn more.
+SMALL_LOBE_DEG = 1.0
 # Curvature below this fraction of a cut's largest counts as zero (straight stretches).
 ZERO_CURVATURE = 1e-6
 #: The report's diagonals, as a lines plan draws them: (height on the centre line as a fraction
@@ -94,6 +97,32 @@ def judge_cut(cut, min_turn_deg: float = MIN_TURN_DEG) -> dict:
     return {"value": float(cut.value), "points": int(len(pts)), "lobes": lobes, "sign_changes": len(changes),
             "inflections": changes, "bending_energy": float(cut.bending_energy),
             "max_curvature": float(np.max(np.abs(k))) if len(k) else 0.0}
+
+
+def read_waterline(cut, min_turn_deg: float = MIN_TURN_DEG, small_lobe_deg: float = SMALL_LOBE_DEG) -> dict:
+    """A waterline (a z cut, fl.plane_cut) read as a naval architect reads it off a lines plan.
+    Its lobes (judge_cut) that turn under `small_lobe_deg` between two others are wobbles; the
+    others that curve toward the centre plane are hollows, counted in the aft and the fore half
+    of its x extent. Fair: no wobble and at most one hollow in each half (a run and an
+    entrance; a second is a step). A rounded end on the centre plane or a bulb's nose is a lobe
+    like any other, so a low waterline's ends cost it nothing. Returns {"judged", "wobbles"
+    (lobes), "hollows" (aft, fore), "step", "fair"}."""
+    judged = judge_cut(cut, min_turn_deg)
+    pts = np.asarray(cut.points)
+    lobes = judged["lobes"]
+    wobbles, hollows = [], [0, 0]
+    if len(pts) >= 2:
+        # marching toward +x, a half-breadth's hollow has positive curvature
+        toward = 1 if pts[-1, 0] >= pts[0, 0] else -1
+        middle = 0.5 * (pts[:, 0].min() + pts[:, 0].max())
+        for k, lobe in enumerate(lobes):
+            if lobe["turn_deg"] < small_lobe_deg and 0 < k < len(lobes) - 1:
+                wobbles.append(lobe)
+            elif lobe["sign"] * toward > 0:
+                hollows[int(lobe["at"][0] >= middle)] += 1
+    step = max(hollows) > 1
+    return {"judged": judged, "wobbles": wobbles, "hollows": tuple(hollows), "step": step,
+            "fair": not wobbles and not step}
 
 
 def surface_extent(surface) -> tuple[np.ndarray, np.ndarray]:
