@@ -59,6 +59,9 @@ FIT_WEIGHT = 1.0e3
 FIT_STIFFNESS = 1.0e10
 #: Knot spans of the measured basic curves.
 CURVE_SPANS = {"profile": 40, "dwl": 30, "deck": 24, "sac": 30}
+# A contour point (an offsets table's stem or stern row) within this fraction of Lpp of a
+# station is on it: the station's own lowest point holds there.
+STATION_MATCH = 1e-6
 #: Candidate values tried per station for each section shape curve: the bilge corner (its
 #: breadth and height fractions, searched together on this grid) and the top corner.
 CORNER_GRID = {"corner_breadth": np.linspace(0.05, 1.0, 11), "corner_height": np.linspace(0.0, 0.9, 10)}
@@ -153,6 +156,7 @@ class MeasuredHull:
     bulb_points: np.ndarray | None = None
     notes: list = dataclasses.field(default_factory=list)
     z_top: np.ndarray | None = None  # highest point of each station (the deck edge: the sheer)
+    contour: np.ndarray | None = None  # (n, 2) centre-plane contour points (x, z) off the stations
 
     def half_breadth(self, k: int, z0: float) -> float:
         """Half-breadth of station k at height z0 (NaN outside the section)."""
@@ -339,8 +343,25 @@ def measure_hull_data(data: HullData, depth: float | None = None, dome: bool = F
     z_top = np.array([z[np.flatnonzero(np.isfinite(row))[-1]] for row in y])
     if bulb:
         z_top = _bulb_webs(xs, z, y, z_top, D, T)
-    return MeasuredHull(data.lpp, data.beam, T, D, float(xs[0]), float(xs[-1]), xs, z, y, z_low, area, vol, lcb,
-                        np.concatenate(apart) if apart else None, notes, z_top)
+    contour = _off_station_contour(data.contour, xs, data.lpp)
+    ends = (float(xs[0]), float(xs[-1]))
+    if len(contour):  # a stem or stern row reaching past the end stations moves the hull's ends there
+        ends = (min(ends[0], float(contour[0, 0])), max(ends[1], float(contour[-1, 0])))
+    return MeasuredHull(data.lpp, data.beam, T, D, *ends, xs, z, y, z_low, area, vol, lcb,
+                        np.concatenate(apart) if apart else None, notes, z_top, contour)
+
+
+def _off_station_contour(contour: np.ndarray, xs: np.ndarray, lpp: float) -> np.ndarray:
+    """The centre-plane contour points (x, z) that are not on a station, in x order, the lowest
+    at each x (a vertical stretch of the contour is the section's lowest point there)."""
+    c = np.asarray(contour, float).reshape(-1, 2)
+    tol = STATION_MATCH * lpp
+    c = c[np.min(np.abs(c[:, :1] - xs[None, :]), axis=1) > tol] if len(c) else c
+    out: dict = {}
+    for x, z in c:
+        key = round(x / tol)
+        out[key] = (x, min(z, out[key][1])) if key in out else (x, z)
+    return np.array(sorted(out.values())).reshape(-1, 2)
 
 
 def _bulb_webs(x: np.ndarray, z: np.ndarray, y: np.ndarray, z_top: np.ndarray, D: float, T: float) -> np.ndarray:
@@ -410,14 +431,15 @@ def _profile_spec(m: MeasuredHull, close: bool = False) -> dict:
     `close`: passing close to them (FIT_STIFFNESS), with knots where they turn quickly."""
     mid = (m.x > 0.2 * m.lpp) & (m.x < 0.8 * m.lpp)  # the keel line (a dome or bulb may reach lower)
     zk = float(np.nanmin(m.z_low[mid] if mid.any() else m.z_low))
-    spec = {"fit": _pairs(m.x, m.z_low), "fit_weight": _fit_weight(m, m.draft) if close else FIT_WEIGHT,
+    x, z_low = _with_contour(m, m.x, m.z_low)
+    spec = {"fit": _pairs(x, z_low), "fit_weight": _fit_weight(m, m.draft) if close else FIT_WEIGHT,
             "spans": CURVE_SPANS["profile"],
-            "yB": float(m.z_low[0]), "yE": float(m.z_low[-1])}
+            "yB": float(z_low[0]), "yE": float(z_low[-1])}
     # An end above the water and narrow at the deck (a stem head, a cruiser stern) closes there:
     # the profile meets D.
     top = _deck_breadths(m)
-    for key, k in (("yB", 0), ("yE", -1)):
-        if top[k] < END_FRACTION * m.beam / 2 and m.z_low[k] > m.draft:
+    for key, k, x_end in (("yB", 0, m.x_aft), ("yE", -1, m.x_fore)):
+        if top[k] < END_FRACTION * m.beam / 2 and m.z_low[k] > m.draft and x_end == m.x[k]:
             spec[key] = float(m.z_top[k])
     flat = _flat_run(m.x, m.z_low, zk, 1e-3 * m.draft, 0.1 * m.lpp)
     if flat is not None:
@@ -427,6 +449,15 @@ def _profile_spec(m: MeasuredHull, close: bool = False) -> dict:
     if close and (breaks := _profile_breaks(m, flat)):
         spec["breaks"] = breaks
     return spec
+
+
+def _with_contour(m: MeasuredHull, x: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The stations' (x, lowest z) with the contour points off the stations among them."""
+    if m.contour is None or not len(m.contour):
+        return x, z
+    xs = np.concatenate([x, m.contour[:, 0]])
+    order = np.argsort(xs, kind="stable")
+    return xs[order], np.concatenate([z, m.contour[:, 1]])[order]
 
 
 def _profile_breaks(m: MeasuredHull, flat) -> list:
@@ -490,8 +521,13 @@ def _sheer_spec(m: MeasuredHull, close: bool = False) -> dict | None:
     """The deck edge's height where it leaves D by more than SHEER_TOL of D (None: no sheer)."""
     if np.max(np.abs(m.z_top - m.depth)) <= SHEER_TOL * m.depth:
         return None
+    ends = [float(m.z_top[0]), float(m.z_top[-1])]
+    if m.x_aft < m.x[0]:  # a contour reaching past the stations: the deck edge ends on its end point
+        ends[0] = float(m.contour[0, 1])
+    if m.x_fore > m.x[-1]:
+        ends[1] = float(m.contour[-1, 1])
     return {"fit": _pairs(m.x, m.z_top), "fit_weight": _fit_weight(m, m.draft) if close else FIT_WEIGHT, "spans": CURVE_SPANS["deck"],
-            "yB": float(m.z_top[0]), "yE": float(m.z_top[-1])}
+            "yB": ends[0], "yE": ends[1]}
 
 
 def _max_breadth(m: MeasuredHull) -> dict:
@@ -508,9 +544,10 @@ def _deck_spec(m: MeasuredHull, close: bool = False) -> dict:
         y[m.z_top < m.depth * (1 - SHEER_TOL)] = 0.0
     # the aft end keeps its measured breadth (a transom); the stem head closes on the centre
     # plane where a bulb is to be composed with it, else it keeps its measured flare
-    y_fore = 0.0 if m.bulb_points is not None else float(y[-1])
+    y_fore = 0.0 if m.bulb_points is not None or m.x_fore > m.x[-1] else float(y[-1])
+    y_aft = 0.0 if m.x_aft < m.x[0] else float(min(y[0], half))  # past the stations: the contour's end point
     spec = {"fit": _pairs(m.x, y), "fit_weight": _fit_weight(m, m.beam) if close else FIT_WEIGHT, "spans": CURVE_SPANS["deck"],
-            "yB": float(min(y[0], half)), "yE": y_fore}
+            "yB": y_aft, "yE": y_fore}
     return _with_side_flat(spec, m, raw, half, close)
 
 
@@ -531,8 +568,8 @@ def _posts(m: MeasuredHull) -> dict:
     """ends.aft_post / fore_post for an end station that reaches below T and has no breadth at
     any height (a vertical post of zero width)."""
     out = {}
-    for end, k in (("aft", 0), ("fore", -1)):
-        if m.z_low[k] < m.draft and np.nanmax(np.nan_to_num(m.y[k])) <= POST_FRACTION * m.beam / 2:
+    for end, k, x_end in (("aft", 0, m.x_aft), ("fore", -1, m.x_fore)):
+        if x_end == m.x[k] and m.z_low[k] < m.draft and np.nanmax(np.nan_to_num(m.y[k])) <= POST_FRACTION * m.beam / 2:
             out[f"{end}_post"] = True
     return out
 

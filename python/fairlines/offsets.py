@@ -42,6 +42,11 @@ LENGTH_RANGE_M = (0.1, 1000.0)
 # Points of one station a section list may hold: the fold-back check compares every pair of
 # segments, so this bounds its work.
 MAX_SECTION_POINTS = 5000
+# Row labels of an absolute table's centre-plane contour rows: x of the stem or the stern at
+# each waterline (blank where it misses one), as some shipyards' tables end.
+CONTOUR_ROWS = ("stem", "stern")
+# A contour row's x within this fraction of |x| (at least of a metre) of a station's is on it.
+CONTOUR_ON_STATION = 1e-9
 # Metres per millimetre (tables published in mm).
 MM = 1e-3
 # Largest half-breadth fraction a normalised table may hold (fractions of a waterline's own
@@ -86,11 +91,16 @@ class HullData:
     notes: list = dataclasses.field(default_factory=list)
     published: dict = dataclasses.field(default_factory=dict)
     source: str = ""
+    #: (n, 2) points (x, z), m, of the centre-plane contour between or beyond the stations: an
+    #: offsets table's stem and stern rows (x of the contour at each waterline).
+    contour: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros((0, 2)))
 
     def all_points(self) -> np.ndarray:
         """Every input point as (n, 3) x, y, z."""
         pts = [np.column_stack([np.full(len(s.points), s.x), s.points]) for s in self.sections]
         pts += [g.points.reshape(-1, 3) for g in self.grids]
+        if len(self.contour):
+            pts.append(np.column_stack([self.contour[:, 0], np.zeros(len(self.contour)), self.contour[:, 1]]))
         return np.concatenate(pts) if pts else np.zeros((0, 3))
 
 
@@ -195,16 +205,18 @@ def read_offsets_csv(path, lpp, beam, draft, *, n_stations=20, normalised=None, 
         raise InvalidInput(f"n_stations is {n_stations!r}; expected an integer from 1 to 1000 (intervals between the perpendiculars)")
     rows, comments = _csv_rows(path)
     t = _table_layout(path, rows[0][1], comments, lpp, beam, draft, n_stations, normalised)
-    labels, xs, table, extra = _station_rows(t, rows[1:])
+    labels, xs, table, extra, contour = _station_rows(t, rows[1:])
     notes = []
     z, table = _waterlines_rising(t, table, notes)
     labels, xs, table, extra = _stations_from_ap(t, labels, xs, table, extra, notes)
     lines = [station_lines(t.lines, cells, t.unit) for cells in extra] if t.lines else None
     table = _fill_end_blanks(labels, xs, table, z, notes, lines)
+    contour = _contour_points(t, contour, xs, notes)
+    lines = _keels_from_contour(contour, labels, xs, table, z, lines, notes)
     sections = _sections_of_table(t, labels, xs, table, z, notes, lines)
     data = HullData(name or pathlib.Path(path).stem, lpp, beam, draft, sections=sections,
                     offsets={"x": xs, "z": z, "half_breadths": table, "labels": labels, "extra": extra},
-                    notes=notes, source=str(path))
+                    notes=notes, source=str(path), contour=np.concatenate([c for c in contour.values()] or [np.zeros((0, 2))]))
     data.published = _published_from_comments(comments)
     return data
 
@@ -254,14 +266,23 @@ def _table_layout(path, header, comments, lpp, beam, draft, n_stations, normalis
 
 
 def _station_rows(t: _Layout, rows):
-    """(labels, x (m), half-breadths (m), extra cells) of the station rows, in table order."""
+    """(labels, x (m), half-breadths (m), extra cells) of the station rows, in table order, and
+    the contour rows {"stem" / "stern": (line number, x (m) at each waterline, NaN blank)}."""
     scale_row = None
-    labels, xs, table, extra = [], [], [], []
+    labels, xs, table, extra, contour = [], [], [], [], {}
     for lineno, row in rows:
         row = row + [""] * max(0, len(t.header) - len(row))
         lab = row[0].strip()
         if lab.lower() in ("max_half_beam", "scale"):
             scale_row = np.array([_cell(row[k], t.path, lineno, t.header[k]) for k in t.wl_cols])
+            continue
+        if lab.lower() in CONTOUR_ROWS:
+            if t.normalised:
+                raise InvalidInput(f"{t.path}: row {lineno} is a {lab} contour in a normalised table; expected it in an "
+                                   "absolute table (x of the contour at each waterline, in the x column's unit)")
+            if lab.lower() in contour:
+                raise InvalidInput(f"{t.path}: row {lineno} gives the {lab} contour a second time; expected one row")
+            contour[lab.lower()] = (lineno, np.array([_cell(row[k], t.path, lineno, t.header[k]) for k in t.wl_cols]) * t.unit)
             continue
         labels.append(lab)
         xs.append(_station_x(t, lab, lineno))
@@ -276,7 +297,66 @@ def _station_rows(t: _Layout, rows):
         if np.any(np.isnan(hb_scale)) or np.any(hb_scale <= 0):
             raise InvalidInput(f"{t.path}: max_half_beam row has blank or non-positive entries; expected one per waterline")
         table = table * hb_scale * t.beam / 2
-    return labels, xs, table, extra
+    return labels, xs, table, extra, contour
+
+
+def _contour_points(t: _Layout, rows: dict, xs: np.ndarray, notes: list) -> dict:
+    """{"stem" / "stern": (n, 2) points (x, z), m, in x order} of the contour rows, each checked:
+    within the stations' range margin, the stem in the fore half, the stern in the aft half."""
+    out = {}
+    for which, (lineno, x) in sorted(rows.items()):
+        ok = np.isfinite(x)
+        if not ok.any():
+            raise InvalidInput(f"{t.path}: row {lineno} ({which}) has no values; expected the x of the {which} at "
+                               "one waterline at least")
+        check_station_range(x[ok], t.lpp, f"{t.path}: row {lineno} ({which})")
+        mid = 0.5 * (float(np.min(xs)) + float(np.max(xs)))
+        wrong = x[ok][(x[ok] < mid) if which == "stem" else (x[ok] > mid)]
+        if wrong.size:
+            half = "fore" if which == "stem" else "aft"
+            raise InvalidInput(f"{t.path}: row {lineno} ({which}) puts it at x = {wrong[0]:.6g} m; expected the {which} "
+                               f"in the {half} half of the stations ({'above' if which == 'stem' else 'below'} x = {mid:.6g} m)")
+        pts = np.column_stack([x[ok], t.z[ok]])
+        out[which] = pts[np.argsort(pts[:, 0], kind="stable")]
+        notes.append(f"the table's {which} row read as the centre-plane contour ({int(ok.sum())} points)")
+    return out
+
+
+def _keels_from_contour(contour: dict, labels, xs, table, z, lines, notes):
+    """The stations' lines with a keel height read off the stem and stern rows where the table
+    gives none: where a row spans the station, the shape-preserving cubic in x through the row's
+    points, kept between the highest zero waterline below the first offset and that offset
+    (what the zero cells say); at a station with no offsets (on the centre plane), the row's
+    lowest point on it. A station with offsets that the row crosses keeps what its zero cells
+    say: read from the row, a vertical stem below them made the profile, a height over x, dip
+    under the keel and the waterlines run out along the centre plane. Returns `lines` (made
+    when the table has no line columns)."""
+    from .import_design import _pchip  # the importer's monotone cubic (it imports this module)
+
+    read = []
+    for k, x in enumerate(xs):
+        if lines is not None and lines[k]["keel"] is not None:
+            continue
+        for pts in contour.values():
+            px, first = np.unique(pts[:, 0], return_index=True)  # z(x): the lowest point at each x (rows in x, z order)
+            pz = np.minimum.reduceat(pts[:, 1], first)
+            on = np.abs(px - x) <= CONTOUR_ON_STATION * max(abs(x), 1.0)
+            filled = np.flatnonzero(table[k] > 0)
+            if not filled.size and on.any():  # a station on the centre plane (a stem, a post): it starts there
+                zk = float(pz[on].min())
+            elif filled.size and not on.any() and len(px) >= 2 and px[0] < x < px[-1]:
+                zeros = np.flatnonzero((table[k] == 0) & (z < z[filled[0]]))
+                low = z[zeros[-1]] if zeros.size else z[filled[0]]
+                zk = float(np.clip(_pchip(px, pz, np.array([x]))[0], low, z[filled[0]]))
+            else:
+                continue
+            if lines is None:
+                lines = [{"deck": None, "keel": None, "buttocks": []} for _ in xs]
+            lines[k]["keel"] = zk
+            read.append(labels[k])
+    if read:
+        notes.append(f"keel height of station(s) {', '.join(map(repr, read))} read off the stem / stern row")
+    return lines
 
 
 def _station_x(t: _Layout, lab: str, lineno: int) -> float:
@@ -416,7 +496,8 @@ def _sections_of_table(t: _Layout, labels, xs, table, z, notes, lines=None):
             points = section_with_lines(points, lines[k], lab, str(t.path), t.beam, float(np.ptp(z)))
         sections.append(Section(float(xpos), points, lab))
     if lines is not None:
-        notes.append("the table's " + ", ".join(t.lines) + " column(s) read into the sections")
+        if t.lines:
+            notes.append("the table's " + ", ".join(t.lines) + " column(s) read into the sections")
         check_sections(sections, str(t.path))
     return sections
 
@@ -798,6 +879,8 @@ def hull_data_to_dict(data: HullData) -> dict:
          "notes": list(data.notes), "published": dict(data.published),
          "sections": [{"x": s.x, "label": s.label, "points": s.points.tolist()} for s in data.sections],
          "grids": [{"name": g.name, "role": g.role, "points": g.points.tolist()} for g in data.grids]}
+    if len(data.contour):
+        d["contour"] = np.asarray(data.contour).tolist()
     if data.offsets is not None:
         o = data.offsets
         d["offsets"] = {"x": o["x"].tolist(), "z": o["z"].tolist(), "half_breadths": clean(o["half_breadths"]),
@@ -816,6 +899,7 @@ def hull_data_from_dict(d: dict) -> HullData:
                          for s in d.get("sections", [])]
         data.grids = [PointGrid(g["name"], np.array(g["points"], float), g.get("role", "hull"))
                       for g in d.get("grids", [])]
+        data.contour = np.array(d.get("contour", []), float).reshape(-1, 2)
         if d.get("offsets"):
             o = d["offsets"]
             hb = np.array([[np.nan if v is None else v for v in row] for row in o["half_breadths"]], float)

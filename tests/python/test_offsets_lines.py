@@ -3,6 +3,8 @@ buttock heights), judged against the analytic hull the table was written from.""
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
@@ -35,25 +37,32 @@ def _y(x: float, z: float, keel) -> float:
     return 0.0 if z < zk else _half_breadth_at(x) * (1 - ((T - min(z, T)) / (T - zk)) ** 2)
 
 
-def _table(path, waterlines, buttocks=(), keel=None, deck=None, mm=False):
+def _table(path, waterlines, buttocks=(), keel=None, deck=None, mm=False, keel_column=True, contour=False):
     """Write an absolute offsets table of the hull above: half-breadths at `waterlines`, the
     buttocks' heights (blank where a buttock misses the station), and with `keel` / `deck`
-    (functions of x, m) the keel_z and deck_y, deck_z columns (the waterline cells above
-    the deck edge blank)."""
+    (functions of x, m) the keel_z (unless not `keel_column`) and deck_y, deck_z columns (the
+    waterline cells above the deck edge blank); with `contour` the stem and stern rows: x of
+    the keel's rise at each waterline, the ends (the stem and sternpost on the perpendiculars)
+    above its top."""
     u = 1000.0 if mm else 1.0
     f = "{:.0f}" if mm else "{:.4f}"
     z_keel = keel or (lambda x: 0.0)
     z_deck = deck or (lambda x: D)
     head = ["x_mm" if mm else "x"] + [f"{z * u:g}" for z in waterlines] + [f"bt_{y * u:g}" for y in buttocks]
-    head += (["keel_z"] if keel else []) + (["deck_y", "deck_z"] if deck else [])
+    keel_column = keel is not None and keel_column
+    head += (["keel_z"] if keel_column else []) + (["deck_y", "deck_z"] if deck else [])
     rows = [",".join(head)]
     for x in STATIONS:
         b = _half_breadth_at(x)
         cells = [f.format(x * u)] + [f.format(_y(x, z, z_keel) * u) if z <= z_deck(x) else "" for z in waterlines]
         cells += [f.format((T - (T - z_keel(x)) * np.sqrt(1 - y / b)) * u) if b > y else "" for y in buttocks]
-        cells += [f.format(z_keel(x) * u)] if keel else []
+        cells += [f.format(z_keel(x) * u)] if keel_column else []
         cells += [f.format(b * u), f.format(z_deck(x) * u)] if deck else []
         rows.append(",".join(cells))
+    for end, side in (("stem", 1.0), ("stern", -1.0)) if contour else ():
+        rise = [L / 2 + side * (30.0 + 20.0 * np.sqrt(min(z, 3.0) / 3.0)) for z in waterlines]
+        rows.append(",".join([end] + [f.format(x * u) for x in rise]
+                             + [""] * (len(head) - 1 - len(waterlines))))
     path.write_text("\n".join(rows) + "\n")
     return path
 
@@ -135,8 +144,9 @@ def test_keel_column_gives_the_centre_line_contour(tmp_path):
     """Between waterlines 1-2 m apart the zero cells put the rising keel up to 1 m low; the
     keel_z column puts it where it is (measured: within 9 mm)."""
     wls = (0.0, 1.0, 2.0, 4.0, 6.25, 9.0)
-    plain = _keel_and_deck_errors(_rebuilt(_table(tmp_path / "a.csv", wls, keel=None)), _rising_keel, lambda x: D)
-    # the table without the column is the same hull: its zero cells below the keel
+    plain = _keel_and_deck_errors(_rebuilt(_table(tmp_path / "a.csv", wls, keel=_rising_keel, keel_column=False)),
+                                  _rising_keel, lambda x: D)
+    # the same hull without the column: its zero cells below the keel
     assert plain[0] > 0.4
     given = _keel_and_deck_errors(_rebuilt(_table(tmp_path / "b.csv", wls, keel=_rising_keel)), _rising_keel,
                                   lambda x: D)
@@ -192,3 +202,93 @@ def test_line_columns_in_a_normalised_table_are_refused(tmp_path):
     path.write_text("station,wl_0.5,wl_1.0,bt_0.2\nAP,0.5,0.6,0.1\n5,1,1,0.1\nFP,0.5,0.6,0.1\n")
     with pytest.raises(fl.InvalidInput, match="column 'bt_0.2' in a normalised table"):
         read_offsets_csv(path, L, B, T, n_stations=10)
+
+
+def test_stem_and_stern_rows_give_the_rising_keel(tmp_path):
+    """The keel rising over each end's last 20 m, without a keel_z column, with the stem and
+    stern rows (x of the contour at each waterline) instead: the stations' keel heights are read
+    off the rows (the shape-preserving cubic through them) where the zero cells put them up to
+    1 m low (measured: 0.97 m without the rows, 36 mm with them)."""
+    wls = (0.0, 1.0, 2.0, 4.0, 6.25, 9.0)
+    plain = _keel_and_deck_errors(_rebuilt(_table(tmp_path / "a.csv", wls, keel=_rising_keel, keel_column=False)),
+                                  _rising_keel, lambda x: D)
+    data = read_offsets_csv(_table(tmp_path / "b.csv", wls, keel=_rising_keel, keel_column=False, contour=True), L, B, T)
+    rows = _keel_and_deck_errors(fl.Hull.from_json(fl.import_design(data)), _rising_keel, lambda x: D)
+    assert plain[0] > 0.4 and rows[0] <= 0.05, (plain, rows)
+    assert any("stem row read as the centre-plane contour (6 points)" in n for n in data.notes)
+
+
+RAKE = 0.4  # the raked stem's run forward per metre of height above T
+
+
+def _raked_stem_end(z: float) -> float:
+    return L + RAKE * max(z - T, 0.0)
+
+
+def _raked_stem_table(path, stem_row: bool):
+    """Waterlines of a hull whose stem rakes forward of the FP above T: each a parabola over
+    0 .. _raked_stem_end(z), Wigley's depth factor below T; the FP station's cells above T are
+    the flare aft of the stem, and the stem's run forward of it is only in the stem row."""
+    wls = (0.0, 1.0, 2.0, 4.0, 6.25, 7.0, 8.0, 9.0)
+
+    def y(x, z):
+        s = x / _raked_stem_end(z)
+        return 0.0 if not 0 < s < 1 else B / 2 * 4 * s * (1 - s) * (1 - ((T - min(z, T)) / T) ** 2)
+
+    rows = [",".join(["x"] + [f"{z:g}" for z in wls])]
+    rows += [",".join([f"{x:.4f}"] + [f"{y(x, z):.4f}" for z in wls]) for x in STATIONS]
+    rows += [",".join(["stem"] + [f"{_raked_stem_end(z):.4f}" for z in wls])] if stem_row else []
+    path.write_text("\n".join(rows) + "\n")
+    return path
+
+
+def test_a_stem_row_forward_of_the_last_station_carries_the_hull_to_it(tmp_path):
+    """The raked stem's run forward of the FP is in the stem row alone: the rebuilt hull then
+    ends at its head (x 101.1 m at D) and its waterlines above T reach the stem within 0.15 m
+    (measured: 0.03-0.11 m); without the row it ends on the FP station, 0.2-0.9 m short."""
+    heights = (6.75, 7.5, 8.0, 8.5)
+
+    def stem_misses(stem_row):
+        desc = fl.import_design(read_offsets_csv(_raked_stem_table(tmp_path / f"{stem_row}.csv", stem_row), L, B, T))
+        s = fl.Hull.from_json(desc).bare_hull_surface()
+        ends = desc["ends"]
+        return ends["fore"], [np.asarray(fl.plane_cut(s, 2, z, 801).points)[:, 0].max() - _raked_stem_end(z)
+                              for z in heights]
+
+    fore, misses = stem_misses(True)
+    assert fore == pytest.approx(_raked_stem_end(D)) and max(map(abs, misses)) <= 0.15, misses
+    fore, misses = stem_misses(False)
+    assert fore == L and min(misses) < -0.5, misses
+
+
+@pytest.mark.parametrize("row, message", [
+    ("stem,,,,,,", r"row 23 \(stem\) has no values; expected the x of the stem at one waterline at least"),
+    ("stem,10,,,,,", r"row 23 \(stem\) puts it at x = 10 m; expected the stem in the fore half"),
+    ("stern,95,,,,,", r"row 23 \(stern\) puts it at x = 95 m; expected the stern in the aft half"),
+    ("stem,200,,,,,", r"row 23 \(stem\): stations run from x = 200 to 200 m but Lpp is 100 m"),
+])
+def test_contour_rows_that_cannot_be_the_contour_are_refused_by_name(tmp_path, row, message):
+    table = _table(tmp_path / "t.csv", (0.0, 1.0, 2.0, 4.0, 6.25, 9.0))
+    table.write_text(table.read_text() + row + "\n")
+    with pytest.raises(fl.InvalidInput, match=message):
+        read_offsets_csv(table, L, B, T)
+
+
+def test_a_second_stem_row_and_one_in_a_normalised_table_are_refused(tmp_path):
+    table = _table(tmp_path / "t.csv", (0.0, 1.0, 6.25, 9.0))
+    table.write_text(table.read_text() + "stem,100,100,100,100\nstem,100,100,100,100\n")
+    with pytest.raises(fl.InvalidInput, match=r"row 24 gives the stem contour a second time; expected one row"):
+        read_offsets_csv(table, L, B, T)
+    path = tmp_path / "n.csv"
+    path.write_text("station,wl_0.5,wl_1.0\nAP,0.5,0.6\n5,1,1\nFP,0.5,0.6\nstem,10,10.2\n")
+    with pytest.raises(fl.InvalidInput, match="row 5 is a stem contour in a normalised table"):
+        read_offsets_csv(path, L, B, T, n_stations=10)
+
+
+def test_the_contour_survives_the_data_round_trip(tmp_path):
+    from fairlines.offsets import hull_data_from_dict, hull_data_to_dict
+
+    data = read_offsets_csv(_table(tmp_path / "t.csv", (0.0, 1.0, 2.0, 4.0, 6.25, 9.0), keel=_rising_keel,
+                                   keel_column=False, contour=True), L, B, T)
+    back = hull_data_from_dict(json.loads(json.dumps(hull_data_to_dict(data))))
+    assert np.array_equal(back.contour, data.contour) and len(data.contour) == 12
