@@ -52,14 +52,22 @@ def waterline_reading(surface, z: float, lpp: float) -> tuple[int, dict, bool]:
     return read["judged"]["sign_changes"], wobbles, read["step"]
 
 
-def judged(p: dict) -> tuple[list, list, list, list]:
+def frame_inflection_heights(surface, x: float) -> list:
+    """Heights z (m) of a frame's inflections (sign changes over 0.1 deg of turn)."""
+    cut = fl.plane_cut(surface, 0, float(x), CUT_POINTS)
+    return [i["at"][2] for i in judge_cut(cut)["inflections"]] if len(cut.points) >= 3 else []
+
+
+def judged(p: dict) -> tuple[list, list, list, list, list]:
     s = fl.design_hull(**p).bare_hull_surface()
     T, D, B, L = p["draft"], p["depth"], p["breadth"], p["lpp"]
     waterlines = [waterline_reading(s, z, L) for z in np.linspace(0.25 * T, D - 0.125 * T, WATERLINES)]
+    frames = [frame_inflection_heights(s, x) for x in np.linspace(0.05, 0.95, 19) * L]
     return ([w[0] for w in waterlines],
             [sign_changes(s, 1, y) for y in np.linspace(0.1, 0.9, 5) * B / 2],
-            [sign_changes(s, 0, x) for x in np.linspace(0.05, 0.95, 19) * L],
-            [w[1:] for w in waterlines])
+            [len(f) for f in frames],
+            [w[1:] for w in waterlines],
+            [sum(z > T for z in f) for f in frames])
 
 
 def print_reading(hulls: list) -> None:
@@ -80,17 +88,20 @@ def print_reading(hulls: list) -> None:
 def main():
     hulls = [judged(p) for p in sample(SAMPLES)]
     n = len(hulls)
-    wavy = sum(any(v > 2 for v in wl) for wl, _, _, _ in hulls)
-    stepped = sum(any(v > 2 for v in bt) for _, bt, _, _ in hulls)
-    s_frames = sum(any(v > 0 for v in fr) for _, _, fr, _ in hulls)
-    clean = sum(all(v <= 2 for v in wl + bt) and not any(fr) for wl, bt, fr, _ in hulls)
+    wavy = sum(any(v > 2 for v in h[0]) for h in hulls)
+    stepped = sum(any(v > 2 for v in h[1]) for h in hulls)
+    s_frames = sum(any(v > 0 for v in h[2]) for h in hulls)
+    s_above = sum(any(v > 0 for v in h[4]) for h in hulls)
+    clean = sum(all(v <= 2 for v in h[0] + h[1]) and not any(h[2]) for h in hulls)
     print(f"{n} designed hulls, each cut and judged on its own (sign changes over 0.1 deg of turn):")
     print(f"  a waterline with more than 2: {wavy} hulls ({100 * wavy / n:.0f} %); per waterline, mean "
-          f"{np.mean([v for wl, _, _, _ in hulls for v in wl]):.2f}")
+          f"{np.mean([v for h in hulls for v in h[0]]):.2f}")
     print(f"  a buttock with more than 2:   {stepped} hulls ({100 * stepped / n:.0f} %); per buttock, mean "
-          f"{np.mean([v for _, bt, _, _ in hulls for v in bt]):.2f}")
+          f"{np.mean([v for h in hulls for v in h[1]]):.2f}")
     print(f"  an S-shaped frame (anywhere): {s_frames} hulls ({100 * s_frames / n:.0f} %); S frames per hull, mean "
-          f"{np.mean([sum(v > 0 for v in fr) for _, _, fr, _ in hulls]):.2f} of 19")
+          f"{np.mean([sum(v > 0 for v in h[2]) for h in hulls]):.2f} of 19")
+    print(f"    ... with its inflection above T (the issue's mark: an S above the waterline): {s_above} hulls; "
+          f"{sum(v for h in hulls for v in h[4])} of {sum(v for h in hulls for v in h[2])} frame inflections")
     print(f"  none of these (the issue's marks): {clean} hulls ({100 * clean / n:.0f} %)")
     wl, bt, fr = (np.array([h[k] for h in hulls]) for k in range(3))
     print("  mean sign changes by waterline, T/4 .. D - T/8:", " ".join(f"{v:.1f}" for v in wl.mean(axis=0)))
