@@ -33,7 +33,7 @@ import math
 
 import numpy as np
 
-from . import _native
+from . import _native, monotone_cubic
 from .basic_curves import tersely
 from .dry_ends import section_half_breadth
 from .offsets import HullData
@@ -180,49 +180,13 @@ def _longitudinal_lines(points: np.ndarray) -> np.ndarray:
     return points.transpose(1, 0, 2) if dx0 >= dx1 else points
 
 
-def _pchip_slopes(x: np.ndarray, f: np.ndarray) -> np.ndarray:
-    """Shape-preserving cubic Hermite slopes: each the slope of the parabola through the point and
-    its neighbours (the three-point one-sided formula at the ends), limited by Hyman's (1983)
-    filter to three times the smaller neighbouring secant and to zero at a local extremum, so
-    the cubic stays monotone where the data are. Third-order accurate on smooth data: the
-    harmonic mean of the secants (Fritsch and Butland) used before under-read a section's
-    stretch of 2.8 m up to T by 0.38 % of the volume where buttock heights left it long."""
-    h, delta = np.diff(x), np.diff(f) / np.diff(x)
-    if len(x) == 2:
-        return np.full_like(f, delta[0])
-    d = np.empty_like(f)
-    d[1:-1] = (h[1:] * delta[:-1] + h[:-1] * delta[1:]) / (h[:-1] + h[1:])
-    d[0] = ((2 * h[0] + h[1]) * delta[0] - h[0] * delta[1]) / (h[0] + h[1])
-    d[-1] = ((2 * h[-1] + h[-2]) * delta[-1] - h[-1] * delta[-2]) / (h[-1] + h[-2])
-    left, right = np.concatenate([[delta[0]], delta]), np.concatenate([delta, [delta[-1]]])
-    rising = left * right > 0  # not at a local extremum or a flat
-    bound = 3.0 * np.minimum(np.abs(left), np.abs(right))
-    return np.where(rising & (d * left > 0), np.sign(left) * np.minimum(np.abs(d), bound), 0.0)
-
-
-def _pchip(x: np.ndarray, f: np.ndarray, xi: np.ndarray) -> np.ndarray:
-    """The shape-preserving cubic through (x, f) at xi (inside [x0, xn])."""
-    d = _pchip_slopes(x, f)
-    k = np.clip(np.searchsorted(x, xi) - 1, 0, len(x) - 2)
-    h = x[k + 1] - x[k]
-    t = (xi - x[k]) / h
-    h00, h10, h01, h11 = 2 * t**3 - 3 * t**2 + 1, t**3 - 2 * t**2 + t, -2 * t**3 + 3 * t**2, t**3 - t**2
-    return h00 * f[k] + h10 * h * d[k] + h01 * f[k + 1] + h11 * h * d[k + 1]
-
-
-def _pchip_integral(x: np.ndarray, f: np.ndarray) -> float:
-    """Exact integral of the shape-preserving cubic through (x, f) over [x0, xn]."""
-    d, h = _pchip_slopes(x, f), np.diff(x)
-    return float(np.sum(h * (f[:-1] + f[1:]) / 2 + h**2 * (d[:-1] - d[1:]) / 12))
-
-
 def _smooth_in_z(zs: np.ndarray, ys: np.ndarray, z: np.ndarray) -> np.ndarray:
     """Half-breadths of an offsets column between its waterlines by the shape-preserving
     cubic, so a round bilge is not cut by chords."""
     keep = np.concatenate([np.diff(zs) > 0, [True]])  # of equal heights the outermost (last)
     if keep.sum() < 3:
         return np.interp(z, zs[keep], ys[keep])
-    return _pchip(zs[keep], ys[keep], z)
+    return monotone_cubic.evaluate(zs[keep], ys[keep], z)
 
 
 def _half_breadths(pieces: list, z: np.ndarray, smooth: bool = False) -> np.ndarray:
@@ -337,8 +301,8 @@ def measure_hull_data(data: HullData, depth: float | None = None, dome: bool = F
     if len(xs) < MIN_IMPORT_STATIONS:
         raise _native.InvalidInput(f"{data.name}: {len(xs)} station(s) with hull below the deck; expected at least "
                                    f"{MIN_IMPORT_STATIONS} (a description's sections)")
-    vol = _pchip_integral(xs, area)
-    lcb = _pchip_integral(xs, area * xs) / vol
+    vol = monotone_cubic.integral(xs, area)
+    lcb = monotone_cubic.integral(xs, area * xs) / vol
     apart = [g.points.reshape(-1, 3) for g in data.grids if g.role == "bulb" and not bulb]
     z_top = np.array([z[np.flatnonzero(np.isfinite(row))[-1]] for row in y])
     if bulb:
@@ -887,8 +851,8 @@ def measure_kracht(data: HullData, hull) -> dict | None:
             breadth = 2 * float(cut[:, 0].max())
     h = hull.hydrostatics()
     return {"c_lpr": float((nose[0] - fp) / data.lpp), "c_bb": breadth / data.beam, "c_zb": float(nose[2] / data.draft),
-            "c_abt": float(area[0] / h.midship_area), "c_abl": _pchip_integral(xs, height) / float(h.midship_area),
-            "c_vpr": _pchip_integral(xs, area) / float(h.volume)}
+            "c_abt": float(area[0] / h.midship_area), "c_abl": monotone_cubic.integral(xs, height) / float(h.midship_area),
+            "c_vpr": monotone_cubic.integral(xs, area) / float(h.volume)}
 
 
 def _buildable(desc: dict, say) -> tuple:

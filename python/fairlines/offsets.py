@@ -26,6 +26,7 @@ import re
 
 import numpy as np
 
+from . import monotone_cubic
 from ._native import InvalidInput, limits
 from .offsets_lines import line_kind, section_with_lines, station_lines
 
@@ -331,8 +332,6 @@ def _keels_from_contour(contour: dict, labels, xs, table, z, lines, notes):
     say: read from the row, a vertical stem below them made the profile, a height over x, dip
     under the keel and the waterlines run out along the centre plane. Returns `lines` (made
     when the table has no line columns)."""
-    from .import_design import _pchip  # the importer's monotone cubic (it imports this module)
-
     read = []
     for k, x in enumerate(xs):
         if lines is not None and lines[k]["keel"] is not None:
@@ -347,7 +346,7 @@ def _keels_from_contour(contour: dict, labels, xs, table, z, lines, notes):
             elif filled.size and not on.any() and len(px) >= 2 and px[0] < x < px[-1]:
                 zeros = np.flatnonzero((table[k] == 0) & (z < z[filled[0]]))
                 low = z[zeros[-1]] if zeros.size else z[filled[0]]
-                zk = float(np.clip(_pchip(px, pz, np.array([x]))[0], low, z[filled[0]]))
+                zk = float(np.clip(monotone_cubic.evaluate(px, pz, np.array([x]))[0], low, z[filled[0]]))
             else:
                 continue
             if lines is None:
