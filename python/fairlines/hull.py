@@ -71,6 +71,11 @@ DECK_CHECKS = 81
 # fraction of the limit: held at the limit from both sides (the waterline rounds past it by
 # 1e-15 m), the deck's design found no solution on a waterline widened by 10 %.
 DECK_CLEARANCE_TOL = 1e-9
+# Between its checks the deck line is looked at on DECK_DENSE points, and around each near
+# contact there (a local minimum of its clearance under DECK_NEAR of the limit) on DECK_LOCAL
+# more; where it is inside the waterline a check is added and the deck designed again, at most
+# DECK_REFINES times.
+DECK_DENSE, DECK_NEAR, DECK_LOCAL, DECK_REFINES = 641, 1e-3, 33, 8
 # The sheer (deck-at-side height) stays above T by this fraction of T, and below this multiple of D.
 SHEER_CLEARANCE = 0.01
 SHEER_LIMIT = 2.0
@@ -269,10 +274,7 @@ class Hull:
         xa, xf = immersed_range(out["profile"], pr.draft)
         out["dwl"] = solve_curve("dwl", c["dwl"], xa, xf, lower=0.0, upper=half_b)
         # The deck stays outside the waterline (no tumblehome), so sections flare or stay wall-sided.
-        xs = np.linspace(xa, xf, DECK_CHECKS)
-        floor = pr.half_breadth_limit * (1.0 - DECK_CLEARANCE_TOL)
-        clear = [(float(x), min(float(y), floor), "deck >= design waterline") for x, y in zip(xs, np.ravel(out["dwl"](xs)))]
-        out["deck"] = solve_curve("deck", c["deck"], x0, x1, lower=0.0, upper=pr.half_breadth_limit, at_least=clear)
+        out["deck"] = self._deck_clear_of(out["dwl"], c["deck"], xa, xf)
         for name, (default, lo, hi) in SHAPE_CURVES.items():
             out[name] = solve_curve(name, c.get(name, BasicCurveSpec(value=default)), x0, x1, lower=lo, upper=hi, maximum=False)
         for name, (_, lo, hi) in CORNER_CURVES.items():
@@ -280,6 +282,37 @@ class Hull:
                 out[name] = solve_curve(name, c[name], x0, x1, lower=lo, upper=hi, maximum=False)
         self._check_posts(out)
         return out
+
+    def _deck_clear_of(self, dwl: BasicCurve, spec: BasicCurveSpec, xa: float, xf: float) -> BasicCurve:
+        """The deck line designed to clear the waterline `dwl` (on xa..xf) at DECK_CHECKS points,
+        and again with the points added where a dense look (DECK_DENSE) finds it inside between
+        them (a spline between its checks dipped up to 5 mm on a 56 m beam), DECK_REFINES times
+        at most."""
+        pr = self.description.principal
+        limit = pr.half_breadth_limit
+        floor = limit * (1.0 - DECK_CLEARANCE_TOL)
+        checks, dense = np.linspace(xa, xf, DECK_CHECKS), np.linspace(xa, xf, DECK_DENSE)
+
+        def gap(deck, x):
+            return np.ravel(deck(x)) - np.minimum(np.ravel(dwl(x)), floor)
+
+        for _ in range(DECK_REFINES):
+            clear = [(float(x), min(float(y), floor), "deck >= design waterline") for x, y in zip(checks, np.ravel(dwl(checks)))]
+            deck = solve_curve("deck", spec, self.description.x_aft, self.description.x_fore, lower=0.0, upper=limit,
+                               at_least=clear)
+            g = gap(deck, dense)
+            # near contacts (local minima of the gap under DECK_NEAR of the limit), each looked at closely
+            k = 1 + np.flatnonzero((g[1:-1] <= g[:-2]) & (g[1:-1] <= g[2:]) & (g[1:-1] < DECK_NEAR * limit))
+            if not len(k):
+                break
+            local = np.linspace(dense[k - 1], dense[k + 1], DECK_LOCAL, axis=1)  # (minima, DECK_LOCAL)
+            gl = gap(deck, local.ravel()).reshape(local.shape)
+            j = np.argmin(gl, axis=1)
+            inside = local[np.arange(len(k)), j][gl[np.arange(len(k)), j] < -DECK_CLEARANCE_TOL * limit]
+            if not len(inside):
+                break
+            checks = np.union1d(checks, inside)
+        return deck
 
     def _check_posts(self, curves: dict) -> None:
         """A post end (ends.aft_post / fore_post) needs the waterline to reach that end, and the
