@@ -71,11 +71,11 @@ DECK_CHECKS = 81
 # fraction of the limit: held at the limit from both sides (the waterline rounds past it by
 # 1e-15 m), the deck's design found no solution on a waterline widened by 10 %.
 DECK_CLEARANCE_TOL = 1e-9
-# Between its checks the deck line is looked at on DECK_DENSE points, and around each near
-# contact there (a local minimum of its clearance under DECK_NEAR of the limit) on DECK_LOCAL
-# more; where it is inside the waterline a check is added and the deck designed again, at most
-# DECK_REFINES times.
-DECK_DENSE, DECK_NEAR, DECK_LOCAL, DECK_REFINES = 641, 1e-3, 33, 8
+# Between its checks the deck line is looked at on DECK_DENSE points, and around the DECK_LOOKS
+# nearest contacts there (local minima of its clearance under DECK_NEAR of the limit) on
+# DECK_LOCAL more; where it is inside the waterline a check is added and the deck designed again,
+# at most DECK_REFINES times.
+DECK_DENSE, DECK_NEAR, DECK_LOOKS, DECK_LOCAL, DECK_REFINES = 641, 1e-3, 8, 33, 8
 # The sheer (deck-at-side height) stays above T by this fraction of T, and below this multiple of D.
 SHEER_CLEARANCE = 0.01
 SHEER_LIMIT = 2.0
@@ -305,6 +305,7 @@ class Hull:
             k = 1 + np.flatnonzero((g[1:-1] <= g[:-2]) & (g[1:-1] <= g[2:]) & (g[1:-1] < DECK_NEAR * limit))
             if not len(k):
                 break
+            k = k[np.argsort(g[k], kind="stable")[:DECK_LOOKS]]  # the closest (a flat of side touches all along)
             local = np.linspace(dense[k - 1], dense[k + 1], DECK_LOCAL, axis=1)  # (minima, DECK_LOCAL)
             gl = gap(deck, local.ravel()).reshape(local.shape)
             j = np.argmin(gl, axis=1)
