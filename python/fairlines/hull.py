@@ -285,9 +285,9 @@ class Hull:
 
     def _deck_clear_of(self, dwl: BasicCurve, spec: BasicCurveSpec, xa: float, xf: float) -> BasicCurve:
         """The deck line designed to clear the waterline `dwl` (on xa..xf) at DECK_CHECKS points,
-        and again with the points added where a dense look (DECK_DENSE) finds it inside between
-        them (a spline between its checks dipped up to 5 mm on a 56 m beam), DECK_REFINES times
-        at most."""
+        and again with a point added where a close look (DECK_DENSE, then DECK_LOCAL about each
+        of the DECK_LOOKS nearest contacts) finds it inside between them (a spline between its
+        checks dipped up to 5 mm on a 56 m beam), DECK_REFINES times at most."""
         pr = self.description.principal
         limit = pr.half_breadth_limit
         floor = limit * (1.0 - DECK_CLEARANCE_TOL)

@@ -36,7 +36,7 @@ import numpy as np
 from . import _native, monotone_cubic
 from .basic_curves import tersely
 from .dry_ends import section_half_breadth
-from .offsets import HullData
+from .offsets import HullData, lowest_at_each_x
 from .preprocess.rebuild import distances
 
 __all__ = ["import_design", "measure_hull_data", "measure_kracht", "MeasuredHull", "point_deviation", "data_points",
@@ -317,15 +317,9 @@ def measure_hull_data(data: HullData, depth: float | None = None, dome: bool = F
 
 def _off_station_contour(contour: np.ndarray, xs: np.ndarray, lpp: float) -> np.ndarray:
     """The centre-plane contour points (x, z) that are not on a station, in x order, the lowest
-    at each x (a vertical stretch of the contour is the section's lowest point there)."""
-    c = np.asarray(contour, float).reshape(-1, 2)
-    tol = STATION_MATCH * lpp
-    c = c[np.min(np.abs(c[:, :1] - xs[None, :]), axis=1) > tol] if len(c) else c
-    out: dict = {}
-    for x, z in c:
-        key = round(x / tol)
-        out[key] = (x, min(z, out[key][1])) if key in out else (x, z)
-    return np.array(sorted(out.values())).reshape(-1, 2)
+    at each x (fairlines.offsets.lowest_at_each_x)."""
+    c = lowest_at_each_x(contour)
+    return c[np.min(np.abs(c[:, :1] - xs[None, :]), axis=1) > STATION_MATCH * lpp] if len(c) else c
 
 
 def _bulb_webs(x: np.ndarray, z: np.ndarray, y: np.ndarray, z_top: np.ndarray, D: float, T: float) -> np.ndarray:

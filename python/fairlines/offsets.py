@@ -323,6 +323,17 @@ def _contour_points(t: _Layout, rows: dict, xs: np.ndarray, notes: list) -> dict
     return out
 
 
+def lowest_at_each_x(points: np.ndarray) -> np.ndarray:
+    """(m, 2) of centre-plane contour points (n, 2) (x, z), m: one per distinct x, in x order,
+    the lowest there (a vertical stretch of the contour is a section's lowest point there)."""
+    pts = np.asarray(points, float).reshape(-1, 2)
+    if not len(pts):
+        return pts
+    pts = pts[np.lexsort((pts[:, 1], pts[:, 0]))]
+    x, first = np.unique(pts[:, 0], return_index=True)
+    return np.column_stack([x, pts[first, 1]])
+
+
 def _keels_from_contour(contour: dict, labels, xs, table, z, lines, notes):
     """The stations' lines with a keel height read off the stem and stern rows where the table
     gives none: where a row spans the station, the shape-preserving cubic in x through the row's
@@ -333,12 +344,11 @@ def _keels_from_contour(contour: dict, labels, xs, table, z, lines, notes):
     under the keel and the waterlines run out along the centre plane. Returns `lines` (made
     when the table has no line columns)."""
     read = []
+    heights = [lowest_at_each_x(pts).T for pts in contour.values()]  # each row as z(x)
     for k, x in enumerate(xs):
         if lines is not None and lines[k]["keel"] is not None:
             continue
-        for pts in contour.values():
-            px, first = np.unique(pts[:, 0], return_index=True)  # z(x): the lowest point at each x (rows in x, z order)
-            pz = np.minimum.reduceat(pts[:, 1], first)
+        for px, pz in heights:
             on = np.abs(px - x) <= CONTOUR_ON_STATION * max(abs(x), 1.0)
             filled = np.flatnonzero(table[k] > 0)
             if not filled.size and on.any():  # a station on the centre plane (a stem, a post): it starts there
