@@ -28,7 +28,7 @@ import numpy as np
 
 from . import _native
 from . import basic_curves as _basic_curves
-from . import dry_ends, station_mean
+from . import dry_ends, station_mean, transom_run
 from .basic_curves import (CORNER_FULLNESS_BOUNDS, FULLNESS_BOUNDS, BasicCurve, immersed_range, solve_curve, solve_sac,
                            solve_sac_area)
 from .description import DOME_NECK, FORM_ALIASES, FORM_KEYS, BasicCurveSpec, HullDescription, load_description
@@ -195,6 +195,7 @@ class Hull:
         self._ship = None
         self._stations: np.ndarray | None = None
         self._dry_ends: dict = {}  # x_e -> (end waterlines, end contour) of the dry sections beyond it
+        self._transom_run: list | None = None  # [fairlines.transom_run.TransomRun] or [] (no dry transom)
         self._hydro: dict = {}  # (draft, options) -> Hydrostatics of the current surface
 
     # ---- construction ---------------------------------------------------------------
@@ -587,6 +588,31 @@ class Hull:
                 if shape is not None:
                     s.given = shape
 
+    def _dry_transom_run(self):
+        """The TransomRun of a dry transom (the keel leaves the water forward of a transom; no skeg,
+        and no given section lies in the run), else None (cached)."""
+        if self._transom_run is None:
+            self._transom_run = []
+            d, dwl = self.description, self._curves["dwl"]
+            pr = d.principal
+            x_r = dwl.x_start + transom_run.RUN_LENGTH * pr.lpp
+            transom = self.curve_points(np.array([d.x_aft]), self._curves)[0][0] > 1e-6 * pr.breadth
+            given_in_run = any(g is not None for g in self._given_shapes(np.linspace(d.x_aft, x_r, 9)))
+            if (transom and "aft" not in d.posts and d.skeg is None and dwl.x_start - d.x_aft > 1e-6 * pr.lpp
+                    and x_r < d.x_fore and not given_in_run):
+                self._transom_run = [None]  # guards the template's own specs below
+                self._transom_run = [transom_run.TransomRun(d.x_aft, dwl.x_start, pr.lpp, pr.draft, self.section_specs)]
+        return self._transom_run[0] if self._transom_run else None
+
+    def _section_curves(self, specs: list, designs: list) -> list:
+        """The designed sections' curves, a dry transom's run faired (fairlines.transom_run)."""
+        curves = [d.curve for d in designs]
+        run = self._dry_transom_run()
+        if run is None:
+            return curves
+        return [run.corrected(c, s) if run.covers(s.x) and s.given.size == 0 and math.isnan(s.skeg_bottom)
+                and math.isnan(s.dome_bottom) else c for c, s in zip(curves, specs)]
+
     @property
     def section_designs(self) -> list:
         """fl.SectionDesign of every station (cached): the curve, the shape knob, the fullness."""
@@ -596,6 +622,13 @@ class Hull:
         return self._designs
 
     @property
+    def section_curves(self) -> list:
+        """The curves of section_designs, a dry transom's run faired (fairlines.transom_run): the
+        stations' designed sections before the station mean (3-D NurbsCurves, deck to keel)."""
+        designs = self.section_designs
+        return self._section_curves(self._specs, designs)
+
+    @property
     def sections(self) -> list:
         """Section curves the skin interpolates (3-D NurbsCurves, deck to keel, x order), all on
         one knot vector: the designed sections, each the mean of the family's a little either side
@@ -603,10 +636,11 @@ class Hull:
         _station_mean_offsets does not keep it as designed (cached)."""
         if self._sections is None:
             xs = self.stations()
-            designed = [s.curve for s in self.section_designs]
+            designed = self.section_curves
             x, averaged = station_mean.window(xs, self._station_mean_offsets(xs, self._specs))
-            samples = _native.design_sections(self.section_specs(x)) if len(x) else []
-            self._sections = station_mean.mean_sections(designed, [s.curve for s in samples], averaged)
+            specs = self.section_specs(x) if len(x) else []
+            samples = self._section_curves(specs, _native.design_sections(specs)) if len(x) else []
+            self._sections = station_mean.mean_sections(designed, samples, averaged)
         return self._sections
 
     def _station_mean_offsets(self, xs: np.ndarray, specs: list) -> np.ndarray:
@@ -634,7 +668,8 @@ class Hull:
 
     def sections_at(self, x: Any) -> list:
         """The designed sections at any x (m), between the stations too."""
-        return [s.curve for s in _native.design_sections(self.section_specs(x))]
+        specs = self.section_specs(x)
+        return self._section_curves(specs, _native.design_sections(specs))
 
     # ---- surface --------------------------------------------------------------------
     def skin(self):

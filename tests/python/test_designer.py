@@ -488,7 +488,7 @@ def test_no_s_shaped_frames(example_surface):
 # too. Measured with the knob on the template's exact area instead: the x 5 m hollow falls
 # from 0.36 to 0.11 deg at z 15 m (0.43 to 0.29 at z 17 m; before the station mean), but the spline's area then misses
 # the asked one by up to 1 % of the box at the ends (docs/sections.md).
-_KNOB_SWING = ("the section knob's swing as Q passes a knot (see above), a hollow of {deg} deg at x 4.9 m between the "
+_KNOB_SWING = ("the section knob's swing as Q passes a knot (see above), a hollow of {deg} deg at x 5.3 m between the "
                "transom's convex end and the run")
 WOBBLY_WATERLINES = {
     11.0: "the design waterline's last metre at the stem (x 243.9-244.8 m): a hollow of 0.16 deg, then a convex tip of 0.23 "
@@ -498,9 +498,9 @@ WOBBLY_WATERLINES = {
           "of 300 (the design waterline alone: clean 33 -> 71 of 100 with the mean)",
     13.0: "the stem's last metre: a hollow of 0.52 deg at x 244.3 m between the body and the convex tip (0.24 deg), the "
           "same keel point lifted up the stem as at 11 m",
-    15.0: _KNOB_SWING.format(deg="0.27") + ": 3 sign changes",
-    17.0: _KNOB_SWING.format(deg="0.36") + ": 3 sign changes (the stem's tip, a hollow of 0.59 deg and a convex lobe of "
-          "0.19 deg before fairlines.dry_ends, is now one hollow)",
+    17.0: _KNOB_SWING.format(deg="0.11") + ", just forward of the transom's faired run (fairlines.transom_run, to x "
+          "3.6 m; 0.36 deg at 4.7 m before it, and 15 m clean since): 3 sign changes (the stem's tip, a hollow of 0.59 deg and "
+          "a convex lobe of 0.19 deg before fairlines.dry_ends, is now one hollow)",
 }
 
 

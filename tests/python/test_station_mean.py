@@ -58,7 +58,7 @@ def test_the_cruiser_sterned_coaster_design_waterline_has_one_hollow_each_way():
 
 
 def test_the_deck_edge_ends_and_flat_part_are_kept_as_designed(tanker):
-    designed = [np.asarray(s.curve.control_points) for s in tanker.section_designs]
+    designed = [np.asarray(c.control_points) for c in tanker.section_curves]
     used = [np.asarray(c.control_points) for c in tanker.sections]
     sac = tanker.description.curves["sac"]
     xs = tanker.stations()
@@ -96,8 +96,8 @@ def test_station_mean_zero_skins_the_sections_as_designed(tanker):
     assert d["skinning"]["station_mean"] == STATION_MEAN
     d["skinning"]["station_mean"] = 0.0
     h = fl.Hull.from_json(d)
-    for s, c in zip(h.section_designs, h.sections):
-        assert np.array_equal(np.asarray(s.curve.control_points), np.asarray(c.control_points))
+    for s, c in zip(h.section_curves, h.sections):
+        assert np.array_equal(np.asarray(s.control_points), np.asarray(c.control_points))
 
 
 @pytest.mark.parametrize("value", [1.0, -0.1, "wide"])

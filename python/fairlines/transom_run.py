@@ -1,0 +1,125 @@
+"""The topsides' run into a dry transom: the sections above T aft of RUN_LENGTH Lpp forward of
+the design waterline's aft end, read off faired waterlines rather than off the section template.
+
+Notation: x_a the transom (the hull's aft end), x_e the waterline's aft end (where the keel
+leaves the water, x_e > x_a for a dry transom), x_r = x_e + RUN_LENGTH Lpp the run's forward
+end, eta = (z - T) / (z_deck - T) the height above T as a fraction of the topside at x,
+y_t(x, eta) the template section's half-breadth there, h = x_r - x.
+
+Each topside line eta = const is the quadratic with the template's value a and slope b at x_r
+(the slope read over END_SLOPE_BASE Lpp forward of x_r) that fits the templates at RUN_SAMPLES
+sections from x_a to x_r by least squares:
+
+    q(h) = a - b h + c h^2,   c = sum h^2 (y_t - a + b h) / sum h^4,
+
+so it has no inflection within the run and meets the rest of the line with its value and
+slope. A section in the run keeps its designed curve and has each control point's half-breadth
+shifted by w (q - y_t) read at its Greville abscissa (Schoenberg's variation-diminishing
+approximation of the shift), less the deck row's shift shared linearly in eta (the deck edge
+stays on the deck line); w rises from 0 where the control point's support reaches down to the
+keel or T (whichever is higher) to 1 over BLEND_DEPTH of the topside (smoothstep), so below T
+(the design waterline and the immersed area) the section is exactly as designed.
+
+Why: as the immersed part of a section vanishes toward x_e, the template's topside changes
+character (the flare from a waterline point near the centre plane to the deck edge); the
+topside lines rounded in to the transom and overshot ahead of it, a wobble of 0.1-1 deg in the
+upper waterlines 0.5-3 % Lpp forward of x_e: 72 of the 219 upper waterlines of the 73
+dry-transom hulls among bench_hull's first 100, 33 with the run. Over those 100 hulls
+(bench_fairness_space) the upper waterlines clean as a lines plan went 176 -> 208 of 300 (aft-end
+wobbles 101 -> 52, steps 23 -> 6), on hulls 100-199 189 -> 215; refitting the sections as
+given shapes instead moved them by up to 14 mm (the fit's bending penalty and the shifts
+through Q), which made wobbles of its own.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _native
+from .dry_ends import section_half_breadth
+
+#: The run's length forward of the waterline's aft end, fraction of Lpp.
+RUN_LENGTH = 0.03
+#: Template sections the run's lines are fitted to, from the transom to x_r.
+RUN_SAMPLES = 8
+#: Topside lines (eta from 0 to 1) fitted; a section's points in between are interpolated.
+RUN_LEVELS = 41
+#: Points of a section read as a function of height for its topside lines.
+OFFSET_SAMPLES = 161
+#: The lines' slopes at x_r are read over this fraction of Lpp forward of it.
+END_SLOPE_BASE = 0.01
+#: Height over which the faired topside takes over from the template, fraction of the topside.
+BLEND_DEPTH = 0.25
+
+
+def topside_offsets(curve, z_deck: float, draft: float, z_keel: float) -> np.ndarray:
+    """Half-breadths (m) of a section curve on the RUN_LEVELS topside lines (eta 0 .. 1); NaN
+    below its keel point."""
+    eta = np.linspace(0.0, 1.0, RUN_LEVELS)
+    z = draft + eta * (z_deck - draft)
+    return np.where(z >= z_keel, section_half_breadth(curve, z, OFFSET_SAMPLES), np.nan)
+
+
+def fit_run(x: np.ndarray, y: np.ndarray, x_r: float, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """c (1 / m) of each topside line: x (n,) sample stations, y (n, RUN_LEVELS) their template
+    offsets (NaN where a section has none), a and b (RUN_LEVELS,) the value (m) and slope dy/dx
+    at x_r. A line with no sample aft of x_r keeps c = 0."""
+    h = (x_r - x)[:, None]
+    g = h * h
+    r = y - a[None, :] + b[None, :] * h
+    have = np.isfinite(r)
+    num = np.where(have, g * np.where(have, r, 0.0), 0.0).sum(axis=0)
+    den = np.where(have, g * g, 0.0).sum(axis=0)
+    return np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0)
+
+
+class TransomRun:
+    """The faired topside lines of a dry transom's run (see the module docstring)."""
+
+    def __init__(self, x_aft: float, x_end: float, lpp: float, draft: float, template_specs):
+        """template_specs(xs) -> SectionSpecs of the template at xs (m), without the run."""
+        self.x_a, self.draft = x_aft, draft
+        self.x_r = x_end + RUN_LENGTH * lpp
+        xs = np.linspace(x_aft, self.x_r, RUN_SAMPLES)
+        x_b = self.x_r + END_SLOPE_BASE * lpp
+        specs = template_specs(np.append(xs, x_b))
+        designs = _native.design_sections(specs)
+        y = np.array([topside_offsets(d.curve, s.z_deck, draft, s.z_keel) for d, s in zip(designs, specs)])
+        self.a = y[-2]
+        self.b = (y[-1] - y[-2]) / (x_b - self.x_r)
+        self.c = fit_run(xs[:-1], y[:-2], self.x_r, self.a, self.b)
+
+    def covers(self, x: float) -> bool:
+        return self.x_a <= x < self.x_r
+
+    def lines(self, x: float) -> np.ndarray:
+        """The faired topside lines' half-breadths (m) at x, RUN_LEVELS of them (eta 0 .. 1)."""
+        h = self.x_r - x
+        return self.a - self.b * h + self.c * h * h
+
+    def corrected(self, curve, spec):
+        """The section `curve` (3-D, deck -> keel, designed from `spec`) with its topside moved onto
+        the faired lines: each control point's half-breadth shifted by w (q - y_t) (y_t read on
+        the same RUN_LEVELS lines, so the shift is nothing at x_r) at its Greville abscissa
+        (Schoenberg's variation-diminishing approximation of the shift: local, no ringing), w rising from 0 where the control point's support reaches down to max(T,
+        keel point), so the section below T (the design waterline too) stays exactly as designed,
+        and the deck edge, where q is the deck line, stays exact."""
+        T, zd, zk = self.draft, spec.z_deck, spec.z_keel
+        z_lo = max(T, zk)
+        if zd - z_lo <= 1e-9 * max(zd, 1.0):
+            return curve
+        knots, p = np.asarray(curve.knots), curve.degree
+        n = len(knots) - p - 1
+        greville = np.convolve(knots[1:n + p], np.full(p, 1.0 / p), mode="valid")
+        both = np.asarray(curve.evaluate(np.concatenate([greville, knots[p + 1:n + p + 1]])))
+        P, z_low = both[:n], both[n:, 2]  # z_low: the lowest point of each control point's support
+        levels = np.linspace(0.0, 1.0, RUN_LEVELS)
+        shift = np.nan_to_num(self.lines(spec.x) - topside_offsets(curve, zd, T, zk))
+        shift -= levels * shift[-1]  # the deck edge stays on the deck line
+        eta = np.clip((P[:, 2] - T) / (zd - T), 0.0, 1.0)
+        s = np.clip((z_low - z_lo) / (BLEND_DEPTH * (zd - T)), 0.0, 1.0)
+        w = s * s * (3 - 2 * s)
+        w[[0, -1]] = 0.0
+        ctrl = np.array(curve.control_points, dtype=float)
+        ctrl[:, 1] = np.clip(ctrl[:, 1] + w * np.interp(eta, levels, shift), 0.0, spec.y_max)
+        return _native.NurbsCurve(p, knots, ctrl)

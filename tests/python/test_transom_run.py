@@ -1,0 +1,68 @@
+"""The topsides' run into a dry transom (fairlines.transom_run), judged on the cut waterlines
+read as a lines plan, and on what the run must not touch: the sections below T and the deck
+edge."""
+
+import numpy as np
+import pytest
+
+import fairlines as fl
+from fairlines.fairness import read_waterline
+
+#: Dry-transom ships of bench_hull's design space (its sample's hulls 6, 11, 17, 21, 82, rounded)
+#: whose upper waterlines had a wobble within AFT_END of their aft end before the run.
+SHIPS = {
+    "bulk 210 m": dict(lpp=209.959, breadth=44.42, draft=12.163, depth=19.461, cb=0.707, lcb=107.245),
+    "fine 273 m": dict(lpp=273.112, breadth=30.876, draft=11.283, depth=18.053, cb=0.675, lcb=129.184),
+    "coaster 95 m": dict(lpp=94.504, breadth=11.644, draft=3.957, depth=6.331, cb=0.785, lcb=45.27),
+    "full 64 m": dict(lpp=64.398, breadth=7.647, draft=2.557, depth=4.091, cb=0.815, lcb=33.454),
+    "beamy 163 m": dict(lpp=162.573, breadth=33.374, draft=12.412, depth=19.859, cb=0.659, lcb=87.246),
+}
+#: Where a wobble counts as the run's: within this fraction of Lpp of the waterline's aft end.
+AFT_END = 0.05
+#: The upper waterlines judged, fractions of T (bench_fairness_space's above T).
+UPPER = (1.23, 1.475)
+
+
+def _aft_wobbles(hull, z: float) -> list:
+    cut = fl.plane_cut(hull.bare_hull_surface(), 2, z, 401)
+    x = np.asarray(cut.points)[:, 0]
+    lpp = hull.description.principal.lpp
+    return [(round(w["at"][0], 2), round(w["turn_deg"], 2)) for w in read_waterline(cut)["wobbles"]
+            if w["at"][0] - x.min() < AFT_END * lpp]
+
+
+@pytest.mark.parametrize("name", list(SHIPS))
+def test_upper_waterlines_run_into_a_dry_transom_without_a_wobble(name):
+    """Before the run every one of these ships had a lobe under 1 deg between two others in an
+    upper waterline 0.5-3 % Lpp forward of where the keel leaves the water."""
+    p = SHIPS[name]
+    hull = fl.design_hull(**p)
+    assert hull._dry_transom_run() is not None
+    for f in UPPER:
+        assert _aft_wobbles(hull, f * p["draft"]) == [], f
+
+
+def test_the_run_keeps_the_sections_below_T_and_the_deck_edge():
+    """Each faired section is its designed section below max(T, keel point) and at the deck
+    edge, point for point (sampled on the curve's own parameter)."""
+    p = SHIPS["coaster 95 m"]
+    hull = fl.design_hull(**p)
+    run = hull._dry_transom_run()
+    moved = 0
+    for spec, design, faired in zip(hull._specs or hull.section_specs(), hull.section_designs, hull.section_curves):
+        t = np.linspace(*design.curve.domain, 801)
+        a, b = np.asarray(design.curve.evaluate(t)), np.asarray(faired.evaluate(t))
+        below = a[:, 2] <= max(p["draft"], spec.z_keel)
+        np.testing.assert_array_equal(a[below], b[below])
+        np.testing.assert_array_equal(a[0], b[0])
+        moved += int(run.covers(spec.x) and np.abs(a - b).max() > 1e-4)
+    assert moved >= 3  # the run is at work on the stations in it
+
+
+def test_no_run_without_a_dry_transom():
+    """A transom whose bottom is under water, and a cruiser stern (its overhang read off by
+    fairlines.dry_ends), have no run."""
+    wet = fl.design_hull(lpp=120.0, breadth=20.0, draft=6.0, depth=9.6, cb=0.6, lcb=58.0, transom_immersion=0.3)
+    assert wet._dry_transom_run() is None
+    cruiser = fl.design_hull(lpp=120.0, breadth=20.0, draft=6.0, depth=9.6, cb=0.6, lcb=58.0, stern="cruiser")
+    assert cruiser._dry_transom_run() is None
