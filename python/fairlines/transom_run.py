@@ -88,6 +88,8 @@ class TransomRun:
         self.a = y[-2]
         self.b = (y[-1] - y[-2]) / (x_b - self.x_r)
         self.c = fit_run(xs[:-1], y[:-2], self.x_r, self.a, self.b)
+        self.levels = np.linspace(0.0, 1.0, RUN_LEVELS)
+        self._cache: dict = {}
 
     def covers(self, x: float) -> bool:
         return self.x_a <= x < self.x_r
@@ -97,29 +99,43 @@ class TransomRun:
         h = self.x_r - x
         return self.a - self.b * h + self.c * h * h
 
+    def _params(self, curve) -> tuple:
+        """(knots, degree, n, t): t the Greville abscissae, the last knot of each control point's
+        support and OFFSET_SAMPLES parameters over the curve, one evaluation for all (the
+        sections share one knot vector: cached)."""
+        key = (curve.degree, curve.n_control)
+        if key not in self._cache:
+            knots, p = np.asarray(curve.knots), curve.degree
+            n = len(knots) - p - 1
+            greville = np.convolve(knots[1:n + p], np.full(p, 1.0 / p), mode="valid")
+            t = np.concatenate([greville, knots[p + 1:n + p + 1], np.linspace(knots[0], knots[-1], OFFSET_SAMPLES)])
+            self._cache[key] = (knots, p, n, t)
+        return self._cache[key]
+
     def corrected(self, curve, spec):
         """The section `curve` (3-D, deck -> keel, designed from `spec`) with its topside moved onto
         the faired lines: each control point's half-breadth shifted by w (q - y_t) (y_t read on
         the same RUN_LEVELS lines, so the shift is nothing at x_r) at its Greville abscissa
-        (Schoenberg's variation-diminishing approximation of the shift: local, no ringing), w rising from 0 where the control point's support reaches down to max(T,
-        keel point), so the section below T (the design waterline too) stays exactly as designed,
-        and the deck edge, where q is the deck line, stays exact."""
+        (Schoenberg's variation-diminishing approximation of the shift: local, no ringing), w
+        rising from 0 where the control point's support reaches down to max(T, keel point), so
+        the section below T (the design waterline too) stays exactly as designed, and the deck
+        edge, where q is the deck line, stays exact."""
         T, zd, zk = self.draft, spec.z_deck, spec.z_keel
         z_lo = max(T, zk)
         if zd - z_lo <= 1e-9 * max(zd, 1.0):
             return curve
-        knots, p = np.asarray(curve.knots), curve.degree
-        n = len(knots) - p - 1
-        greville = np.convolve(knots[1:n + p], np.full(p, 1.0 / p), mode="valid")
-        both = np.asarray(curve.evaluate(np.concatenate([greville, knots[p + 1:n + p + 1]])))
-        P, z_low = both[:n], both[n:, 2]  # z_low: the lowest point of each control point's support
-        levels = np.linspace(0.0, 1.0, RUN_LEVELS)
-        shift = np.nan_to_num(self.lines(spec.x) - topside_offsets(curve, zd, T, zk))
-        shift -= levels * shift[-1]  # the deck edge stays on the deck line
+        knots, p, n, t = self._params(curve)
+        pts = np.asarray(curve.evaluate(t))
+        P, z_low, S = pts[:n], pts[n:2 * n, 2], pts[2 * n:]  # z_low: the lowest point of each support
+        order = np.argsort(S[:, 2], kind="stable")
+        z_lines = T + self.levels * (zd - T)
+        y_t = np.interp(z_lines, S[order, 2], S[order, 1])  # as topside_offsets, from the same samples
+        shift = np.where(z_lines >= zk, self.lines(spec.x) - y_t, 0.0)
+        shift -= self.levels * shift[-1]  # the deck edge stays on the deck line
         eta = np.clip((P[:, 2] - T) / (zd - T), 0.0, 1.0)
         s = np.clip((z_low - z_lo) / (BLEND_DEPTH * (zd - T)), 0.0, 1.0)
         w = s * s * (3 - 2 * s)
         w[[0, -1]] = 0.0
         ctrl = np.array(curve.control_points, dtype=float)
-        ctrl[:, 1] = np.clip(ctrl[:, 1] + w * np.interp(eta, levels, shift), 0.0, spec.y_max)
+        ctrl[:, 1] = np.clip(ctrl[:, 1] + w * np.interp(eta, self.levels, shift), 0.0, spec.y_max)
         return _native.NurbsCurve(p, knots, ctrl)
