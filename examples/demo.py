@@ -54,6 +54,7 @@ def main():
     print(f"\n== Design-space sweep on a local Dask cluster ({SWEEP_STUDY.name}) ==", flush=True)
     from fairlines.cli import main as fairlines_main
 
+    (out / "sweep").mkdir(parents=True, exist_ok=True)  # the command line refuses a missing output folder
     code = fairlines_main(["sweep", str(SWEEP_STUDY), "-o", str(out / "sweep" / "study.parquet"), "--fresh",
                            "--plot", str(out / "sweep" / "sweep_study.png")])
     if code != 0:
