@@ -195,7 +195,7 @@ class Hull:
         self._ship = None
         self._stations: np.ndarray | None = None
         self._dry_ends: dict = {}  # x_e -> (end waterlines, end contour) of the dry sections beyond it
-        self._transom_run: list | None = None  # [fairlines.transom_run.TransomRun] or [] (no dry transom)
+        self._transom_run: list | None = None  # [fairlines.transom_run.TransomRun], or [] without a dry transom
         self._hydro: dict = {}  # (draft, options) -> Hydrostatics of the current surface
 
     # ---- construction ---------------------------------------------------------------
@@ -592,15 +592,14 @@ class Hull:
         """The TransomRun of a dry transom (the keel leaves the water forward of a transom; no skeg,
         and no given section lies in the run), else None (cached)."""
         if self._transom_run is None:
-            self._transom_run = []
+            self._transom_run = []  # also what the template's own specs see while the run is built
             d, dwl = self.description, self._curves["dwl"]
             pr = d.principal
             x_r = dwl.x_start + transom_run.RUN_LENGTH * pr.lpp
             transom = self.curve_points(np.array([d.x_aft]), self._curves)[0][0] > 1e-6 * pr.breadth
             given_in_run = any(g is not None for g in self._given_shapes(np.linspace(d.x_aft, x_r, 9)))
             if (transom and "aft" not in d.posts and d.skeg is None and dwl.x_start - d.x_aft > 1e-6 * pr.lpp
-                    and x_r < d.x_fore and not given_in_run):
-                self._transom_run = [None]  # guards the template's own specs below
+                    and x_r + transom_run.END_SLOPE_BASE * pr.lpp < d.x_fore and not given_in_run):
                 self._transom_run = [transom_run.TransomRun(d.x_aft, dwl.x_start, pr.lpp, pr.draft, self.section_specs)]
         return self._transom_run[0] if self._transom_run else None
 
