@@ -9,13 +9,15 @@ import fairlines as fl
 from fairlines.fairness import read_waterline
 
 #: Dry-transom ships of bench_hull's design space (its sample's hulls 6, 11, 17, 21, 82, rounded)
-#: whose upper waterlines had a wobble within AFT_END of their aft end before the run.
+#: and the README's product tanker with a skeg, whose upper waterlines had a wobble within AFT_END
+#: of their aft end before the run.
 SHIPS = {
     "bulk 210 m": dict(lpp=209.959, breadth=44.42, draft=12.163, depth=19.461, cb=0.707, lcb=107.245),
     "fine 273 m": dict(lpp=273.112, breadth=30.876, draft=11.283, depth=18.053, cb=0.675, lcb=129.184),
     "coaster 95 m": dict(lpp=94.504, breadth=11.644, draft=3.957, depth=6.331, cb=0.785, lcb=45.27),
     "full 64 m": dict(lpp=64.398, breadth=7.647, draft=2.557, depth=4.091, cb=0.815, lcb=33.454),
     "beamy 163 m": dict(lpp=162.573, breadth=33.374, draft=12.412, depth=19.859, cb=0.659, lcb=87.246),
+    "skeg tanker 180 m": dict(lpp=180.0, breadth=32.0, draft=11.5, depth=17.0, cb=0.82, lcb=95.4, skeg=True),
 }
 #: Where a wobble counts as the run's: within this fraction of Lpp of the waterline's aft end.
 AFT_END = 0.05
