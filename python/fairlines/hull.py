@@ -639,8 +639,10 @@ class Hull:
             xs = self.stations()
             designed = self.section_curves
             x, averaged = station_mean.window(xs, self._station_mean_offsets(xs, self._specs))
-            specs = self.section_specs(x) if len(x) else []
-            samples = self._section_curves(specs, _native.design_sections(specs)) if len(x) else []
+            samples = []
+            if len(x):
+                specs = self.section_specs(x)
+                samples = self._section_curves(specs, _native.design_sections(specs))
             self._sections = station_mean.mean_sections(designed, samples, averaged)
         return self._sections
 

@@ -36,7 +36,6 @@ from __future__ import annotations
 import numpy as np
 
 from . import _native
-from .dry_ends import section_half_breadth
 
 #: The run's length forward of the waterline's aft end, fraction of Lpp.
 RUN_LENGTH = 0.03
@@ -52,12 +51,22 @@ END_SLOPE_BASE = 0.01
 BLEND_DEPTH = 0.25
 
 
-def topside_offsets(curve, z_deck: float, draft: float, z_keel: float) -> np.ndarray:
-    """Half-breadths (m) of a section curve on the RUN_LEVELS topside lines (eta 0 .. 1); NaN
-    below its keel point."""
-    eta = np.linspace(0.0, 1.0, RUN_LEVELS)
-    z = draft + eta * (z_deck - draft)
-    return np.where(z >= z_keel, section_half_breadth(curve, z, OFFSET_SAMPLES), np.nan)
+def sample_params(curve) -> tuple:
+    """(knots, degree, n, t) of a section curve: t its n Greville abscissae, the last knot of
+    each control point's support (n) and OFFSET_SAMPLES parameters over the curve, so one
+    evaluation gives all that the run reads of a section."""
+    knots, p = np.asarray(curve.knots), curve.degree
+    n = len(knots) - p - 1
+    greville = np.convolve(knots[1:n + p], np.full(p, 1.0 / p), mode="valid")
+    return knots, p, n, np.concatenate([greville, knots[p + 1:n + p + 1], np.linspace(knots[0], knots[-1], OFFSET_SAMPLES)])
+
+
+def topside_offsets(samples: np.ndarray, z_deck: float, draft: float, z_keel: float) -> np.ndarray:
+    """Half-breadths (m) on the RUN_LEVELS topside lines (eta 0 .. 1) of a section sampled at
+    `samples` (k, 3) points (read as a function of height); NaN below its keel point."""
+    z = draft + np.linspace(0.0, 1.0, RUN_LEVELS) * (z_deck - draft)
+    order = np.argsort(samples[:, 2], kind="stable")
+    return np.where(z >= z_keel, np.interp(z, samples[order, 2], samples[order, 1]), np.nan)
 
 
 def fit_run(x: np.ndarray, y: np.ndarray, x_r: float, a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -68,7 +77,7 @@ def fit_run(x: np.ndarray, y: np.ndarray, x_r: float, a: np.ndarray, b: np.ndarr
     g = h * h
     r = y - a[None, :] + b[None, :] * h
     have = np.isfinite(r)
-    num = np.where(have, g * np.where(have, r, 0.0), 0.0).sum(axis=0)
+    num = (g * np.where(have, r, 0.0)).sum(axis=0)
     den = np.where(have, g * g, 0.0).sum(axis=0)
     return np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0)
 
@@ -83,13 +92,15 @@ class TransomRun:
         xs = np.linspace(x_aft, self.x_r, RUN_SAMPLES)
         x_b = self.x_r + END_SLOPE_BASE * lpp
         specs = template_specs(np.append(xs, x_b))
-        designs = _native.design_sections(specs)
-        y = np.array([topside_offsets(d.curve, s.z_deck, draft, s.z_keel) for d, s in zip(designs, specs)])
+        curves = [d.curve for d in _native.design_sections(specs)]
+        self._params = sample_params(curves[0])  # the sections share one knot vector
+        n = self._params[2]
+        y = np.array([topside_offsets(np.asarray(c.evaluate(self._params[3]))[2 * n:], s.z_deck, draft, s.z_keel)
+                      for c, s in zip(curves, specs)])
         self.a = y[-2]
         self.b = (y[-1] - y[-2]) / (x_b - self.x_r)
         self.c = fit_run(xs[:-1], y[:-2], self.x_r, self.a, self.b)
         self.levels = np.linspace(0.0, 1.0, RUN_LEVELS)
-        self._cache: dict = {}
 
     def covers(self, x: float) -> bool:
         return self.x_a <= x < self.x_r
@@ -98,19 +109,6 @@ class TransomRun:
         """The faired topside lines' half-breadths (m) at x, RUN_LEVELS of them (eta 0 .. 1)."""
         h = self.x_r - x
         return self.a - self.b * h + self.c * h * h
-
-    def _params(self, curve) -> tuple:
-        """(knots, degree, n, t): t the Greville abscissae, the last knot of each control point's
-        support and OFFSET_SAMPLES parameters over the curve, one evaluation for all (the
-        sections share one knot vector: cached)."""
-        key = (curve.degree, curve.n_control)
-        if key not in self._cache:
-            knots, p = np.asarray(curve.knots), curve.degree
-            n = len(knots) - p - 1
-            greville = np.convolve(knots[1:n + p], np.full(p, 1.0 / p), mode="valid")
-            t = np.concatenate([greville, knots[p + 1:n + p + 1], np.linspace(knots[0], knots[-1], OFFSET_SAMPLES)])
-            self._cache[key] = (knots, p, n, t)
-        return self._cache[key]
 
     def corrected(self, curve, spec):
         """The section `curve` (3-D, deck -> keel, designed from `spec`) with its topside moved onto
@@ -124,13 +122,10 @@ class TransomRun:
         z_lo = max(T, zk)
         if zd - z_lo <= 1e-9 * max(zd, 1.0):
             return curve
-        knots, p, n, t = self._params(curve)
+        knots, p, n, t = self._params
         pts = np.asarray(curve.evaluate(t))
-        P, z_low, S = pts[:n], pts[n:2 * n, 2], pts[2 * n:]  # z_low: the lowest point of each support
-        order = np.argsort(S[:, 2], kind="stable")
-        z_lines = T + self.levels * (zd - T)
-        y_t = np.interp(z_lines, S[order, 2], S[order, 1])  # as topside_offsets, from the same samples
-        shift = np.where(z_lines >= zk, self.lines(spec.x) - y_t, 0.0)
+        P, z_low = pts[:n], pts[n:2 * n, 2]  # z_low: the lowest point of each control point's support
+        shift = np.nan_to_num(self.lines(spec.x) - topside_offsets(pts[2 * n:], zd, T, zk))
         shift -= self.levels * shift[-1]  # the deck edge stays on the deck line
         eta = np.clip((P[:, 2] - T) / (zd - T), 0.0, 1.0)
         s = np.clip((z_low - z_lo) / (BLEND_DEPTH * (zd - T)), 0.0, 1.0)
