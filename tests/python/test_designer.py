@@ -481,15 +481,6 @@ def test_no_s_shaped_frames(example_surface):
         assert _sign_changes(example_surface, 0, x) == 0, x
 
 
-# The section's knob meets its area on the sampled spline. Near the ends the waterline's
-# immersed part spans two or three knot spans of the section, and the sampled spline's area
-# misses the template's by a share that swings as Q passes a knot (period 1.8 m of x at the
-# container's stern); the knob follows the swing and moves the whole section, the topside
-# too. Measured with the knob on the template's exact area instead: the x 5 m hollow falls
-# from 0.36 to 0.11 deg at z 15 m (0.43 to 0.29 at z 17 m; before the station mean), but the spline's area then misses
-# the asked one by up to 1 % of the box at the ends (docs/sections.md).
-_KNOB_SWING = ("the section knob's swing as Q passes a knot (see above), a hollow of {deg} deg at x 5.3 m between the "
-               "transom's convex end and the run")
 WOBBLY_WATERLINES = {
     11.0: "the design waterline's last metre at the stem (x 243.9-244.8 m): a hollow of 0.16 deg, then a convex tip of 0.23 "
           "deg, 3 sign changes. The section at its end is the mean of the family's 0.55 m either side "
@@ -498,9 +489,6 @@ WOBBLY_WATERLINES = {
           "of 300 (the design waterline alone: clean 33 -> 71 of 100 with the mean)",
     13.0: "the stem's last metre: a hollow of 0.52 deg at x 244.3 m between the body and the convex tip (0.24 deg), the "
           "same keel point lifted up the stem as at 11 m",
-    17.0: _KNOB_SWING.format(deg="0.11") + ", just forward of the transom's faired run (fairlines.transom_run, to x "
-          "3.6 m; 0.36 deg at 4.7 m before it, and 15 m clean since): 3 sign changes (the stem's tip, a hollow of 0.59 deg and "
-          "a convex lobe of 0.19 deg before fairlines.dry_ends, is now one hollow)",
 }
 
 
@@ -564,8 +552,8 @@ TANKER_TRANSOM = ("the tanker's waterlines just above T ring over its dry transo
                   "it misses by 3.1-7.4 mm, periodic with Q's place between two knots (one knot span = 1.4 m of x), the "
                   "correction through Q tilts the topside by as much and the knob follows the sampled area's swing. "
                   "More control points do not help (20/40/60: 32/47/79 sign changes of the family's 11.9 m half-breadth)")
-RINGING_TRANSOM = {11.9: TANKER_TRANSOM.format(n=10) + "; 6 wobbles of 0.12-0.43 deg",
-                   12.5: TANKER_TRANSOM.format(n=5) + "; 2 wobbles of 0.11-0.18 deg at x 5.8-7.0 m"}
+RINGING_TRANSOM = {11.9: TANKER_TRANSOM.format(n=8) + "; 4 wobbles of 0.13-0.22 deg (10 sign changes, 6 wobbles of "
+                         "0.12-0.43 deg before the flared sections' corner followed their area; 12.5 m clean since)"}
 
 
 @pytest.mark.parametrize("z", _cuts((11.9, 12.5, 13.0), RINGING_TRANSOM))
