@@ -28,6 +28,10 @@ SAMPLES = int(os.environ.get("FAIRLINES_FAIRNESS_SAMPLES", "100"))
 CUT_POINTS = 401
 FORE_TIP, AFT_END = 0.015, 0.05  # the ends' stretches where wobbles are placed, fractions of Lpp
 WATERLINES = 6  # T/4 .. D - T/8: the first three up to 0.74 T, the rest from 0.985 T (just under T)
+# A frame's inflection this close under T (fraction of T) is the waterline's own: convex below,
+# hollow above (a wine-glass section), counted apart from those above T so a shift of a few
+# millimetres across T is seen for what it is.
+WATERLINE_BAND = 0.99
 
 
 def sign_changes(surface, axis: int, value: float) -> int:
@@ -58,7 +62,7 @@ def frame_inflection_heights(surface, x: float) -> list:
     return [i["at"][2] for i in judge_cut(cut)["inflections"]] if len(cut.points) >= 3 else []
 
 
-def judged(p: dict) -> tuple[list, list, list, list, list]:
+def judged(p: dict) -> tuple[list, list, list, list, list, list]:
     s = fl.design_hull(**p).bare_hull_surface()
     T, D, B, L = p["draft"], p["depth"], p["breadth"], p["lpp"]
     waterlines = [waterline_reading(s, z, L) for z in np.linspace(0.25 * T, D - 0.125 * T, WATERLINES)]
@@ -67,7 +71,8 @@ def judged(p: dict) -> tuple[list, list, list, list, list]:
             [sign_changes(s, 1, y) for y in np.linspace(0.1, 0.9, 5) * B / 2],
             [len(f) for f in frames],
             [w[1:] for w in waterlines],
-            [sum(z > T for z in f) for f in frames])
+            [sum(z > T for z in f) for f in frames],
+            [sum(WATERLINE_BAND * T < z <= T for z in f) for f in frames])
 
 
 def print_reading(hulls: list) -> None:
@@ -102,6 +107,9 @@ def main():
           f"{np.mean([sum(v > 0 for v in h[2]) for h in hulls]):.2f} of 19")
     print(f"    ... with its inflection above T (the issue's mark: an S above the waterline): {s_above} hulls; "
           f"{sum(v for h in hulls for v in h[4])} of {sum(v for h in hulls for v in h[2])} frame inflections")
+    at_t = sum(any(v > 0 for v in h[5]) for h in hulls)
+    print(f"    ... with it at the waterline ({WATERLINE_BAND:g} T .. T: convex below, hollow above): {at_t} hulls; "
+          f"{sum(v for h in hulls for v in h[5])} frame inflections")
     print(f"  none of these (the issue's marks): {clean} hulls ({100 * clean / n:.0f} %)")
     wl, bt, fr = (np.array([h[k] for h in hulls]) for k in range(3))
     print("  mean sign changes by waterline, T/4 .. D - T/8:", " ".join(f"{v:.1f}" for v in wl.mean(axis=0)))
