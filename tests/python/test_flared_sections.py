@@ -1,8 +1,9 @@
 """Fine, flared sections forward of a dry transom (a narrow waterline under a wide deck), judged
 on the frames cut from the hull and on one section: no S where the basic curves leave room for a
 section that turns one way. The bilge corner's least breadth follows the asked area
-(sections.cpp least_corner_breadth); with a fixed 0.75 of the waterline's half-breadth these
-frames stood upright below T and turned hollow above it."""
+(sections.cpp least_corner_breadth); held at 0.75 of the waterline's half-breadth, it kept the
+side from leaning as the flare asks, and these frames turned convex by a little just above T
+under their hollow flare."""
 
 import numpy as np
 import pytest
