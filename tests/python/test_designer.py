@@ -487,7 +487,7 @@ WOBBLY_WATERLINES = {
           "(fairlines.station_mean), whose keel point on the stem lies 5.3 cm above the profile's (T there); kept as designed "
           "there, this line is clean but the 13 m waterline gets 4 and the space's clean waterlines above T fall 176 -> 158 "
           "of 300 (the design waterline alone: clean 33 -> 71 of 100 with the mean)",
-    13.0: "the stem's last metre: a hollow of 0.52 deg at x 244.3 m between the body and the convex tip (0.24 deg), the "
+    13.0: "the stem's last metre: a hollow of 0.54 deg at x 244.3 m between the body and the convex tip (0.16 deg), the "
           "same keel point lifted up the stem as at 11 m",
 }
 
