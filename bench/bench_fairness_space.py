@@ -62,17 +62,41 @@ def frame_inflection_heights(surface, x: float) -> list:
     return [i["at"][2] for i in judge_cut(cut)["inflections"]] if len(cut.points) >= 3 else []
 
 
-def judged(p: dict) -> tuple[list, list, list, list, list, list]:
-    s = fl.design_hull(**p).bare_hull_surface()
+def forced_by_basic_curves(hull, x: float, draft: float, depth: float) -> bool:
+    """Whether no section turning one way can join the keel point (0, z_k) (the centre profile), the waterline point
+    (b, T) and the deck point (y_d, D) of the basic curves at x with the asked fullness
+    f = SAC / (2 b d), d = T - z_k. One way up from the keel, the side's dy/dz only falls, so it is
+    at least s = (y_d - b) / (D - T) (the straight topside) everywhere below T: y(z) <= b - s (T - z).
+    That needs b >= s d and bounds the area: f <= 1 - s d / (2 b) (a flat bottom, then the line of
+    slope s). Within both, a one-way section exists (a blend of that and the V). A dry section
+    (d <= 0) has no area to hold: never forced."""
+    curves = hull.basic_curves
+    b = float(curves["dwl"](x, outside=0.0)[0])
+    y_d = float(curves["deck"](x, outside=np.nan)[0])
+    z_k = float(curves["profile"](x, outside=np.nan)[0])  # the centre profile: the keel's height
+    d = draft - z_k
+    if not d > 0 or b <= 0 or np.isnan(y_d):
+        return False
+    s = (y_d - b) / (depth - draft)
+    f = float(curves["sac"](x, outside=0.0)[0]) / (2 * b * d)
+    return b < s * d or f > 1 - s * d / (2 * b)
+
+
+def judged(p: dict) -> tuple[list, list, list, list, list, list, list]:
+    hull = fl.design_hull(**p)
+    s = hull.bare_hull_surface()
     T, D, B, L = p["draft"], p["depth"], p["breadth"], p["lpp"]
     waterlines = [waterline_reading(s, z, L) for z in np.linspace(0.25 * T, D - 0.125 * T, WATERLINES)]
-    frames = [frame_inflection_heights(s, x) for x in np.linspace(0.05, 0.95, 19) * L]
+    xs = np.linspace(0.05, 0.95, 19) * L
+    frames = [frame_inflection_heights(s, x) for x in xs]
+    at_or_above = [any(z > WATERLINE_BAND * T for z in f) for f in frames]
     return ([w[0] for w in waterlines],
             [sign_changes(s, 1, y) for y in np.linspace(0.1, 0.9, 5) * B / 2],
             [len(f) for f in frames],
             [w[1:] for w in waterlines],
             [sum(z > T for z in f) for f in frames],
-            [sum(WATERLINE_BAND * T < z <= T for z in f) for f in frames])
+            [sum(WATERLINE_BAND * T < z <= T for z in f) for f in frames],
+            [a and forced_by_basic_curves(hull, x, T, D) for a, x in zip(at_or_above, xs)])
 
 
 def print_reading(hulls: list) -> None:
@@ -110,6 +134,11 @@ def main():
     at_t = sum(any(v > 0 for v in h[5]) for h in hulls)
     print(f"    ... with it at the waterline ({WATERLINE_BAND:g} T .. T: convex below, hollow above): {at_t} hulls; "
           f"{sum(v for h in hulls for v in h[5])} frame inflections")
+    frames_up = sum(any(z > 0 for z in (a, b)) for h in hulls for a, b in zip(h[4], h[5]))
+    forced = sum(v for h in hulls for v in h[6])
+    print(f"    ... of the {frames_up} frames with an inflection at or above {WATERLINE_BAND:g} T, {forced} forced by the "
+          f"basic curves (no one-way section joins their keel, waterline and deck points with the asked area), "
+          f"{frames_up - forced} not")
     print(f"  none of these (the issue's marks): {clean} hulls ({100 * clean / n:.0f} %)")
     wl, bt, fr = (np.array([h[k] for h in hulls]) for k in range(3))
     print("  mean sign changes by waterline, T/4 .. D - T/8:", " ".join(f"{v:.1f}" for v in wl.mean(axis=0)))
