@@ -63,9 +63,9 @@ def frame_inflection_heights(surface, x: float) -> list:
 
 
 def forced_by_basic_curves(hull, x: float, draft: float, depth: float) -> bool:
-    """Whether no section turning one way can join the keel point (0, z_k) (the centre profile), the waterline point
-    (b, T) and the deck point (y_d, D) of the basic curves at x with the asked fullness
-    f = SAC / (2 b d), d = T - z_k. One way up from the keel, the side's dy/dz only falls, so it is
+    """Whether no section turning one way can join the keel point (0, z_k) (the centre profile),
+    the waterline point (b, T) and the deck point (y_d, D) of the basic curves at x with the asked
+    fullness f = SAC / (2 b d), d = T - z_k. One way up from the keel, the side's dy/dz only falls, so it is
     at least s = (y_d - b) / (D - T) (the straight topside) everywhere below T: y(z) <= b - s (T - z).
     That needs b >= s d and bounds the area: f <= 1 - s d / (2 b) (a flat bottom, then the line of
     slope s). Within both, a one-way section exists (a blend of that and the V). A dry section
@@ -134,7 +134,7 @@ def main():
     at_t = sum(any(v > 0 for v in h[5]) for h in hulls)
     print(f"    ... with it at the waterline ({WATERLINE_BAND:g} T .. T: convex below, hollow above): {at_t} hulls; "
           f"{sum(v for h in hulls for v in h[5])} frame inflections")
-    frames_up = sum(any(z > 0 for z in (a, b)) for h in hulls for a, b in zip(h[4], h[5]))
+    frames_up = sum(a + b > 0 for h in hulls for a, b in zip(h[4], h[5]))
     forced = sum(v for h in hulls for v in h[6])
     print(f"    ... of the {frames_up} frames with an inflection at or above {WATERLINE_BAND:g} T, {forced} forced by the "
           f"basic curves (no one-way section joins their keel, waterline and deck points with the asked area), "

@@ -119,12 +119,8 @@ constexpr double kFlareMargin = 1.05;
 /// ... but its bilge corner keeps at least this fraction of the waterline half-breadth, or the
 /// less that still leaves the knob kCornerAreaMargin of fullness above the asked area (never
 /// under kLeastCornerShare of b; least_corner_breadth), so a fine, flared section forward of a
-/// dry transom can lean as its flare asks. Measured on bench_hull's hulls 0-99 / 100-199
-/// (bench_fairness_space): frame inflections at or above 0.99 T 36 -> 31 / 40 -> 32 (some only
-/// moved from just above T to just under it: where the deck is far wider than the waterline over
-/// an area well above the V's no section turns one way), waterlines clean 418 -> 419 / 430 -> 435
-/// of 600, buttocks' sign changes 2.41 -> 2.44 / 2.32 -> 2.32. A margin of 0.2 put 0.11 deg
-/// wobbles at the container ship's and a fine ship's dry transoms; 0.05 cost 45 clean waterlines.
+/// dry transom can lean as its flare asks (measured in docs/sections.md: a margin of 0.2 put
+/// wobbles at dry transoms, 0.05 cost clean waterlines).
 constexpr double kMinCornerBreadth = 0.75;
 constexpr double kCornerAreaMargin = 0.25, kLeastCornerShare = 0.1;
 /// ... reached smoothly: the two corners are blended where their ratio lies within e^kCornerBlend

@@ -60,8 +60,8 @@ constexpr double kSplitSkew = 0.1;         ///< an all-quad split node this x it
 constexpr double kCornerLimit = 45.0;      ///< the goal: quad corners within kCornerLimit of 0 and 180 deg are out
 constexpr double kCornerTrade = 0.5;       ///< improve_corners may lower a node's worst element to this
                                            ///< (corners within 30-150 deg) for corners nearer 90 deg
-constexpr double kMeanBelow = 1.0;         ///< improve_mean moves the free nodes of elements scoring below this (all but perfect ones: at 0.85
-                                           ///< the bare hull's mean was 0.915, under gmsh's 0.919 at our chordal tolerance)
+constexpr double kMeanBelow = 1.0;         ///< improve_mean moves the free nodes of elements scoring below this
+                                           ///< (all but perfect ones; 0.85 left the bare hull under gmsh's mean)
 constexpr int kMeanPasses = 3;             ///< its sweeps (the third raises the bare hull's mean 0.001 for 10-20 % time)
 constexpr double kHexBelow = 0.75;         ///< remove_valence3_nodes looks at valence-3 nodes whose quads score below this
 constexpr double kHexReach = 0.1;          ///< splits scoring more than this below them before the search are not tried
