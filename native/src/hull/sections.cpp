@@ -117,12 +117,13 @@ constexpr double kThroughQPower = 3.0;
 /// its top still turns inward (convex) ...
 constexpr double kFlareMargin = 1.05;
 /// ... but its bilge corner keeps at least this fraction of the waterline half-breadth, or the
-/// less that still leaves the knob kCornerAreaMargin of fullness above the asked area (never
-/// under kLeastCornerShare of b; least_corner_breadth), so a fine, flared section forward of a
-/// dry transom can lean as its flare asks (measured in docs/sections.md: a margin of 0.2 put
-/// wobbles at dry transoms, 0.05 cost clean waterlines).
+/// less whose polygon's area over the V the asked area's is kCornerConicShare of (never under
+/// kLeastCornerShare of b; least_corner_breadth), so a fine, flared section forward of a dry
+/// transom can lean as its flare asks. A share, not a margin of fullness: a fixed margin (0.25)
+/// held the corners of sections a little finer than their flare's bound upright, and they
+/// flared hollow above T (measured in docs/sections.md).
 constexpr double kMinCornerBreadth = 0.75;
-constexpr double kCornerAreaMargin = 0.25, kLeastCornerShare = 0.1;
+constexpr double kCornerConicShare = 0.45, kLeastCornerShare = 0.1;
 /// ... reached smoothly: the two corners are blended where their ratio lies within e^kCornerBlend
 /// (narrow enough that the blended corner stays inside the waterline point: 0.75 e^0.25 < 1).
 constexpr double kCornerBlend = 0.25;
@@ -479,13 +480,15 @@ void match_bilge_curvature(Piece& top, const Piece& bilge) {
 
 /// The least breadth of the bilge corner C (at height z_keel + rise) a flared section may lean
 /// to: kMinCornerBreadth of b, or less where the asked fullness f needs less. The polygon
-/// K -> C -> Q holds (c d + b (d - rise)) / 2 of area (c the corner's breadth), so c = b (2 (f +
-/// kCornerAreaMargin) - 1 + rise / d) leaves the knob that margin of fullness above f.
+/// K -> C -> Q holds (c d + b (d - rise)) / 2 of area (c the corner's breadth), the V (chord Q-K)
+/// half the box, so c = b (2 (f - 1/2) / kCornerConicShare + rise / d) asks the bilge conic for
+/// that share of the polygon's excess over the V.
 double least_corner_breadth(const Section& S, double rise) {
   const double floor = kMinCornerBreadth * S.b;
   if (std::isnan(S.s.half_area) || !(S.b > 0 && S.d > 0)) return floor;  // the family's range: the fixed floor
-  const double needed = S.b * (2.0 * (S.s.half_area / (S.b * S.d) + kCornerAreaMargin) - 1.0 + rise / S.d);
-  return smooth_min(std::max(needed, kLeastCornerShare * S.b), floor, kCornerBlend);
+  const double excess = S.s.half_area / (S.b * S.d) - 0.5;
+  const double needed = S.b * (2.0 * excess / kCornerConicShare + rise / S.d);
+  return smooth_min(smooth_max(needed, kLeastCornerShare * S.b, kCornerBlend), floor, kCornerBlend);
 }
 
 /// The template's pieces for shape knob lambda (immersed sections), from the deck to the keel.
