@@ -47,6 +47,10 @@ RUN_LEVELS = 41
 OFFSET_SAMPLES = 161
 #: The lines' slopes at x_r are read over this fraction of Lpp forward of it.
 END_SLOPE_BASE = 0.01
+#: Length over which the shift onto the faired lines fades out toward x_r, fraction of Lpp: the
+#: lines' slope at x_r is read over END_SLOPE_BASE, so without the fade the sections kinked along
+#: x there (the tanker's 23 times the median second difference of its control points along x).
+FADE_LENGTH = 0.01
 #: Height over which the faired topside takes over from the template, fraction of the topside.
 BLEND_DEPTH = 0.25
 
@@ -101,6 +105,7 @@ class TransomRun:
         self.b = (y[-1] - y[-2]) / (x_b - self.x_r)
         self.c = fit_run(xs[:-1], y[:-2], self.x_r, self.a, self.b)
         self.levels = np.linspace(0.0, 1.0, RUN_LEVELS)
+        self.fade_length = FADE_LENGTH * lpp
 
     def covers(self, x: float) -> bool:
         return self.x_a <= x < self.x_r
@@ -109,6 +114,12 @@ class TransomRun:
         """The faired topside lines' half-breadths (m) at x, RUN_LEVELS of them (eta 0 .. 1)."""
         h = self.x_r - x
         return self.a - self.b * h + self.c * h * h
+
+    def fade(self, x: float) -> float:
+        """The share of the shift kept at x: 1 aft of the last FADE_LENGTH Lpp of the run, 0 at
+        x_r, a quintic smoothstep between (the section changes C2 along x at x_r)."""
+        s = min(max((self.x_r - x) / self.fade_length, 0.0), 1.0)
+        return s * s * s * (10.0 - 15.0 * s + 6.0 * s * s)
 
     def corrected(self, curve, spec):
         """The section `curve` (3-D, deck -> keel, designed from `spec`) with its topside moved onto
@@ -125,7 +136,7 @@ class TransomRun:
         knots, p, n, t = self._params
         pts = np.asarray(curve.evaluate(t))
         P, z_low = pts[:n], pts[n:2 * n, 2]  # z_low: the lowest point of each control point's support
-        shift = np.nan_to_num(self.lines(spec.x) - topside_offsets(pts[2 * n:], zd, T, zk))
+        shift = np.nan_to_num(self.lines(spec.x) - topside_offsets(pts[2 * n:], zd, T, zk)) * self.fade(spec.x)
         shift -= self.levels * shift[-1]  # the deck edge stays on the deck line
         eta = np.clip((P[:, 2] - T) / (zd - T), 0.0, 1.0)
         s = np.clip((z_low - z_lo) / (BLEND_DEPTH * (zd - T)), 0.0, 1.0)
