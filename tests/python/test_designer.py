@@ -492,11 +492,11 @@ WOBBLY_WATERLINES = {
           "of 300 (the design waterline alone: clean 33 -> 71 of 100 with the mean)",
     13.0: "the stem's last metre: a hollow of 0.54 deg at x 244.3 m between the body and the convex tip (0.16 deg), the "
           "same keel point lifted up the stem as at 11 m",
-    15.0: "a wobble of 0.11 deg at x -3.6 m (0.10-0.11 deg in the 14.5-15.5 m waterlines), over the dry transom where "
-          "the design waterline ends, since flared sections' bilge corner asks the conic for a share of their area "
-          "(least_corner_breadth; the sweep's frames with an S at or above 0.99 T 31 -> 5 of 100 hulls). Cause not yet "
-          "found: the corner share (0.4-0.5), the run's blend depth (0.15-0.35) and the end band (the corner at its old "
-          "floor as the immersion fades) leave it; clean on the main before",
+    15.0: "a hollow lobe of 0.12 deg at x -3.6 m, where the design waterline ends over the dry transom (0.108-0.122 "
+          "deg in the 14.5-16.5 m waterlines), read as a wobble from 0.1 deg. The lobe was there before (0.077-0.086 deg) "
+          "and grew when flared sections' bilge corner came to ask the conic for a share of their area "
+          "(least_corner_breadth; the sweep's frames with an S at or above 0.99 T 31 -> 5 of 100 hulls); the corner "
+          "share (0.4-0.5), the run's blend depth (0.15-0.35) and the share fading with the immersion leave it",
 }
 
 
