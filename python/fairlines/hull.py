@@ -643,7 +643,10 @@ class Hull:
             if len(x):
                 specs = self.section_specs(x)
                 samples = self._section_curves(specs, _native.design_sections(specs))
-            self._sections = station_mean.mean_sections(designed, samples, averaged)
+            pr = self.description.principal
+            hold = station_mean.keel_hold_share(np.array([self._specs[i].z_keel for i in averaged]) / pr.draft,
+                                                xs[averaged] > pr.lpp / 2)
+            self._sections = station_mean.mean_sections(designed, samples, averaged, hold)
         return self._sections
 
     def _station_mean_offsets(self, xs: np.ndarray, specs: list) -> np.ndarray:
