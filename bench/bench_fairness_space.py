@@ -32,6 +32,8 @@ WATERLINES = 6  # T/4 .. D - T/8: the first three up to 0.74 T, the rest from 0.
 # hollow above (a wine-glass section), counted apart from those above T so a shift of a few
 # millimetres across T is seen for what it is.
 WATERLINE_BAND = 0.99
+#: ... and just below it, where an aft section's convex bilge turns into a hollow topside (fractions of T)
+TOPSIDE_BAND = 0.75
 
 
 def sign_changes(surface, axis: int, value: float) -> int:
@@ -82,7 +84,7 @@ def forced_by_basic_curves(hull, x: float, draft: float, depth: float) -> bool:
     return b < s * d or f > 1 - s * d / (2 * b)
 
 
-def judged(p: dict) -> tuple[list, list, list, list, list, list, list]:
+def judged(p: dict) -> tuple[list, list, list, list, list, list, list, list]:
     hull = fl.design_hull(**p)
     s = hull.bare_hull_surface()
     T, D, B, L = p["draft"], p["depth"], p["breadth"], p["lpp"]
@@ -90,13 +92,15 @@ def judged(p: dict) -> tuple[list, list, list, list, list, list, list]:
     xs = np.linspace(0.05, 0.95, 19) * L
     frames = [frame_inflection_heights(s, x) for x in xs]
     at_or_above = [any(z > WATERLINE_BAND * T for z in f) for f in frames]
+    just_below = [any(TOPSIDE_BAND * T <= z <= WATERLINE_BAND * T for z in f) for f in frames]
     return ([w[0] for w in waterlines],
             [sign_changes(s, 1, y) for y in np.linspace(0.1, 0.9, 5) * B / 2],
             [len(f) for f in frames],
             [w[1:] for w in waterlines],
             [sum(z > T for z in f) for f in frames],
             [sum(WATERLINE_BAND * T < z <= T for z in f) for f in frames],
-            [a and forced_by_basic_curves(hull, x, T, D) for a, x in zip(at_or_above, xs)])
+            [a and forced_by_basic_curves(hull, x, T, D) for a, x in zip(at_or_above, xs)],
+            [(b, b and forced_by_basic_curves(hull, x, T, D)) for b, x in zip(just_below, xs)])
 
 
 def print_reading(hulls: list) -> None:
@@ -139,6 +143,10 @@ def main():
     print(f"    ... of the {frames_up} frames with an inflection at or above {WATERLINE_BAND:g} T, {forced} forced by the "
           f"basic curves (no one-way section joins their keel, waterline and deck points with the asked area), "
           f"{frames_up - forced} not")
+    below = [v for h in hulls for v in h[7]]
+    print(f"    ... with it just below the waterline ({TOPSIDE_BAND:g} .. {WATERLINE_BAND:g} T: a convex bilge under a "
+          f"hollow topside): {sum(any(b for b, _ in h[7]) for h in hulls)} hulls; {sum(b for b, _ in below)} frames, "
+          f"{sum(f for _, f in below)} of them forced by the basic curves")
     print(f"  none of these (the issue's marks): {clean} hulls ({100 * clean / n:.0f} %)")
     wl, bt, fr = (np.array([h[k] for h in hulls]) for k in range(3))
     print("  mean sign changes by waterline, T/4 .. D - T/8:", " ".join(f"{v:.1f}" for v in wl.mean(axis=0)))
