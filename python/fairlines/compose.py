@@ -187,11 +187,13 @@ def mesh_hydrostatics(mesh: Mesh, draft: float, *, half: bool = True) -> MeshHyd
 
 
 def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, blend: bool = True,
-                       **options) -> ComposedHull:
+                       placement=None, **options) -> ComposedHull:
     """Bare hull + bulb composed into one closed half hull, with a C1 blending surface between
     them when ``blend`` (placed by :func:`seam_blend_placement`). ``options`` by keyword: the
     fields of :class:`fl.BlendPlacementOptions` (clearance_u, clearance_v, bulb_clearance,
-    tension, points) place the blend, the rest go to :func:`compose`. The result carries
+    tension, points) place the blend, the rest go to :func:`compose`; ``placement``: the
+    BlendPlacement seam_blend_placement already found for this hull, bulb and options (None:
+    found here). The result carries
     ``blend_note``: what was done, or why no blend could be placed (then it is the plain union).
 
     Raises InvalidInput when the bulb cannot meet the hull (see :func:`compose`) or an option
@@ -205,7 +207,8 @@ def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface
         return union
     seam = compose_options(**{k: meshing[k] for k in ("bulb_v", "tolerance") if k in meshing})
     try:
-        placement = seam_blend_placement(bare_hull, bulb, seam_options=seam, **placing)
+        if placement is None:
+            placement = seam_blend_placement(bare_hull, bulb, seam_options=seam, **placing)
     except _native.NoBlendFits as e:
         union = compose([bare_hull, bulb], **meshing)
         union.blend_note = "no blend: " + str(e).split(": ", 1)[1] + "; plain union"

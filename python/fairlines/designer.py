@@ -642,7 +642,6 @@ def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
     aft end. A bulb whose aft length the user gave is left as given. Raises
     InfeasibleFormParameters naming what to give when no aft length lets it meet the hull in
     one seam (the composition could not join them)."""
-    from .blend import seam_blend_placement
 
     given = p.bulb if isinstance(p.bulb, dict) else {}
     if hull.description.bulb is None:
@@ -656,7 +655,7 @@ def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
             desc["bulb"]["shape"]["aft_length"] = factor * (k["c_lpr"] * p.lpp + k["c_bb"] * p.breadth)
             hull = Hull(HullDescription.from_dict(desc))
         try:
-            seam_blend_placement(hull.bare_hull_surface(), hull.bulbous_bow())
+            hull.blend_placement()  # kept: composed_hull uses it
             return hull
         except _native.NoBlendFits:
             return hull  # the bulb meets the hull; the composition keeps the plain union

@@ -197,6 +197,8 @@ class Hull:
         self._dry_ends: dict = {}  # x_e -> (end waterlines, end contour) of the dry sections beyond it
         self._transom_run: list | None = None  # [fairlines.transom_run.TransomRun], or [] without a dry transom
         self._hydro: dict = {}  # (draft, options) -> Hydrostatics of the current surface
+        self._bow = None  # (key, BulbousBow) of the description's bulb, no overrides
+        self._placement = None  # (surface, bow, BlendPlacement) of the default blend
 
     # ---- construction ---------------------------------------------------------------
     @classmethod
@@ -740,7 +742,23 @@ class Hull:
         if d.bulb is None and not overrides:
             raise _native.InvalidInput('bulb is missing; expected a "bulb" section in the hull description')
         spec = d.bulb if d.bulb is not None else BulbSpec()
-        return BulbousBow(**self.ship_particulars(), **{**spec.kracht, **spec.shape, **overrides})
+        ship = self.ship_particulars()
+        if overrides:
+            return BulbousBow(**ship, **{**spec.kracht, **spec.shape, **overrides})
+        key = (tuple(ship.items()), repr(spec.to_dict()))
+        if self._bow is None or self._bow[0] != key:  # the designer and the composition both ask
+            self._bow = (key, BulbousBow(**ship, **spec.kracht, **spec.shape))
+        return self._bow[1]
+
+    def blend_placement(self):
+        """seam_blend_placement of the bare hull and the description's bulb with the default
+        options (cached for the current surface and bulb). Raises as seam_blend_placement does."""
+        from .blend import seam_blend_placement
+
+        surface, bow = self.bare_hull_surface(), self.bulbous_bow()
+        if self._placement is None or self._placement[0] is not surface or self._placement[1] is not bow:
+            self._placement = (surface, bow, seam_blend_placement(surface, bow))
+        return self._placement[2]
 
     def composed_hull(self, blend: bool = True, bulb=None, **compose_options):
         """Bare hull + bulbous bow (+ a C1 blend when ``blend``) composed into one watertight half
@@ -754,7 +772,13 @@ class Hull:
             closed.blend_note = "no bulb: the bare hull closed"
             return closed
         b = self.bulbous_bow() if bulb is None else bulb
-        return compose_with_blend(self.bare_hull_surface(), b, blend=blend, **compose_options)
+        placement = None
+        if bulb is None and blend and not compose_options:  # the placement the designer found, if it did
+            try:
+                placement = self.blend_placement()
+            except _native.NoBlendFits:
+                pass  # compose_with_blend says why in the plain union's note
+        return compose_with_blend(self.bare_hull_surface(), b, blend=blend, placement=placement, **compose_options)
 
     # ---- fairness -------------------------------------------------------------------
     def fairness_report(self, **kwargs) -> dict:

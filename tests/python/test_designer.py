@@ -631,3 +631,19 @@ def test_hydrostatics_are_cached_until_the_hull_changes():
     hull.set("sac", "volume", 1.01 * a.volume)
     b = hull.hydrostatics()
     assert b.volume == pytest.approx(1.01 * a.volume, rel=2e-3)
+
+
+def test_composed_hull_uses_the_blend_placement_the_designer_found():
+    """design_hull checks that its bulb meets the hull in one seam (a blend placement); the
+    composed hull uses that placement rather than finding it again, and is the hull composed
+    with a placement found afresh."""
+    from fairlines.compose import compose_with_blend
+
+    hull = fl.design_hull(**SHIPS["container"])
+    found = hull._placement[2] if hull._placement else None
+    assert found is not None and hull.blend_placement() is found
+    composed = hull.composed_hull()
+    afresh = compose_with_blend(hull.bare_hull_surface(), fl.BulbousBow(**hull.ship_particulars(),
+                                **hull.description.bulb.kracht, **hull.description.bulb.shape))
+    assert np.array_equal(np.asarray(composed.mesh.vertices), np.asarray(afresh.mesh.vertices))
+    assert composed.blend_note == afresh.blend_note
