@@ -49,8 +49,16 @@ GIVEN_STATIONS = 161
 #: A grid whose rows each lie within this fraction of Lpp of one x is cut into sections: where
 #: shapes are given, its rows are the stations over its range (stations between them would be
 #: cut from the chords joining the rows, which kink at each row and make the skin ring: DTMB
-#: 5415's main grid waterlines 9-37 curvature sign changes against 1-7 at its rows).
+#: 5415's main grid waterlines 9-37 curvature sign changes against 1-9 at its rows, the whole
+#: ship's cuts 822 against 438).
 SECTION_ROW_TOL = 1e-2
+#: ... but a row whose x range exceeds this share of its distance to the next is raked (DTMB
+#: 5415's first row, 29 mm over 216 mm: its transom's lower edge) and stations cut it instead:
+#: as a station it left the knuckle under the transom between stations, the keel line dipping.
+SECTION_ROW_RAKE = 0.05
+#: ... and a station cut between them is kept where the data there strays this far (of B) from
+#: the straight line between the stations either side (_unlike_their_neighbours).
+GIVEN_REFINE_TOL = 1e-2
 #: ... where the basic curves then have a knot span per station, at most this many.
 CLOSE_SPANS = 160
 #: Heights at which each station's half-breadth y(z) is sampled.
@@ -255,7 +263,10 @@ def _section_rows(grids: list, lpp: float) -> list:
         for p in (g.points, g.points.transpose(1, 0, 2)):
             spread, mean = np.ptp(p[..., 0], axis=1), p[..., 0].mean(axis=1)
             if len(p) >= 3 and spread.max() <= SECTION_ROW_TOL * lpp and np.abs(np.diff(mean)).min() > spread.max():
-                out.append((mean, float(spread.max())))
+                gap = np.minimum(np.abs(np.diff(mean, prepend=np.inf)), np.abs(np.diff(mean, append=np.inf)))
+                square = spread <= SECTION_ROW_RAKE * gap  # a raked row (a transom's edge) is left to the stations
+                if square.sum() >= 3:
+                    out.append((mean[square], float(spread[square].max())))
                 break
     return out
 
@@ -309,17 +320,18 @@ def _contour_noses(lines: list, beam: float) -> list:
 
 def measure_hull_data(data: HullData, depth: float | None = None, dome: bool = False,
                       stations: int = GRID_STATIONS, bulb: bool = False, noses: bool = False,
-                      rows: bool = False) -> MeasuredHull:
+                      rows: bool = False, extra: tuple | list | np.ndarray = ()) -> MeasuredHull:
     """Stations, half-breadths, lowest points, areas, volume and LCB of the data (module
     docstring); hull below the keel line (a sonar dome) is measured with `dome`, else left out;
     point grids are cut at `stations` stations; with `bulb` a bulb grid is measured as hull
     (its stations reach the centre plane's web up to D: :func:`_bulb_webs`), else set apart.
     `noses`: stations on the centre-plane contour's noses too (:func:`_stations`); `rows`: a
-    grid's section rows are its stations (:data:`SECTION_ROW_TOL`).
+    grid's section rows are its stations (:data:`SECTION_ROW_TOL`); `extra`: more stations (m).
     Raises InvalidInput for data with fewer than 3 stations with hull below T."""
     hull_grids = [g for g in data.grids if bulb or g.role != "bulb"]
     lines = [_longitudinal_lines(g.points) for g in hull_grids]
     xs = _stations(data, lines, stations, noses, _section_rows(hull_grids, data.lpp) if rows else ())
+    xs = np.union1d(xs, extra) if len(extra) else xs
     allp = np.concatenate([data.all_points()] if data.sections else [g.points.reshape(-1, 3) for g in hull_grids])
     D = float(depth if depth is not None else _depth_at_midship(allp, data))
     if depth is None and not D > data.draft:
@@ -1011,14 +1023,41 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
 
 def _given_measure(hull_data: HullData, depth: float | None) -> MeasuredHull:
     """The stations whose measured shapes are given: a grid's section rows where it has them,
-    the volume and LCB the data's chords hold (GIVEN_STATIONS cut from them, as the data's own
-    facets: a cubic through the rows' areas holds DTMB 5415 +0.29 % more, its centre 0.007 %
+    graded into the stations beyond their range (:func:`_with_rows`), and of those left out there
+    the ones whose data strays from their kept neighbours (:func:`_unlike_their_neighbours`);
+    the volume and LCB those the data's chords hold (GIVEN_STATIONS cut from them, as the data's
+    own facets: a cubic through the rows' areas holds DTMB 5415 +0.29 % more, its centre 0.007 %
     Lpp forward, both away from the data's)."""
     dense = measure_hull_data(hull_data, depth, dome=True, stations=GIVEN_STATIONS, bulb=True, noses=True)
-    if hull_data.sections or not _section_rows(hull_data.grids, hull_data.lpp):
+    rows = [] if hull_data.sections else _section_rows(hull_data.grids, hull_data.lpp)
+    if not rows:
         return dense
     md = measure_hull_data(hull_data, depth, dome=True, stations=GIVEN_STATIONS, bulb=True, noses=True, rows=True)
+    # between two rows the dense stations are the chords': kept, they step the sheer and ring
+    spans = [(float(np.min(r)), float(np.max(r))) for r, _ in rows]
+    back = [x for x in _unlike_their_neighbours(dense, md) if not any(lo < x < hi for lo, hi in spans)]
+    if back:
+        md = measure_hull_data(hull_data, depth, dome=True, stations=GIVEN_STATIONS, bulb=True, noses=True, rows=True,
+                               extra=back)
     return dataclasses.replace(md, volume=dense.volume, lcb=dense.lcb)
+
+
+def _unlike_their_neighbours(dense: MeasuredHull, kept: MeasuredHull) -> np.ndarray:
+    """x of the dense stations left out of `kept` whose measured half-breadths differ by more
+    than GIVEN_REFINE_TOL of B from the straight line between kept's stations either side: where
+    the data changes quickly between them (DTMB 5415's transom edge, where its waterline widens
+    from 0.10 to 0.21 m within 27 mm), so a skin through them would overshoot (the waterline
+    7 mm wide of the data, the keel line dipping)."""
+    out = []
+    for i, x in enumerate(dense.x):
+        j = int(np.searchsorted(kept.x, x))
+        if j == 0 or j == len(kept.x) or np.min(np.abs(kept.x - x)) <= 1e-9 * dense.lpp:
+            continue
+        t = (x - kept.x[j - 1]) / (kept.x[j] - kept.x[j - 1])
+        miss = np.abs(dense.y[i] - ((1 - t) * kept.y[j - 1] + t * kept.y[j]))  # NaN where one has no hull
+        if np.any(miss > GIVEN_REFINE_TOL * dense.beam):
+            out.append(float(x))
+    return np.asarray(out)
 
 
 def _composes(desc: dict) -> bool:

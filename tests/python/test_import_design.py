@@ -210,11 +210,11 @@ def _sign_changes(surface, axis, value, lo, hi):
 
 #: Measured shortfalls of the fairness comparison below (rebuilt vs a refit of the data's grid).
 REFIT_SHORT = {
-    ("dtmb5415", "main"): "round the raked transom (x 0-1 m), where the keel rises quickly, the buttocks turn 4-8 times "
-                "against 1-3 for the refit, at the grid's sections (x 0.23, 0.42, 0.62 m) and the stations graded into "
-                "the transom's; the lowest waterline (z 0.07 m) 7 against 2, the outermost buttock's 5 at the bow grid's "
-                "joint (x 4.2-4.8 m) against 1. Before the stations were the grid's own sections, 9-37 on the waterlines "
-                "and 23-36 on the buttocks (stations cut from the chords between the sections, which kink at each)",
+    ("dtmb5415", "main"): "round the transom (x 0-1 m), where the keel rises quickly, the waterlines turn 3-8 times "
+                "and the buttocks 8-9 against 0-3 for the refit, where the stations kept dense at the transom's edge "
+                "meet the grid's sections (0.2 m apart); the outermost buttock's 5 at the bow grid's joint (x 4.2-4.8 m) "
+                "against 1. Before the stations were the grid's own sections, 9-37 on the waterlines and 23-36 on the "
+                "buttocks (stations cut from the chords between the sections, which kink at each)",
     ("kcs", "forebody"): "the waterline at z 13.1 m (above the bulb): 6 sign changes against 2 for the refit, four of "
                          "them within 0.4 m of the centre plane at the stem (x 228.5-232.4 m), where the web above the "
                          "bulb meets the stem (test_rebuilt_kcs_stem_above_the_bulb_is_the_datas); the other cuts are "
