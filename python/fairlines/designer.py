@@ -642,7 +642,6 @@ def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
     aft end. A bulb whose aft length the user gave is left as given. Raises
     InfeasibleFormParameters naming what to give when no aft length lets it meet the hull in
     one seam (the composition could not join them)."""
-
     given = p.bulb if isinstance(p.bulb, dict) else {}
     if hull.description.bulb is None:
         return hull

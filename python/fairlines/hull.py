@@ -750,9 +750,10 @@ class Hull:
             self._bow = (key, BulbousBow(**ship, **spec.kracht, **spec.shape))
         return self._bow[1]
 
-    def blend_placement(self):
-        """seam_blend_placement of the bare hull and the description's bulb with the default
-        options (cached for the current surface and bulb). Raises as seam_blend_placement does."""
+    def blend_placement(self) -> "fairlines.blend.BlendPlacement":
+        """fairlines.seam_blend_placement of the bare hull and the description's bulb with the
+        default options (cached for the current surface and bulb). Raises InvalidInput when the
+        hull has no bulb or the bulb cannot meet it, NoBlendFits when no blend boundary fits."""
         from .blend import seam_blend_placement
 
         surface, bow = self.bare_hull_surface(), self.bulbous_bow()
