@@ -187,7 +187,7 @@ def mesh_hydrostatics(mesh: Mesh, draft: float, *, half: bool = True) -> MeshHyd
 
 
 def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, blend: bool = True,
-                       placement=None, **options) -> ComposedHull:
+                       placement: BlendPlacement | None = None, **options) -> ComposedHull:
     """Bare hull + bulb composed into one closed half hull, with a C1 blending surface between
     them when ``blend`` (placed by :func:`seam_blend_placement`). ``options`` by keyword: the
     fields of :class:`fl.BlendPlacementOptions` (clearance_u, clearance_v, bulb_clearance,
@@ -196,8 +196,11 @@ def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface
     found here). The result carries
     ``blend_note``: what was done, or why no blend could be placed (then it is the plain union).
 
-    Raises InvalidInput when the bulb cannot meet the hull (see :func:`compose`) or an option
-    is out of range."""
+    Raises InvalidInput when the bulb cannot meet the hull (see :func:`compose`), an option
+    is out of range or ``placement`` is not a BlendPlacement."""
+    if placement is not None and not isinstance(placement, BlendPlacement):
+        raise _native.InvalidInput(f"placement is a {type(placement).__name__}; expected a BlendPlacement from "
+                                   "seam_blend_placement() or None")
     names = set(option_names(_native.BlendPlacementOptions))
     placing = {k: v for k, v in options.items() if k in names}
     meshing = {k: v for k, v in options.items() if k not in names}

@@ -272,35 +272,26 @@ def _section_rows(grids: list, lpp: float) -> list:
 
 
 def _with_rows(x: np.ndarray, r: np.ndarray, spread: float) -> np.ndarray:
-    """The stations `x` with the rows `r` instead of those over the rows' range, graded into the
-    stations beyond it (cosine-clustered toward the hull's ends) so that no interval is much
-    longer than the next: the skin overshoots a long interval next to short ones (across DTMB
-    5415's transom, 1-10 mm apart, into its first row interval of 216 mm it sagged 9 cm below
-    the data). Where the stations beyond reach at least an end interval's length from the rows
-    (a bow), they are thinned outward, each interval at least half the last; where they reach
-    less (a transom), the end interval is halved toward them instead until at most twice their
-    spacing (stations cut from the chords between two rows: inside the rows' range only there).
-    No station lies within a row's own x range (`spread`, m) of the end rows: it would cut across
-    that row's points (DTMB 5415's sections then hold no SAC)."""
+    """The stations `x` with the rows `r` instead of those over the rows' range, the stations
+    beyond it (cosine-clustered toward the hull's ends) thinned outward from the end rows, each
+    interval at least half the last and the hull's end kept: the skin overshoots a long interval
+    next to short ones (across DTMB 5415's transom, 1-10 mm apart, into its first row interval of
+    216 mm it sagged 9 cm below the data). Where the data changes quickly among the thinned ones,
+    _given_measure takes them back (:func:`_unlike_their_neighbours`). No station lies within a
+    row's own x range (`spread`, m) of the end rows: it would cut across that row's points (DTMB
+    5415's sections then hold no SAC)."""
     out, inside = [r], (x >= r[0]) & (x <= r[-1])
     for end, near, sign in ((r[0], r[1], -1.0), (r[-1], r[-2], 1.0)):
         beyond = np.sort(sign * (x[~inside] - end))
         beyond = beyond[beyond >= spread]
-        step = first = abs(near - end)
-        if len(beyond) and beyond[-1] >= first:
-            kept, last = [], 0.0
-            for b in beyond[:-1]:
-                if b - last >= 0.5 * step:
-                    kept.append(b)
-                    step, last = b - last, b
-            beyond = np.append(kept, beyond[-1])  # the hull's end kept
-        elif len(beyond):
-            h_out = min(beyond[0], np.diff(beyond[:2]).min(initial=beyond[0]))
-            while step > 2.0 * h_out and step >= 2.0 * spread:
-                step /= 2.0
-                out.append([end - sign * step])
-            beyond = beyond[beyond >= 0.5 * step]
-        out.append(end + sign * beyond)
+        if not len(beyond):
+            continue
+        kept, last, step = [], 0.0, abs(near - end)
+        for b in beyond[:-1]:
+            if b - last >= 0.5 * step:
+                kept.append(b)
+                step, last = b - last, b
+        out.append(end + sign * np.append(kept, beyond[-1]))  # the hull's end kept
     return np.unique(np.concatenate(out))
 
 

@@ -123,3 +123,11 @@ def test_intersection_option_is_refused_by_name():
     plane = fl.NurbsSurface(1, 1, [0, 0, 1, 1], [0, 0, 1, 1], np.array([[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 0]]], float))
     with pytest.raises(fl.InvalidInput, match="intersect_surfaces option 'tol' is unknown"):
         fl.intersect_surfaces(plane, plane, tol=1e-7)
+
+
+def test_a_placement_that_is_not_one_is_refused_by_name():
+    from fairlines.compose import compose_with_blend
+
+    plane = fl.NurbsSurface(1, 1, [0, 0, 1, 1], [0, 0, 1, 1], np.array([[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 0]]], float))
+    with pytest.raises(fl.InvalidInput, match="placement is a dict; expected a BlendPlacement"):
+        compose_with_blend(plane, plane, placement={"hull": plane})
