@@ -72,7 +72,9 @@ DECK_FLAT_CHECKS = 101      # points of that check
 DECK_FLARE_END = 0.12       # forward, the deck's flare over the waterline (fraction of B/2) where the waterline ends ...
 DECK_FOLLOW_TO = 0.7        # ... followed to where the waterline narrows to this fraction of B/2 (the stem head is free)
 DECK_FLARE_POINTS = 40      # fit points of the forward deck over the waterline's forward run
-DECK_TRANSOM = 0.92         # deck half-breadth at the transom, fraction of B/2
+DECK_TRANSOM = 0.92         # deck half-breadth at the transom, fraction of B/2 ...
+TRANSOM_FLARE = 20.0        # ... at an immersed transom at most this far (deg) outboard of its waterline over the freeboard
+DECK_FLAT_TOL = 1e-3        # ... the deck over it flat from where it comes within this fraction of B/2
 DWL_TRANSOM = 0.7           # waterline half-breadth at an immersed transom, fraction of B/2 ...
 TRANSOM_WIDTHS = (DWL_TRANSOM, 0.6, 0.5, 0.4, 0.3)  # ... narrowed through these until the run widens to the peak
 MONOTONE_CHECKS = 101       # points of that check
@@ -486,8 +488,9 @@ def _sac_spec(p: Particulars, c: dict, dwl_curve, profile, xa: float, xf: float)
 
 def _deck_spec(p: Particulars, par: tuple, dwl_curve, x_aft: float, xa: float, xf: float) -> dict:
     """The deck line: flat at B/2 from a quarter Lpp aft of the parallel body (further aft where a
-    full stern keeps the waterline near B/2) to the waterline's widest, and forward of it drawn
-    over the waterline (see _forward_deck)."""
+    full stern keeps the waterline near B/2) to the waterline's widest, aft of it over an
+    immersed transom drawn over the waterline (see _transom_deck), and forward of it drawn over
+    the waterline (see _forward_deck)."""
     L, half = p.lpp, p.breadth / 2
     deck_from = max(x_aft + 0.05 * L, par[0] - 0.25 * L)
     xs_aft = np.linspace(xa, deck_from, DECK_FLAT_CHECKS)
@@ -495,8 +498,36 @@ def _deck_spec(p: Particulars, par: tuple, dwl_curve, x_aft: float, xa: float, x
     if len(full):
         deck_from = max(min(deck_from, float(full[0])), x_aft + DECK_FROM_MIN * L)
     deck_to = par[1] if par[1] > par[0] else _midship_place(p)
-    return {"flat_from": deck_from, "flat_to": deck_to, "value": half, "yB": DECK_TRANSOM * half if p.stern == "transom" else 0.0,
+    spec = {"flat_from": deck_from, "flat_to": deck_to, "value": half, "yB": DECK_TRANSOM * half if p.stern == "transom" else 0.0,
             "yE": 0.0, "monotone": True, "spans": 24, "fit": _forward_deck(half, dwl_curve, deck_to, xf)}
+    if p.stern == "transom" and xa <= x_aft + 1e-9 * L:
+        _transom_deck(spec, p, dwl_curve, x_aft, deck_to)
+    return spec
+
+
+def _transom_deck(spec: dict, p: Particulars, dwl_curve, x_aft: float, deck_to: float) -> None:
+    """Over an immersed transom whose waterline is narrower than the deck by more than
+    TRANSOM_FLARE over the freeboard, the deck aft of its flat (in `spec`, edited) follows the
+    waterline b(x): y_d = b + k (B/2 - b), k the share that puts the transom's deck TRANSOM_FLARE
+    outboard of its waterline; fit points, held convex in plan from the transom to the flat. A
+    deck at DECK_TRANSOM B/2 over a fine ship's narrow immersed transom flared its aft sections
+    out 30-40 deg over the freeboard, and they turned hollow under the waterline (an S)."""
+    half = p.breadth / 2
+    xs = np.linspace(x_aft, deck_to, DECK_FLAT_CHECKS)
+    b = dwl_curve(xs)
+    y_t = b[0] + (p.depth - p.draft) * math.tan(math.radians(TRANSOM_FLARE))
+    if y_t >= spec["yB"] or b[0] >= half:
+        return
+    k = (y_t - b[0]) / (half - b[0])
+    deck = b + k * (half - b)
+    narrower = deck < half * (1.0 - DECK_FLAT_TOL)
+    if narrower.any():
+        spec["flat_from"] = max(spec["flat_from"], float(xs[narrower][-1]))
+    keep = (xs > xs[0]) & (xs < spec["flat_from"])
+    spec["fit"] = [[float(x), float(y)] for x, y in zip(xs[keep], deck[keep])] + spec["fit"]
+    spec["yB"] = float(y_t)
+    # a deck following the waterline's run through its hollow took it into the upper waterlines
+    spec["convex"] = [[x_aft, spec["flat_from"], 0.0]]
 
 
 def _forward_deck(half: float, dwl_curve, x0: float, xf: float) -> list[list[float]]:

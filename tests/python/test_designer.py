@@ -484,6 +484,17 @@ def test_no_s_shaped_frames(example_surface):
         assert _sign_changes(example_surface, 0, x) == 0, x
 
 
+def test_the_fine_ferrys_aft_sections_are_convex():
+    """The fine ferry's frames from its immersed transom to midships turn one way (no sign
+    change over 0.1 deg). With its deck at 0.92 B/2 over a waterline of 0.51 B/2 at the transom
+    (a flare of 37 deg over the freeboard) those at 6-28 % Lpp were S-shaped: a convex bilge
+    under a hollow topside (inflections at 0.89-1.06 T)."""
+    p = SHIPS["fine_ferry"]
+    surface = fl.design_hull(**p).bare_hull_surface()
+    for x in np.linspace(0.0, 0.5 * p["lpp"], 15):
+        assert _sign_changes(surface, 0, x) == 0, x
+
+
 WOBBLY_WATERLINES = {
     7.0: "the stem's last 1.7 m: a hollow of 0.40 deg at x 243.1 m after the entrance's convex turn (2.94 deg at x "
          "241.8 m), since the FP station's keel end is held on the stem (station_mean.keel_hold_share), which made the "
