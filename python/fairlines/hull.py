@@ -53,6 +53,10 @@ RELAXED_BAND_MARGIN = (0.01, 0.0005)
 # Stations whose immersed box is within this many end bands (fairlines.sections kEndBand) of
 # vanishing get no band: their area fades out there anyway.
 BAND_FREE = 2.0
+# ... by depth over an immersed transom, this many: a section's area is asked in full from one end
+# band of depth, and a transom 0.12 T deep (the designer's default for fine ships) left band-free
+# took a SAC whose fullness fell below what the family holds there (0.45 asked, 0.64 the least).
+BAND_FREE_DEPTH = 1.0
 # The station mean's samples (fairlines.station_mean) stay this fraction of the way to a
 # neighbouring station at most (stations added over an overhang or a dome lie closer).
 MEAN_REACH = 0.45
@@ -362,8 +366,11 @@ class Hull:
         xs = xs[(xs > xa) & (xs < xf)]
         out = []
         pr = self.description.principal
+        transom = float(self._curves["dwl"](xa)[0]) > 1e-9 * pr.breadth  # the waterline ends on an immersed transom
         for x, spec in zip(xs, self.section_specs(xs, with_area=False)):
-            if min(spec.y_dwl / (pr.breadth / 2), (spec.draft - spec.z_keel) / pr.draft) < BAND_FREE * _native.END_BAND:
+            depth_free = BAND_FREE_DEPTH if transom and x < 0.5 * (xa + xf) else BAND_FREE
+            if (spec.y_dwl / (pr.breadth / 2) < BAND_FREE * _native.END_BAND
+                    or (spec.draft - spec.z_keel) / pr.draft < depth_free * _native.END_BAND):
                 continue  # where the waterline ends the area fades out: no band
             lo, hi = _native.section_fullness_range(spec)
             if np.isfinite(lo) and np.isfinite(hi) and hi > lo:
