@@ -85,6 +85,7 @@ FULLNESS_LIMITS = (0.52, 0.97)  # natural end fullness kept inside these
 FIT_END = 0.06              # no fullness points this close (fraction of the waterline's length) to its ends
 MATCH_TOL = 1e-6            # relative tolerance of volume, LCB (on Lpp) and waterplane area on the surface
 MATCH_ITERATIONS = 6
+MATCH_REFUSE = 1e-4         # a design still this far off (relative) after them is refused, not returned
 MATCH_GAUSS = 4             # Gauss points per span of the matching hydrostatics: 1e-11 of the 8-point volume, twice as fast
 PROFILE_SPANS = (30, 60, 120)  # knot spans of the profile, tried in turn
 _GAUSS8 = np.polynomial.legendre.leggauss(8)  # the natural fullness's quadrature
@@ -703,7 +704,7 @@ def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
 def _try_design(p: Particulars) -> tuple[Hull | None, Exception | None]:
     try:
         hull = Hull(HullDescription.from_dict(design_description(p)))  # a fresh dict: no defensive copy
-        match_targets(hull)
+        _refuse_a_miss(match_targets(hull))
         return hull, None
     except _native.InfeasibleFormParameters as exc:
         return None, exc
@@ -769,6 +770,19 @@ def _explained(exc: Exception, p: Particulars, edge: str = "") -> Exception:
         remedy = (f"the ends outside this parallel body would need a prismatic coefficient of "
                   f"{(c['cp'] - lp) / (1 - lp):.3f}: give a shorter parallel_length, raise cb or move lcb toward midships")
     return type(exc)(f"design_hull: {said}: {remedy}{edge} ({exc})")
+
+
+def _refuse_a_miss(err: dict) -> None:
+    """Raise InfeasibleFormParameters (naming the SAC) when match_targets' last relative errors
+    `err` leave any of volume, LCB and waterplane area over MATCH_REFUSE: sections that cannot
+    hold what the SAC asks stall the matching, and a hull off its particulars must not be
+    returned as designed."""
+    missed = {k: v for k, v in err.items() if not abs(v) <= MATCH_REFUSE}
+    if missed:
+        said = ", ".join(f"{k} {v:+.2e}" for k, v in missed.items())
+        raise _native.InfeasibleFormParameters(f"basic_curves.sac: the surface stays off the asked {said} (relative; the "
+                                               f"LCB on Lpp) after {MATCH_ITERATIONS} rebuilds: the sections cannot hold "
+                                               "the sectional areas the SAC asks")
 
 
 def match_targets(hull: Hull, tol: float = MATCH_TOL) -> dict:

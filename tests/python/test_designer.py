@@ -283,6 +283,17 @@ def test_a_waterplane_too_fine_for_the_volume_names_a_cwp_that_builds():
     assert fl.design_hull(**{**p, "cwp": cwp}).hydrostatics().cwp == pytest.approx(cwp, rel=MATCH_TOL)
 
 
+def test_a_design_whose_matching_stalls_is_refused_not_returned(monkeypatch):
+    """A hull the matching leaves off its particulars by more than MATCH_REFUSE is refused
+    naming the SAC and the miss (one rebuild leaves the fine ferry 5e-4 off its volume), not
+    returned as designed: bench_hull's parallel-body sample 169 came back 1.2e-4 off."""
+    from fairlines import designer
+
+    monkeypatch.setattr(designer, "MATCH_ITERATIONS", 1)
+    with pytest.raises(fl.InfeasibleFormParameters, match=r"basic_curves\.sac: the surface stays off the asked volume"):
+        fl.design_hull(**SHIPS["fine_ferry"])
+
+
 def test_a_deep_full_ship_is_refused_naming_a_depth_that_builds():
     """A full coaster (Cb 0.847, Cm 0.99) 2.6 draughts deep: its sections' knot spans below the
     waterline are too few to hold the near-box midship sections the SAC asks. The refusal
