@@ -422,7 +422,8 @@ def design_description(p: Particulars) -> dict:
     prof = _profile(p, c, x_aft, x_fore)
     profile, skeg = _aperture(p, prof, _solved_profile(p, prof, x_aft, x_fore), x_aft, x_fore)
     xa, xf = immersed_range(profile, T)
-    dwl, dwl_curve = _dwl_spec(p, c, xa, xf, immersed_transom=xa <= x_aft + 1e-9 * L)
+    immersed_transom = xa <= x_aft + 1e-9 * L
+    dwl, dwl_curve = _dwl_spec(p, c, xa, xf, immersed_transom=immersed_transom)
     par = c["parallel"]
     desc = {
         "name": p.name,
@@ -432,7 +433,7 @@ def design_description(p: Particulars) -> dict:
         "ends": {"aft": x_aft, "fore": x_fore},
         "stations": {"count": 61},
         "sections": {"n_control": 20},
-        "basic_curves": {"profile": prof, "dwl": dwl, "deck": _deck_spec(p, par, dwl_curve, x_aft, xa, xf),
+        "basic_curves": {"profile": prof, "dwl": dwl, "deck": _deck_spec(p, par, dwl_curve, x_aft, xa, xf, immersed_transom),
                          "sac": _sac_spec(p, c, dwl_curve, profile, xa, xf)},
         "design": {k: v for k, v in asdict(p).items() if k != "notes"},
     }
@@ -487,7 +488,8 @@ def _sac_spec(p: Particulars, c: dict, dwl_curve, profile, xa: float, xf: float)
     return sac
 
 
-def _deck_spec(p: Particulars, par: tuple, dwl_curve, x_aft: float, xa: float, xf: float) -> dict:
+def _deck_spec(p: Particulars, par: tuple, dwl_curve, x_aft: float, xa: float, xf: float,
+               immersed_transom: bool) -> dict:
     """The deck line: flat at B/2 from a quarter Lpp aft of the parallel body (further aft where a
     full stern keeps the waterline near B/2) to the waterline's widest, aft of it over an
     immersed transom drawn over the waterline (see _transom_deck), and forward of it drawn over
@@ -501,7 +503,7 @@ def _deck_spec(p: Particulars, par: tuple, dwl_curve, x_aft: float, xa: float, x
     deck_to = par[1] if par[1] > par[0] else _midship_place(p)
     spec = {"flat_from": deck_from, "flat_to": deck_to, "value": half, "yB": DECK_TRANSOM * half if p.stern == "transom" else 0.0,
             "yE": 0.0, "monotone": True, "spans": 24, "fit": _forward_deck(half, dwl_curve, deck_to, xf)}
-    if p.stern == "transom" and xa <= x_aft + 1e-9 * L:
+    if p.stern == "transom" and immersed_transom:
         _transom_deck(spec, p, dwl_curve, x_aft, deck_to)
     return spec
 

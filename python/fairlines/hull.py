@@ -56,6 +56,8 @@ BAND_FREE = 2.0
 # ... by depth over an immersed transom, this many: a section's area is asked in full from one end
 # band of depth, and a transom 0.12 T deep (the designer's default for fine ships) left band-free
 # took a SAC whose fullness fell below what the family holds there (0.45 asked, 0.64 the least).
+# Not for every station: where the keel rises out of the water at a dry transom the band put a
+# wobble in the container ship's 13 m waterline (test_waterline_has_no_wobble).
 BAND_FREE_DEPTH = 1.0
 # The station mean's samples (fairlines.station_mean) stay this fraction of the way to a
 # neighbouring station at most (stations added over an overhang or a dome lie closer).
