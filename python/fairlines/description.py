@@ -492,6 +492,8 @@ class HullDescription:
     skin_e2: float = 1.0
     skin_e3: float = 0.0
     skin_station_mean: float = STATION_MEAN
+    skin_ruled_aft_of: float | None = None  # x (m): the skin straight between its stations aft of here
+    skin_knuckles: list = field(default_factory=list)  # x (m) of stations where the skin is only C0
     notes: str = ""
     bulb: BulbSpec | None = None
     design: dict | None = None  # the particulars a designer built it from (kept, not used)
@@ -532,7 +534,7 @@ class HullDescription:
                 given, missing = pair if pair[0] in bc else pair[::-1]
                 raise _native.InvalidInput(f"basic_curves.{missing} is missing; expected it with basic_curves.{given} "
                                            "(the bilge corner's breadth and height are given together)")
-        sk = keyed_object("skinning", d.get("skinning", {}), ("e2", "e3", "station_mean"))
+        sk = keyed_object("skinning", d.get("skinning", {}), ("e2", "e3", "station_mean", "ruled_aft_of", "knuckles"))
         desc.skin_e2 = number("skinning.e2", sk.get("e2", 1.0))
         desc.skin_e3 = number("skinning.e3", sk.get("e3", 0.0))
         if desc.skin_e2 < 0 or desc.skin_e3 < 0 or desc.skin_e2 + desc.skin_e3 <= 0:
@@ -541,6 +543,7 @@ class HullDescription:
         if not 0.0 <= desc.skin_station_mean < 1.0:
             raise _native.InvalidInput(f"skinning.station_mean is {desc.skin_station_mean}; expected a fraction of the "
                                        "station spacing in [0, 1) (0: the sections as designed)")
+        desc._parse_skin_knuckles(sk)
         if d.get("bulb") is not None:
             desc.bulb = BulbSpec.from_dict(d["bulb"], "bulb")
         if d.get("skeg") is not None:
@@ -556,6 +559,21 @@ class HullDescription:
                 f"bulb.displacement_volume is missing; the hull models only x = {x_aft} .. {x_fore} m of the ship, so the "
                 "ship's displacement volume (m^3) for C_VPR must be given")
         return desc
+
+    def _parse_skin_knuckles(self, sk: dict) -> None:
+        """skinning.ruled_aft_of and skinning.knuckles: x (m) within the hull's ends."""
+        inside = f"within the hull's ends {self.x_aft:g} .. {self.x_fore:g} m"
+        if sk.get("ruled_aft_of") is not None:
+            self.skin_ruled_aft_of = number("skinning.ruled_aft_of", sk["ruled_aft_of"])
+            if not self.x_aft <= self.skin_ruled_aft_of <= self.x_fore:
+                raise bad("skinning.ruled_aft_of", self.skin_ruled_aft_of, f"an x (m) {inside}")
+        knuckles = sk.get("knuckles", [])
+        if not isinstance(knuckles, (list, tuple)):
+            raise bad("skinning.knuckles", knuckles, "a list of x (m) of stations where the skin is only C0")
+        self.skin_knuckles = [number(f"skinning.knuckles[{i}]", v) for i, v in enumerate(knuckles)]
+        for i, v in enumerate(self.skin_knuckles):
+            if not self.x_aft < v < self.x_fore:
+                raise bad(f"skinning.knuckles[{i}]", v, f"an x (m) strictly {inside}")
 
     def _parse_stations(self, st: Any) -> None:
         st = keyed_object("stations", st, ("count", "x"))
@@ -605,6 +623,10 @@ class HullDescription:
             "basic_curves": {k: v.to_dict() for k, v in self.curves.items()},
             "skinning": {"e2": self.skin_e2, "e3": self.skin_e3, "station_mean": self.skin_station_mean},
         }
+        if self.skin_ruled_aft_of is not None:
+            d["skinning"]["ruled_aft_of"] = self.skin_ruled_aft_of
+        if self.skin_knuckles:
+            d["skinning"]["knuckles"] = list(self.skin_knuckles)
         if self.given_sections:
             d["sections"]["given"] = [{"x": float(x), "points": p.tolist()} for x, p in self.given_sections]
             for g, off in zip(d["sections"]["given"], self.given_offsets):

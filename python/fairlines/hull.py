@@ -71,6 +71,8 @@ SHAPE_CURVES = {"top_corner": (0.5, 0.05, 0.95), "deadrise": (0.0, 0.0, 40.0), "
 CORNER_CURVES = {"corner_breadth": ("corner_y", 0.02, 1.0), "corner_height": ("corner_z", 0.0, 0.95)}
 # A post end: the deck line's and waterline's half-breadth there at most this fraction of B/2.
 POST_TOL = 1e-6
+#: A skinning knuckle (skinning.knuckles) within this fraction of Lpp of a station is at it.
+STATION_MATCH_TOL = 1e-6
 # Points along the waterline's range where the deck line must clear the waterline.
 DECK_CHECKS = 81
 # Where the waterline runs at the half-breadth limit the deck is asked to clear it less this
@@ -693,8 +695,27 @@ class Hull:
         """The SkinResult of skinning the sections (cached)."""
         if self._skin is None:
             d = self.description
-            self._skin = fair_skin(self.sections, params="station", e2=d.skin_e2, e3=d.skin_e3, hold_runs=True)
+            self._skin = fair_skin(self.sections, params="station", e2=d.skin_e2, e3=d.skin_e3, hold_runs=True,
+                                   c0_sections=self._c0_sections(self.stations()))
         return self._skin
+
+    def _c0_sections(self, xs: np.ndarray) -> list:
+        """Interior station indices where the skin is only C0: those at skinning.knuckles, and
+        every one aft of skinning.ruled_aft_of up to the first at or forward of it (the skin
+        straight between them). Raises InvalidInput for a knuckle that is not at a station."""
+        d = self.description
+        tol = STATION_MATCH_TOL * d.principal.lpp
+        out = set()
+        for i, k in enumerate(d.skin_knuckles):
+            j = int(np.argmin(np.abs(xs - k)))
+            if abs(xs[j] - k) > tol:
+                raise _native.InvalidInput(f"skinning.knuckles[{i}] is {k:g} m; expected the x of a station "
+                                           f"(the nearest is {xs[j]:g} m)")
+            out.add(j)
+        if d.skin_ruled_aft_of is not None:
+            last = int(np.searchsorted(xs, d.skin_ruled_aft_of - tol))
+            out.update(range(1, last + 1))
+        return sorted(j for j in out if 0 < j < len(xs) - 1)
 
     def bare_hull_surface(self) -> _native.NurbsSurface:
         """The half hull y >= 0: u from the deck to the keel, v from the aft to the forward end."""

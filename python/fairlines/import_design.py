@@ -56,6 +56,8 @@ SECTION_ROW_TOL = 1e-2
 #: 5415's first row, 29 mm over 216 mm: its transom's lower edge) and stations cut it instead:
 #: as a station it left the knuckle under the transom between stations, the keel line dipping.
 SECTION_ROW_RAKE = 0.05
+#: Two hull grids whose x ranges meet within this fraction of Lpp join there (skinning.knuckles).
+JOINT_TOL = 1e-6
 #: ... and a station cut between them is kept where the data there strays this far (of B) from
 #: the straight line between the stations either side (_unlike_their_neighbours).
 GIVEN_REFINE_TOL = 1e-2
@@ -1004,7 +1006,9 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
         if worst > GIVEN_MISFIT * m.beam:
             say(f"the section family misses a station by {100 * worst / m.beam:.2f} % B (RMS): giving the measured shapes")
             md = _given_measure(hull_data, depth)
-            shaped = _designed(_base_description(md, name or hull_data.name, given=True), md, hull_data, None, say)
+            gbase = _base_description(md, name or hull_data.name, given=True)
+            gbase["skinning"] = _skin_knuckles(hull_data, md.x)
+            shaped = _designed(gbase, md, hull_data, None, say)
             if "bulb" not in shaped or _composes(shaped):
                 return shaped
             say("the measured bulb cannot meet the given shapes' bow in one seam: the fitted family's sections kept")
@@ -1031,6 +1035,38 @@ def _given_measure(hull_data: HullData, depth: float | None) -> MeasuredHull:
         md = measure_hull_data(hull_data, depth, dome=True, stations=GIVEN_STATIONS, bulb=True, noses=True, rows=True,
                                extra=back)
     return dataclasses.replace(md, volume=dense.volume, lcb=dense.lcb)
+
+
+def _skin_knuckles(hull_data: HullData, xs: np.ndarray) -> dict:
+    """The skinning's knuckles over the given stations `xs` (m): where two hull grids join at
+    a station (each grid's own surface: only C0 across the joint), and, aft of a grid's first
+    square section row behind a raked one (a transom's edge), the skin ruled: the stations
+    there are cut from the grid's chords and the transom face, and a C2 skin through them rang
+    round the knuckle (DTMB 5415: lobes of 94, 21, 7, 2.2, 1.3, 0.4 deg along a waterline)."""
+    tol = JOINT_TOL * hull_data.lpp
+    hull = [g.points for g in hull_data.grids if g.role != "transom"]
+    ends = [(float(p[..., 0].min()), float(p[..., 0].max())) for p in hull]
+    joints = {hi for _, hi in ends if any(abs(hi - lo) <= tol for lo, _ in ends)}
+    out: dict = {"knuckles": sorted(float(x) for x in xs[1:-1] if any(abs(x - j) <= tol for j in joints))}
+    if any(g.role == "transom" for g in hull_data.grids):
+        for p in hull:
+            edge = _square_behind_raked(p, hull_data.lpp)
+            if edge is not None:
+                out["ruled_aft_of"] = edge
+    return {k: v for k, v in out.items() if v}
+
+
+def _square_behind_raked(p: np.ndarray, lpp: float) -> float | None:
+    """x (m) of the grid's first square section row (:func:`_section_rows`) when the row aft
+    of it is raked, else None."""
+    for rows in (p, p.transpose(1, 0, 2)):
+        spread, mean = np.ptp(rows[..., 0], axis=1), rows[..., 0].mean(axis=1)
+        if len(rows) < 3 or spread.max() > SECTION_ROW_TOL * lpp or not np.abs(np.diff(mean)).min() > spread.max():
+            continue
+        order = np.argsort(mean)
+        gap = np.abs(mean[order[1]] - mean[order[0]])
+        return float(mean[order[1]]) if spread[order[0]] > SECTION_ROW_RAKE * gap else None
+    return None
 
 
 def _unlike_their_neighbours(dense: MeasuredHull, kept: MeasuredHull) -> np.ndarray:

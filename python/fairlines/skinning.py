@@ -29,7 +29,9 @@ def fair_skin(curves: Sequence[_native.NurbsCurve], n_control: int | None = None
 
     ``start`` / ``end``: "free" (natural) or "parallel" (dy/dv = dz/dv = 0, so the surface meets
     a parallel middle body with C1 continuity). ``c1_sections``: interior section indices where
-    the longitudinal curves are only C1 (the fore / aft body joint). ``params``: "station"
+    the longitudinal curves are only C1 (the fore / aft body joint); ``c0_sections``: only C0
+    (a knuckle the sections cross, e.g. a transom's edge: between two such sections the
+    longitudinal curves are straight, and cannot ring). ``params``: "station"
     (v proportional to section x; then every section is the iso-curve v = v_d), "chord", or
     "auto" (station when the sections are planar at monotone x).
 
@@ -61,7 +63,7 @@ def fair_skin(curves: Sequence[_native.NurbsCurve], n_control: int | None = None
 
     Options by keyword are the fields of :class:`fl.SkinOptions` (``degree_u``, ``degree_v``,
     ``samples``, ``smoothing``, ``start``, ``end``, ``params``, ``c1_sections``,
-    ``curvature_weight``, ``e2``, ``e3``, ``flats``, ``hold_runs``, ``straight_groups``); their
+    ``c0_sections``, ``curvature_weight``, ``e2``, ``e3``, ``flats``, ``hold_runs``, ``straight_groups``); their
     defaults live in the engine. ``n_control`` / ``samples`` None: automatic.
 
     Raises InvalidInput naming the bad curve or option (an unknown option name included).
@@ -80,7 +82,7 @@ def _pairs(groups) -> list[tuple[int, int]]:
 
 
 # Sequences the bound fields take as lists of plain ints / pairs (numpy values, tuples of arrays).
-_CONVERT = {"c1_sections": lambda s: [int(i) for i in s], "flats": _flats, "straight_groups": _pairs}
+_CONVERT = {"c1_sections": lambda s: [int(i) for i in s], "c0_sections": lambda s: [int(i) for i in s], "flats": _flats, "straight_groups": _pairs}
 
 
 def _flat(k: int, plane) -> tuple[int, float]:

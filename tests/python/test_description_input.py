@@ -4,6 +4,7 @@ station counts beyond the limit, and JSON that is not an object. The loader is t
 description module of the hull designer; these tests run where it exists."""
 
 import copy
+import json
 
 import pytest
 
@@ -39,6 +40,18 @@ def test_lengths_beyond_the_physical_range_hint_at_units(lpp):
 def test_unknown_skinning_key_names_the_nearest():
     msg = refused(lambda d: d.__setitem__("skinning", {"e22": 1.0}))
     assert "e22" in msg and "did you mean 'e2'" in msg
+
+
+def test_a_ruled_skin_beyond_the_hulls_ends_names_them():
+    msg = refused(lambda d: d.__setitem__("skinning", {"ruled_aft_of": 120.0}))
+    assert "skinning.ruled_aft_of is 120.0" in msg and "0 .. 100 m" in msg
+
+
+def test_a_knuckle_off_the_stations_names_the_nearest_station():
+    d = copy.deepcopy(BASE)
+    d["stations"], d["skinning"] = {"x": [0.0, 20.0, 50.0, 80.0, 100.0]}, {"knuckles": [49.0]}
+    with pytest.raises(fl.InvalidInput, match=r"skinning.knuckles\[0\] is 49 m; expected the x of a station \(the nearest is 50 m\)"):
+        fl.Hull.from_json(json.dumps(d)).bare_hull_surface()
 
 
 def test_unknown_top_level_key_names_the_nearest():

@@ -68,6 +68,8 @@ REFUSED_AT_LOAD = {
     "station count and positions": put(("stations", "x"), [0.0, 50.0, 100.0, 200.0]),
     "spans and n_control": put((BC, "sac", "n_control"), 27),
     "skinning weights both 0": put(("skinning",), {"e2": 0.0, "e3": 0.0}),
+    "skinning knuckles not a list": put(("skinning", "knuckles"), 100.0),
+    "ruled skin aft of text": put(("skinning", "ruled_aft_of"), "transom"),
     # given sections
     "given section point not a pair": put(("sections", "given"), [{"x": 100.0, "points": [[1.0, 19.0], [2.0], [0.0, 0.0]]}]),
     "given section negative half-breadth": put(("sections", "given"), [{"x": 100.0, "points": [[1.0, 19.0], [-2.0, 5.0], [0.0, 0.0]]}]),
@@ -106,6 +108,8 @@ ACCEPTED = {
     "n_control instead of spans": both(drop((BC, "sac", "spans")), put((BC, "sac", "n_control"), 27)),
     "station positions": put(("stations",), {"x": [-6.0, 0.0, 60.0, 120.0, 180.0, 244.8, 247.0]}),
     "e3 fairness only": put(("skinning",), {"e2": 0.0, "e3": 1.0}),
+    "a ruled stern": put(("skinning", "ruled_aft_of"), 5.0),
+    "no ruled stern (null)": put(("skinning", "ruled_aft_of"), None),
     "constant deadrise curve": put((BC, "deadrise"), {"value": 5.0}),
     "a skeg": put(("skeg",), {"x_aft": 9.7, "x_fore": 41.7, "half_thickness": 0.77, "fillet": 7.7, "end_length": 6.2}),
     "a square sternpost": put(("skeg",), {"x_aft": 9.7, "x_fore": 41.7, "half_thickness": 0.77}),

@@ -205,6 +205,44 @@ def test_c1_joint_and_approximate_mode():
     assert a.row_e2.sum() < i.row_e2.sum()
 
 
+def _kinked_sections(xs, x_kink):
+    """Midship Wigley sections at `xs`, their half-breadths scaled by a breadth factor that
+    rises linearly to 1 at `x_kink` and stays 1 forward of it (a knuckle along the hull)."""
+    out = []
+    for x in xs:
+        c = wigley_section(L / 2)
+        p = c.control_points.copy()
+        p[:, 0], p[:, 1] = x, p[:, 1] * (0.2 + 0.8 * min(1.0, x / x_kink))
+        out.append(fl.NurbsCurve(2, [0, 0, 0, 1, 1, 1], p))
+    return out
+
+
+def test_c0_sections_keep_a_knuckle_without_ringing():
+    """Across the C0 station the skin follows the piecewise-linear breadth exactly (straight
+    aft of it, constant forward); a C2 skin through the same rows rings on both sides."""
+    xs = np.linspace(0.0, 40.0, 21)
+    secs = _kinked_sections(xs, 10.0)
+    kinked = fl.fair_skin(secs, params="station", c0_sections=[5])
+    smooth = fl.fair_skin(secs, params="station")
+    assert np.sum(np.isclose(kinked.surface.knots_v, 0.25)) == 3
+    v = np.linspace(0.0, 1.0, 161)
+    exact = wigley_y(L / 2, T) * (0.2 + 0.8 * np.minimum(1.0, 40.0 * v / 10.0))
+    err = lambda r: np.max(np.abs(r.surface.evaluate(np.zeros_like(v), v)[:, 1] - exact))
+    assert err(kinked) < 1e-9
+    assert err(smooth) > 1e-3
+
+
+def test_c0_sections_rule_the_skin_between_them():
+    """Between consecutive C0 stations every point of the skin is on the straight line between
+    the two sections' points (least E2 through two rows): even over curved data."""
+    xs = np.linspace(0.0, L, 21)
+    r = fl.fair_skin([wigley_section(x) for x in xs], n_control=8, params="station", c0_sections=[1, 2, 3])
+    for u in (0.1, 0.5, 0.9):
+        a, b, mid = r.surface.evaluate([u, u, u], [0.05, 0.1, 0.075])
+        assert np.allclose(mid, (a + b) / 2, atol=1e-9)
+    assert r.longitudinal_max < 1e-10
+
+
 def test_equal_arc_length_points_on_a_circle():
     c = fl.arc([0, 0, 0], 2.0, 0.0, np.pi)
     pts = c.evaluate(np.linspace(0, 1, 5))
@@ -225,6 +263,7 @@ def test_equal_arc_length_points_on_a_circle():
         (dict(n_control=2), "n_control is 2"),
         (dict(samples=3), "samples is 3"),
         (dict(c1_sections=[0]), "c1_sections contains 0"),
+        (dict(c0_sections=[2]), "c0_sections contains 2"),
         (dict(degree_v=1), "degree_v is 1"),
         (dict(mode="approximate", smoothing=float("nan")), "smoothing is nan"),
     ],

@@ -58,6 +58,12 @@ struct SkinOptions {
   /// Interior section indices (1..q-2) where the longitudinal curves are only C1 (knot of
   /// multiplicity degree_v - 1): the joint between fore and aft bodies. Elsewhere C^(degree_v-1).
   std::vector<int> c1_sections;
+  /// Interior section indices where the longitudinal curves are only C0 (knot of multiplicity
+  /// degree_v): a knuckle the sections cross, such as a transom's edge. Between two such
+  /// sections (or a C0 section and an end) the least-E2 curve through the rows is a straight
+  /// line, which cannot ring (a C2 spline through a knuckle rings with lobes of 2 - sqrt 3 of
+  /// the last, station after station).
+  std::vector<int> c0_sections;
   /// Planes the hull lies in over parts of its sections: (axis 0 / 1 / 2 for x / y / z, value
   /// in metres), e.g. the flat of side y = B/2 and the flat of bottom z = 0. Where a section
   /// lies in such a plane (to kFlatTolerance of the sections' size) the common-knot refit
@@ -94,6 +100,7 @@ struct SkinOptions {
     f("end", &SkinOptions::end, "'free' (natural) or 'parallel' (dy/dv = dz/dv = 0) at the last section");
     f("params", &SkinOptions::params, "section parameters v: 'station' (proportional to x), 'chord', or 'auto' (station when planar at monotone x)");
     f("c1_sections", &SkinOptions::c1_sections, "interior section indices where the longitudinal curves are only C1");
+    f("c0_sections", &SkinOptions::c0_sections, "interior section indices where the longitudinal curves are only C0 (straight between two such sections)");
     f("flats", &SkinOptions::flats, "planes (axis 0 / 1 / 2 for x / y / z, value m) the sections' fits keep exactly where they lie in them");
     f("hold_runs", &SkinOptions::hold_runs, "hold a row coordinate constant over three or more sections where the rows keep it");
     f("straight_groups", &SkinOptions::straight_groups, "row ranges (first, last) kept straight between their end rows' longitudinal curves");

@@ -531,18 +531,23 @@ std::vector<DerivedRow> straight_rows(const std::vector<Eigen::MatrixXd>& ctrl, 
 }
 
 /// Longitudinal knots: a knot at every interior section parameter (multiplicity degree_v - 1
-/// at C1 joints), one more in the interval next to each end of a held run, clamped ends.
+/// at C1 joints, degree_v at C0 ones), one more in the interval next to each end of a held
+/// run, clamped ends.
 Eigen::VectorXd longitudinal_knots(const Eigen::VectorXd& v, const SkinOptions& o,
                                    const std::vector<std::vector<HeldRun>>& runs) {
   const int q = static_cast<int>(v.size()), pv = o.degree_v;
-  std::set<int> joints;
+  std::set<int> joints, knuckles;
   for (int j : o.c1_sections) {
     if (j < 1 || j > q - 2) fail("c1_sections contains ", j, "; expected interior section indices 1..", q - 2);
     joints.insert(j);
   }
+  for (int j : o.c0_sections) {
+    if (j < 1 || j > q - 2) fail("c0_sections contains ", j, "; expected interior section indices 1..", q - 2);
+    knuckles.insert(j);
+  }
   std::vector<double> kv(pv + 1, 0.0);
   for (int d = 1; d < q - 1; ++d) {
-    const int mult = joints.count(d) ? pv - 1 : 1;
+    const int mult = knuckles.count(d) ? pv : joints.count(d) ? pv - 1 : 1;
     for (int r = 0; r < mult; ++r) kv.push_back(v[d]);
   }
   // One knot in the middle of the interval after each held run and before it: the run's
