@@ -477,6 +477,12 @@ class DomeSpec:
         return bottom, self.half_breadth * r
 
 
+#: The skin's end conditions at the aft end (fl.fair_skin's start): "free", the natural end (no
+#: curvature along the hull at the end station), or "not_a_knot", the two end spans one cubic
+#: (the end keeps the curvature its stations' trend gives it: a transom's waterline ends curved).
+SKIN_ENDS = ("free", "not_a_knot")
+
+
 @dataclass
 class HullDescription:
     """A hull: principal dimensions, its x range, stations, section options, basic curves."""
@@ -494,6 +500,7 @@ class HullDescription:
     skin_station_mean: float = STATION_MEAN
     skin_ruled_aft_of: float | None = None  # x (m): the skin straight between its stations aft of here
     skin_knuckles: list = field(default_factory=list)  # x (m) of stations where the skin is only C0
+    skin_aft_end: str = "free"  # the skin's end condition at the aft end: "free" or "not_a_knot"
     notes: str = ""
     bulb: BulbSpec | None = None
     design: dict | None = None  # the particulars a designer built it from (kept, not used)
@@ -534,7 +541,7 @@ class HullDescription:
                 given, missing = pair if pair[0] in bc else pair[::-1]
                 raise _native.InvalidInput(f"basic_curves.{missing} is missing; expected it with basic_curves.{given} "
                                            "(the bilge corner's breadth and height are given together)")
-        sk = keyed_object("skinning", d.get("skinning", {}), ("e2", "e3", "station_mean", "ruled_aft_of", "knuckles"))
+        sk = keyed_object("skinning", d.get("skinning", {}), ("e2", "e3", "station_mean", "ruled_aft_of", "knuckles", "aft_end"))
         desc.skin_e2 = number("skinning.e2", sk.get("e2", 1.0))
         desc.skin_e3 = number("skinning.e3", sk.get("e3", 0.0))
         if desc.skin_e2 < 0 or desc.skin_e3 < 0 or desc.skin_e2 + desc.skin_e3 <= 0:
@@ -561,8 +568,12 @@ class HullDescription:
         return desc
 
     def _parse_skin_knuckles(self, sk: dict) -> None:
-        """skinning.ruled_aft_of and skinning.knuckles: x (m) within the hull's ends."""
+        """skinning.aft_end (SKIN_ENDS), skinning.ruled_aft_of and skinning.knuckles (x, m, within
+        the hull's ends)."""
         inside = f"within the hull's ends {self.x_aft:g} .. {self.x_fore:g} m"
+        self.skin_aft_end = sk.get("aft_end", "free")
+        if self.skin_aft_end not in SKIN_ENDS:
+            raise bad("skinning.aft_end", self.skin_aft_end, " or ".join(map(repr, SKIN_ENDS)))
         if sk.get("ruled_aft_of") is not None:
             self.skin_ruled_aft_of = number("skinning.ruled_aft_of", sk["ruled_aft_of"])
             if not self.x_aft <= self.skin_ruled_aft_of <= self.x_fore:
@@ -621,7 +632,8 @@ class HullDescription:
             "stations": {"x": list(map(float, self.station_x))} if self.station_x else {"count": self.station_count},
             "sections": {"n_control": self.section_n_control},
             "basic_curves": {k: v.to_dict() for k, v in self.curves.items()},
-            "skinning": {"e2": self.skin_e2, "e3": self.skin_e3, "station_mean": self.skin_station_mean},
+            "skinning": {"e2": self.skin_e2, "e3": self.skin_e3, "station_mean": self.skin_station_mean,
+                         "aft_end": self.skin_aft_end},
         }
         if self.skin_ruled_aft_of is not None:
             d["skinning"]["ruled_aft_of"] = self.skin_ruled_aft_of

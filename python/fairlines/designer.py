@@ -86,6 +86,11 @@ FIT_END = 0.06              # no fullness points this close (fraction of the wat
 MATCH_TOL = 1e-6            # relative tolerance of volume, LCB (on Lpp) and waterplane area on the surface
 MATCH_ITERATIONS = 6
 MATCH_REFUSE = 1e-4         # a design still this far off (relative) after them is refused, not returned
+# The skin's aft end keeps the curvature its stations give it (not-a-knot): the natural end's
+# zero curvature left a hollow lobe where a waterline ends over a transom (the container ship's
+# 15 m one, 0.12 deg); bench_fairness_space's upper waterlines 230 -> 237 clean of 300. The fore
+# end stays natural: there the tanker's low waterlines gained a wobble at the forefoot.
+SKIN_AFT_END = "not_a_knot"
 MATCH_GAUSS = 4             # Gauss points per span of the matching hydrostatics: 1e-11 of the 8-point volume, twice as fast
 PROFILE_SPANS = (30, 60, 120)  # knot spans of the profile, tried in turn
 _GAUSS8 = np.polynomial.legendre.leggauss(8)  # the natural fullness's quadrature
@@ -435,6 +440,7 @@ def design_description(p: Particulars) -> dict:
         "sections": {"n_control": 20},
         "basic_curves": {"profile": prof, "dwl": dwl, "deck": _deck_spec(p, par, dwl_curve, x_aft, xa, xf, immersed_transom),
                          "sac": _sac_spec(p, c, dwl_curve, profile, xa, xf)},
+        "skinning": {"aft_end": SKIN_AFT_END},
         "design": {k: v for k, v in asdict(p).items() if k != "notes"},
     }
     _add_appendages(desc, p, prof, skeg)

@@ -692,11 +692,16 @@ class Hull:
 
     # ---- surface --------------------------------------------------------------------
     def skin(self):
-        """The SkinResult of skinning the sections (cached)."""
+        """The SkinResult of skinning the sections (cached). Raises InvalidInput for a
+        skinning.knuckles x that is not a station's, or a not-a-knot aft end next to a C0 station."""
         if self._skin is None:
             d = self.description
+            c0 = self._c0_sections(self.stations())
+            if d.skin_aft_end != "free" and 1 in c0:
+                raise _native.InvalidInput(f"skinning.aft_end is {d.skin_aft_end!r} but the skin is only C0 at the station "
+                                           "next to the aft end (skinning.ruled_aft_of or knuckles); expected 'free'")
             self._skin = fair_skin(self.sections, params="station", e2=d.skin_e2, e3=d.skin_e3, hold_runs=True,
-                                   c0_sections=self._c0_sections(self.stations()))
+                                   c0_sections=c0, start=d.skin_aft_end)
         return self._skin
 
     def _c0_sections(self, xs: np.ndarray) -> list:

@@ -27,8 +27,10 @@ def fair_skin(curves: Sequence[_native.NurbsCurve], n_control: int | None = None
     least E2 = int |C''(v)|^2 dv (Kim & Hwangbo 2008, eq. 9), and in ``mode="approximate"`` minimises
     (1/q) sum |C(v_d) - P_d|^2 + smoothing h^4 E2 with h = 1/(q - 1).
 
-    ``start`` / ``end``: "free" (natural) or "parallel" (dy/dv = dz/dv = 0, so the surface meets
-    a parallel middle body with C1 continuity). ``c1_sections``: interior section indices where
+    ``start`` / ``end``: "free" (natural: zero curvature at the end section), "parallel"
+    (dy/dv = dz/dv = 0, so the surface meets a parallel middle body with C1 continuity) or
+    "not_a_knot" (the two end spans one polynomial: the end keeps the curvature the rows' trend
+    gives it, such as a transom's waterline). ``c1_sections``: interior section indices where
     the longitudinal curves are only C1 (the fore / aft body joint); ``c0_sections``: only C0
     (a knuckle the sections cross, e.g. a transom's edge: between two such sections the
     longitudinal curves are straight, and cannot ring). ``params``: "station"

@@ -117,6 +117,32 @@ TEST(FairSkin, BadInputNamesTheProblem) {
   }
 }
 
+// A C0 section: a breadth that grows linearly to x = 20 and stays constant forward of it is met
+// exactly on both sides (straight aft, constant forward), and a not-a-knot start next to it is
+// refused naming the end condition.
+TEST(FairSkin, C0SectionKeepsAKnuckleExactly) {
+  std::vector<NurbsCurve> secs;
+  for (int d = 0; d <= 8; ++d) {
+    const double x = 5.0 * d, w = 0.5 + 0.5 * std::min(1.0, x / 20.0);
+    secs.push_back(line_section(x, w, 1, 0, 0));
+  }
+  SkinOptions o;
+  o.c0_sections = {4};
+  const SkinResult r = fair_skin(secs, o);
+  for (double v : {0.05, 0.3, 0.45, 0.55, 0.8, 0.97}) {
+    const double x = 40.0 * v, w = 0.5 + 0.5 * std::min(1.0, x / 20.0);
+    EXPECT_NEAR(r.surface.evaluate(0.0, v)[1], w, 1e-10) << v;
+  }
+  o.start = SkinEnd::NotAKnot;
+  o.c0_sections = {1};
+  try {
+    fair_skin(secs, o);
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("not_a_knot"), std::string::npos);
+  }
+}
+
 // Waterplane moments, metacentres and trim on a box barge, whose values are closed-form:
 // I_T = L B^3 / 12, I_L = B L^3 / 12, KMt = B^2 / 12T + T / 2, and under a trim t (linear
 // draft) LCB = L/2 - t L / (12 T).

@@ -54,6 +54,19 @@ def test_a_knuckle_off_the_stations_names_the_nearest_station():
         fl.Hull.from_json(json.dumps(d)).bare_hull_surface()
 
 
+def test_an_unknown_aft_end_condition_names_the_choices():
+    msg = refused(lambda d: d.__setitem__("skinning", {"aft_end": "natural"}))
+    assert "skinning.aft_end is 'natural'; expected 'free' or 'not_a_knot'" in msg
+
+
+def test_a_not_a_knot_aft_end_next_to_a_ruled_stern_is_refused_naming_both():
+    d = copy.deepcopy(BASE)
+    d["skinning"] = {"aft_end": "not_a_knot", "ruled_aft_of": 10.0}
+    with pytest.raises(fl.InvalidInput, match="skinning.aft_end is 'not_a_knot' but the skin is only C0 at the station "
+                                              "next to the aft end"):
+        fl.Hull.from_json(json.dumps(d)).bare_hull_surface()
+
+
 def test_unknown_top_level_key_names_the_nearest():
     msg = refused(lambda d: d.__setitem__("principle", {}))
     assert "principle" in msg and "did you mean 'principal'" in msg

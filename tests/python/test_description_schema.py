@@ -70,6 +70,7 @@ REFUSED_AT_LOAD = {
     "skinning weights both 0": put(("skinning",), {"e2": 0.0, "e3": 0.0}),
     "skinning knuckles not a list": put(("skinning", "knuckles"), 100.0),
     "ruled skin aft of text": put(("skinning", "ruled_aft_of"), "transom"),
+    "unknown aft end condition": put(("skinning", "aft_end"), "natural"),
     # given sections
     "given section point not a pair": put(("sections", "given"), [{"x": 100.0, "points": [[1.0, 19.0], [2.0], [0.0, 0.0]]}]),
     "given section negative half-breadth": put(("sections", "given"), [{"x": 100.0, "points": [[1.0, 19.0], [-2.0, 5.0], [0.0, 0.0]]}]),
@@ -110,6 +111,7 @@ ACCEPTED = {
     "e3 fairness only": put(("skinning",), {"e2": 0.0, "e3": 1.0}),
     "a ruled stern": put(("skinning", "ruled_aft_of"), 5.0),
     "no ruled stern (null)": put(("skinning", "ruled_aft_of"), None),
+    "a free aft end": put(("skinning", "aft_end"), "free"),
     "constant deadrise curve": put((BC, "deadrise"), {"value": 5.0}),
     "a skeg": put(("skeg",), {"x_aft": 9.7, "x_fore": 41.7, "half_thickness": 0.77, "fillet": 7.7, "end_length": 6.2}),
     "a square sternpost": put(("skeg",), {"x_aft": 9.7, "x_fore": 41.7, "half_thickness": 0.77}),

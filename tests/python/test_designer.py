@@ -511,13 +511,6 @@ WOBBLY_WATERLINES = {
          "241.8 m), since the FP station's keel end is held on the stem (station_mean.keel_hold_share), which made the "
          "11 m and 13 m waterlines and the tanker's 11.9 m one clean; this waterline ends between the stations at "
          "242.5 m (keel 0.53 T, averaged) and 244.8 m (keel at T, held); holding from 0-0.9 T as well leaves it",
-    15.0: "a hollow lobe of 0.12 deg at x -3.6 m, where the design waterline ends over the dry transom (0.108-0.122 "
-          "deg in the 14.5-16.5 m waterlines), read as a wobble from 0.1 deg. The lobe was there before (0.077-0.086 deg) "
-          "and grew when flared sections' bilge corner came to ask the conic for a share of their area "
-          "(least_corner_breadth; the sweep's frames with an S at or above 0.99 T 31 -> 5 of 100 hulls); the corner "
-          "share (0.4-0.5), the run's blend depth (0.15-0.35) and the share fading with the immersion leave it. "
-          "The sections there follow the run's faired line (curvature -1.0..-1.3e-3 1/m at 15 m, the line's -1.19e-3); "
-          "the skinned surface departs from them by 1.3-4.6 mm between the stations at x -6.12, -3.73 and -2.70 m",
 }
 
 

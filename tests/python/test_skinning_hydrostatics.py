@@ -243,6 +243,35 @@ def test_c0_sections_rule_the_skin_between_them():
     assert r.longitudinal_max < 1e-10
 
 
+def _cubic_rows(xs):
+    """Sections whose half-breadths follow a cubic in x: y = B/2 (0.3 + 0.2 s + 0.9 s^2 - 0.6 s^3), s = x / L."""
+    out = []
+    for x in xs:
+        p = wigley_section(L / 2).control_points.copy()
+        sx = x / L
+        p[:, 0], p[:, 1] = x, p[:, 1] * (0.3 + 0.2 * sx + 0.9 * sx ** 2 - 0.6 * sx ** 3)
+        out.append(fl.NurbsCurve(2, [0, 0, 0, 1, 1, 1], p))
+    return out
+
+
+def test_not_a_knot_ends_reproduce_a_cubic_the_natural_ends_bend():
+    """Interpolating rows that vary as a cubic along the hull, not-a-knot ends at both ends give
+    that cubic exactly (de Boor); natural ('free') ends force zero curvature at the end sections
+    and miss it; a not-a-knot start alone meets it near the start, not near the free end."""
+    xs = np.array([0.0, 7.0, 19.0, 30.0, 46.0, 58.0, 71.0, 85.0, 100.0])
+    secs = _cubic_rows(xs)
+    v = np.linspace(0.0, 1.0, 201)
+    exact = wigley_y(L / 2, T) * (0.3 + 0.2 * v + 0.9 * v ** 2 - 0.6 * v ** 3)
+    err = lambda r, sl=slice(None): np.max(np.abs(r.surface.evaluate(np.zeros_like(v), v)[:, 1] - exact)[sl])
+    both = fl.fair_skin(secs, params="station", start="not_a_knot", end="not_a_knot")
+    free = fl.fair_skin(secs, params="station")
+    start = fl.fair_skin(secs, params="station", start="not_a_knot")
+    assert err(both) < 1e-9
+    assert err(free) > 1e-3
+    assert err(start, slice(0, 20)) < 0.1 * err(free, slice(0, 20))
+    assert err(start, slice(180, None)) > 1e-3
+
+
 def test_equal_arc_length_points_on_a_circle():
     c = fl.arc([0, 0, 0], 2.0, 0.0, np.pi)
     pts = c.evaluate(np.linspace(0, 1, 5))
@@ -264,6 +293,8 @@ def test_equal_arc_length_points_on_a_circle():
         (dict(samples=3), "samples is 3"),
         (dict(c1_sections=[0]), "c1_sections contains 0"),
         (dict(c0_sections=[2]), "c0_sections contains 2"),
+        (dict(start="not_a_knot", c0_sections=[1]), "end condition 'not_a_knot' at the first section"),
+        (dict(end="natural"), "end condition is 'natural'"),
         (dict(degree_v=1), "degree_v is 1"),
         (dict(mode="approximate", smoothing=float("nan")), "smoothing is nan"),
     ],

@@ -357,7 +357,8 @@ SkinMode parse_skin_mode(const std::string& name) {
 SkinEnd parse_skin_end(const std::string& name) {
   if (name == "free") return SkinEnd::Free;
   if (name == "parallel") return SkinEnd::Parallel;
-  fail("end condition is '", name, "'; expected 'free' or 'parallel'");
+  if (name == "not_a_knot") return SkinEnd::NotAKnot;
+  fail("end condition is '", name, "'; expected 'free', 'parallel' or 'not_a_knot'");
 }
 
 SkinParams parse_skin_params(const std::string& name) {
@@ -369,7 +370,9 @@ SkinParams parse_skin_params(const std::string& name) {
 
 const char* skin_mode_name(SkinMode mode) { return mode == SkinMode::Interpolate ? "interpolate" : "approximate"; }
 
-const char* skin_end_name(SkinEnd end) { return end == SkinEnd::Free ? "free" : "parallel"; }
+const char* skin_end_name(SkinEnd end) {
+  return end == SkinEnd::Free ? "free" : end == SkinEnd::Parallel ? "parallel" : "not_a_knot";
+}
 
 const char* skin_params_name(SkinParams params) {
   return params == SkinParams::Auto ? "auto" : (params == SkinParams::Station ? "station" : "chord");
@@ -620,6 +623,7 @@ struct LongitudinalSystem {
   bool interp;
   Eigen::MatrixXd Nv, H;
   Eigen::RowVectorXd D0, D1;  ///< first derivative rows at v = 0 and v = 1 (parallel ends)
+  Eigen::RowVectorXd J0, J1;  ///< jumps of the degree_v-th derivative at the first / last interior knot (not-a-knot ends)
   double cs;
 
   LongitudinalSystem(const SkinOptions& opt, const Eigen::VectorXd& knots, const Eigen::VectorXd& v,
@@ -633,15 +637,36 @@ struct LongitudinalSystem {
     if (o.e3 > 0) G += o.e3 * hq * hq * detail::derivative_gram(Kv, pv, 3);
     D0 = basis_row(Kv, pv, 0.0, 1);
     D1 = basis_row(Kv, pv, 1.0, 1);
+    if (o.start == SkinEnd::NotAKnot) J0 = top_derivative_jump(true);
+    if (o.end == SkinEnd::NotAKnot) J1 = top_derivative_jump(false);
     const double lam = o.smoothing * hq * hq * hq * hq;
     H = interp ? Eigen::MatrixXd(2.0 * G) : Eigen::MatrixXd((2.0 / q) * Nv.transpose() * Nv + 2.0 * lam * G);
     cs = std::max(1e-300, H.cwiseAbs().maxCoeff());
+  }
+
+  /// The degree_v-th derivative (constant on each span) on the span after the first interior
+  /// knot minus on the span before it (`first`), or at the last interior knot; empty (no row)
+  /// when the curve is one span. A knot of multiplicity > 1 there cannot join the spans.
+  Eigen::RowVectorXd top_derivative_jump(bool first) const {
+    const int lo = pv + 1, hi = static_cast<int>(Kv.size()) - pv - 2;  // interior knot indices
+    if (lo > hi) return {};
+    const int k = first ? lo : hi;
+    const bool single = (k == lo || Kv[k - 1] < Kv[k]) && (k == hi || Kv[k + 1] > Kv[k]);
+    if (!single)
+      fail("end condition 'not_a_knot' at the ", first ? "first" : "last",
+           " section, but the nearest interior knot is multiple (a C0 or C1 section next to the end); expected 'free'");
+    const double before = 0.5 * (Kv[k - 1] + Kv[k]), after = 0.5 * (Kv[k] + Kv[k + 1]);
+    // scaled to unit size like the interpolation rows (its entries go as 1 / span^degree_v)
+    const Eigen::RowVectorXd jump = basis_row(Kv, pv, after, pv) - basis_row(Kv, pv, before, pv);
+    return jump / jump.cwiseAbs().maxCoeff();
   }
 
   /// Constraint rows over all controls, each with its station (-1 for an end row).
   void constraint_rows(bool with_ends, std::vector<Eigen::RowVectorXd>& crow, std::vector<int>& data_row) const {
     if (interp)
       for (int d = 0; d < q; ++d) crow.push_back(Nv.row(d)), data_row.push_back(d);
+    if (J0.size()) crow.push_back(J0), data_row.push_back(-1);
+    if (J1.size()) crow.push_back(J1), data_row.push_back(-1);
     if (with_ends && o.start == SkinEnd::Parallel) crow.push_back(D0), data_row.push_back(-1);
     if (with_ends && o.end == SkinEnd::Parallel) crow.push_back(D1), data_row.push_back(-1);
   }
@@ -747,6 +772,12 @@ SkinResult skin_result(const LongitudinalSystem& sys, const Eigen::VectorXd& Ku,
     for (int i = 0; i < n; ++i)
       lmax = std::max(lmax, (fitted.block(d, 3 * i, 1, 3) - sys.data.block(d, 3 * i, 1, 3)).norm());
   res.longitudinal_max = lmax;
+  // A KKT system too ill-conditioned for its solve can pass the residual test on its own scale
+  // and still miss the rows: refuse rather than return a surface off its sections.
+  const double extent = std::max(1.0, sys.data.cwiseAbs().maxCoeff());
+  if (sys.interp && !(lmax <= kInterpolationTolerance * extent))
+    fail("the longitudinal interpolation misses the sections by ", lmax, " m (", sys.q, " sections, degree_v ", pv,
+         "); expected them met: sections too close together for their spacing, or conflicting end conditions");
   res.held_columns = 0;
   for (const auto& r : runs) res.held_columns += !r.empty();
   const Eigen::MatrixXd G2 = detail::derivative_gram(sys.Kv, pv, 2);
