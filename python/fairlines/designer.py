@@ -86,12 +86,12 @@ FIT_END = 0.06              # no fullness points this close (fraction of the wat
 MATCH_TOL = 1e-6            # relative tolerance of volume, LCB (on Lpp) and waterplane area on the surface
 MATCH_ITERATIONS = 6
 MATCH_REFUSE = 1e-4         # a design still this far off (relative) after them is refused, not returned
+MATCH_GAUSS = 4             # Gauss points per span of the matching hydrostatics: 1e-11 of the 8-point volume, twice as fast
 # The skin's aft end keeps the curvature its stations give it (not-a-knot): the natural end's
 # zero curvature left a hollow lobe where a waterline ends over a transom (the container ship's
 # 15 m one, 0.12 deg); bench_fairness_space's upper waterlines 230 -> 237 clean of 300. The fore
-# end stays natural: there the tanker's low waterlines gained a wobble at the forefoot.
+# end stays natural: not-a-knot there changed none of the sampled hulls.
 SKIN_AFT_END = "not_a_knot"
-MATCH_GAUSS = 4             # Gauss points per span of the matching hydrostatics: 1e-11 of the 8-point volume, twice as fast
 PROFILE_SPANS = (30, 60, 120)  # knot spans of the profile, tried in turn
 _GAUSS8 = np.polynomial.legendre.leggauss(8)  # the natural fullness's quadrature
 BULB_FULLNESS_MARGIN = 0.1  # the designer's bulb sections keep this fraction of their fullness range from its ends

@@ -56,13 +56,13 @@ SECTION_ROW_TOL = 1e-2
 #: 5415's first row, 29 mm over 216 mm: its transom's lower edge) and stations cut it instead:
 #: as a station it left the knuckle under the transom between stations, the keel line dipping.
 SECTION_ROW_RAKE = 0.05
-#: Two hull grids whose x ranges meet within this fraction of Lpp join there (skinning.knuckles).
-JOINT_TOL = 1e-6
 #: ... and a station cut between them is kept where the data there strays this far (of B) from
 #: the straight line between the stations either side (_unlike_their_neighbours).
 GIVEN_REFINE_TOL = 1e-2
 #: ... where the basic curves then have a knot span per station, at most this many.
 CLOSE_SPANS = 160
+#: Two hull grids whose x ranges meet within this fraction of Lpp join there (skinning.knuckles).
+JOINT_TOL = 1e-6
 #: Heights at which each station's half-breadth y(z) is sampled.
 Z_SAMPLES = 241
 #: Fit weight of the measured points on the section shape curves (relative to fairness).
@@ -262,15 +262,24 @@ def _section_rows(grids: list, lpp: float) -> list:
     its sections, at least 3; a transom's lines, all within a few cm of each other, are not)."""
     out = []
     for g in grids:
-        for p in (g.points, g.points.transpose(1, 0, 2)):
-            spread, mean = np.ptp(p[..., 0], axis=1), p[..., 0].mean(axis=1)
-            if len(p) >= 3 and spread.max() <= SECTION_ROW_TOL * lpp and np.abs(np.diff(mean)).min() > spread.max():
-                gap = np.minimum(np.abs(np.diff(mean, prepend=np.inf)), np.abs(np.diff(mean, append=np.inf)))
-                square = spread <= SECTION_ROW_RAKE * gap  # a raked row (a transom's edge) is left to the stations
-                if square.sum() >= 3:
-                    out.append((mean[square], float(spread[square].max())))
-                break
+        rows = _row_spread(g.points, lpp)
+        if rows is not None:
+            spread, mean = rows
+            gap = np.minimum(np.abs(np.diff(mean, prepend=np.inf)), np.abs(np.diff(mean, append=np.inf)))
+            square = spread <= SECTION_ROW_RAKE * gap  # a raked row (a transom's edge) is left to the stations
+            if square.sum() >= 3:
+                out.append((mean[square], float(spread[square].max())))
     return out
+
+
+def _row_spread(points: np.ndarray, lpp: float) -> tuple[np.ndarray, np.ndarray] | None:
+    """(x range, mean x) of each row of the grid's `points`, in the direction whose rows are
+    sections (:func:`_section_rows`), or None when neither direction's are."""
+    for p in (points, points.transpose(1, 0, 2)):
+        spread, mean = np.ptp(p[..., 0], axis=1), p[..., 0].mean(axis=1)
+        if len(p) >= 3 and spread.max() <= SECTION_ROW_TOL * lpp and np.abs(np.diff(mean)).min() > spread.max():
+            return spread, mean
+    return None
 
 
 def _with_rows(x: np.ndarray, r: np.ndarray, spread: float) -> np.ndarray:
@@ -1059,14 +1068,13 @@ def _skin_knuckles(hull_data: HullData, xs: np.ndarray) -> dict:
 def _square_behind_raked(p: np.ndarray, lpp: float) -> float | None:
     """x (m) of the grid's first square section row (:func:`_section_rows`) when the row aft
     of it is raked, else None."""
-    for rows in (p, p.transpose(1, 0, 2)):
-        spread, mean = np.ptp(rows[..., 0], axis=1), rows[..., 0].mean(axis=1)
-        if len(rows) < 3 or spread.max() > SECTION_ROW_TOL * lpp or not np.abs(np.diff(mean)).min() > spread.max():
-            continue
-        order = np.argsort(mean)
-        gap = np.abs(mean[order[1]] - mean[order[0]])
-        return float(mean[order[1]]) if spread[order[0]] > SECTION_ROW_RAKE * gap else None
-    return None
+    rows = _row_spread(p, lpp)
+    if rows is None:
+        return None
+    spread, mean = rows
+    order = np.argsort(mean)
+    gap = mean[order[1]] - mean[order[0]]
+    return float(mean[order[1]]) if spread[order[0]] > SECTION_ROW_RAKE * gap else None
 
 
 def _unlike_their_neighbours(dense: MeasuredHull, kept: MeasuredHull) -> np.ndarray:
