@@ -272,6 +272,19 @@ def test_not_a_knot_ends_reproduce_a_cubic_the_natural_ends_bend():
     assert err(start, slice(180, None)) > 1e-3
 
 
+def test_two_held_runs_that_meet_are_both_met():
+    """Sections of one shape whose breadth steps by 33 um between two flat runs (stations 0-5
+    and 6-10): every row is held on both runs, and the skin meets every station. With one knot
+    between the runs, a control held by both kept one value and a station was 11 um off."""
+    def line(x, y):
+        return fl.NurbsCurve(1, [0, 0, 1, 1], np.array([[x, y, 1.0], [x, 0.5 * y, 0.0]]))
+
+    xs = np.linspace(0.0, 40.0, 11)
+    r = fl.fair_skin([line(x, 5.0 if i < 6 else 5.0 + 3.3e-5) for i, x in enumerate(xs)], params="station")
+    assert r.held_columns > 0
+    assert r.longitudinal_max < 1e-12
+
+
 def test_equal_arc_length_points_on_a_circle():
     c = fl.arc([0, 0, 0], 2.0, 0.0, np.pi)
     pts = c.evaluate(np.linspace(0, 1, 5))
