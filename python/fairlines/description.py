@@ -550,7 +550,7 @@ class HullDescription:
         if not 0.0 <= desc.skin_station_mean < 1.0:
             raise _native.InvalidInput(f"skinning.station_mean is {desc.skin_station_mean}; expected a fraction of the "
                                        "station spacing in [0, 1) (0: the sections as designed)")
-        desc._parse_skin_knuckles(sk)
+        desc._parse_skin_continuity(sk)
         if d.get("bulb") is not None:
             desc.bulb = BulbSpec.from_dict(d["bulb"], "bulb")
         if d.get("skeg") is not None:
@@ -567,11 +567,11 @@ class HullDescription:
                 "ship's displacement volume (m^3) for C_VPR must be given")
         return desc
 
-    def _parse_skin_knuckles(self, sk: dict) -> None:
+    def _parse_skin_continuity(self, sk: dict) -> None:
         """skinning.aft_end (SKIN_ENDS), skinning.ruled_aft_of and skinning.knuckles (x, m, within
         the hull's ends)."""
         inside = f"within the hull's ends {self.x_aft:g} .. {self.x_fore:g} m"
-        self.skin_aft_end = sk.get("aft_end", "free")
+        self.skin_aft_end = sk.get("aft_end", HullDescription.skin_aft_end)
         if self.skin_aft_end not in SKIN_ENDS:
             raise bad("skinning.aft_end", self.skin_aft_end, " or ".join(map(repr, SKIN_ENDS)))
         if sk.get("ruled_aft_of") is not None:
