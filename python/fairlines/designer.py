@@ -83,6 +83,12 @@ DWL_TRANSOM_RETRY = 0.5     # ... and when a fine ship's ends cannot hold its LC
 FULLNESS_POINTS = 81        # points of the natural fullness the SAC stays near
 FULLNESS_LIMITS = (0.52, 0.97)  # natural end fullness kept inside these
 FIT_END = 0.06              # no fullness points this close (fraction of the waterline's length) to its ends
+# Without a parallel body, no fullness points within this fraction of Lpp of where the waterline
+# is at B/2: there the box 2 y_dwl d ends its curvature at once (the waterline held at its peak),
+# and a SAC fitted to fullness times it bent upward at the peak. Free there, the SAC is the
+# fairest that meets volume and LCB (bench_fairness_space, 0.03-0.25 tried; 0.12 best).
+SAC_FREE_NEAR_PEAK = 0.12
+PEAK_CHECKS = 2001          # points of the waterline searched for where it is at B/2
 MATCH_TOL = 1e-6            # relative tolerance of volume, LCB (on Lpp) and waterplane area on the surface
 MATCH_ITERATIONS = 6
 MATCH_REFUSE = 1e-4         # a design still this far off (relative) after them is refused, not returned
@@ -487,11 +493,24 @@ def _sac_spec(p: Particulars, c: dict, dwl_curve, profile, xa: float, xf: float)
     sac = {"volume": p.cb * L * B * T, "lcb": p.lcb, "spans": 24, "monotone": True,
            "fullness_fit": [[float(x), float(s)] for x, s in zip(xs, target)
                             if xa + near_end <= x <= xf - near_end]}
+    if par[1] <= par[0]:
+        lo, hi = _at_half_breadth(dwl_curve, p, xa, xf)
+        lo, hi = lo - SAC_FREE_NEAR_PEAK * L, hi + SAC_FREE_NEAR_PEAK * L
+        sac["fullness_fit"] = [q for q in sac["fullness_fit"] if not lo <= q[0] <= hi]
     if par[1] > par[0]:
         sac.update(flat_from=par[0], flat_to=par[1], value=c["cm"] * B * T)
     elif p.cm is not None:  # ... and the SAC holds a given midship area there
         sac["fit"] = [[_midship_place(p), c["cm"] * B * T]]
     return sac
+
+
+def _at_half_breadth(dwl_curve, p: Particulars, xa: float, xf: float) -> tuple[float, float]:
+    """From where to where (m) a waterline without a parallel body is within DECK_FLAT_TOL of
+    B/2: its peak at midships, or the stretch its upper bound holds it at B/2."""
+    xs = np.linspace(xa, xf, PEAK_CHECKS)
+    at = xs[dwl_curve(xs) >= 0.5 * p.breadth * (1.0 - DECK_FLAT_TOL)]
+    peak = _midship_place(p)
+    return (float(at[0]), float(at[-1])) if len(at) else (peak, peak)
 
 
 def _deck_spec(p: Particulars, par: tuple, dwl_curve, x_aft: float, xa: float, xf: float,
