@@ -20,7 +20,8 @@ textbook defaults when left out (each named in the description's notes):
 The particulars become basic curves (fairlines.description): the centre profile, the design
 waterline with Cwp and the LCF, the deck line, and the sectional area curve with the volume and
 LCB, kept near a natural section fullness (Cm over the parallel body, falling toward the ends
-by the two amounts that give the volume and the LCB). The hull is built, and the SAC's volume
+by the two amounts that give the volume and the LCB; left free within SAC_FREE_NEAR_PEAK Lpp of
+a waterline without parallel body at B/2). The hull is built, and the SAC's volume
 and LCB and the waterline's area are corrected by what the skinned surface holds (a rebuild
 or two), so the surface meets the request to MATCH_TOL.
 """

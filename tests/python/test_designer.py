@@ -506,6 +506,21 @@ def test_the_fine_ferrys_aft_sections_are_convex():
         assert _sign_changes(surface, 0, x) == 0, x
 
 
+def test_a_fine_ships_lower_waterlines_do_not_wobble_where_its_waterline_is_widest():
+    """A fine ship without a parallel body (Cb 0.50, the waterline at B/2 only at midships):
+    its T/4, T/2 and 0.74 T waterlines read as a lines plan have no wobble. While the SAC was
+    fitted to the natural fullness up to the waterline's peak, it bent upward there and the T/4
+    and T/2 waterlines took a wobble at 0.52 Lpp (0.42 and 0.12 deg, hull 18 of bench_hull's
+    sample(40))."""
+    from fairlines.fairness import read_waterline
+
+    p = dict(lpp=250.86, breadth=33.52, draft=10.09, depth=16.14, cb=0.50, lcb=128.61)
+    surface = fl.design_hull(**p).bare_hull_surface()
+    for f in (0.25, 0.5, 0.74):
+        read = read_waterline(fl.plane_cut(surface, 2, f * p["draft"], 601))
+        assert not read["wobbles"], (f, [(w["at"][0], w["turn_deg"]) for w in read["wobbles"]])
+
+
 WOBBLY_WATERLINES = {
     7.0: "the stem's last 1.7 m: a hollow of 0.40 deg at x 243.1 m after the entrance's convex turn (2.94 deg at x "
          "241.8 m), since the FP station's keel end is held on the stem (station_mean.keel_hold_share), which made the "
