@@ -20,8 +20,8 @@ textbook defaults when left out (each named in the description's notes):
 The particulars become basic curves (fairlines.description): the centre profile, the design
 waterline with Cwp and the LCF, the deck line, and the sectional area curve with the volume and
 LCB, kept near a natural section fullness (Cm over the parallel body, falling toward the ends
-by the two amounts that give the volume and the LCB; left free within SAC_FREE_NEAR_PEAK Lpp of
-a waterline without parallel body at B/2). The hull is built, and the SAC's volume
+by the two amounts that give the volume and the LCB; without a parallel body, left free within
+SAC_FREE_NEAR_PEAK Lpp of where the waterline is at B/2). The hull is built, and the SAC's volume
 and LCB and the waterline's area are corrected by what the skinned surface holds (a rebuild
 or two), so the surface meets the request to MATCH_TOL.
 """
@@ -486,7 +486,8 @@ def _dwl_spec(p: Particulars, c: dict, xa: float, xf: float, immersed_transom: b
 
 
 def _sac_spec(p: Particulars, c: dict, dwl_curve, profile, xa: float, xf: float) -> dict:
-    """The SAC: the volume and LCB, near the natural fullness, flat over the parallel body."""
+    """The SAC: the volume and LCB, near the natural fullness, flat over the parallel body (without
+    one, free near where the waterline is at B/2)."""
     L, B, T = p.lpp, p.breadth, p.draft
     par = c["parallel"]
     xs, target = natural_fullness(p, c, dwl_curve, profile, xa, xf)
@@ -494,13 +495,13 @@ def _sac_spec(p: Particulars, c: dict, dwl_curve, profile, xa: float, xf: float)
     sac = {"volume": p.cb * L * B * T, "lcb": p.lcb, "spans": 24, "monotone": True,
            "fullness_fit": [[float(x), float(s)] for x, s in zip(xs, target)
                             if xa + near_end <= x <= xf - near_end]}
-    if par[1] <= par[0]:
-        lo, hi = _at_half_breadth(dwl_curve, p, xa, xf)
-        lo, hi = lo - SAC_FREE_NEAR_PEAK * L, hi + SAC_FREE_NEAR_PEAK * L
-        sac["fullness_fit"] = [q for q in sac["fullness_fit"] if not lo <= q[0] <= hi]
     if par[1] > par[0]:
         sac.update(flat_from=par[0], flat_to=par[1], value=c["cm"] * B * T)
-    elif p.cm is not None:  # ... and the SAC holds a given midship area there
+        return sac
+    lo, hi = _at_half_breadth(dwl_curve, p, xa, xf)
+    lo, hi = lo - SAC_FREE_NEAR_PEAK * L, hi + SAC_FREE_NEAR_PEAK * L
+    sac["fullness_fit"] = [q for q in sac["fullness_fit"] if not lo <= q[0] <= hi]
+    if p.cm is not None:  # ... and the SAC holds a given midship area there
         sac["fit"] = [[_midship_place(p), c["cm"] * B * T]]
     return sac
 
