@@ -84,7 +84,11 @@ def _pairs(groups) -> list[tuple[int, int]]:
 
 
 # Sequences the bound fields take as lists of plain ints / pairs (numpy values, tuples of arrays).
-_CONVERT = {"c1_sections": lambda s: [int(i) for i in s], "c0_sections": lambda s: [int(i) for i in s], "flats": _flats, "straight_groups": _pairs}
+def _ints(seq) -> list[int]:
+    return [int(i) for i in seq]
+
+
+_CONVERT = {"c1_sections": _ints, "c0_sections": _ints, "flats": _flats, "straight_groups": _pairs}
 
 
 def _flat(k: int, plane) -> tuple[int, float]:

@@ -561,18 +561,20 @@ Eigen::VectorXd longitudinal_knots(const Eigen::VectorXd& v, const SkinOptions& 
   // two knots, at a third and two thirds: with one, a control held by both runs would hold two
   // values and leave a station up to 1e-6 of the extent off its row (33 um steps on designed hulls).
   std::set<double> extra;
-  for (const auto& col_runs : runs)
+  for (const auto& col_runs : runs) {
+    // run r meets run r + 1: the next starts one station after it ends
+    auto meets_next = [&](std::size_t r) { return r + 1 < col_runs.size() && col_runs[r + 1].first == col_runs[r].last + 1; };
     for (std::size_t r = 0; r < col_runs.size(); ++r) {
       const HeldRun& h = col_runs[r];
-      const bool meets = r + 1 < col_runs.size() && col_runs[r + 1].first == h.last + 1;
-      if (meets) {
+      if (meets_next(r)) {
         extra.insert(v[h.last] + (v[h.last + 1] - v[h.last]) / 3.0);
         extra.insert(v[h.last] + 2.0 * (v[h.last + 1] - v[h.last]) / 3.0);
       } else if (h.last < q - 1) {
         extra.insert(0.5 * (v[h.last] + v[h.last + 1]));
       }
-      if (h.first > 0 && !(r > 0 && col_runs[r - 1].last + 1 == h.first)) extra.insert(0.5 * (v[h.first - 1] + v[h.first]));
+      if (h.first > 0 && !(r > 0 && meets_next(r - 1))) extra.insert(0.5 * (v[h.first - 1] + v[h.first]));
     }
+  }
   kv.insert(kv.end(), extra.begin(), extra.end());
   std::sort(kv.begin() + pv + 1, kv.end());
   for (int r = 0; r <= pv; ++r) kv.push_back(1.0);
