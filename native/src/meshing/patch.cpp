@@ -1596,6 +1596,7 @@ bool flip_flat(const std::vector<Vec3>& xyz, std::vector<std::array<int, 3>>& tr
   int x = -1;
   for (int j = 0; j < 3; ++j)
     if (tri[u][j] != p && tri[u][j] != q) x = tri[u][j];
+  if (half.at.count(m * half.n + x) || half.at.count(x * half.n + m)) return false;  // m-x is an edge already
   const Vec3 &P = xyz[p], &Q = xyz[q], &M = xyz[m], &X = xyz[x];
   const double before = std::min(min_angle(P, Q, M), min_angle(Q, P, X));
   const double after = std::min(min_angle(P, X, M), min_angle(X, Q, M));

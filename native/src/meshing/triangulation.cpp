@@ -333,6 +333,10 @@ long Triangulation::flip_while(const std::function<bool(int, int, int, int)>& be
         const int j = edge_index(u, b, a);
         const int d = v_[u][(j + 2) % 3];
         if (convex ? !convex(a, b, c, d) : orient(c, a, d) <= 0 || orient(d, b, c) <= 0) continue;
+        // convex in space only, the planar points may fold: c-d can be an edge already, and a
+        // second one would join four triangles (a valid planar flip never meets one)
+        if (convex && about(c, [&](int tt, int i) { return v_[tt][(i + 1) % 3] == d || v_[tt][(i + 2) % 3] == d; }) >= 0)
+          continue;
         if (!better(a, b, c, d)) continue;
         flip(t, k);
         changed[t] = changed[u] = pass;
