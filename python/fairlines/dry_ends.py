@@ -52,13 +52,15 @@ def section_half_breadth(curve, z: np.ndarray, samples: int = SAMPLES, outside: 
 
 
 def end_waterlines(end_specs: list, lpp: float, draft: float) -> tuple:
-    """(z, y_e(z), s_e(z)) at a waterline's end from the specs of the sections END_SLOPE_BASE Lpp
-    inside x_e and at x_e (m, m, dy/dh), z from T to the lower deck edge."""
-    inner, end = (d.curve for d in _native.design_sections(end_specs))
-    top = min(float(np.asarray(c.evaluate([0.0]))[0, 2]) for c in (inner, end))
+    """(z, y_e(z), s_e(z)) at a waterline's end from the specs of the sections 2 and 1 times
+    END_SLOPE_BASE Lpp inside x_e and at x_e (m, m, dy/dh), z from T to the lower deck edge. The
+    slope is the one-sided difference of second order: the first-order one read the slope half
+    the base inside x_e, off by y'' END_SLOPE_BASE Lpp / 2 where the waterline still bends at its end."""
+    curves = [d.curve for d in _native.design_sections(end_specs)]
+    top = min(float(np.asarray(c.evaluate([0.0]))[0, 2]) for c in curves)
     z = np.linspace(draft, top, SAMPLES)
-    y_end = section_half_breadth(end, z)
-    return z, y_end, (y_end - section_half_breadth(inner, z)) / (END_SLOPE_BASE * lpp)
+    y2, y1, y_end = (section_half_breadth(c, z) for c in curves)
+    return z, y_end, (3.0 * y_end - 4.0 * y1 + y2) / (2.0 * END_SLOPE_BASE * lpp)
 
 
 def end_contour(profile, x_end: float, x_tip: float):

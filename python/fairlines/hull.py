@@ -592,8 +592,9 @@ class Hull:
             if not dry:
                 continue
             if x_end not in self._dry_ends:
-                inner = x_end - math.copysign(dry_ends.END_SLOPE_BASE * d.principal.lpp, x_tip - x_end)
-                self._dry_ends[x_end] = (dry_ends.end_waterlines(self.section_specs([inner, x_end]), d.principal.lpp,
+                inner = math.copysign(dry_ends.END_SLOPE_BASE * d.principal.lpp, x_tip - x_end)
+                self._dry_ends[x_end] = (dry_ends.end_waterlines(self.section_specs([x_end - 2 * inner, x_end - inner, x_end]),
+                                                                 d.principal.lpp,
                                                                  d.principal.draft),
                                          dry_ends.end_contour(self._curves["profile"], x_end, x_tip))
             for s in dry:
