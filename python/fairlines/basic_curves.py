@@ -253,6 +253,7 @@ def _request(name: str, plan: _Plan, spec: BasicCurveSpec, path: str, stations=(
     knot at every one of `stations` when given (then no piece needs more than one span)."""
     r = _native.SplineDesignRequest()
     r.name = path
+    r.e3 = spec.e3
     breaks = [x for x in (*(plan.flat or ()), *spec.breaks, *(x for x, _ in spec.slopes), *stations) if plan.xs < x < plan.xe]
     r.knots = _native.spline_function_knots(plan.xs, plan.xe, breaks, spec.spans, 3, 1 if len(stations) else 4)
     return r

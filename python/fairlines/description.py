@@ -74,7 +74,9 @@ and its centroid), ``points`` ([[x, f], ...] passed through), ``slopes`` ([[x, d
 weight ``fit_weight``), ``lower`` / ``upper`` (bounds), ``convex`` / ``concave`` ([[x_from,
 x_to, k], ...]: f'' <= -k / f'' >= k there, k >= 0 a least curvature in 1/m: a waterline that
 bulges out, or a hollow), ``monotone`` (true: f moves away from its
-flat value monotonically on both sides of the flat part), ``spans`` (default 12) and ``breaks``
+flat value monotonically on both sides of the flat part), ``e3`` (weight of the change of
+curvature, h^2 int f'''^2 dx with h the mean knot span, beside int f''^2 dx in the fairness the
+curve is made least in; default 0), ``spans`` (default 12) and ``breaks``
 (extra knot positions, m, where the curve must turn quickly: a sternpost). Aliases: sac
 ``volume`` (Area, m^3) and ``lcb`` (xC, m from the AP), and ``fullness_fit`` ([[x, s], ...]: the
 section fullness the SAC stays near while meeting its volume and LCB exactly); dwl ``waterplane_area`` (both sides,
@@ -121,11 +123,12 @@ FORM_ALIASES = {
             "run_angle": ("alphaB", 1.0)},
 }
 CURVE_KEYS = ("x_start", "x_end", "flat_from", "flat_to", "value", "points", "slopes", "fit", "fit_weight", "lower", "upper",
-              "monotone", "spans", "n_control", "breaks", "convex", "concave") + FORM_KEYS
+              "monotone", "spans", "n_control", "breaks", "convex", "concave", "e3") + FORM_KEYS
 # sac only: the section fullness SAC / (2 y_dwl (T - z_keel)) it stays near ([[x, s], ...]).
 FULLNESS_KEY = "fullness_fit"
 
 # Limits on sizes a description may ask for (refused beyond, before any work is done).
+MAX_E3 = 1e4  # a basic curve's e3: far past where the third derivative's term alone decides
 MAX_STATIONS = 1000
 MAX_SPANS = 200
 SECTION_CONTROLS = (8, 64)
@@ -224,6 +227,7 @@ class BasicCurveSpec:
     slopes: list[tuple[float, float]] = field(default_factory=list)
     fit: list[tuple[float, float]] = field(default_factory=list)
     fit_weight: float = 1.0
+    e3: float = 0.0  # weight of h^2 int f'''^2 dx beside int f''^2 dx in the fairness
     lower: float | None = None
     upper: float | None = None
     monotone: bool = False
@@ -283,6 +287,10 @@ class BasicCurveSpec:
                     raise bad(f"{path}.{FULLNESS_KEY}[{i}][1]", v, "a section fullness between 0 and 1")
         if "fit_weight" in d:
             spec.fit_weight = number(f"{path}.fit_weight", d["fit_weight"], positive=True)
+        if "e3" in d:
+            spec.e3 = number(f"{path}.e3", d["e3"])
+            if not 0 <= spec.e3 <= MAX_E3:
+                raise bad(f"{path}.e3", spec.e3, f"a weight from 0 to {MAX_E3:g} (0: the curvature's square alone)")
         if "monotone" in d:
             if not isinstance(d["monotone"], bool):
                 raise bad(f"{path}.monotone", d["monotone"], "true or false")
@@ -317,6 +325,8 @@ class BasicCurveSpec:
             d["fit_weight"] = self.fit_weight
         if self.monotone:
             d["monotone"] = True
+        if self.e3:
+            d["e3"] = self.e3
         if self.breaks:
             d["breaks"] = list(self.breaks)
         for key in ("convex", "concave"):

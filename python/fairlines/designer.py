@@ -100,6 +100,10 @@ MATCH_GAUSS = 4             # Gauss points per span of the matching hydrostatics
 # end stays natural: not-a-knot there changed none of the sampled hulls.
 SKIN_AFT_END = "not_a_knot"
 PROFILE_SPANS = (30, 60, 120)  # knot spans of the profile, tried in turn
+# The design waterline's fairness weighs its change of curvature too (basic curve e3): with the
+# curvature's square alone it bent where its flat part, its peak and its area left it room, and the
+# sections read off it turned S-shaped there (bench_fairness_space).
+DWL_E3 = 3.0
 _GAUSS8 = np.polynomial.legendre.leggauss(8)  # the natural fullness's quadrature
 BULB_FULLNESS_MARGIN = 0.1  # the designer's bulb sections keep this fraction of their fullness range from its ends
 BULB_AFT_LENGTH = 2.6       # the bulb runs on into the hull this many times L_PR + B_B (the bulb's own default is 2) ...
@@ -480,7 +484,8 @@ def _dwl_spec(p: Particulars, c: dict, xa: float, xf: float, immersed_transom: b
     """The design waterline's spec and curve: Cwp and the LCF, flat at B/2 over the parallel
     body (or reaching B/2 at midships without one)."""
     half, par = p.breadth / 2, c["parallel"]
-    dwl = {"yE": 0.0, "monotone": True, "spans": 24, "waterplane_area": c["cwp"] * p.lpp * p.breadth, "lcf": c["lcf"]}
+    dwl = {"yE": 0.0, "monotone": True, "spans": 24, "e3": DWL_E3, "waterplane_area": c["cwp"] * p.lpp * p.breadth,
+           "lcf": c["lcf"]}
     if par[1] > par[0]:
         dwl.update(flat_from=par[0], flat_to=par[1], value=half)
     else:  # no parallel body: the waterline still reaches B/2, at midships

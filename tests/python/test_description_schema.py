@@ -37,6 +37,8 @@ REFUSED_AT_LOAD = {
     "negative Kracht coefficient": put(("bulb", "kracht", "c_bb"), -0.18),
     "negative displacement volume": put(("bulb", "displacement_volume"), -56000.0),
     "zero fit weight": put((BC, "dwl", "fit_weight"), 0.0),
+    "negative fairness weight e3": put((BC, "dwl", "e3"), -1.0),
+    "fairness weight e3 beyond 1e4": put((BC, "dwl", "e3"), 1e5),
     "negative least curvature": put((BC, "dwl", "convex"), [[50.0, 100.0, -0.01]]),
     "section fullness above 1": put((BC, "sac", "fullness_fit", 0, 1), 1.5),
     # unknown keys
