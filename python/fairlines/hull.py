@@ -592,10 +592,9 @@ class Hull:
             if not dry:
                 continue
             if x_end not in self._dry_ends:
-                inner = math.copysign(dry_ends.END_SLOPE_BASE * d.principal.lpp, x_tip - x_end)
-                self._dry_ends[x_end] = (dry_ends.end_waterlines(self.section_specs([x_end - 2 * inner, x_end - inner, x_end]),
-                                                                 d.principal.lpp,
-                                                                 d.principal.draft),
+                step = math.copysign(dry_ends.END_SLOPE_BASE * d.principal.lpp, x_tip - x_end)  # toward the end
+                inside = self.section_specs([x_end - 2 * step, x_end - step, x_end])
+                self._dry_ends[x_end] = (dry_ends.end_waterlines(inside, d.principal.lpp, d.principal.draft),
                                          dry_ends.end_contour(self._curves["profile"], x_end, x_tip))
             for s in dry:
                 shape = dry_ends.dry_section(s, x_end, *self._dry_ends[x_end])

@@ -537,10 +537,10 @@ def test_a_fine_ships_lower_waterlines_do_not_wobble_where_its_waterline_is_wide
 
 
 WOBBLY_WATERLINES = {
-    7.0: "the stem's last 1.7 m: a hollow of 0.40 deg at x 243.1 m after the entrance's convex turn (2.94 deg at x "
-         "241.8 m), since the FP station's keel end is held on the stem (station_mean.keel_hold_share), which made the "
-         "11 m and 13 m waterlines and the tanker's 11.9 m one clean; this waterline ends between the stations at "
-         "242.5 m (keel 0.53 T, averaged) and 244.8 m (keel at T, held); holding from 0-0.9 T as well leaves it",
+    7.0: "a second hollow in the fore half: 0.35 deg at x 243.1 m, where the waterline ends on the stem, after the "
+         "entrance's convex turn (3.37 deg at x 241.8 m); the FP station's keel end is held on the stem "
+         "(station_mean.keel_hold_share), which made the 11 m and 13 m waterlines clean; this waterline ends between "
+         "the stations at 242.5 m (keel 0.53 T, averaged) and 244.8 m (keel at T, held)",
 }
 
 
@@ -569,7 +569,7 @@ def test_upper_waterlines_run_into_the_stem_without_an_inflection(ship, height, 
     from fairlines.fairness import cut_lobes
 
     p, hull = ship
-    name = next(k for k, v in SHIPS.items() if v is p)
+    name = request.node.callspec.params["ship"]
     if (name, height) in STEM_TIP_SHORT:
         request.applymarker(pytest.mark.xfail(strict=True, reason=STEM_TIP_SHORT[name, height]))
     x_end = hull.immersed_range()[1]
