@@ -549,13 +549,13 @@ WOBBLY_WATERLINES = {
 # and a waterline just above T takes a sub-degree wobble in its last metre. Kept for what DWL_E3 gives
 # over bench_fairness_space's 300 hulls: S frames above T on 19 -> 6 hulls, frame inflections 210 -> 151.
 STEM_TIP_SHORT = {
-    ("container", 0.25): "a convex 0.15 deg and a hollow 0.31 deg lobe at x 245.2 and 245.5 m (1 m above T), "
+    ("container", 0.25): "a hollow of 0.15 deg and a convex lobe of 0.31 deg at x 245.2 and 245.5 m (z 13 m, 2 m above T), "
                          "the waterline's last 0.6 m over the stem",
 }
 TANKER_TIP_SHORT = {
-    11.9: "a convex 0.17 deg lobe at x 179.2 m, 0.8 m aft of the stem",
-    12.5: "a convex 0.21 deg and a hollow 0.66 deg lobe at x 179.5 and 179.8 m, the last 0.9 m",
-    13.0: "a convex 0.14 deg and a hollow 0.57 deg lobe at x 179.5 and 180.1 m, the last 1 m",
+    11.9: "a hollow lobe of 0.17 deg at x 179.2 m, 0.8 m aft of the stem",
+    12.5: "a hollow of 0.21 deg and a convex lobe of 0.66 deg at x 179.5 and 179.8 m, the last 0.9 m",
+    13.0: "a hollow of 0.14 deg and a convex lobe of 0.57 deg at x 179.5 and 180.1 m, the last 1 m",
 }
 
 
