@@ -23,8 +23,7 @@ mesh at 3 m   fl.mesh_hull(c, size=3.0) of the composed whole hull (lids on), c 
             hull_u=96, hull_v=40 (skeg) or 60 (dome)); % quads, min scaled Jacobian, % of quad
             corners within 45-135 deg from mesh.quality(); its open / non-manifold /
             misoriented edges are printed below the table.
-fairness counts   sign changes (fairlines.fairness.judge_cut) summed over fairness_plot's
-            waterlines, buttocks and frames of the bare hull surface, with -> without.
+fairness counts   fairlines.fairness_plot.sign_change_counts of the bare hull surface, with -> without.
 """
 
 import os
@@ -36,8 +35,7 @@ import numpy as np
 import fairlines as fl
 from fairlines import hull as hull_module
 from fairlines.designer import PROPELLER_HALF_WIDTH, SKEG_HALF_THICKNESS, propeller
-from fairlines.fairness import judge_cut
-from fairlines.fairness_plot import _cuts, _positions
+from fairlines.fairness_plot import sign_change_counts
 
 TANKER = dict(lpp=180.0, breadth=32.0, draft=11.5, depth=17.0, cb=0.82, lcb=95.4, skeg=True)
 CONTAINER = dict(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.65, lcb=118.73, bulb=True, skeg=True)
@@ -94,11 +92,6 @@ def mesh_census(p, hull):
     return fl.mesh_hull(c, size=MESH_SIZE).quality()
 
 
-def fairness_counts(hull):
-    s = hull.bare_hull_surface()
-    return {k: sum(judge_cut(c)["sign_changes"] for c in _cuts(s, k, v)) for k, v in _positions(s).items()}
-
-
 def sci(x):
     """-1e-7, +7e-8: one significant figure, signed, no exponent padding."""
     if x == 0:
@@ -130,7 +123,7 @@ def main():
         text, edges = row(i == 0, label, p, hull, t_with, t_without)
         rows.append(text)
         notes.append(f"{name}: mesh edges {edges}")
-        a, b = fairness_counts(hull), fairness_counts(plain)
+        a, b = (sign_change_counts(h.bare_hull_surface()) for h in (hull, plain))
         fmt = lambda c: f"{c['waterline']}/{c['buttock']}/{c['frame']}"  # noqa: E731
         sentence.append(f"{name} {fmt(a)} -> {fmt(b)}")
     print("| ship | design | volume / LCB on the surface | blade-tip clearance (asked 0.25 D) | mesh at 3 m |")

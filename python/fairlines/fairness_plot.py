@@ -18,7 +18,7 @@ import numpy as np
 from . import _native
 from .fairness import MIN_TURN_DEG, judge_cut, surface_extent
 
-__all__ = ["comb_spines", "fairness_figure", "write_fairness_plot"]
+__all__ = ["comb_spines", "fairness_figure", "sign_change_counts", "write_fairness_plot"]
 
 #: The longest spine of a view, as a fraction of the view's larger extent.
 COMB_LENGTH = 0.06
@@ -70,6 +70,13 @@ def _positions(surface) -> dict:
     return {"waterline": [z0 + f * (hi[2] - z0) for f in WATERLINES],
             "buttock": [f * hi[1] for f in BUTTOCKS],
             "frame": list(np.linspace(lo[0], hi[0], FRAMES + 2)[1:-1])}
+
+
+def sign_change_counts(surface) -> dict:
+    """Curvature sign changes (fairlines.fairness.judge_cut) summed over the waterlines, buttocks
+    and frames this module cuts from `surface`: {"waterline": n, "buttock": n, "frame": n}."""
+    return {kind: sum(judge_cut(c)["sign_changes"] for c in _cuts(surface, kind, values))
+            for kind, values in _positions(surface).items()}
 
 
 def fairness_figure(surface, *, title: str = "", min_turn_deg: float = MIN_TURN_DEG):
