@@ -15,7 +15,9 @@ textbook defaults when left out (each named in the description's notes):
   Cb 0.6 (dry) and 12 % of T below it otherwise, an immersed one 0.7 B/2 wide at the waterline,
   narrowed in steps of 0.1 B/2 until the waterline widens all the way from the transom to its
   widest (and to 0.5 B/2 when a fine ship's ends cannot hold its LCB with the wider one); a
-  stem raked 20 deg above the waterline.
+  stem raked 20 deg above the waterline;
+* the keel's flat ending aft where the keel has 0.65 of Holtrop and Mennen's run left to rise
+  (0.4, then 0.25 of it when a full body's ends cannot hold its volume under a fine waterplane).
 
 The particulars become basic curves (fairlines.description): the centre profile, the design
 waterline with Cwp and the LCF, the deck line, and the sectional area curve with the volume and
@@ -52,6 +54,10 @@ LCF_AFT_OF_LCB = 0.015      # default LCF aft of the LCB, fraction of Lpp
 COUNTER_ANGLE = 12.0        # rise of the counter at the transom, deg from the horizontal
 KEEL_RISE = 0.65            # the keel rises over this fraction of the run (Holtrop and Mennen's L_R)
 MIN_KEEL_RISE, MAX_KEEL_RISE = 0.06, 0.3  # ... kept within these fractions of Lpp
+# A ship whose ends cannot hold its volume (a full body under a fine waterplane, Cb / Cwp over
+# about 0.92) is tried again with the keel rising over less of the run: its flat runs further
+# aft and the run's sections get deeper boxes. Tried last, so no design that builds changes.
+KEEL_RISE_RETRIES = (0.4, 0.25)
 PARALLEL_SLOPE = 1.6        # parallel body length / Lpp per unit Cp above PARALLEL_CP
 PARALLEL_CP = 0.62
 CM_MAX = 0.99              # the fullest midship section the regression gives (fuller ones leave the SAC no room)
@@ -242,14 +248,15 @@ def _ends(p: Particulars) -> tuple[float, float]:
     return -TRANSOM_AFT * p.lpp, p.lpp + (p.depth - p.draft) * math.tan(math.radians(p.stem_rake))
 
 
-def _profile(p: Particulars, c: dict, x_aft: float, x_fore: float) -> dict:
-    """Keel on the baseline, rising aft to the transom's lower edge (or up the cruiser stern to
-    the deck) and forward through the forefoot to T at the FP and on up the raked stem."""
+def _profile(p: Particulars, c: dict, x_aft: float, x_fore: float, keel_rise: float = KEEL_RISE) -> dict:
+    """Keel on the baseline, rising aft over keel_rise of Holtrop and Mennen's run to the
+    transom's lower edge (or up the cruiser stern to the deck) and forward through the forefoot
+    to T at the FP and on up the raked stem."""
     L, T, D = p.lpp, p.draft, p.depth
     z_t = c["transom_z"]
     lcb_pct = 100 * (p.lcb - L / 2) / L
     run = L * (1 - c["cp"] + 0.06 * c["cp"] * lcb_pct / (4 * c["cp"] - 1))  # Holtrop and Mennen's run length
-    keel_aft = x_aft + float(np.clip(KEEL_RISE * run, MIN_KEEL_RISE * L, MAX_KEEL_RISE * L))
+    keel_aft = x_aft + float(np.clip(keel_rise * run, MIN_KEEL_RISE * L, MAX_KEEL_RISE * L))
     keel_fore = L - (0.04 + 0.10 * c["fine"]) * L
     if c["parallel"][1] > c["parallel"][0]:
         keel_aft, keel_fore = min(keel_aft, c["parallel"][0]), max(keel_fore, c["parallel"][1])
@@ -432,14 +439,15 @@ def _waterline(p: Particulars, dwl: dict, xa: float, xf: float, peak: float, imm
     return best[0]
 
 
-def design_description(p: Particulars) -> dict:
-    """The hull description (a dict) for the particulars (see the module docstring). Raises
+def design_description(p: Particulars, keel_rise: float = KEEL_RISE) -> dict:
+    """The hull description (a dict) for the particulars (see the module docstring), the keel
+    rising aft over keel_rise of the run (a fraction, KEEL_RISE by default). Raises
     InvalidInput for particulars outside the designer's range."""
     p.check()
     c = _coefficients(p)
     L, B, T, D = p.lpp, p.breadth, p.draft, p.depth
     x_aft, x_fore = _ends(p)
-    prof = _profile(p, c, x_aft, x_fore)
+    prof = _profile(p, c, x_aft, x_fore, keel_rise)
     profile, skeg = _aperture(p, prof, _solved_profile(p, prof, x_aft, x_fore), x_aft, x_fore)
     xa, xf = immersed_range(profile, T)
     immersed_transom = xa <= x_aft + 1e-9 * L
@@ -657,17 +665,21 @@ def _fallbacks(p: Particulars):
     choose -- never a value the user gave: the LCF at and forward of the LCB, the parallel body
     moved toward the LCB, a parallel body longer by PARALLEL_STEP Lpp at a time; then the same
     with an immersed transom narrowed to DWL_TRANSOM_RETRY B/2, with a waterplane fuller by
-    CWP_RETRY, and (with a skeg) with the smaller propellers of PROPELLER_RETRIES."""
-    yield from _choices(p)
+    CWP_RETRY, and (with a skeg) with the smaller propellers of PROPELLER_RETRIES; last, the
+    particulars' own choices with the keel rising over less of the run (KEEL_RISE_RETRIES).
+    Yields (particulars, keel rise)."""
+    yield from ((q, KEEL_RISE) for q in _choices(p))
     if p.transom_breadth is None:
-        yield from _choices(replace(p, transom_breadth=DWL_TRANSOM_RETRY * p.breadth / 2))
+        yield from ((q, KEEL_RISE) for q in _choices(replace(p, transom_breadth=DWL_TRANSOM_RETRY * p.breadth / 2)))
     if p.cwp is None:
         cwp = _coefficients(p)["cwp"]
-        yield from _choices(replace(p, cwp=min(cwp + CWP_RETRY, CWP_MAX)))
+        yield from ((q, KEEL_RISE) for q in _choices(replace(p, cwp=min(cwp + CWP_RETRY, CWP_MAX))))
     if p.skeg and p.propeller_diameter is None:  # a smaller screw lifts the counter less
         for f in PROPELLER_RETRIES:
             if f * p.draft < default_propeller_diameter(p):
-                yield from _choices(replace(p, propeller_diameter=f * p.draft))
+                yield from ((q, KEEL_RISE) for q in _choices(replace(p, propeller_diameter=f * p.draft)))
+    for rise in KEEL_RISE_RETRIES:
+        yield from ((q, rise) for q in _choices(p))
 
 
 def _choices(p: Particulars):
@@ -698,8 +710,8 @@ def design_hull(particulars: Particulars | None = None, **kwargs) -> Hull:
     p = particulars if particulars is not None else _particulars(kwargs)
     p.check()
     first = None
-    for q in _fallbacks(p):
-        hull, exc = _try_design(q)
+    for q, rise in _fallbacks(p):
+        hull, exc = _try_design(q, rise)
         if hull is not None:
             return _bulb_that_meets(hull, p)
         first = first or exc
@@ -739,9 +751,9 @@ def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
     raise _native.InfeasibleFormParameters(f"design_hull: the bulb cannot meet the hull in one seam ({reason}): {remedy}")
 
 
-def _try_design(p: Particulars) -> tuple[Hull | None, Exception | None]:
+def _try_design(p: Particulars, keel_rise: float = KEEL_RISE) -> tuple[Hull | None, Exception | None]:
     try:
-        hull = Hull(HullDescription.from_dict(design_description(p)))  # a fresh dict: no defensive copy
+        hull = Hull(HullDescription.from_dict(design_description(p, keel_rise)))  # a fresh dict: no defensive copy
         _refuse_a_miss(match_targets(hull))
         return hull, None
     except _native.InfeasibleFormParameters as exc:
