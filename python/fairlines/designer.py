@@ -16,8 +16,8 @@ textbook defaults when left out (each named in the description's notes):
   narrowed in steps of 0.1 B/2 until the waterline widens all the way from the transom to its
   widest (and to 0.5 B/2 when a fine ship's ends cannot hold its LCB with the wider one); a
   stem raked 20 deg above the waterline;
-* the keel's flat ending aft where the keel has 0.65 of Holtrop and Mennen's run left to rise
-  (0.4, then 0.25 of it when a full body's ends cannot hold its volume under a fine waterplane).
+* the keel rising aft from its flat over 0.65 of Holtrop and Mennen's run (over 0.4, then 0.25
+  of it when a full body's ends cannot hold its volume under a fine waterplane).
 
 The particulars become basic curves (fairlines.description): the centre profile, the design
 waterline with Cwp and the LCF, the deck line, and the sectional area curve with the volume and

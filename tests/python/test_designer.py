@@ -274,7 +274,7 @@ def test_too_long_a_parallel_body_on_a_fine_ship_asks_for_a_shorter_one():
 
 def test_a_fine_waterplane_over_a_full_body_builds_with_the_keel_rising_over_less_of_the_run(monkeypatch):
     """Cwp 10 % below the designer's own (0.846 -> 0.762) under Cb 0.70, a vertical prismatic
-    of 0.918 (hull 7 of bench_hull's sample, rounded): the ends held the volume only once the
+    of 0.918 (hull 7 of bench_design_edits.py's 60, bench_hull.sample(60), rounded): the ends held the volume only once the
     keel's flat ran further aft (designer.KEEL_RISE_RETRIES; refused without them). Built, it
     meets volume, LCB and Cwp, and the keel leaves the base aft of where the default rise puts it."""
     from fairlines import designer
