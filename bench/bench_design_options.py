@@ -30,22 +30,29 @@ REMEDIES = {"bulb and dome": "sonar dome under the forefoot runs into the bulb",
             "ends and LCB": "ends cannot hold this volume"}
 
 
-def designs(n: int, seed: int = 11):
+#: (particular, share of the designs, value) of each option drawn; and the share with a stem rake of STEM_RAKES deg.
+OPTIONS = (("stern", 0.3, "cruiser"), ("bulb", 0.3, True), ("skeg", 0.25, True), ("sonar_dome", 0.15, True),
+           ("parallel_length", 0.2, 0.0))
+STEM_RAKE_SHARE, STEM_RAKES = 0.2, (5.0, 35.0)
+
+
+def designs(n: int, seed: int = 11, lpp: float | None = None):
+    """n particulars with options (Latin hypercube and option draws seeded by `seed`); Lpp
+    60-300 m, or `lpp` for every design (tests/python/test_designer.py draws 150 m ships)."""
     from scipy.stats import qmc
 
     rng = np.random.default_rng(seed)
     for r in qmc.LatinHypercube(d=5, seed=seed).random(n):
         cb, lcb, lb, bt, dt = (lo + x * (hi - lo) for x, (lo, hi) in zip(r, [*SPACE.values(), DEPTH]))
-        lpp = 60.0 + 240.0 * ((r.sum() * 7.31) % 1.0)
-        b = lpp / lb
+        length = lpp if lpp is not None else 60.0 + 240.0 * ((r.sum() * 7.31) % 1.0)
+        b = length / lb
         t = b / bt
-        p = dict(lpp=lpp, breadth=b, draft=t, depth=dt * t, cb=cb, lcb=lpp / 2 + lcb / 100 * lpp)
-        for key, share, value in (("stern", 0.3, "cruiser"), ("bulb", 0.3, True), ("skeg", 0.25, True),
-                                  ("sonar_dome", 0.15, True), ("parallel_length", 0.2, 0.0)):
+        p = dict(lpp=length, breadth=b, draft=t, depth=dt * t, cb=cb, lcb=length / 2 + lcb / 100 * length)
+        for key, share, value in OPTIONS:
             if rng.random() < share:
                 p[key] = value
-        if rng.random() < 0.2:
-            p["stem_rake"] = float(rng.uniform(5.0, 35.0))
+        if rng.random() < STEM_RAKE_SHARE:
+            p["stem_rake"] = float(rng.uniform(*STEM_RAKES))
         yield p
 
 

@@ -194,24 +194,17 @@ def test_latin_hypercube_with_a_given_parallel_body_and_bulb_all_builds():
 
 
 def test_latin_hypercube_with_options_builds_or_names_what_to_change():
-    """The space with a depth of 1.3-2.2 T and the designer's options drawn at random (seeded, as
-    bench_design_options.py draws them: cruiser stern, bulb, skeg, sonar dome, no parallel body,
-    stem rake): each design builds and meets its volume and LCB, or is refused naming what to
+    """The space with a depth of 1.3-2.2 T and the designer's options drawn at random (seeded, by
+    bench_design_options.designs: cruiser stern, bulb, skeg, sonar dome, no parallel body, stem
+    rake), 150 m ships: each design builds and meets its volume and LCB, or is refused naming what to
     change; and most build (the bench: 487 of 500)."""
-    from scipy.stats import qmc
+    import sys
 
-    rng = np.random.default_rng(5)
+    sys.path.insert(0, str(EXAMPLE.parents[1] / "bench"))
+    from bench_design_options import designs
+
     built, refusals = 0, []
-    for r in qmc.LatinHypercube(d=5, seed=5).random(24):
-        cb, lcb, lb, bt, dt = (lo + x * (hi - lo) for x, (lo, hi) in zip(r, (*SPACE.values(), (1.3, 2.2))))
-        b = 150.0 / lb
-        p = dict(lpp=150.0, breadth=b, draft=b / bt, depth=dt * b / bt, cb=cb, lcb=75.0 + lcb / 100 * 150.0)
-        for key, share, value in (("stern", 0.3, "cruiser"), ("bulb", 0.3, True), ("skeg", 0.25, True),
-                                  ("sonar_dome", 0.15, True), ("parallel_length", 0.2, 0.0)):
-            if rng.random() < share:
-                p[key] = value
-        if rng.random() < 0.2:
-            p["stem_rake"] = float(rng.uniform(5.0, 35.0))
+    for p in designs(24, seed=5, lpp=150.0):
         try:
             h = fl.design_hull(**p).hydrostatics()
         except fl.InfeasibleFormParameters as e:
