@@ -665,21 +665,28 @@ def _fallbacks(p: Particulars):
     choose -- never a value the user gave: the LCF at and forward of the LCB, the parallel body
     moved toward the LCB, a parallel body longer by PARALLEL_STEP Lpp at a time; then the same
     with an immersed transom narrowed to DWL_TRANSOM_RETRY B/2, with a waterplane fuller by
-    CWP_RETRY, and (with a skeg) with the smaller propellers of PROPELLER_RETRIES; last, the
-    particulars' own choices with the keel rising over less of the run (KEEL_RISE_RETRIES).
-    Yields (particulars, keel rise)."""
-    yield from ((q, KEEL_RISE) for q in _choices(p))
+    CWP_RETRY, and (with a skeg) with the smaller propellers of PROPELLER_RETRIES."""
+    yield from _choices(p)
     if p.transom_breadth is None:
-        yield from ((q, KEEL_RISE) for q in _choices(replace(p, transom_breadth=DWL_TRANSOM_RETRY * p.breadth / 2)))
+        yield from _choices(replace(p, transom_breadth=DWL_TRANSOM_RETRY * p.breadth / 2))
     if p.cwp is None:
         cwp = _coefficients(p)["cwp"]
-        yield from ((q, KEEL_RISE) for q in _choices(replace(p, cwp=min(cwp + CWP_RETRY, CWP_MAX))))
+        yield from _choices(replace(p, cwp=min(cwp + CWP_RETRY, CWP_MAX)))
     if p.skeg and p.propeller_diameter is None:  # a smaller screw lifts the counter less
         for f in PROPELLER_RETRIES:
             if f * p.draft < default_propeller_diameter(p):
-                yield from ((q, KEEL_RISE) for q in _choices(replace(p, propeller_diameter=f * p.draft)))
+                yield from _choices(replace(p, propeller_diameter=f * p.draft))
+
+
+def _attempts(p: Particulars):
+    """(particulars, keel rise) in the order they are tried: every fallback with the keel rising
+    over KEEL_RISE of the run, then the particulars' own choices with it rising over less
+    (KEEL_RISE_RETRIES)."""
+    for q in _fallbacks(p):
+        yield q, KEEL_RISE
     for rise in KEEL_RISE_RETRIES:
-        yield from ((q, rise) for q in _choices(p))
+        for q in _choices(p):
+            yield q, rise
 
 
 def _choices(p: Particulars):
@@ -710,7 +717,7 @@ def design_hull(particulars: Particulars | None = None, **kwargs) -> Hull:
     p = particulars if particulars is not None else _particulars(kwargs)
     p.check()
     first = None
-    for q, rise in _fallbacks(p):
+    for q, rise in _attempts(p):
         hull, exc = _try_design(q, rise)
         if hull is not None:
             return _bulb_that_meets(hull, p)
