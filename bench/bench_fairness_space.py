@@ -9,6 +9,10 @@ waterlines are also read as one would: a lobe under SMALL_LOBE_DEG of turn betwe
 is a wobble (at a waterline's end it is how the line meets the stem or the transom, one turn), a
 second hollow in one half of the waterline a step, and where the wobbles lie (within
 FORE_TIP of Lpp of a waterline's fore end, within AFT_END of its aft end, or between).
+The lowest waterlines (LOWEST, under T/4) are measured apart: the largest hollow in their aft
+half, where one ending on the keel's rise and then only widening as the bilge fills reads as
+shoulder, hollow, shoulder. The same hulls are then designed with a flat of bottom
+(FLAT_BOTTOM of the waterline's half-breadth over the parallel body) and read again.
 Prints figures; run by bench/run_all.py (FAIRLINES_FAIRNESS_SAMPLES overrides the count).
 """
 
@@ -19,7 +23,7 @@ import sys
 import numpy as np
 
 import fairlines as fl
-from fairlines.fairness import SMALL_LOBE_DEG, judge_cut, read_waterline
+from fairlines.fairness import SMALL_LOBE_DEG, cut_lobes, judge_cut, read_waterline
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from bench_hull import sample  # noqa: E402  the same design space and sampler
@@ -34,6 +38,9 @@ WATERLINES = 6  # T/4 .. D - T/8: the first three up to 0.74 T, the rest from 0.
 WATERLINE_BAND = 0.99
 #: ... and just below it, where an aft section's convex bilge turns into a hollow topside (fractions of T)
 TOPSIDE_BAND = 0.75
+#: The lowest waterlines, fractions of T, and the flat of bottom of the second reading.
+LOWEST = (0.06, 0.12)
+FLAT_BOTTOM = 0.3
 
 
 def sign_changes(surface, axis: int, value: float) -> int:
@@ -84,7 +91,17 @@ def forced_by_basic_curves(hull, x: float, draft: float, depth: float) -> bool:
     return b < s * d or f > 1 - s * d / (2 * b)
 
 
-def judged(p: dict) -> tuple[list, list, list, list, list, list, list, list]:
+def largest_aft_hollow(surface, z: float, lpp: float) -> float:
+    """The largest hollow lobe (deg of turn) in the aft half of the waterline at z (0: none)."""
+    cut = fl.plane_cut(surface, 2, float(z), CUT_POINTS)
+    if len(cut.points) < 3:
+        return 0.0
+    points, curvature = np.asarray(cut.points), np.asarray(cut.curvature)
+    aft = points[:, 0] < 0.5 * lpp
+    return max([lobe["turn_deg"] for lobe in cut_lobes(points[aft], curvature[aft]) if lobe["sign"] > 0], default=0.0)
+
+
+def judged(p: dict) -> tuple[list, list, list, list, list, list, list, list, list]:
     hull = fl.design_hull(**p)
     s = hull.bare_hull_surface()
     T, D, B, L = p["draft"], p["depth"], p["breadth"], p["lpp"]
@@ -100,7 +117,8 @@ def judged(p: dict) -> tuple[list, list, list, list, list, list, list, list]:
             [sum(z > T for z in f) for f in frames],
             [sum(WATERLINE_BAND * T < z <= T for z in f) for f in frames],
             [a and forced_by_basic_curves(hull, x, T, D) for a, x in zip(at_or_above, xs)],
-            [(b, b and forced_by_basic_curves(hull, x, T, D)) for b, x in zip(just_below, xs)])
+            [(b, b and forced_by_basic_curves(hull, x, T, D)) for b, x in zip(just_below, xs)],
+            [largest_aft_hollow(s, f * T, L) for f in LOWEST])
 
 
 def print_reading(hulls: list) -> None:
@@ -153,6 +171,22 @@ def main():
     print("  mean sign changes by buttock, 0.1 .. 0.9 B/2:   ", " ".join(f"{v:.1f}" for v in bt.mean(axis=0)))
     print("  share of hulls with an S frame, 5 .. 95 % Lpp:  ", " ".join(f"{v:.2f}" for v in (fr > 0).mean(axis=0)))
     print_reading(hulls)
+    print_lowest(hulls)
+    flat = [judged({**p, "flat_bottom": FLAT_BOTTOM}) for p in sample(SAMPLES)]
+    print(f"the same {n} hulls with a flat of bottom of {FLAT_BOTTOM:g} of B/2 over the parallel body (flat_bottom):")
+    print(f"  a waterline with more than 2: {sum(any(v > 2 for v in h[0]) for h in flat)} hulls; a buttock with more "
+          f"than 2: {sum(any(v > 2 for v in h[1]) for h in flat)} hulls, per buttock, mean "
+          f"{np.mean([v for h in flat for v in h[1]]):.2f}; an S-shaped frame: {sum(any(v > 0 for v in h[2]) for h in flat)} "
+          f"hulls, above T {sum(any(v > 0 for v in h[4]) for h in flat)}")
+    print_reading(flat)
+    print_lowest(flat)
+
+
+def print_lowest(hulls: list) -> None:
+    largest = np.array([h[8] for h in hulls])
+    print(f"  the lowest waterlines ({', '.join(f'{f:g}' for f in LOWEST)} T), largest hollow in the aft half, mean: "
+          + ", ".join(f"{v:.1f}" for v in largest.mean(axis=0)) + " deg; median: "
+          + ", ".join(f"{v:.1f}" for v in np.median(largest, axis=0)) + " deg")
 
 
 if __name__ == "__main__":

@@ -22,6 +22,7 @@ EXAMPLE = pathlib.Path(__file__).resolve().parents[1] / "examples" / "container_
 CONTAINER = dict(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.65, lcb=118.73, bulb=True)
 SPACE = dict(cb=(0.50, 0.87), lcb_pct=(-4.0, 4.0), l_over_b=(4.0, 9.0), b_over_t=(2.0, 4.5))
 SAMPLES = int(os.environ.get("FAIRLINES_BENCH_SAMPLES", "1000"))
+FLAT_BOTTOM = 0.3  # the flat of bottom of the fourth pass, fraction of the waterline half-breadth
 
 
 def timed(fn, repeat=9):
@@ -71,6 +72,10 @@ def main():
     n = max(SAMPLES // 5, 1)
     ok, times, fails = space_pass(sample_given_parallel(n))
     print(f"the same space with a given parallel body of 2-30 % Lpp and a bulb on every other ship, {n} samples: "
+          f"{ok} built and matched ({100 * ok / n:.1f} %), median {1e3 * statistics.median(times):.0f} ms; "
+          f"failures by curve: {fails}")
+    ok, times, fails = space_pass({**p, "flat_bottom": FLAT_BOTTOM} for p in sample(n, seed=13))
+    print(f"the space with a flat of bottom of {FLAT_BOTTOM:g} of B/2 over the parallel body (flat_bottom), {n} samples: "
           f"{ok} built and matched ({100 * ok / n:.1f} %), median {1e3 * statistics.median(times):.0f} ms; "
           f"failures by curve: {fails}")
     ok, times, fails = compose_pass(sample(n, seed=11))

@@ -50,6 +50,10 @@ corner_height   (optional, with corner_breadth) the bilge corner's height above 
                 the keel as a fraction of the immersed depth [0 .. 1): (1, 0.5)
                 holds a parabolic (Wigley) section, a corner inside the chord from
                 the waterline point to the keel a hollow one
+flat_bottom     (optional) flat of bottom: the half-breadth of the straight      its own
+                floor from the keel point, a fraction of the waterline's          x_start ..
+                [0 .. 0.9], rising at the deadrise; none outside its own range;   x_end
+                the bilge arc starts from its end, the corner rounded
 ==============  ==============================================================  ================
 
 **Given sections** (``sections.given``, optional): auxiliary sections where the template family
@@ -109,7 +113,7 @@ __all__ = [
 ]
 
 REQUIRED_CURVES = ("profile", "dwl", "deck", "sac")
-OPTIONAL_CURVES = ("top_corner", "deadrise", "character", "corner_breadth", "corner_height", "sheer")
+OPTIONAL_CURVES = ("top_corner", "deadrise", "character", "corner_breadth", "corner_height", "sheer", "flat_bottom")
 #: Curves that are given together or not at all (the bilge corner given directly).
 PAIRED_CURVES = (("corner_breadth", "corner_height"),)
 #: ``ends`` keys that make an end a vertical post of zero width.

@@ -42,7 +42,7 @@ from ._options import fill_options
 from .basic_curves import immersed_range, solve_curve, tersely
 from .bulb import KRACHT_NAMES
 from .description import BasicCurveSpec, HullDescription
-from .hull import Hull
+from .hull import FLAT_BOTTOM_BOUNDS, Hull
 
 __all__ = ["Particulars", "design_hull", "design_description", "match_targets", "RANGES"]
 
@@ -52,6 +52,7 @@ STEM_RAKE = 20.0            # stem rake above the waterline, deg from the vertic
 TRANSOM_AFT = 0.025         # transom aft of the AP, fraction of Lpp
 LCF_AFT_OF_LCB = 0.015      # default LCF aft of the LCB, fraction of Lpp
 COUNTER_ANGLE = 12.0        # rise of the counter at the transom, deg from the horizontal
+FLAT_BOTTOM_AFT = 0.7       # a flat of bottom starts this share of the keel's rise aft of the keel's flat
 KEEL_RISE = 0.65            # the keel rises over this fraction of the run (Holtrop and Mennen's L_R)
 MIN_KEEL_RISE, MAX_KEEL_RISE = 0.06, 0.3  # ... kept within these fractions of Lpp
 # A ship whose ends cannot hold its volume (a full body under a fine waterplane, Cb / Cwp over
@@ -171,6 +172,7 @@ class Particulars:
     sonar_dome: bool = False  # a sonar dome under the keel's forward end
     propeller_diameter: float | None = None  # with skeg (m); default PROPELLER_DIAMETER T
     stem_rake: float = STEM_RAKE
+    flat_bottom: float | None = None  # flat of bottom over the parallel body, fraction of the waterline half-breadth; None: none
     name: str = "designed hull"
     notes: list[str] = field(default_factory=list)
 
@@ -204,6 +206,7 @@ class Particulars:
                   "parallel_centre": (0.1 * self.lpp, 0.9 * self.lpp, "a parallel body centred 0.1 to 0.9 Lpp from the AP (m)"),
                   "transom_immersion": (-self.depth, self.draft, "an immersion between -D and T (m; < 0 dry)"),
                   "transom_breadth": (0.0, 0.5 * self.breadth, "a waterline half-breadth at the transom from 0 to B/2 (m)"),
+                  "flat_bottom": (*FLAT_BOTTOM_BOUNDS, f"a flat of bottom of 0 to {FLAT_BOTTOM_BOUNDS[1]:g} of the waterline's half-breadth"),
                   "propeller_diameter": (0.2 * self.draft, 0.95 * self.draft / (1 + HEEL_CLEARANCE),
                                          "a propeller diameter from 0.2 T to what fits under T with its clearances (m)")}
         for key, (lo, hi, what) in limits.items():
@@ -439,6 +442,19 @@ def _waterline(p: Particulars, dwl: dict, xa: float, xf: float, peak: float, imm
     return best[0]
 
 
+def _flat_bottom_spec(p: Particulars, prof: dict, par: tuple, x_aft: float) -> dict:
+    """The flat of bottom: p.flat_bottom of the waterline's half-breadth over the parallel body (at
+    midships without one), none from FLAT_BOTTOM_AFT of the keel's rise aft of its flat (a flat of
+    keel there: one starting where the keel meets the base put a hollow in the low buttocks) and
+    at the forefoot, value, slope and curvature 0 at both ends."""
+    start = prof["flat_from"] - FLAT_BOTTOM_AFT * (prof["flat_from"] - x_aft)
+    spec = {"x_start": start, "x_end": prof["flat_to"], "yB": 0.0, "yE": 0.0, "slopeB": 0.0, "slopeE": 0.0,
+            "CAB": 0.0, "CAE": 0.0, "spans": 24}
+    if par[1] > par[0]:
+        return {**spec, "flat_from": par[0], "flat_to": par[1], "value": p.flat_bottom}
+    return {**spec, "points": [[_midship_place(p), p.flat_bottom]]}
+
+
 def design_description(p: Particulars, keel_rise: float = KEEL_RISE) -> dict:
     """The hull description (a dict) for the particulars (see the module docstring), the keel
     rising aft over keel_rise of the run (a fraction, KEEL_RISE by default). Raises
@@ -467,6 +483,8 @@ def design_description(p: Particulars, keel_rise: float = KEEL_RISE) -> dict:
         "design": {k: v for k, v in asdict(p).items() if k != "notes"},
     }
     _add_appendages(desc, p, prof, skeg)
+    if p.flat_bottom:
+        desc["basic_curves"]["flat_bottom"] = _flat_bottom_spec(p, prof, par, x_aft)
     if p.bulb:
         desc["bulb"] = _bulb_section(p, c)
     return desc

@@ -69,6 +69,9 @@ SIZING_GAUSS = 4
 SHAPE_CURVES = {"top_corner": (0.5, 0.05, 0.95), "deadrise": (0.0, 0.0, 40.0), "character": (0.5, 0.05, 0.95)}
 # The bilge corner given directly (optional, together): bounds of its breadth and height fractions.
 CORNER_CURVES = {"corner_breadth": ("corner_y", 0.02, 1.0), "corner_height": ("corner_z", 0.0, 0.95)}
+# The flat of bottom (optional): bounds of its half-breadth, a fraction of the waterline's. Outside
+# its own x_start .. x_end there is none (it starts and ends on the keel's flat, inside the hull).
+FLAT_BOTTOM_BOUNDS = (0.0, 0.9)
 # A post end: the deck line's and waterline's half-breadth there at most this fraction of B/2.
 POST_TOL = 1e-6
 #: A skinning knuckle (skinning.knuckles) within this fraction of Lpp of a station is at it.
@@ -291,6 +294,9 @@ class Hull:
         for name, (_, lo, hi) in CORNER_CURVES.items():
             if name in c:
                 out[name] = solve_curve(name, c[name], x0, x1, lower=lo, upper=hi, maximum=False)
+        if "flat_bottom" in c:
+            lo, hi = FLAT_BOTTOM_BOUNDS
+            out["flat_bottom"] = solve_curve("flat_bottom", c["flat_bottom"], x0, x1, lower=lo, upper=hi, maximum=False)
         self._check_posts(out)
         return out
 
@@ -523,6 +529,8 @@ class Hull:
         # a spline fitted to a bound may overshoot it by round-off (a deadrise of -4e-13 deg)
         shape = {name: np.clip(bc[name](xs), lo, hi) for name, (_, lo, hi) in SHAPE_CURVES.items()}
         corner = {field: np.clip(bc[name](xs), lo, hi) for name, (field, lo, hi) in CORNER_CURVES.items() if name in bc}
+        if "flat_bottom" in bc:
+            corner["flat_bottom"] = np.clip(bc["flat_bottom"](xs, outside=0.0), *FLAT_BOTTOM_BOUNDS)
         lower = self._lower_angles(xs)
         given = self._given_shapes(xs)
         offsets = self._given_offsets(xs)

@@ -110,6 +110,55 @@ TEST(Sections, FlaredBowSectionIsConvex) {
   EXPECT_EQ(turn_sign_changes(samples(d), kMinTurn), 0);
 }
 
+// Half-breadth of the sampled section (deck to keel) where it last comes down through height z.
+double half_breadth_at(const Eigen::MatrixXd& yz, double z) {
+  for (int i = static_cast<int>(yz.rows()) - 1; i > 0; --i)
+    if ((yz(i, 1) - z) * (yz(i - 1, 1) - z) <= 0) {
+      const double t = (z - yz(i, 1)) / (yz(i - 1, 1) - yz(i, 1));
+      return yz(i, 0) + t * (yz(i - 1, 0) - yz(i, 0));
+    }
+  return 0.0;
+}
+
+TEST(Sections, FlatOfBottomWidensTheFloorAndKeepsTheArea) {
+  // A section in the run (waterline 14 m of 16.125 m, deck 15.5 m, fullness 0.85) with a flat of
+  // bottom of f = 0.2 and 0.4 of the waterline's half-breadth: it still meets its area, passes
+  // through Q and turns one way, and 0.01 T above the keel it is at least half the flat wide and
+  // wider than without one (1.26 m).
+  SectionSpec s = midship();
+  s.x = 60.0, s.y_dwl = 14.0, s.y_deck = 15.5;
+  s.half_area = 0.85 * s.y_dwl * s.draft;
+  const double plain = half_breadth_at(samples(design_section(s)), 0.01 * s.draft);
+  for (double share : {0.2, 0.4}) {
+    s.flat_bottom = share;
+    const SectionDesign d = design_section(s);
+    const Eigen::MatrixXd yz = samples(d);
+    ASSERT_TRUE(d.area_met) << share;
+    EXPECT_NEAR(area_below(yz, s.draft) / s.half_area, 1.0, 2e-4) << share;
+    double best = 1e9;
+    for (int i = 0; i < kSamples; ++i) best = std::min(best, std::hypot(yz(i, 0) - s.y_dwl, yz(i, 1) - s.draft));
+    EXPECT_LT(best, 2e-3) << share;
+    EXPECT_EQ(turn_sign_changes(yz, kMinTurn), 0) << share;
+    const double floor = half_breadth_at(yz, 0.01 * s.draft);
+    EXPECT_GT(floor, 0.5 * share * s.y_dwl) << share;
+    EXPECT_GT(floor, plain) << share;
+  }
+}
+
+TEST(Sections, FlatOfBottomRaisesTheLeastFullnessByItsStrip) {
+  // The flat's strip f d lies inside every section of the family and the arc beyond it holds
+  // at least its chord's half of the rest: least fullness >= (1 + f / b) / 2.
+  double last = 0.0;
+  for (double share : {0.0, 0.2, 0.4, 0.6}) {
+    SectionSpec s = midship();
+    s.flat_bottom = share;
+    const double least = section_fullness_range(s).first;
+    EXPECT_GE(least, 0.5 * (1.0 + share)) << share;
+    EXPECT_GT(least, last) << share;
+    last = least;
+  }
+}
+
 TEST(Sections, BadNumbersNameTheField) {
   SectionSpec s = midship();
   s.lower_angle = 85.0;
@@ -118,6 +167,14 @@ TEST(Sections, BadNumbersNameTheField) {
     FAIL() << "lower_angle 85 accepted";
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("lower_angle"), std::string::npos) << e.what();
+  }
+  s = midship();
+  s.flat_bottom = 1.0;
+  try {
+    design_section(s);
+    FAIL() << "flat_bottom 1 accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("flat_bottom is 1"), std::string::npos) << e.what();
   }
   s = midship();
   s.n_control = 4;

@@ -13,7 +13,8 @@
 //     arc hugging the box corner: flat of side and flat of bottom in all but name) through
 //     rounder, leaning bilges to a straight V (lambda 2, X on the chord Q-K); every point of
 //     the arc moves inward as lambda grows, and lambda is solved so that the area below the
-//     waterline is the asked one.
+//     waterline is the asked one. With a flat of bottom (flat_bottom) the floor runs straight
+//     from K out to F, the arc is the family's in the box beyond it, and a fillet rounds F.
 //  2. The section spline: a cubic B-spline on one knot vector shared by every section of a hull
 //     (fair skinning uses its control points as the surface's rows). It is a graph over the
 //     chord D -> K: control point k is D + xi_k d + eta_k n with xi_k the Greville abscissae,
@@ -80,6 +81,9 @@ struct SectionSpec {
   /// parabolic (Wigley) section, X inside the chord Q-K a hollow one. NaN: the template family
   /// places X from deadrise and character.
   double corner_y = kNaN, corner_z = kNaN;
+  /// Flat of bottom: the bilge arc leaves the keel point along a straight floor out to this
+  /// half-breadth, a fraction of y_dwl (0 <= flat_bottom < 1), toward the bilge corner; 0: none.
+  double flat_bottom = 0.0;
   int n_control = 20;
   /// A given shape (an auxiliary section, e.g. measured offsets) instead of the template: #m by 2
   /// points (y, z) in metres from the deck edge down to the keel on the centre plane. It is
@@ -121,6 +125,8 @@ struct SectionSpec {
     f("lower_angle", &SectionSpec::lower_angle, "above-water sections: arrival angle at the keel point (deg from vertical; NaN: 0)");
     f("corner_y", &SectionSpec::corner_y, "bilge corner half-breadth, fraction of y_dwl (NaN: from the template)");
     f("corner_z", &SectionSpec::corner_z, "bilge corner height above the keel, fraction of T - z_keel (NaN: from the template)");
+    f("flat_bottom", &SectionSpec::flat_bottom, "flat of bottom: the straight floor's half-breadth, fraction of y_dwl (0: none)");
+    f("flat_bottom", &SectionSpec::flat_bottom, "flat of bottom: half-breadth of the straight floor from the keel point, fraction of y_dwl (0: none)");
     f("n_control", &SectionSpec::n_control, "control points of every section of a hull");
     f("given", &SectionSpec::given, "given shape: (m, 2) points (y, z), m, deck edge to keel (empty: the template family)");
     f("given_fore", &SectionSpec::given_fore, "second given shape blended with `given` (empty: none)");

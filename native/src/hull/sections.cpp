@@ -7,6 +7,8 @@
 //               where it heads (the point at `character` of the chord Q-K)
 //   X, Y        bilge corner and top corner of the guide polygon D -> Y -> Q -> X -> K
 //   t_w         unit direction Q -> X: the section's tangent at the waterline, going down
+//   F, F0, F1   flat of bottom: its outer end F = K + (f, rise), and where the fillet rounding its
+//               corner with the bilge arc meets the floor (F0) and the arc's leg X -> F (F1)
 //   lambda      the shape knob: the bilge arc's weight falls and its corner X moves from C to M
 //               over [0, kMaxShapeKnob]
 //   L, dir, nrm chord length |K - D|, its unit direction and the unit normal (-dir_z, dir_y),
@@ -127,6 +129,10 @@ constexpr double kCornerConicShare = 0.45, kLeastCornerShare = 0.1;
 /// ... reached smoothly: the two corners are blended where their ratio lies within e^kCornerBlend
 /// (narrow enough that the blended corner stays inside the waterline point: 0.75 e^0.25 < 1).
 constexpr double kCornerBlend = 0.25;
+/// A flat of bottom's corner with the bilge arc is rounded over this share of the shorter leg:
+/// a knuckle, sampled by the control polygon at another place at every station, rippled the
+/// lowest waterlines (0.5 m and 1 m of the container ship, turns of 0.1-0.9 deg).
+constexpr double kFlatRound = 0.5;
 /// A section whose immersion weight is below this is dry: its waterline point and area carry
 /// no weight, and a waterline point a rounding error off the centre plane must not be checked.
 constexpr double kMinImmersion = 1e-9;
@@ -272,6 +278,7 @@ struct Piece {
 /// for w = 1, toward the corner as w grows).
 Piece conic(const V2& A, const V2& X, const V2& B, double w) {
   Piece pc;
+  pc.p.fill(V2::Zero());  // a conic uses three of the six points
   pc.conic = true, pc.w = w;
   pc.p[0] = A, pc.p[1] = X, pc.p[2] = B;
   return pc;
@@ -320,7 +327,7 @@ void validate(const SectionSpec& s, const std::string& at) {
     if (!std::isfinite(v)) fail(at, ": ", field, " is ", v, "; expected a finite number");
   };
   finite(s.x, "x"), finite(s.y_deck, "y_deck"), finite(s.z_deck, "z_deck"), finite(s.z_keel, "z_keel"), finite(s.y_max, "y_max");
-  finite(s.shape, "shape"), finite(s.top_corner, "top_corner"), finite(s.deadrise, "deadrise"), finite(s.character, "character");
+  finite(s.shape, "shape"), finite(s.flat_bottom, "flat_bottom"), finite(s.top_corner, "top_corner"), finite(s.deadrise, "deadrise"), finite(s.character, "character");
   for (auto [v, field] : {std::pair{s.draft, "draft"}, {s.y_dwl, "y_dwl"}, {s.half_area, "half_area"}, {s.lower_angle, "lower_angle"}})
     if (std::isinf(v)) fail(at, ": ", field, " is ", v, "; expected a number or NaN (not given)");
   if (!(s.y_max > 0)) fail(at, ": y_max is ", s.y_max, "; expected the half-breadth bound B/2 > 0 (m)");
@@ -335,6 +342,8 @@ void validate(const SectionSpec& s, const std::string& at) {
   if (!(s.shape >= 0 && s.shape <= kMaxShapeKnob)) fail(at, ": shape is ", s.shape, "; expected 0 to ", kMaxShapeKnob);
   if (!(s.top_corner > 0 && s.top_corner < 1)) fail(at, ": top_corner is ", s.top_corner, "; expected a fraction between 0 and 1");
   if (!(s.deadrise >= 0 && s.deadrise < 45)) fail(at, ": deadrise is ", s.deadrise, " deg; expected 0 <= deadrise < 45");
+  if (!(s.flat_bottom >= 0 && s.flat_bottom < 1))
+    fail(at, ": flat_bottom is ", s.flat_bottom, "; expected a fraction of the waterline half-breadth in [0, 1)");
   if (!(s.character > 0 && s.character < 1)) fail(at, ": character is ", s.character, "; expected a fraction between 0 and 1");
   if (std::isnan(s.corner_y) != std::isnan(s.corner_z))
     fail(at, ": corner_y is ", s.corner_y, " and corner_z is ", s.corner_z, "; expected both given or both NaN");
@@ -402,7 +411,7 @@ Section setup(const SectionSpec& s) {
 double flare_lean(const Section& S) {
   const V2& D = S.f.D;
   const double rise = D.y() - S.Q.y();
-  return rise > 0 ? std::max(0.0, kFlareMargin * (D.x() - S.b) / rise) : 0.0;
+  return rise > 0 ? std::max(0.0, kFlareMargin * (D.x() - S.Q.x()) / rise) : 0.0;
 }
 
 /// How far smooth_min lowers min(a, c) and smooth_max raises max(a, c) (a, c > 0), as an
@@ -435,10 +444,11 @@ double heading_sine(double sin_chord, double b, double reach, const SectionSpec&
   return smooth_min(sin_chord, std::max(sin_room, 0.0), kHeadingBlend);
 }
 
-/// heading_sine of an immersed section's own chord (its half-breadth b over its depth d at Q).
+/// heading_sine of an immersed section's own chord (its box's breadth b over its depth d: beyond
+/// a flat of bottom, the chord from Q to the flat's end); the room is measured from Q.
 double chord_heading_sine(const Section& S) {
   const double chord = S.b / S.d;
-  return heading_sine(chord / std::sqrt(1.0 + chord * chord), S.b, (S.f.D - S.Q).norm(), S.s);
+  return heading_sine(chord / std::sqrt(1.0 + chord * chord), S.Q.x(), (S.f.D - S.Q).norm(), S.s);
 }
 
 V2 heading(const Section& S) {
@@ -491,26 +501,57 @@ double least_corner_breadth(const Section& S, double rise) {
   return smooth_min(smooth_max(needed, kLeastCornerShare * S.b, kCornerBlend), floor, kCornerBlend);
 }
 
-/// The template's pieces for shape knob lambda (immersed sections), from the deck to the keel.
-std::vector<Piece> immersed_template(const Section& S, double lambda) {
+/// The bilge corner X and the arc's middle weight w for shape knob lambda, in the box whose
+/// keel point is S.K (the section's, or the flat of bottom's outer end F).
+std::pair<V2, double> bilge_corner(const Section& S, double lambda) {
   const SectionSpec& s = S.s;
-  const V2 &D = S.f.D, &K = S.K, &Q = S.Q;
+  const V2& K = S.K;
   const double rise = std::min(S.b * std::tan(s.deadrise * std::numbers::pi / 180.0), 0.5 * S.d);
   // The flare's corner and the least corner breadth meet in a smooth maximum: a plain one
   // kinked the corner (and the rows of control points) along the hull where they cross.
-  const V2 C(smooth_max(S.b - flare_lean(S) * (S.d - rise), least_corner_breadth(S, rise), kCornerBlend), K.y() + rise);
+  const V2 C(K.x() + smooth_max(S.b - flare_lean(S) * (S.d - rise), least_corner_breadth(S, rise), kCornerBlend), K.y() + rise);
   const V2 M = heading(S);
   const double t = std::clamp(lambda / kMaxShapeKnob, 0.0, 1.0);
   const bool given = !std::isnan(s.corner_y);
-  const V2 X = given ? V2(s.corner_y * S.b, K.y() + s.corner_z * S.d) : V2(C + std::pow(t, kLeanPower) * (M - C));
-  const double w = kFullWeight * std::pow((given ? kCornerFineWeight : kFineWeight) / kFullWeight, t);
+  const V2 X = given ? V2(K.x() + s.corner_y * S.b, K.y() + s.corner_z * S.d) : V2(C + std::pow(t, kLeanPower) * (M - C));
+  return {X, kFullWeight * std::pow((given ? kCornerFineWeight : kFineWeight) / kFullWeight, t)};
+}
+
+/// The template's pieces for shape knob lambda (immersed sections), from the deck to the keel:
+/// the topside fillet D -> Y -> Q and the bilge arc Q -> X -> K; with a flat of bottom of
+/// half-breadth f the arc is the family's in the box beyond the flat (keel point F = K + (f, rise),
+/// its area less the flat's strip) and ends at F1 on its leg X -> F, a fillet rounds the corner at
+/// F over kFlatRound of the shorter leg down to F0 on the floor, and the floor runs straight to K.
+std::vector<Piece> immersed_template(const Section& S, double lambda) {
+  const SectionSpec& s = S.s;
+  const V2 &D = S.f.D, &K = S.K, &Q = S.Q;
+  const double f = s.flat_bottom * S.b;
+  std::vector<Piece> floor;  // the flat's pieces, F1 to K
+  V2 X, end = K;
+  double w = 0;
+  if (f > 0) {
+    const double rise = std::min(f * std::tan(s.deadrise * std::numbers::pi / 180.0), 0.5 * S.d);
+    const V2 F = K + V2(f, rise);
+    SectionSpec beyond = s;  // least_corner_breadth reads the asked area over the box beyond the flat
+    if (!std::isnan(beyond.half_area)) beyond.half_area -= f * (S.d - 0.5 * rise);
+    const Section inner{beyond, S.l, S.at, S.f, F, Q, S.immersed, S.b - f, S.d - rise, S.w, S.t_q};
+    std::tie(X, w) = bilge_corner(inner, lambda);
+    const double r = kFlatRound * std::min(f, (X - F).norm());
+    const V2 F0 = F + r * (K - F).normalized();
+    end = F + r * (X - F).normalized();
+    floor = {fillet(end, F, F0), conic(F0, 0.5 * (F0 + K), K, 1.0)};
+  } else {
+    std::tie(X, w) = bilge_corner(S, lambda);
+  }
   const double l1 = (X - Q).norm();
   const V2 tw = l1 > 0 ? V2((X - Q) / l1) : V2((K - Q).normalized());
   const V2 Y = Q - s.top_corner * (D - Q).norm() * tw;
   Piece top = fillet(D, Y, Q);
-  const Piece bilge = conic(Q, X, K, w);
+  const Piece bilge = conic(Q, X, end, w);
   match_bilge_curvature(top, bilge);
-  return {top, bilge};
+  std::vector<Piece> pieces{top, bilge};
+  pieces.insert(pieces.end(), floor.begin(), floor.end());
+  return pieces;
 }
 
 /// Above the water: one rounded corner from the deck point to the keel point, arriving at

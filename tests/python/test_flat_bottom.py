@@ -1,0 +1,107 @@
+"""The flat of bottom (basic curve flat_bottom; fl.design_hull(flat_bottom=...)).
+
+Truths used: the particulars asked for, measured on the surface by the engine's quadrature;
+the cut curves themselves (the lowest waterlines' hollows in the run, the buttocks' sign
+changes); the geometry of a flat (a floor at least half the flat wide just above the keel)."""
+
+import json
+
+import numpy as np
+import pytest
+
+import fairlines as fl
+from fairlines.cli import main as cli_main
+from fairlines.fairness import cut_lobes, judge_cut
+
+CONTAINER = dict(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.65, lcb=118.73)
+SHARE = 0.3
+MATCH_TOL = 1e-5  # volume (relative) and LCB (of Lpp) met on the surface
+
+
+@pytest.fixture(scope="module")
+def plain():
+    return fl.design_hull(**CONTAINER)
+
+
+@pytest.fixture(scope="module")
+def flat():
+    return fl.design_hull(**CONTAINER, flat_bottom=SHARE)
+
+
+def _largest_aft_hollow(hull, z):
+    cut = fl.plane_cut(hull.bare_hull_surface(), 2, z, 801)
+    points, curvature = np.asarray(cut.points), np.asarray(cut.curvature)
+    aft = points[:, 0] < 0.5 * CONTAINER["lpp"]
+    return max([lobe["turn_deg"] for lobe in cut_lobes(points[aft], curvature[aft]) if lobe["sign"] > 0], default=0.0)
+
+
+def test_a_flat_bottomed_design_meets_its_particulars(flat):
+    p = CONTAINER
+    h = fl.hydrostatics(flat.bare_hull_surface(), p["draft"], length=p["lpp"], breadth=p["breadth"], midship_x=p["lpp"] / 2)
+    assert h.volume == pytest.approx(p["cb"] * p["lpp"] * p["breadth"] * p["draft"], rel=MATCH_TOL)
+    assert abs(h.lcb - p["lcb"]) <= MATCH_TOL * p["lpp"]
+
+
+def test_the_floor_is_at_least_half_the_flat_wide_just_above_the_keel(flat, plain):
+    """At stations from the run to the parallel body the section 0.02 T above the keel is at
+    least half the flat's half-breadth wide (the spline rounds the flat's corner); in the run
+    (60 and 80 m) the same stations without a flat are narrower there (a full section's bilge
+    hugs its box with or without one: at 100 m the flat's rounded corner leaves it 1.3 m narrower)."""
+    curves = flat.basic_curves
+    for x in (60.0, 80.0, 100.0):
+        f = float(curves["flat_bottom"](x)[0]) * float(curves["dwl"](x)[0])
+        z = float(curves["profile"](x)[0]) + 0.02 * CONTAINER["draft"]
+        widths = []
+        for hull in (flat, plain):
+            cut = np.asarray(fl.plane_cut(hull.bare_hull_surface(), 0, x, 801).points)
+            low = cut[np.argsort(cut[:, 2])]
+            widths.append(float(np.interp(z, low[:, 2], low[:, 1])))
+        assert widths[0] >= 0.5 * f, (x, f, widths)
+        assert x > 90.0 or widths[0] > widths[1], (x, widths)
+
+
+def test_the_flat_softens_the_lowest_waterlines_in_the_run(flat, plain):
+    """The 0.06 T and 0.12 T waterlines, which end on the keel's rise and then widen only as
+    the bilge fills, hold a hollow in the run: measured 27.1 and 19.0 deg without a flat; with
+    a flat of 0.3 B/2 over the parallel body at least a fifth less."""
+    for share in (0.06, 0.12):
+        z = share * CONTAINER["draft"]
+        assert _largest_aft_hollow(flat, z) < 0.8 * _largest_aft_hollow(plain, z), share
+
+
+def test_the_low_buttocks_take_no_step_where_the_flat_starts(flat):
+    """The flat fades in (value, slope and curvature 0) aft of the keel's flat: the buttocks at
+    0.1-0.5 B/2 turn no more than once each way (a flat starting where the keel meets the base
+    put a hollow of 0.3 deg into the lowest)."""
+    for y in np.array([0.1, 0.25, 0.5]) * CONTAINER["breadth"] / 2:
+        assert judge_cut(fl.plane_cut(flat.bare_hull_surface(), 1, float(y), 601))["sign_changes"] <= 2, y
+
+
+def test_a_flat_bottomed_description_rebuilds_from_its_json(flat):
+    again = fl.Hull.from_json(flat.to_json())
+    assert again.hydrostatics().volume == pytest.approx(flat.hydrostatics().volume, rel=1e-12)
+    assert json.loads(flat.to_json())["basic_curves"]["flat_bottom"]["value"] == SHARE
+
+
+def test_the_cli_writes_a_flat_of_bottom(tmp_path):
+    out = tmp_path / "ship.json"
+    args = ["design", "--output", str(out), "--flat-bottom", "0.25"]
+    for key, v in CONTAINER.items():
+        args += [f"--{key}", str(v)]
+    assert cli_main(args) == 0
+    assert json.loads(out.read_text())["basic_curves"]["flat_bottom"]["value"] == 0.25
+
+
+@pytest.mark.parametrize("share", [-0.1, 0.95, float("nan")])
+def test_a_flat_out_of_range_is_refused_naming_it(share):
+    with pytest.raises(fl.InvalidInput, match=r"flat_bottom is .*expected a flat of bottom of 0 to 0\.9"):
+        fl.design_hull(**CONTAINER, flat_bottom=share)
+
+
+def test_a_description_asking_too_wide_a_flat_names_the_curve(plain):
+    d = json.loads(plain.to_json())
+    xa, xf = d["basic_curves"]["profile"]["flat_from"], d["basic_curves"]["profile"]["flat_to"]
+    d["basic_curves"]["flat_bottom"] = {"x_start": xa, "x_end": xf, "flat_from": xa + 20, "flat_to": xf - 20, "value": 1.5,
+                                        "yB": 0.0, "yE": 0.0}
+    with pytest.raises(fl.InfeasibleFormParameters, match="basic_curves.flat_bottom"):
+        fl.Hull.from_json(json.dumps(d)).bare_hull_surface()
