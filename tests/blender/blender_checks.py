@@ -728,6 +728,13 @@ def t_api_headless():
     d = api.result(tree, "Ship", "Hull").description
     check(ok and d.skeg is not None and d.dome is not None, "skeg and dome: %s" % bad)
     ship.skeg, ship.sonar_dome = False, False
+    # The Flat Bottom socket switched on: the designer's hull with its flat of bottom.
+    api.set(tree, ship, "Flat Bottom", 0.3)
+    api.evaluate(tree)
+    ref = fl.design_hull(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.70, lcb=124.0, bulb=True, flat_bottom=0.3)
+    ok, bad = hydro_equal(api.hydrostatics(tree, "Bare"), ref.hydrostatics())
+    check(ok and "flat_bottom" in api.result(tree, "Ship", "Hull").description.curves, "flat of bottom: %s" % bad)
+    api.set(tree, ship, "Flat Bottom", None)
     # The description JSON through the Hull Description node is the same hull as the designer's.
     desc = api.add(tree, "Hull Description", "Description", text=blender_graph.description_text())
     bare2 = api.add(tree, "Bare Hull", "Bare 2")
