@@ -51,9 +51,9 @@ corner_height   (optional, with corner_breadth) the bilge corner's height above 
                 holds a parabolic (Wigley) section, a corner inside the chord from
                 the waterline point to the keel a hollow one
 flat_bottom     (optional) flat of bottom: the half-breadth of the straight      its own
-                floor from the keel point, a fraction of the waterline's          x_start ..
-                [0 .. 0.9], rising at the deadrise; none outside its own range;   x_end
-                the bilge arc starts from its end, the corner rounded
+                floor from the keel point as a fraction of the waterline         x_start ..
+                half-breadth [0 .. 0.9], rising at the deadrise; none outside    x_end
+                its range; the bilge arc starts from its end, the corner rounded
 ==============  ==============================================================  ================
 
 **Given sections** (``sections.given``, optional): auxiliary sections where the template family

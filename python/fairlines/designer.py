@@ -53,6 +53,7 @@ TRANSOM_AFT = 0.025         # transom aft of the AP, fraction of Lpp
 LCF_AFT_OF_LCB = 0.015      # default LCF aft of the LCB, fraction of Lpp
 COUNTER_ANGLE = 12.0        # rise of the counter at the transom, deg from the horizontal
 FLAT_BOTTOM_AFT = 0.7       # a flat of bottom starts this share of the keel's rise aft of the keel's flat
+FLAT_BOTTOM_FADE = 0.05     # ... and fades out at least this fraction of Lpp forward of its full part
 KEEL_RISE = 0.65            # the keel rises over this fraction of the run (Holtrop and Mennen's L_R)
 MIN_KEEL_RISE, MAX_KEEL_RISE = 0.06, 0.3  # ... kept within these fractions of Lpp
 # A ship whose ends cannot hold its volume (a full body under a fine waterplane, Cb / Cwp over
@@ -446,13 +447,16 @@ def _flat_bottom_spec(p: Particulars, prof: dict, par: tuple, x_aft: float) -> d
     """The flat of bottom: p.flat_bottom of the waterline's half-breadth over the parallel body (at
     midships without one), none from FLAT_BOTTOM_AFT of the keel's rise aft of its flat (a flat of
     keel there: one starting where the keel meets the base put a hollow in the low buttocks) and
-    at the forefoot, value, slope and curvature 0 at both ends."""
+    at the forefoot, at least FLAT_BOTTOM_FADE Lpp forward of its full part (a parallel body
+    reaching the forefoot left it no room to fade), value, slope and curvature 0 at both ends."""
     start = prof["flat_from"] - FLAT_BOTTOM_AFT * (prof["flat_from"] - x_aft)
-    spec = {"x_start": start, "x_end": prof["flat_to"], "yB": 0.0, "yE": 0.0, "slopeB": 0.0, "slopeE": 0.0,
+    full = (par[0], par[1]) if par[1] > par[0] else (_midship_place(p),) * 2
+    end = min(max(prof["flat_to"], full[1] + FLAT_BOTTOM_FADE * p.lpp), p.lpp)
+    spec = {"x_start": start, "x_end": end, "yB": 0.0, "yE": 0.0, "slopeB": 0.0, "slopeE": 0.0,
             "CAB": 0.0, "CAE": 0.0, "spans": 24}
     if par[1] > par[0]:
         return {**spec, "flat_from": par[0], "flat_to": par[1], "value": p.flat_bottom}
-    return {**spec, "points": [[_midship_place(p), p.flat_bottom]]}
+    return {**spec, "points": [[full[0], p.flat_bottom]]}
 
 
 def design_description(p: Particulars, keel_rise: float = KEEL_RISE) -> dict:
@@ -786,11 +790,11 @@ def _try_design(p: Particulars, keel_rise: float = KEEL_RISE) -> tuple[Hull | No
 
 
 def _feasible_edge(p: Particulars) -> str:
-    """For the first of the given Cwp, LCF, LCB, parallel body and a depth over TYPICAL_DEPTH T
-    whose designer's default (the LCB: midships; the depth: TYPICAL_DEPTH T) builds with the
-    others as given, the value nearest the given one that builds, by EDGE_STEPS bisections; ""
-    when there is none."""
-    for name in ("cwp", "lcf", "lcb", "parallel_length", "depth"):
+    """For the first of the given flat of bottom, Cwp, LCF, LCB, parallel body and a depth over
+    TYPICAL_DEPTH T whose designer's default (the flat: none; the LCB: midships; the depth:
+    TYPICAL_DEPTH T) builds with the others as given, the value nearest the given one that
+    builds, by EDGE_STEPS bisections; "" when there is none."""
+    for name in ("flat_bottom", "cwp", "lcf", "lcb", "parallel_length", "depth"):
         given = getattr(p, name)
         if given is None or (name == "depth" and given <= TYPICAL_DEPTH * p.draft):
             continue
@@ -806,7 +810,7 @@ def _feasible_edge(p: Particulars) -> str:
                 bad = mid
             else:
                 target = mid
-        unit = "" if name == "cwp" else " m"
+        unit = "" if name in ("cwp", "flat_bottom") else " m"
         return f"; with the other particulars as given, {name} {target:.4g}{unit} builds (asked {given:.4g}{unit})"
     return ""
 
@@ -815,6 +819,8 @@ def _value_of(p: Particulars, name: str) -> float:
     """A particular's value as the designer takes it (given, or its default)."""
     if name in ("lcb", "depth"):
         return getattr(p, name)
+    if name == "flat_bottom":
+        return p.flat_bottom or 0.0
     c = _coefficients(p)
     return c["parallel"][1] - c["parallel"][0] if name == "parallel_length" else c[name]
 
@@ -844,6 +850,8 @@ def _explained(exc: Exception, p: Particulars, edge: str = "") -> Exception:
     if curve == "sac" and lp > 0 and (c["cp"] - lp) / (1 - lp) < FINE_ENDS_CP:
         remedy = (f"the ends outside this parallel body would need a prismatic coefficient of "
                   f"{(c['cp'] - lp) / (1 - lp):.3f}: give a shorter parallel_length, raise cb or move lcb toward midships")
+    if p.flat_bottom and curve == "sac":  # a flat raises the least fullness the ends can hold
+        remedy += f", or give a narrower flat_bottom (asked {p.flat_bottom:g})"
     return type(exc)(f"design_hull: {said}: {remedy}{edge} ({exc})")
 
 

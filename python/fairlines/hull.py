@@ -69,8 +69,9 @@ SIZING_GAUSS = 4
 SHAPE_CURVES = {"top_corner": (0.5, 0.05, 0.95), "deadrise": (0.0, 0.0, 40.0), "character": (0.5, 0.05, 0.95)}
 # The bilge corner given directly (optional, together): bounds of its breadth and height fractions.
 CORNER_CURVES = {"corner_breadth": ("corner_y", 0.02, 1.0), "corner_height": ("corner_z", 0.0, 0.95)}
-# The flat of bottom (optional): bounds of its half-breadth, a fraction of the waterline's. Outside
-# its own x_start .. x_end there is none (it starts and ends on the keel's flat, inside the hull).
+# The flat of bottom (optional): bounds of its half-breadth, a fraction of the waterline's (the
+# bilge arc beyond it keeps at least a tenth of the breadth). Outside its own x_start .. x_end
+# there is none (the designer's starts on the rising keel aft and ends at the forefoot).
 FLAT_BOTTOM_BOUNDS = (0.0, 0.9)
 # A post end: the deck line's and waterline's half-breadth there at most this fraction of B/2.
 POST_TOL = 1e-6
@@ -296,7 +297,10 @@ class Hull:
                 out[name] = solve_curve(name, c[name], x0, x1, lower=lo, upper=hi, maximum=False)
         if "flat_bottom" in c:
             lo, hi = FLAT_BOTTOM_BOUNDS
-            out["flat_bottom"] = solve_curve("flat_bottom", c["flat_bottom"], x0, x1, lower=lo, upper=hi, maximum=False)
+            flat = out["flat_bottom"] = solve_curve("flat_bottom", c["flat_bottom"], x0, x1, lower=lo, upper=hi, maximum=False)
+            if flat.curve is None and not lo <= flat.value <= hi:  # a constant is not solved against the bounds
+                raise _native.InvalidInput(f"basic_curves.flat_bottom.value is {flat.value:g}; expected a flat of bottom "
+                                           f"of {lo:g} to {hi:g} of the waterline's half-breadth")
         self._check_posts(out)
         return out
 
@@ -528,9 +532,9 @@ class Hull:
         sac = bc["sac"](xs, outside=math.nan) if with_area else None
         # a spline fitted to a bound may overshoot it by round-off (a deadrise of -4e-13 deg)
         shape = {name: np.clip(bc[name](xs), lo, hi) for name, (_, lo, hi) in SHAPE_CURVES.items()}
-        corner = {field: np.clip(bc[name](xs), lo, hi) for name, (field, lo, hi) in CORNER_CURVES.items() if name in bc}
+        optional = {field: np.clip(bc[name](xs), lo, hi) for name, (field, lo, hi) in CORNER_CURVES.items() if name in bc}
         if "flat_bottom" in bc:
-            corner["flat_bottom"] = np.clip(bc["flat_bottom"](xs, outside=0.0), *FLAT_BOTTOM_BOUNDS)
+            optional["flat_bottom"] = np.clip(bc["flat_bottom"](xs, outside=0.0), *FLAT_BOTTOM_BOUNDS)
         lower = self._lower_angles(xs)
         given = self._given_shapes(xs)
         offsets = self._given_offsets(xs)
@@ -543,7 +547,7 @@ class Hull:
         xl, deck, z_deck, prof, dwl, lower = (np.asarray(a, dtype=float).tolist() for a in (xs, deck, z_deck, prof, dwl, lower))
         sac = sac.tolist() if with_area else None
         shapes = list(zip(*(shape[k].tolist() for k in SHAPE_CURVES)))
-        corner = {field: values.tolist() for field, values in corner.items()}
+        optional = {field: values.tolist() for field, values in optional.items()}
         skeg, dome = skeg.tolist(), dome.tolist()
         specs = []
         for i, xi in enumerate(xl):
@@ -561,7 +565,7 @@ class Hull:
             s.z_deck = z_deck[i]
             s.z_keel = min(prof[i], z_deck[i])
             s.top_corner, s.deadrise, s.character = shapes[i]
-            for field, values in corner.items():
+            for field, values in optional.items():
                 setattr(s, field, values[i])
             if math.isfinite(lower[i]):
                 s.lower_angle = lower[i]

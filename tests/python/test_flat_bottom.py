@@ -103,5 +103,24 @@ def test_a_description_asking_too_wide_a_flat_names_the_curve(plain):
     xa, xf = d["basic_curves"]["profile"]["flat_from"], d["basic_curves"]["profile"]["flat_to"]
     d["basic_curves"]["flat_bottom"] = {"x_start": xa, "x_end": xf, "flat_from": xa + 20, "flat_to": xf - 20, "value": 1.5,
                                         "yB": 0.0, "yE": 0.0}
-    with pytest.raises(fl.InfeasibleFormParameters, match="basic_curves.flat_bottom"):
+    with pytest.raises(fl.InfeasibleFormParameters, match=r"basic_curves.flat_bottom.*0\.9"):
         fl.Hull.from_json(json.dumps(d)).bare_hull_surface()
+
+
+@pytest.mark.parametrize("value", [1.5, -0.2])
+def test_a_constant_flat_out_of_range_is_refused_naming_it(plain, value):
+    """A constant curve is not solved against the bounds: it is checked (it was clipped silently)."""
+    d = json.loads(plain.to_json())
+    d["basic_curves"]["flat_bottom"] = {"value": value}
+    with pytest.raises(fl.InvalidInput, match=rf"basic_curves.flat_bottom.value is {value:g}; expected .* 0 to 0\.9"):
+        fl.Hull.from_json(json.dumps(d)).bare_hull_surface()
+
+
+def test_particulars_the_flat_keeps_from_building_name_it():
+    """A fine ship (Cb 0.54) with a long given parallel body builds without a flat; with a flat of
+    0.3 its ends cannot hold the volume (the flat raises their least fullness), and the refusal
+    says to narrow the flat besides the rest."""
+    p = dict(lpp=150.0, breadth=18.83, draft=8.01, depth=12.82, cb=0.538, lcb=79.49, parallel_length=39.56)
+    fl.design_hull(**p)
+    with pytest.raises(fl.InfeasibleFormParameters, match=r"give a narrower flat_bottom \(asked 0\.3\)"):
+        fl.design_hull(**p, flat_bottom=0.3)

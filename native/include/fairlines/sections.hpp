@@ -81,8 +81,11 @@ struct SectionSpec {
   /// parabolic (Wigley) section, X inside the chord Q-K a hollow one. NaN: the template family
   /// places X from deadrise and character.
   double corner_y = kNaN, corner_z = kNaN;
-  /// Flat of bottom: the bilge arc leaves the keel point along a straight floor out to this
-  /// half-breadth, a fraction of y_dwl (0 <= flat_bottom < 1), toward the bilge corner; 0: none.
+  /// Flat of bottom: the floor runs straight from the keel point out to this half-breadth f, a
+  /// fraction of y_dwl (0 <= flat_bottom < 1), rising at the deadrise, to F; below T the bilge
+  /// arc is the family's in the box beyond F (a given corner_y / corner_z then being fractions of
+  /// that box's breadth y_dwl - f and depth, from F), the corner at F rounded. 0: none. Immersed
+  /// template sections only (no effect on given shapes or dry sections).
   double flat_bottom = 0.0;
   int n_control = 20;
   /// A given shape (an auxiliary section, e.g. measured offsets) instead of the template: #m by 2
@@ -125,7 +128,6 @@ struct SectionSpec {
     f("lower_angle", &SectionSpec::lower_angle, "above-water sections: arrival angle at the keel point (deg from vertical; NaN: 0)");
     f("corner_y", &SectionSpec::corner_y, "bilge corner half-breadth, fraction of y_dwl (NaN: from the template)");
     f("corner_z", &SectionSpec::corner_z, "bilge corner height above the keel, fraction of T - z_keel (NaN: from the template)");
-    f("flat_bottom", &SectionSpec::flat_bottom, "flat of bottom: the straight floor's half-breadth, fraction of y_dwl (0: none)");
     f("flat_bottom", &SectionSpec::flat_bottom, "flat of bottom: half-breadth of the straight floor from the keel point, fraction of y_dwl (0: none)");
     f("n_control", &SectionSpec::n_control, "control points of every section of a hull");
     f("given", &SectionSpec::given, "given shape: (m, 2) points (y, z), m, deck edge to keel (empty: the template family)");
