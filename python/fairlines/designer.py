@@ -449,14 +449,15 @@ def _flat_bottom_spec(p: Particulars, prof: dict, par: tuple, x_aft: float) -> d
     keel there: one starting where the keel meets the base put a hollow in the low buttocks) and
     at the forefoot, at least FLAT_BOTTOM_FADE Lpp forward of its full part (a parallel body
     reaching the forefoot left it no room to fade), value, slope and curvature 0 at both ends."""
-    start = prof["flat_from"] - FLAT_BOTTOM_AFT * (prof["flat_from"] - x_aft)
-    full = (par[0], par[1]) if par[1] > par[0] else (_midship_place(p),) * 2
-    end = min(max(prof["flat_to"], full[1] + FLAT_BOTTOM_FADE * p.lpp), p.lpp)
-    spec = {"x_start": start, "x_end": end, "yB": 0.0, "yE": 0.0, "slopeB": 0.0, "slopeE": 0.0,
-            "CAB": 0.0, "CAE": 0.0, "spans": 24}
     if par[1] > par[0]:
-        return {**spec, "flat_from": par[0], "flat_to": par[1], "value": p.flat_bottom}
-    return {**spec, "points": [[full[0], p.flat_bottom]]}
+        full, full_end = {"flat_from": par[0], "flat_to": par[1], "value": p.flat_bottom}, par[1]
+    else:
+        full_end = _midship_place(p)
+        full = {"points": [[full_end, p.flat_bottom]]}
+    start = prof["flat_from"] - FLAT_BOTTOM_AFT * (prof["flat_from"] - x_aft)
+    end = min(max(prof["flat_to"], full_end + FLAT_BOTTOM_FADE * p.lpp), p.lpp)
+    return {"x_start": start, "x_end": end, "yB": 0.0, "yE": 0.0, "slopeB": 0.0, "slopeE": 0.0, "CAB": 0.0,
+            "CAE": 0.0, "spans": 24, **full}
 
 
 def design_description(p: Particulars, keel_rise: float = KEEL_RISE) -> dict:

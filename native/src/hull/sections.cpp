@@ -501,12 +501,18 @@ double least_corner_breadth(const Section& S, double rise) {
   return smooth_min(smooth_max(needed, kLeastCornerShare * S.b, kCornerBlend), floor, kCornerBlend);
 }
 
+/// How far the floor rises at the deadrise over `breadth` from the keel point, at most half the
+/// immersed depth.
+double floor_rise(const Section& S, double breadth) {
+  return std::min(breadth * std::tan(S.s.deadrise * std::numbers::pi / 180.0), 0.5 * S.d);
+}
+
 /// The bilge corner X and the arc's middle weight w for shape knob lambda, in the box whose
 /// keel point is S.K (the section's, or the flat of bottom's outer end F).
 std::pair<V2, double> bilge_corner(const Section& S, double lambda) {
   const SectionSpec& s = S.s;
   const V2& K = S.K;
-  const double rise = std::min(S.b * std::tan(s.deadrise * std::numbers::pi / 180.0), 0.5 * S.d);
+  const double rise = floor_rise(S, S.b);
   // The flare's corner and the least corner breadth meet in a smooth maximum: a plain one
   // kinked the corner (and the rows of control points) along the hull where they cross.
   const V2 C(K.x() + smooth_max(S.b - flare_lean(S) * (S.d - rise), least_corner_breadth(S, rise), kCornerBlend), K.y() + rise);
@@ -530,7 +536,7 @@ std::vector<Piece> immersed_template(const Section& S, double lambda) {
   V2 X, end = K;
   double w = 0;
   if (f > 0) {
-    const double rise = std::min(f * std::tan(s.deadrise * std::numbers::pi / 180.0), 0.5 * S.d);
+    const double rise = floor_rise(S, f);
     const V2 F = K + V2(f, rise);
     SectionSpec beyond = s;  // least_corner_breadth reads the asked area over the box beyond the flat
     if (!std::isnan(beyond.half_area)) beyond.half_area -= f * (S.d - 0.5 * rise);
