@@ -113,14 +113,16 @@ void bind_sections(py::module_& m) {
       .def_readonly("fullness_min", &SectionDesign::fullness_min)
       .def_readonly("fullness_max", &SectionDesign::fullness_max)
       .def_readonly("area_met", &SectionDesign::area_met, "false when the asked area lies outside what the family holds here")
-      .def_readonly("immersion", &SectionDesign::immersion, "weight of the waterline and area conditions (0 .. 1)");
+      .def_readonly("immersion", &SectionDesign::immersion, "weight of the waterline and area conditions (0 .. 1)")
+      .def_readonly("flat_kept", &SectionDesign::flat_kept, "share of the asked flat of bottom kept (< 1: the asked area is too fine for all of it)");
   m.def("design_section", &design_section, "spec"_a, py::call_guard<py::gil_scoped_release>(),
         "One section: its template (deck, waterline and keel points, rounded corners) sampled on the shared knot vector.\n"
         "Raises InvalidInput (malformed numbers) or InfeasibleFormParameters (no one-curve section through the points).");
   m.def("design_sections", &design_sections, "specs"_a, py::call_guard<py::gil_scoped_release>(),
         "design_section for each spec, in order; all on section_knot_vector(n_control).");
-  m.def("section_fullness_range", &section_fullness_range, "spec"_a, py::call_guard<py::gil_scoped_release>(),
-        "(least, largest) fullness area / (y_dwl (T - z_keel)) the section family holds here (NaN: not immersed).");
+  m.def("section_fullness_range", &section_fullness_range, "spec"_a, "narrow_flat"_a = true, py::call_guard<py::gil_scoped_release>(),
+        "(least, largest) fullness area / (y_dwl (T - z_keel)) the section family holds here (NaN: not immersed);\n"
+        "the least narrows the flat of bottom, or with narrow_flat=False keeps it whole.");
   m.def("section_knot_vector", [](int n) { return to_array(section_knot_vector(n)); }, "n_control"_a,
         "The clamped uniform cubic knot vector every section of a hull shares.");
   m.attr("END_BAND") = kEndBand;

@@ -53,7 +53,8 @@ corner_height   (optional, with corner_breadth) the bilge corner's height above 
 flat_bottom     (optional) flat of bottom: the half-breadth of the straight      its own
                 floor from the keel point as a fraction of the waterline         x_start ..
                 half-breadth [0 .. 0.9], rising at the deadrise; none outside    x_end
-                its range; the bilge arc starts from its end, the corner rounded
+                its range; the bilge arc starts from its end, the corner rounded;
+                a section too fine to hold all of it narrows it
 ==============  ==============================================================  ================
 
 **Given sections** (``sections.given``, optional): auxiliary sections where the template family

@@ -352,29 +352,34 @@ class Hull:
                     f"ends at {reach:.6g} m) and the deck line and waterline at 0 there (deck {deck:.6g} m, waterline {wl:.6g} m)")
 
     def _solve_sac(self, ranges: list) -> tuple[BasicCurve, BasicCurve]:
-        """The SAC and its fullness within the stations' fullness `ranges` shrunk by BAND_MARGIN
-        or, where no SAC fits those, by RELAXED_BAND_MARGIN (the refusal then names what that holds)."""
+        """The SAC and its fullness within the stations' fullness `ranges` (x, least keeping the
+        whole flat of bottom, least narrowing it, largest) shrunk by BAND_MARGIN: first with the
+        whole flat kept, then (where no SAC fits those) narrowing it, then by RELAXED_BAND_MARGIN
+        (the refusal then names what that holds)."""
         d, curves = self.description, self._curves
         free = tuple(d.x_aft if end == "aft" else d.x_fore for end in d.posts)
         limits = FULLNESS_BOUNDS
         if "corner_breadth" in d.curves:
             free, limits = self.immersed_range(), CORNER_FULLNESS_BOUNDS
 
-        def within(margin):
-            bands = [(x, lo + margin[0] * (hi - lo), hi - margin[1] * (hi - lo)) for x, lo, hi in ranges]
+        def within(margin, narrow):
+            bands = [(x, lo + margin[0] * (hi - lo), hi - margin[1] * (hi - lo))
+                     for x, held, narrowed, hi in ranges for lo in (narrowed if narrow else held,)]
             return solve_sac(d.curves["sac"], curves["dwl"], curves["profile"], d.principal.draft, fullness=limits, bands=bands,
                              free_ends=free)
 
-        try:
-            with _basic_curves.terse_errors():
-                return within(BAND_MARGIN)
-        except _native.InfeasibleFormParameters:
-            pass
-        return within(RELAXED_BAND_MARGIN)
+        tries = [(BAND_MARGIN, False)] if "flat_bottom" not in d.curves else [(BAND_MARGIN, False), (BAND_MARGIN, True)]
+        for margin, narrow in tries:
+            try:
+                with _basic_curves.terse_errors():
+                    return within(margin, narrow)
+            except _native.InfeasibleFormParameters:
+                pass
+        return within(RELAXED_BAND_MARGIN, True)
 
-    def _fullness_ranges(self) -> list[tuple[float, float, float]]:
-        """(x, least, largest) fullness the section family holds at each station inside the
-        waterline's range."""
+    def _fullness_ranges(self) -> list[tuple[float, float, float, float]]:
+        """(x, least keeping the whole flat of bottom, least narrowing it, largest) fullness the
+        section family holds at each station inside the waterline's range."""
         xa, xf = self.immersed_range()
         xs = self.stations()
         xs = xs[(xs > xa) & (xs < xf)]
@@ -387,8 +392,9 @@ class Hull:
                     or (spec.draft - spec.z_keel) / pr.draft < depth_free * _native.END_BAND):
                 continue  # where the waterline ends the area fades out: no band
             lo, hi = _native.section_fullness_range(spec)
+            held = _native.section_fullness_range(spec, narrow_flat=False)[0] if spec.flat_bottom > 0 else lo
             if np.isfinite(lo) and np.isfinite(hi) and hi > lo:
-                out.append((float(x), float(lo), float(hi)))
+                out.append((float(x), float(min(held, hi)), float(lo), float(hi)))
         return out
 
     def immersed_range(self) -> tuple[float, float]:

@@ -146,23 +146,40 @@ TEST(Sections, FlatOfBottomWidensTheFloorAndKeepsTheArea) {
   }
 }
 
-TEST(Sections, FlatOfBottomRaisesTheLeastFullnessByItsStrip) {
+TEST(Sections, FlatOfBottomNarrowsWhereTheSectionIsTooFineForIt) {
   // The flat's strip f d lies inside every section of the family but for the fillet's corner at
-  // F, and the arc beyond it holds at least its chord's half of the rest: the least fullness is
-  // (1 + f / b) / 2 or more, less the corner (under 0.01 of the box here; measured 0.7978 against
-  // 0.8 for f = 0.6 b in the run), and it rises with f. A wall-sided midship section and a
-  // flared one in the run (waterline 14 m, deck 15.5 m).
+  // F, and the arc beyond it holds at least its chord's half of the rest: a section keeping its
+  // whole flat holds (1 + f / b) / 2 of its box or more (the corner takes under 0.01 of it).
+  // Asked less, down to the least fullness without a flat, it narrows the flat; from there to
+  // 0.88 (or 0.01 under the fullest it holds) it meets its area turning one way, the share kept
+  // never falling as the area grows, and all of the flat kept at the top. A wall-sided midship
+  // section and a flared one in the run (waterline 14 m, deck 15.5 m; fuller than 0.9 with a
+  // flat of 0.4 b or more, this one takes an inflection, flat kept whole or not).
   SectionSpec run = midship();
   run.x = 60.0, run.y_dwl = 14.0, run.y_deck = 15.5;
   for (const SectionSpec& base : {midship(), run}) {
-    double last = 0.0;
-    for (double share : {0.0, 0.2, 0.4, 0.6}) {
+    const double plain_least = section_fullness_range(base).first;
+    for (double share : {0.2, 0.4, 0.6}) {
       SectionSpec s = base;
       s.flat_bottom = share;
-      const double least = section_fullness_range(s).first;
-      EXPECT_GE(least, 0.5 * (1.0 + share) - 0.01) << base.x << " " << share;
-      EXPECT_GT(least, last) << base.x << " " << share;
-      last = least;
+      const auto [least, most] = section_fullness_range(s);
+      EXPECT_NEAR(least, plain_least, 1e-12) << base.x << " " << share;
+      const double box = std::min(s.y_dwl, s.y_max) * s.draft, top = std::min(0.88, most - 0.01);
+      double last = -1.0;
+      for (int i = 0; i <= 20; ++i) {
+        const double fullness = plain_least + 0.02 + i / 20.0 * (top - plain_least - 0.02);
+        s.half_area = fullness * box;
+        const SectionDesign d = design_section(s);
+        const std::string at = std::to_string(base.x) + " " + std::to_string(share) + " " + std::to_string(fullness);
+        ASSERT_TRUE(d.area_met) << at;
+        EXPECT_NEAR(d.fullness, fullness, 2e-4) << at;
+        EXPECT_EQ(turn_sign_changes(samples(d), kMinTurn), 0) << at;
+        EXPECT_GE(d.flat_kept, last) << at;
+        if (d.flat_kept == 1.0) EXPECT_GE(fullness, 0.5 * (1.0 + share) - 0.01) << at;
+        if (i == 0) EXPECT_LT(d.flat_kept, 0.5) << at;
+        if (i == 20) EXPECT_EQ(d.flat_kept, 1.0) << at;
+        last = d.flat_kept;
+      }
     }
   }
 }

@@ -14,7 +14,8 @@
 //     rounder, leaning bilges to a straight V (lambda 2, X on the chord Q-K); every point of
 //     the arc moves inward as lambda grows, and lambda is solved so that the area below the
 //     waterline is the asked one. With a flat of bottom (flat_bottom) the floor runs straight
-//     from K out to F, the arc is the family's in the box beyond it, and a fillet rounds F.
+//     from K out to F, the arc is the family's in the box beyond it, and a fillet rounds F; a
+//     section asked less area than the finest with the whole flat holds narrows its flat.
 //  2. The section spline: a cubic B-spline on one knot vector shared by every section of a hull
 //     (fair skinning uses its control points as the surface's rows). It is a graph over the
 //     chord D -> K: control point k is D + xi_k d + eta_k n with xi_k the Greville abscissae,
@@ -84,8 +85,10 @@ struct SectionSpec {
   /// Flat of bottom: the floor runs straight from the keel point out to this half-breadth f, a
   /// fraction of y_dwl (0 <= flat_bottom < 1), rising at the deadrise, to F; below T the bilge
   /// arc is the family's in the box beyond F (a given corner_y / corner_z then being fractions of
-  /// that box's breadth y_dwl - f and depth, from F), the corner at F rounded. 0: none. Immersed
-  /// template sections only (no effect on given shapes or dry sections).
+  /// that box's breadth y_dwl - f and depth, from F), the corner at F rounded. 0: none. At most:
+  /// a section asked less area than its finest shape with the whole flat holds narrows the flat
+  /// (SectionDesign::flat_kept). Immersed template sections only (no effect on given shapes or
+  /// dry sections).
   double flat_bottom = 0.0;
   int n_control = 20;
   /// A given shape (an auxiliary section, e.g. measured offsets) instead of the template: #m by 2
@@ -151,6 +154,7 @@ struct SectionDesign {
   double fullness_min = kNaN, fullness_max = kNaN;  ///< what the family can hold here
   bool area_met = true;      ///< false when half_area lies outside [fullness_min, fullness_max] (the knob is clamped)
   double immersion = 0.0;    ///< weight (0 .. 1) of the waterline and area conditions (fades at the waterline's ends)
+  double flat_kept = 1.0;    ///< share of the asked flat of bottom kept (< 1: the asked area is too fine for all of it)
 };
 
 /// The knot vector every section with n_control control points shares: clamped uniform cubic on [0, 1].
@@ -165,7 +169,8 @@ SectionDesign design_section(const SectionSpec& spec);
 std::vector<SectionDesign> design_sections(const std::vector<SectionSpec>& specs);
 
 /// The fullness (area below T / (y_dwl (T - z_keel))) the section family can hold at this
-/// station: {least, largest}; {NaN, NaN} where the section is not immersed.
-std::pair<double, double> section_fullness_range(const SectionSpec& spec);
+/// station: {least, largest}; {NaN, NaN} where the section is not immersed. The least narrows
+/// the flat of bottom; with narrow_flat false it is the least that keeps the whole flat.
+std::pair<double, double> section_fullness_range(const SectionSpec& spec, bool narrow_flat = true);
 
 }  // namespace fairlines

@@ -523,15 +523,16 @@ std::pair<V2, double> bilge_corner(const Section& S, double lambda) {
   return {X, kFullWeight * std::pow((given ? kCornerFineWeight : kFineWeight) / kFullWeight, t)};
 }
 
-/// The template's pieces for shape knob lambda (immersed sections), from the deck to the keel:
+/// The template's pieces for shape knob lambda (immersed sections), flat_kept of the flat of
+/// bottom kept, from the deck to the keel:
 /// the topside fillet D -> Y -> Q and the bilge arc Q -> X -> K; with a flat of bottom of
 /// half-breadth f the arc is the family's in the box beyond the flat (keel point F = K + (f, rise),
 /// its area less the flat's strip) and ends at F1 on its leg X -> F, a fillet rounds the corner at
 /// F over kFlatRound of the shorter leg down to F0 on the floor, and the floor runs straight to K.
-std::vector<Piece> immersed_template(const Section& S, double lambda) {
+std::vector<Piece> immersed_template(const Section& S, double lambda, double flat_kept = 1.0) {
   const SectionSpec& s = S.s;
   const V2 &D = S.f.D, &K = S.K, &Q = S.Q;
-  const double f = s.flat_bottom * S.b;
+  const double f = flat_kept * s.flat_bottom * S.b;
   std::vector<Piece> floor;  // the flat's pieces, F1 to K
   V2 X, end = K;
   double w = 0;
@@ -558,6 +559,19 @@ std::vector<Piece> immersed_template(const Section& S, double lambda) {
   std::vector<Piece> pieces{top, bilge};
   pieces.insert(pieces.end(), floor.begin(), floor.end());
   return pieces;
+}
+
+/// The area knob t: the shape knob lambda = min(t, hi) with the whole flat of bottom, then (t >
+/// hi: a section finer than its finest shape with the whole flat) the flat narrowed to
+/// 1 - (t - hi) of itself at that shape. It runs over [0, knob_end(S, hi)].
+struct Knob {
+  double lambda, flat_kept;
+};
+Knob knob_at(double t, double hi) { return {std::min(t, hi), 1.0 - std::clamp(t - hi, 0.0, 1.0)}; }
+double knob_end(const Section& S, double hi) { return S.s.flat_bottom > 0 ? hi + 1.0 : hi; }
+std::vector<Piece> knob_template(const Section& S, double t, double hi) {
+  const Knob k = knob_at(t, hi);
+  return immersed_template(S, k.lambda, k.flat_kept);
 }
 
 /// Above the water: one rounded corner from the deck point to the keel point, arriving at
@@ -752,15 +766,17 @@ NurbsCurve assemble(const Section& S, const Eigen::VectorXd& eta) {
 }
 
 struct KnobSolve {
-  double lambda = 0, lo_area = 0, hi_area = 0;
+  double t = 0, lo_area = 0, hi_area = 0;
   bool met = true;
 };
 
-/// The knob whose spline holds `target` below T (clamped to [0, hi]); area(lambda) is monotone
-/// (falling in the template family; rising too where a given corner lies inside the chord).
-KnobSolve solve_knob(const Section& S, const Eigen::RowVectorXd& arow, double ac, double target, double hi) {
-  auto area = [&](double lam) { return arow.dot(sample(S, immersed_template(S, lam))) + ac; };
+/// The area knob t (knob_at) whose spline holds `target` below T (clamped to [0, knob_end]);
+/// area(t) is monotone (falling in the template family; rising too where a given corner lies
+/// inside the chord).
+KnobSolve solve_knob(const Section& S, const Eigen::RowVectorXd& arow, double ac, double target, double hi_shape) {
+  auto area = [&](double t) { return arow.dot(sample(S, knob_template(S, t, hi_shape))) + ac; };
   KnobSolve out;
+  const double hi = knob_end(S, hi_shape);
   const double area_a = area(0.0), area_b = area(hi);
   out.hi_area = std::max(area_a, area_b), out.lo_area = std::min(area_a, area_b);
   const bool in_range = target >= out.lo_area - kAreaMetTol * S.b * S.d && target <= out.hi_area + kAreaMetTol * S.b * S.d;
@@ -780,13 +796,13 @@ KnobSolve solve_knob(const Section& S, const Eigen::RowVectorXd& arow, double ac
   double a = 0.0, b = hi, fa = area_a - target, fb = area_b - target;
   if (fa * fb >= 0) {  // target outside the range (or at an end): the nearer end
     const bool at_a = std::abs(fa) <= std::abs(fb);
-    return out.lambda = at_a ? 0.0 : hi, out.met = in_range, out;
+    return out.t = at_a ? 0.0 : hi, out.met = in_range, out;
   }
   out.met = in_range;
   int side = 0;  // Illinois regula falsi
   for (int it = 0; it < kKnobIterations; ++it) {
     const double c = (a * fb - b * fa) / (fb - fa), fc = area(c) - target;
-    out.lambda = c;
+    out.t = c;
     if (std::abs(fc) <= kAreaTol * S.b * S.d || b - a < 1e-15) return out;
     if (fc * fb > 0) {
       b = c, fb = fc;
@@ -1191,15 +1207,18 @@ SectionDesign design_with_appendage(const SectionSpec& spec) {
 
 Eigen::VectorXd section_knot_vector(int n_control) { return layout(n_control).U; }
 
-std::pair<double, double> section_fullness_range(const SectionSpec& spec) {
+std::pair<double, double> section_fullness_range(const SectionSpec& spec, bool narrow_flat) {
   const Section S = setup(spec);
   if (!S.immersed || S.f.L <= kPointSection * spec.y_max || spec.given.rows() > 0) return {kNaN, kNaN};
   const auto [arow, ac] = area_row(S);
   const double hi = knob_limit(S);
   const double box = S.b * S.d;
-  const double f_hi = (arow.dot(sample(S, immersed_template(S, hi))) + ac) / box;
-  const double f_0 = (arow.dot(sample(S, immersed_template(S, 0.0))) + ac) / box;
-  return {std::min(f_hi, f_0), std::max(f_hi, f_0)};
+  double lo_f = std::numeric_limits<double>::infinity(), hi_f = -lo_f;
+  for (double t : {0.0, hi, narrow_flat ? knob_end(S, hi) : hi}) {
+    const double f = (arow.dot(sample(S, knob_template(S, t, hi))) + ac) / box;
+    lo_f = std::min(lo_f, f), hi_f = std::max(hi_f, f);
+  }
+  return {lo_f, hi_f};
 }
 
 SectionDesign design_section(const SectionSpec& spec) {
@@ -1222,16 +1241,17 @@ SectionDesign design_section(const SectionSpec& spec) {
   const auto [arow, ac] = area_row(S);
   const double box = S.b * S.d;
   const double hi = knob_limit(S);
-  double lambda = std::min(spec.shape, hi);
+  Knob knob{std::min(spec.shape, hi), 1.0};
   if (!std::isnan(spec.half_area)) {
     const KnobSolve k = solve_knob(S, arow, ac, spec.half_area, hi);
     out.fullness_min = k.lo_area / box, out.fullness_max = k.hi_area / box;
-    lambda = k.lambda;
+    knob = knob_at(k.t, hi);
     out.area_met = k.met || S.w < 1.0;
   }
   out.immersion = S.w;
-  out.shape = S.w * lambda + (1.0 - S.w) * kMaxShapeKnob;
-  Eigen::VectorXd eta = sample(S, immersed_template(S, out.shape));
+  out.shape = S.w * knob.lambda + (1.0 - S.w) * kMaxShapeKnob;
+  out.flat_kept = knob.flat_kept;
+  Eigen::VectorXd eta = sample(S, immersed_template(S, out.shape, knob.flat_kept));
   // The spline is put through Q in the share w^kThroughQPower (see the constant: with w itself the
   // correction, ill-conditioned as Q nears K, outgrew the fading waterline point).
   const double through_q = std::pow(S.w, kThroughQPower);
