@@ -11,8 +11,10 @@ second hollow in one half of the waterline a step, and where the wobbles lie (wi
 FORE_TIP of Lpp of a waterline's fore end, within AFT_END of its aft end, or between).
 The lowest waterlines (LOWEST, under T/4) are measured apart: the largest hollow in their aft
 half, where one ending on the keel's rise and then only widening as the bilge fills reads as
-shoulder, hollow, shoulder. The same hulls are then designed with a flat of bottom
-(FLAT_BOTTOM of the waterline's half-breadth over the parallel body) and read again.
+shoulder, hollow, shoulder; and the keel's crease, the angle at which the frames meet the
+centre plane where the keel lies on the base (a smooth hull meets it level). The hulls are
+designed as the designer does by default (its flat of bottom), then again without a flat of
+bottom and with one of FLAT_BOTTOM of the waterline's half-breadth over the parallel body.
 Prints figures; run by bench/run_all.py (FAIRLINES_FAIRNESS_SAMPLES overrides the count).
 """
 
@@ -38,9 +40,14 @@ WATERLINES = 6  # T/4 .. D - T/8: the first three up to 0.74 T, the rest from 0.
 WATERLINE_BAND = 0.99
 #: ... and just below it, where an aft section's convex bilge turns into a hollow topside (fractions of T)
 TOPSIDE_BAND = 0.75
-#: The lowest waterlines, fractions of T, and the flat of bottom of the second reading.
+#: The lowest waterlines, fractions of T, and the flat of bottom of the third reading.
 LOWEST = (0.06, 0.12)
 FLAT_BOTTOM = 0.3
+#: A frame meets the centre plane at the keel at the angle of its chord to the point this share
+#: of B/2 out (deg from the horizontal; 0: no crease), read where the keel lies on the base
+#: (within KEEL_ON_BASE T), aft (0.15 .. 0.5 Lpp) and forward (0.5 .. 0.85 Lpp) apart.
+KEEL_CHORD, KEEL_ON_BASE = 0.004, 1e-4
+KEEL_FRAMES = (np.linspace(0.15, 0.5, 8), np.linspace(0.55, 0.85, 7))
 
 
 def sign_changes(surface, axis: int, value: float) -> int:
@@ -101,7 +108,21 @@ def largest_aft_hollow(surface, z: float, lpp: float) -> float:
     return max([lobe["turn_deg"] for lobe in cut_lobes(points[aft], curvature[aft]) if lobe["sign"] > 0], default=0.0)
 
 
-def judged(p: dict) -> tuple[list, list, list, list, list, list, list, list, list]:
+def keel_crease(surface, x: float, half_breadth: float, draft: float) -> float:
+    """The angle (deg) at which the frame at x meets the centre plane at the keel; 0 when its
+    keel is off the base (the rising keel, where a V is the deadwood's)."""
+    points = np.asarray(fl.plane_cut(surface, 0, float(x), CUT_POINTS * 4).points)
+    if len(points) < 3:
+        return 0.0
+    points = points[np.argsort(points[:, 1])]
+    keel = points[0]
+    if keel[2] > KEEL_ON_BASE * draft:
+        return 0.0
+    out = points[np.argmax(points[:, 1] > keel[1] + KEEL_CHORD * half_breadth)]
+    return float(np.degrees(np.arctan2(out[2] - keel[2], out[1] - keel[1])))
+
+
+def judged(p: dict) -> tuple[list, list, list, list, list, list, list, list, list, list]:
     hull = fl.design_hull(**p)
     s = hull.bare_hull_surface()
     T, D, B, L = p["draft"], p["depth"], p["breadth"], p["lpp"]
@@ -118,7 +139,8 @@ def judged(p: dict) -> tuple[list, list, list, list, list, list, list, list, lis
             [sum(WATERLINE_BAND * T < z <= T for z in f) for f in frames],
             [a and forced_by_basic_curves(hull, x, T, D) for a, x in zip(at_or_above, xs)],
             [(b, b and forced_by_basic_curves(hull, x, T, D)) for b, x in zip(just_below, xs)],
-            [largest_aft_hollow(s, f * T, L) for f in LOWEST])
+            [largest_aft_hollow(s, f * T, L) for f in LOWEST],
+            [max(keel_crease(s, f * L, B / 2, T) for f in fs) for fs in KEEL_FRAMES])
 
 
 def print_reading(hulls: list) -> None:
@@ -172,14 +194,20 @@ def main():
     print("  share of hulls with an S frame, 5 .. 95 % Lpp:  ", " ".join(f"{v:.2f}" for v in (fr > 0).mean(axis=0)))
     print_reading(hulls)
     print_lowest(hulls)
-    flat = [judged({**p, "flat_bottom": FLAT_BOTTOM}) for p in sample(SAMPLES)]
-    print(f"the same {n} hulls with a flat of bottom of {FLAT_BOTTOM:g} of B/2 over the parallel body (flat_bottom):")
-    print(f"  a waterline with more than 2: {sum(any(v > 2 for v in h[0]) for h in flat)} hulls; a buttock with more "
-          f"than 2: {sum(any(v > 2 for v in h[1]) for h in flat)} hulls, per buttock, mean "
-          f"{np.mean([v for h in flat for v in h[1]]):.2f}; an S-shaped frame: {sum(any(v > 0 for v in h[2]) for h in flat)} "
-          f"hulls, above T {sum(any(v > 0 for v in h[4]) for h in flat)}")
-    print_reading(flat)
-    print_lowest(flat)
+    for flat, what in ((0.0, "without a flat of bottom (flat_bottom=0)"),
+                       (FLAT_BOTTOM, f"with a flat of bottom of {FLAT_BOTTOM:g} of B/2 over the parallel body")):
+        print_pass(f"the same {n} hulls {what}:", [judged({**p, "flat_bottom": flat}) for p in sample(SAMPLES)])
+
+
+def print_pass(title: str, hulls: list) -> None:
+    """The headline counts, the waterlines' reading and the bottom's figures of another pass."""
+    print(title)
+    print(f"  a waterline with more than 2: {sum(any(v > 2 for v in h[0]) for h in hulls)} hulls; a buttock with more "
+          f"than 2: {sum(any(v > 2 for v in h[1]) for h in hulls)} hulls, per buttock, mean "
+          f"{np.mean([v for h in hulls for v in h[1]]):.2f}; an S-shaped frame: "
+          f"{sum(any(v > 0 for v in h[2]) for h in hulls)} hulls, above T {sum(any(v > 0 for v in h[4]) for h in hulls)}")
+    print_reading(hulls)
+    print_lowest(hulls)
 
 
 def print_lowest(hulls: list) -> None:
@@ -187,6 +215,11 @@ def print_lowest(hulls: list) -> None:
     print(f"  the lowest waterlines ({', '.join(f'{f:g}' for f in LOWEST)} T), largest hollow in the aft half, mean: "
           + ", ".join(f"{v:.1f}" for v in largest.mean(axis=0)) + " deg; median: "
           + ", ".join(f"{v:.1f}" for v in np.median(largest, axis=0)) + " deg")
+    crease = np.array([h[9] for h in hulls])
+    print(f"  the keel's crease (the largest angle a frame meets the centre plane at, where the keel is on the base), "
+          f"aft / forward of midships, median: " + " / ".join(f"{v:.1f}" for v in np.median(crease, axis=0))
+          + " deg; mean: " + " / ".join(f"{v:.1f}" for v in crease.mean(axis=0)) + " deg; over 5 deg: "
+          + " / ".join(f"{v}" for v in (crease > 5).sum(axis=0)) + " hulls")
 
 
 if __name__ == "__main__":

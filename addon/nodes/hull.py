@@ -45,7 +45,7 @@ _OPTIONAL = (("Cm", "cm", ids.SOCKET_FLOAT, 0.98), ("Cwp", "cwp", ids.SOCKET_FLO
              ("LCF", "lcf", ids.SOCKET_LENGTH, 115.06), ("Parallel Length", "parallel_length", ids.SOCKET_LENGTH, 17.0),
              ("Transom Immersion", "transom_immersion", ids.SOCKET_LENGTH, -0.55),
              ("Propeller Diameter", "propeller_diameter", ids.SOCKET_LENGTH, 7.7),
-             ("Flat Bottom", "flat_bottom", ids.SOCKET_FLOAT, 0.3))
+             ("Flat Bottom", "flat_bottom", ids.SOCKET_FLOAT, 0.15))
 
 
 @register
@@ -53,7 +53,8 @@ class FLNodeParticulars(FairlinesNode, bpy.types.Node):
     """A whole ship designed from its principal particulars (fl.design_hull): Lpp, B, T, D, Cb
     and LCB (from the AP), optionally Cm, Cwp, LCF, the parallel middle body, the transom
     immersion, (with a skeg) the propeller diameter and a flat of bottom (fraction of the
-    waterline's half-breadth over the parallel body); the stern type, the stem rake, a bulbous
+    waterline's half-breadth over the parallel body; switched off, the designer's 0.15; 0:
+    none); the stern type, the stem rake, a bulbous
     bow, a single screw's skeg and propeller aperture, a sonar dome. The hull meets Cb, LCB and
     Cwp on its own surface; out of the designer's range the node is red with the range named"""
     bl_idname = ids.NODE_PARTICULARS

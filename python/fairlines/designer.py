@@ -17,7 +17,9 @@ textbook defaults when left out (each named in the description's notes):
   widest (and to 0.5 B/2 when a fine ship's ends cannot hold its LCB with the wider one); a
   stem raked 20 deg above the waterline;
 * the keel rising aft from its flat over 0.65 of Holtrop and Mennen's run (over 0.4, then 0.25
-  of it when a full body's ends cannot hold its volume under a fine waterplane).
+  of it when a full body's ends cannot hold its volume under a fine waterplane);
+* a flat of bottom of FLAT_BOTTOM_DEFAULT of the waterline's half-breadth over the parallel
+  body (at midships without one), narrowed by the sections too fine to hold it.
 
 The particulars become basic curves (fairlines.description): the centre profile, the design
 waterline with Cwp and the LCF, the deck line, and the sectional area curve with the volume and
@@ -52,6 +54,10 @@ STEM_RAKE = 20.0            # stem rake above the waterline, deg from the vertic
 TRANSOM_AFT = 0.025         # transom aft of the AP, fraction of Lpp
 LCF_AFT_OF_LCB = 0.015      # default LCF aft of the LCB, fraction of Lpp
 COUNTER_ANGLE = 12.0        # rise of the counter at the transom, deg from the horizontal
+# A flat of bottom by default: without one the two halves of the run meet at the keel at the
+# floor's angle (section splines arriving 17 / 10 / 4 deg at 0.18 / 0.25 / 0.33 Lpp on the
+# container ship), a crease zebra stripes break at; this much flattens it (3 / 0.1 / 0 deg).
+FLAT_BOTTOM_DEFAULT = 0.15
 FLAT_BOTTOM_AFT = 0.7       # a flat of bottom starts this share of the keel's rise aft of the keel's flat
 FLAT_BOTTOM_FADE = 0.05     # ... and fades out at least this fraction of Lpp forward of its full part
 KEEL_RISE = 0.65            # the keel rises over this fraction of the run (Holtrop and Mennen's L_R)
@@ -173,7 +179,8 @@ class Particulars:
     sonar_dome: bool = False  # a sonar dome under the keel's forward end
     propeller_diameter: float | None = None  # with skeg (m); default PROPELLER_DIAMETER T
     stem_rake: float = STEM_RAKE
-    flat_bottom: float | None = None  # flat of bottom over the parallel body, fraction of the waterline half-breadth; None: none
+    flat_bottom: float | None = None  # flat of bottom over the parallel body, fraction of the waterline half-breadth;
+                                      # None: FLAT_BOTTOM_DEFAULT; 0: none
     name: str = "designed hull"
     notes: list[str] = field(default_factory=list)
 
@@ -443,17 +450,22 @@ def _waterline(p: Particulars, dwl: dict, xa: float, xf: float, peak: float, imm
     return best[0]
 
 
+def _flat_share(p: Particulars) -> float:
+    """The flat of bottom's share of the waterline's half-breadth the designer draws."""
+    return FLAT_BOTTOM_DEFAULT if p.flat_bottom is None else p.flat_bottom
+
+
 def _flat_bottom_spec(p: Particulars, prof: dict, par: tuple, x_aft: float) -> dict:
-    """The flat of bottom: p.flat_bottom of the waterline's half-breadth over the parallel body (at
+    """The flat of bottom: _flat_share(p) of the waterline's half-breadth over the parallel body (at
     midships without one), none from FLAT_BOTTOM_AFT of the keel's rise aft of its flat (a flat of
     keel there: one starting where the keel meets the base put a hollow in the low buttocks) and
     at the forefoot, at least FLAT_BOTTOM_FADE Lpp forward of its full part (a parallel body
     reaching the forefoot left it no room to fade), value, slope and curvature 0 at both ends."""
     if par[1] > par[0]:
-        full, full_end = {"flat_from": par[0], "flat_to": par[1], "value": p.flat_bottom}, par[1]
+        full, full_end = {"flat_from": par[0], "flat_to": par[1], "value": _flat_share(p)}, par[1]
     else:
         full_end = _midship_place(p)
-        full = {"points": [[full_end, p.flat_bottom]]}
+        full = {"points": [[full_end, _flat_share(p)]]}
     start = prof["flat_from"] - FLAT_BOTTOM_AFT * (prof["flat_from"] - x_aft)
     end = min(max(prof["flat_to"], full_end + FLAT_BOTTOM_FADE * p.lpp), p.lpp)
     return {"x_start": start, "x_end": end, "yB": 0.0, "yE": 0.0, "slopeB": 0.0, "slopeE": 0.0, "CAB": 0.0,
@@ -488,7 +500,7 @@ def design_description(p: Particulars, keel_rise: float = KEEL_RISE) -> dict:
         "design": {k: v for k, v in asdict(p).items() if k != "notes"},
     }
     _add_appendages(desc, p, prof, skeg)
-    if p.flat_bottom:
+    if _flat_share(p):
         desc["basic_curves"]["flat_bottom"] = _flat_bottom_spec(p, prof, par, x_aft)
     if p.bulb:
         desc["bulb"] = _bulb_section(p, c)
@@ -791,11 +803,10 @@ def _try_design(p: Particulars, keel_rise: float = KEEL_RISE) -> tuple[Hull | No
 
 
 def _feasible_edge(p: Particulars) -> str:
-    """For the first of the given flat of bottom, Cwp, LCF, LCB, parallel body and a depth over
-    TYPICAL_DEPTH T whose designer's default (the flat: none; the LCB: midships; the depth:
-    TYPICAL_DEPTH T) builds with the others as given, the value nearest the given one that
+    """For the first of the given Cwp, LCF, LCB, parallel body and a depth over TYPICAL_DEPTH T
+    whose designer's default (the LCB: midships; the depth: TYPICAL_DEPTH T) builds with the others as given, the value nearest the given one that
     builds, by EDGE_STEPS bisections; "" when there is none."""
-    for name in ("flat_bottom", "cwp", "lcf", "lcb", "parallel_length", "depth"):
+    for name in ("cwp", "lcf", "lcb", "parallel_length", "depth"):
         given = getattr(p, name)
         if given is None or (name == "depth" and given <= TYPICAL_DEPTH * p.draft):
             continue
@@ -811,7 +822,7 @@ def _feasible_edge(p: Particulars) -> str:
                 bad = mid
             else:
                 target = mid
-        unit = "" if name in ("cwp", "flat_bottom") else " m"
+        unit = "" if name == "cwp" else " m"
         return f"; with the other particulars as given, {name} {target:.4g}{unit} builds (asked {given:.4g}{unit})"
     return ""
 
@@ -820,8 +831,6 @@ def _value_of(p: Particulars, name: str) -> float:
     """A particular's value as the designer takes it (given, or its default)."""
     if name in ("lcb", "depth"):
         return getattr(p, name)
-    if name == "flat_bottom":
-        return p.flat_bottom or 0.0
     c = _coefficients(p)
     return c["parallel"][1] - c["parallel"][0] if name == "parallel_length" else c[name]
 
@@ -851,8 +860,6 @@ def _explained(exc: Exception, p: Particulars, edge: str = "") -> Exception:
     if curve == "sac" and lp > 0 and (c["cp"] - lp) / (1 - lp) < FINE_ENDS_CP:
         remedy = (f"the ends outside this parallel body would need a prismatic coefficient of "
                   f"{(c['cp'] - lp) / (1 - lp):.3f}: give a shorter parallel_length, raise cb or move lcb toward midships")
-    if p.flat_bottom and curve == "sac":  # a flat raises the least fullness the ends can hold
-        remedy += f", or give a narrower flat_bottom (asked {p.flat_bottom:g})"
     return type(exc)(f"design_hull: {said}: {remedy}{edge} ({exc})")
 
 

@@ -734,6 +734,10 @@ def t_api_headless():
     ref = fl.design_hull(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.70, lcb=124.0, bulb=True, flat_bottom=0.3)
     ok, bad = hydro_equal(api.hydrostatics(tree, "Bare"), ref.hydrostatics())
     check(ok and "flat_bottom" in api.result(tree, "Ship", "Hull").description.curves, "flat of bottom: %s" % bad)
+    # ... and at 0: none (switched off, the designer's default flat).
+    api.set(tree, ship, "Flat Bottom", 0.0)
+    api.evaluate(tree)
+    check("flat_bottom" not in api.result(tree, "Ship", "Hull").description.curves, "a Flat Bottom of 0 draws none")
     api.set(tree, ship, "Flat Bottom", None)
     # The description JSON through the Hull Description node is the same hull as the designer's.
     desc = api.add(tree, "Hull Description", "Description", text=blender_graph.description_text())
