@@ -19,7 +19,7 @@ textbook defaults when left out (each named in the description's notes):
 * the keel rising aft from its flat over 0.65 of Holtrop and Mennen's run (over 0.4, then 0.25
   of it when a full body's ends cannot hold its volume under a fine waterplane);
 * a flat of bottom of FLAT_BOTTOM_DEFAULT of the waterline's half-breadth over the parallel
-  body (at midships without one), narrowed by the sections too fine to hold it.
+  body (at midships without one); none where sections would be too fine to hold it whole.
 
 The particulars become basic curves (fairlines.description): the centre profile, the design
 waterline with Cwp and the LCF, the deck line, and the sectional area curve with the volume and
@@ -180,7 +180,7 @@ class Particulars:
     propeller_diameter: float | None = None  # with skeg (m); default PROPELLER_DIAMETER T
     stem_rake: float = STEM_RAKE
     flat_bottom: float | None = None  # flat of bottom over the parallel body, fraction of the waterline half-breadth;
-                                      # None: FLAT_BOTTOM_DEFAULT; 0: none
+                                      # None: FLAT_BOTTOM_DEFAULT (none where the ends are too fine for it); 0: none
     name: str = "designed hull"
     notes: list[str] = field(default_factory=list)
 
@@ -794,9 +794,14 @@ def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
 
 
 def _try_design(p: Particulars, keel_rise: float = KEEL_RISE) -> tuple[Hull | None, Exception | None]:
+    """The hull designed from p, or the reason it is not. Where the default flat of bottom would
+    narrow (its sections too fine for it: the SAC fits only the bands that narrow it, from a whole
+    flat at one station to a tenth at the next) the hull is designed without one."""
     try:
         hull = Hull(HullDescription.from_dict(design_description(p, keel_rise)))  # a fresh dict: no defensive copy
         _refuse_a_miss(match_targets(hull))
+        if p.flat_bottom is None and min(d.flat_kept for d in hull.section_designs) < 1.0:
+            return _try_design(replace(p, flat_bottom=0.0), keel_rise)
         return hull, None
     except _native.InfeasibleFormParameters as exc:
         return None, exc

@@ -143,6 +143,18 @@ def test_a_constant_flat_out_of_range_is_refused_naming_it(plain, value):
         fl.Hull.from_json(json.dumps(d)).bare_hull_surface()
 
 
+def test_the_designer_leaves_out_its_default_flat_where_the_ends_are_too_fine_for_it():
+    """A fine ship (Cb 0.51) with a long given parallel body: a flat of the default width
+    narrows just forward of the parallel body (asked, it is drawn so); by default the designer
+    draws none there rather than a flat narrowing from whole to a tenth between stations."""
+    p = dict(lpp=150.0, breadth=22.05, draft=6.55, depth=10.48, cb=0.511, lcb=70.59, parallel_length=41.24)
+    asked = fl.design_hull(**p, flat_bottom=FLAT_BOTTOM_DEFAULT)
+    assert min(d.flat_kept for d in asked.section_designs) < 1.0
+    hull = fl.design_hull(**p)
+    assert "flat_bottom" not in hull.description.curves
+    assert json.loads(hull.to_json())["design"]["flat_bottom"] == 0.0
+
+
 def test_a_flat_the_ends_are_too_fine_for_narrows_there_and_the_ship_meets_its_particulars():
     """A fine ship (Cb 0.54) with a long given parallel body: its ends hold the volume only with
     sections finer than a flat of 0.3 allows (it was refused). Those sections narrow their flat
