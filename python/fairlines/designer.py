@@ -56,7 +56,7 @@ LCF_AFT_OF_LCB = 0.015      # default LCF aft of the LCB, fraction of Lpp
 COUNTER_ANGLE = 12.0        # rise of the counter at the transom, deg from the horizontal
 # A flat of bottom by default: without one the two halves of the run meet at the keel at the
 # floor's angle (section splines arriving 17 / 10 / 4 deg at 0.18 / 0.25 / 0.33 Lpp on the
-# container ship), a crease zebra stripes break at; this much flattens it (3 / 0.1 / 0 deg).
+# container ship), a crease zebra stripes break at; this much flattens it (3 / 0.3 / 0 deg).
 FLAT_BOTTOM_DEFAULT = 0.15
 FLAT_BOTTOM_AFT = 0.7       # a flat of bottom starts this share of the keel's rise aft of the keel's flat
 FLAT_BOTTOM_FADE = 0.05     # ... and fades out at least this fraction of Lpp forward of its full part
@@ -809,8 +809,9 @@ def _try_design(p: Particulars, keel_rise: float = KEEL_RISE) -> tuple[Hull | No
 
 def _feasible_edge(p: Particulars) -> str:
     """For the first of the given Cwp, LCF, LCB, parallel body and a depth over TYPICAL_DEPTH T
-    whose designer's default (the LCB: midships; the depth: TYPICAL_DEPTH T) builds with the others as given, the value nearest the given one that
-    builds, by EDGE_STEPS bisections; "" when there is none."""
+    whose designer's default (the LCB: midships; the depth: TYPICAL_DEPTH T) builds with the
+    others as given, the value nearest the given one that builds, by EDGE_STEPS bisections; ""
+    when there is none."""
     for name in ("cwp", "lcf", "lcb", "parallel_length", "depth"):
         given = getattr(p, name)
         if given is None or (name == "depth" and given <= TYPICAL_DEPTH * p.draft):

@@ -363,8 +363,10 @@ class Hull:
             free, limits = self.immersed_range(), CORNER_FULLNESS_BOUNDS
 
         def within(margin, narrow):
-            bands = [(x, lo + margin[0] * (hi - lo), hi - margin[1] * (hi - lo))
-                     for x, held, narrowed, hi in ranges for lo in (narrowed if narrow else held,)]
+            bands = []
+            for x, held, narrowed, hi in ranges:
+                lo = narrowed if narrow else held
+                bands.append((x, lo + margin[0] * (hi - lo), hi - margin[1] * (hi - lo)))
             return solve_sac(d.curves["sac"], curves["dwl"], curves["profile"], d.principal.draft, fullness=limits, bands=bands,
                              free_ends=free)
 
