@@ -45,7 +45,7 @@ LOWEST = (0.06, 0.12)
 FLAT_BOTTOM = 0.3
 #: A frame meets the centre plane at the keel at the angle of its chord to the point this share
 #: of B/2 out (deg from the horizontal; 0: no crease), read where the keel lies on the base
-#: (within KEEL_ON_BASE T), aft (0.15 .. 0.5 Lpp) and forward (0.5 .. 0.85 Lpp) apart.
+#: (within KEEL_ON_BASE T), aft (0.15 .. 0.5 Lpp) and forward (0.55 .. 0.85 Lpp) apart.
 KEEL_CHORD, KEEL_ON_BASE = 0.004, 1e-4
 KEEL_FRAMES = (np.linspace(0.15, 0.5, 8), np.linspace(0.55, 0.85, 7))
 

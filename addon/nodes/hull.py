@@ -53,8 +53,9 @@ class FLNodeParticulars(FairlinesNode, bpy.types.Node):
     """A whole ship designed from its principal particulars (fl.design_hull): Lpp, B, T, D, Cb
     and LCB (from the AP), optionally Cm, Cwp, LCF, the parallel middle body, the transom
     immersion, (with a skeg) the propeller diameter and a flat of bottom (fraction of the
-    waterline's half-breadth over the parallel body; switched off, the designer's 0.15; 0:
-    none); the stern type, the stem rake, a bulbous
+    waterline's half-breadth over the parallel body; switched off, the designer's 0.15, left
+    out on fine ships whose sections would narrow it; switched on, drawn as given, narrowing
+    where it must; 0: none); the stern type, the stem rake, a bulbous
     bow, a single screw's skeg and propeller aperture, a sonar dome. The hull meets Cb, LCB and
     Cwp on its own surface; out of the designer's range the node is red with the range named"""
     bl_idname = ids.NODE_PARTICULARS

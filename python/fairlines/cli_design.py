@@ -21,7 +21,7 @@ def add_parser(sub) -> None:
                       ("stem-rake", "stem rake above the waterline, deg from the vertical"),
                       ("propeller-diameter", "with --skeg: the single screw's diameter, m (default 0.7 T)"),
                       ("flat-bottom", "flat of bottom over the parallel body, fraction of the waterline's half-breadth "
-                                      "(default 0.15; 0: none)")):
+                                      "(default 0.15, none where a section would narrow it; 0: none)")):
         d.add_argument(f"--{key}", type=float, default=None, help=what)
     d.add_argument("--stern", choices=["transom", "cruiser"], default="transom")
     d.add_argument("--bulb", action="store_true", help="a bulbous bow (default Kracht coefficients)")

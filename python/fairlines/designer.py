@@ -18,8 +18,9 @@ textbook defaults when left out (each named in the description's notes):
   stem raked 20 deg above the waterline;
 * the keel rising aft from its flat over 0.65 of Holtrop and Mennen's run (over 0.4, then 0.25
   of it when a full body's ends cannot hold its volume under a fine waterplane);
-* a flat of bottom of FLAT_BOTTOM_DEFAULT of the waterline's half-breadth over the parallel
-  body (at midships without one); none where sections would be too fine to hold it whole.
+* a flat of bottom (a straight floor from the keel) of FLAT_BOTTOM_DEFAULT of the waterline's
+  half-breadth over the parallel body (at midships without one); none on a hull where any
+  section would be too fine to hold it whole (the notes say so).
 
 The particulars become basic curves (fairlines.description): the centre profile, the design
 waterline with Cwp and the LCF, the deck line, and the sectional area curve with the volume and
@@ -58,6 +59,7 @@ COUNTER_ANGLE = 12.0        # rise of the counter at the transom, deg from the h
 # floor's angle (section splines arriving 17 / 10 / 4 deg at 0.18 / 0.25 / 0.33 Lpp on the
 # container ship), a crease zebra stripes break at; this much flattens it (3 / 0.3 / 0 deg).
 FLAT_BOTTOM_DEFAULT = 0.15
+FLAT_KEPT_TOL = 1e-6        # a section keeping less of its flat than 1 - this narrowed it
 FLAT_BOTTOM_AFT = 0.7       # a flat of bottom starts this share of the keel's rise aft of the keel's flat
 FLAT_BOTTOM_FADE = 0.05     # ... and fades out at least this fraction of Lpp forward of its full part
 KEEL_RISE = 0.65            # the keel rises over this fraction of the run (Holtrop and Mennen's L_R)
@@ -180,7 +182,7 @@ class Particulars:
     propeller_diameter: float | None = None  # with skeg (m); default PROPELLER_DIAMETER T
     stem_rake: float = STEM_RAKE
     flat_bottom: float | None = None  # flat of bottom over the parallel body, fraction of the waterline half-breadth;
-                                      # None: FLAT_BOTTOM_DEFAULT (none where the ends are too fine for it); 0: none
+                                      # None: FLAT_BOTTOM_DEFAULT (none on a hull any section of which would narrow it); 0: none
     name: str = "designed hull"
     notes: list[str] = field(default_factory=list)
 
@@ -796,15 +798,23 @@ def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
 def _try_design(p: Particulars, keel_rise: float = KEEL_RISE) -> tuple[Hull | None, Exception | None]:
     """The hull designed from p, or the reason it is not. Where the default flat of bottom would
     narrow (its sections too fine for it: the SAC fits only the bands that narrow it, from a whole
-    flat at one station to a tenth at the next) the hull is designed without one."""
+    flat at one station to a tenth at the next) or the SAC refuses it, the hull is designed
+    without one, and its notes say so."""
     try:
         hull = Hull(HullDescription.from_dict(design_description(p, keel_rise)))  # a fresh dict: no defensive copy
         _refuse_a_miss(match_targets(hull))
-        if p.flat_bottom is None and min(d.flat_kept for d in hull.section_designs) < 1.0:
-            return _try_design(replace(p, flat_bottom=0.0), keel_rise)
+        if p.flat_bottom is None and min(d.flat_kept for d in hull.section_designs) < 1.0 - FLAT_KEPT_TOL:
+            return _try_design(_without_flat(p, "a section would narrow it"), keel_rise)
         return hull, None
     except _native.InfeasibleFormParameters as exc:
+        if p.flat_bottom is None and str(exc).startswith("basic_curves.sac"):
+            return _try_design(_without_flat(p, "the SAC could not be met with it"), keel_rise)
         return None, exc
+
+
+def _without_flat(p: Particulars, why: str) -> Particulars:
+    note = f"no flat of bottom ({FLAT_BOTTOM_DEFAULT:g} of the waterline's half-breadth by default): {why}"
+    return replace(p, flat_bottom=0.0, notes=p.notes + [note])
 
 
 def _feasible_edge(p: Particulars) -> str:

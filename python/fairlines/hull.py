@@ -354,7 +354,7 @@ class Hull:
     def _solve_sac(self, ranges: list) -> tuple[BasicCurve, BasicCurve]:
         """The SAC and its fullness within the stations' fullness `ranges` (x, least keeping the
         whole flat of bottom, least narrowing it, largest) shrunk by BAND_MARGIN: first with the
-        whole flat kept, then (where no SAC fits those) narrowing it, then by RELAXED_BAND_MARGIN
+        whole flat kept, then (when no SAC fits those) narrowing it, then by RELAXED_BAND_MARGIN
         (the refusal then names what that holds)."""
         d, curves = self.description, self._curves
         free = tuple(d.x_aft if end == "aft" else d.x_fore for end in d.posts)
@@ -366,11 +366,12 @@ class Hull:
             bands = []
             for x, held, narrowed, hi in ranges:
                 lo = narrowed if narrow else held
-                bands.append((x, lo + margin[0] * (hi - lo), hi - margin[1] * (hi - lo)))
+                if hi > lo:  # a station that cannot keep its whole flat at all is left free in the first pass
+                    bands.append((x, lo + margin[0] * (hi - lo), hi - margin[1] * (hi - lo)))
             return solve_sac(d.curves["sac"], curves["dwl"], curves["profile"], d.principal.draft, fullness=limits, bands=bands,
                              free_ends=free)
 
-        tries = [(BAND_MARGIN, False)] if "flat_bottom" not in d.curves else [(BAND_MARGIN, False), (BAND_MARGIN, True)]
+        tries = [(BAND_MARGIN, False)] + ([(BAND_MARGIN, True)] if "flat_bottom" in d.curves else [])
         for margin, narrow in tries:
             try:
                 with _basic_curves.terse_errors():
@@ -396,7 +397,7 @@ class Hull:
             lo, hi = _native.section_fullness_range(spec)
             held = _native.section_fullness_range(spec, narrow_flat=False)[0] if spec.flat_bottom > 0 else lo
             if np.isfinite(lo) and np.isfinite(hi) and hi > lo:
-                out.append((float(x), float(min(held, hi)), float(lo), float(hi)))
+                out.append((float(x), float(held), float(lo), float(hi)))
         return out
 
     def immersed_range(self) -> tuple[float, float]:

@@ -728,7 +728,7 @@ def t_api_headless():
     d = api.result(tree, "Ship", "Hull").description
     check(ok and d.skeg is not None and d.dome is not None, "skeg and dome: %s" % bad)
     ship.skeg, ship.sonar_dome = False, False
-    # The Flat Bottom socket switched on: the designer's hull with its flat of bottom.
+    # The Flat Bottom socket switched on at 0.3: the designer's hull with a flat of 0.3.
     api.set(tree, ship, "Flat Bottom", 0.3)
     api.evaluate(tree)
     ref = fl.design_hull(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.70, lcb=124.0, bulb=True, flat_bottom=0.3)

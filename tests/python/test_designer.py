@@ -688,7 +688,7 @@ def test_sections_change_smoothly_along_the_run():
 
 #: Buttocks the designer does not yet draw without a step, with what was measured.
 STEPPED_BUTTOCKS = {14.0: "a hollow of 0.49 deg at x 59 m, z 5.2 m, where the buttock leaves the bilge in the run: the "
-                          "designer's flat of bottom (0.15 B/2, from x 8 m) fills the run's floor and rounds its bilge "
+                          "designer's flat of bottom (0.15 of the waterline's half-breadth, from x 8 m) fills the run's floor and rounds its bilge "
                           "(0 without the flat; at 15 m 0.86 deg without it, 1.69 with it)"}
 
 
@@ -696,7 +696,8 @@ STEPPED_BUTTOCKS = {14.0: "a hollow of 0.49 deg at x 59 m, z 5.2 m, where the bu
 def test_buttock_has_no_steps(example_surface, y):
     """At most two sign changes. The outermost (y 14 m) turned back by 0.94 deg where it leaves
     the bilge aft (x 53-66 m) until the design waterline weighed its change of curvature
-    (designer.DWL_E3)."""
+    (designer.DWL_E3); with the designer's default flat of bottom it turns back again
+    (STEPPED_BUTTOCKS)."""
     assert _sign_changes(example_surface, 1, y) <= 2
 
 

@@ -129,7 +129,7 @@ def test_coarse_wetted_mesh_follows_the_waterline_round_its_tight_turn(blended):
 
 
 CUT_DRAFTS = (2.0, 8.0, 11.0, 14.0, 17.0)  # m: keel to deck, through the bulb and the transom's edge (11.55 m)
-# m: the chords of the bilge and of the flat of bottom's rounded corner (0.15 B/2 wide, rounded
+# m: the chords of the bilge and of the flat of bottom's rounded corner (0.15 of B/2 there, rounded
 # over 1.2 m) cut 0.21 % of the volume at 2 m at 1.5 m, 0.14 % at 1 m (without the flat 0.15 % at 1.5 m)
 CUT_SIZE = 1.0
 

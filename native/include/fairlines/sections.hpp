@@ -85,10 +85,10 @@ struct SectionSpec {
   /// Flat of bottom: the floor runs straight from the keel point out to this half-breadth f, a
   /// fraction of y_dwl (0 <= flat_bottom < 1), rising at the deadrise, to F; below T the bilge
   /// arc is the family's in the box beyond F (a given corner_y / corner_z then being fractions of
-  /// that box's breadth y_dwl - f and depth, from F), the corner at F rounded. 0: none. At most:
-  /// a section asked less area than its finest shape with the whole flat holds narrows the flat
-  /// (SectionDesign::flat_kept). Immersed template sections only (no effect on given shapes or
-  /// dry sections).
+  /// that box's breadth y_dwl - f and depth, from F), the corner at F rounded. 0: none. A section
+  /// asked less area than its finest shape with the whole flat holds narrows the flat
+  /// (SectionDesign::flat_kept; not with a given corner). Immersed template sections only (no
+  /// effect on given shapes or dry sections).
   double flat_bottom = 0.0;
   int n_control = 20;
   /// A given shape (an auxiliary section, e.g. measured offsets) instead of the template: #m by 2

@@ -11,6 +11,7 @@
 //               corner with the bilge arc meets the floor (F0) and the arc's leg X -> F (F1)
 //   lambda      the shape knob: the bilge arc's weight falls and its corner X moves from C to M
 //               over [0, kMaxShapeKnob]
+//   t           the area knob: lambda up to its limit, then the flat of bottom narrowing (knob_at)
 //   L, dir, nrm chord length |K - D|, its unit direction and the unit normal (-dir_z, dir_y),
 //               which points out of the hull
 //   xi, eta     abscissa along dir and ordinate along nrm from D; control point k of the
@@ -568,7 +569,9 @@ struct Knob {
   double lambda, flat_kept;
 };
 Knob knob_at(double t, double hi) { return {std::min(t, hi), 1.0 - std::clamp(t - hi, 0.0, 1.0)}; }
-double knob_end(const Section& S, double hi) { return S.s.flat_bottom > 0 ? hi + 1.0 : hi; }
+// A given corner's area may rise with lambda (its largest then inside [0, hi]): no narrowing
+// stretch after it, or the knob's range would not be one-way.
+double knob_end(const Section& S, double hi) { return S.s.flat_bottom > 0 && std::isnan(S.s.corner_y) ? hi + 1.0 : hi; }
 std::vector<Piece> knob_template(const Section& S, double t, double hi) {
   const Knob k = knob_at(t, hi);
   return immersed_template(S, k.lambda, k.flat_kept);
@@ -771,8 +774,8 @@ struct KnobSolve {
 };
 
 /// The area knob t (knob_at) whose spline holds `target` below T (clamped to [0, knob_end]);
-/// area(t) is monotone (falling in the template family; rising too where a given corner lies
-/// inside the chord).
+/// area(t) is monotone (falling in the template family, and as the flat narrows; rising too
+/// where a given corner lies inside the chord, which has no narrowing stretch).
 KnobSolve solve_knob(const Section& S, const Eigen::RowVectorXd& arow, double ac, double target, double hi_shape) {
   auto area = [&](double t) { return arow.dot(sample(S, knob_template(S, t, hi_shape))) + ac; };
   KnobSolve out;
@@ -1200,7 +1203,9 @@ SectionDesign design_with_appendage(const SectionSpec& spec) {
   with.half_area = kNaN;
   const Section S = setup(with);
   const Eigen::MatrixX2d P = appendage_control_points(S.l, b.curve.control_points().rightCols(2), ts, yz, tail);
-  return finish_given(S, P, tail.side_top);
+  SectionDesign out = finish_given(S, P, tail.side_top);
+  out.shape = b.shape, out.flat_kept = b.flat_kept;  // the body's: the designer reads whether its flat narrowed
+  return out;
 }
 
 }  // namespace
