@@ -9,6 +9,8 @@
 #include "fairlines/sections.hpp"
 #include "fairlines/spline_design.hpp"
 
+#include <tuple>
+
 namespace py = pybind11;
 using namespace pybind11::literals;
 
@@ -120,9 +122,14 @@ void bind_sections(py::module_& m) {
         "Raises InvalidInput (malformed numbers) or InfeasibleFormParameters (no one-curve section through the points).");
   m.def("design_sections", &design_sections, "specs"_a, py::call_guard<py::gil_scoped_release>(),
         "design_section for each spec, in order; all on section_knot_vector(n_control).");
-  m.def("section_fullness_range", &section_fullness_range, "spec"_a, "narrow_flat"_a = true, py::call_guard<py::gil_scoped_release>(),
+  m.def("section_fullness_range", &section_fullness_range, "spec"_a, py::call_guard<py::gil_scoped_release>(),
         "(least, largest) fullness area / (y_dwl (T - z_keel)) the section family holds here (NaN: not immersed);\n"
-        "the least narrows the flat of bottom, or with narrow_flat=False keeps it whole.");
+        "the least narrows the flat of bottom as far as it goes.");
+  m.def("section_fullness_bounds", [](const SectionSpec& spec) {
+          const FullnessBounds f = section_fullness_bounds(spec);
+          return std::tuple{f.least_whole_flat, f.least, f.largest};
+        }, "spec"_a, py::call_guard<py::gil_scoped_release>(),
+        "(least keeping the whole flat of bottom, least, largest) fullness the section family holds here (NaN: not immersed).");
   m.def("section_knot_vector", [](int n) { return to_array(section_knot_vector(n)); }, "n_control"_a,
         "The clamped uniform cubic knot vector every section of a hull shares.");
   m.attr("END_BAND") = kEndBand;

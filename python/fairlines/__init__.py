@@ -51,6 +51,7 @@ from ._native import (  # noqa: F401  (re-exported API)
     design_section,
     design_sections,
     design_spline_function,
+    section_fullness_bounds,
     section_fullness_range,
     spline_function_knots,
     spline_product_integral,

@@ -394,8 +394,7 @@ class Hull:
             if (spec.y_dwl / (pr.breadth / 2) < BAND_FREE * _native.END_BAND
                     or (spec.draft - spec.z_keel) / pr.draft < depth_free * _native.END_BAND):
                 continue  # where the waterline ends the area fades out: no band
-            lo, hi = _native.section_fullness_range(spec)
-            held = _native.section_fullness_range(spec, narrow_flat=False)[0] if spec.flat_bottom > 0 else lo
+            held, lo, hi = _native.section_fullness_bounds(spec)
             if np.isfinite(lo) and np.isfinite(hi) and hi > lo:
                 out.append((float(x), float(held), float(lo), float(hi)))
         return out

@@ -169,8 +169,15 @@ SectionDesign design_section(const SectionSpec& spec);
 std::vector<SectionDesign> design_sections(const std::vector<SectionSpec>& specs);
 
 /// The fullness (area below T / (y_dwl (T - z_keel))) the section family can hold at this
-/// station: {least, largest}; {NaN, NaN} where the section is not immersed. The least narrows
-/// the flat of bottom; with narrow_flat false it is the least that keeps the whole flat.
-std::pair<double, double> section_fullness_range(const SectionSpec& spec, bool narrow_flat = true);
+/// station; NaN where the section is not immersed.
+struct FullnessBounds {
+  double least_whole_flat = kNaN;  ///< least keeping the whole flat of bottom (= least without one)
+  double least = kNaN;             ///< least, the flat of bottom narrowed as far as it goes
+  double largest = kNaN;
+};
+FullnessBounds section_fullness_bounds(const SectionSpec& spec);
+
+/// {least, largest} of section_fullness_bounds.
+std::pair<double, double> section_fullness_range(const SectionSpec& spec);
 
 }  // namespace fairlines

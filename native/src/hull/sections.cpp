@@ -1212,18 +1212,20 @@ SectionDesign design_with_appendage(const SectionSpec& spec) {
 
 Eigen::VectorXd section_knot_vector(int n_control) { return layout(n_control).U; }
 
-std::pair<double, double> section_fullness_range(const SectionSpec& spec, bool narrow_flat) {
+FullnessBounds section_fullness_bounds(const SectionSpec& spec) {
   const Section S = setup(spec);
-  if (!S.immersed || S.f.L <= kPointSection * spec.y_max || spec.given.rows() > 0) return {kNaN, kNaN};
+  if (!S.immersed || S.f.L <= kPointSection * spec.y_max || spec.given.rows() > 0) return {};
   const auto [arow, ac] = area_row(S);
   const double hi = knob_limit(S);
-  const double box = S.b * S.d;
-  double lo_f = std::numeric_limits<double>::infinity(), hi_f = -lo_f;
-  for (double t : {0.0, hi, narrow_flat ? knob_end(S, hi) : hi}) {
-    const double f = (arow.dot(sample(S, knob_template(S, t, hi))) + ac) / box;
-    lo_f = std::min(lo_f, f), hi_f = std::max(hi_f, f);
-  }
-  return {lo_f, hi_f};
+  auto fullness = [&](double t) { return (arow.dot(sample(S, knob_template(S, t, hi))) + ac) / (S.b * S.d); };
+  const double f_0 = fullness(0.0), f_hi = fullness(hi), t_end = knob_end(S, hi);
+  const double f_end = t_end > hi ? fullness(t_end) : f_hi;
+  return {std::min(f_0, f_hi), std::min({f_0, f_hi, f_end}), std::max({f_0, f_hi, f_end})};
+}
+
+std::pair<double, double> section_fullness_range(const SectionSpec& spec) {
+  const FullnessBounds f = section_fullness_bounds(spec);
+  return {f.least, f.largest};
 }
 
 SectionDesign design_section(const SectionSpec& spec) {
