@@ -48,6 +48,14 @@ WEDGE_FULLNESS = 0.5
 WEDGE_BREADTH = 1e-9
 #: Bisections of each range an infeasible curve's message names (to 2^-16 of the search span).
 RANGE_STEPS = 16
+#: A constant curve may lie this far (relative, at least absolute 1) past its bounds: round-off
+#: in a value read back from JSON, never a real excess.
+CONSTANT_BOUND_TOL = 1e-12
+#: The unit a constant curve's refusal names its range in (curves not listed: metres).
+CURVE_UNITS = {"deadrise": " deg", "top_corner": " (a fraction of the freeboard)", "character": " (a fraction of the chord)",
+               "corner_breadth": " (a fraction of the waterline's half-breadth)",
+               "corner_height": " (a fraction of the immersed depth)",
+               "flat_bottom": " (a fraction of the waterline's half-breadth)"}
 
 _explain = contextvars.ContextVar("fairlines_explain_infeasible", default=True)
 
@@ -298,6 +306,7 @@ def _solve_curve(name, spec, x0, x1, lower, upper, maximum, defaults, at_least) 
     path = f"basic_curves.{name}"
     plan = _plan(spec, x0, x1, path)
     if spec.constant:
+        _check_constant(path, spec, lower, upper, at_least, plan)
         return BasicCurve(name, plan.xs, plan.xe, None, spec.value)
     params = {**(defaults or {}), **_form_params(name, spec, path)}
     r = _request(name, plan, spec, path)
@@ -332,6 +341,24 @@ def _solve_curve(name, spec, x0, x1, lower, upper, maximum, defaults, at_least) 
             raise
         said = _area_ranges(name, spec, r, plan, params, (lo, hi))
         raise _native.InfeasibleFormParameters(f"{e}{'; ' + said if said else ''}") from None
+
+
+def _check_constant(path: str, spec: BasicCurveSpec, lower, upper, at_least, plan: _Plan) -> None:
+    """A constant is not solved, so its bounds and the curves it must clear are checked here
+    (it was taken as given: a top_corner of 5 or a deck outside B/2 built). Raises InvalidInput
+    naming the value and the range it must lie in."""
+    lo = spec.lower if spec.lower is not None else lower
+    hi = spec.upper if spec.upper is not None else upper
+    v = spec.value
+    tol = CONSTANT_BOUND_TOL * max(1.0, abs(v))
+    if (lo is not None and v < lo - tol) or (hi is not None and v > hi + tol):
+        span = (f"{lo:.6g} to {hi:.6g}" if lo is not None and hi is not None
+                else f"at least {lo:.6g}" if lo is not None else f"at most {hi:.6g}")
+        unit = CURVE_UNITS.get(path.rsplit(".", 1)[-1], " m")
+        raise _native.InvalidInput(f"{path}.value is {v:g}; expected {span}{unit}")
+    for x, y, what in at_least or []:
+        if plan.xs <= x <= plan.xe and v < y - tol:
+            raise _native.InvalidInput(f"{path}.value is {v:g}; expected at least {y:.6g} at x = {x:.6g} m ({what})")
 
 
 def _area_ranges(name: str, spec: BasicCurveSpec, r, plan: _Plan, params: dict, bounds: tuple) -> str:

@@ -297,10 +297,7 @@ class Hull:
                 out[name] = solve_curve(name, c[name], x0, x1, lower=lo, upper=hi, maximum=False)
         if "flat_bottom" in c:
             lo, hi = FLAT_BOTTOM_BOUNDS
-            flat = out["flat_bottom"] = solve_curve("flat_bottom", c["flat_bottom"], x0, x1, lower=lo, upper=hi, maximum=False)
-            if flat.curve is None and not lo <= flat.value <= hi:  # a constant is not solved against the bounds
-                raise _native.InvalidInput(f"basic_curves.flat_bottom.value is {flat.value:g}; expected a flat of bottom "
-                                           f"of {lo:g} to {hi:g} of the waterline's half-breadth")
+            out["flat_bottom"] = solve_curve("flat_bottom", c["flat_bottom"], x0, x1, lower=lo, upper=hi, maximum=False)
         self._check_posts(out)
         return out
 

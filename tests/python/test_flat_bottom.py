@@ -135,12 +135,39 @@ def test_a_description_asking_too_wide_a_flat_names_the_curve(plain):
         fl.Hull.from_json(json.dumps(d)).bare_hull_surface()
 
 
-@pytest.mark.parametrize("value", [1.5, -0.2])
-def test_a_constant_flat_out_of_range_is_refused_naming_it(plain, value):
-    """A constant curve is not solved against the bounds: it is checked (it was clipped silently)."""
+# (curve, constant value, the range the refusal names): every basic curve a hull solves within
+# bounds. Before the check lived in solve_curve only the flat of bottom was checked; a top_corner
+# of 5, a character of -0.5, a deadrise of -5 deg and a deck of 30 m (outside B/2) built, and a
+# deadrise of 60 deg or a sheer of 100 m were refused as a SAC that no section could hold.
+CONSTANT_OUT_OF_RANGE = [
+    ("flat_bottom", 1.5, r"0 to 0\.9 \(a fraction of the waterline's half-breadth\)"),
+    ("flat_bottom", -0.2, r"0 to 0\.9"),
+    ("top_corner", 5.0, r"0\.05 to 0\.95 \(a fraction of the freeboard\)"),
+    ("character", -0.5, r"0\.05 to 0\.95 \(a fraction of the chord\)"),
+    ("deadrise", -5.0, r"0 to 40 deg"),
+    ("deadrise", 60.0, r"0 to 40 deg"),
+    ("deck", 30.0, r"0 to 16\.125 m"),
+    ("sheer", 100.0, r"11\.\d+ to \d+(\.\d+)? m"),
+    ("profile", -20.0, r"-11 to 19 m"),
+]
+
+
+@pytest.mark.parametrize("curve, value, says", CONSTANT_OUT_OF_RANGE)
+def test_a_constant_curve_out_of_its_range_is_refused_naming_it(plain, curve, value, says):
+    """A constant curve is not solved against its bounds: it is checked against them."""
     d = json.loads(plain.to_json())
-    d["basic_curves"]["flat_bottom"] = {"value": value}
-    with pytest.raises(fl.InvalidInput, match=rf"basic_curves.flat_bottom.value is {value:g}; expected .* 0 to 0\.9"):
+    d["basic_curves"][curve] = {"value": value}
+    with pytest.raises(fl.InvalidInput, match=rf"basic_curves\.{curve}\.value is {value:g}; expected {says}"):
+        fl.Hull.from_json(json.dumps(d)).bare_hull_surface()
+
+
+def test_a_constant_deck_inside_the_waterline_is_refused_naming_where(plain):
+    """The deck stays outside the design waterline: a constant one inside it is refused at the
+    first place it is (it built with tumblehome)."""
+    d = json.loads(plain.to_json())
+    d["basic_curves"]["deck"] = {"value": 12.0}
+    with pytest.raises(fl.InvalidInput, match=r"basic_curves\.deck\.value is 12; expected at least 1[2-6]\.\d+ at x = "
+                                              r"[-\d.]+ m \(deck >= design waterline\)"):
         fl.Hull.from_json(json.dumps(d)).bare_hull_surface()
 
 
