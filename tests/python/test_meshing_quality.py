@@ -298,17 +298,13 @@ def test_default_mesh_mean_score_and_corners_are_at_least_gmsh_at_its_common_set
     assert q["corners_in_45_135"] >= g["corners_in_45_135"]
 
 
-@pytest.mark.xfail(strict=True, reason="one quad of 0.59 m beside one of 1.95 m at x 212.6 m, z 4.0 m (ratio 3.30) on the "
-                                       "example with the designer's default flat of bottom (4.62 at x 200.4 m, a 0.32 m quad, "
-                                       "before it; 2.69 before the waterline weighed its change of curvature); the mesher "
-                                       "does not yet collapse such a quad")
 def test_bare_hull_element_size_changes_gradually_between_neighbours(bare):
-    """The curvature size is graded inside the face, not only from its boundary: neighbouring
-    elements' mean sides differ by at most NEIGHBOUR_SIZE_RATIO (largest 2.69 on the example
-    before its waterline weighed its change of curvature).
-    The ungraded mesher's largest, 4.02 on an earlier hull, was one small quad (0.32 m among
-    1.2 m ones at the forefoot), and a like quad (0.29 m, ratio 3.70) came and went with the
-    hull's shape: the mesher does not yet collapse such a quad."""
+    """The curvature size is graded inside the face, not only from its boundary, and a quad
+    much smaller than a neighbour is collapsed: neighbouring elements' mean sides differ by at
+    most NEIGHBOUR_SIZE_RATIO. Before the collapse the example had one quad of 0.59 m beside one
+    of 1.95 m at x 212.6 m, z 4.0 m (ratio 3.30; the corner pass had made it), after it 2.49 at
+    most. The ungraded mesher's largest, 4.02 on an earlier hull, was one small quad (0.32 m
+    among 1.2 m ones at the forefoot)."""
     m = fl.mesh_surface(bare, size=SHIP_SIZE, chordal_tolerance=SHIP_TOL)
     V, F = np.asarray(m.vertices), np.asarray(m.faces)
     rings = [row[row >= 0] for row in F]

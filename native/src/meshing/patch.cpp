@@ -73,6 +73,11 @@ constexpr int kMeanPasses = 3;             ///< its sweeps (the third raises the
 constexpr double kHexBelow = 0.75;         ///< remove_valence3_nodes looks at valence-3 nodes whose quads score below this
 constexpr double kHexReach = 0.1;          ///< splits scoring more than this below them before the search are not tried
 constexpr double kHexGain = 0.02;          ///< and makes two quads of three where that raises their worst this much
+constexpr double kCollapseRatio = 2.5;     ///< a quad whose mean side is this many times under a neighbour's is
+                                           ///< collapsed across a diagonal (a 0.59 m quad among 1.95 m ones, ratio
+                                           ///< 3.30, at the example's forefoot; the subdivision's 2:1 steps give 2)
+constexpr double kCollapseFloor = 0.5;     ///< ... where the elements about it then score at least this (strict)
+constexpr double kCollapseTrade = 0.15;    ///< ... and their worst falls by no more than this
 constexpr int kMeanTries = 2;              ///< moves toward the ideal position tried per visit: all the way, half
 constexpr double kMeanScoreSlack = 1e-12;  ///< a mean move may lower its elements' worst score by round-off
 constexpr double kMeanMinGain = 1e-9;      ///< and must lower the sum of their deficits by more than this
@@ -1528,7 +1533,127 @@ bool remove_valence3_nodes(Work& w) {
   return removed;
 }
 
-/// Drops the free nodes no element uses (removed by remove_valence3_nodes), renumbering the rest.
+/// Mean side length (m) of element e.
+double mean_side(const Work& w, const std::array<int, 4>& e) {
+  const int k = e[3] < 0 ? 3 : 4;
+  double sum = 0.0;
+  for (int i = 0; i < k; ++i) sum += (w.xyz[e[(i + 1) % k]] - w.xyz[e[i]]).norm();
+  return sum / k;
+}
+
+/// Quads whose mean side is under 1 / kCollapseRatio of a neighbour's (an element sharing a
+/// side) in ratio order, the largest first: (ratio, element).
+std::vector<std::pair<double, int>> small_quads(const Work& w) {
+  std::unordered_map<long long, std::array<int, 2>> sides;  // side (a < b) -> its two elements
+  const long long n = static_cast<long long>(w.xyz.size());
+  std::vector<double> h(w.el.size());
+  for (size_t e = 0; e < w.el.size(); ++e) {
+    const auto& q = w.el[e];
+    const int k = q[3] < 0 ? 3 : 4;
+    h[e] = mean_side(w, q);
+    for (int i = 0; i < k; ++i) {
+      const long long a = std::min(q[i], q[(i + 1) % k]), b = std::max(q[i], q[(i + 1) % k]);
+      auto [it, fresh] = sides.try_emplace(a * n + b, std::array<int, 2>{static_cast<int>(e), -1});
+      if (!fresh) it->second[1] = static_cast<int>(e);
+    }
+  }
+  std::vector<double> largest(w.el.size(), 0.0);
+  for (const auto& [key, pair] : sides)
+    if (pair[1] >= 0) {
+      largest[pair[0]] = std::max(largest[pair[0]], h[pair[1]]);
+      largest[pair[1]] = std::max(largest[pair[1]], h[pair[0]]);
+    }
+  std::vector<std::pair<double, int>> out;
+  for (size_t e = 0; e < w.el.size(); ++e)
+    if (w.el[e][3] >= 0 && h[e] > 0 && largest[e] > kCollapseRatio * h[e]) out.push_back({largest[e] / h[e], static_cast<int>(e)});
+  std::sort(out.begin(), out.end(), std::greater<>());
+  return out;
+}
+
+/// Quads much smaller than a neighbour (small_quads) are collapsed across a diagonal: its two
+/// ends a, c become one node (at their middle on the face, or at the fixed one), the quad goes,
+/// and the free nodes about it are searched (optimise_node). Kept where no free node is left in
+/// fewer than three elements, no element about it scores under kCollapseFloor and their worst
+/// falls by at most kCollapseTrade, and not under the face's worst; else undone. The diagonal whose ends have fewer elements
+/// is tried first (two valence-3 corners make one regular node). Returns whether a quad went
+/// (the caller compacts the nodes).
+bool collapse_small_quads(Work& w) {
+  constexpr std::array<int, 4> kDead{-2, -2, -2, -2};
+  std::vector<std::vector<int>> around = elements_at_nodes(w);
+  auto live = [&](int node) {
+    std::vector<int> r;
+    for (int e : around[node])
+      if (std::find(w.el[e].begin(), w.el[e].end(), node) != w.el[e].end()) r.push_back(e);
+    return r;
+  };
+  std::vector<char> touched(w.xyz.size(), 0);
+  bool collapsed = false;
+  double mesh_worst = 1e9;  // no collapse makes the face's worst element worse
+  for (const auto& e : w.el) mesh_worst = std::min(mesh_worst, w.strict_quality(e));
+  for (const auto& [ratio, e] : small_quads(w)) {
+    const std::array<int, 4> quad = w.el[e];
+    if (quad[0] == -2 || std::any_of(quad.begin(), quad.end(), [&](int x) { return touched[x] != 0; })) continue;
+    std::array<int, 2> order{0, 1};
+    auto valence = [&](int d) { return live(quad[d]).size() + live(quad[d + 2]).size(); };
+    if (valence(1) < valence(0)) order = {1, 0};
+    for (int d : order) {
+      int keep = quad[d], gone = quad[d + 2];
+      if (keep < w.fixed && gone < w.fixed) continue;
+      if (gone < w.fixed) std::swap(keep, gone);
+      const std::vector<int> at_gone = live(gone);
+      const std::vector<int> at_keep = live(keep);
+      bool shared = false;  // another element holding both would fold
+      for (int x : at_gone)
+        if (x != e && std::find(w.el[x].begin(), w.el[x].end(), keep) != w.el[x].end()) shared = true;
+      if (shared) continue;
+      std::vector<int> nodes;
+      for (int x : at_gone)
+        for (int k = 0; k < 4; ++k)
+          if (w.el[x][k] >= 0) nodes.push_back(w.el[x][k]);
+      for (int x : at_keep)
+        for (int k = 0; k < 4; ++k)
+          if (w.el[x][k] >= 0) nodes.push_back(w.el[x][k]);
+      std::sort(nodes.begin(), nodes.end());
+      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+      const LocalEdit edit(w, nodes, live);
+      const double before = edit.worst(w);
+      std::vector<std::pair<int, std::array<int, 4>>> old{{e, w.el[e]}};
+      for (int x : at_gone) old.push_back({x, w.el[x]});
+      w.el[e] = kDead;
+      for (int x : at_gone) {
+        if (x == e) continue;
+        for (int k = 0; k < 4; ++k)
+          if (w.el[x][k] == gone) w.el[x][k] = keep;
+        if (std::find(around[keep].begin(), around[keep].end(), x) == around[keep].end()) around[keep].push_back(x);
+      }
+      if (keep >= w.fixed) {
+        const Vec3 mid = 0.5 * (w.xyz[keep] + w.xyz[gone]);
+        w.put(keep, w.place_at(w.g.locate(mid, 0.5 * (w.uv[keep] + w.uv[gone]))));
+      }
+      bool ok = true;
+      for (int x : nodes)
+        if (x != gone && x >= w.fixed && live(x).size() < 3) ok = false;
+      if (ok) {
+        for (const auto& sv : edit.saved)
+          if (std::get<0>(sv) != gone) optimise_node(w, live(std::get<0>(sv)), std::get<0>(sv));
+        const double after = edit.worst(w);
+        ok = after >= std::max(kCollapseFloor, std::min(before - kCollapseTrade, mesh_worst));
+      }
+      if (ok) {
+        for (int x : nodes) touched[x] = 1;
+        collapsed = true;
+        break;
+      }
+      for (const auto& [x, el] : old) w.el[x] = el;
+      edit.restore(w);
+    }
+  }
+  w.el.erase(std::remove(w.el.begin(), w.el.end(), kDead), w.el.end());
+  return collapsed;
+}
+
+/// Drops the free nodes no element uses (removed by remove_valence3_nodes, collapse_small_quads),
+/// renumbering the rest.
 void compact_nodes(Work& w) {
   std::vector<int> to(w.xyz.size(), -1);
   for (const auto& e : w.el)
@@ -2434,6 +2559,9 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   if (o.smoothing_passes > 0) improve_mean(w);
   if (o.smoothing_passes > 0) improve_corners(w);
   if (o.smoothing_passes > 0) improve_mean(w);
+  // after the quality passes, which make the size jumps (on the example's bare hull none before
+  // improve_corners, three quads past kCollapseRatio after it)
+  if (o.smoothing_passes > 0 && collapse_small_quads(w)) compact_nodes(w);
   if (o.smoothing_passes > 0) polish(w);
   split_folded_quads(w);
   global.resize(w.xyz.size(), -1);
