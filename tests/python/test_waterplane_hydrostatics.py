@@ -52,3 +52,28 @@ def test_draft_above_the_deck_is_refused_naming_both():
 def test_trim_without_its_length_is_refused():
     with pytest.raises(fl.InvalidInput, match="trim_length"):
         fl.hydrostatics(box_barge_surface(L, B, D), 5.0, trim=1.0)
+
+
+def raked_box_half(b, depth, length, rake_deg):
+    """Half a box barge (half-breadth b) whose aft end is a plane raked rake_deg from the
+    vertical, its top aft: the end at x = -z tan(rake), the fore end upright at x = length."""
+    t = np.tan(np.radians(rake_deg))
+    P = np.zeros((3, 2, 3))
+    for i, (y, z) in enumerate([(b, depth), (b, 0.0), (0.0, 0.0)]):
+        P[i, 0], P[i, 1] = (-z * t, y, z), (length, y, z)
+    return fl.NurbsSurface(1, 1, [0, 0, 0.5, 1, 1], [0, 0, 1, 1], P)
+
+
+@pytest.mark.parametrize("rake", [20.0, -15.0])
+def test_a_raked_transoms_lid_adds_its_share_of_the_waterplane(rake):
+    """An immersed raked transom's lid is not upright (n_z != 0): the waterplane runs to where
+    the raked end meets it, T tan(rake) past the keel's end. Without the lid's fluxes the
+    waterplane stopped at the keel's end (Awp 400 m^2 for 414.56 at 20 deg)."""
+    b, T = B / 4, 4.0
+    h = fl.hydrostatics(raked_box_half(b, D, 40.0, rake), T, half_hull=True)
+    lw = 40.0 + T * np.tan(np.radians(rake))
+    assert h.volume == pytest.approx(2 * b * (40.0 * T + 0.5 * T * T * np.tan(np.radians(rake))), rel=1e-13)
+    assert h.waterplane_area == pytest.approx(2 * b * lw, rel=1e-13)
+    assert h.lcf == pytest.approx(40.0 - lw / 2, rel=1e-13)
+    assert h.inertia_l == pytest.approx(2 * b * lw**3 / 12, rel=1e-12)
+    assert h.inertia_t == pytest.approx((2 * b) ** 3 * lw / 12, rel=1e-13)

@@ -3,8 +3,10 @@
 //
 // The surface is a HALF hull (y >= 0, the starboard side). The enclosed body is the
 // region between the surface, the centre plane y = 0 and the waterplane z = draft; any other
-// opening of the surface (e.g. the aft cut of a forebody at a station) must lie in a plane
-// x = const (a vertical transverse plane). Volume, areas and the SAC are returned for the
+// opening of the surface (the aft cut of a forebody at a station, a transom) must lie in a
+// plane whose normal has no y part: x = const, or raked (x a function of z alone); the ends
+// v = v_min and v = v_max of the surface (its u lines running most nearly vertical) may be such
+// openings. Volume, areas and the SAC are returned for the
 // FULL ship (twice the half hull) when `half_hull` is true; centroids do not change.
 //
 // Method (divergence theorem, n the outward unit normal, dS = |S_u x S_v| du dv):
@@ -22,6 +24,9 @@
 //   Awp_h        = -int n_z dS,   Awp_h LCF = -int x n_z dS
 //   I_T,h        = -int y^2 n_z dS              (about the centre line y = 0)
 //   I_L,h        = -int x^2 n_z dS - Awp_h LCF^2 (about the transverse axis through F)
+// A raked end's lid has n_z != 0: its fluxes are added by Stokes' theorem along the end
+// curve below the waterline (the waterline's chord across the lid and the centre plane add
+// nothing): int_lid g n_z dS = closed integral of G dy with dG/dx = g (x - x_w, ...).
 // With trim the waterplane z = draft + trim (L/2 - x) / L (L = trim_length, AP at x = 0) is
 // inclined by theta = atan(trim / L); its true area and transverse moment are the projected
 // ones over cos(theta), its longitudinal moment (measured along the plane) over cos^3(theta).

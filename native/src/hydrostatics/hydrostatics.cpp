@@ -208,6 +208,54 @@ SurfaceSums integrate_below(const NurbsSurface& s, int gauss, Z&& waterline_z) {
   return out;
 }
 
+/// The n_z fluxes (acc[3..6]: 1, x, y^2, x^2) through the planar lids that close the ends
+/// v = v_min and v = v_max below the waterline, oriented as the surface: a lid in a plane whose
+/// normal has no y part (a transom, upright or raked) from the end curve to the centre plane.
+/// By Stokes' theorem each is a line integral along the end curve (its counter-clockwise
+/// direction in (u, v) reversed), the waterline's chord across the lid (x constant there, x_w)
+/// and the centre plane (y = 0) adding nothing: -int (x - x_w) dy, -int (x^2 - x_w^2)/2 dy,
+/// int y^3/3 dx, -int (x^3 - x_w^3)/3 dy. All zero for an upright end (x constant) or one on
+/// the centre plane.
+template <typename Z>
+std::array<double, 4> end_lid_fluxes(const NurbsSurface& s, int gauss, Z&& waterline_z) {
+  const std::vector<double> bu = breakpoints(s.knots_u(), s.degree_u());
+  const std::vector<double> bv = breakpoints(s.knots_v(), s.degree_v());
+  const auto& g = detail::gauss_rule(gauss);
+  std::array<double, 4> out{};
+  for (const double v : {bv.front(), bv.back()}) {
+    const double along = v == bv.front() ? 1.0 : -1.0;  // the end's direction of increasing u
+    auto height = [&](double u) {
+      const Eigen::Vector3d P = s.evaluate(u, v);
+      return P[2] - waterline_z(P[0]);
+    };
+    auto heights = [&](const std::vector<double>& ts, std::vector<double>& fs) {
+      for (std::size_t i = 0; i < ts.size(); ++i) fs[i] = height(ts[i]);
+    };
+    const auto pieces = inside_pieces(bu, height, heights);
+    double xw = 0.0, top = -std::numeric_limits<double>::infinity();  // x where the end meets the waterline
+    for (const auto& [pa, pb] : pieces)
+      for (const double u : {pa, pb})
+        if (const double h = height(u); h > top) top = h, xw = s.evaluate(u, v)[0];
+    for (const auto& [pa, pb] : pieces) {
+      const double hu = 0.5 * (pb - pa), mu = 0.5 * (pa + pb);
+      std::array<double, 32> us{}, vs{};
+      std::array<double, 9 * 32> d1{};
+      for (int k = 0; k < gauss; ++k) us[k] = mu + hu * g.x[k], vs[k] = v;
+      s.evaluate_first_derivatives_into(us.data(), vs.data(), gauss, d1.data());
+      for (int k = 0; k < gauss; ++k) {
+        const double* row = &d1[9 * k];
+        const double x = row[0], y = row[1], w = -along * g.w[k] * hu;  // the lid runs the end backwards
+        const double dx = w * row[3], dy = w * row[4];
+        out[0] += (x - xw) * dy;
+        out[1] += 0.5 * (x * x - xw * xw) * dy;
+        out[2] -= y * y * y / 3.0 * dx;
+        out[3] += (x * x * x - xw * xw * xw) / 3.0 * dy;
+      }
+    }
+  }
+  return out;
+}
+
 /// `surface` with u the direction along which z varies most, so every line of u that the
 /// waterplane cuts is clipped (a draft between two Gauss lines of v would not be).
 NurbsSurface vertical_u(const NurbsSurface& surface) {
@@ -460,6 +508,8 @@ Hydrostatics hydrostatics(const NurbsSurface& surface, double draft, const Hydro
       if (P[2] <= waterline_z(P[0])) sums.extend(P);
     }
   const double xmin = sums.xmin, xmax = sums.xmax, ymax = sums.ymax;
+  const std::array<double, 4> lids = end_lid_fluxes(s, o.gauss, waterline_z);
+  for (int k = 0; k < 4; ++k) sums.acc[3 + k] += lids[k];
   const std::array<double, 8>& acc = sums.acc;
   Hydrostatics h;
   h.z_max = highest_point(s);
