@@ -55,7 +55,8 @@ class FLNodeParticulars(FairlinesNode, bpy.types.Node):
     immersion, (with a skeg) the propeller diameter and a flat of bottom (fraction of the
     waterline's half-breadth over the parallel body; switched off, the designer's 0.15, left
     out on fine ships whose sections would narrow it; switched on, drawn as given, narrowing
-    where it must; 0: none); the stern type, the stem rake, a bulbous
+    where it must; 0: none); the stern type, the stem rake, the transom's rake (from the
+    vertical, the top aft), a bulbous
     bow, a single screw's skeg and propeller aperture, a sonar dome. The hull meets Cb, LCB and
     Cwp on its own surface; out of the designer's range the node is red with the range named"""
     bl_idname = ids.NODE_PARTICULARS
@@ -70,7 +71,8 @@ class FLNodeParticulars(FairlinesNode, bpy.types.Node):
                    (ids.SOCKET_LENGTH, "LCB", {"default": 118.73})] + [
                   (idname, name, {"default": value, "optional": True, "use": False})
                   for name, _, idname, value in _OPTIONAL] + [
-                  (ids.SOCKET_ANGLE, "Stem Rake", {"default": math.radians(20.0)})]
+                  (ids.SOCKET_ANGLE, "Stem Rake", {"default": math.radians(20.0)}),
+                  (ids.SOCKET_ANGLE, "Transom Rake", {"default": 0.0})]
     outputs_spec = [(ids.SOCKET_HULL, "Hull"), (ids.SOCKET_LENGTH, "Lpp"), (ids.SOCKET_LENGTH, "B"),
                     (ids.SOCKET_LENGTH, "T"), (ids.SOCKET_LENGTH, "D")]
     params = ("stern", "bulb", "skeg", "sonar_dome", "ship_name")
@@ -88,7 +90,9 @@ class FLNodeParticulars(FairlinesNode, bpy.types.Node):
             if inputs[name] is not None:
                 kw[key] = float(inputs[name])
         p = fl.Particulars(stern=self.stern, bulb=bool(self.bulb), skeg=bool(self.skeg), sonar_dome=bool(self.sonar_dome),
-                           stem_rake=math.degrees(inputs["Stem Rake"]), name=self.ship_name, **kw)
+                           stem_rake=math.degrees(inputs["Stem Rake"]),
+                           transom_rake=math.degrees(inputs.get("Transom Rake") or 0.0),  # not on nodes saved before it
+                           name=self.ship_name, **kw)
         hull = fl.design_hull(p)
         d = hull.description
         notes = d.notes.split("designed from particulars: ")[-1].replace(", parallel", "\nparallel")

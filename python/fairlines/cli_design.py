@@ -19,6 +19,7 @@ def add_parser(sub) -> None:
                       ("transom-immersion", "transom's lower edge below the waterline, m (< 0: dry)"),
                       ("transom-breadth", "waterline half-breadth at an immersed transom, m"),
                       ("stem-rake", "stem rake above the waterline, deg from the vertical"),
+                      ("transom-rake", "the transom's rake from the vertical, deg, the top aft (default 0; a transom stern)"),
                       ("propeller-diameter", "with --skeg: the single screw's diameter, m (default 0.7 T)"),
                       ("flat-bottom", "flat of bottom over the parallel body, fraction of the waterline's half-breadth "
                                       "(default 0.15, none where a section would narrow it; 0: none)")):
@@ -35,7 +36,7 @@ def run(args) -> int:
     from .designer import design_hull
 
     keys = ("lpp", "breadth", "draft", "depth", "cb", "lcb", "cm", "cwp", "lcf", "parallel_length", "parallel_centre",
-            "transom_immersion", "transom_breadth", "stem_rake", "propeller_diameter", "flat_bottom", "stern", "bulb", "skeg", "sonar_dome",
+            "transom_immersion", "transom_breadth", "stem_rake", "transom_rake", "propeller_diameter", "flat_bottom", "stern", "bulb", "skeg", "sonar_dome",
             "name")
     given = {k: getattr(args, k) for k in keys if getattr(args, k) is not None}
     t0 = time.perf_counter()

@@ -8,7 +8,10 @@ Format (JSON; ``docs/hull_description.schema.json`` is its JSON Schema)::
       "ends": {"aft": -5.0, "fore": 247.0},       # x of the hull's aft end (transom / stern) and
                                                   # forward end (stem head); default 0 and Lpp;
                                                   # "aft_post" / "fore_post": true, that end is a
-                                                  # vertical post of zero width (default false)
+                                                  # vertical post of zero width (default false);
+                                                  # "transom_rake": the transom's plane from the
+                                                  # vertical, deg, top aft when positive (default 0;
+                                                  # its lower edge stays at "aft")
       "stations": {"count": 61} | {"x": [...]},    # default {"count": 61}, clustered at the ends
       "sections": {"n_control": 20,                # control points of every section
                    "given": [{"x": 12.0, "points": [[y, z], ...]}, ...]},   # optional shapes
@@ -117,6 +120,10 @@ REQUIRED_CURVES = ("profile", "dwl", "deck", "sac")
 OPTIONAL_CURVES = ("top_corner", "deadrise", "character", "corner_breadth", "corner_height", "sheer", "flat_bottom")
 #: Curves that are given together or not at all (the bilge corner given directly).
 PAIRED_CURVES = (("corner_breadth", "corner_height"),)
+#: ``ends.transom_rake``: the transom's plane from the vertical (deg; positive: its top aft of its
+#: lower edge). Beyond 45 deg a transom is more deck than end; a reverse rake past 30 deg is a
+#: yacht's.
+TRANSOM_RAKE_RANGE = (-30.0, 45.0)
 #: ``ends`` keys that make an end a vertical post of zero width.
 POST_KEYS = {"aft": "aft_post", "fore": "fore_post"}
 BASIC_CURVES = REQUIRED_CURVES + OPTIONAL_CURVES
@@ -520,6 +527,7 @@ class HullDescription:
     bulb: BulbSpec | None = None
     design: dict | None = None  # the particulars a designer built it from (kept, not used)
     posts: tuple = ()  # ends ("aft", "fore") that are vertical posts of zero width
+    transom_rake: float = 0.0  # the transom's plane from the vertical (deg), its top aft when positive
     given_sections: list = field(default_factory=list)  # [(x, (m, 2) array of (y, z))], increasing x
     given_offsets: list = field(default_factory=list)  # per given section (deck dy, deck dz, waterline dy, keel dz), m
     skeg: SkegSpec | None = None
@@ -531,7 +539,7 @@ class HullDescription:
         InvalidInput naming the first missing, unknown or out-of-range key."""
         d = keyed_object("description", d, TOP_KEYS)
         principal = PrincipalDimensions.from_dict(d.get("principal"), "principal")
-        ends = keyed_object("ends", d.get("ends", {}), ("aft", "fore", *POST_KEYS.values()))
+        ends = keyed_object("ends", d.get("ends", {}), ("aft", "fore", "transom_rake", *POST_KEYS.values()))
         posts = tuple(end for end, key in POST_KEYS.items() if _flag(f"ends.{key}", ends.get(key, False)))
         x_aft = number("ends.aft", ends.get("aft", 0.0))
         x_fore = number("ends.fore", ends.get("fore", principal.lpp))
@@ -542,6 +550,13 @@ class HullDescription:
             raise _native.InvalidInput(f"ends are {x_aft} .. {x_fore} m; expected the hull within -0.25 Lpp .. 1.25 Lpp of the AP")
         desc = cls(name=text_value("name", d.get("name", "hull")), principal=principal, x_aft=x_aft, x_fore=x_fore,
                    curves={}, notes=text_value("notes", d.get("notes", "")), posts=posts)
+        desc.transom_rake = number("ends.transom_rake", ends.get("transom_rake", 0.0))
+        if not TRANSOM_RAKE_RANGE[0] <= desc.transom_rake <= TRANSOM_RAKE_RANGE[1]:
+            raise _native.InvalidInput(f"ends.transom_rake is {desc.transom_rake:g} deg; expected {TRANSOM_RAKE_RANGE[0]:g} to "
+                                       f"{TRANSOM_RAKE_RANGE[1]:g} deg from the vertical (positive: the top aft)")
+        if desc.transom_rake and "aft" in posts:
+            raise _native.InvalidInput(f"ends.transom_rake is {desc.transom_rake:g} deg with ends.aft_post; expected 0 "
+                                       "(a post of zero width has no transom to rake)")
         desc._parse_stations(d.get("stations", {"count": 61}))
         sec = keyed_object("sections", d.get("sections", {}), ("n_control", "given"))
         desc.section_n_control = integer("sections.n_control", sec.get("n_control", 20), *SECTION_CONTROLS)
@@ -643,7 +658,8 @@ class HullDescription:
             "name": self.name,
             "notes": self.notes,
             "principal": self.principal.to_dict(),
-            "ends": {"aft": self.x_aft, "fore": self.x_fore, **{POST_KEYS[end]: True for end in self.posts}},
+            "ends": {"aft": self.x_aft, "fore": self.x_fore, **{POST_KEYS[end]: True for end in self.posts},
+                     **({"transom_rake": self.transom_rake} if self.transom_rake else {})},
             "stations": {"x": list(map(float, self.station_x))} if self.station_x else {"count": self.station_count},
             "sections": {"n_control": self.section_n_control},
             "basic_curves": {k: v.to_dict() for k, v in self.curves.items()},

@@ -14,8 +14,9 @@ textbook defaults when left out (each named in the description's notes):
 * a transom stern 2.5 % Lpp aft of the AP, its lower edge 5 % of T above the waterline above
   Cb 0.6 (dry) and 12 % of T below it otherwise, an immersed one 0.7 B/2 wide at the waterline,
   narrowed in steps of 0.1 B/2 until the waterline widens all the way from the transom to its
-  widest (and to 0.5 B/2 when a fine ship's ends cannot hold its LCB with the wider one); a
-  stem raked 20 deg above the waterline;
+  widest (and to 0.5 B/2 when a fine ship's ends cannot hold its LCB with the wider one),
+  upright unless transom_rake is given (deg, the top aft; ends.transom_rake); a stem raked
+  20 deg above the waterline;
 * the keel rising aft from its flat over 0.65 of Holtrop and Mennen's run (over 0.4, then 0.25
   of it when a full body's ends cannot hold its volume under a fine waterplane);
 * a flat of bottom (a straight floor from the keel) of FLAT_BOTTOM_DEFAULT of the waterline's
@@ -44,7 +45,7 @@ from . import _native
 from ._options import fill_options
 from .basic_curves import immersed_range, solve_curve, tersely
 from .bulb import KRACHT_NAMES
-from .description import BasicCurveSpec, HullDescription
+from .description import TRANSOM_RAKE_RANGE, BasicCurveSpec, HullDescription
 from .hull import FLAT_BOTTOM_BOUNDS, Hull
 
 __all__ = ["Particulars", "design_hull", "design_description", "match_targets", "RANGES"]
@@ -181,6 +182,7 @@ class Particulars:
     sonar_dome: bool = False  # a sonar dome under the keel's forward end
     propeller_diameter: float | None = None  # with skeg (m); default PROPELLER_DIAMETER T
     stem_rake: float = STEM_RAKE
+    transom_rake: float = 0.0  # the transom's plane from the vertical (deg), its top aft when positive; a transom stern only
     flat_bottom: float | None = None  # flat of bottom over the parallel body, fraction of the waterline half-breadth;
                                       # None: FLAT_BOTTOM_DEFAULT (none on a hull any section of which would narrow it); 0: none
     name: str = "designed hull"
@@ -207,6 +209,14 @@ class Particulars:
         rake = self.stem_rake
         if isinstance(rake, bool) or not isinstance(rake, (int, float)) or not 5.0 <= rake <= 45.0:
             raise _native.InvalidInput(f"stem_rake is {rake!r}; expected 5 to 45 deg from the vertical")
+        lo, hi = TRANSOM_RAKE_RANGE
+        rake = self.transom_rake
+        if isinstance(rake, bool) or not isinstance(rake, (int, float)) or not lo <= rake <= hi:
+            raise _native.InvalidInput(f"transom_rake is {rake!r}; expected {lo:g} to {hi:g} deg from the vertical "
+                                       "(positive: the top aft)")
+        if rake and self.stern != "transom":
+            raise _native.InvalidInput(f"transom_rake is {rake:g} deg with stern={self.stern!r}; expected 0 (a cruiser "
+                                       "stern has no transom) or stern='transom'")
         for key in ("cm", "cwp"):
             v = getattr(self, key)
             if v is not None and not (self.cb < v <= 1.0):
@@ -493,7 +503,7 @@ def design_description(p: Particulars, keel_rise: float = KEEL_RISE) -> dict:
         "notes": "; ".join(p.notes + [f"designed from particulars: Cm {_cm_note(p, c)}, Cp {c['cp']:.4f}, Cwp {c['cwp']:.4f}, "
                                       f"LCF {c['lcf']:.3f} m, parallel body {par[0]:.2f} .. {par[1]:.2f} m"]),
         "principal": {"Lpp": L, "B": B, "T": T, "D": D},
-        "ends": {"aft": x_aft, "fore": x_fore},
+        "ends": {"aft": x_aft, "fore": x_fore, **({"transom_rake": float(p.transom_rake)} if p.transom_rake else {})},
         "stations": {"count": 61},
         "sections": {"n_control": 20},
         "basic_curves": {"profile": prof, "dwl": dwl, "deck": _deck_spec(p, par, dwl_curve, x_aft, xa, xf, immersed_transom),

@@ -34,6 +34,7 @@ from .basic_curves import (CORNER_FULLNESS_BOUNDS, FULLNESS_BOUNDS, BasicCurve, 
 from .description import DOME_NECK, FORM_ALIASES, FORM_KEYS, BasicCurveSpec, HullDescription, load_description
 from .hydrostatics_surface import hydrostatics
 from .skinning import fair_skin
+from .transom_rake import raked
 
 __all__ = ["Hull", "station_positions"]
 
@@ -204,6 +205,7 @@ class Hull:
         self._specs: list | None = None  # the stations' SectionSpecs the designs were made from
         self._sections: list | None = None
         self._skin = None
+        self._raked = None  # (skin, its surface with the transom raked)
         self._ship = None
         self._stations: np.ndarray | None = None
         self._dry_ends: dict = {}  # x_e -> (end waterlines, end contour) of the dry sections beyond it
@@ -740,8 +742,14 @@ class Hull:
         return sorted(j for j in out if 0 < j < len(xs) - 1)
 
     def bare_hull_surface(self) -> _native.NurbsSurface:
-        """The half hull y >= 0: u from the deck to the keel, v from the aft to the forward end."""
-        return self.skin().surface
+        """The half hull y >= 0: u from the deck to the keel, v from the aft to the forward end
+        (its transom raked by ends.transom_rake: fairlines.transom_rake)."""
+        skin = self.skin()
+        if self._raked is None or self._raked[0] is not skin:
+            d = self.description
+            z_edge = float(self.basic_curves["profile"](d.x_aft)[0])
+            self._raked = (skin, raked(skin.surface, d.x_aft, z_edge, d.transom_rake))
+        return self._raked[1]
 
     def hydrostatics(self, draft: float | None = None, **options) -> _native.Hydrostatics:
         """fl.hydrostatics of the bare hull at `draft` (default T), both sides, coefficients on

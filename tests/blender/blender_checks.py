@@ -13,6 +13,7 @@ script exits 1 on the first failure with the reason. --bench N times property ch
 import argparse
 import importlib
 import json
+import math
 import os
 import statistics
 import sys
@@ -739,6 +740,14 @@ def t_api_headless():
     api.evaluate(tree)
     check("flat_bottom" not in api.result(tree, "Ship", "Hull").description.curves, "a Flat Bottom of 0 draws none")
     api.set(tree, ship, "Flat Bottom", None)
+    # The Transom Rake socket (an angle): the designer's hull with its transom raked so.
+    api.set(tree, ship, "Transom Rake", math.radians(15.0))
+    api.evaluate(tree)
+    ref = fl.design_hull(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.70, lcb=124.0, bulb=True, transom_rake=15.0)
+    ok, bad = hydro_equal(api.hydrostatics(tree, "Bare"), ref.hydrostatics())
+    rake = api.result(tree, "Ship", "Hull").description.transom_rake
+    check(ok and abs(rake - 15.0) < 1e-5, "transom rake %r: %s" % (rake, bad))  # the socket holds a float32
+    api.set(tree, ship, "Transom Rake", 0.0)
     # The description JSON through the Hull Description node is the same hull as the designer's.
     desc = api.add(tree, "Hull Description", "Description", text=blender_graph.description_text())
     bare2 = api.add(tree, "Bare Hull", "Bare 2")

@@ -1,0 +1,41 @@
+"""A raked transom: the skinned hull sheared so that its aft end lies in the transom's plane.
+
+The sections are designed and skinned upright (x = const); the skin's control points above the
+transom's lower edge z_e are then moved aft by (z - z_e) tan(rake), fully at the aft end and
+fading to none RAKE_FADE times the largest such move forward of it. The aft end's control points
+all move fully, and an affine map of a curve's control points maps the curve itself, so the aft
+end lies exactly in the plane x = x_aft - (z - z_e) tan(rake); the keel and counter below z_e do
+not move. The fade is a smoothstep whose steepest slope, 1.5 / (RAKE_FADE x the move), keeps
+every row of control points running forward (1 - 1.5 / RAKE_FADE > 0).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._native import NurbsSurface
+
+__all__ = ["raked", "RAKE_FADE"]
+
+#: The rake fades out over this many times the transom's largest move (its top's), forward of it.
+RAKE_FADE = 3.0
+
+
+def raked(surface: NurbsSurface, x_aft: float, z_edge: float, rake_deg: float) -> NurbsSurface:
+    """The half hull `surface` (v from aft to fore, its aft end at x = x_aft, m) with its transom
+    raked rake_deg from the vertical about its lower edge at height z_edge (m): positive, the top
+    aft. rake_deg 0 returns the surface itself."""
+    if rake_deg == 0.0:
+        return surface
+    t = math.tan(math.radians(rake_deg))
+    P = np.array(surface.control_points, dtype=float)  # (nu, nv, 3)
+    h = np.maximum(P[..., 2] - z_edge, 0.0)
+    reach = RAKE_FADE * float(h.max()) * abs(t)
+    if reach <= 0.0:
+        return surface
+    s = np.clip((P[..., 0] - x_aft) / reach, 0.0, 1.0)
+    P[..., 0] -= (1.0 - s * s * (3.0 - 2.0 * s)) * h * t
+    weights = np.array(surface.weights) if surface.is_rational else None
+    return NurbsSurface(surface.degree_u, surface.degree_v, surface.knots_u, surface.knots_v, P, weights)

@@ -1,0 +1,90 @@
+"""A raked transom (ends.transom_rake; the designer's transom_rake): the aft end lies in the
+transom's plane, the designed ship still meets its particulars, the waterplane reaches the raked
+end, the composed hull is closed, and bad rakes are refused by name."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import fairlines as fl
+
+# The fine ferry: a transom immersed 12 % of T (its lower edge 0.66 m under the waterline).
+FERRY = dict(lpp=140.0, breadth=17.0, draft=5.5, depth=10.0, cb=0.5, lcb=67.2)
+RAKE = 20.0
+PLANE_TOL = 1e-9     # m: the aft end off the transom's plane (an affine map of its control points)
+MATCH_TOL = 1e-4     # the designer's match of volume, LCB (of Lpp) and waterplane area
+POLYGON_TOL = 2e-4   # a waterplane's area from 4001 points of its cut against the quadrature
+
+
+@pytest.fixture(scope="module")
+def raked():
+    return fl.design_hull(**FERRY, transom_rake=RAKE)
+
+
+def aft_edge(hull, n=81):
+    s = hull.bare_hull_surface()
+    return np.array([s.evaluate(u, s.domain_v[0]) for u in np.linspace(*s.domain_u, n)])
+
+
+def test_the_aft_end_lies_in_the_transoms_plane_about_its_lower_edge(raked):
+    d = raked.description
+    z_edge = float(raked.basic_curves["profile"](d.x_aft)[0])
+    p = aft_edge(raked)
+    assert p[:, 2].min() == pytest.approx(z_edge, abs=1e-9)
+    expected = d.x_aft - (p[:, 2] - z_edge) * math.tan(math.radians(RAKE))
+    assert np.abs(p[:, 0] - expected).max() <= PLANE_TOL
+
+
+def test_the_raked_ship_meets_its_particulars(raked):
+    h = fl.hydrostatics(raked.bare_hull_surface(), FERRY["draft"], half_hull=True)
+    volume = FERRY["cb"] * FERRY["lpp"] * FERRY["breadth"] * FERRY["draft"]
+    assert h.volume == pytest.approx(volume, rel=MATCH_TOL)
+    assert abs(h.lcb - FERRY["lcb"]) <= MATCH_TOL * FERRY["lpp"]
+    upright = fl.design_hull(**FERRY).hydrostatics()
+    assert h.waterplane_area == pytest.approx(upright.waterplane_area, rel=MATCH_TOL)
+
+
+def test_the_waterplane_reaches_the_raked_end(raked):
+    """The design waterline's area from its own cut (a polygon closed on the centre plane and
+    across the transom) is the quadrature's, whose lid terms carry the raked end's share."""
+    T = FERRY["draft"]
+    cut = np.asarray(fl.plane_cut(raked.bare_hull_surface(), 2, T, 4001).points)
+    cut = cut[np.argsort(cut[:, 0])]
+    ring = np.vstack([[cut[0, 0], 0.0], cut[:, :2], [cut[-1, 0], 0.0]])
+    x, y = ring[:, 0], ring[:, 1]
+    area = 2 * 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+    h = raked.hydrostatics()
+    assert h.waterplane_area == pytest.approx(area, rel=POLYGON_TOL)
+    d = raked.description
+    z_edge = float(raked.basic_curves["profile"](d.x_aft)[0])
+    assert cut[0, 0] == pytest.approx(d.x_aft - (T - z_edge) * math.tan(math.radians(RAKE)), abs=1e-3)
+
+
+def test_the_composed_raked_hull_is_closed(raked):
+    m = fl.mesh_hull(raked.composed_hull(), size=2.0, draft=FERRY["draft"])
+    q = m.quality()
+    assert q["open_edges"] == 0 and q["inverted"] == 0
+
+
+def test_the_rake_survives_json(raked):
+    again = fl.Hull.from_json(raked.to_json())
+    assert again.description.transom_rake == RAKE
+    assert np.array_equal(np.asarray(again.bare_hull_surface().control_points),
+                          np.asarray(raked.bare_hull_surface().control_points))
+
+
+@pytest.mark.parametrize("rake", [50.0, -40.0])
+def test_a_rake_out_of_range_is_refused_naming_it(raked, rake):
+    d = json.loads(raked.to_json())
+    d["ends"]["transom_rake"] = rake
+    with pytest.raises(fl.InvalidInput, match=rf"ends\.transom_rake is {rake:g} deg; expected -30 to 45 deg"):
+        fl.Hull.from_json(json.dumps(d))
+    with pytest.raises(fl.InvalidInput, match=rf"transom_rake is {rake!r}; expected -30 to 45 deg"):
+        fl.design_hull(**FERRY, transom_rake=rake)
+
+
+def test_a_cruiser_stern_has_no_transom_to_rake():
+    with pytest.raises(fl.InvalidInput, match=r"transom_rake is 10 deg with stern='cruiser'; expected 0"):
+        fl.design_hull(**FERRY, stern="cruiser", transom_rake=10.0)
