@@ -6,8 +6,9 @@ What is written:
 * ``what="surfaces"``: every NURBS surface as it is, one face each (untrimmed).
 * ``what="solid"``: the hull closed into one solid -- its surfaces as faces (trimmed by their
   loops for a composed hull), with planar cap faces built in OpenCASCADE from the hull's free
-  edges on the centre plane y = 0 (half ship only), the deck plane and the aft cut, sewn into
-  one closed shell; ``full=True`` mirrors the half in y = 0 first (full ship).
+  edges on the centre plane y = 0 (half ship only), the deck plane and the aft cut (upright or
+  a raked transom's plane, found from the surfaces' edge curves), sewn into one closed shell;
+  ``full=True`` mirrors the half in y = 0 first (full ship).
 
 Every file can be read back with :func:`read_cad` and compared with :func:`verify`: surface
 points, the shell's closure and validity (BRepCheck) and its volume. OpenCASCADE comes from the
@@ -352,29 +353,34 @@ def _chain_edges(edges, tol):
     return chains
 
 
+def _on(plane, p, tol) -> bool:
+    """Whether point p lies on ``plane`` (unit normal n, offset c: n . p = c) within tol."""
+    n, c = plane
+    return abs(float(np.dot(n, p)) - c) <= tol
+
+
 def _cap(plane, edges, planes, size):
-    """Planar face on ``plane`` (axis, value) bounded by ``edges`` (one chain) and straight
-    lines from its end back to its start, routed through the corner the end planes make."""
+    """Planar face on ``plane`` (n, c) bounded by ``edges`` (one chain) and straight lines from
+    its end back to its start, routed through the corner the end planes make with it."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire
     from OCP.gp import gp_Pnt
 
     chains = _chain_edges(edges, SEW_TOLERANCE)
     if len(chains) != 1:
-        raise InvalidInput(f"the free edges on the plane {'xyz'[plane[0]]} = {plane[1]:.6g} m form {len(chains)} chains; "
+        raise InvalidInput(f"the free edges on the plane {_plane_name(plane)} form {len(chains)} chains; "
                            "expected one (the hull's edge on that plane must be connected)")
     mk = BRepBuilderAPI_MakeWire()
     for e, _, _ in chains[0]:
         mk.Add(e)
     a, b = chains[0][-1][2], chains[0][0][1]  # close from the chain's end back to its start
-    tol = PLANE_TOLERANCE * size
+    tol = max(PLANE_TOLERANCE * size, SEW_TOLERANCE)
     if np.linalg.norm(a - b) > SEW_TOLERANCE:
-        on_a = [p for p in planes if p != plane and abs(a[p[0]] - p[1]) <= max(tol, SEW_TOLERANCE)]
-        on_b = [p for p in planes if p != plane and abs(b[p[0]] - p[1]) <= max(tol, SEW_TOLERANCE)]
+        on_a = [k for k, p in enumerate(planes) if p is not plane and _on(p, a, tol)]
+        on_b = [k for k, p in enumerate(planes) if p is not plane and _on(p, b, tol)]
         route = [a]
         if on_a and on_b and not set(on_a) & set(on_b):
-            c = np.array(a, float)
-            c[on_a[0][0]], c[on_b[0][0]], c[plane[0]] = on_a[0][1], on_b[0][1], plane[1]
-            route.append(c)
+            three = [plane, planes[on_a[0]], planes[on_b[0]]]  # the corner where the three planes meet
+            route.append(np.linalg.solve(np.array([n for n, _ in three]), np.array([c for _, c in three])))
         route.append(b)
         for p, q in zip(route[:-1], route[1:]):
             if np.linalg.norm(q - p) > SEW_TOLERANCE:
@@ -382,11 +388,51 @@ def _cap(plane, edges, planes, size):
     return BRepBuilderAPI_MakeFace(mk.Wire(), True).Face()
 
 
+def _plane_name(plane) -> str:
+    n, c = plane
+    k = int(np.argmax(np.abs(n)))
+    if abs(abs(n[k]) - 1.0) <= 1e-12:
+        return f"{'xyz'[k]} = {c * np.sign(n[k]):.6g} m"
+    return f"{n[0]:.4g} x + {n[1]:.4g} y + {n[2]:.4g} z = {c:.6g} m"
+
+
+def _axis_plane(axis: int, value: float):
+    n = np.zeros(3)
+    n[axis] = 1.0
+    return n, float(value)
+
+
+def _aft_plane(patches, size):
+    """The plane of the hull's aft cut: of the surfaces' four edge curves, those lying in one
+    plane x = a + b z (a transom, upright or raked: its normal has no y part) over some height,
+    the one furthest aft; x = the least x when none does (checked when the caps are sewn)."""
+    found = []
+    for s, _ in patches:
+        us, vs = np.linspace(*s.domain_u, 33), np.linspace(*s.domain_v, 33)
+        for u, v in ((us, np.full(33, s.domain_v[0])), (us, np.full(33, s.domain_v[1])),
+                     (np.full(33, s.domain_u[0]), vs), (np.full(33, s.domain_u[1]), vs)):
+            pts = np.asarray([s.evaluate(a, b) for a, b in zip(u, v)])
+            if np.ptp(pts[:, 2]) <= PLANE_TOLERANCE * size:
+                continue  # level (a deck edge): no x = a + b z to fit
+            A = np.c_[np.ones(len(pts)), pts[:, 2]]
+            (a, b), *_ = np.linalg.lstsq(A, pts[:, 0], rcond=None)
+            if np.abs(A @ (a, b) - pts[:, 0]).max() <= PLANE_TOLERANCE * size:
+                found.append((float(pts[:, 0].mean()), a, b))
+    if not found:
+        pts = np.concatenate([np.asarray(s.evaluate_grid(np.linspace(*s.domain_u, 17), np.linspace(*s.domain_v, 17))).reshape(-1, 3)
+                              for s, _ in patches])
+        return _axis_plane(0, float(pts[:, 0].min()))
+    _, a, b = min(found)
+    if abs(b) <= PLANE_TOLERANCE:
+        return _axis_plane(0, float(a))
+    return np.array([1.0, 0.0, -b]) / np.hypot(1.0, b), float(a / np.hypot(1.0, b))  # x - b z = a
+
+
 def _cap_planes(patches, full):
     pts = np.concatenate([np.asarray(s.evaluate_grid(np.linspace(*s.domain_u, 17), np.linspace(*s.domain_v, 17))).reshape(-1, 3)
                           for s, _ in patches])
     size = float(np.ptp(pts, axis=0).max())
-    planes = [(0, float(pts[:, 0].min())), (2, float(pts[:, 2].max())), (1, 0.0)]
+    planes = [_aft_plane(patches, size), _axis_plane(2, float(pts[:, 2].max())), _axis_plane(1, 0.0)]
     return (planes[:2] if full else planes), planes, size
 
 
@@ -408,7 +454,7 @@ def hull_solid(hull, *, full: bool = False):
     tol = PLANE_TOLERANCE * size
     caps = []
     for plane in planes:
-        on = [e for e in free if np.all(np.abs(_edge_points(e)[:, plane[0]] - plane[1]) <= max(tol, 10 * SEW_TOLERANCE))]
+        on = [e for e in free if all(_on(plane, p, max(tol, 10 * SEW_TOLERANCE)) for p in _edge_points(e))]
         if on:
             caps.append(_cap(plane, on, routing, size))
     parts = [open_shell] + caps
@@ -419,7 +465,7 @@ def hull_solid(hull, *, full: bool = False):
     solid = _solid_if_closed(_sew(parts))
     if solid.ShapeType() != TopAbs_SOLID:
         raise InvalidInput("the hull's faces and caps do not sew into one closed shell; expected a hull whose edges "
-                           "lie on the centre plane, one deck plane z = const and one aft plane x = const")
+                           "lie on the centre plane, one deck plane z = const and one aft plane (x = const, or a raked transom's)")
     return solid
 
 

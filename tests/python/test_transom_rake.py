@@ -88,3 +88,18 @@ def test_a_rake_out_of_range_is_refused_naming_it(raked, rake):
 def test_a_cruiser_stern_has_no_transom_to_rake():
     with pytest.raises(fl.InvalidInput, match=r"transom_rake is 10 deg with stern='cruiser'; expected 0"):
         fl.design_hull(**FERRY, stern="cruiser", transom_rake=10.0)
+
+
+def test_the_raked_hull_exports_as_one_closed_solid_of_its_volume(raked):
+    """OpenCASCADE's own volume of the exported half-hull solid (caps on the deck, the centre
+    plane and the raked transom) against the quadrature's up to the deck."""
+    pytest.importorskip("OCP")
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+
+    from fairlines.cad import hull_solid
+
+    props = GProp_GProps()
+    BRepGProp.VolumeProperties_s(hull_solid(raked.composed_hull()), props)
+    below_deck = fl.hydrostatics(raked.bare_hull_surface(), FERRY["depth"] * (1 - 1e-12), half_hull=True).volume / 2
+    assert props.Mass() == pytest.approx(below_deck, rel=1e-5)
