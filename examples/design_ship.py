@@ -25,7 +25,8 @@ HERE = pathlib.Path(__file__).resolve().parent
 SHIPS = [
     ("Panamax container ship", dict(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.65, lcb=118.73, bulb=True)),
     ("Product tanker", dict(lpp=180.0, breadth=32.0, draft=11.5, depth=17.0, cb=0.82, lcb=95.4, skeg=True)),
-    ("Fast ferry (fine)", dict(lpp=140.0, breadth=17.0, draft=5.5, depth=10.0, cb=0.50, lcb=67.2)),
+    ("Fast ferry (fine), transom raked 15 deg", dict(lpp=140.0, breadth=17.0, draft=5.5, depth=10.0, cb=0.50, lcb=67.2,
+                                                    transom_rake=15.0)),
     ("Coaster, cruiser stern", dict(lpp=100.0, breadth=16.0, draft=6.0, depth=9.0, cb=0.75, lcb=51.0,
                                     stern="cruiser")),
 ]
