@@ -1464,6 +1464,26 @@ struct LocalEdit {
   }
 };
 
+/// The elements at each node while a pass edits them: the lists only grow (an edit's elements
+/// are added to their nodes), and an element counts at a node while it holds it.
+class EditedElementsAtNodes {
+ public:
+  explicit EditedElementsAtNodes(const Work& w) : w_(w), around_(elements_at_nodes(w)) {}
+  std::vector<int> live(int node) const {
+    std::vector<int> r;
+    for (int e : around_[node])
+      if (std::find(w_.el[e].begin(), w_.el[e].end(), node) != w_.el[e].end()) r.push_back(e);
+    return r;
+  }
+  void add(int node, int e) {
+    if (std::find(around_[node].begin(), around_[node].end(), e) == around_[node].end()) around_[node].push_back(e);
+  }
+
+ private:
+  const Work& w_;
+  std::vector<std::vector<int>> around_;
+};
+
 /// Free nodes with exactly three elements, all quads, scoring below kHexBelow are removed
 /// where two quads do better: the three quads about such a node c are a hexagon, split here
 /// along the diagonal (a spoke to the far corner across) whose quads score best; the hexagon's
@@ -1476,18 +1496,9 @@ struct LocalEdit {
 bool remove_valence3_nodes(Work& w) {
   constexpr std::array<int, 4> kDead{-2, -2, -2, -2};
   const int n = static_cast<int>(w.xyz.size());
-  std::vector<std::vector<int>> around = elements_at_nodes(w);
-  // the lists only grow (a split's quads are added to their nodes): an element counts at a node
-  // while it holds it
-  auto live = [&](int node) {
-    std::vector<int> r;
-    for (int e : around[node])
-      if (std::find(w.el[e].begin(), w.el[e].end(), node) != w.el[e].end()) r.push_back(e);
-    return r;
-  };
-  auto add = [&](int node, int e) {
-    if (std::find(around[node].begin(), around[node].end(), e) == around[node].end()) around[node].push_back(e);
-  };
+  EditedElementsAtNodes at_nodes(w);  // a split's quads are added to their nodes
+  auto live = [&](int node) { return at_nodes.live(node); };
+  auto add = [&](int node, int e) { at_nodes.add(node, e); };
   bool removed = false;
   for (int c = w.fixed; c < n; ++c) {
     const std::vector<int> at = live(c);
@@ -1574,18 +1585,13 @@ std::vector<std::pair<double, int>> small_quads(const Work& w) {
 /// ends a, c become one node (at their middle on the face, or at the fixed one), the quad goes,
 /// and the free nodes about it are searched (optimise_node). Kept where no free node is left in
 /// fewer than three elements, no element about it scores under kCollapseFloor and their worst
-/// falls by at most kCollapseTrade, and not under the face's worst; else undone. The diagonal whose ends have fewer elements
-/// is tried first (two valence-3 corners make one regular node). Returns whether a quad went
-/// (the caller compacts the nodes).
+/// falls by at most kCollapseTrade, and not under the face's worst; else undone. The diagonal
+/// whose ends have fewer elements is tried first (two valence-3 corners make one regular node).
+/// Returns whether a quad went (the caller compacts the nodes).
 bool collapse_small_quads(Work& w) {
   constexpr std::array<int, 4> kDead{-2, -2, -2, -2};
-  std::vector<std::vector<int>> around = elements_at_nodes(w);
-  auto live = [&](int node) {
-    std::vector<int> r;
-    for (int e : around[node])
-      if (std::find(w.el[e].begin(), w.el[e].end(), node) != w.el[e].end()) r.push_back(e);
-    return r;
-  };
+  EditedElementsAtNodes at_nodes(w);  // the collapsed node takes its partner's elements
+  auto live = [&](int node) { return at_nodes.live(node); };
   std::vector<char> touched(w.xyz.size(), 0);
   bool collapsed = false;
   double mesh_worst = 1e9;  // no collapse makes the face's worst element worse
@@ -1624,7 +1630,7 @@ bool collapse_small_quads(Work& w) {
         if (x == e) continue;
         for (int k = 0; k < 4; ++k)
           if (w.el[x][k] == gone) w.el[x][k] = keep;
-        if (std::find(around[keep].begin(), around[keep].end(), x) == around[keep].end()) around[keep].push_back(x);
+        at_nodes.add(keep, x);
       }
       if (keep >= w.fixed) {
         const Vec3 mid = 0.5 * (w.xyz[keep] + w.xyz[gone]);
