@@ -56,9 +56,9 @@ def designs(n: int, seed: int = 11, lpp: float | None = None):
                 p[key] = value
         if rng.random() < STEM_RAKE_SHARE:
             p["stem_rake"] = float(rng.uniform(*STEM_RAKES))
-        rake = rake_rng.random() < TRANSOM_RAKE_SHARE, float(rake_rng.uniform(*TRANSOM_RAKES))
-        if rake[0] and p.get("stern", "transom") == "transom":
-            p["transom_rake"] = rake[1]
+        draw, rake = rake_rng.random(), float(rake_rng.uniform(*TRANSOM_RAKES))
+        if draw < TRANSOM_RAKE_SHARE and p.get("stern", "transom") == "transom":
+            p["transom_rake"] = rake
         yield p
 
 

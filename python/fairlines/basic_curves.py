@@ -48,8 +48,8 @@ WEDGE_FULLNESS = 0.5
 WEDGE_BREADTH = 1e-9
 #: Bisections of each range an infeasible curve's message names (to 2^-16 of the search span).
 RANGE_STEPS = 16
-#: A constant curve may lie this far (relative, at least absolute 1) past its bounds: round-off
-#: in a value read back from JSON, never a real excess.
+#: A constant curve may lie this far past its bounds, relative to max(1, |value|): round-off in
+#: a value read back from JSON, never a real excess.
 CONSTANT_BOUND_TOL = 1e-12
 #: The unit a constant curve's refusal names its range in (curves not listed: metres).
 CURVE_UNITS = {"deadrise": " deg", "top_corner": " (a fraction of the freeboard)", "character": " (a fraction of the chord)",
@@ -345,10 +345,11 @@ def _solve_curve(name, spec, x0, x1, lower, upper, maximum, defaults, at_least) 
 
 def _check_constant(path: str, spec: BasicCurveSpec, lower, upper, at_least, plan: _Plan) -> None:
     """A constant is not solved, so its bounds and the curves it must clear are checked here
-    (it was taken as given: a top_corner of 5 or a deck outside B/2 built). Raises InvalidInput
-    naming the value and the range it must lie in."""
-    lo = spec.lower if spec.lower is not None else lower
-    hi = spec.upper if spec.upper is not None else upper
+    (it was taken as given: a top_corner of 5 or a deck outside B/2 built): the physical bounds
+    and the spec's own both (the sections clip a shape curve to the physical ones). Raises
+    InvalidInput naming the value and the range it must lie in."""
+    lo = max((b for b in (lower, spec.lower) if b is not None), default=None)
+    hi = min((b for b in (upper, spec.upper) if b is not None), default=None)
     v = spec.value
     tol = CONSTANT_BOUND_TOL * max(1.0, abs(v))
     if (lo is not None and v < lo - tol) or (hi is not None and v > hi + tol):

@@ -402,10 +402,11 @@ def _axis_plane(axis: int, value: float):
     return n, float(value)
 
 
-def _aft_plane(patches, size):
+def _aft_plane(patches, size, x_least):
     """The plane of the hull's aft cut: of the surfaces' four edge curves, those lying in one
     plane x = a + b z (a transom, upright or raked: its normal has no y part) over some height,
-    the one furthest aft; x = the least x when none does (checked when the caps are sewn)."""
+    the one furthest aft; x = x_least (the hull's least x) when none does (checked when the caps
+    are sewn)."""
     found = []
     for s, _ in patches:
         us, vs = np.linspace(*s.domain_u, 33), np.linspace(*s.domain_v, 33)
@@ -419,9 +420,7 @@ def _aft_plane(patches, size):
             if np.abs(A @ (a, b) - pts[:, 0]).max() <= PLANE_TOLERANCE * size:
                 found.append((float(pts[:, 0].mean()), a, b))
     if not found:
-        pts = np.concatenate([np.asarray(s.evaluate_grid(np.linspace(*s.domain_u, 17), np.linspace(*s.domain_v, 17))).reshape(-1, 3)
-                              for s, _ in patches])
-        return _axis_plane(0, float(pts[:, 0].min()))
+        return _axis_plane(0, x_least)
     _, a, b = min(found)
     if abs(b) <= PLANE_TOLERANCE:
         return _axis_plane(0, float(a))
@@ -432,7 +431,7 @@ def _cap_planes(patches, full):
     pts = np.concatenate([np.asarray(s.evaluate_grid(np.linspace(*s.domain_u, 17), np.linspace(*s.domain_v, 17))).reshape(-1, 3)
                           for s, _ in patches])
     size = float(np.ptp(pts, axis=0).max())
-    planes = [_aft_plane(patches, size), _axis_plane(2, float(pts[:, 2].max())), _axis_plane(1, 0.0)]
+    planes = [_aft_plane(patches, size, float(pts[:, 0].min())), _axis_plane(2, float(pts[:, 2].max())), _axis_plane(1, 0.0)]
     return (planes[:2] if full else planes), planes, size
 
 
@@ -465,7 +464,8 @@ def hull_solid(hull, *, full: bool = False):
     solid = _solid_if_closed(_sew(parts))
     if solid.ShapeType() != TopAbs_SOLID:
         raise InvalidInput("the hull's faces and caps do not sew into one closed shell; expected a hull whose edges "
-                           "lie on the centre plane, one deck plane z = const and one aft plane (x = const, or a raked transom's)")
+                           "lie on the centre plane, one deck plane z = const and one aft plane "
+                           "(x = const, or a raked transom's)")
     return solid
 
 

@@ -119,7 +119,8 @@ def compose(subdomains: Sequence[Any], operation: str = "union", **options) -> C
 
     subdomains  [bare_hull], [bare_hull, bulb] or [bare_hull, bulb, blend]: NurbsSurface (or
                 :class:`BulbousBow` for the bulb). The bare hull has one edge on an aft cut
-                (x = const), one on the deck (z = const) and two on the centre plane (keel and
+                (a plane: x = const, or a raked transom's), one on the deck (z = const) and two
+                on the centre plane (keel and
                 stem); any parameter orientation is accepted without a blend. The blend is a
                 :class:`BlendSurface` from ``blend_surface(hull, boundary_on_hull, bulb,
                 ("u", u_b))`` (hull in the orient_bare_hull convention; the boundary on the

@@ -748,7 +748,7 @@ class Hull:
         if self._raked is None or self._raked[0] is not skin:
             d = self.description
             z_edge = float(self.basic_curves["profile"](d.x_aft)[0])
-            self._raked = (skin, raked(skin.surface, d.x_aft, z_edge, d.transom_rake))
+            self._raked = (skin, raked(skin.surface, d.x_aft, z_edge, d.transom_rake, d.x_fore - d.x_aft))
         return self._raked[1]
 
     def hydrostatics(self, draft: float | None = None, **options) -> _native.Hydrostatics:

@@ -17,8 +17,9 @@ def hydrostatics(surface: NurbsSurface, draft: float, **options) -> _native.Hydr
     """Hydrostatics of a hull surface at ``draft`` (m above base) by Gauss-Legendre quadrature
     on the surface. ``options``: the fields of :class:`fl.HydrostaticsOptions` by keyword --
     half_hull (the surface is the y >= 0 half of the hull: volume, areas and SAC doubled to
-    full-ship values; openings other than the centre plane must be transverse planes
-    x = const), length / breadth for the coefficients (0: submerged extent), midship_x (the
+    full-ship values; openings other than the centre plane must lie in planes with no y in
+    their normal: x = const or a raked transom's, at the surface's ends along the hull),
+    length / breadth for the coefficients (0: submerged extent), midship_x (the
     station of Am; None: middle), gauss, sac_stations, density (t/m^3), trim by the stern (m)
     over trim_length (AP at x = 0 to FP; draft is then the draft at trim_length / 2).
 

@@ -161,6 +161,15 @@ def test_a_constant_curve_out_of_its_range_is_refused_naming_it(plain, curve, va
         fl.Hull.from_json(json.dumps(d)).bare_hull_surface()
 
 
+def test_a_constant_is_checked_against_the_physical_bounds_beside_its_own(plain):
+    """A spec's own upper bound of 60 deg does not let a deadrise of 50 pass: the sections clip
+    it to 40 (it was refused as a SAC no section could hold)."""
+    d = json.loads(plain.to_json())
+    d["basic_curves"]["deadrise"] = {"value": 50.0, "upper": 60.0}
+    with pytest.raises(fl.InvalidInput, match=r"basic_curves\.deadrise\.value is 50; expected 0 to 40 deg"):
+        fl.Hull.from_json(json.dumps(d)).bare_hull_surface()
+
+
 def test_a_constant_deck_inside_the_waterline_is_refused_naming_where(plain):
     """The deck stays outside the design waterline: a constant one inside it is refused at the
     first place it is (it built with tumblehome)."""

@@ -37,13 +37,22 @@ def test_the_aft_end_lies_in_the_transoms_plane_about_its_lower_edge(raked):
     assert np.abs(p[:, 0] - expected).max() <= PLANE_TOL
 
 
-def test_the_raked_ship_meets_its_particulars(raked):
-    h = fl.hydrostatics(raked.bare_hull_surface(), FERRY["draft"], half_hull=True)
-    volume = FERRY["cb"] * FERRY["lpp"] * FERRY["breadth"] * FERRY["draft"]
-    assert h.volume == pytest.approx(volume, rel=MATCH_TOL)
-    assert abs(h.lcb - FERRY["lcb"]) <= MATCH_TOL * FERRY["lpp"]
-    upright = fl.design_hull(**FERRY).hydrostatics()
-    assert h.waterplane_area == pytest.approx(upright.waterplane_area, rel=MATCH_TOL)
+CONTAINER = dict(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.65, lcb=118.73, bulb=True)
+
+
+@pytest.mark.parametrize("p, rake", [(FERRY, -15.0), (FERRY, 30.0), (CONTAINER, 15.0)],
+                         ids=["ferry -15", "ferry 30", "container 15"])
+def test_a_raked_ship_meets_its_particulars(p, rake):
+    """Volume and LCB on the raked surface (the designer matches them there; the shear alone
+    moves the ferry's by 0.5 % at 30 deg), and its aft end in the raked plane."""
+    hull = fl.design_hull(**p, transom_rake=rake)
+    h = fl.hydrostatics(hull.bare_hull_surface(), p["draft"], half_hull=True)
+    assert h.volume == pytest.approx(p["cb"] * p["lpp"] * p["breadth"] * p["draft"], rel=MATCH_TOL)
+    assert abs(h.lcb - p["lcb"]) <= MATCH_TOL * p["lpp"]
+    d = hull.description
+    z_edge = float(hull.basic_curves["profile"](d.x_aft)[0])
+    e = aft_edge(hull)
+    assert np.abs(e[:, 0] - (d.x_aft - (e[:, 2] - z_edge) * math.tan(math.radians(rake)))).max() <= PLANE_TOL
 
 
 def test_the_waterplane_reaches_the_raked_end(raked):
@@ -103,3 +112,33 @@ def test_the_raked_hull_exports_as_one_closed_solid_of_its_volume(raked):
     BRepGProp.VolumeProperties_s(hull_solid(raked.composed_hull()), props)
     below_deck = fl.hydrostatics(raked.bare_hull_surface(), FERRY["depth"] * (1 - 1e-12), half_hull=True).volume / 2
     assert props.Mass() == pytest.approx(below_deck, rel=1e-5)
+
+
+def test_a_rake_on_a_stern_without_a_transom_is_refused_naming_it():
+    """A cruiser stern's profile meets the deck at the aft end: nothing to rake (the rake was
+    kept in the description and did nothing)."""
+    d = json.loads(fl.design_hull(**FERRY, stern="cruiser").to_json())
+    d["ends"]["transom_rake"] = 15.0
+    with pytest.raises(fl.InvalidInput, match=r"ends\.transom_rake is 15 deg; expected 0: the hull has no transom"):
+        fl.Hull.from_json(json.dumps(d)).bare_hull_surface()
+
+
+def test_a_rake_with_an_aft_post_is_refused(raked):
+    d = json.loads(raked.to_json())
+    d["ends"]["aft_post"] = True
+    with pytest.raises(fl.InvalidInput, match=r"ends\.transom_rake is 20 deg with ends\.aft_post; expected 0"):
+        fl.Hull.from_json(json.dumps(d))
+
+
+def test_a_rake_too_steep_to_fade_out_on_a_short_deep_hull_is_refused_naming_the_steepest():
+    """A half box 10 m long and 10 m deep raked 45 deg about its bottom: the top would move 10 m,
+    whose fade (3 moves at least) would run past half the hull; 9.5 deg is the steepest."""
+    from fairlines.transom_rake import raked
+
+    P = np.zeros((3, 2, 3))
+    for i, (y, z) in enumerate([(2.0, 10.0), (2.0, 0.0), (0.0, 0.0)]):
+        P[i, 0], P[i, 1] = (0.0, y, z), (10.0, y, z)
+    box = fl.NurbsSurface(1, 1, [0, 0, 0.5, 1, 1], [0, 0, 1, 1], P)
+    with pytest.raises(fl.InvalidInput, match=r"ends\.transom_rake is 45 deg; expected at most 9\.5 deg on this hull"):
+        raked(box, 0.0, 0.0, 45.0, 10.0)
+    assert np.asarray(raked(box, 0.0, 0.0, 9.0, 10.0).control_points)[0, 0, 0] == pytest.approx(-10 * math.tan(math.radians(9)))

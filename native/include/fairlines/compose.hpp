@@ -71,7 +71,7 @@ struct ComposedHull {
   std::vector<TrimmedSurface> trimmed_surfaces;   ///< hull (and bulb) with their loops
   std::vector<IntersectionCurve> intersection_curves;  ///< seam(s) at the mesh resolution
   Eigen::VectorXi seam_vertices;                  ///< mesh vertex index of each seam point
-  double x_aft = 0.0;                             ///< aft cut plane x (m)
+  double x_aft = 0.0;                             ///< aft cut plane x (m; a raked transom's: its mean x)
   double z_deck = 0.0;                            ///< deck plane z (m)
   NurbsSurface hull;                              ///< the hull as used (re-oriented to the convention)
   std::vector<NurbsSurface> blend;                ///< the blending surface, when composed with one

@@ -1576,22 +1576,68 @@ std::vector<std::pair<double, int>> small_quads(const Work& w) {
     }
   std::vector<std::pair<double, int>> out;
   for (size_t e = 0; e < w.el.size(); ++e)
-    if (w.el[e][3] >= 0 && h[e] > 0 && largest[e] > kCollapseRatio * h[e]) out.push_back({largest[e] / h[e], static_cast<int>(e)});
+    if (w.el[e][3] >= 0 && h[e] > 0 && largest[e] > kCollapseRatio * h[e])
+      out.push_back({largest[e] / h[e], static_cast<int>(e)});
   std::sort(out.begin(), out.end(), std::greater<>());
   return out;
+}
+
+/// The free nodes of the elements at nodes a and b (sorted, each once).
+std::vector<int> nodes_about(const Work& w, const EditedElementsAtNodes& at, int a, int b) {
+  std::vector<int> out;
+  for (int node : {a, b})
+    for (int x : at.live(node))
+      for (int k = 0; k < 4; ++k)
+        if (w.el[x][k] >= 0) out.push_back(w.el[x][k]);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+/// One trial of collapse_small_quads: quad e's corners `gone` onto `keep` (kept when it scores
+/// as the pass asks; else undone). Returns the nodes about it when kept, else none.
+std::vector<int> try_collapse(Work& w, EditedElementsAtNodes& at, int e, int keep, int gone, double mesh_worst) {
+  constexpr std::array<int, 4> kDead{-2, -2, -2, -2};
+  auto live = [&](int node) { return at.live(node); };
+  const std::vector<int> at_gone = live(gone);
+  for (int x : at_gone)  // another element holding both would fold
+    if (x != e && std::find(w.el[x].begin(), w.el[x].end(), keep) != w.el[x].end()) return {};
+  const std::vector<int> nodes = nodes_about(w, at, keep, gone);
+  const LocalEdit edit(w, nodes, live);
+  const double before = edit.worst(w);
+  std::vector<std::pair<int, std::array<int, 4>>> old;
+  for (int x : at_gone) old.push_back({x, w.el[x]});
+  w.el[e] = kDead;
+  for (int x : at_gone) {
+    if (x == e) continue;
+    std::replace(w.el[x].begin(), w.el[x].end(), gone, keep);
+    at.add(keep, x);
+  }
+  if (keep >= w.fixed) {
+    const Vec3 mid = 0.5 * (w.xyz[keep] + w.xyz[gone]);
+    w.put(keep, w.place_at(w.g.locate(mid, 0.5 * (w.uv[keep] + w.uv[gone]))));
+  }
+  bool ok = std::none_of(nodes.begin(), nodes.end(), [&](int x) { return x != gone && x >= w.fixed && live(x).size() < 3; });
+  if (ok) {
+    for (const auto& sv : edit.saved)
+      if (std::get<0>(sv) != gone) optimise_node(w, live(std::get<0>(sv)), std::get<0>(sv));
+    ok = edit.worst(w) >= std::max({kCollapseFloor, before - kCollapseTrade, mesh_worst});
+  }
+  if (ok) return nodes;
+  for (const auto& [x, el] : old) w.el[x] = el;
+  edit.restore(w);
+  return {};
 }
 
 /// Quads much smaller than a neighbour (small_quads) are collapsed across a diagonal: its two
 /// ends a, c become one node (at their middle on the face, or at the fixed one), the quad goes,
 /// and the free nodes about it are searched (optimise_node). Kept where no free node is left in
-/// fewer than three elements, no element about it scores under kCollapseFloor and their worst
-/// falls by at most kCollapseTrade, and not under the face's worst; else undone. The diagonal
-/// whose ends have fewer elements is tried first (two valence-3 corners make one regular node).
-/// Returns whether a quad went (the caller compacts the nodes).
+/// fewer than three elements and the elements about it score at least kCollapseFloor, their
+/// worst before less kCollapseTrade, and the face's worst before the pass; else undone. The
+/// diagonal whose ends have fewer elements is tried first (two valence-3 corners make one
+/// regular node). Returns whether a quad went (the caller compacts the nodes).
 bool collapse_small_quads(Work& w) {
-  constexpr std::array<int, 4> kDead{-2, -2, -2, -2};
-  EditedElementsAtNodes at_nodes(w);  // the collapsed node takes its partner's elements
-  auto live = [&](int node) { return at_nodes.live(node); };
+  EditedElementsAtNodes at(w);  // the kept node takes its partner's elements
   std::vector<char> touched(w.xyz.size(), 0);
   bool collapsed = false;
   double mesh_worst = 1e9;  // no collapse makes the face's worst element worse
@@ -1599,62 +1645,19 @@ bool collapse_small_quads(Work& w) {
   for (const auto& [ratio, e] : small_quads(w)) {
     const std::array<int, 4> quad = w.el[e];
     if (quad[0] == -2 || std::any_of(quad.begin(), quad.end(), [&](int x) { return touched[x] != 0; })) continue;
-    std::array<int, 2> order{0, 1};
-    auto valence = [&](int d) { return live(quad[d]).size() + live(quad[d + 2]).size(); };
-    if (valence(1) < valence(0)) order = {1, 0};
-    for (int d : order) {
+    auto valence = [&](int d) { return at.live(quad[d]).size() + at.live(quad[d + 2]).size(); };
+    for (int d : valence(1) < valence(0) ? std::array<int, 2>{1, 0} : std::array<int, 2>{0, 1}) {
       int keep = quad[d], gone = quad[d + 2];
       if (keep < w.fixed && gone < w.fixed) continue;
       if (gone < w.fixed) std::swap(keep, gone);
-      const std::vector<int> at_gone = live(gone);
-      const std::vector<int> at_keep = live(keep);
-      bool shared = false;  // another element holding both would fold
-      for (int x : at_gone)
-        if (x != e && std::find(w.el[x].begin(), w.el[x].end(), keep) != w.el[x].end()) shared = true;
-      if (shared) continue;
-      std::vector<int> nodes;
-      for (int x : at_gone)
-        for (int k = 0; k < 4; ++k)
-          if (w.el[x][k] >= 0) nodes.push_back(w.el[x][k]);
-      for (int x : at_keep)
-        for (int k = 0; k < 4; ++k)
-          if (w.el[x][k] >= 0) nodes.push_back(w.el[x][k]);
-      std::sort(nodes.begin(), nodes.end());
-      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-      const LocalEdit edit(w, nodes, live);
-      const double before = edit.worst(w);
-      std::vector<std::pair<int, std::array<int, 4>>> old{{e, w.el[e]}};
-      for (int x : at_gone) old.push_back({x, w.el[x]});
-      w.el[e] = kDead;
-      for (int x : at_gone) {
-        if (x == e) continue;
-        for (int k = 0; k < 4; ++k)
-          if (w.el[x][k] == gone) w.el[x][k] = keep;
-        at_nodes.add(keep, x);
-      }
-      if (keep >= w.fixed) {
-        const Vec3 mid = 0.5 * (w.xyz[keep] + w.xyz[gone]);
-        w.put(keep, w.place_at(w.g.locate(mid, 0.5 * (w.uv[keep] + w.uv[gone]))));
-      }
-      bool ok = true;
-      for (int x : nodes)
-        if (x != gone && x >= w.fixed && live(x).size() < 3) ok = false;
-      if (ok) {
-        for (const auto& sv : edit.saved)
-          if (std::get<0>(sv) != gone) optimise_node(w, live(std::get<0>(sv)), std::get<0>(sv));
-        const double after = edit.worst(w);
-        ok = after >= std::max(kCollapseFloor, std::min(before - kCollapseTrade, mesh_worst));
-      }
-      if (ok) {
-        for (int x : nodes) touched[x] = 1;
-        collapsed = true;
-        break;
-      }
-      for (const auto& [x, el] : old) w.el[x] = el;
-      edit.restore(w);
+      const std::vector<int> nodes = try_collapse(w, at, e, keep, gone, mesh_worst);
+      if (nodes.empty()) continue;
+      for (int x : nodes) touched[x] = 1;
+      collapsed = true;
+      break;
     }
   }
-  w.el.erase(std::remove(w.el.begin(), w.el.end(), kDead), w.el.end());
+  w.el.erase(std::remove(w.el.begin(), w.el.end(), std::array<int, 4>{-2, -2, -2, -2}), w.el.end());
   return collapsed;
 }
 
