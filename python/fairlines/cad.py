@@ -410,9 +410,8 @@ def _aft_plane(patches, size, x_least):
     found = []
     for s, _ in patches:
         us, vs = np.linspace(*s.domain_u, 33), np.linspace(*s.domain_v, 33)
-        for u, v in ((us, np.full(33, s.domain_v[0])), (us, np.full(33, s.domain_v[1])),
-                     (np.full(33, s.domain_u[0]), vs), (np.full(33, s.domain_u[1]), vs)):
-            pts = np.asarray([s.evaluate(a, b) for a, b in zip(u, v)])
+        for u, v in ((us, s.domain_v[:1]), (us, s.domain_v[1:]), (s.domain_u[:1], vs), (s.domain_u[1:], vs)):
+            pts = np.asarray(s.evaluate_grid(u, v)).reshape(-1, 3)
             if np.ptp(pts[:, 2]) <= PLANE_TOLERANCE * size:
                 continue  # level (a deck edge): no x = a + b z to fit
             A = np.c_[np.ones(len(pts)), pts[:, 2]]

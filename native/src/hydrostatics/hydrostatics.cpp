@@ -178,6 +178,25 @@ void add_piece(const NurbsSurface& s, const detail::GaussRule& g, int gauss, dou
   for (double ue : {pa, pb}) out.extend(s.evaluate(ue, v));
 }
 
+/// The pieces of the u line at v below waterline_z(x) (inside_pieces over the span breaks bu),
+/// its samples evaluated in one batch (`points`, `line_v`: buffers the caller reuses).
+template <typename Z>
+std::vector<std::pair<double, double>> submerged_pieces(const NurbsSurface& s, const std::vector<double>& bu, double v,
+                                                        Z&& waterline_z, std::vector<double>& points,
+                                                        std::vector<double>& line_v) {
+  auto height = [&](double u) {
+    const Eigen::Vector3d P = s.evaluate(u, v);
+    return P[2] - waterline_z(P[0]);
+  };
+  auto heights = [&](const std::vector<double>& ts, std::vector<double>& fs) {
+    points.resize(3 * ts.size());
+    line_v.assign(ts.size(), v);
+    s.evaluate_into(ts.data(), line_v.data(), static_cast<long>(ts.size()), points.data());
+    for (std::size_t i = 0; i < ts.size(); ++i) fs[i] = points[3 * i + 2] - waterline_z(points[3 * i]);
+  };
+  return inside_pieces(bu, height, heights);
+}
+
 /// Integrals over the part of `s` (lines of u crossing the waterline) below waterline_z(x).
 template <typename Z>
 SurfaceSums integrate_below(const NurbsSurface& s, int gauss, Z&& waterline_z) {
@@ -190,19 +209,8 @@ SurfaceSums integrate_below(const NurbsSurface& s, int gauss, Z&& waterline_z) {
     const double hv = 0.5 * (bv[jv + 1] - bv[jv]), mv = 0.5 * (bv[jv + 1] + bv[jv]);
     for (int kv = 0; kv < gauss; ++kv) {
       const double v = mv + hv * g.x[kv];
-      auto height = [&](double u) {
-        const Eigen::Vector3d P = s.evaluate(u, v);
-        return P[2] - waterline_z(P[0]);
-      };
-      // The samples of this line in one batched evaluation.
-      auto heights = [&](const std::vector<double>& ts, std::vector<double>& fs) {
-        points.resize(3 * ts.size());
-        line_v.assign(ts.size(), v);
-        s.evaluate_into(ts.data(), line_v.data(), static_cast<long>(ts.size()), points.data());
-        for (std::size_t i = 0; i < ts.size(); ++i) fs[i] = points[3 * i + 2] - waterline_z(points[3 * i]);
-      };
-      const auto pieces = inside_pieces(bu, height, heights);
-      for (const auto& [pa, pb] : pieces) add_piece(s, g, gauss, v, g.w[kv] * hv, pa, pb, out);
+      for (const auto& [pa, pb] : submerged_pieces(s, bu, v, waterline_z, points, line_v))
+        add_piece(s, g, gauss, v, g.w[kv] * hv, pa, pb, out);
     }
   }
   return out;
@@ -222,20 +230,16 @@ std::array<double, 4> end_lid_fluxes(const NurbsSurface& s, int gauss, Z&& water
   const std::vector<double> bv = breakpoints(s.knots_v(), s.degree_v());
   const auto& g = detail::gauss_rule(gauss);
   std::array<double, 4> out{};
+  std::vector<double> points, line_v;
   for (const double v : {bv.front(), bv.back()}) {
     const double along = v == bv.front() ? 1.0 : -1.0;  // the end's direction of increasing u
-    auto height = [&](double u) {
-      const Eigen::Vector3d P = s.evaluate(u, v);
-      return P[2] - waterline_z(P[0]);
-    };
-    auto heights = [&](const std::vector<double>& ts, std::vector<double>& fs) {
-      for (std::size_t i = 0; i < ts.size(); ++i) fs[i] = height(ts[i]);
-    };
-    const auto pieces = inside_pieces(bu, height, heights);
+    const auto pieces = submerged_pieces(s, bu, v, waterline_z, points, line_v);
     double xw = 0.0, top = -std::numeric_limits<double>::infinity();  // x where the end meets the waterline
     for (const auto& [pa, pb] : pieces)
-      for (const double u : {pa, pb})
-        if (const double h = height(u); h > top) top = h, xw = s.evaluate(u, v)[0];
+      for (const double u : {pa, pb}) {
+        const Eigen::Vector3d P = s.evaluate(u, v);
+        if (const double h = P[2] - waterline_z(P[0]); h > top) top = h, xw = P[0];
+      }
     for (const auto& [pa, pb] : pieces) {
       const double hu = 0.5 * (pb - pa), mu = 0.5 * (pa + pb);
       std::array<double, 32> us{}, vs{};

@@ -78,6 +78,7 @@ constexpr double kCollapseRatio = 2.5;     ///< a quad whose mean side is this m
                                            ///< 3.30, at the example's forefoot; the subdivision's 2:1 steps give 2)
 constexpr double kCollapseFloor = 0.5;     ///< ... where the elements about it then score at least this (strict)
 constexpr double kCollapseTrade = 0.15;    ///< ... and their worst falls by no more than this
+constexpr std::array<int, 4> kDeadElement{-2, -2, -2, -2};  ///< an element an edit pass removed
 constexpr int kMeanTries = 2;              ///< moves toward the ideal position tried per visit: all the way, half
 constexpr double kMeanScoreSlack = 1e-12;  ///< a mean move may lower its elements' worst score by round-off
 constexpr double kMeanMinGain = 1e-9;      ///< and must lower the sum of their deficits by more than this
@@ -1494,7 +1495,6 @@ class EditedElementsAtNodes {
 /// corners, scaled Jacobian 0.68 at most wherever c is); one quad takes the corner then.
 /// Returns whether a node was removed (the caller compacts the nodes).
 bool remove_valence3_nodes(Work& w) {
-  constexpr std::array<int, 4> kDead{-2, -2, -2, -2};
   const int n = static_cast<int>(w.xyz.size());
   EditedElementsAtNodes at_nodes(w);  // a split's quads are added to their nodes
   auto live = [&](int node) { return at_nodes.live(node); };
@@ -1524,7 +1524,7 @@ bool remove_valence3_nodes(Work& w) {
     const LocalEdit edit(w, hex, live);
     const double before = edit.worst(w);
     const std::array<std::array<int, 4>, 3> old{w.el[at[0]], w.el[at[1]], w.el[at[2]]};
-    w.el[at[0]] = split[best][0], w.el[at[1]] = split[best][1], w.el[at[2]] = kDead;
+    w.el[at[0]] = split[best][0], w.el[at[1]] = split[best][1], w.el[at[2]] = kDeadElement;
     for (int x : split[best][0]) add(x, at[0]);
     for (int x : split[best][1]) add(x, at[1]);
     auto good = [&] {
@@ -1540,7 +1540,7 @@ bool remove_valence3_nodes(Work& w) {
     for (int k = 0; k < 3; ++k) w.el[at[k]] = old[k];
     edit.restore(w);
   }
-  w.el.erase(std::remove(w.el.begin(), w.el.end(), kDead), w.el.end());
+  w.el.erase(std::remove(w.el.begin(), w.el.end(), kDeadElement), w.el.end());
   return removed;
 }
 
@@ -1597,7 +1597,6 @@ std::vector<int> nodes_about(const Work& w, const EditedElementsAtNodes& at, int
 /// One trial of collapse_small_quads: quad e's corners `gone` onto `keep` (kept when it scores
 /// as the pass asks; else undone). Returns the nodes about it when kept, else none.
 std::vector<int> try_collapse(Work& w, EditedElementsAtNodes& at, int e, int keep, int gone, double mesh_worst) {
-  constexpr std::array<int, 4> kDead{-2, -2, -2, -2};
   auto live = [&](int node) { return at.live(node); };
   const std::vector<int> at_gone = live(gone);
   for (int x : at_gone)  // another element holding both would fold
@@ -1607,7 +1606,7 @@ std::vector<int> try_collapse(Work& w, EditedElementsAtNodes& at, int e, int kee
   const double before = edit.worst(w);
   std::vector<std::pair<int, std::array<int, 4>>> old;
   for (int x : at_gone) old.push_back({x, w.el[x]});
-  w.el[e] = kDead;
+  w.el[e] = kDeadElement;
   for (int x : at_gone) {
     if (x == e) continue;
     std::replace(w.el[x].begin(), w.el[x].end(), gone, keep);
@@ -1644,7 +1643,7 @@ bool collapse_small_quads(Work& w) {
   for (const auto& e : w.el) mesh_worst = std::min(mesh_worst, w.strict_quality(e));
   for (const auto& [ratio, e] : small_quads(w)) {
     const std::array<int, 4> quad = w.el[e];
-    if (quad[0] == -2 || std::any_of(quad.begin(), quad.end(), [&](int x) { return touched[x] != 0; })) continue;
+    if (quad == kDeadElement || std::any_of(quad.begin(), quad.end(), [&](int x) { return touched[x] != 0; })) continue;
     auto valence = [&](int d) { return at.live(quad[d]).size() + at.live(quad[d + 2]).size(); };
     for (int d : valence(1) < valence(0) ? std::array<int, 2>{1, 0} : std::array<int, 2>{0, 1}) {
       int keep = quad[d], gone = quad[d + 2];
@@ -1657,7 +1656,7 @@ bool collapse_small_quads(Work& w) {
       break;
     }
   }
-  w.el.erase(std::remove(w.el.begin(), w.el.end(), std::array<int, 4>{-2, -2, -2, -2}), w.el.end());
+  w.el.erase(std::remove(w.el.begin(), w.el.end(), kDeadElement), w.el.end());
   return collapsed;
 }
 
@@ -1812,7 +1811,6 @@ struct WeakPair {
 /// (optimise_node) raises it to min_quad_quality and leaves every element about its nodes at
 /// least as good as the worst there before (or at min_quad_quality); else it stays two triangles.
 void merge_weak_pairs(Work& w, const std::vector<WeakPair>& pairs) {
-  constexpr std::array<int, 4> kDead{-2, -2, -2, -2};
   std::vector<std::vector<int>> around = elements_at_nodes(w);
   auto live = [&](int node) {
     std::vector<int> r;
@@ -1826,7 +1824,7 @@ void merge_weak_pairs(Work& w, const std::vector<WeakPair>& pairs) {
     auto& saved = edit.saved;
     const std::array<int, 4> e1 = w.el[p.t1], e2 = w.el[p.t2];
     w.el[p.t1] = p.quad;
-    w.el[p.t2] = kDead;
+    w.el[p.t2] = kDeadElement;
     for (int node : p.quad) around[node].push_back(p.t1);
     // the quad's free nodes, its worst corner's first (the step's middle node), until it is good
     std::sort(saved.begin(), saved.end(), [&](const auto& a, const auto& b) {
@@ -1846,7 +1844,7 @@ void merge_weak_pairs(Work& w, const std::vector<WeakPair>& pairs) {
     w.el[p.t2] = e2;
     edit.restore(w);
   }
-  w.el.erase(std::remove(w.el.begin(), w.el.end(), kDead), w.el.end());
+  w.el.erase(std::remove(w.el.begin(), w.el.end(), kDeadElement), w.el.end());
 }
 
 /// point_in_polygon against the sides that span q's v only: the polygon's v range is cut into
