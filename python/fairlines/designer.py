@@ -127,11 +127,17 @@ BULB_AFT_LENGTH = 2.6       # the bulb runs on into the hull this many times L_P
 MIN_ENTRANCE_ANGLE = 7.0    # deg: a waterline ending finer meets the stem in a cusp, its stem sections a knife
                             # millimetres thick (no stem bar is) that a bulb's top grazes
 BULB_AFT_RETRIES = (3.0, 3.5, 4.0)  # ... or these when it leaves a fine forefoot again (meets the hull in two curves)
-# A single screw in an aperture aft of a skeg. Propeller diameter by default a fraction of T;
+# A single screw in an aperture aft of a skeg. Propeller diameter by default a fraction of T,
+# PROPELLER_DIAMETER up to Cb PROPELLER_FULL_CB[0], falling linearly to PROPELLER_DIAMETER_FULL at
+# PROPELLER_FULL_CB[1] and above: a container ship's screw is about 0.7 T (KCS 7.9 m at 10.8 m),
+# a tanker's or bulk carrier's, deep for its power, 0.5-0.6 T. At 0.7 T the skegged tanker's hull
+# rose 10.4 m over its last 14 m of keel, a cliff in every buttock (35 sign changes; 14 at 0.55 T);
 # its plane a fraction of Lpp forward of the AP (room for the rudder aft of it); clearances as
 # fractions of the diameter, as class societies recommend for single screws: blade tip to the
 # hull above, to the baseline below, and the disc to the skeg's aft edge.
 PROPELLER_DIAMETER = 0.7
+PROPELLER_DIAMETER_FULL = 0.55
+PROPELLER_FULL_CB = (0.7, 0.8)
 PROPELLER_PLANE = 0.035
 TIP_CLEARANCE = 0.25
 HEEL_CLEARANCE = 0.04
@@ -180,7 +186,7 @@ class Particulars:
     bulb: bool | dict = False
     skeg: bool = False  # a single screw: a skeg under the run and a propeller aperture aft of it
     sonar_dome: bool = False  # a sonar dome under the keel's forward end
-    propeller_diameter: float | None = None  # with skeg (m); default PROPELLER_DIAMETER T
+    propeller_diameter: float | None = None  # with skeg (m); default 0.55-0.7 T (default_propeller_diameter)
     stem_rake: float = STEM_RAKE
     transom_rake: float = 0.0  # the transom's plane from the vertical (deg), its top aft when positive; a transom stern only
     flat_bottom: float | None = None  # flat of bottom over the parallel body, fraction of the waterline half-breadth;
@@ -290,11 +296,13 @@ def _profile(p: Particulars, c: dict, x_aft: float, x_fore: float, keel_rise: fl
 
 
 def default_propeller_diameter(p: Particulars) -> float:
-    """PROPELLER_DIAMETER T, or less where the counter must stay below a low (immersed)
-    transom's edge: the hull over the blades (HEEL_CLEARANCE + 1 + TIP_CLEARANCE diameters
-    above base) at most PROPELLER_ROOM of the transom's height."""
+    """PROPELLER_DIAMETER T on ships up to Cb PROPELLER_FULL_CB[0], PROPELLER_DIAMETER_FULL T
+    from PROPELLER_FULL_CB[1] (linear between), or less where the counter must stay below a low
+    (immersed) transom's edge: the hull over the blades (HEEL_CLEARANCE + 1 + TIP_CLEARANCE
+    diameters above base) at most PROPELLER_ROOM of the transom's height."""
     room = PROPELLER_ROOM * _coefficients(p)["transom_z"] / (HEEL_CLEARANCE + 1.0 + TIP_CLEARANCE)
-    return min(PROPELLER_DIAMETER * p.draft, room)
+    share = float(np.interp(p.cb, PROPELLER_FULL_CB, (PROPELLER_DIAMETER, PROPELLER_DIAMETER_FULL)))
+    return min(share * p.draft, room)
 
 
 @dataclass(frozen=True)

@@ -12,7 +12,7 @@ import pytest
 
 import fairlines as fl
 from conftest import edge_census
-from fairlines.designer import (DOME_DEPTH, DOME_HALF_BREADTH, DOME_LENGTH, HEEL_CLEARANCE, PROPELLER_DIAMETER,
+from fairlines.designer import (DOME_DEPTH, DOME_HALF_BREADTH, DOME_LENGTH, HEEL_CLEARANCE,
                                 PROPELLER_HALF_WIDTH, SKEG_HALF_THICKNESS, TIP_CLEARANCE, Propeller, propeller)
 from fairlines.description import DOME_WIDEST, SKEG_FORE_TAPER
 from fairlines.fairness import judge_cut
@@ -49,7 +49,7 @@ def test_the_propeller_disc_clears_the_hull(ship):
     axial extent either side) lies at least the tip clearance outside the disc (a circle of
     the given diameter about the shaft)."""
     p, hull = ship
-    dp = p.get("propeller_diameter", PROPELLER_DIAMETER * p["draft"])
+    dp = propeller(fl.Particulars(**p)).diameter
     x_p, shaft = propeller(fl.Particulars(**p)).x, (HEEL_CLEARANCE + 0.5) * dp
     assert shaft - dp / 2 == pytest.approx(HEEL_CLEARANCE * dp)  # the disc stays above the baseline
     for x in x_p + np.array([-1.0, 0.0, 1.0]) * PROPELLER_HALF_WIDTH * dp:
@@ -74,7 +74,7 @@ def test_the_skeg_runs_on_the_baseline_at_its_thickness(ship):
     centre plane (at 10-20 % of its depth: clear of the bottom's rounded corner and the fillet)."""
     p, hull = ship
     sk = hull.description.skeg
-    dp = p.get("propeller_diameter", PROPELLER_DIAMETER * p["draft"])
+    dp = propeller(fl.Particulars(**p)).diameter
     body = hull.basic_curves["profile"]
     a, b = sk.x_aft + sk.end_length, sk.x_fore - SKEG_FORE_TAPER * (sk.x_fore - sk.x_aft)
     deepest = float(body(a)[0])
@@ -101,6 +101,24 @@ def test_the_skeg_adds_no_hollow_above_the_waterline(ship):
     sk = hull.description.skeg
     for x in np.linspace(sk.x_aft, sk.x_fore, 8):
         assert _turns_above(hull, x, p["draft"]) <= _turns_above(plain, x, p["draft"]), x
+
+
+def test_the_skegged_tankers_outer_buttocks_rise_aft_in_one_s():
+    """The skegged tanker's buttocks outside the skeg's fillet (y 6-14 m) rise from the flat of
+    bottom to the counter in one S aft of midships (one sign change over 0.1 deg). With its
+    screw at 0.7 T (8.05 m) the keel rose 10.4 m over the 14 m aft of its flat and these
+    buttocks turned 3-9 times, a cliff at x 10-20 m; at 0.55 T (the default for Cb 0.8 and up)
+    it rises 8.2 m."""
+    from fairlines.fairness import cut_lobes
+
+    p = SHIPS["tanker"]
+    surface = fl.design_hull(**p).bare_hull_surface()
+    for y in (6.0, 8.0, 10.0, 12.0, 14.0):
+        cut = fl.plane_cut(surface, 1, y, 2001)
+        pts, k = np.asarray(cut.points), np.asarray(cut.curvature)
+        aft = pts[:, 0] < p["lpp"] / 2
+        lobes = cut_lobes(pts[aft], k[aft])
+        assert len(lobes) <= 2, (y, [(round(lobe["turn_deg"], 2), round(lobe["at"][0], 1)) for lobe in lobes])
 
 
 def test_skeg_ship_composes_watertight(ship):
