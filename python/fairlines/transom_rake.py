@@ -27,6 +27,9 @@ RAKE_FADE = 10.0
 #: fade past its stem), and never over fewer than MIN_FADE moves (rows would then run aft).
 MAX_FADE_SHARE = 0.5
 MIN_FADE = 3.0
+#: A transom lower than this share of the hull's length above its lower edge is none: a cruiser
+#: stern's control points at the deck stand round-off above the profile there (4e-15 m).
+NO_TRANSOM_TOL = 1e-9
 
 
 def raked(surface: NurbsSurface, x_aft: float, z_edge: float, rake_deg: float, length: float) -> NurbsSurface:
@@ -41,7 +44,7 @@ def raked(surface: NurbsSurface, x_aft: float, z_edge: float, rake_deg: float, l
     P = np.array(surface.control_points, dtype=float)  # (nu, nv, 3)
     h = np.maximum(P[..., 2] - z_edge, 0.0)
     height = float(h[:, 0].max())  # the transom's, above its lower edge
-    if height <= 0.0:
+    if height <= NO_TRANSOM_TOL * length:
         raise InvalidInput(f"ends.transom_rake is {rake_deg:g} deg; expected 0: the hull has no transom at its aft end "
                            f"(the profile meets the deck there, z {z_edge:.6g} m: a cruiser stern or a post)")
     move = float(h.max()) * abs(t)

@@ -123,6 +123,18 @@ def test_a_rake_on_a_stern_without_a_transom_is_refused_naming_it():
         fl.Hull.from_json(json.dumps(d)).bare_hull_surface()
 
 
+def test_a_stern_standing_round_off_above_its_edge_has_no_transom():
+    """The aft end's control points at the deck may stand round-off above the profile there (a
+    cruiser stern's stood 4e-15 m above it with the keel rising over 0.7 of the run): still no
+    transom to rake, refused by name."""
+    from fairlines.transom_rake import raked
+
+    s = fl.design_hull(**FERRY, stern="cruiser").bare_hull_surface()
+    top = float(np.array(s.control_points)[:, 0, 2].max())
+    with pytest.raises(fl.InvalidInput, match=r"ends\.transom_rake is 15 deg; expected 0: the hull has no transom"):
+        raked(s, -3.5, top - 4e-15, 15.0, FERRY["lpp"])
+
+
 def test_a_rake_with_an_aft_post_is_refused(raked):
     d = json.loads(raked.to_json())
     d["ends"]["aft_post"] = True
