@@ -20,7 +20,7 @@ def add_parser(sub) -> None:
                       ("transom-breadth", "waterline half-breadth at an immersed transom, m"),
                       ("stem-rake", "stem rake above the waterline, deg from the vertical"),
                       ("transom-rake", "the transom's rake from the vertical, deg, the top aft (default 0; a transom stern)"),
-                      ("propeller-diameter", "with --skeg: the single screw's diameter, m (default 0.7 T to Cb 0.7, 0.55 T from Cb 0.8)"),
+                      ("propeller-diameter", "with --skeg: the single screw's diameter, m (default 0.7 T up to Cb 0.7, 0.55 T from Cb 0.8, linear between; less under a low transom)"),
                       ("flat-bottom", "flat of bottom over the parallel body, fraction of the waterline's half-breadth "
                                       "(default 0.15, none where a section would narrow it; 0: none)")):
         d.add_argument(f"--{key}", type=float, default=None, help=what)

@@ -127,14 +127,15 @@ BULB_AFT_LENGTH = 2.6       # the bulb runs on into the hull this many times L_P
 MIN_ENTRANCE_ANGLE = 7.0    # deg: a waterline ending finer meets the stem in a cusp, its stem sections a knife
                             # millimetres thick (no stem bar is) that a bulb's top grazes
 BULB_AFT_RETRIES = (3.0, 3.5, 4.0)  # ... or these when it leaves a fine forefoot again (meets the hull in two curves)
-# A single screw in an aperture aft of a skeg. Propeller diameter by default a fraction of T,
-# PROPELLER_DIAMETER up to Cb PROPELLER_FULL_CB[0], falling linearly to PROPELLER_DIAMETER_FULL at
-# PROPELLER_FULL_CB[1] and above: a container ship's screw is about 0.7 T (KCS 7.9 m at 10.8 m),
-# a tanker's or bulk carrier's, deep for its power, 0.5-0.6 T. At 0.7 T the skegged tanker's hull
-# rose 10.4 m over its last 14 m of keel, a cliff in every buttock (35 sign changes; 14 at 0.55 T);
+# A single screw in an aperture aft of a skeg. Propeller diameter by default a fraction of T;
 # its plane a fraction of Lpp forward of the AP (room for the rudder aft of it); clearances as
 # fractions of the diameter, as class societies recommend for single screws: blade tip to the
 # hull above, to the baseline below, and the disc to the skeg's aft edge.
+# The fraction of T is PROPELLER_DIAMETER up to Cb PROPELLER_FULL_CB[0], falling linearly to
+# PROPELLER_DIAMETER_FULL at PROPELLER_FULL_CB[1] and above: a container ship's screw is about
+# 0.7 T (KCS 7.9 m at 10.8 m), a tanker's or bulk carrier's, deep for its power, 0.5-0.6 T. At
+# 0.7 T the skegged tanker's keel rose 10.4 m over its last 14 m, a cliff in every buttock
+# (fairness_report's buttock sign changes 35; 14 at 0.55 T).
 PROPELLER_DIAMETER = 0.7
 PROPELLER_DIAMETER_FULL = 0.55
 PROPELLER_FULL_CB = (0.7, 0.8)

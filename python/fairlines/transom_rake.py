@@ -17,7 +17,7 @@ import numpy as np
 
 from ._native import InvalidInput, NurbsSurface
 
-__all__ = ["raked", "RAKE_FADE", "MIN_FADE", "MAX_FADE_SHARE"]
+__all__ = ["raked", "RAKE_FADE", "MIN_FADE", "MAX_FADE_SHARE", "NO_TRANSOM_TOL"]
 
 #: The rake fades out over this many times the transom's largest move (its top's), forward of it.
 #: At 3 the container ship raked 15 deg had 20 / 11 waterline / buttock sign changes against 17 / 8

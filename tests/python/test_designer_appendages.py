@@ -37,6 +37,30 @@ def _frame(hull, x):
     return np.asarray(fl.plane_cut(hull.bare_hull_surface(), 0, float(x), 801).points)
 
 
+def _used_diameter(hull):
+    """The screw's diameter the designer used (m), read off its skeg (0.1 D half-thick)."""
+    return hull.description.skeg.half_thickness / SKEG_HALF_THICKNESS
+
+
+#: The screws the designer gives these ships (m): 0.55 T for the tanker (Cb 0.82), 0.7 T for the
+#: container ship (Cb 0.65), the coaster's own 3.8 m.
+USED_DIAMETER = {"tanker": 6.325, "container": 7.7, "coaster": 3.8}
+
+
+def test_the_designer_uses_the_screw_its_rule_gives(ship, request):
+    assert _used_diameter(ship[1]) == pytest.approx(USED_DIAMETER[request.node.callspec.params["ship"]], rel=1e-12)
+
+
+@pytest.mark.parametrize("cb, share", [(0.6, 0.7), (0.7, 0.7), (0.75, 0.625), (0.82, 0.55), (0.85, 0.55)])
+def test_the_default_screw_shrinks_from_0_7_to_0_55_draughts_as_cb_goes_from_0_7_to_0_8(cb, share):
+    """Worked by hand: 0.7 T up to Cb 0.7, 0.55 T from 0.8, linear between (a dry transom: the
+    room over the blades does not bind)."""
+    from fairlines.designer import default_propeller_diameter
+
+    p = fl.Particulars(lpp=150.0, breadth=24.0, draft=9.0, depth=14.0, cb=cb, lcb=75.0, skeg=True)
+    assert default_propeller_diameter(p) == pytest.approx(share * 9.0, rel=1e-12)
+
+
 def test_skeg_ship_meets_its_particulars(ship):
     p, hull = ship
     h = hull.hydrostatics()
@@ -49,8 +73,8 @@ def test_the_propeller_disc_clears_the_hull(ship):
     axial extent either side) lies at least the tip clearance outside the disc (a circle of
     the given diameter about the shaft)."""
     p, hull = ship
-    dp = propeller(fl.Particulars(**p)).diameter
-    x_p, shaft = propeller(fl.Particulars(**p)).x, (HEEL_CLEARANCE + 0.5) * dp
+    dp = _used_diameter(hull)
+    x_p, shaft = propeller(fl.Particulars(**{**p, "propeller_diameter": dp})).x, (HEEL_CLEARANCE + 0.5) * dp
     assert shaft - dp / 2 == pytest.approx(HEEL_CLEARANCE * dp)  # the disc stays above the baseline
     for x in x_p + np.array([-1.0, 0.0, 1.0]) * PROPELLER_HALF_WIDTH * dp:
         f = _frame(hull, x)
@@ -74,7 +98,7 @@ def test_the_skeg_runs_on_the_baseline_at_its_thickness(ship):
     centre plane (at 10-20 % of its depth: clear of the bottom's rounded corner and the fillet)."""
     p, hull = ship
     sk = hull.description.skeg
-    dp = propeller(fl.Particulars(**p)).diameter
+    dp = _used_diameter(hull)
     body = hull.basic_curves["profile"]
     a, b = sk.x_aft + sk.end_length, sk.x_fore - SKEG_FORE_TAPER * (sk.x_fore - sk.x_aft)
     deepest = float(body(a)[0])
