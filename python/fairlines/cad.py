@@ -354,9 +354,10 @@ def _chain_edges(edges, tol):
 
 
 def _on(plane, p, tol) -> bool:
-    """Whether point p lies on ``plane`` (unit normal n, offset c: n . p = c) within tol."""
+    """Whether point p (or every row of an (n, 3) array of points) lies on ``plane`` (unit
+    normal n, offset c: n . p = c) within tol."""
     n, c = plane
-    return abs(float(np.dot(n, p)) - c) <= tol
+    return bool(np.all(np.abs(np.atleast_2d(p) @ n - c) <= tol))
 
 
 def _cap(plane, edges, planes, size):
@@ -452,7 +453,7 @@ def hull_solid(hull, *, full: bool = False):
     tol = PLANE_TOLERANCE * size
     caps = []
     for plane in planes:
-        on = [e for e in free if all(_on(plane, p, max(tol, 10 * SEW_TOLERANCE)) for p in _edge_points(e))]
+        on = [e for e in free if _on(plane, _edge_points(e), max(tol, 10 * SEW_TOLERANCE))]
         if on:
             caps.append(_cap(plane, on, routing, size))
     parts = [open_shell] + caps
