@@ -587,12 +587,7 @@ def test_a_fine_ships_lower_waterlines_do_not_wobble_where_its_waterline_is_wide
         assert not read["wobbles"], (f, [(w["at"][0], w["turn_deg"]) for w in read["wobbles"]])
 
 
-WOBBLY_WATERLINES = {
-    7.0: "a second hollow in the fore half: 0.35 deg at x 243.1 m, where the waterline ends on the stem, after the "
-         "entrance's convex turn (3.37 deg at x 241.8 m); the FP station's keel end is held on the stem "
-         "(station_mean.keel_hold_share), which made the 11 m and 13 m waterlines clean; this waterline ends between "
-         "the stations at 242.5 m (keel 0.53 T, averaged) and 244.8 m (keel at T, held)",
-}
+WOBBLY_WATERLINES: dict = {}
 
 
 # The design waterline weighs its change of curvature (designer.DWL_E3): it still bends where it
@@ -600,13 +595,13 @@ WOBBLY_WATERLINES = {
 # and a waterline just above T takes a sub-degree wobble in its last metre. Kept for what DWL_E3 gives
 # over bench_fairness_space's 300 hulls: S frames above T on 19 -> 6 hulls, frame inflections 210 -> 151.
 STEM_TIP_SHORT = {
-    ("container", 0.25): "a hollow of 0.15 deg and a convex lobe of 0.31 deg at x 245.2 and 245.5 m (z 13 m, 2 m above T), "
+    ("container", 0.25): "a hollow of 0.28 deg and a convex lobe of 0.29 deg at x 245.2 and 245.5 m (z 13 m, 2 m above T), "
                          "the waterline's last 0.6 m over the stem",
 }
 TANKER_TIP_SHORT = {
-    11.9: "a hollow lobe of 0.17 deg at x 179.2 m, 0.8 m aft of the stem",
-    12.5: "a hollow of 0.21 deg and a convex lobe of 0.66 deg at x 179.5 and 179.8 m, the last 0.9 m",
-    13.0: "a hollow of 0.14 deg and a convex lobe of 0.57 deg at x 179.5 and 180.1 m, the last 1 m",
+    11.9: "a hollow lobe of 0.39 deg at x 179.8 m, 0.3 m aft of the stem (0.17 deg at x 179.2 m before the last "
+          "two station spans aft of the FP were halved, hull.CLOSED_END_HALVED_SPANS)",
+    13.0: "a hollow of 0.25 deg and a convex lobe of 0.12 deg at x 179.8 and 180.1 m, the last 0.7 m",
 }
 
 
@@ -665,6 +660,22 @@ def test_waterline_has_no_wobble(example_surface, z):
     lands on its flat and the bulb's nose are shape features like the body (1 m: lobes of 4-45
     deg, 4 sign changes); it was once read as at most 2 sign changes, which failed them."""
     _assert_waterline_is_fair(example_surface, z)
+
+
+@pytest.mark.parametrize("name, side", [("tanker", "fore"), ("coaster_cruiser", "fore"), ("coaster_cruiser", "aft")])
+def test_station_spans_inside_a_closed_end_are_halved(name, side):
+    """Where the waterline closes on the stem (or a cruiser stern's counter) the last two station
+    spans toward it are half the clustered spacing further in (hull.CLOSED_END_HALVED_SPANS):
+    at the clustered spacing the skin rang there (the tanker's 12.5 m waterline turned hollow,
+    convex, hollow in its last 0.9 m)."""
+    hull = fl.design_hull(**SHIPS[name])
+    x_end = hull.immersed_range()[1 if side == "fore" else 0]
+    st = hull.stations()
+    inward = np.sort(np.abs(st[(st - x_end) * (1 if side == "fore" else -1) <= 1e-6] - x_end))[:6]
+    spans = np.diff(inward)  # from x_end inward: two spans halved, then the next one whole
+    assert inward[0] < 1e-6, inward
+    assert abs(spans[0] - spans[1]) < 1e-9 and abs(spans[2] - spans[3]) < 1e-9, spans
+    assert spans[4] > 1.5 * spans[3], spans
 
 
 @pytest.mark.parametrize("z", _cuts([11.9, 12.5, 13.0], TANKER_TIP_SHORT))
