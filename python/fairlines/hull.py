@@ -436,7 +436,9 @@ class Hull:
 
     def stations(self) -> np.ndarray:
         """Stations of the designed sections (m): the description's list, or its count clustered
-        toward the ends with stations on the junctions."""
+        toward the ends with stations on the junctions, plus more where the sections change
+        quickly (a skeg's aft end, a dome, a stem's or a counter's overhang and the two spans
+        inside it)."""
         if self._stations is None:  # asked by the band cache's key and by every section step
             d = self.description
             if d.station_x is not None:
