@@ -61,7 +61,8 @@ BAND_FREE = 2.0
 # wobble in the container ship's 13 m waterline (test_waterline_has_no_wobble).
 BAND_FREE_DEPTH = 1.0
 # The station mean's samples (fairlines.station_mean) stay this fraction of the way to a
-# neighbouring station at most (stations added over an overhang or a dome lie closer).
+# neighbouring station at most (stations added over an overhang or a dome, or halving the spans
+# inside a closed end, lie closer).
 MEAN_REACH = 0.45
 # Gauss points per span of the hydrostatics a bulb is sized from (volume, midship area): 1e-11
 # of the 8-point figures at half the time.
@@ -109,14 +110,13 @@ OFF_HULL_SHOWN = 5
 # better on 40 of them); at 1 the example's bare-hull mesh scored a mean scaled Jacobian 0.04 %
 # under gmsh's.
 OVERHANG_STATIONS = 2
-# Station spans inside such an end (toward the body) halved: there the forefoot (the counter)
-# rises to T and the waterlines above T turn from the body's convex line into the overhang's
-# hollow tip; at the clustered spacing the skin rang there. On 300 hulls of bench_hull's sample
-# (bench_fairness_space) waterlines clean as a lines plan, below T 671 -> 674, above T 746 -> 761
-# of 900 (wobbles within 1.5 % Lpp of the stem 92 -> 64, steps 21 -> 5); on 60 with a cruiser
-# stern 142 -> 148 of 180 above T. 1 halved 746 -> 751 (first 100: 246 -> 251 of 300); 3 or 5 rang
-# further aft (244, 243 of 300).
+# Station spans inside such an end halved: there the forefoot (the counter) rises to T and the
+# waterlines above T turn from the body's convex line into the overhang's hollow tip, and at the
+# clustered spacing the skin rang (measured: docs/sections.md) ...
 CLOSED_END_HALVED_SPANS = 2
+# ... but a span shorter than this share of the clustered spacing there (a dome's, a skeg end's)
+# is dense already and kept.
+HALVED_LEAST_SHARE = 0.5
 # Least slope (dz/dx) of the profile used for the arrival angle of above-water sections.
 MIN_STEM_SLOPE = 0.05
 # Beyond a dry transom's waterline end a section's lower angle leans less by this (deg) times
@@ -173,14 +173,18 @@ def _with_stations(stations: np.ndarray, extra: np.ndarray) -> np.ndarray:
     return np.union1d(stations, [x for x in extra if np.min(np.abs(stations - x)) > gap])
 
 
-def _halved_inside(stations: np.ndarray, x_end: float, x_tip: float, spans: int, tol: float) -> np.ndarray:
-    """The stations with the last `spans` spans up to x_end (m; the waterline's end, a station
-    where the designer puts it), on the side away from x_tip, halved; a station within tol (m)
-    of x_end is x_end's."""
-    toward = 1.0 if x_tip > x_end else -1.0
-    inside = np.sort(toward * stations[toward * (stations - x_end) < -tol])[-spans:]
-    ends = np.append(inside, toward * x_end)
-    return np.union1d(stations, toward * 0.5 * (ends[1:] + ends[:-1]))
+def _halved_inside(stations: np.ndarray, x_end: float, x_tip: float, spans: int, tol: float, least: float) -> np.ndarray:
+    """The stations with the last `spans` spans up to x_end (m; up to the first station beyond
+    it where x_end is none), on the side away from x_tip, halved; spans shorter than `least` (m)
+    kept; a station within tol (m) of x_end is x_end's."""
+    sign = 1.0 if x_tip > x_end else -1.0  # the aft end mirrored: inside is below x_end
+    s = np.sort(sign * np.asarray(stations, dtype=float))
+    last = int(np.searchsorted(s, sign * x_end - tol))  # the first station at or beyond x_end
+    if last >= len(s):
+        return stations
+    run = s[max(last - spans, 0):last + 1]
+    mids = [0.5 * (a + b) for a, b in zip(run[:-1], run[1:]) if b - a >= least]
+    return np.union1d(stations, sign * np.asarray(mids, dtype=float))
 
 
 def _clustered(s: np.ndarray, x_aft: float, x_fore: float) -> np.ndarray:
@@ -455,13 +459,19 @@ class Hull:
                 if (dm := d.dome) is not None:  # the dome's sections change quickly, most at its nose
                     u = np.sin(0.5 * np.pi * np.linspace(0.0, 1.0, DOME_STATIONS + 1))
                     self._stations = _with_stations(self._stations, dm.x_aft + (dm.x_fore - dm.x_aft) * u)
-                u = np.arange(1, OVERHANG_STATIONS + 1) / (OVERHANG_STATIONS + 1)
-                for x_end, x_tip in self._closed_dry_ends():  # the overhang: one span is too few
-                    self._stations = _with_stations(self._stations, x_end + (x_tip - x_end) * (1 - (1 - u) ** 2))
-                for x_end, x_tip in self._closed_dry_ends():
-                    self._stations = _halved_inside(self._stations, x_end, x_tip, CLOSED_END_HALVED_SPANS,
-                                                   STATION_MATCH_TOL * d.principal.lpp)
+                self._stations = self._closed_end_stations(self._stations)
         return self._stations.copy()
+
+    def _closed_end_stations(self, st: np.ndarray) -> np.ndarray:
+        """`st` with OVERHANG_STATIONS over each closed end's overhang (one span is too few) and the
+        CLOSED_END_HALVED_SPANS spans inside it halved (where the skin rang)."""
+        d = self.description
+        u = np.arange(1, OVERHANG_STATIONS + 1) / (OVERHANG_STATIONS + 1)
+        for x_end, x_tip in self._closed_dry_ends():
+            st = _with_stations(st, x_end + (x_tip - x_end) * (1 - (1 - u) ** 2))
+            least = HALVED_LEAST_SHARE * float(station_spacing(np.array([x_end]), d.x_aft, d.x_fore, d.station_count)[0])
+            st = _halved_inside(st, x_end, x_tip, CLOSED_END_HALVED_SPANS, STATION_MATCH_TOL * d.principal.lpp, least)
+        return st
 
     # ---- sections ---------------------------------------------------------------------
     def _lower_angles(self, xs: np.ndarray) -> np.ndarray:

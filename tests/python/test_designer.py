@@ -668,14 +668,32 @@ def test_station_spans_inside_a_closed_end_are_halved(name, side):
     spans toward it are half the clustered spacing further in (hull.CLOSED_END_HALVED_SPANS):
     at the clustered spacing the skin rang there (the tanker's 12.5 m waterline turned hollow,
     convex, hollow in its last 0.9 m)."""
+    from fairlines.hull import CLOSED_END_HALVED_SPANS as n
+
     hull = fl.design_hull(**SHIPS[name])
     x_end = hull.immersed_range()[1 if side == "fore" else 0]
     st = hull.stations()
-    inward = np.sort(np.abs(st[(st - x_end) * (1 if side == "fore" else -1) <= 1e-6] - x_end))[:6]
-    spans = np.diff(inward)  # from x_end inward: two spans halved, then the next one whole
+    inward = np.sort(np.abs(st[(st - x_end) * (1 if side == "fore" else -1) <= 1e-6] - x_end))[:2 * n + 2]
+    spans = np.diff(inward)  # from x_end inward: n spans halved, then the next one whole
     assert inward[0] < 1e-6, inward
-    assert abs(spans[0] - spans[1]) < 1e-9 and abs(spans[2] - spans[3]) < 1e-9, spans
-    assert spans[4] > 1.5 * spans[3], spans
+    assert all(abs(spans[2 * k] - spans[2 * k + 1]) < 1e-9 for k in range(n)), spans
+    assert spans[2 * n] > 1.5 * spans[2 * n - 1], spans
+
+
+def test_halving_the_spans_inside_an_end_at_either_end_and_when_the_end_is_no_station():
+    """hull._halved_inside on a row of stations: the fore and the aft end, an end between
+    stations (halved up to the first station beyond it), an end within the tolerance of a
+    station, a span already shorter than the least kept."""
+    from fairlines.hull import _halved_inside
+
+    st = np.array([0.0, 2.0, 4.0, 6.0, 8.0, 10.0, 11.0])
+    fore = _halved_inside(st, 8.0, 11.0, 2, 1e-9, 0.5)
+    assert fore.tolist() == [0, 2, 4, 5, 6, 7, 8, 10, 11]
+    assert _halved_inside(st, 2.0, 0.0, 2, 1e-9, 0.5).tolist() == [0, 2, 3, 4, 5, 6, 8, 10, 11]
+    assert _halved_inside(st, 7.0, 11.0, 2, 1e-9, 0.5).tolist() == [0, 2, 4, 5, 6, 7, 8, 10, 11]
+    assert _halved_inside(st, 8.0 + 1e-12, 11.0, 2, 1e-9, 0.5).tolist() == fore.tolist()
+    assert _halved_inside(st, 12.0, 13.0, 2, 1e-9, 0.5).tolist() == st.tolist()  # no station beyond: unchanged
+    assert _halved_inside(np.array([0.0, 2.0, 7.8, 8.0]), 8.0, 11.0, 2, 1e-9, 0.5).tolist() == [0, 2, 4.9, 7.8, 8]
 
 
 @pytest.mark.parametrize("z", _cuts([11.9, 12.5, 13.0], TANKER_TIP_SHORT))
