@@ -664,10 +664,10 @@ def test_waterline_has_no_wobble(example_surface, z):
 
 @pytest.mark.parametrize("name, side", [("tanker", "fore"), ("coaster_cruiser", "fore"), ("coaster_cruiser", "aft")])
 def test_station_spans_inside_a_closed_end_are_halved(name, side):
-    """Where the waterline closes on the stem (or a cruiser stern's counter) the last two station
-    spans toward it are half the clustered spacing further in (hull.CLOSED_END_HALVED_SPANS):
-    at the clustered spacing the skin rang there (the tanker's 12.5 m waterline turned hollow,
-    convex, hollow in its last 0.9 m)."""
+    """Where the waterline closes on the stem (or a cruiser stern's counter) the last
+    hull.CLOSED_END_HALVED_SPANS station spans toward it are halved (two equal halves each, the
+    next span in whole): at the clustered spacing the skin rang there (the tanker's 12.5 m
+    waterline turned hollow, convex, hollow in its last 0.9 m)."""
     from fairlines.hull import CLOSED_END_HALVED_SPANS as n
 
     hull = fl.design_hull(**SHIPS[name])
