@@ -203,7 +203,7 @@ void expect_refused_naming(const SectionSpec& s, const std::string& names) {
 
 TEST(Sections, BadNumbersNameTheField) {
   SectionSpec s = midship();
-  s.lower_angle = 85.0;
+  s.lower_angle = 89.5;  // kMaxLowerAngle 89
   expect_refused_naming(s, "lower_angle");
   for (double bad : {1.0, -0.1, std::numeric_limits<double>::quiet_NaN()}) {
     s = midship();

@@ -75,3 +75,29 @@ def test_no_run_without_a_dry_transom():
     assert wet._dry_transom_run() is None
     cruiser = fl.design_hull(lpp=120.0, breadth=20.0, draft=6.0, depth=9.6, cb=0.6, lcb=58.0, stern="cruiser")
     assert cruiser._dry_transom_run() is None
+
+
+def _section_height(hull, x: float, y: float) -> float:
+    """The lowest height (m) at which the designed section at x reaches half-breadth y."""
+    curve = hull.sections_at([x])[0]
+    knots = np.asarray(curve.knots)
+    pts = np.asarray(curve.evaluate(np.linspace(knots[0], knots[-1], 40001)))
+    i = np.flatnonzero(np.diff(np.sign(pts[:, 1] - y)))
+    t = (y - pts[i, 1]) / (pts[i + 1, 1] - pts[i, 1])
+    return float(np.min(pts[i, 2] + t * (pts[i + 1, 2] - pts[i, 2])))
+
+
+def test_dry_sections_meet_the_immersed_ones_where_a_flat_counter_crosses_T():
+    """Where the keel crosses T at a dry transom, the dry sections arrive at the keel at the
+    limit of the immersed sections' chord, atan of the waterline's slope over the keel's: here
+    84 deg. Capped at 75 deg, the family stepped there by 19 cm in these buttocks."""
+    p = dict(lpp=147.8, breadth=26.7, draft=8.03, depth=12.85, cb=0.80, lcb=68.5)  # bench_hull's hull 88, rounded
+    hull = fl.design_hull(**p)
+    dwl, profile = hull.basic_curves["dwl"], hull.basic_curves["profile"]
+    x_end, eps = dwl.x_start, 1e-3
+    assert np.degrees(np.arctan(dwl.derivative(x_end, 1) / -profile.derivative(x_end, 1))) > 80.0
+    for share in (0.1, 0.3, 0.6):
+        y = share * p["breadth"] / 2
+        across = _section_height(hull, x_end - eps, y) - _section_height(hull, x_end + eps, y)
+        beside = _section_height(hull, x_end - 2 * eps, y) - _section_height(hull, x_end - eps, y)
+        assert abs(across) < 2.0 * abs(beside) + 1e-4, (share, across, beside)

@@ -50,6 +50,9 @@ inline constexpr int kMaxSectionControls = 64;
 inline constexpr double kEndBand = 0.1;
 /// Largest value of the shape knob: the straight V (the bilge corner on the chord Q-K).
 inline constexpr double kMaxShapeKnob = 2.0;
+/// Largest |lower_angle| (deg) a section accepts: a dry section beyond a waterline's end
+/// continues the immersed ones' chord, which lies flatter the flatter the keel crosses T there.
+inline constexpr double kMaxLowerAngle = 89.0;
 
 /// One section's numbers (metres; angles in degrees).
 struct SectionSpec {

@@ -352,8 +352,8 @@ void validate(const SectionSpec& s, const std::string& at) {
     fail(at, ": corner_y is ", s.corner_y, "; expected a fraction of the waterline half-breadth in (0, 1]");
   if (!std::isnan(s.corner_z) && !(s.corner_z >= 0 && s.corner_z < 1))
     fail(at, ": corner_z is ", s.corner_z, "; expected a fraction of the immersed depth in [0, 1)");
-  if (!std::isnan(s.lower_angle) && !(s.lower_angle > -80 && s.lower_angle < 80))
-    fail(at, ": lower_angle is ", s.lower_angle, " deg; expected -80 < angle < 80");
+  if (!std::isnan(s.lower_angle) && !(s.lower_angle > -kMaxLowerAngle && s.lower_angle < kMaxLowerAngle))
+    fail(at, ": lower_angle is ", s.lower_angle, " deg; expected -", kMaxLowerAngle, " < angle < ", kMaxLowerAngle);
   validate_given(s.given, "given", at);
   validate_given(s.given_fore, "given_fore", at);
   if (s.given_fore.rows() > 0 && s.given.rows() == 0) fail(at, ": given_fore is set without given; expected given first");
