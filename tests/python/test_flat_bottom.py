@@ -68,21 +68,23 @@ def test_the_floor_is_at_least_half_the_flat_wide_just_above_the_keel(flat, plai
         assert x > 90.0 or widths[0] > widths[1], (x, widths)
 
 
-def test_the_flat_softens_the_lowest_waterlines_in_the_run(flat, plain):
-    """The 0.06 T and 0.12 T waterlines, which end on the keel's rise and then widen only as
-    the bilge fills, hold a hollow in the run: measured 24.3 and 15.3 deg without a flat, 17.0
-    and 10.6 deg with a flat of 0.3 B/2 over the parallel body; asked: at least a fifth less."""
-    for share in (0.06, 0.12):
-        z = share * CONTAINER["draft"]
-        assert _largest_aft_hollow(flat, z) < 0.8 * _largest_aft_hollow(plain, z), share
+def test_the_flat_softens_the_lowest_waterline_in_the_run(flat, plain):
+    """The 0.06 T waterline, which ends on the keel's rise and then widens as the bilge fills,
+    holds a hollow in the run: measured 12.8 deg without a flat, 9.1 deg with a flat of 0.3 B/2
+    over the parallel body (24.3 and 17.0 deg when the keel rose over 0.65 of the run); asked: at
+    least a fifth less. (At 0.12 T both are 1.8-2.0 deg, 15.3 and 10.6 before.)"""
+    z = 0.06 * CONTAINER["draft"]
+    assert _largest_aft_hollow(flat, z) < 0.8 * _largest_aft_hollow(plain, z)
 
 
-def test_the_low_buttocks_take_no_step_where_the_flat_starts(flat):
+def test_the_low_buttocks_take_no_step_where_the_flat_starts(flat, plain):
     """The flat fades in (value, slope and curvature 0) aft of the keel's flat: the buttocks at
-    0.1-0.5 B/2 turn no more than once each way (a flat starting where the keel meets the base
-    put a hollow of 0.3 deg into the lowest)."""
+    0.1-0.5 B/2 turn no more often than the same ship's without a flat (a flat starting where the
+    keel meets the base put a hollow of 0.3 deg into the lowest). Both turn three times: a
+    convex turn at the transom split by a hollow of 0.4-0.6 deg, then the run's one hollow."""
     for y in np.array([0.1, 0.25, 0.5]) * CONTAINER["breadth"] / 2:
-        assert judge_cut(fl.plane_cut(flat.bare_hull_surface(), 1, float(y), 601))["sign_changes"] <= 2, y
+        counts = [judge_cut(fl.plane_cut(h.bare_hull_surface(), 1, float(y), 601))["sign_changes"] for h in (flat, plain)]
+        assert counts[0] <= counts[1] <= 3, (y, counts)
 
 
 def _keel_crease(hull, x):
@@ -96,11 +98,11 @@ def _keel_crease(hull, x):
 
 
 def test_the_designers_default_flat_takes_the_crease_out_of_the_keel_in_the_run(default, plain):
-    """Without a flat the run's two halves meet at the keel at an angle (measured 10.4 and 4.0 deg
+    """Without a flat the run's two halves meet at the keel at an angle (measured 6.5 and 2.0 deg
     at 60 and 80 m, a crease zebra stripes break at); the designer's default flat meets the
-    centre plane level there (0.3 and 0.0 deg)."""
+    centre plane level there (0.2 and 0.0 deg)."""
     assert default.description.curves["flat_bottom"].value == FLAT_BOTTOM_DEFAULT
-    for x, was in ((60.0, 10.4), (80.0, 4.0)):
+    for x, was in ((60.0, 6.5), (80.0, 2.0)):
         assert _keel_crease(plain, x) > 0.75 * was, x
         assert abs(_keel_crease(default, x)) < 1.0, x
 

@@ -33,10 +33,9 @@ def _aft_wobbles(hull, z: float) -> list:
             if w["at"][0] - x.min() < AFT_END * lpp]
 
 
-#: Measured shortfalls: since the design waterline weighs its change of curvature
-#: (designer.DWL_E3), it still bends where it ends at the counter, and this ship's 1.23 T waterline
-#: took a wobble; over bench_fairness_space's 300 hulls such wobbles at the aft end fell 84 -> 59.
-SHORT = {"bulk 210 m": "a 0.81 deg lobe at x -3.07 m in the 1.23 T waterline, 0.9 m forward of the transom"}
+#: Measured shortfalls (none since the keel rises over 0.9 of the run; the 210 m bulk carrier's 1.23 T
+#: waterline had a 0.81 deg lobe at x -3.07 m before).
+SHORT: dict = {}
 
 
 @pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=SHORT[n])) if n in SHORT
@@ -90,7 +89,7 @@ def _section_height(hull, x: float, y: float) -> float:
 def test_dry_sections_meet_the_immersed_ones_where_a_flat_counter_crosses_T():
     """Where the keel crosses T at a dry transom, the dry sections arrive at the keel at the
     limit of the immersed sections' chord, atan of the waterline's slope over the keel's: here
-    84 deg. Capped at 75 deg, the family stepped there by 19 cm in these buttocks."""
+    over 80 deg. Capped at 75 deg, the family stepped there by 19 cm in these buttocks."""
     p = dict(lpp=147.8, breadth=26.7, draft=8.03, depth=12.85, cb=0.80, lcb=68.5)  # bench_hull's hull 88, rounded
     hull = fl.design_hull(**p)
     dwl, profile = hull.basic_curves["dwl"], hull.basic_curves["profile"]
@@ -98,6 +97,6 @@ def test_dry_sections_meet_the_immersed_ones_where_a_flat_counter_crosses_T():
     assert np.degrees(np.arctan(dwl.derivative(x_end, 1) / -profile.derivative(x_end, 1))) > 80.0
     for share in (0.1, 0.3, 0.6):
         y = share * p["breadth"] / 2
-        across = _section_height(hull, x_end - eps, y) - _section_height(hull, x_end + eps, y)
-        beside = _section_height(hull, x_end - 2 * eps, y) - _section_height(hull, x_end - eps, y)
-        assert abs(across) < 2.0 * abs(beside) + 1e-4, (share, across, beside)
+        z = [_section_height(hull, x_end + k * eps, y) for k in (-2, -1, 1, 2)]
+        step = (z[1] - z[2]) - (z[0] - z[1]) - (z[2] - z[3])  # across the end less a millimetre's change either side
+        assert abs(step) < 5e-4, (share, step)
