@@ -17,7 +17,7 @@ textbook defaults when left out (each named in the description's notes):
   widest (and to 0.5 B/2 when a fine ship's ends cannot hold its LCB with the wider one),
   upright unless transom_rake is given (deg, the top aft; ends.transom_rake); a stem raked
   20 deg above the waterline;
-* the keel rising aft from its flat over 0.65 of Holtrop and Mennen's run (over 0.4, then 0.25
+* the keel rising aft from its flat over 0.9 of Holtrop and Mennen's run (over 0.4, then 0.25
   of it when a full body's ends cannot hold its volume under a fine waterplane);
 * a flat of bottom (a straight floor from the keel) of FLAT_BOTTOM_DEFAULT of the waterline's
   half-breadth over the parallel body (at midships without one); none on a hull where any
