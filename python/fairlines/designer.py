@@ -66,7 +66,7 @@ FLAT_BOTTOM_FADE = 0.05     # ... and fades out at least this fraction of Lpp fo
 # The keel rises over this fraction of the run (Holtrop and Mennen's L_R). Over 0.65 of it the keel
 # reached the base well before the sections' bilges filled, and the lowest waterlines grew, slowed
 # where the keel landed and grew again (a hollow of 21 deg on average in the 0.06 T waterline's aft
-# half over bench_fairness_space's hulls 0-99; 13 deg at 0.9).
+# half over bench_fairness_space's hulls 0-99; 13.8 deg at 0.9).
 KEEL_RISE = 0.9
 MIN_KEEL_RISE, MAX_KEEL_RISE = 0.06, 0.3  # ... kept within these fractions of Lpp
 # A ship whose ends cannot hold its volume (a full body under a fine waterplane, Cb / Cwp over

@@ -129,7 +129,7 @@ DRY_TRANSOM_LEAN_BEND = 10.0
 # The dry sections' arrival angle is the immersed chord's limit, the ratio of the waterline's and
 # the keel's slopes where the waterline ends; it is capped only short of the sections' own limit
 # (kMaxLowerAngle, 89 deg). Capped at 75 deg, a full ship whose keel crosses T flatter than that
-# met its immersed sections with a step (19 cm in the 0.3 B/2 buttock of a Cb 0.80 ship; 17 of the
+# met its immersed sections with a step (19-20 cm in the buttocks of a Cb 0.80 ship; 17 of the
 # 73 dry transoms of bench_hull's first 100 hulls were over 75 deg).
 MAX_LOWER_ANGLE = 88.0
 # Recent hulls whose solved shape curves and fullness bands are kept (see _BuildCache).

@@ -598,7 +598,8 @@ STEM_TIP_SHORT = {
     ("container", 0.25): "a hollow of 0.28 deg and a convex lobe of 0.29 deg at x 245.2 and 245.5 m (z 13 m, 2 m above T), "
                          "the waterline's last 0.6 m over the stem",
 }
-TANKER_TIP_SHORT = {
+# The tanker's waterlines just above T: two at the stem (as above), one over the transom.
+TANKER_SHORT = {
     12.5: "over the transom: a convex lobe of 0.45 deg at x -0.8 m between hollows of 0.73 and 0.94 deg (x -4.5 and 2.0 m); "
           "since the keel rises over 0.9 of the run (designer.KEEL_RISE) this waterline runs nearly straight into the "
           "transom (one hollow of 7.1 deg before), and its ripple reads as a wobble",
@@ -721,7 +722,7 @@ def test_halving_the_spans_inside_an_end_at_either_end_and_when_the_end_is_no_st
     assert _halved_inside(np.array([0.0, 2.0, 7.8, 8.0]), 8.0, 11.0, 2, 1e-9, 0.5).tolist() == [0, 2, 4.9, 7.8, 8]
 
 
-@pytest.mark.parametrize("z", _cuts([11.9, 12.5, 13.0], TANKER_TIP_SHORT))
+@pytest.mark.parametrize("z", _cuts([11.9, 12.5, 13.0], TANKER_SHORT))
 def test_tanker_waterline_over_its_transom_has_no_wobble(tanker_surface, z):
     """No wobble and one hollow each way at most in a waterline just above the tanker's DWL (at
     13 m its transom's convex edge, its run's hollow, the body and the stem's hollow tip)."""
