@@ -22,6 +22,10 @@ __all__ = ["comb_spines", "fairness_figure", "sign_change_counts", "write_fairne
 
 #: The longest spine of a view, as a fraction of the view's larger extent.
 COMB_LENGTH = 0.06
+#: The view reaches this many comb lengths beyond the cuts: a spine longer than that (a
+#: waterline's tight round end at the keel, 15 times the others') runs out of the frame instead of
+#: shrinking every other comb to a line.
+VIEW_COMBS = 1.25
 #: Samples per cut and spines drawn per cut (every n-th sample).
 SAMPLES = 801
 SPINES = 160
@@ -109,12 +113,13 @@ def _draw_view(ax, kind: str, cuts: list, min_turn_deg: float) -> list:
     extent = float(np.max(np.ptp(allp, axis=0))) or 1.0
     kmax = max((float(np.percentile(np.abs(k), 99)) for k in ks), default=0.0)
     scale = COMB_LENGTH * extent / kmax if kmax > 0 else 0.0
-    judged = []
+    judged, tips = [], []
     for cut, p, k in zip(cuts, pts, ks):
         j = judge_cut(cut, min_turn_deg)
         judged.append(j)
         base, tip = comb_spines(p, k, scale)
         step = max(1, len(p) // SPINES)
+        tips.append(tip[::step])
         for b, t in zip(base[::step], tip[::step]):
             ax.plot((b[0], t[0]), (b[1], t[1]), color="0.65", lw=0.4)
         ax.plot(tip[::step, 0], tip[::step, 1], color="tab:orange", lw=0.6)
@@ -126,11 +131,23 @@ def _draw_view(ax, kind: str, cuts: list, min_turn_deg: float) -> list:
              "buttock": ("profile: buttocks", "x (m)", "z (m)"), "frame": ("body plan: frames", "y (m)", "z (m)")}
     label, hx, vy = names[kind]
     ax.set_title(f"{label} (comb {scale:.3g} m per 1/m)", fontsize=10)
+    _frame_view(ax, allp, tips, VIEW_COMBS * COMB_LENGTH * extent)
     ax.set_xlabel(hx)
     ax.set_ylabel(vy)
     ax.set_aspect("equal" if kind == "frame" else "auto")
     ax.grid(True, lw=0.3)
     return judged
+
+
+
+def _frame_view(ax, points: np.ndarray, tips: list, margin: float) -> None:
+    """Axis limits holding the cuts and their drawn spines' tips, each clipped at `margin` (m)
+    beyond the cuts' box."""
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    shown = np.vstack([points] + [np.clip(t, lo - margin, hi + margin) for t in tips])
+    pad = 0.02 * float(np.max(np.ptp(shown, axis=0)))
+    ax.set_xlim(shown[:, 0].min() - pad, shown[:, 0].max() + pad)
+    ax.set_ylim(shown[:, 1].min() - pad, shown[:, 1].max() + pad)
 
 
 def write_fairness_plot(surface, path, *, title: str = "", dpi: int = 100) -> dict:

@@ -1,11 +1,15 @@
 """Curvature combs: spine geometry against circles and lines, the plot of an analytic hull."""
 
+import pathlib
+
 import numpy as np
 import pytest
 
 import fairlines as fl
 from cad_fixtures import wigley_surface
 from fairlines.fairness_plot import comb_spines, write_fairness_plot
+
+EXAMPLE = pathlib.Path(__file__).resolve().parents[2] / "examples" / "container_ship.json"
 
 
 def test_comb_spines_of_a_circle_point_away_from_its_centre():
@@ -56,3 +60,18 @@ def test_command_line_refuses_a_missing_description(tmp_path, capsys):
 
     assert main(["fairness", str(tmp_path / "none.json"), "-o", str(tmp_path / "c.png")]) == 2
     assert "none.json" in capsys.readouterr().err
+
+
+def test_a_tight_round_end_does_not_shrink_the_other_combs():
+    """The example's lowest plotted waterline starts at the keel with a round end of curvature
+    0.46 1/m, 15 times its view's 99th percentile: its spines run out of the frame, and the view
+    stays within VIEW_COMBS comb lengths of the cuts (its y axis reached 175 m for a half-breadth
+    of 16 m)."""
+    from fairlines.fairness_plot import COMB_LENGTH, VIEW_COMBS, fairness_figure
+
+    surface = fl.Hull.from_json(EXAMPLE.read_text()).bare_hull_surface()
+    fig, _ = fairness_figure(surface)
+    ax = next(a for a in fig.axes if a.get_title().startswith("half-breadth plan"))
+    margin = 1.5 * VIEW_COMBS * COMB_LENGTH * 260.0  # 260 m: the waterlines' extent in x; 1.5: the view's pad
+    assert ax.get_ylim()[1] < 16.125 + margin
+    assert ax.get_ylim()[0] > -margin
