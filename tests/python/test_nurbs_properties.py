@@ -89,6 +89,7 @@ def test_evaluate_and_evaluate_grid_agree(seed, pu, pv, extra, rational):
 @given(seeds, degrees, extras, st.booleans())
 @example(seed=985442, degree=1, extra=7, rational=True)  # a step over a knot led to another span
 @example(seed=3509311516, degree=1, extra=5, rational=True)  # Newton clamped on its span's end
+@example(seed=26677588, degree=5, extra=0, rational=True)  # two minima in one span; the nearest sample in the worse's basin
 def test_curve_closest_point_is_no_farther_than_a_dense_sample(seed, degree, extra, rational):
     c, rng = random_curve(seed, degree, extra, rational)
     p = rng.normal(size=3) * 2

@@ -190,33 +190,37 @@ std::pair<double, Eigen::VectorXd> NurbsCurve::closest_point(const Eigen::Vector
     const Eigen::VectorXd tv = Eigen::VectorXd::LinSpaced(per_span + 1, lo, hi);
     const Eigen::MatrixXd pts = evaluate(tv);
     const Eigen::VectorXd pts_d2 = (pts.rowwise() - p.transpose()).rowwise().squaredNorm();
-    Eigen::Index k = 0;
-    pts_d2.minCoeff(&k);
-    // Newton from the nearest sample may stall, oscillate or stop on the span's end where it was
-    // clamped: Newton also polishes the golden-section minimum of the samples' bracket around
-    // it, and the nearer of the two answers is kept.
-    const double tg = golden_minimum(dist2, tv[std::max<Eigen::Index>(k - 1, 0)],
-                                     tv[std::min<Eigen::Index>(k + 1, per_span)], kClosestGoldenSteps);
-    for (double t : {tv[k], tg}) {
-      for (int it = 0; it < kClosestNewtonSteps; ++it) {
-        const Eigen::MatrixXd D = derivatives(t, 2);
-        const Eigen::VectorXd r = D.row(0).transpose() - p;
-        const double f = D.row(1).dot(r);
-        const double df = D.row(2).dot(r) + D.row(1).squaredNorm();
-        if (!(df > 0.0)) break;  // negative curvature of the distance: keep the start
-        const double tn = std::clamp(t - f / df, lo, hi);
-        const double step = std::abs(tn - t) * D.row(1).norm();
-        t = tn;
-        // Converged when the step moves the point by less than this relative tolerance.
-        if (step < 1e-15 * scale) break;
+    // Every sample nearer than its neighbours starts a search: a span may hold two local minima
+    // of nearly the same distance, and the nearest sample may lie in the worse one's basin (a
+    // rational quintic: 4.413 m found against 4.407 m).
+    for (Eigen::Index k = 0; k <= per_span; ++k) {
+      if ((k > 0 && pts_d2[k] > pts_d2[k - 1]) || (k < per_span && pts_d2[k] > pts_d2[k + 1])) continue;
+      // Newton from the sample may stall, oscillate or stop on the span's end where it was
+      // clamped: Newton also polishes the golden-section minimum of the samples' bracket around
+      // it, and the nearer of the two answers is kept.
+      const double tg = golden_minimum(dist2, tv[std::max<Eigen::Index>(k - 1, 0)],
+                                       tv[std::min<Eigen::Index>(k + 1, per_span)], kClosestGoldenSteps);
+      for (double t : {tv[k], tg}) {
+        for (int it = 0; it < kClosestNewtonSteps; ++it) {
+          const Eigen::MatrixXd D = derivatives(t, 2);
+          const Eigen::VectorXd r = D.row(0).transpose() - p;
+          const double f = D.row(1).dot(r);
+          const double df = D.row(2).dot(r) + D.row(1).squaredNorm();
+          if (!(df > 0.0)) break;  // negative curvature of the distance: keep the start
+          const double tn = std::clamp(t - f / df, lo, hi);
+          const double step = std::abs(tn - t) * D.row(1).norm();
+          t = tn;
+          // Converged when the step moves the point by less than this relative tolerance.
+          if (step < 1e-15 * scale) break;
+        }
+        const double d = dist2(t);
+        if (d < best_d) best_d = d, best_t = t;
       }
-      const double d = dist2(t);
-      if (d < best_d) best_d = d, best_t = t;
+      // Where Newton wandered off from both starts, the bracket's own minimum (to within the
+      // golden search's resolution) is kept; a mere round-off difference does not replace Newton's.
+      const double dg = dist2(tg);
+      if (dg < best_d * (1.0 - kClosestTieRelative)) best_d = dg, best_t = tg;
     }
-    // Where Newton wandered off from both starts, the bracket's own minimum (to within the
-    // golden search's resolution) is kept; a mere round-off difference does not replace Newton's.
-    const double dg = dist2(tg);
-    if (dg < best_d * (1.0 - kClosestTieRelative)) best_d = dg, best_t = tg;
   }
   return {best_t, evaluate(best_t)};
 }
