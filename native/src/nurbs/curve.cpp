@@ -177,12 +177,28 @@ constexpr double kClosestTieRelative = 1e-12;
 std::pair<double, Eigen::VectorXd> NurbsCurve::closest_point(const Eigen::VectorXd& p) const {
   if (p.size() != dim()) fail("point has ", p.size(), " coordinates; expected ", dim());
   detail::require_finite(p, "point");
-  // Every non-empty knot span is searched from its nearest sample, and the search stays in the
+  // Every non-empty knot span is searched from its samples' local minima, and the search stays in the
   // span: across a knot the curve may turn (a C0 corner of a degree-1 or repeated-knot curve),
   // and a rational curve's samples may bunch so that another span's samples all lie nearer.
   const int per_span = 4 * (degree_ + 1);
   const double scale = std::max(1.0, (points_.colwise().maxCoeff() - points_.colwise().minCoeff()).norm());
   auto dist2 = [&](double t) { return (evaluate(t) - p).squaredNorm(); };
+  // Newton on the distance's slope from `t`, kept within [lo, hi].
+  auto newton = [&](double t, double lo, double hi) {
+    for (int it = 0; it < kClosestNewtonSteps; ++it) {
+      const Eigen::MatrixXd D = derivatives(t, 2);
+      const Eigen::VectorXd r = D.row(0).transpose() - p;
+      const double f = D.row(1).dot(r);
+      const double df = D.row(2).dot(r) + D.row(1).squaredNorm();
+      if (!(df > 0.0)) break;  // negative curvature of the distance: keep the start
+      const double tn = std::clamp(t - f / df, lo, hi);
+      const double step = std::abs(tn - t) * D.row(1).norm();
+      t = tn;
+      // Converged when the step moves the point by less than this relative tolerance.
+      if (step < 1e-15 * scale) break;
+    }
+    return t;
+  };
   double best_t = domain().first, best_d = dist2(best_t);
   for (int i = degree_; i < n_control(); ++i) {
     const double lo = knots_[i], hi = knots_[i + 1];
@@ -200,19 +216,8 @@ std::pair<double, Eigen::VectorXd> NurbsCurve::closest_point(const Eigen::Vector
       // it, and the nearer of the two answers is kept.
       const double tg = golden_minimum(dist2, tv[std::max<Eigen::Index>(k - 1, 0)],
                                        tv[std::min<Eigen::Index>(k + 1, per_span)], kClosestGoldenSteps);
-      for (double t : {tv[k], tg}) {
-        for (int it = 0; it < kClosestNewtonSteps; ++it) {
-          const Eigen::MatrixXd D = derivatives(t, 2);
-          const Eigen::VectorXd r = D.row(0).transpose() - p;
-          const double f = D.row(1).dot(r);
-          const double df = D.row(2).dot(r) + D.row(1).squaredNorm();
-          if (!(df > 0.0)) break;  // negative curvature of the distance: keep the start
-          const double tn = std::clamp(t - f / df, lo, hi);
-          const double step = std::abs(tn - t) * D.row(1).norm();
-          t = tn;
-          // Converged when the step moves the point by less than this relative tolerance.
-          if (step < 1e-15 * scale) break;
-        }
+      for (const double start : {tv[k], tg}) {
+        const double t = newton(start, lo, hi);
         const double d = dist2(t);
         if (d < best_d) best_d = d, best_t = t;
       }
