@@ -59,8 +59,10 @@ def test_particulars_are_met_on_the_surface(ship):
 
 # A section whose waterline point lies on B/2 meets it only as closely as its spline can pass
 # through a point on its bound below a flat of side: 1.67 mm on the fine ferry's widest station
-# (of 17 m) with the sections as designed, 1.84 mm with the station mean's basic curves.
-BREADTH_REACH_TOL = 1.5e-4  # of B
+# (of 17 m) with the sections as designed, 1.84 mm with the station mean's basic curves; 2.22 mm
+# before the bilge arc's fine weight fell from 0.7 to 0.5, 2.66 mm since: the arc's curvature at Q
+# grows as 1 / w^2, and a spline clamped to B/2 follows it less closely.
+BREADTH_REACH_TOL = 2e-4  # of B
 
 
 def test_the_waterline_reaches_the_breadth(ship):
@@ -745,10 +747,10 @@ def test_sections_change_smoothly_along_the_run():
 #: Buttocks the designer does not yet draw without a step, with what was measured.
 _ABOVE_T = ("a hollow of {:.2f} deg at x {:.1f} m, z {:.1f} m, just above T, between the transom's convex turn and the "
             "run's: since the keel rises over 0.9 of the run (designer.KEEL_RISE) these buttocks cross T at a shallower "
-            "angle and pick up the sections' change there (one sign change each before: a convex turn of 6.9, 8.7 and 12.3 deg at y 2, 6 and 10 m)")
-STEPPED_BUTTOCKS = {2.0: _ABOVE_T.format(0.41, -2.7, 11.6), 4.0: _ABOVE_T.format(0.36, 2.8, 11.2),
-                    6.0: _ABOVE_T.format(0.30, 6.6, 11.2), 8.0: _ABOVE_T.format(0.59, 10.4, 11.4),
-                    10.0: _ABOVE_T.format(0.74, 15.0, 11.5), 12.0: _ABOVE_T.format(0.14, 19.7, 11.9)}
+            "angle and pick up the sections' change there (one sign change each before: a convex turn of 6.9 and 8.7 deg "
+            "at y 2 and 6 m); the y 10 and 12 m buttocks lost theirs (0.74 and 0.14 deg) with the bilge's fine weight 0.5")
+STEPPED_BUTTOCKS = {2.0: _ABOVE_T.format(0.42, -2.3, 11.5), 4.0: _ABOVE_T.format(0.35, 2.8, 11.2),
+                    6.0: _ABOVE_T.format(0.28, 7.2, 11.1), 8.0: _ABOVE_T.format(0.65, 11.0, 11.2)}
 
 
 @pytest.mark.parametrize("y", _cuts(np.linspace(2.0, 14.0, 7), STEPPED_BUTTOCKS))
@@ -756,8 +758,8 @@ def test_buttock_has_no_steps(example_surface, y):
     """At most two sign changes. The outermost (y 14 m) turned back by 0.94 deg where it leaves
     the bilge aft (x 53-66 m) until the design waterline weighed its change of curvature
     (designer.DWL_E3), and by 0.49 deg at x 59 m with the designer's default flat of bottom until
-    the keel rose over 0.9 of the run (designer.KEEL_RISE); the others now turn back just above T
-    (STEPPED_BUTTOCKS)."""
+    the keel rose over 0.9 of the run (designer.KEEL_RISE); y 10 and 12 m turned back just above T
+    until the bilge's fine weight fell from 0.7 to 0.5, the others still do (STEPPED_BUTTOCKS)."""
     assert _sign_changes(example_surface, 1, y) <= 2
 
 

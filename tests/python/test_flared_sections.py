@@ -17,9 +17,14 @@ from fairlines.fairness import judge_cut
 #: convex section, a deck much wider than the waterline over an area well above the V's, the
 #: inflection stays at the waterline: the same ships' frames at 5 % Lpp, convex by 7-10 deg below
 #: T and hollow by as much above it, moved from 1.002 T to 0.996-1.000 T.)
+#: The 259 m ship (the first 300 of that sample's hull 19) flared hollow above T at 20 % Lpp (1.4
+#: deg from T to the deck, fullness 0.72) when the bilge arc's fine weight fell to 0.5 with the
+#: corner's least breadth asking the conic for 0.45 of the polygon's excess (kCornerConicShare;
+#: 0.6 now): its corner stayed out at 0.75 b, inboard of the flare's.
 SHIPS = {
     "fine 193 m": (dict(lpp=193.277, breadth=33.334, draft=10.326, depth=16.522, cb=0.624, lcb=99.23), 0.10),
     "slender 125 m": (dict(lpp=124.511, breadth=14.343, draft=3.513, depth=5.621, cb=0.62, lcb=62.665), 0.10),
+    "fine 259 m": (dict(lpp=258.829, breadth=39.981, draft=14.769, depth=23.63, cb=0.5605, lcb=133.079), 0.20),
 }
 
 

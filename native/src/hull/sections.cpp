@@ -58,7 +58,10 @@ constexpr double kFilletNear = 0.105, kFilletFar = 0.611;
 /// the heading M as (lambda / kMaxShapeKnob)^kLeanPower: the bilge rounds first and leans later.
 /// Both motions move every point of the arc inward, so the half-breadth at any height falls
 /// strictly as lambda grows (no plateau, no shoulder-hollow-shoulder along a waterline).
-constexpr double kFullWeight = 60.0, kFineWeight = 0.7, kLeanPower = 3.0;
+/// A fine weight of 0.5, not 0.7: a section of given area then sits at a smaller lambda, its
+/// corner leaning less, and the run's buttocks no longer turned back just above T (bench_hull's
+/// first 300 hulls: 2.07 -> 1.89 sign changes a buttock; 0.7 -> 1.0 made it 2.27).
+constexpr double kFullWeight = 60.0, kFineWeight = 0.5, kLeanPower = 3.0;
 /// With the bilge corner given (corner_y, corner_z) the weight alone falls over the knob's
 /// range, from kFullWeight to this (a near chord: hollow corners need weights below 1).
 constexpr double kCornerFineWeight = 0.2;
@@ -124,9 +127,12 @@ constexpr double kFlareMargin = 1.05;
 /// kLeastCornerShare of b; least_corner_breadth), so a fine, flared section forward of a dry
 /// transom can lean as its flare asks. A share, not a margin of fullness: a fixed margin (0.25)
 /// held the corners of sections a little finer than their flare's bound upright, and they
-/// flared hollow above T (measured in docs/sections.md).
+/// flared hollow above T (measured in docs/sections.md). The share is 0.6, not 0.45: with the
+/// fine weight 0.5 a share of 0.45 kept the corners of fine aft sections (fullness about 0.72)
+/// out at 0.75 b, inboard of their flare's, and their topsides turned hollow (S frames above T
+/// on 18 of 300 hulls, 5 now).
 constexpr double kMinCornerBreadth = 0.75;
-constexpr double kCornerConicShare = 0.45, kLeastCornerShare = 0.1;
+constexpr double kCornerConicShare = 0.6, kLeastCornerShare = 0.1;
 /// ... reached smoothly: the two corners are blended where their ratio lies within e^kCornerBlend
 /// (narrow enough that the blended corner stays inside the waterline point: 0.75 e^0.25 < 1).
 constexpr double kCornerBlend = 0.25;
