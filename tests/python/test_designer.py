@@ -597,17 +597,22 @@ WOBBLY_WATERLINES: dict = {}
 # and a waterline just above T takes a sub-degree wobble in its last metre. Kept for what DWL_E3 gives
 # over bench_fairness_space's 300 hulls: S frames above T on 19 -> 6 hulls, frame inflections 210 -> 151.
 STEM_TIP_SHORT = {
-    ("container", 0.25): "a hollow of 0.28 deg and a convex lobe of 0.29 deg at x 245.2 and 245.5 m (z 13 m, 2 m above T), "
+    ("container", 0.25): "a hollow of 0.27 deg and a convex lobe of 0.29 deg at x 245.2 and 245.5 m (z 13 m, 2 m above T), "
                          "the waterline's last 0.6 m over the stem",
 }
 # The tanker's waterlines just above T: two at the stem (as above), one over the transom.
 TANKER_SHORT = {
-    12.5: "over the transom: a convex lobe of 0.45 deg at x -0.8 m between hollows of 0.73 and 0.94 deg (x -4.5 and 2.0 m); "
+    12.5: "over the transom: a convex lobe of 0.48 deg at x -0.8 m between hollows of 0.69 and 1.13 deg (x -4.5 and 2.0 m); "
           "since the keel rises over 0.9 of the run (designer.KEEL_RISE) this waterline runs nearly straight into the "
-          "transom (one hollow of 7.1 deg before), and its ripple reads as a wobble",
-    11.9: "a hollow lobe of 0.39 deg at x 179.8 m, 0.3 m aft of the stem (0.17 deg at x 179.2 m before the last "
-          "two station spans aft of the FP were halved, hull.CLOSED_END_HALVED_SPANS)",
-    13.0: "a hollow of 0.25 deg and a convex lobe of 0.12 deg at x 179.8 and 180.1 m, the last 0.7 m",
+          "transom (one hollow of 7.1 deg before), and its ripple reads as a wobble (0.45 between 0.73 and 0.94 deg "
+          "with the bilge's fine weight 0.7)",
+    11.9: "a hollow lobe of 0.36 deg at x 179.8 m, 0.3 m aft of the stem (0.17 deg at x 179.2 m before the last "
+          "two station spans aft of the FP were halved, hull.CLOSED_END_HALVED_SPANS); and since the bilge's fine "
+          "weight is 0.5 (0.7 before), over the transom a convex lobe of 0.39 deg at x -0.1 m between hollows of 0.10 "
+          "and 0.19 deg",
+    13.0: "a hollow of 0.18 deg and a convex lobe of 0.15 deg at x 179.8 and 180.1 m, the last 0.7 m; and since the "
+          "bilge's fine weight is 0.5 (0.7 before), over the transom a convex lobe of 0.11 deg at x -0.8 m between "
+          "hollows of 0.47 and 1.65 deg",
 }
 
 
