@@ -602,17 +602,17 @@ STEM_TIP_SHORT = {
 }
 # The tanker's waterlines just above T: two at the stem (as above), one over the transom.
 TANKER_SHORT = {
-    12.5: "over the transom: a convex lobe of 0.48 deg at x -0.8 m between hollows of 0.69 and 1.13 deg (x -4.5 and 2.0 m); "
+    12.5: "over the transom: a convex lobe of 0.60 deg at x -0.8 m between hollows of 0.83 and 1.02 deg (x -4.5 and 2.0 m); "
           "since the keel rises over 0.9 of the run (designer.KEEL_RISE) this waterline runs nearly straight into the "
           "transom (one hollow of 7.1 deg before), and its ripple reads as a wobble (0.45 between 0.73 and 0.94 deg "
-          "with the bilge's fine weight 0.7)",
+          "with the bilge's fine weight 0.7, 0.48 between 0.69 and 1.13 with 0.5 and the transom's run of 3 % Lpp)",
     11.9: "a hollow lobe of 0.36 deg at x 179.8 m, 0.3 m aft of the stem (0.17 deg at x 179.2 m before the last "
           "two station spans aft of the FP were halved, hull.CLOSED_END_HALVED_SPANS); and since the bilge's fine "
           "weight is 0.5 (0.7 before), over the transom a convex lobe of 0.39 deg at x -0.1 m between hollows of 0.10 "
-          "and 0.19 deg",
+          "and 0.27 deg",
     13.0: "a hollow of 0.18 deg and a convex lobe of 0.15 deg at x 179.8 and 180.1 m, the last 0.7 m; and since the "
-          "bilge's fine weight is 0.5 (0.7 before), over the transom a convex lobe of 0.11 deg at x -0.8 m between "
-          "hollows of 0.47 and 1.65 deg",
+          "bilge's fine weight is 0.5 (0.7 before), over the transom a convex lobe of 0.45 deg at x -0.8 m between "
+          "hollows of 0.86 and 1.17 deg (0.11 with the transom's run of 3 % Lpp, transom_run.RUN_LENGTH)",
 }
 
 
