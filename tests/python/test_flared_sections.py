@@ -17,7 +17,7 @@ from fairlines.fairness import judge_cut
 #: convex section, a deck much wider than the waterline over an area well above the V's, the
 #: inflection stays at the waterline: the same ships' frames at 5 % Lpp, convex by 7-10 deg below
 #: T and hollow by as much above it, moved from 1.002 T to 0.996-1.000 T.)
-#: The 259 m ship (the first 300 of that sample's hull 19) flared hollow above T at 20 % Lpp (1.4
+#: The 259 m ship (hull 19 of that sample drawn 300 long) flared hollow above T at 20 % Lpp (1.4
 #: deg from T to the deck, fullness 0.72) when the bilge arc's fine weight fell to 0.5 with the
 #: corner's least breadth asking the conic for 0.45 of the polygon's excess (kCornerConicShare;
 #: 0.6 now): its corner stayed out at 0.75 b, inboard of the flare's.
