@@ -139,7 +139,6 @@ def _draw_view(ax, kind: str, cuts: list, min_turn_deg: float) -> list:
     return judged
 
 
-
 def _frame_view(ax, points: np.ndarray, tips: list, margin: float) -> None:
     """Axis limits holding the cuts and their drawn spines' tips, each clipped at `margin` (m)
     beyond the cuts' box."""
