@@ -102,8 +102,18 @@ constexpr double kVeeExcessFade = 0.01;
 constexpr int kAreaGauss = 4;
 /// The correction that puts the spline through Q: weight of a straight stretch of the spline
 /// against a curved one (flats keep their plane), the curvature scale (fraction of the chord)
-/// below which a stretch counts as straight, and the weight of the correction's smoothness.
-constexpr double kFlatGuard = 1e4, kStraightScale = 1e-5, kCorrectionSmoothing = 1.0;
+/// below which a stretch counts as straight, and the weight of the correction's smoothness. The
+/// smoothness weighs 2, not 1: the spline, sampling its template, misses Q by millimetres near
+/// the stem (1-1.5 cm of correction at the last stations of bench_hull's hulls 37 and 66) and by
+/// up to 10 cm where the bilge turns just under Q (a run's section whose side the top's room holds
+/// steep: 20 cm of correction at 3-5 % Lpp on its second hull), and a correction of weight 1 put
+/// it back as a bump over the three or four control points under Q, which the waterlines crossing
+/// it took as wobbles, most at the stem's tip. Measured (bench_fairness_space's reading, hulls
+/// 0-299 / 300-599): upper waterlines clean 791 -> 804 / 792 -> 808 of 900, the stem tip's
+/// wobbles 61 -> 45 / 60 -> 39, hulls meeting every mark 71 -> 72 / 65 -> 68, sign changes a
+/// buttock 1.895 -> 1.902 / 1.960 -> 1.964. Weight 3 cleared more (807 / 814, all marks 73 / 72)
+/// but the example's buttock at y = 10 m took back a hollow of 0.78 deg just above T.
+constexpr double kFlatGuard = 1e4, kStraightScale = 1e-5, kCorrectionSmoothing = 2.0;
 /// ... and the correction stays near Q: its weight grows as the fourth power of the distance
 /// from Q beyond this many knot spans.
 constexpr double kCorrectionReach = 3.0;
