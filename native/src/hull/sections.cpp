@@ -104,7 +104,7 @@ constexpr int kAreaGauss = 4;
 /// against a curved one (flats keep their plane), the curvature scale (fraction of the chord)
 /// below which a stretch counts as straight, and the weight of the correction's smoothness. The
 /// smoothness weighs 2, not 1: the spline, sampling its template, misses Q by millimetres near
-/// the stem (1-1.5 cm of correction at the last stations of bench_hull's hulls 37 and 66) and by
+/// the stem (1-9 mm at the last stations of bench_hull's hulls 37 and 66) and by
 /// up to 10 cm where the bilge turns just under Q (a run's section whose side the top's room holds
 /// steep: 20 cm of correction at 3-5 % Lpp on its second hull), and a correction of weight 1 put
 /// it back as a bump over the three or four control points under Q, which the waterlines crossing
