@@ -831,3 +831,23 @@ def test_composed_hull_uses_the_blend_placement_the_designer_found():
                                 **hull.description.bulb.kracht, **hull.description.bulb.shape))
     assert np.array_equal(np.asarray(composed.mesh.vertices), np.asarray(afresh.mesh.vertices))
     assert composed.blend_note == afresh.blend_note
+
+
+#: Ships of bench_hull's sample (hulls 37 and 127) whose waterline just under T took wobbles at the
+#: stem's tip from the correction through the waterline point (sections.cpp, kCorrectionSmoothing 1:
+#: a hollow and a convex lobe within 1.5 % Lpp of the fore end, 0.13 / 0.92 and 0.12 / 0.66 deg; none with 2).
+TIP_SHIPS = {"217 m, Cb 0.64": dict(lpp=216.9472, breadth=24.9964, draft=10.3722, depth=16.5954, cb=0.6375, lcb=113.7989),
+             "137 m, Cb 0.80": dict(lpp=137.0296, breadth=15.3594, draft=3.8063, depth=6.0901, cb=0.7995, lcb=66.4204)}
+
+
+@pytest.mark.parametrize("name", TIP_SHIPS)
+def test_waterline_under_t_runs_into_the_stem_without_a_wobble(name):
+    """The waterline at 0.985 T, read as a lines plan (fairlines.fairness.read_waterline), has no
+    wobble within 1.5 % Lpp of its fore end."""
+    from fairlines.fairness import read_waterline
+
+    p = TIP_SHIPS[name]
+    cut = fl.plane_cut(fl.design_hull(**p).bare_hull_surface(), 2, 0.985 * p["draft"], 401)
+    x_fore = np.asarray(cut.points)[:, 0].max()
+    tip = [w for w in read_waterline(cut)["wobbles"] if x_fore - w["at"][0] < 0.015 * p["lpp"]]
+    assert not tip, [(round(w["turn_deg"], 2), w["sign"], round(w["at"][0], 2)) for w in tip]

@@ -104,9 +104,9 @@ constexpr int kAreaGauss = 4;
 /// against a curved one (flats keep their plane), the curvature scale (fraction of the chord)
 /// below which a stretch counts as straight, and the weight of the correction's smoothness. The
 /// smoothness weighs 2, not 1: the spline, sampling its template, misses Q by millimetres near
-/// the stem (1-9 mm at the last stations of bench_hull's hulls 37 and 66) and by
-/// up to 10 cm where the bilge turns just under Q (a run's section whose side the top's room holds
-/// steep: 20 cm of correction at 3-5 % Lpp on its second hull), and a correction of weight 1 put
+/// the stem (1-9 mm at the last stations of bench_hull's hulls 37 and 66) and by up to 10 cm
+/// where the bilge turns just under Q (a run's section whose side the top's room holds steep:
+/// 20 cm of correction at 3-5 % Lpp on its second hull), and a correction of weight 1 put
 /// it back as a bump over the three or four control points under Q, which the waterlines crossing
 /// it took as wobbles, most at the stem's tip. Measured (bench_fairness_space's reading, hulls
 /// 0-299 / 300-599): upper waterlines clean 791 -> 804 / 792 -> 808 of 900, the stem tip's
