@@ -52,6 +52,15 @@ constexpr int kDegree = 3;
 /// to 3e-4 of its radius, and it leaves both legs with zero curvature (three control points in
 /// line), so a straight part and a fillet join with continuous curvature.
 constexpr double kFilletNear = 0.105, kFilletFar = 0.611;
+/// The topside fillet (deck point to Q; a dry section's deck point to its keel) holds its middle
+/// control points nearer its corner Y: it turns more about Y and less just above the waterline,
+/// where a run's fine sections under a flared top turned most and the buttocks crossing T took a
+/// hollow. bench_fairness_space's reading by hand, hulls 0-299 / held-out 300-599, 0.611 -> 0.68:
+/// upper waterlines clean 812 -> 826 / 813 -> 816 of 900 (stem-tip wobbles 37 -> 34 / 30 -> 21),
+/// waterlines over two sign changes 175 -> 171 / 185 -> 180, sign changes a buttock 1.82 -> 1.80 /
+/// 1.86 -> 1.85; the cost: S frames above T on 6 -> 8 / 8 -> 10 hulls. 0.7 read alike but left the
+/// example's mesh a quad of 0.29 m among 1 m ones at x 45 m (docs/sections.md); 0.8: buttocks 1.96.
+constexpr double kTopFilletFar = 0.68;
 /// Below the waterline the section is one conic arc Q -> X -> K. Its middle weight falls
 /// geometrically from kFullWeight (lambda 0: the arc hugs the box corner, fullness about 0.997)
 /// to kFineWeight (lambda kMaxShapeKnob), while the corner X leans from the box corner C toward
@@ -301,10 +310,11 @@ Piece conic(const V2& A, const V2& X, const V2& B, double w) {
   return pc;
 }
 
-/// The fillet from A to B with corner X (A and B on the legs X-A and X-B).
-Piece fillet(const V2& A, const V2& X, const V2& B) {
+/// The fillet from A to B with corner X (A and B on the legs X-A and X-B), its middle control
+/// points at `far` of each leg.
+Piece fillet(const V2& A, const V2& X, const V2& B, double far = kFilletFar) {
   Piece pc;
-  pc.p = {A, A + kFilletNear * (X - A), A + kFilletFar * (X - A), B + kFilletFar * (X - B), B + kFilletNear * (X - B), B};
+  pc.p = {A, A + kFilletNear * (X - A), A + far * (X - A), B + far * (X - B), B + kFilletNear * (X - B), B};
   return pc;
 }
 
@@ -570,7 +580,7 @@ std::vector<Piece> immersed_template(const Section& S, double lambda, double fla
   const double l1 = (X - Q).norm();
   const V2 tw = l1 > 0 ? V2((X - Q) / l1) : V2((K - Q).normalized());
   const V2 Y = Q - s.top_corner * (D - Q).norm() * tw;
-  Piece top = fillet(D, Y, Q);
+  Piece top = fillet(D, Y, Q, kTopFilletFar);
   const Piece bilge = conic(Q, X, end, w);
   match_bilge_curvature(top, bilge);
   std::vector<Piece> pieces{top, bilge};
@@ -627,7 +637,7 @@ std::vector<Piece> above_template(const Section& S) {
   const V2 up(std::sin(a), std::cos(a));
   const V2 Qv = virtual_q ? virtual_point(a) : S.K;
   const V2 Y = Qv + s.top_corner * (S.f.D - Qv).norm() * up;
-  return {fillet(S.f.D, Y, Qv)};
+  return {fillet(S.f.D, Y, Qv, kTopFilletFar)};
 }
 
 /// The template ordinates at the Greville abscissae (the spline's control ordinates). Throws
@@ -720,9 +730,9 @@ Eigen::RowVectorXd point_row(const Section& S, double t) { return basis_row(S.l.
 /// the section is clamped to B/2 where a given bilge corner leans its top out).
 double knob_limit(const Section& S) {
   if (!std::isnan(S.s.corner_y)) return kMaxShapeKnob;  // a given corner fixes the top: the knob moves the weight only
-  auto corner_y = [&](double lam) {  // the top fillet's third control point lies at kFilletFar from D toward Y
+  auto corner_y = [&](double lam) {  // the top fillet's third control point lies at kTopFilletFar from D toward Y
     const Piece top = immersed_template(S, lam)[0];
-    return (top.p[0] + (top.p[2] - top.p[0]) / kFilletFar).x();
+    return (top.p[0] + (top.p[2] - top.p[0]) / kTopFilletFar).x();
   };
   const double ymax = S.s.y_max * (1.0 + 1e-12);
   if (corner_y(kMaxShapeKnob) <= ymax) return kMaxShapeKnob;
