@@ -126,7 +126,7 @@ SKIN_AFT_END = "not_a_knot"
 # curvature at T) and the buttocks crossing T took a hollow there. bench_fairness_space's reading
 # by hand, hulls 0-299 / held-out 300-599, 0.5 -> 0.55: sign changes a buttock 1.90 -> 1.82 /
 # 1.96 -> 1.86, hulls meeting every mark 72 -> 78 / 68 -> 78. 0.6: buttocks alike, every mark 73 /
-# 66 (the upper waterlines' aft ends wobble); 0.65: 48 / -.
+# 66 (the upper waterlines' aft ends wobble); 0.65: 48 (hulls 0-299).
 TOP_CORNER = 0.55
 PROFILE_SPANS = (30, 60, 120)  # knot spans of the profile, tried in turn
 # The design waterline's fairness weighs its change of curvature too (basic curve e3): with the
