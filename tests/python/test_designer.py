@@ -601,7 +601,8 @@ STEM_TIP_SHORT = {
                          "the waterline's last 0.6 m over the stem (0.28 and 0.29 with the top corner at 0.5 of the "
                          "freeboard and the top fillet's kFilletFar, designer.TOP_CORNER, sections.cpp kTopFilletFar)",
 }
-# The tanker's waterlines just above T: two at the stem (as above), one over the transom.
+# The tanker's waterlines just above T: one at the stem (11.9 m, as above; 13 m's stem tip is clean since
+# kTopFilletFar), all three over the transom.
 TANKER_SHORT = {
     12.5: "over the transom: a convex lobe of 0.53 deg at x -0.8 m between hollows of 1.19 and 0.99 deg (x -4.5 and 2.0 m; "
           "0.60 between 0.83 and 1.02 with the top corner at 0.5 of the freeboard and the top fillet's kFilletFar, "
