@@ -149,8 +149,11 @@ constexpr double kFlareMargin = 1.05;
 /// flared hollow above T (measured in docs/sections.md). The share is 0.6, not 0.45: with the
 /// fine weight 0.5 a share of 0.45 kept the corners of fine aft sections (fullness about 0.72)
 /// out at 0.75 b, inboard of their flare's, and their topsides turned hollow (S frames above T
-/// on 18 of 300 hulls, 5 now).
-constexpr double kMinCornerBreadth = 0.75;
+/// on 18 of 300 hulls, 5 then). The fraction is 0.7, not 0.75: in a fine, flared run (hull 188 of
+/// bench_fairness_space at 0.1 Lpp) 0.75 b still held the corner inboard of the flare's, the leg
+/// Q -> X steeper than the chord Q -> D, and the topside turned hollow (hulls with S frames above
+/// T 8 -> 5 of bench_fairness_space's hulls 0-299, 10 -> 6 of 300-599).
+constexpr double kMinCornerBreadth = 0.7;
 constexpr double kCornerConicShare = 0.6, kLeastCornerShare = 0.1;
 /// ... reached smoothly: the two corners are blended where their ratio lies within e^kCornerBlend
 /// (narrow enough that the blended corner stays inside the waterline point: 0.75 e^0.25 < 1).
