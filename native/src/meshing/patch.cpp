@@ -79,6 +79,7 @@ constexpr double kCollapseRatio = 2.5;     ///< a quad whose mean side is this m
                                            ///< 3.30, at the example's forefoot; the subdivision's 2:1 steps give 2)
 constexpr double kCollapseFloor = 0.5;     ///< ... where the elements about it then score at least this (strict)
 constexpr double kCollapseTrade = 0.15;    ///< ... and their worst falls by no more than this
+constexpr int kCollapsePasses = 3;         ///< passes of it: a pass leaves the quads next to a collapse for the next
 constexpr std::array<int, 4> kDeadElement{-2, -2, -2, -2};  ///< an element an edit pass removed
 constexpr int kMeanTries = 2;              ///< moves toward the ideal position tried per visit: all the way, half
 constexpr double kMeanScoreSlack = 1e-12;  ///< a mean move may lower its elements' worst score by round-off
@@ -2600,7 +2601,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   if (o.smoothing_passes > 0) improve_mean(w);
   // after the quality passes, which make the size jumps (on the example's bare hull none before
   // improve_corners, three quads past kCollapseRatio after it)
-  if (o.smoothing_passes > 0 && collapse_small_quads(w)) compact_nodes(w);
+  for (int pass = 0; o.smoothing_passes > 0 && pass < kCollapsePasses && collapse_small_quads(w); ++pass) compact_nodes(w);
   if (o.smoothing_passes > 0) polish(w);
   split_folded_quads(w);
   global.resize(w.xyz.size(), -1);
