@@ -581,6 +581,7 @@ def _sac_request(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, dra
     r.bounds = _fullness_bounds(plan, fullness, bands)
     if spec.monotone:
         r.shapes = _monotone(plan, params, True)
+    r.shapes = list(r.shapes) + _curvature_signs(spec, plan)  # on the fullness, as the rest
     r.fit = _fullness_fit(spec, box)
     reference = _reference_fullness(spec, plan, r)
     if reference is not None:

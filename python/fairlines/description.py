@@ -81,7 +81,9 @@ curvatures, 1/m, with the slope at that end), ``Area`` and ``xC`` (integral of f
 and its centroid), ``points`` ([[x, f], ...] passed through), ``slopes`` ([[x, df/dx], ...]: interior tangents), ``fit`` ([[x, f], ...] passed near,
 weight ``fit_weight``), ``lower`` / ``upper`` (bounds), ``convex`` / ``concave`` ([[x_from,
 x_to, k], ...]: f'' <= -k / f'' >= k there, k >= 0 a least curvature in 1/m: a waterline that
-bulges out, or a hollow), ``monotone`` (true: f moves away from its
+bulges out, or a hollow; on the sac they hold the section fullness, which it is designed as),
+sac ``convex_where_met`` (the same, held where the volume and LCB allow it and dropped where they
+do not), ``monotone`` (true: f moves away from its
 flat value monotonically on both sides of the flat part), ``e3`` (weight of the change of
 curvature, h^2 int f'''^2 dx with h the mean knot span, beside int f''^2 dx in the fairness the
 curve is made least in; default 0), ``spans`` (default 12) and ``breaks``
@@ -138,6 +140,8 @@ CURVE_KEYS = ("x_start", "x_end", "flat_from", "flat_to", "value", "points", "sl
               "monotone", "spans", "n_control", "breaks", "convex", "concave", "e3") + FORM_KEYS
 # sac only: the section fullness SAC / (2 y_dwl (T - z_keel)) it stays near ([[x, s], ...]).
 FULLNESS_KEY = "fullness_fit"
+# sac only: convex ranges of the fullness held where the volume and LCB allow them, else dropped.
+CONVEX_WHERE_MET_KEY = "convex_where_met"
 
 # Limits on sizes a description may ask for (refused beyond, before any work is done).
 MAX_E3 = 1e4  # a basic curve's e3: far past where the third derivative's term alone decides
@@ -248,12 +252,13 @@ class BasicCurveSpec:
     fullness_fit: list[tuple[float, float]] = field(default_factory=list)
     convex: list[tuple[float, float, float]] = field(default_factory=list)   # f'' <= -k on [x0, x1]
     concave: list[tuple[float, float, float]] = field(default_factory=list)  # f'' >= k on [x0, x1]
+    convex_where_met: list[tuple[float, float, float]] = field(default_factory=list)  # sac: convex unless infeasible
 
     @classmethod
     def from_dict(cls, name: str, d: Any, path: str) -> BasicCurveSpec:
         """The spec of basic curve ``name`` from ``d``. Raises InvalidInput naming a missing,
         unknown or malformed key."""
-        extra = (FULLNESS_KEY,) if name == "sac" else ()
+        extra = (FULLNESS_KEY, CONVEX_WHERE_MET_KEY) if name == "sac" else ()
         d = keyed_object(path, d, CURVE_KEYS + tuple(FORM_ALIASES.get(name, {})) + extra)
         spec = cls()
         for key in ("x_start", "x_end", "flat_from", "flat_to", "value", "lower", "upper"):
@@ -281,7 +286,7 @@ class BasicCurveSpec:
             if not isinstance(d["breaks"], (list, tuple)) or len(d["breaks"]) > MAX_SPANS:
                 raise bad(f"{path}.breaks", d["breaks"], f"a list of at most {MAX_SPANS} knot positions (m)")
             spec.breaks = sorted(number(f"{path}.breaks[{i}]", v) for i, v in enumerate(d["breaks"]))
-        for key in ("convex", "concave"):
+        for key in ("convex", "concave", CONVEX_WHERE_MET_KEY):
             ranges = d.get(key, [])
             if not isinstance(ranges, (list, tuple)):
                 raise bad(f"{path}.{key}", ranges, "a list of [x_from, x_to, least curvature] triples")
@@ -341,7 +346,7 @@ class BasicCurveSpec:
             d["e3"] = self.e3
         if self.breaks:
             d["breaks"] = list(self.breaks)
-        for key in ("convex", "concave"):
+        for key in ("convex", "concave", CONVEX_WHERE_MET_KEY):
             if getattr(self, key):
                 d[key] = [list(r) for r in getattr(self, key)]
         if self.fullness_fit:

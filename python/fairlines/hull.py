@@ -22,6 +22,7 @@ from __future__ import annotations
 import json
 import math
 from collections import OrderedDict
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -381,30 +382,36 @@ class Hull:
         """The SAC and its fullness within the stations' fullness `ranges` (x, least keeping the
         whole flat of bottom, least narrowing it, largest) shrunk by BAND_MARGIN: first with the
         whole flat kept, then (when no SAC fits those) narrowing it, then by RELAXED_BAND_MARGIN
-        (the refusal then names what that holds)."""
+        (the refusal then names what that holds). The SAC's convex_where_met ranges are held in
+        the first two, and where neither meets the volume and LCB with them, the two again without."""
         d, curves = self.description, self._curves
         free = tuple(d.x_aft if end == "aft" else d.x_fore for end in d.posts)
         limits = FULLNESS_BOUNDS
         if "corner_breadth" in d.curves:
             free, limits = self.immersed_range(), CORNER_FULLNESS_BOUNDS
 
-        def within(margin, narrow):
+        def within(margin, narrow, spec):
             bands = []
             for x, held, narrowed, hi in ranges:
                 lo = narrowed if narrow else held
                 if hi > lo:  # a station that cannot keep its whole flat at all is left free in the first pass
                     bands.append((x, lo + margin[0] * (hi - lo), hi - margin[1] * (hi - lo)))
-            return solve_sac(d.curves["sac"], curves["dwl"], curves["profile"], d.principal.draft, fullness=limits, bands=bands,
+            return solve_sac(spec, curves["dwl"], curves["profile"], d.principal.draft, fullness=limits, bands=bands,
                              free_ends=free)
 
+        sac = d.curves["sac"]
+        specs = [sac]
+        if sac.convex_where_met:
+            specs.insert(0, replace(sac, convex=sac.convex + sac.convex_where_met, convex_where_met=[]))
         tries = [(BAND_MARGIN, False)] + ([(BAND_MARGIN, True)] if "flat_bottom" in d.curves else [])
-        for margin, narrow in tries:
-            try:
-                with _basic_curves.terse_errors():
-                    return within(margin, narrow)
-            except _native.InfeasibleFormParameters:
-                pass
-        return within(RELAXED_BAND_MARGIN, True)
+        for spec in specs:
+            for margin, narrow in tries:
+                try:
+                    with _basic_curves.terse_errors():
+                        return within(margin, narrow, spec)
+                except _native.InfeasibleFormParameters:
+                    pass
+        return within(RELAXED_BAND_MARGIN, True, specs[-1])
 
     def _fullness_ranges(self) -> list[tuple[float, float, float, float]]:
         """(x, least keeping the whole flat of bottom, least narrowing it, largest) fullness the

@@ -40,6 +40,8 @@ REFUSED_AT_LOAD = {
     "negative fairness weight e3": put((BC, "dwl", "e3"), -1.0),
     "fairness weight e3 beyond 1e4": put((BC, "dwl", "e3"), 1e5),
     "negative least curvature": put((BC, "dwl", "convex"), [[50.0, 100.0, -0.01]]),
+    "negative least curvature where met": put((BC, "sac", "convex_where_met"), [[50.0, 100.0, -0.01]]),
+    "convex where met on the waterline": put((BC, "dwl", "convex_where_met"), [[50.0, 100.0, 0.0]]),
     "section fullness above 1": put((BC, "sac", "fullness_fit", 0, 1), 1.5),
     # unknown keys
     "unknown top-level key": put(("range",), {"x_start": 0.0, "x_end": 244.8}),
