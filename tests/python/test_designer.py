@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import fairlines as fl
+from fairlines.fairness import judge_cut
 from conftest import edge_census
 
 EXAMPLE = pathlib.Path(__file__).resolve().parents[2] / "examples" / "container_ship.json"
@@ -766,6 +767,40 @@ def test_buttock_has_no_steps(example_surface, y):
     (designer.TOP_CORNER), y 2 and 4 m (0.23 and 0.12 deg then) when the top fillet's middle
     points moved to 0.68 of its legs (sections.cpp kTopFilletFar): the top turns less just above T."""
     assert _sign_changes(example_surface, 1, y) <= 2
+
+
+#: A full ship whose LCB lies far aft (bench_hull's sample 41 of 100: Cb 0.80, LCB -3.56 % Lpp).
+FULL_AFT_LCB = dict(lpp=273.7608, breadth=37.397659, draft=16.743835, depth=26.790136, cb=0.80116602, lcb=127.13907)
+
+
+@pytest.fixture(scope="module")
+def full_aft_lcb_hull():
+    return fl.design_hull(**FULL_AFT_LCB)
+
+
+@pytest.mark.parametrize("share", [0.3, 0.5, 0.7])
+def test_full_ships_buttocks_do_not_step_down_in_the_run(full_aft_lcb_hull, share):
+    """Cut at share B/2, the buttock turns one way (hollow) from where it lands in the run to
+    the parallel body (x 0.03-0.28 Lpp): no convex lobe there. Its SAC stood level over
+    0.06-0.14 Lpp (the fullness's monotone bound met) and rose again, and these buttocks landed
+    with the keel and then stepped down: convex lobes of 1.9 / 4.9 / 9.5 deg at x 0.095 Lpp,
+    until the designer held the run's fullness convex (sac.convex_where_met)."""
+    L, B = FULL_AFT_LCB["lpp"], FULL_AFT_LCB["breadth"]
+    cut = fl.plane_cut(full_aft_lcb_hull.bare_hull_surface(), 1, share * B / 2, 401)
+    lobes = judge_cut(cut)["lobes"]
+    hollow = max(lobes, key=lambda l: l["turn_deg"] if l["at"][0] < 0.3 * L else 0.0)["sign"]
+    steps = [l for l in lobes if 0.03 * L < l["at"][0] < 0.28 * L and l["sign"] != hollow]
+    assert not steps, [(round(l["turn_deg"], 2), round(l["at"][0] / L, 3)) for l in steps]
+
+
+def test_full_ships_volume_cut_builds_without_the_runs_convex_fullness(full_aft_lcb_hull):
+    """The description's volume 10 % less: the run's fullness cannot stay convex at that volume
+    (an SAC whose fullness rises at least linearly from the keel's landing to the parallel body
+    holds more), so it is dropped (convex_where_met) and the hull builds with the volume asked."""
+    d = json.loads(full_aft_lcb_hull.to_json())
+    assert d["basic_curves"]["sac"]["convex_where_met"]
+    d["basic_curves"]["sac"]["volume"] *= 0.9
+    assert fl.Hull.from_json(d).hydrostatics().volume == pytest.approx(d["basic_curves"]["sac"]["volume"], rel=2e-3)
 
 
 def test_designed_hull_is_editable():
