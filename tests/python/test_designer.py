@@ -783,8 +783,9 @@ def test_full_ships_buttocks_do_not_step_down_in_the_run(full_aft_lcb_hull, shar
     """Cut at share B/2, the buttock turns one way (hollow) from where it lands in the run to
     the parallel body (x 0.03-0.28 Lpp): no convex lobe there. Its SAC stood level over
     0.06-0.14 Lpp (the fullness's monotone bound met) and rose again, and these buttocks landed
-    with the keel and then stepped down: convex lobes of 1.9 / 4.9 / 9.5 deg at x 0.095 Lpp,
-    until the designer held the run's fullness convex (sac.convex_where_met)."""
+    with the keel (a hollow of 44 deg at x 0.053 Lpp) and then stepped down: convex lobes of
+    1.95 / 4.94 / 9.53 deg at x 0.17 Lpp, until the designer held the run's fullness convex
+    (sac.convex_where_met; read on its description without it)."""
     L, B = FULL_AFT_LCB["lpp"], FULL_AFT_LCB["breadth"]
     cut = fl.plane_cut(full_aft_lcb_hull.bare_hull_surface(), 1, share * B / 2, 401)
     lobes = judge_cut(cut)["lobes"]
