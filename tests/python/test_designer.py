@@ -517,8 +517,6 @@ def test_sections_asked_off_the_hull_are_named_not_listed():
 
 
 def _sign_changes(surface, axis, value):
-    from fairlines.fairness import judge_cut
-
     return judge_cut(fl.plane_cut(surface, axis, float(value), 601))["sign_changes"]
 
 
@@ -565,8 +563,6 @@ def test_a_fine_ships_aft_frames_turn_one_way_above_the_waterline():
     5-30 % Lpp have no inflection above T. While the design waterline's fairness was its
     curvature's square alone (designer.DWL_E3 = 0), four of them turned hollow above T
     (inflections at 1.06-1.11 T)."""
-    from fairlines.fairness import judge_cut
-
     p = dict(lpp=233.892, breadth=35.461, draft=8.518, depth=13.629, cb=0.508, lcb=113.868)
     surface = fl.design_hull(**p).bare_hull_surface()
     for x in np.linspace(0.05, 0.3, 26) * p["lpp"]:

@@ -1648,8 +1648,11 @@ std::vector<int> try_collapse(Work& w, EditedElementsAtNodes& at, int e, int kee
     return x != gone && x >= w.fixed && n > 0 && n < 3;
   });
   if (ok) {
-    for (const auto& sv : edit.saved)
-      if (std::get<0>(sv) != gone && !live(std::get<0>(sv)).empty()) optimise_node(w, live(std::get<0>(sv)), std::get<0>(sv));
+    for (const auto& sv : edit.saved) {
+      const int node = std::get<0>(sv);
+      const std::vector<int> around = node != gone ? live(node) : std::vector<int>{};
+      if (!around.empty()) optimise_node(w, around, node);  // a merged doublet's node has none
+    }
     ok = edit.worst(w) >= std::max({kCollapseFloor, before - kCollapseTrade, mesh_worst});
   }
   if (ok) return nodes;
