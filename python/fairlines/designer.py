@@ -529,7 +529,7 @@ def design_description(p: Particulars, keel_rise: float = KEEL_RISE) -> dict:
         "stations": {"count": 61},
         "sections": {"n_control": 20},
         "basic_curves": {"profile": prof, "dwl": dwl, "deck": _deck_spec(p, par, dwl_curve, x_aft, xa, xf, immersed_transom),
-                         "sac": _sac_spec(p, c, dwl_curve, profile, xa, xf), "top_corner": {"value": TOP_CORNER}},
+                         "sac": _sac_spec(p, c, dwl_curve, profile, prof["flat_from"], xa, xf), "top_corner": {"value": TOP_CORNER}},
         "skinning": {"aft_end": SKIN_AFT_END},
         "design": {k: v for k, v in asdict(p).items() if k != "notes"},
     }
@@ -571,14 +571,14 @@ def _dwl_spec(p: Particulars, c: dict, xa: float, xf: float, immersed_transom: b
     return dwl, _waterline(p, dwl, xa, xf, peak, immersed_transom=immersed_transom)
 
 
-def _sac_spec(p: Particulars, c: dict, dwl_curve, profile, xa: float, xf: float) -> dict:
+def _sac_spec(p: Particulars, c: dict, dwl_curve, profile, keel_landing: float, xa: float, xf: float) -> dict:
     """The SAC: the volume and LCB, near the natural fullness, flat over the parallel body (without
     one, free near where the waterline is at B/2). With a parallel body the run's section fullness
-    is held convex (f'' <= 0) from where the keel lands to the body where the volume and LCB allow
-    it (convex_where_met): a full ship whose LCB lies far aft took a fullness rising, standing
-    level (its monotone bound met) over 0.06-0.14 Lpp and rising again, and its buttocks landed,
-    then stepped down (convex lobes of 1-12 deg at 0.3-0.7 B/2; bench_hull's hulls 41, 73 and 88
-    of 100). Over bench_fairness_space's hulls 0-299 / 300-599: sign changes a buttock 1.819 ->
+    is held convex (f'' <= 0) from keel_landing (m from AP: the profile's flat_from, where the keel
+    reaches the base) to the body where the volume and LCB allow it (convex_where_met): a full
+    ship whose LCB lies far aft took a fullness rising, standing level (its monotone bound met)
+    over 0.06-0.14 Lpp and rising again, and its buttocks landed, then stepped down (convex lobes
+    of 1-12 deg at 0.3-0.7 B/2; bench_hull's hulls 41, 73 and 88 of 100). Over bench_fairness_space's hulls 0-299 / 300-599: sign changes a buttock 1.819 ->
     1.767 / 1.868 -> 1.823, upper waterlines clean 827 -> 827 / 819 -> 822 of 900. Held always
     (`convex`), it refused 19 of bench_design_edits' 60 volume cuts of 10 %; forward of the body
     it cost 92 clean lower waterlines."""
@@ -591,9 +591,8 @@ def _sac_spec(p: Particulars, c: dict, dwl_curve, profile, xa: float, xf: float)
                             if xa + near_end <= x <= xf - near_end]}
     if par[1] > par[0]:
         sac.update(flat_from=par[0], flat_to=par[1], value=c["cm"] * B * T)
-        landing = _keel_landing(profile, xa, par[0])
-        if par[0] - landing > KEEL_LANDING_TOL * L:
-            sac["convex_where_met"] = [[landing, par[0], 0.0]]
+        if par[0] - keel_landing > KEEL_LANDING_TOL * L:
+            sac["convex_where_met"] = [[keel_landing, par[0], 0.0]]
         return sac
     lo, hi = _at_half_breadth(dwl_curve, p, xa, xf)
     lo, hi = lo - SAC_FREE_NEAR_PEAK * L, hi + SAC_FREE_NEAR_PEAK * L
@@ -601,15 +600,6 @@ def _sac_spec(p: Particulars, c: dict, dwl_curve, profile, xa: float, xf: float)
     if p.cm is not None:  # ... and the SAC holds a given midship area there
         sac["fit"] = [[_midship_place(p), c["cm"] * B * T]]
     return sac
-
-
-def _keel_landing(profile, xa: float, x_par: float) -> float:
-    """Where the keel reaches the base (m), to 1/400 of the stretch from xa to the parallel
-    body's start searched."""
-    xs = np.linspace(xa, x_par, 401)
-    z = np.asarray(profile(xs)).ravel()
-    on = xs[z <= 1e-9 * max(1.0, float(np.nanmax(np.abs(z))))]
-    return float(on[0]) if len(on) else float(x_par)
 
 
 def _at_half_breadth(dwl_curve, p: Particulars, xa: float, xf: float) -> tuple[float, float]:
