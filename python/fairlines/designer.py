@@ -578,10 +578,11 @@ def _sac_spec(p: Particulars, c: dict, dwl_curve, profile, keel_landing: float, 
     reaches the base) to the body where the volume and LCB allow it (convex_where_met): a full
     ship whose LCB lies far aft took a fullness rising, standing level (its monotone bound met)
     over 0.06-0.14 Lpp and rising again, and its buttocks landed, then stepped down (convex lobes
-    of 1-12 deg at 0.3-0.7 B/2; bench_hull's hulls 41, 73 and 88 of 100). Over bench_fairness_space's hulls 0-299 / 300-599: sign changes a buttock 1.819 ->
-    1.767 / 1.868 -> 1.823, upper waterlines clean 827 -> 827 / 819 -> 822 of 900. Held always
-    (`convex`), it refused 19 of bench_design_edits' 60 volume cuts of 10 %; forward of the body
-    it cost 92 clean lower waterlines."""
+    of 1-12 deg at 0.3-0.7 B/2; bench_hull's hulls 41, 73 and 88 of 100). Over
+    bench_fairness_space's hulls 0-299 / 300-599: sign changes a buttock 1.819 -> 1.767 / 1.868
+    -> 1.823, upper waterlines clean 827 -> 827 / 819 -> 822 of 900. Held always (`convex`), it
+    refused 19 of bench_design_edits' 60 volume cuts of 10 %; forward of the body it cost 92
+    clean lower waterlines."""
     L, B, T = p.lpp, p.breadth, p.draft
     par = c["parallel"]
     xs, target = natural_fullness(p, c, dwl_curve, profile, xa, xf)
