@@ -97,9 +97,11 @@ SHEER_LIMIT = 2.0
 # A skeg with a square aft edge (no end_length): the station before it lies this fraction of
 # Lpp aft of it (the sternpost is the surface's turn between the two).
 STERNPOST_GAP = 0.002
-# ... with a raked aft end: stations this many to its rake; a sonar dome: stations this many
-# along it (closer toward its nose).
-SKEG_END_STATIONS = 6
+# ... with a raked aft end: stations this many to its rake (its sections change quickly: the skeg
+# grows out of the counter, and with 6 the skin between them missed them by up to 5 cm and the
+# skegged tanker's waterlines over it rang; with 18 they read clean from 0.65 T up, measured in
+# docs/sections.md); a sonar dome: stations this many along it (closer toward its nose).
+SKEG_END_STATIONS = 18
 DOME_STATIONS = 16
 # Stations off the hull named in the error (the rest are counted).
 OFF_HULL_SHOWN = 5

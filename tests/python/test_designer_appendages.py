@@ -145,6 +145,32 @@ def test_the_skegged_tankers_outer_buttocks_rise_aft_in_one_s():
         assert len(lobes) <= 2, (y, [(round(lobe["turn_deg"], 2), round(lobe["at"][0], 1)) for lobe in lobes])
 
 
+#: A lobe of a waterline over the skeg's raked aft end this small (deg of turn) is a ripple of
+#: the skin, not the hull's shape.
+SKEG_END_RIPPLE_DEG = 1.0
+
+
+@pytest.mark.parametrize("share", [0.75, 0.85])
+def test_the_skegged_tankers_waterlines_over_its_skegs_aft_end_do_not_ring(share):
+    """The tanker's waterlines at 0.75 / 0.85 T, where they run from the skeg's raked aft edge out
+    over it (x from its aft edge to 1 m past where it is whole): between the lobe that turns the
+    waterline off the centre plane and the one it runs on in, no lobe over SKEG_END_RIPPLE_DEG.
+    Cut from the surface; the skin rang there between its six stations (lobes of 2-36 deg at
+    0.75 T, sign changes at every station) until the skeg's fit bent more and the raked end had
+    18 stations."""
+    from fairlines.fairness import cut_lobes
+
+    p = SHIPS["tanker"]
+    hull = fl.design_hull(**p)
+    sk = hull.description.skeg
+    cut = fl.plane_cut(hull.bare_hull_surface(), 2, share * p["draft"], 2001)
+    pts, k = np.asarray(cut.points), np.asarray(cut.curvature)
+    over = (pts[:, 0] > sk.x_aft - 2.0) & (pts[:, 0] < sk.x_aft + sk.end_length + 1.0)
+    lobes = cut_lobes(pts[over], k[over])
+    assert lobes and all(lobe["turn_deg"] < SKEG_END_RIPPLE_DEG for lobe in lobes[1:-1]), \
+        [(round(lobe["turn_deg"], 2), round(lobe["at"][0], 2)) for lobe in lobes]
+
+
 def test_skeg_ship_composes_watertight(ship):
     p, hull = ship
     c = hull.composed_hull() if p.get("bulb") else fl.compose([hull.bare_hull_surface()], hull_u=96, hull_v=40)

@@ -200,13 +200,27 @@ constexpr double kGivenBoundBand = 0.02;
 constexpr double kGivenMobility = 0.05;
 /// Shifts past the bound [0, y_max] by more than this fraction of y_max are held on it.
 constexpr double kGivenBoundTol = 1e-12;
-/// Skegs: samples of the body's section the skeg shape is made from, points along the fillet,
-/// the skeg's side and its bottom, and the least room (fraction of the skeg's depth) the
+/// Skegs: samples of the body's section the neck point J is bracketed on, points along the
+/// fillet, the skeg's side and its bottom, and the least room (fraction of the skeg's depth) the
 /// fillet leaves the side above the bottom.
 constexpr int kSkegBodySamples = 401;
 constexpr int kSkegFilletPoints = 24;
 constexpr int kSkegSidePoints = 12;
 constexpr double kSkegBottomRoom = 0.2;
+/// The neck point J (where a body's section comes in to an appendage's width): Newton's
+/// iterations at most, and its tolerance on the half-breadth (fraction of max(1 m, the width)).
+constexpr int kNeckIterations = 60;
+constexpr double kNeckTol = 1e-13;
+/// Samples of the body's section the appendage's fit reads above t_s and from t_s down to J.
+constexpr int kAppendageUpperSamples = 48, kAppendageLowerSamples = 96;
+/// Bending penalty of a skeg section's fit (second differences of the control points, per knot
+/// span, against the data's weight). Not kGivenSmoothing's near-interpolation: the tail's fillet
+/// and side slide past the knots as the skeg grows along its aft end, and a near-interpolating fit
+/// rang as they did (4 mm ripples of the sections' half-breadth, 0.4 m long, over the skegged
+/// tanker's aft end). 0.07 and more thinned its side by more than a tenth 0.3-0.6 m above its
+/// bottom (SkegAndDomeHangBelowTheBody); a dome keeps kGivenSmoothing (0.1 took 12 % off its
+/// breadth).
+constexpr double kSkegSmoothing = 0.05;
 /// An appendage's tail shares the parameter with the body's lowest this many knot spans.
 constexpr int kAppendageSpans = 6;
 /// Points along a dome's half ellipse.
@@ -1081,17 +1095,35 @@ struct AppendageTail {
   std::vector<V2> pts;     ///< J first, the keel point last
   double t_J = 1.0;        ///< the body's parameter at J
   double side_top = 0.0;   ///< control points below this height are held when Q is met
+  double bending = kGivenSmoothing;  ///< the fit's bending penalty (see appendage_control_points)
 };
 
-/// J, where the body's section (samples yz at parameters ts) last comes in to y = y0, with its
-/// parameter and the body's unit tangent there (heading in); false when it never is that wide.
-bool neck_point(const Eigen::VectorXd& ts, const Eigen::MatrixXd& yz, double y0, V2& J, double& t_J, V2& tan) {
+/// J, where the body's section `body` (samples yz at parameters ts) last comes in to y = y0,
+/// with its parameter and the body's unit tangent there (heading in); false when it never is
+/// that wide. The samples bracket J; J and its tangent are then found on the curve itself, so
+/// they move smoothly along the hull: read off the samples' chords they stepped as J crossed
+/// from one chord to the next, and the fillet's corner, on the tangent, jumped by centimetres
+/// (the skegged tanker's waterlines at 0.65-0.75 T rang with lobes of 2-50 deg over its aft end).
+bool neck_point(const NurbsCurve& body, const Eigen::VectorXd& ts, const Eigen::MatrixXd& yz, double y0, V2& J,
+                double& t_J, V2& tan) {
   const int j = last_wider(yz, y0);
   if (j < 0) return false;
-  const double r = (yz(j, 0) - y0) / (yz(j, 0) - yz(j + 1, 0));
-  J = yz.row(j).transpose() + r * (yz.row(j + 1) - yz.row(j)).transpose();
-  t_J = ts[j] + r * (ts[j + 1] - ts[j]);
-  tan = (yz.row(j + 1) - yz.row(j)).transpose().normalized();
+  double lo = ts[j], hi = ts[j + 1];  // y(lo) >= y0 > y(hi)
+  double t = lo + (yz(j, 0) - y0) / (yz(j, 0) - yz(j + 1, 0)) * (hi - lo);
+  for (int it = 0; it < kNeckIterations; ++it) {  // Newton kept inside a shrinking bracket
+    const Eigen::MatrixXd d = body.derivatives(t, 1);
+    const double r = d(0, 1) - y0;
+    if (std::abs(r) <= kNeckTol * std::max(1.0, std::abs(y0))) break;
+    (r > 0 ? lo : hi) = t;
+    double next = d(1, 1) < 0 ? t - r / d(1, 1) : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    t = next;
+  }
+  const Eigen::MatrixXd d = body.derivatives(t, 1);
+  J = V2(d(0, 1), d(0, 2));
+  t_J = t;
+  const V2 dj(d(1, 1), d(1, 2));
+  tan = dj.norm() > 0 ? V2(dj.normalized()) : V2((yz.row(j + 1) - yz.row(j)).transpose().normalized());
   return true;
 }
 
@@ -1100,7 +1132,8 @@ bool neck_point(const Eigen::VectorXd& ts, const Eigen::MatrixXd& yz, double y0,
 /// y = t + f, a hollow quadratic fillet along the body's tangent to the skeg side (heading
 /// straight down), the side to the bottom, the bottom to the centre plane.
 
-AppendageTail skeg_tail(const SectionSpec& s, const Eigen::VectorXd& ts, const Eigen::MatrixXd& yz) {
+AppendageTail skeg_tail(const SectionSpec& s, const NurbsCurve& body, const Eigen::VectorXd& ts,
+                        const Eigen::MatrixXd& yz) {
   // where it ends the skeg thins and its fillet shrinks (and the fillet is at most
   // kSkegFilletDepth of its depth): the section tends to the body's
   const double share = std::clamp(s.skeg_share, 0.0, 1.0), zb = s.skeg_bottom;
@@ -1108,7 +1141,7 @@ AppendageTail skeg_tail(const SectionSpec& s, const Eigen::VectorXd& ts, const E
   const double f = std::min(share * s.skeg_fillet, kSkegFilletDepth * (s.z_keel - zb));
   AppendageTail out;
   V2 J, tan;
-  if (!neck_point(ts, yz, t + f, J, out.t_J, tan)) return out;
+  if (!neck_point(body, ts, yz, t + f, J, out.t_J, tan)) return out;
   // The fillet's corner C: where the body's tangent at J meets the skeg side y = t, kept no
   // higher than J and leaving the side kSkegBottomRoom of the depth; E: f further down the side.
   const double floor_z = zb + kSkegBottomRoom * (J.y() - zb);
@@ -1123,41 +1156,44 @@ AppendageTail skeg_tail(const SectionSpec& s, const Eigen::VectorXd& ts, const E
   for (int k = 1; k <= kSkegSidePoints; ++k) out.pts.emplace_back(t, E.y() + (zb - E.y()) * k / kSkegSidePoints);
   for (int k = 1; k <= kSkegSidePoints; ++k) out.pts.emplace_back(t * (1.0 - static_cast<double>(k) / kSkegSidePoints), zb);
   out.side_top = E.y();
+  out.bending = kSkegSmoothing;
   return out;
 }
 
 /// Control points (y, z) of a section with an appendage: the body's own control points where
 /// their support ends above t_s, kAppendageSpans knot spans above J, so its rows run on from the
-/// neighbouring sections without one; the rest fitted (least squares with a little bending, the
-/// keel point held) to the body's curve from the first free span down to J and to the
-/// appendage's tail, the body below t_s and the tail sharing [t_s, 1] by arc length. As the
-/// appendage vanishes (J -> the keel) the section tends to the body's.
-Eigen::MatrixX2d appendage_control_points(const Layout& l, const Eigen::MatrixX2d& body, const Eigen::VectorXd& ts,
-                                          const Eigen::MatrixXd& yz, const AppendageTail& tail) {
+/// neighbouring sections without one; the rest fitted (least squares, bending weighing the
+/// tail's `bending`, the keel point held) to the body's curve from the first free span down
+/// to J and to the appendage's tail, the body below t_s and the tail sharing [t_s, 1] by arc
+/// length. As the appendage vanishes (J -> the keel) the section tends to the body's.
+Eigen::MatrixX2d appendage_control_points(const Layout& l, const Eigen::MatrixX2d& body, const NurbsCurve& curve,
+                                          const AppendageTail& tail) {
   const int n = l.n;
   // The last kAppendageSpans spans above J and the tail share [t_s, 1] by arc length: the tail
-  // gets room from the body's lowest part, the body above t_s keeps its parameters.
+  // gets room from the body's lowest part, the body above t_s keeps its parameters. The body is
+  // sampled afresh between the ends of both stretches (a fixed count each), so the data move
+  // smoothly along the hull with J (a fixed sampling let samples hop in and out).
   const double t_s = std::max(0.0, tail.t_J - static_cast<double>(kAppendageSpans) / (n - kDegree));
   int i0 = 1;
   while (i0 < n - 1 && l.U[i0 + kDegree + 1] <= t_s) ++i0;
   std::vector<std::pair<double, V2>> data;  // (parameter, point), weighted by arc spacing
-  double low_arc = 0.0;  // the body's arc from t_s to J
-  Eigen::Index first_low = -1;
-  for (Eigen::Index i = 0; i < ts.size() && ts[i] < tail.t_J; ++i) {
-    if (ts[i] >= l.U[i0] && ts[i] < t_s) data.emplace_back(ts[i], yz.row(i).transpose());
-    if (ts[i] >= t_s) {
-      if (first_low >= 0) low_arc += (yz.row(i) - yz.row(i - 1)).norm();
-      else first_low = i;
-    }
+  auto at = [&](double t) { return V2(curve.evaluate(t).tail<2>()); };
+  for (int k = 0; k < kAppendageUpperSamples; ++k) {
+    const double t = l.U[i0] + (t_s - l.U[i0]) * k / kAppendageUpperSamples;
+    if (t < t_s) data.emplace_back(t, at(t));
   }
+  std::vector<V2> low(kAppendageLowerSamples + 1);  // the body from t_s to J, J last
+  std::vector<double> low_run(low.size(), 0.0);
+  for (int k = 0; k <= kAppendageLowerSamples; ++k) {
+    low[k] = at(t_s + (tail.t_J - t_s) * k / kAppendageLowerSamples);
+    if (k > 0) low_run[k] = low_run[k - 1] + (low[k] - low[k - 1]).norm();
+  }
+  const double low_arc = low_run.back();
   std::vector<double> arc(tail.pts.size(), 0.0);
   for (std::size_t i = 1; i < tail.pts.size(); ++i) arc[i] = arc[i - 1] + (tail.pts[i] - tail.pts[i - 1]).norm();
   const double t_J = t_s + (1.0 - t_s) * low_arc / std::max(low_arc + arc.back(), 1e-300);
-  double run = 0.0;
-  for (Eigen::Index i = first_low; i >= 0 && i < ts.size() && ts[i] < tail.t_J; ++i) {
-    if (i > first_low) run += (yz.row(i) - yz.row(i - 1)).norm();
-    data.emplace_back(t_s + (t_J - t_s) * (low_arc > 0 ? run / low_arc : 0.0), yz.row(i).transpose());
-  }
+  for (int k = 0; k < kAppendageLowerSamples; ++k)
+    data.emplace_back(t_s + (t_J - t_s) * (low_arc > 0 ? low_run[k] / low_arc : 0.0), low[k]);
   for (std::size_t i = 0; i < tail.pts.size(); ++i)
     data.emplace_back(t_J + (1.0 - t_J) * (arc.back() > 0 ? arc[i] / arc.back() : 1.0), tail.pts[i]);
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
@@ -1172,7 +1208,7 @@ Eigen::MatrixX2d appendage_control_points(const Layout& l, const Eigen::MatrixX2
     total += w;
   }
   const Eigen::MatrixXd D2 = second_differences(n);
-  A.noalias() += kGivenSmoothing * total / (n - kDegree) * D2.transpose() * D2;
+  A.noalias() += tail.bending * total / (n - kDegree) * D2.transpose() * D2;
   Eigen::MatrixX2d P = body;
   P.row(n - 1) = tail.pts.back().transpose();
   const int k = n - 1 - i0;  // free: i0 .. n - 2
@@ -1189,10 +1225,11 @@ Eigen::MatrixX2d appendage_control_points(const Layout& l, const Eigen::MatrixX2
 /// the body last comes in to the neck's half-width, a hollow quadratic fillet to the point P of
 /// the dome's half ellipse (from the body's keel point down to the dome's bottom) at the neck's
 /// half-width, then the ellipse down to its bottom on the centre plane.
-AppendageTail dome_tail(const SectionSpec& s, const Eigen::VectorXd& ts, const Eigen::MatrixXd& yz) {
+AppendageTail dome_tail(const SectionSpec& s, const NurbsCurve& body, const Eigen::VectorXd& ts,
+                        const Eigen::MatrixXd& yz) {
   AppendageTail out;
   V2 J, tan;
-  if (!neck_point(ts, yz, s.dome_neck, J, out.t_J, tan)) return out;
+  if (!neck_point(body, ts, yz, s.dome_neck, J, out.t_J, tan)) return out;
   const double b = s.dome_half_breadth, h = 0.5 * (s.z_keel - s.dome_bottom), zc = s.dome_bottom + h;
   auto at = [&](double phi) { return V2(b * std::sin(phi), zc + h * std::cos(phi)); };
   const double phi1 = std::asin(std::clamp(s.dome_neck / b, 0.0, 1.0));
@@ -1225,13 +1262,13 @@ SectionDesign design_with_appendage(const SectionSpec& spec) {
   const Eigen::VectorXd ts = Eigen::VectorXd::LinSpaced(kSkegBodySamples, 0.0, 1.0);
   const Eigen::MatrixXd yz = b.curve.evaluate(ts).rightCols(2);
   const bool skeg = !std::isnan(spec.skeg_bottom);
-  const AppendageTail tail = skeg ? skeg_tail(spec, ts, yz) : dome_tail(spec, ts, yz);
+  const AppendageTail tail = skeg ? skeg_tail(spec, b.curve, ts, yz) : dome_tail(spec, b.curve, ts, yz);
   if (tail.pts.empty()) return b;
   SectionSpec with = body;
   with.z_keel = skeg ? spec.skeg_bottom : spec.dome_bottom;
   with.half_area = kNaN;
   const Section S = setup(with);
-  const Eigen::MatrixX2d P = appendage_control_points(S.l, b.curve.control_points().rightCols(2), ts, yz, tail);
+  const Eigen::MatrixX2d P = appendage_control_points(S.l, b.curve.control_points().rightCols(2), b.curve, tail);
   SectionDesign out = finish_given(S, P, tail.side_top);
   out.shape = b.shape, out.flat_kept = b.flat_kept;  // the body's: the designer reads whether its flat narrowed
   return out;
