@@ -97,11 +97,10 @@ SHEER_LIMIT = 2.0
 # A skeg with a square aft edge (no end_length): the station before it lies this fraction of
 # Lpp aft of it (the sternpost is the surface's turn between the two).
 STERNPOST_GAP = 0.002
-# ... with a raked aft end: stations this many to its rake (its sections change quickly: the skeg
-# grows out of the counter, and with 6 the skin between them missed them by up to 5 cm and the
-# skegged tanker's waterlines over it rang; with 18 they read clean from 0.65 T up, measured in
-# docs/sections.md); a sonar dome: stations this many along it (closer toward its nose).
-SKEG_END_STATIONS = 18
+# ... with a raked aft end: stations this many to its rake (18 let the skin follow the skeg's
+# quickly changing sections, but showed the body's own topside ripple of 2-3 mm along x between
+# them: docs/sections.md); a sonar dome: stations this many along it (closer toward its nose).
+SKEG_END_STATIONS = 6
 DOME_STATIONS = 16
 # Stations off the hull named in the error (the rest are counted).
 OFF_HULL_SHOWN = 5
@@ -688,10 +687,11 @@ class Hull:
         run = self._dry_transom_run()
         if run is None:
             return curves
-        # a skeg's sections kept as designed: correcting them too, the skeg tanker's 1.1 T and 1.23 T
-        # waterlines took 2 more sign changes each
-        return [run.corrected(c, s) if run.covers(s.x) and s.given.size == 0 and math.isnan(s.skeg_bottom)
-                and math.isnan(s.dome_bottom) else c for c, s in zip(curves, specs)]
+        # a skeg's sections too (their topside is the body's own, held when the engine puts them
+        # through Q): left as designed, the skegged container ship's topside stepped 1-2 cm where
+        # its skeg starts inside the run (x 9.7 m, the run to 11 m)
+        return [run.corrected(c, s) if run.covers(s.x) and s.given.size == 0 and math.isnan(s.dome_bottom) else c
+                for c, s in zip(curves, specs)]
 
     @property
     def section_designs(self) -> list:

@@ -145,30 +145,24 @@ def test_the_skegged_tankers_outer_buttocks_rise_aft_in_one_s():
         assert len(lobes) <= 2, (y, [(round(lobe["turn_deg"], 2), round(lobe["at"][0], 1)) for lobe in lobes])
 
 
-#: A lobe of a waterline over the skeg's raked aft end this small (deg of turn) is a ripple of
-#: the skin, not the hull's shape.
-SKEG_END_RIPPLE_DEG = 1.0
+#: Where a skeg starts, the half-breadths of the sections either side (2 mm apart) of its aft
+#: edge differ by at most this (m): they change about 0.3 m per metre there.
+SKEG_START_STEP = 1e-3
 
 
-@pytest.mark.parametrize("share", [0.75, 0.85])
-def test_the_skegged_tankers_waterlines_over_its_skegs_aft_end_do_not_ring(share):
-    """The tanker's waterlines at 0.75 / 0.85 T, where they run from the skeg's raked aft edge out
-    over it (x from its aft edge to 1 m past where it is whole): between the lobe that turns the
-    waterline off the centre plane and the one it runs on in, no lobe over SKEG_END_RIPPLE_DEG.
-    Cut from the surface; the skin rang there between its six stations (lobes of 2-36 deg at
-    0.75 T, sign changes at every station) until the skeg's fit bent more and the raked end had
-    18 stations."""
-    from fairlines.fairness import cut_lobes
-
-    p = SHIPS["tanker"]
-    hull = fl.design_hull(**p)
-    sk = hull.description.skeg
-    cut = fl.plane_cut(hull.bare_hull_surface(), 2, share * p["draft"], 2001)
-    pts, k = np.asarray(cut.points), np.asarray(cut.curvature)
-    over = (pts[:, 0] > sk.x_aft - 2.0) & (pts[:, 0] < sk.x_aft + sk.end_length + 1.0)
-    lobes = cut_lobes(pts[over], k[over])
-    assert lobes and all(lobe["turn_deg"] < SKEG_END_RIPPLE_DEG for lobe in lobes[1:-1]), \
-        [(round(lobe["turn_deg"], 2), round(lobe["at"][0], 2)) for lobe in lobes]
+@pytest.mark.parametrize("height", [13.3, 16.15])
+def test_the_skegged_container_ships_topside_has_no_step_where_its_skeg_starts(height):
+    """The container ship's skeg starts (x 9.7 m) inside its dry transom's run (to 11 m), where
+    the topsides are faired onto lines (fairlines.transom_run): its sections' half-breadths above
+    T (13.3 m, 16.15 m) run on across the skeg's aft edge. The skeg's sections were left off the
+    run's fairing and stepped 20 / 11 mm; now their topside is the body's own, faired alike."""
+    hull = fl.design_hull(**SHIPS["container"])
+    x = hull.description.skeg.x_aft
+    sections = hull.sections_at([x - 1e-3, x + 1e-3])
+    pts = [np.asarray(c.evaluate(np.linspace(*c.domain, 20001)))[::-1] for c in sections]  # keel -> deck
+    assert all(np.all(np.diff(p[:, 2]) > 0) for p in pts)
+    ys = [float(np.interp(height, p[:, 2], p[:, 1])) for p in pts]
+    assert abs(ys[1] - ys[0]) <= SKEG_START_STEP, ys
 
 
 def test_skeg_ship_composes_watertight(ship):

@@ -218,9 +218,9 @@ constexpr int kAppendageUpperSamples = 48, kAppendageLowerSamples = 96;
 /// and side slide past the knots as the skeg grows along its aft end, and a near-interpolating fit
 /// rang as they did (4 mm ripples of the sections' half-breadth, 0.4 m long, over the skegged
 /// tanker's aft end). 0.07 and more thinned its side by more than a tenth 0.3-0.6 m above its
-/// bottom (SkegAndDomeHangBelowTheBody); a dome keeps kGivenSmoothing (0.1 took 12 % off its
-/// breadth).
-constexpr double kSkegSmoothing = 0.05;
+/// bottom (SkegAndDomeHangBelowTheBody). A dome's the same way, less: 0.01 took 3.8 % off its
+/// breadth (the designer promises 3 %), 0.1 12 %.
+constexpr double kSkegSmoothing = 0.05, kDomeSmoothing = 0.005;
 /// An appendage's tail shares the parameter with the body's lowest this many knot spans.
 constexpr int kAppendageSpans = 6;
 /// Points along a dome's half ellipse.
@@ -1005,10 +1005,12 @@ Eigen::RowVectorXd given_area_row(const Section& S, const Eigen::MatrixX2d& P, d
 
 /// Half-breadth shifts of the control points, least in size and bend (the topside's a tilt, as
 /// in correction()), with the ends held, that put the spline through Q (unless Q lies on the
-/// bound B/2) and to `target` (NaN: area free), each condition asked with the immersion weight w. A control point within
+/// bound B/2) and to `target` (NaN: area free), each condition asked with the immersion weight w;
+/// control points below `hold_below` (m) or before `held_above` (index) are held. A control point within
 /// kGivenBoundBand of y_max of the bound 0 or y_max is less mobile (its shift costs more, its
 /// mobility falling linearly to kGivenMobility on the bound): a flat side at B/2 stays there.
-Eigen::VectorXd given_shifts(const Section& S, const Eigen::MatrixX2d& P, double t_q, double target, double hold_below) {
+Eigen::VectorXd given_shifts(const Section& S, const Eigen::MatrixX2d& P, double t_q, double target, double hold_below,
+                             int held_above = 0) {
   const int n = S.l.n;
   const Eigen::RowVectorXd arow = given_area_row(S, P, t_q), qrow = point_row(S, t_q);
   const bool area = !std::isnan(target);
@@ -1029,7 +1031,7 @@ Eigen::VectorXd given_shifts(const Section& S, const Eigen::MatrixX2d& P, double
   const bool through_q = S.b < (1 - kGivenBoundBand) * S.s.y_max;
   std::vector<std::pair<int, double>> held{{0, 0.0}, {n - 1, 0.0}};  // (control point, its shift)
   for (int k = 1; k + 1 < n; ++k)
-    if (P(k, 1) < hold_below) held.emplace_back(k, 0.0);  // a skeg keeps its thickness
+    if (P(k, 1) < hold_below || k < held_above) held.emplace_back(k, 0.0);  // a skeg keeps its thickness
   Eigen::VectorXd delta;
   for (int pass = 0; pass < n; ++pass) {  // an active set: shifts past a bound are held on it
     const int h = static_cast<int>(held.size());
@@ -1056,12 +1058,12 @@ Eigen::VectorXd given_shifts(const Section& S, const Eigen::MatrixX2d& P, double
 
 /// The section of control points P (y, z) shifted through Q and to the asked area (control
 /// points below `hold_below`, a skeg's, held).
-SectionDesign finish_given(const Section& S, Eigen::MatrixX2d P, double hold_below) {
+SectionDesign finish_given(const Section& S, Eigen::MatrixX2d P, double hold_below, int held_above = 0) {
   SectionDesign out{NurbsCurve(kDegree, S.l.U, Eigen::MatrixXd::Zero(S.l.n, 3))};
   out.immersion = S.w;
   if (S.immersed) {
     const double t_q = waterline_parameter(S, P);
-    P.col(0) += given_shifts(S, P, t_q, S.s.half_area, hold_below);
+    P.col(0) += given_shifts(S, P, t_q, S.s.half_area, hold_below, held_above);
     out.fullness = given_area_row(S, P, t_q).dot(P.col(0)) / (S.b * S.d);
   }
   Eigen::MatrixXd Q3(S.l.n, 3);
@@ -1102,8 +1104,7 @@ struct AppendageTail {
 /// with its parameter and the body's unit tangent there (heading in); false when it never is
 /// that wide. The samples bracket J; J and its tangent are then found on the curve itself, so
 /// they move smoothly along the hull: read off the samples' chords they stepped as J crossed
-/// from one chord to the next, and the fillet's corner, on the tangent, jumped by centimetres
-/// (the skegged tanker's waterlines at 0.65-0.75 T rang with lobes of 2-50 deg over its aft end).
+/// from one chord to the next, and the fillet's corner, on the tangent, jumped by centimetres.
 bool neck_point(const NurbsCurve& body, const Eigen::VectorXd& ts, const Eigen::MatrixXd& yz, double y0, V2& J,
                 double& t_J, V2& tan) {
   const int j = last_wider(yz, y0);
@@ -1167,7 +1168,7 @@ AppendageTail skeg_tail(const SectionSpec& s, const NurbsCurve& body, const Eige
 /// to J and to the appendage's tail, the body below t_s and the tail sharing [t_s, 1] by arc
 /// length. As the appendage vanishes (J -> the keel) the section tends to the body's.
 Eigen::MatrixX2d appendage_control_points(const Layout& l, const Eigen::MatrixX2d& body, const NurbsCurve& curve,
-                                          const AppendageTail& tail) {
+                                          const AppendageTail& tail, int& first_free) {
   const int n = l.n;
   // The last kAppendageSpans spans above J and the tail share [t_s, 1] by arc length: the tail
   // gets room from the body's lowest part, the body above t_s keeps its parameters. The body is
@@ -1216,6 +1217,7 @@ Eigen::MatrixX2d appendage_control_points(const Layout& l, const Eigen::MatrixX2
   for (int c = 0; c < n; ++c)
     if (c < i0 || c == n - 1) b.noalias() -= A.block(i0, c, k, 1) * P.row(c);
   P.middleRows(i0, k) = A.block(i0, i0, k, k).ldlt().solve(b);
+  first_free = i0;
   P.col(0) = P.col(0).cwiseMax(0.0);
   P.col(1) = P.col(1).cwiseMax(tail.pts.back().y());
   return P;
@@ -1249,6 +1251,7 @@ AppendageTail dome_tail(const SectionSpec& s, const NurbsCurve& body, const Eige
   for (int k = 1; k <= kDomePoints; ++k) out.pts.push_back(at(phi1 + (std::numbers::pi - phi1) * k / kDomePoints));
   out.pts.back().x() = 0.0;
   out.side_top = P.y();
+  out.bending = kDomeSmoothing;
   return out;
 }
 
@@ -1268,8 +1271,12 @@ SectionDesign design_with_appendage(const SectionSpec& spec) {
   with.z_keel = skeg ? spec.skeg_bottom : spec.dome_bottom;
   with.half_area = kNaN;
   const Section S = setup(with);
-  const Eigen::MatrixX2d P = appendage_control_points(S.l, b.curve.control_points().rightCols(2), b.curve, tail);
-  SectionDesign out = finish_given(S, P, tail.side_top);
+  int first_free = 0;
+  const Eigen::MatrixX2d P = appendage_control_points(S.l, b.curve.control_points().rightCols(2), b.curve, tail, first_free);
+  // The body's own control points stay as they are when the section is put through Q (shifted
+  // with the rest, the topside tilted by the fit's miss at Q): a skeg's topside is the body's,
+  // which a dry transom's run fairs like any other (hull.Hull._section_curves).
+  SectionDesign out = finish_given(S, P, tail.side_top, first_free);
   out.shape = b.shape, out.flat_kept = b.flat_kept;  // the body's: the designer reads whether its flat narrowed
   return out;
 }
