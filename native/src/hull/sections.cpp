@@ -1097,7 +1097,6 @@ struct AppendageTail {
   std::vector<V2> pts;     ///< J first, the keel point last
   double t_J = 1.0;        ///< the body's parameter at J
   double side_top = 0.0;   ///< control points below this height are held when Q is met
-  double bending = kGivenSmoothing;  ///< the fit's bending penalty (see appendage_control_points)
 };
 
 /// J, where the body's section `body` (samples yz at parameters ts) last comes in to y = y0,
@@ -1111,16 +1110,16 @@ bool neck_point(const NurbsCurve& body, const Eigen::VectorXd& ts, const Eigen::
   if (j < 0) return false;
   double lo = ts[j], hi = ts[j + 1];  // y(lo) >= y0 > y(hi)
   double t = lo + (yz(j, 0) - y0) / (yz(j, 0) - yz(j + 1, 0)) * (hi - lo);
+  Eigen::MatrixXd d = body.derivatives(t, 1);
   for (int it = 0; it < kNeckIterations; ++it) {  // Newton kept inside a shrinking bracket
-    const Eigen::MatrixXd d = body.derivatives(t, 1);
     const double r = d(0, 1) - y0;
     if (std::abs(r) <= kNeckTol * std::max(1.0, std::abs(y0))) break;
     (r > 0 ? lo : hi) = t;
     double next = d(1, 1) < 0 ? t - r / d(1, 1) : 0.5 * (lo + hi);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     t = next;
+    d = body.derivatives(t, 1);
   }
-  const Eigen::MatrixXd d = body.derivatives(t, 1);
   J = V2(d(0, 1), d(0, 2));
   t_J = t;
   const V2 dj(d(1, 1), d(1, 2));
@@ -1157,18 +1156,17 @@ AppendageTail skeg_tail(const SectionSpec& s, const NurbsCurve& body, const Eige
   for (int k = 1; k <= kSkegSidePoints; ++k) out.pts.emplace_back(t, E.y() + (zb - E.y()) * k / kSkegSidePoints);
   for (int k = 1; k <= kSkegSidePoints; ++k) out.pts.emplace_back(t * (1.0 - static_cast<double>(k) / kSkegSidePoints), zb);
   out.side_top = E.y();
-  out.bending = kSkegSmoothing;
   return out;
 }
 
 /// Control points (y, z) of a section with an appendage: the body's own control points where
 /// their support ends above t_s, kAppendageSpans knot spans above J, so its rows run on from the
-/// neighbouring sections without one; the rest fitted (least squares, bending weighing the
-/// tail's `bending`, the keel point held) to the body's curve from the first free span down
+/// neighbouring sections without one; the rest fitted (least squares, bending weighing
+/// `bending`, the keel point held) to the body's curve from the first free span down
 /// to J and to the appendage's tail, the body below t_s and the tail sharing [t_s, 1] by arc
 /// length. As the appendage vanishes (J -> the keel) the section tends to the body's.
 Eigen::MatrixX2d appendage_control_points(const Layout& l, const Eigen::MatrixX2d& body, const NurbsCurve& curve,
-                                          const AppendageTail& tail, int& first_free) {
+                                          const AppendageTail& tail, double bending, int& first_free) {
   const int n = l.n;
   // The last kAppendageSpans spans above J and the tail share [t_s, 1] by arc length: the tail
   // gets room from the body's lowest part, the body above t_s keeps its parameters. The body is
@@ -1178,15 +1176,15 @@ Eigen::MatrixX2d appendage_control_points(const Layout& l, const Eigen::MatrixX2
   int i0 = 1;
   while (i0 < n - 1 && l.U[i0 + kDegree + 1] <= t_s) ++i0;
   std::vector<std::pair<double, V2>> data;  // (parameter, point), weighted by arc spacing
-  auto at = [&](double t) { return V2(curve.evaluate(t).tail<2>()); };
-  for (int k = 0; k < kAppendageUpperSamples; ++k) {
-    const double t = l.U[i0] + (t_s - l.U[i0]) * k / kAppendageUpperSamples;
-    if (t < t_s) data.emplace_back(t, at(t));
-  }
+  const Eigen::VectorXd tu = Eigen::VectorXd::LinSpaced(kAppendageUpperSamples + 1, l.U[i0], t_s).head(kAppendageUpperSamples);
+  const Eigen::MatrixXd upper = curve.evaluate(tu);
+  for (int k = 0; k < kAppendageUpperSamples; ++k)
+    if (tu[k] < t_s) data.emplace_back(tu[k], V2(upper(k, 1), upper(k, 2)));
+  const Eigen::MatrixXd lower = curve.evaluate(Eigen::VectorXd::LinSpaced(kAppendageLowerSamples + 1, t_s, tail.t_J));
   std::vector<V2> low(kAppendageLowerSamples + 1);  // the body from t_s to J, J last
   std::vector<double> low_run(low.size(), 0.0);
   for (int k = 0; k <= kAppendageLowerSamples; ++k) {
-    low[k] = at(t_s + (tail.t_J - t_s) * k / kAppendageLowerSamples);
+    low[k] = V2(lower(k, 1), lower(k, 2));
     if (k > 0) low_run[k] = low_run[k - 1] + (low[k] - low[k - 1]).norm();
   }
   const double low_arc = low_run.back();
@@ -1209,7 +1207,7 @@ Eigen::MatrixX2d appendage_control_points(const Layout& l, const Eigen::MatrixX2
     total += w;
   }
   const Eigen::MatrixXd D2 = second_differences(n);
-  A.noalias() += tail.bending * total / (n - kDegree) * D2.transpose() * D2;
+  A.noalias() += bending * total / (n - kDegree) * D2.transpose() * D2;
   Eigen::MatrixX2d P = body;
   P.row(n - 1) = tail.pts.back().transpose();
   const int k = n - 1 - i0;  // free: i0 .. n - 2
@@ -1251,7 +1249,6 @@ AppendageTail dome_tail(const SectionSpec& s, const NurbsCurve& body, const Eige
   for (int k = 1; k <= kDomePoints; ++k) out.pts.push_back(at(phi1 + (std::numbers::pi - phi1) * k / kDomePoints));
   out.pts.back().x() = 0.0;
   out.side_top = P.y();
-  out.bending = kDomeSmoothing;
   return out;
 }
 
@@ -1272,7 +1269,8 @@ SectionDesign design_with_appendage(const SectionSpec& spec) {
   with.half_area = kNaN;
   const Section S = setup(with);
   int first_free = 0;
-  const Eigen::MatrixX2d P = appendage_control_points(S.l, b.curve.control_points().rightCols(2), b.curve, tail, first_free);
+  const Eigen::MatrixX2d P = appendage_control_points(S.l, b.curve.control_points().rightCols(2), b.curve, tail,
+                                                      skeg ? kSkegSmoothing : kDomeSmoothing, first_free);
   // The body's own control points stay as they are when the section is put through Q (shifted
   // with the rest, the topside tilted by the fit's miss at Q): a skeg's topside is the body's,
   // which a dry transom's run fairs like any other (hull.Hull._section_curves).
