@@ -42,7 +42,7 @@ def main() -> int:
         drawn = hull.composed_hull() if hull.description.bulb is not None else hull.bare_hull_surface()
         plan = lines_plan(drawn, lpp=pr["Lpp"], beam=pr["B"], draft=pr["T"], depth=pr["D"],
                              name=f"{data.name} (imported)")
-        plan.save(out / f"imported_{ship}.png", dpi=60)
+        plan.save(out / f"imported_{ship}.png", dpi=100)
     return 0
 
 

@@ -30,6 +30,12 @@ NOTE_CHARS = 92
 WL_LABEL_AT = 0.72
 #: Clear space kept between two labels (mm on paper).
 LABEL_PAD_MM = 0.8
+#: A label's box as drawn (lines_render: DejaVu Sans at size / 0.72 mm to the em): the line's
+#: height with its descent, and a digit's advance, in text sizes.
+LABEL_H, LABEL_CHAR_W = 1.42, 0.91
+#: Places along x tried for the half-breadth plan's waterline labels (best spread first), and
+#: their text size (mm on paper).
+WL_LABEL_PLACES, WL_LABEL_SIZE = 6, 1.4
 #: Band left for labels outside a view (mm on paper).
 LABEL_MM = 9.0
 #: Space between the half-breadth plan's labels and the body plan below it (mm on paper).
@@ -151,7 +157,7 @@ def layout(plan, xr, lo, hi) -> None:
     plan.sheet = (left, top - H * m, left + W * m, top)
     prims: list = []
     _grid(plan, prims, f, yc, body, m)
-    _curves(plan, prims, f, yc, body)
+    _curves(plan, prims, f, yc, body, m)
     _title_block(plan, prims, m)
     plan.primitives = _drop_overlapping_labels(prims, m)
 
@@ -170,10 +176,11 @@ def _body_in_band(f: _Frame, n: float, nb: float, left: float, top: float) -> _B
 
 
 def _label_box(x, y, text, size, ha, va, m):
-    w, h = (0.75 * size * len(text) + LABEL_PAD_MM) * m, size * m
+    """A label's box (drawing metres) with LABEL_PAD_MM / 2 clear all round."""
+    w, h, pad = LABEL_CHAR_W * size * len(text) * m, LABEL_H * size * m, 0.5 * LABEL_PAD_MM * m
     x0 = x - {"left": 0.0, "center": 0.5, "right": 1.0}[ha] * w
     y0 = y - {"bottom": 0.0, "baseline": 0.0, "center": 0.5, "top": 1.0}[va] * h
-    return (x0, y0, x0 + w, y0 + h)
+    return (x0 - pad, y0 - pad, x0 + w + pad, y0 + h + pad)
 
 
 def _drop_overlapping_labels(prims, m):
@@ -289,24 +296,45 @@ def _diagonal_traces(plan, prims, f: _Frame, body: _Body, lab):
                           layer="DIAGONALS"))
 
 
-def _spread_x(waterlines, x0, x1):
-    """x (inside the middle 80 % of [x0, x1]) where the waterlines in the half-breadth plan are
-    furthest apart from each other: there their labels do not crowd."""
+def _waterline_label_places(waterlines, x0, x1, clear: float) -> dict:
+    """Where each waterline's number goes in the half-breadth plan: label -> x (drawing metres,
+    best first). First the x (inside the middle 80 % of [x0, x1]) where the numbered waterlines
+    are furthest apart from each other, so the numbers stand in one column where they can; then
+    the x where the waterline has the most room above or below it to the next waterline drawn
+    or the centre line (at least `clear`, a label's height), a tenth of the range apart, up to
+    WL_LABEL_PLACES in all (where none has that room, the one with the most), each with the
+    label's vertical alignment ("bottom": above the line)."""
     xs = np.linspace(x0 + 0.1 * (x1 - x0), x1 - 0.1 * (x1 - x0), 41)
-    ys = []
-    for _, _, cuts in waterlines:
+    ys = {}
+    for label, _, cuts in waterlines:
         pieces = [c for c in cuts if np.ptp(c[:, 0]) > 0]
         if pieces:
             c = max(pieces, key=lambda c: np.ptp(c[:, 0]))
             o = np.argsort(c[:, 0])
-            ys.append(np.interp(xs, c[o, 0], c[o, 1], left=np.nan, right=np.nan))
-    if len(ys) < 2:
-        return x0 + WL_LABEL_AT * (x1 - x0)
-    gaps = np.nan_to_num(np.min(np.diff(np.sort(np.array(ys), axis=0), axis=0), axis=0), nan=0.0)
-    return float(xs[int(np.argmax(gaps))])
+            ys[label] = np.interp(xs, c[o, 0], c[o, 1], left=np.nan, right=np.nan)
+    numbered = np.array([y for label, y in ys.items() if label != "DWL"])
+    if len(numbered) < 2:
+        return {label: [(x0 + WL_LABEL_AT * (x1 - x0), "bottom")] for label in ys}
+    gaps = np.nan_to_num(np.min(np.diff(np.sort(numbered, axis=0), axis=0), axis=0), nan=0.0)
+    column = float(xs[int(np.argmax(gaps))])
+    every = np.array(list(ys.values()))
+    places = {}
+    for i, (label, y) in enumerate(ys.items()):
+        d = np.delete(every, i, axis=0) - y  # to the other waterlines; a missing one (nan) leaves room
+        rooms = {"bottom": np.nanmin(np.where(d >= 0, d, np.inf), axis=0, initial=np.inf),
+                 "top": np.minimum(np.nanmin(np.where(d <= 0, -d, np.inf), axis=0, initial=np.inf), y)}
+        # a line within a quarter label of this one makes it unclear which line a number names
+        ok = (np.nanmin(np.abs(d), axis=0, initial=np.inf) >= 0.25 * clear) & np.isfinite(y)
+        candidates = [(r, x, va) for va, room in rooms.items() for r, x in zip(np.where(ok, room, 0.0), xs)]
+        own = [(column, "bottom")]
+        for r, x_at, va in sorted(candidates, key=lambda q: -q[0]):
+            if (r >= clear or len(own) < 4) and all(abs(x_at - x) >= 0.1 * (x1 - x0) for x, _ in own):
+                own.append((float(x_at), va))  # (where none has room, the one with the most)
+        places[label] = own[:WL_LABEL_PLACES]
+    return places
 
 
-def _curves(plan, prims, f: _Frame, yc, body: _Body):
+def _curves(plan, prims, f: _Frame, yc, body: _Body, m: float):
     x0, x1 = f.x0, f.x1
     mid = 0.5 * plan.particulars["lpp"]
     # Body plan: stations aft of midships on the left, forward on the right, midship both.
@@ -317,15 +345,22 @@ def _curves(plan, prims, f: _Frame, yc, body: _Body):
                 prims.append(Polyline(body.at(s * c[:, 1], c[:, 2]), "STATIONS", True, f"ST {label}"))
         if cuts and x0 <= x <= x1:
             prims.append(_station_label(label, cuts, sides[0], body, plan.particulars["draft"]))
-    x_lab = _spread_x(plan.waterlines, x0, x1)
+    x_labs = _waterline_label_places(plan.waterlines, x0, x1, LABEL_H * WL_LABEL_SIZE * m)
+    labels = []
     for label, z, cuts in plan.waterlines:
         layer = "DWL" if label == "DWL" else "WATERLINES"
+        places = []
         for c in cuts:
             for piece in _clip_x(c, x0, x1):
                 prims.append(Polyline(np.column_stack([piece[:, 0], yc + piece[:, 1]]), layer, True, f"WL {label}"))
-                if piece[:, 0].min() <= x_lab <= piece[:, 0].max():
-                    k = int(np.argmin(np.abs(piece[:, 0] - x_lab)))
-                    prims.append(Text(piece[k, 0], yc + piece[k, 1], label, size=1.4, va="bottom", layer="WATERLINES"))
+                places += [(x, va, piece) for x, va in x_labs.get(label, ()) if piece[:, 0].min() <= x <= piece[:, 0].max()]
+        places.sort(key=lambda place: x_labs[label].index(place[:2]))
+        at = [(piece[k, 0], yc + piece[k, 1], "center", va)
+              for k, va, piece in ((int(np.argmin(np.abs(piece[:, 0] - x))), va, piece) for x, va, piece in places)]
+        if at:
+            labels.append(Text(at[0][0], at[0][1], label, size=WL_LABEL_SIZE, va=at[0][3], layer="WATERLINES",
+                               alternatives=tuple(at[1:])))
+    prims += sorted(labels, key=lambda t: t.text == "DWL")  # the DWL's last: it is named beside the profile too
     for label, y, cuts in plan.buttocks:
         pieces = [piece for c in cuts for piece in _clip_x(c, x0, x1)]
         for piece in pieces:

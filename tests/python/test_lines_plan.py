@@ -159,3 +159,40 @@ def test_example_writes_the_drawings(tmp_path, monkeypatch, capsys):
     for name in ("lines_plan.png", "lines_plan.pdf", "lines_plan.dxf", "lines_plan_bow.png", "lines_plan_stern.png",
                  "curves_of_form.csv", "sac.png"):
         assert (tmp_path / "lines" / name).stat().st_size > 1000
+
+
+def _drawn_label_boxes(plan, layers):
+    """(text, box in paper pixels) of the labels on `layers` as matplotlib draws them."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from fairlines.lines_render import figure
+    from fairlines.lines_sheet import Text
+
+    fig = figure(plan)
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    texts = [p for p in plan.primitives if isinstance(p, Text)]
+    drawn = fig.axes[0].texts
+    assert [t.text for t in texts] == [d.get_text() for d in drawn]
+    return [(t.text, d.get_window_extent(renderer)) for t, d in zip(texts, drawn) if t.layer in layers]
+
+
+def _kcs_plan():
+    from import_fixtures import read
+
+    desc = fl.import_design(read("kcs"))
+    pr = desc["principal"]
+    return lines_plan(fl.Hull.from_json(desc).composed_hull(), lpp=pr["Lpp"], beam=pr["B"], draft=pr["T"], depth=pr["D"])
+
+
+@pytest.mark.parametrize("which", ["bare", "composed", "kcs"])
+def test_waterline_and_station_numbers_stand_clear_of_each_other(which, ship_plan, composed_plan):
+    """Every numbered waterline has its number in the half-breadth plan, and no two waterline or
+    station numbers overlap as matplotlib draws them (its text extents, descent included). KCS's
+    waterlines crowd in one column where they are furthest apart: drawn there at one x (before),
+    its 8 and 10 overlapped and its numbers read as a smudge at 60 dpi."""
+    plan = {"bare": ship_plan, "composed": composed_plan}.get(which) or _kcs_plan()
+    boxes = _drawn_label_boxes(plan, ("WATERLINES", "STATIONS"))
+    numbered = {label for label, _, cuts in plan.waterlines if label != "DWL" and cuts}
+    assert numbered <= {text for text, _ in boxes}
+    for i, (ta, a) in enumerate(boxes):
+        for tb, b in boxes[i + 1:]:
+            assert not a.overlaps(b), (ta, tb, a, b)
