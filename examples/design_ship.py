@@ -50,8 +50,10 @@ def draw_lines(ax_profile, ax_plan, ax_body, hull, title):
         p = np.asarray(fl.plane_cut(s, 0, float(x), 301).points)
         if len(p):
             ax_body.plot((1 if x > 0.5 * pr.lpp else -1) * p[:, 1], p[:, 2], "k", lw=0.7)
-    keel = np.asarray(s.evaluate_grid([s.domain_u[0], s.domain_u[1]], np.linspace(*s.domain_v, 400))).reshape(2, -1, 3)
-    for e in keel:
+    # the outline: keel and deck edge (the surface's u ends), transom and stem (its v ends)
+    edges = np.asarray(s.evaluate_grid([s.domain_u[0], s.domain_u[1]], np.linspace(*s.domain_v, 400))).reshape(2, -1, 3)
+    ends = np.asarray(s.evaluate_grid(np.linspace(*s.domain_u, 200), [s.domain_v[0], s.domain_v[1]])).reshape(-1, 2, 3)
+    for e in [*edges, ends[:, 0], ends[:, 1]]:
         ax_profile.plot(e[:, 0], e[:, 2], "k", lw=1)
         ax_plan.plot(e[:, 0], e[:, 1], "k", lw=1)
     for a in (ax_profile, ax_plan, ax_body):
