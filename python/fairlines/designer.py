@@ -56,6 +56,9 @@ STEM_RAKE = 20.0            # stem rake above the waterline, deg from the vertic
 TRANSOM_AFT = 0.025         # transom aft of the AP, fraction of Lpp
 LCF_AFT_OF_LCB = 0.015      # default LCF aft of the LCB, fraction of Lpp
 COUNTER_ANGLE = 12.0        # rise of the counter at the transom, deg from the horizontal
+TRANSOM_FULL_CB = 0.6       # the transom's lower edge TRANSOM_IMMERSION_FULL of T below the waterline
+TRANSOM_IMMERSION_FULL = -0.05  # from this Cb (< 0: above it, a dry transom), TRANSOM_IMMERSION_FINE below it
+TRANSOM_IMMERSION_FINE = 0.12
 # A flat of bottom by default: without one the two halves of the run meet at the keel at the
 # floor's angle (section splines arriving 17 / 10 / 4 deg at 0.18 / 0.25 / 0.33 Lpp on the
 # container ship), a crease zebra stripes break at; this much flattens it (3 / 0.3 / 0 deg).
@@ -281,7 +284,8 @@ def _coefficients(p: Particulars) -> dict:
         lo, hi = PARALLEL_SPAN
         centre = L / 2 + PARALLEL_SHIFT * (p.lcb - L / 2)
     centre = float(np.clip(centre, lo * L + lp / 2, hi * L - lp / 2)) if lp > 0 else centre
-    imm = p.transom_immersion if p.transom_immersion is not None else (-0.05 * p.draft if p.cb >= 0.6 else 0.12 * p.draft)
+    imm = p.transom_immersion if p.transom_immersion is not None else \
+        (TRANSOM_IMMERSION_FULL if p.cb >= TRANSOM_FULL_CB else TRANSOM_IMMERSION_FINE) * p.draft
     fine = min(1.0, max(0.0, (0.85 - p.cb) / 0.35))  # 0 full, 1 fine
     return {"cm": cm, "cp": cp, "cwp": cwp, "lcf": lcf, "fine": fine, "parallel": (centre - lp / 2, centre + lp / 2),
             "transom_z": p.depth if p.stern == "cruiser" else p.draft - imm}
