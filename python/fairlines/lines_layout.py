@@ -297,13 +297,12 @@ def _diagonal_traces(plan, prims, f: _Frame, body: _Body, lab):
 
 
 def _waterline_label_places(waterlines, x0, x1, clear: float) -> dict:
-    """Where each waterline's number goes in the half-breadth plan: label -> x (drawing metres,
-    best first). First the x (inside the middle 80 % of [x0, x1]) where the numbered waterlines
-    are furthest apart from each other, so the numbers stand in one column where they can; then
-    the x where the waterline has the most room above or below it to the next waterline drawn
-    or the centre line (at least `clear`, a label's height), a tenth of the range apart, up to
-    WL_LABEL_PLACES in all (where none has that room, the one with the most), each with the
-    label's vertical alignment ("bottom": above the line)."""
+    """Where each waterline's number goes in the half-breadth plan: label -> [(x, va)] (drawing
+    metres, best first; va "bottom" above the line, "top" below it). First the x (inside the
+    middle 80 % of [x0, x1]) where the numbered waterlines are furthest apart from each other, so
+    the numbers stand in one column where they can; then the x where the waterline has the most
+    room to the next line drawn (`_label_room`), a tenth of the range apart: every one with at
+    least `clear` (a label's height), the best three at least, WL_LABEL_PLACES in all."""
     xs = np.linspace(x0 + 0.1 * (x1 - x0), x1 - 0.1 * (x1 - x0), 41)
     ys = {}
     for label, _, cuts in waterlines:
@@ -320,18 +319,24 @@ def _waterline_label_places(waterlines, x0, x1, clear: float) -> dict:
     every = np.array(list(ys.values()))
     places = {}
     for i, (label, y) in enumerate(ys.items()):
-        d = np.delete(every, i, axis=0) - y  # to the other waterlines; a missing one (nan) leaves room
-        rooms = {"bottom": np.nanmin(np.where(d >= 0, d, np.inf), axis=0, initial=np.inf),
-                 "top": np.minimum(np.nanmin(np.where(d <= 0, -d, np.inf), axis=0, initial=np.inf), y)}
-        # a line within a quarter label of this one makes it unclear which line a number names
-        ok = (np.nanmin(np.abs(d), axis=0, initial=np.inf) >= 0.25 * clear) & np.isfinite(y)
-        candidates = [(r, x, va) for va, room in rooms.items() for r, x in zip(np.where(ok, room, 0.0), xs)]
         own = [(column, "bottom")]
-        for r, x_at, va in sorted(candidates, key=lambda q: -q[0]):
-            if (r >= clear or len(own) < 4) and all(abs(x_at - x) >= 0.1 * (x1 - x0) for x, _ in own):
-                own.append((float(x_at), va))  # (where none has room, the one with the most)
+        for room, x_at, va in sorted(_label_room(np.delete(every, i, axis=0), y, xs, clear), key=lambda q: -q[0]):
+            if (room >= clear or len(own) < 4) and all(abs(x_at - x) >= 0.1 * (x1 - x0) for x, _ in own):
+                own.append((float(x_at), va))
         places[label] = own[:WL_LABEL_PLACES]
     return places
+
+
+def _label_room(others, y, xs, clear: float) -> list:
+    """[(room, x, va)]: at each x, the room (drawing metres) above the waterline `y` (half-breadths
+    at xs) to the next of the `others` (va "bottom") and below it to the next or the centre line
+    ("top"); none where another line lies within a quarter of `clear` (which line a number names
+    would be unclear) or the waterline is not drawn. A missing other waterline (nan) leaves room."""
+    d = others - y
+    above = np.nanmin(np.where(d >= 0, d, np.inf), axis=0, initial=np.inf)
+    below = np.minimum(np.nanmin(np.where(d <= 0, -d, np.inf), axis=0, initial=np.inf), y)
+    ok = (np.nanmin(np.abs(d), axis=0, initial=np.inf) >= 0.25 * clear) & np.isfinite(y)
+    return [(r, x, va) for va, room in (("bottom", above), ("top", below)) for r, x in zip(np.where(ok, room, 0.0), xs)]
 
 
 def _curves(plan, prims, f: _Frame, yc, body: _Body, m: float):
