@@ -36,6 +36,8 @@ LABEL_H, LABEL_CHAR_W = 1.42, 0.91
 #: Places along x tried for the half-breadth plan's waterline labels (best spread first), and
 #: their text size (mm on paper).
 WL_LABEL_PLACES, WL_LABEL_SIZE = 6, 1.4
+#: A station's cut smaller than this on paper (mm) is a point of the hull and takes no number.
+POINT_SECTION = 0.5
 #: Band left for labels outside a view (mm on paper).
 LABEL_MM = 9.0
 #: Space between the half-breadth plan's labels and the body plan below it (mm on paper).
@@ -348,7 +350,8 @@ def _curves(plan, prims, f: _Frame, yc, body: _Body, m: float):
         for c in cuts:
             for s in sides:
                 prims.append(Polyline(body.at(s * c[:, 1], c[:, 2]), "STATIONS", True, f"ST {label}"))
-        if cuts and x0 <= x <= x1:
+        # a station through a point of the hull (a bulb's nose) draws nothing to name
+        if cuts and x0 <= x <= x1 and np.ptp(np.concatenate(cuts)[:, 1:], axis=0).max() > POINT_SECTION * m:
             prims.append(_station_label(label, cuts, sides[0], body, plan.particulars["draft"]))
     x_labs = _waterline_label_places(plan.waterlines, x0, x1, LABEL_H * WL_LABEL_SIZE * m)
     labels = []

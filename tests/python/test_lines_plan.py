@@ -196,3 +196,14 @@ def test_waterline_and_station_numbers_stand_clear_of_each_other(which, ship_pla
     for i, (ta, a) in enumerate(boxes):
         for tb, b in boxes[i + 1:]:
             assert not a.overlaps(b), (ta, tb, a, b)
+
+
+def test_a_station_through_a_point_of_the_hull_takes_no_number(composed_plan):
+    """Station 20.5 of the composed example cuts the bulb at its nose, a point (under 1 cm across):
+    it was numbered at the centre line, among the aft stations' numbers."""
+    from fairlines.lines_sheet import Text
+
+    (cuts,) = [c for label, _, c in composed_plan.stations if label == "20.5"]
+    assert np.ptp(np.concatenate(cuts)[:, 1:], axis=0).max() < 0.01
+    numbers = [p.text for p in composed_plan.primitives if isinstance(p, Text) and p.layer == "STATIONS"]
+    assert "20.5" not in numbers and "20" in numbers
