@@ -357,14 +357,15 @@ def _curves(plan, prims, f: _Frame, yc, body: _Body, m: float):
     labels = []
     for label, z, cuts in plan.waterlines:
         layer = "DWL" if label == "DWL" else "WATERLINES"
-        places = []
-        for c in cuts:
-            for piece in _clip_x(c, x0, x1):
-                prims.append(Polyline(np.column_stack([piece[:, 0], yc + piece[:, 1]]), layer, True, f"WL {label}"))
-                places += [(x, va, piece) for x, va in x_labs.get(label, ()) if piece[:, 0].min() <= x <= piece[:, 0].max()]
-        places.sort(key=lambda place: x_labs[label].index(place[:2]))
-        at = [(piece[k, 0], yc + piece[k, 1], "center", va)
-              for k, va, piece in ((int(np.argmin(np.abs(piece[:, 0] - x))), va, piece) for x, va, piece in places)]
+        pieces = [piece for c in cuts for piece in _clip_x(c, x0, x1)]
+        for piece in pieces:
+            prims.append(Polyline(np.column_stack([piece[:, 0], yc + piece[:, 1]]), layer, True, f"WL {label}"))
+        at = []  # the label's places, best first, each on the drawn piece that spans its x
+        for x, va in x_labs.get(label, ()):
+            for piece in pieces:
+                if piece[:, 0].min() <= x <= piece[:, 0].max():
+                    k = int(np.argmin(np.abs(piece[:, 0] - x)))
+                    at.append((piece[k, 0], yc + piece[k, 1], "center", va))
         if at:
             labels.append(Text(at[0][0], at[0][1], label, size=WL_LABEL_SIZE, va=at[0][3], layer="WATERLINES",
                                alternatives=tuple(at[1:])))
