@@ -36,7 +36,7 @@ import numpy as np
 from . import _native, monotone_cubic
 from .basic_curves import tersely
 from .dry_ends import section_half_breadth
-from .offsets import HullData, lowest_at_each_x
+from .offsets import HullData, Section, lowest_at_each_x
 from .preprocess.rebuild import distances
 
 __all__ = ["import_design", "measure_hull_data", "measure_kracht", "MeasuredHull", "point_deviation", "data_points",
@@ -149,6 +149,11 @@ GIVEN_FLAT_TOL = 1e-4
 NOSE_GAP = 2e-3
 #: Points of each given section, evenly along it (deck edge, side, bottom to the centre plane).
 GIVEN_SHAPE_POINTS = 301
+#: Where a section list's end station starts this fraction of T or more above its neighbour (a
+#: forefoot or a cut-up stern within one station spacing), stations are picked up between the
+#: two, one more per this much of the rise: a skin through the two alone swung its rows under the
+#: keel (Series 60: 0.51 m below the base at x 117.8 m, 0.27 m at 4.5 m).
+END_RISE_STEP = 0.25
 
 
 @dataclasses.dataclass
@@ -1011,10 +1016,11 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
     if given:
         from .hull import Hull
 
-        worst = float(np.nanmax(station_misfit(Hull.from_json(out), m), initial=0.0))
+        fitted = Hull.from_json(out)
+        worst = float(np.nanmax(station_misfit(fitted, m), initial=0.0))
         if worst > GIVEN_MISFIT * m.beam:
             say(f"the section family misses a station by {100 * worst / m.beam:.2f} % B (RMS): giving the measured shapes")
-            md = _given_measure(hull_data, depth)
+            md = _given_measure(hull_data, depth, fitted.basic_curves["profile"])
             gbase = _base_description(md, name or hull_data.name, given=True)
             gbase["skinning"] = _skin_knuckles(hull_data, md.x)
             shaped = _designed(gbase, md, hull_data, None, say)
@@ -1025,8 +1031,53 @@ def import_design(hull_data: HullData, *, depth: float | None = None, fit_shapes
     return out
 
 
-def _given_measure(hull_data: HullData, depth: float | None) -> MeasuredHull:
-    """The stations whose measured shapes are given: a grid's section rows where it has them,
+def _end_span_sections(data: HullData, profile) -> list:
+    """Sections picked up between a section list's end station and its neighbour where the end
+    starts END_RISE_STEP T or more higher: each with its keel point on `profile` (a callable x ->
+    the centre-plane contour's height, m, rising toward the end) and, at each height of the
+    data's offsets above it, the half-breadth along that waterline: the shape-preserving cubic
+    in x through the last four stations' half-breadths and, below the end station's lowest
+    point, the place where the waterline closes on the profile."""
+    secs = sorted(data.sections, key=lambda sec: sec.x)
+    if len(secs) < 4:
+        return []
+    out = []
+    for near in (secs[:4][::-1], secs[-4:]):  # toward the end: the aft end's last four reversed
+        end, inner = near[-1], near[-2]
+        low_in, low_end = float(inner.points[:, 1].min()), float(end.points[:, 1].min())
+        n = math.ceil((low_end - low_in) / (END_RISE_STEP * data.draft)) - 1
+        if n < 1:
+            continue
+        heights = np.unique(np.concatenate([sec.points[:, 1] for sec in near]))
+        ys = np.array([_half_breadths([sec.points], heights, smooth=True) for sec in near])
+        way = 1.0 if end.x > inner.x else -1.0
+        along = np.array([way * (sec.x - inner.x) for sec in near])  # distance toward the end
+        run = np.linspace(inner.x, end.x, 201)
+        order = np.argsort(run)
+        z_run = np.empty_like(run)
+        z_run[order] = np.asarray(profile(run[order]), float)
+        rise = np.clip(np.maximum.accumulate(z_run), low_in, low_end)  # the profile made one-way
+        dist = way * (run - inner.x)
+        for k in range(1, n + 1):
+            d = k / (n + 1) * along[-1]
+            z_keel = float(np.interp(d, dist, rise))
+            pts = [(0.0, z_keel)]
+            for j, zj in enumerate(heights):
+                have = np.isfinite(ys[:, j])
+                if zj <= z_keel or not have[-2]:
+                    continue
+                px, py = list(along[have]), list(ys[have, j])
+                if not have[-1]:  # the waterline closes on the profile before the end station
+                    px.append(float(np.interp(zj, rise, dist)))
+                    py.append(0.0)
+                pts.append((float(monotone_cubic.evaluate(np.array(px), np.array(py), np.array([d]))[0]), float(zj)))
+            out.append(Section(float(inner.x + way * d), np.array(pts), label="picked up"))
+    return out
+
+
+def _given_measure(hull_data: HullData, depth: float | None, profile=None) -> MeasuredHull:
+    """The stations whose measured shapes are given: a section list's own and those picked up
+    toward a steep end on `profile` (:func:`_end_span_sections`), a grid's section rows where it has them,
     graded into the stations beyond their range (:func:`_with_rows`), and of those left out there
     the ones whose data strays from their kept neighbours (:func:`_unlike_their_neighbours`);
     the volume and LCB those the data's chords hold (GIVEN_STATIONS cut from them, as the data's
@@ -1034,6 +1085,11 @@ def _given_measure(hull_data: HullData, depth: float | None) -> MeasuredHull:
     Lpp forward, both away from the data's)."""
     dense = measure_hull_data(hull_data, depth, dome=True, stations=GIVEN_STATIONS, bulb=True, noses=True)
     rows = [] if hull_data.sections else _section_rows(hull_data.grids, hull_data.lpp)
+    picked = _end_span_sections(hull_data, profile) if hull_data.sections and profile is not None else []
+    if picked:
+        more = dataclasses.replace(hull_data, sections=sorted(hull_data.sections + picked, key=lambda sec: sec.x))
+        md = measure_hull_data(more, depth, dome=True, stations=GIVEN_STATIONS, bulb=True, noses=True)
+        return dataclasses.replace(md, volume=dense.volume, lcb=dense.lcb)
     if not rows:
         return dense
     md = measure_hull_data(hull_data, depth, dome=True, stations=GIVEN_STATIONS, bulb=True, noses=True, rows=True)

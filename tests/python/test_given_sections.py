@@ -266,3 +266,19 @@ def test_given_offsets_round_trip_through_json():
 def test_bad_given_offsets_are_refused_naming_them(offsets, message):
     with pytest.raises(fl.InvalidInput, match=message):
         fl.Hull.from_json(_with_offsets(offsets))
+
+
+def test_a_given_flat_of_bottom_stays_exactly_flat():
+    """A box section with a flat of bottom 2 m wide and a round bilge of radius 3 m: the fitted
+    spline lies exactly on the flat (the control points whose support is on it held at the keel's
+    height); fitted freely it rippled about the flat by the smoothing's pull, and a skin's rows,
+    held only where a height repeats exactly along the hull, swung under the base."""
+    a = np.linspace(0.0, np.pi / 2, 40)
+    wall = [(B2, z) for z in np.linspace(D, 3.0, 12)[:-1]]
+    bilge = [(2.0 + 3.0 * np.cos(t), 3.0 - 3.0 * np.sin(t)) for t in a]
+    flat = [(y, 0.0) for y in np.linspace(2.0, 0.0, 12)[1:]]
+    p = _curve_points(fl.design_section(_spec(np.array(wall + bilge + flat))).curve, 4000)
+    on_flat = p[:, 1] < 0.4  # the last knot span: every control point it rests on lies on the flat
+    assert on_flat.sum() > 50
+    assert np.abs(p[on_flat, 2]).max() <= 1e-12
+    assert p[:, 2].min() >= -1e-3 * T  # nor under it beside the flat

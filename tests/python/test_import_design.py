@@ -82,6 +82,39 @@ def test_rebuilt_kcs_stem_above_the_bulb_is_the_datas():
         assert abs(hull_end - stem) <= 0.5, (z, hull_end, stem)
 
 
+@pytest.mark.parametrize("ship", SHIPS)
+def test_rebuilt_hull_lies_nowhere_further_below_the_data_than_the_largest_distance_goal(ship):
+    """No point of the rebuilt bare hull lies further below the data's lowest point than the
+    largest distance the rebuilt hull may have from a data point (MAX_GOAL of B). Series 60's
+    skin, through its last two stations alone, swung 0.51 m (3.1 % of B) under the base
+    ahead of its forefoot, where the data's keel is flat."""
+    from fairlines.import_design import data_points
+
+    desc = imported(ship)
+    s = fl.Hull.from_json(json.dumps(desc)).bare_hull_surface()
+    g = np.asarray(s.evaluate_grid(np.linspace(*s.domain_u, 300), np.linspace(*s.domain_v, 400))).reshape(-1, 3)
+    low = data_points(read(ship), desc["principal"]["D"])[:, 2].min()
+    assert low - g[:, 2].min() <= MAX_GOAL * desc["principal"]["B"]
+
+
+def test_rebuilt_series60_waterlines_run_into_the_stem_without_a_hook():
+    """Below T each waterline of the rebuilt Series 60 ends on its forefoot without a hollow
+    turn of more than 5 deg in its last metre. The table has no station between 19.5 and the FP
+    (where the hull starts at T); skinned through those two alone the waterlines curled into the
+    centre plane (hollow turns of 18-209 deg there); stations picked up along the waterlines
+    between them (import_design._end_span_sections) leave 0.1-3.8 deg."""
+    from fairlines.fairness import judge_cut
+
+    desc = imported("series60")
+    s = fl.Hull.from_json(json.dumps(desc)).bare_hull_surface()
+    T = desc["principal"]["T"]
+    for z in np.linspace(0.1, 0.95, 9) * T:
+        cut = fl.plane_cut(s, 2, float(z), 801)
+        end = np.asarray(cut.points)[:, 0].max()
+        hooks = [lb["turn_deg"] for lb in judge_cut(cut)["lobes"] if lb["sign"] > 0 and end - lb["at"][0] < 1.0]
+        assert max(hooks, default=0.0) <= 5.0, (z, hooks)
+
+
 @pytest.mark.parametrize("ship", [_goal("rms", s) for s in SHIPS])
 def test_rebuilt_hull_rms_distance_to_the_data(ship):
     assert rebuilt(ship)["rms_of_B"] <= RMS_GOAL
@@ -344,3 +377,29 @@ def test_a_table_that_stops_at_the_draught_asks_for_the_depth(tmp_path):
     data = read_offsets_csv(wigley_table_csv(tmp_path, {}, drop=("7500", "9000")), **WIGLEY)
     with pytest.raises(fl.InvalidInput, match=r"the data's top near midships is z = 6.25 m, not above T = 6.25 m .* give the depth"):
         fl.import_design(data)
+
+
+def test_stations_picked_up_toward_a_steep_end_lie_on_its_waterlines():
+    """A wedge bow, y = 0.2 (x_c(z) - x) with the forefoot x_c(z) = 90 + 2.5 z (m): the table's
+    stations 50-90 m have their keel on the base, the end station (100 m) its own 4 m up. The
+    stations picked up between 90 and 100 m, one per quarter T of that rise, start on the
+    profile and lie on the wedge at every height (the waterlines are straight, and the
+    shape-preserving cubic along each, through the stations and the place it closes on the
+    profile, is exact for them)."""
+    from fairlines.import_design import _end_span_sections
+    from fairlines.offsets import HullData, Section
+
+    def wedge(x, z):
+        return 0.2 * (90.0 + 2.5 * z - x)
+
+    sections = []
+    for x in (50.0, 60.0, 70.0, 80.0, 90.0, 100.0):
+        zs = np.arange(max(0.0, (x - 90.0) / 2.5), 9.01, 1.0)
+        sections.append(Section(x, np.array([(0.0, zs[0])] + [(wedge(x, z), z) for z in zs]), str(x)))
+    data = HullData("wedge", 100.0, 30.0, 6.0, sections=sections)
+    picked = _end_span_sections(data, lambda x: np.clip((np.asarray(x) - 90.0) / 2.5, 0.0, None))
+    assert [p.x for p in picked] == pytest.approx([90 + 10 / 3, 90 + 20 / 3])  # a rise of 4 m: 2 stations per 1.5 m
+    for p in picked:
+        (y0, z0), rest = p.points[0], p.points[1:]
+        assert (y0, z0) == pytest.approx((0.0, (p.x - 90.0) / 2.5), abs=1e-12)
+        assert np.abs(rest[:, 0] - wedge(p.x, rest[:, 1])).max() <= 1e-9

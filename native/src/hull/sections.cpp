@@ -192,6 +192,12 @@ constexpr double kGivenTiny = 1e-6;
 /// knot span) against its least squares over the points (chord-length parameters, weighted by
 /// their spacing): small, it only carries the spline across stretches with few points.
 constexpr double kGivenSmoothing = 1e-6;
+/// A given shape's points at its keel point's height within this fraction of its height, from
+/// the centre plane out, are its flat of bottom: the control points whose support lies on them
+/// keep that height exactly. Fitted freely they sat a few millimetres off it, so the skin, which
+/// holds a row only where its height repeats exactly along the hull, rippled the flat (the
+/// rebuilt Series 60's buttocks at 0.05, 0.29 and 0.41 B/2 took 2, 4 and 2 more sign changes).
+constexpr double kGivenFlatTol = 1e-9;
 /// The half-breadth shifts that put a given shape through Q and to its area: their size weighs
 /// 1, their bend (second differences) this much (a smooth change over the section).
 constexpr double kGivenShiftSmoothing = 10.0;
@@ -923,10 +929,43 @@ Eigen::MatrixXd second_differences(int n) {
   return D2;
 }
 
+/// The fit's heights (P's second column) again with the control points whose support lies on
+/// the shape's flat of bottom (kGivenFlatTol) held at the keel point's height: A and rhs the
+/// fit's normal equations, `t` the points' parameters.
+void hold_flat_of_bottom(const Section& S, const std::vector<V2>& pts, const std::vector<double>& t, const Eigen::MatrixXd& A,
+                         const Eigen::MatrixX2d& rhs, Eigen::MatrixX2d& P) {
+  const int n = S.l.n;
+  const double zk = pts.back().y(), tol = kGivenFlatTol * std::max(1.0, std::abs(pts.front().y() - zk));
+  std::size_t f = pts.size() - 1;
+  while (f > 0 && std::abs(pts[f - 1].y() - zk) <= tol) --f;
+  if (!(pts[f].x() > pts.back().x())) return;  // no flat: the keel point alone at its height
+  std::vector<char> held(n, 0);
+  held[0] = held[n - 1] = 1;
+  int any = 0;
+  for (int j = 1; j + 1 < n; ++j)
+    if (S.l.U[j] >= t[f]) held[j] = 1, P(j, 1) = zk, ++any;
+  if (!any) return;
+  std::vector<int> free;
+  for (int j = 0; j < n; ++j)
+    if (!held[j]) free.push_back(j);
+  const int m = static_cast<int>(free.size());
+  Eigen::MatrixXd Af(m, m);
+  Eigen::VectorXd bf(m);
+  for (int a = 0; a < m; ++a) {
+    bf[a] = rhs(free[a], 1);
+    for (int j = 0; j < n; ++j)
+      if (held[j]) bf[a] -= A(free[a], j) * P(j, 1);
+    for (int c = 0; c < m; ++c) Af(a, c) = A(free[a], free[c]);
+  }
+  const Eigen::VectorXd z = Af.ldlt().solve(bf);
+  for (int a = 0; a < m; ++a) P(free[a], 1) = z[a];
+}
+
 /// Control points (n by 2, (y, z)) on the section layout nearest the points: least squares at
 /// chord-length parameters weighted by the points' spacing, plus kGivenSmoothing of bending;
 /// the end control points held on the first and last point (D and K), half-breadths clamped to
-/// [0, y_max] (a corner's ringing, a few mm, would otherwise leave B/2: the spline stays inside).
+/// [0, y_max] (a corner's ringing, a few mm, would otherwise leave B/2: the spline stays inside),
+/// a flat of bottom held flat (hold_flat_of_bottom).
 Eigen::MatrixX2d fit_given(const Section& S, const std::vector<V2>& pts) {
   const int n = S.l.n;
   const std::size_t m = pts.size();
@@ -951,6 +990,7 @@ Eigen::MatrixX2d fit_given(const Section& S, const std::vector<V2>& pts) {
   const Eigen::MatrixX2d b = rhs.middleRows(1, k) - A.block(1, 0, k, 1) * P.row(0) - A.block(1, n - 1, k, 1) * P.row(n - 1);
   P.middleRows(1, k) = A.block(1, 1, k, k).ldlt().solve(b);
   P.col(0) = P.col(0).cwiseMax(0.0).cwiseMin(S.s.y_max);  // the fit's ringing at a corner stays inside B/2
+  hold_flat_of_bottom(S, pts, t, A, rhs, P);
   return P;
 }
 
