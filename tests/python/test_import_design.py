@@ -87,7 +87,8 @@ def test_rebuilt_hull_lies_nowhere_further_below_the_data_than_the_largest_dista
     """No point of the rebuilt bare hull lies further below the data's lowest point than the
     largest distance the rebuilt hull may have from a data point (MAX_GOAL of B). Series 60's
     skin, through its last two stations alone, swung 0.51 m (3.1 % of B) under the base
-    ahead of its forefoot, where the data's keel is flat."""
+    ahead of its forefoot, where the data's keel is flat (0.11 m with stations picked up there);
+    0.27 m (1.7 % of B) ahead of its stern's deadwood."""
     from fairlines.import_design import data_points
 
     desc = imported(ship)
@@ -97,12 +98,32 @@ def test_rebuilt_hull_lies_nowhere_further_below_the_data_than_the_largest_dista
     assert low - g[:, 2].min() <= MAX_GOAL * desc["principal"]["B"]
 
 
+FOLDS = {
+    "kcs": "the skin folds 0.39 m across the centre plane at the propeller boss's end (x 5.8 m, z 8.8 m; the 15 m^2 "
+           "of the wetted surface's xfail)",
+    "dtmb5415": "the skin folds 5 mm across the centre plane in the recess between the dome's nose and the stem "
+                "(x 5.70 m, z 0.07 m; docs/import.md)",
+}
+
+
+@pytest.mark.parametrize("ship", [pytest.param(s, marks=pytest.mark.xfail(strict=True, reason=FOLDS[s])) if s in FOLDS
+                                  else s for s in SHIPS])
+def test_rebuilt_hull_stays_on_its_side_of_the_centre_plane(ship):
+    """The bare hull is the half y >= 0: no point of it lies more than 1e-4 B across the centre
+    plane (a fold there makes the mirrored hull cut itself). Stations picked up over Series 60's
+    stern would have thinned its deadwood into a fin the skin folded 1.4 cm across."""
+    desc = imported(ship)
+    s = fl.Hull.from_json(json.dumps(desc)).bare_hull_surface()
+    g = np.asarray(s.evaluate_grid(np.linspace(*s.domain_u, 300), np.linspace(*s.domain_v, 600))).reshape(-1, 3)
+    assert g[:, 1].min() >= -1e-4 * desc["principal"]["B"]
+
+
 def test_rebuilt_series60_waterlines_run_into_the_stem_without_a_hook():
     """Below T each waterline of the rebuilt Series 60 ends on its forefoot without a hollow
     turn of more than 5 deg in its last metre. The table has no station between 19.5 and the FP
     (where the hull starts at T); skinned through those two alone the waterlines curled into the
     centre plane (hollow turns of 18-209 deg there); stations picked up along the waterlines
-    between them (import_design._end_span_sections) leave 0.1-3.8 deg."""
+    between them (import_design._end_span_sections) leave 0.3-3.8 deg."""
     from fairlines.fairness import judge_cut
 
     desc = imported("series60")
