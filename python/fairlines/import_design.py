@@ -1042,7 +1042,7 @@ def _end_span_sections(data: HullData, profile) -> list:
     (Series 60: 0.1-0.3 m at station 0.5 under the AP's counter), and picked up they thinned it
     into a fin of 1-8 cm that the skin folded across the centre plane (1.4 cm at x 1.4 m)."""
     near = sorted(data.sections, key=lambda sec: sec.x)[-4:]
-    if len(near) < 4:
+    if len(near) < 4 or min(len(sec.points) for sec in near) == 0:
         return []
     end, inner = near[-1], near[-2]
     low_in, low_end = float(inner.points[:, 1].min()), float(end.points[:, 1].min())
