@@ -72,6 +72,9 @@ measured shape may add ``"offsets": {"deck": [dy, dz], "waterline": dy, "keel": 
 its deck edge, waterline point and keel point lie that far from the basic curves at its x, and it is mapped onto the
 curves moved by them (blended linearly in x between given sections), so the shape keeps its
 measured points where a fair curve passes a few mm off them and still follows the curves' edits.
+``sections.given_smoothing`` (optional, >= 0; default the engine's, 1e-6: near-interpolation)
+is the bending penalty of each given shape's fit against its points; the importer writes
+0.1 for measured shapes (docs/import.md).
 
 A basic curve is ``{"value": v}`` (constant) or a spline with any of: ``x_start``, ``x_end``
 (inside its range above), ``flat_from`` / ``flat_to`` / ``value`` (a part where f = value exactly,
@@ -157,6 +160,9 @@ DOME_NECK = 0.55
 # Least number of points of a given section, and the most given sections and points per section.
 GIVEN_POINTS = (3, 2000)
 MAX_GIVEN_SECTIONS = 1000
+# Largest bending penalty of a given shape's fit (sections.given_smoothing): beyond it the fit
+# is the straight line the penalty asks for, not the shape.
+MAX_GIVEN_SMOOTHING = 100.0
 # Plausible ship sizes: a length outside this range is a unit mistake far more often than a ship.
 LENGTH_RANGE = (1.0, 600.0)
 
@@ -535,6 +541,7 @@ class HullDescription:
     transom_rake: float = 0.0  # the transom's plane from the vertical (deg), its top aft when positive
     given_sections: list = field(default_factory=list)  # [(x, (m, 2) array of (y, z))], increasing x
     given_offsets: list = field(default_factory=list)  # per given section (deck dy, deck dz, waterline dy, keel dz), m
+    given_smoothing: float | None = None  # the given shapes' fit's bending penalty (None: the engine's default)
     skeg: SkegSpec | None = None
     dome: DomeSpec | None = None
 
@@ -563,9 +570,14 @@ class HullDescription:
             raise _native.InvalidInput(f"ends.transom_rake is {desc.transom_rake:g} deg with ends.aft_post; expected 0 "
                                        "(a post of zero width has no transom to rake)")
         desc._parse_stations(d.get("stations", {"count": 61}))
-        sec = keyed_object("sections", d.get("sections", {}), ("n_control", "given"))
+        sec = keyed_object("sections", d.get("sections", {}), ("n_control", "given", "given_smoothing"))
         desc.section_n_control = integer("sections.n_control", sec.get("n_control", 20), *SECTION_CONTROLS)
         desc._parse_given(sec.get("given", []))
+        if "given_smoothing" in sec:
+            gs = number("sections.given_smoothing", sec["given_smoothing"])
+            if not 0 <= gs <= MAX_GIVEN_SMOOTHING:
+                raise bad("sections.given_smoothing", gs, f"a bending penalty from 0 to {MAX_GIVEN_SMOOTHING:g}")
+            desc.given_smoothing = gs
         bc = keyed_object("basic_curves", d.get("basic_curves"), BASIC_CURVES)
         for name in REQUIRED_CURVES:
             if name not in bc:
@@ -675,6 +687,8 @@ class HullDescription:
             d["skinning"]["ruled_aft_of"] = self.skin_ruled_aft_of
         if self.skin_knuckles:
             d["skinning"]["knuckles"] = list(self.skin_knuckles)
+        if self.given_smoothing is not None:
+            d["sections"]["given_smoothing"] = self.given_smoothing
         if self.given_sections:
             d["sections"]["given"] = [{"x": float(x), "points": p.tolist()} for x, p in self.given_sections]
             for g, off in zip(d["sections"]["given"], self.given_offsets):

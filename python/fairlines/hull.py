@@ -607,6 +607,8 @@ class Hull:
             s = _native.SectionSpec()
             if given[i] is not None:
                 s.given, s.given_fore, s.given_mix = given[i]
+                if d.given_smoothing is not None:
+                    s.given_smoothing = d.given_smoothing
             if math.isfinite(skeg[i]) and share[i] > 0:
                 s.skeg_bottom, s.skeg_share = skeg[i], float(share[i])
                 s.skeg_half_thickness, s.skeg_fillet = d.skeg.half_thickness, d.skeg.fillet

@@ -149,6 +149,15 @@ GIVEN_FLAT_TOL = 1e-4
 NOSE_GAP = 2e-3
 #: Points of each given section, evenly along it (deck edge, side, bottom to the centre plane).
 GIVEN_SHAPE_POINTS = 301
+#: Bending penalty of a measured shape's fit against its points (sections.given_smoothing; the
+#: engine's default 1e-6 near-interpolates a shape read off fair lines). Its points carry the
+#: data's noise and the interpolation between offsets, which near-interpolated rang at a flat's
+#: edge and between the offsets. From 1e-6, fairness report's sign changes (waterlines / buttocks /
+#: frames / diagonals) and RMS distance to the data (% of B): Series 60 83 / 65 / 110 / 33,
+#: 0.082 -> 63 / 41 / 47 / 29, 0.105; KCS 98 / 117 / 73 / 78, 0.067 -> 87 / 104 / 39 / 54, 0.081;
+#: DTMB 5415 121 / 91 / 114 / 55, 0.200 -> 110 / 70 / 25 / 52, 0.221. 0.01: about half the gain;
+#: 1.0: RMS 0.14 / 0.14 / 0.34 % and KCS's buttocks back to 123.
+MEASURED_SHAPE_SMOOTHING = 0.1
 #: Where a section list's end station starts this fraction of T or more above its neighbour (a
 #: forefoot or a cut-up stern within one station spacing), stations are picked up between the
 #: two, one more per this much of the rise: a skin through the two alone swung its rows under the
@@ -640,7 +649,7 @@ def _base_description(m: MeasuredHull, name: str, given: bool = False) -> dict:
         for spec in desc["basic_curves"].values():
             spec["spans"] = spans
         shapes = given_sections(m)
-        desc["sections"] = {"n_control": GIVEN_CONTROLS, "given": shapes}
+        desc["sections"] = {"n_control": GIVEN_CONTROLS, "given_smoothing": MEASURED_SHAPE_SMOOTHING, "given": shapes}
         desc["stations"] = {"x": [float(x) for x in m.x]}
         desc["notes"] += f"; the measured shapes of {len(shapes)} stations given (sections.given)"
     return desc

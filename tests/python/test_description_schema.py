@@ -86,6 +86,9 @@ REFUSED_AT_LOAD = {
     "dome of no breadth": put(("dome",), {"x_aft": 190.0, "x_fore": 215.0, "depth": 4.0, "half_breadth": 0.0}),
     "unknown skeg key": put(("skeg",), {"x_aft": 9.7, "x_fore": 41.7, "half_thickness": 0.5, "depth": 3.0}),
     "unknown given section key": put(("sections", "given"), [{"x": 100.0, "y": [1.0], "points": [[1.0, 19.0], [2.0, 5.0], [0.0, 0.0]]}]),
+    "negative given smoothing": put(("sections", "given_smoothing"), -0.1),
+    "given smoothing above 100": put(("sections", "given_smoothing"), 1e3),
+    "given smoothing not a number": put(("sections", "given_smoothing"), "smooth"),
 }
 
 #: Malformed descriptions the loader reads but the build refuses (InvalidInput or its subclass
@@ -122,6 +125,8 @@ ACCEPTED = {
     "no skeg (null)": put(("skeg",), None),
     "a sonar dome": put(("dome",), {"x_aft": 190.0, "x_fore": 215.0, "depth": 4.0, "half_breadth": 3.0}),
     "a given section": put(("sections", "given"), [{"x": 100.0, "points": [[16.1, 19.0], [16.1, 2.0], [14.0, 0.0], [0.0, 0.0]]}]),
+    "a given section smoothed": both(put(("sections", "given"), [{"x": 100.0, "points": [[16.1, 19.0], [16.1, 2.0], [14.0, 0.0], [0.0, 0.0]]}]),
+                                     put(("sections", "given_smoothing"), 0.1)),
     "a sheer": put((BC, "sheer"), {"yB": 20.0, "yE": 21.0, "value": 19.0, "flat_from": 60.0, "flat_to": 180.0}),
     "a largest breadth": put(("principal", "B_max"), 33.0),
     "bulb with defaults only": put(("bulb",), {}),

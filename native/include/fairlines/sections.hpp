@@ -104,6 +104,12 @@ struct SectionSpec {
   /// (a station between two given ones); empty: `given` alone.
   Eigen::MatrixXd given_fore;
   double given_mix = 0.0;
+  /// Bending penalty of the given shape's fit (second differences of the control points, per
+  /// knot span) against its least squares over the points (chord-length parameters, weighted by
+  /// their spacing, summing to 1). The default only carries the spline across stretches with
+  /// few points (a shape read off fair lines); a measured shape is smoothed (import_design:
+  /// its points carry the data's noise and the interpolation between its offsets).
+  double given_smoothing = 1e-6;
   /// A skeg below the hull body: where skeg_bottom (m above base) lies below z_keel (the body's
   /// bottom on the centre plane), the section runs down the skeg's side at y = skeg_half_thickness
   /// to skeg_bottom and across it to the centre plane, joined to the body's section by a hollow
@@ -139,6 +145,7 @@ struct SectionSpec {
     f("given", &SectionSpec::given, "given shape: (m, 2) points (y, z), m, deck edge to keel (empty: the template family)");
     f("given_fore", &SectionSpec::given_fore, "second given shape blended with `given` (empty: none)");
     f("given_mix", &SectionSpec::given_mix, "weight of given_fore in the blend, 0 to 1");
+    f("given_smoothing", &SectionSpec::given_smoothing, "bending penalty of the given shape's fit against its points (>= 0; small: near-interpolation)");
     f("skeg_bottom", &SectionSpec::skeg_bottom, "height of the skeg's bottom (m above base; NaN: no skeg)");
     f("skeg_half_thickness", &SectionSpec::skeg_half_thickness, "half the skeg's thickness (m, > 0)");
     f("skeg_fillet", &SectionSpec::skeg_fillet, "size of the hollow fillet between the hull body and the skeg (m, >= 0)");

@@ -188,10 +188,6 @@ constexpr int kGraphChecks = 8;
 /// fraction of B/2 is a point on the centre plane (no scale is read from it).
 constexpr int kMinGivenPoints = 3;
 constexpr double kGivenTiny = 1e-6;
-/// Bending penalty of the given shape's fit (second differences of the control points, per
-/// knot span) against its least squares over the points (chord-length parameters, weighted by
-/// their spacing): small, it only carries the spline across stretches with few points.
-constexpr double kGivenSmoothing = 1e-6;
 /// A given shape's points at its keel point's height within this fraction of its height, from
 /// the centre plane out, are its flat of bottom: the control points whose support lies on them
 /// keep that height exactly. Fitted freely they sat a few millimetres off it, so the skin, which
@@ -221,7 +217,7 @@ constexpr double kNeckTol = 1e-13;
 /// Samples of the body's section the appendage's fit reads above t_s and from t_s down to J.
 constexpr int kAppendageUpperSamples = 48, kAppendageLowerSamples = 96;
 /// Bending penalty of a skeg section's fit (second differences of the control points, per knot
-/// span, against the data's weight). Not kGivenSmoothing's near-interpolation: the tail's fillet
+/// span, against the data's weight). Not a given shape's near-interpolation: the tail's fillet
 /// and side slide past the knots as the skeg grows along its aft end, and a near-interpolating fit
 /// rang as they did (4 mm ripples of the sections' half-breadth, 0.4 m long, over the skegged
 /// tanker's aft end). 0.07 and more thinned its side by more than a tenth 0.3-0.6 m above its
@@ -408,6 +404,8 @@ void validate(const SectionSpec& s, const std::string& at) {
   validate_given(s.given_fore, "given_fore", at);
   if (s.given_fore.rows() > 0 && s.given.rows() == 0) fail(at, ": given_fore is set without given; expected given first");
   if (!(s.given_mix >= 0 && s.given_mix <= 1)) fail(at, ": given_mix is ", s.given_mix, "; expected a weight from 0 to 1");
+  if (!(s.given_smoothing >= 0 && std::isfinite(s.given_smoothing)))
+    fail(at, ": given_smoothing is ", s.given_smoothing, "; expected a finite bending penalty >= 0");
   if (std::isinf(s.skeg_bottom)) fail(at, ": skeg_bottom is ", s.skeg_bottom, "; expected a height in metres or NaN (no skeg)");
   if (!(s.skeg_half_thickness > 0 && std::isfinite(s.skeg_half_thickness)))
     fail(at, ": skeg_half_thickness is ", s.skeg_half_thickness, " m; expected > 0");
@@ -963,7 +961,7 @@ void hold_flat_of_bottom(const Section& S, const std::vector<V2>& pts, const std
 }
 
 /// Control points (n by 2, (y, z)) on the section layout nearest the points: least squares at
-/// chord-length parameters weighted by the points' spacing, plus kGivenSmoothing of bending;
+/// chord-length parameters weighted by the points' spacing, plus SectionSpec::given_smoothing of bending;
 /// the end control points held on the first and last point (D and K), half-breadths clamped to
 /// [0, y_max] (a corner's ringing, a few mm, would otherwise leave B/2: the spline stays inside),
 /// a flat of bottom held flat (hold_flat_of_bottom).
@@ -986,7 +984,7 @@ Eigen::MatrixX2d fit_given(const Section& S, const std::vector<V2>& pts) {
     rhs.noalias() += w * row.transpose() * pts[i].transpose();
   }
   const Eigen::MatrixXd D2 = second_differences(n);
-  A.noalias() += kGivenSmoothing / (n - kDegree) * D2.transpose() * D2;
+  A.noalias() += S.s.given_smoothing / (n - kDegree) * D2.transpose() * D2;
   const int k = n - 2;  // interior control points; the ends are known
   const Eigen::MatrixX2d b = rhs.middleRows(1, k) - A.block(1, 0, k, 1) * P.row(0) - A.block(1, n - 1, k, 1) * P.row(n - 1);
   P.middleRows(1, k) = A.block(1, 1, k, k).ldlt().solve(b);
