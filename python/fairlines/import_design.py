@@ -1094,7 +1094,10 @@ def _given_measure(hull_data: HullData, depth: float | None, profile=None) -> Me
     if picked:
         more = dataclasses.replace(hull_data, sections=sorted(hull_data.sections + picked, key=lambda sec: sec.x))
         md = measure_hull_data(more, depth, dome=True, stations=GIVEN_STATIONS, bulb=True, noses=True)
-        return dataclasses.replace(md, volume=dense.volume, lcb=dense.lcb)
+        where = ", ".join(f"{sec.x:.4g}" for sec in picked)
+        note = (f"{len(picked)} stations (x {where} m) picked up along the waterlines toward the forefoot, which the data "
+                "leaves to its last station spacing")
+        return dataclasses.replace(md, volume=dense.volume, lcb=dense.lcb, notes=md.notes + [note])
     if not rows:
         return dense
     md = measure_hull_data(hull_data, depth, dome=True, stations=GIVEN_STATIONS, bulb=True, noses=True, rows=True)

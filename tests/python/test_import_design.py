@@ -118,6 +118,11 @@ def test_rebuilt_hull_stays_on_its_side_of_the_centre_plane(ship):
     assert g[:, 1].min() >= -1e-4 * desc["principal"]["B"]
 
 
+def test_the_stations_picked_up_at_series60s_forefoot_are_named_in_the_notes():
+    """Stations the data does not have are said, with where they are (not silently invented)."""
+    assert "3 stations (x 119.6, 120.4, 121.2 m) picked up along the waterlines" in imported("series60")["notes"]
+
+
 def test_rebuilt_series60_waterlines_run_into_the_stem_without_a_hook():
     """Below T each waterline of the rebuilt Series 60 ends on its forefoot without a hollow
     turn of more than 5 deg in its last metre. The table has no station between 19.5 and the FP
