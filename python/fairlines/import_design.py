@@ -158,10 +158,10 @@ GIVEN_SHAPE_POINTS = 301
 #: DTMB 5415 121 / 91 / 114 / 55, 0.200 -> 110 / 70 / 25 / 52, 0.221. 0.01: about half the gain;
 #: 1.0: RMS 0.14 / 0.14 / 0.34 % and KCS's buttocks back to 123.
 MEASURED_SHAPE_SMOOTHING = 0.1
-#: Where a section list's end station starts this fraction of T or more above its neighbour (a
-#: forefoot or a cut-up stern within one station spacing), stations are picked up between the
-#: two, one more per this much of the rise: a skin through the two alone swung its rows under the
-#: keel (Series 60: 0.51 m below the base at x 117.8 m, 0.27 m at 4.5 m).
+#: Where a section list's fore end station starts this fraction of T or more above its neighbour
+#: (a forefoot within one station spacing), stations are picked up between the two, one more per
+#: this much of the rise: a skin through the two alone swung its rows under the keel (Series 60:
+#: 0.51 m below the base at x 117.8 m).
 END_RISE_STEP = 0.25
 
 
@@ -1082,7 +1082,7 @@ def _end_span_sections(data: HullData, profile) -> list:
 
 def _given_measure(hull_data: HullData, depth: float | None, profile=None) -> MeasuredHull:
     """The stations whose measured shapes are given: a section list's own and those picked up
-    toward a steep end on `profile` (:func:`_end_span_sections`), a grid's section rows where it has them,
+    at a steep forefoot on `profile` (:func:`_end_span_sections`), a grid's section rows where it has them,
     graded into the stations beyond their range (:func:`_with_rows`), and of those left out there
     the ones whose data strays from their kept neighbours (:func:`_unlike_their_neighbours`);
     the volume and LCB those the data's chords hold (GIVEN_STATIONS cut from them, as the data's
