@@ -270,9 +270,10 @@ def test_bad_given_offsets_are_refused_naming_them(offsets, message):
 
 def test_a_given_flat_of_bottom_stays_exactly_flat():
     """A box section with a flat of bottom 2 m wide and a round bilge of radius 3 m: the fitted
-    spline lies exactly on the flat (the control points whose support is on it held at the keel's
-    height); fitted freely it rippled about the flat by the smoothing's pull, and a skin's rows,
-    held only where a height repeats exactly along the hull, swung under the base."""
+    spline lies exactly on the flat where every control point it rests on lies on it (those whose
+    support is on the flat held at the keel's height). Fitted freely it sat off the flat by the
+    fit's residuals, and a skin, which holds a row only where its height repeats exactly along the
+    hull, rippled the flat."""
     a = np.linspace(0.0, np.pi / 2, 40)
     wall = [(B2, z) for z in np.linspace(D, 3.0, 12)[:-1]]
     bilge = [(2.0 + 3.0 * np.cos(t), 3.0 - 3.0 * np.sin(t)) for t in a]
