@@ -4,6 +4,7 @@ and the rebuilt hulls are judged against the data's points and published particu
 from __future__ import annotations
 
 import copy
+import functools
 import json
 
 import numpy as np
@@ -82,6 +83,14 @@ def test_rebuilt_kcs_stem_above_the_bulb_is_the_datas():
         assert abs(hull_end - stem) <= 0.5, (z, hull_end, stem)
 
 
+@functools.cache
+def _rebuilt_points(ship: str) -> np.ndarray:
+    """(n, 3) points of the rebuilt bare hull, a 300 x 600 grid over its parameters (shared by the
+    tests below; callers must not edit it)."""
+    s = fl.Hull.from_json(json.dumps(imported(ship))).bare_hull_surface()
+    return np.asarray(s.evaluate_grid(np.linspace(*s.domain_u, 300), np.linspace(*s.domain_v, 600))).reshape(-1, 3)
+
+
 @pytest.mark.parametrize("ship", SHIPS)
 def test_rebuilt_hull_lies_nowhere_further_below_the_data_than_the_largest_distance_goal(ship):
     """No point of the rebuilt bare hull lies further below the data's lowest point than the
@@ -91,9 +100,7 @@ def test_rebuilt_hull_lies_nowhere_further_below_the_data_than_the_largest_dista
     0.23 m (1.4 % of B) ahead of its stern's deadwood."""
     from fairlines.import_design import data_points
 
-    desc = imported(ship)
-    s = fl.Hull.from_json(json.dumps(desc)).bare_hull_surface()
-    g = np.asarray(s.evaluate_grid(np.linspace(*s.domain_u, 300), np.linspace(*s.domain_v, 400))).reshape(-1, 3)
+    desc, g = imported(ship), _rebuilt_points(ship)
     low = data_points(read(ship), desc["principal"]["D"])[:, 2].min()
     assert low - g[:, 2].min() <= MAX_GOAL * desc["principal"]["B"]
 
@@ -112,10 +119,7 @@ def test_rebuilt_hull_stays_on_its_side_of_the_centre_plane(ship):
     """The bare hull is the half y >= 0: no point of it lies more than 1e-4 B across the centre
     plane (a fold there makes the mirrored hull cut itself). Stations picked up over Series 60's
     stern would have thinned its deadwood into a fin the skin folded 1.4 cm across."""
-    desc = imported(ship)
-    s = fl.Hull.from_json(json.dumps(desc)).bare_hull_surface()
-    g = np.asarray(s.evaluate_grid(np.linspace(*s.domain_u, 300), np.linspace(*s.domain_v, 600))).reshape(-1, 3)
-    assert g[:, 1].min() >= -1e-4 * desc["principal"]["B"]
+    assert _rebuilt_points(ship)[:, 1].min() >= -1e-4 * imported(ship)["principal"]["B"]
 
 
 def test_the_stations_picked_up_at_series60s_forefoot_are_named_in_the_notes():
