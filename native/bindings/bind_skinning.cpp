@@ -119,7 +119,11 @@ void bind_skinning(py::module_& m) {
       .def_property_readonly("row_e2", [](const SkinResult& r) { return to_array(r.row_e2); },
                              "E2 of each longitudinal control-row curve (n_control,).")
       .def_readonly("held_columns", &SkinResult::held_columns,
-                    "row coordinates (y or z of a control row) held constant over at least one run of sections");
+                    "row coordinates (y or z of a control row) held constant over at least one run of sections")
+      .def_readonly("centre_plane_columns", &SkinResult::centre_plane_columns,
+                    "y columns solved again with their controls at y >= 0 (options.y_nonnegative)")
+      .def_readonly("centre_plane_miss", &SkinResult::centre_plane_miss,
+                    "largest distance (m) between a row point and its longitudinal curve in those columns");
 
   bind_skin_options(m);
   m.def("_fair_skin",

@@ -768,7 +768,7 @@ class Hull:
             if d.skin_aft_end != "free" and 1 in c0:
                 raise _native.InvalidInput(f"skinning.aft_end is {d.skin_aft_end!r} but the skin is only C0 at the station "
                                            "next to the aft end (skinning.ruled_aft_of or knuckles); expected 'free'")
-            self._skin = fair_skin(self.sections, params="station", e2=d.skin_e2, e3=d.skin_e3, hold_runs=True,
+            self._skin = fair_skin(self.sections, params="station", e2=d.skin_e2, e3=d.skin_e3, hold_runs=True, y_nonnegative=True,
                                    c0_sections=c0, start=d.skin_aft_end)
         return self._skin
 

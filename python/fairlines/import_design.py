@@ -1193,6 +1193,11 @@ def _designed(base: dict, m: MeasuredHull, hull_data: HullData, fit, say) -> dic
             say("the surface's volume / LCB correction leaves what the sections hold: SAC targets kept as measured")
     out = hull.to_dict()
     out["notes"] = desc["notes"]
+    skin = hull.skin()
+    if skin.centre_plane_columns:  # the given sections run onto webs on the centre plane (KCS's boss end)
+        out["notes"] += (f"; the skin kept at y >= 0 in {skin.centre_plane_columns} rows of its control net, off the "
+                         f"given sections by up to {1000 * skin.centre_plane_miss:.2g} mm (folded across the centre "
+                         "plane otherwise)")
     kracht = measure_kracht(hull_data, hull)
     if kracht is not None and m.bulb_points is None:  # the sections hold the bulb: recognised, not composed
         out["notes"] += "; the bulb held by the sections (Kracht coefficients " + \

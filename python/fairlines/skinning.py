@@ -60,12 +60,20 @@ def fair_skin(curves: Sequence[_native.NurbsCurve], n_control: int | None = None
     (fl.section_straight_groups: a hull's straight zones); their longitudinal curves are built
     from the end rows' so the segment stays straight between the sections.
 
+    ``y_nonnegative``: keep every control point at y >= 0 (a half hull, which must not cross its
+    centre plane): a row whose interpolant dips below y = 0 (rows running from a short section
+    onto a web on the centre plane, as at KCS's propeller boss) is solved again near the dip with
+    its controls bounded at 0, meeting its row points as closely as that lets it; where that
+    would miss them by more than 0.1 % of the sections' size the row is left as it was.
+
     Returns a SkinResult: ``surface`` (u across the sections, v along the hull),
-    ``section_params``, ``section_fit_max``, ``longitudinal_max`` and ``row_e2``.
+    ``section_params``, ``section_fit_max``, ``longitudinal_max``, ``row_e2`` and, with
+    ``y_nonnegative``, ``centre_plane_columns`` and ``centre_plane_miss`` (m).
 
     Options by keyword are the fields of :class:`fl.SkinOptions` (``degree_u``, ``degree_v``,
     ``samples``, ``smoothing``, ``start``, ``end``, ``params``, ``c1_sections``,
-    ``c0_sections``, ``curvature_weight``, ``e2``, ``e3``, ``flats``, ``hold_runs``, ``straight_groups``); their
+    ``c0_sections``, ``curvature_weight``, ``e2``, ``e3``, ``flats``, ``hold_runs``, ``straight_groups``,
+    ``y_nonnegative``); their
     defaults live in the engine. ``n_control`` / ``samples`` None: automatic.
 
     Raises InvalidInput naming the bad curve or option (an unknown option name included).

@@ -285,6 +285,45 @@ def test_two_held_runs_that_meet_are_both_met():
     assert r.longitudinal_max < 1e-12
 
 
+def _rows_touching_the_centre_plane(xs):
+    """Sections (lines from y = 5 at z = 1 to the bottom row at z = 0) whose bottom row lies on
+    the centre plane at x 20 and 22.5 m and leaves it quadratically either side."""
+    out = []
+    for x in xs:
+        y = 0.05 * (x - 22.5) ** 2 if x > 22.5 else 0.05 * (x - 20.0) ** 2 if x < 20.0 else 0.0
+        out.append(fl.NurbsCurve(1, [0, 0, 1, 1], np.array([[x, 5.0, 1.0], [x, y, 0.0]])))
+    return out
+
+
+def test_y_nonnegative_keeps_the_skin_off_the_centre_plane():
+    """Through rows that touch the centre plane the least-E2 interpolant dips 2.9 cm across it
+    (a fold of the half hull); with y_nonnegative every point of the skin has y >= 0 (convex
+    hull property), the bottom row meets its points within the miss it reports (under
+    kCentrePlaneMaxMiss of the sections' size, 4 cm here) and the top row is untouched."""
+    xs = np.arange(0.0, 40.01, 2.5)
+    secs = _rows_touching_the_centre_plane(xs)
+    free = fl.fair_skin(secs, params="station", degree_u=1)
+    kept = fl.fair_skin(secs, params="station", degree_u=1, y_nonnegative=True)
+    u, v = (g.ravel() for g in np.meshgrid(np.linspace(0, 1, 51), np.linspace(0, 1, 801)))
+    assert free.surface.evaluate(u, v)[:, 1].min() < -0.02
+    assert kept.surface.evaluate(u, v)[:, 1].min() >= 0.0
+    assert kept.centre_plane_columns == 1 and 0 < kept.centre_plane_miss <= 1e-3 * 40.0
+    bottom = kept.surface.evaluate(np.ones_like(kept.section_params), kept.section_params)[:, 1]
+    data = np.array([c.control_points[1, 1] for c in secs])
+    assert np.max(np.abs(bottom - data)) == pytest.approx(kept.centre_plane_miss, rel=1e-6)
+    assert np.array_equal(np.asarray(kept.surface.control_points)[0], np.asarray(free.surface.control_points)[0])
+
+
+def test_y_nonnegative_changes_nothing_where_no_row_dips(wigley):
+    """A skin whose rows never go below y = 0 is the same, bit for bit."""
+    xs = np.linspace(0.0, L, 21)
+    secs = [wigley_section(x) for x in xs]
+    kept = fl.fair_skin(secs, n_control=8, params="station", y_nonnegative=True)
+    free = fl.fair_skin(secs, n_control=8, params="station")
+    assert kept.centre_plane_columns == 0
+    assert np.array_equal(np.asarray(kept.surface.control_points), np.asarray(free.surface.control_points))
+
+
 def test_equal_arc_length_points_on_a_circle():
     c = fl.arc([0, 0, 0], 2.0, 0.0, np.pi)
     pts = c.evaluate(np.linspace(0, 1, 5))

@@ -17,6 +17,7 @@
 #include "fairlines/basis.hpp"
 #include "fairlines/errors.hpp"
 #include "fairlines/knots.hpp"
+#include "fairlines/qp.hpp"
 #include "nurbs/checks.hpp"
 #include "nurbs/arc_length.hpp"
 #include "nurbs/gauss.hpp"
@@ -637,6 +638,8 @@ struct LongitudinalSystem {
   Eigen::RowVectorXd D0, D1;  ///< first derivative rows at v = 0 and v = 1 (parallel ends)
   Eigen::RowVectorXd J0, J1;  ///< jumps of the degree_v-th derivative at the first / last interior knot (not-a-knot ends)
   double cs;
+  mutable std::vector<int> bounded;  ///< y columns solved with y >= 0 (SkinOptions::y_nonnegative)
+  mutable std::mutex bounded_mutex;
 
   LongitudinalSystem(const SkinOptions& opt, const Eigen::VectorXd& knots, const Eigen::VectorXd& v,
                      const Eigen::MatrixXd& columns)
@@ -739,11 +742,72 @@ struct LongitudinalSystem {
     Eigen::MatrixXd sol = kkt_cache().get(K)->solve(rhs);
     if (unmet(sol)) sol = Eigen::FullPivLU<Eigen::MatrixXd>(K).solve(rhs);
     if (unmet(sol)) singular();
+    const double below = -kCentrePlaneTolerance * std::max(1.0, data.cwiseAbs().maxCoeff());
     for (std::size_t c = 0; c < cols.size(); ++c) {
       Eigen::VectorXd z = held_val[cols[c]];
       for (int a = 0; a < nf; ++a) z[freev[a]] = sol(a, c);
+      if (o.y_nonnegative && cols[c] % 3 == 1 && z.minCoeff() < below) z = at_or_above_centre_plane(freev, crow, data_row, cols[c], z, below);
       lon.col(cols[c]) = z;
     }
+  }
+
+  /// Column `col`'s controls (z: its least-E2 solution, held controls at their runs' values)
+  /// solved again with every free control >= 0: the fairness objective plus the rows' misses
+  /// weighted by kCentrePlaneRowWeight (interpolate mode), the end rows still met exactly.
+  /// Records the column; returns z unchanged where that would miss a row by more than
+  /// kCentrePlaneMaxMiss of the sections' size.
+  Eigen::VectorXd at_or_above_centre_plane(const std::vector<int>& free_all, const std::vector<Eigen::RowVectorXd>& crow,
+                                           const std::vector<int>& data_row, int col, const Eigen::VectorXd& z,
+                                           double below) const {
+    // Only the free controls within kCentrePlaneReach of one below the plane move: the rest of
+    // the row keeps its least-E2 interpolant exactly (a whole row re-solved softly moved by
+    // millimetres far from the fold and put lobes into KCS's waterlines at the bulb).
+    std::vector<int> freev;
+    for (int j : free_all) {
+      bool near = false;
+      for (int k = std::max(0, j - kCentrePlaneReach); k <= std::min(nv - 1, j + kCentrePlaneReach) && !near; ++k)
+        near = z[k] < below;
+      if (near) freev.push_back(j);
+    }
+    const int nf = static_cast<int>(freev.size());
+    Eigen::VectorXd hv = z;
+    for (int a = 0; a < nf; ++a) hv[freev[a]] = 0.0;
+    // Objective 1/2 c'Hc - b'c (+ w/2 |Nv c - data|^2 when interpolating) on the moving controls.
+    const Eigen::VectorXd resid = Nv * hv - data.col(col);
+    const double w = interp ? kCentrePlaneRowWeight * cs : 0.0;
+    QuadraticProgram qp;
+    qp.H.resize(nf, nf);
+    qp.g.resize(nf);
+    for (int a = 0; a < nf; ++a) {
+      const int ja = freev[a];
+      qp.g[a] = H.row(ja).dot(hv) + w * Nv.col(ja).dot(resid) - (interp ? 0.0 : (2.0 / q) * Nv.col(ja).dot(data.col(col)));
+      for (int b2 = 0; b2 < nf; ++b2) qp.H(a, b2) = H(ja, freev[b2]) + w * Nv.col(ja).dot(Nv.col(freev[b2]));
+    }
+    std::vector<int> ends;
+    for (std::size_t r = 0; r < crow.size(); ++r)
+      if (data_row[r] < 0) ends.push_back(static_cast<int>(r));
+    qp.E.resize(static_cast<Eigen::Index>(ends.size()), nf);
+    qp.e.resize(static_cast<Eigen::Index>(ends.size()));
+    for (std::size_t k = 0; k < ends.size(); ++k) {
+      for (int a = 0; a < nf; ++a) qp.E(k, a) = crow[ends[k]][freev[a]];
+      qp.e[k] = -crow[ends[k]].dot(hv);
+    }
+    qp.A = -Eigen::MatrixXd::Identity(nf, nf);
+    qp.b = Eigen::VectorXd::Zero(nf);
+    std::vector<int> warm;
+    for (int a = 0; a < nf; ++a)
+      if (z[freev[a]] < 0) warm.push_back(a);
+    const QpSolution sol = solve_qp(qp, warm);
+    if (sol.status != QpStatus::Optimal)
+      fail("the skin cannot keep row ", col / 3, " at y >= 0 (its end conditions hold it below); expected y_nonnegative off "
+           "or sections that do not cross the centre plane");
+    Eigen::VectorXd out = hv;
+    for (int a = 0; a < nf; ++a) out[freev[a]] = std::max(0.0, sol.x[a]);  // the bound to round-off
+    const double size = std::max(1.0, data.cwiseAbs().maxCoeff());
+    if (interp && (Nv * out - data.col(col)).cwiseAbs().maxCoeff() > kCentrePlaneMaxMiss * size) return z;
+    std::lock_guard<std::mutex> lock(bounded_mutex);
+    bounded.push_back(col);
+    return out;
   }
 
   /// lon (nv, 3 n): every column's longitudinal controls. Controls whose support meets a
@@ -784,11 +848,18 @@ SkinResult skin_result(const LongitudinalSystem& sys, const Eigen::VectorXd& Ku,
       for (int k = 0; k < 3; ++k) P(i * nv + j, k) = lon(j, 3 * i + k);
   SkinResult res{NurbsSurface(sys.o.degree_u, pv, Ku, sys.Kv, n, nv, P), v, fit_max, 0.0, Eigen::VectorXd(n)};
   const Eigen::MatrixXd fitted = sys.Nv * lon;
-  double lmax = 0;
+  std::vector<char> bounded(static_cast<std::size_t>(lon.cols()), 0);
+  for (int col : sys.bounded) bounded[col] = 1;
+  double lmax = 0, bmax = 0;
   for (int d = 0; d < sys.q; ++d)
-    for (int i = 0; i < n; ++i)
-      lmax = std::max(lmax, (fitted.block(d, 3 * i, 1, 3) - sys.data.block(d, 3 * i, 1, 3)).norm());
-  res.longitudinal_max = lmax;
+    for (int i = 0; i < n; ++i) {
+      Eigen::RowVector3d miss = fitted.block(d, 3 * i, 1, 3) - sys.data.block(d, 3 * i, 1, 3);
+      if (bounded[3 * i + 1]) bmax = std::max(bmax, std::abs(miss[1])), miss[1] = 0.0;
+      lmax = std::max(lmax, miss.norm());
+    }
+  res.longitudinal_max = std::max(lmax, bmax);
+  res.centre_plane_columns = static_cast<int>(sys.bounded.size());
+  res.centre_plane_miss = bmax;
   // A KKT system too ill-conditioned for its solve can pass the residual test on its own scale
   // and still miss the rows: refuse rather than return a surface off its sections.
   const double extent = std::max(1.0, sys.data.cwiseAbs().maxCoeff());
