@@ -123,7 +123,10 @@ void bind_skinning(py::module_& m) {
       .def_readonly("centre_plane_columns", &SkinResult::centre_plane_columns,
                     "y columns solved again with their controls at y >= 0 (options.y_nonnegative)")
       .def_readonly("centre_plane_miss", &SkinResult::centre_plane_miss,
-                    "largest distance (m) between a row point and its longitudinal curve in those columns");
+                    "largest distance (m) between a row point and its longitudinal curve in those columns")
+      .def_readonly("centre_plane_refused_miss", &SkinResult::centre_plane_refused_miss,
+                    "> 0 when options.y_nonnegative left the skin as it was: the largest row miss (m) keeping it "
+                    "off the centre plane would have cost");
 
   bind_skin_options(m);
   m.def("_fair_skin",

@@ -1198,6 +1198,9 @@ def _designed(base: dict, m: MeasuredHull, hull_data: HullData, fit, say) -> dic
         out["notes"] += (f"; the skin kept at y >= 0 in {skin.centre_plane_columns} rows of its control net, off the "
                          f"given sections by up to {1000 * skin.centre_plane_miss:.2g} mm (folded across the centre "
                          "plane otherwise)")
+    elif skin.centre_plane_refused_miss:  # DTMB 5415's recess between dome and stem
+        out["notes"] += (f"; the skin may cross the centre plane: keeping it at y >= 0 would move the given sections "
+                         f"by up to {1000 * skin.centre_plane_refused_miss:.2g} mm")
     kracht = measure_kracht(hull_data, hull)
     if kracht is not None and m.bulb_points is None:  # the sections hold the bulb: recognised, not composed
         out["notes"] += "; the bulb held by the sections (Kracht coefficients " + \

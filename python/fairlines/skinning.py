@@ -63,12 +63,14 @@ def fair_skin(curves: Sequence[_native.NurbsCurve], n_control: int | None = None
     ``y_nonnegative``: keep every control point at y >= 0 (a half hull, which must not cross its
     centre plane): a row whose interpolant dips below y = 0 (rows running from a short section
     onto a web on the centre plane, as at KCS's propeller boss) is solved again near the dip with
-    its controls bounded at 0, meeting its row points as closely as that lets it; where that
-    would miss them by more than 0.1 % of the sections' size the row is left as it was.
+    its controls bounded at 0, meeting its row points as closely as that lets it; where a row
+    would then miss them by more than 0.1 % of the sections' size the whole skin is left as it
+    was (``centre_plane_refused_miss`` says what keeping it off would have cost).
 
     Returns a SkinResult: ``surface`` (u across the sections, v along the hull),
     ``section_params``, ``section_fit_max``, ``longitudinal_max``, ``row_e2`` and, with
-    ``y_nonnegative``, ``centre_plane_columns`` and ``centre_plane_miss`` (m).
+    ``y_nonnegative``, ``centre_plane_columns``, ``centre_plane_miss`` and
+    ``centre_plane_refused_miss`` (m).
 
     Options by keyword are the fields of :class:`fl.SkinOptions` (``degree_u``, ``degree_v``,
     ``samples``, ``smoothing``, ``start``, ``end``, ``params``, ``c1_sections``,

@@ -314,6 +314,23 @@ def test_y_nonnegative_keeps_the_skin_off_the_centre_plane():
     assert np.array_equal(np.asarray(kept.surface.control_points)[0], np.asarray(free.surface.control_points)[0])
 
 
+def test_y_nonnegative_leaves_a_skin_it_would_pull_far_off_its_rows():
+    """Rows that drop from 1 m onto the centre plane within one station and leave it steeply
+    one station later cannot be kept at y >= 0 without missing their points by more than
+    kCentrePlaneMaxMiss of the sections' size (4 cm here): the skin is left as it was, bit for
+    bit, and says what keeping it off would have cost."""
+    def rows(x):
+        y = 1.0 if x < 10.0 else 0.4 * max(0.0, x - 12.5)
+        return fl.NurbsCurve(1, [0, 0, 1, 1], np.array([[x, 5.0, 1.0], [x, y, 0.0]]))
+
+    secs = [rows(x) for x in np.arange(0.0, 40.01, 2.5)]
+    free = fl.fair_skin(secs, params="station", degree_u=1)
+    kept = fl.fair_skin(secs, params="station", degree_u=1, y_nonnegative=True)
+    assert np.asarray(free.surface.control_points)[..., 1].min() < -0.1
+    assert kept.centre_plane_columns == 0 and kept.centre_plane_refused_miss > 1e-3 * 40.0
+    assert np.array_equal(np.asarray(kept.surface.control_points), np.asarray(free.surface.control_points))
+
+
 def test_y_nonnegative_changes_nothing_where_no_row_dips(wigley):
     """A skin whose rows never go below y = 0 is the same, bit for bit."""
     xs = np.linspace(0.0, L, 21)

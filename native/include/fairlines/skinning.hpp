@@ -92,7 +92,7 @@ struct SkinOptions {
   /// closely as the bound lets it (SkinResult::centre_plane_miss). Rows that run from a short
   /// section (a counter above a propeller boss) onto a web on the centre plane otherwise fold
   /// across it: 0.3 m on the KCS. By the convex hull property the surface then has y >= 0,
-  /// except where a column is left as it was (kCentrePlaneMaxMiss).
+  /// unless the skin was left as it was (kCentrePlaneMaxMiss, SkinResult::centre_plane_refused_miss).
   bool y_nonnegative = false;
 
   /// Each field with its name and meaning: f(name, member pointer, doc).
@@ -140,10 +140,11 @@ inline constexpr double kCentrePlaneTolerance = 1e-9;
 /// the misses stay millimetres where the bound truly conflicts with the rows (KCS: 3.6 mm)
 /// and vanish to the solve's accuracy where it does not.
 inline constexpr double kCentrePlaneRowWeight = 1e6;
-/// ... but leaves a column as it was (folded) where keeping it at y >= 0 would move a row
-/// point more than this fraction of the sections' size: DTMB 5415's recess between the dome
-/// and the stem, where the bound pushed the web at the centre plane out 15 mm (2 % of B),
-/// more than the 4.6 mm fold it removed.
+/// ... but leaves the whole skin as it was (folded) where keeping a column at y >= 0 would
+/// move a row point more than this fraction of the sections' size: DTMB 5415's recess between
+/// the dome and the stem, where the bound pushed the web on the centre plane out 15 mm (2 % of
+/// B) to remove a 4.6 mm fold; kept in the columns it could keep, the fold stayed (3.9 mm) and
+/// its waterlines took 10 more curvature sign changes.
 inline constexpr double kCentrePlaneMaxMiss = 1e-3;
 /// ... and moves only the controls within this many of one below the plane; the rest of the
 /// row keeps its least-E2 interpolant exactly. KCS: with 3 the rows missed its sections by
@@ -168,6 +169,9 @@ struct SkinResult {
   int held_columns = 0;            ///< row coordinates with at least one held run
   int centre_plane_columns = 0;    ///< y columns solved again with y >= 0 (SkinOptions::y_nonnegative)
   double centre_plane_miss = 0;    ///< largest miss of a row point in those columns (metres)
+  /// > 0 when y_nonnegative left the skin as it was (it may cross the centre plane): the
+  /// largest row miss keeping it off would have cost (metres, over kCentrePlaneMaxMiss).
+  double centre_plane_refused_miss = 0;
 };
 
 /// Skin q >= 2 section curves (each a 3-D NurbsCurve, ordered along the hull; metres) into one

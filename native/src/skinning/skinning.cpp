@@ -638,7 +638,9 @@ struct LongitudinalSystem {
   Eigen::RowVectorXd D0, D1;  ///< first derivative rows at v = 0 and v = 1 (parallel ends)
   Eigen::RowVectorXd J0, J1;  ///< jumps of the degree_v-th derivative at the first / last interior knot (not-a-knot ends)
   double cs;
-  mutable std::vector<int> bounded;  ///< y columns solved with y >= 0 (SkinOptions::y_nonnegative)
+  /// y columns solved with y >= 0 (SkinOptions::y_nonnegative), each with its least-E2 controls.
+  mutable std::vector<std::pair<int, Eigen::VectorXd>> bounded;
+  mutable double refused_miss = 0;  ///< largest row miss of a column the bound would move too far
   mutable std::mutex bounded_mutex;
 
   LongitudinalSystem(const SkinOptions& opt, const Eigen::VectorXd& knots, const Eigen::VectorXd& v,
@@ -755,7 +757,7 @@ struct LongitudinalSystem {
   /// solved again with every free control >= 0: the fairness objective plus the rows' misses
   /// weighted by kCentrePlaneRowWeight (interpolate mode), the end rows still met exactly.
   /// Records the column; returns z unchanged where that would miss a row by more than
-  /// kCentrePlaneMaxMiss of the sections' size.
+  /// kCentrePlaneMaxMiss of the sections' size (and solve() then leaves every column).
   Eigen::VectorXd at_or_above_centre_plane(const std::vector<int>& free_all, const std::vector<Eigen::RowVectorXd>& crow,
                                            const std::vector<int>& data_row, int col, const Eigen::VectorXd& z,
                                            double below) const {
@@ -803,10 +805,13 @@ struct LongitudinalSystem {
            "or sections that do not cross the centre plane");
     Eigen::VectorXd out = hv;
     for (int a = 0; a < nf; ++a) out[freev[a]] = std::max(0.0, sol.x[a]);  // the bound to round-off
-    const double size = std::max(1.0, data.cwiseAbs().maxCoeff());
-    if (interp && (Nv * out - data.col(col)).cwiseAbs().maxCoeff() > kCentrePlaneMaxMiss * size) return z;
+    const double miss = interp ? (Nv * out - data.col(col)).cwiseAbs().maxCoeff() : 0.0;
     std::lock_guard<std::mutex> lock(bounded_mutex);
-    bounded.push_back(col);
+    if (miss > kCentrePlaneMaxMiss * std::max(1.0, data.cwiseAbs().maxCoeff())) {
+      refused_miss = std::max(refused_miss, miss);
+      return z;
+    }
+    bounded.emplace_back(col, z);
     return out;
   }
 
@@ -825,6 +830,10 @@ struct LongitudinalSystem {
     for (int col = 0; col < cols; ++col) groups[{held_mask[col], col % 3 != 0}].push_back(col);
     Eigen::MatrixXd lon(nv, cols);
     for (const auto& [key, members] : groups) solve_group(key.first, key.second, members, held_val, lon);
+    if (refused_miss > 0) {  // all or nothing: a skin kept off the centre plane in some rows only still crosses it
+      for (const auto& [col, z] : bounded) lon.col(col) = z;
+      bounded.clear();
+    }
     return lon;
   }
 };
@@ -849,7 +858,7 @@ SkinResult skin_result(const LongitudinalSystem& sys, const Eigen::VectorXd& Ku,
   SkinResult res{NurbsSurface(sys.o.degree_u, pv, Ku, sys.Kv, n, nv, P), v, fit_max, 0.0, Eigen::VectorXd(n)};
   const Eigen::MatrixXd fitted = sys.Nv * lon;
   std::vector<char> bounded(static_cast<std::size_t>(lon.cols()), 0);
-  for (int col : sys.bounded) bounded[col] = 1;
+  for (const auto& b : sys.bounded) bounded[b.first] = 1;
   double lmax = 0, bmax = 0;
   for (int d = 0; d < sys.q; ++d)
     for (int i = 0; i < n; ++i) {
@@ -860,6 +869,7 @@ SkinResult skin_result(const LongitudinalSystem& sys, const Eigen::VectorXd& Ku,
   res.longitudinal_max = std::max(lmax, bmax);
   res.centre_plane_columns = static_cast<int>(sys.bounded.size());
   res.centre_plane_miss = bmax;
+  res.centre_plane_refused_miss = sys.refused_miss;
   // A KKT system too ill-conditioned for its solve can pass the residual test on its own scale
   // and still miss the rows: refuse rather than return a surface off its sections.
   const double extent = std::max(1.0, sys.data.cwiseAbs().maxCoeff());
