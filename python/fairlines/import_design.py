@@ -1198,8 +1198,10 @@ def _designed(base: dict, m: MeasuredHull, hull_data: HullData, fit, say) -> dic
         out["notes"] += (f"; the skin kept at y >= 0 in {skin.centre_plane_columns} rows of its control net, off the "
                          f"given sections by up to {1000 * skin.centre_plane_miss:.2g} mm (folded across the centre "
                          "plane otherwise)")
+    elif math.isinf(skin.centre_plane_refused_miss):
+        out["notes"] += "; the skin crosses the centre plane where its rows are held by their runs"
     elif skin.centre_plane_refused_miss:  # DTMB 5415's recess between dome and stem
-        out["notes"] += (f"; the skin may cross the centre plane: keeping it at y >= 0 would move the given sections "
+        out["notes"] += (f"; the skin crosses the centre plane: keeping it at y >= 0 would move the given sections "
                          f"by up to {1000 * skin.centre_plane_refused_miss:.2g} mm")
     kracht = measure_kracht(hull_data, hull)
     if kracht is not None and m.bulb_points is None:  # the sections hold the bulb: recognised, not composed

@@ -882,3 +882,15 @@ def test_waterline_under_t_runs_into_the_stem_without_a_wobble(name):
     x_fore = np.asarray(cut.points)[:, 0].max()
     tip = [w for w in read_waterline(cut)["wobbles"] if x_fore - w["at"][0] < 0.015 * p["lpp"]]
     assert not tip, [(round(w["turn_deg"], 2), w["sign"], round(w["at"][0], 2)) for w in tip]
+
+
+def test_a_steeply_raked_stem_head_stays_on_its_side_of_the_centre_plane():
+    """A broad, deep ship with its stem raked 34 deg (design 215 of bench_design_options): where
+    the rows meet at the stem head its skin folded 2.1 mm across the centre plane (x 280.5 m,
+    z 43.3 m); kept at y >= 0 there (SkinOptions.y_nonnegative) no point of the bare hull lies
+    across it."""
+    p = dict(lpp=271.3987, breadth=58.0992, draft=27.8698, depth=55.3839, cb=0.7202, lcb=129.9507, skeg=True,
+             stem_rake=34.3928)
+    s = fl.design_hull(**p).bare_hull_surface()
+    g = np.asarray(s.evaluate_grid(np.linspace(*s.domain_u, 400), np.linspace(*s.domain_v, 4000))).reshape(-1, 3)
+    assert g[:, 1].min() >= 0.0

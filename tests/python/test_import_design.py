@@ -126,13 +126,13 @@ def test_rebuilt_hull_stays_on_its_side_of_the_centre_plane(ship):
 def test_the_skin_kept_off_the_centre_plane_or_not_is_said_in_the_notes():
     """Where the skin leaves the given sections to stay at y >= 0 (KCS's boss end) the notes say
     so and by how much; where that would move them too far (DTMB 5415's recess: 16 mm) they say
-    the skin may cross the plane; a ship whose skin never needed it (Series 60) says neither."""
+    the skin crosses the plane; a ship whose skin never needed it (Series 60) says neither."""
     import re
 
     said = re.search(r"the skin kept at y >= 0 in (\d+) rows of its control net, off the given sections by up to "
                      r"([0-9.]+) mm", imported("kcs")["notes"])
     assert said and int(said[1]) > 0 and 0 < float(said[2]) <= 10.0
-    left = re.search(r"the skin may cross the centre plane: keeping it at y >= 0 would move the given sections by "
+    left = re.search(r"the skin crosses the centre plane: keeping it at y >= 0 would move the given sections by "
                      r"up to ([0-9.]+) mm", imported("dtmb5415")["notes"])
     assert left and float(left[1]) > 0
     assert "centre plane" not in imported("series60")["notes"]

@@ -640,8 +640,10 @@ struct LongitudinalSystem {
   double cs;
   /// y columns solved with y >= 0 (SkinOptions::y_nonnegative), each with its least-E2 controls.
   mutable std::vector<std::pair<int, Eigen::VectorXd>> bounded;
+  mutable bool refused = false;     ///< a column could not be kept off the plane (the skin is left)
   mutable double refused_miss = 0;  ///< largest row miss of a column the bound would move too far
-  mutable std::mutex bounded_mutex;
+  Eigen::MatrixXd Ns;               ///< basis at kCentrePlaneSamples points per knot span (y_nonnegative)
+  std::vector<int> sample_span;     ///< each sample's knot span (its controls: span - pv .. span)
 
   LongitudinalSystem(const SkinOptions& opt, const Eigen::VectorXd& knots, const Eigen::VectorXd& v,
                      const Eigen::MatrixXd& columns)
@@ -659,7 +661,23 @@ struct LongitudinalSystem {
     const double lam = o.smoothing * hq * hq * hq * hq;
     H = interp ? Eigen::MatrixXd(2.0 * G) : Eigen::MatrixXd((2.0 / q) * Nv.transpose() * Nv + 2.0 * lam * G);
     cs = std::max(1e-300, H.cwiseAbs().maxCoeff());
+    if (o.y_nonnegative) centre_plane_samples();
   }
+
+  /// Ns and sample_span: where a row's longitudinal curve is looked at for a dip below y = 0.
+  void centre_plane_samples() {
+    std::vector<Eigen::RowVectorXd> rows;
+    for (int k = pv; k < nv; ++k) {
+      if (!(Kv[k + 1] > Kv[k])) continue;
+      for (int i = 0; i <= kCentrePlaneSamples; ++i) {
+        rows.push_back(basis_row(Kv, pv, Kv[k] + (Kv[k + 1] - Kv[k]) * i / kCentrePlaneSamples));
+        sample_span.push_back(k);
+      }
+    }
+    Ns.resize(static_cast<Eigen::Index>(rows.size()), nv);
+    for (std::size_t r = 0; r < rows.size(); ++r) Ns.row(static_cast<Eigen::Index>(r)) = rows[r];
+  }
+
 
   /// The degree_v-th derivative (constant on each span) on the span after the first interior
   /// knot minus on the span before it (`first`), or at the last interior knot; empty (no row)
@@ -744,34 +762,37 @@ struct LongitudinalSystem {
     Eigen::MatrixXd sol = kkt_cache().get(K)->solve(rhs);
     if (unmet(sol)) sol = Eigen::FullPivLU<Eigen::MatrixXd>(K).solve(rhs);
     if (unmet(sol)) singular();
-    const double below = -kCentrePlaneTolerance * std::max(1.0, data.cwiseAbs().maxCoeff());
     for (std::size_t c = 0; c < cols.size(); ++c) {
       Eigen::VectorXd z = held_val[cols[c]];
       for (int a = 0; a < nf; ++a) z[freev[a]] = sol(a, c);
-      if (o.y_nonnegative && cols[c] % 3 == 1 && z.minCoeff() < below) z = at_or_above_centre_plane(freev, crow, data_row, cols[c], z, below);
       lon.col(cols[c]) = z;
     }
   }
 
   /// Column `col`'s controls (z: its least-E2 solution, held controls at their runs' values)
-  /// solved again with every free control >= 0: the fairness objective plus the rows' misses
+  /// solved again near its dip (`dip`: dipping_controls) with every moving control >= 0: the fairness objective plus the rows' misses
   /// weighted by kCentrePlaneRowWeight (interpolate mode), the end rows still met exactly.
   /// Records the column; returns z unchanged where that would miss a row by more than
   /// kCentrePlaneMaxMiss of the sections' size (and solve() then leaves every column).
   Eigen::VectorXd at_or_above_centre_plane(const std::vector<int>& free_all, const std::vector<Eigen::RowVectorXd>& crow,
                                            const std::vector<int>& data_row, int col, const Eigen::VectorXd& z,
-                                           double below) const {
-    // Only the free controls within kCentrePlaneReach of one below the plane move: the rest of
-    // the row keeps its least-E2 interpolant exactly (a whole row re-solved softly moved by
+                                           const std::vector<char>& dip) const {
+    // Only the free controls within kCentrePlaneReach of the dip move: the rest of the row
+    // keeps its least-E2 interpolant exactly (a whole row re-solved softly moved by
     // millimetres far from the fold and put lobes into KCS's waterlines at the bulb).
     std::vector<int> freev;
     for (int j : free_all) {
       bool near = false;
       for (int k = std::max(0, j - kCentrePlaneReach); k <= std::min(nv - 1, j + kCentrePlaneReach) && !near; ++k)
-        near = z[k] < below;
+        near = dip[k];
       if (near) freev.push_back(j);
     }
     const int nf = static_cast<int>(freev.size());
+    if (nf == 0) {  // held by its runs all about the dip: nothing can move
+      refused = true;
+      refused_miss = std::numeric_limits<double>::infinity();
+      return z;
+    }
     Eigen::VectorXd hv = z;
     for (int a = 0; a < nf; ++a) hv[freev[a]] = 0.0;
     // Objective 1/2 c'Hc - b'c (+ w/2 |Nv c - data|^2 when interpolating) on the moving controls.
@@ -806,8 +827,8 @@ struct LongitudinalSystem {
     Eigen::VectorXd out = hv;
     for (int a = 0; a < nf; ++a) out[freev[a]] = std::max(0.0, sol.x[a]);  // the bound to round-off
     const double miss = interp ? (Nv * out - data.col(col)).cwiseAbs().maxCoeff() : 0.0;
-    std::lock_guard<std::mutex> lock(bounded_mutex);
     if (miss > kCentrePlaneMaxMiss * std::max(1.0, data.cwiseAbs().maxCoeff())) {
+      refused = true;
       refused_miss = std::max(refused_miss, miss);
       return z;
     }
@@ -818,23 +839,89 @@ struct LongitudinalSystem {
   /// lon (nv, 3 n): every column's longitudinal controls. Controls whose support meets a
   /// held run (open interval) are held at the run's value; columns that share a held set and
   /// end conditions share one factorisation.
+  /// Controls held by column col's runs (mask) and their values (val, zero elsewhere).
+  void held(int col, const Eigen::VectorXd& v, const std::vector<std::vector<HeldRun>>& runs, std::vector<char>& mask,
+            Eigen::VectorXd& val) const {
+    mask.assign(nv, 0);
+    val = Eigen::VectorXd::Zero(nv);
+    for (const HeldRun& h : runs[col])
+      for (int j = 0; j < nv; ++j)
+        if (Kv[j] < v[h.last] && Kv[j + pv + 1] > v[h.first]) mask[j] = 1, val[j] = h.value;
+  }
+
   Eigen::MatrixXd solve(const Eigen::VectorXd& v, const std::vector<std::vector<HeldRun>>& runs) const {
     const Eigen::Index cols = data.cols();
-    std::vector<std::vector<char>> held_mask(cols, std::vector<char>(nv, 0));
-    std::vector<Eigen::VectorXd> held_val(cols, Eigen::VectorXd::Zero(nv));
-    for (Eigen::Index col = 0; col < cols; ++col)
-      for (const HeldRun& h : runs[col])
-        for (int j = 0; j < nv; ++j)
-          if (Kv[j] < v[h.last] && Kv[j + pv + 1] > v[h.first]) held_mask[col][j] = 1, held_val[col][j] = h.value;
+    std::vector<std::vector<char>> held_mask(cols);
+    std::vector<Eigen::VectorXd> held_val(cols);
+    for (int col = 0; col < cols; ++col) held(col, v, runs, held_mask[col], held_val[col]);
     std::map<std::pair<std::vector<char>, bool>, std::vector<int>> groups;
     for (int col = 0; col < cols; ++col) groups[{held_mask[col], col % 3 != 0}].push_back(col);
     Eigen::MatrixXd lon(nv, cols);
     for (const auto& [key, members] : groups) solve_group(key.first, key.second, members, held_val, lon);
-    if (refused_miss > 0) {  // all or nothing: a skin kept off the centre plane in some rows only still crosses it
+    return lon;
+  }
+
+  /// Per y column, the controls near which the surface (u knots Ku, degree pu; rows' curves
+  /// lon) dips below `below`: at a sampled (u, v) where it does, every control whose support
+  /// holds the point, in each row whose u basis is not zero there and which has a control
+  /// below the plane among them (a straight group's interior row stands for its end rows).
+  /// Empty when the surface stays on its side of the plane.
+  std::map<int, std::vector<char>> centre_plane_dips(const Eigen::VectorXd& Ku, int pu, const Eigen::MatrixXd& lon,
+                                                     const std::vector<DerivedRow>& derived, double below) const {
+    const int n = static_cast<int>(lon.cols() / 3), nu = static_cast<int>(Ku.size()) - pu - 1;
+    std::vector<Eigen::RowVectorXd> urows;
+    for (int k = pu; k < nu; ++k)
+      if (Ku[k + 1] > Ku[k])
+        for (int i = 0; i <= kCentrePlaneSamples; ++i)
+          urows.push_back(basis_row(Ku, pu, Ku[k] + (Ku[k + 1] - Ku[k]) * i / kCentrePlaneSamples));
+    Eigen::MatrixXd Y(Ns.rows(), n);  // each row's curve at the v samples
+    for (int i = 0; i < n; ++i) Y.col(i) = Ns * lon.col(3 * i + 1);
+    std::map<int, std::vector<char>> dips;
+    for (Eigen::Index r = 0; r < Y.rows(); ++r) {
+      if (Y.row(r).minCoeff() >= below) continue;  // every row on its side: so is the surface
+      for (const Eigen::RowVectorXd& bu : urows) {
+        if (bu.dot(Y.row(r)) >= below) continue;
+        for (int i = 0; i < n; ++i) {
+          if (!(bu[i] > 0)) continue;
+          std::vector<int> rows{i};
+          for (const DerivedRow& d : derived)
+            if (d.row == i) rows = {d.first, d.last};
+          for (int row : rows) {
+            const int j0 = sample_span[r] - pv;
+            if (lon.col(3 * row + 1).segment(j0, pv + 1).minCoeff() >= 0) continue;  // adds nothing below the plane
+            std::vector<char>& m = dips[3 * row + 1];
+            m.resize(nv, 0);
+            for (int j = j0; j <= sample_span[r]; ++j) m[j] = 1;
+          }
+        }
+      }
+    }
+    return dips;
+  }
+
+  /// SkinOptions::y_nonnegative: every y column under a dip of the surface below the centre
+  /// plane solved again near it with its controls >= 0 (at_or_above_centre_plane), all or
+  /// nothing (a skin kept off the plane in some rows only still crosses it).
+  void keep_off_centre_plane(const Eigen::VectorXd& Ku, const Eigen::VectorXd& v,
+                             const std::vector<std::vector<HeldRun>>& runs, const std::vector<DerivedRow>& derived,
+                             Eigen::MatrixXd& lon) const {
+    const double below = -kCentrePlaneTolerance * std::max(1.0, data.cwiseAbs().maxCoeff());
+    std::vector<Eigen::RowVectorXd> crow;
+    std::vector<int> data_row;
+    constraint_rows(true, crow, data_row);  // y columns keep their end conditions
+    for (const auto& [col, dip] : centre_plane_dips(Ku, o.degree_u, lon, derived, below)) {
+      std::vector<char> mask;
+      Eigen::VectorXd val;
+      held(col, v, runs, mask, val);
+      std::vector<int> freev;
+      for (int j = 0; j < nv; ++j)
+        if (!mask[j]) freev.push_back(j);
+      lon.col(col) = at_or_above_centre_plane(freev, crow, data_row, col, lon.col(col), dip);
+    }
+    if (refused) {
       for (const auto& [col, z] : bounded) lon.col(col) = z;
       bounded.clear();
     }
-    return lon;
   }
 };
 
@@ -918,6 +1005,10 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
   const LongitudinalSystem sys(o, Kv, v, data);
   Eigen::MatrixXd lon = sys.solve(v, runs);
   apply_straight_rows(derived, lon);
+  if (o.y_nonnegative) {
+    sys.keep_off_centre_plane(Ku, v, runs, derived, lon);
+    apply_straight_rows(derived, lon);
+  }
   return skin_result(sys, Ku, v, lon, fit_max, runs);
 }
 
