@@ -60,12 +60,14 @@ def fair_skin(curves: Sequence[_native.NurbsCurve], n_control: int | None = None
     (fl.section_straight_groups: a hull's straight zones); their longitudinal curves are built
     from the end rows' so the segment stays straight between the sections.
 
-    ``y_nonnegative``: keep every control point at y >= 0 (a half hull, which must not cross its
-    centre plane): a row whose interpolant dips below y = 0 (rows running from a short section
-    onto a web on the centre plane, as at KCS's propeller boss) is solved again near the dip with
-    its controls bounded at 0, meeting its row points as closely as that lets it; where a row
-    would then miss them by more than 0.1 % of the sections' size the whole skin is left as it
-    was (``centre_plane_refused_miss`` says what keeping it off would have cost).
+    ``y_nonnegative``: keep the surface at y >= 0 (a half hull, which must not cross its centre
+    plane): the surface is looked at on 9 points per knot span each way, and where it dips below
+    y = 0 (rows running from a short section onto a web on the centre plane, as at KCS's
+    propeller boss) each row with a control below the plane there is solved again near the dip
+    with its controls bounded at 0, meeting its row points as closely as that lets it; where a
+    row would then miss them by more than 0.1 % of the sections' size, or the dip stays, the
+    whole skin is left as it was (``centre_plane_refused_miss`` says what keeping it off would
+    have cost, infinite where nothing could).
 
     Returns a SkinResult: ``surface`` (u across the sections, v along the hull),
     ``section_params``, ``section_fit_max``, ``longitudinal_max``, ``row_e2`` and, with

@@ -314,6 +314,21 @@ def test_y_nonnegative_keeps_the_skin_off_the_centre_plane():
     assert np.array_equal(np.asarray(kept.surface.control_points)[0], np.asarray(free.surface.control_points)[0])
 
 
+def test_y_nonnegative_keeps_a_straight_group_straight():
+    """The same rows with a middle row on the straight segment between them (a straight group):
+    the bottom row is kept off the plane, the middle row stays on the segment (half way) and
+    the skin meets the top row exactly (before, the middle row's miss failed the interpolation check)."""
+    secs = []
+    for c in _rows_touching_the_centre_plane(np.arange(0.0, 40.01, 2.5)):
+        top, bottom = c.control_points
+        secs.append(fl.NurbsCurve(1, [0, 0, 0.5, 1, 1], np.array([top, (top + bottom) / 2, bottom])))
+    kept = fl.fair_skin(secs, params="station", degree_u=1, y_nonnegative=True, straight_groups=[(0, 2)])
+    P = np.asarray(kept.surface.control_points)
+    assert kept.centre_plane_columns == 1 and P[..., 1].min() >= 0.0
+    assert np.allclose(P[1], (P[0] + P[2]) / 2, atol=1e-12)
+    assert kept.longitudinal_max < 1e-9
+
+
 def test_y_nonnegative_leaves_a_skin_it_would_pull_far_off_its_rows():
     """Rows that drop from 1 m onto the centre plane within one station and leave it steeply
     one station later cannot be kept at y >= 0 without missing their points by more than

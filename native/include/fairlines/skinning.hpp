@@ -89,11 +89,11 @@ struct SkinOptions {
   /// Keep the skin at y >= 0 (a half hull never crosses its centre plane): where the surface
   /// dips below -kCentrePlaneTolerance of the sections' size, each row with a control below
   /// the plane there is solved again near the dip (kCentrePlaneReach) with its controls bounded
-  /// at 0, meeting its row points as closely as the bound lets it (SkinResult::centre_plane_miss). Rows that run from a short
-  /// section (a counter above a propeller boss) onto a web on the centre plane otherwise fold
-  /// across it: 0.3 m on the KCS. The rows, and so the surface, then stay at y >= 0 (at the
-  /// sampled points; the moved controls are all >= 0), unless the skin was left as it was
-  /// (kCentrePlaneMaxMiss, SkinResult::centre_plane_refused_miss).
+  /// at 0, meeting its row points as closely as the bound lets it (SkinResult::centre_plane_miss);
+  /// the surface is looked at again (kCentrePlanePasses). Rows that run from a short section (a
+  /// counter above a propeller boss) onto a web on the centre plane otherwise fold across it:
+  /// 0.3 m on the KCS. Where that cannot be done within kCentrePlaneMaxMiss the skin is left as
+  /// it was (SkinResult::centre_plane_refused_miss).
   bool y_nonnegative = false;
 
   /// Each field with its name and meaning: f(name, member pointer, doc).
@@ -116,7 +116,7 @@ struct SkinOptions {
     f("flats", &SkinOptions::flats, "planes (axis 0 / 1 / 2 for x / y / z, value m) the sections' fits keep exactly where they lie in them");
     f("hold_runs", &SkinOptions::hold_runs, "hold a row coordinate constant over three or more sections where the rows keep it");
     f("straight_groups", &SkinOptions::straight_groups, "row ranges (first, last) kept straight between their end rows' longitudinal curves");
-    f("y_nonnegative", &SkinOptions::y_nonnegative, "keep every control point at y >= 0 (a half hull), meeting the rows as closely as that lets it");
+    f("y_nonnegative", &SkinOptions::y_nonnegative, "keep the surface at y >= 0 (a half hull): rows under a dip below the centre plane solved again with their controls >= 0");
   }
 };
 
@@ -146,16 +146,20 @@ inline constexpr int kCentrePlaneSamples = 8;
 /// the misses stay millimetres where the bound truly conflicts with the rows (KCS: 3.6 mm)
 /// and vanish to the solve's accuracy where it does not.
 inline constexpr double kCentrePlaneRowWeight = 1e6;
-/// ... but leaves the whole skin as it was (folded) where keeping a column at y >= 0 would
-/// move a row point more than this fraction of the sections' size: DTMB 5415's recess between
-/// the dome and the stem, where the bound pushed the web on the centre plane out 15 mm (2 % of
-/// B) to remove a 4.6 mm fold; kept in the columns it could keep, the fold stayed (3.9 mm) and
-/// its waterlines took 10 more curvature sign changes.
+/// ... but leaves the whole skin as it was where keeping a row at y >= 0 would move a row
+/// point more than this fraction of the sections' size (their largest coordinate, about the
+/// ship's length): DTMB 5415's recess between the dome and the stem, where the bound pushed
+/// the web on the centre plane out 16 mm (0.3 % of its 5.8 m, 2 % of B) to remove a 4.6 mm fold;
+/// kept in the rows it could keep, the fold stayed (3.9 mm) and its waterlines took 10 more
+/// curvature sign changes.
 inline constexpr double kCentrePlaneMaxMiss = 1e-3;
 /// ... and moves only the controls within this many of one below the plane; the rest of the
 /// row keeps its least-E2 interpolant exactly. KCS: with 3 the rows missed its sections by
 /// 4.3 cm; with 14 (or the whole row) two lobes came into its 9.4 m waterline at the bulb.
 inline constexpr int kCentrePlaneReach = 8;
+/// ... and looks again after moving them, at most this many times (lowering a row's controls
+/// near one dip can uncover another); dips still there leave the skin as it was.
+inline constexpr int kCentrePlanePasses = 3;
 
 /// Relative distance (to the sections' largest coordinate) within which a section point
 /// counts as lying in one of SkinOptions::flats.
@@ -169,7 +173,8 @@ struct SkinResult {
   double section_fit_max = 0;      ///< max distance between the equally spaced section points
                                    ///< and the common-knot section fits (metres)
   double longitudinal_max = 0;     ///< max |C_i(v_d) - row point| over rows and sections
-                                   ///< (metres; ~1e-12 in Interpolate mode)
+                                   ///< (metres; ~1e-12 in Interpolate mode; the y of rows
+                                   ///< moved by y_nonnegative left out: centre_plane_miss)
   Eigen::VectorXd row_e2;          ///< E2 of each longitudinal control-point curve (n_control),
                                    ///< whatever the fairness weights
   int held_columns = 0;            ///< row coordinates with at least one held run

@@ -638,12 +638,6 @@ struct LongitudinalSystem {
   Eigen::RowVectorXd D0, D1;  ///< first derivative rows at v = 0 and v = 1 (parallel ends)
   Eigen::RowVectorXd J0, J1;  ///< jumps of the degree_v-th derivative at the first / last interior knot (not-a-knot ends)
   double cs;
-  /// y columns solved with y >= 0 (SkinOptions::y_nonnegative), each with its least-E2 controls.
-  mutable std::vector<std::pair<int, Eigen::VectorXd>> bounded;
-  mutable bool refused = false;     ///< a column could not be kept off the plane (the skin is left)
-  mutable double refused_miss = 0;  ///< largest row miss of a column the bound would move too far
-  Eigen::MatrixXd Ns;               ///< basis at kCentrePlaneSamples points per knot span (y_nonnegative)
-  std::vector<int> sample_span;     ///< each sample's knot span (its controls: span - pv .. span)
 
   LongitudinalSystem(const SkinOptions& opt, const Eigen::VectorXd& knots, const Eigen::VectorXd& v,
                      const Eigen::MatrixXd& columns)
@@ -661,23 +655,7 @@ struct LongitudinalSystem {
     const double lam = o.smoothing * hq * hq * hq * hq;
     H = interp ? Eigen::MatrixXd(2.0 * G) : Eigen::MatrixXd((2.0 / q) * Nv.transpose() * Nv + 2.0 * lam * G);
     cs = std::max(1e-300, H.cwiseAbs().maxCoeff());
-    if (o.y_nonnegative) centre_plane_samples();
   }
-
-  /// Ns and sample_span: where a row's longitudinal curve is looked at for a dip below y = 0.
-  void centre_plane_samples() {
-    std::vector<Eigen::RowVectorXd> rows;
-    for (int k = pv; k < nv; ++k) {
-      if (!(Kv[k + 1] > Kv[k])) continue;
-      for (int i = 0; i <= kCentrePlaneSamples; ++i) {
-        rows.push_back(basis_row(Kv, pv, Kv[k] + (Kv[k + 1] - Kv[k]) * i / kCentrePlaneSamples));
-        sample_span.push_back(k);
-      }
-    }
-    Ns.resize(static_cast<Eigen::Index>(rows.size()), nv);
-    for (std::size_t r = 0; r < rows.size(); ++r) Ns.row(static_cast<Eigen::Index>(r)) = rows[r];
-  }
-
 
   /// The degree_v-th derivative (constant on each span) on the span after the first interior
   /// knot minus on the span before it (`first`), or at the last interior knot; empty (no row)
@@ -769,76 +747,6 @@ struct LongitudinalSystem {
     }
   }
 
-  /// Column `col`'s controls (z: its least-E2 solution, held controls at their runs' values)
-  /// solved again near its dip (`dip`: dipping_controls) with every moving control >= 0: the fairness objective plus the rows' misses
-  /// weighted by kCentrePlaneRowWeight (interpolate mode), the end rows still met exactly.
-  /// Records the column; returns z unchanged where that would miss a row by more than
-  /// kCentrePlaneMaxMiss of the sections' size (and solve() then leaves every column).
-  Eigen::VectorXd at_or_above_centre_plane(const std::vector<int>& free_all, const std::vector<Eigen::RowVectorXd>& crow,
-                                           const std::vector<int>& data_row, int col, const Eigen::VectorXd& z,
-                                           const std::vector<char>& dip) const {
-    // Only the free controls within kCentrePlaneReach of the dip move: the rest of the row
-    // keeps its least-E2 interpolant exactly (a whole row re-solved softly moved by
-    // millimetres far from the fold and put lobes into KCS's waterlines at the bulb).
-    std::vector<int> freev;
-    for (int j : free_all) {
-      bool near = false;
-      for (int k = std::max(0, j - kCentrePlaneReach); k <= std::min(nv - 1, j + kCentrePlaneReach) && !near; ++k)
-        near = dip[k];
-      if (near) freev.push_back(j);
-    }
-    const int nf = static_cast<int>(freev.size());
-    if (nf == 0) {  // held by its runs all about the dip: nothing can move
-      refused = true;
-      refused_miss = std::numeric_limits<double>::infinity();
-      return z;
-    }
-    Eigen::VectorXd hv = z;
-    for (int a = 0; a < nf; ++a) hv[freev[a]] = 0.0;
-    // Objective 1/2 c'Hc - b'c (+ w/2 |Nv c - data|^2 when interpolating) on the moving controls.
-    const Eigen::VectorXd resid = Nv * hv - data.col(col);
-    const double w = interp ? kCentrePlaneRowWeight * cs : 0.0;
-    QuadraticProgram qp;
-    qp.H.resize(nf, nf);
-    qp.g.resize(nf);
-    for (int a = 0; a < nf; ++a) {
-      const int ja = freev[a];
-      qp.g[a] = H.row(ja).dot(hv) + w * Nv.col(ja).dot(resid) - (interp ? 0.0 : (2.0 / q) * Nv.col(ja).dot(data.col(col)));
-      for (int b2 = 0; b2 < nf; ++b2) qp.H(a, b2) = H(ja, freev[b2]) + w * Nv.col(ja).dot(Nv.col(freev[b2]));
-    }
-    std::vector<int> ends;
-    for (std::size_t r = 0; r < crow.size(); ++r)
-      if (data_row[r] < 0) ends.push_back(static_cast<int>(r));
-    qp.E.resize(static_cast<Eigen::Index>(ends.size()), nf);
-    qp.e.resize(static_cast<Eigen::Index>(ends.size()));
-    for (std::size_t k = 0; k < ends.size(); ++k) {
-      for (int a = 0; a < nf; ++a) qp.E(k, a) = crow[ends[k]][freev[a]];
-      qp.e[k] = -crow[ends[k]].dot(hv);
-    }
-    qp.A = -Eigen::MatrixXd::Identity(nf, nf);
-    qp.b = Eigen::VectorXd::Zero(nf);
-    std::vector<int> warm;
-    for (int a = 0; a < nf; ++a)
-      if (z[freev[a]] < 0) warm.push_back(a);
-    const QpSolution sol = solve_qp(qp, warm);
-    if (sol.status != QpStatus::Optimal)
-      fail("the skin cannot keep row ", col / 3, " at y >= 0 (its end conditions hold it below); expected y_nonnegative off "
-           "or sections that do not cross the centre plane");
-    Eigen::VectorXd out = hv;
-    for (int a = 0; a < nf; ++a) out[freev[a]] = std::max(0.0, sol.x[a]);  // the bound to round-off
-    const double miss = interp ? (Nv * out - data.col(col)).cwiseAbs().maxCoeff() : 0.0;
-    if (miss > kCentrePlaneMaxMiss * std::max(1.0, data.cwiseAbs().maxCoeff())) {
-      refused = true;
-      refused_miss = std::max(refused_miss, miss);
-      return z;
-    }
-    bounded.emplace_back(col, z);
-    return out;
-  }
-
-  /// lon (nv, 3 n): every column's longitudinal controls. Controls whose support meets a
-  /// held run (open interval) are held at the run's value; columns that share a held set and
-  /// end conditions share one factorisation.
   /// Controls held by column col's runs (mask) and their values (val, zero elsewhere).
   void held(int col, const Eigen::VectorXd& v, const std::vector<std::vector<HeldRun>>& runs, std::vector<char>& mask,
             Eigen::VectorXd& val) const {
@@ -849,6 +757,9 @@ struct LongitudinalSystem {
         if (Kv[j] < v[h.last] && Kv[j + pv + 1] > v[h.first]) mask[j] = 1, val[j] = h.value;
   }
 
+  /// lon (nv, 3 n): every column's longitudinal controls. Controls whose support meets a
+  /// held run (open interval) are held at the run's value; columns that share a held set and
+  /// end conditions share one factorisation.
   Eigen::MatrixXd solve(const Eigen::VectorXd& v, const std::vector<std::vector<HeldRun>>& runs) const {
     const Eigen::Index cols = data.cols();
     std::vector<std::vector<char>> held_mask(cols);
@@ -859,69 +770,6 @@ struct LongitudinalSystem {
     Eigen::MatrixXd lon(nv, cols);
     for (const auto& [key, members] : groups) solve_group(key.first, key.second, members, held_val, lon);
     return lon;
-  }
-
-  /// Per y column, the controls near which the surface (u knots Ku, degree pu; rows' curves
-  /// lon) dips below `below`: at a sampled (u, v) where it does, every control whose support
-  /// holds the point, in each row whose u basis is not zero there and which has a control
-  /// below the plane among them (a straight group's interior row stands for its end rows).
-  /// Empty when the surface stays on its side of the plane.
-  std::map<int, std::vector<char>> centre_plane_dips(const Eigen::VectorXd& Ku, int pu, const Eigen::MatrixXd& lon,
-                                                     const std::vector<DerivedRow>& derived, double below) const {
-    const int n = static_cast<int>(lon.cols() / 3), nu = static_cast<int>(Ku.size()) - pu - 1;
-    std::vector<Eigen::RowVectorXd> urows;
-    for (int k = pu; k < nu; ++k)
-      if (Ku[k + 1] > Ku[k])
-        for (int i = 0; i <= kCentrePlaneSamples; ++i)
-          urows.push_back(basis_row(Ku, pu, Ku[k] + (Ku[k + 1] - Ku[k]) * i / kCentrePlaneSamples));
-    Eigen::MatrixXd Y(Ns.rows(), n);  // each row's curve at the v samples
-    for (int i = 0; i < n; ++i) Y.col(i) = Ns * lon.col(3 * i + 1);
-    std::map<int, std::vector<char>> dips;
-    for (Eigen::Index r = 0; r < Y.rows(); ++r) {
-      if (Y.row(r).minCoeff() >= below) continue;  // every row on its side: so is the surface
-      for (const Eigen::RowVectorXd& bu : urows) {
-        if (bu.dot(Y.row(r)) >= below) continue;
-        for (int i = 0; i < n; ++i) {
-          if (!(bu[i] > 0)) continue;
-          std::vector<int> rows{i};
-          for (const DerivedRow& d : derived)
-            if (d.row == i) rows = {d.first, d.last};
-          for (int row : rows) {
-            const int j0 = sample_span[r] - pv;
-            if (lon.col(3 * row + 1).segment(j0, pv + 1).minCoeff() >= 0) continue;  // adds nothing below the plane
-            std::vector<char>& m = dips[3 * row + 1];
-            m.resize(nv, 0);
-            for (int j = j0; j <= sample_span[r]; ++j) m[j] = 1;
-          }
-        }
-      }
-    }
-    return dips;
-  }
-
-  /// SkinOptions::y_nonnegative: every y column under a dip of the surface below the centre
-  /// plane solved again near it with its controls >= 0 (at_or_above_centre_plane), all or
-  /// nothing (a skin kept off the plane in some rows only still crosses it).
-  void keep_off_centre_plane(const Eigen::VectorXd& Ku, const Eigen::VectorXd& v,
-                             const std::vector<std::vector<HeldRun>>& runs, const std::vector<DerivedRow>& derived,
-                             Eigen::MatrixXd& lon) const {
-    const double below = -kCentrePlaneTolerance * std::max(1.0, data.cwiseAbs().maxCoeff());
-    std::vector<Eigen::RowVectorXd> crow;
-    std::vector<int> data_row;
-    constraint_rows(true, crow, data_row);  // y columns keep their end conditions
-    for (const auto& [col, dip] : centre_plane_dips(Ku, o.degree_u, lon, derived, below)) {
-      std::vector<char> mask;
-      Eigen::VectorXd val;
-      held(col, v, runs, mask, val);
-      std::vector<int> freev;
-      for (int j = 0; j < nv; ++j)
-        if (!mask[j]) freev.push_back(j);
-      lon.col(col) = at_or_above_centre_plane(freev, crow, data_row, col, lon.col(col), dip);
-    }
-    if (refused) {
-      for (const auto& [col, z] : bounded) lon.col(col) = z;
-      bounded.clear();
-    }
   }
 };
 
@@ -934,9 +782,198 @@ void apply_straight_rows(const std::vector<DerivedRow>& derived, Eigen::MatrixXd
     }
 }
 
+/// SkinOptions::y_nonnegative: the surface looked at on kCentrePlaneSamples + 1 points per
+/// knot span each way; where it dips below the centre plane, each row with a control below it
+/// there is solved again near the dip with its controls bounded at y >= 0. All or nothing: a
+/// skin kept off the plane in some rows only still crosses it.
+class CentrePlaneKeeper {
+ public:
+  CentrePlaneKeeper(const LongitudinalSystem& sys, const Eigen::VectorXd& Ku, const Eigen::VectorXd& v,
+                    const std::vector<std::vector<HeldRun>>& runs, const std::vector<DerivedRow>& derived)
+      : sys_(sys), v_(v), runs_(runs), derived_(derived),
+        size_(std::max(1.0, sys.data.cwiseAbs().maxCoeff())), below_(-kCentrePlaneTolerance * size_) {
+    Nvs_ = samples(sys.Kv, sys.pv, &span_);
+    Nus_ = samples(Ku, sys.o.degree_u, nullptr);
+    for (const DerivedRow& d : derived) ends_of_[d.row] = {d.first, d.last};
+  }
+
+  /// lon (nv, 3 n) kept off the plane (up to kCentrePlanePasses looks), or left as it was.
+  void keep(Eigen::MatrixXd& lon) {
+    for (int pass = 0; pass < kCentrePlanePasses && !refused_; ++pass) {
+      const std::map<int, std::vector<char>> dips = dipping(lon);
+      if (dips.empty()) return;
+      for (const auto& [col, dip] : dips) {
+        original_.emplace(col, lon.col(col));  // the least-E2 controls, kept from the first pass
+        lon.col(col) = bounded(col, lon.col(col), dip);
+        if (refused_) break;
+      }
+      apply_straight_rows(derived_, lon);
+    }
+    if (!refused_ && !dipping(lon).empty()) refused_ = true, refused_miss_ = kInfinity;
+    if (refused_) {
+      for (const auto& [col, z] : original_) lon.col(col) = z;
+      apply_straight_rows(derived_, lon);
+      original_.clear();
+      miss_ = 0;
+    }
+  }
+
+  /// Columns moved (3 n flags; a straight group's interior row with its end rows).
+  std::vector<char> moved(int cols) const {
+    std::vector<char> out(cols, 0);
+    for (const auto& kv : original_) out[kv.first] = 1;
+    for (const DerivedRow& d : derived_)
+      if (out[3 * d.first + 1] || out[3 * d.last + 1]) out[3 * d.row + 1] = 1;
+    return out;
+  }
+  int columns() const { return static_cast<int>(original_.size()); }
+  double miss() const { return miss_; }
+  double refused_miss() const { return refused_ ? refused_miss_ : 0.0; }
+
+ private:
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+  /// Basis rows at kCentrePlaneSamples + 1 points per non-empty knot span (and each one's span).
+  static Eigen::MatrixXd samples(const Eigen::VectorXd& K, int p, std::vector<int>* span) {
+    const int n = static_cast<int>(K.size()) - p - 1;
+    std::vector<Eigen::RowVectorXd> rows;
+    for (int k = p; k < n; ++k) {
+      if (!(K[k + 1] > K[k])) continue;
+      for (int i = 0; i <= kCentrePlaneSamples; ++i) {
+        rows.push_back(basis_row(K, p, K[k] + (K[k + 1] - K[k]) * i / kCentrePlaneSamples));
+        if (span) span->push_back(k);
+      }
+    }
+    Eigen::MatrixXd out(static_cast<Eigen::Index>(rows.size()), n);
+    for (std::size_t r = 0; r < rows.size(); ++r) out.row(static_cast<Eigen::Index>(r)) = rows[r];
+    return out;
+  }
+
+  /// Per y column, the controls near which the surface dips below the plane: at a sampled
+  /// (u, v) where it does, the controls whose support holds the point, in each row whose u
+  /// basis is not zero there and which has a control below the plane among them (an
+  /// interior row of a straight group stands for its end rows). Empty: on its side.
+  std::map<int, std::vector<char>> dipping(const Eigen::MatrixXd& lon) const {
+    const int n = static_cast<int>(lon.cols() / 3), pv = sys_.pv, nv = sys_.nv;
+    Eigen::MatrixXd Y(Nvs_.rows(), n);  // each row's curve at the v samples
+    for (int i = 0; i < n; ++i) Y.col(i) = Nvs_ * lon.col(3 * i + 1);
+    std::map<int, std::vector<char>> dips;
+    for (Eigen::Index r = 0; r < Y.rows(); ++r) {
+      if (Y.row(r).minCoeff() >= below_) continue;  // every row on its side: so is the surface
+      const Eigen::VectorXd ys = Nus_ * Y.row(r).transpose();
+      const int j0 = span_[r] - pv;
+      for (Eigen::Index su = 0; su < ys.size(); ++su) {
+        if (ys[su] >= below_) continue;
+        for (int i = 0; i < n; ++i) {
+          if (!(Nus_(su, i) > 0)) continue;
+          const auto e = ends_of_.find(i);
+          for (int row : e == ends_of_.end() ? std::vector<int>{i} : std::vector<int>{e->second.first, e->second.second}) {
+            if (lon.col(3 * row + 1).segment(j0, pv + 1).minCoeff() >= 0) continue;  // adds nothing below
+            std::vector<char>& m = dips[3 * row + 1];
+            m.resize(nv, 0);
+            for (int j = j0; j <= span_[r]; ++j) m[j] = 1;
+          }
+        }
+      }
+    }
+    return dips;
+  }
+
+  /// Column col's controls z solved again with the free controls within kCentrePlaneReach of
+  /// the dip moving, bounded at y >= 0: the fairness objective plus the rows' misses weighted
+  /// by kCentrePlaneRowWeight (interpolate mode), the end rows met exactly. Sets refused_
+  /// (returning z) where that misses a row by more than kCentrePlaneMaxMiss of the size.
+  Eigen::VectorXd bounded(int col, const Eigen::VectorXd& z, const std::vector<char>& dip) {
+    const int nv = sys_.nv;
+    std::vector<char> mask;
+    Eigen::VectorXd val;
+    sys_.held(col, v_, runs_, mask, val);
+    // Only controls near the dip move: the rest of the row keeps its least-E2 interpolant
+    // (a whole row re-solved softly moved by millimetres far from the fold and put lobes
+    // into KCS's waterlines at the bulb).
+    std::vector<int> freev;
+    for (int j = 0; j < nv; ++j) {
+      bool near = false;
+      for (int k = std::max(0, j - kCentrePlaneReach); k <= std::min(nv - 1, j + kCentrePlaneReach) && !near; ++k)
+        near = dip[k];
+      if (near && !mask[j]) freev.push_back(j);
+    }
+    const int nf = static_cast<int>(freev.size());
+    if (nf == 0) return refuse(z, kInfinity);  // held by its runs all about the dip
+    Eigen::VectorXd hv = z;
+    for (int a = 0; a < nf; ++a) hv[freev[a]] = 0.0;
+    const Eigen::MatrixXd& data = sys_.data;
+    const Eigen::MatrixXd &H = sys_.H, &Nv = sys_.Nv;
+    const Eigen::VectorXd resid = Nv * hv - data.col(col);
+    const double w = sys_.interp ? kCentrePlaneRowWeight * sys_.cs : 0.0;
+    QuadraticProgram qp;
+    qp.H.resize(nf, nf);
+    qp.g.resize(nf);
+    for (int a = 0; a < nf; ++a) {
+      const int ja = freev[a];
+      const double b = sys_.interp ? 0.0 : (2.0 / sys_.q) * Nv.col(ja).dot(data.col(col));
+      qp.g[a] = H.row(ja).dot(hv) + w * Nv.col(ja).dot(resid) - b;
+      for (int b2 = 0; b2 < nf; ++b2) qp.H(a, b2) = H(ja, freev[b2]) + w * Nv.col(ja).dot(Nv.col(freev[b2]));
+    }
+    end_rows(freev, hv, qp);
+    qp.A = -Eigen::MatrixXd::Identity(nf, nf);
+    qp.b = Eigen::VectorXd::Zero(nf);
+    std::vector<int> warm;
+    for (int a = 0; a < nf; ++a)
+      if (z[freev[a]] < 0) warm.push_back(a);
+    const QpSolution sol = solve_qp(qp, warm);
+    if (sol.status != QpStatus::Optimal) return refuse(z, kInfinity);
+    Eigen::VectorXd out = hv;
+    for (int a = 0; a < nf; ++a) out[freev[a]] = std::max(0.0, sol.x[a]);  // the bound to round-off
+    const double miss = (Nv * (out - original_.at(col))).cwiseAbs().maxCoeff();  // at the stations
+    if (miss > kCentrePlaneMaxMiss * size_) return refuse(z, miss);
+    miss_ = std::max(miss_, miss);
+    return out;
+  }
+
+  /// The end rows (not-a-knot, parallel ends) that involve a moving control, as equalities.
+  void end_rows(const std::vector<int>& freev, const Eigen::VectorXd& hv, QuadraticProgram& qp) const {
+    std::vector<Eigen::RowVectorXd> crow;
+    std::vector<int> data_row;
+    sys_.constraint_rows(true, crow, data_row);  // y columns keep their end conditions
+    std::vector<int> keep;
+    for (std::size_t r = 0; r < crow.size(); ++r) {
+      double f = 0;
+      for (int j : freev) f = std::max(f, std::abs(crow[r][j]));
+      if (data_row[r] < 0 && f > 1e-14 * crow[r].cwiseAbs().maxCoeff()) keep.push_back(static_cast<int>(r));
+    }
+    const int nf = static_cast<int>(freev.size());
+    qp.E.resize(static_cast<Eigen::Index>(keep.size()), nf);
+    qp.e.resize(static_cast<Eigen::Index>(keep.size()));
+    for (std::size_t k = 0; k < keep.size(); ++k) {
+      for (int a = 0; a < nf; ++a) qp.E(k, a) = crow[keep[k]][freev[a]];
+      qp.e[k] = -crow[keep[k]].dot(hv);
+    }
+  }
+
+  Eigen::VectorXd refuse(const Eigen::VectorXd& z, double miss) {
+    refused_ = true;
+    refused_miss_ = std::max(refused_miss_, miss);
+    return z;
+  }
+
+  const LongitudinalSystem& sys_;
+  const Eigen::VectorXd& v_;
+  const std::vector<std::vector<HeldRun>>& runs_;
+  const std::vector<DerivedRow>& derived_;
+  double size_, below_;
+  Eigen::MatrixXd Nvs_, Nus_;  ///< basis rows at the samples along v and across u
+  std::vector<int> span_;      ///< each v sample's knot span (its controls: span - degree_v .. span)
+  std::map<int, std::pair<int, int>> ends_of_;  ///< a straight group's interior row -> its end rows
+  std::map<int, Eigen::VectorXd> original_;      ///< moved y columns -> their least-E2 controls
+  bool refused_ = false;
+  double refused_miss_ = 0, miss_ = 0;
+};
+
 /// The skinned surface and its diagnostics from the longitudinal controls.
 SkinResult skin_result(const LongitudinalSystem& sys, const Eigen::VectorXd& Ku, const Eigen::VectorXd& v,
-                       const Eigen::MatrixXd& lon, double fit_max, const std::vector<std::vector<HeldRun>>& runs) {
+                       const Eigen::MatrixXd& lon, double fit_max, const std::vector<std::vector<HeldRun>>& runs,
+                       const CentrePlaneKeeper* keeper) {
   const int n = static_cast<int>(lon.cols() / 3), nv = sys.nv, pv = sys.pv;
   Eigen::MatrixXd P(n * nv, 3);
   for (int i = 0; i < n; ++i)
@@ -944,19 +981,21 @@ SkinResult skin_result(const LongitudinalSystem& sys, const Eigen::VectorXd& Ku,
       for (int k = 0; k < 3; ++k) P(i * nv + j, k) = lon(j, 3 * i + k);
   SkinResult res{NurbsSurface(sys.o.degree_u, pv, Ku, sys.Kv, n, nv, P), v, fit_max, 0.0, Eigen::VectorXd(n)};
   const Eigen::MatrixXd fitted = sys.Nv * lon;
-  std::vector<char> bounded(static_cast<std::size_t>(lon.cols()), 0);
-  for (const auto& b : sys.bounded) bounded[b.first] = 1;
-  double lmax = 0, bmax = 0;
+  // y of the rows the keeper moved: their miss is centre_plane_miss, not the interpolation's
+  const std::vector<char> moved = keeper ? keeper->moved(static_cast<int>(lon.cols())) : std::vector<char>(lon.cols(), 0);
+  double lmax = 0;
   for (int d = 0; d < sys.q; ++d)
     for (int i = 0; i < n; ++i) {
       Eigen::RowVector3d miss = fitted.block(d, 3 * i, 1, 3) - sys.data.block(d, 3 * i, 1, 3);
-      if (bounded[3 * i + 1]) bmax = std::max(bmax, std::abs(miss[1])), miss[1] = 0.0;
+      if (moved[3 * i + 1]) miss[1] = 0.0;
       lmax = std::max(lmax, miss.norm());
     }
-  res.longitudinal_max = std::max(lmax, bmax);
-  res.centre_plane_columns = static_cast<int>(sys.bounded.size());
-  res.centre_plane_miss = bmax;
-  res.centre_plane_refused_miss = sys.refused_miss;
+  res.longitudinal_max = lmax;
+  if (keeper) {
+    res.centre_plane_columns = keeper->columns();
+    res.centre_plane_miss = keeper->miss();
+    res.centre_plane_refused_miss = keeper->refused_miss();
+  }
   // A KKT system too ill-conditioned for its solve can pass the residual test on its own scale
   // and still miss the rows: refuse rather than return a surface off its sections.
   const double extent = std::max(1.0, sys.data.cwiseAbs().maxCoeff());
@@ -1005,11 +1044,10 @@ SkinResult fair_skin(const std::vector<NurbsCurve>& sections, const SkinOptions&
   const LongitudinalSystem sys(o, Kv, v, data);
   Eigen::MatrixXd lon = sys.solve(v, runs);
   apply_straight_rows(derived, lon);
-  if (o.y_nonnegative) {
-    sys.keep_off_centre_plane(Ku, v, runs, derived, lon);
-    apply_straight_rows(derived, lon);
-  }
-  return skin_result(sys, Ku, v, lon, fit_max, runs);
+  if (!o.y_nonnegative) return skin_result(sys, Ku, v, lon, fit_max, runs, nullptr);
+  CentrePlaneKeeper keeper(sys, Ku, v, runs, derived);
+  keeper.keep(lon);
+  return skin_result(sys, Ku, v, lon, fit_max, runs, &keeper);
 }
 
 }  // namespace fairlines
