@@ -143,6 +143,35 @@ TEST(FairSkin, C0SectionKeepsAKnuckleExactly) {
   expect_skin_refused(secs, o, "not_a_knot");
 }
 
+// A bottom row on the centre plane at x 20 and 22.5 m leaving it as 0.05 (x - x0)^2 either side:
+// its least-E2 interpolant dips 2.9 cm across the plane; kept off it, every sampled point of
+// the skin has y >= 0 and the top row is untouched.
+TEST(FairSkin, YNonnegativeKeepsTheSkinOffTheCentrePlane) {
+  std::vector<NurbsCurve> secs;
+  for (int d = 0; d <= 16; ++d) {
+    const double x = 2.5 * d;
+    const double y = x > 22.5 ? 0.05 * (x - 22.5) * (x - 22.5) : x < 20.0 ? 0.05 * (x - 20.0) * (x - 20.0) : 0.0;
+    secs.push_back(line_section(x, 5.0, 1.0, y, 0.0));
+  }
+  SkinOptions o;
+  o.degree_u = 1;
+  o.params = SkinParams::Station;
+  const SkinResult free = fair_skin(secs, o);
+  o.y_nonnegative = true;
+  const SkinResult kept = fair_skin(secs, o);
+  double free_min = 0, kept_min = 0;
+  for (int j = 0; j <= 800; ++j) {
+    free_min = std::min(free_min, free.surface.evaluate(1.0, j / 800.0)[1]);
+    kept_min = std::min(kept_min, kept.surface.evaluate(1.0, j / 800.0)[1]);
+  }
+  EXPECT_LT(free_min, -0.02);
+  EXPECT_GE(kept_min, 0.0);
+  EXPECT_EQ(kept.centre_plane_columns, 1);
+  EXPECT_GT(kept.centre_plane_miss, 0.0);
+  EXPECT_LE(kept.centre_plane_miss, kCentrePlaneMaxMiss * 40.0);
+  for (int j = 0; j <= 20; ++j) EXPECT_EQ(kept.surface.evaluate(0.0, j / 20.0)[1], free.surface.evaluate(0.0, j / 20.0)[1]);
+}
+
 // Waterplane moments, metacentres and trim on a box barge, whose values are closed-form:
 // I_T = L B^3 / 12, I_L = B L^3 / 12, KMt = B^2 / 12T + T / 2, and under a trim t (linear
 // draft) LCB = L/2 - t L / (12 T).
