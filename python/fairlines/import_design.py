@@ -147,6 +147,10 @@ GIVEN_FLAT_TOL = 1e-4
 #: alike from 0.15 to 0.25 % (wetted surface +0.89 to +0.95 %); at 0.03 % the skin overshoots
 #: across the step (the nose lost: max 2.25 % B), from 0.3 % the stem's foot is cut (max 1.82 %).
 NOSE_GAP = 2e-3
+#: A centre-plane line of the aft half that ends with no other going on aft within this fraction
+#: of the contour's height of its end is a tail (KCS's propeller boss end under its counter),
+#: and a station is put there (the cosine stations fell 0.6 and 0.4 m either side of it).
+TAIL_HEIGHT = 0.1
 #: Points of each given section, evenly along it (deck edge, side, bottom to the centre plane).
 GIVEN_SHAPE_POINTS = 301
 #: Bending penalty of a measured shape's fit against its points (sections.given_smoothing; the
@@ -249,7 +253,8 @@ def _stations(data: HullData, lines: list, count: int = GRID_STATIONS, noses: bo
     """Stations: an offsets table's own, or `count` cosine-clustered across the grids; with
     `noses`, a station on each nose of the centre-plane contour inside the ends (a sonar dome's
     forward end under a stem that recedes above it) and one NOSE_GAP of Lpp forward of it, on the
-    stem, so the profile can step up there (the cosine stations within NOSE_GAP of them dropped).
+    stem, so the profile can step up there (the cosine stations within NOSE_GAP of them dropped),
+    and one on each tail of its aft half (:func:`_contour_tails`).
     `rows`: x of grids' section rows (:func:`_section_rows`), the stations over their ranges."""
     if data.sections:
         return np.array(sorted(s.x for s in data.sections))
@@ -265,6 +270,7 @@ def _stations(data: HullData, lines: list, count: int = GRID_STATIONS, noses: bo
         if extra:
             keep = np.min(np.abs(x[:, None] - np.array(extra)[None, :]), axis=1) > gap
             x = np.union1d(x[keep], extra)
+        x = np.union1d(x, [t for t in _contour_tails(lines, data.beam, gap) if lo + 2 * gap < t < data.lpp / 2])
     for r, spread in rows:
         x = _with_rows(x, np.sort(r), spread)
     return x
@@ -331,6 +337,24 @@ def _contour_noses(lines: list, beam: float) -> list:
             for i in range(1, len(edge) - 1):
                 if on[i - 1:i + 2].all() and x[i] >= x[i - 1] and x[i] >= x[i + 1] and x[i] > min(x[i - 1], x[i + 1]):
                     out.append(float(x[i]))
+    return out
+
+
+def _contour_tails(lines: list, beam: float, gap: float) -> list:
+    """x of the aft ends of the grids' centre-plane lines (each grid's first and last longitudinal
+    line, where on the centre plane: y within GIVEN_FLAT_TOL of B) that no centre-plane line goes
+    on aft from: none of them lies more than `gap` aft within TAIL_HEIGHT of the contour's height
+    (not where two grids join)."""
+    edges = [e for ln in lines for e in (ln[0], ln[-1]) if (e[:, 1] <= GIVEN_FLAT_TOL * beam).all()]
+    if not edges:
+        return []
+    pts = np.concatenate(edges)
+    reach = TAIL_HEIGHT * float(np.ptp(pts[:, 2]))
+    out = []
+    for e in edges:
+        t = e[int(np.argmin(e[:, 0]))]
+        if not np.any((pts[:, 0] < t[0] - gap) & (np.abs(pts[:, 2] - t[2]) < reach)):
+            out.append(float(t[0]))
     return out
 
 
