@@ -692,6 +692,13 @@ struct LongitudinalSystem {
          ", smoothing ", o.smoothing, "); expected smoothing > 0 or more sections");
   }
 
+  /// Whether the constraint row involves one of the controls `freev` (not only held ones).
+  static bool involves(const Eigen::RowVectorXd& row, const std::vector<int>& freev) {
+    double f = 0;
+    for (int j : freev) f = std::max(f, std::abs(row[j]));
+    return f > 1e-14 * row.cwiseAbs().maxCoeff();
+  }
+
   /// Solves the columns `cols`, which share the held controls `mask` (values in held_val)
   /// and whether their ends are constrained, writing their controls into lon.
   void solve_group(const std::vector<char>& mask, bool with_ends, const std::vector<int>& cols,
@@ -706,11 +713,8 @@ struct LongitudinalSystem {
     std::vector<int> data_row;
     constraint_rows(with_ends, crow, data_row);
     std::vector<int> keep;
-    for (std::size_t r = 0; r < crow.size(); ++r) {
-      double f = 0;
-      for (int a = 0; a < nf; ++a) f = std::max(f, std::abs(crow[r][freev[a]]));
-      if (f > 1e-14 * crow[r].cwiseAbs().maxCoeff()) keep.push_back(static_cast<int>(r));
-    }
+    for (std::size_t r = 0; r < crow.size(); ++r)
+      if (involves(crow[r], freev)) keep.push_back(static_cast<int>(r));
     const int mc = static_cast<int>(keep.size());
     Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nf + mc, nf + mc);
     for (int a = 0; a < nf; ++a)
@@ -790,15 +794,25 @@ class CentrePlaneKeeper {
  public:
   CentrePlaneKeeper(const LongitudinalSystem& sys, const Eigen::VectorXd& Ku, const Eigen::VectorXd& v,
                     const std::vector<std::vector<HeldRun>>& runs, const std::vector<DerivedRow>& derived)
-      : sys_(sys), v_(v), runs_(runs), derived_(derived),
+      : sys_(sys), Ku_(Ku), v_(v), runs_(runs), derived_(derived),
         size_(std::max(1.0, sys.data.cwiseAbs().maxCoeff())), below_(-kCentrePlaneTolerance * size_) {
-    Nvs_ = samples(sys.Kv, sys.pv, &span_);
-    Nus_ = samples(Ku, sys.o.degree_u, nullptr);
     for (const DerivedRow& d : derived) ends_of_[d.row] = {d.first, d.last};
   }
 
   /// lon (nv, 3 n) kept off the plane (up to kCentrePlanePasses looks), or left as it was.
   void keep(Eigen::MatrixXd& lon) {
+    // Every y control on its side: so is the surface (convex hull), and nothing is sampled (the
+    // designed hulls: half the skin's time otherwise).
+    bool below = false;
+    for (Eigen::Index c = 1; c < lon.cols() && !below; c += 3) below = lon.col(c).minCoeff() < below_;
+    if (!below) return;
+    Nvs_ = samples(sys_.Kv, sys_.pv, &span_);
+    Nus_ = samples(Ku_, sys_.o.degree_u, nullptr);
+    std::vector<Eigen::RowVectorXd> crow;
+    std::vector<int> data_row;
+    sys_.constraint_rows(true, crow, data_row);  // y columns keep their end conditions
+    for (std::size_t r = 0; r < crow.size(); ++r)
+      if (data_row[r] < 0) ends_.push_back(crow[r]);
     for (int pass = 0; pass < kCentrePlanePasses && !refused_; ++pass) {
       const std::map<int, std::vector<char>> dips = dipping(lon);
       if (dips.empty()) return;
@@ -933,21 +947,15 @@ class CentrePlaneKeeper {
 
   /// The end rows (not-a-knot, parallel ends) that involve a moving control, as equalities.
   void end_rows(const std::vector<int>& freev, const Eigen::VectorXd& hv, QuadraticProgram& qp) const {
-    std::vector<Eigen::RowVectorXd> crow;
-    std::vector<int> data_row;
-    sys_.constraint_rows(true, crow, data_row);  // y columns keep their end conditions
-    std::vector<int> keep;
-    for (std::size_t r = 0; r < crow.size(); ++r) {
-      double f = 0;
-      for (int j : freev) f = std::max(f, std::abs(crow[r][j]));
-      if (data_row[r] < 0 && f > 1e-14 * crow[r].cwiseAbs().maxCoeff()) keep.push_back(static_cast<int>(r));
-    }
+    std::vector<const Eigen::RowVectorXd*> keep;
+    for (const Eigen::RowVectorXd& row : ends_)
+      if (LongitudinalSystem::involves(row, freev)) keep.push_back(&row);
     const int nf = static_cast<int>(freev.size());
     qp.E.resize(static_cast<Eigen::Index>(keep.size()), nf);
     qp.e.resize(static_cast<Eigen::Index>(keep.size()));
     for (std::size_t k = 0; k < keep.size(); ++k) {
-      for (int a = 0; a < nf; ++a) qp.E(k, a) = crow[keep[k]][freev[a]];
-      qp.e[k] = -crow[keep[k]].dot(hv);
+      for (int a = 0; a < nf; ++a) qp.E(k, a) = (*keep[k])[freev[a]];
+      qp.e[k] = -keep[k]->dot(hv);
     }
   }
 
@@ -958,12 +966,14 @@ class CentrePlaneKeeper {
   }
 
   const LongitudinalSystem& sys_;
+  const Eigen::VectorXd& Ku_;
   const Eigen::VectorXd& v_;
   const std::vector<std::vector<HeldRun>>& runs_;
   const std::vector<DerivedRow>& derived_;
   double size_, below_;
   Eigen::MatrixXd Nvs_, Nus_;  ///< basis rows at the samples along v and across u
   std::vector<int> span_;      ///< each v sample's knot span (its controls: span - degree_v .. span)
+  std::vector<Eigen::RowVectorXd> ends_;        ///< the end condition rows (not-a-knot, parallel)
   std::map<int, std::pair<int, int>> ends_of_;  ///< a straight group's interior row -> its end rows
   std::map<int, Eigen::VectorXd> original_;      ///< moved y columns -> their least-E2 controls
   bool refused_ = false;
