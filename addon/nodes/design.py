@@ -139,7 +139,7 @@ class FLNodeHullBulb(FairlinesNode, bpy.types.Node):
 
 @register
 class FLNodeBlendSurface(FairlinesNode, bpy.types.Node):
-    """Blending surface between the bare hull and the bulb, tangent (C1) to both: on the hull
+    """Blending surface between the bare hull and the bulb, curvature-continuous (G2) with both: on the hull
     around the seam the bulb makes, on the bulb just ahead of it (clearances in the surfaces'
     parameters, which run 0 .. 1; see fairlines.seam_blend_placement)"""
     bl_idname = ids.NODE_BLEND

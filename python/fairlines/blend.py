@@ -1,6 +1,6 @@
 """The blending surface between a bare hull and a bulb (Kim and Hwangbo 2008): where it goes
 around their seam (:func:`seam_blend_placement`, placed by the engine) and the surface itself
-(:func:`blend_surface`), tangent (C1) to both. Conventions: metres, x forward from AP, y >= 0.
+(:func:`blend_surface`), curvature-continuous (G2) with both. Conventions: metres, x forward from AP, y >= 0.
 """
 
 from __future__ import annotations
@@ -77,17 +77,21 @@ class BlendPlacement:
 
 def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, boundary_b,
                   **options) -> BlendSurface:
-    """Blending surface between two surfaces with C1 (tangent-plane) continuity along both
-    boundary curves (Kim and Hwangbo 2008), by fair skinning of cubic Hermite sections.
+    """Blending surface between two surfaces, curvature-continuous (G2) along both boundary
+    curves by default (Kim and Hwangbo 2008's fair skinning of Hermite sections, quintic here).
+    The surface is cubic along the boundaries and quintic across (cubic with continuity=1).
 
     boundary_a, boundary_b   curves on each surface: a (k, 2) polyline of (u, v) parameters, or
                              an iso-line ``("u", value)`` / ``("v", value)``; both run the
                              same way (first point to first point).
     options                  fields of :class:`fl.BlendOptions` by keyword (defaults in the
                              engine): samples, sections along the boundaries; tension,
-                             cross-boundary tangent length relative to a third of the gap;
+                             the sections' speed across the boundaries over the gap (5/6
+                             of it for quintic sections);
                              check_samples, points per boundary at which the normal angle and
-                             gap are measured; centre_plane_ends.
+                             gap are measured; continuity, 2 (the surfaces' normal
+                             curvature across each boundary: G2) or 1 (tangent planes
+                             only: G1, cubic sections); centre_plane_ends.
 
     Raises InvalidInput for a bad boundary or option.
     """

@@ -126,7 +126,7 @@ def compose(subdomains: Sequence[Any], operation: str = "union", **options) -> C
                 ("u", u_b))`` (hull in the orient_bare_hull convention; the boundary on the
                 hull runs from centre-plane edge to centre-plane edge): the hull is trimmed
                 along its boundary, the bulb ahead of ``u_b``, and the blend (re-skinned at
-                the mesh resolution, C1 along both) joins them with shared vertices.
+                the mesh resolution, G2 along both) joins them with shared vertices.
     operation   "union" (the only Boolean a hull needs: the bulb's part inside the hull is
                 removed, and the hull's part inside the bulb).
     options     fields of :class:`fl.ComposeOptions` by keyword (defaults in the engine):
@@ -189,7 +189,7 @@ def mesh_hydrostatics(mesh: Mesh, draft: float, *, half: bool = True) -> MeshHyd
 
 def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface", *, blend: bool = True,
                        placement: BlendPlacement | None = None, **options) -> ComposedHull:
-    """Bare hull + bulb composed into one closed half hull, with a C1 blending surface between
+    """Bare hull + bulb composed into one closed half hull, with a G2 blending surface between
     them when ``blend`` (placed by :func:`seam_blend_placement`). ``options`` by keyword: the
     fields of :class:`fl.BlendPlacementOptions` (clearance_u, clearance_v, bulb_clearance,
     tension, points) place the blend, the rest go to :func:`compose`; ``placement``: the

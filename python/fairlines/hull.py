@@ -871,7 +871,7 @@ class Hull:
         return self._placement[2]
 
     def composed_hull(self, blend: bool = True, bulb=None, **compose_options):
-        """Bare hull + bulbous bow (+ a C1 blend when ``blend``) composed into one watertight half
+        """Bare hull + bulbous bow (+ a G2 blend when ``blend``) composed into one watertight half
         hull (fairlines.ComposedHull); a ship without a bulb (none described, none given) is its
         bare hull closed by deck, transom and centre plane. Raises InvalidInput when the bulb does
         not meet the hull."""

@@ -155,6 +155,58 @@ TEST(Blend, FilletFromPlaneToCylinderIsTangentPlaneContinuous) {
   EXPECT_THROW(blend_surface(plane, one, cyl, cb), InvalidInput);
 }
 
+TEST(Blend, QuinticSectionsGiveTheSphereItsCurvatureAcrossTheBoundary) {
+  // A fillet from the plane z = 0 (a half circle of radius 2.5, y <= 0) up to a sphere of radius
+  // R about c (its half circle 45 deg south of the equator). A curve on a sphere has normal
+  // curvature -n . n_out / R along any normal n (n_out the outward unit normal); on the plane, 0.
+  // The blend's across its boundaries: its v = const edges' n . S_vv / |S_v|^2. (At y > 0 the
+  // handles would turn to keep a half hull's blend off its centre plane.)
+  const NurbsSurface plane = plane_z(0.0, 5.0);
+  const Eigen::Vector3d c(0.0, 0.0, 3.0);
+  const double R = 1.0;
+  const NurbsSurface ball = sphere(c, R);  // u around z from +x, v from the south pole
+  const int k = 65;
+  Eigen::MatrixXd ca(k, 2), cb(k, 2);
+  for (int i = 0; i < k; ++i) {
+    const double a = M_PI + M_PI * i / (k - 1);
+    ca.row(i) << 0.5 + 0.25 * std::cos(a), 0.5 + 0.25 * std::sin(a);
+    cb.row(i) << 0.5 + 0.5 * i / (k - 1), 0.25;
+  }
+  auto across = [](const NurbsSurface& s, double u, double v, Eigen::Vector3d& p, Eigen::Vector3d& n) {
+    const Eigen::MatrixXd d = s.derivatives(u, v, 2);  // row k * 3 + l: d^(k+l) / du^k dv^l
+    const Eigen::Vector3d sv = d.row(1).transpose(), svv = d.row(2).transpose(), su = d.row(3).transpose();
+    p = d.row(0).transpose();
+    n = su.cross(sv).normalized();
+    return n.dot(svv) / sv.squaredNorm();
+  };
+  for (const int continuity : {1, 2}) {
+    BlendOptions o;
+    o.continuity = continuity;
+    o.centre_plane_ends = false;  // its ends on y = 0 are no half hull's
+    const BlendSurface b = blend_surface(plane, ca, ball, cb, o);
+    EXPECT_LT(b.at_a.max_angle_deg, 0.5);
+    EXPECT_LT(b.at_b.max_angle_deg, 0.5);
+    double miss_plane = 0.0, miss_ball = 0.0;
+    for (int i = 0; i <= 100; ++i) {
+      Eigen::Vector3d p, n;
+      miss_plane = std::max(miss_plane, std::abs(across(b.surface, i / 100.0, 0.0, p, n)));
+      const double kb = across(b.surface, i / 100.0, 1.0, p, n);
+      miss_ball = std::max(miss_ball, std::abs(kb + n.dot((p - c) / R) / R));
+    }
+    if (continuity == 2) {
+      EXPECT_EQ(b.surface.degree_v(), 5);
+      EXPECT_LT(miss_plane, 1e-6 / R);
+      EXPECT_LT(miss_ball, 1e-3 / R);
+    } else {  // cubic sections meet both with curvatures of their own
+      EXPECT_GT(miss_plane, 0.1 / R);
+      EXPECT_GT(miss_ball, 0.1 / R);
+    }
+  }
+  BlendOptions bad;
+  bad.continuity = 3;
+  EXPECT_THROW(blend_surface(plane, ca, ball, cb, bad), InvalidInput);
+}
+
 TEST(Compose, HullBulbAndBlendComposeWatertightWithC1Boundaries) {
   Forebody fb;
   const NurbsSurface h = fb.surface();

@@ -23,3 +23,38 @@ def fd_normal(surface: fl.NurbsSurface, u: float, v: float, h: float = 1e-6) -> 
     sv = (np.asarray(surface.evaluate(u, vb)) - np.asarray(surface.evaluate(u, va))) / (vb - va)
     n = np.cross(su, sv)
     return n / np.linalg.norm(n)
+
+
+def fd_partials(surface: fl.NurbsSurface, u: float, v: float, h: float = 1e-6) -> tuple[np.ndarray, np.ndarray]:
+    """S_u, S_v by central differences of surface points (one-sided at the domain ends)."""
+    (u0, u1), (v0, v1) = surface.domain_u, surface.domain_v
+    ua, ub = max(u0, u - h), min(u1, u + h)
+    va, vb = max(v0, v - h), min(v1, v + h)
+    su = (np.asarray(surface.evaluate(ub, v)) - np.asarray(surface.evaluate(ua, v))) / (ub - ua)
+    sv = (np.asarray(surface.evaluate(u, vb)) - np.asarray(surface.evaluate(u, va))) / (vb - va)
+    return su, sv
+
+
+def fd_normal_curvature(surface: fl.NurbsSurface, u: float, v: float, t: np.ndarray, step: float = 1e-4) -> float:
+    """The surface's normal curvature (1/m, signed along fd_normal) at (u, v) in the unit
+    tangent direction t: the second difference of surface points along the parameter line
+    (u + a e, v + b e) whose tangent is t, over |tangent|^2 (one-sided at the domain's edge)."""
+    su, sv = fd_partials(surface, u, v)
+    g = np.array([[su @ su, su @ sv], [su @ sv, sv @ sv]])
+    a, b = np.linalg.solve(g, [su @ t, sv @ t])
+    c1 = a * su + b * sv
+    (u0, u1), (v0, v1) = surface.domain_u, surface.domain_v
+    e = step / np.linalg.norm(c1)
+
+    def inside(k):
+        return u0 <= u + a * k * e <= u1 and v0 <= v + b * k * e <= v1
+
+    def p(k):
+        return np.asarray(surface.evaluate(u + a * k * e, v + b * k * e))
+
+    if inside(-1) and inside(1):
+        c2 = (p(1) - 2 * p(0) + p(-1)) / e**2
+    else:  # second-order one-sided: a blend's section turns fast just off its edge
+        k = 1 if inside(3) else -1
+        c2 = (2 * p(0) - 5 * p(k) + 4 * p(2 * k) - p(3 * k)) / e**2
+    return float(fd_normal(surface, u, v) @ c2) / float(c1 @ c1)

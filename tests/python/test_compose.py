@@ -283,6 +283,10 @@ def test_blend_of_plane_and_cylinder_is_c1():
         fl.blend_surface(plane, [[0.5, 0.5]], cyl, ("v", 0.0))
     with pytest.raises(ValueError, match="outside the surface domain"):
         fl.blend_surface(plane, [[0.5, 0.5], [2.0, 0.5]], cyl, ("v", 0.0))
+    with pytest.raises(fl.InvalidInput, match=r"continuity is 3; expected 1 \(G1\) or 2 \(G2\)"):
+        fl.blend_surface(plane, circle_uv, cyl, ("v", 0.0), continuity=3)
+    with pytest.raises(fl.InvalidInput, match="continuity is 1.5; expected a int"):
+        fl.blend_surface(plane, circle_uv, cyl, ("v", 0.0), continuity=1.5)
 
 
 def test_any_parameter_orientation_of_the_bare_hull_is_accepted(hull, composed):

@@ -1,5 +1,6 @@
-// Blending surface between two surfaces (Kim & Hwangbo 2008, step 4): fair skinning of cubic Hermite
-// sections with C1 (tangent-plane) continuity along both boundary curves.
+// Blending surface between two surfaces (Kim & Hwangbo 2008, step 4): fair skinning of Hermite
+// sections, quintic with curvature (G2) continuity along both boundary curves, or cubic with
+// tangent-plane (G1) continuity.
 #pragma once
 
 #include <Eigen/Core>
@@ -13,13 +14,18 @@ struct BlendOptions {
   double tension = 1.0;
   int check_samples = 200;
   bool centre_plane_ends = true;
+  /// 2: quintic sections whose second derivative across each boundary gives the surface's own
+  /// normal curvature in that direction (G2: reflection lines run on across the boundary
+  /// without a kink); 1: cubic sections, tangent planes only (G1).
+  int continuity = 2;
 
   /// Each field with its name and meaning: f(name, member pointer, doc).
   template <typename F>
   static void fields(F&& f) {
     f("samples", &BlendOptions::samples, "sections skinned along the boundaries (>= 4)");
-    f("tension", &BlendOptions::tension, "cross-boundary tangent length / (|B - A| / 3), > 0");
+    f("tension", &BlendOptions::tension, "cross-boundary speed |S_t| / |B - A| of the cubic sections, > 0 (the quintic ones run at 5/6 of it)");
     f("check_samples", &BlendOptions::check_samples, "boundary points at which continuity is measured (>= 2)");
+    f("continuity", &BlendOptions::continuity, "1: tangent planes (cubic sections), 2: also the normal curvature across each boundary (quintic sections)");
     f("centre_plane_ends", &BlendOptions::centre_plane_ends, "when both boundaries start (end) on y = 0, keep that end section in the centre plane so a half hull closes");
   }
 };
@@ -42,9 +48,13 @@ struct BlendSurface {
 ///                         a polyline in parameter space is a curve on the surface). Both
 ///                         are sampled at equal fractions of their 3-D arc length, first
 ///                         point to first point.
-/// Sections are cubic: S(s, 0) on a, S_t(s, 0) in a's tangent plane normal to the boundary
-/// and toward b (likewise at b); each control row is interpolated along s (common knots).
-/// Throws InvalidInput for bad shapes or parameters outside the domains.
+/// Sections are Hermite curves across (t): S(s, 0) on a, S_t(s, 0) in a's tangent plane normal to
+/// the boundary and toward b, of length tension |B - A| (5/6 of it for quintic sections, whose
+/// first two legs then reach as far as a cubic's handle); with continuity 2 also S_tt(s, 0) along
+/// a's normal with S_tt . n = kappa_n |S_t|^2, kappa_n a's normal curvature in S_t's direction
+/// (likewise at b); each control row is interpolated along s (common knots). The surface is
+/// degree 3 along s and 3 (continuity 1) or 5 (continuity 2) across.
+/// Throws InvalidInput for bad shapes, parameters outside the domains or a continuity not 1 or 2.
 BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundary_a, const NurbsSurface& b,
                            const Eigen::MatrixXd& boundary_b, const BlendOptions& options = {});
 

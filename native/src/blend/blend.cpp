@@ -1,4 +1,15 @@
-// Blending surface by fair skinning of cubic Hermite sections, see fairlines/blend.hpp.
+// Blending surface by fair skinning of Hermite sections (quintic G2 or cubic G1), see
+// fairlines/blend.hpp.
+//
+// Notation: a, b the two surfaces; P_a, P_b boundary points of a section; n_a, n_b the unit
+// normals there; d_a, d_b unit cross-boundary directions in the tangent planes, each toward the
+// other surface; v = tension |P_b - P_a| the section's speed at both ends; kappa_a, kappa_b the
+// surfaces' normal curvatures in d_a, d_b. A quintic section's Bezier points Q0 .. Q5:
+//   Q0 = P_a, Q1 = Q0 + v/5 d_a, Q2 = 2 Q1 - Q0 + kappa_a v^2 n_a / 20   (S_t = 5 (Q1 - Q0),
+//   Q5 = P_b, Q4 = Q5 + v/5 d_b, Q3 = 2 Q4 - Q5 + kappa_b v^2 n_b / 20    S_tt = 20 (Q2 - 2 Q1 + Q0))
+// so S_tt . n = kappa |S_t|^2 at both ends: the section's normal curvature is the surface's, and
+// a surface tangent to another along a curve with equal normal curvature across it is G2 there
+// (Pegna & Wolter's linkage-curve theorem).
 #include "fairlines/blend.hpp"
 
 #include <algorithm>
@@ -61,16 +72,31 @@ Eigen::MatrixXd resample(const NurbsSurface& s, const Eigen::MatrixXd& uv, int n
   return out;
 }
 
+/// A boundary point with its unit normal and the surface's first and second partial derivatives.
 struct Frame {
-  Eigen::Vector3d p, n;
+  Eigen::Vector3d p, n, su, sv, suu, suv, svv;
 };
 
 Frame frame(const NurbsSurface& s, double u, double v) {
-  const Eigen::MatrixXd d = s.derivatives(u, v, 1);
+  const Eigen::MatrixXd d = s.derivatives(u, v, 2);  // row k * 3 + l: d^(k+l) / du^k dv^l
   Eigen::VectorXd uu(1), vv(1);
   uu[0] = u;
   vv[0] = v;
-  return {d.row(0).transpose(), s.normal(uu, vv).row(0).transpose()};
+  return {d.row(0).transpose(), s.normal(uu, vv).row(0).transpose(), d.row(3).transpose(), d.row(1).transpose(),
+          d.row(6).transpose(), d.row(4).transpose(), d.row(2).transpose()};
+}
+
+/// The surface's normal curvature at f in the unit tangent direction t (1/m, signed along f.n):
+/// t = alpha S_u + beta S_v (least squares over the tangent plane), kappa = n . (alpha^2 S_uu +
+/// 2 alpha beta S_uv + beta^2 S_vv) / |alpha S_u + beta S_v|^2, the second fundamental form over the first.
+double normal_curvature(const Frame& f, const Eigen::Vector3d& t) {
+  Eigen::Matrix2d g;
+  g << f.su.dot(f.su), f.su.dot(f.sv), f.su.dot(f.sv), f.sv.dot(f.sv);
+  const Eigen::Vector2d ab = g.ldlt().solve(Eigen::Vector2d(f.su.dot(t), f.sv.dot(t)));
+  const Eigen::Vector3d c1 = ab[0] * f.su + ab[1] * f.sv;
+  const double speed2 = c1.squaredNorm();
+  if (!ab.allFinite() || !(speed2 > 0.0)) return 0.0;
+  return f.n.dot(ab[0] * ab[0] * f.suu + 2.0 * ab[0] * ab[1] * f.suv + ab[1] * ab[1] * f.svv) / speed2;
 }
 
 /// Newton foot point of p on s from (u, v): (S - p) . S_u = (S - p) . S_v = 0, clamped to
@@ -106,18 +132,19 @@ bool project(const NurbsSurface& s, const Eigen::Vector3d& p, double& u, double&
 /// as smooth across the centre plane (its mirror image meets it within about 6 degrees).
 constexpr double kSmoothAcrossPlane = 0.1;
 
-/// Per row (P0 .. P3) and end (start, end): the unit tangent the row must arrive with at a
-/// centre-plane end, or zero where it keeps its own. Where the surface the row lies on (or next
-/// to) is smooth across the centre plane, the row runs along e_y projected onto that surface's
-/// tangent plane, so the blend stays tangent to the surface and joins its mirror image smoothly.
-using EndTangents = std::array<std::array<Eigen::Vector3d, 2>, 4>;
+/// Per row (Q0 .. Q3 or Q5) and end (start, end): the unit tangent the row must arrive with at
+/// a centre-plane end, or zero where it keeps its own. Where the surface the row lies on (or
+/// next to) is smooth across the centre plane, the row runs along e_y projected onto that
+/// surface's tangent plane, so the blend stays tangent to the surface and joins its mirror
+/// image smoothly.
+using EndTangents = std::vector<std::array<Eigen::Vector3d, 2>>;
 
 Eigen::Vector3d across_plane(const Eigen::Vector3d& n) {
   if (std::abs(n.y()) > kSmoothAcrossPlane) return Eigen::Vector3d::Zero();
   return (Eigen::Vector3d::UnitY() - n.y() * n).normalized();
 }
 
-/// Control points (n + ends, 12) of the four section rows (n, 12 together) interpolated at
+/// Control points (n + ends, 3 m) of the m section rows (n, 3 m together) interpolated at
 /// parameters par with the end tangents given (P&T 9.2.2: interpolation with end derivatives,
 /// each derivative taking a repeated parameter in the knot averaging; its length is the end
 /// chord's speed). A row with a zero tangent keeps the end derivative of the plain interpolant.
@@ -141,7 +168,7 @@ Eigen::MatrixXd rows_with_end_tangents(const Eigen::MatrixXd& all, const Eigen::
     const Eigen::Index a = e == 0 ? 0 : n - 2, b = e == 0 ? 1 : n - 1;  // the end chord
     A.row(r) = basis_row(knots, p, te, 1);
     rhs.row(r) = plain.derivatives(te, 1).row(1);
-    for (int q = 0; q < 4; ++q) {
+    for (int q = 0; q < static_cast<int>(t.size()); ++q) {
       if (t[q][e].isZero()) continue;
       const Eigen::Vector3d chord = (all.block<1, 3>(b, 3 * q) - all.block<1, 3>(a, 3 * q)).transpose();
       const double sign = chord.dot(t[q][e]) >= 0.0 ? 1.0 : -1.0;
@@ -195,8 +222,9 @@ BoundaryContinuity measure_boundary_continuity(const NurbsSurface& blend, bool a
 
 namespace {
 
-/// The four rows of section control points of the Hermite sections: P0 on a, P1, P2, P3 on b.
-using SectionRows = std::array<Eigen::MatrixXd, 4>;
+/// The rows of section control points of the Hermite sections, (n, 3) each: Q0 on a, ..., the
+/// last on b (4 rows for cubic sections, 6 for quintic).
+using SectionRows = std::vector<Eigen::MatrixXd>;
 
 /// Orients the unit directions d (one per sample) alike along the boundary: toward the other
 /// surface where `toward` (d . gap / |gap|, before orienting) says so most clearly, then by
@@ -245,10 +273,38 @@ Eigen::Vector3d keep_off_plane(const Eigen::Vector3d& p, const Eigen::Vector3d& 
   return ((1.0 - hi) * d + hi * e).normalized();
 }
 
-/// P1 and P2 leave P0 and P3 across the boundaries in the surfaces' tangent planes, toward the
-/// other surface (orient_by_continuity) and off the centre plane (keep_off_plane), at a third
-/// of the gap times the tension.
-SectionRows hermite_rows(const std::vector<Frame>& fa, const std::vector<Frame>& fb, double tension) {
+/// A quintic section's speed across the boundaries, a share of the cubic's (tension |P_b - P_a|):
+/// its first two legs then reach as far along d as the cubic's handle (2/5 of 5/6 is 1/3). At
+/// the full speed the quintic ran straight on along d for 2/5 of it (zero curvature against a
+/// flat neighbour) and turned the harder after: at the container ship's stem, where the blend's
+/// sections come down the stem onto the bulb's top, they hooked and the 1.5 m mesh there took
+/// slivers (scaled Jacobian 0.017; 0.24 at 5/6, as with cubic sections).
+constexpr double kQuinticSpeed = 5.0 / 6.0;
+
+/// The rows of one end's section points from its boundary frame f, the unit direction d across
+/// it toward the other surface and the section's speed v there: Q0 = P, Q1 = P + v/5 d and
+/// Q2 = 2 Q1 - Q0 + kappa v^2 n / 20 (quintic), or Q1 = P + v/3 d (cubic); first to last from
+/// the boundary inward.
+std::vector<Eigen::Vector3d> end_rows(const Frame& f, const Eigen::Vector3d& d, double v, bool quintic) {
+  if (!quintic) return {f.p, f.p + v / 3.0 * d};
+  const Eigen::Vector3d q1 = f.p + v / 5.0 * d;
+  return {f.p, q1, 2.0 * q1 - f.p + normal_curvature(f, d) * v * v / 20.0 * f.n};
+}
+
+/// Writes the section rows of sample j from both ends' rows (a's from Q0 inward, b's from the
+/// last inward).
+void put_section(SectionRows& rows, int j, const std::vector<Eigen::Vector3d>& at_a, const std::vector<Eigen::Vector3d>& at_b) {
+  const int m = static_cast<int>(rows.size());
+  for (std::size_t k = 0; k < at_a.size(); ++k) {
+    rows[k].row(j) = at_a[k].transpose();
+    rows[m - 1 - k].row(j) = at_b[k].transpose();
+  }
+}
+
+/// The sections leave both boundaries in the surfaces' tangent planes, toward the other surface
+/// (orient_by_continuity) and off the centre plane (keep_off_plane), at the speed tension times
+/// the gap; quintic ones with the surfaces' normal curvature across (end_rows).
+SectionRows hermite_rows(const std::vector<Frame>& fa, const std::vector<Frame>& fb, double tension, bool quintic) {
   const int n = static_cast<int>(fa.size());
   std::vector<Eigen::Vector3d> da(n), db(n);
   std::vector<double> toward_b(n), toward_a(n), len(n);
@@ -270,14 +326,12 @@ SectionRows hermite_rows(const std::vector<Frame>& fa, const std::vector<Frame>&
   }
   orient_by_continuity(da, toward_b);
   orient_by_continuity(db, toward_a);
-  SectionRows rows;
-  for (auto& r : rows) r.resize(n, 3);
+  SectionRows rows(quintic ? 6 : 4, Eigen::MatrixXd(n, 3));
   for (int j = 0; j < n; ++j) {
-    const double h = tension * len[j] / 3.0;
-    rows[0].row(j) = fa[j].p.transpose();
-    rows[1].row(j) = (fa[j].p + h * keep_off_plane(fa[j].p, fa[j].n, da[j], h)).transpose();
-    rows[2].row(j) = (fb[j].p + h * keep_off_plane(fb[j].p, fb[j].n, db[j], h)).transpose();
-    rows[3].row(j) = fb[j].p.transpose();
+    // the handle a cubic section would have is what keep_off_plane keeps above the plane
+    const double v = tension * len[j], h = v / 3.0, vq = quintic ? kQuinticSpeed * v : v;
+    put_section(rows, j, end_rows(fa[j], keep_off_plane(fa[j].p, fa[j].n, da[j], h), vq, quintic),
+                end_rows(fb[j], keep_off_plane(fb[j].p, fb[j].n, db[j], h), vq, quintic));
   }
   return rows;
 }
@@ -286,7 +340,7 @@ SectionRows hermite_rows(const std::vector<Frame>& fa, const std::vector<Frame>&
 struct PlaneEnds {
   bool start = false, end = false;
   EndTangents tangent;
-  PlaneEnds() {
+  explicit PlaneEnds(std::size_t rows = 4) : tangent(rows) {
     for (auto& row : tangent) row.fill(Eigen::Vector3d::Zero());
   }
 };
@@ -298,32 +352,27 @@ struct PlaneEnds {
 /// wherever the boundary tangent t is not horizontal. Moves those ends' rows into the plane.
 PlaneEnds hold_centre_plane_ends(const std::vector<Frame>& fa, const std::vector<Frame>& fb, double tension,
                                  SectionRows& rows) {
-  const int n = static_cast<int>(fa.size());
-  PlaneEnds ends;
+  const int n = static_cast<int>(fa.size()), m = static_cast<int>(rows.size());
+  const bool quintic = m == 6;
+  PlaneEnds ends(rows.size());
   const double tol = 1e-9 * std::max(1.0, (fb[0].p - fa[0].p).norm());
   const Eigen::Vector3d ey(0.0, 1.0, 0.0);
   for (int j : {0, n - 1})
     if (std::abs(fa[j].p.y()) <= tol && std::abs(fb[j].p.y()) <= tol) {
       const int e = j == 0 ? 0 : 1;
       (e == 0 ? ends.start : ends.end) = true;
-      ends.tangent[0][e] = ends.tangent[1][e] = across_plane(fa[j].n);
-      ends.tangent[2][e] = ends.tangent[3][e] = across_plane(fb[j].n);
-      const Eigen::Vector3d gap = fb[j].p - fa[j].p;
-      const double h = tension * gap.norm() / 3.0;
+      for (int q = 0; q < m; ++q) ends.tangent[q][e] = across_plane(q < m / 2 ? fa[j].n : fb[j].n);
+      const double v = tension * (fb[j].p - fa[j].p).norm() * (quintic ? kQuinticSpeed : 1.0);
       Eigen::Vector3d da = fa[j].n.cross(ey), db = fb[j].n.cross(ey);
       if (da.norm() > 1e-9 && db.norm() > 1e-9) {
         da.normalize();
         db.normalize();
         // the side hermite_rows oriented this end's directions to
         if (da.dot((rows[1].row(j) - rows[0].row(j)).transpose()) < 0) da = -da;
-        if (db.dot((rows[2].row(j) - rows[3].row(j)).transpose()) < 0) db = -db;
-        rows[1].row(j) = (fa[j].p + h * da).transpose();
-        rows[2].row(j) = (fb[j].p + h * db).transpose();
+        if (db.dot((rows[m - 2].row(j) - rows[m - 1].row(j)).transpose()) < 0) db = -db;
+        put_section(rows, j, end_rows(fa[j], da, v, quintic), end_rows(fb[j], db, v, quintic));
       }
-      rows[1](j, 1) = 0.0;
-      rows[2](j, 1) = 0.0;
-      rows[0](j, 1) = 0.0;
-      rows[3](j, 1) = 0.0;
+      for (auto& r : rows) r(j, 1) = 0.0;
     }
   return ends;
 }
@@ -335,18 +384,18 @@ Eigen::VectorXd row_parameters(const SectionRows& rows) {
   const Eigen::Index n = rows[0].rows();
   Eigen::VectorXd par = Eigen::VectorXd::Zero(n);
   for (Eigen::Index j = 1; j < n; ++j) {
-    par[j] = par[j - 1] + ((rows[0].row(j) - rows[0].row(j - 1)).norm() + (rows[3].row(j) - rows[3].row(j - 1)).norm());
+    par[j] = par[j - 1] + ((rows.front().row(j) - rows.front().row(j - 1)).norm() + (rows.back().row(j) - rows.back().row(j - 1)).norm());
   }
   par /= par[n - 1];
   return par;
 }
 
-/// The cubic (along s) by cubic (across, the Hermite sections) surface interpolating the rows.
+/// The cubic (along s) by Hermite (across: cubic or quintic) surface interpolating the rows.
 NurbsSurface skin_rows(const SectionRows& rows, const Eigen::VectorXd& par, const PlaneEnds& ends) {
   const Eigen::Index n = rows[0].rows();
-  const int p = 3;
-  Eigen::MatrixXd all(n, 12);  // the four rows share one interpolation matrix: one solve
-  for (int r = 0; r < 4; ++r) all.middleCols(3 * r, 3) = rows[r];
+  const int p = 3, m = static_cast<int>(rows.size());
+  Eigen::MatrixXd all(n, 3 * m);  // the rows share one interpolation matrix: one solve
+  for (int r = 0; r < m; ++r) all.middleCols(3 * r, 3) = rows[r];
   Eigen::VectorXd K;
   Eigen::MatrixXd c;
   if (ends.start || ends.end) {
@@ -356,12 +405,12 @@ NurbsSurface skin_rows(const SectionRows& rows, const Eigen::VectorXd& par, cons
     c = fit_curve_with(all, par, K, p).curve.control_points();
   }
   const int nc = static_cast<int>(c.rows());
-  Eigen::MatrixXd ctrl(static_cast<Eigen::Index>(nc) * 4, 3);
-  for (int r = 0; r < 4; ++r)
-    for (int i = 0; i < nc; ++i) ctrl.row(i * 4 + r) = c.block<1, 3>(i, 3 * r);
-  Eigen::VectorXd kt(8);
-  kt << 0, 0, 0, 0, 1, 1, 1, 1;
-  return NurbsSurface(p, 3, K, kt, nc, 4, ctrl);
+  Eigen::MatrixXd ctrl(static_cast<Eigen::Index>(nc) * m, 3);
+  for (int r = 0; r < m; ++r)
+    for (int i = 0; i < nc; ++i) ctrl.row(i * m + r) = c.block<1, 3>(i, 3 * r);
+  Eigen::VectorXd kt(2 * m);
+  kt << Eigen::VectorXd::Zero(m), Eigen::VectorXd::Ones(m);
+  return NurbsSurface(p, m - 1, K, kt, nc, m, ctrl);
 }
 
 }  // namespace
@@ -369,6 +418,7 @@ NurbsSurface skin_rows(const SectionRows& rows, const Eigen::VectorXd& par, cons
 BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundary_a, const NurbsSurface& b,
                            const Eigen::MatrixXd& boundary_b, const BlendOptions& o) {
   if (o.samples < 4) detail::fail("samples is ", o.samples, "; expected >= 4");
+  if (o.continuity != 1 && o.continuity != 2) detail::fail("continuity is ", o.continuity, "; expected 1 (G1) or 2 (G2)");
   detail::require_positive(o.tension, "tension");
   const int n = o.samples;
   const Eigen::MatrixXd ua = resample(a, boundary_a, n, "boundary_a");
@@ -378,8 +428,8 @@ BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundar
     fa[j] = frame(a, ua(j, 0), ua(j, 1));
     fb[j] = frame(b, ub(j, 0), ub(j, 1));
   }
-  SectionRows rows = hermite_rows(fa, fb, o.tension);
-  PlaneEnds ends;
+  SectionRows rows = hermite_rows(fa, fb, o.tension, o.continuity == 2);
+  PlaneEnds ends(rows.size());
   if (o.centre_plane_ends) ends = hold_centre_plane_ends(fa, fb, o.tension, rows);
   const Eigen::VectorXd par = row_parameters(rows);
   const NurbsSurface s = skin_rows(rows, par, ends);
