@@ -894,3 +894,34 @@ def test_a_steeply_raked_stem_head_stays_on_its_side_of_the_centre_plane():
     s = fl.design_hull(**p).bare_hull_surface()
     g = np.asarray(s.evaluate_grid(np.linspace(*s.domain_u, 400), np.linspace(*s.domain_v, 4000))).reshape(-1, 3)
     assert g[:, 1].min() >= 0.0
+
+
+#: Full, beamy ships of bench_hull's sample(300) (rounded) whose dry transom's section rose over
+#: the deck: the topside fillet's corner lay above it (hull 284: 1.23 m at x -2.5 m; 153: 0.90 m).
+ABOVE_DECK = {
+    "hull 284": dict(lpp=173.0, breadth=41.993, draft=10.666, depth=17.066, cb=0.83, lcb=93.034),
+    "hull 153": dict(lpp=213.213, breadth=41.003, draft=11.936, depth=19.098, cb=0.843, lcb=114.202),
+}
+
+
+@pytest.mark.parametrize("name", list(ABOVE_DECK))
+def test_no_section_rises_over_the_deck(name):
+    """No point of the bare hull lies above the deck (D): the topside fillet's corner is kept
+    below it (sections.cpp below_deck), so the section leaves the deck edge downward."""
+    p = ABOVE_DECK[name]
+    s = fl.design_hull(**p).bare_hull_surface()
+    g = np.asarray(s.evaluate_grid(np.linspace(*s.domain_u, 400), np.linspace(*s.domain_v, 800))).reshape(-1, 3)
+    assert g[:, 2].max() <= p["depth"] * (1.0 + 1e-9), (g[:, 2].max() - p["depth"], g[np.argmax(g[:, 2])])
+
+
+def test_a_composed_hull_with_a_wide_transom_does_not_cut_itself():
+    """A bulbed ship of bench_hull's compose sample (sample(200, seed=11), hull 120, rounded):
+    its transom's section rose 1 cm over the deck near the deck edge, so the deck's cap crossed
+    the hull's faces there (28 pairs of faces crossing; 7 of the 200 composed meshes cut
+    themselves so). Triangle pairs tested by numpy (tests/python/test_compose_panamax.py)."""
+    from test_compose_panamax import self_intersections
+
+    p = dict(lpp=88.897, breadth=15.024, draft=3.48, depth=5.567, cb=0.855, lcb=47.247, bulb=True)
+    c = fl.design_hull(**p).composed_hull()
+    assert edge_census(c.mesh.faces) == (0, 0, 0)
+    assert self_intersections(c.mesh) == []

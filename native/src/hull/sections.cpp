@@ -158,6 +158,9 @@ constexpr double kCornerConicShare = 0.6, kLeastCornerShare = 0.1;
 /// ... reached smoothly: the two corners are blended where their ratio lies within e^kCornerBlend
 /// (narrow enough that the blended corner stays inside the waterline point: 0.75 e^0.25 < 1).
 constexpr double kCornerBlend = 0.25;
+/// The topside fillet's corner lies at most this share of the way up from the waterline point
+/// (a dry section's virtual one) to the deck (below_deck).
+constexpr double kDeckCornerShare = 0.9;
 /// A flat of bottom's corner with the bilge arc is rounded over this share of the shorter leg:
 /// a knuckle, sampled by the control polygon at another place at every station, rippled the
 /// lowest waterlines (0.5 m and 1 m of the container ship, turns of 0.1-0.9 deg).
@@ -484,6 +487,18 @@ double smooth_max(double a, double c, double k) {
   return std::max(a, c) * std::exp(blend_exponent(a, c, k));
 }
 
+/// The top corner Y = base + leg dir of the topside fillet (deck point D to the waterline point
+/// or a dry section's virtual one), its leg shortened where Y would come above kDeckCornerShare
+/// of the rise from base to D (a smooth minimum, kCornerBlend; untouched beyond it): a fillet
+/// whose corner lies above the deck left D going up, and a wide, dry transom's section rose 1 cm
+/// over the deck, which the deck's cap then cut (3.5 % of bench_hull's bulbed hulls composed to a
+/// self-intersecting mesh). Below the deck the fillet's polygon, and so the fillet, stays under it.
+V2 below_deck(const V2& base, const V2& dir, double leg, const V2& D) {
+  const double rise = D.y() - base.y();
+  if (dir.y() > 0 && rise > 0) leg = smooth_min(leg, kDeckCornerShare * rise / dir.y(), kCornerBlend);
+  return base + leg * dir;
+}
+
 /// The sine of the lean a section's side takes below its waterline point (b its half-breadth,
 /// reach |D - Q|): the chord's, or less where the top corner has no room (see heading()): the
 /// room reaches halfway (kRoomBeyondDeck) from the deck's half-breadth to B/2.
@@ -601,7 +616,7 @@ std::vector<Piece> immersed_template(const Section& S, double lambda, double fla
   }
   const double l1 = (X - Q).norm();
   const V2 tw = l1 > 0 ? V2((X - Q) / l1) : V2((K - Q).normalized());
-  const V2 Y = Q - s.top_corner * (D - Q).norm() * tw;
+  const V2 Y = below_deck(Q, -tw, s.top_corner * (D - Q).norm(), D);
   Piece top = fillet(D, Y, Q, kTopFilletFar);
   const Piece bilge = conic(Q, X, end, w);
   match_bilge_curvature(top, bilge);
@@ -658,7 +673,7 @@ std::vector<Piece> above_template(const Section& S) {
   }
   const V2 up(std::sin(a), std::cos(a));
   const V2 Qv = virtual_q ? virtual_point(a) : S.K;
-  const V2 Y = Qv + s.top_corner * (S.f.D - Qv).norm() * up;
+  const V2 Y = below_deck(Qv, up, s.top_corner * (S.f.D - Qv).norm(), S.f.D);
   return {fillet(S.f.D, Y, Qv, kTopFilletFar)};
 }
 
