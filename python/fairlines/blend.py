@@ -86,7 +86,7 @@ def blend_surface(surface_a: NurbsSurface, boundary_a, surface_b: NurbsSurface, 
                              same way (first point to first point).
     options                  fields of :class:`fl.BlendOptions` by keyword (defaults in the
                              engine): samples, sections along the boundaries; tension,
-                             the sections' speed across the boundaries over the gap (5/6
+                             the sections' speed across the boundaries over the gap (0.8
                              of it for quintic sections);
                              check_samples, points per boundary at which the normal angle and
                              gap are measured; continuity, 2 (the surfaces' normal

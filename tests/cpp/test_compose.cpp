@@ -156,20 +156,22 @@ TEST(Blend, FilletFromPlaneToCylinderIsTangentPlaneContinuous) {
 }
 
 TEST(Blend, QuinticSectionsGiveTheSphereItsCurvatureAcrossTheBoundary) {
-  // A fillet from the plane z = 0 (a half circle of radius 2.5, y <= 0) up to a sphere of radius
-  // R about c (its half circle 45 deg south of the equator). A curve on a sphere has normal
-  // curvature -n . n_out / R along any normal n (n_out the outward unit normal); on the plane, 0.
-  // The blend's across its boundaries: its v = const edges' n . S_vv / |S_v|^2. (At y > 0 the
-  // handles would turn to keep a half hull's blend off its centre plane.)
-  const NurbsSurface plane = plane_z(0.0, 5.0);
-  const Eigen::Vector3d c(0.0, 0.0, 3.0);
-  const double R = 1.0;
+  // A fillet from the plane z = 0 (a half circle of radius 8, y <= 0) up to a sphere of radius R
+  // about c (its half circle 45 deg south of the equator, radius 5.7). A curve on a sphere has
+  // normal curvature -n . n_out / R along any normal n (n_out the outward unit normal); on the
+  // plane, 0. The blend's across its boundaries: its v = const edges' n . S_vv / |S_v|^2. The
+  // sphere is large against the blend (R over the sections' speed, 4.9 m x 0.8: the curvature
+  // term is an eighth of the handle, under kCurvatureTermCap). (At y > 0 the handles would turn
+  // to keep a half hull's blend off its centre plane.)
+  const NurbsSurface plane = plane_z(0.0, 20.0);  // (u, v) -> (-20 + 40 u, -20 + 40 v, 0)
+  const Eigen::Vector3d c(0.0, 0.0, 10.0);
+  const double R = 8.0;
   const NurbsSurface ball = sphere(c, R);  // u around z from +x, v from the south pole
   const int k = 65;
   Eigen::MatrixXd ca(k, 2), cb(k, 2);
   for (int i = 0; i < k; ++i) {
     const double a = M_PI + M_PI * i / (k - 1);
-    ca.row(i) << 0.5 + 0.25 * std::cos(a), 0.5 + 0.25 * std::sin(a);
+    ca.row(i) << 0.5 + 0.2 * std::cos(a), 0.5 + 0.2 * std::sin(a);
     cb.row(i) << 0.5 + 0.5 * i / (k - 1), 0.25;
   }
   auto across = [](const NurbsSurface& s, double u, double v, Eigen::Vector3d& p, Eigen::Vector3d& n) {

@@ -23,7 +23,7 @@ struct BlendOptions {
   template <typename F>
   static void fields(F&& f) {
     f("samples", &BlendOptions::samples, "sections skinned along the boundaries (>= 4)");
-    f("tension", &BlendOptions::tension, "cross-boundary speed |S_t| / |B - A| of the cubic sections, > 0 (the quintic ones run at 5/6 of it)");
+    f("tension", &BlendOptions::tension, "cross-boundary speed |S_t| / |B - A| of the cubic sections, > 0 (the quintic ones run at 0.8 of it)");
     f("check_samples", &BlendOptions::check_samples, "boundary points at which continuity is measured (>= 2)");
     f("continuity", &BlendOptions::continuity, "1: tangent planes (cubic sections), 2: also the normal curvature across each boundary (quintic sections)");
     f("centre_plane_ends", &BlendOptions::centre_plane_ends, "when both boundaries start (end) on y = 0, keep that end section in the centre plane so a half hull closes");
@@ -49,10 +49,11 @@ struct BlendSurface {
 ///                         are sampled at equal fractions of their 3-D arc length, first
 ///                         point to first point.
 /// Sections are Hermite curves across (t): S(s, 0) on a, S_t(s, 0) in a's tangent plane normal to
-/// the boundary and toward b, of length tension |B - A| (5/6 of it for quintic sections, whose
-/// first two legs then reach as far as a cubic's handle); with continuity 2 also S_tt(s, 0) along
+/// the boundary and toward b, of length tension |B - A| (0.8 of it for quintic sections, whose
+/// first two legs then reach about as far as a cubic's handle); with continuity 2 also S_tt(s, 0) along
 /// a's normal with S_tt . n = kappa_n |S_t|^2, kappa_n a's normal curvature in S_t's direction
-/// (likewise at b); each control row is interpolated along s (common knots). The surface is
+/// (likewise at b; where that term would exceed a quarter of the handle it is capped, and G2 holds
+/// only that far); each control row is interpolated along s (common knots). The surface is
 /// degree 3 along s and 3 (continuity 1) or 5 (continuity 2) across.
 /// Throws InvalidInput for bad shapes, parameters outside the domains or a continuity not 1 or 2.
 BlendSurface blend_surface(const NurbsSurface& a, const Eigen::MatrixXd& boundary_a, const NurbsSurface& b,

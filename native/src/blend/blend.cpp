@@ -274,21 +274,31 @@ Eigen::Vector3d keep_off_plane(const Eigen::Vector3d& p, const Eigen::Vector3d& 
 }
 
 /// A quintic section's speed across the boundaries, a share of the cubic's (tension |P_b - P_a|):
-/// its first two legs then reach as far along d as the cubic's handle (2/5 of 5/6 is 1/3). At
-/// the full speed the quintic ran straight on along d for 2/5 of it (zero curvature against a
-/// flat neighbour) and turned the harder after: at the container ship's stem, where the blend's
-/// sections come down the stem onto the bulb's top, they hooked and the 1.5 m mesh there took
-/// slivers (scaled Jacobian 0.017; 0.24 at 5/6, as with cubic sections).
-constexpr double kQuinticSpeed = 5.0 / 6.0;
+/// its first two legs then reach nearly as far along d as the cubic's handle (2/5 of 0.8 against
+/// 1/3). At the full speed the quintic ran straight on along d for 2/5 of it (zero curvature
+/// against a flat neighbour) and turned the harder after: where the container ship's blend comes
+/// down the stem onto the bulb's top the 1.5 m mesh took slivers (scaled Jacobian 0.017; 0.31
+/// at 0.8), and 2 of bench_design_options' 500 composed hulls folded their blends (none at 0.8;
+/// 0.75 left slivers at 3 m).
+constexpr double kQuinticSpeed = 0.8;
+/// The curvature term kappa v^2 / 20 of Q2 (Q3) is at most this share of the handle v / 5,
+/// approached as x / (1 + (|x| / cap)^p)^(1/p) with this p: where the hull curves hard across the
+/// boundary (near a sonar dome, a sharp forefoot: up to 19 handles) the full term folded the
+/// blend (7 of bench_design_options' 500 composed hulls self-intersecting against 3 with cubic
+/// sections; 3 with the cap). Below it the term, and so G2, is kept within a few per cent.
+constexpr double kCurvatureTermCap = 0.25, kCurvatureTermSharpness = 8.0;
 
 /// The rows of one end's section points from its boundary frame f, the unit direction d across
 /// it toward the other surface and the section's speed v there: Q0 = P, Q1 = P + v/5 d and
-/// Q2 = 2 Q1 - Q0 + kappa v^2 n / 20 (quintic), or Q1 = P + v/3 d (cubic); first to last from
-/// the boundary inward.
+/// Q2 = 2 Q1 - Q0 + kappa v^2 n / 20 (quintic; the last term capped, kCurvatureTermCap), or
+/// Q1 = P + v/3 d (cubic); first to last from the boundary inward.
 std::vector<Eigen::Vector3d> end_rows(const Frame& f, const Eigen::Vector3d& d, double v, bool quintic) {
   if (!quintic) return {f.p, f.p + v / 3.0 * d};
   const Eigen::Vector3d q1 = f.p + v / 5.0 * d;
-  return {f.p, q1, 2.0 * q1 - f.p + normal_curvature(f, d) * v * v / 20.0 * f.n};
+  const double h = v / 5.0, x = normal_curvature(f, d) * v * v / 20.0;
+  const double p = kCurvatureTermSharpness;
+  const double x_eff = x / std::pow(1.0 + std::pow(std::abs(x) / (kCurvatureTermCap * h), p), 1.0 / p);
+  return {f.p, q1, 2.0 * q1 - f.p + x_eff * f.n};
 }
 
 /// Writes the section rows of sample j from both ends' rows (a's from Q0 inward, b's from the
