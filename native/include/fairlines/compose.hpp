@@ -112,7 +112,7 @@ NurbsSurface orient_bare_hull(const NurbsSurface& hull, double plane_tolerance =
 /// bottom -> top centre line). Throws InvalidInput when the bulb does not meet the hull in
 /// one seam from the keel/stem line around to the stem ("bulb cannot meet the hull").
 /// With `blend`, hull and bulb do not intersect: the hull is trimmed along blend->hull_uv,
-/// the bulb along u = blend->bulb_u, and a blending surface (blend_surface, C1 along both)
+/// the bulb along u = blend->bulb_u, and a blending surface (blend_surface, G2 along both)
 /// joins them; the three meshes share the boundary vertices.
 ComposedHull compose_hull(const NurbsSurface& hull, const NurbsSurface* bulb, const ComposeOptions& options = {},
                           const BlendSpec* blend = nullptr);
