@@ -278,8 +278,9 @@ Eigen::Vector3d keep_off_plane(const Eigen::Vector3d& p, const Eigen::Vector3d& 
 /// 1/3). At the full speed the quintic ran straight on along d for 2/5 of it (zero curvature
 /// against a flat neighbour) and turned the harder after: where the container ship's blend comes
 /// down the stem onto the bulb's top the 1.5 m mesh took slivers (scaled Jacobian 0.017; 0.31
-/// at 0.8), and 2 of bench_design_options' 500 composed hulls folded their blends (none at 0.8;
-/// 0.75 left slivers at 3 m).
+/// at 0.8). At 5/6, with the cap below, 2 of bench_design_options' 500 composed hulls folded
+/// their blends where cubic sections had not (1 at 0.8, a single pair of faces; 0.75 left none
+/// but slivers in the 3 m mesh, scaled Jacobian 0.11).
 constexpr double kQuinticSpeed = 0.8;
 /// The curvature term kappa v^2 / 20 of Q2 (Q3) is at most this share of the handle v / 5,
 /// approached as x / (1 + (|x| / cap)^p)^(1/p) with this p: where the hull curves hard across the
