@@ -16,12 +16,7 @@ def container_ship_composed() -> fl.ComposedHull:
 
 def fd_normal(surface: fl.NurbsSurface, u: float, v: float, h: float = 1e-6) -> np.ndarray:
     """Unit normal by central differences of surface points (one-sided at the domain ends)."""
-    (u0, u1), (v0, v1) = surface.domain_u, surface.domain_v
-    ua, ub = max(u0, u - h), min(u1, u + h)
-    va, vb = max(v0, v - h), min(v1, v + h)
-    su = (np.asarray(surface.evaluate(ub, v)) - np.asarray(surface.evaluate(ua, v))) / (ub - ua)
-    sv = (np.asarray(surface.evaluate(u, vb)) - np.asarray(surface.evaluate(u, va))) / (vb - va)
-    n = np.cross(su, sv)
+    n = np.cross(*fd_partials(surface, u, v, h))
     return n / np.linalg.norm(n)
 
 

@@ -213,3 +213,43 @@ def gmsh_meeting(surface, size, tol):
         if chordal(surface, run[0], run[1]) <= tol:
             return n, run
     return None
+
+
+def _segments_cross_triangles(a, b, t, eps=1e-9):
+    """Vectorised Moller-Trumbore: does segment a[k]-b[k] cross the interior of triangle
+    t[k] (k, 3, 3)?"""
+    e1, e2, d = t[:, 1] - t[:, 0], t[:, 2] - t[:, 0], b - a
+    h = np.cross(d, e2)
+    det = np.einsum("ij,ij->i", e1, h)
+    scale = np.linalg.norm(e1, axis=1) * np.linalg.norm(e2, axis=1) * np.linalg.norm(d, axis=1)
+    ok = np.abs(det) > eps * scale
+    det = np.where(ok, det, 1.0)
+    s = a - t[:, 0]
+    u = np.einsum("ij,ij->i", s, h) / det
+    q = np.cross(s, e1)
+    v = np.einsum("ij,ij->i", d, q) / det
+    w = np.einsum("ij,ij->i", e2, q) / det
+    return ok & (u > eps) & (v > eps) & (u + v < 1 - eps) & (w > eps) & (w < 1 - eps)
+
+
+def self_intersections(mesh):
+    """Pairs of faces sharing no vertex whose triangles cross: candidate pairs by bounding-box
+    overlap (sorted on min x), then an edge-through-triangle test both ways (enough for
+    triangles that are not coplanar)."""
+    V, F = np.asarray(mesh.vertices), np.asarray(mesh.faces)
+    T = V[F]
+    lo, hi = T.min(axis=1), T.max(axis=1)
+    order = np.argsort(lo[:, 0])
+    lo, hi, T, F = lo[order], hi[order], T[order], F[order]
+    ends = np.searchsorted(lo[:, 0], hi[:, 0], side="right")
+    I = np.repeat(np.arange(len(F)), ends - np.arange(len(F)) - 1)
+    J = np.concatenate([np.arange(i + 1, e) for i, e in enumerate(ends)]) if len(I) else np.zeros(0, int)
+    keep = np.all(lo[J] <= hi[I], axis=1) & np.all(lo[I] <= hi[J], axis=1)
+    I, J = I[keep], J[keep]
+    shared = (F[I][:, :, None] == F[J][:, None, :]).any(axis=(1, 2))
+    I, J = I[~shared], J[~shared]
+    hit = np.zeros(len(I), bool)
+    for k in range(3):
+        hit |= _segments_cross_triangles(T[I, k], T[I, (k + 1) % 3], T[J])
+        hit |= _segments_cross_triangles(T[J, k], T[J, (k + 1) % 3], T[I])
+    return list(zip(order[I[hit]].tolist(), order[J[hit]].tolist()))

@@ -918,8 +918,8 @@ def test_a_composed_hull_with_a_wide_transom_does_not_cut_itself():
     """A bulbed ship of bench_hull's compose sample (sample(200, seed=11), hull 120, rounded):
     its transom's section rose 1 cm over the deck near the deck edge, so the deck's cap crossed
     the hull's faces there (28 pairs of faces crossing; 7 of the 200 composed meshes cut
-    themselves so). Triangle pairs tested by numpy (tests/python/test_compose_panamax.py)."""
-    from test_compose_panamax import self_intersections
+    themselves so). Triangle pairs tested by numpy (mesh_fixtures.self_intersections)."""
+    from mesh_fixtures import self_intersections
 
     p = dict(lpp=88.897, breadth=15.024, draft=3.48, depth=5.567, cb=0.855, lcb=47.247, bulb=True)
     c = fl.design_hull(**p).composed_hull()

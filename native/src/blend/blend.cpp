@@ -351,7 +351,7 @@ SectionRows hermite_rows(const std::vector<Frame>& fa, const std::vector<Frame>&
 struct PlaneEnds {
   bool start = false, end = false;
   EndTangents tangent;
-  explicit PlaneEnds(std::size_t rows = 4) : tangent(rows) {
+  explicit PlaneEnds(std::size_t rows) : tangent(rows) {
     for (auto& row : tangent) row.fill(Eigen::Vector3d::Zero());
   }
 };
