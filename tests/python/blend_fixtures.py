@@ -53,3 +53,17 @@ def fd_normal_curvature(surface: fl.NurbsSurface, u: float, v: float, t: np.ndar
         k = 1 if inside(3) else -1
         c2 = (2 * p(0) - 5 * p(k) + 4 * p(2 * k) - p(3 * k)) / e**2
     return float(fd_normal(surface, u, v) @ c2) / float(c1 @ c1)
+
+
+def largest_normal_turn_deg(surface: fl.NurbsSurface, nu: int = 241, nv: int = 61) -> float:
+    """The largest angle (deg) between the normals at neighbouring points of an nu x nv grid of
+    the surface, normals from differences of the grid's points (independent of the engine's).
+    A fold, where the surface runs back over itself, turns its normal by up to 180 deg between
+    neighbours; a fair blend at this grid turns it by a few degrees."""
+    u, v = np.linspace(*surface.domain_u, nu), np.linspace(*surface.domain_v, nv)
+    g = np.asarray(surface.evaluate_grid(u, v)).reshape(nu, nv, 3)
+    n = np.cross(np.gradient(g, axis=0), np.gradient(g, axis=1))
+    n /= np.linalg.norm(n, axis=2, keepdims=True)
+    turn_u = np.einsum("ijk,ijk->ij", n[1:], n[:-1])
+    turn_v = np.einsum("ijk,ijk->ij", n[:, 1:], n[:, :-1])
+    return float(np.degrees(np.arccos(np.clip(min(turn_u.min(), turn_v.min()), -1.0, 1.0))))

@@ -247,30 +247,48 @@ void orient_by_continuity(std::vector<Eigen::Vector3d>& d, const std::vector<dou
 /// boundary point's height, keep_off_plane starts turning it (see there).
 constexpr double kRowAbovePlane = 0.15;
 
-/// d (unit, in the tangent plane of normal n at p, on the way to the other surface) turned
-/// within that plane toward n x e_y (its direction with no y part, on d's side) so that the
-/// tangent row point p + h d stays above the centre plane: near the centre-plane ends the
-/// tangent planes of a stem or a bulb's top run across the plane within h, and a section
+/// Below this |e . d| (e = n x e_y, d the direction to lift) keep_off_plane turns d less and
+/// shortens the handle instead: where d heads straight for the centre plane either way round
+/// lifts it alike, and the side it turned to flipped between neighbouring samples (a pleat
+/// across the whole blend, 18 of bench_design_options' 145 bulbed blends).
+constexpr double kTurnFade = 0.15;
+
+/// A tangent row's direction and speed factor (<= 1) from keep_off_plane.
+struct LiftedRow {
+  Eigen::Vector3d d;
+  double speed = 1.0;
+};
+
+/// d (unit, in the tangent plane of normal n at p, on the way to the other surface) lifted so
+/// that the tangent row point p + h d stays above the centre plane: near the centre-plane ends
+/// the tangent planes of a stem or a bulb's top run across the plane within h, and a section
 /// whose tangent rows go below y = 0 dips under it (the half hull crosses its mirror image).
 /// The height y = p.y + h d.y it would have is mapped by a C1 function that is y itself above
 /// a = kRowAbovePlane p.y and a exp((y - a) / a) below (positive, so the rows turn smoothly,
-/// with no kink where the turning starts). Any direction in the tangent plane keeps the
-/// blend tangent to the surface.
-Eigen::Vector3d keep_off_plane(const Eigen::Vector3d& p, const Eigen::Vector3d& n, const Eigen::Vector3d& d, double h) {
+/// with no kink where the turning starts). d is turned within the tangent plane toward
+/// e = n x e_y (no y part, on d's side) as far as that lifts it, fully where |e . d| >=
+/// kTurnFade and by a smoothstep share of it below; the handle is shortened for what the turn
+/// leaves. Both depend continuously on d and n, so neighbouring sections stay neighbours.
+LiftedRow keep_off_plane(const Eigen::Vector3d& p, const Eigen::Vector3d& n, const Eigen::Vector3d& d, double h) {
   const double a = kRowAbovePlane * p.y(), y = p.y() + h * d.y();
-  if (!(a > 0.0) || y >= a) return d;
+  if (!(a > 0.0) || y >= a) return {d};
   const double want = a * std::exp((y - a) / a);
   Eigen::Vector3d e = n.cross(Eigen::Vector3d::UnitY());
-  if (e.norm() < 1e-9) return d;  // the tangent plane is the centre plane's: d.y is 0 already
-  e.normalize();
-  if (e.dot(d) < 0.0) e = -e;
-  double lo = 0.0, hi = 1.0;  // the weight of e that lifts the row point to `want`, by bisection
-  for (int it = 0; it < 50; ++it) {
-    const double w = 0.5 * (lo + hi);
-    const Eigen::Vector3d t = ((1.0 - w) * d + w * e).normalized();
-    (p.y() + h * t.y() >= want ? hi : lo) = w;
+  Eigen::Vector3d t = d;
+  if (e.norm() > 1e-9) {
+    e.normalize();
+    if (e.dot(d) < 0.0) e = -e;
+    double lo = 0.0, hi = 1.0;  // the weight of e that lifts the row point to `want`, by bisection
+    for (int it = 0; it < 50; ++it) {
+      const double w = 0.5 * (lo + hi);
+      const Eigen::Vector3d tw = ((1.0 - w) * d + w * e).normalized();
+      (p.y() + h * tw.y() >= want ? hi : lo) = w;
+    }
+    const double f = std::min(1.0, e.dot(d) / kTurnFade), share = f * f * (3.0 - 2.0 * f);
+    t = ((1.0 - share * hi) * d + share * hi * e).normalized();
   }
-  return ((1.0 - hi) * d + hi * e).normalized();
+  const double drop = -h * t.y(), room = p.y() - want;  // room > 0: want <= a < p.y
+  return {t, drop > room ? room / drop : 1.0};
 }
 
 /// A quintic section's speed across the boundaries, a share of the cubic's (tension |P_b - P_a|):
@@ -341,8 +359,8 @@ SectionRows hermite_rows(const std::vector<Frame>& fa, const std::vector<Frame>&
   for (int j = 0; j < n; ++j) {
     // the handle a cubic section would have is what keep_off_plane keeps above the plane
     const double v = tension * len[j], h = v / 3.0, vq = quintic ? kQuinticSpeed * v : v;
-    put_section(rows, j, end_rows(fa[j], keep_off_plane(fa[j].p, fa[j].n, da[j], h), vq, quintic),
-                end_rows(fb[j], keep_off_plane(fb[j].p, fb[j].n, db[j], h), vq, quintic));
+    const LiftedRow la = keep_off_plane(fa[j].p, fa[j].n, da[j], h), lb = keep_off_plane(fb[j].p, fb[j].n, db[j], h);
+    put_section(rows, j, end_rows(fa[j], la.d, la.speed * vq, quintic), end_rows(fb[j], lb.d, lb.speed * vq, quintic));
   }
   return rows;
 }
