@@ -21,6 +21,8 @@ def add_parser(sub) -> None:
                       ("stem-rake", "stem rake above the waterline, deg from the vertical"),
                       ("transom-rake", "the transom's rake from the vertical, deg, the top aft (default 0; a transom stern)"),
                       ("propeller-diameter", "with --skeg: the single screw's diameter, m (default 0.7 T up to Cb 0.7, 0.55 T from Cb 0.8, linear between; less under a low transom)"),
+                      ("sonar-dome-nose", "with --sonar-dome: the dome's nose, m from the AP (default where the keel's flat ends "
+                                          "forward; with --bulb aft of the bulb's blend)"),
                       ("flat-bottom", "flat of bottom over the parallel body, fraction of the waterline's half-breadth "
                                       "(default 0.15, none where a section would narrow it; 0: none)")):
         d.add_argument(f"--{key}", type=float, default=None, help=what)
@@ -37,6 +39,7 @@ def run(args) -> int:
 
     keys = ("lpp", "breadth", "draft", "depth", "cb", "lcb", "cm", "cwp", "lcf", "parallel_length", "parallel_centre",
             "transom_immersion", "transom_breadth", "stem_rake", "transom_rake", "propeller_diameter", "flat_bottom", "stern", "bulb", "skeg", "sonar_dome",
+            "sonar_dome_nose",
             "name")
     given = {k: getattr(args, k) for k in keys if getattr(args, k) is not None}
     t0 = time.perf_counter()

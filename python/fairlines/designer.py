@@ -176,6 +176,12 @@ APERTURE_COUNTER_ANGLE = 4.0   # deg: the counter's rise at the transom where it
 DOME_LENGTH = 0.11
 DOME_DEPTH = 0.4
 DOME_HALF_BREADTH = 0.12
+# With a bulb too, the dome's nose is put this fraction of Lpp aft of where the bulb's blend
+# starts on the hull: at the keel's flat end the blend ran down the dome's side to its keel and
+# folded (every one of bench_design_options' 16 ships with both; 7 of them turned their blends'
+# normals by over 150 deg between neighbouring points, 2 meshes crossed themselves).
+DOME_BLEND_CLEARANCE = 0.01
+DOME_ON_BLEND_TOL = 1e-4  # a blend boundary this fraction of T below the base lies on the dome
 
 
 #: Particulars a design cannot start without (fl.design_hull raises InvalidInput naming those missing).
@@ -203,6 +209,8 @@ class Particulars:
     bulb: bool | dict = False
     skeg: bool = False  # a single screw: a skeg under the run and a propeller aperture aft of it
     sonar_dome: bool = False  # a sonar dome under the keel's forward end
+    sonar_dome_nose: float | None = None  # with sonar_dome: its nose (m from the AP); None: where the keel's flat
+                                          # ends forward, or aft of a bulb's blend (DOME_BLEND_CLEARANCE)
     propeller_diameter: float | None = None  # with skeg (m); default 0.55-0.7 T (default_propeller_diameter)
     stem_rake: float = STEM_RAKE
     transom_rake: float = 0.0  # the transom's plane from the vertical (deg), its top aft when positive; a transom stern only
@@ -248,6 +256,7 @@ class Particulars:
                   "parallel_length": (0.0, 0.8 * self.lpp, "a parallel body from 0 to 0.8 Lpp (m)"),
                   "parallel_centre": (0.1 * self.lpp, 0.9 * self.lpp, "a parallel body centred 0.1 to 0.9 Lpp from the AP (m)"),
                   "transom_immersion": (-self.depth, self.draft, "an immersion between -D and T (m; < 0 dry)"),
+                  "sonar_dome_nose": (DOME_LENGTH * self.lpp, self.lpp, f"a dome nose from {DOME_LENGTH:g} Lpp to the FP (m from the AP)"),
                   "transom_breadth": (0.0, 0.5 * self.breadth, "a waterline half-breadth at the transom from 0 to B/2 (m)"),
                   "flat_bottom": (*FLAT_BOTTOM_BOUNDS, f"a flat of bottom of 0 to {FLAT_BOTTOM_BOUNDS[1]:g} of the waterline's half-breadth"),
                   "propeller_diameter": (0.2 * self.draft, 0.95 * self.draft / (1 + HEEL_CLEARANCE),
@@ -261,6 +270,8 @@ class Particulars:
                                        "or a whole 'bulb' section (a dict)")
         if not isinstance(self.sonar_dome, bool):
             raise _native.InvalidInput(f"sonar_dome is {self.sonar_dome!r}; expected true or false")
+        if self.sonar_dome_nose is not None and not self.sonar_dome:
+            raise _native.InvalidInput(f"sonar_dome_nose is {self.sonar_dome_nose}; expected it only with sonar_dome=True")
         if not isinstance(self.skeg, bool):
             raise _native.InvalidInput(f"skeg is {self.skeg!r}; expected true or false (a single screw aft of a skeg)")
         if self.propeller_diameter is not None and not self.skeg:
@@ -679,7 +690,10 @@ def _add_appendages(desc: dict, p: Particulars, prof: dict, skeg: dict | None) -
     """The sonar dome under the keel's forward end and the skeg (with its propeller in the notes)."""
     L, B, T = p.lpp, p.breadth, p.draft
     if p.sonar_dome:
-        fore = prof["flat_to"]
+        fore = prof["flat_to"] if p.sonar_dome_nose is None else p.sonar_dome_nose
+        if fore > prof["flat_to"] + 1e-9 * L:
+            raise _native.InvalidInput(f"sonar_dome_nose is {fore:.4g}; expected at most {prof['flat_to']:.4g} m from the "
+                                       "AP, where the keel leaves the base (the dome hangs under the flat keel)")
         desc["dome"] = {"x_aft": fore - DOME_LENGTH * L, "x_fore": fore, "depth": DOME_DEPTH * T,
                         "half_breadth": DOME_HALF_BREADTH * B}
     if skeg is not None:
@@ -800,13 +814,56 @@ def design_hull(particulars: Particulars | None = None, **kwargs) -> Hull:
     no aft length lets its bulb meet the hull in one seam."""
     p = particulars if particulars is not None else _particulars(kwargs)
     p.check()
+    p = _dome_aft_of_blend(p)
     first = None
     for q, rise in _attempts(p):
         hull, exc = _try_design(q, rise)
         if hull is not None:
-            return _bulb_that_meets(hull, p)
+            return _dome_clear_of_blend(_bulb_that_meets(hull, p), p)
         first = first or exc
     raise _explained(first, p, _feasible_edge(p)) from first
+
+
+def _blend_boundary(hull: Hull) -> np.ndarray | None:
+    """Points (k, 3) of the bulb's blend boundary on the hull, None without a blend."""
+    if hull.description.bulb is None:
+        return None
+    try:
+        placement = hull.blend_placement()
+    except _native.NoBlendFits:
+        return None
+    uv = np.asarray(placement.boundary_a)
+    return np.asarray(placement.hull.evaluate(uv[:, 0], uv[:, 1]))
+
+
+def _dome_aft_of_blend(p: Particulars) -> Particulars:
+    """p, with a bulb and a sonar dome whose nose is not given: its nose DOME_BLEND_CLEARANCE
+    Lpp aft of where the blend of the same ship without a dome starts on the hull, when that is
+    aft of the keel's flat end (the dome's own place)."""
+    if not (p.sonar_dome and p.bulb) or p.sonar_dome_nose is not None:
+        return p
+    try:
+        plain = design_hull(replace(p, sonar_dome=False))
+    except (_native.InfeasibleFormParameters, _native.InvalidInput):
+        return p  # designed as given: it is refused with its own reason
+    boundary = _blend_boundary(plain)
+    flat_to = json.loads(plain.to_json())["basic_curves"]["profile"]["flat_to"]
+    if boundary is None or boundary[:, 0].min() - DOME_BLEND_CLEARANCE * p.lpp >= flat_to:
+        return p
+    nose = float(boundary[:, 0].min()) - DOME_BLEND_CLEARANCE * p.lpp
+    return replace(p, sonar_dome_nose=nose, notes=p.notes + [f"sonar dome's nose at x = {nose:.4g} m, aft of the bulb's blend"])
+
+
+def _dome_clear_of_blend(hull: Hull, p: Particulars) -> Hull:
+    """The hull, unless the blend between its bulb and the hull runs onto its sonar dome (its
+    boundary on the hull below the base): then InfeasibleFormParameters naming what to give."""
+    boundary = _blend_boundary(hull) if p.sonar_dome else None
+    if boundary is None or boundary[:, 2].min() >= -DOME_ON_BLEND_TOL * p.draft:
+        return hull
+    nose = float(boundary[:, 0].min()) - DOME_BLEND_CLEARANCE * p.lpp
+    raise _native.InfeasibleFormParameters(
+        f"design_hull: the blend between bulb and hull runs onto the sonar dome (its boundary at x = "
+        f"{boundary[:, 0].min():.4g} m): give sonar_dome_nose at most {nose:.4g} m from the AP, sonar_dome=False or bulb=False")
 
 
 def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:

@@ -275,16 +275,55 @@ def test_a_bulb_that_would_leave_a_fine_forefoot_again_runs_further_aft():
     assert edge_census(hull.composed_hull().mesh.faces) == (0, 0, 0)
 
 
-def test_a_bulb_its_sonar_dome_runs_into_is_refused_naming_the_dome_and_without_it_composes():
-    """A cruiser-sterned coaster with a bulb and a sonar dome under its forefoot: at every aft
-    length the bulb meets the hull and dome in a seam that turns back, so no composition can
-    join them. design_hull says so (it returned the hull, and composed_hull failed later with
-    no remedy); the remedy it names builds and composes watertight."""
+def test_a_bulb_and_a_sonar_dome_under_its_forefoot_build_with_the_dome_aft_of_the_blend():
+    """A cruiser-sterned coaster with a bulb and a sonar dome: with the dome's nose where the
+    keel's flat ends, the bulb met hull and dome in a seam that turned back at every aft length
+    and design_hull refused it. The dome's nose now goes aft of where the blend of the same ship
+    without a dome starts (designer.DOME_BLEND_CLEARANCE): it builds, meets its particulars and
+    composes closed, its mesh crossing itself nowhere."""
+    from blend_fixtures import largest_normal_turn_deg
+    from mesh_fixtures import self_intersections
+
     p = dict(lpp=118.6, breadth=14.28, draft=5.9, depth=7.77, cb=0.59, lcb=55.44, stern="cruiser", bulb=True,
              skeg=True, sonar_dome=True)
-    with pytest.raises(fl.InfeasibleFormParameters, match="bulb cannot meet the hull.*give sonar_dome=False"):
-        fl.design_hull(**p)
-    assert edge_census(fl.design_hull(**{**p, "sonar_dome": False}).composed_hull().mesh.faces) == (0, 0, 0)
+    hull = fl.design_hull(**p)
+    h = hull.hydrostatics()
+    assert h.volume == pytest.approx(p["cb"] * p["lpp"] * p["breadth"] * p["draft"], rel=1e-5)
+    c = hull.composed_hull()
+    assert c.blend is not None and largest_normal_turn_deg(c.blend) < FOLD_DEG
+    blend = np.asarray(c.blend.evaluate_grid(np.linspace(0, 1, 81), np.linspace(0, 1, 21))).reshape(-1, 3)
+    assert blend[:, 0].min() > hull.description.dome.x_fore
+    assert edge_census(c.mesh.faces) == (0, 0, 0)
+    assert self_intersections(c.mesh) == []
+
+
+#: Largest normal turn (deg) between neighbouring points of blend_fixtures.largest_normal_turn_deg's
+#: grid for a blend that does not fold (the pleats measured 140-180 deg; unfolded blends 10-60).
+FOLD_DEG = 90.0
+
+#: Fine bulbed ships of bench_design_options (designs 11, 325, 174; rounded) whose blend's
+#: boundary on the hull heads straight for the centre plane over a stretch: the rows turned off
+#: the plane to whichever side the sign of a near-zero product said, flipping between
+#: neighbouring sections, and the blend pleated across its whole width (normal turns of 176-180
+#: deg; design 11's composed mesh crossed itself in one pair of faces).
+PLEATED = {
+    "79 m, raked stem and transom": dict(lpp=78.716, breadth=10.254, draft=2.368, depth=4.536, cb=0.502, lcb=36.948,
+                                         bulb=True, parallel_length=0.0, stem_rake=13.789, transom_rake=17.261),
+    "250 m, no parallel body": dict(lpp=249.579, breadth=29.863, draft=6.781, depth=13.975, cb=0.525, lcb=122.231,
+                                    bulb=True, parallel_length=0.0),
+    "73 m with a skeg": dict(lpp=72.643, breadth=8.159, draft=2.4, depth=3.14, cb=0.588, lcb=34.197, bulb=True,
+                             skeg=True, parallel_length=0.0),
+}
+
+
+@pytest.mark.parametrize("name", list(PLEATED))
+def test_a_blend_whose_boundary_heads_for_the_centre_plane_does_not_pleat(name):
+    from blend_fixtures import largest_normal_turn_deg
+    from mesh_fixtures import self_intersections
+
+    c = fl.design_hull(**PLEATED[name]).composed_hull()
+    assert largest_normal_turn_deg(c.blend) < FOLD_DEG
+    assert self_intersections(c.mesh) == []
 
 
 def test_a_fine_ship_with_a_short_parallel_body_and_lcb_at_midships_builds():
