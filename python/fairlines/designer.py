@@ -176,11 +176,12 @@ APERTURE_COUNTER_ANGLE = 4.0   # deg: the counter's rise at the transom where it
 DOME_LENGTH = 0.11
 DOME_DEPTH = 0.4
 DOME_HALF_BREADTH = 0.12
-# With a bulb too, the dome's nose is put this fraction of Lpp aft of where the bulb's blend
-# starts on the hull: at the keel's flat end the blend ran down the dome's side to its keel and
-# folded (every one of bench_design_options' 16 ships with both; 7 of them turned their blends'
-# normals by over 150 deg between neighbouring points, 2 meshes crossed themselves).
-DOME_BLEND_CLEARANCE = 0.01
+# With a bulb too, the dome's nose is put this fraction of Lpp aft of where the blend of the same
+# ship without a dome starts on the hull: at the keel's flat end the blend ran down the dome's
+# side to its keel and folded, or the bulb could not meet hull and dome in one seam (each of
+# bench_design_options' 18 ships with both). At 0.01 and 0.02 one of them still folded (the dome
+# draws the hull's keel forward of its nose); from 0.03 none turns its normal by over 37 deg.
+DOME_BLEND_CLEARANCE = 0.03
 DOME_ON_BLEND_TOL = 1e-4  # a blend boundary this fraction of T below the base lies on the dome
 
 
