@@ -249,9 +249,10 @@ constexpr double kRowAbovePlane = 0.15;
 
 /// Below this |e . d| (e = n x e_y, d the direction to lift) keep_off_plane turns d less and
 /// shortens the handle instead: where d heads straight for the centre plane either way round
-/// lifts it alike, and the side it turned to flipped between neighbouring samples (a pleat
-/// across the whole blend, 18 of bench_design_options' 145 bulbed blends).
-constexpr double kTurnFade = 0.15;
+/// lifts it alike, and the side it turned to flipped between neighbouring samples, pleating the
+/// whole blend. A narrower fade turns the rows faster than d turns along the boundary (at 0.15
+/// one of bench_design_options' bulbed blends still folded by 115 deg; none by over 60 at 0.3).
+constexpr double kTurnFade = 0.3;
 
 /// A tangent row's direction and speed factor (<= 1) from keep_off_plane.
 struct LiftedRow {
