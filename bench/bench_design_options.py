@@ -27,6 +27,7 @@ SAMPLES = int(os.environ.get("FAIRLINES_OPTION_SAMPLES", "500"))
 DEPTH = (1.3, 2.2)  # D / T
 #: What a refusal says to change, by a phrase of its message (the first that matches).
 REMEDIES = {"bulb and dome": "sonar dome under the forefoot runs into the bulb",
+            "blend onto the dome": "runs onto the sonar dome",
             "propeller over a short run": "too short to lift the hull over the propeller",
             "ends and LCB": "ends cannot hold this volume"}
 

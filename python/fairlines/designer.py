@@ -171,16 +171,16 @@ SKEG_FILLET = 1.0           # the hollow fillet to the hull body, fraction of th
 SKEG_SECTION_CONTROLS = 32  # control points per section of a ship with a skeg (its side and fillet are short)
 APERTURE_COUNTER_ANGLE = 4.0   # deg: the counter's rise at the transom where it must clear a propeller
 # A sonar dome under the keel's forward end (a frigate's, DTMB 5415's proportions): its length
-# (fraction of Lpp), depth below the keel (of T) and half-breadth (of B); its nose where the
-# keel's flat ends forward.
+# (fraction of Lpp), depth below the keel (of T) and half-breadth (of B); by default its nose where
+# the keel's flat ends forward (with a bulb, DOME_BLEND_CLEARANCE).
 DOME_LENGTH = 0.11
 DOME_DEPTH = 0.4
 DOME_HALF_BREADTH = 0.12
 # With a bulb too, the dome's nose is put this fraction of Lpp aft of where the blend of the same
-# ship without a dome starts on the hull: at the keel's flat end the blend ran down the dome's
-# side to its keel and folded, or the bulb could not meet hull and dome in one seam (each of
-# bench_design_options' 18 ships with both). At 0.01 and 0.02 one of them still folded (the dome
-# draws the hull's keel forward of its nose); from 0.03 none turns its normal by over 37 deg.
+# ship without a dome starts on the hull: under the blend the blend runs down the dome's side to
+# its keel and folds, or the bulb cannot meet hull and dome in one seam; and the dome draws the
+# hull's keel in forward of its nose, so a closer nose still folded one of bench_design_options'
+# 18 ships with both (0.01 and 0.02 Lpp).
 DOME_BLEND_CLEARANCE = 0.03
 DOME_ON_BLEND_TOL = 1e-4  # a blend boundary this fraction of T below the base lies on the dome
 
@@ -257,7 +257,8 @@ class Particulars:
                   "parallel_length": (0.0, 0.8 * self.lpp, "a parallel body from 0 to 0.8 Lpp (m)"),
                   "parallel_centre": (0.1 * self.lpp, 0.9 * self.lpp, "a parallel body centred 0.1 to 0.9 Lpp from the AP (m)"),
                   "transom_immersion": (-self.depth, self.draft, "an immersion between -D and T (m; < 0 dry)"),
-                  "sonar_dome_nose": (DOME_LENGTH * self.lpp, self.lpp, f"a dome nose from {DOME_LENGTH:g} Lpp to the FP (m from the AP)"),
+                  "sonar_dome_nose": (DOME_LENGTH * self.lpp, self.lpp, f"a dome nose {DOME_LENGTH:g} Lpp or more forward of "
+                                      "the AP, under the flat keel (m from the AP)"),
                   "transom_breadth": (0.0, 0.5 * self.breadth, "a waterline half-breadth at the transom from 0 to B/2 (m)"),
                   "flat_bottom": (*FLAT_BOTTOM_BOUNDS, f"a flat of bottom of 0 to {FLAT_BOTTOM_BOUNDS[1]:g} of the waterline's half-breadth"),
                   "propeller_diameter": (0.2 * self.draft, 0.95 * self.draft / (1 + HEEL_CLEARANCE),
@@ -524,8 +525,10 @@ def _flat_bottom_spec(p: Particulars, prof: dict, par: tuple, x_aft: float) -> d
 
 def design_description(p: Particulars, keel_rise: float = KEEL_RISE) -> dict:
     """The hull description (a dict) for the particulars (see the module docstring), the keel
-    rising aft over keel_rise of the run (a fraction, KEEL_RISE by default). Raises
-    InvalidInput for particulars outside the designer's range."""
+    rising aft over keel_rise of the run (a fraction, KEEL_RISE by default). A sonar dome without
+    p.sonar_dome_nose has its nose where the keel's flat ends, also with a bulb (design_hull
+    moves it aft of the bulb's blend). Raises InvalidInput for particulars outside the
+    designer's range."""
     p.check()
     c = _coefficients(p)
     L, B, T, D = p.lpp, p.breadth, p.draft, p.depth
@@ -692,9 +695,10 @@ def _add_appendages(desc: dict, p: Particulars, prof: dict, skeg: dict | None) -
     L, B, T = p.lpp, p.breadth, p.draft
     if p.sonar_dome:
         fore = prof["flat_to"] if p.sonar_dome_nose is None else p.sonar_dome_nose
-        if fore > prof["flat_to"] + 1e-9 * L:
-            raise _native.InvalidInput(f"sonar_dome_nose is {fore:.4g}; expected at most {prof['flat_to']:.4g} m from the "
-                                       "AP, where the keel leaves the base (the dome hangs under the flat keel)")
+        lo, hi = prof["flat_from"] + DOME_LENGTH * L, prof["flat_to"]
+        if not lo - 1e-9 * L <= fore <= hi + 1e-9 * L:
+            raise _native.InvalidInput(f"sonar_dome_nose is {fore!r}; expected {_mm_up(lo)} to {_mm_down(hi)} m from the AP "
+                                       "(the dome hangs under the flat keel, from where it starts to where it leaves the base)")
         desc["dome"] = {"x_aft": fore - DOME_LENGTH * L, "x_fore": fore, "depth": DOME_DEPTH * T,
                         "half_breadth": DOME_HALF_BREADTH * B}
     if skeg is not None:
@@ -831,8 +835,8 @@ def _blend_boundary(hull: Hull) -> np.ndarray | None:
         return None
     try:
         placement = hull.blend_placement()
-    except _native.NoBlendFits:
-        return None
+    except (_native.NoBlendFits, _native.InvalidInput):
+        return None  # no blend: as _bulb_that_meets, the composition keeps the plain union
     uv = np.asarray(placement.boundary_a)
     return np.asarray(placement.hull.evaluate(uv[:, 0], uv[:, 1]))
 
@@ -848,11 +852,27 @@ def _dome_aft_of_blend(p: Particulars) -> Particulars:
     except (_native.InfeasibleFormParameters, _native.InvalidInput):
         return p  # designed as given: it is refused with its own reason
     boundary = _blend_boundary(plain)
-    flat_to = json.loads(plain.to_json())["basic_curves"]["profile"]["flat_to"]
-    if boundary is None or boundary[:, 0].min() - DOME_BLEND_CLEARANCE * p.lpp >= flat_to:
+    if boundary is None:
         return p
-    nose = float(boundary[:, 0].min()) - DOME_BLEND_CLEARANCE * p.lpp
-    return replace(p, sonar_dome_nose=nose, notes=p.notes + [f"sonar dome's nose at x = {nose:.4g} m, aft of the bulb's blend"])
+    profile = plain.description.curves["profile"]
+    nose = _nose_clear_of(boundary, p)
+    if nose >= profile.flat_to or nose < profile.flat_from + DOME_LENGTH * p.lpp:
+        return p  # clear at its own place, or no room under the flat keel: designed as given
+    return replace(p, sonar_dome_nose=nose, notes=p.notes + [f"sonar dome's nose at x = {nose:.6g} m, aft of the bulb's blend"])
+
+
+def _nose_clear_of(boundary: np.ndarray, p: Particulars) -> float:
+    """The dome's nose (m from the AP) DOME_BLEND_CLEARANCE Lpp aft of a blend boundary (k, 3)."""
+    return _mm_down(float(boundary[:, 0].min()) - DOME_BLEND_CLEARANCE * p.lpp)
+
+
+def _mm_down(x: float) -> float:
+    """x (m) rounded down to the millimetre, for a limit a message names (so it never rounds past it)."""
+    return math.floor(x * 1e3) / 1e3
+
+
+def _mm_up(x: float) -> float:
+    return math.ceil(x * 1e3) / 1e3
 
 
 def _dome_clear_of_blend(hull: Hull, p: Particulars) -> Hull:
@@ -861,10 +881,11 @@ def _dome_clear_of_blend(hull: Hull, p: Particulars) -> Hull:
     boundary = _blend_boundary(hull) if p.sonar_dome else None
     if boundary is None or boundary[:, 2].min() >= -DOME_ON_BLEND_TOL * p.draft:
         return hull
-    nose = float(boundary[:, 0].min()) - DOME_BLEND_CLEARANCE * p.lpp
+    nose, profile = _nose_clear_of(boundary, p), hull.description.curves["profile"]
+    give = f"sonar_dome_nose at most {nose} m from the AP, " if nose >= profile.flat_from + DOME_LENGTH * p.lpp else ""
     raise _native.InfeasibleFormParameters(
-        f"design_hull: the blend between bulb and hull runs onto the sonar dome (its boundary at x = "
-        f"{boundary[:, 0].min():.4g} m): give sonar_dome_nose at most {nose:.4g} m from the AP, sonar_dome=False or bulb=False")
+        f"design_hull: the blend between bulb and hull runs onto the sonar dome (its boundary from x = "
+        f"{boundary[:, 0].min():.6g} m): give {give}sonar_dome=False or bulb=False")
 
 
 def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
@@ -893,7 +914,8 @@ def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
             if "cannot meet the hull" not in str(e):
                 return hull
             reason = str(e)
-    remedy = ("the sonar dome under the forefoot runs into the bulb's root: give sonar_dome=False or bulb=False"
+    remedy = ("the sonar dome under the forefoot runs into the bulb's root: give a sonar_dome_nose further aft, "
+              "sonar_dome=False or bulb=False"
               if p.sonar_dome else "give bulb=False or a smaller bulb (its Kracht coefficients in bulb={'kracht': ...})")
     if fixed:
         remedy += " or another bulb.shape.aft_length"

@@ -55,6 +55,12 @@ def fd_normal_curvature(surface: fl.NurbsSurface, u: float, v: float, t: np.ndar
     return float(fd_normal(surface, u, v) @ c2) / float(c1 @ c1)
 
 
+#: Largest normal turn (deg) between neighbouring points of largest_normal_turn_deg's grid for a
+#: blend that does not fold: folds measured 115-180 deg, the unfolded blends of bench_design_options
+#: and bench_hull up to 60.
+FOLD_DEG = 90.0
+
+
 def largest_normal_turn_deg(surface: fl.NurbsSurface, nu: int = 241, nv: int = 61) -> float:
     """The largest angle (deg) between the normals at neighbouring points of an nu x nv grid of
     the surface, normals from differences of the grid's points (independent of the engine's).

@@ -70,6 +70,15 @@ def test_export_composes_a_ship_without_a_bulb(tmp_path, capsys):
     assert "valid True, closed True" in capsys.readouterr().out
 
 
+def test_design_places_a_sonar_dome_where_the_command_line_says(tmp_path):
+    import json
+
+    design = tmp_path / "frigate.json"
+    assert main(["design", "--lpp", "140", "--breadth", "17", "--draft", "5.5", "--depth", "10", "--cb", "0.5",
+                 "--lcb", "67.2", "--sonar-dome", "--sonar-dome-nose", "110", "-o", str(design)]) == 0
+    assert json.loads(design.read_text())["dome"]["x_fore"] == 110.0
+
+
 def test_a_trim_that_sinks_the_deck_names_the_trim(tmp_path, capsys):
     """Default drafts from T/10 to the deck at every trim: a trim of 100 m leaves none (the
     message once listed 19 negative drafts the user never gave)."""

@@ -277,11 +277,11 @@ def test_a_bulb_that_would_leave_a_fine_forefoot_again_runs_further_aft():
 
 def test_a_bulb_and_a_sonar_dome_under_its_forefoot_build_with_the_dome_aft_of_the_blend():
     """A cruiser-sterned coaster with a bulb and a sonar dome: with the dome's nose where the
-    keel's flat ends, the bulb met hull and dome in a seam that turned back at every aft length
-    and design_hull refused it. The dome's nose now goes aft of where the blend of the same ship
-    without a dome starts (designer.DOME_BLEND_CLEARANCE): it builds, meets its particulars and
-    composes closed, its mesh crossing itself nowhere."""
-    from blend_fixtures import largest_normal_turn_deg
+    keel's flat ends, the bulb meets hull and dome in a seam that turns back at every aft length
+    (design_hull refused it). With the nose aft of where the blend of the same ship without a
+    dome starts (designer.DOME_BLEND_CLEARANCE) it builds, meets its particulars and composes
+    closed, its mesh crossing itself nowhere."""
+    from blend_fixtures import FOLD_DEG, largest_normal_turn_deg
     from mesh_fixtures import self_intersections
 
     p = dict(lpp=118.6, breadth=14.28, draft=5.9, depth=7.77, cb=0.59, lcb=55.44, stern="cruiser", bulb=True,
@@ -296,10 +296,6 @@ def test_a_bulb_and_a_sonar_dome_under_its_forefoot_build_with_the_dome_aft_of_t
     assert edge_census(c.mesh.faces) == (0, 0, 0)
     assert self_intersections(c.mesh) == []
 
-
-#: Largest normal turn (deg) between neighbouring points of blend_fixtures.largest_normal_turn_deg's
-#: grid for a blend that does not fold (the pleats measured 140-180 deg; unfolded blends 10-60).
-FOLD_DEG = 90.0
 
 #: Fine bulbed ships of bench_design_options (designs 11, 325, 174; rounded) whose blend's
 #: boundary on the hull heads straight for the centre plane over a stretch: the rows turned off
@@ -318,7 +314,7 @@ PLEATED = {
 
 @pytest.mark.parametrize("name", list(PLEATED))
 def test_a_blend_whose_boundary_heads_for_the_centre_plane_does_not_pleat(name):
-    from blend_fixtures import largest_normal_turn_deg
+    from blend_fixtures import FOLD_DEG, largest_normal_turn_deg
     from mesh_fixtures import self_intersections
 
     c = fl.design_hull(**PLEATED[name]).composed_hull()

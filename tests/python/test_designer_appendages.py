@@ -237,66 +237,95 @@ def test_dome_ship_composes_watertight(frigate):
     assert edge_census(c.full_mesh().faces) == (0, 0, 0)
 
 
-#: bench_design_options' design 120 (rounded): a 208 m full ship with a bulb and a sonar dome.
-#: With the dome's nose where the keel's flat ends, the blend from the bulb ran down the dome's
-#: side to its keel (2.2 m below the base) and folded: its normal turned by 178 deg between
-#: neighbouring points, and 6 pairs of the composed mesh's faces crossed.
-BULB_AND_DOME = dict(lpp=208.29, breadth=23.3, draft=5.5, depth=9.24, cb=0.82, lcb=108.2, bulb=True, sonar_dome=True,
-                     stem_rake=7.0)
+#: Ships of bench_design_options with a bulb and a sonar dome (rounded). With the dome's nose
+#: where the keel's flat ends, design 120's blend ran down the dome's side to its keel (2.2 m
+#: below the base) and folded, its normal turning by 178 deg between neighbouring points and 6
+#: pairs of its composed mesh's faces crossing; with the nose 0.01 Lpp aft of the blend (not
+#: enough: the dome draws the keel in forward of its nose) design 491's blend folded by 165 deg,
+#: 41 pairs crossing.
+BULB_AND_DOME = {
+    "208 m, Cb 0.82": dict(lpp=208.29, breadth=23.3, draft=5.5, depth=9.24, cb=0.82, lcb=108.2, bulb=True,
+                           sonar_dome=True, stem_rake=7.0),
+    "232 m, cruiser stern": dict(lpp=232.306, breadth=35.192, draft=12.92, depth=27.076, cb=0.616, lcb=106.995,
+                                 stern="cruiser", bulb=True, sonar_dome=True),
+}
 
 
-@pytest.fixture(scope="module")
-def bulb_and_dome():
-    return fl.design_hull(**BULB_AND_DOME)
+@pytest.fixture(scope="module", params=list(BULB_AND_DOME))
+def bulb_and_dome(request):
+    p = BULB_AND_DOME[request.param]
+    return p, fl.design_hull(**p)
 
 
-def test_a_bulbs_blend_stays_clear_of_the_sonar_dome(bulb_and_dome):
-    """The dome hangs its depth below the keel aft of where the blend starts; the blend keeps
-    above the base and does not fold; the composed hull is closed and crosses itself nowhere."""
-    from blend_fixtures import largest_normal_turn_deg
+def _blend_clears_the_dome(hull, p):
+    """The blend lies forward of the dome and above the base, does not fold; the composed hull
+    is closed and crosses itself nowhere."""
+    from blend_fixtures import FOLD_DEG, largest_normal_turn_deg
     from mesh_fixtures import self_intersections
 
-    p, dm = BULB_AND_DOME, bulb_and_dome.description.dome
-    assert _frame(bulb_and_dome, dm.x_aft + DOME_WIDEST * (dm.x_fore - dm.x_aft))[:, 2].min() == pytest.approx(
-        -DOME_DEPTH * p["draft"], abs=1e-3 * p["draft"])
-    c = bulb_and_dome.composed_hull()
+    c = hull.composed_hull()
     blend = np.asarray(c.blend.evaluate_grid(np.linspace(0, 1, 121), np.linspace(0, 1, 31))).reshape(-1, 3)
-    assert blend[:, 0].min() > dm.x_fore
+    assert blend[:, 0].min() > hull.description.dome.x_fore
     assert blend[:, 2].min() >= -BASELINE_TOL * p["draft"]
-    assert largest_normal_turn_deg(c.blend) < 90.0
+    assert largest_normal_turn_deg(c.blend) < FOLD_DEG
     assert edge_census(c.mesh.faces) == (0, 0, 0)
     assert self_intersections(c.mesh) == []
 
 
+def test_a_bulbs_blend_stays_clear_of_the_sonar_dome(bulb_and_dome):
+    """... and the dome still hangs its depth below the keel."""
+    p, hull = bulb_and_dome
+    dm = hull.description.dome
+    assert _frame(hull, dm.x_aft + DOME_WIDEST * (dm.x_fore - dm.x_aft))[:, 2].min() == pytest.approx(
+        -DOME_DEPTH * p["draft"], abs=1e-3 * p["draft"])
+    _blend_clears_the_dome(hull, p)
+
+
 def test_the_bulb_and_dome_ship_meets_its_particulars(bulb_and_dome):
-    h, p = bulb_and_dome.hydrostatics(), BULB_AND_DOME
+    p, hull = bulb_and_dome
+    h = hull.hydrostatics()
     assert h.volume == pytest.approx(p["cb"] * p["lpp"] * p["breadth"] * p["draft"], rel=MATCH_TOL)
     assert abs(h.lcb - p["lcb"]) <= MATCH_TOL * p["lpp"]
 
 
+def test_the_dome_nose_the_designer_chose_is_a_particular_that_rebuilds_the_ship(bulb_and_dome):
+    """The description's record of the particulars holds the nose the designer chose; designed
+    again from that record the ship has the same dome and hull."""
+    p, hull = bulb_and_dome
+    record = hull.to_dict()["design"]
+    assert record["sonar_dome_nose"] == pytest.approx(hull.description.dome.x_fore)
+    again = fl.design_hull(**{k: v for k, v in record.items() if v is not None})
+    assert again.description.dome.x_fore == hull.description.dome.x_fore
+    assert again.hydrostatics().volume == pytest.approx(hull.hydrostatics().volume, rel=1e-12)
+
+
 def test_a_dome_nose_given_where_the_blend_would_run_onto_it_is_refused_naming_what_to_give(bulb_and_dome):
     """The dome's nose given at the keel's flat end (the designer's place without a bulb): the
-    refusal names the nose that clears the blend, and that nose builds."""
-    import json
+    refusal names a nose, and with that nose the blend clears the dome."""
     import re
 
-    flat_to = json.loads(bulb_and_dome.to_json())["basic_curves"]["profile"]["flat_to"]
+    p, hull = bulb_and_dome
+    flat_to = hull.description.curves["profile"].flat_to
     with pytest.raises(fl.InfeasibleFormParameters, match="runs onto the sonar dome") as err:
-        fl.design_hull(**BULB_AND_DOME, sonar_dome_nose=flat_to)
+        fl.design_hull(**p, sonar_dome_nose=flat_to)
     nose = float(re.search(r"give sonar_dome_nose at most ([-0-9.e+]+) m", str(err.value)).group(1))
-    assert nose < flat_to
-    assert fl.design_hull(**BULB_AND_DOME, sonar_dome_nose=nose).description.dome.x_fore == pytest.approx(nose)
+    _blend_clears_the_dome(fl.design_hull(**p, sonar_dome_nose=nose), p)
 
 
-@pytest.mark.parametrize("change, says", [
-    ({"sonar_dome": False, "sonar_dome_nose": 100.0}, "sonar_dome_nose is 100.0; expected it only with sonar_dome=True"),
-    ({"sonar_dome_nose": 1e4}, "sonar_dome_nose is 10000.0; expected a dome nose from 0.11 Lpp to the FP"),
-    ({"sonar_dome_nose": 139.9}, "sonar_dome_nose is 139.9; expected at most .* m from the AP, where the keel leaves the base"),
-    ({"sonar_dome_nose": "fore"}, "sonar_dome_nose is 'fore'"),
+@pytest.mark.parametrize("ship, change, says", [
+    ("frigate", {"sonar_dome": False, "sonar_dome_nose": 100.0}, "sonar_dome_nose is 100.0; expected it only with sonar_dome=True"),
+    ("frigate", {"sonar_dome_nose": 1e4}, "sonar_dome_nose is 10000.0; expected a dome nose 0.11 Lpp or more forward of the AP"),
+    ("frigate", {"sonar_dome_nose": 139.9}, r"sonar_dome_nose is 139.9; expected [0-9.]+ to [0-9.]+ m from the AP \(the dome "
+                                            "hangs under the flat keel"),
+    ("frigate", {"sonar_dome_nose": 16.0}, r"sonar_dome_nose is 16.0; expected [0-9.]+ to [0-9.]+ m from the AP"),
+    ("coaster", {"sonar_dome": True, "sonar_dome_nose": 23.72}, r"sonar_dome_nose is 23.72; expected [0-9.]+ to"),
+    ("frigate", {"sonar_dome_nose": "fore"}, "sonar_dome_nose is 'fore'"),
 ])
-def test_a_bad_dome_nose_is_refused_naming_the_value(change, says):
+def test_a_bad_dome_nose_is_refused_naming_the_value(ship, change, says):
+    """Outside the flat keel (under the rising run, over a skeg, forward of where the keel
+    leaves the base) the dome would not hang as built: refused, naming the range."""
     with pytest.raises(fl.InvalidInput, match=says):
-        fl.design_hull(**{**FRIGATE, **change})
+        fl.design_hull(**{**(FRIGATE if ship == "frigate" else SHIPS[ship]), **change})
 
 
 def test_a_bad_dome_is_refused_naming_the_value(frigate):
