@@ -297,7 +297,7 @@ def test_a_bulb_and_a_sonar_dome_under_its_forefoot_build_with_the_dome_aft_of_t
     assert self_intersections(c.mesh) == []
 
 
-#: Fine bulbed ships of bench_design_options (designs 11, 325, 174; rounded) whose blend's
+#: Fine bulbed ships of bench_design_options (designs 11, 325, 174, 312; rounded) whose blend's
 #: boundary on the hull heads straight for the centre plane over a stretch: the rows turned off
 #: the plane to whichever side the sign of a near-zero product said, flipping between
 #: neighbouring sections, and the blend pleated across its whole width (normal turns of 176-180
@@ -309,6 +309,10 @@ PLEATED = {
                                     bulb=True, parallel_length=0.0),
     "73 m with a skeg": dict(lpp=72.643, breadth=8.159, draft=2.4, depth=3.14, cb=0.588, lcb=34.197, bulb=True,
                              skeg=True, parallel_length=0.0),
+    # design 312: with the turn fading out over |e . d| < 0.15 instead of 0.3 the rows turned faster
+    # than the boundary's direction and it still folded (115 deg)
+    "262 m, cruiser stern": dict(lpp=261.68, breadth=29.667, draft=6.967, depth=15.145, cb=0.52, lcb=122.358,
+                                 stern="cruiser", bulb=True),
 }
 
 
