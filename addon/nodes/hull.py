@@ -45,6 +45,7 @@ _OPTIONAL = (("Cm", "cm", ids.SOCKET_FLOAT, 0.98), ("Cwp", "cwp", ids.SOCKET_FLO
              ("LCF", "lcf", ids.SOCKET_LENGTH, 115.06), ("Parallel Length", "parallel_length", ids.SOCKET_LENGTH, 17.0),
              ("Transom Immersion", "transom_immersion", ids.SOCKET_LENGTH, -0.55),
              ("Propeller Diameter", "propeller_diameter", ids.SOCKET_LENGTH, 7.7),
+             ("Sonar Dome Nose", "sonar_dome_nose", ids.SOCKET_LENGTH, 190.0),
              ("Flat Bottom", "flat_bottom", ids.SOCKET_FLOAT, 0.15))
 
 
@@ -52,7 +53,8 @@ _OPTIONAL = (("Cm", "cm", ids.SOCKET_FLOAT, 0.98), ("Cwp", "cwp", ids.SOCKET_FLO
 class FLNodeParticulars(FairlinesNode, bpy.types.Node):
     """A whole ship designed from its principal particulars (fl.design_hull): Lpp, B, T, D, Cb
     and LCB (from the AP), optionally Cm, Cwp, LCF, the parallel middle body, the transom
-    immersion, (with a skeg) the propeller diameter and a flat of bottom (fraction of the
+    immersion, (with a skeg) the propeller diameter, (with a sonar dome) its nose (from the AP;
+    switched off, where the keel's flat ends, or aft of a bulb's blend) and a flat of bottom (fraction of the
     waterline's half-breadth over the parallel body; switched off, the designer's 0.15, left
     out on fine ships whose sections would narrow it; switched on, drawn as given, narrowing
     where it must; 0: none); the stern type, the stem rake, the transom's rake (from the
@@ -87,7 +89,7 @@ class FLNodeParticulars(FairlinesNode, bpy.types.Node):
         kw = {k: float(inputs[s]) for s, k in (("Lpp", "lpp"), ("B", "breadth"), ("T", "draft"), ("D", "depth"),
                                                 ("Cb", "cb"), ("LCB", "lcb"))}
         for name, key, _, _ in _OPTIONAL:
-            if inputs[name] is not None:
+            if inputs.get(name) is not None:  # .get: nodes saved before a socket was added lack it
                 kw[key] = float(inputs[name])
         p = fl.Particulars(stern=self.stern, bulb=bool(self.bulb), skeg=bool(self.skeg), sonar_dome=bool(self.sonar_dome),
                            stem_rake=math.degrees(inputs["Stem Rake"]),

@@ -728,6 +728,12 @@ def t_api_headless():
     ok, bad = hydro_equal(api.hydrostatics(tree, "Bare"), ref.hydrostatics())
     d = api.result(tree, "Ship", "Hull").description
     check(ok and d.skeg is not None and d.dome is not None, "skeg and dome: %s" % bad)
+    # ... the dome's nose where the Sonar Dome Nose socket says (the designer's is aft of the blend)
+    api.set(tree, ship, "Sonar Dome Nose", 190.0)
+    api.evaluate(tree)
+    nose = api.result(tree, "Ship", "Hull").description.dome.x_fore
+    check(ship.fl_state == "OK" and nose == 190.0, "sonar dome nose %r: %s" % (nose, ship.fl_message))
+    api.set(tree, ship, "Sonar Dome Nose", None)
     ship.skeg, ship.sonar_dome = False, False
     # The Flat Bottom socket switched on at 0.3: the designer's hull with a flat of 0.3.
     api.set(tree, ship, "Flat Bottom", 0.3)
