@@ -61,11 +61,15 @@ def test_the_default_screw_shrinks_from_0_7_to_0_55_draughts_as_cb_goes_from_0_7
     assert default_propeller_diameter(p) == pytest.approx(share * 9.0, rel=1e-12)
 
 
-def test_skeg_ship_meets_its_particulars(ship):
-    p, hull = ship
+def _assert_meets_particulars(p: dict, hull) -> None:
+    """Volume Cb Lpp B T and the LCB on the hull's surface, within MATCH_TOL."""
     h = hull.hydrostatics()
     assert h.volume == pytest.approx(p["cb"] * p["lpp"] * p["breadth"] * p["draft"], rel=MATCH_TOL)
     assert abs(h.lcb - p["lcb"]) <= MATCH_TOL * p["lpp"]
+
+
+def test_skeg_ship_meets_its_particulars(ship):
+    _assert_meets_particulars(*ship)
 
 
 def test_the_propeller_disc_clears_the_hull(ship):
@@ -207,10 +211,7 @@ def frigate():
 
 
 def test_dome_ship_meets_its_particulars(frigate):
-    h = frigate.hydrostatics()
-    p = FRIGATE
-    assert h.volume == pytest.approx(p["cb"] * p["lpp"] * p["breadth"] * p["draft"], rel=MATCH_TOL)
-    assert abs(h.lcb - p["lcb"]) <= MATCH_TOL * p["lpp"]
+    _assert_meets_particulars(FRIGATE, frigate)
 
 
 def test_the_dome_hangs_its_depth_below_the_keel_at_its_breadth(frigate):
@@ -282,10 +283,7 @@ def test_a_bulbs_blend_stays_clear_of_the_sonar_dome(bulb_and_dome):
 
 
 def test_the_bulb_and_dome_ship_meets_its_particulars(bulb_and_dome):
-    p, hull = bulb_and_dome
-    h = hull.hydrostatics()
-    assert h.volume == pytest.approx(p["cb"] * p["lpp"] * p["breadth"] * p["draft"], rel=MATCH_TOL)
-    assert abs(h.lcb - p["lcb"]) <= MATCH_TOL * p["lpp"]
+    _assert_meets_particulars(*bulb_and_dome)
 
 
 def test_the_dome_nose_the_designer_chose_is_a_particular_that_rebuilds_the_ship(bulb_and_dome):
