@@ -695,7 +695,7 @@ def _add_appendages(desc: dict, p: Particulars, prof: dict, skeg: dict | None) -
     L, B, T = p.lpp, p.breadth, p.draft
     if p.sonar_dome:
         fore = prof["flat_to"] if p.sonar_dome_nose is None else p.sonar_dome_nose
-        lo, hi = prof["flat_from"] + DOME_LENGTH * L, prof["flat_to"]
+        lo, hi = _least_dome_nose(prof["flat_from"], L), prof["flat_to"]
         if not lo - 1e-9 * L <= fore <= hi + 1e-9 * L:
             raise _native.InvalidInput(f"sonar_dome_nose is {fore!r}; expected {_mm_up(lo)} to {_mm_down(hi)} m from the AP "
                                        "(the dome hangs under the flat keel, from where it starts to where it leaves the base)")
@@ -856,9 +856,14 @@ def _dome_aft_of_blend(p: Particulars) -> Particulars:
         return p
     profile = plain.description.curves["profile"]
     nose = _nose_clear_of(boundary, p)
-    if nose >= profile.flat_to or nose < profile.flat_from + DOME_LENGTH * p.lpp:
+    if nose >= profile.flat_to or nose < _least_dome_nose(profile.flat_from, p.lpp):
         return p  # clear at its own place, or no room under the flat keel: designed as given
     return replace(p, sonar_dome_nose=nose, notes=p.notes + [f"sonar dome's nose at x = {nose:.6g} m, aft of the bulb's blend"])
+
+
+def _least_dome_nose(flat_from: float, lpp: float) -> float:
+    """The dome's least nose (m from the AP): the whole dome under the flat keel, from flat_from."""
+    return flat_from + DOME_LENGTH * lpp
 
 
 def _nose_clear_of(boundary: np.ndarray, p: Particulars) -> float:
@@ -882,7 +887,7 @@ def _dome_clear_of_blend(hull: Hull, p: Particulars) -> Hull:
     if boundary is None or boundary[:, 2].min() >= -DOME_ON_BLEND_TOL * p.draft:
         return hull
     nose, profile = _nose_clear_of(boundary, p), hull.description.curves["profile"]
-    give = f"sonar_dome_nose at most {nose} m from the AP, " if nose >= profile.flat_from + DOME_LENGTH * p.lpp else ""
+    give = f"sonar_dome_nose at most {nose} m from the AP, " if nose >= _least_dome_nose(profile.flat_from, p.lpp) else ""
     raise _native.InfeasibleFormParameters(
         f"design_hull: the blend between bulb and hull runs onto the sonar dome (its boundary from x = "
         f"{boundary[:, 0].min():.6g} m): give {give}sonar_dome=False or bulb=False")

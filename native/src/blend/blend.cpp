@@ -26,6 +26,7 @@
 #include "fairlines/errors.hpp"
 #include "fairlines/fitting.hpp"
 #include "fairlines/knots.hpp"
+#include "common/soft_cap.hpp"
 #include "nurbs/checks.hpp"
 
 namespace fairlines {
@@ -316,9 +317,7 @@ std::vector<Eigen::Vector3d> end_rows(const Frame& f, const Eigen::Vector3d& d, 
   if (!quintic) return {f.p, f.p + v / 3.0 * d};
   const Eigen::Vector3d q1 = f.p + v / 5.0 * d;
   const double h = v / 5.0, x = normal_curvature(f, d) * v * v / 20.0;
-  const double p = kCurvatureTermSharpness;
-  const double x_eff = x / std::pow(1.0 + std::pow(std::abs(x) / (kCurvatureTermCap * h), p), 1.0 / p);
-  return {f.p, q1, 2.0 * q1 - f.p + x_eff * f.n};
+  return {f.p, q1, 2.0 * q1 - f.p + detail::soft_cap(x, kCurvatureTermCap * h, kCurvatureTermSharpness) * f.n};
 }
 
 /// Writes the section rows of sample j from both ends' rows (a's from Q0 inward, b's from the

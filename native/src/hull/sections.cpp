@@ -36,6 +36,7 @@
 #include "fairlines/basis.hpp"
 #include "fairlines/errors.hpp"
 #include "fairlines/knots.hpp"
+#include "common/soft_cap.hpp"
 #include "nurbs/checks.hpp"
 #include "nurbs/gauss.hpp"
 
@@ -656,7 +657,7 @@ std::vector<Piece> above_template(const Section& S) {
     const V2 up(std::sin(angle), std::cos(angle));
     const double cap = kVirtualReach * s.top_corner / (1.0 + s.top_corner) * lk;
     const double raw = (S.K.y() - s.draft) / up.y();
-    const double e = cap > 0 ? raw / std::pow(1.0 + std::pow(raw / cap, kVirtualSharpness), 1.0 / kVirtualSharpness) : 0.0;
+    const double e = cap > 0 ? detail::soft_cap(raw, cap, kVirtualSharpness) : 0.0;
     return V2(S.K - e * up);
   };
   // The leg leans as the immersed sections' side does (the chord's lean, less where the top has
