@@ -225,7 +225,7 @@ class FLNodeBasicCurve(FairlinesNode, bpy.types.Node):
         # deep copy of the whole description took longer than solving the curve.
         desc = copy.copy(src.description)
         desc.curves = dict(desc.curves)
-        spec = desc.curves[self.curve] = copy.deepcopy(desc.curves[self.curve])
+        spec = desc.curves[self.curve] = desc.curves[self.curve].copy()
         hull = fl.Hull(desc)
         for sock, key in _BASIC_PARAMS:
             value = inputs[sock]

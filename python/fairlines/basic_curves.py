@@ -125,8 +125,8 @@ class BasicCurve:
         out = np.full(x.shape, outside, dtype=float)
         if self.curve is None:
             out[inside] = self.value
-        elif np.any(inside):
-            out[inside] = np.asarray(self.curve.evaluate(np.clip(x[inside], self.x_start, self.x_end)))[:, 0]
+        elif inside.any():  # (np.minimum / np.maximum: np.clip's own cost is most of a short call's)
+            out[inside] = np.asarray(self.curve.evaluate(np.minimum(np.maximum(x[inside], self.x_start), self.x_end)))[:, 0]
         return out
 
     def derivative(self, x: float, order: int = 1) -> float:
@@ -274,9 +274,13 @@ CURVE_CACHE_SIZE = 32
 _curve_cache: OrderedDict = OrderedDict()
 
 
+_reference_cache: OrderedDict = OrderedDict()  # the SAC's reference fullness (_reference_fullness)
+
+
 def clear_curve_cache() -> None:
     """Forget every cached basic curve (tests compare cold and warm builds)."""
     _curve_cache.clear()
+    _reference_cache.clear()
 
 
 def solve_curve(name: str, spec: BasicCurveSpec, x0: float, x1: float, *, lower: float | None = None,
@@ -550,12 +554,23 @@ def _reference_fullness(spec: BasicCurveSpec, plan: _Plan, r) -> np.ndarray | No
     pts = [(x, f) for x, f in spec.fullness_fit if plan.xs <= x <= plan.xe]
     if not pts:
         return None
+    # It reads neither the volume nor the LCB: a SAC slider re-solves only the SAC itself.
+    key = (tuple(r.knots), tuple((f.from_, f.to, f.value) for f in r.flats), plan.xs, plan.xe, tuple(pts))
+    try:
+        _reference_cache.move_to_end(key)
+        return _reference_cache[key]
+    except KeyError:  # not fitted yet (or dropped by another thread meanwhile)
+        pass
     ref = _native.SplineDesignRequest()
     ref.name, ref.knots = f"{_SAC_PATH}.fullness_fit", r.knots
     ref.flats = r.flats
     ref.e2 = REFERENCE_FAIRNESS * (plan.xe - plan.xs) ** 3 / len(pts)
     ref.fit = [_native.SplineFitPoint(x, f, 1.0) for x, f in pts]
-    return np.asarray(_native.design_spline_function(ref).control_points)[:, 0]
+    out = _reference_cache[key] = np.asarray(_native.design_spline_function(ref).control_points)[:, 0]
+    out.flags.writeable = False  # shared by every request with this key
+    if len(_reference_cache) > CURVE_CACHE_SIZE:
+        _reference_cache.popitem(last=False)
+    return out
 
 
 def _sac_request(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft: float, fullness, bands, targets: bool,

@@ -138,6 +138,12 @@ MAX_LOWER_ANGLE = 88.0
 BUILD_CACHE_SIZE = 8
 
 
+def _clip(a: np.ndarray, lo: float, hi: float) -> np.ndarray:
+    """np.clip(a, lo, hi) for lo <= hi, the same values: on the stations' short rows np.clip's
+    own overhead was most of its cost, and section_specs runs on every rebuild."""
+    return np.minimum(np.maximum(a, lo), hi)
+
+
 class _BuildCache:
     """Results of pure build steps kept by the value of everything they read, shared by every
     Hull: a hull copied with only its SAC changed (a slider in the Blender add-on) re-solves
@@ -238,6 +244,7 @@ class Hull:
         self._ship = None
         self._stations: np.ndarray | None = None
         self._dry_ends: dict = {}  # x_e -> (end waterlines, end contour) of the dry sections beyond it
+        self._closed_ends: list | None = None  # _closed_dry_ends, asked by every section_specs
         self._transom_run: list | None = None  # [fairlines.transom_run.TransomRun], or [] without a dry transom
         self._hydro: dict = {}  # (draft, options) -> Hydrostatics of the current surface
         self._bow = None  # (key, BulbousBow) of the description's bulb, no overrides
@@ -546,7 +553,7 @@ class Hull:
         `curves`: the solved basic curves (default) or any dict holding these curves."""
         bc = self.basic_curves if curves is None else curves
         pr = self.description.principal
-        deck = np.clip(bc["deck"](xs), 0.0, pr.half_breadth_limit)
+        deck = _clip(bc["deck"](xs), 0.0, pr.half_breadth_limit)
         z_deck = bc["sheer"](xs) if "sheer" in bc else np.full(len(xs), pr.depth)
         return deck, z_deck, bc["dwl"](xs, outside=math.nan), bc["profile"](xs)
 
@@ -584,14 +591,14 @@ class Hull:
         deck, z_deck, dwl, prof = self.curve_points(xs, bc)
         sac = bc["sac"](xs, outside=math.nan) if with_area else None
         # a spline fitted to a bound may overshoot it by round-off (a deadrise of -4e-13 deg)
-        shape = {name: np.clip(bc[name](xs), lo, hi) for name, (_, lo, hi) in SHAPE_CURVES.items()}
-        optional = {field: np.clip(bc[name](xs), lo, hi) for name, (field, lo, hi) in CORNER_CURVES.items() if name in bc}
+        shape = {name: _clip(bc[name](xs), lo, hi) for name, (_, lo, hi) in SHAPE_CURVES.items()}
+        optional = {field: _clip(bc[name](xs), lo, hi) for name, (field, lo, hi) in CORNER_CURVES.items() if name in bc}
         if "flat_bottom" in bc:
-            optional["flat_bottom"] = np.clip(bc["flat_bottom"](xs, outside=0.0), *FLAT_BOTTOM_BOUNDS)
+            optional["flat_bottom"] = _clip(bc["flat_bottom"](xs, outside=0.0), *FLAT_BOTTOM_BOUNDS)
         lower = self._lower_angles(xs)
         given = self._given_shapes(xs)
         offsets = self._given_offsets(xs)
-        deck, z_deck = np.clip(deck + offsets[:, 0], 0.0, limit), z_deck + offsets[:, 1]
+        deck, z_deck = _clip(deck + offsets[:, 0], 0.0, limit), z_deck + offsets[:, 1]
         dwl = np.where(dwl > 0, dwl + offsets[:, 2], dwl)
         prof = prof + offsets[:, 3]
         skeg, share = d.skeg.at(xs, np.minimum(prof, z_deck)) if d.skeg is not None else (np.full(len(xs), np.nan), None)
@@ -637,6 +644,8 @@ class Hull:
     def _closed_dry_ends(self) -> list:
         """(x_e, x_tip) (m) of each waterline end beyond which the hull runs on above the water
         and closes in a point at the deck: a raked stem, a cruiser stern (not a transom, nor a post)."""
+        if self._closed_ends is not None:
+            return self._closed_ends
         d, dwl = self.description, self._curves["dwl"]
         pr = d.principal
         out = []
@@ -646,6 +655,7 @@ class Hull:
             if side == "aft" and self.curve_points(np.array([x_tip]), self._curves)[0][0] > 1e-6 * pr.breadth:
                 continue  # a transom: the waterlines above T end on it, not on the centre plane
             out.append((x_end, x_tip))
+        self._closed_ends = out
         return out
 
     def _read_dry_ends(self, specs: list, given: list) -> None:

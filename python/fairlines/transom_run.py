@@ -46,6 +46,8 @@ RUN_LENGTH = 0.04
 RUN_SAMPLES = 8
 #: Topside lines (eta from 0 to 1) fitted; a section's points in between are interpolated.
 RUN_LEVELS = 41
+_LEVELS = np.linspace(0.0, 1.0, RUN_LEVELS)
+_LEVELS.flags.writeable = False
 #: Points of a section read as a function of height for its topside lines.
 OFFSET_SAMPLES = 161
 #: The lines' slopes at x_r are read over this fraction of Lpp forward of it.
@@ -71,7 +73,7 @@ def sample_params(curve) -> tuple:
 def topside_offsets(samples: np.ndarray, z_deck: float, draft: float, z_keel: float) -> np.ndarray:
     """Half-breadths (m) on the RUN_LEVELS topside lines (eta 0 .. 1) of a section sampled at
     `samples` (k, 3) points (read as a function of height); NaN below its keel point."""
-    z = draft + np.linspace(0.0, 1.0, RUN_LEVELS) * (z_deck - draft)
+    z = draft + _LEVELS * (z_deck - draft)
     order = np.argsort(samples[:, 2], kind="stable")
     return np.where(z >= z_keel, np.interp(z, samples[order, 2], samples[order, 1]), np.nan)
 
@@ -107,7 +109,7 @@ class TransomRun:
         self.a = y[-2]
         self.b = (y[-1] - y[-2]) / (x_b - self.x_r)
         self.c = fit_run(xs[:-1], y[:-2], self.x_r, self.a, self.b)
-        self.levels = np.linspace(0.0, 1.0, RUN_LEVELS)
+        self.levels = _LEVELS
         self.fade_length = FADE_LENGTH * lpp
 
     def covers(self, x: float) -> bool:
@@ -139,12 +141,16 @@ class TransomRun:
         knots, p, n, t = self._params
         pts = np.asarray(curve.evaluate(t))
         P, z_low = pts[:n], pts[n:2 * n, 2]  # z_low: the lowest point of each control point's support
-        shift = np.nan_to_num(self.lines(spec.x) - topside_offsets(pts[2 * n:], zd, T, zk)) * self.fade(spec.x)
+        # (np.minimum / np.maximum, not np.clip: the same values at a third of the cost on these
+        # short rows, and this runs for every section of the run on every rebuild)
+        shift = self.lines(spec.x) - topside_offsets(pts[2 * n:], zd, T, zk)
+        shift[np.isnan(shift)] = 0.0
+        shift *= self.fade(spec.x)
         shift -= self.levels * shift[-1]  # the deck edge stays on the deck line
-        eta = np.clip((P[:, 2] - T) / (zd - T), 0.0, 1.0)
-        s = np.clip((z_low - z_lo) / (BLEND_DEPTH * (zd - T)), 0.0, 1.0)
+        eta = np.minimum(np.maximum((P[:, 2] - T) / (zd - T), 0.0), 1.0)
+        s = np.minimum(np.maximum((z_low - z_lo) / (BLEND_DEPTH * (zd - T)), 0.0), 1.0)
         w = s * s * (3 - 2 * s)
         w[[0, -1]] = 0.0
         ctrl = np.array(curve.control_points, dtype=float)
-        ctrl[:, 1] = np.clip(ctrl[:, 1] + w * np.interp(eta, self.levels, shift), 0.0, spec.y_max)
+        ctrl[:, 1] = np.minimum(np.maximum(ctrl[:, 1] + w * np.interp(eta, self.levels, shift), 0.0), spec.y_max)
         return _native.NurbsCurve(p, knots, ctrl)

@@ -46,3 +46,24 @@ def test_a_surface_refined_along_both_directions_is_the_same_surface():
     a = np.asarray(s.evaluate(uv[:, 0], uv[:, 1]))
     b = np.asarray(r.evaluate(uv[:, 0], uv[:, 1]))
     assert np.abs(a - b).max() <= REFINE_TOL * np.abs(a).max()
+
+
+def test_a_copied_curve_spec_shares_nothing_an_edit_changes():
+    """BasicCurveSpec.copy (what a Blender slider edits instead of a deep copy): every dict and
+    list field is a new object with equal contents, so setting a form parameter, popping an
+    alias or replacing a list on the copy leaves the original as it was."""
+    import dataclasses
+
+    spec = example_hull().description.curves["sac"]
+    before = dataclasses.asdict(spec)
+    twin = spec.copy()
+    assert dataclasses.asdict(twin) == before
+    for f in dataclasses.fields(spec):
+        value = getattr(spec, f.name)
+        if isinstance(value, (list, dict)):
+            assert getattr(twin, f.name) is not value, f"{f.name} is shared with the original"
+    twin.params["Area"] = 1.0
+    twin.aliases.clear()
+    twin.fullness_fit.append((0.0, 0.5))
+    twin.flat_from = -1.0
+    assert dataclasses.asdict(spec) == before
