@@ -55,6 +55,18 @@ def _write_attribute(me, name, domain, values):
     attr.data.foreach_set("value", values)
 
 
+def _set_corner_vertices(me, corner_verts):
+    """The vertex of every face corner (loop), (k,) int32. Blender 4.0 and newer keep them as the
+    ".corner_vert" attribute, written as one block there: loops' vertex_index goes through RNA
+    per item (1.1 ms against 0.015 ms for the 15 800 corners of a composed ship of 2 636
+    vertices, on every change that moves the composition's triangles). Before 4.0: vertex_index."""
+    attr = me.attributes.get(".corner_vert")
+    if attr is not None and attr.domain == "CORNER" and attr.data_type == "INT" and len(attr.data) == len(corner_verts):
+        attr.data.foreach_set("value", corner_verts)
+    else:
+        me.loops.foreach_set("vertex_index", corner_verts)
+
+
 def write_mesh(obj, mesh_data, smooth=True, sharp_angle=None):
     """Write MeshData into obj.data. Returns True when updated in place. With smooth shading
     and a sharp_angle (radians), edges whose faces meet at more than it (deck edge, transom,
@@ -75,7 +87,7 @@ def write_mesh(obj, mesh_data, smooth=True, sharp_angle=None):
         me.vertices.add(nv)
         me.vertices.foreach_set("co", verts)
         me.loops.add(int(sizes.sum()))
-        me.loops.foreach_set("vertex_index", faces[corners])
+        _set_corner_vertices(me, faces[corners])
         me.polygons.add(nf)
         me.polygons.foreach_set("loop_start", (np.cumsum(sizes) - sizes).astype(np.int32))
         if bpy.app.version < (4, 0, 0):  # stores the corner count per face; newer ones derive it
