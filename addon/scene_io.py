@@ -55,6 +55,19 @@ def _write_attribute(me, name, domain, values):
     attr.data.foreach_set("value", values)
 
 
+def _set_positions(me, verts):
+    """Every vertex's position, (3 n,) float32. Blender 3.5 and newer keep them as the "position"
+    attribute, written as one block there (0.002 ms for 2 636 vertices against 0.19 ms through
+    vertices' co, which RNA sets item by item); before: co."""
+    attr = me.attributes.get("position")
+    if attr is not None and attr.domain == "POINT" and attr.data_type == "FLOAT_VECTOR" and 3 * len(attr.data) == len(verts):
+        attr.data.foreach_set("vector", verts)
+        if len(me.vertices):  # co's update tags the positions changed: without it the bounds stayed the old ones
+            me.vertices[0].co = me.vertices[0].co
+    else:
+        me.vertices.foreach_set("co", verts)
+
+
 def _set_corner_vertices(me, corner_verts):
     """The vertex of every face corner (loop), (k,) int32. Blender 4.0 and newer keep them as the
     ".corner_vert" attribute, written as one block there: loops' vertex_index goes through RNA
@@ -78,14 +91,14 @@ def write_mesh(obj, mesh_data, smooth=True, sharp_angle=None):
     topo = _topology_key(mesh_data) + (":smooth" if smooth else ":flat")  # shading is per face too
     in_place = me.get(ids.MESH_TOPOLOGY_KEY) == topo and len(me.vertices) * 3 == len(verts)
     if in_place:
-        me.vertices.foreach_set("co", verts)
+        _set_positions(me, verts)
     else:
         me.clear_geometry()
         nv, nf = len(mesh_data.vertices), faces.shape[0]
         corners = faces >= 0  # a mixed mesh pads its triangles with -1
         sizes = corners.sum(axis=1).astype(np.int32)
         me.vertices.add(nv)
-        me.vertices.foreach_set("co", verts)
+        _set_positions(me, verts)
         me.loops.add(int(sizes.sum()))
         _set_corner_vertices(me, faces[corners])
         me.polygons.add(nf)

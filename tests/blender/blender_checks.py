@@ -392,6 +392,20 @@ def t_mesh_rewrite():
         edges = {tuple(sorted(e)) for t in tris for e in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0]))}
         check(len(me.edges) == len(edges), "rewritten mesh has %d edges, expected %d" % (len(me.edges), len(edges)))
         check(not me.validate(), "Mesh.validate mended the rewritten mesh")
+    # moved in place (same topology), shaded smooth (sharp edges marked) or flat: bounds and
+    # normals follow the new positions
+    moved = grid * [2.0, 3.0, 1.0] + [0.0, 0.0, 5.0]
+    normals = np.empty(len(tris) * 3)
+    for smooth in (True, False):
+        scene_io.write_mesh(obj, data.MeshData(grid, tris), smooth, 0.5)
+        bpy.context.view_layer.update()
+        check(scene_io.write_mesh(obj, data.MeshData(moved, tris), smooth, 0.5), "not written in place")
+        bpy.context.view_layer.update()
+        check(np.allclose(obj.dimensions, (8.0, 9.0, 0.0)), "bounds after an in-place move: %s" % (tuple(obj.dimensions),))
+        check(np.allclose(coords(obj), moved), "in-place positions differ")
+        scene_io.write_mesh(obj, data.MeshData(grid * [1.0, -1.0, 1.0], tris), smooth, 0.5)  # mirrored: faces turn over
+        obj.data.polygons.foreach_get("normal", normals)
+        check(np.allclose(normals.reshape(-1, 3), [0.0, 0.0, -1.0]), "normals did not follow a mirrored in-place write")
     bpy.data.objects.remove(obj)
 
 
