@@ -23,7 +23,7 @@ def _with(hull, curve, parameter, value):
     the Blender add-on's Basic Curve node makes one (the other curve specs are shared)."""
     desc = copy.copy(hull.description)
     desc.curves = dict(desc.curves)
-    desc.curves[curve] = copy.deepcopy(desc.curves[curve])
+    desc.curves[curve] = desc.curves[curve].copy()
     out = fl.Hull(desc)
     out.set(curve, parameter, value)
     return out
