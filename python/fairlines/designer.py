@@ -182,7 +182,10 @@ DOME_HALF_BREADTH = 0.12
 # hull's keel in forward of its nose, so a closer nose still folded one of bench_design_options'
 # 18 ships with both (0.01 and 0.02 Lpp).
 DOME_BLEND_CLEARANCE = 0.03
-DOME_ON_BLEND_TOL = 1e-4  # a blend boundary this fraction of T below the base lies on the dome
+# A blend boundary this fraction of T below the base lies on the dome (a hundredth of its depth): one
+# running onto it reaches metres down its side; a dome 5 m aft of a blend starting on the flat keel
+# still drew the keel 2 mm under the base there (a 166 m ship of bench_design_options).
+DOME_ON_BLEND_TOL = 0.01 * DOME_DEPTH
 
 
 #: Particulars a design cannot start without (fl.design_hull raises InvalidInput naming those missing).
