@@ -114,6 +114,23 @@ FIT_END = 0.06              # no fullness points this close (fraction of the wat
 # fairest that meets volume and LCB (bench_fairness_space, 0.03-0.25 tried; 0.12 best).
 SAC_FREE_NEAR_PEAK = 0.12
 KEEL_LANDING_TOL = 1e-6     # a keel landing this close (fraction of Lpp) to the parallel body leaves the run no convex range
+# Just forward of where the keel lands the run's section fullness f rises through the section
+# family's turn: at a quarter of the depth the family's half-breadth is convex in f below about
+# 0.83 (and concave above), so with the keel's fall over and f rising at a steady rate the low
+# waterlines took a hollow of 0.1-2.7 deg there between the round end and the run's shoulder (and
+# the outer buttocks a matching lobe). The SAC holds f'' <= -LANDING_BEND / Lpp^2 (f against x in
+# m) over LANDING_BEND_SPAN of Lpp from the landing, where the volume and LCB allow it (with the
+# run's convex range, convex_where_met): the fullness's rise slows there, as the family needs.
+# bench_hull's hulls 0-99 / 100-199 of 200: T/4 waterlines with more than two sign changes whose
+# smallest inner lobe lies at 0.05-0.2 Lpp 14 -> 2 / 14 -> 2; hulls with a waterline over two
+# 57 -> 52 / 55 -> 45, a buttock over two 53 -> 53 / 44 -> 43, S frames 24 / 17 unchanged, every
+# mark 26 -> 27 / 34 -> 36; waterlines clean as a lines plan, lower 252 -> 252 / 240 -> 250, upper
+# 276 -> 277 / 270 -> 269 of 300; the 0.06 / 0.12 T waterlines' largest aft hollow 11.7 / 3.9 ->
+# 10.1 / 2.3 deg (hulls 0-99). Bends 7, 10, 12, 17, 20: every mark 26, 26, 26, 25, 25 on hulls
+# 0-99 (40: 6); spans 0.035 / 0.07 Lpp: 27 / 25. bench_design_options: 495 of 500 build as before;
+# its 148 bulbed blends fold no more (largest normal turn 58.6 deg), none crosses itself.
+LANDING_BEND = 14.0
+LANDING_BEND_SPAN = 0.05
 PEAK_CHECKS = 2001          # points of the waterline searched for where it is at B/2
 MATCH_TOL = 1e-6            # relative tolerance of volume, LCB (on Lpp) and waterplane area on the surface
 MATCH_ITERATIONS = 6
@@ -615,7 +632,8 @@ def _sac_spec(p: Particulars, c: dict, dwl_curve, profile, keel_landing: float, 
     if par[1] > par[0]:
         sac.update(flat_from=par[0], flat_to=par[1], value=c["cm"] * B * T)
         if par[0] - keel_landing > KEEL_LANDING_TOL * L:
-            sac["convex_where_met"] = [[keel_landing, par[0], 0.0]]
+            sac["convex_where_met"] = [[keel_landing, par[0], 0.0],
+                                       [keel_landing, min(keel_landing + LANDING_BEND_SPAN * L, par[0]), LANDING_BEND / L ** 2]]
         return sac
     lo, hi = _at_half_breadth(dwl_curve, p, xa, xf)
     lo, hi = lo - SAC_FREE_NEAR_PEAK * L, hi + SAC_FREE_NEAR_PEAK * L
