@@ -272,8 +272,6 @@ def _request(name: str, plan: _Plan, spec: BasicCurveSpec, path: str, stations=(
 # rebuild that changes only the SAC and the waterline's area solves the rest again.
 CURVE_CACHE_SIZE = 32
 _curve_cache: OrderedDict = OrderedDict()
-
-
 _reference_cache: OrderedDict = OrderedDict()  # the SAC's reference fullness (_reference_fullness)
 
 
