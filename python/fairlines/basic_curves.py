@@ -125,8 +125,8 @@ class BasicCurve:
         out = np.full(x.shape, outside, dtype=float)
         if self.curve is None:
             out[inside] = self.value
-        elif inside.any():  # (np.minimum / np.maximum: np.clip's own cost is most of a short call's)
-            out[inside] = np.asarray(self.curve.evaluate(np.minimum(np.maximum(x[inside], self.x_start), self.x_end)))[:, 0]
+        elif inside.any():
+            out[inside] = np.asarray(self.curve.evaluate(clip(x[inside], self.x_start, self.x_end)))[:, 0]
         return out
 
     def derivative(self, x: float, order: int = 1) -> float:
@@ -267,12 +267,45 @@ def _request(name: str, plan: _Plan, spec: BasicCurveSpec, path: str, stations=(
     return r
 
 
+def clip(a: np.ndarray, lo: float, hi: float) -> np.ndarray:
+    """np.clip(a, lo, hi) for lo <= hi, the same values: on short rows np.clip's own overhead
+    was most of its cost, and the stations' rows are read on every rebuild."""
+    return np.minimum(np.maximum(a, lo), hi)
+
+
+class BuildCache:
+    """Results of pure build steps kept by the value of everything they read (the most recent
+    `size`), shared by every Hull: a hull copied with only its SAC changed (a slider in the
+    Blender add-on) re-solves the SAC alone. A hit returns the very objects a miss would have
+    computed from the same inputs, so the geometry is bit for bit the same; callers never
+    modify them."""
+
+    def __init__(self, size: int):
+        self.size = size
+        self.entries: OrderedDict = OrderedDict()
+
+    def get(self, key, compute):
+        try:
+            self.entries.move_to_end(key)
+            return self.entries[key]
+        except KeyError:  # not computed yet (or dropped by another thread meanwhile)
+            pass
+        value = self.entries[key] = compute()
+        if len(self.entries) > self.size:
+            self.entries.popitem(last=False)
+        return value
+
+    def clear(self) -> None:
+        self.entries.clear()
+
+
 # Recent solved curves kept by the value of everything solve_curve reads: the designer solves
 # the profile and the waterline, then the hull it builds solves them again, and a match
-# rebuild that changes only the SAC and the waterline's area solves the rest again.
+# rebuild that changes only the SAC and the waterline's area solves the rest again. The SAC's
+# reference fullness reads neither the volume nor the LCB, so a SAC slider re-solves the SAC alone.
 CURVE_CACHE_SIZE = 32
-_curve_cache: OrderedDict = OrderedDict()
-_reference_cache: OrderedDict = OrderedDict()  # the SAC's reference fullness (_reference_fullness)
+_curve_cache = BuildCache(CURVE_CACHE_SIZE)
+_reference_cache = BuildCache(CURVE_CACHE_SIZE)  # _reference_fullness
 
 
 def clear_curve_cache() -> None:
@@ -291,17 +324,7 @@ def solve_curve(name: str, spec: BasicCurveSpec, x0: float, x1: float, *, lower:
     A repeated request returns the curve solved before (callers never modify it). Raises
     InvalidInput for a bad form parameter, InfeasibleFormParameters when none fits."""
     key = (name, repr(spec), float(x0), float(x1), lower, upper, maximum, repr(defaults), repr(at_least))
-    try:
-        curve = _curve_cache[key]
-        _curve_cache.move_to_end(key)
-        return curve
-    except KeyError:  # not solved yet (or dropped by another thread meanwhile)
-        pass
-    curve = _solve_curve(name, spec, x0, x1, lower, upper, maximum, defaults, at_least)
-    _curve_cache[key] = curve
-    if len(_curve_cache) > CURVE_CACHE_SIZE:
-        _curve_cache.popitem(last=False)
-    return curve
+    return _curve_cache.get(key, lambda: _solve_curve(name, spec, x0, x1, lower, upper, maximum, defaults, at_least))
 
 
 def _solve_curve(name, spec, x0, x1, lower, upper, maximum, defaults, at_least) -> BasicCurve:
@@ -552,23 +575,19 @@ def _reference_fullness(spec: BasicCurveSpec, plan: _Plan, r) -> np.ndarray | No
     pts = [(x, f) for x, f in spec.fullness_fit if plan.xs <= x <= plan.xe]
     if not pts:
         return None
-    # It reads neither the volume nor the LCB: a SAC slider re-solves only the SAC itself.
     key = (tuple(r.knots), tuple((f.from_, f.to, f.value) for f in r.flats), plan.xs, plan.xe, tuple(pts))
-    try:
-        _reference_cache.move_to_end(key)
-        return _reference_cache[key]
-    except KeyError:  # not fitted yet (or dropped by another thread meanwhile)
-        pass
-    ref = _native.SplineDesignRequest()
-    ref.name, ref.knots = f"{_SAC_PATH}.fullness_fit", r.knots
-    ref.flats = r.flats
-    ref.e2 = REFERENCE_FAIRNESS * (plan.xe - plan.xs) ** 3 / len(pts)
-    ref.fit = [_native.SplineFitPoint(x, f, 1.0) for x, f in pts]
-    out = _reference_cache[key] = np.asarray(_native.design_spline_function(ref).control_points)[:, 0]
-    out.flags.writeable = False  # shared by every request with this key
-    if len(_reference_cache) > CURVE_CACHE_SIZE:
-        _reference_cache.popitem(last=False)
-    return out
+
+    def fit():
+        ref = _native.SplineDesignRequest()
+        ref.name, ref.knots = f"{_SAC_PATH}.fullness_fit", r.knots
+        ref.flats = r.flats
+        ref.e2 = REFERENCE_FAIRNESS * (plan.xe - plan.xs) ** 3 / len(pts)
+        ref.fit = [_native.SplineFitPoint(x, f, 1.0) for x, f in pts]
+        out = np.asarray(_native.design_spline_function(ref).control_points)[:, 0]
+        out.flags.writeable = False  # shared by every request with this key
+        return out
+
+    return _reference_cache.get(key, fit)
 
 
 def _sac_request(spec: BasicCurveSpec, dwl: BasicCurve, profile: BasicCurve, draft: float, fullness, bands, targets: bool,

@@ -102,7 +102,7 @@ from __future__ import annotations
 import copy
 import json
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
@@ -265,10 +265,10 @@ class BasicCurveSpec:
         lists' items, numbers or pairs that nothing changes in place, are shared): what a
         Blender slider edits, at a tenth of copy.deepcopy's cost."""
         out = copy.copy(self)
-        for name in ("params", "aliases"):
-            setattr(out, name, dict(getattr(self, name)))
-        for name in ("points", "slopes", "fit", "breaks", "fullness_fit", "convex", "concave", "convex_where_met"):
-            setattr(out, name, list(getattr(self, name)))
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if isinstance(value, (list, dict)):
+                setattr(out, f.name, type(value)(value))
         return out
 
     @classmethod

@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import json
 import math
-from collections import OrderedDict
 from dataclasses import replace
 from typing import Any
 
@@ -30,7 +29,7 @@ import numpy as np
 from . import _native
 from . import basic_curves as _basic_curves
 from . import dry_ends, station_mean, transom_run
-from .basic_curves import (CORNER_FULLNESS_BOUNDS, FULLNESS_BOUNDS, BasicCurve, immersed_range, solve_curve, solve_sac,
+from .basic_curves import (CORNER_FULLNESS_BOUNDS, FULLNESS_BOUNDS, BasicCurve, BuildCache, clip, immersed_range, solve_curve, solve_sac,
                            solve_sac_area)
 from .description import DOME_NECK, FORM_ALIASES, FORM_KEYS, BasicCurveSpec, HullDescription, load_description
 from .hydrostatics_surface import hydrostatics
@@ -134,42 +133,10 @@ DRY_TRANSOM_LEAN_BEND = 10.0
 # met its immersed sections with a step (19-20 cm in the buttocks of a Cb 0.80 ship; 17 of the
 # 73 dry transoms of bench_hull's first 100 hulls were over 75 deg).
 MAX_LOWER_ANGLE = 88.0
-# Recent hulls whose solved shape curves and fullness bands are kept (see _BuildCache).
+# Recent hulls whose solved shape curves and fullness bands are kept (see basic_curves.BuildCache).
 BUILD_CACHE_SIZE = 8
-
-
-def _clip(a: np.ndarray, lo: float, hi: float) -> np.ndarray:
-    """np.clip(a, lo, hi) for lo <= hi, the same values: on the stations' short rows np.clip's
-    own overhead was most of its cost, and section_specs runs on every rebuild."""
-    return np.minimum(np.maximum(a, lo), hi)
-
-
-class _BuildCache:
-    """Results of pure build steps kept by the value of everything they read, shared by every
-    Hull: a hull copied with only its SAC changed (a slider in the Blender add-on) re-solves
-    the SAC alone. A hit returns the very objects a miss would have computed from the same
-    inputs, so the geometry is bit for bit the same; callers never modify them."""
-
-    def __init__(self, size: int):
-        self.size = size
-        self.entries: OrderedDict = OrderedDict()
-
-    def get(self, key, compute):
-        if key in self.entries:
-            self.entries.move_to_end(key)
-            return self.entries[key]
-        value = compute()
-        self.entries[key] = value
-        if len(self.entries) > self.size:
-            self.entries.popitem(last=False)
-        return value
-
-    def clear(self) -> None:
-        self.entries.clear()
-
-
-_shape_cache = _BuildCache(BUILD_CACHE_SIZE)
-_band_cache = _BuildCache(BUILD_CACHE_SIZE)
+_shape_cache = BuildCache(BUILD_CACHE_SIZE)
+_band_cache = BuildCache(BUILD_CACHE_SIZE)
 
 
 def _clear_build_caches() -> None:
@@ -553,7 +520,7 @@ class Hull:
         `curves`: the solved basic curves (default) or any dict holding these curves."""
         bc = self.basic_curves if curves is None else curves
         pr = self.description.principal
-        deck = _clip(bc["deck"](xs), 0.0, pr.half_breadth_limit)
+        deck = clip(bc["deck"](xs), 0.0, pr.half_breadth_limit)
         z_deck = bc["sheer"](xs) if "sheer" in bc else np.full(len(xs), pr.depth)
         return deck, z_deck, bc["dwl"](xs, outside=math.nan), bc["profile"](xs)
 
@@ -591,14 +558,14 @@ class Hull:
         deck, z_deck, dwl, prof = self.curve_points(xs, bc)
         sac = bc["sac"](xs, outside=math.nan) if with_area else None
         # a spline fitted to a bound may overshoot it by round-off (a deadrise of -4e-13 deg)
-        shape = {name: _clip(bc[name](xs), lo, hi) for name, (_, lo, hi) in SHAPE_CURVES.items()}
-        optional = {field: _clip(bc[name](xs), lo, hi) for name, (field, lo, hi) in CORNER_CURVES.items() if name in bc}
+        shape = {name: clip(bc[name](xs), lo, hi) for name, (_, lo, hi) in SHAPE_CURVES.items()}
+        optional = {field: clip(bc[name](xs), lo, hi) for name, (field, lo, hi) in CORNER_CURVES.items() if name in bc}
         if "flat_bottom" in bc:
-            optional["flat_bottom"] = _clip(bc["flat_bottom"](xs, outside=0.0), *FLAT_BOTTOM_BOUNDS)
+            optional["flat_bottom"] = clip(bc["flat_bottom"](xs, outside=0.0), *FLAT_BOTTOM_BOUNDS)
         lower = self._lower_angles(xs)
         given = self._given_shapes(xs)
         offsets = self._given_offsets(xs)
-        deck, z_deck = _clip(deck + offsets[:, 0], 0.0, limit), z_deck + offsets[:, 1]
+        deck, z_deck = clip(deck + offsets[:, 0], 0.0, limit), z_deck + offsets[:, 1]
         dwl = np.where(dwl > 0, dwl + offsets[:, 2], dwl)
         prof = prof + offsets[:, 3]
         skeg, share = d.skeg.at(xs, np.minimum(prof, z_deck)) if d.skeg is not None else (np.full(len(xs), np.nan), None)

@@ -36,6 +36,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _native
+from .basic_curves import clip
 
 #: The run's length forward of the waterline's aft end, fraction of Lpp. 0.04, not 0.03: since
 #: the bilge arc's fine weight is 0.5 the upper waterlines took wobbles of 0.1-0.2 deg where the
@@ -141,16 +142,14 @@ class TransomRun:
         knots, p, n, t = self._params
         pts = np.asarray(curve.evaluate(t))
         P, z_low = pts[:n], pts[n:2 * n, 2]  # z_low: the lowest point of each control point's support
-        # (np.minimum / np.maximum, not np.clip: the same values at a third of the cost on these
-        # short rows, and this runs for every section of the run on every rebuild)
         shift = self.lines(spec.x) - topside_offsets(pts[2 * n:], zd, T, zk)
         shift[np.isnan(shift)] = 0.0
         shift *= self.fade(spec.x)
         shift -= self.levels * shift[-1]  # the deck edge stays on the deck line
-        eta = np.minimum(np.maximum((P[:, 2] - T) / (zd - T), 0.0), 1.0)
-        s = np.minimum(np.maximum((z_low - z_lo) / (BLEND_DEPTH * (zd - T)), 0.0), 1.0)
+        eta = clip((P[:, 2] - T) / (zd - T), 0.0, 1.0)
+        s = clip((z_low - z_lo) / (BLEND_DEPTH * (zd - T)), 0.0, 1.0)
         w = s * s * (3 - 2 * s)
         w[[0, -1]] = 0.0
         ctrl = np.array(curve.control_points, dtype=float)
-        ctrl[:, 1] = np.minimum(np.maximum(ctrl[:, 1] + w * np.interp(eta, self.levels, shift), 0.0), spec.y_max)
+        ctrl[:, 1] = clip(ctrl[:, 1] + w * np.interp(eta, self.levels, shift), 0.0, spec.y_max)
         return _native.NurbsCurve(p, knots, ctrl)
