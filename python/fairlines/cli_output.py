@@ -5,9 +5,11 @@
     fairlines hydrostatics HULL -o curves.csv [--drafts 1:19:1] [--trims 0,1] [--plot curves.png]
 
 HULL is a surface JSON written by ``fairlines.io.save_json`` (or several, one per subdomain)
-or a hull description JSON (``fl.Hull.from_json``); ``--compose`` adds its bulb and blend
-(``compose_with_blend``). Principal particulars come from the description's ``principal``
-section unless given.
+or a hull description JSON (``fl.Hull.from_json``). A description with a bulbous bow is the ship
+composed (bare hull, bulb and blend: ``Hull.composed_hull``) unless ``--bare`` asks for its bare
+hull alone; ``--compose`` composes one without a bulb too (its bare hull closed by deck, transom
+and centre plane). Principal particulars come from the description's ``principal`` section
+unless given.
 """
 
 from __future__ import annotations
@@ -26,7 +28,10 @@ COMMANDS = ("export", "lines", "hydrostatics")
 
 def _hull_arg(p):
     p.add_argument("hull", nargs="+", help="surface JSON file(s) or a hull description JSON")
-    p.add_argument("--compose", action="store_true", help="description: bare hull + bulb + blend composed")
+    which = p.add_mutually_exclusive_group()
+    which.add_argument("--compose", action="store_true",
+                       help="description: the composed hull (the default with a bulb; closes one without a bulb)")
+    which.add_argument("--bare", action="store_true", help="description: the bare hull alone, without its bulb")
     for k, h in (("lpp", "length between perpendiculars (m), AP at x = 0"), ("beam", "moulded breadth B (m)"),
                  ("draft", "design draft T (m)"), ("depth", "depth D (m)")):
         p.add_argument(f"--{k}", type=float, help=h)
@@ -81,7 +86,7 @@ def _load(args):
         pr = docs[0]["principal"]
         part = dict(lpp=pr.get("Lpp"), beam=pr.get("B"), draft=pr.get("T"), depth=pr.get("D"))
         name = docs[0].get("name", "")
-        hull = (hull_obj.composed_hull() if args.compose else hull_obj.bare_hull_surface())
+        hull = _description_hull(hull_obj, args)
     else:
         for p, d in zip(args.hull, docs):
             if "type" not in d:
@@ -96,6 +101,17 @@ def _load(args):
         if getattr(args, k) is not None:
             part[k] = getattr(args, k)
     return hull, part, name, hull_obj
+
+
+def _description_hull(hull_obj, args):
+    """The composed hull (asked, or by default for a description with a bulb) or the bare hull's surface."""
+    if args.compose or (hull_obj.description.bulb is not None and not args.bare):
+        composed = hull_obj.composed_hull()
+        print("hull: " + ("bare hull, bulbous bow and blend composed (--bare: the bare hull alone)"
+                          if hull_obj.description.bulb is not None else "bare hull closed (no bulb)")
+              + (f"; {composed.blend_note}" if composed.blend_note else ""))
+        return composed
+    return hull_obj.bare_hull_surface()
 
 
 def _need(part, keys):
@@ -149,8 +165,8 @@ def _floats(text: str, option: str) -> np.ndarray:
 def _hydrostatics(args) -> int:
     from .curves_of_form import curves_of_form, highest_draft
     hull, part, name, hull_obj = _load(args)
-    if not isinstance(hull, NurbsSurface):
-        raise InvalidInput("curves of form need one surface; expected a single surface or a bare-hull description")
+    if isinstance(hull, list):
+        raise InvalidInput("curves of form need one hull; expected a single surface or a hull description")
     _need(part, ("lpp", "beam"))
     depth = part.get("depth")
     trims = _floats(args.trims, "--trims")
@@ -158,7 +174,8 @@ def _hydrostatics(args) -> int:
         drafts = _floats(args.drafts, "--drafts")
     else:
         _need(part, ("draft", "depth"))
-        tops = {t: highest_draft(hull, depth, part["lpp"], t) for t in trims}
+        surface = hull if isinstance(hull, NurbsSurface) else hull.trimmed_surfaces[0][0]  # a composed hull's bare hull
+        tops = {t: highest_draft(surface, depth, part["lpp"], t) for t in trims}
         trim, top = min(tops.items(), key=lambda kv: kv[1])
         if not top > 0.1 * part["draft"]:
             raise InvalidInput(f"--trims holds {trim:g} m, at which the deck dips below T/10 = "

@@ -15,7 +15,7 @@ from typing import Callable, Sequence
 import numpy as np
 
 from ._native import HydrostaticsOptions, InvalidInput, NurbsSurface
-from .hydrostatics_surface import hydrostatics
+from .hydrostatics_surface import hydrostatics, midship_x
 
 __all__ = ["CurvesOfForm", "COLUMNS", "curves_of_form", "highest_draft"]
 
@@ -111,13 +111,16 @@ def _figure(size):
     return Figure(figsize=size)
 
 
-def curves_of_form(surface: NurbsSurface, drafts: Sequence[float], *, lpp: float, beam: float,
+def curves_of_form(hull, drafts: Sequence[float], *, lpp: float, beam: float,
                    depth: float | None = None, trims: Sequence[float] = (0.0,), design_draft: float | None = None,
                    density: float = HydrostaticsOptions().density,
                    half_hull: bool = HydrostaticsOptions().half_hull, gauss: int = HydrostaticsOptions().gauss,
                    sac_stations: int = 81) -> CurvesOfForm:
-    """Hydrostatics of ``surface`` at every draft (m above base) and trim (m by the stern).
+    """Hydrostatics of ``hull`` at every draft (m above base) and trim (m by the stern).
 
+    hull         a NurbsSurface, or a composed hull (``hull.composed_hull()``: bare hull, bulb
+                 and blend), measured by fairlines.hydrostatics_composed; it is a half hull
+                 (half_hull stays True), and its SAC is the bare hull's.
     lpp, beam    the ship's Lpp (AP at x = 0) and B (m) for the coefficients and the trim.
     depth        D (m): a waterplane above the deck anywhere along the hull is refused
                  (upright: a draft above D; trimmed: above D at the end the trim sinks), as
@@ -128,6 +131,37 @@ def curves_of_form(surface: NurbsSurface, drafts: Sequence[float], *, lpp: float
     Raises InvalidInput for a draft <= 0, a waterplane above the deck or the surface's top, or
     bad options.
     """
+    surface, row = _measure(hull, float(lpp), float(beam), density, half_hull, gauss)
+    drafts = _checked_drafts(surface, drafts, depth, trims, lpp)
+    rows = [{k: h[k] for k, _ in COLUMNS} for h in (row(float(T), float(t)) for t in trims for T in drafts)]
+    design = sac = None
+    if design_draft is not None:
+        hd = hydrostatics(surface, float(design_draft), half_hull=half_hull, length=float(lpp),
+                          breadth=float(beam), gauss=gauss, sac_stations=sac_stations, density=density,
+                          midship_x=midship_x(surface, 0.5 * float(lpp)))
+        design = hd.as_dict() if surface is hull else row(float(design_draft), 0.0)
+        sac = (np.asarray(hd.sac_x), np.asarray(hd.sac_area))
+    return CurvesOfForm(rows, dict(lpp=float(lpp), beam=float(beam), depth=depth), design, sac)
+
+
+def _measure(hull, lpp: float, beam: float, density: float, half_hull: bool, gauss: int):
+    """(the hull's NURBS surface, its bare hull's for a composed hull; a function (draft, trim)
+    -> hydrostatics dict)."""
+    if isinstance(hull, NurbsSurface):
+        return hull, lambda T, t: _hydro(hull, T, lpp, beam, 0.5 * lpp, t, density, half_hull, gauss, 2)
+    from .compose import compose
+    from .hydrostatics_composed import composed_hydrostatics
+    if not half_hull:
+        raise InvalidInput("half_hull is False; expected True for a composed hull (it is the half y >= 0)")
+    bare = hull.trimmed_surfaces[0][0]
+    bare_mesh = compose([bare])  # made once: every row subtracts it
+    return bare, lambda T, t: composed_hydrostatics(hull, T, lpp=lpp, beam=beam, trim=t, bare_mesh=bare_mesh,
+                                                    density=density)
+
+
+def _checked_drafts(surface, drafts, depth, trims, lpp) -> np.ndarray:
+    """The drafts as an array. Raises InvalidInput for a draft <= 0 or a waterplane above the
+    deck (depth) at any trim."""
     drafts = np.atleast_1d(np.asarray(drafts, float))
     if drafts.size == 0 or not np.all(np.isfinite(drafts)) or np.any(drafts <= 0):
         raise InvalidInput(f"drafts are {drafts.tolist()}; expected finite drafts > 0 (m)")
@@ -141,20 +175,7 @@ def curves_of_form(surface: NurbsSurface, drafts: Sequence[float], *, lpp: float
                 raise InvalidInput(f"at trim {t:g} m the drafts {drafts[drafts > top].tolist()} m put the waterplane above "
                                    f"the deck (depth {depth} m) at the {'aft' if t > 0 else 'fore'} end; expected drafts "
                                    f"<= {top:.4g} m at that trim")
-    mid = 0.5 * float(lpp)
-    rows = []
-    for t in trims:
-        for T in drafts:
-            h = _hydro(surface, float(T), lpp, beam, mid, float(t), density, half_hull, gauss, 2)
-            rows.append({k: h[k] for k, _ in COLUMNS})
-    design = sac = None
-    if design_draft is not None:
-        hd = hydrostatics(surface, float(design_draft), half_hull=half_hull, length=float(lpp),
-                                  breadth=float(beam), gauss=gauss, sac_stations=sac_stations, density=density,
-                                  midship_x=midship_x(surface, mid))
-        design = hd.as_dict()
-        sac = (np.asarray(hd.sac_x), np.asarray(hd.sac_area))
-    return CurvesOfForm(rows, dict(lpp=float(lpp), beam=float(beam), depth=depth), design, sac)
+    return drafts
 
 
 def highest_draft(surface: NurbsSurface, depth: float, lpp: float, trim: float = 0.0) -> float:
@@ -170,12 +191,6 @@ def _x_extent(surface):
     g = np.asarray(surface.evaluate_grid(np.linspace(*surface.domain_u, EXTENT_SAMPLES),
                                          np.linspace(*surface.domain_v, EXTENT_SAMPLES)))[..., 0]
     return float(g.min()), float(g.max())
-
-
-def midship_x(surface, mid):
-    """Lpp / 2 for Am when the surface reaches it, else None (the middle of its extent)."""
-    x = np.asarray(surface.control_points)[..., 0]
-    return mid if x.min() <= mid <= x.max() else None
 
 
 def _hydro(surface, T, lpp, beam, mid, trim, density, half_hull, gauss, sac_stations):

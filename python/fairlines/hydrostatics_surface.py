@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import numpy as np
+
 from . import _native
 from ._native import NurbsSurface
 from ._options import fill_options
@@ -26,3 +28,10 @@ def hydrostatics(surface: NurbsSurface, draft: float, **options) -> _native.Hydr
     Raises InvalidInput for a bad draft or option, or a waterplane above the surface's highest
     point."""
     return _native._hydrostatics(surface, draft, hydrostatics_options(**options))
+
+
+def midship_x(surface: NurbsSurface, mid: float) -> float | None:
+    """``mid`` (m, Lpp / 2) as the station of Am when the surface reaches it, else None (the
+    middle of its extent): a forebody model has no midship section."""
+    x = np.asarray(surface.control_points)[..., 0]
+    return mid if x.min() <= mid <= x.max() else None

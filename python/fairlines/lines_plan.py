@@ -29,8 +29,9 @@ from typing import Sequence
 
 import numpy as np
 
-from ._native import HydrostaticsOptions, InvalidInput, NurbsSurface
-from .hydrostatics_surface import hydrostatics
+from ._native import InvalidInput, NurbsSurface
+from .hydrostatics_composed import CAP_PARTS, composed_hydrostatics, waterplane_from_sections  # noqa: F401  (re-exported)
+from .hydrostatics_surface import hydrostatics, midship_x
 from .lines_layout import layout
 from .lines_sheet import SHEET_MM, STATIONS_PER_LPP, Polyline, Text
 from .plane_sections import boundary_curves, chain_segments, even_odd_inside, plane_sections
@@ -46,8 +47,6 @@ SEAM_TOLERANCE = 1e-4
 CENTRE_PLANE_TOLERANCE = 1e-7
 #: A station on an end of the hull is cut this fraction of Lpp inside it.
 END_NUDGE = 1e-9
-#: Face labels of a composed hull's cap faces (centre plane, deck, aft cut).
-_CAP_PARTS = (2, 3, 4)
 @dataclass
 class LinesPlan:
     """The lines of a hull and their drawing.
@@ -200,7 +199,7 @@ def _mesh_outline(composed) -> list[np.ndarray]:
     surface face: the hull's outline at the mesh resolution, its points on the surfaces."""
     F = np.asarray(composed.mesh.faces)
     V = np.asarray(composed.mesh.vertices)
-    cap = np.isin(np.asarray(composed.face_part), _CAP_PARTS)
+    cap = np.isin(np.asarray(composed.face_part), CAP_PARTS)
     e = np.concatenate([F[:, [0, 1]], F[:, [1, 2]], F[:, [2, 0]]])
     owner_cap = np.tile(cap, 3)
     key = np.sort(e, axis=1)
@@ -241,30 +240,6 @@ def _extent(patches):
     return pts.min(axis=0), pts.max(axis=0)
 
 
-def waterplane_from_sections(cuts, density: float = HydrostaticsOptions().density) -> dict:
-    """Full-ship waterplane area, LCF, I_T and I_L (about F) from the half waterline's branches
-    (k, 3) by Green's theorem: the region between them, the centre line y = 0 and transverse
-    lines x = const (which add nothing to the line integrals of y, x y, y^3 / 3, x^2 y along
-    dx); open branches count positive, a closed branch (an island) by its enclosed area."""
-    a = mx = it = ix2 = 0.0
-    for c in cuts:
-        x, y = c[:, 0], np.abs(c[:, 1])
-        if np.linalg.norm(c[0] - c[-1]) < 1e-9 * max(1.0, np.ptp(x)) or len(c) < 2:
-            x, y = np.r_[x, x[:1]], np.r_[y, y[:1]]
-        dx = np.diff(x)
-        ym, xm = 0.5 * (y[1:] + y[:-1]), 0.5 * (x[1:] + x[:-1])
-        s = np.sign(np.sum(ym * dx)) or 1.0
-        a += s * np.sum(ym * dx)
-        mx += s * np.sum(xm * ym * dx)
-        it += s * np.sum((y[1:] ** 3 + y[:-1] ** 3) / 6.0 * dx)
-        ix2 += s * np.sum(xm * xm * ym * dx)
-    if a <= 0:
-        return {}
-    lcf = mx / a
-    return dict(waterplane_area=2 * a, lcf=lcf, inertia_t=2 * it, inertia_l=2 * (ix2 - a * lcf * lcf),
-                tpc=density * 2 * a / 100)
-
-
 def _hydrostatics(hull, patches, p, dwl_cuts=()) -> dict | None:
     """Hydrostatics at the design draft for the title block, with where they come from."""
     try:
@@ -277,51 +252,15 @@ def _hydrostatics(hull, patches, p, dwl_cuts=()) -> dict | None:
             h["source"] = "NURBS quadrature" + ("" if full else f", modelled part x {lo:.1f}-{hi:.1f} m only")
             return h
         if hasattr(hull, "mesh"):
-            return _composed_hydrostatics(hull, patches[0][0], p, dwl_cuts)
+            return composed_hydrostatics(hull, p["draft"], lpp=p["lpp"], beam=p["beam"], waterline_cuts=dwl_cuts)
     except (ValueError, RuntimeError):
         return None
     return None
 
 
 def _quadrature(s, p) -> dict:
-    from .curves_of_form import midship_x
     return hydrostatics(s, p["draft"], length=p["lpp"], breadth=p["beam"],
                                 midship_x=midship_x(s, 0.5 * p["lpp"])).as_dict()
-
-
-def _composed_hydrostatics(hull, bare, p, dwl_cuts) -> dict:
-    """A composed hull at the DWL: the bare hull by NURBS quadrature plus what the bulb and
-    blend change, measured as the difference between the composed mesh and the bare hull's
-    own mesh (so the meshes' chordal error cancels); the waterplane from the DWL section;
-    Am (so Cm) of the bare hull at Lpp / 2, which the bulb does not reach."""
-    from .compose import compose
-    from .hydrostatics_mesh import displaced_volume_of_mesh
-    T = p["draft"]
-    q = _quadrature(bare, p)
-    bare_mesh = compose([bare])
-    mc, mb = (displaced_volume_of_mesh(m.mesh.vertices, m.mesh.faces, T) for m in (hull, bare_mesh))
-    vol = q["volume"] + mc.volume - mb.volume
-    h = dict(volume=vol, displacement=q["displacement"] / q["volume"] * vol,
-             lcb=(q["volume"] * q["lcb"] + mc.volume * mc.lcb - mb.volume * mb.lcb) / vol,
-             vcb=(q["volume"] * q["vcb"] + mc.volume * mc.vcb - mb.volume * mb.vcb) / vol,
-             wetted_surface=q["wetted_surface"] + _mesh_wetted_surface(hull, T) - _mesh_wetted_surface(bare_mesh, T),
-             cb=vol / (p["lpp"] * p["beam"] * T), cm=q["cm"], cp=vol / (q["midship_area"] * p["lpp"]),
-             source="bare hull by NURBS quadrature, bulb and blend added from the composed mesh; "
-                    "waterplane from the DWL section")
-    h.update(waterplane_from_sections(dwl_cuts))
-    if "inertia_t" in h:
-        h["kmt"] = h["vcb"] + h["inertia_t"] / h["volume"]
-        h["kml"] = h["vcb"] + h["inertia_l"] / h["volume"]
-        h["mct1cm"] = h["displacement"] * h["inertia_l"] / h["volume"] / (100 * p["lpp"])
-        h["cwp"] = h["waterplane_area"] / (p["lpp"] * p["beam"])
-    return h
-
-
-def _mesh_wetted_surface(composed, draft: float) -> float:
-    """Full-ship area (m^2) of a composed hull's surface faces (not its caps) below z = draft."""
-    from .hydrostatics_mesh import hydrostatics_of_mesh
-    faces = np.asarray(composed.mesh.faces)[~np.isin(np.asarray(composed.face_part), _CAP_PARTS)]
-    return hydrostatics_of_mesh(composed.mesh.vertices, faces, draft).wetted_surface
 
 
 def lines_plan(hull, *, lpp: float, beam: float, draft: float, depth: float, name: str = "",

@@ -85,3 +85,24 @@ def test_a_trim_that_sinks_the_deck_names_the_trim(tmp_path, capsys):
     assert main(["hydrostatics", DESCRIPTION, "-o", str(tmp_path / "c.csv"), "--trims", "0,100"]) == 2
     err = capsys.readouterr().err
     assert "--trims holds 100 m, at which the deck dips below T/10" in err and "drafts are" not in err
+
+
+def test_a_bulbed_description_is_measured_and_drawn_with_its_bulb(tmp_path, capsys):
+    """The example has a bulb: hydrostatics takes the composed ship unless --bare asks
+    for the bare hull, whose rows are fl.hydrostatics of its surface; the bulb adds volume at
+    every draft and moves the LCB forward."""
+    import numpy as np
+
+    import fairlines as fl
+    from cad_fixtures import example_hull_surface
+
+    rows = {}
+    for flag in ([], ["--bare"]):
+        out = tmp_path / f"c{len(flag)}.csv"
+        assert main(["hydrostatics", DESCRIPTION, *flag, "-o", str(out), "--drafts", "6,11"]) == 0
+        rows[bool(flag)] = np.genfromtxt(out, delimiter=",", names=True)
+    assert "bulbous bow and blend composed" in capsys.readouterr().out
+    bare = fl.hydrostatics(example_hull_surface(), 11.0, length=244.8, breadth=32.25, midship_x=122.4)
+    assert rows[True]["volume_m3"][1] == pytest.approx(bare.volume, rel=1e-9)  # the CSV's 10 digits
+    assert np.all(rows[False]["volume_m3"] > rows[True]["volume_m3"])
+    assert np.all(rows[False]["LCB_m"] > rows[True]["LCB_m"])

@@ -1,0 +1,142 @@
+"""Hydrostatics of a composed hull (bare hull + bulbous bow + blend) at any draft and trim.
+
+The bare hull is measured by NURBS quadrature (:func:`fl.hydrostatics <fairlines.hydrostatics>`);
+what the bulb and blend change (volume, its centroid, wetted surface) is the difference between
+the composed hull's mesh and the bare hull's own mesh at the same waterplane, so the meshes'
+chordal error cancels wherever the two coincide; the waterplane (area, LCF, I_T, I_L) comes
+from the composed hull's exact plane section by the waterplane (Green's theorem). Conventions
+are the engine's (``hydrostatics.hpp``): full-ship figures, a trim by the stern (m) over Lpp
+inclines the waterplane through the draft at Lpp / 2, its area and transverse moment are the
+true ones in that plane, I_L is about F along it, and LCF is the x of F.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._native import HydrostaticsOptions
+from .hydrostatics_mesh import hydrostatics_of_mesh
+from .hydrostatics_surface import hydrostatics, midship_x
+from .plane_sections import plane_sections
+
+__all__ = ["composed_hydrostatics", "bulb_share", "mesh_below", "waterplane_from_sections", "CAP_PARTS"]
+
+#: Face labels of a composed hull's cap faces (centre plane, deck, aft cut): not wetted hull.
+CAP_PARTS = (2, 3, 4)
+#: The waterplane is cut this fraction of Lpp below its place: a draft at the deck would cut
+#: along the hull's top edge (the deck cap), where a section has no branch of its own.
+WATERPLANE_NUDGE = 1e-9
+
+
+def waterplane_from_sections(cuts, density: float = HydrostaticsOptions().density) -> dict:
+    """Full-ship waterplane area, LCF, I_T and I_L (about F) from the half waterline's branches
+    (k, 3) by Green's theorem: the region between them, the centre line y = 0 and transverse
+    lines x = const (which add nothing to the line integrals of y, x y, y^3 / 3, x^2 y along
+    dx); open branches count positive, a closed branch (an island) by its enclosed area.
+    Empty (no area) gives {}."""
+    a = mx = it = ix2 = 0.0
+    for c in cuts:
+        x, y = c[:, 0], np.abs(c[:, 1])
+        if np.linalg.norm(c[0] - c[-1]) < 1e-9 * max(1.0, np.ptp(x)) or len(c) < 2:
+            x, y = np.r_[x, x[:1]], np.r_[y, y[:1]]
+        dx = np.diff(x)
+        ym, xm = 0.5 * (y[1:] + y[:-1]), 0.5 * (x[1:] + x[:-1])
+        s = np.sign(np.sum(ym * dx)) or 1.0
+        a += s * np.sum(ym * dx)
+        mx += s * np.sum(xm * ym * dx)
+        it += s * np.sum((y[1:] ** 3 + y[:-1] ** 3) / 6.0 * dx)
+        ix2 += s * np.sum(xm * xm * ym * dx)
+    if a <= 0:
+        return {}
+    lcf = mx / a
+    return dict(waterplane_area=2 * a, lcf=lcf, inertia_t=2 * it, inertia_l=2 * (ix2 - a * lcf * lcf),
+                tpc=density * 2 * a / 100)
+
+
+class _Frame:
+    """The waterplane's frame: the ship rotated about the y axis through (Lpp / 2, 0, T) by
+    theta = atan(trim / Lpp), so the waterplane z = T + trim (Lpp / 2 - x) / Lpp becomes z' = T."""
+
+    def __init__(self, draft: float, trim: float, lpp: float):
+        self.x0, self.z0 = 0.5 * lpp, draft
+        theta = math.atan2(trim, lpp)
+        self.c, self.s = math.cos(theta), math.sin(theta)
+        self.normal = (self.s, 0.0, self.c)  # the waterplane's unit normal in the ship's frame
+        self.offset = self.s * self.x0 + self.c * self.z0
+
+    def into(self, p: np.ndarray) -> np.ndarray:
+        """(n, 3) ship points in the waterplane's frame."""
+        dx, dz = p[:, 0] - self.x0, p[:, 2] - self.z0
+        return np.column_stack([self.x0 + self.c * dx - self.s * dz, p[:, 1], self.z0 + self.s * dx + self.c * dz])
+
+    def back(self, x: float, z: float) -> tuple[float, float]:
+        """A point (x', z') of the waterplane's frame in the ship's frame."""
+        dx, dz = x - self.x0, z - self.z0
+        return self.x0 + self.c * dx + self.s * dz, self.z0 - self.s * dx + self.c * dz
+
+
+def mesh_below(composed, draft: float, *, lpp: float, trim: float = 0.0) -> dict:
+    """What of a closed half-hull mesh (a ComposedHull, ``fl.compose``'s) lies below the
+    waterplane of ``draft`` (m at Lpp / 2) and ``trim`` (m by the stern over ``lpp``):
+    full-ship ``volume`` (m^3), its centroid ``lcb``, ``vcb`` (m, the ship's frame) and
+    ``wetted`` area (m^2) of its hull faces (not the caps: centre plane, deck, aft cut)."""
+    return _below(composed, _Frame(draft, trim, lpp))
+
+
+def _below(m, frame: _Frame) -> dict:
+    v, f = frame.into(np.asarray(m.mesh.vertices)), np.asarray(m.mesh.faces)
+    h = hydrostatics_of_mesh(v, f, frame.z0)
+    x, z = frame.back(h.lcb, h.vcb) if h.volume > 0 else (0.0, 0.0)
+    hull_faces = f[~np.isin(np.asarray(m.face_part), CAP_PARTS)]
+    return dict(volume=h.volume, lcb=x, vcb=z, wetted=hydrostatics_of_mesh(v, hull_faces, frame.z0).wetted_surface)
+
+
+def bulb_share(composed, bare_mesh, draft: float, *, lpp: float, trim: float = 0.0) -> dict:
+    """What the bulb and blend add below the waterplane: the composed hull's mesh minus the bare
+    hull's own mesh (``fl.compose([bare])``): ``volume`` (m^3), its moments ``mx``, ``mz``
+    (m^4, the ship's frame) and ``wetted`` area (m^2)."""
+    frame = _Frame(draft, trim, lpp)
+    c, b = _below(composed, frame), _below(bare_mesh, frame)
+    return dict(volume=c["volume"] - b["volume"], mx=c["volume"] * c["lcb"] - b["volume"] * b["lcb"],
+                mz=c["volume"] * c["vcb"] - b["volume"] * b["vcb"], wetted=c["wetted"] - b["wetted"])
+
+
+def composed_hydrostatics(composed, draft: float, *, lpp: float, beam: float, trim: float = 0.0,
+                          bare_mesh=None, waterline_cuts=None,
+                          density: float = HydrostaticsOptions().density) -> dict:
+    """Hydrostatics of a composed hull (``hull.composed_hull()``) floating at ``draft`` (m above
+    base at Lpp / 2), trimmed ``trim`` m by the stern over ``lpp``: a dict with the keys of
+    ``fl.Hydrostatics.as_dict()`` that a hydrostatic table shows (volume, displacement, lcb,
+    vcb, lcf, waterplane_area, tpc, mct1cm, bmt, bml, kmt, kml, cb, cp, cm, cwp,
+    wetted_surface, inertia_t, inertia_l, draft, trim) and ``source``. Am (so Cm) is the bare
+    hull's at Lpp / 2, which a bulb does not reach. ``bare_mesh``: ``fl.compose([bare])`` if
+    already made (a table reuses it); ``waterline_cuts``: the upright waterplane's section
+    branches if already cut (the lines plan's DWL). Raises InvalidInput as fl.hydrostatics
+    does (a draft <= 0, a waterplane above the hull)."""
+    from .compose import compose
+
+    bare = composed.trimmed_surfaces[0][0]
+    q = hydrostatics(bare, draft, length=lpp, breadth=beam, midship_x=midship_x(bare, 0.5 * lpp), density=density,
+                     **({"trim": trim, "trim_length": lpp} if trim else {})).as_dict()
+    frame = _Frame(draft, trim, lpp)
+    d = bulb_share(composed, compose([bare]) if bare_mesh is None else bare_mesh, draft, lpp=lpp, trim=trim)
+    vol = q["volume"] + d["volume"]
+    h = dict(q, volume=vol, displacement=density * vol,
+             lcb=(q["volume"] * q["lcb"] + d["mx"]) / vol, vcb=(q["volume"] * q["vcb"] + d["mz"]) / vol,
+             wetted_surface=q["wetted_surface"] + d["wetted"], cb=q["cb"] * vol / q["volume"],
+             cp=q["cp"] * vol / q["volume"],
+             source="bare hull by NURBS quadrature, bulb and blend added from the composed mesh; "
+                    "waterplane from the composed hull's section")
+    if waterline_cuts is None or trim:
+        at = frame.offset - WATERPLANE_NUDGE * lpp
+        waterline_cuts = [frame.into(c.points) for s, loops in composed.trimmed_surfaces
+                          for c in plane_sections(s, frame.normal, at, loops=loops) if len(c.points) > 1]
+    w = waterplane_from_sections(waterline_cuts, density)
+    if w:
+        w["lcf"] = frame.back(w["lcf"], frame.z0)[0]
+        h.update(w, cwp=w["waterplane_area"] / (lpp * beam), bmt=w["inertia_t"] / vol, bml=w["inertia_l"] / vol)
+        h.update(kmt=h["vcb"] + h["bmt"], kml=h["vcb"] + h["bml"],
+                 mct1cm=h["displacement"] * h["bml"] / (100 * lpp))
+    return h
