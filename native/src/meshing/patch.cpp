@@ -57,6 +57,9 @@ constexpr double kSmoothSettle = 0.02;     ///< a smoothing move shorter than th
 constexpr double kPolishBand = 0.02;       ///< polish searches the elements this close to the worst
 constexpr double kPolishMinStep = 0.003;   ///< down to this step / the node's mean edge length
 constexpr int kImprovePasses = 4;          ///< sweeps of that node optimisation
+constexpr double kPairFlipBelow = 0.3;     ///< a triangle scoring below this after the node passes is
+                                           ///< re-paired with its neighbour (flip_sliver_pairs) ...
+constexpr double kPairFlipGain = 1e-3;     ///< ... where that raises the pair's worst by more than this
 constexpr double kImproveStep = 0.25;      ///< its first trial step / the node's mean edge length
 constexpr double kImproveMinStep = 0.04;   ///< and its last
 constexpr double kImproveShortest = 0.3;   ///< no trial shortens a node's edges below this x their mean
@@ -1269,6 +1272,49 @@ void polish(Work& w) {
   double worst = 1e9;
   for (double x : q) worst = std::min(worst, x);
   improve_worst(w, worst + kPolishBand, 2 * kImproveMinStep, kPolishMinStep, std::move(q));
+}
+
+/// Triangles the node passes left as slivers (w.quality below kPairFlipBelow): the pair (a, b, c)
+/// + (b, a, d) across a side ab is re-paired across cd, (a, d, c) + (d, b, c), where that raises
+/// the pair's worst quality (valid in space and in the parameters: w.quality). The triangulation's
+/// swaps judged the nodes where they were first placed; the passes moved them since (the example
+/// ship's blend at 1.5 m kept a 155-deg triangle, scaled Jacobian 0.19, on the centre plane above
+/// the bulb). Returns whether any pair was flipped.
+bool flip_sliver_pairs(Work& w) {
+  const long long n = static_cast<long long>(w.xyz.size());
+  std::unordered_map<long long, int> side;  // directed side a -> b of a triangle -> its element
+  auto sides = [&](int e, bool add) {
+    for (int j = 0; j < 3; ++j) {
+      const long long key = w.el[e][j] * n + w.el[e][(j + 1) % 3];
+      if (add) side[key] = e;
+      else side.erase(key);
+    }
+  };
+  for (int e = 0; e < static_cast<int>(w.el.size()); ++e)
+    if (w.el[e][3] < 0) sides(e, true);
+  bool any = false;
+  for (int t = 0; t < static_cast<int>(w.el.size()); ++t) {
+    if (w.el[t][3] >= 0 || w.quality(w.el[t]) >= kPairFlipBelow) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int a = w.el[t][k], b = w.el[t][(k + 1) % 3], c = w.el[t][(k + 2) % 3];
+      const auto it = side.find(b * n + a);
+      if (it == side.end()) continue;  // no triangle across: a quad, or the face's boundary
+      const int u = it->second;
+      int d = -1;
+      for (int j = 0; j < 3; ++j)
+        if (w.el[u][j] != a && w.el[u][j] != b) d = w.el[u][j];
+      if (side.count(c * n + d) || side.count(d * n + c)) continue;  // cd is a side already
+      const std::array<int, 4> t1{a, d, c, -1}, u1{d, b, c, -1};
+      const double before = std::min(w.quality(w.el[t]), w.quality(w.el[u]));
+      if (!(std::min(w.quality(t1), w.quality(u1)) > before + kPairFlipGain)) continue;
+      sides(t, false), sides(u, false);
+      w.el[t] = t1, w.el[u] = u1;
+      sides(t, true), sides(u, true);
+      any = true;
+      break;
+    }
+  }
+  return any;
 }
 
 /// The corner pass, after the weak pairs are merged (their quads' corners at the 2:1 steps lie
@@ -2606,6 +2652,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   // improve_corners, three quads past kCollapseRatio after it)
   for (int pass = 0; o.smoothing_passes > 0 && pass < kCollapsePasses && collapse_small_quads(w); ++pass) compact_nodes(w);
   if (o.smoothing_passes > 0) polish(w);
+  if (o.smoothing_passes > 0 && flip_sliver_pairs(w)) polish(w);
   split_folded_quads(w);
   global.resize(w.xyz.size(), -1);
   return {std::move(w.xyz), std::move(w.uv), std::move(w.el), std::move(global)};
