@@ -13,7 +13,8 @@ design      wall clock (time.perf_counter) of ``fl.design_hull(**p).bare_hull_su
             so bare_hull_surface() only hands it back; the engine's own cache of fair_skin
             factorisations cannot be emptied from Python and stays warm. One untimed design
             runs first so that imports are not timed.
-volume / LCB   (V - Cb Lpp B T) / (Cb Lpp B T) and (LCB - lcb) / Lpp from hull.hydrostatics().
+volume / LCB   (V - Cb Lpp B T) / (Cb Lpp B T) and (LCB - lcb) / Lpp from hull.ship_hydrostatics()
+               (with a bulb the composed ship's).
 blade-tip clearance   as the test measures it: the least distance of the frames (fl.plane_cut,
             801 points) at the propeller plane and PROPELLER_HALF_WIDTH D either side of it from
             the shaft, less D / 2, in D. D is the one the designer used (the skeg's
@@ -68,9 +69,9 @@ def design_ms(p):
 
 
 def match_errors(p, hull):
-    h = hull.hydrostatics()
+    h = hull.ship_hydrostatics()  # with a bulb the composed ship's
     asked = p["cb"] * p["lpp"] * p["breadth"] * p["draft"]
-    return (h.volume - asked) / asked, (h.lcb - p["lcb"]) / p["lpp"]
+    return (h["volume"] - asked) / asked, (h["lcb"] - p["lcb"]) / p["lpp"]
 
 
 def tip_clearance(p, hull):

@@ -70,7 +70,7 @@ def main():
         raked[0] += "transom_rake" in p
         t = time.perf_counter()
         try:
-            h = fl.design_hull(**p).hydrostatics()
+            hull = fl.design_hull(**p)
         except fl.InfeasibleFormParameters as e:
             msg = str(e)
             kind = next((k for k, phrase in REMEDIES.items() if phrase in msg), "other")
@@ -79,8 +79,9 @@ def main():
                 unnamed.append(msg[:160])
             continue
         times.append(time.perf_counter() - t)
+        h = hull.ship_hydrostatics()  # with a bulb the composed ship's
         lpp, asked = p["lpp"], p["cb"] * p["lpp"] * p["breadth"] * p["draft"]
-        off = max(abs(h.volume / asked - 1), abs(h.lcb - p["lcb"]) / lpp)
+        off = max(abs(h["volume"] / asked - 1), abs(h["lcb"] - p["lcb"]) / lpp)
         built += 1
         raked[1] += "transom_rake" in p
         if not off <= MATCH_REFUSE:

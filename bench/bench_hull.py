@@ -78,24 +78,31 @@ def main():
     print(f"the space with a flat of bottom of {FLAT_BOTTOM:g} of B/2 over the parallel body (flat_bottom), {n} samples: "
           f"{ok} built and matched ({100 * ok / n:.1f} %), median {1e3 * statistics.median(times):.0f} ms; "
           f"failures by curve: {fails}")
-    ok, times, fails = compose_pass(sample(n, seed=11))
+    ok, times, fails, worst = compose_pass(sample(n, seed=11))
     print(f"the space with a bulb, {n} samples, particulars -> composed hull (bare hull + bulb + blend): "
-          f"{ok} composed ({100 * ok / n:.1f} %), median {1e3 * statistics.median(times):.0f} ms; failures: {fails}")
+          f"{ok} composed ({100 * ok / n:.1f} %), median {1e3 * statistics.median(times):.0f} ms; failures: {fails}; "
+          f"the composed ships' volume and LCB within {worst[0]:.1e} and {worst[1]:.1e} Lpp of the asked (largest)")
 
 
 def compose_pass(particulars):
-    """(composed with bulb and blend, times of those, failures by the first words of the error)."""
-    ok, times, fails = 0, [], {}
+    """(composed with bulb and blend, times of those, failures by the first words of the error,
+    the composed ships' largest relative volume and LCB (on Lpp) errors against the asked)."""
+    ok, times, fails, worst = 0, [], {}, [0.0, 0.0]
     for p in particulars:
         t = time.perf_counter()
         try:
-            fl.design_hull(**p, bulb=True).composed_hull()
+            hull = fl.design_hull(**p, bulb=True)
+            hull.composed_hull()
             ok += 1
             times.append(time.perf_counter() - t)
         except (fl.InfeasibleFormParameters, fl.InvalidInput) as e:
             key = str(e).split(":")[0][:60]
             fails[key] = fails.get(key, 0) + 1
-    return ok, times, fails
+            continue
+        h = hull.ship_hydrostatics()  # the composition made above, measured (not timed)
+        worst[0] = max(worst[0], abs(h["volume"] / (p["cb"] * p["lpp"] * p["breadth"] * p["draft"]) - 1))
+        worst[1] = max(worst[1], abs(h["lcb"] - p["lcb"]) / p["lpp"])
+    return ok, times, fails, worst
 
 
 def sample_given_parallel(n, seed=5):
@@ -116,9 +123,9 @@ def space_pass(particulars):
         t = time.perf_counter()
         try:
             hull = fl.design_hull(**p)
-            v = hull.hydrostatics().volume
-            ok += abs(v / (p["cb"] * p["lpp"] * p["breadth"] * p["draft"]) - 1) <= 1e-4
             times.append(time.perf_counter() - t)
+            v = hull.ship_hydrostatics()["volume"]  # with a bulb the composed ship's
+            ok += abs(v / (p["cb"] * p["lpp"] * p["breadth"] * p["draft"]) - 1) <= 1e-4
             plain += "flat_bottom" not in p and "flat_bottom" not in hull.description.curves
         except (fl.InfeasibleFormParameters, fl.InvalidInput) as e:
             cause = re.search(r"\((basic_curves\.\w+|section at x = -?)", str(e))  # design_hull: ... (the solver's message)

@@ -80,12 +80,12 @@ def main():
         hull = fl.design_hull(**particulars, name=name)
         ms = 1e3 * (time.perf_counter() - t0)
         p = fl.Particulars(**particulars)
-        h = hull.hydrostatics()
+        h = hull.ship_hydrostatics()  # with a bulb the composed ship's
         asked = p.cb * p.lpp * p.breadth * p.draft
         fair = hull.fairness_report()["summary"]
-        print(f"{name}: designed in {ms:.0f} ms; volume {h.volume:.1f} m3 (asked {asked:.1f}, "
-              f"{100 * (h.volume / asked - 1):+.5f} %), LCB {h.lcb:.3f} m (asked {p.lcb}), Cb {h.cb:.4f} "
-              f"Cm {h.cm:.4f} Cp {h.cp:.4f} Cwp {h.cwp:.4f}; curvature sign changes per cut family {fair}")
+        print(f"{name}: designed in {ms:.0f} ms; volume {h['volume']:.1f} m3 (asked {asked:.1f}, "
+              f"{100 * (h['volume'] / asked - 1):+.5f} %), LCB {h['lcb']:.3f} m (asked {p.lcb}), Cb {h['cb']:.4f} "
+              f"Cm {h['cm']:.4f} Cp {h['cp']:.4f} Cwp {h['cwp']:.4f}; curvature sign changes per cut family {fair}")
         stem = name.lower().replace(" ", "_").replace(",", "").replace("(", "").replace(")", "")
         (out / f"{stem}.json").write_text(hull.to_json())
         draw_lines(fig.add_subplot(grid[2 * k, 0]), fig.add_subplot(grid[2 * k + 1, 0]),

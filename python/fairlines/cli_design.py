@@ -43,12 +43,15 @@ def run(args) -> int:
             "name")
     given = {k: getattr(args, k) for k in keys if getattr(args, k) is not None}
     t0 = time.perf_counter()
-    print("  .. designing the hull and matching volume, LCB and Cwp on its surface", file=sys.stderr, flush=True)
+    print("  .. designing the hull and matching volume, LCB and Cwp on the ship", file=sys.stderr, flush=True)
     hull = design_hull(**given)
-    h = hull.hydrostatics()
+    ms = 1e3 * (time.perf_counter() - t0)
+    h = hull.ship_hydrostatics()
+    what = f" with the bulb (bare hull {hull.hydrostatics().volume:.1f} m^3)" if hull.description.bulb else ""
     pathlib.Path(args.output).write_text(hull.to_json())
-    print(f"{given['name']}: volume {h.volume:.1f} m^3, LCB {h.lcb:.3f} m from the AP, Cb {h.cb:.4f}, Cm {h.cm:.4f}, "
-          f"Cp {h.cp:.4f}, Cwp {h.cwp:.4f}, wetted surface {h.wetted_surface:.1f} m^2 "
-          f"({1e3 * (time.perf_counter() - t0):.0f} ms)")
+    print(f"{given['name']}: volume {h['volume']:.1f} m^3, LCB {h['lcb']:.3f} m from the AP, Cb {h['cb']:.4f}, "
+          f"Cm {h['cm']:.4f}, Cp {h['cp']:.4f}, Cwp {h['cwp']:.4f}, wetted surface {h['wetted_surface']:.1f} m^2{what} "
+          f"({ms:.0f} ms)")
     print(f"wrote {args.output}")
     return 0
+

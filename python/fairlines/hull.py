@@ -216,6 +216,7 @@ class Hull:
         self._hydro: dict = {}  # (draft, options) -> Hydrostatics of the current surface
         self._bow = None  # (key, BulbousBow) of the description's bulb, no overrides
         self._placement = None  # (surface, bow, BlendPlacement) of the default blend
+        self._composed = None  # ((surface, bow, placement), ComposedHull) of the default composition
 
     # ---- construction ---------------------------------------------------------------
     @classmethod
@@ -791,6 +792,20 @@ class Hull:
             self._hydro[key] = hydrostatics(self.bare_hull_surface(), draft, **options)
         return self._hydro[key]
 
+    def ship_hydrostatics(self, draft: float | None = None) -> dict:
+        """The whole ship's hydrostatics at `draft` (default T) as a dict (the keys of
+        fl.Hydrostatics.as_dict() a hydrostatic table shows, and ``source``): the bare hull's
+        without a bulb; with one the composed ship's -- bare hull, bulb and blend
+        (fairlines.hydrostatics_composed) -- which the designer matches to the particulars.
+        Raises InvalidInput for a draft outside the hull or a bulb that does not meet it."""
+        pr = self.description.principal
+        draft = pr.draft if draft is None else draft
+        if self.description.bulb is None:
+            return {**self.hydrostatics(draft).as_dict(), "source": "NURBS quadrature"}
+        from .hydrostatics_composed import composed_hydrostatics
+
+        return composed_hydrostatics(self.composed_hull(), draft, lpp=pr.lpp, beam=pr.breadth)
+
     # ---- bulbous bow ----------------------------------------------------------------
     def ship_particulars(self) -> dict[str, float]:
         """What a bulbous bow is sized from (fairlines.BulbousBow): Lpp, B, T at the FP, the FP
@@ -850,8 +865,9 @@ class Hull:
     def composed_hull(self, blend: bool = True, bulb=None, **compose_options):
         """Bare hull + bulbous bow (+ a G2 blend when ``blend``) composed into one watertight half
         hull (fairlines.ComposedHull); a ship without a bulb (none described, none given) is its
-        bare hull closed by deck, transom and centre plane. Raises InvalidInput when the bulb does
-        not meet the hull."""
+        bare hull closed by deck, transom and centre plane. The default composition (no arguments)
+        is kept until the hull changes: callers must not edit it. Raises InvalidInput when the
+        bulb does not meet the hull."""
         from .compose import compose, compose_with_blend
 
         if bulb is None and self.description.bulb is None:
@@ -860,12 +876,19 @@ class Hull:
             return closed
         b = self.bulbous_bow() if bulb is None else bulb
         placement = None
-        if bulb is None and blend and not compose_options:  # the placement the designer found, if it did
+        default = bulb is None and blend and not compose_options
+        if default:  # the placement the designer found, if it did
             try:
                 placement = self.blend_placement()
             except _native.NoBlendFits:
                 pass  # compose_with_blend says why in the plain union's note
-        return compose_with_blend(self.bare_hull_surface(), b, blend=blend, placement=placement, **compose_options)
+        key = (self.bare_hull_surface(), b, placement)
+        if default and self._composed is not None and all(x is y for x, y in zip(self._composed[0], key)):
+            return self._composed[1]  # the designer measured the ship on it: one composition, not two
+        composed = compose_with_blend(self.bare_hull_surface(), b, blend=blend, placement=placement, **compose_options)
+        if default:
+            self._composed = (key, composed)
+        return composed
 
     # ---- fairness -------------------------------------------------------------------
     def fairness_report(self, **kwargs) -> dict:

@@ -21,7 +21,8 @@ from .hydrostatics_mesh import hydrostatics_of_mesh
 from .hydrostatics_surface import hydrostatics, midship_x
 from .plane_sections import plane_sections
 
-__all__ = ["composed_hydrostatics", "bulb_share", "mesh_below", "waterplane_from_sections", "CAP_PARTS"]
+__all__ = ["composed_hydrostatics", "composed_waterplane", "bulb_share", "mesh_below", "waterplane_from_sections",
+           "CAP_PARTS"]
 
 #: Face labels of a composed hull's cap faces (centre plane, deck, aft cut): not wetted hull.
 CAP_PARTS = (2, 3, 4)
@@ -111,32 +112,60 @@ def composed_hydrostatics(composed, draft: float, *, lpp: float, beam: float, tr
     ``fl.Hydrostatics.as_dict()`` that a hydrostatic table shows (volume, displacement, lcb,
     vcb, lcf, waterplane_area, tpc, mct1cm, bmt, bml, kmt, kml, cb, cp, cm, cwp,
     wetted_surface, inertia_t, inertia_l, draft, trim) and ``source``. Am (so Cm) is the bare
-    hull's at Lpp / 2, which a bulb does not reach. ``bare_mesh``: ``fl.compose([bare])`` if
-    already made (a table reuses it); ``waterline_cuts``: the upright waterplane's section
-    branches if already cut (the lines plan's DWL). Raises InvalidInput as fl.hydrostatics
-    does (a draft <= 0, a waterplane above the hull)."""
+    hull's at Lpp / 2, which a bulb does not reach. The waterplane is the bare hull's where the
+    bulb and blend lie wholly under it, else the composed hull's section (composed_waterplane).
+    ``bare_mesh``: ``fl.compose([bare])`` if already made (a table reuses it);
+    ``waterline_cuts``: the upright waterplane's section branches if already cut (the lines
+    plan's DWL). Raises InvalidInput as fl.hydrostatics does (a draft <= 0, a waterplane above
+    the hull)."""
     from .compose import compose
 
     bare = composed.trimmed_surfaces[0][0]
     q = hydrostatics(bare, draft, length=lpp, breadth=beam, midship_x=midship_x(bare, 0.5 * lpp), density=density,
                      **({"trim": trim, "trim_length": lpp} if trim else {})).as_dict()
-    frame = _Frame(draft, trim, lpp)
     d = bulb_share(composed, compose([bare]) if bare_mesh is None else bare_mesh, draft, lpp=lpp, trim=trim)
     vol = q["volume"] + d["volume"]
     h = dict(q, volume=vol, displacement=density * vol,
              lcb=(q["volume"] * q["lcb"] + d["mx"]) / vol, vcb=(q["volume"] * q["vcb"] + d["mz"]) / vol,
              wetted_surface=q["wetted_surface"] + d["wetted"], cb=q["cb"] * vol / q["volume"],
              cp=q["cp"] * vol / q["volume"],
-             source="bare hull by NURBS quadrature, bulb and blend added from the composed mesh; "
-                    "waterplane from the composed hull's section")
-    if waterline_cuts is None or trim:
-        at = frame.offset - WATERPLANE_NUDGE * lpp
-        waterline_cuts = [frame.into(c.points) for s, loops in composed.trimmed_surfaces
-                          for c in plane_sections(s, frame.normal, at, loops=loops) if len(c.points) > 1]
-    w = waterplane_from_sections(waterline_cuts, density)
+             source="bare hull by NURBS quadrature, bulb and blend added from the composed mesh")
+    if waterline_cuts is not None and not trim:
+        w = _waterplane(waterline_cuts, _Frame(draft, 0.0, lpp), density)
+    elif _under(composed.trimmed_surfaces[1:], _Frame(draft, trim, lpp)):
+        w = {k: q[k] for k in ("waterplane_area", "lcf", "inertia_t", "inertia_l", "tpc")}
+    else:
+        w = composed_waterplane(composed, draft, lpp=lpp, trim=trim, density=density)
+    h["source"] += "; waterplane " + ("the bare hull's" if w.get("waterplane_area") == q["waterplane_area"]
+                                      else "from the composed hull's section")
     if w:
-        w["lcf"] = frame.back(w["lcf"], frame.z0)[0]
         h.update(w, cwp=w["waterplane_area"] / (lpp * beam), bmt=w["inertia_t"] / vol, bml=w["inertia_l"] / vol)
         h.update(kmt=h["vcb"] + h["bmt"], kml=h["vcb"] + h["bml"],
                  mct1cm=h["displacement"] * h["bml"] / (100 * lpp))
     return h
+
+
+def composed_waterplane(composed, draft: float, *, lpp: float, trim: float = 0.0,
+                        density: float = HydrostaticsOptions().density) -> dict:
+    """Full-ship waterplane area (true, in the plane), LCF (the x of F), I_T, I_L (about F along
+    the plane) and TPC of a composed hull at ``draft`` and ``trim`` (as composed_hydrostatics),
+    from its section by the waterplane ({} when it cuts nothing)."""
+    frame = _Frame(draft, trim, lpp)
+    at = frame.offset - WATERPLANE_NUDGE * lpp
+    cuts = [c.points for s, loops in composed.trimmed_surfaces
+            for c in plane_sections(s, frame.normal, at, loops=loops) if len(c.points) > 1]
+    return _waterplane(cuts, frame, density)
+
+
+def _waterplane(cuts, frame: _Frame, density: float) -> dict:
+    w = waterplane_from_sections([frame.into(c) for c in cuts], density)
+    if w:
+        w["lcf"] = frame.back(w["lcf"], frame.z0)[0]
+    return w
+
+
+def _under(patches, frame: _Frame) -> bool:
+    """Whether every patch lies below the waterplane: its control net does (a NURBS surface lies
+    in the convex hull of its control points)."""
+    n = np.asarray(frame.normal)
+    return all(float((np.asarray(s.control_points).reshape(-1, 3) @ n).max()) < frame.offset for s, _ in patches)

@@ -7,8 +7,9 @@ process (a killed worker) loses a variant, and the sweep driver reruns it.
 
 Row columns (``None`` where a stage did not run):
 
-* ``hydro.*``   fl.hydrostatics of the bare hull at the design draft (volume m^3, LCB/LCF m
-  from the AP, Cb Cp Cm Cwp on Lpp and B, wetted surface and waterplane area m^2, KMt KMl m);
+* ``hydro.*``   the ship's hydrostatics at the design draft (``Hull.ship_hydrostatics``: the bare
+  hull's, with a bulb the composed ship's; volume m^3, LCB/LCF m from the AP, Cb Cp Cm Cwp on
+  Lpp and B, wetted surface and waterplane area m^2, KMt KMl m);
 * ``fair.*``    fairlines.fairness_report of the bare hull: significant curvature sign changes
   and bending energy (1/m) summed per family of cuts, and the largest |curvature| (1/m);
 * ``compose.*`` the composed hull (bare hull + bulbous bow + blend; without a bulb the bare hull
@@ -135,9 +136,9 @@ def _design(kind: str, doc: dict):
 
 
 def _hydrostatics(row: dict, hull) -> None:
-    h = hull.hydrostatics()
+    h = hull.ship_hydrostatics()  # with a bulb the composed ship's, which the designer matched
     for k in HYDRO_FIELDS:
-        row[f"hydro.{k}"] = float(getattr(h, k))
+        row[f"hydro.{k}"] = float(h[k])
 
 
 def _fairness(row: dict, hull, options: dict) -> None:
@@ -166,7 +167,7 @@ def _compose(row: dict, hull, displacement: bool):
     from .hydrostatics_mesh import displaced_volume_of_mesh
 
     bulb = hull.bulbous_bow() if hull.description.bulb is not None else None
-    composed = hull.composed_hull(bulb=bulb)  # without a bulb: the bare hull closed
+    composed = hull.composed_hull()  # the one ship_hydrostatics measured; without a bulb the bare hull closed
     row["compose.half_volume"] = float(composed.volume)
     if displacement:
         d = displaced_volume_of_mesh(composed.mesh.vertices, composed.mesh.faces, hull.description.principal.draft)

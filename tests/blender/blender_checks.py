@@ -274,10 +274,10 @@ def forward_volume(obj, x_fp):
 
 
 def t_bulb_length(tree):
-    """A longer bulb (C_LPR up) with the same volume forward of FP (C_VPR kept): the nose moves
-    forward by the change times Lpp, the volume forward of FP stays C_VPR x displacement, and
-    the whole mesh equals the engine package's composition. Then a fuller bulb (C_VPR up) adds
-    about that much volume forward of FP."""
+    """A fuller bulb (C_VPR up) adds about that much volume forward of FP. A longer bulb (C_LPR
+    up) with the same volume forward of FP (C_VPR kept): the nose moves forward by the change
+    times Lpp, the volume forward of FP stays C_VPR x displacement, and the whole mesh equals the
+    engine package's composition."""
     ev = sub("evaluator")
     fore = bpy.data.objects["Ship"]
     bare = bpy.data.objects["Bare Hull"]
@@ -286,11 +286,26 @@ def t_bulb_length(tree):
     hull = ev.outputs_of(tree, "SAC")["Hull"]
     disp = hull.ship_particulars()["displacement_volume"]
     c_vpr = hull.bulbous_bow().kracht["c_vpr"]
-    v0, x0, bare0 = volume(fore, False), coords(fore)[:, 0].max(), coords(bare)
+    v0, x0, bare0, fore0 = volume(fore, False), coords(fore)[:, 0].max(), coords(bare), coords(fore).copy()
     fwd0 = forward_volume(fore, L)
     # Below the waterline (the raked stem above it lies forward of FP too, and is not bulb).
     check(abs(fwd0 / (c_vpr * disp) - 1) < 0.05, "volume forward of FP %.2f m3, C_VPR asks %.2f" % (
         fwd0, c_vpr * disp))
+    # A fuller bulb first (at the default length: the longer one below, fuller too, leaves the
+    # fine forefoot of a hull whose ship holds the particulars and meets it in two curves): C_VPR
+    # up by 0.0004 adds 0.0004 x displacement forward of FP.
+    node.inputs["C_VPR"].use = True
+    node.inputs["C_VPR"].default_value = c_vpr + 0.0004
+    ev.flush()
+    check(node.fl_state == "OK" and tree.nodes["Ship Output"].fl_state == "OK", node.fl_message)
+    fwd2, v2 = forward_volume(fore, L), volume(fore, False)
+    check(abs((fwd2 - fwd0) / (0.0004 * disp) - 1) < 0.1, "forward volume grew %.2f m3, expected %.2f" % (
+        fwd2 - fwd0, 0.0004 * disp))
+    check(v2 > v0, "a fuller bulb did not add volume (%.2f -> %.2f m3)" % (v0, v2))
+    results["bulb_volume"] = {"forward_volume_added_m3": round(fwd2 - fwd0, 2), "expected_m3": round(0.0004 * disp, 2)}
+    node.inputs["C_VPR"].use = False
+    ev.flush()
+    check(np.array_equal(coords(fore), fore0), "the default bulb did not come back")
     node.inputs["C_LPR"].use = True
     node.inputs["C_LPR"].default_value = 0.032
     # Deferred: the change queued the tree for a timer; nothing ran inside the callback.
@@ -333,17 +348,6 @@ def t_bulb_length(tree):
     check(np.array_equal(coords(bare), bare0), "the bare hull changed when only the bulb did")
     results["bulb_length"] = {"nose_dx_m": round(x1 - x0, 4), "forward_volume_m3": [round(fwd0, 2), round(fwd1, 2)],
                               "volume_m3": [round(v0, 2), round(v1, 2)]}
-    # A fuller bulb: C_VPR up by 0.0004 adds 0.0004 x displacement forward of FP.
-    node.inputs["C_VPR"].use = True
-    node.inputs["C_VPR"].default_value = c_vpr + 0.0004
-    ev.flush()
-    check(node.fl_state == "OK" and tree.nodes["Ship Output"].fl_state == "OK", node.fl_message)
-    fwd2, v2 = forward_volume(fore, L), volume(fore, False)
-    check(abs((fwd2 - fwd1) / (0.0004 * disp) - 1) < 0.1, "forward volume grew %.2f m3, expected %.2f" % (
-        fwd2 - fwd1, 0.0004 * disp))
-    check(v2 > v1, "a fuller bulb did not add volume (%.2f -> %.2f m3)" % (v1, v2))
-    results["bulb_volume"] = {"forward_volume_added_m3": round(fwd2 - fwd1, 2), "expected_m3": round(0.0004 * disp, 2)}
-    node.inputs["C_VPR"].use = False
     # The timer works in time slices: with a zero budget it runs one node per tick and asks
     # to be called again until the change has reached the object.
     ev.SLICE_MS = 0.0
@@ -547,8 +551,11 @@ def t_hull_nodes(tree):
     sac, bare = tree.nodes["SAC"], tree.nodes["Bare Hull"]
     fore = bpy.data.objects["Ship"]
     V0 = ev.outputs_of(tree, "Bare Hull")["Volume"]
-    check(abs(V0 / (blender_graph.PARTICULARS["cb"] * LBT) - 1) < 1e-5, "bare hull volume %.1f vs Cb L B T %.1f" % (
-        V0, blender_graph.PARTICULARS["cb"] * LBT))
+    # the example's bare hull: its ship, with the bulb, holds Cb L B T (fl.design_hull)
+    ref = python_example().hydrostatics().volume
+    check(abs(V0 / ref - 1) < 1e-6 and ref < blender_graph.PARTICULARS["cb"] * LBT,
+          "bare hull volume %.1f vs the example's %.1f (Cb L B T %.1f with its bulb)" % (
+              V0, ref, blender_graph.PARTICULARS["cb"] * LBT))
     area0 = python_example().description.curves["sac"].aliases["volume"]
     f0 = volume(fore, False)
     info0 = bare.fl_info
@@ -745,7 +752,10 @@ def t_api_headless():
     check(ok, "API hydrostatics vs fl.design_hull: %s" % bad)
     api.set(tree, "Ship", "Cb", 0.72)
     api.evaluate(tree)
-    check(abs(api.result(tree, "Bare", "Cb") - 0.72) < 1e-5, "Cb after set: %.6f" % api.result(tree, "Bare", "Cb"))
+    # the bare hull's Cb: the ship with its bulb holds 0.72 (fl.design_hull matches the composed ship)
+    ref = fl.design_hull(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.72, lcb=124.0, bulb=True)
+    check(abs(api.result(tree, "Bare", "Cb") - ref.hydrostatics().cb) < 1e-6 and ref.hydrostatics().cb < 0.72,  # single precision
+          "bare hull's Cb after set: %.6f, fl.design_hull's %.6f" % (api.result(tree, "Bare", "Cb"), ref.hydrostatics().cb))
     api.set(tree, ship, "Cb", 0.99)  # outside the designer's range
     try:
         api.evaluate(tree)

@@ -22,3 +22,10 @@ def edge_census(faces):
     _, counts = np.unique(und, axis=0, return_counts=True)
     _, dcounts = np.unique(directed, axis=0, return_counts=True)
     return int((counts == 1).sum()), int((counts > 2).sum()), int((dcounts > 1).sum())
+
+
+def ship_tol(hull, tol: float) -> float:
+    """`tol` for a bare hull; the designer's mark for a ship with a bulb (designer.MATCH_TOL_BULB)."""
+    from fairlines.designer import MATCH_TOL_BULB
+
+    return tol if hull.description.bulb is None else max(tol, MATCH_TOL_BULB)

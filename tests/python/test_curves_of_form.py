@@ -76,9 +76,8 @@ def test_a_composed_hulls_waterplane_is_the_surfaces(trim):
     is what the engine's quadrature on the surface gives (true area and moments in the plane,
     LCF the x of F)."""
     s = example_hull_surface()
-    from fairlines.hydrostatics_composed import composed_hydrostatics
-    c = fl.compose([s])
-    h = composed_hydrostatics(c, P["draft"], lpp=P["lpp"], beam=P["beam"], trim=trim)
+    from fairlines.hydrostatics_composed import composed_waterplane
+    h = composed_waterplane(fl.compose([s]), P["draft"], lpp=P["lpp"], trim=trim)
     q = fl.hydrostatics(s, P["draft"], length=P["lpp"], breadth=P["beam"], trim=trim, trim_length=P["lpp"])
     for key in ("waterplane_area", "inertia_t", "inertia_l"):
         assert h[key] == pytest.approx(getattr(q, key), rel=3e-5), key

@@ -15,7 +15,7 @@ import pytest
 
 import fairlines as fl
 from fairlines.fairness import judge_cut
-from conftest import edge_census
+from conftest import edge_census, ship_tol
 
 EXAMPLE = pathlib.Path(__file__).resolve().parents[2] / "examples" / "container_ship.json"
 MATCH_TOL = 1e-5        # volume, Cwp (relative) and LCB (of Lpp) met on the surface
@@ -48,14 +48,44 @@ def _grid(surface, n=61):
 
 
 def test_particulars_are_met_on_the_surface(ship):
+    """Without a bulb the bare hull is the ship; with one it holds less by the bulb's share
+    (the next test), its waterplane the same."""
     p, hull = ship
     h = fl.hydrostatics(hull.bare_hull_surface(), p["draft"], length=p["lpp"], breadth=p["breadth"],
                         midship_x=p["lpp"] / 2)
-    assert h.volume == pytest.approx(_asked(p), rel=MATCH_TOL)
-    assert abs(h.lcb - p["lcb"]) <= MATCH_TOL * p["lpp"]
-    cwp = fl.Particulars(**p)
-    assert h.cb == pytest.approx(p["cb"], rel=MATCH_TOL)
-    assert 0 < h.cm <= 1 and h.cb < h.cwp <= 1 and cwp.cwp is None
+    if p.get("bulb"):
+        assert 0.003 < 1 - h.volume / _asked(p) < 0.015
+    else:
+        assert h.volume == pytest.approx(_asked(p), rel=MATCH_TOL)
+        assert abs(h.lcb - p["lcb"]) <= MATCH_TOL * p["lpp"]
+        assert h.cb == pytest.approx(p["cb"], rel=MATCH_TOL)
+    assert 0 < h.cm <= 1 and h.cb < h.cwp <= 1 and fl.Particulars(**p).cwp is None
+
+
+#: The composed mesh at a fine tessellation against the surface's figures (its chords: 1.6e-4
+#: of the example's bare hull volume at 192 x 80).
+FINE_MESH = dict(hull_u=192, hull_v=80)
+FINE_MESH_TOL = 5e-4
+
+
+def test_a_ship_with_a_bulb_holds_its_particulars_with_it():
+    """The composed ship (bare hull, bulb and blend), not the bare hull, holds the asked volume
+    and LCB: measured as the designer measures it (the surface plus the bulb's share of the
+    composed mesh, designer.MATCH_TOL_BULB) and on a fine composed mesh alone. Before, the bare
+    hull held them and the container ship's bulb added 0.89 % and moved the LCB 0.43 % Lpp
+    forward."""
+    from fairlines.designer import MATCH_TOL_BULB
+    from fairlines.hydrostatics_composed import composed_hydrostatics
+
+    p = SHIPS["container"]
+    hull = fl.design_hull(**p)
+    q = composed_hydrostatics(hull.composed_hull(), p["draft"], lpp=p["lpp"], beam=p["breadth"])
+    assert q["volume"] == pytest.approx(_asked(p), rel=MATCH_TOL_BULB)
+    assert abs(q["lcb"] - p["lcb"]) <= MATCH_TOL_BULB * p["lpp"]
+    assert q["cwp"] == pytest.approx(hull.hydrostatics().cwp, rel=1e-5)
+    fine = fl.mesh_hydrostatics(hull.composed_hull(**FINE_MESH).mesh, p["draft"])
+    assert fine.volume == pytest.approx(_asked(p), rel=FINE_MESH_TOL)
+    assert abs(fine.lcb - p["lcb"]) <= FINE_MESH_TOL * p["lpp"]
 
 
 # A section whose waterline point lies on B/2 meets it only as closely as its spline can pass
@@ -119,8 +149,7 @@ def test_composed_whole_ship_is_watertight_and_holds_the_volume(ship):
     assert c.blend_note.startswith("blend" if p.get("bulb") else "no bulb")
     assert edge_census(c.mesh.faces) == (0, 0, 0)
     assert edge_census(c.full_mesh().faces) == (0, 0, 0)
-    if not p.get("bulb"):
-        assert fl.mesh_hydrostatics(c.mesh, p["draft"]).volume == pytest.approx(_asked(p), rel=MESH_TOL)
+    assert fl.mesh_hydrostatics(c.mesh, p["draft"]).volume == pytest.approx(_asked(p), rel=MESH_TOL)
 
 
 def test_round_trip_through_json_rebuilds_the_same_hull():
@@ -134,8 +163,7 @@ def test_round_trip_through_json_rebuilds_the_same_hull():
 def test_example_is_the_designed_container_ship():
     hull = fl.Hull.from_json(EXAMPLE.read_text())
     p = SHIPS["container"]
-    h = hull.hydrostatics()
-    assert h.volume == pytest.approx(_asked(p), rel=MATCH_TOL)
+    assert hull.ship_hydrostatics()["volume"] == pytest.approx(_asked(p), rel=ship_tol(hull, MATCH_TOL))
 
 
 @pytest.mark.parametrize("change", [dict(cb=0.65 * 1.06), dict(cb=0.65 * 0.94), dict(lcb=118.73 + 2.448),
@@ -144,11 +172,12 @@ def test_example_is_the_designed_container_ship():
                                     dict(cwp=0.8162 * 0.90)])
 def test_changed_particulars_of_the_container_ship_build(change):
     p = {**SHIPS["container"], **change}
-    h = fl.design_hull(**p).hydrostatics()
-    assert h.volume == pytest.approx(_asked(p), rel=MATCH_TOL)
-    assert abs(h.lcb - p["lcb"]) <= MATCH_TOL * p["lpp"]
+    hull = fl.design_hull(**p)
+    h, tol = hull.ship_hydrostatics(), ship_tol(hull, MATCH_TOL)
+    assert h["volume"] == pytest.approx(_asked(p), rel=tol)
+    assert abs(h["lcb"] - p["lcb"]) <= tol * p["lpp"]
     if "cwp" in change:
-        assert h.cwp == pytest.approx(change["cwp"], rel=MATCH_TOL)
+        assert h["cwp"] == pytest.approx(change["cwp"], rel=MATCH_TOL)
 
 
 def _space_sample(n, seed):
@@ -165,13 +194,13 @@ def _space_sample(n, seed):
 
 
 def _failures(particulars) -> list:
-    """The particulars whose designed hull does not build or misses its volume or LCB (1e-4)."""
+    """The particulars whose designed ship does not build or misses its volume or LCB (1e-4)."""
     fails = []
     for p in particulars:
         try:
-            h = fl.design_hull(**p).hydrostatics()
-            assert h.volume == pytest.approx(_asked(p), rel=1e-4)
-            assert abs(h.lcb - p["lcb"]) <= 1e-4 * p["lpp"]
+            h = fl.design_hull(**p).ship_hydrostatics()
+            assert h["volume"] == pytest.approx(_asked(p), rel=1e-4)
+            assert abs(h["lcb"] - p["lcb"]) <= 1e-4 * p["lpp"]
         except (fl.InfeasibleFormParameters, AssertionError) as e:
             fails.append((p, str(e)[:80]))
     return fails
@@ -212,12 +241,12 @@ def test_latin_hypercube_with_options_builds_or_names_what_to_change():
     built, refusals = 0, []
     for p in designs(24, seed=5, lpp=150.0):
         try:
-            h = fl.design_hull(**p).hydrostatics()
+            h = fl.design_hull(**p).ship_hydrostatics()
         except fl.InfeasibleFormParameters as e:
             refusals.append((p, str(e)))
             continue
-        assert h.volume == pytest.approx(_asked(p), rel=1e-4), p
-        assert abs(h.lcb - p["lcb"]) <= 1e-4 * p["lpp"], p
+        assert h["volume"] == pytest.approx(_asked(p), rel=1e-4), p
+        assert abs(h["lcb"] - p["lcb"]) <= 1e-4 * p["lpp"], p
         built += 1
     for p, msg in refusals:
         assert re.search(r"\b(give|move|lower|raise|change)\b", msg), (p, msg)
@@ -287,8 +316,8 @@ def test_a_bulb_and_a_sonar_dome_under_its_forefoot_build_with_the_dome_aft_of_t
     p = dict(lpp=118.6, breadth=14.28, draft=5.9, depth=7.77, cb=0.59, lcb=55.44, stern="cruiser", bulb=True,
              skeg=True, sonar_dome=True)
     hull = fl.design_hull(**p)
-    h = hull.hydrostatics()
-    assert h.volume == pytest.approx(p["cb"] * p["lpp"] * p["breadth"] * p["draft"], rel=1e-5)
+    assert hull.ship_hydrostatics()["volume"] == pytest.approx(p["cb"] * p["lpp"] * p["breadth"] * p["draft"],
+                                                         rel=ship_tol(hull, 1e-5))
     c = hull.composed_hull()
     assert c.blend is not None and largest_normal_turn_deg(c.blend) < FOLD_DEG
     blend = np.asarray(c.blend.evaluate_grid(np.linspace(0, 1, 81), np.linspace(0, 1, 21))).reshape(-1, 3)

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import fairlines as fl
-from conftest import edge_census
+from conftest import edge_census, ship_tol
 from fairlines.designer import (DOME_DEPTH, DOME_HALF_BREADTH, DOME_LENGTH, HEEL_CLEARANCE,
                                 PROPELLER_HALF_WIDTH, SKEG_HALF_THICKNESS, TIP_CLEARANCE, Propeller, propeller)
 from fairlines.description import DOME_WIDEST, SKEG_FORE_TAPER
@@ -62,10 +62,11 @@ def test_the_default_screw_shrinks_from_0_7_to_0_55_draughts_as_cb_goes_from_0_7
 
 
 def _assert_meets_particulars(p: dict, hull) -> None:
-    """Volume Cb Lpp B T and the LCB on the hull's surface, within MATCH_TOL."""
-    h = hull.hydrostatics()
-    assert h.volume == pytest.approx(p["cb"] * p["lpp"] * p["breadth"] * p["draft"], rel=MATCH_TOL)
-    assert abs(h.lcb - p["lcb"]) <= MATCH_TOL * p["lpp"]
+    """Volume Cb Lpp B T and the LCB of the ship (with a bulb the composed ship), within
+    MATCH_TOL (with a bulb the designer's MATCH_TOL_BULB)."""
+    h, tol = hull.ship_hydrostatics(), ship_tol(hull, MATCH_TOL)
+    assert h["volume"] == pytest.approx(p["cb"] * p["lpp"] * p["breadth"] * p["draft"], rel=tol)
+    assert abs(h["lcb"] - p["lcb"]) <= tol * p["lpp"]
 
 
 def test_skeg_ship_meets_its_particulars(ship):

@@ -35,7 +35,8 @@ def test_design_ship(tmp_path, monkeypatch, capsys):
     text = capsys.readouterr().out
     assert text.count("designed in") == 4
     misses = [float(v) for v in re.findall(r"\(asked [\d.]+, ([+-]\d+\.\d+) %\)", text)]
-    assert len(misses) == 4 and max(abs(v) for v in misses) <= 1e-4  # volume met to 1e-6 relative
+    # the container ship with its bulb to designer.MATCH_TOL_BULB, the others to 1e-6 relative
+    assert len(misses) == 4 and abs(misses[0]) <= 5e-3 and max(abs(v) for v in misses[1:]) <= 1e-4
     assert (tmp_path / "designed_ships.png").stat().st_size > 10_000
     import json
 
