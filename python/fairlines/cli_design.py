@@ -10,9 +10,14 @@ COMMAND = "design"
 
 
 def add_parser(sub) -> None:
+    from .designer import RANGES
+
     d = sub.add_parser(COMMAND, help="design a whole hull from particulars; write its description JSON")
-    for key, unit in (("lpp", "m"), ("breadth", "m"), ("draft", "m"), ("depth", "m"), ("cb", ""), ("lcb", "m from the AP")):
-        d.add_argument(f"--{key}", type=float, required=True, help=f"{key} ({unit})" if unit else key)
+    for key, what in (("lpp", "length between perpendiculars, m (AP at x = 0)"), ("breadth", "moulded breadth B, m"),
+                      ("draft", "design draft T, m"), ("depth", "depth D to the deck at side, m"),
+                      ("cb", "block coefficient of the ship, its bulb included (%g-%g)" % RANGES["cb"]),
+                      ("lcb", "LCB of the ship, m forward of the AP")):
+        d.add_argument(f"--{key}", type=float, required=True, help=what)
     for key, what in (("cm", "midship coefficient (default: Kerlen)"), ("cwp", "waterplane coefficient (default sqrt(Cb) + 0.01)"),
                       ("lcf", "LCF, m from the AP"), ("parallel-length", "parallel middle body, m"),
                       ("parallel-centre", "middle of the parallel body, m from the AP"),
@@ -26,11 +31,11 @@ def add_parser(sub) -> None:
                       ("flat-bottom", "flat of bottom over the parallel body, fraction of the waterline's half-breadth "
                                       "(default 0.15, none where a section would narrow it; 0: none)")):
         d.add_argument(f"--{key}", type=float, default=None, help=what)
-    d.add_argument("--stern", choices=["transom", "cruiser"], default="transom")
+    d.add_argument("--stern", choices=["transom", "cruiser"], default="transom", help="stern type (default transom)")
     d.add_argument("--bulb", action="store_true", help="a bulbous bow (default Kracht coefficients)")
     d.add_argument("--skeg", action="store_true", help="a single screw: a skeg under the run and a propeller aperture")
     d.add_argument("--sonar-dome", action="store_true", help="a sonar dome under the keel's forward end")
-    d.add_argument("--name", default="designed hull")
+    d.add_argument("--name", default="designed hull", help="ship name, in the description and the lines' title block")
     d.add_argument("-o", "--output", required=True, help="hull description JSON to write")
 
 
