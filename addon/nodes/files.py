@@ -226,8 +226,9 @@ def show_image(path):
 
 @register
 class FLNodeCurvesOfForm(FileWriter, FairlinesNode, bpy.types.Node):
-    """Hydrostatics of the bare hull over drafts (fairlines.curves_of_form) as a CSV table, and
-    the curves-of-form plot beside it (same name, .png) when Plot is on"""
+    """Hydrostatics of the ship over drafts (fairlines.curves_of_form: the bare hull, with a bulb
+    the composed ship) as a CSV table, and the curves-of-form plot beside it (same name, .png)
+    when Plot is on"""
     bl_idname = ids.NODE_CURVES_OF_FORM
     bl_label = "Curves of Form"
     category = "Output"
@@ -254,8 +255,8 @@ class FLNodeCurvesOfForm(FileWriter, FairlinesNode, bpy.types.Node):
         p, surface = particulars(hull), hull.bare_hull_surface()
         top = highest_draft(surface, p["depth"], p["lpp"])
         drafts = engine.np.linspace(0.1 * p["draft"], top, n)
-        cof = curves_of_form(surface, drafts, lpp=p["lpp"], beam=p["beam"], depth=p["depth"],
-                             design_draft=p["draft"])
+        ship = hull.composed_hull() if hull.description.bulb is not None else surface  # as fairlines hydrostatics
+        cof = curves_of_form(ship, drafts, lpp=p["lpp"], beam=p["beam"], depth=p["depth"], design_draft=p["draft"])
         cof.write_csv(path)
         if self.plot:
             cof.plot(os.path.splitext(path)[0] + ".png", hull.description.name)
