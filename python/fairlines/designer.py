@@ -167,6 +167,12 @@ BULB_FULLNESS_MARGIN = 0.1  # the designer's bulb sections keep this fraction of
 BULB_AFT_LENGTH = 2.6       # the bulb runs on into the hull this many times L_PR + B_B (the bulb's own default is 2) ...
 MIN_ENTRANCE_ANGLE = 7.0    # deg: a waterline ending finer meets the stem in a cusp, its stem sections a knife
                             # millimetres thick (no stem bar is) that a bulb's top grazes
+#: deg: a design waterline closing on the centre plane aft (a dry transom's, a cruiser stern's) that
+#: would end blunter is solved again with this run half-angle. A blunt end rounds the waterlines
+#: about T within 1-2 % Lpp, and the buttocks crossing T there read that round as a convex lobe
+#: just above T over a hollow under it (bench_fairness_space, hulls 0-99: a buttock over two 53 ->
+#: 48 hulls; 65 deg: 50, 70: 53; lower caps bend the rest of a full waterline harder: docs/sections.md).
+MAX_RUN_ANGLE = 60.0
 BULB_AFT_RETRIES = (3.0, 3.5, 4.0)  # ... or these when it leaves a fine forefoot again (meets the hull in two curves)
 # A single screw in an aperture aft of a skeg. Propeller diameter by default a fraction of T;
 # its plane a fraction of Lpp forward of the AP (room for the rudder aft of it); clearances as
@@ -478,8 +484,9 @@ def natural_fullness(p: Particulars, c: dict, dwl, profile, xa: float, xf: float
 
 def _solve_dwl(p: Particulars, dwl: dict, xa: float, xf: float):
     """The design waterline solved from `dwl` (which keeps what it was solved with): without a
-    given LCF when the default one does not suit it, and with the entrance half angle raised to
-    MIN_ENTRANCE_ANGLE where the fairest waterline would end finer."""
+    given LCF when the default one does not suit it, with the run half angle lowered to
+    MAX_RUN_ANGLE where the fairest waterline closing aft would end blunter (_finer_run), and with
+    the entrance half angle raised to MIN_ENTRANCE_ANGLE where it would end finer."""
     half = p.breadth / 2
 
     def solve(spec: dict):
@@ -492,6 +499,7 @@ def _solve_dwl(p: Particulars, dwl: dict, xa: float, xf: float):
             raise
         del dwl["lcf"]  # the default LCF does not suit this waterline: let it fall where it is fairest
         curve = solve(dwl)
+    curve = _finer_run(p, dwl, curve, solve, xa)
     if "entrance_angle" in dwl or math.degrees(math.atan(abs(curve.derivative(xf, 1)))) >= MIN_ENTRANCE_ANGLE:
         return curve
     try:
@@ -500,6 +508,29 @@ def _solve_dwl(p: Particulars, dwl: dict, xa: float, xf: float):
         return curve
     dwl["entrance_angle"] = MIN_ENTRANCE_ANGLE
     return sharper
+
+
+def _finer_run(p: Particulars, dwl: dict, curve, solve, xa: float):
+    """The design waterline with its run half-angle capped at MAX_RUN_ANGLE where it closes on the
+    centre plane aft (yB 0) and the fairest one would end blunter: with the default LCF, else
+    without it (as _solve_dwl lets a default LCF go); kept as it is where neither solves or where
+    the run angle is given. `dwl` keeps what it was solved with."""
+    if dwl.get("yB", 0.0) != 0.0 or "run_angle" in dwl:
+        return curve
+    if math.degrees(math.atan(abs(curve.derivative(xa, 1)))) <= MAX_RUN_ANGLE:
+        return curve
+    trials = [{**dwl, "run_angle": MAX_RUN_ANGLE}]
+    if p.lcf is None and "lcf" in dwl:
+        trials.append({k: v for k, v in trials[0].items() if k != "lcf"})
+    for trial in trials:
+        try:
+            finer = solve(trial)
+        except _native.InfeasibleFormParameters:
+            continue
+        dwl.clear()
+        dwl.update(trial)
+        return finer
+    return curve
 
 
 def _waterline(p: Particulars, dwl: dict, xa: float, xf: float, peak: float, immersed_transom: bool):
