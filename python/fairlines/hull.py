@@ -125,8 +125,13 @@ MIN_STEM_SLOPE = 0.05
 # from zero with zero slope, and the dry sections mirror that to second order. Without it the
 # waterlines above T over the transom turned hollow, then convex (container 13 / 15 / 17 m: 3 / 5 /
 # 6 sign changes; 1 / 3 / 4 with it and kVeeExcessFade). At a stem it raised the fine ferry's
-# waterline sign changes (26 -> 28), so it applies at a dry transom only.
-DRY_TRANSOM_LEAN_BEND = 10.0
+# waterline sign changes (26 -> 28), so it applies at a dry transom only. Now 0: since the transom's
+# run (fairlines.transom_run) fairs the topside lines there, the bend's only mark left is on the
+# buttocks near the keel, whose height over it goes as y / tan(lower angle): 10 deg (h / T)^2
+# bent the 0.1 B/2 buttocks over the transom (bench_fairness_space, hulls 0-99 with
+# designer.MAX_RUN_ANGLE: a buttock over two 48 -> 46 hulls, every mark 31 -> 34; held-out 100-199
+# 42 -> 41, 37 -> 38; upper waterlines clean 275 -> 274 of 300; -5 reads as 0).
+DRY_TRANSOM_LEAN_BEND = 0.0
 # The dry sections' arrival angle is the immersed chord's limit, the ratio of the waterline's and
 # the keel's slopes where the waterline ends; it is capped only short of the sections' own limit
 # (kMaxLowerAngle, 89 deg). Capped at 75 deg, a full ship whose keel crosses T flatter than that
