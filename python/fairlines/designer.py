@@ -974,7 +974,10 @@ def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
             desc["bulb"]["shape"]["aft_length"] = factor * (k["c_lpr"] * p.lpp + k["c_bb"] * p.breadth)
             hull = Hull(HullDescription.from_dict(desc))
             # the ship with this bulb matched again, then its seam checked on the hull as returned
-            _refuse_a_miss(match_targets(hull, want=asked))
+            try:
+                _refuse_a_miss(match_targets(hull, want=asked))
+            except _native.InfeasibleFormParameters as exc:
+                raise _explained(exc, p) from exc
         try:
             hull.blend_placement()  # kept: composed_hull uses it
             return hull
@@ -1104,8 +1107,10 @@ def match_targets(hull: Hull, tol: float = MATCH_TOL, want: tuple | None = None)
     err, share, on = {}, (0.0, 0.0), None
     for _ in range(MATCH_ITERATIONS):
         h = hull.hydrostatics(sac_stations=2, gauss=MATCH_GAUSS)  # volume, LCB and Awp only: no SAC table
-        if on is None:  # measured on the first build, scaled with the bare hull's volume after it
-            share, on = _bulb_share(hull, h.volume) or (0.0, 0.0), hull.bare_hull_surface()
+        if on is None:  # measured on the first build it can be, scaled with the bare hull's volume after it
+            measured = _bulb_share(hull, h.volume)
+            if measured is not None:
+                share, on = measured, hull.bare_hull_surface()
         err = _ship_errors(h, share, want_v, want_lcb, want_awp, pr.lpp)
         close = max(abs(v) for v in err.values()) <= (max(tol, MATCH_TOL_BULB) if share[0] else tol)
         if close and share[0] and on is not hull.bare_hull_surface():  # verified on the hull as it is
@@ -1138,8 +1143,9 @@ def _bulb_share(hull: Hull, bare_volume: float) -> tuple[float, float] | None:
     """The bulb and blend's share of the ship below T as (volume, its moment about x = 0) over
     the bare hull's volume: the composed hull's mesh minus the bare hull's own mesh
     (fairlines.hydrostatics_composed.bulb_share); (0, 0) without a bulb. None when the bulb does
-    not meet this hull in one seam: on a first build _bulb_that_meets then runs it further aft
-    and matches again; on a later one the share measured before is kept, scaled. The bulb is sized
+    not meet this hull in one seam: match_targets then measures it on the next build that it does
+    meet (or keeps the share measured before, scaled), and _bulb_that_meets runs a bulb that meets
+    none further aft and matches again. The bulb is sized
     from the bare hull's volume (Kracht's V_PR = c_vpr V), so the share keeps nearly its ratio to
     it as the matching changes the hull."""
     if hull.description.bulb is None:
