@@ -138,8 +138,8 @@ MATCH_TOL = 1e-6            # relative tolerance of volume, LCB (on Lpp) and wat
 MATCH_ITERATIONS = 6
 MATCH_REFUSE = 1e-4         # a design still this far off (relative) after them is refused, not returned
 # With a bulb the ship's volume and LCB are the bare hull's plus the bulb's share (_bulb_share),
-# measured on the first build, scaled with the bare hull's volume, and measured again on the hull
-# that meets the asked. The scaled share is good to about 3e-5, so a closer mark costs a rebuild
+# measured on the first build that composes, scaled with the bare hull's volume, and measured
+# again on the hull that meets the asked. The scaled share is good to about 3e-5, so a closer mark costs a rebuild
 # and a composition more (2e-5: the container ship 65 -> 128 ms under load, 30 bulbed designs
 # 71 -> 118 ms median); the issue's is 1e-4.
 MATCH_TOL_BULB = 5e-5
@@ -1119,7 +1119,7 @@ def match_targets(hull: Hull, tol: float = MATCH_TOL, want: tuple | None = None)
             close = max(abs(v) for v in err.values()) <= max(tol, MATCH_TOL_BULB)
         if close:
             break
-        volume, lcb = h.volume * (1.0 + share[0]), (h.lcb + share[1]) / (1.0 + share[0])
+        volume, lcb = _ship_volume_lcb(h, share)
         if want_v:
             sac.aliases["volume"] *= want_v / volume
         if want_lcb is not None:
@@ -1130,10 +1130,16 @@ def match_targets(hull: Hull, tol: float = MATCH_TOL, want: tuple | None = None)
     return err
 
 
+def _ship_volume_lcb(h, share: tuple) -> tuple[float, float]:
+    """The ship's volume (m^3) and LCB (m): the bare hull's hydrostatics h plus the bulb's share
+    (volume and moment over the bare hull's volume, see _bulb_share)."""
+    return h.volume * (1.0 + share[0]), (h.lcb + share[1]) / (1.0 + share[0])
+
+
 def _ship_errors(h, share: tuple, want_v, want_lcb, want_awp, lpp: float) -> dict:
-    """Relative errors of the ship (bare hull h plus the bulb's share, see _bulb_share) against
-    the wanted volume, LCB (on Lpp) and waterplane area (the bulb leaves it the bare hull's)."""
-    volume, lcb = h.volume * (1.0 + share[0]), (h.lcb + share[1]) / (1.0 + share[0])
+    """Relative errors of the ship (_ship_volume_lcb) against the wanted volume, LCB (on Lpp)
+    and waterplane area (the bulb leaves it the bare hull's)."""
+    volume, lcb = _ship_volume_lcb(h, share)
     return {"volume": (volume - want_v) / want_v if want_v else 0.0,
             "lcb": (lcb - want_lcb) / lpp if want_lcb is not None else 0.0,
             "waterplane_area": (h.waterplane_area - want_awp) / want_awp if want_awp else 0.0}
@@ -1145,9 +1151,8 @@ def _bulb_share(hull: Hull, bare_volume: float) -> tuple[float, float] | None:
     (fairlines.hydrostatics_composed.bulb_share); (0, 0) without a bulb. None when the bulb does
     not meet this hull in one seam: match_targets then measures it on the next build that it does
     meet (or keeps the share measured before, scaled), and _bulb_that_meets runs a bulb that meets
-    none further aft and matches again. The bulb is sized
-    from the bare hull's volume (Kracht's V_PR = c_vpr V), so the share keeps nearly its ratio to
-    it as the matching changes the hull."""
+    none further aft and matches again. The bulb is sized from the bare hull's volume (Kracht's
+    V_PR = c_vpr V), so the share keeps nearly its ratio to it as the matching changes the hull."""
     if hull.description.bulb is None:
         return 0.0, 0.0
     from .compose import compose

@@ -131,13 +131,13 @@ def composed_hydrostatics(composed, draft: float, *, lpp: float, beam: float, tr
              cp=q["cp"] * vol / q["volume"],
              source="bare hull by NURBS quadrature, bulb and blend added from the composed mesh")
     if waterline_cuts is not None and not trim:
-        w = _waterplane(waterline_cuts, _Frame(draft, 0.0, lpp), density)
+        w, where = _waterplane(waterline_cuts, _Frame(draft, 0.0, lpp), density), "from the composed hull's section"
     elif _under(composed.trimmed_surfaces[1:], _Frame(draft, trim, lpp)):
-        w = {k: q[k] for k in ("waterplane_area", "lcf", "inertia_t", "inertia_l", "tpc")}
+        w, where = {k: q[k] for k in ("waterplane_area", "lcf", "inertia_t", "inertia_l", "tpc")}, "the bare hull's"
     else:
         w = composed_waterplane(composed, draft, lpp=lpp, trim=trim, density=density)
-    h["source"] += "; waterplane " + ("the bare hull's" if w.get("waterplane_area") == q["waterplane_area"]
-                                      else "from the composed hull's section")
+        where = "from the composed hull's section"
+    h["source"] += "; waterplane " + where
     if w:
         h.update(w, cwp=w["waterplane_area"] / (lpp * beam), bmt=w["inertia_t"] / vol, bml=w["inertia_l"] / vol)
         h.update(kmt=h["vcb"] + h["bmt"], kml=h["vcb"] + h["bml"],
