@@ -106,3 +106,21 @@ def test_a_bulbed_description_is_measured_and_drawn_with_its_bulb(tmp_path, caps
     assert rows[True]["volume_m3"][1] == pytest.approx(bare.volume, rel=1e-9)  # the CSV's 10 digits
     assert np.all(rows[False]["volume_m3"] > rows[True]["volume_m3"])
     assert np.all(rows[False]["LCB_m"] > rows[True]["LCB_m"])
+
+
+def test_a_bulbed_design_prints_and_draws_the_ship_with_its_bulb(tmp_path, capsys):
+    """fairlines design prints the ship's figures with its bulb (Cb as asked, the bare hull's
+    volume beside them); its lines take the composed ship unless --bare asks for the bare hull."""
+    pytest.importorskip("matplotlib")
+    design = tmp_path / "bulbed.json"
+    assert main(["design", "--lpp", "120", "--breadth", "20", "--draft", "7", "--depth", "10", "--cb", "0.7",
+                 "--lcb", "61", "--bulb", "-o", str(design)]) == 0
+    out = capsys.readouterr().out
+    assert "Cb 0.7000" in out and "with the bulb (bare hull" in out
+    assert main(["lines", str(design), "-o", str(tmp_path / "l.svg")]) == 0
+    assert "bulbous bow and blend composed" in capsys.readouterr().out
+    assert main(["lines", str(design), "--bare", "-o", str(tmp_path / "b.svg")]) == 0
+    assert "composed" not in capsys.readouterr().out
+    with pytest.raises(SystemExit):
+        main(["lines", str(design), "--bare", "--compose", "-o", str(tmp_path / "x.svg")])
+    assert "argument --compose: not allowed with argument --bare" in capsys.readouterr().err
