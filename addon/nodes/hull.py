@@ -59,8 +59,9 @@ class FLNodeParticulars(FairlinesNode, bpy.types.Node):
     out on fine ships whose sections would narrow it; switched on, drawn as given, narrowing
     where it must; 0: none); the stern type, the stem rake, the transom's rake (from the
     vertical, the top aft), a bulbous
-    bow, a single screw's skeg and propeller aperture, a sonar dome. The hull meets Cb, LCB and
-    Cwp on its own surface; out of the designer's range the node is red with the range named"""
+    bow, a single screw's skeg and propeller aperture, a sonar dome. The ship meets Cb and LCB
+    (with a bulb the composed ship: bare hull, bulb and blend) and Cwp; the node shows the
+    ship's figures; out of the designer's range the node is red with the range named"""
     bl_idname = ids.NODE_PARTICULARS
     bl_label = "Particulars"
     category = "Hull"
@@ -99,7 +100,14 @@ class FLNodeParticulars(FairlinesNode, bpy.types.Node):
         d = hull.description
         notes = d.notes.split("designed from particulars: ")[-1].replace(", parallel", "\nparallel")
         info = "x %.2f .. %.2f m\n%s" % (d.x_aft, d.x_fore, notes)
-        return {"Hull": hull, "Lpp": p.lpp, "B": p.breadth, "T": p.draft, "D": p.depth, "__info__": info}
+
+        def later():
+            # the ship's figures (with a bulb its composition, which the designer kept): nothing drawn needs them
+            h = hull.ship_hydrostatics()
+            return {"__info__": "\nship%s: V %.6g m3, Cb %.4f, LCB %.3f m" % (
+                " with its bulb" if d.bulb is not None else "", h["volume"], h["cb"], h["lcb"])}
+        return {"Hull": hull, "Lpp": p.lpp, "B": p.breadth, "T": p.draft, "D": p.depth, "__info__": info,
+                "__later__": later}
 
 
 @register

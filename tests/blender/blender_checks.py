@@ -756,6 +756,8 @@ def t_api_headless():
     ref = fl.design_hull(lpp=244.8, breadth=32.25, draft=11.0, depth=19.0, cb=0.72, lcb=124.0, bulb=True)
     check(abs(api.result(tree, "Bare", "Cb") - ref.hydrostatics().cb) < 1e-6 and ref.hydrostatics().cb < 0.72,  # single precision
           "bare hull's Cb after set: %.6f, fl.design_hull's %.6f" % (api.result(tree, "Bare", "Cb"), ref.hydrostatics().cb))
+    check("ship with its bulb: V" in ship.fl_info and "Cb 0.7200" in ship.fl_info,
+          "the Particulars node's ship figures: %r" % ship.fl_info)
     api.set(tree, ship, "Cb", 0.99)  # outside the designer's range
     try:
         api.evaluate(tree)
