@@ -254,6 +254,11 @@ class Particulars:
     name: str = "designed hull"
     notes: list[str] = field(default_factory=list)
 
+    @property
+    def volume(self) -> float:
+        """The ship's displaced volume asked, Cb Lpp B T (m^3), its bulb included."""
+        return self.cb * self.lpp * self.breadth * self.draft
+
     def check(self) -> None:
         """Raises InvalidInput naming a value outside the designer's range."""
         for key in ("lpp", "breadth", "draft", "depth", "cb", "lcb"):
@@ -470,7 +475,7 @@ def natural_fullness(p: Particulars, c: dict, dwl, profile, xa: float, xf: float
     v0, m0 = np.sum(wq * box * cm), np.sum(wq * x * box * cm)
     ka, kf = np.sum(wq * box * ga), np.sum(wq * box * gf)
     ma, mf = np.sum(wq * x * box * ga), np.sum(wq * x * box * gf)
-    vol = p.cb * p.lpp * p.breadth * p.draft
+    vol = p.volume
     rhs = np.array([vol - v0, vol * p.lcb - m0])
     try:
         da, df = np.linalg.solve(np.array([[ka, kf], [ma, mf]]), rhs)
@@ -665,7 +670,7 @@ def _sac_spec(p: Particulars, c: dict, dwl_curve, profile, keel_landing: float, 
     par = c["parallel"]
     xs, target = natural_fullness(p, c, dwl_curve, profile, xa, xf)
     near_end = FIT_END * (xf - xa)
-    sac = {"volume": p.cb * L * B * T, "lcb": p.lcb, "spans": 24, "monotone": True,
+    sac = {"volume": p.volume, "lcb": p.lcb, "spans": 24, "monotone": True,
            "fullness_fit": [[float(x), float(s)] for x, s in zip(xs, target)
                             if xa + near_end <= x <= xf - near_end]}
     if par[1] > par[0]:
@@ -790,7 +795,7 @@ def _fitting_lateral_area(p: Particulars, c: dict, kracht: dict) -> float:
     it. The ship is estimated from the particulars (A_MS = Cm B T, V = Cb Lpp B T)."""
     ship = fill_options(_native.BulbShip, "bulb ship", dict(
         lpp=p.lpp, beam=p.breadth, draft_fp=p.draft, midship_area=c["cm"] * p.breadth * p.draft,
-        displacement_volume=p.cb * p.lpp * p.breadth * p.draft))
+        displacement_volume=p.volume))
     k = fill_options(_native.KrachtCoefficients, "bulb", kracht)
     kappa, lo, hi = _native._bulb_section_fullness(k, ship)
     margin = BULB_FULLNESS_MARGIN * (hi - lo)
@@ -967,7 +972,7 @@ def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
     for factor in (None,) if fixed else (None, *BULB_AFT_RETRIES):
         if factor is not None:
             if asked is None:  # the ship's volume and LCB; the bulb leaves the waterplane as matched
-                asked = (p.cb * p.lpp * p.breadth * p.draft, p.lcb,
+                asked = (p.volume, p.lcb,
                          hull.hydrostatics(sac_stations=2, gauss=MATCH_GAUSS).waterplane_area)
             desc = desc or json.loads(hull.to_json())
             k = desc["bulb"]["kracht"]
@@ -1155,7 +1160,6 @@ def _bulb_share(hull: Hull, bare_volume: float) -> tuple[float, float] | None:
     V_PR = c_vpr V), so the share keeps nearly its ratio to it as the matching changes the hull."""
     if hull.description.bulb is None:
         return 0.0, 0.0
-    from .compose import compose
     from .hydrostatics_composed import bulb_share
 
     try:
@@ -1163,5 +1167,5 @@ def _bulb_share(hull: Hull, bare_volume: float) -> tuple[float, float] | None:
     except _native.InvalidInput:
         return None
     pr = hull.description.principal
-    s = bulb_share(composed, compose([hull.bare_hull_surface()]), pr.draft, lpp=pr.lpp)
+    s = bulb_share(composed, hull.bare_hull_closed(), pr.draft, lpp=pr.lpp)
     return s["volume"] / bare_volume, s["mx"] / bare_volume

@@ -222,6 +222,7 @@ class Hull:
         self._bow = None  # (key, BulbousBow) of the description's bulb, no overrides
         self._placement = None  # (surface, bow, BlendPlacement) of the default blend
         self._composed = None  # ((surface, bow, placement), ComposedHull) of the default composition
+        self._closed = None  # (surface, ComposedHull): the bare hull closed, default meshing
 
     # ---- construction ---------------------------------------------------------------
     @classmethod
@@ -809,7 +810,8 @@ class Hull:
             return {**self.hydrostatics(draft).as_dict(), "source": "NURBS quadrature"}
         from .hydrostatics_composed import composed_hydrostatics
 
-        return composed_hydrostatics(self.composed_hull(), draft, lpp=pr.lpp, beam=pr.breadth)
+        return composed_hydrostatics(self.composed_hull(), draft, lpp=pr.lpp, beam=pr.breadth,
+                                     bare_mesh=self.bare_hull_closed())
 
     # ---- bulbous bow ----------------------------------------------------------------
     def ship_particulars(self) -> dict[str, float]:
@@ -867,6 +869,20 @@ class Hull:
             self._placement = (surface, bow, seam_blend_placement(surface, bow))
         return self._placement[2]
 
+    def bare_hull_closed(self):
+        """The bare hull closed by deck, transom and centre plane (fl.compose of it alone, default
+        meshing): a ship without a bulb's composed hull, and what a bulb's share of the ship is
+        measured against (fairlines.hydrostatics_composed). Kept until the hull changes: callers
+        must not edit it."""
+        from .compose import compose
+
+        surface = self.bare_hull_surface()
+        if self._closed is None or self._closed[0] is not surface:
+            closed = compose([surface])
+            closed.blend_note = "no bulb: the bare hull closed"
+            self._closed = (surface, closed)
+        return self._closed[1]
+
     def composed_hull(self, blend: bool = True, bulb=None, **compose_options):
         """Bare hull + bulbous bow (+ a G2 blend when ``blend``) composed into one watertight half
         hull (fairlines.ComposedHull); a ship without a bulb (none described, none given) is its
@@ -876,6 +892,8 @@ class Hull:
         from .compose import compose, compose_with_blend
 
         if bulb is None and self.description.bulb is None:
+            if not compose_options:
+                return self.bare_hull_closed()
             closed = compose([self.bare_hull_surface()], **compose_options)
             closed.blend_note = "no bulb: the bare hull closed"
             return closed
