@@ -30,7 +30,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
+#include <cstdint>
 #include <sstream>
 #include <tuple>
 #include <unordered_map>
@@ -187,17 +187,26 @@ struct MeshBuilder {
 /// The open boundary of the oriented surface faces as one loop, run against the surface (so a
 /// cap made on it faces the other way). Throws when the boundary branches or is not one loop.
 std::vector<int> boundary_loop(const MeshBuilder& mb) {
-  std::map<std::pair<int, int>, int> count;
+  const auto key = [](int a, int b) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32) |
+           static_cast<std::uint32_t>(std::max(a, b));
+  };
+  // every face side's undirected edge, sorted: a side alone on its edge is on the boundary
+  // (a sorted array instead of a tree map of pairs: a third of the composition's cap time)
+  std::vector<std::uint64_t> sides;
+  sides.reserve(mb.faces.size() * 3);
   for (const auto& f : mb.faces)
-    for (int k = 0; k < 3; ++k) {
-      int a = f[k], b = f[(k + 1) % 3];
-      count[{std::min(a, b), std::max(a, b)}]++;
-    }
+    for (int k = 0; k < 3; ++k) sides.push_back(key(f[k], f[(k + 1) % 3]));
+  std::sort(sides.begin(), sides.end());
+  const auto alone = [&](std::uint64_t e) {
+    const auto it = std::lower_bound(sides.begin(), sides.end(), e);
+    return std::next(it) == sides.end() || *std::next(it) != e;
+  };
   std::unordered_map<int, int> next;
   for (const auto& f : mb.faces)
     for (int k = 0; k < 3; ++k) {
       int a = f[k], b = f[(k + 1) % 3];
-      if (count[{std::min(a, b), std::max(a, b)}] == 1) {
+      if (alone(key(a, b))) {
         if (next.count(b)) throw InvalidInput("compose: the open hull boundary branches (non-manifold boundary vertex)");
         next[b] = a;  // reversed: the cap runs against the surface boundary
       }
