@@ -72,7 +72,7 @@ class ComposedHull:
     ``uv_b`` on the bulb, ``max_gap``), ``seam_vertices`` (mesh indices of the seam points).
     """
 
-    def __init__(self, native, surfaces: Sequence[NurbsSurface]):
+    def __init__(self, native, surfaces: Sequence[NurbsSurface], continuity_samples: int = 0):
         self._c = native
         self.mesh = Mesh(np.asarray(native.vertices), np.asarray(native.faces))
         self.face_part = np.asarray(native.face_part)
@@ -81,16 +81,42 @@ class ComposedHull:
         surf = [native.hull] + list(surfaces[1:])
         self.trimmed_surfaces = [(surf[i], [np.asarray(l) for l in loops])
                                  for i, loops in native.trimmed_surfaces]
-        #: The blending surface actually meshed (or None) and its measured continuity
-        #: ({max_angle_deg, max_gap} at the hull and at the bulb).
+        #: The blending surface actually meshed (or None).
         self.blend = native.blend
-        self.blend_continuity = tuple(dict(d) for d in native.blend_continuity) if native.blend is not None else None
+        self._bulb = surfaces[1] if len(surfaces) > 1 else None
+        self._continuity_samples = continuity_samples
+        self._continuity = None
         if self.blend is not None:
             self.trimmed_surfaces.append((self.blend, [np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])]))
         self.x_aft = float(native.x_aft)
         self.z_deck = float(native.z_deck)
-        #: What compose_with_blend did about the blend (empty from compose()).
-        self.blend_note = ""
+        self._note = ""
+
+    @property
+    def blend_continuity(self) -> tuple[dict, dict] | None:
+        """The blend's measured continuity ({max_angle_deg, max_gap} at the hull and at the bulb)
+        at blend_check_samples points per boundary, or None without a blend. Measured when first
+        read: the projections cost as much as a quarter of the composition, and the designer's
+        compositions are read for volume only."""
+        if self.blend is None:
+            return None
+        if self._continuity is None:
+            n = self._continuity_samples
+            self._continuity = (dict(_native.boundary_continuity(self.blend, False, self._c.hull, n)),
+                                dict(_native.boundary_continuity(self.blend, True, self._bulb, n)))
+        return self._continuity
+
+    @property
+    def blend_note(self) -> str:
+        """What compose_with_blend did about the blend (empty from compose())."""
+        if self._note is None:  # a blend by compose_with_blend: its continuity read when asked
+            self._note = "blend: max normal angle %.3f deg at the hull, %.3f deg at the bulb" % tuple(
+                d["max_angle_deg"] for d in self.blend_continuity)
+        return self._note
+
+    @blend_note.setter
+    def blend_note(self, note: str) -> None:
+        self._note = note
 
     @property
     def volume(self) -> float:
@@ -164,8 +190,12 @@ def compose(subdomains: Sequence[Any], operation: str = "union", **options) -> C
     for i, s in enumerate(surfaces):
         if not isinstance(s, NurbsSurface):
             raise _native.InvalidInput(f"subdomains[{i}] is {type(s).__name__}; expected a NurbsSurface or BulbousBow")
+    samples = o.blend_check_samples
+    if samples < 2:
+        raise _native.InvalidInput(f"blend_check_samples is {samples}; expected >= 2")
+    o.blend_check_samples = 2  # the least the engine takes; ComposedHull.blend_continuity measures at `samples`
     native = _native._compose_hull(surfaces[0], surfaces[1] if len(surfaces) > 1 else None, o, blend)
-    return ComposedHull(native, surfaces)
+    return ComposedHull(native, surfaces, samples)
 
 
 _COUNTS = ("hull_u", "hull_v", "bulb_u", "bulb_v", "blend_rows", "blend_check_samples")
@@ -217,8 +247,7 @@ def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface
         union = compose([bare_hull, bulb], **meshing)
         union.blend_note = "no blend: " + str(e).split(": ", 1)[1] + "; plain union"
         return union
-    # compose() skins the blend at the mesh resolution and measures its continuity itself
+    # compose() skins the blend at the mesh resolution; its continuity is measured when read
     out = compose([placement.hull, bulb, placement], **meshing)
-    out.blend_note = "blend: max normal angle %.3f deg at the hull, %.3f deg at the bulb" % tuple(
-        d["max_angle_deg"] for d in out.blend_continuity)
+    out.blend_note = None
     return out
