@@ -1163,9 +1163,9 @@ def _bulb_share(hull: Hull, bare_volume: float) -> tuple[float, float] | None:
     from .hydrostatics_composed import bulb_share
 
     try:
-        composed = hull.composed_hull()
+        composed, closed = hull.ship_meshes()
     except _native.InvalidInput:
         return None
     pr = hull.description.principal
-    s = bulb_share(composed, hull.bare_hull_closed(), pr.draft, lpp=pr.lpp)
+    s = bulb_share(composed, closed, pr.draft, lpp=pr.lpp)
     return s["volume"] / bare_volume, s["mx"] / bare_volume

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import json
 import math
+import threading
 from dataclasses import replace
 from typing import Any
 
@@ -810,8 +811,8 @@ class Hull:
             return {**self.hydrostatics(draft).as_dict(), "source": "NURBS quadrature"}
         from .hydrostatics_composed import composed_hydrostatics
 
-        return composed_hydrostatics(self.composed_hull(), draft, lpp=pr.lpp, beam=pr.breadth,
-                                     bare_mesh=self.bare_hull_closed())
+        composed, closed = self.ship_meshes()
+        return composed_hydrostatics(composed, draft, lpp=pr.lpp, beam=pr.breadth, bare_mesh=closed)
 
     # ---- bulbous bow ----------------------------------------------------------------
     def ship_particulars(self) -> dict[str, float]:
@@ -874,14 +875,26 @@ class Hull:
         meshing): a ship without a bulb's composed hull, and what a bulb's share of the ship is
         measured against (fairlines.hydrostatics_composed). Kept until the hull changes: callers
         must not edit it."""
-        from .compose import compose
-
         surface = self.bare_hull_surface()
         if self._closed is None or self._closed[0] is not surface:
-            closed = compose([surface])
-            closed.blend_note = "no bulb: the bare hull closed"
-            self._closed = (surface, closed)
+            self._closed = (surface, _closed(surface))
         return self._closed[1]
+
+    def ship_meshes(self) -> tuple:
+        """(composed_hull(), bare_hull_closed()): the ship's composed hull and what the bulb's
+        share is measured against (fairlines.hydrostatics_composed.bulb_share). With a bulb the
+        bare hull is closed on a second thread while the bulb is placed and composed (the engine
+        releases the GIL: the designer measures the share on two builds). Raises InvalidInput
+        when the bulb does not meet the hull."""
+        surface = self.bare_hull_surface()
+        if self.description.bulb is None or (self._closed is not None and self._closed[0] is surface):
+            return self.composed_hull(), self.bare_hull_closed()
+        closed = _in_thread(lambda: _closed(surface))
+        try:
+            composed = self.composed_hull()
+        finally:
+            self._closed = (surface, closed())  # joined before a refusal leaves too
+        return composed, self._closed[1]
 
     def composed_hull(self, blend: bool = True, bulb=None, **compose_options):
         """Bare hull + bulbous bow (+ a G2 blend when ``blend``) composed into one watertight half
@@ -920,3 +933,35 @@ class Hull:
 
         kwargs.setdefault("draft", self.description.principal.draft)
         return fairness_report(self.bare_hull_surface(), **kwargs)
+
+
+def _closed(surface):
+    """The bare hull surface closed by deck, transom and centre plane (fl.compose of it alone)."""
+    from .compose import compose
+
+    closed = compose([surface])
+    closed.blend_note = "no bulb: the bare hull closed"
+    return closed
+
+
+def _in_thread(work):
+    """Run work() on a thread; returns a function that joins it and gives work's value or
+    raises its error."""
+    out = {}
+
+    def run():
+        try:
+            out["value"] = work()
+        except BaseException as e:  # re-raised on the caller's thread
+            out["error"] = e
+
+    t = threading.Thread(target=run, name="fairlines-close-bare-hull", daemon=True)
+    t.start()
+
+    def result():
+        t.join()
+        if "error" in out:
+            raise out["error"]
+        return out["value"]
+
+    return result
