@@ -249,5 +249,5 @@ def compose_with_blend(bare_hull: NurbsSurface, bulb: "BulbousBow | NurbsSurface
         return union
     # compose() skins the blend at the mesh resolution; its continuity is measured when read
     out = compose([placement.hull, bulb, placement], **meshing)
-    out.blend_note = None
+    out._note = None  # blend_note formats the continuity when read
     return out

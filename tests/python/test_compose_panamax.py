@@ -240,3 +240,42 @@ def test_bulb_that_cannot_meet_the_hull_is_a_clear_error(hull, ship):
     short = hull.bulbous_bow(aft_length=0.3)
     with pytest.raises(ValueError, match="bulb cannot meet the hull"):
         hull.composed_hull(bulb=short)
+
+
+def test_blend_continuity_read_later_is_the_engines_at_the_asked_samples(hull, bulb):
+    """compose() leaves the blend's continuity to be measured when read: the figures are the
+    engine's own check at the asked blend_check_samples (projected onto the oriented hull and
+    the bulb), and fewer than two samples are refused as the engine refuses them."""
+    from fairlines._options import fill_options
+
+    p = hull.blend_placement()
+    got = fl.compose([p.hull, bulb, p], blend_check_samples=37)
+    spec = fill_options(fl._native.BlendSpec, "blend", dict(hull_uv=np.asarray(p.boundary_a, float),
+                                                            bulb_u=float(p.boundary_b[1]), tension=float(p.tension)))
+    eager = fl._native._compose_hull(p.hull, bulb.surface, fl.compose_options(blend_check_samples=37), spec)
+    assert got.blend_continuity == tuple(dict(d) for d in eager.blend_continuity)
+    assert fl.compose([hull.bare_hull_surface()]).blend_continuity is None
+    with pytest.raises(ValueError, match="blend_check_samples is 1; expected >= 2"):
+        fl.compose([p.hull, bulb, p], blend_check_samples=1)
+
+
+def test_ship_meshes_are_the_composed_and_the_closed_bare_hull(description):
+    """Hull.ship_meshes closes the bare hull on a second thread: the pair is the hull's kept
+    composed_hull() and bare_hull_closed(), the closed one the same mesh as fl.compose of the
+    bare surface alone; no thread outlives the call, also when the bulb cannot meet the hull."""
+    import threading
+
+    before = threading.active_count()
+    h = fl.Hull.from_json(description)
+    composed, closed = h.ship_meshes()
+    assert composed is h.composed_hull() and closed is h.bare_hull_closed()
+    alone = fl.compose([h.bare_hull_surface()])
+    assert np.array_equal(closed.mesh.vertices, alone.mesh.vertices)
+    assert np.array_equal(closed.mesh.faces, alone.mesh.faces)
+    short = json.loads(json.dumps(description))
+    short["bulb"].setdefault("shape", {})["aft_length"] = 0.3
+    h = fl.Hull.from_json(short)
+    with pytest.raises(ValueError, match="bulb cannot meet the hull"):
+        h.ship_meshes()
+    assert threading.active_count() == before
+    assert h.bare_hull_closed().volume == pytest.approx(alone.volume, rel=1e-12)
