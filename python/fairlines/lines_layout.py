@@ -14,6 +14,7 @@ Scales are round 1:N (``SCALES``), the largest drawing at which everything fits.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -24,6 +25,8 @@ __all__ = ["layout"]
 
 #: Title block size (mm on paper).
 TITLE_MM = (118.0, 92.0)
+#: Least significant digits of a title block figure (a 5.7 m model's volume, 0.5504 m3, and MCT1cm).
+TITLE_SIGNIFICANT = 4
 #: Characters per line of the title block's notes (1.6 mm text across its width).
 NOTE_CHARS = 92
 #: Waterlines are labelled in the half-breadth plan at this fraction of the drawn x range.
@@ -426,8 +429,15 @@ def _body_outline(prims, c, layer, mid, body: _Body):
                 prims.append(Polyline(body.at(s * c[r, 1], c[r, 2]), layer, True))
 
 
-def _fmt(h, key, fmt, unit=""):
-    return (fmt % h[key] + unit) if h and key in h and h[key] is not None else "-"
+def _fmt(h, key, decimals, unit=""):
+    """h[key] with `decimals` decimals, more where it has fewer than TITLE_SIGNIFICANT
+    significant digits (a model's 0.5504 m3 read 0.6, its MCT1cm 0.0), "-" when missing."""
+    v = h.get(key) if h else None
+    if v is None:
+        return "-"
+    if v and math.isfinite(v):
+        decimals = max(decimals, TITLE_SIGNIFICANT - 1 - math.floor(math.log10(abs(v))))
+    return f"{v:.{decimals}f}{unit}"
 
 
 def _title_block(plan, prims, m):
@@ -451,13 +461,13 @@ def _title_block(plan, prims, m):
     spacing = p["lpp"] / STATIONS_PER_LPP
     left_rows = [("Lpp", f"{p['lpp']:.3f} m"), ("B", f"{p['beam']:.3f} m"), ("T (DWL)", f"{p['draft']:.3f} m"),
                  ("D", f"{p['depth']:.3f} m"), ("Stations", f"0 (AP) .. 20 (FP)"), ("spacing", f"{spacing:.3f} m"),
-                 ("Vol", _fmt(h, "volume", "%.1f", " m3")), ("Displ.", _fmt(h, "displacement", "%.1f", " t")),
-                 ("LCB", _fmt(h, "lcb", "%.3f", " m fwd AP")), ("KB", _fmt(h, "vcb", "%.3f", " m"))]
-    right_rows = [("Awp", _fmt(h, "waterplane_area", "%.1f", " m2")), ("LCF", _fmt(h, "lcf", "%.3f", " m")),
-                  ("S wet", _fmt(h, "wetted_surface", "%.1f", " m2")), ("Cb", _fmt(h, "cb", "%.4f")),
-                  ("Cp", _fmt(h, "cp", "%.4f")), ("Cm", _fmt(h, "cm", "%.4f")), ("Cwp", _fmt(h, "cwp", "%.4f")),
-                  ("KMt", _fmt(h, "kmt", "%.3f", " m")), ("KMl", _fmt(h, "kml", "%.2f", " m")),
-                  ("TPC", _fmt(h, "tpc", "%.2f", " t/cm")), ("MCT1cm", _fmt(h, "mct1cm", "%.1f", " t m/cm"))]
+                 ("Vol", _fmt(h, "volume", 1, " m3")), ("Displ.", _fmt(h, "displacement", 1, " t")),
+                 ("LCB", _fmt(h, "lcb", 3, " m fwd AP")), ("KB", _fmt(h, "vcb", 3, " m"))]
+    right_rows = [("Awp", _fmt(h, "waterplane_area", 1, " m2")), ("LCF", _fmt(h, "lcf", 3, " m")),
+                  ("S wet", _fmt(h, "wetted_surface", 1, " m2")), ("Cb", _fmt(h, "cb", 4)),
+                  ("Cp", _fmt(h, "cp", 4)), ("Cm", _fmt(h, "cm", 4)), ("Cwp", _fmt(h, "cwp", 4)),
+                  ("KMt", _fmt(h, "kmt", 3, " m")), ("KMl", _fmt(h, "kml", 2, " m")),
+                  ("TPC", _fmt(h, "tpc", 2, " t/cm")), ("MCT1cm", _fmt(h, "mct1cm", 1, " t m/cm"))]
     y0 = y - 4.0 * m
     for col, rows in ((0, left_rows), (1, right_rows)):
         yy = y0

@@ -207,3 +207,18 @@ def test_a_station_through_a_point_of_the_hull_takes_no_number(composed_plan):
     assert np.ptp(np.concatenate(cuts)[:, 1:], axis=0).max() < 0.01
     numbers = [p.text for p in composed_plan.primitives if isinstance(p, Text) and p.layer == "STATIONS"]
     assert "20.5" not in numbers and "20" in numbers
+
+
+def test_title_block_figures_of_a_model_keep_four_significant_digits():
+    """A 5 m Wigley model: its volume (4/9 L B T = 0.3472 m3) reads to four significant digits in
+    the title block, as do its displacement and MCT1cm (0.3 m3 and 0.0 t m/cm before)."""
+    lpp, beam, draft = 5.0, 0.5, 0.3125
+    plan = lines_plan(wigley_surface(lpp, beam, draft, 0.5), lpp=lpp, beam=beam, draft=draft, depth=0.5)
+    texts = [p.text for p in plan.primitives if getattr(p, "layer", None) == "TITLE" and hasattr(p, "text")]
+    value = {key: texts[texts.index(key) + 1] for key in ("Vol", "Displ.", "MCT1cm")}
+    assert value["Vol"] == "0.3472 m3"
+    assert float(value["Vol"].split()[0]) == pytest.approx(4.0 / 9.0 * lpp * beam * draft, rel=2e-4)
+    for key, name in (("Displ.", "displacement"), ("MCT1cm", "mct1cm")):
+        shown = value[key].split()[0]
+        assert len(shown.replace(".", "").lstrip("0")) >= 4, value[key]
+        assert float(shown) == pytest.approx(plan.hydrostatics[name], rel=1e-3)
