@@ -297,3 +297,45 @@ TEST(Mesh, DelaunayFlipsLeaveNoEdgeWithItsOppositeVertexInsideTheCircle) {
       EXPECT_GE((Eigen::Vector2d(P.row(far)) - o).norm(), (a - o).norm() * (1.0 - 1e-9)) << i << " " << j;
     }
 }
+
+namespace {
+
+TriMesh octahedron() {  // closed, outward: 8 faces about the origin
+  TriMesh m;
+  m.vertices.resize(6, 3);
+  m.vertices << 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1;
+  m.faces.resize(8, 3);
+  m.faces << 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5;
+  return m;
+}
+
+void flip(TriMesh& m, Eigen::Index f) { std::swap(m.faces(f, 1), m.faces(f, 2)); }
+
+}  // namespace
+
+TEST(Mesh, OrientIfNeededLeavesWhatTheBreadthFirstPassLeaves) {
+  const TriMesh good = octahedron();
+  ASSERT_NEAR(mesh_volume(good), 4.0 / 3.0, 1e-12);  // two pyramids of base 2, height 1
+  TriMesh inverted = good, one_flipped = good, two_flipped = good;
+  for (Eigen::Index f = 0; f < 8; ++f) flip(inverted, f);
+  flip(one_flipped, 3);
+  flip(two_flipped, 0);
+  flip(two_flipped, 6);
+  for (const TriMesh* start : std::array<const TriMesh*, 4>{&good, &inverted, &one_flipped, &two_flipped}) {
+    TriMesh a = *start, b = *start;
+    const EdgeReport r = orient_if_needed(a);
+    orient_consistently(b);
+    EXPECT_TRUE(a.faces == b.faces);
+    EXPECT_EQ(r.edges, 12);
+    EXPECT_EQ(r.open + r.non_manifold + r.inconsistent + r.degenerate_faces, 0);
+    EXPECT_NEAR(mesh_volume(a), 4.0 / 3.0, 1e-12);
+  }
+  const EdgeReport before = edge_report(one_flipped);  // face 3's three edges each met the same way
+  EXPECT_EQ(before.inconsistent, 3);
+  TriMesh open = good;
+  open.faces.conservativeResize(7, 3);  // one face taken out: its three edges open
+  const EdgeReport r = edge_report(open);
+  EXPECT_EQ(r.edges, 12);
+  EXPECT_EQ(r.open, 3);
+  EXPECT_EQ(r.inconsistent, 0);
+}

@@ -65,6 +65,12 @@ double mesh_area(const TriMesh& mesh);
 /// of faces flipped.
 long orient_consistently(TriMesh& mesh);
 
+/// The mesh as orient_consistently leaves it, checked first: when no two-face edge is traversed
+/// the same way by both faces (and none is non-manifold, no face degenerate) the faces are only
+/// all flipped if the enclosed volume is negative, without the breadth-first pass. Returns the
+/// edge_report of the mesh as left.
+EdgeReport orient_if_needed(TriMesh& mesh);
+
 /// Writes Wavefront OBJ (v / f records, 1-based). Throws Error when the file cannot be written.
 void write_obj(const TriMesh& mesh, const std::string& path);
 /// Writes STL, binary (default) or ASCII, with facet normals from the vertex order.

@@ -261,7 +261,7 @@ void cap_run(MeshBuilder& mb, std::vector<int> run, int plane, int corner) {
 /// centre plane, the deck and, unless the aft end lies on the centre plane, the transom plane.
 void close_half_hull(MeshBuilder& mb, const AftEnd& aft, double z_deck, double tol) {
   TriMesh open = mb.mesh();
-  orient_consistently(open);
+  orient_if_needed(open);
   for (size_t f = 0; f < mb.faces.size(); ++f)
     for (int k = 0; k < 3; ++k) mb.faces[f][k] = open.faces(static_cast<Eigen::Index>(f), k);
   const std::vector<int> loop = boundary_loop(mb);
@@ -904,10 +904,9 @@ void finish_mesh(const MeshBuilder& mb, ComposedHull& out) {
   // on it, where they would count as centre-plane vertices and be shared with their mirror.
   for (Eigen::Index i = 0; i < out.mesh.vertices.rows(); ++i)
     if (out.mesh.vertices(i, 1) < 0.0) out.mesh.vertices(i, 1) = kOffCentrePlane;
-  orient_consistently(out.mesh);
+  const EdgeReport er = orient_if_needed(out.mesh);
   out.face_part.resize(static_cast<Eigen::Index>(mb.part.size()));
   for (size_t f = 0; f < mb.part.size(); ++f) out.face_part[static_cast<Eigen::Index>(f)] = mb.part[f];
-  const EdgeReport er = edge_report(out.mesh);
   if (er.open || er.non_manifold || er.inconsistent) {
     std::ostringstream os;
     os << "compose: the composed mesh is not closed (" << er.open << " open, " << er.non_manifold

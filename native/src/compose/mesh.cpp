@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
-#include <map>
 #include <queue>
 #include <unordered_map>
 
@@ -36,25 +35,29 @@ constexpr double kFlipTolerance = 1e-12;
 
 EdgeReport edge_report(const TriMesh& mesh) {
   EdgeReport r;
-  // per undirected edge: count, and the sum of +1 (a<b traversal) / -1 (a>b)
-  std::unordered_map<std::uint64_t, std::pair<int, int>> edges;
-  edges.reserve(static_cast<size_t>(mesh.faces.rows()) * 2);
+  // each face side as (undirected edge, +1 for an a < b traversal, -1 for a > b), sorted by
+  // edge: a run of equal edges gives its count and the sum of its directions
+  std::vector<std::pair<std::uint64_t, int>> sides;
+  sides.reserve(static_cast<size_t>(mesh.faces.rows()) * 3);
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
-    int a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+    const int a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
     if (a == b || b == c || a == c) ++r.degenerate_faces;
     const int tri[3] = {a, b, c};
     for (int k = 0; k < 3; ++k) {
-      int p = tri[k], q = tri[(k + 1) % 3];
-      auto& e = edges[edge_key(p, q)];
-      e.first += 1;
-      e.second += p < q ? 1 : -1;
+      const int p = tri[k], q = tri[(k + 1) % 3];
+      sides.emplace_back(edge_key(p, q), p < q ? 1 : -1);
     }
   }
-  r.edges = static_cast<long>(edges.size());
-  for (const auto& [key, e] : edges) {
-    if (e.first == 1) ++r.open;
-    else if (e.first > 2) ++r.non_manifold;
-    else if (e.second != 0) ++r.inconsistent;
+  std::sort(sides.begin(), sides.end());
+  for (size_t i = 0; i < sides.size();) {
+    size_t j = i;
+    int direction = 0;
+    for (; j < sides.size() && sides[j].first == sides[i].first; ++j) direction += sides[j].second;
+    ++r.edges;
+    if (j - i == 1) ++r.open;
+    else if (j - i > 2) ++r.non_manifold;
+    else if (direction != 0) ++r.inconsistent;
+    i = j;
   }
   return r;
 }
@@ -398,6 +401,18 @@ long orient_consistently(TriMesh& mesh) {
     flips = m - flips;
   }
   return flips;
+}
+
+EdgeReport orient_if_needed(TriMesh& mesh) {
+  EdgeReport r = edge_report(mesh);
+  if (r.inconsistent || r.non_manifold || r.degenerate_faces) {
+    orient_consistently(mesh);
+    return edge_report(mesh);
+  }
+  // every two-face edge already consistent: the breadth-first pass would flip nothing
+  if (mesh_volume(mesh) < 0.0)
+    for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) std::swap(mesh.faces(f, 1), mesh.faces(f, 2));
+  return r;
 }
 
 void write_obj(const TriMesh& mesh, const std::string& path) {
