@@ -1079,8 +1079,10 @@ def _explained(exc: Exception, p: Particulars, edge: str = "") -> Exception:
                   "move lcb forward or lower cb (a longer run)")
     lp = (c["parallel"][1] - c["parallel"][0]) / p.lpp
     if curve == "sac" and lp > 0 and (c["cp"] - lp) / (1 - lp) < FINE_ENDS_CP:
+        shorter = max(0.0, (c["cp"] - FINE_ENDS_CP) / (1 - FINE_ENDS_CP)) * p.lpp  # ends of prismatic FINE_ENDS_CP
         remedy = (f"the ends outside this parallel body would need a prismatic coefficient of "
-                  f"{(c['cp'] - lp) / (1 - lp):.3f}: give a shorter parallel_length, raise cb or move lcb toward midships")
+                  f"{(c['cp'] - lp) / (1 - lp):.3f}: give a shorter parallel_length (at most {shorter:.4g} m leaves "
+                  f"them {FINE_ENDS_CP:g}), raise cb or move lcb toward midships")
     return type(exc)(f"design_hull: {said}: {remedy}{edge} ({exc})")
 
 

@@ -366,9 +366,18 @@ def test_a_fine_ship_with_a_short_parallel_body_and_lcb_at_midships_builds():
 
 def test_too_long_a_parallel_body_on_a_fine_ship_asks_for_a_shorter_one():
     """Cb 0.51 with 30 % Lpp of parallel body: the ends would need a prismatic of 0.35, which
-    no fair SAC within the sections' fullness holds; the message says which way to go."""
-    with pytest.raises(fl.InfeasibleFormParameters, match=r"prismatic coefficient of 0\.347: give a shorter parallel_length"):
-        fl.design_hull(lpp=150, breadth=19.531, draft=6.807, depth=10.891, cb=0.51, lcb=71.837, parallel_length=44.37)
+    no fair SAC within the sections' fullness holds; the message says which way to go and how
+    far (the length that leaves the ends a prismatic of FINE_ENDS_CP), and that length builds."""
+    from fairlines.designer import FINE_ENDS_CP
+
+    p = dict(lpp=150, breadth=19.531, draft=6.807, depth=10.891, cb=0.51, lcb=71.837)
+    with pytest.raises(fl.InfeasibleFormParameters, match=r"prismatic coefficient of 0\.347: give a shorter parallel_length") as e:
+        fl.design_hull(**p, parallel_length=44.37)
+    shorter = float(re.search(r"parallel_length \(at most ([\d.]+) m leaves them 0\.45\)", str(e.value)).group(1))
+    cp = p["cb"] / float(re.search(r"cm ([\d.]+)", str(e.value)).group(1))  # the Cm the designer took
+    assert shorter == pytest.approx((cp - FINE_ENDS_CP) / (1 - FINE_ENDS_CP) * p["lpp"], rel=1e-3)
+    hull = fl.design_hull(**p, parallel_length=shorter)
+    assert hull.ship_hydrostatics()["cb"] == pytest.approx(p["cb"], rel=1e-4)
 
 
 def test_a_fine_waterplane_over_a_full_body_builds_with_the_keel_rising_over_less_of_the_run(monkeypatch):
