@@ -99,6 +99,10 @@ DECK_FLAT_CHECKS = 101      # points of that check
 DECK_FLARE_END = 0.12       # forward, the deck's flare over the waterline (fraction of B/2) where the waterline ends ...
 DECK_FOLLOW_TO = 0.7        # ... followed to where the waterline narrows to this fraction of B/2 (the stem head is free)
 DECK_FLARE_POINTS = 40      # fit points of the forward deck over the waterline's forward run
+# ... the share followed rising as this power of the smoothstep (1: the smoothstep): a flare growing
+# as fast as the waterline narrows at the forward shoulder leaves the topside just above T straight
+# along the bilge's lean, and the outer buttocks turn back there, 1-6 deg at 1.0-1.1 T.
+DECK_FOLLOW_POWER = 0.4
 DECK_TRANSOM = 0.92         # deck half-breadth at the transom, fraction of B/2 ...
 TRANSOM_FLARE = 20.0        # ... at an immersed transom at most this far (deg) outboard of its waterline over the freeboard
 DECK_FLAT_TOL = 1e-3        # ... the deck over it flat from where it comes within this fraction of B/2
@@ -744,14 +748,15 @@ def _transom_deck(spec: dict, p: Particulars, dwl_curve, x_aft: float, deck_to: 
 def _forward_deck(half: float, dwl_curve, x0: float, xf: float) -> list[list[float]]:
     """Fit points of the deck forward of the waterline's widest x0: the deck follows the share
     (1 - DECK_FLARE_END) r(x) of the waterline's narrowing, r the smoothstep from x0 to the
-    waterline's end xf. So the flare (deck minus waterline half-breadth) grows as smoothly as the
-    waterline narrows; a deck flat to a fixed place and then narrowing on its own let the flare
-    grow fast just forward of the flat's end and level off soon after, and the bilge corner
-    leaning in with it turned the outer buttocks back where they cross the DWL."""
+    waterline's end xf to the power DECK_FOLLOW_POWER. So the flare (deck minus waterline
+    half-breadth) grows as smoothly as the waterline narrows; a deck flat to a fixed place and
+    then narrowing on its own let the flare grow fast just forward of the flat's end and level
+    off soon after, and the bilge corner leaning in with it turned the outer buttocks back where
+    they cross the DWL."""
     xs = np.linspace(x0, xf, DECK_FLARE_POINTS)[1:-1]
     y_dwl = dwl_curve(xs)
     xs, y_dwl = xs[y_dwl >= DECK_FOLLOW_TO * half], y_dwl[y_dwl >= DECK_FOLLOW_TO * half]
-    share = (1.0 - DECK_FLARE_END) * _smoothstep((xs - x0) / (xf - x0))
+    share = (1.0 - DECK_FLARE_END) * _smoothstep((xs - x0) / (xf - x0)) ** DECK_FOLLOW_POWER
     return [[float(x), float(half - f * (half - y))] for x, f, y in zip(xs, share, y_dwl)]
 
 
