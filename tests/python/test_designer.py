@@ -674,6 +674,9 @@ STEM_TIP_SHORT = {
     ("container", 0.25): "a hollow of 0.40 deg and a convex lobe of 0.25 deg at x 245.2 and 245.5 m (z 13 m, 2 m above T), "
                          "the waterline's last 0.6 m over the stem (0.28 and 0.29 with the top corner at 0.5 of the "
                          "freeboard and the top fillet's kFilletFar, designer.TOP_CORNER, sections.cpp kTopFilletFar)",
+    ("fine_ferry", 0.25): "a convex lobe of 0.28 deg at x 140.19 m then a hollow of 0.17 deg at 140.37 m (z 6.6 m), the "
+                          "waterline's last 0.4 m over the stem, since the forward deck follows the waterline's narrowing "
+                          "as smoothstep^0.4 (designer.DECK_FOLLOW_POWER; one hollow of 0.25 deg with the smoothstep)",
 }
 # The tanker's waterlines just above T: one at the stem (11.9 m, as above; 13 m's stem tip is clean since
 # kTopFilletFar), all three over the transom.
