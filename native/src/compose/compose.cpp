@@ -192,7 +192,6 @@ std::vector<int> boundary_loop(const MeshBuilder& mb) {
            static_cast<std::uint32_t>(std::max(a, b));
   };
   // every face side's undirected edge, sorted: a side alone on its edge is on the boundary
-  // (a sorted array instead of a tree map of pairs: a third of the composition's cap time)
   std::vector<std::uint64_t> sides;
   sides.reserve(mb.faces.size() * 3);
   for (const auto& f : mb.faces)
