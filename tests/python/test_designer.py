@@ -1005,3 +1005,23 @@ def test_a_composed_hull_with_a_wide_transom_does_not_cut_itself():
     c = fl.design_hull(**p).composed_hull()
     assert edge_census(c.mesh.faces) == (0, 0, 0)
     assert self_intersections(c.mesh) == []
+
+
+def test_the_example_description_is_what_the_designer_writes_for_its_particulars():
+    """examples/container_ship.json is design_hull's description of the Panamax particulars (the
+    Blender example graph designs the ship from them and checks it against the file): every
+    number of the designer's output within 1e-9 of the file's, names aside."""
+    example = json.loads((pathlib.Path(__file__).resolve().parents[2] / "examples" / "container_ship.json").read_text())
+    designed = json.loads(fl.design_hull(**SHIPS["container"]).to_json())
+
+    def numbers(d, path=""):
+        if isinstance(d, dict):
+            return {k: v for key, item in d.items() if key != "name" for k, v in numbers(item, f"{path}/{key}").items()}
+        if isinstance(d, list):
+            return {k: v for i, item in enumerate(d) for k, v in numbers(item, f"{path}[{i}]").items()}
+        return {path: d}
+
+    got, want = numbers(designed), numbers(example)
+    assert got.keys() == want.keys()
+    off = {k: (got[k], want[k]) for k in got if isinstance(got[k], float) and got[k] != pytest.approx(want[k], rel=1e-9, abs=1e-12)}
+    assert not off, off
