@@ -77,3 +77,20 @@ def test_a_raked_transoms_lid_adds_its_share_of_the_waterplane(rake):
     assert h.lcf == pytest.approx(40.0 - lw / 2, rel=1e-13)
     assert h.inertia_l == pytest.approx(2 * b * lw**3 / 12, rel=1e-12)
     assert h.inertia_t == pytest.approx((2 * b) ** 3 * lw / 12, rel=1e-13)
+
+
+def test_highest_point_is_the_deck_or_a_point_above_it():
+    """fl.hydrostatics(...).z_max: a deck at constant height is the highest point (read at the
+    breakpoints, where the net's top is reached); a control point raised above the deck makes
+    the surface rise above it there, and z_max is the top a dense grid of the surface finds."""
+    assert fl.hydrostatics(box_barge_surface(L, B, D), 5.0).z_max == pytest.approx(D, rel=1e-14)
+    s = wigley_surface(100.0, 10.0, 6.25, 10.0)
+    assert fl.hydrostatics(s, 6.25).z_max == pytest.approx(10.0, rel=1e-14)
+    P = np.asarray(s.control_points)
+    i, j = 2, P.shape[1] // 2  # a row below the deck's, amidships
+    s.set_control_point(i, j, P[i, j] + np.array([0.0, 0.0, 3.0]))
+    u = np.linspace(*s.domain_u, 801)
+    v = np.linspace(*s.domain_v, 801)
+    dense = float(np.asarray(s.evaluate_grid(u, v))[..., 2].max())
+    assert dense > 10.05
+    assert fl.hydrostatics(s, 6.25).z_max == pytest.approx(dense, abs=2e-3)

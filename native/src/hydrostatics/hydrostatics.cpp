@@ -21,6 +21,7 @@ using detail::fail;
 
 constexpr int kClipSamples = 8;        // samples per knot span when looking for draft crossings
 constexpr long kGridLines = 8;         // u lines per batch of highest_point's grid evaluation
+constexpr double kTopFromNet = 1e-12;  // a breakpoint this close (relative) to the net's top z is the highest point
 constexpr int kBisection = 60;         // bisection steps (interval shrinks below 1e-16 of the span)
 // A waterplane this far (relative) above the surface's sampled top still counts as at the top.
 constexpr double kAboveTopTolerance = 1e-9;
@@ -405,22 +406,10 @@ std::pair<double, double> section_area(const NurbsSurface& s, double x0, double 
 
 namespace {
 
-/// Highest z of the surface, sampled kClipSamples times per knot span in each direction
-/// (breakpoints included, so a deck edge at constant z is found exactly).
-double highest_point(const NurbsSurface& s) {
-  const std::vector<double> bu = breakpoints(s.knots_u(), s.degree_u());
-  const std::vector<double> bv = breakpoints(s.knots_v(), s.degree_v());
-  auto refine = [](const std::vector<double>& b) {
-    std::vector<double> t;
-    for (std::size_t i = 0; i + 1 < b.size(); ++i)
-      for (int k = 0; k < kClipSamples; ++k) t.push_back(b[i] + (b[i + 1] - b[i]) * k / kClipSamples);
-    t.push_back(b.back());
-    return t;
-  };
-  const std::vector<double> us = refine(bu), vs = refine(bv);
-  // Batched grid evaluation (basis functions per line, not per point), a few u lines at a
-  // time into one small buffer: this runs on every hydrostatics call, and the whole grid
-  // (~70 000 points) would be megabytes allocated and faulted in each time.
+/// Highest z of the surface sampled at (us x vs), a few u lines at a time into one small
+/// buffer: this runs on every hydrostatics call, and a whole fine grid (~70 000 points) would
+/// be megabytes allocated and faulted in each time.
+double highest_on_grid(const NurbsSurface& s, const std::vector<double>& us, const std::vector<double>& vs) {
   const long n_u = static_cast<long>(us.size()), n_v = static_cast<long>(vs.size());
   std::vector<double> pts(static_cast<std::size_t>(kGridLines * n_v * 3));
   double top = -std::numeric_limits<double>::infinity();
@@ -430,6 +419,28 @@ double highest_point(const NurbsSurface& s) {
     for (long k = 0; k < lines * n_v; ++k) top = std::max(top, pts[3 * k + 2]);
   }
   return top;
+}
+
+/// Highest z of the surface, sampled kClipSamples times per knot span in each direction
+/// (breakpoints included, so a deck edge at constant z is found exactly). The surface lies in
+/// its control net's convex hull (positive weights): where a breakpoint already reaches the net's
+/// highest z (a deck at constant height), no point is higher and the fine grid is skipped.
+double highest_point(const NurbsSurface& s) {
+  const std::vector<double> bu = breakpoints(s.knots_u(), s.degree_u());
+  const std::vector<double> bv = breakpoints(s.knots_v(), s.degree_v());
+  const double net_top = s.control_points().col(2).maxCoeff();
+  const double at_breaks = highest_on_grid(s, bu, bv);
+  const bool positive = s.weights().size() == 0 || s.weights().minCoeff() > 0.0;  // the convex hull property
+  if (positive && at_breaks >= net_top - kTopFromNet * (1.0 + std::abs(net_top)))
+    return at_breaks;
+  auto refine = [](const std::vector<double>& b) {
+    std::vector<double> t;
+    for (std::size_t i = 0; i + 1 < b.size(); ++i)
+      for (int k = 0; k < kClipSamples; ++k) t.push_back(b[i] + (b[i + 1] - b[i]) * k / kClipSamples);
+    t.push_back(b.back());
+    return t;
+  };
+  return highest_on_grid(s, refine(bu), refine(bv));
 }
 
 void check_options(const HydrostaticsOptions& o) {
