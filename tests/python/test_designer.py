@@ -1025,3 +1025,32 @@ def test_the_example_description_is_what_the_designer_writes_for_its_particulars
     assert got.keys() == want.keys()
     off = {k: (got[k], want[k]) for k in got if isinstance(got[k], float) and got[k] != pytest.approx(want[k], rel=1e-9, abs=1e-12)}
     assert not off, off
+
+
+#: A forward frame may stand out past its deck edge above T by this much (fraction of B/2) at most.
+TUMBLEHOME_TOL = 1e-3
+TUMBLEHOME = {
+    "container": "1.80 % of B/2 (0.29 m) at x 210.9 m (0.861 Lpp): the frame's top corner bulges past the deck "
+                 "edge where the deck runs close to the topside's own lean (0.61 % with the forward deck following "
+                 "the plain smoothstep, designer.DECK_FOLLOW_POWER 1, whose flare turned the 0.9 B/2 buttocks back)",
+    "fine_ferry": "0.88 % of B/2 (0.075 m) at x 117.4 m (0.838 Lpp; none with DECK_FOLLOW_POWER 1)",
+    "coaster_cruiser": "0.88 % of B/2 (0.070 m) at x 91.9 m (0.919 Lpp; 0.40 % with DECK_FOLLOW_POWER 1)",
+}
+
+
+@pytest.mark.parametrize("name", ["container", "fine_ferry", "coaster_cruiser"])
+def test_forward_frames_do_not_tumble_home_above_t(request, name):
+    """Forward of 0.55 Lpp no frame cut above T stands out past its deck edge (no tumblehome at
+    the bow, where a naval architect wants flare): its widest half-breadth above T is within
+    TUMBLEHOME_TOL of B/2 of the half-breadth at its top."""
+    if name in TUMBLEHOME:
+        request.applymarker(pytest.mark.xfail(strict=True, reason=TUMBLEHOME[name]))
+    hull = fl.design_hull(**SHIPS[name])
+    pr = hull.description.principal
+    worst = 0.0
+    for x in np.linspace(0.55 * pr.lpp, hull.immersed_range()[1], 40):
+        P = np.asarray(fl.plane_cut(hull.bare_hull_surface(), 0, float(x), 401).points)
+        above = P[P[:, 2] >= pr.draft]
+        if len(above):
+            worst = max(worst, (above[:, 1].max() - P[np.argmax(P[:, 2]), 1]) / (pr.breadth / 2))
+    assert worst <= TUMBLEHOME_TOL, worst
