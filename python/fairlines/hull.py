@@ -876,9 +876,13 @@ class Hull:
         measured against (fairlines.hydrostatics_composed). Kept until the hull changes: callers
         must not edit it."""
         surface = self.bare_hull_surface()
-        if self._closed is None or self._closed[0] is not surface:
+        if self._kept_closed(surface) is None:
             self._closed = (surface, _closed(surface))
         return self._closed[1]
+
+    def _kept_closed(self, surface):
+        """The bare hull closed, if already made for `surface` (else None)."""
+        return self._closed[1] if self._closed is not None and self._closed[0] is surface else None
 
     def ship_meshes(self) -> tuple:
         """(composed_hull(), bare_hull_closed()): the ship's composed hull and what the bulb's
@@ -887,7 +891,7 @@ class Hull:
         releases the GIL: the designer measures the share on two builds). Raises InvalidInput
         when the bulb does not meet the hull."""
         surface = self.bare_hull_surface()
-        if self.description.bulb is None or (self._closed is not None and self._closed[0] is surface):
+        if self.description.bulb is None or self._kept_closed(surface) is not None:
             return self.composed_hull(), self.bare_hull_closed()
         closed = _in_thread(lambda: _closed(surface))
         try:
