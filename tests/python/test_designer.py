@@ -671,9 +671,9 @@ WOBBLY_WATERLINES: dict = {}
 # and a waterline just above T takes a sub-degree wobble in its last metre. Kept for what DWL_E3 gives
 # over bench_fairness_space's 300 hulls: S frames above T on 19 -> 6 hulls, frame inflections 210 -> 151.
 STEM_TIP_SHORT = {
-    ("container", 0.25): "a hollow of 0.40 deg and a convex lobe of 0.25 deg at x 245.2 and 245.5 m (z 13 m, 2 m above T), "
-                         "the waterline's last 0.6 m over the stem (0.28 and 0.29 with the top corner at 0.5 of the "
-                         "freeboard and the top fillet's kFilletFar, designer.TOP_CORNER, sections.cpp kTopFilletFar)",
+    ("container", 0.25): "a convex lobe of 0.56 deg at x 245.17 m then a hollow of 0.21 deg at 245.49 m (z 13 m, 2 m above T), "
+                         "the waterline's last 0.6 m over the stem (a hollow of 0.40 and a convex lobe of 0.25 deg before the "
+                         "forward deck followed the waterline as smoothstep^0.4, designer.DECK_FOLLOW_POWER)",
     ("fine_ferry", 0.25): "a convex lobe of 0.28 deg at x 140.19 m then a hollow of 0.17 deg at 140.37 m (z 6.6 m), the "
                           "waterline's last 0.4 m over the stem, since the forward deck follows the waterline's narrowing "
                           "as smoothstep^0.4 (designer.DECK_FOLLOW_POWER; one hollow of 0.25 deg with the smoothstep)",
@@ -681,17 +681,19 @@ STEM_TIP_SHORT = {
 # The tanker's waterlines just above T: one at the stem (11.9 m, as above; 13 m's stem tip is clean since
 # kTopFilletFar), all three over the transom.
 TANKER_SHORT = {
-    12.5: "over the transom: a convex lobe of 0.53 deg at x -0.8 m between hollows of 1.19 and 0.99 deg (x -4.5 and 2.0 m; "
+    12.5: "over the transom: a convex lobe of 0.52 deg at x -0.8 m between hollows of 1.50 and 1.00 deg (x -2.3 and 2.0 m; "
           "0.60 between 0.83 and 1.02 with the top corner at 0.5 of the freeboard and the top fillet's kFilletFar, "
           "designer.TOP_CORNER, sections.cpp kTopFilletFar); "
           "since the keel rises over 0.9 of the run (designer.KEEL_RISE) this waterline runs nearly straight into the "
           "transom (one hollow of 7.1 deg before), and its ripple reads as a wobble (0.45 between 0.73 and 0.94 deg "
           "with the bilge's fine weight 0.7, 0.48 between 0.69 and 1.13 with 0.5 and the transom's run of 3 % Lpp)",
-    11.9: "a hollow lobe of 0.30 deg at x 179.8 m, 0.3 m aft of the stem (0.36 with the top corner at 0.5 and the top "
+    11.9: "a hollow lobe of 0.33 deg at x 179.8 m, 0.3 m aft of the stem (0.30 before an immersed section's top corner was kept "
+          "inside its deck edge, sections.cpp inside_deck_edge; 0.36 with the top corner at 0.5 and the top "
           "fillet's kFilletFar; 0.17 deg at x 179.2 m before the last two station spans aft of the FP were halved, "
           "hull.CLOSED_END_HALVED_SPANS); and since the bilge's fine weight is 0.5 (0.7 before), over the transom a "
-          "convex lobe of 0.35 deg at x -0.1 m between hollows of 0.47 and 0.18 deg (0.39 between 0.10 and 0.27 before)",
-    13.0: "over the transom a convex lobe of 0.42 deg at x -0.8 m between hollows of 1.19 and 1.25 deg, since the bilge's "
+          "convex lobe of 0.37 deg at x -0.1 m between hollows of 0.35 and 0.17 deg (x -2.0 and 2.3 m; 0.39 between 0.10 and "
+          "0.27 before)",
+    13.0: "over the transom a convex lobe of 0.41 deg at x -0.8 m between hollows of 2.16 and 1.33 deg (x -4.2 and 2.0 m), since the bilge's "
           "fine weight is 0.5 (0.7 before; 0.11 with the transom's run of 3 % Lpp, transom_run.RUN_LENGTH); its stem "
           "tip is clean since the top fillet's middle points lie at 0.68 of its legs (sections.cpp kTopFilletFar: a "
           "hollow of 0.11 deg and a convex lobe of 0.18 deg in the last 0.7 m with 0.611)",

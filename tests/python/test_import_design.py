@@ -312,10 +312,11 @@ REFIT_SHORT = {
                 "the skin was ruled aft of the grid's first square row, 3-8 there on the waterlines and 8-9 on the "
                 "buttocks; before the stations were the grid's own sections, 9-37 on the waterlines and 23-36 on the "
                 "buttocks (stations cut from the chords between the sections, which kink at each)",
-    ("kcs", "afterbody"): "the given sections round the propeller boss and the skeg (x 5-14 m): the buttock at y 8.05 m "
-                          "changes sign 9 times against 4 for the refit, the 9.38 m waterline 7 against 4 (the buttock at "
-                          "y 2.7 m 4 against 1 since a station lies at the boss end's tip, 7 before; 12 on the 3.75 m "
-                          "waterline against 9 before the measured shapes were smoothed, now 11)",
+    ("kcs", "afterbody"): "the given sections round the propeller boss and the skeg (x 5-14 m): sign changes against "
+                          "the refit's, over its + 2 on the waterlines at z 5.63 m (13 against 10), 9.38 m (7 against 4) "
+                          "and 13.13 m (4 against 0) and the buttocks at y 2.68 m (4 against 1; 7 before a station lay at "
+                          "the boss end's tip) and 8.05 m (9 against 4); the 3.75 m waterline 11 against 9 (12 before the "
+                          "measured shapes were smoothed)",
 }
 
 
