@@ -166,7 +166,7 @@ constexpr double kDeckCornerShare = 0.9;
 /// one further out left the fillet turning back in to D, the frame standing out past its deck
 /// edge above T (tumblehome at the bow, where the forward deck follows the narrowing waterline
 /// and the side leans out along the bilge: the container ship's by 0.29 m, 1.80 % of B/2; 30
-/// sampled hulls 1.07 % median, 2.15 % at most; now 0.01 % and 0.27 % at most). The leg keeps
+/// sampled hulls 1.07 % median, 2.15 % at most; now 0.02 % and over the 30 0.27 % at most). The leg keeps
 /// at least kLeastSideLeg of itself (a deck inside the waterline asks for tumblehome) and is
 /// shortened by a smooth minimum over e^kCornerBlend. bench_fairness_space's reading, hulls 0-99
 /// / held-out 100-199: every mark 40 -> 37 / 41 -> 40, buttocks over two 29 -> 27 / 30 -> 29,
@@ -499,12 +499,6 @@ double smooth_max(double a, double c, double k) {
   return std::max(a, c) * std::exp(blend_exponent(a, c, k));
 }
 
-/// The top corner Y = base + leg dir of the topside fillet (deck point D to the waterline point
-/// or a dry section's virtual one), its leg shortened where Y would come above kDeckCornerShare
-/// of the rise from base to D (a smooth minimum, kCornerBlend; untouched beyond it): a fillet
-/// whose corner lies above the deck left D going up, and a wide, dry transom's section rose 1 cm
-/// over the deck, which the deck's cap then cut (3.5 % of bench_hull's bulbed hulls composed to a
-/// self-intersecting mesh). Below the deck the fillet's polygon, and so the fillet, stays under it.
 /// The leg of an immersed section's top corner (from Q along dir) shortened so the corner lies
 /// no further out than the deck point D (see kLeastSideLeg).
 double inside_deck_edge(const V2& Q, const V2& dir, double leg, const V2& D) {
@@ -513,6 +507,12 @@ double inside_deck_edge(const V2& Q, const V2& dir, double leg, const V2& D) {
   return smooth_min(leg, smooth_max(room, kLeastSideLeg * leg, kCornerBlend), kCornerBlend);
 }
 
+/// The top corner Y = base + leg dir of the topside fillet (deck point D to the waterline point
+/// or a dry section's virtual one), its leg shortened where Y would come above kDeckCornerShare
+/// of the rise from base to D (a smooth minimum, kCornerBlend; untouched beyond it): a fillet
+/// whose corner lies above the deck left D going up, and a wide, dry transom's section rose 1 cm
+/// over the deck, which the deck's cap then cut (3.5 % of bench_hull's bulbed hulls composed to a
+/// self-intersecting mesh). Below the deck the fillet's polygon, and so the fillet, stays under it.
 V2 below_deck(const V2& base, const V2& dir, double leg, const V2& D) {
   const double rise = D.y() - base.y();
   if (dir.y() > 0 && rise > 0) leg = smooth_min(leg, kDeckCornerShare * rise / dir.y(), kCornerBlend);
