@@ -1037,14 +1037,9 @@ TUMBLEHOME_TOL = 1e-3
 TUMBLEHOME: dict = {}
 
 
-@pytest.mark.parametrize("name", ["container", "fine_ferry", "coaster_cruiser"])
-def test_forward_frames_do_not_tumble_home_above_t(request, name):
-    """Forward of 0.55 Lpp no frame cut above T stands out past its deck edge (no tumblehome at
-    the bow, where a naval architect wants flare): its widest half-breadth above T is within
-    TUMBLEHOME_TOL of B/2 of the half-breadth at its top."""
-    if name in TUMBLEHOME:
-        request.applymarker(pytest.mark.xfail(strict=True, reason=TUMBLEHOME[name]))
-    hull = fl.design_hull(**SHIPS[name])
+def _tumblehome(hull) -> float:
+    """The most any frame cut forward of 0.55 Lpp (40 of them) stands out above T past the
+    half-breadth at its top (the deck edge), fraction of B/2."""
     pr = hull.description.principal
     worst = 0.0
     for x in np.linspace(0.55 * pr.lpp, hull.immersed_range()[1], 40):
@@ -1052,4 +1047,27 @@ def test_forward_frames_do_not_tumble_home_above_t(request, name):
         above = P[P[:, 2] >= pr.draft]
         if len(above):
             worst = max(worst, (above[:, 1].max() - P[np.argmax(P[:, 2]), 1]) / (pr.breadth / 2))
-    assert worst <= TUMBLEHOME_TOL, worst
+    return worst
+
+
+@pytest.mark.parametrize("name", ["container", "fine_ferry", "coaster_cruiser"])
+def test_forward_frames_do_not_tumble_home_above_t(request, name):
+    """Forward of 0.55 Lpp no frame cut above T stands out past its deck edge (no tumblehome at
+    the bow, where a naval architect wants flare): its widest half-breadth above T is within
+    TUMBLEHOME_TOL of B/2 of the half-breadth at its top."""
+    if name in TUMBLEHOME:
+        request.applymarker(pytest.mark.xfail(strict=True, reason=TUMBLEHOME[name]))
+    assert _tumblehome(fl.design_hull(**SHIPS[name])) <= TUMBLEHOME_TOL
+
+
+#: ... and over a sample of the design space by at most this (fraction of B/2).
+SAMPLED_TUMBLEHOME_TOL = 5e-3
+
+
+def test_sampled_designs_forward_frames_do_not_tumble_home_above_t():
+    """The same over 20 designs of the Latin-hypercube sample: each stands out past its deck edge
+    by under SAMPLED_TUMBLEHOME_TOL of B/2 (0.33 % at most measured; before an immersed section's
+    top corner was kept inside its deck edge 13 of the 20 stood out by more, 0.90 % median, 2.49 %
+    at most)."""
+    worst = {i: _tumblehome(fl.design_hull(**p)) for i, p in enumerate(_space_sample(20, 2026))}
+    assert {i: w for i, w in worst.items() if w > SAMPLED_TUMBLEHOME_TOL} == {}
