@@ -101,8 +101,9 @@ DECK_FOLLOW_TO = 0.7        # ... followed to where the waterline narrows to thi
 DECK_FLARE_POINTS = 40      # fit points of the forward deck over the waterline's forward run
 # ... the share followed rising as this power of the smoothstep (1: the smoothstep): a flare growing
 # as fast as the waterline narrows at the forward shoulder leaves the topside just above T straight
-# along the bilge's lean, and the outer buttocks turn back there, 1-6 deg at 1.0-1.1 T. Its price: the
-# frames' top corner bulges past a deck this close (tumblehome up to 2 % B/2, strict xfail tests).
+# along the bilge's lean, and the outer buttocks turn back there, 1-6 deg at 1.0-1.1 T. A deck this close
+# to the waterline needs the sections' top corner held inside its edge (sections.cpp inside_deck_edge), or
+# the bow's frames tumble home (up to 2 % B/2 before).
 DECK_FOLLOW_POWER = 0.4
 DECK_TRANSOM = 0.92         # deck half-breadth at the transom, fraction of B/2 ...
 TRANSOM_FLARE = 20.0        # ... at an immersed transom at most this far (deg) outboard of its waterline over the freeboard
