@@ -150,6 +150,7 @@ void bind_composed_hull(py::module_& m) {
       .def_property_readonly("x_aft", [](const ComposedHull& c) { return c.x_aft; })
       .def_property_readonly("z_deck", [](const ComposedHull& c) { return c.z_deck; })
       .def_property_readonly("hull", [](const ComposedHull& c) { return c.hull; })
+      .def_property_readonly("hull_face_uv", [](const ComposedHull& c) { return to_array(c.hull_face_uv); })
       .def_property_readonly("blend", [](const ComposedHull& c) -> py::object {
         if (c.blend.empty()) return py::none();
         return py::cast(c.blend[0]);
@@ -172,6 +173,18 @@ void bind_compose_and_blend(py::module_& m) {
         return compose_hull(hull, bulb, options, blend);
       },
       "hull"_a, "bulb"_a = nullptr, "options"_a = ComposeOptions{}, "blend"_a = nullptr);
+  m.def(
+      "_hull_chord_difference",
+      [](const ComposedHull& a, const ComposedHull& b, double draft, double trim, double lpp) {
+        const BelowPlane d = [&] {
+          py::gil_scoped_release release;
+          return hull_chord_difference(a, b, draft, trim, lpp);
+        }();
+        return py::dict("volume"_a = d.volume, "mx"_a = d.mx, "mz"_a = d.mz, "wetted"_a = d.wetted);
+      },
+      "a"_a, "b"_a, "draft"_a, "trim"_a, "lpp"_a,
+      "What a's flat hull faces miss of the hull surface below the waterplane less what b's miss, over the faces\n"
+      "one has and the other not (half hull, the waterplane's frame): dict volume (m^3), mx, mz (m^4), wetted (m^2).");
   m.def(
       "_seam_blend_placement",
       [](const NurbsSurface& hull, const NurbsSurface& bulb, const ComposeOptions& compose_options,

@@ -3,7 +3,9 @@
 The bare hull is measured by NURBS quadrature (:func:`fl.hydrostatics <fairlines.hydrostatics>`);
 what the bulb and blend change (volume, its centroid, wetted surface) is the difference between
 the composed hull's mesh and the bare hull's own mesh at the same waterplane, so the meshes'
-chordal error cancels wherever the two coincide; the waterplane (area, LCF, I_T, I_L) comes
+chordal error cancels wherever the two coincide, and where they do not (the hull cells the bulb
+removes, the band round the seam) the hull surface's own figures replace the flat faces'
+(bulb_share); the waterplane (area, LCF, I_T, I_L) comes
 from the composed hull's exact plane section by the waterplane (Green's theorem). Conventions
 are the engine's (``hydrostatics.hpp``): full-ship figures, a trim by the stern (m) over Lpp
 inclines the waterplane through the draft at Lpp / 2, its area and transverse moment are the
@@ -16,6 +18,7 @@ import math
 
 import numpy as np
 
+from . import _native
 from ._native import HydrostaticsOptions
 from .hydrostatics_mesh import hydrostatics_of_mesh
 from .hydrostatics_surface import hydrostatics, midship_x
@@ -96,12 +99,21 @@ def _below(m, frame: _Frame) -> dict:
 
 def bulb_share(composed, bare_mesh, draft: float, *, lpp: float, trim: float = 0.0) -> dict:
     """What the bulb and blend add below the waterplane: the composed hull's mesh minus the bare
-    hull's own mesh (``fl.compose([bare])``): ``volume`` (m^3), its moments ``mx``, ``mz``
-    (m^4, the ship's frame) and ``wetted`` area (m^2)."""
+    hull's own mesh (``fl.compose([bare])``), with the hull surface's own figures over the hull
+    faces the two meshes do not share (the cells the bulb removes, the band round the seam:
+    _hull_chord_difference) in place of their flat faces': ``volume`` (m^3), its moments ``mx``,
+    ``mz`` (m^4, the ship's frame) and ``wetted`` area (m^2). The flat faces alone put the
+    share of the sampled designs 3.5e-4 of the ship's volume off, 6.3e-4 at most (their chords
+    over the removed cells' curvature); with the surface there, within 1e-5 of a fine mesh."""
     frame = _Frame(draft, trim, lpp)
     c, b = _below(composed, frame), _below(bare_mesh, frame)
-    return dict(volume=c["volume"] - b["volume"], mx=c["volume"] * c["lcb"] - b["volume"] * b["lcb"],
-                mz=c["volume"] * c["vcb"] - b["volume"] * b["vcb"], wetted=c["wetted"] - b["wetted"])
+    d = _native._hull_chord_difference(composed._c, bare_mesh._c, draft, trim, lpp)
+    dv, mx, mz = (2.0 * d[k] for k in ("volume", "mx", "mz"))  # the half hull's, in the waterplane's frame
+    ex, ez = mx - frame.x0 * dv, mz - frame.z0 * dv  # moments about (x0, z0), turned back to the ship's frame
+    return dict(volume=c["volume"] - b["volume"] + dv,
+                mx=c["volume"] * c["lcb"] - b["volume"] * b["lcb"] + frame.x0 * dv + frame.c * ex + frame.s * ez,
+                mz=c["volume"] * c["vcb"] - b["volume"] * b["vcb"] + frame.z0 * dv - frame.s * ex + frame.c * ez,
+                wetted=c["wetted"] - b["wetted"] + 2.0 * d["wetted"])
 
 
 def composed_hydrostatics(composed, draft: float, *, lpp: float, beam: float, trim: float = 0.0,

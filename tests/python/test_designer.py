@@ -88,6 +88,53 @@ def test_a_ship_with_a_bulb_holds_its_particulars_with_it():
     assert abs(fine.lcb - p["lcb"]) <= FINE_MESH_TOL * p["lpp"]
 
 
+
+#: Full ships of bench_hull's sample (rounded) whose composed ship the designer had put 1.4e-4,
+#: 1.1e-4 and 0.8e-4 of its volume off, and 6.3e-4 at most over the sample, when the bulb's share
+#: was the two meshes' difference alone (its flat faces' chords over the hull cells the bulb removes).
+SHARE_SHIPS = {
+    "full 219 m": dict(lpp=218.852, breadth=25.663, draft=6.756, depth=10.81, cb=0.827, lcb=113.411, bulb=True),
+    "full 131 m": dict(lpp=131.322, breadth=20.99, draft=4.837, depth=7.74, cb=0.859, lcb=70.56, bulb=True),
+    "full 246 m": dict(lpp=246.242, breadth=28.144, draft=7.866, depth=12.586, cb=0.841, lcb=122.661, bulb=True),
+}
+#: Two fine tessellations (the second twice the first each way) and the convergence order of a
+#: mesh's chords, for Richardson's extrapolation of the bulb's share.
+SHARE_MESHES = (dict(hull_u=96, hull_v=40, bulb_u=48, bulb_v=64, blend_rows=16),
+                dict(hull_u=192, hull_v=80, bulb_u=96, bulb_v=128, blend_rows=32))
+#: The issue's mark for a design's volume and LCB (relative; LCB on Lpp).
+DESIGN_TOL = 1e-4
+
+
+def _converged_share(hull, draft: float, lpp: float) -> tuple:
+    """(volume, moment about x = 0) the bulb and blend add below T: the composed and the bare
+    hull's own meshes' difference (no correction) at the two SHARE_MESHES, extrapolated to a
+    zero cell size (chords shrink as the cell squared)."""
+    from fairlines.compose import compose, compose_with_blend
+    from fairlines.hydrostatics_composed import mesh_below
+
+    out = []
+    for opts in SHARE_MESHES:
+        surface = hull.bare_hull_surface()
+        composed = compose_with_blend(surface, hull.bulbous_bow(), placement=hull.blend_placement(), **opts)
+        c = mesh_below(composed, draft, lpp=lpp)
+        b = mesh_below(compose([surface], hull_u=opts["hull_u"], hull_v=opts["hull_v"]), draft, lpp=lpp)
+        out.append(np.array([c["volume"] - b["volume"], c["volume"] * c["lcb"] - b["volume"] * b["lcb"]]))
+    return tuple(out[1] + (out[1] - out[0]) / 3.0)
+
+
+@pytest.mark.parametrize("name", SHARE_SHIPS)
+def test_a_ship_with_a_bulb_meets_its_volume_and_lcb_on_converged_meshes(name):
+    """The composed ship holds the asked volume and LCB within the issue's 1e-4, measured apart
+    from the designer: the bare hull's surface quadrature plus the bulb's share from meshes of
+    4 and 16 times the default cells, extrapolated (SHARE_MESHES)."""
+    p = SHARE_SHIPS[name]
+    hull = fl.design_hull(**p)
+    bare = hull.hydrostatics()
+    dv, dm = _converged_share(hull, p["draft"], p["lpp"])
+    volume = bare.volume + dv
+    assert volume == pytest.approx(_asked(p), rel=DESIGN_TOL)
+    assert abs((bare.volume * bare.lcb + dm) / volume - p["lcb"]) <= DESIGN_TOL * p["lpp"]
+
 # A section whose waterline point lies on B/2 meets it only as closely as its spline can pass
 # through a point on its bound below a flat of side: 1.67 mm on the fine ferry's widest station
 # (of 17 m) with the sections as designed, 1.84 mm with the station mean's basic curves; 2.22 mm
@@ -176,8 +223,8 @@ def test_changed_particulars_of_the_container_ship_build(change):
     h, tol = hull.ship_hydrostatics(), ship_tol(hull, MATCH_TOL)
     assert h["volume"] == pytest.approx(_asked(p), rel=tol)
     assert abs(h["lcb"] - p["lcb"]) <= tol * p["lpp"]
-    if "cwp" in change:
-        assert h["cwp"] == pytest.approx(change["cwp"], rel=MATCH_TOL)
+    if "cwp" in change:  # with a bulb the designer stops within MATCH_TOL_BULB on all three (-2.7e-5 here)
+        assert h["cwp"] == pytest.approx(change["cwp"], rel=tol)
 
 
 def _space_sample(n, seed):

@@ -80,6 +80,12 @@ struct ComposedHull {
   /// Blend sections, bottom to top: (k, 5) rows (s on the blend, u and v on `hull`, u and v
   /// on the bulb); empty without a blend.
   Eigen::MatrixXd blend_params;
+  /// #faces by 6: each hull face's corners (u, v) on `hull` as (u0, v0, u1, v1, u2, v2), the
+  /// flat face's chord of that parameter triangle; NaN rows for the other faces.
+  Eigen::MatrixXd hull_face_uv;
+  /// k by 6: the hull's parameter triangles that have no face, collapsed to a line or point at a
+  /// pole (the stem head), as hull_face_uv's rows: hull surface all the same.
+  Eigen::MatrixXd hull_collapsed_uv;
 };
 
 /// The aft end of an oriented bare hull (its u = u_min edge): either in a plane -- a transom,
@@ -131,5 +137,24 @@ HullBulbSeam hull_bulb_seam(const NurbsSurface& hull, const NurbsSurface& bulb, 
 /// Full hull: the half hull mirrored in y = 0 and welded along the centre plane, with the
 /// centre-plane faces dropped.
 TriMesh mirror_full_hull(const ComposedHull& composed);
+
+/// Half-hull volume (m^3), its moments about x = 0 and z = 0 (m^4) and wetted area (m^2) below
+/// a waterplane, in the waterplane's frame (see hull_chord_difference).
+struct BelowPlane {
+  double volume = 0.0, mx = 0.0, mz = 0.0, wetted = 0.0;
+};
+
+/// What the flat hull faces of `a` miss of the hull surface below the waterplane, less what
+/// those of `b` miss: the sum over a's hull faces (ComposedHull::hull_face_uv) whose parameter
+/// triangle b's mesh does not have of (the surface over the triangle - the flat face), minus
+/// the same over b's faces that a does not have; faces both have cancel, so of a composed hull
+/// (`a`) and the bare hull closed alone (`b`, same hull and grid) it is the correction of the
+/// meshes' difference (the bulb's share) for the hull cells the bulb removes and the band round
+/// the seam. The waterplane: `draft` (m) at x = lpp / 2 with `trim` (m by the stern over `lpp`),
+/// figures in its frame (the ship rotated about the y axis through (lpp / 2, 0, draft) by
+/// atan(trim / lpp)), half hull. Each term is the flux of (0, 0, g) with div = 1, x, z below
+/// the plane (and the area there) by a 7-point rule per face, on 8 x 8 sub-triangles where a
+/// face reaches the plane. Throws InvalidInput for lpp <= 0.
+BelowPlane hull_chord_difference(const ComposedHull& a, const ComposedHull& b, double draft, double trim, double lpp);
 
 }  // namespace fairlines

@@ -31,6 +31,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <sstream>
 #include <tuple>
 #include <unordered_map>
@@ -45,6 +46,8 @@
 namespace fairlines {
 
 namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 NurbsSurface transform(const NurbsSurface& s, bool swap, bool rev_u, bool rev_v) {
   int nu = s.nu(), nv = s.nv(), pu = s.degree_u(), pv = s.degree_v();
@@ -152,15 +155,22 @@ struct MeshBuilder {
   std::vector<Eigen::Vector3d> verts;
   std::vector<std::array<int, 3>> faces;
   std::vector<int> part;
+  std::vector<std::array<double, 6>> uv;  ///< a hull face's corners on the hull, else NaN
+  std::vector<std::array<double, 6>> collapsed_uv;  ///< hull parameter triangles whose face is a point or line
   int add(const Eigen::Vector3d& p) {
     verts.push_back(p);
     return static_cast<int>(verts.size()) - 1;
   }
-  void tri(int a, int b, int c, FacePart fp) {
-    if (a == b || b == c || c == a) return;  // a cell or ear at a pole: no face
+  void tri(int a, int b, int c, FacePart fp, const std::array<double, 6>& corners = kNoCorners) {
+    if (a == b || b == c || c == a) {  // a cell or ear at a pole: no face, but its surface is the hull's
+      if (!std::isnan(corners[0])) collapsed_uv.push_back(corners);
+      return;
+    }
     faces.push_back({a, b, c});
     part.push_back(static_cast<int>(fp));
+    uv.push_back(corners);
   }
+  static constexpr std::array<double, 6> kNoCorners = {kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};
   /// The quad a b c d as two triangles, split along the diagonal that folds it least (where
   /// the blend wraps a sharp stem its quads twist, and the other diagonal saws the shading).
   void quad(int a, int b, int c, int d, FacePart fp) {
@@ -789,10 +799,11 @@ void add_band(MeshBuilder& mb, HullGrid& g, const std::vector<int>& stair, const
   if (!g.perimeter(stair.front(), ps) || !g.perimeter(stair.back(), pe) || !(pe <= seam.pa && seam.pb <= ps))
     throw InvalidInput("compose: the hull band does not end on the centre-plane edges around the seam; refine the grid");
   std::vector<int> poly_id;
-  std::vector<Eigen::Vector2d> poly2;
+  std::vector<Eigen::Vector2d> poly2, poly_uv;  // scaled and (u, v) on the hull
   auto push_node = [&](int node) {
     poly_id.push_back(g.vertex(mb, node));
     poly2.push_back(g.scaled_node(node));
+    poly_uv.push_back({g.su[node / (g.K + 1)], g.tv[node % (g.K + 1)]});
   };
   for (int node : stair) push_node(node);
   std::vector<std::pair<double, int>> edge_nodes;  // nodes on the centre-plane edges by perimeter
@@ -806,13 +817,19 @@ void add_band(MeshBuilder& mb, HullGrid& g, const std::vector<int>& stair, const
     const int jj = seam.reversed ? NV - j : j;
     poly_id.push_back(seam.hull_id[jj]);
     poly2.push_back(seam.scaled[jj]);
+    poly_uv.push_back(seam.x[jj].head<2>());
   }
   for (const auto& [p, node] : edge_nodes)
     if (p > seam.pb + kPerimeterEps && p < ps - kPerimeterEps) push_node(node);
   for (size_t q = poly_id.size(); q-- > 0;)  // a pole's nodes are one vertex: keep it once
     if (poly_id.size() > 3 && poly_id[q] == poly_id[(q + 1) % poly_id.size()]) {
+      // the parameter triangle the polygon loses with q (the last of a run: all the run's)
+      const size_t n = poly_id.size();
+      const Eigen::Vector2d &a = poly_uv[(q + n - 1) % n], &b = poly_uv[q], &c = poly_uv[(q + 1) % n];
+      mb.collapsed_uv.push_back({a.x(), a.y(), b.x(), b.y(), c.x(), c.y()});
       poly_id.erase(poly_id.begin() + static_cast<long>(q));
       poly2.erase(poly2.begin() + static_cast<long>(q));
+      poly_uv.erase(poly_uv.begin() + static_cast<long>(q));
     }
   Eigen::MatrixXd P2(static_cast<Eigen::Index>(poly2.size()), 2);
   for (size_t q = 0; q < poly2.size(); ++q) P2.row(static_cast<Eigen::Index>(q)) = poly2[q].transpose();
@@ -822,7 +839,10 @@ void add_band(MeshBuilder& mb, HullGrid& g, const std::vector<int>& stair, const
   Eigen::MatrixXd X(static_cast<Eigen::Index>(poly_id.size()), 3);
   for (size_t q = 0; q < poly_id.size(); ++q) X.row(static_cast<Eigen::Index>(q)) = mb.verts[poly_id[q]].transpose();
   delaunay_flips(P2, tris, flat, X);
-  for (const auto& t : tris) mb.tri(poly_id[t[0]], poly_id[t[1]], poly_id[t[2]], FacePart::Hull);
+  for (const auto& t : tris) {
+    const Eigen::Vector2d &a = poly_uv[t[0]], &b = poly_uv[t[1]], &c = poly_uv[t[2]];
+    mb.tri(poly_id[t[0]], poly_id[t[1]], poly_id[t[2]], FacePart::Hull, {a.x(), a.y(), b.x(), b.y(), c.x(), c.y()});
+  }
 }
 
 /// Trimming loops in parameter space: the hull outside the seam, the bulb ahead of it.
@@ -885,12 +905,13 @@ void add_kept_cells(MeshBuilder& mb, HullGrid& g, const std::vector<char>& remov
       const int a = g.vertex(mb, i, k), b = g.vertex(mb, i + 1, k), c = g.vertex(mb, i + 1, k + 1),
                 d = g.vertex(mb, i, k + 1);
       auto on_cp = [&](int q) { return mb.verts[q].y() == 0.0; };
+      const double u0 = g.su[i], u1 = g.su[i + 1], v0 = g.tv[k], v1 = g.tv[k + 1];  // a b c d's (u, v)
       if (on_cp(a) && on_cp(b) && on_cp(c)) {
-        mb.tri(a, b, d, FacePart::Hull);
-        mb.tri(b, c, d, FacePart::Hull);
+        mb.tri(a, b, d, FacePart::Hull, {u0, v0, u1, v0, u0, v1});
+        mb.tri(b, c, d, FacePart::Hull, {u1, v0, u1, v1, u0, v1});
       } else {
-        mb.tri(a, b, c, FacePart::Hull);
-        mb.tri(a, c, d, FacePart::Hull);
+        mb.tri(a, b, c, FacePart::Hull, {u0, v0, u1, v0, u1, v1});
+        mb.tri(a, c, d, FacePart::Hull, {u0, v0, u1, v1, u0, v1});
       }
     }
 }
@@ -906,6 +927,12 @@ void finish_mesh(const MeshBuilder& mb, ComposedHull& out) {
   const EdgeReport er = orient_if_needed(out.mesh);
   out.face_part.resize(static_cast<Eigen::Index>(mb.part.size()));
   for (size_t f = 0; f < mb.part.size(); ++f) out.face_part[static_cast<Eigen::Index>(f)] = mb.part[f];
+  out.hull_face_uv.resize(static_cast<Eigen::Index>(mb.uv.size()), 6);
+  for (size_t f = 0; f < mb.uv.size(); ++f)
+    for (int c = 0; c < 6; ++c) out.hull_face_uv(static_cast<Eigen::Index>(f), c) = mb.uv[f][c];
+  out.hull_collapsed_uv.resize(static_cast<Eigen::Index>(mb.collapsed_uv.size()), 6);
+  for (size_t f = 0; f < mb.collapsed_uv.size(); ++f)
+    for (int c = 0; c < 6; ++c) out.hull_collapsed_uv(static_cast<Eigen::Index>(f), c) = mb.collapsed_uv[f][c];
   if (er.open || er.non_manifold || er.inconsistent) {
     std::ostringstream os;
     os << "compose: the composed mesh is not closed (" << er.open << " open, " << er.non_manifold
