@@ -12,6 +12,7 @@
 #include "fairlines/conics.hpp"
 #include "fairlines/errors.hpp"
 #include "fairlines/intersect.hpp"
+#include "fairlines/mesh_hydrostatics.hpp"
 
 using namespace fairlines;
 using fairlines::test::Forebody;
@@ -338,4 +339,24 @@ TEST(Mesh, OrientIfNeededLeavesWhatTheBreadthFirstPassLeaves) {
   EXPECT_EQ(r.edges, 12);
   EXPECT_EQ(r.open, 3);
   EXPECT_EQ(r.inconsistent, 0);
+}
+
+TEST(Compose, ChordDifferenceBringsTwoTessellationsOfOneHullToOneVolume) {
+  // The forebody closed alone at 48 x 20 and 96 x 40 cells shares no face: the meshes' volumes
+  // below T differ by their chords, which the chord difference (surface over each face's
+  // parameter triangle less the flat face) accounts for.
+  Forebody fb;
+  const NurbsSurface h = fb.surface();
+  ComposeOptions fine;
+  fine.hull_u = 96;
+  fine.hull_v = 40;
+  const ComposedHull a = compose_hull(h, nullptr, ComposeOptions{}), b = compose_hull(h, nullptr, fine);
+  const double va = mesh_hydrostatics(a.mesh, fb.T).volume, vb = mesh_hydrostatics(b.mesh, fb.T).volume;
+  const BelowPlane d = hull_chord_difference(a, b, fb.T, 0.0, fb.L);
+  EXPECT_GT(std::abs(va - vb), 1e-4 * vb);  // what there is to account for (full ship: twice the half)
+  EXPECT_NEAR(va + 2.0 * d.volume, vb, 2e-5 * vb);
+  const BelowPlane none = hull_chord_difference(a, a, fb.T, 0.0, fb.L);
+  EXPECT_EQ(none.volume, 0.0);
+  EXPECT_EQ(none.wetted, 0.0);
+  EXPECT_THROW(hull_chord_difference(a, b, fb.T, 0.0, 0.0), InvalidInput);
 }
