@@ -145,9 +145,10 @@ struct BelowPlane {
 };
 
 /// What the flat hull faces of `a` miss of the hull surface below the waterplane, less what
-/// those of `b` miss: the sum over a's hull faces (ComposedHull::hull_face_uv) whose parameter
-/// triangle b's mesh does not have of (the surface over the triangle - the flat face), minus
-/// the same over b's faces that a does not have; faces both have cancel, so of a composed hull
+/// those of `b` miss: the sum over a's hull faces (ComposedHull::hull_face_uv) and the parameter
+/// triangles a pole collapses (hull_collapsed_uv, no flat face) that b does not have of (the
+/// surface over the triangle - the flat face), minus the same over b's that a does not have;
+/// triangles both have cancel, so of a composed hull
 /// (`a`) and the bare hull closed alone (`b`, same hull and grid) it is the correction of the
 /// meshes' difference (the bulb's share) for the hull cells the bulb removes and the band round
 /// the seam. The waterplane: `draft` (m) at x = lpp / 2 with `trim` (m by the stern over `lpp`),
