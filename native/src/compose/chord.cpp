@@ -47,6 +47,22 @@ struct Frame {
   Eigen::Vector3d vector(const Eigen::Vector3d& v) const { return {c * v.x() - s * v.z(), v.y(), s * v.x() + c * v.z()}; }
 };
 
+BelowPlane& operator+=(BelowPlane& a, const BelowPlane& b) {
+  a.volume += b.volume;
+  a.mx += b.mx;
+  a.mz += b.mz;
+  a.wetted += b.wetted;
+  return a;
+}
+
+BelowPlane& operator-=(BelowPlane& a, const BelowPlane& b) {
+  a.volume -= b.volume;
+  a.mx -= b.mx;
+  a.mz -= b.mz;
+  a.wetted -= b.wetted;
+  return a;
+}
+
 void accumulate(BelowPlane& acc, const Eigen::Vector3d& q, const Eigen::Vector3d& n, double w, double z0) {
   const double dz = q.z() - z0;
   if (dz >= 0.0) return;
@@ -57,9 +73,9 @@ void accumulate(BelowPlane& acc, const Eigen::Vector3d& q, const Eigen::Vector3d
 }
 
 /// (surface over the parameter triangle `uv` (u0, v0, u1, v1, u2, v2) of H) - (the flat face
-/// P, in the frame), below the plane; a collapsed triangle (no face: P null) has no flat part,
-/// and its surface's side is the one facing away from the hull's interior as its corners' order
-/// gives it (H's own normal, outward by orient_bare_hull's convention, see below).
+/// P, in the frame), below the plane. A face's surface normal is turned to the flat face's side;
+/// a collapsed triangle (no face: P null) has no flat part and takes H's S_u x S_v turned
+/// outward (kCollapsedSide), whatever its corners' order.
 BelowPlane face_difference(const NurbsSurface& H, const std::array<double, 6>& uv, const std::array<Eigen::Vector3d, 3>* P,
                            const Frame& fr) {
   const Eigen::Vector2d a(uv[0], uv[1]), b(uv[2], uv[3]), c(uv[4], uv[5]);
@@ -113,11 +129,7 @@ BelowPlane face_difference(const NurbsSurface& H, const std::array<double, 6>& u
     accumulate(d, q[k], sign * nn[k], w, fr.z0);
     if (P) accumulate(flat, (*P)[0] + s * ((*P)[1] - (*P)[0]) + t * ((*P)[2] - (*P)[0]), n_flat, w, fr.z0);
   }
-  d.volume -= flat.volume;
-  d.mx -= flat.mx;
-  d.mz -= flat.mz;
-  d.wetted -= flat.wetted;
-  return d;
+  return d -= flat;
 }
 
 /// A parameter triangle's corners sorted, so it keys alike whatever its corner order.
@@ -137,13 +149,6 @@ std::vector<std::array<double, 6>> hull_keys(const ComposedHull& m) {
   return keys;
 }
 
-void add(BelowPlane& acc, const BelowPlane& d) {
-  acc.volume += d.volume;
-  acc.mx += d.mx;
-  acc.mz += d.mz;
-  acc.wetted += d.wetted;
-}
-
 std::array<double, 6> row(const Eigen::MatrixXd& uv, Eigen::Index f) {
   return {uv(f, 0), uv(f, 1), uv(f, 2), uv(f, 3), uv(f, 4), uv(f, 5)};
 }
@@ -158,10 +163,10 @@ BelowPlane unshared(const ComposedHull& m, const std::vector<std::array<double, 
     if (std::isnan(m.hull_face_uv(f, 0)) || shared(m.hull_face_uv, f)) continue;
     std::array<Eigen::Vector3d, 3> P;
     for (int k = 0; k < 3; ++k) P[k] = fr.point(m.mesh.vertices.row(m.mesh.faces(f, k)).transpose());
-    add(acc, face_difference(m.hull, row(m.hull_face_uv, f), &P, fr));
+    acc += face_difference(m.hull, row(m.hull_face_uv, f), &P, fr);
   }
   for (Eigen::Index f = 0; f < m.hull_collapsed_uv.rows(); ++f)
-    if (!shared(m.hull_collapsed_uv, f)) add(acc, face_difference(m.hull, row(m.hull_collapsed_uv, f), nullptr, fr));
+    if (!shared(m.hull_collapsed_uv, f)) acc += face_difference(m.hull, row(m.hull_collapsed_uv, f), nullptr, fr);
   return acc;
 }
 
@@ -171,8 +176,8 @@ BelowPlane hull_chord_difference(const ComposedHull& a, const ComposedHull& b, d
   if (!(lpp > 0.0)) throw InvalidInput("lpp is " + std::to_string(lpp) + "; expected a length > 0 (m)");
   const double theta = std::atan2(trim, lpp);
   const Frame fr{0.5 * lpp, draft, std::cos(theta), std::sin(theta)};
-  const BelowPlane da = unshared(a, hull_keys(b), fr), db = unshared(b, hull_keys(a), fr);
-  return {da.volume - db.volume, da.mx - db.mx, da.mz - db.mz, da.wetted - db.wetted};
+  BelowPlane d = unshared(a, hull_keys(b), fr);
+  return d -= unshared(b, hull_keys(a), fr);
 }
 
 }  // namespace fairlines
