@@ -21,7 +21,10 @@ textbook defaults when left out (each named in the description's notes):
   of it when a full body's ends cannot hold its volume under a fine waterplane);
 * a flat of bottom (a straight floor from the keel) of FLAT_BOTTOM_DEFAULT of the waterline's
   half-breadth over the parallel body (at midships without one); none on a hull where any
-  section would be too fine to hold it whole (the notes say so).
+  section would be too fine to hold it whole (the notes say so);
+* with bulb=True, a bulb of the engine's default Kracht coefficients (the lateral area fitted to
+  the ship), made smaller (BULB_SCALE_RETRIES, the notes say how much) where no aft length lets
+  it meet a fine ship's short entrance in one seam.
 
 The particulars become basic curves (fairlines.description): the centre profile, the design
 waterline with Cwp and the LCF, the deck line, and the sectional area curve with the volume and
@@ -180,6 +183,12 @@ MIN_ENTRANCE_ANGLE = 7.0    # deg: a waterline ending finer meets the stem in a 
 #: 48 hulls; 65 deg: 50, 70: 53; lower caps bend the rest of a full waterline harder: docs/sections.md).
 MAX_RUN_ANGLE = 60.0
 BULB_AFT_RETRIES = (3.0, 3.5, 4.0)  # ... or these when it leaves a fine forefoot again (meets the hull in two curves)
+# The designer's bulb (bulb=True) that meets the hull in no one seam at any of those aft lengths
+# is tried at these fractions of its size (a fine ship's short entrance behind a long parallel
+# body: the bulb's aft part wider than the forefoot, or a seam turning back round it); Kracht's
+# coefficients scale as lengths, areas and volume (c_zb, a height over T, is kept).
+BULB_SCALE_RETRIES = (0.85, 0.7, 0.55)
+BULB_SCALE_POWERS = {"c_lpr": 1, "c_bb": 1, "c_abt": 2, "c_abl": 2, "c_vpr": 3}
 # A single screw in an aperture aft of a skeg. Propeller diameter by default a fraction of T;
 # its plane a fraction of Lpp forward of the AP (room for the rudder aft of it); clearances as
 # fractions of the diameter, as class societies recommend for single screws: blade tip to the
@@ -968,43 +977,74 @@ def _dome_clear_of_blend(hull: Hull, p: Particulars) -> Hull:
 def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
     """The hull, its designer-sized bulb run further aft (BULB_AFT_RETRIES) when the bulb meets
     the bare hull in more than one curve: a bulb that leaves a fine forefoot again before its
-    aft end. A bulb whose aft length the user gave is left as given. Raises
-    InfeasibleFormParameters naming what to give when no aft length lets it meet the hull in
-    one seam (the composition could not join them)."""
+    aft end; and when no aft length lets the designer's bulb (bulb=True) meet it in one seam,
+    the same bulb smaller (BULB_SCALE_RETRIES, named in the notes). A bulb whose aft length the
+    user gave is left as given, one whose Kracht coefficients the user gave keeps its size.
+    Raises InfeasibleFormParameters naming what to give when no variant meets the hull in one
+    seam (the composition could not join them)."""
     given = p.bulb if isinstance(p.bulb, dict) else {}
     if hull.description.bulb is None:
         return hull
     fixed = "aft_length" in given.get("shape", {})
-    desc, asked = None, None
-    for factor in (None,) if fixed else (None, *BULB_AFT_RETRIES):
-        if factor is not None:
-            if asked is None:  # the ship's volume and LCB; the bulb leaves the waterplane as matched
-                asked = (p.volume, p.lcb,
-                         hull.hydrostatics(sac_stations=2, gauss=MATCH_GAUSS).waterplane_area)
-            desc = desc or json.loads(hull.to_json())
-            k = desc["bulb"]["kracht"]
-            desc["bulb"]["shape"]["aft_length"] = factor * (k["c_lpr"] * p.lpp + k["c_bb"] * p.breadth)
-            hull = Hull(HullDescription.from_dict(desc))
-            # the ship with this bulb matched again, then its seam checked on the hull as returned
+    factors = (None,) if fixed else (None, *BULB_AFT_RETRIES)
+    scales = (1.0,) if given else (1.0, *BULB_SCALE_RETRIES)
+    desc, asked, reason = None, None, ""
+    for scale in scales:
+        for factor in factors:
+            if (scale, factor) != (1.0, None):
+                if asked is None:  # the ship's volume and LCB; the bulb leaves the waterplane as matched
+                    asked = (p.volume, p.lcb,
+                             hull.hydrostatics(sac_stations=2, gauss=MATCH_GAUSS).waterplane_area)
+                desc = desc or json.loads(hull.to_json())
+                hull = Hull(HullDescription.from_dict(_bulb_variant(desc, p, scale, factor)))
+                # the ship with this bulb matched again, then its seam checked on the hull as returned
+                try:
+                    _refuse_a_miss(match_targets(hull, want=asked))
+                except _native.InfeasibleFormParameters as exc:
+                    if len(scales) == 1:
+                        raise _explained(exc, p) from exc
+                    reason = reason or str(exc)  # a smaller bulb leaves the ends more of the volume
+                    continue
             try:
-                _refuse_a_miss(match_targets(hull, want=asked))
-            except _native.InfeasibleFormParameters as exc:
-                raise _explained(exc, p) from exc
-        try:
-            hull.blend_placement()  # kept: composed_hull uses it
-            return hull
-        except _native.NoBlendFits:  # the bulb meets the hull; the composition keeps the plain union
-            return hull
-        except _native.InvalidInput as e:
-            if "cannot meet the hull" not in str(e):
+                hull.blend_placement()  # kept: composed_hull uses it
                 return hull
-            reason = str(e)
-    remedy = ("the sonar dome under the forefoot runs into the bulb's root: give a sonar_dome_nose further aft, "
-              "sonar_dome=False or bulb=False"
-              if p.sonar_dome else "give bulb=False or a smaller bulb (its Kracht coefficients in bulb={'kracht': ...})")
+            except _native.NoBlendFits:  # the bulb meets the hull; the composition keeps the plain union
+                return hull
+            except _native.InvalidInput as e:
+                if "cannot meet the hull" not in str(e):
+                    return hull
+                reason = reason or str(e)  # the full-size bulb's, as asked
+    if p.sonar_dome:
+        remedy = ("the sonar dome under the forefoot runs into the bulb's root: give a sonar_dome_nose further aft, "
+                  "sonar_dome=False or bulb=False")
+    elif given:
+        remedy = "give bulb=False, a smaller bulb (its Kracht coefficients in bulb={'kracht': ...}) or bulb=True"
+    else:
+        remedy = (f"no bulb down to {min(scales):g} of the designer's size meets it: give bulb=False or a bulb's "
+                  "Kracht coefficients (bulb={'kracht': ...})" + _fine_ends(p, "; "))
     if fixed:
         remedy += " or another bulb.shape.aft_length"
     raise _native.InfeasibleFormParameters(f"design_hull: the bulb cannot meet the hull in one seam ({reason}): {remedy}")
+
+
+def _bulb_variant(desc: dict, p: Particulars, scale: float, factor: float | None) -> dict:
+    """A copy of the description `desc` whose bulb is the designer's scaled by `scale` (lengths;
+    areas by its square, the volume by its cube: the same shape, a smaller size; noted) and runs
+    `factor` (L_PR + B_B) into the hull (None: BULB_AFT_LENGTH; the given aft length kept when
+    the user gave one and factor is None)."""
+    out = json.loads(json.dumps(desc))
+    bulb = out["bulb"]
+    k = dict(bulb["kracht"])
+    if scale != 1.0:
+        for name, power in BULB_SCALE_POWERS.items():
+            k[name] *= scale ** power
+        bulb["kracht"] = k
+        out["notes"] += (f"; the bulb {scale:g} of the designer's size (Kracht coefficients "
+                         + ", ".join(f"{n} {k[n]:.4g}" for n in KRACHT_NAMES)
+                         + "): no aft length let the full-size bulb meet the hull in one seam")
+    if factor is not None or scale != 1.0:
+        bulb.setdefault("shape", {})["aft_length"] = (factor or BULB_AFT_LENGTH) * (k["c_lpr"] * p.lpp + k["c_bb"] * p.breadth)
+    return out
 
 
 def _try_design(p: Particulars, keel_rise: float = KEEL_RISE) -> tuple[Hull | None, Exception | None]:
@@ -1084,13 +1124,22 @@ def _explained(exc: Exception, p: Particulars, edge: str = "") -> Exception:
     if curve == "profile" and "over the propeller" in str(exc):
         remedy = ("the run is too short to lift the hull over the propeller: give a smaller propeller_diameter, "
                   "move lcb forward or lower cb (a longer run)")
-    lp = (c["parallel"][1] - c["parallel"][0]) / p.lpp
-    if curve == "sac" and lp > 0 and (c["cp"] - lp) / (1 - lp) < FINE_ENDS_CP:
-        shorter = max(0.0, (c["cp"] - FINE_ENDS_CP) / (1 - FINE_ENDS_CP)) * p.lpp  # ends of prismatic FINE_ENDS_CP
-        remedy = (f"the ends outside this parallel body would need a prismatic coefficient of "
-                  f"{(c['cp'] - lp) / (1 - lp):.3f}: give a shorter parallel_length (at most {shorter:.4g} m leaves "
-                  f"them {FINE_ENDS_CP:g}), raise cb or move lcb toward midships")
+    if curve == "sac" and _fine_ends(p):
+        remedy = _fine_ends(p)
     return type(exc)(f"design_hull: {said}: {remedy}{edge} ({exc})")
+
+
+def _fine_ends(p: Particulars, prefix: str = "") -> str:
+    """What to change, prefixed by `prefix`, when the ends outside p's parallel body would need
+    a prismatic coefficient under FINE_ENDS_CP; else ""."""
+    c = _coefficients(p)
+    lp = (c["parallel"][1] - c["parallel"][0]) / p.lpp
+    if lp <= 0 or (c["cp"] - lp) / (1 - lp) >= FINE_ENDS_CP:
+        return ""
+    shorter = max(0.0, (c["cp"] - FINE_ENDS_CP) / (1 - FINE_ENDS_CP)) * p.lpp  # ends of prismatic FINE_ENDS_CP
+    return (f"{prefix}the ends outside this parallel body would need a prismatic coefficient of "
+            f"{(c['cp'] - lp) / (1 - lp):.3f}: give a shorter parallel_length (at most {shorter:.4g} m leaves "
+            f"them {FINE_ENDS_CP:g}), raise cb or move lcb toward midships")
 
 
 def _refuse_a_miss(err: dict) -> None:

@@ -440,6 +440,45 @@ def test_a_fine_ship_with_a_short_parallel_body_and_lcb_at_midships_builds():
     assert hull.basic_curves["dwl"](hull.description.x_aft)[0] < 0.7 * 17 / 2
 
 
+# Fine ships with a long given parallel body (bench_hull.sample_given_parallel(200), ships 27 and 9,
+# rounded): the designer's full-size bulb meets their short entrance in two curves, or in a seam
+# that turns back round it, at every aft length.
+SHORT_ENTRANCE = {
+    "slender": dict(lpp=150.0, breadth=16.944, draft=6.756, depth=10.809, cb=0.513, lcb=73.404, parallel_length=44.08),
+    "deep": dict(lpp=150.0, breadth=32.651, draft=16.026, depth=25.642, cb=0.545, lcb=69.09, parallel_length=42.07),
+}
+
+
+@pytest.mark.parametrize("name", list(SHORT_ENTRANCE))
+def test_a_bulb_too_large_for_a_short_entrance_is_made_smaller_and_the_ship_composes(name):
+    """Such a ship was refused ("the bulb cannot meet the hull in one seam: give bulb=False or a
+    smaller bulb") though a smaller bulb meets it: the designer now tries its bulb at
+    BULB_SCALE_RETRIES of its size, names the size in the notes, and the composed ship is
+    watertight and holds the asked volume and LCB."""
+    from fairlines.designer import _kracht_defaults
+
+    p = SHORT_ENTRANCE[name]
+    hull = fl.design_hull(**p, bulb=True)
+    scale = float(re.search(r"the bulb ([\d.]+) of the designer's size", hull.description.notes).group(1))
+    assert scale < 1.0
+    assert hull.description.bulb.kracht["c_bb"] == pytest.approx(scale * _kracht_defaults()["c_bb"])
+    c = hull.composed_hull()
+    assert edge_census(c.mesh.faces) == (0, 0, 0)
+    h = hull.ship_hydrostatics()
+    assert h["volume"] == pytest.approx(_asked(p), rel=1e-4)
+    assert abs(h["lcb"] - p["lcb"]) <= 1e-4 * p["lpp"]
+    assert fl.Hull.from_json(hull.to_json()).description.bulb.kracht == hull.description.bulb.kracht
+
+
+def test_a_given_bulb_too_large_for_a_short_entrance_keeps_its_size_and_is_refused():
+    """Kracht coefficients the user gave are the user's: the designer does not shrink them, and
+    the refusal names what to give."""
+    from fairlines.designer import _kracht_defaults
+
+    with pytest.raises(fl.InfeasibleFormParameters, match=r"cannot meet the hull in one seam .*give bulb=False, a smaller bulb"):
+        fl.design_hull(**SHORT_ENTRANCE["slender"], bulb={"kracht": dict(_kracht_defaults())})
+
+
 def test_too_long_a_parallel_body_on_a_fine_ship_asks_for_a_shorter_one():
     """Cb 0.51 with 30 % Lpp of parallel body: the ends would need a prismatic of 0.35, which
     no fair SAC within the sections' fullness holds; the message says which way to go and how
