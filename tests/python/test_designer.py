@@ -789,7 +789,7 @@ STEM_TIP_SHORT = {
     ("container", 0.25): "a hollow of 0.56 deg at x 245.17 m then a convex lobe of 0.21 deg at 245.49 m (z 13 m, 2 m above T), "
                          "the waterline's last 0.6 m over the stem (a hollow of 0.40 and a convex lobe of 0.25 deg before the "
                          "forward deck followed the waterline as smoothstep^0.4, designer.DECK_FOLLOW_POWER)",
-    ("fine_ferry", 0.25): "a hollow of 0.28 deg at x 140.19 m then a convex lobe of 0.17 deg at 140.37 m (z 6.6 m), the "
+    ("fine_ferry", 0.25): "a hollow of 0.28 deg at x 140.19 m then a convex lobe of 0.16 deg at 140.37 m (z 6.6 m), the "
                           "waterline's last 0.4 m over the stem, since the forward deck follows the waterline's narrowing "
                           "as smoothstep^0.4 (designer.DECK_FOLLOW_POWER; one hollow of 0.25 deg with the smoothstep)",
 }
@@ -802,7 +802,8 @@ TANKER_SHORT = {
           "since the keel rises over 0.9 of the run (designer.KEEL_RISE) this waterline runs nearly straight into the "
           "transom (one hollow of 7.1 deg before), and its ripple reads as a wobble (0.45 between 0.73 and 0.94 deg "
           "with the bilge's fine weight 0.7, 0.48 between 0.69 and 1.13 with 0.5 and the transom's run of 3 % Lpp)",
-    11.9: "a hollow lobe of 0.33 deg at x 179.8 m, 0.3 m aft of the stem (0.30 before an immersed section's top corner was kept "
+    11.9: "a hollow lobe of 0.26 deg at x 179.8 m, 0.3 m aft of the stem (0.33 with the deck edge's blend over e^0.25, "
+          "sections.cpp kDeckEdgeBlend; 0.30 before an immersed section's top corner was kept "
           "inside its deck edge, sections.cpp inside_deck_edge; 0.36 with the top corner at 0.5 and the top "
           "fillet's kFilletFar; 0.17 deg at x 179.2 m before the last two station spans aft of the FP were halved, "
           "hull.CLOSED_END_HALVED_SPANS); and since the bilge's fine weight is 0.5 (0.7 before), over the transom a "

@@ -168,11 +168,17 @@ constexpr double kDeckCornerShare = 0.9;
 /// and the side leans out along the bilge: the container ship's by 0.29 m, 1.80 % of B/2; 30
 /// sampled hulls 1.07 % median, 2.15 % at most; now 0.02 % and over the 30 0.27 % at most). The leg keeps
 /// at least kLeastSideLeg of itself (a deck inside the waterline asks for tumblehome) and is
-/// shortened by a smooth minimum over e^kCornerBlend. bench_fairness_space's reading, hulls 0-99
-/// / held-out 100-199: every mark 40 -> 37 / 41 -> 40, buttocks over two 29 -> 27 / 30 -> 29,
-/// waterlines over two 46 -> 49 / 46 -> 49 (lobes of 0.1-0.6 deg in the lowest waterlines over
+/// shortened by a smooth minimum (kDeckEdgeBlend). bench_fairness_space's reading (with
+/// kCornerBlend's blend), hulls 0-99 / held-out 100-199: every mark 40 -> 37 / 41 -> 40,
+/// buttocks over two 29 -> 27 / 30 -> 29, waterlines over two 46 -> 49 / 46 -> 49 (lobes of 0.1-0.6 deg in the lowest waterlines over
 /// the forefoot, 0.88-0.95 Lpp, where the shorter leg bends the section's top nearer Q).
 constexpr double kLeastSideLeg = 0.5;
+/// The leg's minimum and maximum are rounded over e^kDeckEdgeBlend, wider than kCornerBlend's
+/// e^0.25, which turned the leg to the room within a few stations over the forefoot.
+/// bench_fairness_space, hulls 0-99 / 100-199 with 0.25 -> 0.6: every mark 37 -> 38 / 40 -> 40,
+/// waterlines over two 49 -> 48 / 49 -> 48, wobbles in the T/4-0.74 T waterlines 81 -> 79 / 52 -> 51,
+/// buttocks over two 27 -> 27 / 29 -> 29 (0.45: 37, 0.8: 37, 1.2: 30 on hulls 0-99, buttocks 36).
+constexpr double kDeckEdgeBlend = 0.6;
 /// A flat of bottom's corner with the bilge arc is rounded over this share of the shorter leg:
 /// a knuckle, sampled by the control polygon at another place at every station, rippled the
 /// lowest waterlines (0.5 m and 1 m of the container ship, turns of 0.1-0.9 deg).
@@ -504,7 +510,7 @@ double smooth_max(double a, double c, double k) {
 double inside_deck_edge(const V2& Q, const V2& dir, double leg, const V2& D) {
   if (!(dir.x() > 0)) return leg;
   const double room = (D.x() - Q.x()) / dir.x();
-  return smooth_min(leg, smooth_max(room, kLeastSideLeg * leg, kCornerBlend), kCornerBlend);
+  return smooth_min(leg, smooth_max(room, kLeastSideLeg * leg, kDeckEdgeBlend), kDeckEdgeBlend);
 }
 
 /// The top corner Y = base + leg dir of the topside fillet (deck point D to the waterline point
