@@ -130,6 +130,7 @@ def space_pass(particulars):
         except (fl.InfeasibleFormParameters, fl.InvalidInput) as e:
             cause = re.search(r"\((basic_curves\.\w+|section at x = -?)", str(e))  # design_hull: ... (the solver's message)
             key = cause.group(1) if cause else str(e).split(":")[0]
+            key = "design_hull: a bulb no size meets in one seam" if "bulb cannot meet the hull" in str(e) else key
             key = "sections" + (" (transom, x < 0)" if " -" in key else "") if key.startswith("section at") else key
             fails[key] = fails.get(key, 0) + 1
     return ok, times, fails, plain
