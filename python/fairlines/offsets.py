@@ -529,7 +529,7 @@ def _published_from_comments(comments):
         m = re.search(rf"\b{key}\s+(0?\.\d+)", text)
         if m:
             out[key.lower()] = float(m.group(1))
-    m = re.search(r"LCB\s+([0-9.]+)\s*%\s*Lpp\s+(forward|aft)", text.replace("\n", " "))
+    m = re.search(r"LCB\s+(\d+(?:\.\d*)?|\.\d+)\s*%\s*Lpp\s+(forward|aft)", text.replace("\n", " "))
     if m:
         out["lcb_pct"] = float(m.group(1)) * (1 if m.group(2) == "forward" else -1)
     return out

@@ -129,6 +129,14 @@ COEFF_TOL = 0.005
 LCB_TOL_PCT = 0.2
 
 
+@pytest.mark.parametrize("quoted, lcb_pct", [("LCB 2.5 % Lpp forward", 2.5), ("LCB .5 % Lpp aft", -0.5),
+                                               ("LCB ..5 % Lpp forward", None), ("LCB 2.5. % Lpp forward", None)])
+def test_a_malformed_figure_in_a_header_comment_is_not_read(quoted, lcb_pct):
+    """A header comment is read for the coefficients it quotes; a figure that is not a number
+    there ('..5', found by fuzz/fuzz_offsets_csv.py) is left unread, not a ValueError."""
+    assert offsets._published_from_comments([f"# Cp 0.805, {quoted}"]).get("lcb_pct") == lcb_pct
+
+
 def test_series60_reader_reads_header_and_converts(series60):
     data, _ = series60
     assert data.published == {"cp": 0.805, "cm": 0.994, "cwp": 0.864, "lcb_pct": 2.5}
