@@ -1124,8 +1124,8 @@ def _explained(exc: Exception, p: Particulars, edge: str = "") -> Exception:
     if curve == "profile" and "over the propeller" in str(exc):
         remedy = ("the run is too short to lift the hull over the propeller: give a smaller propeller_diameter, "
                   "move lcb forward or lower cb (a longer run)")
-    if curve == "sac" and _fine_ends(p):
-        remedy = _fine_ends(p)
+    fine = _fine_ends(p) if curve == "sac" else ""
+    remedy = fine or remedy
     return type(exc)(f"design_hull: {said}: {remedy}{edge} ({exc})")
 
 

@@ -170,8 +170,9 @@ constexpr double kDeckCornerShare = 0.9;
 /// at least kLeastSideLeg of itself (a deck inside the waterline asks for tumblehome) and is
 /// shortened by a smooth minimum (kDeckEdgeBlend). bench_fairness_space's reading (with
 /// kCornerBlend's blend), hulls 0-99 / held-out 100-199: every mark 40 -> 37 / 41 -> 40,
-/// buttocks over two 29 -> 27 / 30 -> 29, waterlines over two 46 -> 49 / 46 -> 49 (lobes of 0.1-0.6 deg in the lowest waterlines over
-/// the forefoot, 0.88-0.95 Lpp, where the shorter leg bends the section's top nearer Q).
+/// buttocks over two 29 -> 27 / 30 -> 29, waterlines over two 46 -> 49 / 46 -> 49 (lobes of
+/// 0.1-0.6 deg in the lowest waterlines over the forefoot, 0.88-0.95 Lpp, where the shorter leg
+/// bends the section's top nearer Q).
 constexpr double kLeastSideLeg = 0.5;
 /// The leg's minimum and maximum are rounded over e^kDeckEdgeBlend, wider than kCornerBlend's
 /// e^0.25, which turned the leg to the room within a few stations over the forefoot.
