@@ -947,7 +947,7 @@ ComposedHull compose_hull(const NurbsSurface& hull_in, const NurbsSurface* bulb,
                           const BlendSpec* blend) {
   validate_options(o, bulb, blend);
   const NurbsSurface H = orient_bare_hull(hull_in, o.plane_tolerance);
-  ComposedHull out{TriMesh{}, Eigen::VectorXi(), {}, {}, Eigen::VectorXi(), 0.0, 0.0, H, {}, {}, {}};
+  ComposedHull out{TriMesh{}, Eigen::VectorXi(), {}, {}, Eigen::VectorXi(), 0.0, 0.0, H, {}, {}, {}, {}, {}, {}, {}};
   out.x_aft = edge_points(H, true, false).col(0).mean();
   out.z_deck = edge_points(H, false, true).col(2).mean();
   AftEnd aft = aft_end(H, out.z_deck, o.plane_tolerance);
