@@ -229,6 +229,7 @@ std::vector<std::pair<int, int>> samples_in_supports(const Eigen::VectorXd& Ku, 
 void hold_flats(const Eigen::MatrixXd& Nu, const Eigen::MatrixXd& rhs, const FlatPlanes& flats,
                 const std::vector<std::pair<int, int>>& inside, Eigen::MatrixXd& sol) {
   const int n = static_cast<int>(Nu.cols());
+  if (n < 2) return;  // nothing between the ends to hold (and GCC knows fixed[n - 1] exists)
   const Eigen::MatrixXd M = Nu.transpose() * Nu;
   std::map<std::vector<char>, Eigen::LLT<Eigen::MatrixXd>> factors;
   for (int col = 0; col < rhs.cols(); ++col) {
