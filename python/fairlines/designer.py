@@ -39,6 +39,7 @@ ship meets the volume and LCB to MATCH_TOL_BULB (the bare hull's SAC then holds 
 
 from __future__ import annotations
 
+import copy
 import json
 import math
 from dataclasses import asdict, dataclass, field, replace
@@ -1028,22 +1029,18 @@ def _bulb_that_meets(hull: Hull, p: Particulars) -> Hull:
 
 
 def _bulb_variant(desc: dict, p: Particulars, scale: float, factor: float | None) -> dict:
-    """A copy of the description `desc` whose bulb is the designer's scaled by `scale` (lengths;
+    """A copy of the designer's description `desc` whose bulb is scaled by `scale` (lengths;
     areas by its square, the volume by its cube: the same shape, a smaller size; noted) and runs
-    `factor` (L_PR + B_B) into the hull (None: BULB_AFT_LENGTH; the given aft length kept when
-    the user gave one and factor is None)."""
-    out = json.loads(json.dumps(desc))
-    bulb = out["bulb"]
-    k = dict(bulb["kracht"])
+    `factor` (BULB_AFT_LENGTH when None) times L_PR + B_B into the hull."""
+    out = copy.deepcopy(desc)
+    k = out["bulb"]["kracht"]
     if scale != 1.0:
         for name, power in BULB_SCALE_POWERS.items():
             k[name] *= scale ** power
-        bulb["kracht"] = k
         out["notes"] += (f"; the bulb {scale:g} of the designer's size (Kracht coefficients "
                          + ", ".join(f"{n} {k[n]:.4g}" for n in KRACHT_NAMES)
                          + "): no aft length let the full-size bulb meet the hull in one seam")
-    if factor is not None or scale != 1.0:
-        bulb.setdefault("shape", {})["aft_length"] = (factor or BULB_AFT_LENGTH) * (k["c_lpr"] * p.lpp + k["c_bb"] * p.breadth)
+    out["bulb"]["shape"]["aft_length"] = (factor or BULB_AFT_LENGTH) * (k["c_lpr"] * p.lpp + k["c_bb"] * p.breadth)
     return out
 
 
