@@ -218,7 +218,7 @@ class Hull:
         self._stations: np.ndarray | None = None
         self._dry_ends: dict = {}  # x_e -> (end waterlines, end contour) of the dry sections beyond it
         self._closed_ends: list | None = None  # _closed_dry_ends, asked by every section_specs
-        self._transom_run: list | None = None  # [fairlines.transom_run.TransomRun], or [] without a dry transom
+        self._transom_run: list | None = None  # [fairlines.transom_run.TransomRun], or [] without a transom run
         self._hydro: dict = {}  # (draft, options) -> Hydrostatics of the current surface
         self._bow = None  # (key, BulbousBow) of the description's bulb, no overrides
         self._placement = None  # (surface, bow, BlendPlacement) of the default blend
@@ -653,9 +653,9 @@ class Hull:
                 if shape is not None:
                     s.given = shape
 
-    def _dry_transom_run(self):
-        """The TransomRun of a dry transom (the keel leaves the water forward of a transom, and no
-        given section lies in the run), else None (cached)."""
+    def _transom_run_fairing(self):
+        """The TransomRun of a transom (wet, or dry: the keel leaves the water forward of it) with
+        no given section in the run, else None (cached)."""
         if self._transom_run is None:
             self._transom_run = []  # also what the template's own specs see while the run is built
             d, dwl = self.description, self._curves["dwl"]
@@ -663,15 +663,17 @@ class Hull:
             x_r = dwl.x_start + transom_run.RUN_LENGTH * pr.lpp
             transom = self.curve_points(np.array([d.x_aft]), self._curves)[0][0] > 1e-6 * pr.breadth
             given_in_run = any(g is not None for g in self._given_shapes(np.linspace(d.x_aft, x_r, 9)))
-            if (transom and "aft" not in d.posts and dwl.x_start - d.x_aft > 1e-6 * pr.lpp
-                    and x_r + transom_run.END_SLOPE_BASE * pr.lpp < d.x_fore and not given_in_run):
-                self._transom_run = [transom_run.TransomRun(d.x_aft, dwl.x_start, pr.lpp, pr.draft, self.section_specs)]
+            wet = dwl.x_start - d.x_aft <= 1e-6 * pr.lpp
+            if (transom and "aft" not in d.posts and dwl.x_start - d.x_aft > -1e-6 * pr.lpp
+                    and x_r + 2 * transom_run.END_SLOPE_BASE * pr.lpp < d.x_fore and not given_in_run):
+                self._transom_run = [transom_run.TransomRun(d.x_aft, dwl.x_start, pr.lpp, pr.draft, self.section_specs,
+                                                            wet=wet)]
         return self._transom_run[0] if self._transom_run else None
 
     def _section_curves(self, specs: list, designs: list) -> list:
-        """The designed sections' curves, a dry transom's run faired (fairlines.transom_run)."""
+        """The designed sections' curves, a transom's run faired (fairlines.transom_run)."""
         curves = [d.curve for d in designs]
-        run = self._dry_transom_run()
+        run = self._transom_run_fairing()
         if run is None:
             return curves
         # a skeg's sections too (their topside is the body's own, held when the engine puts them
@@ -690,7 +692,7 @@ class Hull:
 
     @property
     def section_curves(self) -> list:
-        """The curves of section_designs, a dry transom's run faired (fairlines.transom_run): the
+        """The curves of section_designs, a transom's run faired (fairlines.transom_run): the
         stations' designed sections before the station mean (3-D NurbsCurves, deck to keel)."""
         designs = self.section_designs
         return self._section_curves(self._specs, designs)

@@ -1,8 +1,8 @@
-"""The topsides' run into a dry transom: the sections above T aft of RUN_LENGTH Lpp forward of
-the design waterline's aft end, read off faired waterlines rather than off the section template.
+"""The topsides' run into a transom: the sections above T aft of RUN_LENGTH Lpp forward of the
+design waterline's aft end, read off faired waterlines rather than off the section template.
 
 Notation: x_a the transom (the hull's aft end), x_e the waterline's aft end (where the keel
-leaves the water, x_e > x_a for a dry transom), x_r = x_e + RUN_LENGTH Lpp the run's forward
+leaves the water, x_e > x_a for a dry transom, x_e = x_a for a wet one), x_r = x_e + RUN_LENGTH Lpp the run's forward
 end, eta = (z - T) / (z_deck - T) the height above T as a fraction of the topside at x,
 y_t(x, eta) the template section's half-breadth there, h = x_r - x.
 
@@ -29,6 +29,17 @@ dry-transom hulls among bench_hull's first 100, 33 with the run. Over those 100 
 wobbles 101 -> 52, steps 23 -> 6), on hulls 100-199 189 -> 215; refitting the sections as
 given shapes instead moved them by up to 14 mm (the fit's bending penalty and the shifts
 through Q), which made wobbles of its own.
+
+A wet transom (its bottom under water, x_e = x_a) has the same round-in: the immersed depth
+shrinks toward the transom, so the sections' flare at T (about b / d) grows fast and the topside
+lines turn in over the last 2-4 % Lpp, a convex lobe of 0.1-1.6 deg aft of a hollow run. There
+the least-squares fit found that lobe and put the inflection at x_r; so a wet transom's lines
+keep the template's bend at x_r instead (c from the second difference over two END_SLOPE_BASE
+steps, b one-sided to second order): the hollow of the run carries through to the transom.
+bench_fairness_space, hulls 0-99: the upper waterlines (1.23 T, 1.475 T) with more than two sign
+changes 52 -> 22 (the least-squares fit 41); every mark 38 -> 38 on hulls 0-99, 40 -> 41 on
+100-199; S frames and buttocks unchanged. The bend's continuation for dry transoms too made
+every mark 36 / 34: their fit stays.
 """
 
 from __future__ import annotations
@@ -93,23 +104,29 @@ def fit_run(x: np.ndarray, y: np.ndarray, x_r: float, a: np.ndarray, b: np.ndarr
 
 
 class TransomRun:
-    """The faired topside lines of a dry transom's run (see the module docstring)."""
+    """The faired topside lines of a transom's run (see the module docstring)."""
 
-    def __init__(self, x_aft: float, x_end: float, lpp: float, draft: float, template_specs):
-        """template_specs(xs) -> SectionSpecs of the template at xs (m), without the run."""
+    def __init__(self, x_aft: float, x_end: float, lpp: float, draft: float, template_specs, wet: bool = False):
+        """template_specs(xs) -> SectionSpecs of the template at xs (m), without the run; `wet`:
+        the transom's bottom is under water (x_end = x_aft), so the lines keep the template's bend
+        at x_r (see the module docstring)."""
         self.x_a, self.draft = x_aft, draft
         self.x_r = x_end + RUN_LENGTH * lpp
         xs = np.linspace(x_aft, self.x_r, RUN_SAMPLES)
-        x_b = self.x_r + END_SLOPE_BASE * lpp
-        specs = template_specs(np.append(xs, x_b))
+        e = END_SLOPE_BASE * lpp
+        specs = template_specs(np.append(xs, [self.x_r + e, self.x_r + 2 * e]))
         curves = [d.curve for d in _native.design_sections(specs)]
         self._params = sample_params(curves[0])  # the sections share one knot vector
         n = self._params[2]
         y = np.array([topside_offsets(np.asarray(c.evaluate(self._params[3]))[2 * n:], s.z_deck, draft, s.z_keel)
                       for c, s in zip(curves, specs)])
-        self.a = y[-2]
-        self.b = (y[-1] - y[-2]) / (x_b - self.x_r)
-        self.c = fit_run(xs[:-1], y[:-2], self.x_r, self.a, self.b)
+        self.a = y[-3]
+        if wet:  # one-sided second-order slope and the bend at x_r
+            self.b = (-3.0 * y[-3] + 4.0 * y[-2] - y[-1]) / (2.0 * e)
+            self.c = (y[-3] - 2.0 * y[-2] + y[-1]) / (2.0 * e * e)
+        else:
+            self.b = (y[-2] - y[-3]) / e
+            self.c = fit_run(xs[:-1], y[:-3], self.x_r, self.a, self.b)
         self.levels = _LEVELS
         self.fade_length = FADE_LENGTH * lpp
 

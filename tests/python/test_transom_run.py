@@ -1,4 +1,4 @@
-"""The topsides' run into a dry transom (fairlines.transom_run), judged on the cut waterlines
+"""The topsides' run into a transom (fairlines.transom_run), judged on the cut waterlines
 read as a lines plan, and on what the run must not touch: the sections below T and the deck
 edge."""
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import fairlines as fl
-from fairlines.fairness import read_waterline
+from fairlines.fairness import judge_cut, read_waterline
 
 #: Dry-transom ships of bench_hull's design space (its sample's hulls 6, 11, 17, 21, 82, rounded)
 #: and the README's product tanker with a skeg, whose upper waterlines had a wobble within AFT_END
@@ -18,6 +18,12 @@ SHIPS = {
     "full 64 m": dict(lpp=64.398, breadth=7.647, draft=2.557, depth=4.091, cb=0.815, lcb=33.454),
     "beamy 163 m": dict(lpp=162.573, breadth=33.374, draft=12.412, depth=19.859, cb=0.659, lcb=87.246),
     "skeg tanker 180 m": dict(lpp=180.0, breadth=32.0, draft=11.5, depth=17.0, cb=0.82, lcb=95.4, skeg=True),
+}
+#: Wet-transom ships of bench_hull's design space (its sample's hulls 97 and 60, rounded) whose
+#: upper waterlines each had a convex lobe of 0.1-1.6 deg at the transom, aft of a hollow run.
+WET = {
+    "beamy 183 m": dict(lpp=183.053, breadth=45.036, draft=10.908, depth=17.453, cb=0.5413, lcb=96.98),
+    "fine 201 m": dict(lpp=201.331, breadth=23.069, draft=9.578, depth=15.325, cb=0.561, lcb=106.423),
 }
 #: Where a wobble counts as the run's: within this fraction of Lpp of the waterline's aft end.
 AFT_END = 0.05
@@ -45,17 +51,17 @@ def test_upper_waterlines_run_into_a_dry_transom_without_a_wobble(name):
     upper waterline 0.5-3 % Lpp forward of where the keel leaves the water."""
     p = SHIPS[name]
     hull = fl.design_hull(**p)
-    assert hull._dry_transom_run() is not None
+    assert hull._transom_run_fairing() is not None
     for f in UPPER:
         assert _aft_wobbles(hull, f * p["draft"]) == [], f
 
 
-def test_the_run_keeps_the_sections_below_T_and_the_deck_edge():
+@pytest.mark.parametrize("p", [SHIPS["coaster 95 m"], WET["fine 201 m"]], ids=["dry", "wet"])
+def test_the_run_keeps_the_sections_below_T_and_the_deck_edge(p):
     """Each faired section is its designed section below max(T, keel point) and at the deck
     edge, point for point (sampled on the curve's own parameter)."""
-    p = SHIPS["coaster 95 m"]
     hull = fl.design_hull(**p)
-    run = hull._dry_transom_run()
+    run = hull._transom_run_fairing()
     moved = 0
     for spec, design, faired in zip(hull._specs or hull.section_specs(), hull.section_designs, hull.section_curves):
         t = np.linspace(*design.curve.domain, 801)
@@ -67,13 +73,25 @@ def test_the_run_keeps_the_sections_below_T_and_the_deck_edge():
     assert moved >= 3  # the run is at work on the stations in it
 
 
-def test_no_run_without_a_dry_transom():
-    """A transom whose bottom is under water, and a cruiser stern (its overhang read off by
-    fairlines.dry_ends), have no run."""
-    wet = fl.design_hull(lpp=120.0, breadth=20.0, draft=6.0, depth=9.6, cb=0.6, lcb=58.0, transom_immersion=0.3)
-    assert wet._dry_transom_run() is None
+def test_no_run_at_a_cruiser_stern():
+    """A cruiser stern's overhang is read off by fairlines.dry_ends, not by a run."""
     cruiser = fl.design_hull(lpp=120.0, breadth=20.0, draft=6.0, depth=9.6, cb=0.6, lcb=58.0, stern="cruiser")
-    assert cruiser._dry_transom_run() is None
+    assert cruiser._transom_run_fairing() is None
+
+
+@pytest.mark.parametrize("name", WET)
+def test_upper_waterlines_run_into_a_wet_transom_without_turning_in(name):
+    """Each upper waterline's lobes within AFT_END of the transom turn one way, hollow (judged on
+    the cut at 0.1 deg of turn): the run's hollow carries through to the transom."""
+    p = WET[name]
+    hull = fl.design_hull(**p)
+    assert hull.basic_curves["dwl"].x_start == pytest.approx(hull.description.x_aft)  # the transom's bottom is wet
+    for f in (1.1, 1.23, 1.35, 1.475):
+        cut = fl.plane_cut(hull.bare_hull_surface(), 2, f * p["draft"], 401)
+        x = np.asarray(cut.points)[:, 0]
+        turned_in = [(round(lobe["at"][0], 2), round(lobe["turn_deg"], 2)) for lobe in judge_cut(cut)["lobes"]
+                     if lobe["at"][0] - x.min() < AFT_END * p["lpp"] and lobe["sign"] < 0]
+        assert turned_in == [], f
 
 
 def _section_height(hull, x: float, y: float) -> float:
