@@ -2,13 +2,13 @@
 design waterline's aft end, read off faired waterlines rather than off the section template.
 
 Notation: x_a the transom (the hull's aft end), x_e the waterline's aft end (where the keel
-leaves the water, x_e > x_a for a dry transom, x_e = x_a for a wet one), x_r = x_e + RUN_LENGTH Lpp the run's forward
-end, eta = (z - T) / (z_deck - T) the height above T as a fraction of the topside at x,
-y_t(x, eta) the template section's half-breadth there, h = x_r - x.
+leaves the water, x_e > x_a for a dry transom, x_e = x_a for a wet one), x_r = x_e + RUN_LENGTH
+Lpp the run's forward end, eta = (z - T) / (z_deck - T) the height above T as a fraction of the
+topside at x, y_t(x, eta) the template section's half-breadth there, h = x_r - x.
 
-Each topside line eta = const is the quadratic with the template's value a and slope b at x_r
-(the slope read over END_SLOPE_BASE Lpp forward of x_r) that fits the templates at RUN_SAMPLES
-sections from x_a to x_r by least squares:
+Each topside line eta = const of a dry transom's run is the quadratic with the template's value a
+and slope b at x_r (the slope read over END_SLOPE_BASE Lpp forward of x_r) that fits the templates
+at RUN_SAMPLES sections from x_a to x_r by least squares (a wet transom's: below):
 
     q(h) = a - b h + c h^2,   c = sum h^2 (y_t - a + b h) / sum h^4,
 
