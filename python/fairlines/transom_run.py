@@ -114,19 +114,20 @@ class TransomRun:
         self.x_r = x_end + RUN_LENGTH * lpp
         xs = np.linspace(x_aft, self.x_r, RUN_SAMPLES)
         e = END_SLOPE_BASE * lpp
-        specs = template_specs(np.append(xs, [self.x_r + e, self.x_r + 2 * e]))
+        ahead = self.x_r + e * np.arange(1, 3 if wet else 2)  # the bend needs a second step
+        specs = template_specs(np.append(xs, ahead))
         curves = [d.curve for d in _native.design_sections(specs)]
         self._params = sample_params(curves[0])  # the sections share one knot vector
         n = self._params[2]
         y = np.array([topside_offsets(np.asarray(c.evaluate(self._params[3]))[2 * n:], s.z_deck, draft, s.z_keel)
                       for c, s in zip(curves, specs)])
-        self.a = y[-3]
+        y_run, self.a, y_ahead = y[:RUN_SAMPLES - 1], y[RUN_SAMPLES - 1], y[RUN_SAMPLES:]
         if wet:  # one-sided second-order slope and the bend at x_r
-            self.b = (-3.0 * y[-3] + 4.0 * y[-2] - y[-1]) / (2.0 * e)
-            self.c = (y[-3] - 2.0 * y[-2] + y[-1]) / (2.0 * e * e)
+            self.b = (-3.0 * self.a + 4.0 * y_ahead[0] - y_ahead[1]) / (2.0 * e)
+            self.c = (self.a - 2.0 * y_ahead[0] + y_ahead[1]) / (2.0 * e * e)
         else:
-            self.b = (y[-2] - y[-3]) / e
-            self.c = fit_run(xs[:-1], y[:-3], self.x_r, self.a, self.b)
+            self.b = (y_ahead[0] - self.a) / e
+            self.c = fit_run(xs[:-1], y_run, self.x_r, self.a, self.b)
         self.levels = _LEVELS
         self.fade_length = FADE_LENGTH * lpp
 
