@@ -1600,9 +1600,9 @@ double mean_side(const Work& w, const std::array<int, 4>& e) {
   return sum / k;
 }
 
-/// Quads whose mean side is under 1 / kCollapseRatio of a neighbour's (an element sharing a
-/// side) in ratio order, the largest first: (ratio, element).
-std::vector<std::pair<double, int>> small_quads(const Work& w) {
+/// Elements (quads and triangles) whose mean side is under 1 / kCollapseRatio of a neighbour's
+/// (an element sharing a side) in ratio order, the largest first: (ratio, element).
+std::vector<std::pair<double, int>> small_elements(const Work& w) {
   std::unordered_map<long long, std::array<int, 2>> sides;  // side (a < b) -> its two elements
   const long long n = static_cast<long long>(w.xyz.size());
   std::vector<double> h(w.el.size());
@@ -1624,7 +1624,7 @@ std::vector<std::pair<double, int>> small_quads(const Work& w) {
     }
   std::vector<std::pair<double, int>> out;
   for (size_t e = 0; e < w.el.size(); ++e)
-    if (w.el[e][3] >= 0 && h[e] > 0 && largest[e] > kCollapseRatio * h[e])
+    if (h[e] > 0 && largest[e] > kCollapseRatio * h[e])
       out.push_back({largest[e] / h[e], static_cast<int>(e)});
   std::sort(out.begin(), out.end(), std::greater<>());
   return out;
@@ -1656,13 +1656,34 @@ std::optional<std::array<int, 4>> doublet_quad(std::array<int, 4> q, std::array<
   return std::array<int, 4>{q[1], q[2], q[3], r[2]};
 }
 
-/// One trial of collapse_small_quads: quad e's corners `gone` onto `keep` (kept when it scores
-/// as the pass asks; else undone). Returns the nodes about it when kept, else none.
+/// Whether keep and gone are neighbouring corners of element q.
+bool side_of(const std::array<int, 4>& q, int keep, int gone) {
+  const int k = q[3] < 0 ? 3 : 4;
+  for (int i = 0; i < k; ++i)
+    if ((q[i] == keep && q[(i + 1) % k] == gone) || (q[i] == gone && q[(i + 1) % k] == keep)) return true;
+  return false;
+}
+
+/// Element q without its corner `gone` (a quad becomes a triangle of the same orientation).
+std::array<int, 4> without(const std::array<int, 4>& q, int gone) {
+  std::array<int, 4> out{-1, -1, -1, -1};
+  int k = 0;
+  for (int x : q)
+    if (x >= 0 && x != gone) out[k++] = x;
+  return out;
+}
+
+/// One trial of collapse_small_elements: element e's corners `gone` onto `keep` (a quad's
+/// diagonal, or a triangle's side, whose other element becomes a triangle or, a triangle,
+/// goes too), kept when it scores as the pass asks; else undone. Returns the nodes about it
+/// when kept, else none.
 std::vector<int> try_collapse(Work& w, EditedElementsAtNodes& at, int e, int keep, int gone, double mesh_worst) {
   auto live = [&](int node) { return at.live(node); };
   const std::vector<int> at_gone = live(gone);
-  for (int x : at_gone)  // another element holding both would fold
-    if (x != e && std::find(w.el[x].begin(), w.el[x].end(), keep) != w.el[x].end()) return {};
+  const bool side = w.el[e][3] < 0;
+  for (int x : at_gone)  // another element holding both would fold, unless across a triangle's side
+    if (x != e && std::find(w.el[x].begin(), w.el[x].end(), keep) != w.el[x].end() && !(side && side_of(w.el[x], keep, gone)))
+      return {};
   const std::vector<int> nodes = nodes_about(w, at, keep, gone);
   const LocalEdit edit(w, nodes, live);
   const double before = edit.worst(w);
@@ -1671,6 +1692,10 @@ std::vector<int> try_collapse(Work& w, EditedElementsAtNodes& at, int e, int kee
   w.el[e] = kDeadElement;
   for (int x : at_gone) {
     if (x == e) continue;
+    if (std::find(w.el[x].begin(), w.el[x].end(), keep) != w.el[x].end()) {  // across the side
+      w.el[x] = w.el[x][3] < 0 ? kDeadElement : without(w.el[x], gone);
+      continue;
+    }
     std::replace(w.el[x].begin(), w.el[x].end(), gone, keep);
     at.add(keep, x);
   }
@@ -1708,27 +1733,38 @@ std::vector<int> try_collapse(Work& w, EditedElementsAtNodes& at, int e, int kee
   return {};
 }
 
-/// Quads much smaller than a neighbour (small_quads) are collapsed across a diagonal: its two
-/// ends a, c become one node (at their middle on the face, or at the fixed one), the quad goes,
-/// and the free nodes about it are searched (optimise_node); a free node left in two quads goes
-/// with them, which become one quad (doublet_quad: refusing that collapse left a 0.17 m quad
-/// among 0.6 m ones). Kept where no free node is left in one or two elements and the elements
-/// about it score at least kCollapseFloor, their worst before less kCollapseTrade, and the
-/// face's worst before the pass; else undone. The
-/// diagonal whose ends have fewer elements is tried first (two valence-3 corners make one
-/// regular node). Returns whether a quad went (the caller compacts the nodes).
-bool collapse_small_quads(Work& w) {
+/// Elements much smaller than a neighbour (small_elements) are collapsed: a quad across a
+/// diagonal, its two ends a, c becoming one node (at their middle on the face, or at the fixed
+/// one); a triangle along a side, shortest first, the element across it losing that corner (a
+/// 0.17 m triangle beside a 0.68 m quad where a designed coaster's keel leaves the water). The
+/// element goes, and the free nodes about it are searched (optimise_node); a free node left in
+/// two quads goes with them, which become one quad (doublet_quad: refusing that collapse left a
+/// 0.17 m quad among 0.6 m ones). Kept where no free node is left in one or two elements and the
+/// elements about it score at least kCollapseFloor, their worst before less kCollapseTrade, and
+/// the face's worst before the pass; else undone. The quad's diagonal whose ends have fewer
+/// elements is tried first (two valence-3 corners make one regular node). Returns whether an
+/// element went (the caller compacts the nodes).
+bool collapse_small_elements(Work& w) {
   EditedElementsAtNodes at(w);  // the kept node takes its partner's elements
   std::vector<char> touched(w.xyz.size(), 0);
   bool collapsed = false;
   double mesh_worst = 1e9;  // no collapse makes the face's worst element worse
   for (const auto& e : w.el) mesh_worst = std::min(mesh_worst, w.strict_quality(e));
-  for (const auto& [ratio, e] : small_quads(w)) {
+  for (const auto& [ratio, e] : small_elements(w)) {
     const std::array<int, 4> quad = w.el[e];
-    if (quad == kDeadElement || std::any_of(quad.begin(), quad.end(), [&](int x) { return touched[x] != 0; })) continue;
-    auto valence = [&](int d) { return at.live(quad[d]).size() + at.live(quad[d + 2]).size(); };
-    for (int d : valence(1) < valence(0) ? std::array<int, 2>{1, 0} : std::array<int, 2>{0, 1}) {
-      int keep = quad[d], gone = quad[d + 2];
+    if (quad == kDeadElement || std::any_of(quad.begin(), quad.end(), [&](int x) { return x >= 0 && touched[x] != 0; }))
+      continue;
+    std::vector<std::pair<int, int>> pairs;  // (keep, gone) candidates in the order tried
+    if (quad[3] >= 0) {
+      auto valence = [&](int d) { return at.live(quad[d]).size() + at.live(quad[d + 2]).size(); };
+      for (int d : valence(1) < valence(0) ? std::array<int, 2>{1, 0} : std::array<int, 2>{0, 1})
+        pairs.push_back({quad[d], quad[d + 2]});
+    } else {
+      for (int i = 0; i < 3; ++i) pairs.push_back({quad[i], quad[(i + 1) % 3]});
+      auto length = [&](const std::pair<int, int>& p) { return (w.xyz[p.first] - w.xyz[p.second]).squaredNorm(); };
+      std::sort(pairs.begin(), pairs.end(), [&](const auto& a, const auto& b) { return length(a) < length(b); });
+    }
+    for (auto [keep, gone] : pairs) {
       if (keep < w.fixed && gone < w.fixed) continue;
       if (gone < w.fixed) std::swap(keep, gone);
       const std::vector<int> nodes = try_collapse(w, at, e, keep, gone, mesh_worst);
@@ -1742,7 +1778,7 @@ bool collapse_small_quads(Work& w) {
   return collapsed;
 }
 
-/// Drops the free nodes no element uses (removed by remove_valence3_nodes, collapse_small_quads),
+/// Drops the free nodes no element uses (removed by remove_valence3_nodes, collapse_small_elements),
 /// renumbering the rest.
 void compact_nodes(Work& w) {
   std::vector<int> to(w.xyz.size(), -1);
@@ -2650,7 +2686,7 @@ PatchMesh mesh_patch(const FaceGeometry& g, const std::vector<LoopNode>& loop, c
   if (o.smoothing_passes > 0) improve_mean(w);
   // after the quality passes, which make the size jumps (on the example's bare hull none before
   // improve_corners, three quads past kCollapseRatio after it)
-  for (int pass = 0; o.smoothing_passes > 0 && pass < kCollapsePasses && collapse_small_quads(w); ++pass) compact_nodes(w);
+  for (int pass = 0; o.smoothing_passes > 0 && pass < kCollapsePasses && collapse_small_elements(w); ++pass) compact_nodes(w);
   if (o.smoothing_passes > 0) polish(w);
   if (o.smoothing_passes > 0 && flip_sliver_pairs(w)) polish(w);
   split_folded_quads(w);
