@@ -58,9 +58,19 @@ BAND_FREE = 2.0
 # ... by depth over an immersed transom, this many: a section's area is asked in full from one end
 # band of depth, and a transom 0.12 T deep (the designer's default for fine ships) left band-free
 # took a SAC whose fullness fell below what the family holds there (0.45 asked, 0.64 the least).
-# Not for every station: where the keel rises out of the water at a dry transom the band put a
-# wobble in the container ship's 13 m waterline (test_waterline_has_no_wobble).
 BAND_FREE_DEPTH = 1.0
+# ... and where the keel rises out of the water aft (a dry transom, a cruiser stern), this many,
+# the stations there holding their band's lower side DRY_END_MARGIN of its width in (not
+# BAND_MARGIN's) out to BAND_FREE end bands. Band-free, the SAC asked the last stations before
+# the fade for less than the family's V holds (bench_hull's hull 65: fullness 0.512 against 0.515
+# at 0.106 T deep), the section held its V instead and the buttocks crossing T there took a hollow
+# lobe of 0.1-1.6 deg. The full margin held the sections near the end fuller than the V, and the
+# waterlines just under T rounded at their aft ends. bench_fairness_space's hulls 0-99 / 100-199
+# / 200-299 / 300-399, every mark 38 / 41 / 37 / 31 -> 41 / 44 / 37 / 34, buttocks over two sign
+# changes 27 / 29 / 28 / 35 -> 23 / 25 / 27 / 31, waterlines 48 / 47 / 52 / 46 -> 49 / 46 / 52 / 46.
+# Depth 1.0: 39 / 44; margin 0.01 / 0.03: 40 / 42, 37 / 42; 0.05 (BAND_MARGIN's): 36 / 39 at 1.0.
+BAND_FREE_DRY_DEPTH = 0.75
+DRY_END_MARGIN = 0.02
 # The station mean's samples (fairlines.station_mean) stay this fraction of the way to a
 # neighbouring station at most (stations added over an overhang or a dome, or halving the spans
 # inside a closed end, lie closer).
@@ -363,7 +373,8 @@ class Hull:
 
     def _solve_sac(self, ranges: list) -> tuple[BasicCurve, BasicCurve]:
         """The SAC and its fullness within the stations' fullness `ranges` (x, least keeping the
-        whole flat of bottom, least narrowing it, largest) shrunk by BAND_MARGIN: first with the
+        whole flat of bottom, least narrowing it, largest, near a dry end) shrunk by BAND_MARGIN
+        (the lower side by at most DRY_END_MARGIN near a dry end): first with the
         whole flat kept, then (when no SAC fits those) narrowing it, then by RELAXED_BAND_MARGIN
         (the refusal then names what that holds). The SAC's convex_where_met ranges are held in
         the first two, and where neither meets the volume and LCB with them, the two again without."""
@@ -375,10 +386,11 @@ class Hull:
 
         def within(margin, narrow, spec):
             bands = []
-            for x, held, narrowed, hi in ranges:
+            for x, held, narrowed, hi, dry_end in ranges:
                 lo = narrowed if narrow else held
+                below = min(margin[0], DRY_END_MARGIN) if dry_end else margin[0]
                 if hi > lo:  # a station that cannot keep its whole flat at all is left free in the first pass
-                    bands.append((x, lo + margin[0] * (hi - lo), hi - margin[1] * (hi - lo)))
+                    bands.append((x, lo + below * (hi - lo), hi - margin[1] * (hi - lo)))
             return solve_sac(spec, curves["dwl"], curves["profile"], d.principal.draft, fullness=limits, bands=bands,
                              free_ends=free)
 
@@ -396,9 +408,11 @@ class Hull:
                     pass
         return within(RELAXED_BAND_MARGIN, True, specs[-1])
 
-    def _fullness_ranges(self) -> list[tuple[float, float, float, float]]:
+    def _fullness_ranges(self) -> list[tuple[float, float, float, float, bool]]:
         """(x, least keeping the whole flat of bottom, least narrowing it, largest) fullness the
-        section family holds at each station inside the waterline's range."""
+        section family holds at each station inside the waterline's range, and whether the
+        station lies within BAND_FREE end bands of depth of where the keel rises out of the water
+        aft (see BAND_FREE_DRY_DEPTH)."""
         xa, xf = self.immersed_range()
         xs = self.stations()
         xs = xs[(xs > xa) & (xs < xf)]
@@ -406,13 +420,14 @@ class Hull:
         pr = self.description.principal
         transom = float(self._curves["dwl"](xa)[0]) > 1e-9 * pr.breadth  # the waterline ends on an immersed transom
         for x, spec in zip(xs, self.section_specs(xs, with_area=False)):
-            depth_free = BAND_FREE_DEPTH if transom and x < 0.5 * (xa + xf) else BAND_FREE
-            if (spec.y_dwl / (pr.breadth / 2) < BAND_FREE * _native.END_BAND
-                    or (spec.draft - spec.z_keel) / pr.draft < depth_free * _native.END_BAND):
+            aft = x < 0.5 * (xa + xf)
+            depth = (spec.draft - spec.z_keel) / pr.draft / _native.END_BAND  # in end bands
+            depth_free = (BAND_FREE_DEPTH if transom else BAND_FREE_DRY_DEPTH) if aft else BAND_FREE
+            if spec.y_dwl / (pr.breadth / 2) < BAND_FREE * _native.END_BAND or depth < depth_free:
                 continue  # where the waterline ends the area fades out: no band
             held, lo, hi = _native.section_fullness_bounds(spec)
             if np.isfinite(lo) and np.isfinite(hi) and hi > lo:
-                out.append((float(x), float(held), float(lo), float(hi)))
+                out.append((float(x), float(held), float(lo), float(hi), aft and not transom and depth < BAND_FREE))
         return out
 
     def immersed_range(self) -> tuple[float, float]:

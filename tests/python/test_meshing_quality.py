@@ -326,7 +326,10 @@ def test_small_quad_is_collapsed_where_a_node_would_be_left_in_two_quads():
     """A designed coaster (bench_hull's sample 39 of 100) at Lpp / 80: the collapse of its
     smallest quad (mean side 0.17 m among 0.6-0.7 m ones at the forefoot, x 112.5 m, z 1.4 m) left
     a free node in two quads and was refused (ratio 4.15); the two quads now become one and the
-    collapse stands (2.35 at most, least scaled Jacobian 0.565 both ways)."""
+    collapse stands (2.35 at most, least scaled Jacobian 0.565 both ways). Since the SAC holds the
+    stations where its keel leaves the water inside the family (hull.BAND_FREE_DRY_DEPTH) its mesh
+    had a triangle of 0.17 m beside a 0.68 m quad there (x -1.4 m, z 6.2 m; ratio 3.97): small
+    triangles are collapsed along a side too (2.41 at most)."""
     hull = fl.design_hull(lpp=115.73465, breadth=20.704413, draft=6.5236795, depth=10.437887, cb=0.83916908,
                           lcb=54.219531)
     m = fl.mesh_surface(hull.bare_hull_surface(), size=115.73465 / 80, chordal_tolerance=SHIP_TOL * 115.73465 / 244.8)
