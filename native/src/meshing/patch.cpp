@@ -1751,16 +1751,16 @@ bool collapse_small_elements(Work& w) {
   double mesh_worst = 1e9;  // no collapse makes the face's worst element worse
   for (const auto& e : w.el) mesh_worst = std::min(mesh_worst, w.strict_quality(e));
   for (const auto& [ratio, e] : small_elements(w)) {
-    const std::array<int, 4> quad = w.el[e];
-    if (quad == kDeadElement || std::any_of(quad.begin(), quad.end(), [&](int x) { return x >= 0 && touched[x] != 0; }))
+    const std::array<int, 4> el = w.el[e];
+    if (el == kDeadElement || std::any_of(el.begin(), el.end(), [&](int x) { return x >= 0 && touched[x] != 0; }))
       continue;
     std::vector<std::pair<int, int>> pairs;  // (keep, gone) candidates in the order tried
-    if (quad[3] >= 0) {
-      auto valence = [&](int d) { return at.live(quad[d]).size() + at.live(quad[d + 2]).size(); };
+    if (el[3] >= 0) {  // a quad: across a diagonal
+      auto valence = [&](int d) { return at.live(el[d]).size() + at.live(el[d + 2]).size(); };
       for (int d : valence(1) < valence(0) ? std::array<int, 2>{1, 0} : std::array<int, 2>{0, 1})
-        pairs.push_back({quad[d], quad[d + 2]});
-    } else {
-      for (int i = 0; i < 3; ++i) pairs.push_back({quad[i], quad[(i + 1) % 3]});
+        pairs.push_back({el[d], el[d + 2]});
+    } else {  // a triangle: along a side, the shortest first
+      for (int i = 0; i < 3; ++i) pairs.push_back({el[i], el[(i + 1) % 3]});
       auto length = [&](const std::pair<int, int>& p) { return (w.xyz[p.first] - w.xyz[p.second]).squaredNorm(); };
       std::sort(pairs.begin(), pairs.end(), [&](const auto& a, const auto& b) { return length(a) < length(b); });
     }
