@@ -421,13 +421,14 @@ class Hull:
         transom = float(self._curves["dwl"](xa)[0]) > 1e-9 * pr.breadth  # the waterline ends on an immersed transom
         for x, spec in zip(xs, self.section_specs(xs, with_area=False)):
             aft = x < 0.5 * (xa + xf)
+            dry = aft and not transom  # the keel rises out of the water aft
             depth = (spec.draft - spec.z_keel) / pr.draft / _native.END_BAND  # in end bands
-            depth_free = (BAND_FREE_DEPTH if transom else BAND_FREE_DRY_DEPTH) if aft else BAND_FREE
+            depth_free = BAND_FREE_DRY_DEPTH if dry else BAND_FREE_DEPTH if aft else BAND_FREE
             if spec.y_dwl / (pr.breadth / 2) < BAND_FREE * _native.END_BAND or depth < depth_free:
                 continue  # where the waterline ends the area fades out: no band
             held, lo, hi = _native.section_fullness_bounds(spec)
             if np.isfinite(lo) and np.isfinite(hi) and hi > lo:
-                out.append((float(x), float(held), float(lo), float(hi), aft and not transom and depth < BAND_FREE))
+                out.append((float(x), float(held), float(lo), float(hi), dry and depth < BAND_FREE))
         return out
 
     def immersed_range(self) -> tuple[float, float]:
