@@ -3,7 +3,8 @@ particulars of bench_hull.py (Cb 0.50-0.87, LCB -4..+4 % Lpp, L/B 4-9, B/T 2-4.5
 each designed hull's waterlines (6, from T/4 to D - T/8), buttocks (5, 0.1-0.9 B/2) and frames
 (19, 5-95 % Lpp) judged on their own (fairlines.fairness: curvature sign changes over 0.1 deg
 of turn). The issue's marks: a waterline or buttock with more than two (one hollow each way),
-a frame with any (an S). A waterline that closes on the centre plane in a rounded end counts
+a frame with any (an S); the frames aft of 5 % Lpp are read apart, for an S above T
+(AFT_FRAMES). A waterline that closes on the centre plane in a rounded end counts
 that round too, so its low waterlines read stricter than a naval architect's eye; so the
 waterlines are also read as one would: a lobe under SMALL_LOBE_DEG of turn between two others
 is a wobble (at a waterline's end it is how the line meets the stem or the transom, one turn), a
@@ -48,6 +49,11 @@ FLAT_BOTTOM = 0.3
 #: (within KEEL_ON_BASE T), aft (0.15 .. 0.5 Lpp) and forward (0.55 .. 0.85 Lpp) apart.
 KEEL_CHORD, KEEL_ON_BASE = 0.004, 1e-4
 KEEL_FRAMES = (np.linspace(0.15, 0.5, 8), np.linspace(0.55, 0.85, 7))
+#: The frames aft of the 19 (from AFT_FRAME_START of Lpp forward of the aft end to 5 % Lpp,
+#: AFT_FRAMES of them), read apart: near a dry transom the deck held wide over a waterline that
+#: closes on the centre plane bends the topside hollow above T. The largest lobe next to an
+#: inflection above T is counted (deg), and over AFT_FRAME_LOBE deg.
+AFT_FRAMES, AFT_FRAME_START, AFT_FRAME_LOBE = 8, 0.002, 1.0
 
 
 def sign_changes(surface, axis: int, value: float) -> int:
@@ -122,7 +128,18 @@ def keel_crease(surface, x: float, half_breadth: float, draft: float) -> float:
     return float(np.degrees(np.arctan2(out[2] - keel[2], out[1] - keel[1])))
 
 
-def judged(p: dict) -> tuple[list, list, list, list, list, list, list, list, list, list]:
+def aft_frame_s(surface, x_aft: float, lpp: float, draft: float) -> float:
+    """The largest S above T in the frames aft of 5 % Lpp (AFT_FRAMES): the smaller of the two
+    lobes (deg) at an inflection above T, 0 with none."""
+    worst = 0.0
+    for x in np.linspace(x_aft + AFT_FRAME_START * lpp, 0.05 * lpp, AFT_FRAMES):
+        cut = fl.plane_cut(surface, 0, float(x), CUT_POINTS)
+        if len(cut.points) >= 3:
+            worst = max([worst] + [min(i["turns_deg"]) for i in judge_cut(cut)["inflections"] if i["at"][2] > draft])
+    return worst
+
+
+def judged(p: dict) -> tuple[list, list, list, list, list, list, list, list, list, list, float]:
     hull = fl.design_hull(**p)
     s = hull.bare_hull_surface()
     T, D, B, L = p["draft"], p["depth"], p["breadth"], p["lpp"]
@@ -140,7 +157,8 @@ def judged(p: dict) -> tuple[list, list, list, list, list, list, list, list, lis
             [a and forced_by_basic_curves(hull, x, T, D) for a, x in zip(at_or_above, xs)],
             [(b, b and forced_by_basic_curves(hull, x, T, D)) for b, x in zip(just_below, xs)],
             [largest_aft_hollow(s, f * T, L) for f in LOWEST],
-            [max(keel_crease(s, f * L, B / 2, T) for f in fs) for fs in KEEL_FRAMES])
+            [max(keel_crease(s, f * L, B / 2, T) for f in fs) for fs in KEEL_FRAMES],
+            aft_frame_s(s, hull.description.x_aft, L, T))
 
 
 def print_reading(hulls: list) -> None:
@@ -188,6 +206,12 @@ def main():
           f"hollow topside): {sum(any(b for b, _ in h[7]) for h in hulls)} hulls; {sum(b for b, _ in below)} frames, "
           f"{sum(f for _, f in below)} of them forced by the basic curves")
     print(f"  none of these (the issue's marks): {clean} hulls ({100 * clean / n:.0f} %)")
+    aft = np.array([h[10] for h in hulls])
+    clean_aft = sum(all(v <= 2 for v in h[0] + h[1]) and not any(h[2]) and not h[10] for h in hulls)
+    print(f"  the {AFT_FRAMES} frames aft of 5 % Lpp (from {100 * AFT_FRAME_START:g} % Lpp forward of the aft end), an "
+          f"S above T: {(aft > 0).sum()} hulls, {(aft > AFT_FRAME_LOBE).sum()} with both its lobes over "
+          f"{AFT_FRAME_LOBE:g} deg (largest {aft.max():.1f} deg); none of the issue's marks with these frames too: "
+          f"{clean_aft} hulls")
     wl, bt, fr = (np.array([h[k] for h in hulls]) for k in range(3))
     print("  mean sign changes by waterline, T/4 .. D - T/8:", " ".join(f"{v:.1f}" for v in wl.mean(axis=0)))
     print("  mean sign changes by buttock, 0.1 .. 0.9 B/2:   ", " ".join(f"{v:.1f}" for v in bt.mean(axis=0)))
