@@ -110,6 +110,22 @@ DECK_FLARE_POINTS = 40      # fit points of the forward deck over the waterline'
 # the bow's frames tumble home (up to 2 % B/2 before).
 DECK_FOLLOW_POWER = 0.4
 DECK_TRANSOM = 0.92         # deck half-breadth at the transom, fraction of B/2 ...
+# ... but over a dry transom (the waterline closing on the centre plane forward of it) no wider
+# than the sections near the waterline's end lean: a section of the wedge's fullness leans b / d
+# (half-breadth over immersed depth) up to T, and a topside flaring more than that to the deck is
+# hollow above T, an S. So the deck at the transom is at most (1 - DRY_TRANSOM_LEAN_MARGIN) of
+# the least b + (D - T) b / d over DRY_TRANSOM_LEAN_REACH (fractions of Lpp forward of the
+# waterline's end, DRY_TRANSOM_LEAN_POINTS of them), and at least DRY_TRANSOM_DECK_LEAST B/2.
+# bench_fairness_space's first reading, hulls 0-199 / 200-399: every mark 85 / 71 -> 86 / 78 of
+# 200, with the frames aft of 5 % Lpp too 65 / 53 -> 80 / 63, S frames at 5-95 % Lpp 30 -> 19 /
+# 48 -> 32 hulls, buttocks over two sign changes 48 / 58 -> 51 / 63. With no least the deck
+# narrowed to 0.51 B/2 and the buttocks at 0.5-0.9 B/2 took lobes of 0.3-0.4 deg at 1.1-1.4 T
+# (every mark 82, with the aft frames 82, on hulls 0-199); 0.8: 89 / 81, with the aft frames 74 /
+# 62, but the tanker's aft frames kept an S of 0.3-0.4 deg. A margin of 0.1 left it 0.2-0.3 deg.
+DRY_TRANSOM_LEAN_MARGIN = 0.15
+DRY_TRANSOM_DECK_LEAST = 0.75
+DRY_TRANSOM_LEAN_REACH = (0.002, 0.03)
+DRY_TRANSOM_LEAN_POINTS = 15
 TRANSOM_FLARE = 20.0        # ... at an immersed transom at most this far (deg) outboard of its waterline over the freeboard
 DECK_FLAT_TOL = 1e-3        # ... the deck over it flat from where it comes within this fraction of B/2
 DWL_TRANSOM = 0.7           # waterline half-breadth at an immersed transom, fraction of B/2 ...
@@ -627,7 +643,7 @@ def design_description(p: Particulars, keel_rise: float = KEEL_RISE) -> dict:
         "ends": {"aft": x_aft, "fore": x_fore, **({"transom_rake": float(p.transom_rake)} if p.transom_rake else {})},
         "stations": {"count": 61},
         "sections": {"n_control": 20},
-        "basic_curves": {"profile": prof, "dwl": dwl, "deck": _deck_spec(p, par, dwl_curve, x_aft, xa, xf, immersed_transom),
+        "basic_curves": {"profile": prof, "dwl": dwl, "deck": _deck_spec(p, par, dwl_curve, profile, x_aft, xa, xf, immersed_transom),
                          "sac": _sac_spec(p, c, dwl_curve, profile, prof["flat_from"], xa, xf), "top_corner": {"value": TOP_CORNER}},
         "skinning": {"aft_end": SKIN_AFT_END},
         "design": {k: v for k, v in asdict(p).items() if k != "notes"},
@@ -712,12 +728,13 @@ def _at_half_breadth(dwl_curve, p: Particulars, xa: float, xf: float) -> tuple[f
     return (float(at[0]), float(at[-1])) if len(at) else (peak, peak)
 
 
-def _deck_spec(p: Particulars, par: tuple, dwl_curve, x_aft: float, xa: float, xf: float,
+def _deck_spec(p: Particulars, par: tuple, dwl_curve, profile, x_aft: float, xa: float, xf: float,
                immersed_transom: bool) -> dict:
     """The deck line: flat at B/2 from a quarter Lpp aft of the parallel body (further aft where a
     full stern keeps the waterline near B/2) to the waterline's widest, aft of it over an
-    immersed transom drawn over the waterline (see _transom_deck), and forward of it drawn over
-    the waterline (see _forward_deck)."""
+    immersed transom drawn over the waterline (see _transom_deck), over a dry one no wider than
+    the sections there lean (see _dry_transom_deck), and forward of it drawn over the waterline
+    (see _forward_deck)."""
     L, half = p.lpp, p.breadth / 2
     deck_from = max(x_aft + 0.05 * L, par[0] - 0.25 * L)
     xs_aft = np.linspace(xa, deck_from, DECK_FLAT_CHECKS)
@@ -729,7 +746,21 @@ def _deck_spec(p: Particulars, par: tuple, dwl_curve, x_aft: float, xa: float, x
             "yE": 0.0, "monotone": True, "spans": 24, "fit": _forward_deck(half, dwl_curve, deck_to, xf)}
     if p.stern == "transom" and immersed_transom:
         _transom_deck(spec, p, dwl_curve, x_aft, deck_to)
+    elif p.stern == "transom":
+        spec["yB"] = _dry_transom_deck(p, dwl_curve, profile, xa, spec["yB"])
     return spec
+
+
+def _dry_transom_deck(p: Particulars, dwl_curve, profile, xa: float, y_b: float) -> float:
+    """The deck's half-breadth (m) at a dry transom: y_b, or less where the sections near the
+    waterline's aft end xa lean less (see DRY_TRANSOM_LEAN_MARGIN)."""
+    xs = xa + np.linspace(*DRY_TRANSOM_LEAN_REACH, DRY_TRANSOM_LEAN_POINTS) * p.lpp
+    b, d = np.asarray(dwl_curve(xs)), p.draft - np.asarray(profile(xs))
+    wet = (b > 0) & (d > 0)
+    if not wet.any():
+        return y_b
+    lean = float(np.min(b[wet] + (p.depth - p.draft) * b[wet] / d[wet]))
+    return min(y_b, max((1.0 - DRY_TRANSOM_LEAN_MARGIN) * lean, DRY_TRANSOM_DECK_LEAST * p.breadth / 2))
 
 
 def _transom_deck(spec: dict, p: Particulars, dwl_curve, x_aft: float, deck_to: float) -> None:
