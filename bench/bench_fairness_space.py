@@ -50,9 +50,9 @@ FLAT_BOTTOM = 0.3
 KEEL_CHORD, KEEL_ON_BASE = 0.004, 1e-4
 KEEL_FRAMES = (np.linspace(0.15, 0.5, 8), np.linspace(0.55, 0.85, 7))
 #: The frames aft of the 19 (from AFT_FRAME_START of Lpp forward of the aft end to 5 % Lpp,
-#: AFT_FRAMES of them), read apart: near a dry transom the deck held wide over a waterline that
-#: closes on the centre plane bends the topside hollow above T. The largest lobe next to an
-#: inflection above T is counted (deg), and over AFT_FRAME_LOBE deg.
+#: AFT_FRAMES of them), read apart: over a dry transom whose deck is wider than its sections lean
+#: the topside turns hollow above T. An S there is measured by the smaller of the two lobes at an
+#: inflection above T (deg; the largest over the frames), and counted also over AFT_FRAME_LOBE deg.
 AFT_FRAMES, AFT_FRAME_START, AFT_FRAME_LOBE = 8, 0.002, 1.0
 
 

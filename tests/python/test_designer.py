@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import fairlines as fl
+from fairlines.designer import DRY_TRANSOM_DECK_LEAST
 from fairlines.fairness import judge_cut
 from conftest import edge_census, ship_tol
 
@@ -805,8 +806,6 @@ def test_frames_over_a_dry_transom_turn_one_way_above_the_waterline(name):
     deck at the transom is still at least DRY_TRANSOM_DECK_LEAST of B/2."""
     p = DRY_TRANSOM_SAMPLE[name]
     assert _aft_frame_inflections_above_t(p) == []
-    from fairlines.designer import DRY_TRANSOM_DECK_LEAST
-
     deck = fl.design_hull(**p).description.curves["deck"].to_dict()
     assert deck["yB"] >= DRY_TRANSOM_DECK_LEAST * p["breadth"] / 2 - 1e-9
 
