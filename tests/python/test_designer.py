@@ -751,6 +751,17 @@ def test_the_fine_ferrys_aft_sections_are_convex():
         assert _sign_changes(surface, 0, x) == 0, x
 
 
+def _first_frame_inflected_above_t(surface, xs, draft: float) -> list:
+    """(x, [z of its inflections above T]) of the first frame at xs (m) that has one; [] when none
+    has (m)."""
+    for x in xs:
+        cut = fl.plane_cut(surface, 0, float(x), 801)
+        above = [round(i["at"][2], 2) for i in judge_cut(cut)["inflections"] if i["at"][2] > draft]
+        if above:
+            return [round(float(x), 2), above]
+    return []
+
+
 def test_a_fine_ships_aft_frames_turn_one_way_above_the_waterline():
     """A fine 234 m ship (Cb 0.51; hull 136 of bench_hull's sample(300), rounded): its frames at
     5-30 % Lpp have no inflection above T. While the design waterline's fairness was its
@@ -758,10 +769,7 @@ def test_a_fine_ships_aft_frames_turn_one_way_above_the_waterline():
     (inflections at 1.06-1.11 T)."""
     p = dict(lpp=233.892, breadth=35.461, draft=8.518, depth=13.629, cb=0.508, lcb=113.868)
     surface = fl.design_hull(**p).bare_hull_surface()
-    for x in np.linspace(0.05, 0.3, 26) * p["lpp"]:
-        cut = fl.plane_cut(surface, 0, float(x), 801)
-        above = [round(i["at"][2] / p["draft"], 3) for i in judge_cut(cut)["inflections"] if i["at"][2] > p["draft"]]
-        assert not above, (x, above)
+    assert _first_frame_inflected_above_t(surface, np.linspace(0.05, 0.3, 26) * p["lpp"], p["draft"]) == []
 
 
 #: Measured shortfalls of the aft frames (test_frames_aft_of_five_percent_turn_one_way_above_the_waterline):
@@ -778,17 +786,12 @@ DRY_TRANSOM_SAMPLE = {
 }
 
 
-def _aft_frame_inflections_above_t(p: dict) -> list:
-    """(x, [z of inflections above T]) of the first frame, from 0.2 % Lpp forward of the aft end to
-    5 % Lpp (12 frames), that has one; [] when none has (m)."""
-    hull = fl.design_hull(**p)
-    surface = hull.bare_hull_surface()
-    for x in np.linspace(hull.description.x_aft + 0.002 * p["lpp"], 0.05 * p["lpp"], 12):
-        cut = fl.plane_cut(surface, 0, float(x), 801)
-        above = [round(i["at"][2], 2) for i in judge_cut(cut)["inflections"] if i["at"][2] > p["draft"]]
-        if above:
-            return [round(float(x), 2), above]
-    return []
+def _aft_frame_inflections_above_t(hull) -> list:
+    """_first_frame_inflected_above_t over the frames from 0.2 % Lpp forward of the aft end to
+    5 % Lpp (12 frames)."""
+    pr = hull.description.principal
+    xs = np.linspace(hull.description.x_aft + 0.002 * pr.lpp, 0.05 * pr.lpp, 12)
+    return _first_frame_inflected_above_t(hull.bare_hull_surface(), xs, pr.draft)
 
 
 @pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=AFT_FRAMES_SHORT[n]))
@@ -796,7 +799,7 @@ def _aft_frame_inflections_above_t(p: dict) -> list:
 def test_frames_aft_of_five_percent_turn_one_way_above_the_waterline(name):
     """The frames from 0.2 % Lpp forward of the aft end to 5 % Lpp (the ones bench_fairness_space's
     19 frames leave out) have no inflection above T: a topside there turns one way."""
-    assert _aft_frame_inflections_above_t(SHIPS[name]) == []
+    assert _aft_frame_inflections_above_t(fl.design_hull(**SHIPS[name])) == []
 
 
 @pytest.mark.parametrize("name", list(DRY_TRANSOM_SAMPLE))
@@ -805,8 +808,9 @@ def test_frames_over_a_dry_transom_turn_one_way_above_the_waterline(name):
     (the deck there no wider than the sections lean, designer.DRY_TRANSOM_LEAN_MARGIN), and the
     deck at the transom is still at least DRY_TRANSOM_DECK_LEAST of B/2."""
     p = DRY_TRANSOM_SAMPLE[name]
-    assert _aft_frame_inflections_above_t(p) == []
-    deck = fl.design_hull(**p).description.curves["deck"].to_dict()
+    hull = fl.design_hull(**p)
+    assert _aft_frame_inflections_above_t(hull) == []
+    deck = hull.description.curves["deck"].to_dict()
     assert deck["yB"] >= DRY_TRANSOM_DECK_LEAST * p["breadth"] / 2 - 1e-9
 
 
