@@ -172,7 +172,12 @@ constexpr double kDeckCornerShare = 0.9;
 /// kCornerBlend's blend), hulls 0-99 / held-out 100-199: every mark 40 -> 37 / 41 -> 40,
 /// buttocks over two 29 -> 27 / 30 -> 29, waterlines over two 46 -> 49 / 46 -> 49 (lobes of
 /// 0.1-0.6 deg in the lowest waterlines over the forefoot, 0.88-0.95 Lpp, where the shorter leg
-/// bends the section's top nearer Q).
+/// bends the section's top nearer Q). Part of them was the knob's: it met the area on the drawn
+/// top, whose bend the spline carries below T, and so moved the whole bilge. It now reads the
+/// natural leg (knob_template) and the correction puts the difference back near Q: hulls 0-99 /
+/// 100-199 / 200-399 (bench_fairness_space's first reading), hulls meeting every mark 42 -> 44 /
+/// 40 -> 42 / 81 -> 82, with a T/4-0.74 T waterline over two sign changes 33 -> 30 / 31 -> 27 /
+/// 64 -> 64, with a buttock over two 24 -> 24 / 23 -> 22 / 70 -> 69.
 constexpr double kLeastSideLeg = 0.5;
 /// The leg's minimum and maximum are rounded over e^kDeckEdgeBlend, wider than kCornerBlend's
 /// e^0.25, which turned the leg to the room within a few stations over the forefoot.
@@ -615,12 +620,13 @@ std::pair<V2, double> bilge_corner(const Section& S, double lambda) {
 }
 
 /// The template's pieces for shape knob lambda (immersed sections), flat_kept of the flat of
-/// bottom kept, from the deck to the keel:
+/// bottom kept, the top corner drawn inside the deck edge unless `natural_leg` (see
+/// knob_template), from the deck to the keel:
 /// the topside fillet D -> Y -> Q and the bilge arc Q -> X -> K; with a flat of bottom of
 /// half-breadth f the arc is the family's in the box beyond the flat (keel point F = K + (f, rise),
 /// its area less the flat's strip) and ends at F1 on its leg X -> F, a fillet rounds the corner at
 /// F over kFlatRound of the shorter leg down to F0 on the floor, and the floor runs straight to K.
-std::vector<Piece> immersed_template(const Section& S, double lambda, double flat_kept = 1.0) {
+std::vector<Piece> immersed_template(const Section& S, double lambda, double flat_kept = 1.0, bool natural_leg = false) {
   const SectionSpec& s = S.s;
   const V2 &D = S.f.D, &K = S.K, &Q = S.Q;
   const double f = flat_kept * s.flat_bottom * S.b;
@@ -643,7 +649,8 @@ std::vector<Piece> immersed_template(const Section& S, double lambda, double fla
   }
   const double l1 = (X - Q).norm();
   const V2 tw = l1 > 0 ? V2((X - Q) / l1) : V2((K - Q).normalized());
-  const V2 Y = below_deck(Q, -tw, inside_deck_edge(Q, -tw, s.top_corner * (D - Q).norm(), D), D);
+  const double leg = s.top_corner * (D - Q).norm();
+  const V2 Y = below_deck(Q, -tw, natural_leg ? leg : inside_deck_edge(Q, -tw, leg, D), D);
   Piece top = fillet(D, Y, Q, kTopFilletFar);
   const Piece bilge = conic(Q, X, end, w);
   match_bilge_curvature(top, bilge);
@@ -662,9 +669,13 @@ Knob knob_at(double t, double hi) { return {std::min(t, hi), 1.0 - std::clamp(t 
 // A given corner's area may rise with lambda (its largest then inside [0, hi]): no narrowing
 // stretch after it, or the knob's range would not be one-way.
 double knob_end(const Section& S, double hi) { return S.s.flat_bottom > 0 && std::isnan(S.s.corner_y) ? hi + 1.0 : hi; }
+/// The template the area knob reads (solve_knob, the fullness bounds) has the top corner's
+/// natural leg: the leg shortened inside the deck edge bends the top nearer Q, the spline's
+/// samples carry that into its area below T, and a knob meeting the area on it moved the whole
+/// bilge over the forefoot (design_section puts that area back near Q instead; see kLeastSideLeg).
 std::vector<Piece> knob_template(const Section& S, double t, double hi) {
   const Knob k = knob_at(t, hi);
-  return immersed_template(S, k.lambda, k.flat_kept);
+  return immersed_template(S, k.lambda, k.flat_kept, true);
 }
 
 /// Above the water: one rounded corner from the deck point to the keel point, arriving at
@@ -810,10 +821,11 @@ double knob_limit(const Section& S) {
 }
 
 /// Correction delta of the ordinates, least (weighted, smooth), with the ends fixed, the
-/// spline through `eta_q` at t_q and the area row unchanged. Below Q straight stretches of the
+/// spline through `eta_q` at t_q and the area row changed by `d_area` (m^2). Below Q straight stretches of the
 /// spline weigh kFlatGuard times more, so flats stay in their plane; above Q the correction is a
 /// near-linear tilt (kTopsideFreedom, kTopsideStiffness).
-Eigen::VectorXd correction(const Section& S, const Eigen::VectorXd& eta, double eta_q, const Eigen::RowVectorXd& arow) {
+Eigen::VectorXd correction(const Section& S, const Eigen::VectorXd& eta, double eta_q, const Eigen::RowVectorXd& arow,
+                           double d_area) {
   const int n = S.l.n;
   Eigen::MatrixXd Mw = Eigen::MatrixXd::Zero(n, n);
   const double span = 1.0 / (n - kDegree);
@@ -841,7 +853,7 @@ Eigen::VectorXd correction(const Section& S, const Eigen::VectorXd& eta, double 
   C(1, n - 1) = 1.0;
   C.row(2) = point_row(S, S.t_q);
   C.row(3) = arow;
-  Eigen::Vector4d r(0.0, 0.0, eta_q - C.row(2).dot(eta), 0.0);
+  Eigen::Vector4d r(0.0, 0.0, eta_q - C.row(2).dot(eta), d_area);
   const Eigen::LDLT<Eigen::MatrixXd> M(Mw);
   const Eigen::MatrixXd Y = M.solve(C.transpose());
   const Eigen::Matrix4d Sc = C * Y;
@@ -1414,8 +1426,12 @@ SectionDesign design_section(const SectionSpec& spec) {
   // The spline is put through Q in the share w^kThroughQPower (see the constant: with w itself the
   // correction, ill-conditioned as Q nears K, outgrew the fading waterline point).
   const double through_q = std::pow(S.w, kThroughQPower);
+  // The area the knob met on its template (knob_template) differs from the drawn one's where the
+  // top corner is drawn inside the deck edge: the correction puts it back near Q, in the same
+  // share (near the waterline's end Q nears K and the area fades out with the waterline point).
+  const double d_area = through_q * arow.dot(sample(S, immersed_template(S, out.shape, knob.flat_kept, true)) - eta);
   const double eta_q = through_q * S.f.eta(S.Q) + (1.0 - through_q) * point_row(S, S.t_q).dot(eta);
-  eta += correction(S, eta, eta_q, arow);
+  eta += correction(S, eta, eta_q, arow, d_area);
   out.fullness = (arow.dot(eta) + ac) / box;
   out.curve = assemble(S, eta);
   return out;
