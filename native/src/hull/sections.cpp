@@ -821,9 +821,9 @@ double knob_limit(const Section& S) {
 }
 
 /// Correction delta of the ordinates, least (weighted, smooth), with the ends fixed, the
-/// spline through `eta_q` at t_q and the area row changed by `d_area` (m^2). Below Q straight stretches of the
-/// spline weigh kFlatGuard times more, so flats stay in their plane; above Q the correction is a
-/// near-linear tilt (kTopsideFreedom, kTopsideStiffness).
+/// spline through `eta_q` at t_q and the area row changed by `d_area` (m^2). Below Q straight
+/// stretches of the spline weigh kFlatGuard times more, so flats stay in their plane; above Q the
+/// correction is a near-linear tilt (kTopsideFreedom, kTopsideStiffness).
 Eigen::VectorXd correction(const Section& S, const Eigen::VectorXd& eta, double eta_q, const Eigen::RowVectorXd& arow,
                            double d_area) {
   const int n = S.l.n;
@@ -1429,7 +1429,10 @@ SectionDesign design_section(const SectionSpec& spec) {
   // The area the knob met on its template (knob_template) differs from the drawn one's where the
   // top corner is drawn inside the deck edge: the correction puts it back near Q, in the same
   // share (near the waterline's end Q nears K and the area fades out with the waterline point).
-  const double d_area = through_q * arow.dot(sample(S, immersed_template(S, out.shape, knob.flat_kept, true)) - eta);
+  // A section of given shape (no area asked) is drawn as it is.
+  const double d_area = std::isnan(spec.half_area)
+                            ? 0.0
+                            : through_q * arow.dot(sample(S, immersed_template(S, out.shape, knob.flat_kept, true)) - eta);
   const double eta_q = through_q * S.f.eta(S.Q) + (1.0 - through_q) * point_row(S, S.t_q).dot(eta);
   eta += correction(S, eta, eta_q, arow, d_area);
   out.fullness = (arow.dot(eta) + ac) / box;
