@@ -621,12 +621,13 @@ std::pair<V2, double> bilge_corner(const Section& S, double lambda) {
 
 /// The template's pieces for shape knob lambda (immersed sections), flat_kept of the flat of
 /// bottom kept, the top corner drawn inside the deck edge unless `natural_leg` (see
-/// knob_template), from the deck to the keel:
+/// knob_template; `leg_shortened`, if given, says whether it was), from the deck to the keel:
 /// the topside fillet D -> Y -> Q and the bilge arc Q -> X -> K; with a flat of bottom of
 /// half-breadth f the arc is the family's in the box beyond the flat (keel point F = K + (f, rise),
 /// its area less the flat's strip) and ends at F1 on its leg X -> F, a fillet rounds the corner at
 /// F over kFlatRound of the shorter leg down to F0 on the floor, and the floor runs straight to K.
-std::vector<Piece> immersed_template(const Section& S, double lambda, double flat_kept = 1.0, bool natural_leg = false) {
+std::vector<Piece> immersed_template(const Section& S, double lambda, double flat_kept = 1.0, bool natural_leg = false,
+                                      bool* leg_shortened = nullptr) {
   const SectionSpec& s = S.s;
   const V2 &D = S.f.D, &K = S.K, &Q = S.Q;
   const double f = flat_kept * s.flat_bottom * S.b;
@@ -650,7 +651,9 @@ std::vector<Piece> immersed_template(const Section& S, double lambda, double fla
   const double l1 = (X - Q).norm();
   const V2 tw = l1 > 0 ? V2((X - Q) / l1) : V2((K - Q).normalized());
   const double leg = s.top_corner * (D - Q).norm();
-  const V2 Y = below_deck(Q, -tw, natural_leg ? leg : inside_deck_edge(Q, -tw, leg, D), D);
+  const double drawn = natural_leg ? leg : inside_deck_edge(Q, -tw, leg, D);
+  if (leg_shortened) *leg_shortened = drawn != leg;
+  const V2 Y = below_deck(Q, -tw, drawn, D);
   Piece top = fillet(D, Y, Q, kTopFilletFar);
   const Piece bilge = conic(Q, X, end, w);
   match_bilge_curvature(top, bilge);
@@ -1422,15 +1425,16 @@ SectionDesign design_section(const SectionSpec& spec) {
   out.immersion = S.w;
   out.shape = S.w * knob.lambda + (1.0 - S.w) * kMaxShapeKnob;
   out.flat_kept = knob.flat_kept;
-  Eigen::VectorXd eta = sample(S, immersed_template(S, out.shape, knob.flat_kept));
+  bool shortened = false;
+  Eigen::VectorXd eta = sample(S, immersed_template(S, out.shape, knob.flat_kept, false, &shortened));
   // The spline is put through Q in the share w^kThroughQPower (see the constant: with w itself the
   // correction, ill-conditioned as Q nears K, outgrew the fading waterline point).
   const double through_q = std::pow(S.w, kThroughQPower);
   // The area the knob met on its template (knob_template) differs from the drawn one's where the
   // top corner is drawn inside the deck edge: the correction puts it back near Q, in the same
   // share (near the waterline's end Q nears K and the area fades out with the waterline point).
-  // A section of given shape (no area asked) is drawn as it is.
-  const double d_area = std::isnan(spec.half_area)
+  // A section of given shape (no area asked) is drawn as it is; with the natural leg the two agree.
+  const double d_area = std::isnan(spec.half_area) || !shortened
                             ? 0.0
                             : through_q * arow.dot(sample(S, immersed_template(S, out.shape, knob.flat_kept, true)) - eta);
   const double eta_q = through_q * S.f.eta(S.Q) + (1.0 - through_q) * point_row(S, S.t_q).dot(eta);
