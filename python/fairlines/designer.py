@@ -129,9 +129,10 @@ DRY_TRANSOM_LEAN_POINTS = 15
 TRANSOM_FLARE = 20.0        # ... at an immersed transom at most this far (deg) outboard of its waterline over the freeboard
 DECK_FLAT_TOL = 1e-3        # ... the deck over it flat from where it comes within this fraction of B/2
 DWL_TRANSOM = 0.7           # waterline half-breadth at an immersed transom, fraction of B/2 ...
-TRANSOM_WIDTHS = (DWL_TRANSOM, 0.6, 0.5, 0.4, 0.3)  # ... narrowed through these until the run widens to the peak
+TRANSOM_WIDTHS = (DWL_TRANSOM, 0.6, 0.5, 0.4, 0.3, 0.2)  # ... narrowed through these until the run is convex to the peak
 MONOTONE_CHECKS = 101       # points of that check
 MONOTONE_TOL = 1e-6         # narrowing by less than this fraction of B/2 counts as widening
+RUN_HOLLOW_TOL = 1e-4       # y'' B/2 (y'' in 1/m) up to this counts as convex: no hollow in the run
 DWL_TRANSOM_RETRY = 0.5     # ... and when a fine ship's ends cannot hold its LCB with that wide a transom
 FULLNESS_POINTS = 81        # points of the natural fullness the SAC stays near
 FULLNESS_LIMITS = (0.52, 0.97)  # natural end fullness kept inside these
@@ -572,26 +573,34 @@ def _finer_run(p: Particulars, dwl: dict, curve, solve, xa: float):
 
 def _waterline(p: Particulars, dwl: dict, xa: float, xf: float, peak: float, immersed_transom: bool):
     """The design waterline; at an immersed transom not given a breadth, the widest of
-    TRANSOM_WIDTHS whose waterline widens all the way from the transom to its peak (a wide
-    transom on a fine waterplane otherwise pinches the run into a waist)."""
+    TRANSOM_WIDTHS whose waterline is convex from the transom to its peak (a wider transom on a
+    fine waterplane hollows the run: its hollow carries down into the waterlines below T, a
+    wobble at mid-draught and an inflection at the transom's end of those just under T); failing
+    that, the widest whose waterline widens all the way (a wide transom on a fine waterplane
+    otherwise pinches the run into a waist); failing that, the narrowest that solves."""
     half = p.breadth / 2
     if not immersed_transom:
         dwl["yB"] = 0.0
         return _solve_dwl(p, dwl, xa, xf)
     widths = [p.transom_breadth] if p.transom_breadth is not None else [f * half for f in TRANSOM_WIDTHS]
-    best = None
+    solved, widening = None, None
     for yb in widths:
         trial = {**dwl, "yB": yb}
         try:
             curve = _solve_dwl(p, trial, xa, xf)
         except _native.InfeasibleFormParameters:
-            if best is None:
+            if solved is None:
                 raise
             break
-        best = curve, trial
-        y = curve(np.linspace(xa, peak, MONOTONE_CHECKS))
-        if np.all(np.diff(y) >= -MONOTONE_TOL * half):
+        solved = curve, trial
+        xs = np.linspace(xa, peak, MONOTONE_CHECKS)
+        y = curve(xs)
+        if np.all(np.diff(y, 2) <= RUN_HOLLOW_TOL * (xs[1] - xs[0]) ** 2 / half):
+            widening = solved
             break
+        if widening is None and np.all(np.diff(y) >= -MONOTONE_TOL * half):
+            widening = solved
+    best = widening or solved
     dwl.clear()
     dwl.update(best[1])  # the description keeps the transom breadth (and LCF) the waterline was solved with
     return best[0]

@@ -442,12 +442,13 @@ def test_a_fine_ship_with_a_short_parallel_body_and_lcb_at_midships_builds():
 
 
 # Fine ships with a long given parallel body (bench_hull.sample_given_parallel(200), ships 27 and 9,
-# rounded; the deep one's parallel body 42.07 -> 44 m since the knob reads the natural leg, with
-# which the full-size bulb met its 42.07 m one): the designer's full-size bulb meets their short
+# rounded; the deep one's parallel body 42.07 -> 44 -> 45 m since the knob reads the natural leg and
+# the transom is narrowed until the run is convex, with each of which the full-size bulb met the
+# shorter one): the designer's full-size bulb meets their short
 # entrance in two curves, or in a seam that turns back round it, at every aft length.
 SHORT_ENTRANCE = {
     "slender": dict(lpp=150.0, breadth=16.944, draft=6.756, depth=10.809, cb=0.513, lcb=73.404, parallel_length=44.08),
-    "deep": dict(lpp=150.0, breadth=32.651, draft=16.026, depth=25.642, cb=0.545, lcb=69.09, parallel_length=44.0),
+    "deep": dict(lpp=150.0, breadth=32.651, draft=16.026, depth=25.642, cb=0.545, lcb=69.09, parallel_length=45.0),
 }
 
 
@@ -856,6 +857,37 @@ def test_a_lower_waterline_runs_over_the_forefoot_without_a_wobble(name):
     judged = judge_cut(cut)
     assert judged["sign_changes"] <= 2, [(lobe["at"][0] / p["lpp"], lobe["turn_deg"]) for lobe in judged["lobes"]]
     assert read_waterline(cut)["fair"]
+
+
+# Fine ships of bench_fairness_space's sample (hulls 13, 18, 47, 56, 85, 96 of bench_hull.sample(100),
+# rounded) with an immersed transom. While the design waterline took the widest transom that
+# still widened to its peak, its run was hollow; the hollow carried down into the waterlines
+# below T: at 0.495 T a hollow of 0.3-1.6 deg in the run between convex lobes (4-6 sign
+# changes), at 0.985 T a convex lobe at the transom's end (3).
+FINE_RUN_SAMPLE = {
+    "hull_13": dict(lpp=157.57, breadth=22.72, draft=5.05, depth=8.09, cb=0.518, lcb=76.72),
+    "hull_18": dict(lpp=253.13, breadth=49.7, draft=11.22, depth=17.95, cb=0.545, lcb=122.58),
+    "hull_47": dict(lpp=169.92, breadth=25.4, draft=11.62, depth=18.59, cb=0.595, lcb=87.64),
+    "hull_56": dict(lpp=227.06, breadth=25.61, draft=7.86, depth=12.57, cb=0.535, lcb=104.98),
+    "hull_85": dict(lpp=189.13, breadth=27.76, draft=6.22, depth=9.95, cb=0.565, lcb=88.92),
+    "hull_96": dict(lpp=250.49, breadth=34.05, draft=10.88, depth=17.4, cb=0.551, lcb=119.54),
+}
+
+
+@pytest.mark.parametrize("name", list(FINE_RUN_SAMPLE))
+def test_a_fine_ship_s_waterlines_under_t_run_to_the_transom_without_a_hollow_wobble(name):
+    """The waterlines at 0.495 T and 0.985 T of a fine sampled ship, cut from the bare hull, each
+    have at most two curvature sign changes over 0.1 deg (the bench's mark) and read fair as a
+    lines plan; before, each ship failed one of them."""
+    from fairlines.fairness import read_waterline
+
+    p = FINE_RUN_SAMPLE[name]
+    surface = fl.design_hull(**p).bare_hull_surface()
+    for f in (0.495, 0.985):
+        cut = fl.plane_cut(surface, 2, f * p["draft"], 401)
+        judged = judge_cut(cut)
+        assert judged["sign_changes"] <= 2, (f, [(lobe["at"][0] / p["lpp"], lobe["turn_deg"]) for lobe in judged["lobes"]])
+        assert read_waterline(cut)["fair"], f
 
 
 WOBBLY_WATERLINES: dict = {}
