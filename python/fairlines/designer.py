@@ -583,7 +583,7 @@ def _waterline(p: Particulars, dwl: dict, xa: float, xf: float, peak: float, imm
         dwl["yB"] = 0.0
         return _solve_dwl(p, dwl, xa, xf)
     widths = [p.transom_breadth] if p.transom_breadth is not None else [f * half for f in TRANSOM_WIDTHS]
-    solved, widening = None, None
+    solved, widening, convex = None, None, None
     for yb in widths:
         trial = {**dwl, "yB": yb}
         try:
@@ -596,11 +596,11 @@ def _waterline(p: Particulars, dwl: dict, xa: float, xf: float, peak: float, imm
         xs = np.linspace(xa, peak, MONOTONE_CHECKS)
         y = curve(xs)
         if np.all(np.diff(y, 2) <= RUN_HOLLOW_TOL * (xs[1] - xs[0]) ** 2 / half):
-            widening = solved
+            convex = solved
             break
         if widening is None and np.all(np.diff(y) >= -MONOTONE_TOL * half):
             widening = solved
-    best = widening or solved
+    best = convex or widening or solved
     dwl.clear()
     dwl.update(best[1])  # the description keeps the transom breadth (and LCF) the waterline was solved with
     return best[0]
