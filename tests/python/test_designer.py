@@ -901,7 +901,7 @@ STEM_TIP_SHORT = {
     ("container", 0.25): "a hollow of 0.56 deg at x 245.17 m then a convex lobe of 0.21 deg at 245.49 m (z 13 m, 2 m above T), "
                          "the waterline's last 0.6 m over the stem (a hollow of 0.40 and a convex lobe of 0.25 deg before the "
                          "forward deck followed the waterline as smoothstep^0.4, designer.DECK_FOLLOW_POWER)",
-    ("fine_ferry", 0.25): "a hollow of 0.28 deg at x 140.19 m then a convex lobe of 0.16 deg at 140.37 m (z 6.6 m), the "
+    ("fine_ferry", 0.25): "a hollow of 0.20 deg at x 140.19 m then a convex lobe of 0.18 deg at 140.37 m (z 6.6 m; 0.28 and 0.16 deg before 0180c0f narrowed the transom), the "
                           "waterline's last 0.4 m over the stem, since the forward deck follows the waterline's narrowing "
                           "as smoothstep^0.4 (designer.DECK_FOLLOW_POWER; one hollow of 0.25 deg with the smoothstep)",
 }
