@@ -13,8 +13,9 @@ textbook defaults when left out (each named in the description's notes):
   forward of the LCB's offset from midships;
 * a transom stern 2.5 % Lpp aft of the AP, its lower edge 5 % of T above the waterline above
   Cb 0.6 (dry) and 12 % of T below it otherwise, an immersed one 0.7 B/2 wide at the waterline,
-  narrowed in steps of 0.1 B/2 until the waterline widens all the way from the transom to its
-  widest (and to 0.5 B/2 when a fine ship's ends cannot hold its LCB with the wider one),
+  narrowed in steps of 0.1 B/2 (to 0.2 B/2) until the waterline is convex from the transom to its
+  widest, else the widest with which it widens all the way (and to 0.5 B/2 when a fine ship's
+  ends cannot hold its LCB with the wider one),
   upright unless transom_rake is given (deg, the top aft; ends.transom_rake); a stem raked
   20 deg above the waterline;
 * the keel rising aft from its flat over 0.9 of Holtrop and Mennen's run (over 0.4, then 0.25
