@@ -584,6 +584,7 @@ def _waterline(p: Particulars, dwl: dict, xa: float, xf: float, peak: float, imm
         dwl["yB"] = 0.0
         return _solve_dwl(p, dwl, xa, xf)
     widths = [p.transom_breadth] if p.transom_breadth is not None else [f * half for f in TRANSOM_WIDTHS]
+    xs = np.linspace(xa, peak, MONOTONE_CHECKS)
     solved, widening, convex = None, None, None
     for yb in widths:
         trial = {**dwl, "yB": yb}
@@ -594,7 +595,6 @@ def _waterline(p: Particulars, dwl: dict, xa: float, xf: float, peak: float, imm
                 raise
             break
         solved = curve, trial
-        xs = np.linspace(xa, peak, MONOTONE_CHECKS)
         y = curve(xs)
         if np.all(np.diff(y, 2) <= RUN_HOLLOW_TOL * (xs[1] - xs[0]) ** 2 / half):
             convex = solved
